@@ -1,0 +1,1 @@
+//! NEAT, CPPNs, neural networks and HyperNEAT substrate decoding.

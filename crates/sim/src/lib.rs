@@ -1,0 +1,1 @@
+//! The ViVAE robot simulator: SVG scenarios, physics, sensors, snapshots and drawing.

@@ -1,0 +1,2 @@
+//! The `vivae` command-line program.
+fn main() {}
