@@ -1,0 +1,1 @@
+//! HyperNEAT: decoding a CPPN into a substrate controller.
