@@ -1,0 +1,1 @@
+//! Figures of a run: convergence, network drawing, trajectories.

@@ -1,0 +1,1 @@
+//! The polar substrate layout of the driving controller.
