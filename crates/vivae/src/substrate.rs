@@ -1,1 +1,624 @@
-//! The polar substrate layout of the driving controller.
+//! The polar substrate layout of the driving controller (DESIGN §7).
+//!
+//! Every sheet is a polar grid of `rings × angles` nodes. Ring `k` (0 =
+//! innermost) has radius `ρ = (k+1)/rings`; angles are spread evenly over the
+//! sheet's field of view, 0 straight ahead, negative to the left (one angle:
+//! 0). Nodes are numbered ring-major, left to right — the order in which
+//! `vivae_sim::SurfaceSensors` reads its sensors. A node's CPPN coordinates
+//! are `(ρ·sin φ, ρ·cos φ)` (x to the right, y ahead) or, as an option, the
+//! raw `(ρ, φ/π)`.
+//!
+//! Sheets and the CPPN outputs that paint their links:
+//!
+//! | sheet                                | CPPN output |
+//! |--------------------------------------|-------------|
+//! | surface sensors → neurons            | 0           |
+//! | neuron biases (`x2 = y2 = 0`)        | 1           |
+//! | neurons → neurons                    | 2           |
+//! | distance sensors → neurons (optional)| 3           |
+//!
+//! Distance sensors are rays, one per angle, placed on a single ring at
+//! `ρ = 1`; with them the CPPN has 4 outputs instead of DESIGN's 3.
+//!
+//! Wheel neurons: the leftmost angle is L, the rightmost is R, on the ring
+//! nearest to `ρ = 2/3` ([`WHEEL_RADIUS`]). That is the middle ring of the
+//! paper's 3-ring sheet (and of 1- and 5-ring sheets), and it is exactly
+//! `ρ = 2/3` whenever `rings` is a multiple of 3, so re-sampling 3×3 → 9×9
+//! keeps the wheels at the same CPPN coordinates — the point of HyperNEAT's
+//! re-sampling. (The literal middle ring `rings/2` would move them: for 9
+//! rings it has `ρ = 5/9`.) For an even number of rings there is no middle
+//! ring; the same rule gives 2 rings → ρ = 1/2, 4 rings → ρ = 3/4,
+//! 6 rings → ρ = 4/6. (Distances to 2/3 never tie.)
+
+use std::fmt;
+use std::str::FromStr;
+
+use serde::{Deserialize, Serialize};
+use vivae_neat::hyperneat::{InputSheet, SubstrateLayout};
+
+/// CPPN output painting surface sensor → neuron weights.
+pub const SURFACE_OUTPUT: usize = 0;
+/// CPPN output giving neuron biases.
+pub const BIAS_OUTPUT: usize = 1;
+/// CPPN output painting neuron → neuron weights.
+pub const RECURRENT_OUTPUT: usize = 2;
+/// CPPN output painting distance sensor → neuron weights (only with distance sensors).
+pub const DISTANCE_OUTPUT: usize = 3;
+/// The radius the wheel neurons sit nearest to: the middle ring of a 3-ring sheet.
+pub const WHEEL_RADIUS: f64 = 2.0 / 3.0;
+/// Largest number of rings or angles a grid may have.
+pub const MAX_GRID_SIDE: usize = 10_000;
+
+/// Errors in a substrate description.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SubstrateError {
+    /// A grid string is not of the form `RxA`.
+    #[error("invalid grid {input:?}: {reason} (expected RINGSxANGLES, e.g. \"3x5\")")]
+    Parse {
+        /// The text that failed to parse.
+        input: String,
+        /// What is wrong with it.
+        reason: String,
+    },
+    /// A grid dimension is out of range.
+    #[error("invalid grid {rings}x{angles}: rings and angles must be in 1..={max}", max = MAX_GRID_SIDE)]
+    GridSize {
+        /// Rings requested.
+        rings: usize,
+        /// Angles requested.
+        angles: usize,
+    },
+    /// The neuron sheet cannot hold two distinct wheel neurons.
+    #[error("the neuron sheet {0} has one angle; wheel neurons L and R need at least 2 angles")]
+    OneAngle(PolarGrid),
+    /// A field of view is out of range.
+    #[error("invalid {field} = {value}°: {reason}")]
+    Fov {
+        /// Which field.
+        field: &'static str,
+        /// The rejected value in degrees.
+        value: f64,
+        /// The valid range.
+        reason: &'static str,
+    },
+    /// Distance sensors requested with zero rays.
+    #[error("distance_rays must be at least 1 when given (omit it for no distance sensors)")]
+    NoRays,
+}
+
+/// A polar grid of `rings × angles` nodes; parses from and prints as `"RxA"`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(try_from = "String", into = "String")]
+pub struct PolarGrid {
+    /// Number of rings (radii).
+    pub rings: usize,
+    /// Number of angles per ring.
+    pub angles: usize,
+}
+
+impl PolarGrid {
+    /// A grid of `rings × angles`, both in `1..=MAX_GRID_SIDE`.
+    pub fn new(rings: usize, angles: usize) -> Result<PolarGrid, SubstrateError> {
+        if (1..=MAX_GRID_SIDE).contains(&rings) && (1..=MAX_GRID_SIDE).contains(&angles) {
+            Ok(PolarGrid { rings, angles })
+        } else {
+            Err(SubstrateError::GridSize { rings, angles })
+        }
+    }
+
+    /// Number of nodes.
+    pub fn len(&self) -> usize {
+        self.rings * self.angles
+    }
+
+    /// Whether the grid has no nodes (never true for a validated grid).
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Index of the node on ring `ring` at angle `angle` (ring-major).
+    pub fn index(&self, ring: usize, angle: usize) -> usize {
+        ring * self.angles + angle
+    }
+
+    /// Radius of ring `ring`: `(ring + 1)/rings`.
+    pub fn radius(&self, ring: usize) -> f64 {
+        (ring + 1) as f64 / self.rings as f64
+    }
+
+    /// The grid's nodes, ring-major, left to right, with angles over `fov_deg`.
+    pub fn nodes(&self, fov_deg: f64) -> Vec<PolarNode> {
+        let angles = spread(self.angles, fov_deg);
+        (0..self.rings)
+            .flat_map(|ring| {
+                let rho = self.radius(ring);
+                angles
+                    .iter()
+                    .enumerate()
+                    .map(move |(angle_index, &phi)| PolarNode {
+                        ring,
+                        angle_index,
+                        rho,
+                        phi,
+                    })
+            })
+            .collect()
+    }
+
+    /// The wheel neurons of this grid used as the neuron sheet.
+    pub fn wheel_neurons(&self) -> Result<WheelNeurons, SubstrateError> {
+        if self.angles < 2 {
+            return Err(SubstrateError::OneAngle(*self));
+        }
+        let ring = (0..self.rings)
+            .min_by(|&a, &b| {
+                let da = (self.radius(a) - WHEEL_RADIUS).abs();
+                let db = (self.radius(b) - WHEEL_RADIUS).abs();
+                da.total_cmp(&db)
+            })
+            .unwrap_or(0);
+        Ok(WheelNeurons {
+            left: self.index(ring, 0),
+            right: self.index(ring, self.angles - 1),
+        })
+    }
+}
+
+/// Angles (radians) spread evenly over `fov_deg`, left (negative) to right; one angle → 0.
+fn spread(n: usize, fov_deg: f64) -> Vec<f64> {
+    let fov = fov_deg.to_radians();
+    (0..n)
+        .map(|j| {
+            if n == 1 {
+                0.0
+            } else {
+                -fov / 2.0 + fov * j as f64 / (n - 1) as f64
+            }
+        })
+        .collect()
+}
+
+impl fmt::Display for PolarGrid {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}x{}", self.rings, self.angles)
+    }
+}
+
+impl FromStr for PolarGrid {
+    type Err = SubstrateError;
+
+    fn from_str(s: &str) -> Result<PolarGrid, SubstrateError> {
+        let err = |reason: &str| SubstrateError::Parse {
+            input: s.to_string(),
+            reason: reason.to_string(),
+        };
+        let t = s.trim();
+        let mut parts = t.split(['x', 'X', '×']);
+        let (Some(r), Some(a), None) = (parts.next(), parts.next(), parts.next()) else {
+            return Err(err("expected exactly one 'x' between two numbers"));
+        };
+        let number = |part: &str, what: &str| -> Result<usize, SubstrateError> {
+            let part = part.trim();
+            if part.is_empty() {
+                return Err(err(&format!("the number of {what} is missing")));
+            }
+            part.parse::<usize>().map_err(|_| {
+                err(&format!(
+                    "the number of {what} {part:?} is not a whole number"
+                ))
+            })
+        };
+        let rings = number(r, "rings")?;
+        let angles = number(a, "angles")?;
+        PolarGrid::new(rings, angles)
+    }
+}
+
+impl TryFrom<String> for PolarGrid {
+    type Error = SubstrateError;
+
+    fn try_from(s: String) -> Result<PolarGrid, SubstrateError> {
+        s.parse()
+    }
+}
+
+impl From<PolarGrid> for String {
+    fn from(g: PolarGrid) -> String {
+        g.to_string()
+    }
+}
+
+/// One node of a polar sheet.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PolarNode {
+    /// Ring index (0 = innermost).
+    pub ring: usize,
+    /// Angle index (0 = leftmost).
+    pub angle_index: usize,
+    /// Radius `(ring+1)/rings`, in (0, 1].
+    pub rho: f64,
+    /// Angle in radians, 0 ahead, negative to the left.
+    pub phi: f64,
+}
+
+impl PolarNode {
+    /// The node's position in the drawing plane: `(ρ·sin φ, ρ·cos φ)`, x right, y ahead.
+    pub fn cartesian(&self) -> [f64; 2] {
+        [self.rho * self.phi.sin(), self.rho * self.phi.cos()]
+    }
+
+    /// The node's CPPN coordinates in the given mode.
+    pub fn coords(&self, mode: CoordMode) -> [f64; 2] {
+        match mode {
+            CoordMode::Cartesian => self.cartesian(),
+            CoordMode::Polar => [self.rho, self.phi / std::f64::consts::PI],
+        }
+    }
+}
+
+/// How node positions are fed to the CPPN.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CoordMode {
+    /// `(ρ·sin φ, ρ·cos φ)` (DESIGN §7 default).
+    #[default]
+    Cartesian,
+    /// The raw polar pair `(ρ, φ/π)`.
+    Polar,
+}
+
+/// Indices of the two wheel neurons in the neuron sheet.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct WheelNeurons {
+    /// The left wheel's neuron (leftmost angle of the wheel ring).
+    pub left: usize,
+    /// The right wheel's neuron (rightmost angle of the wheel ring).
+    pub right: usize,
+}
+
+/// Everything that fixes the substrate geometry of a run.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SubstrateSpec {
+    /// Surface sensor sheet (the paper's 3×5).
+    pub sensors: PolarGrid,
+    /// Neuron (output) sheet (the paper's 3×3).
+    pub neurons: PolarGrid,
+    /// Number of distance-sensor rays; `None` = no distance sheet (the paper).
+    pub distance_rays: Option<usize>,
+    /// Angular span of the input sheets in degrees (the sensors' field of view, 180).
+    pub fov: f64,
+    /// Angular span of the neuron sheet in degrees (180).
+    pub neuron_fov: f64,
+    /// How node positions are given to the CPPN.
+    pub coords: CoordMode,
+}
+
+impl Default for SubstrateSpec {
+    fn default() -> Self {
+        SubstrateSpec {
+            sensors: PolarGrid {
+                rings: 3,
+                angles: 5,
+            },
+            neurons: PolarGrid {
+                rings: 3,
+                angles: 3,
+            },
+            distance_rays: None,
+            fov: 180.0,
+            neuron_fov: 180.0,
+            coords: CoordMode::Cartesian,
+        }
+    }
+}
+
+impl SubstrateSpec {
+    /// Checks grids, fields of view and ray count.
+    pub fn validate(&self) -> Result<(), SubstrateError> {
+        PolarGrid::new(self.sensors.rings, self.sensors.angles)?;
+        PolarGrid::new(self.neurons.rings, self.neurons.angles)?;
+        self.neurons.wheel_neurons()?;
+        if !(self.fov > 0.0 && self.fov <= 360.0) {
+            return Err(SubstrateError::Fov {
+                field: "fov",
+                value: self.fov,
+                reason: "must be in (0, 360]",
+            });
+        }
+        // At 360° the leftmost and rightmost neurons would coincide: L = R.
+        if !(self.neuron_fov > 0.0 && self.neuron_fov < 360.0) {
+            return Err(SubstrateError::Fov {
+                field: "neuron_fov",
+                value: self.neuron_fov,
+                reason: "must be in (0, 360) so that L and R differ",
+            });
+        }
+        match self.distance_rays {
+            Some(0) => Err(SubstrateError::NoRays),
+            Some(r) if r > MAX_GRID_SIDE => Err(SubstrateError::GridSize {
+                rings: 1,
+                angles: r,
+            }),
+            _ => Ok(()),
+        }
+    }
+
+    /// Number of CPPN outputs this substrate needs: 3, or 4 with distance sensors.
+    pub fn cppn_outputs(&self) -> usize {
+        if self.distance_rays.is_some() { 4 } else { 3 }
+    }
+
+    /// Surface sensor nodes in controller-input order.
+    pub fn sensor_nodes(&self) -> Vec<PolarNode> {
+        self.sensors.nodes(self.fov)
+    }
+
+    /// Distance sensor nodes (one ring at ρ = 1), empty without distance sensors.
+    pub fn distance_nodes(&self) -> Vec<PolarNode> {
+        match self.distance_rays {
+            Some(rays) => PolarGrid {
+                rings: 1,
+                angles: rays,
+            }
+            .nodes(self.fov),
+            None => Vec::new(),
+        }
+    }
+
+    /// Neuron nodes in controller-output order.
+    pub fn neuron_nodes(&self) -> Vec<PolarNode> {
+        self.neurons.nodes(self.neuron_fov)
+    }
+
+    /// The wheel neurons.
+    pub fn wheels(&self) -> Result<WheelNeurons, SubstrateError> {
+        self.neurons.wheel_neurons()
+    }
+
+    /// The geometry-agnostic layout `vivae_neat::hyperneat::decode` takes.
+    pub fn layout(&self) -> Result<SubstrateLayout, SubstrateError> {
+        self.validate()?;
+        let coords = |nodes: Vec<PolarNode>| -> Vec<[f64; 2]> {
+            nodes.iter().map(|n| n.coords(self.coords)).collect()
+        };
+        let mut inputs = vec![InputSheet {
+            coords: coords(self.sensor_nodes()),
+            cppn_output: SURFACE_OUTPUT,
+        }];
+        if self.distance_rays.is_some() {
+            inputs.push(InputSheet {
+                coords: coords(self.distance_nodes()),
+                cppn_output: DISTANCE_OUTPUT,
+            });
+        }
+        Ok(SubstrateLayout {
+            inputs,
+            neurons: coords(self.neuron_nodes()),
+            bias_output: BIAS_OUTPUT,
+            recurrent_output: RECURRENT_OUTPUT,
+        })
+    }
+}
+
+/// Builds the layout and wheel neurons from the parts of a [`SubstrateSpec`]
+/// (input sheets and neuron sheet over 180°).
+pub fn build_layout(
+    sensors: PolarGrid,
+    neurons: PolarGrid,
+    distance_rays: Option<usize>,
+    coords: CoordMode,
+) -> Result<(SubstrateLayout, WheelNeurons), SubstrateError> {
+    let spec = SubstrateSpec {
+        sensors,
+        neurons,
+        distance_rays,
+        coords,
+        ..SubstrateSpec::default()
+    };
+    Ok((spec.layout()?, spec.wheels()?))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn grid(s: &str) -> PolarGrid {
+        s.parse().unwrap()
+    }
+
+    fn close(a: [f64; 2], b: [f64; 2]) -> bool {
+        (a[0] - b[0]).abs() < 1e-12 && (a[1] - b[1]).abs() < 1e-12
+    }
+
+    #[test]
+    fn parses_and_prints_grids() {
+        assert_eq!(
+            grid("3x5"),
+            PolarGrid {
+                rings: 3,
+                angles: 5
+            }
+        );
+        assert_eq!(
+            grid(" 9X9 "),
+            PolarGrid {
+                rings: 9,
+                angles: 9
+            }
+        );
+        assert_eq!(
+            grid("3×6"),
+            PolarGrid {
+                rings: 3,
+                angles: 6
+            }
+        );
+        assert_eq!(grid("20x60").to_string(), "20x60");
+        for (bad, needle) in [
+            ("3", "exactly one 'x'"),
+            ("3x5x2", "exactly one 'x'"),
+            ("x5", "rings is missing"),
+            ("3x", "angles is missing"),
+            ("3xfive", "\"five\" is not a whole number"),
+            ("-3x5", "not a whole number"),
+            ("0x5", "must be in 1..=10000"),
+            ("3x0", "must be in 1..=10000"),
+            ("3x100000", "must be in 1..=10000"),
+        ] {
+            let e = bad.parse::<PolarGrid>().unwrap_err().to_string();
+            assert!(e.contains(needle), "{bad}: {e}");
+        }
+    }
+
+    #[test]
+    fn grid_serde_is_the_rxa_string() {
+        let spec = SubstrateSpec::default();
+        let json = serde_json::to_string(&spec).unwrap();
+        assert!(json.contains(r#""sensors":"3x5""#), "{json}");
+        assert!(json.contains(r#""neurons":"3x3""#), "{json}");
+        let back: SubstrateSpec = serde_json::from_str(&json).unwrap();
+        assert_eq!(back, spec);
+        let e = serde_json::from_str::<SubstrateSpec>(r#"{"sensors":"3y5"}"#).unwrap_err();
+        assert!(e.to_string().contains("3y5"), "{e}");
+        assert!(serde_json::from_str::<SubstrateSpec>(r#"{"sensor":"3x5"}"#).is_err());
+        let partial: SubstrateSpec = serde_json::from_str(r#"{"neurons":"9x9"}"#).unwrap();
+        assert_eq!(partial.neurons, grid("9x9"));
+        assert_eq!(partial.sensors, grid("3x5"));
+    }
+
+    #[test]
+    fn nodes_are_ring_major_left_to_right() {
+        let nodes = grid("3x5").nodes(180.0);
+        assert_eq!(nodes.len(), 15);
+        let deg: Vec<f64> = nodes[..5].iter().map(|n| n.phi.to_degrees()).collect();
+        for (d, e) in deg.iter().zip([-90.0, -45.0, 0.0, 45.0, 90.0]) {
+            assert!((d - e).abs() < 1e-9, "{deg:?}");
+        }
+        let rho: Vec<f64> = nodes.iter().step_by(5).map(|n| n.rho).collect();
+        assert_eq!(rho, vec![1.0 / 3.0, 2.0 / 3.0, 1.0]);
+        assert_eq!(nodes[7].ring, 1);
+        assert_eq!(nodes[7].angle_index, 2);
+        // Leftmost node of the outer ring is at x = −1, straight ahead at y = ρ.
+        assert!(close(nodes[10].cartesian(), [-1.0, 0.0]));
+        assert!(close(nodes[12].cartesian(), [0.0, 1.0]));
+        assert!(close(nodes[14].coords(CoordMode::Polar), [1.0, 0.5]));
+        // One angle points straight ahead.
+        assert_eq!(grid("2x1").nodes(180.0)[1].phi, 0.0);
+    }
+
+    #[test]
+    fn paper_wheels_are_the_outer_angles_of_the_middle_ring() {
+        let w = grid("3x3").wheel_neurons().unwrap();
+        assert_eq!(w, WheelNeurons { left: 3, right: 5 });
+        let nodes = grid("3x3").nodes(180.0);
+        assert!(close(nodes[w.left].cartesian(), [-2.0 / 3.0, 0.0]));
+        assert!(close(nodes[w.right].cartesian(), [2.0 / 3.0, 0.0]));
+        assert_eq!(grid("5x4").wheel_neurons().unwrap().left, 2 * 4);
+        assert_eq!(
+            grid("1x2").wheel_neurons().unwrap(),
+            WheelNeurons { left: 0, right: 1 }
+        );
+        assert!(matches!(
+            grid("3x1").wheel_neurons(),
+            Err(SubstrateError::OneAngle(_))
+        ));
+    }
+
+    #[test]
+    fn wheel_neurons_keep_their_place_when_resampled() {
+        let place = |s: &str| {
+            let g = grid(s);
+            let w = g.wheel_neurons().unwrap();
+            let nodes = g.nodes(180.0);
+            (
+                nodes[w.left].coords(CoordMode::Cartesian),
+                nodes[w.right].coords(CoordMode::Cartesian),
+            )
+        };
+        let (l3, r3) = place("3x3");
+        for other in ["9x9", "6x5", "3x7", "12x3", "9x17"] {
+            let (l, r) = place(other);
+            assert!(close(l, l3) && close(r, r3), "{other}: {l:?} {r:?}");
+        }
+        // Any resolution: L is left of R, mirrored, and on the ring nearest 2/3.
+        for rings in 1..=12 {
+            for angles in 2..=7 {
+                let g = PolarGrid::new(rings, angles).unwrap();
+                let w = g.wheel_neurons().unwrap();
+                let nodes = g.nodes(180.0);
+                let (l, r) = (nodes[w.left], nodes[w.right]);
+                assert_eq!(l.ring, r.ring);
+                assert!(l.cartesian()[0] < 0.0 && r.cartesian()[0] > 0.0);
+                for ring in 0..rings {
+                    assert!((l.rho - WHEEL_RADIUS).abs() <= (g.radius(ring) - WHEEL_RADIUS).abs());
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn layout_of_the_paper_substrate() {
+        let spec = SubstrateSpec::default();
+        let l = spec.layout().unwrap();
+        assert_eq!(l.inputs.len(), 1);
+        assert_eq!(l.inputs[0].coords.len(), 15);
+        assert_eq!(l.inputs[0].cppn_output, SURFACE_OUTPUT);
+        assert_eq!(l.neurons.len(), 9);
+        assert_eq!((l.bias_output, l.recurrent_output), (1, 2));
+        assert_eq!(spec.cppn_outputs(), 3);
+        assert_eq!(l.num_queries(), 9 * (15 + 9 + 1));
+    }
+
+    #[test]
+    fn distance_sensors_add_a_second_sheet_on_output_three() {
+        let (l, w) = build_layout(grid("3x5"), grid("3x3"), Some(7), CoordMode::Polar).unwrap();
+        assert_eq!(l.inputs.len(), 2);
+        assert_eq!(l.inputs[1].cppn_output, DISTANCE_OUTPUT);
+        assert_eq!(l.inputs[1].coords.len(), 7);
+        assert!(close(l.inputs[1].coords[0], [1.0, -0.5]));
+        assert!(close(l.inputs[1].coords[6], [1.0, 0.5]));
+        assert_eq!(w, WheelNeurons { left: 3, right: 5 });
+        let spec = SubstrateSpec {
+            distance_rays: Some(7),
+            ..SubstrateSpec::default()
+        };
+        assert_eq!(spec.cppn_outputs(), 4);
+        let spec = SubstrateSpec {
+            distance_rays: Some(0),
+            ..SubstrateSpec::default()
+        };
+        assert_eq!(spec.layout().unwrap_err(), SubstrateError::NoRays);
+    }
+
+    #[test]
+    fn bad_specs_are_errors() {
+        let spec = SubstrateSpec {
+            neuron_fov: 360.0,
+            ..SubstrateSpec::default()
+        };
+        assert!(
+            spec.validate()
+                .unwrap_err()
+                .to_string()
+                .contains("neuron_fov")
+        );
+        let spec = SubstrateSpec {
+            fov: f64::NAN,
+            ..SubstrateSpec::default()
+        };
+        assert!(spec.validate().is_err());
+        let spec = SubstrateSpec {
+            neurons: PolarGrid {
+                rings: 0,
+                angles: 3,
+            },
+            ..SubstrateSpec::default()
+        };
+        assert!(matches!(
+            spec.layout(),
+            Err(SubstrateError::GridSize { .. })
+        ));
+        assert!(build_layout(grid("3x5"), grid("4x1"), None, CoordMode::Cartesian).is_err());
+    }
+}
