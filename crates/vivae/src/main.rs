@@ -1,2 +1,435 @@
 //! The `vivae` command-line program.
-fn main() {}
+//!
+//! Exit codes: 0 ok, 1 internal error, 2 bad input or usage, 130 interrupted.
+
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Instant;
+
+use anyhow::Context as _;
+use clap::{Args, Parser, Subcommand};
+use vivae::config::Config;
+use vivae::evolve::{self, GenerationRecord, Outcome, Run, files};
+use vivae::experiment::Experiment;
+use vivae::io::{BadInput, bad_input, load_scenario, one_line, write_atomic};
+use vivae::report;
+use vivae::substrate::PolarGrid;
+
+/// HyperNEAT-controlled robots that learn to drive on roads (ViVAE).
+#[derive(Parser, Debug)]
+#[command(name = "vivae", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Evolve a driving controller (with no options: the paper's experiment).
+    Evolve(EvolveArgs),
+    /// Continue an interrupted run, or extend a finished one.
+    Resume(ResumeArgs),
+    /// Run a genome (a run's champion) and draw its trajectories.
+    Replay(ReplayArgs),
+    /// Continue a run's final population on a re-sampled substrate.
+    Retrain(RetrainArgs),
+    /// Inspect and draw scenarios.
+    #[command(subcommand)]
+    Scenario(ScenarioCommand),
+    /// Print configuration files and references.
+    #[command(subcommand)]
+    Config(ConfigCommand),
+}
+
+/// Options that override config keys.
+#[derive(Args, Debug, Default)]
+struct Overrides {
+    /// Scenario SVG file (default: the embedded road scenario).
+    #[arg(long, value_name = "FILE")]
+    scenario: Option<PathBuf>,
+    /// Generations to evolve.
+    #[arg(long, value_name = "N")]
+    generations: Option<u32>,
+    /// Population size.
+    #[arg(long, value_name = "N")]
+    population: Option<usize>,
+    /// Random seed.
+    #[arg(long, value_name = "N")]
+    seed: Option<u64>,
+    /// Surface sensors as RINGSxANGLES (paper: 3x5).
+    #[arg(long, value_name = "RxA")]
+    sensors: Option<PolarGrid>,
+    /// Output neurons as RINGSxANGLES (paper: 3x3).
+    #[arg(long, value_name = "RxA")]
+    neurons: Option<PolarGrid>,
+    /// Simulation steps per evaluation.
+    #[arg(long, value_name = "N")]
+    steps: Option<u32>,
+    /// Evaluation threads (0 = one per core); results do not depend on it.
+    #[arg(long, value_name = "N")]
+    threads: Option<usize>,
+}
+
+#[derive(Args, Debug)]
+struct EvolveArgs {
+    /// Config file (TOML); flags override its keys.
+    #[arg(long, value_name = "FILE")]
+    config: Option<PathBuf>,
+    #[command(flatten)]
+    overrides: Overrides,
+    /// Run directory (default: runs/<timestamp>).
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+    /// Overwrite an existing run directory.
+    #[arg(long)]
+    force: bool,
+    /// No progress output.
+    #[arg(short, long)]
+    quiet: bool,
+}
+
+#[derive(Args, Debug)]
+struct ResumeArgs {
+    /// The run directory.
+    run_dir: PathBuf,
+    /// Total generations (extends a finished run).
+    #[arg(long, value_name = "N")]
+    generations: Option<u32>,
+    /// Evaluation threads (0 = one per core).
+    #[arg(long, value_name = "N")]
+    threads: Option<usize>,
+    /// No progress output.
+    #[arg(short, long)]
+    quiet: bool,
+}
+
+#[derive(Args, Debug)]
+struct ReplayArgs {
+    /// A run directory or a genome JSON file (champion.json).
+    source: PathBuf,
+    /// Scenario SVG file (default: the run's).
+    #[arg(long, value_name = "FILE")]
+    scenario: Option<PathBuf>,
+    /// Surface sensors as RINGSxANGLES (re-samples the substrate).
+    #[arg(long, value_name = "RxA")]
+    sensors: Option<PolarGrid>,
+    /// Output neurons as RINGSxANGLES (re-samples the substrate).
+    #[arg(long, value_name = "RxA")]
+    neurons: Option<PolarGrid>,
+    /// Simulation steps.
+    #[arg(long, value_name = "N")]
+    steps: Option<u32>,
+    /// Folder for the trajectory figure (default: replay/ beside the source).
+    #[arg(short, long, value_name = "DIR")]
+    out: Option<PathBuf>,
+}
+
+#[derive(Args, Debug)]
+struct RetrainArgs {
+    /// The run whose final population continues.
+    run_dir: PathBuf,
+    /// Surface sensors of the new substrate, RINGSxANGLES.
+    #[arg(long, value_name = "RxA")]
+    sensors: PolarGrid,
+    /// Output neurons of the new substrate, RINGSxANGLES.
+    #[arg(long, value_name = "RxA")]
+    neurons: Option<PolarGrid>,
+    /// Generations to evolve on the new substrate.
+    #[arg(long, value_name = "N")]
+    generations: u32,
+    /// New run directory (default: runs/<timestamp>).
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+    /// Overwrite an existing run directory.
+    #[arg(long)]
+    force: bool,
+    /// Evaluation threads (0 = one per core).
+    #[arg(long, value_name = "N")]
+    threads: Option<usize>,
+    /// No progress output.
+    #[arg(short, long)]
+    quiet: bool,
+}
+
+#[derive(Subcommand, Debug)]
+enum ScenarioCommand {
+    /// Arena size, objects by kind, robots and warnings.
+    Info {
+        /// Scenario SVG file (default: the embedded one).
+        file: Option<PathBuf>,
+        /// One JSON object instead of text.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Draw a scenario to PNG or SVG (by the extension of OUT).
+    Render {
+        /// Scenario SVG file (default: the embedded one).
+        file: Option<PathBuf>,
+        /// Output file, .png or .svg.
+        #[arg(short, long, value_name = "OUT")]
+        out: PathBuf,
+        /// Draw surface sensors of this layout (RINGSxANGLES) on every robot.
+        #[arg(long, value_name = "RxA")]
+        sensors: Option<PolarGrid>,
+    },
+}
+
+#[derive(Subcommand, Debug)]
+enum ConfigCommand {
+    /// The full default config, a comment on every key.
+    Default,
+    /// A Markdown table of every key (the guide's reference).
+    Reference,
+    /// Check a config file and print it fully resolved.
+    Check {
+        /// The config file.
+        file: PathBuf,
+    },
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let interrupted = Arc::new(AtomicBool::new(false));
+    match dispatch(cli, &interrupted) {
+        Ok(code) => code,
+        Err(err) => {
+            eprintln!("error: {}", one_line(&format!("{err:#}")));
+            if err.chain().any(|c| c.is::<BadInput>()) {
+                ExitCode::from(2)
+            } else {
+                ExitCode::from(1)
+            }
+        }
+    }
+}
+
+fn dispatch(cli: Cli, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode> {
+    match cli.command {
+        Command::Evolve(args) => cmd_evolve(args, interrupted),
+        Command::Resume(args) => cmd_resume(args, interrupted),
+        Command::Replay(args) => cmd_replay(args),
+        Command::Retrain(args) => cmd_retrain(args, interrupted),
+        Command::Scenario(c) => cmd_scenario(c),
+        Command::Config(c) => cmd_config(c),
+    }
+}
+
+/// Reads and validates a config file; relative paths in it become relative to its folder.
+fn read_config(path: &Path) -> anyhow::Result<Config> {
+    let text = vivae::io::read_text(path)?;
+    let mut config = Config::from_toml(&text).map_err(|e| bad_input(format!("{}: {e}", path.display())))?;
+    let base = path.parent().unwrap_or(Path::new(""));
+    for p in [&mut config.experiment.scenario, &mut config.experiment.init_population] {
+        if !p.is_empty() && Path::new(p.as_str()).is_relative() {
+            *p = base.join(&*p).to_string_lossy().into_owned();
+        }
+    }
+    Ok(config)
+}
+
+fn apply_overrides(config: &mut Config, o: &Overrides) -> anyhow::Result<()> {
+    if let Some(p) = &o.scenario {
+        config.experiment.scenario = p.to_string_lossy().into_owned();
+    }
+    if let Some(n) = o.generations {
+        config.experiment.generations = n;
+    }
+    if let Some(n) = o.population {
+        config.neat.population_size = n;
+    }
+    if let Some(n) = o.seed {
+        config.experiment.seed = n;
+    }
+    if let Some(g) = o.sensors {
+        config.surface_sensors.rings = g.rings;
+        config.surface_sensors.angles = g.angles;
+    }
+    if let Some(g) = o.neurons {
+        config.substrate.neurons = g;
+    }
+    if let Some(n) = o.steps {
+        config.experiment.steps = n;
+    }
+    if let Some(n) = o.threads {
+        config.run.threads = n;
+    }
+    config.validate().map_err(|e| bad_input(format!("command line: {e}")))
+}
+
+fn scenario_path(config: &Config) -> Option<PathBuf> {
+    (!config.experiment.scenario.is_empty()).then(|| PathBuf::from(&config.experiment.scenario))
+}
+
+fn install_ctrlc(flag: &Arc<AtomicBool>) {
+    let flag = flag.clone();
+    // A second Ctrl-C while finishing the generation aborts at once.
+    let _ = ctrlc::set_handler(move || {
+        if flag.swap(true, Ordering::SeqCst) {
+            std::process::exit(130);
+        }
+        eprintln!("\ninterrupt: finishing the current generation, then writing a checkpoint (Ctrl-C again to abort)");
+    });
+}
+
+fn cmd_evolve(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode> {
+    let mut config = match &args.config {
+        Some(p) => read_config(p)?,
+        None => Config::default(),
+    };
+    apply_overrides(&mut config, &args.overrides)?;
+    let scenario = load_scenario(scenario_path(&config).as_deref())?;
+    let experiment = Experiment::new(&config, &scenario.scenario).map_err(|e| bad_input(e.to_string()))?;
+    let init = if config.experiment.init_population.is_empty() {
+        None
+    } else {
+        Some(evolve::population_from_checkpoint(Path::new(&config.experiment.init_population))?.1)
+    };
+    let dir = args.out.clone().unwrap_or_else(vivae::io::default_run_dir);
+    let run = Run::create(&dir, config, experiment, &scenario.text, init, args.force)?;
+    drive(run, args.quiet, interrupted)
+}
+
+fn cmd_resume(args: ResumeArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode> {
+    let run = Run::resume(&args.run_dir, args.generations, args.threads)?;
+    drive(run, args.quiet, interrupted)
+}
+
+fn cmd_retrain(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode> {
+    let checkpoint = evolve::latest_checkpoint(&args.run_dir)?;
+    let (mut config, population) = evolve::population_from_checkpoint(&checkpoint)?;
+    config.experiment.scenario = args.run_dir.join(files::SCENARIO).to_string_lossy().into_owned();
+    config.experiment.init_population = checkpoint.to_string_lossy().into_owned();
+    let overrides = Overrides {
+        generations: Some(args.generations),
+        sensors: Some(args.sensors),
+        neurons: args.neurons,
+        threads: args.threads,
+        ..Overrides::default()
+    };
+    apply_overrides(&mut config, &overrides)?;
+    let scenario = load_scenario(scenario_path(&config).as_deref())?;
+    let experiment = Experiment::new(&config, &scenario.scenario).map_err(|e| bad_input(e.to_string()))?;
+    let dir = args.out.clone().unwrap_or_else(vivae::io::default_run_dir);
+    let run = Run::create(&dir, config, experiment, &scenario.text, Some(population), args.force)?;
+    drive(run, args.quiet, interrupted)
+}
+
+/// Runs evolution with progress output, then writes the figures.
+fn drive(mut run: Run, quiet: bool, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode> {
+    install_ctrlc(interrupted);
+    let start = Instant::now();
+    let total = run.config().experiment.generations;
+    let bar = (!quiet && std::io::stderr().is_terminal()).then(|| progress_bar(total, run.done()));
+    let mut robot_steps = 0.0;
+    let mut busy = 0.0;
+    let outcome = run.run(interrupted, |r: &GenerationRecord| {
+        robot_steps += r.robot_steps_per_second * r.seconds;
+        busy += r.seconds;
+        let line = format!(
+            "gen {}/{} best {:.4} mean {:.4} species {} best-ever {:.4}",
+            r.generation, r.total, r.best, r.mean, r.species, r.best_ever
+        );
+        match &bar {
+            Some(b) => {
+                b.set_position(u64::from(r.generation));
+                b.set_message(format!("best {:.4} mean {:.4} species {}", r.best, r.mean, r.species));
+            }
+            None if !quiet => eprintln!("{line}"),
+            None => {}
+        }
+    })?;
+    if let Some(b) = &bar {
+        b.finish_and_clear();
+    }
+    let dir = run.dir().display().to_string();
+    if outcome == Outcome::Interrupted {
+        eprintln!(
+            "interrupted after generation {}; checkpoint written. Resume with: vivae resume {dir}",
+            run.done()
+        );
+        return Ok(ExitCode::from(130));
+    }
+    let summary = report::finish_run(&run).context("writing figures")?;
+    let wall = start.elapsed().as_secs_f64();
+    println!(
+        "evolve: generations={} best={} champion_generation={} on_road={:.4} wall_s={:.1} robot_steps_per_s={:.0} out={dir}",
+        run.done(),
+        summary.champion_fitness,
+        summary.champion_generation,
+        summary.champion_on_road,
+        wall,
+        robot_steps / busy.max(1e-9),
+    );
+    Ok(ExitCode::SUCCESS)
+}
+
+fn progress_bar(total: u32, done: u32) -> indicatif::ProgressBar {
+    let bar = indicatif::ProgressBar::new(u64::from(total));
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("gen {pos}/{len} [{bar:30}] {msg} ETA {eta}")
+            .expect("valid template")
+            .progress_chars("=> "),
+    );
+    bar.set_position(u64::from(done));
+    bar
+}
+
+fn cmd_replay(args: ReplayArgs) -> anyhow::Result<ExitCode> {
+    let (champion, mut config, base) = report::load_genome_source(&args.source)?;
+    let overrides = Overrides {
+        scenario: args.scenario.clone(),
+        sensors: args.sensors,
+        neurons: args.neurons,
+        steps: args.steps,
+        ..Overrides::default()
+    };
+    apply_overrides(&mut config, &overrides)?;
+    let scenario = load_scenario(scenario_path(&config).as_deref())?;
+    let experiment = Experiment::new(&config, &scenario.scenario).map_err(|e| bad_input(e.to_string()))?;
+    if experiment.cppn_spec().outputs != champion.genome.num_outputs() {
+        return Err(bad_input(format!(
+            "{}: the genome's CPPN has {} outputs, this substrate needs {}",
+            args.source.display(),
+            champion.genome.num_outputs(),
+            experiment.cppn_spec().outputs
+        )));
+    }
+    let out = args.out.clone().unwrap_or_else(|| base.join("replay"));
+    std::fs::create_dir_all(&out).with_context(|| format!("cannot create {}", out.display()))?;
+    let replay = report::replay(&experiment, &config, &champion, &out)?;
+    println!("fitness={} on_road={:.4}", replay.fitness, replay.on_road);
+    eprintln!("figure: {}", replay.figure.display());
+    Ok(ExitCode::SUCCESS)
+}
+
+fn cmd_scenario(command: ScenarioCommand) -> anyhow::Result<ExitCode> {
+    match command {
+        ScenarioCommand::Info { file, json } => {
+            let loaded = load_scenario(file.as_deref())?;
+            let summary = loaded.scenario.summary();
+            if json {
+                println!("{}", serde_json::to_string(&summary)?);
+            } else {
+                print!("{}", report::scenario_text(&summary));
+            }
+        }
+        ScenarioCommand::Render { file, out, sensors } => {
+            let loaded = load_scenario(file.as_deref())?;
+            let bytes = report::render_scenario(&loaded.scenario, sensors, &out)?;
+            write_atomic(&out, &bytes)?;
+        }
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn cmd_config(command: ConfigCommand) -> anyhow::Result<ExitCode> {
+    match command {
+        ConfigCommand::Default => print!("{}", Config::default_commented()),
+        ConfigCommand::Reference => print!("{}", Config::markdown_reference()),
+        ConfigCommand::Check { file } => print!("{}", read_config(&file)?.to_toml()),
+    }
+    Ok(ExitCode::SUCCESS)
+}

@@ -1,0 +1,559 @@
+//! The evolution driver: run directories, per-generation records, checkpoints.
+//!
+//! A run directory holds `config.toml`, `scenario.svg`, `generations.csv`,
+//! `population.csv`, `timing.csv`, `champion.json`, `checkpoints/` and, at the
+//! end, `figures/`. CSV files are appended once per generation; a checkpoint
+//! records their lengths, so resuming truncates whatever a crash left after
+//! the last checkpoint and the finished files are byte-identical to an
+//! uninterrupted run's. Wall-clock times live only in `timing.csv`, the one
+//! file that is allowed to differ between two runs of the same config.
+
+use std::fmt::Write as _;
+use std::fs;
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Instant;
+
+use anyhow::Context as _;
+use serde::{Deserialize, Serialize};
+use vivae_neat::{Genome, Population};
+
+use crate::config::Config;
+use crate::experiment::Experiment;
+use crate::io::{bad_input, write_atomic};
+
+/// File names inside a run directory.
+pub mod files {
+    /// The fully resolved configuration.
+    pub const CONFIG: &str = "config.toml";
+    /// The scenario the run uses.
+    pub const SCENARIO: &str = "scenario.svg";
+    /// Per-generation statistics.
+    pub const GENERATIONS: &str = "generations.csv";
+    /// Every individual's fitness per generation (Fig. 8).
+    pub const POPULATION: &str = "population.csv";
+    /// Wall-clock time per generation.
+    pub const TIMING: &str = "timing.csv";
+    /// The best genome ever.
+    pub const CHAMPION: &str = "champion.json";
+    /// Checkpoint folder.
+    pub const CHECKPOINTS: &str = "checkpoints";
+    /// Figure folder.
+    pub const FIGURES: &str = "figures";
+    /// A copy of the population a run starts from (retrain).
+    pub const INIT_POPULATION: &str = "init-population.json";
+}
+
+const GENERATIONS_HEADER: &str = "generation,best,mean,median,worst,species,mean_cppn_nodes,mean_cppn_links,best_substrate_links,possible_substrate_links\n";
+const POPULATION_HEADER: &str = "generation,rank,fitness\n";
+const TIMING_HEADER: &str = "generation,seconds,robot_steps_per_second\n";
+
+/// Generations whose best individual gets a trajectory figure (besides the champion).
+pub const FIGURE_GENERATIONS: [u32; 2] = [1, 10];
+
+/// The best genome ever: what `champion.json` holds.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Champion {
+    /// Format marker, always `vivae-champion`.
+    pub format: String,
+    /// Generation (1-based, of this run) in which it was evaluated.
+    pub generation: u32,
+    /// Its fitness (average speed, px/step).
+    pub fitness: f64,
+    /// The CPPN genome.
+    pub genome: Genome,
+}
+
+/// One generation's record (a row of `generations.csv`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct GenerationRecord {
+    /// Generation, 1-based.
+    pub generation: u32,
+    /// Generations the run will have in all.
+    pub total: u32,
+    /// Best fitness.
+    pub best: f64,
+    /// Mean fitness.
+    pub mean: f64,
+    /// Median fitness.
+    pub median: f64,
+    /// Worst fitness.
+    pub worst: f64,
+    /// Species.
+    pub species: usize,
+    /// Mean CPPN nodes.
+    pub mean_nodes: f64,
+    /// Mean enabled CPPN links.
+    pub mean_links: f64,
+    /// Links the generation's best CPPN expresses in the substrate.
+    pub best_links: usize,
+    /// Links the substrate could have.
+    pub possible_links: usize,
+    /// Wall time of the generation.
+    pub seconds: f64,
+    /// Simulated robot-steps per second of wall time.
+    pub robot_steps_per_second: f64,
+    /// Best fitness of the run so far.
+    pub best_ever: f64,
+}
+
+/// State saved in a checkpoint besides the population.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Progress {
+    /// Generations of this run evaluated so far.
+    done: u32,
+    /// `population.generation()` when this run started.
+    start_generation: u32,
+    /// Byte lengths of the CSV files after generation `done`.
+    generations_len: u64,
+    population_len: u64,
+    timing_len: u64,
+    /// Best individual of each figure generation (generation, fitness, genome).
+    figure_genomes: Vec<(u32, f64, Genome)>,
+}
+
+/// A checkpoint: everything needed to continue the run exactly.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Checkpoint {
+    config: Config,
+    progress: Progress,
+    /// The population ready to evaluate generation `done + 1`.
+    population: Population,
+}
+
+const CHECKPOINT_MAGIC: &str = "vivae-checkpoint v1";
+
+/// FNV-1a 64: detects truncation and bit rot in checkpoints.
+fn fnv1a(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
+    })
+}
+
+fn encode_checkpoint(cp: &Checkpoint) -> anyhow::Result<String> {
+    let body = serde_json::to_string(cp).context("serialising checkpoint")?;
+    Ok(format!("{CHECKPOINT_MAGIC} {:016x}\n{body}", fnv1a(body.as_bytes())))
+}
+
+fn decode_checkpoint(path: &Path) -> anyhow::Result<Checkpoint> {
+    let text = crate::io::read_text(path)?;
+    let bad = |why: &str| bad_input(format!("{}: {why}", path.display()));
+    let (header, body) = text.split_once('\n').ok_or_else(|| bad("not a vivae checkpoint (no header line)"))?;
+    let checksum = header
+        .strip_prefix(CHECKPOINT_MAGIC)
+        .map(str::trim)
+        .ok_or_else(|| bad("not a vivae checkpoint (bad header)"))?;
+    let expected = u64::from_str_radix(checksum, 16).map_err(|_| bad("not a vivae checkpoint (bad checksum field)"))?;
+    if fnv1a(body.as_bytes()) != expected {
+        return Err(bad("corrupt or truncated checkpoint (checksum mismatch)"));
+    }
+    let cp: Checkpoint = serde_json::from_str(body)
+        .map_err(|e| bad(&format!("unreadable checkpoint: {e}")))?;
+    cp.config
+        .validate()
+        .map_err(|e| bad(&format!("checkpoint config: {e}")))?;
+    // Re-validate the population through the library's checks.
+    let pop_json = cp.population.to_json().map_err(|e| bad(&e.to_string()))?;
+    Population::from_json(&pop_json).map_err(|e| bad(&format!("checkpoint population: {e}")))?;
+    Ok(cp)
+}
+
+/// Reads the population stored in a checkpoint file (for `retrain` and `init_population`).
+pub fn population_from_checkpoint(path: &Path) -> anyhow::Result<(Config, Population)> {
+    let cp = decode_checkpoint(path)?;
+    Ok((cp.config, cp.population))
+}
+
+/// Path of the newest checkpoint in a run directory.
+pub fn latest_checkpoint(run_dir: &Path) -> anyhow::Result<PathBuf> {
+    let dir = run_dir.join(files::CHECKPOINTS);
+    let entries = fs::read_dir(&dir).map_err(|e| {
+        bad_input(format!(
+            "{}: not a vivae run directory ({}: {})",
+            run_dir.display(),
+            files::CHECKPOINTS,
+            crate::io::io_reason(&e)
+        ))
+    })?;
+    let mut names: Vec<String> = entries
+        .filter_map(|e| e.ok())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with("gen-") && n.ends_with(".ckpt"))
+        .collect();
+    names.sort();
+    names
+        .pop()
+        .map(|n| dir.join(n))
+        .ok_or_else(|| bad_input(format!("{}: no checkpoint to resume from", dir.display())))
+}
+
+/// How a run ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Outcome {
+    /// All generations done.
+    Finished,
+    /// Stopped by the user after a generation; a checkpoint was written.
+    Interrupted,
+}
+
+/// A run in a run directory.
+pub struct Run {
+    dir: PathBuf,
+    config: Config,
+    experiment: Experiment,
+    population: Population,
+    progress: Progress,
+    pool: rayon::ThreadPool,
+}
+
+impl Run {
+    /// Creates a new run directory and the initial checkpoint.
+    ///
+    /// `scenario_text` is copied to `scenario.svg`; `config.experiment.scenario`
+    /// is rewritten to point at that copy so `config.toml` alone re-runs it.
+    /// `init` is a population to start from (retrain) instead of a fresh one.
+    pub fn create(
+        dir: &Path,
+        mut config: Config,
+        experiment: Experiment,
+        scenario_text: &str,
+        init: Option<Population>,
+        force: bool,
+    ) -> anyhow::Result<Run> {
+        let population = match init {
+            // Only the genomes carry over: fitness, species and the champion were
+            // measured on another substrate and mean nothing here.
+            Some(p) => Population::from_genomes(
+                config.neat.clone(),
+                experiment.cppn_spec(),
+                p.genomes().to_vec(),
+                config.experiment.seed,
+            )
+            .map_err(|e| bad_input(format!("initial population: {e}")))?,
+            None => Population::new(config.neat.clone(), experiment.cppn_spec(), config.experiment.seed)
+                .map_err(|e| bad_input(format!("neat: {e}")))?,
+        };
+        crate::io::create_out_dir(dir, force)?;
+        fs::create_dir_all(dir.join(files::CHECKPOINTS))?;
+        write_atomic(&dir.join(files::SCENARIO), scenario_text.as_bytes())?;
+        if !config.experiment.init_population.is_empty() {
+            // Keep the starting population beside the config that names it.
+            let init_cp = Checkpoint {
+                config: config.clone(),
+                progress: Progress::start(population.generation()),
+                population: population.clone(),
+            };
+            write_atomic(&dir.join(files::INIT_POPULATION), encode_checkpoint(&init_cp)?.as_bytes())?;
+            config.experiment.init_population = files::INIT_POPULATION.into();
+        }
+        config.experiment.scenario = files::SCENARIO.into();
+        write_atomic(&dir.join(files::CONFIG), config.to_toml().as_bytes())?;
+        for (name, header) in [
+            (files::GENERATIONS, GENERATIONS_HEADER),
+            (files::POPULATION, POPULATION_HEADER),
+            (files::TIMING, TIMING_HEADER),
+        ] {
+            write_atomic(&dir.join(name), header.as_bytes())?;
+        }
+        let progress = Progress::start(population.generation());
+        let run = Run {
+            dir: dir.to_path_buf(),
+            pool: thread_pool(config.run.threads)?,
+            config,
+            experiment,
+            population,
+            progress,
+        };
+        run.write_checkpoint()?;
+        Ok(run)
+    }
+
+    /// Opens an existing run at its newest checkpoint; `generations` extends (or
+    /// shortens, if not yet reached) the total. Files written after that
+    /// checkpoint are truncated back to it.
+    pub fn resume(dir: &Path, generations: Option<u32>, threads: Option<usize>) -> anyhow::Result<Run> {
+        let path = latest_checkpoint(dir)?;
+        let mut cp = decode_checkpoint(&path)?;
+        if let Some(n) = generations {
+            if n < cp.progress.done {
+                return Err(bad_input(format!(
+                    "--generations {n}: the run already has {} generations",
+                    cp.progress.done
+                )));
+            }
+            cp.config.experiment.generations = n;
+        }
+        let scenario = crate::io::load_scenario(Some(&dir.join(files::SCENARIO)))?;
+        let experiment = Experiment::new(&cp.config, &scenario.scenario).map_err(|e| bad_input(e.to_string()))?;
+        for (name, len) in [
+            (files::GENERATIONS, cp.progress.generations_len),
+            (files::POPULATION, cp.progress.population_len),
+            (files::TIMING, cp.progress.timing_len),
+        ] {
+            truncate(&dir.join(name), len)?;
+        }
+        // The resolved config records the (possibly extended) total.
+        write_atomic(&dir.join(files::CONFIG), cp.config.to_toml().as_bytes())?;
+        Ok(Run {
+            dir: dir.to_path_buf(),
+            // A thread count given at resume changes speed, not results: not recorded.
+            pool: thread_pool(threads.unwrap_or(cp.config.run.threads))?,
+            config: cp.config,
+            experiment,
+            population: cp.population,
+            progress: cp.progress,
+        })
+    }
+
+    /// The run directory.
+    pub fn dir(&self) -> &Path {
+        &self.dir
+    }
+
+    /// The resolved configuration.
+    pub fn config(&self) -> &Config {
+        &self.config
+    }
+
+    /// The experiment.
+    pub fn experiment(&self) -> &Experiment {
+        &self.experiment
+    }
+
+    /// Generations done so far.
+    pub fn done(&self) -> u32 {
+        self.progress.done
+    }
+
+    /// The population (ready for the next generation).
+    pub fn population(&self) -> &Population {
+        &self.population
+    }
+
+    /// Evolves until the configured number of generations or until `stop` is set
+    /// (checked after each generation, which is finished first).
+    pub fn run(&mut self, stop: &AtomicBool, mut on_generation: impl FnMut(&GenerationRecord)) -> anyhow::Result<Outcome> {
+        let total = self.config.experiment.generations;
+        while self.progress.done < total {
+            let record = self.step(total)?;
+            on_generation(&record);
+            let last = self.progress.done == total;
+            let interrupted = stop.load(Ordering::SeqCst);
+            if last || interrupted || self.progress.done % self.config.run.checkpoint_interval == 0 {
+                self.write_checkpoint()?;
+            }
+            if interrupted && !last {
+                return Ok(Outcome::Interrupted);
+            }
+        }
+        Ok(Outcome::Finished)
+    }
+
+    /// Evaluates one generation, appends its records and breeds the next.
+    fn step(&mut self, total: u32) -> anyhow::Result<GenerationRecord> {
+        let start = Instant::now();
+        let experiment = &self.experiment;
+        let population = &mut self.population;
+        self.pool
+            .install(|| population.evaluate(|genome, _ctx| experiment.fitness(genome)));
+        let seconds = start.elapsed().as_secs_f64();
+        let generation = self.progress.done + 1;
+        let fitness = self.population.fitnesses();
+        let mut sorted = fitness.clone();
+        sorted.sort_by(|a, b| b.total_cmp(a));
+        let stats = self.population.stats();
+        let (best_genome, best) = self
+            .population
+            .champion()
+            .map(|(g, f)| (g.clone(), f))
+            .expect("an evaluated population has a champion");
+        let controller = self.experiment.controller(&best_genome);
+        let n = sorted.len();
+        let median = if n % 2 == 1 {
+            sorted[n / 2]
+        } else {
+            (sorted[n / 2 - 1] + sorted[n / 2]) / 2.0
+        };
+        let robot_steps = (n * self.experiment.robots()) as f64 * f64::from(self.experiment.steps());
+        let record = GenerationRecord {
+            generation,
+            total,
+            best,
+            mean: fitness.iter().sum::<f64>() / n as f64,
+            median,
+            worst: sorted[n - 1],
+            species: stats.species,
+            mean_nodes: stats.mean_nodes,
+            mean_links: stats.mean_links,
+            best_links: controller.expressed_links(),
+            possible_links: controller.possible_links(),
+            seconds,
+            robot_steps_per_second: robot_steps / seconds.max(1e-9),
+            best_ever: self.population.best_ever().map_or(best, |b| b.1),
+        };
+        if FIGURE_GENERATIONS.contains(&generation) {
+            self.progress.figure_genomes.push((generation, best, best_genome));
+        }
+
+        let mut row = String::new();
+        let r = &record;
+        let _ = writeln!(
+            row,
+            "{},{},{},{},{},{},{},{},{},{}",
+            r.generation, r.best, r.mean, r.median, r.worst, r.species, r.mean_nodes, r.mean_links, r.best_links, r.possible_links
+        );
+        self.progress.generations_len = append(&self.dir.join(files::GENERATIONS), &row)?;
+        let mut rows = String::with_capacity(n * 24);
+        for (rank, f) in sorted.iter().enumerate() {
+            let _ = writeln!(rows, "{generation},{},{f}", rank + 1);
+        }
+        self.progress.population_len = append(&self.dir.join(files::POPULATION), &rows)?;
+        let timing = format!("{generation},{seconds:.6},{:.0}\n", record.robot_steps_per_second);
+        self.progress.timing_len = append(&self.dir.join(files::TIMING), &timing)?;
+        self.write_champion()?;
+
+        self.population.next_generation();
+        self.progress.done = generation;
+        Ok(record)
+    }
+
+    fn write_champion(&self) -> anyhow::Result<()> {
+        let Some((genome, fitness, generation)) = self.population.best_ever() else {
+            return Ok(());
+        };
+        let champion = Champion {
+            format: "vivae-champion".into(),
+            generation: generation - self.progress.start_generation + 1,
+            fitness,
+            genome: genome.clone(),
+        };
+        let text = serde_json::to_string_pretty(&champion)? + "\n";
+        write_atomic(&self.dir.join(files::CHAMPION), text.as_bytes())
+    }
+
+    fn write_checkpoint(&self) -> anyhow::Result<()> {
+        let cp = Checkpoint {
+            config: self.config.clone(),
+            progress: self.progress.clone(),
+            population: self.population.clone(),
+        };
+        let dir = self.dir.join(files::CHECKPOINTS);
+        let path = dir.join(format!("gen-{:06}.ckpt", self.progress.done));
+        write_atomic(&path, encode_checkpoint(&cp)?.as_bytes())?;
+        prune_checkpoints(&dir, self.config.run.checkpoint_keep)
+    }
+
+    /// The best individual of each figure generation reached.
+    pub fn figure_genomes(&self) -> impl Iterator<Item = (u32, f64, &Genome)> {
+        self.progress.figure_genomes.iter().map(|(g, f, genome)| (*g, *f, genome))
+    }
+
+    /// The champion (best ever) with its run-relative generation.
+    pub fn champion(&self) -> Option<Champion> {
+        self.population.best_ever().map(|(genome, fitness, generation)| Champion {
+            format: "vivae-champion".into(),
+            generation: generation - self.progress.start_generation + 1,
+            fitness,
+            genome: genome.clone(),
+        })
+    }
+}
+
+impl Progress {
+    fn start(start_generation: u32) -> Progress {
+        Progress {
+            done: 0,
+            start_generation,
+            generations_len: GENERATIONS_HEADER.len() as u64,
+            population_len: POPULATION_HEADER.len() as u64,
+            timing_len: TIMING_HEADER.len() as u64,
+            figure_genomes: Vec::new(),
+        }
+    }
+}
+
+fn thread_pool(threads: usize) -> anyhow::Result<rayon::ThreadPool> {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .context("starting worker threads")
+}
+
+/// Appends `text` and returns the file's new length.
+fn append(path: &Path, text: &str) -> anyhow::Result<u64> {
+    let mut f = fs::OpenOptions::new()
+        .append(true)
+        .open(path)
+        .with_context(|| format!("cannot open {}", path.display()))?;
+    f.write_all(text.as_bytes())
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    Ok(f.metadata()?.len())
+}
+
+fn truncate(path: &Path, len: u64) -> anyhow::Result<()> {
+    let f = fs::OpenOptions::new().write(true).open(path).map_err(|e| {
+        bad_input(format!("{}: {}", path.display(), crate::io::io_reason(&e)))
+    })?;
+    let actual = f.metadata()?.len();
+    if actual < len {
+        return Err(bad_input(format!(
+            "{}: shorter ({actual} bytes) than its checkpoint says ({len} bytes)",
+            path.display()
+        )));
+    }
+    f.set_len(len).with_context(|| format!("cannot truncate {}", path.display()))
+}
+
+fn prune_checkpoints(dir: &Path, keep: usize) -> anyhow::Result<()> {
+    let mut names: Vec<String> = fs::read_dir(dir)?
+        .filter_map(|e| e.ok())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with("gen-") && n.ends_with(".ckpt"))
+        .collect();
+    names.sort();
+    let excess = names.len().saturating_sub(keep);
+    for n in &names[..excess] {
+        fs::remove_file(dir.join(n)).with_context(|| format!("cannot prune {n}"))?;
+    }
+    Ok(())
+}
+
+/// Reads `population.csv` back: per generation, the fitnesses best first.
+pub fn read_population_csv(path: &Path) -> anyhow::Result<Vec<Vec<f64>>> {
+    let text = fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let mut out: Vec<Vec<f64>> = Vec::new();
+    for (i, line) in text.lines().enumerate().skip(1) {
+        let mut parts = line.split(',');
+        let (Some(g), Some(_), Some(f)) = (parts.next(), parts.next(), parts.next()) else {
+            anyhow::bail!("{}: line {}: expected generation,rank,fitness", path.display(), i + 1);
+        };
+        let g: usize = g.parse().with_context(|| format!("{}: line {}", path.display(), i + 1))?;
+        let f: f64 = f.parse().with_context(|| format!("{}: line {}", path.display(), i + 1))?;
+        if g == 0 {
+            anyhow::bail!("{}: line {}: generation 0", path.display(), i + 1);
+        }
+        if out.len() < g {
+            out.resize(g, Vec::new());
+        }
+        out[g - 1].push(f);
+    }
+    Ok(out)
+}
+
+/// Reads `generations.csv` back as (generation, best, mean) rows.
+pub fn read_generations_csv(path: &Path) -> anyhow::Result<Vec<(u32, f64, f64)>> {
+    let text = fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
+    text.lines()
+        .enumerate()
+        .skip(1)
+        .map(|(i, line)| {
+            let v: Vec<&str> = line.split(',').collect();
+            let parse = || -> Option<(u32, f64, f64)> { Some((v.first()?.parse().ok()?, v.get(1)?.parse().ok()?, v.get(2)?.parse().ok()?)) };
+            parse().with_context(|| format!("{}: line {}: malformed row", path.display(), i + 1))
+        })
+        .collect()
+}

@@ -1,0 +1,209 @@
+//! The driving experiment: a substrate controller per robot, episodes, fitness.
+
+use vivae_neat::hyperneat::{HyperParams, SubstrateController, SubstrateLayout, decode};
+use vivae_neat::{FeedForwardNetwork, Genome, GenomeSpec, Network};
+use vivae_sim::{DVec2, DistanceGrid, Scenario, SurfaceGrid, World};
+
+use crate::config::Config;
+use crate::substrate::{PolarGrid, SubstrateSpec, WheelNeurons};
+
+/// Everything needed to evaluate genomes on one scenario with one config.
+///
+/// Built once per run; evaluation only reads it, so it is shared by all threads.
+#[derive(Debug, Clone)]
+pub struct Experiment {
+    world: World,
+    surface: SurfaceGrid,
+    distance: Option<DistanceGrid>,
+    spec: SubstrateSpec,
+    layout: SubstrateLayout,
+    wheels: WheelNeurons,
+    hyper: HyperParams,
+    steps: u32,
+    cppn_outputs: usize,
+}
+
+/// The outcome of one episode.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Episode {
+    /// Average speed: Σ odometer / (robots × steps), px per step.
+    pub fitness: f64,
+    /// Fraction of robot-steps that ended with the robot's centre on a road.
+    pub on_road: f64,
+    /// Every robot's path (start position first), when recorded.
+    pub trajectories: Option<Vec<Vec<DVec2>>>,
+}
+
+/// Why an experiment cannot be set up.
+#[derive(Debug, thiserror::Error)]
+pub enum ExperimentError {
+    /// The scenario cannot host the experiment.
+    #[error("{0}")]
+    Scenario(String),
+    /// The parameters do not fit together.
+    #[error("{0}")]
+    Config(String),
+}
+
+impl Experiment {
+    /// Sets up the experiment of `config` on `scenario` (uses its first `robots` robots).
+    pub fn new(config: &Config, scenario: &Scenario) -> Result<Experiment, ExperimentError> {
+        scenario
+            .require_robots()
+            .map_err(|e| ExperimentError::Scenario(e.to_string()))?;
+        let wanted = config.experiment.robots;
+        let mut scenario = scenario.clone();
+        if wanted > 0 {
+            if scenario.robots.len() < wanted {
+                return Err(ExperimentError::Scenario(format!(
+                    "{}: has {} robots, the config asks for experiment.robots = {wanted}",
+                    scenario.source,
+                    scenario.robots.len()
+                )));
+            }
+            scenario.robots.truncate(wanted);
+        }
+        let world = World::new(&scenario, &config.physics)
+            .map_err(|e| ExperimentError::Config(format!("physics.{e}")))?;
+        let distance_layout = config.distance_sensors.layout();
+        let sensors = &config.surface_sensors;
+        let spec = SubstrateSpec {
+            sensors: PolarGrid {
+                rings: sensors.rings,
+                angles: sensors.angles,
+            },
+            neurons: config.substrate.neurons,
+            distance_rays: distance_layout.as_ref().map(|d| d.rays),
+            fov: sensors.fov,
+            neuron_fov: 180.0,
+            coords: config.substrate.coordinates,
+        };
+        let layout = spec.layout().map_err(|e| ExperimentError::Config(format!("substrate: {e}")))?;
+        let wheels = spec.wheels().map_err(|e| ExperimentError::Config(format!("substrate: {e}")))?;
+        let cppn_outputs = cppn_outputs(&layout);
+        Ok(Experiment {
+            world,
+            surface: config.surface_sensors.grid(),
+            distance: distance_layout.map(|d| d.grid()),
+            spec,
+            layout,
+            wheels,
+            hyper: config.hyperneat.clone(),
+            steps: config.experiment.steps,
+            cppn_outputs,
+        })
+    }
+
+    /// The shape of the CPPN genomes this experiment evolves.
+    pub fn cppn_spec(&self) -> GenomeSpec {
+        GenomeSpec {
+            outputs: self.cppn_outputs,
+            ..GenomeSpec::cppn()
+        }
+    }
+
+    /// The substrate's polar geometry.
+    pub fn substrate_spec(&self) -> &SubstrateSpec {
+        &self.spec
+    }
+
+    /// The substrate geometry as the decoder sees it.
+    pub fn layout(&self) -> &SubstrateLayout {
+        &self.layout
+    }
+
+    /// Indices of the wheel neurons among the controller's outputs.
+    pub fn wheels(&self) -> WheelNeurons {
+        self.wheels
+    }
+
+    /// The world at the start of an episode.
+    pub fn world(&self) -> &World {
+        &self.world
+    }
+
+    /// The surface-sensor grid.
+    pub fn surface_grid(&self) -> &SurfaceGrid {
+        &self.surface
+    }
+
+    /// Simulation steps per episode.
+    pub fn steps(&self) -> u32 {
+        self.steps
+    }
+
+    /// Number of robots per episode.
+    pub fn robots(&self) -> usize {
+        self.world.robots().len()
+    }
+
+    /// Decodes `genome` (a CPPN) into the controller for this substrate.
+    pub fn controller(&self, genome: &Genome) -> SubstrateController {
+        let mut cppn = FeedForwardNetwork::from_genome(genome);
+        decode(&mut cppn, &self.layout, &self.hyper)
+            .expect("layout and hyper-parameters were checked when the experiment was built")
+    }
+
+    /// Average speed of `genome`'s controller (the fitness).
+    pub fn fitness(&self, genome: &Genome) -> f64 {
+        self.run(&self.controller(genome), false).fitness
+    }
+
+    /// Runs one episode with a copy of `controller` per robot.
+    pub fn run(&self, controller: &SubstrateController, record: bool) -> Episode {
+        self.run_world(controller, record).0
+    }
+
+    /// Runs one episode and also returns the final world (for drawing).
+    pub fn run_world(&self, controller: &SubstrateController, record: bool) -> (Episode, World) {
+        let n = self.robots();
+        let mut world = self.world.clone();
+        if record {
+            world.record_trajectories(self.steps as usize);
+        }
+        let mut controllers: Vec<SubstrateController> = (0..n)
+            .map(|_| {
+                let mut c = controller.clone();
+                c.reset();
+                c
+            })
+            .collect();
+        let num_surface = self.surface.len();
+        let mut inputs = vec![0.0; controller.num_inputs()];
+        let mut outputs = vec![0.0; controller.num_outputs()];
+        let mut controls = vec![[0.0; 2]; n];
+        let mut on_road = 0u64;
+        for _ in 0..self.steps {
+            for (i, c) in controllers.iter_mut().enumerate() {
+                world.read_surface(i, &self.surface, &mut inputs[..num_surface]);
+                if let Some(d) = &self.distance {
+                    world.read_distance(i, d, &mut inputs[num_surface..]);
+                }
+                c.activate(&inputs, &mut outputs);
+                controls[i] = [outputs[self.wheels.left], outputs[self.wheels.right]];
+            }
+            world.step(&controls);
+            on_road += (0..n).filter(|&i| world.on_road(i)).count() as u64;
+        }
+        let robot_steps = (n as f64) * f64::from(self.steps);
+        let odometer: f64 = world.robots().iter().map(|r| r.odometer).sum();
+        let episode = Episode {
+            fitness: odometer / robot_steps,
+            on_road: on_road as f64 / robot_steps,
+            trajectories: world.trajectories().map(|t| t.to_vec()),
+        };
+        (episode, world)
+    }
+}
+
+/// CPPN outputs a layout needs: one more than the highest output it reads.
+fn cppn_outputs(layout: &SubstrateLayout) -> usize {
+    layout
+        .inputs
+        .iter()
+        .map(|s| s.cppn_output)
+        .chain([layout.bias_output, layout.recurrent_output])
+        .max()
+        .unwrap_or(0)
+        + 1
+}

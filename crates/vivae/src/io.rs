@@ -1,0 +1,167 @@
+//! File input and output: atomic writes, reading inputs with one-line errors.
+
+use std::fs;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use vivae_sim::{LoadOptions, Scenario};
+
+/// Bad input from the user (a file or a value): exit code 2.
+#[derive(Debug, thiserror::Error)]
+#[error("{0}")]
+pub struct BadInput(pub String);
+
+/// Wraps a message as [`BadInput`].
+pub fn bad_input(message: impl Into<String>) -> anyhow::Error {
+    anyhow::Error::new(BadInput(message.into()))
+}
+
+/// The default scenario shipped in the binary (`scenarios/roads.svg`).
+pub const DEFAULT_SCENARIO: &str = include_str!("../../../scenarios/roads.svg");
+
+/// Name the embedded default scenario goes by in messages.
+pub const DEFAULT_SCENARIO_NAME: &str = "roads.svg (embedded default)";
+
+/// Writes `bytes` to `path` atomically: a temporary file beside it, then rename.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
+    let dir = path.parent().unwrap_or(Path::new("."));
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "out".into());
+    let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
+    let result = (|| -> std::io::Result<()> {
+        let mut f = fs::File::create(&tmp)?;
+        f.write_all(bytes)?;
+        f.sync_all()?;
+        fs::rename(&tmp, path)
+    })();
+    if let Err(e) = result {
+        let _ = fs::remove_file(&tmp);
+        return Err(anyhow::anyhow!("cannot write {}: {e}", path.display()));
+    }
+    Ok(())
+}
+
+/// Reads a whole file as UTF-8; errors are bad input naming the file.
+pub fn read_text(path: &Path) -> anyhow::Result<String> {
+    let bytes = fs::read(path).map_err(|e| bad_input(format!("{}: {}", path.display(), io_reason(&e))))?;
+    String::from_utf8(bytes).map_err(|_| bad_input(format!("{}: not UTF-8 text", path.display())))
+}
+
+/// A short reason for an I/O error, without the OS error code noise.
+pub fn io_reason(e: &std::io::Error) -> String {
+    match e.kind() {
+        std::io::ErrorKind::NotFound => "no such file or directory".into(),
+        std::io::ErrorKind::PermissionDenied => "permission denied".into(),
+        std::io::ErrorKind::IsADirectory => "is a directory".into(),
+        _ => e.to_string(),
+    }
+}
+
+/// A scenario and the SVG text it was loaded from.
+#[derive(Debug, Clone)]
+pub struct LoadedScenario {
+    /// The parsed scenario.
+    pub scenario: Scenario,
+    /// Its SVG text (copied into run directories).
+    pub text: String,
+}
+
+/// Loads the scenario at `path`, or the embedded default when `path` is `None`.
+pub fn load_scenario(path: Option<&Path>) -> anyhow::Result<LoadedScenario> {
+    let (text, name) = match path {
+        Some(p) => (read_text(p)?, p.display().to_string()),
+        None => (DEFAULT_SCENARIO.to_string(), DEFAULT_SCENARIO_NAME.to_string()),
+    };
+    let scenario = Scenario::from_svg(&text, &name, &LoadOptions::default())
+        .map_err(|e| bad_input(one_line(&e.to_string())))?;
+    Ok(LoadedScenario { scenario, text })
+}
+
+/// Collapses a message onto one line.
+pub fn one_line(message: &str) -> String {
+    message.split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
+/// Creates a fresh output directory; an existing one is refused unless `force`.
+pub fn create_out_dir(path: &Path, force: bool) -> anyhow::Result<()> {
+    if path.exists() {
+        if !force {
+            return Err(bad_input(format!(
+                "{}: already exists (choose another --out, or pass --force to overwrite)",
+                path.display()
+            )));
+        }
+        if !path.is_dir() {
+            return Err(bad_input(format!("{}: exists and is not a directory", path.display())));
+        }
+        fs::remove_dir_all(path)
+            .map_err(|e| anyhow::anyhow!("cannot clear {}: {e}", path.display()))?;
+    }
+    fs::create_dir_all(path).map_err(|e| anyhow::anyhow!("cannot create {}: {e}", path.display()))
+}
+
+/// A fresh `runs/<timestamp>` directory name (suffixed if taken).
+pub fn default_run_dir() -> PathBuf {
+    let secs = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.as_secs())
+        .unwrap_or(0);
+    let stamp = utc_stamp(secs);
+    let base = PathBuf::from("runs").join(&stamp);
+    if !base.exists() {
+        return base;
+    }
+    (2..)
+        .map(|i| PathBuf::from("runs").join(format!("{stamp}-{i}")))
+        .find(|p| !p.exists())
+        .expect("some suffix is free")
+}
+
+/// `YYYYMMDD-HHMMSS` in UTC for a Unix time (no time-zone database needed).
+fn utc_stamp(secs: u64) -> String {
+    let days = secs / 86_400;
+    let rem = secs % 86_400;
+    // Civil-from-days (Howard Hinnant's algorithm).
+    let z = days as i64 + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let y = yoe + era * 400;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let d = doy - (153 * mp + 2) / 5 + 1;
+    let m = if mp < 10 { mp + 3 } else { mp - 9 };
+    let y = if m <= 2 { y + 1 } else { y };
+    format!(
+        "{y:04}{m:02}{d:02}-{:02}{:02}{:02}",
+        rem / 3600,
+        (rem % 3600) / 60,
+        rem % 60
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn utc_stamp_known_dates() {
+        assert_eq!(utc_stamp(0), "19700101-000000");
+        assert_eq!(utc_stamp(951_782_400), "20000229-000000");
+        assert_eq!(utc_stamp(1_795_303_182), "20261121-231942");
+    }
+
+    #[test]
+    fn atomic_write_replaces_and_leaves_no_temp() {
+        let dir = std::env::temp_dir().join(format!("vivae-io-{}", std::process::id()));
+        fs::create_dir_all(&dir).unwrap();
+        let p = dir.join("a.txt");
+        write_atomic(&p, b"one").unwrap();
+        write_atomic(&p, b"two").unwrap();
+        assert_eq!(fs::read(&p).unwrap(), b"two");
+        assert_eq!(fs::read_dir(&dir).unwrap().count(), 1);
+        fs::remove_dir_all(&dir).unwrap();
+    }
+}

@@ -1,0 +1,211 @@
+//! Reports of runs: figures at the end of a run, replays, scenario summaries.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use anyhow::Context as _;
+use vivae_neat::Genome;
+use vivae_sim::draw::{self, DrawOptions};
+use vivae_sim::{Scenario, ScenarioSummary, SurfaceSensors, World};
+
+use crate::config::Config;
+use crate::evolve::{self, Champion, Run, files};
+use crate::experiment::{Episode, Experiment};
+use crate::figures;
+use crate::io::{bad_input, read_text, write_atomic};
+use crate::substrate::PolarGrid;
+
+/// What the end of a run reports.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunSummary {
+    /// The champion's fitness.
+    pub champion_fitness: f64,
+    /// The generation it was found in.
+    pub champion_generation: u32,
+    /// Its fraction of robot-steps on road.
+    pub champion_on_road: f64,
+}
+
+/// Writes a figure as `NAME.svg` and `NAME.png` in `dir`.
+fn write_figure(dir: &Path, name: &str, svg: &str, png: &[u8]) -> anyhow::Result<()> {
+    write_atomic(&dir.join(format!("{name}.svg")), svg.as_bytes())?;
+    write_atomic(&dir.join(format!("{name}.png")), png)
+}
+
+/// Runs `genome` with trajectories recorded and draws them; returns the episode.
+pub fn trajectory_figure(
+    experiment: &Experiment,
+    genome: &Genome,
+    title: &str,
+    dir: &Path,
+    name: &str,
+) -> anyhow::Result<Episode> {
+    let controller = experiment.controller(genome);
+    let (episode, world) = experiment.run_world(&controller, true);
+    let title = format!(
+        "{title} — fitness {:.3} px/step, {:.1}% on road",
+        episode.fitness,
+        100.0 * episode.on_road
+    );
+    let trajectories = episode.trajectories.as_deref().unwrap_or_default();
+    let options = DrawOptions {
+        trajectories: Some(trajectories),
+        title: Some(title),
+        ..DrawOptions::default()
+    };
+    let svg = draw::render_svg(&world, &options);
+    let png = draw::render_png(&world, &options).context("rendering trajectories")?;
+    write_figure(dir, name, &svg, &png)?;
+    Ok(episode)
+}
+
+/// Writes every figure of a finished run into `RUN/figures/`.
+pub fn finish_run(run: &Run) -> anyhow::Result<RunSummary> {
+    let dir = run.dir().join(files::FIGURES);
+    std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    let experiment = run.experiment();
+    for (generation, _, genome) in run.figure_genomes() {
+        trajectory_figure(
+            experiment,
+            genome,
+            &format!("Best of generation {generation}"),
+            &dir,
+            &format!("trajectories-gen{generation:03}"),
+        )?;
+    }
+    let champion = run.champion().context("the run evaluated no genome")?;
+    let episode = trajectory_figure(
+        experiment,
+        &champion.genome,
+        &format!("Champion (generation {})", champion.generation),
+        &dir,
+        "trajectories-champion",
+    )?;
+
+    let fitness = evolve::read_population_csv(&run.dir().join(files::POPULATION))?;
+    let title = "Sorted fitness of every generation";
+    let svg = figures::convergence::render_svg(&fitness, title)?;
+    let png = figures::convergence::render_png(&fitness, title)?;
+    write_figure(&dir, "convergence", &svg, &png)?;
+
+    let controller = experiment.controller(&champion.genome);
+    let spec = experiment.substrate_spec();
+    let svg = figures::network::render_svg(spec, &controller)?;
+    let png = figures::network::render_png(spec, &controller)?;
+    write_figure(&dir, "network", &svg, &png)?;
+
+    Ok(RunSummary {
+        champion_fitness: champion.fitness,
+        champion_generation: champion.generation,
+        champion_on_road: episode.on_road,
+    })
+}
+
+/// Reads a genome source for `replay`: a run directory (its champion and config)
+/// or a champion JSON file (default config). Returns the folder outputs go beside.
+pub fn load_genome_source(source: &Path) -> anyhow::Result<(Champion, Config, PathBuf)> {
+    if source.is_dir() {
+        let champion = read_champion(&source.join(files::CHAMPION))?;
+        let config_path = source.join(files::CONFIG);
+        let text = read_text(&config_path)?;
+        let mut config =
+            Config::from_toml(&text).map_err(|e| bad_input(format!("{}: {e}", config_path.display())))?;
+        if !config.experiment.scenario.is_empty() && Path::new(&config.experiment.scenario).is_relative() {
+            config.experiment.scenario = source.join(&config.experiment.scenario).to_string_lossy().into_owned();
+        }
+        Ok((champion, config, source.to_path_buf()))
+    } else {
+        let champion = read_champion(source)?;
+        let base = source.parent().map(Path::to_path_buf).unwrap_or_default();
+        Ok((champion, Config::default(), base))
+    }
+}
+
+/// Reads `champion.json` (or any file in its format), checking the genome.
+pub fn read_champion(path: &Path) -> anyhow::Result<Champion> {
+    let text = read_text(path)?;
+    let champion: Champion = serde_json::from_str(&text).map_err(|e| {
+        bad_input(format!("{}: not a vivae champion genome: {e}", path.display()))
+    })?;
+    if champion.format != "vivae-champion" {
+        return Err(bad_input(format!(
+            "{}: format is {:?}, expected \"vivae-champion\"",
+            path.display(),
+            champion.format
+        )));
+    }
+    champion
+        .genome
+        .check()
+        .map_err(|e| bad_input(format!("{}: invalid genome: {e}", path.display())))?;
+    Ok(champion)
+}
+
+/// A replay's result.
+#[derive(Debug, Clone)]
+pub struct Replay {
+    /// Average speed.
+    pub fitness: f64,
+    /// Fraction of robot-steps on road.
+    pub on_road: f64,
+    /// The trajectory figure (PNG).
+    pub figure: PathBuf,
+}
+
+/// Runs a champion on `experiment` and draws its trajectories into `out`.
+pub fn replay(experiment: &Experiment, config: &Config, champion: &Champion, out: &Path) -> anyhow::Result<Replay> {
+    let s = &config.surface_sensors;
+    let n = config.substrate.neurons;
+    let name = format!("replay-s{}x{}-n{}x{}", s.rings, s.angles, n.rings, n.angles);
+    let title = format!(
+        "Champion of generation {}, sensors {}x{}, neurons {}x{}",
+        champion.generation, s.rings, s.angles, n.rings, n.angles
+    );
+    let episode = trajectory_figure(experiment, &champion.genome, &title, out, &name)?;
+    Ok(Replay {
+        fitness: episode.fitness,
+        on_road: episode.on_road,
+        figure: out.join(format!("{name}.png")),
+    })
+}
+
+/// A plain-text scenario summary.
+pub fn scenario_text(s: &ScenarioSummary) -> String {
+    let mut out = String::new();
+    let _ = writeln!(out, "arena: {} x {} px", s.arena.width, s.arena.height);
+    let surfaces: Vec<String> = s.surfaces.iter().map(|(k, n)| format!("{k} {n}")).collect();
+    let _ = writeln!(out, "surfaces: {}", surfaces.join(", "));
+    let _ = writeln!(
+        out,
+        "fixed obstacles: {}, movable obstacles: {}, pucks: {}, marks: {}",
+        s.fixed_obstacles, s.movable_obstacles, s.pucks, s.marks
+    );
+    let _ = writeln!(out, "robots: {}", s.robots.len());
+    for r in &s.robots {
+        let _ = writeln!(out, "  x {:.1} y {:.1} heading {:.1}°", r.x, r.y, r.heading_deg);
+    }
+    for w in &s.warnings {
+        let _ = writeln!(out, "warning: {w}");
+    }
+    out
+}
+
+/// Draws a scenario (with sensors of `sensors` on every robot) as SVG or PNG by `out`'s extension.
+pub fn render_scenario(scenario: &Scenario, sensors: Option<PolarGrid>, out: &Path) -> anyhow::Result<Vec<u8>> {
+    let world = World::new(scenario, &Default::default()).map_err(|e| bad_input(e.to_string()))?;
+    let layout = sensors.map(|g| SurfaceSensors {
+        rings: g.rings,
+        angles: g.angles,
+        ..SurfaceSensors::default()
+    });
+    let options = DrawOptions {
+        sensors: layout.as_ref(),
+        title: Some(scenario.source.clone()),
+        ..DrawOptions::default()
+    };
+    match out.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
+        Some("svg") => Ok(draw::render_svg(&world, &options).into_bytes()),
+        Some("png") => Ok(draw::render_png(&world, &options).context("rendering scenario")?),
+        _ => Err(bad_input(format!("{}: output must end in .png or .svg", out.display()))),
+    }
+}

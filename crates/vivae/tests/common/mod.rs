@@ -1,0 +1,57 @@
+//! Helpers shared by the command-line integration tests.
+#![allow(dead_code)]
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// The `vivae` binary under test.
+pub fn vivae() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_vivae"))
+}
+
+/// A fresh, empty scratch directory for one test.
+pub fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("vivae-test-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// A small but complete experiment config: quick to run, still the real pipeline.
+pub fn small_config(generations: u32) -> String {
+    format!(
+        "[experiment]\nseed = 7\ngenerations = {generations}\nsteps = 150\n\n[neat]\npopulation_size = 24\n"
+    )
+}
+
+/// Runs a command to completion; panics with its stderr if it could not start.
+pub fn run(cmd: &mut Command) -> Output {
+    cmd.output().expect("vivae runs")
+}
+
+/// Asserts success and returns stdout.
+pub fn ok(cmd: &mut Command) -> String {
+    let out = run(cmd);
+    assert!(
+        out.status.success(),
+        "command failed ({:?}): {}",
+        out.status,
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).unwrap()
+}
+
+/// Reads a file of a run directory.
+pub fn read(dir: &Path, name: &str) -> Vec<u8> {
+    std::fs::read(dir.join(name)).unwrap_or_else(|e| panic!("{}/{name}: {e}", dir.display()))
+}
+
+/// The files that must be bit-identical between two runs of the same config.
+pub const DETERMINISTIC_FILES: [&str; 3] = ["generations.csv", "population.csv", "champion.json"];
+
+/// Asserts the deterministic outputs of two run directories are identical.
+pub fn assert_same_results(a: &Path, b: &Path) {
+    for name in DETERMINISTIC_FILES {
+        assert!(read(a, name) == read(b, name), "{name} differs between {} and {}", a.display(), b.display());
+    }
+}
