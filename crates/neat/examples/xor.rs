@@ -1,0 +1,167 @@
+//! XOR, the classic NEAT benchmark (Stanley & Miikkulainen 2002).
+//!
+//! `cargo run --release -p vivae-neat --example xor -- --runs 100 --seed 1`
+//!
+//! Population 150, fitness (4 − Σ|error|)², solved when all four outputs are on the
+//! right side of 0.5. Evaluations are counted up to and including the first genome
+//! that solves (as if evaluated one by one). Parameters are Stanley's XOR settings
+//! where our operators match his (see `xor_params`).
+
+use std::time::Instant;
+
+use vivae_neat::{
+    Activation, FeedForwardNetwork, Genome, GenomeSpec, NeatParams, Network, Population,
+};
+
+const CASES: [([f64; 3], f64); 4] = [
+    ([0.0, 0.0, 1.0], 0.0),
+    ([0.0, 1.0, 1.0], 1.0),
+    ([1.0, 0.0, 1.0], 1.0),
+    ([1.0, 1.0, 1.0], 0.0),
+];
+
+/// Stanley's XOR parameters (p2nv.ne) mapped onto ours.
+fn xor_params() -> NeatParams {
+    NeatParams {
+        population_size: 150,
+        weight_amplitude: 8.0,
+        initial_weight_range: 1.0,
+        compatibility_threshold: 3.0,
+        c_excess: 1.0,
+        c_disjoint: 1.0,
+        c_weight: 0.4,
+        c_activation: 0.0,
+        add_node_probability: 0.03,
+        add_link_probability: 0.05,
+        weight_mutation_probability: 0.9,
+        weight_link_probability: 0.9,
+        weight_replace_probability: 0.1,
+        weight_perturb_power: 1.0,
+        toggle_enable_probability: 0.0,
+        activation_mutation_probability: 0.0,
+        mating_probability: 0.75,
+        interspecies_mating_probability: 0.001,
+        mate_only_probability: 0.2,
+        survival_threshold: 0.2,
+        stagnation_limit: 15,
+        ..NeatParams::default()
+    }
+}
+
+fn xor_spec() -> GenomeSpec {
+    GenomeSpec {
+        inputs: 3,
+        outputs: 1,
+        output_activation: Activation::Sigmoid,
+        hidden_activations: vec![Activation::Sigmoid],
+        allow_recurrent: false,
+    }
+}
+
+/// Fitness and whether all four cases are on the right side of 0.5.
+fn evaluate(g: &Genome) -> (f64, bool) {
+    let mut net = FeedForwardNetwork::from_genome(g);
+    let mut out = [0.0];
+    let mut err = 0.0;
+    let mut solved = true;
+    for (input, target) in CASES {
+        net.activate(&input, &mut out);
+        err += (out[0] - target).abs();
+        solved &= (out[0] > 0.5) == (target > 0.5);
+    }
+    ((4.0 - err).powi(2), solved)
+}
+
+struct RunResult {
+    evals: Option<usize>,
+    hidden: usize,
+}
+
+fn run(params: &NeatParams, seed: u64, max_generations: u32) -> RunResult {
+    let mut pop = Population::new(params.clone(), xor_spec(), seed).expect("valid parameters");
+    for _ in 0..max_generations {
+        pop.evaluate(|g, _| evaluate(g).0);
+        let gen_evals = pop.generation() as usize * pop.params().population_size;
+        if let Some((i, g)) = pop
+            .genomes()
+            .iter()
+            .enumerate()
+            .find(|(_, g)| evaluate(g).1)
+        {
+            return RunResult {
+                evals: Some(gen_evals + i + 1),
+                hidden: g.num_hidden(),
+            };
+        }
+        pop.next_generation();
+    }
+    RunResult {
+        evals: None,
+        hidden: 0,
+    }
+}
+
+/// Applies `field=value` (value in JSON) to the parameters, for experiments.
+fn override_param(params: &NeatParams, kv: &str) -> NeatParams {
+    let (k, v) = kv.split_once('=').expect("--set needs field=json_value");
+    let mut json = serde_json::to_value(params).expect("params serialise");
+    json[k] = serde_json::from_str(v).expect("value must be JSON");
+    let p: NeatParams = serde_json::from_value(json).expect("known field");
+    p.validate().expect("valid value");
+    p
+}
+
+fn main() {
+    let mut runs = 100usize;
+    let mut seed = 1u64;
+    let mut max_generations = 500u32;
+    let mut params = xor_params();
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let mut it = args.iter();
+    while let Some(a) = it.next() {
+        let mut value = |name: &str| -> u64 {
+            it.next()
+                .and_then(|v| v.parse().ok())
+                .unwrap_or_else(|| panic!("{name} needs a number"))
+        };
+        match a.as_str() {
+            "--runs" => runs = value("--runs") as usize,
+            "--seed" => seed = value("--seed"),
+            "--max-generations" => max_generations = value("--max-generations") as u32,
+            "--set" => {
+                let kv = it.next().expect("--set needs field=json_value");
+                params = override_param(&params, kv);
+            }
+            other => panic!(
+                "unknown argument {other} (use --runs N --seed S --max-generations G --set field=value)"
+            ),
+        }
+    }
+    let mut evals = Vec::new();
+    let mut hidden = 0usize;
+    let mut total_ms = 0.0;
+    for r in 0..runs {
+        let t = Instant::now();
+        let res = run(&params, seed.wrapping_add(r as u64), max_generations);
+        total_ms += t.elapsed().as_secs_f64() * 1e3;
+        if let Some(e) = res.evals {
+            evals.push(e);
+            hidden += res.hidden;
+        }
+    }
+    let solved = evals.len();
+    evals.sort_unstable();
+    let mean = evals.iter().sum::<usize>() as f64 / solved.max(1) as f64;
+    let median = if solved == 0 {
+        0.0
+    } else if solved % 2 == 1 {
+        evals[solved / 2] as f64
+    } else {
+        (evals[solved / 2 - 1] + evals[solved / 2]) as f64 / 2.0
+    };
+    println!(
+        "xor: solved={solved}/{runs} mean_evals={mean:.0} median_evals={median:.0} mean_hidden={:.2} mean_ms={:.1}",
+        hidden as f64 / solved.max(1) as f64,
+        total_ms / runs.max(1) as f64
+    );
+}

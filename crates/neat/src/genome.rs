@@ -1,0 +1,320 @@
+//! Genomes: node genes and link genes with historical markings.
+
+use std::collections::BTreeSet;
+
+use rand::{Rng, RngExt};
+use serde::{Deserialize, Serialize};
+
+use crate::activation::Activation;
+use crate::error::NeatError;
+use crate::innovation::InnovationTracker;
+use crate::params::NeatParams;
+
+/// What the genomes of a run look like: inputs, outputs and allowed node functions.
+///
+/// There is no separate bias node kind: as in Stanley's NEAT and the paper's CPPN
+/// inputs `(x1, y1, x2, y2, 1)`, the bias is an ordinary input the caller holds at a
+/// constant value.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GenomeSpec {
+    /// Number of input nodes (including any constant bias input).
+    pub inputs: usize,
+    /// Number of output nodes.
+    pub outputs: usize,
+    /// Activation function of every output node.
+    pub output_activation: Activation,
+    /// Functions a hidden node may have (chosen at random on creation and mutation).
+    pub hidden_activations: Vec<Activation>,
+    /// Whether add-link may create recurrent links (cycles, self-loops).
+    pub allow_recurrent: bool,
+}
+
+impl GenomeSpec {
+    /// The paper's CPPN: inputs `(x1, y1, x2, y2, 1)`, three bipolar-sigmoid outputs,
+    /// the six Table I hidden functions, feed-forward only.
+    pub fn cppn() -> GenomeSpec {
+        GenomeSpec {
+            inputs: 5,
+            outputs: 3,
+            output_activation: Activation::BipolarSigmoid,
+            hidden_activations: Activation::CPPN_SET.to_vec(),
+            allow_recurrent: false,
+        }
+    }
+
+    /// Checks that the spec describes a usable genome.
+    pub fn validate(&self) -> Result<(), NeatError> {
+        if self.inputs == 0 {
+            return Err(NeatError::InvalidSpec(
+                "inputs = 0: need at least one input".into(),
+            ));
+        }
+        if self.outputs == 0 {
+            return Err(NeatError::InvalidSpec(
+                "outputs = 0: need at least one output".into(),
+            ));
+        }
+        if self.hidden_activations.is_empty() {
+            return Err(NeatError::InvalidSpec(
+                "hidden_activations is empty: need at least one function".into(),
+            ));
+        }
+        if self.inputs + self.outputs > u32::MAX as usize / 2 {
+            return Err(NeatError::InvalidSpec(format!(
+                "{} inputs + {} outputs is too many",
+                self.inputs, self.outputs
+            )));
+        }
+        Ok(())
+    }
+}
+
+/// The role of a node.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum NodeKind {
+    /// Receives an external input (the bias is an input held constant by the caller).
+    Input,
+    /// Added by the add-node mutation.
+    Hidden,
+    /// Produces an external output.
+    Output,
+}
+
+/// A node gene: id (shared across the population for the same structural origin),
+/// role and activation function.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct NodeGene {
+    /// Node id; inputs are `0..inputs`, outputs follow, hidden nodes come from the tracker.
+    pub id: u32,
+    /// The node's role.
+    pub kind: NodeKind,
+    /// The node's activation function (ignored for inputs).
+    pub activation: Activation,
+}
+
+/// A link gene with its historical marking.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct LinkGene {
+    /// Innovation number: identical `(from, to)` ⇔ identical innovation within a run.
+    pub innovation: u32,
+    /// Source node id.
+    pub from: u32,
+    /// Target node id.
+    pub to: u32,
+    /// Connection weight.
+    pub weight: f64,
+    /// Disabled links are kept in the genome but not expressed.
+    pub enabled: bool,
+}
+
+/// A NEAT genome: nodes sorted by id, links sorted by innovation.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Genome {
+    pub(crate) nodes: Vec<NodeGene>,
+    pub(crate) links: Vec<LinkGene>,
+}
+
+impl Genome {
+    /// The minimal genome: inputs fully connected to outputs with random weights.
+    pub fn minimal<R: Rng + ?Sized>(
+        spec: &GenomeSpec,
+        params: &NeatParams,
+        tracker: &mut InnovationTracker,
+        rng: &mut R,
+    ) -> Genome {
+        let n_in = spec.inputs as u32;
+        let n_out = spec.outputs as u32;
+        let mut nodes = Vec::with_capacity((n_in + n_out) as usize);
+        for id in 0..n_in {
+            nodes.push(NodeGene {
+                id,
+                kind: NodeKind::Input,
+                activation: Activation::Linear,
+            });
+        }
+        for k in 0..n_out {
+            nodes.push(NodeGene {
+                id: n_in + k,
+                kind: NodeKind::Output,
+                activation: spec.output_activation,
+            });
+        }
+        let mut links = Vec::with_capacity((n_in * n_out) as usize);
+        for from in 0..n_in {
+            for to in n_in..n_in + n_out {
+                links.push(LinkGene {
+                    innovation: tracker.link_innovation(from, to),
+                    from,
+                    to,
+                    weight: random_weight(params, rng),
+                    enabled: true,
+                });
+            }
+        }
+        links.sort_by_key(|l| l.innovation);
+        Genome { nodes, links }
+    }
+
+    /// Builds a genome from explicit genes, checking every invariant (for tests and tools).
+    pub fn from_parts(
+        mut nodes: Vec<NodeGene>,
+        mut links: Vec<LinkGene>,
+    ) -> Result<Genome, NeatError> {
+        nodes.sort_by_key(|n| n.id);
+        links.sort_by_key(|l| l.innovation);
+        let g = Genome { nodes, links };
+        g.check()?;
+        Ok(g)
+    }
+
+    /// Node genes, sorted by id.
+    pub fn nodes(&self) -> &[NodeGene] {
+        &self.nodes
+    }
+
+    /// Link genes, sorted by innovation number.
+    pub fn links(&self) -> &[LinkGene] {
+        &self.links
+    }
+
+    /// Number of input nodes.
+    pub fn num_inputs(&self) -> usize {
+        self.nodes
+            .iter()
+            .filter(|n| n.kind == NodeKind::Input)
+            .count()
+    }
+
+    /// Number of output nodes.
+    pub fn num_outputs(&self) -> usize {
+        self.nodes
+            .iter()
+            .filter(|n| n.kind == NodeKind::Output)
+            .count()
+    }
+
+    /// Number of hidden nodes.
+    pub fn num_hidden(&self) -> usize {
+        self.nodes
+            .iter()
+            .filter(|n| n.kind == NodeKind::Hidden)
+            .count()
+    }
+
+    /// Number of enabled links.
+    pub fn num_enabled_links(&self) -> usize {
+        self.links.iter().filter(|l| l.enabled).count()
+    }
+
+    /// The node gene with this id, if any.
+    pub fn node(&self, id: u32) -> Option<&NodeGene> {
+        self.nodes
+            .binary_search_by_key(&id, |n| n.id)
+            .ok()
+            .map(|i| &self.nodes[i])
+    }
+
+    /// Whether a node with this id exists.
+    pub fn has_node(&self, id: u32) -> bool {
+        self.nodes.binary_search_by_key(&id, |n| n.id).is_ok()
+    }
+
+    /// Whether a link `from → to` exists (enabled or not).
+    pub fn has_link(&self, from: u32, to: u32) -> bool {
+        self.links.iter().any(|l| l.from == from && l.to == to)
+    }
+
+    /// Inserts a node keeping the id order.
+    pub(crate) fn insert_node(&mut self, node: NodeGene) {
+        let pos = self.nodes.partition_point(|n| n.id < node.id);
+        self.nodes.insert(pos, node);
+    }
+
+    /// Inserts a link keeping the innovation order.
+    pub(crate) fn insert_link(&mut self, link: LinkGene) {
+        let pos = self
+            .links
+            .partition_point(|l| l.innovation < link.innovation);
+        self.links.insert(pos, link);
+    }
+
+    /// Whether `target` is reachable from `start` along any link (enabled or not).
+    ///
+    /// Feed-forward genomes consider disabled links too, so that re-enabling a link
+    /// (toggle or crossover) can never close a cycle.
+    pub(crate) fn reaches(&self, start: u32, target: u32) -> bool {
+        if start == target {
+            return true;
+        }
+        let mut seen = BTreeSet::new();
+        let mut stack = vec![start];
+        while let Some(n) = stack.pop() {
+            for l in self.links.iter().filter(|l| l.from == n) {
+                if l.to == target {
+                    return true;
+                }
+                if seen.insert(l.to) {
+                    stack.push(l.to);
+                }
+            }
+        }
+        false
+    }
+
+    /// Checks the structural invariants: sorted unique node ids and innovations,
+    /// no duplicate `(from, to)`, every link's nodes exist, no link into an input.
+    pub fn check(&self) -> Result<(), NeatError> {
+        for w in self.nodes.windows(2) {
+            if w[0].id >= w[1].id {
+                return Err(NeatError::InvalidGenome(format!(
+                    "node ids not strictly increasing at {}",
+                    w[1].id
+                )));
+            }
+        }
+        for w in self.links.windows(2) {
+            if w[0].innovation >= w[1].innovation {
+                return Err(NeatError::InvalidGenome(format!(
+                    "innovation numbers not strictly increasing at {}",
+                    w[1].innovation
+                )));
+            }
+        }
+        let mut pairs = BTreeSet::new();
+        for l in &self.links {
+            if !pairs.insert((l.from, l.to)) {
+                return Err(NeatError::InvalidGenome(format!(
+                    "duplicate link {} -> {}",
+                    l.from, l.to
+                )));
+            }
+            let (Some(_), Some(to)) = (self.node(l.from), self.node(l.to)) else {
+                return Err(NeatError::InvalidGenome(format!(
+                    "link {} ({} -> {}) refers to a missing node",
+                    l.innovation, l.from, l.to
+                )));
+            };
+            if to.kind == NodeKind::Input {
+                return Err(NeatError::InvalidGenome(format!(
+                    "link {} targets input node {}",
+                    l.innovation, l.to
+                )));
+            }
+            if !l.weight.is_finite() {
+                return Err(NeatError::InvalidGenome(format!(
+                    "link {} has non-finite weight",
+                    l.innovation
+                )));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A uniform random weight in `[-r, r]`, `r = min(initial range, amplitude)`.
+pub(crate) fn random_weight<R: Rng + ?Sized>(params: &NeatParams, rng: &mut R) -> f64 {
+    let r = params.initial_weight_range.min(params.weight_amplitude);
+    (rng.random::<f64>() * 2.0 - 1.0) * r
+}

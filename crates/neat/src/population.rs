@@ -1,0 +1,595 @@
+//! The population: evaluation, speciation, fitness sharing and reproduction.
+
+use rand::{RngExt, SeedableRng};
+use rand_pcg::Pcg64;
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+use crate::crossover::crossover;
+use crate::distance::distance;
+use crate::error::NeatError;
+use crate::eval::{EvalContext, eval_seed};
+use crate::genome::{Genome, GenomeSpec};
+use crate::innovation::InnovationTracker;
+use crate::mutation::mutate;
+use crate::params::NeatParams;
+use crate::species::Species;
+
+/// The best genome seen so far in the run.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct BestEver {
+    /// The genome.
+    pub genome: Genome,
+    /// Its fitness.
+    pub fitness: f64,
+    /// The generation in which it was evaluated.
+    pub generation: u32,
+}
+
+/// Summary statistics of the current generation.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct GenerationStats {
+    /// Generation number (0 = initial population).
+    pub generation: u32,
+    /// Number of genomes.
+    pub population: usize,
+    /// Number of species.
+    pub species: usize,
+    /// Current compatibility threshold (changes with the dynamic threshold).
+    pub compatibility_threshold: f64,
+    /// Mean number of nodes per genome (inputs, outputs and hidden).
+    pub mean_nodes: f64,
+    /// Mean number of hidden nodes per genome.
+    pub mean_hidden: f64,
+    /// Mean number of enabled links per genome.
+    pub mean_links: f64,
+    /// Best fitness of this generation (None before evaluation).
+    pub best_fitness: Option<f64>,
+    /// Mean fitness of this generation (None before evaluation).
+    pub mean_fitness: Option<f64>,
+}
+
+/// A NEAT population with its complete state (RNG, species, innovations, best-ever),
+/// serialisable so that a restored checkpoint continues bit-identically.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Population {
+    params: NeatParams,
+    spec: GenomeSpec,
+    seed: u64,
+    generation: u32,
+    rng: Pcg64,
+    tracker: InnovationTracker,
+    genomes: Vec<Genome>,
+    fitness: Option<Vec<f64>>,
+    species: Vec<Species>,
+    next_species_id: u32,
+    threshold: f64,
+    best_ever: Option<BestEver>,
+}
+
+impl Population {
+    /// A generation-0 population of minimal genomes; validates `params` and `spec`.
+    pub fn new(params: NeatParams, spec: GenomeSpec, seed: u64) -> Result<Population, NeatError> {
+        params.validate()?;
+        spec.validate()?;
+        let mut rng = Pcg64::seed_from_u64(seed);
+        let mut tracker = InnovationTracker::new((spec.inputs + spec.outputs) as u32);
+        let genomes = (0..params.population_size)
+            .map(|_| Genome::minimal(&spec, &params, &mut tracker, &mut rng))
+            .collect();
+        Ok(Population::assemble(
+            params, spec, seed, rng, tracker, genomes,
+        ))
+    }
+
+    /// A generation-0 population made of existing genomes (e.g. a previous run's final
+    /// population); each must pass [`Genome::check`] and match the spec's inputs/outputs.
+    /// The population size is the number of genomes given until `params` says otherwise.
+    pub fn from_genomes(
+        params: NeatParams,
+        spec: GenomeSpec,
+        genomes: Vec<Genome>,
+        seed: u64,
+    ) -> Result<Population, NeatError> {
+        params.validate()?;
+        spec.validate()?;
+        if genomes.is_empty() {
+            return Err(NeatError::InvalidGenome("no genomes given".into()));
+        }
+        let mut tracker = InnovationTracker::new((spec.inputs + spec.outputs) as u32);
+        for (i, g) in genomes.iter().enumerate() {
+            g.check()
+                .map_err(|e| NeatError::InvalidGenome(format!("genome {i}: {e}")))?;
+            if g.num_inputs() != spec.inputs || g.num_outputs() != spec.outputs {
+                return Err(NeatError::InvalidGenome(format!(
+                    "genome {i} has {} inputs and {} outputs, the spec {} and {}",
+                    g.num_inputs(),
+                    g.num_outputs(),
+                    spec.inputs,
+                    spec.outputs
+                )));
+            }
+            tracker.absorb(g);
+        }
+        let rng = Pcg64::seed_from_u64(seed);
+        Ok(Population::assemble(
+            params, spec, seed, rng, tracker, genomes,
+        ))
+    }
+
+    fn assemble(
+        params: NeatParams,
+        spec: GenomeSpec,
+        seed: u64,
+        rng: Pcg64,
+        tracker: InnovationTracker,
+        genomes: Vec<Genome>,
+    ) -> Population {
+        let threshold = params.compatibility_threshold;
+        let mut pop = Population {
+            params,
+            spec,
+            seed,
+            generation: 0,
+            rng,
+            tracker,
+            genomes,
+            fitness: None,
+            species: Vec::new(),
+            next_species_id: 0,
+            threshold,
+            best_ever: None,
+        };
+        let genomes = std::mem::take(&mut pop.genomes);
+        pop.speciate(&genomes, &[]);
+        pop.genomes = genomes;
+        pop
+    }
+
+    /// The parameters in force.
+    pub fn params(&self) -> &NeatParams {
+        &self.params
+    }
+
+    /// Replaces the parameters from the next reproduction on (validated first).
+    /// The compatibility threshold restarts from the new `compatibility_threshold`.
+    pub fn set_params(&mut self, params: NeatParams) -> Result<(), NeatError> {
+        params.validate()?;
+        self.threshold = params.compatibility_threshold;
+        self.params = params;
+        Ok(())
+    }
+
+    /// What the genomes look like.
+    pub fn spec(&self) -> &GenomeSpec {
+        &self.spec
+    }
+
+    /// The run seed (source of every [`EvalContext::seed`]).
+    pub fn seed(&self) -> u64 {
+        self.seed
+    }
+
+    /// Current generation number (0 = initial population).
+    pub fn generation(&self) -> u32 {
+        self.generation
+    }
+
+    /// The genomes of the current generation.
+    pub fn genomes(&self) -> &[Genome] {
+        &self.genomes
+    }
+
+    /// The species of the current generation.
+    pub fn species(&self) -> &[Species] {
+        &self.species
+    }
+
+    /// The innovation history.
+    pub fn tracker(&self) -> &InnovationTracker {
+        &self.tracker
+    }
+
+    /// The compatibility threshold in force (moves with the dynamic threshold).
+    pub fn compatibility_threshold(&self) -> f64 {
+        self.threshold
+    }
+
+    /// Whether the current generation has fitness values.
+    pub fn is_evaluated(&self) -> bool {
+        self.fitness.is_some()
+    }
+
+    /// Fitness of every genome of the current generation (empty before evaluation).
+    pub fn fitnesses(&self) -> Vec<f64> {
+        self.fitness.clone().unwrap_or_default()
+    }
+
+    /// The best genome of the run so far, its fitness and generation.
+    pub fn best_ever(&self) -> Option<(&Genome, f64, u32)> {
+        self.best_ever
+            .as_ref()
+            .map(|b| (&b.genome, b.fitness, b.generation))
+    }
+
+    /// The context of evaluation `index` in the current generation.
+    pub fn eval_context(&self, index: usize) -> EvalContext {
+        EvalContext {
+            generation: self.generation,
+            index,
+            seed: eval_seed(self.seed, self.generation, index),
+        }
+    }
+
+    /// Evaluates every genome in parallel (rayon). Results are collected by index, so
+    /// they are identical at any thread count when `f` is deterministic.
+    pub fn evaluate<F>(&mut self, f: F)
+    where
+        F: Fn(&Genome, EvalContext) -> f64 + Sync,
+    {
+        let contexts: Vec<EvalContext> = (0..self.genomes.len())
+            .map(|i| self.eval_context(i))
+            .collect();
+        let fitness: Vec<f64> = self
+            .genomes
+            .par_iter()
+            .zip(contexts.into_par_iter())
+            .map(|(g, ctx)| f(g, ctx))
+            .collect();
+        self.record_fitness(fitness);
+    }
+
+    /// Sets fitness values computed elsewhere (one per genome, in order).
+    pub fn set_fitnesses(&mut self, fitness: Vec<f64>) -> Result<(), NeatError> {
+        if fitness.len() != self.genomes.len() {
+            return Err(NeatError::InvalidGenome(format!(
+                "{} fitness values for {} genomes",
+                fitness.len(),
+                self.genomes.len()
+            )));
+        }
+        self.record_fitness(fitness);
+        Ok(())
+    }
+
+    fn record_fitness(&mut self, mut fitness: Vec<f64>) {
+        // Non-finite fitness would break sorting and JSON; it counts as 0.
+        for f in &mut fitness {
+            if !f.is_finite() {
+                *f = 0.0;
+            }
+        }
+        if let Some(i) = argmax(&fitness)
+            && self
+                .best_ever
+                .as_ref()
+                .is_none_or(|b| fitness[i] > b.fitness)
+        {
+            self.best_ever = Some(BestEver {
+                genome: self.genomes[i].clone(),
+                fitness: fitness[i],
+                generation: self.generation,
+            });
+        }
+        self.fitness = Some(fitness);
+    }
+
+    /// The best genome of the current generation and its fitness (after evaluation).
+    pub fn champion(&self) -> Option<(&Genome, f64)> {
+        let f = self.fitness.as_ref()?;
+        argmax(f).map(|i| (&self.genomes[i], f[i]))
+    }
+
+    /// Statistics of the current generation.
+    pub fn stats(&self) -> GenerationStats {
+        let n = self.genomes.len().max(1) as f64;
+        let sum = |g: fn(&Genome) -> usize| self.genomes.iter().map(g).sum::<usize>() as f64 / n;
+        GenerationStats {
+            generation: self.generation,
+            population: self.genomes.len(),
+            species: self.species.len(),
+            compatibility_threshold: self.threshold,
+            mean_nodes: sum(|g| g.nodes().len()),
+            mean_hidden: sum(|g| g.num_hidden()),
+            mean_links: sum(|g| g.num_enabled_links()),
+            best_fitness: self.fitness.as_ref().and_then(|f| argmax(f).map(|i| f[i])),
+            mean_fitness: self.fitness.as_ref().map(|f| f.iter().sum::<f64>() / n),
+        }
+    }
+
+    /// Writes the complete state as JSON (exact: restoring continues bit-identically).
+    pub fn to_json(&self) -> Result<String, NeatError> {
+        serde_json::to_string(self).map_err(|e| NeatError::Checkpoint(e.to_string()))
+    }
+
+    /// Restores a population written by [`Population::to_json`], re-validating it.
+    pub fn from_json(text: &str) -> Result<Population, NeatError> {
+        let pop: Population =
+            serde_json::from_str(text).map_err(|e| NeatError::Checkpoint(e.to_string()))?;
+        pop.params.validate()?;
+        pop.spec.validate()?;
+        for g in &pop.genomes {
+            g.check()?;
+        }
+        let n = pop.genomes.len();
+        if pop.fitness.as_ref().is_some_and(|f| f.len() != n)
+            || pop.species.iter().flat_map(|s| &s.members).any(|&m| m >= n)
+        {
+            return Err(NeatError::Checkpoint(
+                "fitness or species members do not match the genomes".into(),
+            ));
+        }
+        Ok(pop)
+    }
+
+    /// Produces the next generation: species stagnation, explicit fitness sharing,
+    /// offspring allocation, elitism, crossover and mutation, then speciation.
+    /// Genomes never evaluated count as fitness 0.
+    pub fn next_generation(&mut self) {
+        let fitness = self
+            .fitness
+            .take()
+            .unwrap_or_else(|| vec![0.0; self.genomes.len()]);
+        let generation = self.generation;
+        let champion = argmax(&fitness).unwrap_or(0);
+
+        // Species records and stagnation.
+        for s in &mut self.species {
+            let best = s
+                .members
+                .iter()
+                .map(|&m| fitness[m])
+                .fold(f64::NEG_INFINITY, f64::max);
+            if s.best_fitness.is_none_or(|b| best > b) {
+                s.best_fitness = Some(best);
+                s.last_improved = generation;
+            }
+        }
+        let limit = self.params.stagnation_limit;
+        self.species
+            .retain(|s| s.members.contains(&champion) || s.stagnation(generation) < limit);
+
+        // Explicit fitness sharing on fitness shifted to be non-negative: a species'
+        // share is the sum of its members' f/|S|, i.e. its mean shifted fitness.
+        let min = fitness.iter().copied().fold(f64::INFINITY, f64::min);
+        let shares: Vec<f64> = self
+            .species
+            .iter()
+            .map(|s| {
+                s.members.iter().map(|&m| fitness[m] - min).sum::<f64>() / s.members.len() as f64
+            })
+            .collect();
+        let size = self.params.population_size;
+        let mut alloc = allocate_offspring(&shares, size);
+        let champ_species = self
+            .species
+            .iter()
+            .position(|s| s.members.contains(&champion));
+        if let Some(c) = champ_species
+            && alloc[c] == 0
+            && let Some(donor) = (0..alloc.len()).max_by_key(|&i| (alloc[i], usize::MAX - i))
+        {
+            alloc[donor] -= 1;
+            alloc[c] += 1;
+        }
+
+        // Reproduction, species by species.
+        let mut next: Vec<Genome> = Vec::with_capacity(size);
+        let pools: Vec<Vec<usize>> = self
+            .species
+            .iter()
+            .map(|s| {
+                let mut sorted = s.members.clone();
+                sorted.sort_by(|&a, &b| fitness[b].total_cmp(&fitness[a]).then(a.cmp(&b)));
+                sorted
+            })
+            .collect();
+        for (si, sorted) in pools.iter().enumerate() {
+            let n_off = alloc[si];
+            if n_off == 0 {
+                continue;
+            }
+            let len = sorted.len();
+            let mut elites = if len >= self.params.elitism_min_species_size {
+                (self.params.elitism_fraction * len as f64).ceil() as usize
+            } else {
+                0
+            };
+            if Some(si) == champ_species {
+                elites = elites.max(1);
+            }
+            let elites = elites.min(n_off);
+            for &m in &sorted[..elites] {
+                next.push(self.genomes[m].clone());
+            }
+            let keep =
+                ((self.params.survival_threshold * len as f64).ceil() as usize).clamp(1, len);
+            let pool = &sorted[..keep];
+            for _ in elites..n_off {
+                let child = self.offspring(pool, si, &pools, &fitness);
+                next.push(child);
+            }
+        }
+
+        // Speciate the new generation against representatives of the old one.
+        let old = std::mem::take(&mut self.genomes);
+        self.speciate(&next, &old);
+        self.genomes = next;
+        self.generation += 1;
+        if let Some(target) = self.params.target_species {
+            let n = self.species.len();
+            if n < target {
+                self.threshold =
+                    (self.threshold - self.params.threshold_step).max(self.params.threshold_min);
+            } else if n > target {
+                self.threshold += self.params.threshold_step;
+            }
+        }
+    }
+
+    /// One child of species `si` bred from `pool` (its best members).
+    fn offspring(
+        &mut self,
+        pool: &[usize],
+        si: usize,
+        pools: &[Vec<usize>],
+        fitness: &[f64],
+    ) -> Genome {
+        let params = &self.params;
+        let rng = &mut self.rng;
+        let a = pool[rng.random_range(0..pool.len())];
+        let mut child = if rng.random_bool(params.mating_probability) {
+            let interspecies =
+                pools.len() > 1 && rng.random_bool(params.interspecies_mating_probability);
+            let b = if interspecies {
+                let mut other = rng.random_range(0..pools.len() - 1);
+                if other >= si {
+                    other += 1;
+                }
+                let p = &pools[other];
+                let top = ((params.survival_threshold * p.len() as f64).ceil() as usize)
+                    .clamp(1, p.len());
+                Some(p[rng.random_range(0..top)])
+            } else if pool.len() > 1 {
+                let mut b = pool[rng.random_range(0..pool.len() - 1)];
+                if b == a {
+                    b = pool[pool.len() - 1];
+                }
+                Some(b)
+            } else {
+                None
+            };
+            match b {
+                Some(b) => {
+                    let c = crossover(
+                        &self.genomes[a],
+                        fitness[a],
+                        &self.genomes[b],
+                        fitness[b],
+                        params,
+                        rng,
+                    );
+                    if rng.random_bool(params.mate_only_probability) {
+                        return c;
+                    }
+                    c
+                }
+                None => self.genomes[a].clone(),
+            }
+        } else {
+            self.genomes[a].clone()
+        };
+        mutate(&mut child, &self.spec, params, &mut self.tracker, rng);
+        child
+    }
+
+    /// Assigns `genomes` to species: each joins the first species whose representative
+    /// (a random member of `old`, or the stored one) is within the threshold, else founds
+    /// a new species. Empty species are dropped.
+    fn speciate(&mut self, genomes: &[Genome], old: &[Genome]) {
+        for s in &mut self.species {
+            if !old.is_empty() && !s.members.is_empty() {
+                let m = s.members[self.rng.random_range(0..s.members.len())];
+                s.representative = old[m].clone();
+            }
+            s.members.clear();
+        }
+        for (i, g) in genomes.iter().enumerate() {
+            let found = self
+                .species
+                .iter()
+                .position(|s| distance(g, &s.representative, &self.params) < self.threshold);
+            match found {
+                Some(k) => self.species[k].members.push(i),
+                None => {
+                    self.species.push(Species {
+                        id: self.next_species_id,
+                        representative: g.clone(),
+                        members: vec![i],
+                        created: self.generation + u32::from(!old.is_empty()),
+                        best_fitness: None,
+                        last_improved: self.generation + u32::from(!old.is_empty()),
+                    });
+                    self.next_species_id += 1;
+                }
+            }
+        }
+        self.species.retain(|s| !s.members.is_empty());
+    }
+}
+
+/// Index of the first maximum.
+fn argmax(xs: &[f64]) -> Option<usize> {
+    let mut best: Option<usize> = None;
+    for (i, &x) in xs.iter().enumerate() {
+        if best.is_none_or(|b| x > xs[b]) {
+            best = Some(i);
+        }
+    }
+    best
+}
+
+/// Splits `total` offspring among species in proportion to `shares` (largest remainder,
+/// ties to the earlier species); always sums exactly to `total`. All-zero shares split
+/// evenly.
+pub fn allocate_offspring(shares: &[f64], total: usize) -> Vec<usize> {
+    if shares.is_empty() {
+        return Vec::new();
+    }
+    let sum: f64 = shares.iter().filter(|s| s.is_finite() && **s > 0.0).sum();
+    let quotas: Vec<f64> = if sum > 0.0 {
+        shares
+            .iter()
+            .map(|&s| {
+                if s.is_finite() && s > 0.0 {
+                    s / sum * total as f64
+                } else {
+                    0.0
+                }
+            })
+            .collect()
+    } else {
+        vec![total as f64 / shares.len() as f64; shares.len()]
+    };
+    let mut alloc: Vec<usize> = quotas.iter().map(|q| q.floor() as usize).collect();
+    let assigned: usize = alloc.iter().sum();
+    let mut rest = total.saturating_sub(assigned);
+    let mut order: Vec<usize> = (0..shares.len()).collect();
+    order.sort_by(|&a, &b| {
+        let ra = quotas[a] - quotas[a].floor();
+        let rb = quotas[b] - quotas[b].floor();
+        rb.total_cmp(&ra).then(a.cmp(&b))
+    });
+    let mut k = 0;
+    while rest > 0 {
+        alloc[order[k % order.len()]] += 1;
+        rest -= 1;
+        k += 1;
+    }
+    // Floating error could over-assign by one; take it back from the largest.
+    while alloc.iter().sum::<usize>() > total {
+        let i = (0..alloc.len()).max_by_key(|&i| alloc[i]).unwrap_or(0);
+        alloc[i] -= 1;
+    }
+    alloc
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn allocation_sums_exactly() {
+        assert_eq!(allocate_offspring(&[1.0, 1.0, 1.0], 100), vec![34, 33, 33]);
+        assert_eq!(allocate_offspring(&[0.0, 0.0], 5), vec![3, 2]);
+        assert_eq!(allocate_offspring(&[3.0, 1.0], 8), vec![6, 2]);
+        assert_eq!(allocate_offspring(&[], 8), Vec::<usize>::new());
+    }
+
+    #[test]
+    fn argmax_first_of_ties() {
+        assert_eq!(argmax(&[1.0, 3.0, 3.0]), Some(1));
+        assert_eq!(argmax(&[]), None);
+    }
+}
