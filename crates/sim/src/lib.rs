@@ -1,1 +1,21 @@
 //! The ViVAE robot simulator: SVG scenarios, physics, sensors, snapshots and drawing.
+//!
+//! Data flows `scenario.svg text → Scenario → World`; the world steps robots
+//! driven by two numbers (L, R) each and answers sensor queries. Nothing here
+//! touches the file system or knows about neural networks.
+
+pub mod geometry;
+pub mod physics;
+pub mod raster;
+pub mod scenario;
+pub mod sensors;
+pub mod world;
+
+pub use glam::DVec2;
+pub use physics::{FrictionTable, ParamError, PhysicsParams};
+pub use scenario::{
+    LoadOptions, Mark, Obstacle, Puck, PuckKind, RobotStart, Scenario, ScenarioError,
+    ScenarioSummary, Surface, SurfaceKind,
+};
+pub use sensors::{DistanceGrid, DistanceSensors, SensorPlace, SurfaceGrid, SurfaceSensors};
+pub use world::{MovableState, PuckState, Robot, SurfaceHere, World};
