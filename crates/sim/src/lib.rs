@@ -4,13 +4,16 @@
 //! driven by two numbers (L, R) each and answers sensor queries. Nothing here
 //! touches the file system or knows about neural networks.
 
+pub mod draw;
 pub mod geometry;
 pub mod physics;
 pub mod raster;
 pub mod scenario;
 pub mod sensors;
+mod snapshot;
 pub mod world;
 
+pub use draw::{DrawError, DrawOptions, render_png, render_svg};
 pub use glam::DVec2;
 pub use physics::{FrictionTable, ParamError, PhysicsParams};
 pub use scenario::{
@@ -19,3 +22,6 @@ pub use scenario::{
 };
 pub use sensors::{DistanceGrid, DistanceSensors, SensorPlace, SurfaceGrid, SurfaceSensors};
 pub use world::{MovableState, PuckState, Robot, SurfaceHere, World};
+
+/// The default scenario (`scenarios/roads.svg`): a road network with 5 robots.
+pub const ROADS_SVG: &str = include_str!("../../../scenarios/roads.svg");

@@ -1,0 +1,302 @@
+//! Pictures of a world (the paper's Fig. 1 and trajectory figures) as SVG and PNG.
+//! Text uses the DejaVu Sans font shipped in the crate; no system fonts are read.
+
+use std::fmt::Write;
+use std::sync::{Arc, OnceLock};
+
+use glam::DVec2;
+
+use crate::geometry::fmt_num;
+use crate::sensors::{DistanceSensors, SurfaceSensors};
+use crate::snapshot::{surface_color, xml_escape};
+use crate::world::World;
+
+/// DejaVu Sans (see `assets/LICENSE-DejaVu.txt`), the font of every drawing.
+pub static FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
+
+/// Height of the title band in px.
+const TITLE_BAND: f64 = 28.0;
+
+/// Distinct colours for robots and their trajectories (cycled).
+const ROBOT_COLORS: [&str; 10] = [
+    "#e41a1c", "#377eb8", "#ff7f00", "#984ea3", "#ffff33", "#00d0d0", "#f781bf", "#a65628",
+    "#4daf4a", "#ffffff",
+];
+
+/// Colour of robot `i` (and of its trajectory).
+pub fn robot_color(i: usize) -> &'static str {
+    ROBOT_COLORS[i % ROBOT_COLORS.len()]
+}
+
+/// What to draw besides the world itself.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DrawOptions {
+    /// Title drawn in a band above the arena.
+    pub title: Option<String>,
+    /// Draw the recorded trajectories (if the world recorded any).
+    pub trajectories: bool,
+    /// Draw each robot's surface sensors, coloured by their reading.
+    pub surface_sensors: Option<SurfaceSensors>,
+    /// Draw each robot's distance rays, coloured by their reading.
+    pub distance_sensors: Option<DistanceSensors>,
+    /// Pixels per world px in PNG output (default 1).
+    pub scale: f64,
+}
+
+impl Default for DrawOptions {
+    fn default() -> Self {
+        DrawOptions {
+            title: None,
+            trajectories: true,
+            surface_sensors: None,
+            distance_sensors: None,
+            scale: 1.0,
+        }
+    }
+}
+
+/// Why a PNG could not be made.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum DrawError {
+    /// The picture would be empty or too large.
+    #[error("bad image size {width} x {height} px (scale {scale})")]
+    Size {
+        /// Width in pixels.
+        width: f64,
+        /// Height in pixels.
+        height: f64,
+        /// The scale asked for.
+        scale: f64,
+    },
+    /// The SVG could not be parsed.
+    #[error("cannot render SVG: {0}")]
+    Svg(String),
+    /// PNG encoding failed.
+    #[error("cannot encode PNG: {0}")]
+    Png(String),
+}
+
+/// Sensor colour for a reading in [0, 1]: red (0, grass / far) to white (1, road / near).
+fn reading_color(v: f64) -> String {
+    let v = v.clamp(0.0, 1.0);
+    let g = (48.0 + v * 207.0).round() as u8;
+    format!("#ff{g:02x}{g:02x}")
+}
+
+/// The world as an SVG picture (not a loadable scenario: see [`World::to_svg`]).
+pub fn render_svg(world: &World, opts: &DrawOptions) -> String {
+    let sc = world.scenario();
+    let band = if opts.title.is_some() {
+        TITLE_BAND
+    } else {
+        0.0
+    };
+    let (w, h) = (sc.width, sc.height + band);
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        r##"<svg xmlns="http://www.w3.org/2000/svg" width="{}" height="{}" viewBox="0 0 {} {}">"##,
+        fmt_num(w),
+        fmt_num(h),
+        fmt_num(w),
+        fmt_num(h)
+    );
+    if let Some(t) = &opts.title {
+        let _ = writeln!(
+            s,
+            r##"<rect x="0" y="0" width="{}" height="{band}" fill="#ffffff"/><text x="8" y="20" font-family="DejaVu Sans" font-size="16" fill="#000000">{}</text>"##,
+            fmt_num(w),
+            xml_escape(t)
+        );
+    }
+    let _ = writeln!(s, r##"<g transform="translate(0 {band})">"##);
+    let _ = writeln!(
+        s,
+        r##"<rect x="0" y="0" width="{}" height="{}" fill="{}"/>"##,
+        fmt_num(sc.width),
+        fmt_num(sc.height),
+        surface_color(sc.background)
+    );
+    let rule = |r: crate::geometry::FillRule| match r {
+        crate::geometry::FillRule::NonZero => "nonzero",
+        crate::geometry::FillRule::EvenOdd => "evenodd",
+    };
+    for surf in &sc.surfaces {
+        let _ = writeln!(
+            s,
+            r##"<path d="{}" fill="{}" fill-rule="{}"/>"##,
+            surf.shape.to_path_data(),
+            surface_color(surf.kind),
+            rule(surf.shape.fill_rule)
+        );
+    }
+    for mk in &sc.marks {
+        let _ = writeln!(
+            s,
+            r##"<rect x="{}" y="{}" width="{}" height="{}" fill="none" stroke="#ff00ff" stroke-width="1.5"/>"##,
+            fmt_num(mk.pos.x - mk.size.x / 2.0),
+            fmt_num(mk.pos.y - mk.size.y / 2.0),
+            fmt_num(mk.size.x),
+            fmt_num(mk.size.y)
+        );
+    }
+    for ob in &sc.fixed_obstacles {
+        let _ = writeln!(
+            s,
+            r##"<path d="{}" fill="#c0392b" fill-rule="{}" stroke="#000000" stroke-width="0.5"/>"##,
+            ob.shape.to_path_data(),
+            rule(ob.shape.fill_rule)
+        );
+    }
+    for (ob, m) in sc.movable_obstacles.iter().zip(world.movables()) {
+        let _ = writeln!(
+            s,
+            r##"<path d="{}" fill="#999999" fill-rule="{}" stroke="#000000" stroke-width="0.5"/>"##,
+            ob.shape.translated(m.offset).to_path_data(),
+            rule(ob.shape.fill_rule)
+        );
+    }
+    for pk in world.pucks() {
+        let _ = writeln!(
+            s,
+            r##"<circle cx="{}" cy="{}" r="{}" fill="#f0f0f0" stroke="#000000" stroke-width="0.5"/>"##,
+            fmt_num(pk.pos.x),
+            fmt_num(pk.pos.y),
+            fmt_num(pk.radius)
+        );
+    }
+    if opts.trajectories
+        && let Some(trajs) = world.trajectories()
+    {
+        for (i, t) in trajs.iter().enumerate() {
+            if t.len() < 2 {
+                continue;
+            }
+            let mut pts = String::new();
+            for p in t {
+                let _ = write!(pts, "{},{} ", fmt_num(p.x), fmt_num(p.y));
+            }
+            let _ = writeln!(
+                s,
+                r##"<polyline points="{}" fill="none" stroke="{}" stroke-width="1.5" stroke-linejoin="round" stroke-opacity="0.9"/>"##,
+                pts.trim_end(),
+                robot_color(i)
+            );
+        }
+    }
+    let r = world.params().robot_radius;
+    if let Some(layout) = &opts.distance_sensors {
+        let grid = layout.grid();
+        let mut out = vec![0.0; grid.len()];
+        for i in 0..world.robots().len() {
+            world.read_distance(i, &grid, &mut out);
+            let rb = &world.robots()[i];
+            let (sn, cs) = rb.heading.sin_cos();
+            let (ahead, right) = (DVec2::new(sn, -cs), DVec2::new(cs, sn));
+            for (d, v) in grid.dirs.iter().zip(&out) {
+                let dir = ahead * d.x + right * d.y;
+                let len = if *v > 0.0 {
+                    (1.0 - v) * grid.range
+                } else {
+                    grid.range
+                };
+                let (a, b) = (rb.pos + dir * r, rb.pos + dir * (r + len));
+                let _ = writeln!(
+                    s,
+                    r##"<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="{}" stroke-width="1" stroke-opacity="0.8"/>"##,
+                    fmt_num(a.x),
+                    fmt_num(a.y),
+                    fmt_num(b.x),
+                    fmt_num(b.y),
+                    reading_color(*v)
+                );
+            }
+        }
+    }
+    if let Some(layout) = &opts.surface_sensors {
+        let grid = layout.grid();
+        let mut out = vec![0.0; grid.len()];
+        let dot = (r * 0.35).clamp(1.0, 3.0);
+        for i in 0..world.robots().len() {
+            world.read_surface(i, &grid, &mut out);
+            for (p, v) in world.surface_sensor_positions(i, &grid).iter().zip(&out) {
+                let _ = writeln!(
+                    s,
+                    r##"<circle cx="{}" cy="{}" r="{}" fill="{}" stroke="#000000" stroke-width="0.4"/>"##,
+                    fmt_num(p.x),
+                    fmt_num(p.y),
+                    fmt_num(dot),
+                    reading_color(*v)
+                );
+            }
+        }
+    }
+    for (i, rb) in world.robots().iter().enumerate() {
+        let tip = rb.pos + rb.ahead() * r;
+        let _ = writeln!(
+            s,
+            r##"<circle cx="{}" cy="{}" r="{}" fill="{}" stroke="#000000" stroke-width="1"/><line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#000000" stroke-width="1.5"/>"##,
+            fmt_num(rb.pos.x),
+            fmt_num(rb.pos.y),
+            fmt_num(r),
+            robot_color(i),
+            fmt_num(rb.pos.x),
+            fmt_num(rb.pos.y),
+            fmt_num(tip.x),
+            fmt_num(tip.y)
+        );
+    }
+    s.push_str("</g>\n</svg>\n");
+    s
+}
+
+/// A font database holding only [`FONT`], built once.
+fn fontdb() -> Arc<usvg::fontdb::Database> {
+    static DB: OnceLock<Arc<usvg::fontdb::Database>> = OnceLock::new();
+    DB.get_or_init(|| {
+        let mut db = usvg::fontdb::Database::new();
+        db.load_font_data(FONT.to_vec());
+        db.set_sans_serif_family("DejaVu Sans");
+        Arc::new(db)
+    })
+    .clone()
+}
+
+/// Renders any SVG text to PNG bytes at `scale` pixels per user unit, using
+/// only the shipped font. Useful for every figure the project draws.
+pub fn svg_to_png(svg: &str, scale: f64) -> Result<Vec<u8>, DrawError> {
+    let opt = usvg::Options {
+        fontdb: fontdb(),
+        ..Default::default()
+    };
+    let tree = usvg::Tree::from_str(svg, &opt).map_err(|e| DrawError::Svg(e.to_string()))?;
+    let size = tree.size();
+    let (pw, ph) = (size.width() as f64 * scale, size.height() as f64 * scale);
+    if !(scale.is_finite() && scale > 0.0 && pw >= 1.0 && ph >= 1.0 && pw * ph <= 1.0e8) {
+        return Err(DrawError::Size {
+            width: pw,
+            height: ph,
+            scale,
+        });
+    }
+    let mut pixmap =
+        tiny_skia::Pixmap::new(pw.ceil() as u32, ph.ceil() as u32).ok_or(DrawError::Size {
+            width: pw,
+            height: ph,
+            scale,
+        })?;
+    pixmap.fill(tiny_skia::Color::WHITE);
+    resvg::render(
+        &tree,
+        tiny_skia::Transform::from_scale(scale as f32, scale as f32),
+        &mut pixmap.as_mut(),
+    );
+    pixmap
+        .encode_png()
+        .map_err(|e| DrawError::Png(e.to_string()))
+}
+
+/// The world as a PNG picture (see [`render_svg`]).
+pub fn render_png(world: &World, opts: &DrawOptions) -> Result<Vec<u8>, DrawError> {
+    svg_to_png(&render_svg(world, opts), opts.scale)
+}
