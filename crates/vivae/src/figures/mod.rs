@@ -1,1 +1,180 @@
 //! Figures of a run: convergence, network drawing, trajectories.
+//!
+//! Every figure is drawn once with plotters into an SVG string (text laid out
+//! with the DejaVu Sans font shipped in the repository, registered with
+//! plotters' `ab_glyph` support — no system fonts), and the PNG is that SVG
+//! rendered by resvg with the same font, so the two files always show the same
+//! picture, anti-aliased. Functions return bytes; callers write the files.
+
+pub mod convergence;
+pub mod network;
+
+use std::sync::OnceLock;
+
+use plotters::style::{FontStyle, RGBColor};
+
+/// DejaVu Sans, the only font figures use (the simulator ships it).
+pub(crate) const FONT: &[u8] = include_bytes!("../../../sim/assets/DejaVuSans.ttf");
+/// Font family name figures ask plotters for.
+pub(crate) const FAMILY: &str = "sans-serif";
+/// PNG pixels per SVG unit (2 = crisp on high-density screens and in print).
+pub const PNG_SCALE: f32 = 2.0;
+
+/// A rendered figure.
+#[derive(Debug, Clone)]
+pub struct Figure {
+    /// The figure as an SVG document.
+    pub svg: String,
+    /// The same figure as PNG bytes.
+    pub png: Vec<u8>,
+}
+
+/// Errors while rendering a figure.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum FigureError {
+    /// There is nothing to draw.
+    #[error("no data for the figure: {0}")]
+    NoData(&'static str),
+    /// Input data are inconsistent.
+    #[error("invalid figure input: {0}")]
+    Invalid(String),
+    /// The shipped font could not be registered.
+    #[error("the figure font could not be loaded")]
+    Font,
+    /// plotters failed while drawing.
+    #[error("drawing failed: {0}")]
+    Draw(String),
+    /// The SVG could not be rasterised.
+    #[error("rendering the PNG failed: {0}")]
+    Png(String),
+}
+
+/// Registers the shipped font with plotters (once per process).
+pub(crate) fn register_font() -> Result<(), FigureError> {
+    static REGISTERED: OnceLock<bool> = OnceLock::new();
+    let ok = *REGISTERED.get_or_init(|| {
+        [FontStyle::Normal, FontStyle::Bold]
+            .into_iter()
+            .all(|style| plotters::style::register_font(FAMILY, style, FONT).is_ok())
+    });
+    if ok { Ok(()) } else { Err(FigureError::Font) }
+}
+
+/// Maps any plotters error to a [`FigureError::Draw`].
+pub(crate) fn draw_err(e: impl std::fmt::Display) -> FigureError {
+    FigureError::Draw(e.to_string())
+}
+
+/// Renders an SVG document (as produced by the figures) to PNG bytes at [`PNG_SCALE`].
+pub fn svg_to_png(svg: &str) -> Result<Vec<u8>, FigureError> {
+    static FONTDB: OnceLock<std::sync::Arc<usvg::fontdb::Database>> = OnceLock::new();
+    let fontdb = FONTDB.get_or_init(|| {
+        let mut db = usvg::fontdb::Database::new();
+        db.load_font_data(FONT.to_vec());
+        db.set_sans_serif_family("DejaVu Sans");
+        std::sync::Arc::new(db)
+    });
+    let options = usvg::Options {
+        fontdb: fontdb.clone(),
+        font_family: "DejaVu Sans".to_string(),
+        ..usvg::Options::default()
+    };
+    let tree = usvg::Tree::from_str(svg, &options).map_err(|e| FigureError::Png(e.to_string()))?;
+    let size = tree
+        .size()
+        .to_int_size()
+        .scale_by(PNG_SCALE)
+        .ok_or_else(|| FigureError::Png("figure size out of range".to_string()))?;
+    let mut pixmap = tiny_skia::Pixmap::new(size.width(), size.height())
+        .ok_or_else(|| FigureError::Png("figure size out of range".to_string()))?;
+    pixmap.fill(tiny_skia::Color::WHITE);
+    resvg::render(
+        &tree,
+        tiny_skia::Transform::from_scale(PNG_SCALE, PNG_SCALE),
+        &mut pixmap.as_mut(),
+    );
+    pixmap
+        .encode_png()
+        .map_err(|e| FigureError::Png(e.to_string()))
+}
+
+/// Colour for positive weights (blue).
+pub(crate) const POSITIVE: RGBColor = RGBColor(33, 102, 172);
+/// Colour for negative weights (orange).
+pub(crate) const NEGATIVE: RGBColor = RGBColor(230, 97, 1);
+
+/// The viridis colour map at `t ∈ [0, 1]` (perceptually uniform, colour-blind safe).
+pub(crate) fn viridis(t: f64) -> RGBColor {
+    // Eleven evenly spaced samples of matplotlib's viridis.
+    const STOPS: [(f64, f64, f64); 11] = [
+        (68.0, 1.0, 84.0),
+        (72.0, 36.0, 117.0),
+        (65.0, 68.0, 135.0),
+        (53.0, 95.0, 141.0),
+        (42.0, 120.0, 142.0),
+        (33.0, 145.0, 140.0),
+        (34.0, 168.0, 132.0),
+        (68.0, 191.0, 112.0),
+        (122.0, 209.0, 81.0),
+        (189.0, 223.0, 38.0),
+        (253.0, 231.0, 37.0),
+    ];
+    let t = if t.is_nan() { 0.0 } else { t.clamp(0.0, 1.0) };
+    let x = t * (STOPS.len() - 1) as f64;
+    let i = (x.floor() as usize).min(STOPS.len() - 2);
+    let f = x - i as f64;
+    let (a, b) = (STOPS[i], STOPS[i + 1]);
+    let mix = |p: f64, q: f64| (p + (q - p) * f).round() as u8;
+    RGBColor(mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
+}
+
+#[cfg(test)]
+pub(crate) mod test_util {
+    /// Width and height from a PNG's IHDR chunk, after checking the signature.
+    pub fn png_size(png: &[u8]) -> (u32, u32) {
+        assert!(png.len() > 33, "PNG too short");
+        assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n", "PNG signature");
+        assert_eq!(&png[12..16], b"IHDR");
+        let w = u32::from_be_bytes(png[16..20].try_into().unwrap());
+        let h = u32::from_be_bytes(png[20..24].try_into().unwrap());
+        (w, h)
+    }
+
+    /// Decodes a PNG and returns the number of distinct colours (a "not blank" check).
+    pub fn distinct_colours(png: &[u8]) -> usize {
+        let pixmap = tiny_skia::Pixmap::decode_png(png).expect("valid PNG");
+        let mut colours: Vec<u32> = pixmap
+            .pixels()
+            .iter()
+            .map(|p| u32::from_be_bytes([p.red(), p.green(), p.blue(), p.alpha()]))
+            .collect();
+        colours.sort_unstable();
+        colours.dedup();
+        colours.len()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn viridis_ends_and_middle() {
+        assert_eq!(viridis(0.0), RGBColor(68, 1, 84));
+        assert_eq!(viridis(1.0), RGBColor(253, 231, 37));
+        assert_eq!(viridis(0.5), RGBColor(33, 145, 140));
+        assert_eq!(viridis(f64::NAN), viridis(0.0));
+        assert_eq!(viridis(7.0), viridis(1.0));
+    }
+
+    #[test]
+    fn svg_text_renders_with_the_shipped_font() {
+        let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" width="60" height="20">
+            <text x="2" y="15" font-family="sans-serif" font-size="14">Ag</text></svg>"#;
+        let png = svg_to_png(svg).unwrap();
+        assert_eq!(test_util::png_size(&png), (120, 40));
+        // White background plus anti-aliased glyph pixels.
+        assert!(test_util::distinct_colours(&png) > 5);
+        assert!(svg_to_png("<svg").is_err());
+    }
+}

@@ -1,0 +1,583 @@
+//! The network figure (the paper's Fig. 3): the input sheet(s) and the neuron
+//! sheet drawn in their polar layout as two stacked layers seen in perspective
+//! (straight ahead points into the page), every expressed link drawn
+//! with width and opacity growing with |weight| (blue positive, orange
+//! negative), recurrent links as arrows curving inside the neuron sheet,
+//! self-loops as small loops, wheel neurons red.
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+use vivae_neat::hyperneat::{LinkSource, SubstrateController};
+
+use super::{FAMILY, Figure, FigureError, NEGATIVE, POSITIVE, draw_err, register_font, svg_to_png};
+use crate::substrate::{PolarNode, SubstrateSpec};
+
+/// Wheel neurons' colour.
+const WHEEL: RGBColor = RGBColor(214, 39, 40);
+/// Guide lines (rings, baseline).
+const GUIDE: RGBColor = RGBColor(200, 200, 200);
+/// Display radius (fraction of the sheet radius) of the distance-sensor ring.
+const DISTANCE_RING: f64 = 1.13;
+
+/// What the network figure shows and how large it is.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NetworkOptions {
+    /// Figure title.
+    pub title: String,
+    /// |weight| drawn at full width and opacity (the HyperNEAT amplitude, 3.0).
+    pub weight_scale: f64,
+    /// Width in SVG units (the PNG is `PNG_SCALE` times larger).
+    pub width: u32,
+    /// Height in SVG units.
+    pub height: u32,
+}
+
+impl Default for NetworkOptions {
+    fn default() -> Self {
+        NetworkOptions {
+            title: "Controller network".to_string(),
+            weight_scale: 3.0,
+            width: 1000,
+            height: 720,
+        }
+    }
+}
+
+/// Renders the controller decoded on `spec` as SVG and PNG.
+pub fn render(
+    spec: &SubstrateSpec,
+    controller: &SubstrateController,
+    opts: &NetworkOptions,
+) -> Result<Figure, FigureError> {
+    let svg = render_svg(spec, controller, opts)?;
+    let png = svg_to_png(&svg)?;
+    Ok(Figure { svg, png })
+}
+
+/// Where one sheet is drawn: centre of its half-disc and its radius, in pixels.
+#[derive(Clone, Copy)]
+struct Panel {
+    cx: f64,
+    cy: f64,
+    radius: f64,
+    /// Vertical squash of the perspective view (1 = seen from above).
+    squash: f64,
+}
+
+impl Panel {
+    /// Pixel position of a point at radius `rho` (sheet units) and angle `phi`.
+    fn at(&self, rho: f64, phi: f64) -> (f64, f64) {
+        (
+            self.cx + rho * phi.sin() * self.radius,
+            self.cy - rho * phi.cos() * self.radius * self.squash,
+        )
+    }
+
+    /// Pixel position of a node.
+    fn node(&self, n: &PolarNode) -> (f64, f64) {
+        self.at(n.rho, n.phi)
+    }
+}
+
+/// Rounds a pixel position for plotters.
+fn px((x, y): (f64, f64)) -> (i32, i32) {
+    (x.round() as i32, y.round() as i32)
+}
+
+/// Link style for a weight: colour by sign, width and opacity by magnitude.
+/// `density` ≤ 1 thins links out when there are very many of them.
+fn link_style(w: f64, scale: f64, density: f64) -> ShapeStyle {
+    let m = (w.abs() / scale).clamp(0.0, 1.0);
+    let colour = if w >= 0.0 { POSITIVE } else { NEGATIVE };
+    let max_extra = if density < 0.5 { 1.0 } else { 2.0 };
+    colour
+        .mix((0.15 + 0.75 * m) * density)
+        .stroke_width(1 + (max_extra * m).round() as u32)
+}
+
+/// Renders the figure as an SVG document.
+pub fn render_svg(
+    spec: &SubstrateSpec,
+    controller: &SubstrateController,
+    opts: &NetworkOptions,
+) -> Result<String, FigureError> {
+    register_font()?;
+    spec.validate()
+        .map_err(|e| FigureError::Invalid(e.to_string()))?;
+    let sensors = spec.sensor_nodes();
+    let distance = spec.distance_nodes();
+    let neurons = spec.neuron_nodes();
+    let wheels = spec
+        .wheels()
+        .map_err(|e| FigureError::Invalid(e.to_string()))?;
+    let mut expected_sheets = vec![sensors.len()];
+    if !distance.is_empty() {
+        expected_sheets.push(distance.len());
+    }
+    if controller.sheet_sizes() != expected_sheets.as_slice()
+        || controller.num_neurons() != neurons.len()
+    {
+        return Err(FigureError::Invalid(format!(
+            "controller with input sheets {:?} and {} neurons does not match substrate {} → {}",
+            controller.sheet_sizes(),
+            controller.num_neurons(),
+            spec.sensors,
+            spec.neurons
+        )));
+    }
+    if !(opts.weight_scale.is_finite() && opts.weight_scale > 0.0) {
+        return Err(FigureError::Invalid(format!(
+            "weight_scale {} must be finite and positive",
+            opts.weight_scale
+        )));
+    }
+    if opts.width < 400 || opts.height < 300 {
+        return Err(FigureError::Invalid(format!(
+            "figure size {}x{} is too small (at least 400x300)",
+            opts.width, opts.height
+        )));
+    }
+
+    let (w, h) = (f64::from(opts.width), f64::from(opts.height));
+    // The two sheets stacked in perspective, input sheet below the neuron
+    // sheet, so input→neuron links run between the layers instead of along
+    // the sheets' baselines (where every ±90° node sits).
+    let radius = (w * 0.3).min(h * 0.75);
+    let squash = 0.5;
+    let neuron_panel = Panel {
+        cx: w * 0.55,
+        cy: h * 0.44,
+        radius,
+        squash,
+    };
+    let inputs_panel = Panel {
+        cx: w * 0.55,
+        cy: h * 0.87,
+        radius,
+        squash,
+    };
+    let scale = opts.weight_scale;
+
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (opts.width, opts.height)).into_drawing_area();
+        root.fill(&WHITE).map_err(draw_err)?;
+        let title_font = (FAMILY, 24).into_font().style(FontStyle::Bold);
+        let font = (FAMILY, 17).into_font();
+        let small = (FAMILY, 15).into_font();
+        let centre_top = Pos::new(HPos::Center, VPos::Top);
+        root.draw(&Text::new(
+            opts.title.clone(),
+            px((w / 2.0, 10.0)),
+            TextStyle::from(title_font).pos(centre_top),
+        ))
+        .map_err(draw_err)?;
+        root.draw(&Text::new(
+            format!(
+                "{} expressed of {} possible links",
+                controller.expressed_links(),
+                controller.possible_links()
+            ),
+            px((w / 2.0, 42.0)),
+            TextStyle::from(font.clone()).pos(centre_top),
+        ))
+        .map_err(draw_err)?;
+
+        // Guides: ring arcs and baseline of each sheet.
+        draw_guides(&root, &inputs_panel, spec.sensors.rings, spec.fov)?;
+        draw_guides(&root, &neuron_panel, spec.neurons.rings, spec.neuron_fov)?;
+
+        // Links, weakest first so strong links stay visible on top.
+        let mut links: Vec<_> = controller.links().collect();
+        links.sort_by(|a, b| a.weight.abs().total_cmp(&b.weight.abs()));
+        // Smaller nodes and fainter links for dense substrates (e.g. 9×9).
+        let side = spec.neurons.rings.max(spec.neurons.angles) as f64;
+        let neuron_r = (9.0 * (3.0 / side).sqrt()).clamp(4.0, 9.0).round();
+        let density = (300.0 / links.len().max(1) as f64).sqrt().clamp(0.2, 1.0);
+        for link in &links {
+            let style = link_style(link.weight, scale, density);
+            let to = neuron_panel.node(&neurons[link.target]);
+            match link.source {
+                LinkSource::Input { sheet, index } => {
+                    let from = if sheet == 0 {
+                        inputs_panel.node(&sensors[index])
+                    } else {
+                        inputs_panel.at(DISTANCE_RING, distance[index].phi)
+                    };
+                    root.draw(&PathElement::new(vec![px(from), px(to)], style))
+                        .map_err(draw_err)?;
+                }
+                LinkSource::Neuron(s) if s == link.target => {
+                    // Self-loop: a small circle just outside the node, away from the centre.
+                    let n = &neurons[s];
+                    let (dx, dy) = (n.phi.sin(), -n.phi.cos() * squash);
+                    let norm = (dx * dx + dy * dy).sqrt().max(1e-9);
+                    let (dx, dy) = (dx / norm, dy / norm);
+                    let c = (to.0 + dx * neuron_r * 1.6, to.1 + dy * neuron_r * 1.6);
+                    root.draw(&Circle::new(px(c), (neuron_r * 0.8) as i32, style))
+                        .map_err(draw_err)?;
+                }
+                LinkSource::Neuron(s) => {
+                    let from = neuron_panel.node(&neurons[s]);
+                    draw_curved_arrow(&root, from, to, neuron_r, style)?;
+                }
+            }
+        }
+
+        // Nodes on top of the links.
+        for n in &sensors {
+            root.draw(&Circle::new(
+                px(inputs_panel.node(n)),
+                6,
+                RGBColor(150, 150, 150).filled(),
+            ))
+            .map_err(draw_err)?;
+        }
+        for n in &distance {
+            let (x, y) = inputs_panel.at(DISTANCE_RING, n.phi);
+            root.draw(&Rectangle::new(
+                [px((x - 5.0, y - 5.0)), px((x + 5.0, y + 5.0))],
+                RGBColor(90, 90, 90).filled(),
+            ))
+            .map_err(draw_err)?;
+        }
+        for (i, n) in neurons.iter().enumerate() {
+            let c = px(neuron_panel.node(n));
+            let is_wheel = i == wheels.left || i == wheels.right;
+            let fill = if is_wheel {
+                WHEEL.filled()
+            } else {
+                let b = controller.biases()[i];
+                let m = (b.abs() / scale).clamp(0.0, 1.0);
+                let base = if b >= 0.0 { POSITIVE } else { NEGATIVE };
+                blend(base, m * 0.8).filled()
+            };
+            root.draw(&Circle::new(c, neuron_r as i32, fill))
+                .map_err(draw_err)?;
+            root.draw(&Circle::new(c, neuron_r as i32, BLACK.stroke_width(1)))
+                .map_err(draw_err)?;
+        }
+        let wheel_font = (FAMILY, 17)
+            .into_font()
+            .style(FontStyle::Bold)
+            .color(&WHEEL);
+        // L and R above-outside their neurons, on a white patch to stay legible.
+        for (i, label, side) in [(wheels.left, "L", -1.0), (wheels.right, "R", 1.0)] {
+            let (x, y) = neuron_panel.node(&neurons[i]);
+            let at = (x + side * (neuron_r + 9.0), y - neuron_r - 11.0);
+            root.draw(&Rectangle::new(
+                [px((at.0 - 8.0, at.1 - 10.0)), px((at.0 + 8.0, at.1 + 10.0))],
+                WHITE.mix(0.85).filled(),
+            ))
+            .map_err(draw_err)?;
+            root.draw(&Text::new(
+                label,
+                px(at),
+                wheel_font.clone().pos(Pos::new(HPos::Center, VPos::Center)),
+            ))
+            .map_err(draw_err)?;
+        }
+        // Sheet captions left of the layers.
+        let left_top = Pos::new(HPos::Left, VPos::Center);
+        let mut input_caption = vec!["surface sensors".to_string(), spec.sensors.to_string()];
+        if !distance.is_empty() {
+            input_caption.push(format!("+ {} distance rays", distance.len()));
+        }
+        for (panel, lines) in [
+            (&inputs_panel, input_caption),
+            (
+                &neuron_panel,
+                vec!["neurons".to_string(), spec.neurons.to_string()],
+            ),
+        ] {
+            let top = panel.cy - radius * squash * 0.5;
+            for (i, line) in lines.into_iter().enumerate() {
+                root.draw(&Text::new(
+                    line,
+                    px((w * 0.02, top + 22.0 * i as f64)),
+                    TextStyle::from(font.clone()).pos(left_top),
+                ))
+                .map_err(draw_err)?;
+            }
+        }
+        draw_legend(&root, (w, h), !distance.is_empty(), small)?;
+        root.present().map_err(draw_err)?;
+    }
+    Ok(svg)
+}
+
+/// Mixes `c` with white: `m = 0` white, `m = 1` the colour.
+fn blend(c: RGBColor, m: f64) -> RGBColor {
+    let f = |v: u8| (255.0 + (f64::from(v) - 255.0) * m).round() as u8;
+    RGBColor(f(c.0), f(c.1), f(c.2))
+}
+
+/// Draws a sheet's ring arcs over its field of view and its baseline.
+fn draw_guides(
+    root: &DrawingArea<SVGBackend<'_>, Shift>,
+    panel: &Panel,
+    rings: usize,
+    fov_deg: f64,
+) -> Result<(), FigureError> {
+    let half = fov_deg.to_radians() / 2.0;
+    let style = GUIDE.stroke_width(1);
+    // The sheet itself, faintly filled.
+    let outline: Vec<(i32, i32)> = std::iter::once((panel.cx, panel.cy))
+        .chain((0..=64).map(|i| panel.at(1.0, -half + 2.0 * half * f64::from(i) / 64.0)))
+        .map(px)
+        .collect();
+    root.draw(&Polygon::new(outline, RGBColor(246, 246, 246).filled()))
+        .map_err(draw_err)?;
+    for k in 0..rings {
+        let rho = (k + 1) as f64 / rings as f64;
+        let arc: Vec<(i32, i32)> = (0..=64)
+            .map(|i| panel.at(rho, -half + 2.0 * half * f64::from(i) / 64.0))
+            .map(px)
+            .collect();
+        root.draw(&PathElement::new(arc, style)).map_err(draw_err)?;
+    }
+    let ends = [
+        panel.at(1.0, -half),
+        (panel.cx, panel.cy),
+        panel.at(1.0, half),
+    ];
+    root.draw(&PathElement::new(ends.map(px).to_vec(), style))
+        .map_err(draw_err)?;
+    Ok(())
+}
+
+/// A recurrent link: a quadratic curve bending to its left (so `a→b` and
+/// `b→a` do not overlap), with an arrowhead at the target's rim.
+fn draw_curved_arrow(
+    root: &DrawingArea<SVGBackend<'_>, Shift>,
+    from: (f64, f64),
+    to: (f64, f64),
+    node_r: f64,
+    style: ShapeStyle,
+) -> Result<(), FigureError> {
+    let (dx, dy) = (to.0 - from.0, to.1 - from.1);
+    let len = (dx * dx + dy * dy).sqrt().max(1e-9);
+    // Left normal in screen coordinates (y down).
+    let (nx, ny) = (dy / len, -dx / len);
+    let bend = 0.18 * len;
+    let ctrl = (
+        (from.0 + to.0) / 2.0 + nx * bend,
+        (from.1 + to.1) / 2.0 + ny * bend,
+    );
+    let point = |t: f64| {
+        let u = 1.0 - t;
+        (
+            u * u * from.0 + 2.0 * u * t * ctrl.0 + t * t * to.0,
+            u * u * from.1 + 2.0 * u * t * ctrl.1 + t * t * to.1,
+        )
+    };
+    let curve: Vec<(i32, i32)> = (0..=16).map(|i| px(point(f64::from(i) / 16.0))).collect();
+    root.draw(&PathElement::new(curve, style))
+        .map_err(draw_err)?;
+    // Arrowhead along the end tangent (to − ctrl), tip on the node's rim.
+    let (tx, ty) = (to.0 - ctrl.0, to.1 - ctrl.1);
+    let tl = (tx * tx + ty * ty).sqrt().max(1e-9);
+    let (ux, uy) = (tx / tl, ty / tl);
+    let tip = (to.0 - ux * node_r, to.1 - uy * node_r);
+    let size = 7.0;
+    let base = (tip.0 - ux * size, tip.1 - uy * size);
+    let head = vec![
+        px(tip),
+        px((base.0 + uy * size * 0.45, base.1 - ux * size * 0.45)),
+        px((base.0 - uy * size * 0.45, base.1 + ux * size * 0.45)),
+    ];
+    root.draw(&Polygon::new(head, style.color.filled()))
+        .map_err(draw_err)?;
+    Ok(())
+}
+
+/// Legend along the bottom edge.
+fn draw_legend(
+    root: &DrawingArea<SVGBackend<'_>, Shift>,
+    (w, h): (f64, f64),
+    with_distance: bool,
+    font: FontDesc<'_>,
+) -> Result<(), FigureError> {
+    let y = h - 26.0;
+    let left = Pos::new(HPos::Left, VPos::Center);
+    let mut x = w * 0.04;
+    let mut item = |draw: &dyn Fn(f64) -> Result<(), FigureError>, text: &str, step: f64| {
+        draw(x)?;
+        root.draw(&Text::new(
+            text.to_string(),
+            px((x + 30.0, y)),
+            TextStyle::from(font.clone()).pos(left),
+        ))
+        .map_err(draw_err)?;
+        x += step;
+        Ok::<(), FigureError>(())
+    };
+    let line = |c: RGBColor| {
+        move |x: f64| {
+            root.draw(&PathElement::new(
+                vec![px((x, y)), px((x + 24.0, y))],
+                c.stroke_width(3),
+            ))
+            .map_err(draw_err)
+        }
+    };
+    item(&line(POSITIVE), "positive weight", 170.0)?;
+    item(&line(NEGATIVE), "negative weight", 175.0)?;
+    item(
+        &|x| {
+            root.draw(&Circle::new(px((x + 12.0, y)), 8, WHEEL.filled()))
+                .map_err(draw_err)
+        },
+        "wheel neuron",
+        150.0,
+    )?;
+    item(
+        &|x| {
+            root.draw(&Circle::new(
+                px((x + 12.0, y)),
+                6,
+                RGBColor(150, 150, 150).filled(),
+            ))
+            .map_err(draw_err)
+        },
+        if with_distance {
+            "sensor (■ distance)"
+        } else {
+            "sensor"
+        },
+        if with_distance { 210.0 } else { 110.0 },
+    )?;
+    item(
+        &|x| {
+            root.draw(&Circle::new(
+                px((x + 12.0, y)),
+                8,
+                blend(POSITIVE, 0.5).filled(),
+            ))
+            .map_err(draw_err)?;
+            root.draw(&Circle::new(px((x + 12.0, y)), 8, BLACK.stroke_width(1)))
+                .map_err(draw_err)
+        },
+        "fill = bias",
+        0.0,
+    )?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::figures::test_util::{distinct_colours, png_size};
+    use crate::substrate::PolarGrid;
+    use vivae_neat::Network;
+    use vivae_neat::hyperneat::{HyperParams, decode};
+
+    /// A hand-written CPPN with structured weights: left sensors drive left
+    /// neurons, right drive right, with negative cross-talk and recurrence.
+    struct Cppn(usize);
+
+    impl Network for Cppn {
+        fn num_inputs(&self) -> usize {
+            5
+        }
+        fn num_outputs(&self) -> usize {
+            self.0
+        }
+        fn activate(&mut self, q: &[f64], out: &mut [f64]) {
+            let (x1, y1, x2, y2) = (q[0], q[1], q[2], q[3]);
+            out[0] = (2.5 * x1 * x2 + 0.8 * y2 - 0.6).tanh();
+            out[1] = (1.5 * y1 - 0.8).tanh();
+            out[2] =
+                (-4.0 * ((x1 - x2).powi(2) + (y1 - y2).powi(2)) + 1.0).tanh() * (x1 * 3.0).cos();
+            if self.0 > 3 {
+                out[3] = (-2.0 * x1 * x2).tanh();
+            }
+        }
+        fn reset(&mut self) {}
+    }
+
+    fn controller(spec: &SubstrateSpec) -> SubstrateController {
+        let layout = spec.layout().unwrap();
+        decode(
+            &mut Cppn(spec.cppn_outputs()),
+            &layout,
+            &HyperParams::default(),
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn renders_the_paper_substrate() {
+        let spec = SubstrateSpec::default();
+        let c = controller(&spec);
+        assert!(c.expressed_links() > 10, "test CPPN should express links");
+        let fig = render(&spec, &c, &NetworkOptions::default()).unwrap();
+        assert_eq!(png_size(&fig.png), (2000, 1440));
+        assert!(distinct_colours(&fig.png) > 50);
+        let count = format!(
+            "{} expressed of {} possible links",
+            c.expressed_links(),
+            9 * 24
+        );
+        for label in [
+            count.as_str(),
+            "surface sensors 3x5",
+            "neurons 3x3",
+            "wheel neuron",
+            ">\nL\n<",
+            ">\nR\n<",
+        ] {
+            assert!(fig.svg.contains(label), "missing {label:?}");
+        }
+        // Wheel neurons are filled red.
+        assert!(fig.svg.matches("fill=\"#D62728\"").count() >= 3);
+    }
+
+    #[test]
+    fn renders_a_resampled_substrate_with_distance_sensors() {
+        let spec = SubstrateSpec {
+            sensors: PolarGrid::new(3, 6).unwrap(),
+            neurons: PolarGrid::new(9, 9).unwrap(),
+            distance_rays: Some(7),
+            ..SubstrateSpec::default()
+        };
+        let fig = render(&spec, &controller(&spec), &NetworkOptions::default()).unwrap();
+        assert!(fig.svg.contains("surface sensors 3x6 + 7 distance rays"));
+        assert!(fig.svg.contains("neurons 9x9"));
+        png_size(&fig.png);
+    }
+
+    #[test]
+    fn mismatched_controller_is_an_error() {
+        let spec = SubstrateSpec::default();
+        let other = SubstrateSpec {
+            neurons: PolarGrid::new(9, 9).unwrap(),
+            ..SubstrateSpec::default()
+        };
+        let e = render_svg(&spec, &controller(&other), &NetworkOptions::default()).unwrap_err();
+        assert!(matches!(e, FigureError::Invalid(_)), "{e}");
+    }
+
+    /// Writes sample figures: `VIVAE_FIGURE_DIR=/tmp cargo test ... -- --ignored`.
+    #[test]
+    #[ignore]
+    fn write_sample() {
+        let dir = std::env::var("VIVAE_FIGURE_DIR").unwrap_or_else(|_| "/tmp".into());
+        for (name, spec) in [
+            ("network", SubstrateSpec::default()),
+            (
+                "network-9x9",
+                SubstrateSpec {
+                    neurons: PolarGrid::new(9, 9).unwrap(),
+                    distance_rays: Some(5),
+                    ..SubstrateSpec::default()
+                },
+            ),
+        ] {
+            let fig = render(&spec, &controller(&spec), &NetworkOptions::default()).unwrap();
+            std::fs::write(format!("{dir}/{name}.png"), fig.png).unwrap();
+            std::fs::write(format!("{dir}/{name}.svg"), fig.svg).unwrap();
+        }
+    }
+}
