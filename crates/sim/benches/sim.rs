@@ -1,3 +1,127 @@
+//! Simulator speed: world steps with sensor reads (robot-steps/s), scenario loading.
+
+use divan::{Bencher, black_box, counter::ItemsCount};
+use vivae_sim::{DistanceSensors, LoadOptions, PhysicsParams, Scenario, SurfaceSensors, World};
+
 fn main() {
     divan::main();
+}
+
+fn roads_world() -> World {
+    let sc =
+        Scenario::from_svg(vivae_sim::ROADS_SVG, "roads.svg", &LoadOptions::default()).unwrap();
+    World::new(&sc, &PhysicsParams::default()).unwrap()
+}
+
+/// One world step of the 5 robots of roads.svg, each reading `rings × angles`
+/// surface sensors; the controls are a fixed function of the readings (no network).
+fn surface_steps(bencher: Bencher, rings: usize, angles: usize) {
+    let mut world = roads_world();
+    let grid = SurfaceSensors {
+        rings,
+        angles,
+        ..Default::default()
+    }
+    .grid();
+    let n = world.robots().len();
+    let mut buf = vec![0.0; grid.len()];
+    let mut controls = vec![[0.0; 2]; n];
+    bencher.counter(ItemsCount::new(n)).bench_local(|| {
+        for (i, c) in controls.iter_mut().enumerate() {
+            world.read_surface(i, &grid, &mut buf);
+            let half = buf.len() / 2;
+            let left: f64 = buf[..half].iter().sum();
+            let right: f64 = buf[half..].iter().sum();
+            *c = [
+                0.2 + 0.8 * (right > left) as u8 as f64,
+                0.2 + 0.8 * (left >= right) as u8 as f64,
+            ];
+        }
+        world.step(black_box(&controls));
+    });
+    black_box(world.robots()[0].odometer);
+}
+
+#[divan::bench]
+fn step_5_robots_3x5_surface_sensors(bencher: Bencher) {
+    surface_steps(bencher, 3, 5);
+}
+
+#[divan::bench]
+fn step_5_robots_20x60_surface_sensors(bencher: Bencher) {
+    surface_steps(bencher, 20, 60);
+}
+
+#[divan::bench]
+fn step_5_robots_no_sensors(bencher: Bencher) {
+    let mut world = roads_world();
+    let controls = vec![[1.0, 0.9]; world.robots().len()];
+    bencher
+        .counter(ItemsCount::new(controls.len()))
+        .bench_local(|| world.step(black_box(&controls)));
+}
+
+#[divan::bench]
+fn step_5_robots_3x5_surface_and_8_distance_sensors(bencher: Bencher) {
+    let mut world = roads_world();
+    let sgrid = SurfaceSensors::default().grid();
+    let dgrid = DistanceSensors {
+        rays: 8,
+        ..Default::default()
+    }
+    .grid();
+    let n = world.robots().len();
+    let mut s = vec![0.0; sgrid.len()];
+    let mut d = vec![0.0; dgrid.len()];
+    let mut controls = vec![[0.0; 2]; n];
+    bencher.counter(ItemsCount::new(n)).bench_local(|| {
+        for (i, c) in controls.iter_mut().enumerate() {
+            world.read_surface(i, &sgrid, &mut s);
+            world.read_distance(i, &dgrid, &mut d);
+            *c = [1.0 - d[7] + s[0], 1.0 - d[0] + s[4]];
+        }
+        world.step(black_box(&controls));
+    });
+}
+
+const CORPUS: &[&str] = &[
+    "arena1.svg",
+    "arena2.svg",
+    "arena3_h.svg",
+    "minimal1.svg",
+    "minimal2.svg",
+    "minimal3.svg",
+    "oval1_h.svg",
+    "oval2_h.svg",
+    "scenar1_01.svg",
+    "scenar2_01.svg",
+    "scenario2.svg",
+    "ushape.svg",
+    "roads.svg",
+];
+
+/// Loading (parse, geometry, 1 px raster) of every corpus file and the default scenario.
+#[divan::bench(args = CORPUS)]
+fn load_scenario(bencher: Bencher, name: &str) {
+    let text = if name == "roads.svg" {
+        Some(vivae_sim::ROADS_SVG.to_string())
+    } else {
+        std::fs::read_to_string(format!(
+            "{}/../../../shared/vivae-scenarios/{name}",
+            env!("CARGO_MANIFEST_DIR")
+        ))
+        .ok()
+    };
+    let Some(text) = text else {
+        eprintln!("corpus file {name} absent; skipped");
+        return;
+    };
+    bencher.bench(|| Scenario::from_svg(black_box(&text), name, &LoadOptions::default()).unwrap());
+}
+
+/// Cloning a loaded world (one per parallel episode).
+#[divan::bench]
+fn clone_world(bencher: Bencher) {
+    let world = roads_world();
+    bencher.bench(|| black_box(&world).clone());
 }

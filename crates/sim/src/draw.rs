@@ -4,8 +4,6 @@
 use std::fmt::Write;
 use std::sync::{Arc, OnceLock};
 
-use glam::DVec2;
-
 use crate::geometry::fmt_num;
 use crate::sensors::{DistanceSensors, SurfaceSensors};
 use crate::snapshot::{surface_color, xml_escape};
@@ -191,8 +189,7 @@ pub fn render_svg(world: &World, opts: &DrawOptions) -> String {
         for i in 0..world.robots().len() {
             world.read_distance(i, &grid, &mut out);
             let rb = &world.robots()[i];
-            let (sn, cs) = rb.heading.sin_cos();
-            let (ahead, right) = (DVec2::new(sn, -cs), DVec2::new(cs, sn));
+            let (ahead, right) = (rb.ahead(), rb.right());
             for (d, v) in grid.dirs.iter().zip(&out) {
                 let dir = ahead * d.x + right * d.y;
                 let len = if *v > 0.0 {

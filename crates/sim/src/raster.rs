@@ -1,12 +1,17 @@
-//! The surface raster: the id of the top-most surface at each cell centre,
-//! built once at load time by scan-line filling the surfaces in document order.
+//! The surface raster: the material of the top-most surface at each cell
+//! centre, built once at load time by scan-line filling the surfaces in
+//! document order. Cells are stored in 8×8 tiles of one byte each, so a tile
+//! is one 64-byte cache line and a robot's sensors touch few lines per step.
 
 use glam::DVec2;
 
 use crate::geometry::FillRule;
 use crate::scenario::Surface;
 
-/// Grid of surface ids (0 = background, `i + 1` = `surfaces[i]`).
+/// Tile side in cells (8×8 one-byte cells = one cache line).
+const TILE: usize = 8;
+
+/// Grid of material ids (0 = background, `m` = `Scenario::materials[m]`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct SurfaceRaster {
     /// Number of columns.
@@ -15,8 +20,8 @@ pub struct SurfaceRaster {
     pub rows: usize,
     /// Cell side in px.
     pub cell: f64,
-    inv_cell: f64,
-    ids: Vec<u16>,
+    tiles_x: usize,
+    ids: Vec<u8>,
 }
 
 impl SurfaceRaster {
@@ -26,23 +31,52 @@ impl SurfaceRaster {
             cols: 0,
             rows: 0,
             cell: 1.0,
-            inv_cell: 1.0,
+            tiles_x: 0,
             ids: Vec::new(),
         }
     }
 
-    /// Rasterises `surfaces` (later ones cover earlier ones) on a `width`×`height` arena.
-    pub fn build(width: f64, height: f64, cell: f64, surfaces: &[Surface]) -> SurfaceRaster {
+    /// Storage index of cell (`c`, `r`); callers keep `c < cols`, `r < rows`.
+    #[inline(always)]
+    pub fn index(&self, c: usize, r: usize) -> usize {
+        ((r / TILE) * self.tiles_x + c / TILE) * (TILE * TILE) + (r % TILE) * TILE + c % TILE
+    }
+
+    /// Material id of cell (`c`, `r`) (0 when out of range).
+    #[inline(always)]
+    pub fn get(&self, c: usize, r: usize) -> u8 {
+        if c < self.cols && r < self.rows {
+            self.ids.get(self.index(c, r)).copied().unwrap_or(0)
+        } else {
+            0
+        }
+    }
+
+    /// Rasterises `surfaces` (later ones cover earlier ones) on a `width`×`height`
+    /// arena; `material[i]` is the material id of `surfaces[i]`.
+    pub fn build(
+        width: f64,
+        height: f64,
+        cell: f64,
+        surfaces: &[Surface],
+        material: &[u8],
+    ) -> SurfaceRaster {
         let cols = (width / cell).ceil().max(1.0) as usize;
         let rows = (height / cell).ceil().max(1.0) as usize;
-        let mut ids = vec![0u16; cols * rows];
+        let tiles_x = cols.div_ceil(TILE);
+        let tiles_y = rows.div_ceil(TILE);
+        let mut ras = SurfaceRaster {
+            cols,
+            rows,
+            cell,
+            tiles_x,
+            ids: vec![0u8; tiles_x * tiles_y * TILE * TILE],
+        };
         let mut xs: Vec<(f64, i32)> = Vec::new();
-        // Ids beyond u16 are clamped: more than 65 534 surfaces is not a real scenario.
-        for (si, s) in surfaces.iter().enumerate() {
-            let sid = (si + 1).min(u16::MAX as usize) as u16;
+        for (s, &m) in surfaces.iter().zip(material) {
             let b = s.shape.bbox;
-            let r0 = ((b.min.y / cell - 0.5).ceil().max(0.0)) as usize;
-            let r1 = ((b.max.y / cell - 0.5).floor().min(rows as f64 - 1.0)) as isize;
+            let r0 = (b.min.y / cell - 0.5).ceil().max(0.0) as usize;
+            let r1 = (b.max.y / cell - 0.5).floor().min(rows as f64 - 1.0) as isize;
             if r1 < 0 {
                 continue;
             }
@@ -81,32 +115,51 @@ impl SurfaceRaster {
                     }
                     let c0 = (xs[k].0 / cell - 0.5).ceil().max(0.0) as usize;
                     let c1 = ((xs[k + 1].0 / cell - 0.5).ceil().min(cols as f64)).max(0.0) as usize;
-                    if c0 < c1 {
-                        ids[r * cols + c0..r * cols + c1].fill(sid);
+                    for c in c0..c1 {
+                        let i = ras.index(c, r);
+                        ras.ids[i] = m;
                     }
                 }
             }
         }
-        SurfaceRaster {
-            cols,
-            rows,
-            cell,
-            inv_cell: 1.0 / cell,
-            ids,
-        }
+        ras
     }
 
-    /// Surface id at `p`: `None` outside the grid, `Some(0)` background.
+    /// Material id at `p`: `None` outside the grid, `Some(0)` background.
     #[inline]
-    pub fn id_at(&self, p: DVec2) -> Option<u16> {
-        let cx = p.x * self.inv_cell;
-        let cy = p.y * self.inv_cell;
+    pub fn id_at(&self, p: DVec2) -> Option<u8> {
+        let cx = p.x / self.cell;
+        let cy = p.y / self.cell;
         if cx >= 0.0 && cy >= 0.0 {
             let (c, r) = (cx as usize, cy as usize);
             if c < self.cols && r < self.rows {
-                return Some(self.ids[r * self.cols + c]);
+                return Some(self.get(c, r));
             }
         }
         None
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tile_index_is_a_bijection() {
+        let ras = SurfaceRaster {
+            cols: 21,
+            rows: 10,
+            cell: 1.0,
+            tiles_x: 3,
+            ids: vec![0; 3 * 2 * 64],
+        };
+        let mut seen = vec![false; ras.ids.len()];
+        for r in 0..10 {
+            for c in 0..21 {
+                let i = ras.index(c, r);
+                assert!(!seen[i]);
+                seen[i] = true;
+            }
+        }
     }
 }

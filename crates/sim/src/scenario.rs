@@ -232,6 +232,12 @@ pub enum ScenarioError {
         /// usvg's message.
         message: String,
     },
+    /// More than 256 distinct surface materials (kind + friction override).
+    #[error("{source_name}: more than 256 distinct surface frictions")]
+    TooManyMaterials {
+        /// File name.
+        source_name: String,
+    },
     /// The load options are invalid.
     #[error("invalid load option {field} = {value}")]
     Options {
@@ -314,6 +320,9 @@ pub struct Scenario {
     pub background: SurfaceKind,
     /// Surfaces in document order (later ones cover earlier ones).
     pub surfaces: Vec<Surface>,
+    /// Distinct (kind, friction override) pairs; index 0 is the background.
+    /// The raster stores indices into this list.
+    pub materials: Vec<(SurfaceKind, Option<f64>)>,
     /// Immovable obstacles.
     pub fixed_obstacles: Vec<Obstacle>,
     /// Movable (heavy) obstacles.
@@ -651,6 +660,7 @@ impl<'a> Loader<'a> {
                 height,
                 background,
                 surfaces: Vec::new(),
+                materials: vec![(background, None)],
                 fixed_obstacles: Vec::new(),
                 movable_obstacles: Vec::new(),
                 pucks: Vec::new(),
@@ -676,11 +686,30 @@ impl<'a> Loader<'a> {
                 });
             }
         }
+        // Materials: distinct (kind, friction override) pairs; the raster stores one byte each.
+        let mut ids = Vec::with_capacity(sc.surfaces.len());
+        for s in &sc.surfaces {
+            let key = (s.kind, s.friction);
+            let m = match sc.materials.iter().position(|k| *k == key) {
+                Some(m) => m,
+                None => {
+                    sc.materials.push(key);
+                    sc.materials.len() - 1
+                }
+            };
+            if m > u8::MAX as usize {
+                return Err(ScenarioError::TooManyMaterials {
+                    source_name: err_src(),
+                });
+            }
+            ids.push(m as u8);
+        }
         sc.raster = Arc::new(SurfaceRaster::build(
             width,
             height,
             opts.cell_size,
             &sc.surfaces,
+            &ids,
         ));
         Ok(sc)
     }

@@ -20,14 +20,27 @@ pub struct Robot {
     pub speed: f64,
     /// Distance actually travelled, px.
     pub odometer: f64,
+    /// Cached unit vector of `heading` (updated whenever the heading changes).
+    dir: DVec2,
 }
 
 impl Robot {
     /// Unit vector the robot faces.
     #[inline]
     pub fn ahead(&self) -> DVec2 {
+        self.dir
+    }
+
+    /// Unit vector to the robot's right.
+    #[inline]
+    pub fn right(&self) -> DVec2 {
+        DVec2::new(-self.dir.y, self.dir.x)
+    }
+
+    fn set_heading(&mut self, heading: f64) {
+        self.heading = wrap_angle(heading);
         let (s, c) = self.heading.sin_cos();
-        DVec2::new(s, -c)
+        self.dir = DVec2::new(s, -c);
     }
 }
 
@@ -70,7 +83,13 @@ pub struct SurfaceHere {
 #[derive(Debug)]
 struct Statics {
     scenario: Scenario,
-    /// Index 0 = background, `i + 1` = `scenario.surfaces[i]`.
+    /// Sensor reading per surface id (same indexing as `here`).
+    readings: Vec<f64>,
+    /// Arena size in raster cells (the outside test of the fast look-up).
+    limit: DVec2,
+    /// 1 / cell size.
+    inv_cell: f64,
+    /// Indexed by material id (`scenario.materials`).
     here: Vec<SurfaceHere>,
 }
 
@@ -178,16 +197,24 @@ impl World {
                 reading: ((hi - friction) / (hi - lo)).clamp(0.0, 1.0),
             }
         };
-        let mut table = vec![here(scenario.background, None)];
-        table.extend(scenario.surfaces.iter().map(|s| here(s.kind, s.friction)));
+        let table: Vec<SurfaceHere> = scenario
+            .materials
+            .iter()
+            .map(|(k, f)| here(*k, *f))
+            .collect();
         let robots: Vec<Robot> = scenario
             .robots
             .iter()
-            .map(|r| Robot {
-                pos: r.pos,
-                heading: wrap_angle(r.heading),
-                speed: 0.0,
-                odometer: 0.0,
+            .map(|r| {
+                let mut rb = Robot {
+                    pos: r.pos,
+                    heading: 0.0,
+                    speed: 0.0,
+                    odometer: 0.0,
+                    dir: DVec2::ZERO,
+                };
+                rb.set_heading(r.heading);
+                rb
             })
             .collect();
         let pucks: Vec<PuckState> = scenario
@@ -214,6 +241,9 @@ impl World {
             prev_pucks: vec![DVec2::ZERO; pucks.len()],
             prev_movables: vec![DVec2::ZERO; movables.len()],
             statics: Arc::new(Statics {
+                readings: table.iter().map(|h| h.reading).collect(),
+                limit: DVec2::new(scenario.width, scenario.height) / scenario.raster.cell,
+                inv_cell: 1.0 / scenario.raster.cell,
                 scenario: scenario.clone(),
                 here: table,
             }),
@@ -240,10 +270,17 @@ impl World {
     pub fn robots(&self) -> &[Robot] {
         &self.robots
     }
-
-    /// Mutable robots (to place them by hand, e.g. in tests or tasks).
-    pub fn robots_mut(&mut self) -> &mut [Robot] {
-        &mut self.robots
+    /// Places robot `i` by hand (position, heading) and stops it; false if no such robot.
+    pub fn set_pose(&mut self, i: usize, pos: DVec2, heading: f64) -> bool {
+        match self.robots.get_mut(i) {
+            Some(r) => {
+                r.pos = pos;
+                r.set_heading(heading);
+                r.speed = 0.0;
+                true
+            }
+            None => false,
+        }
     }
 
     /// Pucks in scenario order.
@@ -297,22 +334,11 @@ impl World {
             .and_then(|r| self.surface_at(r.pos))
             .is_some_and(|s| s.kind == SurfaceKind::Road)
     }
-
-    /// Surface reading at `p`: road 1 … grass 0, outside the arena 0.
-    #[inline]
-    fn reading_at(&self, p: DVec2) -> f64 {
-        match self.surface_at(p) {
-            Some(s) => s.reading,
-            None => 0.0,
-        }
-    }
-
     /// World position of a robot-frame offset (x ahead, y right) of robot `i`.
     #[inline]
     fn frame(&self, i: usize) -> (DVec2, DVec2, DVec2) {
         let r = &self.robots[i];
-        let (s, c) = r.heading.sin_cos();
-        (r.pos, DVec2::new(s, -c), DVec2::new(c, s))
+        (r.pos, r.dir, r.right())
     }
 
     /// World positions of robot `i`'s surface sensors (for drawing).
@@ -328,8 +354,21 @@ impl World {
     /// extra entries untouched). Allocation-free.
     pub fn read_surface(&self, i: usize, grid: &SurfaceGrid, out: &mut [f64]) {
         let (p, ahead, right) = self.frame(i);
+        let st = &*self.statics;
+        // Hoisted out of the loop: the compiler cannot prove `out` does not alias them.
+        let (ras, readings) = (&*st.scenario.raster, &st.readings[..]);
+        let (inv, lim) = (st.inv_cell, st.limit);
         for (o, v) in grid.offsets.iter().zip(out.iter_mut()) {
-            *v = self.reading_at(p + ahead * o.x + right * o.y);
+            let c = (p + ahead * o.x + right * o.y) * inv;
+            *v = if c.x >= 0.0 && c.y >= 0.0 && c.x < lim.x && c.y < lim.y {
+                // i32 conversions are cheaper than usize ones; the range check keeps them exact.
+                readings
+                    .get(ras.get(c.x as i32 as usize, c.y as i32 as usize) as usize)
+                    .copied()
+                    .unwrap_or(0.0)
+            } else {
+                0.0
+            };
         }
     }
 
@@ -418,9 +457,10 @@ impl World {
             let a = a_max * (l + r) * 0.5;
             let omega = om_max * (l - r) * 0.5 * (1.0 - rb.speed / v_max);
             rb.speed = (rb.speed + a - k * mu * rb.speed).clamp(0.0, v_max);
-            rb.heading = wrap_angle(rb.heading + omega);
-            let (s, c) = rb.heading.sin_cos();
-            rb.pos += DVec2::new(s, -c) * rb.speed;
+            if omega != 0.0 {
+                rb.set_heading(rb.heading + omega);
+            }
+            rb.pos += rb.dir * rb.speed;
         }
         let (pd, od) = (self.params.puck_damping, self.params.obstacle_damping);
         for (i, pk) in self.pucks.iter_mut().enumerate() {
@@ -436,9 +476,8 @@ impl World {
         self.resolve_contacts();
         for (i, rb) in self.robots.iter_mut().enumerate() {
             let moved = rb.pos - self.prev_robots[i];
-            let (s, c) = rb.heading.sin_cos();
             // Inelastic: only the part of the motion along the heading survives as speed.
-            rb.speed = moved.dot(DVec2::new(s, -c)).clamp(0.0, rb.speed);
+            rb.speed = moved.dot(rb.dir).clamp(0.0, rb.speed);
             rb.odometer += moved.length();
         }
         for (i, pk) in self.pucks.iter_mut().enumerate() {
@@ -458,32 +497,39 @@ impl World {
     /// Pushes overlapping bodies apart: soft contacts (shared by mass) first,
     /// then the hard constraints (walls, fixed obstacles) last in each pass.
     fn resolve_contacts(&mut self) {
-        let statics = Arc::clone(&self.statics);
+        let World {
+            statics,
+            params,
+            robots,
+            pucks,
+            movables,
+            ..
+        } = self;
         let sc = &statics.scenario;
         let (w, h) = (sc.width, sc.height);
-        let rr = self.params.robot_radius;
-        let rm = self.params.robot_mass;
-        for _ in 0..self.params.collision_iterations {
+        let rr = params.robot_radius;
+        let rm = params.robot_mass;
+        for _ in 0..params.collision_iterations {
             let mut any = false;
             // Robot–robot (equal masses).
-            let n = self.robots.len();
+            let n = robots.len();
             for i in 0..n {
                 for j in (i + 1)..n {
-                    let d = self.robots[j].pos - self.robots[i].pos;
+                    let d = robots[j].pos - robots[i].pos;
                     let dist2 = d.length_squared();
                     if dist2 < 4.0 * rr * rr {
                         let dist = dist2.sqrt();
                         let nrm = if dist > 1e-12 { d / dist } else { DVec2::X };
                         let push = nrm * ((2.0 * rr - dist) * 0.5);
-                        self.robots[i].pos -= push;
-                        self.robots[j].pos += push;
+                        robots[i].pos -= push;
+                        robots[j].pos += push;
                         any = true;
                     }
                 }
             }
             // Robot–puck and robot–movable obstacle: momentum shared by mass.
-            for rb in self.robots.iter_mut() {
-                for pk in self.pucks.iter_mut() {
+            for rb in robots.iter_mut() {
+                for pk in pucks.iter_mut() {
                     let d = pk.pos - rb.pos;
                     let min = rr + pk.radius;
                     let dist2 = d.length_squared();
@@ -497,7 +543,7 @@ impl World {
                         any = true;
                     }
                 }
-                for (ob, m) in sc.movable_obstacles.iter().zip(self.movables.iter_mut()) {
+                for (ob, m) in sc.movable_obstacles.iter().zip(movables.iter_mut()) {
                     if let Some(push) = disc_out_of_shape(rb.pos, rr, &ob.shape, m.offset) {
                         let total = rm + m.mass;
                         rb.pos += push * (m.mass / total);
@@ -507,10 +553,10 @@ impl World {
                 }
             }
             // Puck–puck, puck–movable, movable–movable.
-            let np = self.pucks.len();
+            let np = pucks.len();
             for i in 0..np {
                 for j in (i + 1)..np {
-                    let (a, b) = (&self.pucks[i], &self.pucks[j]);
+                    let (a, b) = (&pucks[i], &pucks[j]);
                     let d = b.pos - a.pos;
                     let min = a.radius + b.radius;
                     let dist2 = d.length_squared();
@@ -520,13 +566,13 @@ impl World {
                         let pen = min - dist;
                         let total = a.mass + b.mass;
                         let (ma, mb) = (a.mass, b.mass);
-                        self.pucks[i].pos -= nrm * (pen * mb / total);
-                        self.pucks[j].pos += nrm * (pen * ma / total);
+                        pucks[i].pos -= nrm * (pen * mb / total);
+                        pucks[j].pos += nrm * (pen * ma / total);
                         any = true;
                     }
                 }
-                for (ob, m) in sc.movable_obstacles.iter().zip(self.movables.iter_mut()) {
-                    let pk = &mut self.pucks[i];
+                for (ob, m) in sc.movable_obstacles.iter().zip(movables.iter_mut()) {
+                    let pk = &mut pucks[i];
                     if let Some(push) = disc_out_of_shape(pk.pos, pk.radius, &ob.shape, m.offset) {
                         let total = pk.mass + m.mass;
                         pk.pos += push * (m.mass / total);
@@ -535,7 +581,7 @@ impl World {
                     }
                 }
             }
-            let nm = self.movables.len();
+            let nm = movables.len();
             for i in 0..nm {
                 for j in (i + 1)..nm {
                     let (a, b) = (
@@ -543,18 +589,18 @@ impl World {
                         &sc.movable_obstacles[j].shape,
                     );
                     if let Some(push) =
-                        shape_out_of_shape(a, self.movables[i].offset, b, self.movables[j].offset)
+                        shape_out_of_shape(a, movables[i].offset, b, movables[j].offset)
                     {
-                        let (ma, mb) = (self.movables[i].mass, self.movables[j].mass);
+                        let (ma, mb) = (movables[i].mass, movables[j].mass);
                         let total = ma + mb;
-                        self.movables[i].offset += push * (mb / total);
-                        self.movables[j].offset -= push * (ma / total);
+                        movables[i].offset += push * (mb / total);
+                        movables[j].offset -= push * (ma / total);
                         any = true;
                     }
                 }
             }
             // Hard constraints: fixed obstacles, then walls (walls win).
-            for (ob, m) in sc.movable_obstacles.iter().zip(self.movables.iter_mut()) {
+            for (ob, m) in sc.movable_obstacles.iter().zip(movables.iter_mut()) {
                 for fx in &sc.fixed_obstacles {
                     if let Some(push) =
                         shape_out_of_shape(&ob.shape, m.offset, &fx.shape, DVec2::ZERO)
@@ -569,7 +615,7 @@ impl World {
                     any = true;
                 }
             }
-            for pk in self.pucks.iter_mut() {
+            for pk in pucks.iter_mut() {
                 for fx in &sc.fixed_obstacles {
                     if let Some(push) = disc_out_of_shape(pk.pos, pk.radius, &fx.shape, DVec2::ZERO)
                     {
@@ -583,7 +629,7 @@ impl World {
                     any = true;
                 }
             }
-            for rb in self.robots.iter_mut() {
+            for rb in robots.iter_mut() {
                 for fx in &sc.fixed_obstacles {
                     if let Some(push) = disc_out_of_shape(rb.pos, rr, &fx.shape, DVec2::ZERO) {
                         rb.pos += push;

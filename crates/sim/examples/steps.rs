@@ -1,0 +1,45 @@
+//! Runs `STEPS` world steps of roads.svg (5 robots) reading `RINGSxANGLES`
+//! surface sensors, for measuring CPU time per robot-step with `perf stat`
+//! when the machine is too busy for wall-clock benchmarks.
+//! Usage: `cargo run --release --example steps -- STEPS [RINGS ANGLES]`
+
+use vivae_sim::{LoadOptions, PhysicsParams, Scenario, SurfaceSensors, World};
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let args: Vec<usize> = std::env::args()
+        .skip(1)
+        .map(|a| a.parse())
+        .collect::<Result<_, _>>()?;
+    let steps = args.first().copied().unwrap_or(1_000_000);
+    let (rings, angles) = (
+        args.get(1).copied().unwrap_or(3),
+        args.get(2).copied().unwrap_or(5),
+    );
+    let sc = Scenario::from_svg(vivae_sim::ROADS_SVG, "roads.svg", &LoadOptions::default())?;
+    let mut world = World::new(&sc, &PhysicsParams::default())?;
+    let grid = SurfaceSensors {
+        rings,
+        angles,
+        ..Default::default()
+    }
+    .grid();
+    let n = world.robots().len();
+    let mut buf = vec![0.0; grid.len()];
+    let mut controls = vec![[0.0; 2]; n];
+    for _ in 0..steps {
+        for (i, c) in controls.iter_mut().enumerate() {
+            world.read_surface(i, &grid, &mut buf);
+            let half = buf.len() / 2;
+            let left: f64 = buf[..half].iter().sum();
+            let right: f64 = buf[half..].iter().sum();
+            *c = [
+                0.2 + 0.8 * (right > left) as u8 as f64,
+                0.2 + 0.8 * (left >= right) as u8 as f64,
+            ];
+        }
+        world.step(&controls);
+    }
+    let odo: f64 = world.robots().iter().map(|r| r.odometer).sum();
+    println!("{} robot-steps, total odometer {odo:.1}", steps * n);
+    Ok(())
+}
