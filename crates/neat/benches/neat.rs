@@ -1,1 +1,79 @@
-fn main() {}
+//! NEAT benchmarks: CPPN activation, recurrent activation, one generation of reproduction.
+
+use divan::{Bencher, black_box};
+use rand::SeedableRng;
+use rand_pcg::Pcg64;
+use vivae_neat::mutation::{mutate_add_link, mutate_add_node};
+use vivae_neat::{
+    FeedForwardNetwork, Genome, GenomeSpec, InnovationTracker, NeatParams, Network, Population,
+    RecurrentNetwork,
+};
+
+fn main() {
+    divan::main();
+}
+
+/// A grown genome: the minimal one plus `nodes` add-node and `2·nodes` add-link mutations.
+fn grown(spec: &GenomeSpec, nodes: usize) -> Genome {
+    let params = NeatParams::default();
+    let mut rng = Pcg64::seed_from_u64(11);
+    let mut t = InnovationTracker::new((spec.inputs + spec.outputs) as u32);
+    let mut g = Genome::minimal(spec, &params, &mut t, &mut rng);
+    for _ in 0..nodes {
+        mutate_add_node(&mut g, spec, &mut t, &mut rng);
+        mutate_add_link(&mut g, spec, &params, &mut t, &mut rng);
+        mutate_add_link(&mut g, spec, &params, &mut t, &mut rng);
+    }
+    g
+}
+
+/// One CPPN query (5 inputs, 3 outputs) — what HyperNEAT decoding does per connection.
+#[divan::bench(args = [0, 10, 30])]
+fn cppn_activate(bencher: Bencher, hidden: usize) {
+    let mut net = FeedForwardNetwork::from_genome(&grown(&GenomeSpec::cppn(), hidden));
+    let mut out = [0.0; 3];
+    let mut x = 0.0f64;
+    bencher.bench_local(|| {
+        x += 0.001;
+        net.activate(black_box(&[x, 0.3, -0.2, 0.7, 1.0]), &mut out);
+        black_box(out[0])
+    });
+}
+
+/// One synchronous update of a recurrent network with `hidden` hidden nodes.
+#[divan::bench(args = [0, 10, 30])]
+fn recurrent_activate(bencher: Bencher, hidden: usize) {
+    let spec = GenomeSpec {
+        allow_recurrent: true,
+        ..GenomeSpec::cppn()
+    };
+    let mut net = RecurrentNetwork::from_genome(&grown(&spec, hidden));
+    let mut out = [0.0; 3];
+    bencher.bench_local(|| {
+        net.activate(black_box(&[0.1, 0.3, -0.2, 0.7, 1.0]), &mut out);
+        black_box(out[0])
+    });
+}
+
+/// One generation of reproduction (speciation, sharing, crossover, mutation) of an
+/// evaluated CPPN population that has evolved for 20 generations.
+#[divan::bench(args = [100, 1000], sample_count = 10)]
+fn reproduction(bencher: Bencher, size: usize) {
+    let params = NeatParams {
+        population_size: size,
+        ..NeatParams::default()
+    };
+    let mut pop = Population::new(params, GenomeSpec::cppn(), 3).unwrap();
+    let fit = |g: &Genome| g.links().iter().map(|l| l.weight.sin()).sum::<f64>();
+    for _ in 0..20 {
+        pop.evaluate(|g, _| fit(g));
+        pop.next_generation();
+    }
+    pop.evaluate(|g, _| fit(g));
+    bencher
+        .with_inputs(|| pop.clone())
+        .bench_local_values(|mut p| {
+            p.next_generation();
+            p
+        });
+}

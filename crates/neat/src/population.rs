@@ -350,9 +350,9 @@ impl Population {
         self.species
             .retain(|s| s.members.contains(&champion) || s.stagnation(generation) < limit);
 
-        // Explicit fitness sharing on fitness shifted to be non-negative: a species'
-        // share is the sum of its members' f/|S|, i.e. its mean shifted fitness.
-        let min = fitness.iter().copied().fold(f64::INFINITY, f64::min);
+        // Explicit fitness sharing: a species' share is the sum of its members' f/|S|,
+        // i.e. its mean fitness. Negative fitness is shifted so that the lowest is 0.
+        let min = fitness.iter().copied().fold(0.0, f64::min);
         let shares: Vec<f64> = self
             .species
             .iter()

@@ -1,0 +1,331 @@
+//! Double pole balancing on a cart, the classic NEAT benchmark (Stanley & Miikkulainen 2002).
+//!
+//! `cargo run --release -p vivae-neat --example pole -- --markov --runs 50 --seed 1`
+//! (with velocities) and `... --example pole -- --runs 50 --seed 1` (without).
+//!
+//! Wieland's equations for two poles (1.0 m and 0.1 m, masses 0.1 and 0.01 kg) on a
+//! 1 kg cart, integrated with 4th-order Runge–Kutta in 0.01 s steps; as in Stanley's and
+//! Gomez's code, the controller acts every two integration steps (0.02 s). Force
+//! `(out − 0.5)·20` N; failure when |x| > 2.4 m or a pole leaves ±36°.
+//!
+//! * Markov (`--markov`): inputs x, ẋ, θ1, θ̇1, θ2, θ̇2 (scaled as in Stanley's code) and a
+//!   bias; feed-forward networks; fitness = steps balanced; solved = 100,000 steps.
+//! * Non-Markov: inputs x, θ1, θ2 and a bias; recurrent networks (synchronous update);
+//!   Gruau's damped fitness over 1,000 steps; every generation's champion is tested for
+//!   100,000 steps and, if it passes, on the 625 generalisation starts (≥ 200 balanced
+//!   for 1,000 steps = solved).
+//!
+//! Evaluations are counted up to and including the solving genome.
+
+use std::time::Instant;
+
+use vivae_neat::{
+    Activation, FeedForwardNetwork, Genome, GenomeSpec, NeatParams, Network, Population,
+    RecurrentNetwork,
+};
+
+const GRAVITY: f64 = -9.8;
+const MASS_CART: f64 = 1.0;
+const MASS_POLE_1: f64 = 0.1;
+const LENGTH_1: f64 = 0.5; // half length
+const MASS_POLE_2: f64 = 0.01;
+const LENGTH_2: f64 = 0.05;
+const FORCE_MAG: f64 = 10.0;
+const TAU: f64 = 0.01;
+const MUP: f64 = 0.000002;
+const FAIL_ANGLE: f64 = 36.0 * std::f64::consts::PI / 180.0;
+const SUCCESS_STEPS: u32 = 100_000;
+
+/// Cart-pole state `[x, ẋ, θ1, θ̇1, θ2, θ̇2]`.
+type State = [f64; 6];
+
+/// Wieland's equations of motion (as in Stanley's NEAT code).
+fn derivatives(force: f64, s: &State) -> State {
+    let (sin1, cos1) = s[2].sin_cos();
+    let (sin2, cos2) = s[4].sin_cos();
+    let gsin1 = GRAVITY * sin1;
+    let gsin2 = GRAVITY * sin2;
+    let ml1 = LENGTH_1 * MASS_POLE_1;
+    let ml2 = LENGTH_2 * MASS_POLE_2;
+    let temp1 = MUP * s[3] / ml1;
+    let temp2 = MUP * s[5] / ml2;
+    let fi1 = ml1 * s[3] * s[3] * sin1 + 0.75 * MASS_POLE_1 * cos1 * (temp1 + gsin1);
+    let fi2 = ml2 * s[5] * s[5] * sin2 + 0.75 * MASS_POLE_2 * cos2 * (temp2 + gsin2);
+    let mi1 = MASS_POLE_1 * (1.0 - 0.75 * cos1 * cos1);
+    let mi2 = MASS_POLE_2 * (1.0 - 0.75 * cos2 * cos2);
+    let xacc = (force + fi1 + fi2) / (mi1 + mi2 + MASS_CART);
+    let acc1 = -0.75 * (xacc * cos1 + gsin1 + temp1) / LENGTH_1;
+    let acc2 = -0.75 * (xacc * cos2 + gsin2 + temp2) / LENGTH_2;
+    [s[1], xacc, s[3], acc1, s[5], acc2]
+}
+
+fn rk4(force: f64, s: &State) -> State {
+    let add = |a: &State, k: &State, h: f64| -> State { std::array::from_fn(|i| a[i] + h * k[i]) };
+    let k1 = derivatives(force, s);
+    let k2 = derivatives(force, &add(s, &k1, TAU / 2.0));
+    let k3 = derivatives(force, &add(s, &k2, TAU / 2.0));
+    let k4 = derivatives(force, &add(s, &k3, TAU));
+    std::array::from_fn(|i| s[i] + TAU / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]))
+}
+
+/// One control step: the action (network output in [0, 1]) held for two RK4 steps.
+fn step(action: f64, s: &mut State) {
+    let force = (action - 0.5) * FORCE_MAG * 2.0;
+    for _ in 0..2 {
+        *s = rk4(force, s);
+    }
+}
+
+fn failed(s: &State) -> bool {
+    s[0].abs() > 2.4 || s[2].abs() > FAIL_ANGLE || s[4].abs() > FAIL_ANGLE
+}
+
+fn observe(s: &State, markov: bool, out: &mut [f64; 7]) -> usize {
+    if markov {
+        *out = [
+            s[0] / 4.8,
+            s[1] / 2.0,
+            s[2] / 0.52,
+            s[3] / 2.0,
+            s[4] / 0.52,
+            s[5] / 2.0,
+            0.5,
+        ];
+        7
+    } else {
+        out[..4].copy_from_slice(&[s[0] / 4.8, s[2] / 0.52, s[4] / 0.52, 0.5]);
+        4
+    }
+}
+
+/// Balances from `start` for at most `max_steps`; returns the steps survived and
+/// Gruau's stability term Σ over the last 100 steps of |x| + |ẋ| + |θ1| + |θ̇1|.
+fn balance(net: &mut dyn Network, markov: bool, start: State, max_steps: u32) -> (u32, f64) {
+    net.reset();
+    let mut s = start;
+    let mut obs = [0.0; 7];
+    let mut out = [0.0];
+    let mut wiggle = 0.0;
+    for t in 0..max_steps {
+        let n = observe(&s, markov, &mut obs);
+        net.activate(&obs[..n], &mut out);
+        step(out[0], &mut s);
+        if failed(&s) {
+            return (t, wiggle);
+        }
+        if max_steps - t <= 100 {
+            wiggle += s[0].abs() + s[1].abs() + s[2].abs() + s[3].abs();
+        }
+    }
+    (max_steps, wiggle)
+}
+
+fn start_state(markov: bool) -> State {
+    // Stanley: long pole at 0.07 rad (Markov); Gruau: 4.5° (non-Markov).
+    let theta = if markov { 0.07 } else { 4.5f64.to_radians() };
+    [0.0, 0.0, theta, 0.0, 0.0, 0.0]
+}
+
+fn network(g: &Genome, markov: bool) -> Box<dyn Network> {
+    if markov {
+        Box::new(FeedForwardNetwork::from_genome(g))
+    } else {
+        Box::new(RecurrentNetwork::from_genome(g))
+    }
+}
+
+fn fitness(g: &Genome, markov: bool) -> f64 {
+    let mut net = network(g, markov);
+    if markov {
+        balance(net.as_mut(), true, start_state(true), SUCCESS_STEPS).0 as f64
+    } else {
+        // Gruau et al. (1996): 0.1·t/1000 + 0.9·f2, f2 = 0.75 / wiggle if t ≥ 100.
+        let (t, wiggle) = balance(net.as_mut(), false, start_state(false), 1000);
+        let f1 = t as f64 / 1000.0;
+        let f2 = if t < 100 {
+            0.0
+        } else {
+            0.75 / wiggle.max(1e-9)
+        };
+        0.1 * f1 + 0.9 * f2
+    }
+}
+
+/// The 625 generalisation starts: x, ẋ, θ1, θ̇1 each at 0.05, 0.25, 0.5, 0.75, 0.95 of
+/// their ranges (±2.16 m, ±1.35 m/s, ±3.6°, ±8.6°/s).
+fn generalisation(g: &Genome) -> usize {
+    let levels = [0.05, 0.25, 0.5, 0.75, 0.95];
+    let span = |r: f64, l: f64| (l * 2.0 - 1.0) * r;
+    let mut net = RecurrentNetwork::from_genome(g);
+    let mut ok = 0;
+    for &a in &levels {
+        for &b in &levels {
+            for &c in &levels {
+                for &d in &levels {
+                    let s = [
+                        span(2.16, a),
+                        span(1.35, b),
+                        span(3.6f64.to_radians(), c),
+                        span(8.6f64.to_radians(), d),
+                        0.0,
+                        0.0,
+                    ];
+                    if balance(&mut net, false, s, 1000).0 == 1000 {
+                        ok += 1;
+                    }
+                }
+            }
+        }
+    }
+    ok
+}
+
+fn spec(markov: bool) -> GenomeSpec {
+    GenomeSpec {
+        inputs: if markov { 7 } else { 4 },
+        outputs: 1,
+        output_activation: Activation::Sigmoid,
+        hidden_activations: vec![Activation::Sigmoid],
+        allow_recurrent: !markov,
+    }
+}
+
+/// Parameters used for double pole balancing (Stanley's where ours match his).
+fn pole_params(markov: bool) -> NeatParams {
+    NeatParams {
+        population_size: if markov { 150 } else { 1000 },
+        weight_amplitude: 8.0,
+        initial_weight_range: 1.0,
+        compatibility_threshold: 3.0,
+        c_excess: 1.0,
+        c_disjoint: 1.0,
+        c_weight: 0.4,
+        c_activation: 0.0,
+        add_node_probability: 0.03,
+        add_link_probability: 0.05,
+        weight_mutation_probability: 0.9,
+        weight_perturb_power: 2.5,
+        toggle_enable_probability: 0.0,
+        activation_mutation_probability: 0.0,
+        ..NeatParams::default()
+    }
+}
+
+struct RunResult {
+    evals: Option<usize>,
+    hidden: usize,
+}
+
+fn run(params: &NeatParams, markov: bool, seed: u64, max_generations: u32) -> RunResult {
+    let mut pop = Population::new(params.clone(), spec(markov), seed).expect("valid parameters");
+    for _ in 0..max_generations {
+        pop.evaluate(|g, _| fitness(g, markov));
+        let done = pop.generation() as usize * pop.genomes().len();
+        if markov {
+            let f = pop.fitnesses();
+            if let Some(i) = f.iter().position(|&x| x >= SUCCESS_STEPS as f64) {
+                return RunResult {
+                    evals: Some(done + i + 1),
+                    hidden: pop.genomes()[i].num_hidden(),
+                };
+            }
+        } else if let Some((champ, _)) = pop.champion() {
+            let mut net = RecurrentNetwork::from_genome(champ);
+            if balance(&mut net, false, start_state(false), SUCCESS_STEPS).0 == SUCCESS_STEPS
+                && generalisation(champ) >= 200
+            {
+                return RunResult {
+                    evals: Some(done + pop.genomes().len()),
+                    hidden: champ.num_hidden(),
+                };
+            }
+        }
+        if std::env::var_os("POLE_TRACE").is_some() {
+            eprintln!("{:?}", pop.stats());
+        }
+        pop.next_generation();
+    }
+    RunResult {
+        evals: None,
+        hidden: 0,
+    }
+}
+
+/// Applies `field=value` (value in JSON) to the parameters, for experiments.
+fn override_param(params: &NeatParams, kv: &str) -> NeatParams {
+    let (k, v) = kv.split_once('=').expect("--set needs field=json_value");
+    let mut json = serde_json::to_value(params).expect("params serialise");
+    json[k] = serde_json::from_str(v).expect("value must be JSON");
+    let p: NeatParams = serde_json::from_value(json).expect("known field");
+    p.validate().expect("valid value");
+    p
+}
+
+fn main() {
+    let mut runs = 50usize;
+    let mut seed = 1u64;
+    let mut markov = false;
+    let mut max_generations = None;
+    let mut sets = Vec::new();
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let mut it = args.iter();
+    while let Some(a) = it.next() {
+        let mut value = |name: &str| -> u64 {
+            it.next()
+                .and_then(|v| v.parse().ok())
+                .unwrap_or_else(|| panic!("{name} needs a number"))
+        };
+        match a.as_str() {
+            "--runs" => runs = value("--runs") as usize,
+            "--seed" => seed = value("--seed"),
+            "--max-generations" => max_generations = Some(value("--max-generations") as u32),
+            "--markov" => markov = true,
+            "--set" => sets.push(it.next().expect("--set needs field=json_value").clone()),
+            other => panic!(
+                "unknown argument {other} (use --markov --runs N --seed S --max-generations G --set field=value)"
+            ),
+        }
+    }
+    let mut params = pole_params(markov);
+    for kv in &sets {
+        params = override_param(&params, kv);
+    }
+    let max_generations = max_generations.unwrap_or(if markov { 200 } else { 150 });
+    let mut evals = Vec::new();
+    let mut hidden = 0usize;
+    let mut total_ms = 0.0;
+    for r in 0..runs {
+        let t = Instant::now();
+        let res = run(
+            &params,
+            markov,
+            seed.wrapping_add(r as u64),
+            max_generations,
+        );
+        total_ms += t.elapsed().as_secs_f64() * 1e3;
+        if let Some(e) = res.evals {
+            evals.push(e);
+            hidden += res.hidden;
+        }
+    }
+    let solved = evals.len();
+    evals.sort_unstable();
+    let mean = evals.iter().sum::<usize>() as f64 / solved.max(1) as f64;
+    let median = if solved == 0 {
+        0.0
+    } else if solved % 2 == 1 {
+        evals[solved / 2] as f64
+    } else {
+        (evals[solved / 2 - 1] + evals[solved / 2]) as f64 / 2.0
+    };
+    let name = if markov {
+        "pole-markov"
+    } else {
+        "pole-nonmarkov"
+    };
+    println!(
+        "{name}: solved={solved}/{runs} mean_evals={mean:.0} median_evals={median:.0} mean_hidden={:.2} mean_ms={:.1}",
+        hidden as f64 / solved.max(1) as f64,
+        total_ms / runs.max(1) as f64
+    );
+}
