@@ -42,6 +42,13 @@ impl SurfaceRaster {
         ((r / TILE) * self.tiles_x + c / TILE) * (TILE * TILE) + (r % TILE) * TILE + c % TILE
     }
 
+    /// Material id of cell (`c`, `r`) known to be inside the arena (0 if not).
+    #[inline(always)]
+    pub fn get_in_arena(&self, c: usize, r: usize) -> u8 {
+        let idx = ((r >> 3) * self.tiles_x + (c >> 3)) * (TILE * TILE) + ((r & 7) << 3) + (c & 7);
+        self.ids.get(idx).copied().unwrap_or(0)
+    }
+
     /// Material id of cell (`c`, `r`) (0 when out of range).
     #[inline(always)]
     pub fn get(&self, c: usize, r: usize) -> u8 {

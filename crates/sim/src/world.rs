@@ -83,8 +83,9 @@ pub struct SurfaceHere {
 #[derive(Debug)]
 struct Statics {
     scenario: Scenario,
-    /// Sensor reading per surface id (same indexing as `here`).
-    readings: Vec<f64>,
+    /// Sensor reading per material id (same indexing as `here`); 256 entries so
+    /// that indexing by a `u8` needs no bounds check.
+    readings: Box<[f64; 256]>,
     /// Arena size in raster cells (the outside test of the fast look-up).
     limit: DVec2,
     /// 1 / cell size.
@@ -241,7 +242,13 @@ impl World {
             prev_pucks: vec![DVec2::ZERO; pucks.len()],
             prev_movables: vec![DVec2::ZERO; movables.len()],
             statics: Arc::new(Statics {
-                readings: table.iter().map(|h| h.reading).collect(),
+                readings: {
+                    let mut r = Box::new([0.0; 256]);
+                    for (slot, h) in r.iter_mut().zip(&table) {
+                        *slot = h.reading;
+                    }
+                    r
+                },
                 limit: DVec2::new(scenario.width, scenario.height) / scenario.raster.cell,
                 inv_cell: 1.0 / scenario.raster.cell,
                 scenario: scenario.clone(),
@@ -356,16 +363,16 @@ impl World {
         let (p, ahead, right) = self.frame(i);
         let st = &*self.statics;
         // Hoisted out of the loop: the compiler cannot prove `out` does not alias them.
-        let (ras, readings) = (&*st.scenario.raster, &st.readings[..]);
-        let (inv, lim) = (st.inv_cell, st.limit);
+        let (ras, readings) = (&*st.scenario.raster, &*st.readings);
+        let inv = st.inv_cell;
+        let lim = st.limit;
+        let (base, ax, rx) = (p * inv, ahead * inv, right * inv);
         for (o, v) in grid.offsets.iter().zip(out.iter_mut()) {
-            let c = (p + ahead * o.x + right * o.y) * inv;
-            *v = if c.x >= 0.0 && c.y >= 0.0 && c.x < lim.x && c.y < lim.y {
-                // i32 conversions are cheaper than usize ones; the range check keeps them exact.
-                readings
-                    .get(ras.get(c.x as i32 as usize, c.y as i32 as usize) as usize)
-                    .copied()
-                    .unwrap_or(0.0)
+            let c = base + ax * o.x + rx * o.y;
+            // Non-short-circuit tests compile to one branch.
+            *v = if (c.x >= 0.0) & (c.y >= 0.0) & (c.x < lim.x) & (c.y < lim.y) {
+                // i32 conversions are cheaper than usize ones; the range test keeps them exact.
+                readings[ras.get_in_arena(c.x as i32 as usize, c.y as i32 as usize) as usize]
             } else {
                 0.0
             };
