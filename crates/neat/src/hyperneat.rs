@@ -16,7 +16,11 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::activation::bipolar_sigmoid;
+use std::collections::{BTreeMap, BTreeSet};
+
+use crate::activation::{Activation, bipolar_sigmoid};
+use crate::feedforward::FeedForwardNetwork;
+use crate::genome::{Genome, NodeKind};
 use crate::network::Network;
 
 /// Number of CPPN inputs a substrate query feeds: `(x1, y1, x2, y2, 1)`.
@@ -440,8 +444,9 @@ fn axpy(acc: &mut [f64], column: &[f64], x: f64) {
 /// Decodes `cppn` over `layout` into a controller.
 ///
 /// Makes `layout.num_queries()` CPPN activations; never allocates per query.
-/// Query order (which matters only for stateful CPPNs) is: for each target
-/// neuron, its bias, then every input node sheet by sheet, then every neuron.
+/// Query order (which matters only for stateful CPPNs) is: every neuron's
+/// bias, then for each source (input sheets in order, then neurons) every
+/// target neuron.
 pub fn decode(
     cppn: &mut impl Network,
     layout: &SubstrateLayout,
@@ -459,41 +464,316 @@ pub fn decode(
     for (target, &[x1, y1]) in layout.neurons.iter().enumerate() {
         query[0] = x1;
         query[1] = y1;
-        query[2] = 0.0;
-        query[3] = 0.0;
         cppn.activate(&query, &mut out);
         bias[target] = params.weight_or_zero(out[layout.bias_output]);
-        // Column-major storage: source j's weight to `target` is at j*n + target.
-        let mut j = 0;
-        let sources = layout
-            .inputs
-            .iter()
-            .map(|s| (s.coords.as_slice(), s.cppn_output))
-            .chain(std::iter::once((
-                layout.neurons.as_slice(),
-                layout.recurrent_output,
-            )));
-        for (coords, output) in sources {
-            for &[x2, y2] in coords {
-                query[2] = x2;
-                query[3] = y2;
-                cppn.activate(&query, &mut out);
-                weights[j * n + target] = params.weight_or_zero(out[output]);
-                j += 1;
-            }
+    }
+    // Source-major so that each source's column `weights[j*n..(j+1)*n]` is
+    // written contiguously (target-major writes stride through the matrix).
+    let sources = layout
+        .inputs
+        .iter()
+        .flat_map(|s| s.coords.iter().map(move |&c| (c, s.cppn_output)))
+        .chain(layout.neurons.iter().map(|&c| (c, layout.recurrent_output)));
+    for (([x2, y2], output), column) in sources.zip(weights.chunks_exact_mut(n)) {
+        query[2] = x2;
+        query[3] = y2;
+        for (&[x1, y1], w) in layout.neurons.iter().zip(column.iter_mut()) {
+            query[0] = x1;
+            query[1] = y1;
+            cppn.activate(&query, &mut out);
+            *w = params.weight_or_zero(out[output]);
         }
     }
-    let expressed = weights.iter().filter(|w| **w != 0.0).count();
-    Ok(SubstrateController {
-        sheet_sizes: layout.inputs.iter().map(|s| s.coords.len()).collect(),
-        num_inputs,
-        n,
-        bias,
-        weights,
-        state: vec![0.0; n],
-        acc: vec![0.0; n],
-        expressed,
-    })
+    Ok(SubstrateController::from_parts(layout, bias, weights))
+}
+
+impl SubstrateController {
+    /// Assembles a decoded controller (sizes already consistent with `layout`).
+    fn from_parts(layout: &SubstrateLayout, bias: Vec<f64>, weights: Vec<f64>) -> Self {
+        let n = bias.len();
+        let expressed = weights.iter().filter(|w| **w != 0.0).count();
+        SubstrateController {
+            sheet_sizes: layout.inputs.iter().map(|s| s.coords.len()).collect(),
+            num_inputs: layout.num_inputs(),
+            n,
+            bias,
+            weights,
+            state: vec![0.0; n],
+            acc: vec![0.0; n],
+            expressed,
+        }
+    }
+}
+
+/// Queries per batch: the batch's node values (≈ 14 nodes × 256 × 8 bytes) stay in L1.
+const BATCH: usize = 256;
+
+/// A CPPN genome compiled for batched substrate queries.
+///
+/// Gives bit-identical outputs to [`FeedForwardNetwork`] (same per-node sum
+/// order, same activation functions), but evaluates one output at a time for
+/// a whole batch of source nodes: each node's weighted sum runs over
+/// contiguous arrays (vectorised), activation functions run in tight loops,
+/// and only the nodes the requested output depends on are computed.
+#[derive(Debug, Clone)]
+pub struct BatchCppn {
+    num_inputs: usize,
+    /// Computed nodes in topological order: activation and `(source slot, weight)` links.
+    nodes: Vec<(Activation, Vec<(usize, f64)>)>,
+    /// For each output: the computed nodes it depends on (topological order) and its slot.
+    plans: Vec<(Vec<usize>, usize)>,
+    /// Node values, slot-major: `values[slot * BATCH + q]`.
+    values: Vec<f64>,
+}
+
+impl BatchCppn {
+    /// Compiles `genome`; `None` if its enabled links form a cycle (use
+    /// [`FeedForwardNetwork`] then, which breaks cycles its own way).
+    pub fn new(genome: &Genome) -> Option<BatchCppn> {
+        let ids = |kind| -> Vec<u32> {
+            genome
+                .nodes()
+                .iter()
+                .filter(|n| n.kind == kind)
+                .map(|n| n.id)
+                .collect()
+        };
+        let inputs = ids(NodeKind::Input);
+        let outputs = ids(NodeKind::Output);
+        let enabled: Vec<_> = genome.links().iter().filter(|l| l.enabled).collect();
+        // Ancestors of each output (nodes it depends on), inputs excluded.
+        let is_input = |id: u32| inputs.binary_search(&id).is_ok();
+        let ancestors: Vec<BTreeSet<u32>> = outputs
+            .iter()
+            .map(|&o| {
+                let mut seen = BTreeSet::from([o]);
+                let mut stack = vec![o];
+                while let Some(n) = stack.pop() {
+                    for l in enabled.iter().filter(|l| l.to == n) {
+                        if !is_input(l.from) && seen.insert(l.from) {
+                            stack.push(l.from);
+                        }
+                    }
+                }
+                seen
+            })
+            .collect();
+        let needed: BTreeSet<u32> = ancestors.iter().flatten().copied().collect();
+        // Kahn's algorithm over the needed nodes; leftovers mean a cycle.
+        let mut indegree: BTreeMap<u32, usize> = needed.iter().map(|&id| (id, 0)).collect();
+        for l in &enabled {
+            if needed.contains(&l.from)
+                && let Some(d) = indegree.get_mut(&l.to)
+            {
+                *d += 1;
+            }
+        }
+        let mut ready: BTreeSet<u32> = indegree
+            .iter()
+            .filter(|(_, d)| **d == 0)
+            .map(|(&id, _)| id)
+            .collect();
+        let mut order = Vec::with_capacity(needed.len());
+        while let Some(n) = ready.pop_first() {
+            order.push(n);
+            for l in enabled.iter().filter(|l| l.from == n) {
+                if let Some(d) = indegree.get_mut(&l.to) {
+                    *d -= 1;
+                    if *d == 0 {
+                        ready.insert(l.to);
+                    }
+                }
+            }
+        }
+        if order.len() != needed.len() {
+            return None;
+        }
+        let mut slot: BTreeMap<u32, usize> = BTreeMap::new();
+        for (k, &id) in inputs.iter().enumerate() {
+            slot.insert(id, k);
+        }
+        for (k, &id) in order.iter().enumerate() {
+            slot.insert(id, inputs.len() + k);
+        }
+        // Links into each node in genome order: the sum order FeedForwardNetwork uses.
+        let nodes = order
+            .iter()
+            .map(|&id| {
+                let act = genome.node(id).map_or(Activation::Linear, |n| n.activation);
+                let links = enabled
+                    .iter()
+                    .filter(|l| l.to == id)
+                    .filter_map(|l| slot.get(&l.from).map(|&s| (s, l.weight)))
+                    .collect();
+                (act, links)
+            })
+            .collect();
+        let plans = outputs
+            .iter()
+            .zip(&ancestors)
+            .map(|(o, anc)| {
+                let plan = order
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, id)| anc.contains(id))
+                    .map(|(k, _)| k)
+                    .collect();
+                (plan, slot[o])
+            })
+            .collect();
+        Some(BatchCppn {
+            num_inputs: inputs.len(),
+            values: vec![0.0; (inputs.len() + order.len()) * BATCH],
+            nodes,
+            plans,
+        })
+    }
+
+    /// Number of CPPN inputs.
+    pub fn num_inputs(&self) -> usize {
+        self.num_inputs
+    }
+
+    /// Number of CPPN outputs.
+    pub fn num_outputs(&self) -> usize {
+        self.plans.len()
+    }
+
+    /// Output `output` for target `target` and each of `sources`, into
+    /// `out[q]` (`out.len() == sources.len()`); bias input 1.
+    pub fn query_sources(
+        &mut self,
+        output: usize,
+        target: [f64; 2],
+        sources: &[[f64; 2]],
+        out: &mut [f64],
+    ) {
+        self.query(output, Points::Many(sources), Points::One(target), out);
+    }
+
+    /// Output `output` for each of `targets` and source `source`, into
+    /// `out[q]` (`out.len() == targets.len()`); bias input 1.
+    pub fn query_targets(
+        &mut self,
+        output: usize,
+        targets: &[[f64; 2]],
+        source: [f64; 2],
+        out: &mut [f64],
+    ) {
+        self.query(output, Points::One(source), Points::Many(targets), out);
+    }
+
+    fn query(&mut self, output: usize, sources: Points<'_>, targets: Points<'_>, out: &mut [f64]) {
+        assert_eq!(
+            self.num_inputs, CPPN_INPUTS,
+            "substrate queries need 5 CPPN inputs"
+        );
+        assert!(output < self.plans.len(), "no CPPN output {output}");
+        for points in [sources, targets] {
+            if let Points::Many(p) = points {
+                assert_eq!(p.len(), out.len(), "one output per point");
+            }
+        }
+        for (start, out) in (0..).step_by(BATCH).zip(out.chunks_mut(BATCH)) {
+            let b = out.len();
+            let v = &mut self.values;
+            // Input slots 0..5 = x1, y1, x2, y2, bias.
+            for (slot, points) in [(0, targets), (2, sources)] {
+                match points {
+                    Points::One([x, y]) => {
+                        v[slot * BATCH..slot * BATCH + b].fill(x);
+                        v[(slot + 1) * BATCH..(slot + 1) * BATCH + b].fill(y);
+                    }
+                    Points::Many(points) => {
+                        for (q, &[x, y]) in points[start..start + b].iter().enumerate() {
+                            v[slot * BATCH + q] = x;
+                            v[(slot + 1) * BATCH + q] = y;
+                        }
+                    }
+                }
+            }
+            v[4 * BATCH..4 * BATCH + b].fill(1.0);
+            let (plan, out_slot) = &self.plans[output];
+            for &k in plan {
+                let (act, links) = &self.nodes[k];
+                let slot = self.num_inputs + k;
+                let (before, rest) = v.split_at_mut(slot * BATCH);
+                let acc = &mut rest[..b];
+                acc.fill(0.0);
+                for &(src, w) in links {
+                    let x = &before[src * BATCH..src * BATCH + b];
+                    for (a, &x) in acc.iter_mut().zip(x) {
+                        *a += x * w;
+                    }
+                }
+                apply_all(*act, acc);
+            }
+            out.copy_from_slice(&v[out_slot * BATCH..out_slot * BATCH + b]);
+        }
+    }
+}
+
+/// One fixed point or one point per query.
+#[derive(Clone, Copy)]
+enum Points<'a> {
+    One([f64; 2]),
+    Many(&'a [[f64; 2]]),
+}
+
+/// Applies `act` to every element, one tight loop per function.
+fn apply_all(act: Activation, xs: &mut [f64]) {
+    macro_rules! each {
+        ($f:expr) => {
+            for x in xs.iter_mut() {
+                *x = $f.apply(*x);
+            }
+        };
+    }
+    match act {
+        Activation::BipolarSigmoid => each!(Activation::BipolarSigmoid),
+        Activation::Linear => {}
+        Activation::Gaussian => each!(Activation::Gaussian),
+        Activation::Abs => each!(Activation::Abs),
+        Activation::Sine => each!(Activation::Sine),
+        Activation::Cosine => each!(Activation::Cosine),
+        Activation::Sigmoid => each!(Activation::Sigmoid),
+    }
+}
+
+/// Decodes a CPPN genome over `layout`: the batched path ([`BatchCppn`]) for
+/// acyclic genomes, [`decode`] with a [`FeedForwardNetwork`] otherwise. The
+/// result equals `decode(&mut FeedForwardNetwork::from_genome(genome), ..)`.
+pub fn decode_genome(
+    genome: &Genome,
+    layout: &SubstrateLayout,
+    params: &HyperParams,
+) -> Result<SubstrateController, HyperError> {
+    let Some(mut cppn) = BatchCppn::new(genome) else {
+        return decode(&mut FeedForwardNetwork::from_genome(genome), layout, params);
+    };
+    params.validate()?;
+    layout.check(cppn.num_inputs(), cppn.num_outputs())?;
+    let n = layout.neurons.len();
+    let mut weights = vec![0.0; (layout.num_inputs() + n) * n];
+    let mut bias = vec![0.0; n];
+    let mut out = vec![0.0; n];
+    cppn.query_targets(layout.bias_output, &layout.neurons, [0.0, 0.0], &mut out);
+    for (b, &o) in bias.iter_mut().zip(&out) {
+        *b = params.weight_or_zero(o);
+    }
+    // One batch per source: all targets, written to the source's column.
+    let sources = layout
+        .inputs
+        .iter()
+        .flat_map(|s| s.coords.iter().map(move |&c| (c, s.cppn_output)))
+        .chain(layout.neurons.iter().map(|&c| (c, layout.recurrent_output)));
+    for ((source, output), column) in sources.zip(weights.chunks_exact_mut(n)) {
+        cppn.query_targets(output, &layout.neurons, source, &mut out);
+        for (w, &o) in column.iter_mut().zip(&out) {
+            *w = params.weight_or_zero(o);
+        }
+    }
+    Ok(SubstrateController::from_parts(layout, bias, weights))
 }
 
 #[cfg(test)]
@@ -843,5 +1123,91 @@ mod tests {
         assert_eq!(a, b);
         let broken = json.replace("\"neurons\":2", "\"neurons\":3");
         assert!(serde_json::from_str::<SubstrateController>(&broken).is_err());
+    }
+
+    /// Random CPPN genomes grown by the NEAT mutations.
+    fn random_genomes(count: usize, seed: u64) -> Vec<Genome> {
+        use crate::genome::GenomeSpec;
+        use crate::innovation::InnovationTracker;
+        use crate::mutation::{
+            mutate_activation, mutate_add_link, mutate_add_node, mutate_toggle_enable,
+        };
+        use crate::params::NeatParams;
+        use rand::SeedableRng;
+        let spec = GenomeSpec::cppn();
+        let params = NeatParams::default();
+        let mut rng = rand_pcg::Pcg64::seed_from_u64(seed);
+        (0..count)
+            .map(|i| {
+                let mut tracker = InnovationTracker::new(8);
+                let mut g = Genome::minimal(&spec, &params, &mut tracker, &mut rng);
+                for _ in 0..(i % 7) * 3 {
+                    mutate_add_node(&mut g, &spec, &mut tracker, &mut rng);
+                    mutate_add_link(&mut g, &spec, &params, &mut tracker, &mut rng);
+                    mutate_activation(&mut g, &spec, &mut rng);
+                    mutate_toggle_enable(&mut g, &mut rng);
+                }
+                g
+            })
+            .collect()
+    }
+
+    #[test]
+    fn batched_decode_equals_feed_forward_decode() {
+        let grid = |r: usize, a: usize| -> Vec<[f64; 2]> {
+            (0..r * a)
+                .map(|i| {
+                    [
+                        (i % a) as f64 / a as f64 - 0.5,
+                        (i / a + 1) as f64 / r as f64,
+                    ]
+                })
+                .collect()
+        };
+        // Sheets longer than one batch exercise the chunking.
+        let l = SubstrateLayout {
+            inputs: vec![InputSheet {
+                coords: grid(3, 100),
+                cppn_output: 0,
+            }],
+            neurons: grid(2, 5),
+            bias_output: 1,
+            recurrent_output: 2,
+        };
+        let p = HyperParams::default();
+        let mut hidden = 0;
+        for g in random_genomes(20, 7) {
+            hidden += g.num_hidden();
+            let batched = decode_genome(&g, &l, &p).unwrap();
+            let plain = decode(&mut FeedForwardNetwork::from_genome(&g), &l, &p).unwrap();
+            assert_eq!(batched, plain);
+        }
+        assert!(hidden > 20, "genomes should have hidden nodes");
+    }
+
+    #[test]
+    fn batch_cppn_matches_single_queries() {
+        for g in random_genomes(10, 11) {
+            let mut ff = FeedForwardNetwork::from_genome(&g);
+            let mut b = BatchCppn::new(&g).unwrap();
+            let sources: Vec<[f64; 2]> = (0..300)
+                .map(|i| [(i as f64 * 0.37).sin(), i as f64 / 300.0])
+                .collect();
+            for output in 0..3 {
+                let mut batched = vec![0.0; sources.len()];
+                b.query_sources(output, [0.25, -0.5], &sources, &mut batched);
+                for (q, &[x2, y2]) in sources.iter().enumerate() {
+                    let mut out = [0.0; 3];
+                    ff.activate(&[0.25, -0.5, x2, y2, 1.0], &mut out);
+                    assert_eq!(out[output].to_bits(), batched[q].to_bits());
+                }
+                b.query_targets(output, &sources, [0.7, 0.1], &mut batched);
+                for (q, &[x1, y1]) in sources.iter().enumerate() {
+                    let mut out = [0.0; 3];
+                    ff.activate(&[x1, y1, 0.7, 0.1, 1.0], &mut out);
+                    assert_eq!(out[output].to_bits(), batched[q].to_bits());
+                }
+            }
+        }
     }
 }
