@@ -621,4 +621,35 @@ mod tests {
         ));
         assert!(build_layout(grid("3x5"), grid("4x1"), None, CoordMode::Cartesian).is_err());
     }
+
+    #[test]
+    fn node_order_matches_the_simulators_sensors() {
+        let spec = SubstrateSpec {
+            sensors: grid("4x7"),
+            distance_rays: Some(6),
+            ..SubstrateSpec::default()
+        };
+        let surface = vivae_sim::SurfaceSensors {
+            rings: 4,
+            angles: 7,
+            ..vivae_sim::SurfaceSensors::default()
+        };
+        let places = surface.places();
+        let nodes = spec.sensor_nodes();
+        assert_eq!(places.len(), nodes.len());
+        for (p, n) in places.iter().zip(&nodes) {
+            assert_eq!((p.ring, p.angle_index), (n.ring, n.angle_index));
+            assert!((p.angle - n.phi).abs() < 1e-12);
+        }
+        let rays = vivae_sim::DistanceSensors {
+            rays: 6,
+            ..vivae_sim::DistanceSensors::default()
+        };
+        let angles = rays.angles();
+        let nodes = spec.distance_nodes();
+        assert_eq!(angles.len(), nodes.len());
+        for (a, n) in angles.iter().zip(&nodes) {
+            assert!((a - n.phi).abs() < 1e-12);
+        }
+    }
 }

@@ -13,8 +13,8 @@ use std::sync::OnceLock;
 
 use plotters::style::{FontStyle, RGBColor};
 
-/// DejaVu Sans, the only font figures use (the simulator ships it).
-pub(crate) const FONT: &[u8] = include_bytes!("../../../sim/assets/DejaVuSans.ttf");
+/// DejaVu Sans, the only font figures use (shipped by the simulator).
+pub(crate) use vivae_sim::draw::FONT;
 /// Font family name figures ask plotters for.
 pub(crate) const FAMILY: &str = "sans-serif";
 /// PNG pixels per SVG unit (2 = crisp on high-density screens and in print).

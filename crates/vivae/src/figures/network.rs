@@ -522,8 +522,10 @@ mod tests {
         );
         for label in [
             count.as_str(),
-            "surface sensors 3x5",
-            "neurons 3x3",
+            "surface sensors",
+            ">\n3x5\n<",
+            ">\nneurons\n<",
+            ">\n3x3\n<",
             "wheel neuron",
             ">\nL\n<",
             ">\nR\n<",
@@ -542,10 +544,18 @@ mod tests {
             distance_rays: Some(7),
             ..SubstrateSpec::default()
         };
-        let fig = render(&spec, &controller(&spec), &NetworkOptions::default()).unwrap();
-        assert!(fig.svg.contains("surface sensors 3x6 + 7 distance rays"));
-        assert!(fig.svg.contains("neurons 9x9"));
-        png_size(&fig.png);
+        let c = controller(&spec);
+        let svg = render_svg(&spec, &c, &NetworkOptions::default()).unwrap();
+        for label in [">\n3x6\n<", "+ 7 distance rays", ">\n9x9\n<"] {
+            assert!(svg.contains(label), "missing {label:?}");
+        }
+        // Every expressed link other than a self-loop is one polyline.
+        let self_loops = c
+            .links()
+            .filter(|l| l.source == LinkSource::Neuron(l.target))
+            .count();
+        assert!(c.expressed_links() > 1000);
+        assert!(svg.matches("<polyline").count() >= c.expressed_links() - self_loops);
     }
 
     #[test]
