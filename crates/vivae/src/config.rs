@@ -83,7 +83,10 @@ pub struct SubstrateConfig {
 impl Default for SubstrateConfig {
     fn default() -> Self {
         SubstrateConfig {
-            neurons: PolarGrid { rings: 3, angles: 3 },
+            neurons: PolarGrid {
+                rings: 3,
+                angles: 3,
+            },
             coordinates: CoordMode::default(),
         }
     }
@@ -115,7 +118,7 @@ impl Default for DistanceConfig {
 impl DistanceConfig {
     /// The simulator layout, or `None` when switched off.
     pub fn layout(&self) -> Option<DistanceSensors> {
-        (self.rays > 0).then(|| DistanceSensors {
+        (self.rays > 0).then_some(DistanceSensors {
             rays: self.rays,
             fov: self.fov,
             range: self.range,
@@ -209,7 +212,9 @@ impl Config {
             ));
         }
         if r.checkpoint_keep == 0 {
-            return Err(ConfigError::new("run.checkpoint_keep = 0: must be at least 1"));
+            return Err(ConfigError::new(
+                "run.checkpoint_keep = 0: must be at least 1",
+            ));
         }
         if r.threads > 1024 {
             return Err(ConfigError::new(format!(
@@ -347,7 +352,12 @@ pub struct KeyDoc {
 
 const MISSING: KeyDoc = doc("?", "UNDOCUMENTED", "", "");
 
-const fn doc(key: &'static str, what: &'static str, unit: &'static str, paper: &'static str) -> KeyDoc {
+const fn doc(
+    key: &'static str,
+    what: &'static str,
+    unit: &'static str,
+    paper: &'static str,
+) -> KeyDoc {
     KeyDoc {
         key,
         what,
@@ -365,76 +375,381 @@ pub fn key_doc(key: &str) -> Option<&'static KeyDoc> {
 
 /// Documentation of every config key.
 pub static KEY_DOCS: &[KeyDoc] = &[
-    doc("experiment.scenario", "scenario SVG file; empty = the embedded default (relative to this file)", "path", "the road scenario of Fig. 1"),
-    doc("experiment.seed", "seed of the run's random number generator", "", ""),
+    doc(
+        "experiment.scenario",
+        "scenario SVG file; empty = the embedded default (relative to this file)",
+        "path",
+        "the road scenario of Fig. 1",
+    ),
+    doc(
+        "experiment.seed",
+        "seed of the run's random number generator",
+        "",
+        "",
+    ),
     doc("experiment.generations", "generations to evolve", "", "400"),
-    doc("experiment.steps", "simulation steps per evaluation", "steps", "1000"),
-    doc("experiment.robots", "robots sharing the controller (first N of the scenario; 0 = all)", "", "5"),
-    doc("experiment.init_population", "checkpoint whose population the run starts from (set by retrain); empty = fresh population", "path", ""),
-    doc("substrate.neurons", "output neuron sheet as RINGSxANGLES; wheel neurons L/R sit on the middle ring at the outer angles", "", "3x3, re-sampled to 9x9"),
-    doc("substrate.coordinates", "CPPN coordinates of a node at ring radius r and angle a: cartesian = (r sin a, r cos a), polar = (r, a/pi)", "", "cartesian"),
-    doc("hyperneat.threshold", "CPPN outputs with |o| <= threshold express no connection", "", "0.2"),
-    doc("hyperneat.amplitude", "largest controller weight: w = sign(o)(|o| - t)/(1 - t) * amplitude", "", "3.0"),
-    doc("surface_sensors.rings", "surface sensor rings (distances) of the input sheet", "", "3, re-sampled to 3"),
-    doc("surface_sensors.angles", "surface sensor angles per ring", "", "5, re-sampled to 6"),
-    doc("surface_sensors.fov", "field of view of the surface sensors, centred ahead", "degrees", "180"),
-    doc("surface_sensors.d_min", "distance of the nearest sensor ring from the robot centre", "px", ""),
-    doc("surface_sensors.d_max", "distance of the farthest sensor ring", "px", ""),
-    doc("distance_sensors.rays", "distance-sensor rays, a second input sheet; 0 = off", "", "none (future work)"),
-    doc("distance_sensors.fov", "field of view of the distance sensors", "degrees", ""),
-    doc("distance_sensors.range", "ray length from the robot's rim; a reading is 1 - d/range", "px", ""),
+    doc(
+        "experiment.steps",
+        "simulation steps per evaluation",
+        "steps",
+        "1000",
+    ),
+    doc(
+        "experiment.robots",
+        "robots sharing the controller (first N of the scenario; 0 = all)",
+        "",
+        "5",
+    ),
+    doc(
+        "experiment.init_population",
+        "checkpoint whose population the run starts from (set by retrain); empty = fresh population",
+        "path",
+        "",
+    ),
+    doc(
+        "substrate.neurons",
+        "output neuron sheet as RINGSxANGLES; wheel neurons L/R sit on the middle ring at the outer angles",
+        "",
+        "3x3, re-sampled to 9x9",
+    ),
+    doc(
+        "substrate.coordinates",
+        "CPPN coordinates of a node at ring radius r and angle a: cartesian = (r sin a, r cos a), polar = (r, a/pi)",
+        "",
+        "cartesian",
+    ),
+    doc(
+        "hyperneat.threshold",
+        "CPPN outputs with |o| <= threshold express no connection",
+        "",
+        "0.2",
+    ),
+    doc(
+        "hyperneat.amplitude",
+        "largest controller weight: w = sign(o)(|o| - t)/(1 - t) * amplitude",
+        "",
+        "3.0",
+    ),
+    doc(
+        "surface_sensors.rings",
+        "surface sensor rings (distances) of the input sheet",
+        "",
+        "3, re-sampled to 3",
+    ),
+    doc(
+        "surface_sensors.angles",
+        "surface sensor angles per ring",
+        "",
+        "5, re-sampled to 6",
+    ),
+    doc(
+        "surface_sensors.fov",
+        "field of view of the surface sensors, centred ahead",
+        "degrees",
+        "180",
+    ),
+    doc(
+        "surface_sensors.d_min",
+        "distance of the nearest sensor ring from the robot centre",
+        "px",
+        "",
+    ),
+    doc(
+        "surface_sensors.d_max",
+        "distance of the farthest sensor ring",
+        "px",
+        "",
+    ),
+    doc(
+        "distance_sensors.rays",
+        "distance-sensor rays, a second input sheet; 0 = off",
+        "",
+        "none (future work)",
+    ),
+    doc(
+        "distance_sensors.fov",
+        "field of view of the distance sensors",
+        "degrees",
+        "",
+    ),
+    doc(
+        "distance_sensors.range",
+        "ray length from the robot's rim; a reading is 1 - d/range",
+        "px",
+        "",
+    ),
     doc("physics.robot_radius", "robot disc radius", "px", ""),
     doc("physics.v_max", "top forward speed", "px/step", ""),
-    doc("physics.a_max", "acceleration at full throttle", "px/step^2", ""),
-    doc("physics.omega_max", "turn rate at full wheel difference and standstill", "rad/step", ""),
-    doc("physics.k", "drag factor: speed loses k * friction * v per step", "1/step", ""),
-    doc("physics.robot_mass", "robot mass, for pushing movable objects", "", ""),
-    doc("physics.puck_density", "puck mass per unit area", "1/px^2", ""),
-    doc("physics.puck_damping", "fraction of a puck's velocity lost per step", "", ""),
-    doc("physics.obstacle_density", "movable obstacle mass per unit area", "1/px^2", ""),
-    doc("physics.obstacle_damping", "fraction of a movable obstacle's velocity lost per step", "", ""),
-    doc("physics.collision_iterations", "contact-resolution passes per step", "", ""),
+    doc(
+        "physics.a_max",
+        "acceleration at full throttle",
+        "px/step^2",
+        "",
+    ),
+    doc(
+        "physics.omega_max",
+        "turn rate at full wheel difference and standstill",
+        "rad/step",
+        "",
+    ),
+    doc(
+        "physics.k",
+        "drag factor: speed loses k * friction * v per step",
+        "1/step",
+        "",
+    ),
+    doc(
+        "physics.robot_mass",
+        "robot mass, for pushing movable objects",
+        "",
+        "",
+    ),
+    doc(
+        "physics.puck_density",
+        "puck mass per unit area",
+        "1/px^2",
+        "",
+    ),
+    doc(
+        "physics.puck_damping",
+        "fraction of a puck's velocity lost per step",
+        "",
+        "",
+    ),
+    doc(
+        "physics.obstacle_density",
+        "movable obstacle mass per unit area",
+        "1/px^2",
+        "",
+    ),
+    doc(
+        "physics.obstacle_damping",
+        "fraction of a movable obstacle's velocity lost per step",
+        "",
+        "",
+    ),
+    doc(
+        "physics.collision_iterations",
+        "contact-resolution passes per step",
+        "",
+        "",
+    ),
     doc("physics.friction.road", "friction of road", "", "1 (ViVAE)"),
-    doc("physics.friction.grass", "friction of grass (also the background)", "", "10 (ViVAE)"),
-    doc("physics.friction.sand", "friction of sand", "", "3.5 (ViVAE)"),
-    doc("physics.friction.water", "friction of water", "", "6.5 (ViVAE)"),
+    doc(
+        "physics.friction.grass",
+        "friction of grass (also the background)",
+        "",
+        "10 (ViVAE)",
+    ),
+    doc(
+        "physics.friction.sand",
+        "friction of sand",
+        "",
+        "3.5 (ViVAE)",
+    ),
+    doc(
+        "physics.friction.water",
+        "friction of water",
+        "",
+        "6.5 (ViVAE)",
+    ),
     doc("neat.population_size", "genomes per generation", "", "100"),
-    doc("neat.weight_amplitude", "CPPN link weights are clamped to [-a, a]", "", "3.0"),
-    doc("neat.initial_weight_range", "initial and replacement weights are uniform in [-r, r]", "", ""),
-    doc("neat.compatibility_threshold", "compatibility distance below which a genome joins a species", "", "15.0"),
-    doc("neat.c_excess", "C1: coefficient of excess genes", "", "2.0"),
-    doc("neat.c_disjoint", "C2: coefficient of disjoint genes", "", "2.0"),
-    doc("neat.c_weight", "C3: coefficient of the mean weight difference of matching genes", "", "0.5"),
-    doc("neat.c_activation", "C_ACT: coefficient of matching links whose target nodes' functions differ", "", "1.0"),
-    doc("neat.normalize_distance", "divide excess, disjoint and activation terms by the larger genome's size", "", ""),
-    doc("neat.normalize_min_genes", "genomes smaller than this are not normalised", "links", ""),
+    doc(
+        "neat.weight_amplitude",
+        "CPPN link weights are clamped to [-a, a]",
+        "",
+        "3.0",
+    ),
+    doc(
+        "neat.initial_weight_range",
+        "initial and replacement weights are uniform in [-r, r]",
+        "",
+        "",
+    ),
+    doc(
+        "neat.compatibility_threshold",
+        "compatibility distance below which a genome joins a species",
+        "",
+        "15.0",
+    ),
+    doc(
+        "neat.c_excess",
+        "C1: coefficient of excess genes",
+        "",
+        "2.0",
+    ),
+    doc(
+        "neat.c_disjoint",
+        "C2: coefficient of disjoint genes",
+        "",
+        "2.0",
+    ),
+    doc(
+        "neat.c_weight",
+        "C3: coefficient of the mean weight difference of matching genes",
+        "",
+        "0.5",
+    ),
+    doc(
+        "neat.c_activation",
+        "C_ACT: coefficient of matching links whose target nodes' functions differ",
+        "",
+        "1.0",
+    ),
+    doc(
+        "neat.normalize_distance",
+        "divide excess, disjoint and activation terms by the larger genome's size",
+        "",
+        "",
+    ),
+    doc(
+        "neat.normalize_min_genes",
+        "genomes smaller than this are not normalised",
+        "links",
+        "",
+    ),
     KeyDoc {
         optional: true,
         example: "10",
-        ..doc("neat.target_species", "when set, the threshold moves each generation towards this many species", "species", "")
+        ..doc(
+            "neat.target_species",
+            "when set, the threshold moves each generation towards this many species",
+            "species",
+            "",
+        )
     },
-    doc("neat.threshold_step", "step of the dynamic compatibility threshold", "", ""),
-    doc("neat.threshold_min", "lower bound of the dynamic compatibility threshold", "", ""),
-    doc("neat.mating_probability", "probability that an offspring comes from crossover", "", "0.75"),
-    doc("neat.interspecies_mating_probability", "probability that the second parent comes from another species", "", ""),
-    doc("neat.mate_only_probability", "probability that a crossover child is not mutated", "", ""),
-    doc("neat.add_link_probability", "probability of the add-link mutation", "", "0.3"),
-    doc("neat.add_node_probability", "probability of the add-node mutation", "", "0.1"),
-    doc("neat.weight_mutation_probability", "probability that an offspring's weights are mutated", "", ""),
-    doc("neat.weight_link_probability", "per-link probability of changing its weight in a weight mutation", "", ""),
-    doc("neat.weight_replace_probability", "per-changed-link probability of replacing instead of perturbing", "", ""),
-    doc("neat.weight_perturb_power", "standard deviation of the Gaussian weight perturbation", "", ""),
-    doc("neat.toggle_enable_probability", "probability of toggling one link's enabled flag", "", ""),
-    doc("neat.activation_mutation_probability", "probability of changing one hidden node's function", "", ""),
-    doc("neat.disabled_inherit_probability", "a gene disabled in either parent stays disabled with this probability", "", "0.75 (Stanley)"),
-    doc("neat.add_link_attempts", "attempts to find an unconnected node pair for add-link", "", ""),
-    doc("neat.survival_threshold", "fraction of each species (best first) allowed to reproduce", "", ""),
-    doc("neat.elitism_fraction", "fraction of each species copied unchanged into the next generation", "", "0.05"),
-    doc("neat.elitism_min_species_size", "species smaller than this keep no elites (the champion's always keeps one)", "genomes", ""),
-    doc("neat.stagnation_limit", "generations without improvement after which a species gets no offspring", "generations", "15 (Stanley)"),
-    doc("run.threads", "evaluation threads; 0 = one per core (results do not depend on it)", "", ""),
-    doc("run.checkpoint_interval", "write a checkpoint every N generations (and always after the last)", "generations", ""),
-    doc("run.checkpoint_keep", "checkpoints kept on disk; older ones are pruned", "", ""),
+    doc(
+        "neat.threshold_step",
+        "step of the dynamic compatibility threshold",
+        "",
+        "",
+    ),
+    doc(
+        "neat.threshold_min",
+        "lower bound of the dynamic compatibility threshold",
+        "",
+        "",
+    ),
+    doc(
+        "neat.mating_probability",
+        "probability that an offspring comes from crossover",
+        "",
+        "0.75",
+    ),
+    doc(
+        "neat.interspecies_mating_probability",
+        "probability that the second parent comes from another species",
+        "",
+        "",
+    ),
+    doc(
+        "neat.mate_only_probability",
+        "probability that a crossover child is not mutated",
+        "",
+        "",
+    ),
+    doc(
+        "neat.add_link_probability",
+        "probability of the add-link mutation",
+        "",
+        "0.3",
+    ),
+    doc(
+        "neat.add_node_probability",
+        "probability of the add-node mutation",
+        "",
+        "0.1",
+    ),
+    doc(
+        "neat.weight_mutation_probability",
+        "probability that an offspring's weights are mutated",
+        "",
+        "",
+    ),
+    doc(
+        "neat.weight_link_probability",
+        "per-link probability of changing its weight in a weight mutation",
+        "",
+        "",
+    ),
+    doc(
+        "neat.weight_replace_probability",
+        "per-changed-link probability of replacing instead of perturbing",
+        "",
+        "",
+    ),
+    doc(
+        "neat.weight_perturb_power",
+        "standard deviation of the Gaussian weight perturbation",
+        "",
+        "",
+    ),
+    doc(
+        "neat.toggle_enable_probability",
+        "probability of toggling one link's enabled flag",
+        "",
+        "",
+    ),
+    doc(
+        "neat.activation_mutation_probability",
+        "probability of changing one hidden node's function",
+        "",
+        "",
+    ),
+    doc(
+        "neat.disabled_inherit_probability",
+        "a gene disabled in either parent stays disabled with this probability",
+        "",
+        "0.75 (Stanley)",
+    ),
+    doc(
+        "neat.add_link_attempts",
+        "attempts to find an unconnected node pair for add-link",
+        "",
+        "",
+    ),
+    doc(
+        "neat.survival_threshold",
+        "fraction of each species (best first) allowed to reproduce",
+        "",
+        "",
+    ),
+    doc(
+        "neat.elitism_fraction",
+        "fraction of each species copied unchanged into the next generation",
+        "",
+        "0.05",
+    ),
+    doc(
+        "neat.elitism_min_species_size",
+        "species smaller than this keep no elites (the champion's always keeps one)",
+        "genomes",
+        "",
+    ),
+    doc(
+        "neat.stagnation_limit",
+        "generations without improvement after which a species gets no offspring",
+        "generations",
+        "15 (Stanley)",
+    ),
+    doc(
+        "run.threads",
+        "evaluation threads; 0 = one per core (results do not depend on it)",
+        "",
+        "",
+    ),
+    doc(
+        "run.checkpoint_interval",
+        "write a checkpoint every N generations (and always after the last)",
+        "generations",
+        "",
+    ),
+    doc(
+        "run.checkpoint_keep",
+        "checkpoints kept on disk; older ones are pruned",
+        "",
+        "",
+    ),
 ];
 
 /// Turns a toml parse error into one line: `line L: key K: reason`.
@@ -459,7 +774,12 @@ fn key_at(text: &str, pos: usize) -> Option<String> {
         let trimmed = line.trim();
         let end = offset + line.len();
         if let Some(header) = trimmed.strip_prefix('[') {
-            let name = header.trim_start_matches('[').split(']').next().unwrap_or("").trim();
+            let name = header
+                .trim_start_matches('[')
+                .split(']')
+                .next()
+                .unwrap_or("")
+                .trim();
             if pos >= offset && pos < end {
                 return Some(name.to_string());
             }
@@ -503,7 +823,10 @@ mod tests {
         let value = toml::Value::try_from(Config::default()).unwrap();
         let keys: Vec<String> = flatten(&value).into_iter().map(|(k, _)| k).collect();
         let undocumented: Vec<&String> = keys.iter().filter(|k| key_doc(k).is_none()).collect();
-        assert!(undocumented.is_empty(), "undocumented keys: {undocumented:?}");
+        assert!(
+            undocumented.is_empty(),
+            "undocumented keys: {undocumented:?}"
+        );
         for d in KEY_DOCS {
             if d.optional {
                 let (section, key) = d.key.rsplit_once('.').unwrap();
@@ -511,7 +834,11 @@ mod tests {
                 Config::from_toml(&text)
                     .unwrap_or_else(|e| panic!("optional key {} example rejected: {e}", d.key));
             } else {
-                assert!(keys.iter().any(|k| k == d.key), "doc for missing key {}", d.key);
+                assert!(
+                    keys.iter().any(|k| k == d.key),
+                    "doc for missing key {}",
+                    d.key
+                );
             }
         }
         assert!(!Config::default_commented().contains("UNDOCUMENTED"));
@@ -534,7 +861,11 @@ mod tests {
     #[test]
     fn negative_population_is_rejected() {
         let err = Config::from_toml("[neat]\npopulation_size = -5\n").unwrap_err();
-        assert!(err.message.contains("neat.population_size"), "{}", err.message);
+        assert!(
+            err.message.contains("neat.population_size"),
+            "{}",
+            err.message
+        );
     }
 
     #[test]
@@ -542,10 +873,18 @@ mod tests {
         let err = Config::from_toml("[neat]\npopulation_size = 0\n").unwrap_err();
         assert!(err.message.contains("population_size"), "{}", err.message);
         let err = Config::from_toml("[neat]\nadd_node_probability = 1.5\n").unwrap_err();
-        assert!(err.message.contains("add_node_probability"), "{}", err.message);
+        assert!(
+            err.message.contains("add_node_probability"),
+            "{}",
+            err.message
+        );
         let err = Config::from_toml("[physics]\nv_max = -1.0\n").unwrap_err();
         assert!(err.message.contains("physics.v_max"), "{}", err.message);
         let err = Config::from_toml("[run]\ncheckpoint_keep = 0\n").unwrap_err();
-        assert!(err.message.contains("run.checkpoint_keep"), "{}", err.message);
+        assert!(
+            err.message.contains("run.checkpoint_keep"),
+            "{}",
+            err.message
+        );
     }
 }

@@ -136,23 +136,29 @@ fn fnv1a(bytes: &[u8]) -> u64 {
 
 fn encode_checkpoint(cp: &Checkpoint) -> anyhow::Result<String> {
     let body = serde_json::to_string(cp).context("serialising checkpoint")?;
-    Ok(format!("{CHECKPOINT_MAGIC} {:016x}\n{body}", fnv1a(body.as_bytes())))
+    Ok(format!(
+        "{CHECKPOINT_MAGIC} {:016x}\n{body}",
+        fnv1a(body.as_bytes())
+    ))
 }
 
 fn decode_checkpoint(path: &Path) -> anyhow::Result<Checkpoint> {
     let text = crate::io::read_text(path)?;
     let bad = |why: &str| bad_input(format!("{}: {why}", path.display()));
-    let (header, body) = text.split_once('\n').ok_or_else(|| bad("not a vivae checkpoint (no header line)"))?;
+    let (header, body) = text
+        .split_once('\n')
+        .ok_or_else(|| bad("not a vivae checkpoint (no header line)"))?;
     let checksum = header
         .strip_prefix(CHECKPOINT_MAGIC)
         .map(str::trim)
         .ok_or_else(|| bad("not a vivae checkpoint (bad header)"))?;
-    let expected = u64::from_str_radix(checksum, 16).map_err(|_| bad("not a vivae checkpoint (bad checksum field)"))?;
+    let expected = u64::from_str_radix(checksum, 16)
+        .map_err(|_| bad("not a vivae checkpoint (bad checksum field)"))?;
     if fnv1a(body.as_bytes()) != expected {
         return Err(bad("corrupt or truncated checkpoint (checksum mismatch)"));
     }
-    let cp: Checkpoint = serde_json::from_str(body)
-        .map_err(|e| bad(&format!("unreadable checkpoint: {e}")))?;
+    let cp: Checkpoint =
+        serde_json::from_str(body).map_err(|e| bad(&format!("unreadable checkpoint: {e}")))?;
     cp.config
         .validate()
         .map_err(|e| bad(&format!("checkpoint config: {e}")))?;
@@ -234,8 +240,12 @@ impl Run {
                 config.experiment.seed,
             )
             .map_err(|e| bad_input(format!("initial population: {e}")))?,
-            None => Population::new(config.neat.clone(), experiment.cppn_spec(), config.experiment.seed)
-                .map_err(|e| bad_input(format!("neat: {e}")))?,
+            None => Population::new(
+                config.neat.clone(),
+                experiment.cppn_spec(),
+                config.experiment.seed,
+            )
+            .map_err(|e| bad_input(format!("neat: {e}")))?,
         };
         crate::io::create_out_dir(dir, force)?;
         fs::create_dir_all(dir.join(files::CHECKPOINTS))?;
@@ -247,7 +257,10 @@ impl Run {
                 progress: Progress::start(population.generation()),
                 population: population.clone(),
             };
-            write_atomic(&dir.join(files::INIT_POPULATION), encode_checkpoint(&init_cp)?.as_bytes())?;
+            write_atomic(
+                &dir.join(files::INIT_POPULATION),
+                encode_checkpoint(&init_cp)?.as_bytes(),
+            )?;
             config.experiment.init_population = files::INIT_POPULATION.into();
         }
         config.experiment.scenario = files::SCENARIO.into();
@@ -275,7 +288,11 @@ impl Run {
     /// Opens an existing run at its newest checkpoint; `generations` extends (or
     /// shortens, if not yet reached) the total. Files written after that
     /// checkpoint are truncated back to it.
-    pub fn resume(dir: &Path, generations: Option<u32>, threads: Option<usize>) -> anyhow::Result<Run> {
+    pub fn resume(
+        dir: &Path,
+        generations: Option<u32>,
+        threads: Option<usize>,
+    ) -> anyhow::Result<Run> {
         let path = latest_checkpoint(dir)?;
         let mut cp = decode_checkpoint(&path)?;
         if let Some(n) = generations {
@@ -288,7 +305,8 @@ impl Run {
             cp.config.experiment.generations = n;
         }
         let scenario = crate::io::load_scenario(Some(&dir.join(files::SCENARIO)))?;
-        let experiment = Experiment::new(&cp.config, &scenario.scenario).map_err(|e| bad_input(e.to_string()))?;
+        let experiment = Experiment::new(&cp.config, &scenario.scenario)
+            .map_err(|e| bad_input(e.to_string()))?;
         for (name, len) in [
             (files::GENERATIONS, cp.progress.generations_len),
             (files::POPULATION, cp.progress.population_len),
@@ -336,14 +354,24 @@ impl Run {
 
     /// Evolves until the configured number of generations or until `stop` is set
     /// (checked after each generation, which is finished first).
-    pub fn run(&mut self, stop: &AtomicBool, mut on_generation: impl FnMut(&GenerationRecord)) -> anyhow::Result<Outcome> {
+    pub fn run(
+        &mut self,
+        stop: &AtomicBool,
+        mut on_generation: impl FnMut(&GenerationRecord),
+    ) -> anyhow::Result<Outcome> {
         let total = self.config.experiment.generations;
         while self.progress.done < total {
             let record = self.step(total)?;
             on_generation(&record);
             let last = self.progress.done == total;
             let interrupted = stop.load(Ordering::SeqCst);
-            if last || interrupted || self.progress.done % self.config.run.checkpoint_interval == 0 {
+            if last
+                || interrupted
+                || self
+                    .progress
+                    .done
+                    .is_multiple_of(self.config.run.checkpoint_interval)
+            {
                 self.write_checkpoint()?;
             }
             if interrupted && !last {
@@ -378,7 +406,8 @@ impl Run {
         } else {
             (sorted[n / 2 - 1] + sorted[n / 2]) / 2.0
         };
-        let robot_steps = (n * self.experiment.robots()) as f64 * f64::from(self.experiment.steps());
+        let robot_steps =
+            (n * self.experiment.robots()) as f64 * f64::from(self.experiment.steps());
         let record = GenerationRecord {
             generation,
             total,
@@ -396,7 +425,9 @@ impl Run {
             best_ever: self.population.best_ever().map_or(best, |b| b.1),
         };
         if FIGURE_GENERATIONS.contains(&generation) {
-            self.progress.figure_genomes.push((generation, best, best_genome));
+            self.progress
+                .figure_genomes
+                .push((generation, best, best_genome));
         }
 
         let mut row = String::new();
@@ -404,7 +435,16 @@ impl Run {
         let _ = writeln!(
             row,
             "{},{},{},{},{},{},{},{},{},{}",
-            r.generation, r.best, r.mean, r.median, r.worst, r.species, r.mean_nodes, r.mean_links, r.best_links, r.possible_links
+            r.generation,
+            r.best,
+            r.mean,
+            r.median,
+            r.worst,
+            r.species,
+            r.mean_nodes,
+            r.mean_links,
+            r.best_links,
+            r.possible_links
         );
         self.progress.generations_len = append(&self.dir.join(files::GENERATIONS), &row)?;
         let mut rows = String::with_capacity(n * 24);
@@ -412,7 +452,10 @@ impl Run {
             let _ = writeln!(rows, "{generation},{},{f}", rank + 1);
         }
         self.progress.population_len = append(&self.dir.join(files::POPULATION), &rows)?;
-        let timing = format!("{generation},{seconds:.6},{:.0}\n", record.robot_steps_per_second);
+        let timing = format!(
+            "{generation},{seconds:.6},{:.0}\n",
+            record.robot_steps_per_second
+        );
         self.progress.timing_len = append(&self.dir.join(files::TIMING), &timing)?;
         self.write_champion()?;
 
@@ -449,17 +492,22 @@ impl Run {
 
     /// The best individual of each figure generation reached.
     pub fn figure_genomes(&self) -> impl Iterator<Item = (u32, f64, &Genome)> {
-        self.progress.figure_genomes.iter().map(|(g, f, genome)| (*g, *f, genome))
+        self.progress
+            .figure_genomes
+            .iter()
+            .map(|(g, f, genome)| (*g, *f, genome))
     }
 
     /// The champion (best ever) with its run-relative generation.
     pub fn champion(&self) -> Option<Champion> {
-        self.population.best_ever().map(|(genome, fitness, generation)| Champion {
-            format: "vivae-champion".into(),
-            generation: generation - self.progress.start_generation + 1,
-            fitness,
-            genome: genome.clone(),
-        })
+        self.population
+            .best_ever()
+            .map(|(genome, fitness, generation)| Champion {
+                format: "vivae-champion".into(),
+                generation: generation - self.progress.start_generation + 1,
+                fitness,
+                genome: genome.clone(),
+            })
     }
 }
 
@@ -495,9 +543,10 @@ fn append(path: &Path, text: &str) -> anyhow::Result<u64> {
 }
 
 fn truncate(path: &Path, len: u64) -> anyhow::Result<()> {
-    let f = fs::OpenOptions::new().write(true).open(path).map_err(|e| {
-        bad_input(format!("{}: {}", path.display(), crate::io::io_reason(&e)))
-    })?;
+    let f = fs::OpenOptions::new()
+        .write(true)
+        .open(path)
+        .map_err(|e| bad_input(format!("{}: {}", path.display(), crate::io::io_reason(&e))))?;
     let actual = f.metadata()?.len();
     if actual < len {
         return Err(bad_input(format!(
@@ -505,7 +554,8 @@ fn truncate(path: &Path, len: u64) -> anyhow::Result<()> {
             path.display()
         )));
     }
-    f.set_len(len).with_context(|| format!("cannot truncate {}", path.display()))
+    f.set_len(len)
+        .with_context(|| format!("cannot truncate {}", path.display()))
 }
 
 fn prune_checkpoints(dir: &Path, keep: usize) -> anyhow::Result<()> {
@@ -524,15 +574,24 @@ fn prune_checkpoints(dir: &Path, keep: usize) -> anyhow::Result<()> {
 
 /// Reads `population.csv` back: per generation, the fitnesses best first.
 pub fn read_population_csv(path: &Path) -> anyhow::Result<Vec<Vec<f64>>> {
-    let text = fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let text =
+        fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
     let mut out: Vec<Vec<f64>> = Vec::new();
     for (i, line) in text.lines().enumerate().skip(1) {
         let mut parts = line.split(',');
         let (Some(g), Some(_), Some(f)) = (parts.next(), parts.next(), parts.next()) else {
-            anyhow::bail!("{}: line {}: expected generation,rank,fitness", path.display(), i + 1);
+            anyhow::bail!(
+                "{}: line {}: expected generation,rank,fitness",
+                path.display(),
+                i + 1
+            );
         };
-        let g: usize = g.parse().with_context(|| format!("{}: line {}", path.display(), i + 1))?;
-        let f: f64 = f.parse().with_context(|| format!("{}: line {}", path.display(), i + 1))?;
+        let g: usize = g
+            .parse()
+            .with_context(|| format!("{}: line {}", path.display(), i + 1))?;
+        let f: f64 = f
+            .parse()
+            .with_context(|| format!("{}: line {}", path.display(), i + 1))?;
         if g == 0 {
             anyhow::bail!("{}: line {}: generation 0", path.display(), i + 1);
         }
@@ -546,13 +605,20 @@ pub fn read_population_csv(path: &Path) -> anyhow::Result<Vec<Vec<f64>>> {
 
 /// Reads `generations.csv` back as (generation, best, mean) rows.
 pub fn read_generations_csv(path: &Path) -> anyhow::Result<Vec<(u32, f64, f64)>> {
-    let text = fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let text =
+        fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
     text.lines()
         .enumerate()
         .skip(1)
         .map(|(i, line)| {
             let v: Vec<&str> = line.split(',').collect();
-            let parse = || -> Option<(u32, f64, f64)> { Some((v.first()?.parse().ok()?, v.get(1)?.parse().ok()?, v.get(2)?.parse().ok()?)) };
+            let parse = || -> Option<(u32, f64, f64)> {
+                Some((
+                    v.first()?.parse().ok()?,
+                    v.get(1)?.parse().ok()?,
+                    v.get(2)?.parse().ok()?,
+                ))
+            };
             parse().with_context(|| format!("{}: line {}: malformed row", path.display(), i + 1))
         })
         .collect()

@@ -1,7 +1,7 @@
 //! The driving experiment: a substrate controller per robot, episodes, fitness.
 
-use vivae_neat::hyperneat::{HyperParams, SubstrateController, SubstrateLayout, decode};
-use vivae_neat::{FeedForwardNetwork, Genome, GenomeSpec, Network};
+use vivae_neat::hyperneat::{HyperParams, SubstrateController, SubstrateLayout, decode_genome};
+use vivae_neat::{Genome, GenomeSpec, Network};
 use vivae_sim::{DVec2, DistanceGrid, Scenario, SurfaceGrid, World};
 
 use crate::config::Config;
@@ -78,8 +78,12 @@ impl Experiment {
             neuron_fov: 180.0,
             coords: config.substrate.coordinates,
         };
-        let layout = spec.layout().map_err(|e| ExperimentError::Config(format!("substrate: {e}")))?;
-        let wheels = spec.wheels().map_err(|e| ExperimentError::Config(format!("substrate: {e}")))?;
+        let layout = spec
+            .layout()
+            .map_err(|e| ExperimentError::Config(format!("substrate: {e}")))?;
+        let wheels = spec
+            .wheels()
+            .map_err(|e| ExperimentError::Config(format!("substrate: {e}")))?;
         let cppn_outputs = cppn_outputs(&layout);
         Ok(Experiment {
             world,
@@ -88,7 +92,7 @@ impl Experiment {
             spec,
             layout,
             wheels,
-            hyper: config.hyperneat.clone(),
+            hyper: config.hyperneat,
             steps: config.experiment.steps,
             cppn_outputs,
         })
@@ -139,8 +143,7 @@ impl Experiment {
 
     /// Decodes `genome` (a CPPN) into the controller for this substrate.
     pub fn controller(&self, genome: &Genome) -> SubstrateController {
-        let mut cppn = FeedForwardNetwork::from_genome(genome);
-        decode(&mut cppn, &self.layout, &self.hyper)
+        decode_genome(genome, &self.layout, &self.hyper)
             .expect("layout and hyper-parameters were checked when the experiment was built")
     }
 
@@ -206,4 +209,40 @@ fn cppn_outputs(layout: &SubstrateLayout) -> usize {
         .max()
         .unwrap_or(0)
         + 1
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::io::load_scenario;
+    use vivae_neat::Population;
+
+    fn paper_experiment(config: &Config) -> Experiment {
+        Experiment::new(config, &load_scenario(None).unwrap().scenario).unwrap()
+    }
+
+    #[test]
+    fn robots_never_move_faster_than_v_max() {
+        let config = Config {
+            experiment: crate::config::ExperimentConfig {
+                steps: 300,
+                ..Default::default()
+            },
+            ..Config::default()
+        };
+        let exp = paper_experiment(&config);
+        let pop = Population::new(config.neat.clone(), exp.cppn_spec(), 3).unwrap();
+        for g in pop.genomes().iter().take(30) {
+            let episode = exp.run(&exp.controller(g), true);
+            for t in episode.trajectories.unwrap() {
+                for w in t.windows(2) {
+                    let d = w[0].distance(w[1]);
+                    assert!(
+                        d <= config.physics.v_max + 1e-9,
+                        "jump of {d} px in one step"
+                    );
+                }
+            }
+        }
+    }
 }

@@ -45,7 +45,8 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
 
 /// Reads a whole file as UTF-8; errors are bad input naming the file.
 pub fn read_text(path: &Path) -> anyhow::Result<String> {
-    let bytes = fs::read(path).map_err(|e| bad_input(format!("{}: {}", path.display(), io_reason(&e))))?;
+    let bytes =
+        fs::read(path).map_err(|e| bad_input(format!("{}: {}", path.display(), io_reason(&e))))?;
     String::from_utf8(bytes).map_err(|_| bad_input(format!("{}: not UTF-8 text", path.display())))
 }
 
@@ -72,7 +73,10 @@ pub struct LoadedScenario {
 pub fn load_scenario(path: Option<&Path>) -> anyhow::Result<LoadedScenario> {
     let (text, name) = match path {
         Some(p) => (read_text(p)?, p.display().to_string()),
-        None => (DEFAULT_SCENARIO.to_string(), DEFAULT_SCENARIO_NAME.to_string()),
+        None => (
+            DEFAULT_SCENARIO.to_string(),
+            DEFAULT_SCENARIO_NAME.to_string(),
+        ),
     };
     let scenario = Scenario::from_svg(&text, &name, &LoadOptions::default())
         .map_err(|e| bad_input(one_line(&e.to_string())))?;
@@ -94,7 +98,10 @@ pub fn create_out_dir(path: &Path, force: bool) -> anyhow::Result<()> {
             )));
         }
         if !path.is_dir() {
-            return Err(bad_input(format!("{}: exists and is not a directory", path.display())));
+            return Err(bad_input(format!(
+                "{}: exists and is not a directory",
+                path.display()
+            )));
         }
         fs::remove_dir_all(path)
             .map_err(|e| anyhow::anyhow!("cannot clear {}: {e}", path.display()))?;

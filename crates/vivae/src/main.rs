@@ -220,9 +220,13 @@ fn dispatch(cli: Cli, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode>
 /// Reads and validates a config file; relative paths in it become relative to its folder.
 fn read_config(path: &Path) -> anyhow::Result<Config> {
     let text = vivae::io::read_text(path)?;
-    let mut config = Config::from_toml(&text).map_err(|e| bad_input(format!("{}: {e}", path.display())))?;
+    let mut config =
+        Config::from_toml(&text).map_err(|e| bad_input(format!("{}: {e}", path.display())))?;
     let base = path.parent().unwrap_or(Path::new(""));
-    for p in [&mut config.experiment.scenario, &mut config.experiment.init_population] {
+    for p in [
+        &mut config.experiment.scenario,
+        &mut config.experiment.init_population,
+    ] {
         if !p.is_empty() && Path::new(p.as_str()).is_relative() {
             *p = base.join(&*p).to_string_lossy().into_owned();
         }
@@ -256,7 +260,9 @@ fn apply_overrides(config: &mut Config, o: &Overrides) -> anyhow::Result<()> {
     if let Some(n) = o.threads {
         config.run.threads = n;
     }
-    config.validate().map_err(|e| bad_input(format!("command line: {e}")))
+    config
+        .validate()
+        .map_err(|e| bad_input(format!("command line: {e}")))
 }
 
 fn scenario_path(config: &Config) -> Option<PathBuf> {
@@ -270,7 +276,9 @@ fn install_ctrlc(flag: &Arc<AtomicBool>) {
         if flag.swap(true, Ordering::SeqCst) {
             std::process::exit(130);
         }
-        eprintln!("\ninterrupt: finishing the current generation, then writing a checkpoint (Ctrl-C again to abort)");
+        eprintln!(
+            "\ninterrupt: finishing the current generation, then writing a checkpoint (Ctrl-C again to abort)"
+        );
     });
 }
 
@@ -281,7 +289,8 @@ fn cmd_evolve(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
     };
     apply_overrides(&mut config, &args.overrides)?;
     let scenario = load_scenario(scenario_path(&config).as_deref())?;
-    let experiment = Experiment::new(&config, &scenario.scenario).map_err(|e| bad_input(e.to_string()))?;
+    let experiment =
+        Experiment::new(&config, &scenario.scenario).map_err(|e| bad_input(e.to_string()))?;
     let init = if config.experiment.init_population.is_empty() {
         None
     } else {
@@ -300,7 +309,11 @@ fn cmd_resume(args: ResumeArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
 fn cmd_retrain(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode> {
     let checkpoint = evolve::latest_checkpoint(&args.run_dir)?;
     let (mut config, population) = evolve::population_from_checkpoint(&checkpoint)?;
-    config.experiment.scenario = args.run_dir.join(files::SCENARIO).to_string_lossy().into_owned();
+    config.experiment.scenario = args
+        .run_dir
+        .join(files::SCENARIO)
+        .to_string_lossy()
+        .into_owned();
     config.experiment.init_population = checkpoint.to_string_lossy().into_owned();
     let overrides = Overrides {
         generations: Some(args.generations),
@@ -311,9 +324,17 @@ fn cmd_retrain(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Resu
     };
     apply_overrides(&mut config, &overrides)?;
     let scenario = load_scenario(scenario_path(&config).as_deref())?;
-    let experiment = Experiment::new(&config, &scenario.scenario).map_err(|e| bad_input(e.to_string()))?;
+    let experiment =
+        Experiment::new(&config, &scenario.scenario).map_err(|e| bad_input(e.to_string()))?;
     let dir = args.out.clone().unwrap_or_else(vivae::io::default_run_dir);
-    let run = Run::create(&dir, config, experiment, &scenario.text, Some(population), args.force)?;
+    let run = Run::create(
+        &dir,
+        config,
+        experiment,
+        &scenario.text,
+        Some(population),
+        args.force,
+    )?;
     drive(run, args.quiet, interrupted)
 }
 
@@ -335,7 +356,10 @@ fn drive(mut run: Run, quiet: bool, interrupted: &Arc<AtomicBool>) -> anyhow::Re
         match &bar {
             Some(b) => {
                 b.set_position(u64::from(r.generation));
-                b.set_message(format!("best {:.4} mean {:.4} species {}", r.best, r.mean, r.species));
+                b.set_message(format!(
+                    "best {:.4} mean {:.4} species {}",
+                    r.best, r.mean, r.species
+                ));
             }
             None if !quiet => eprintln!("{line}"),
             None => {}
@@ -388,7 +412,8 @@ fn cmd_replay(args: ReplayArgs) -> anyhow::Result<ExitCode> {
     };
     apply_overrides(&mut config, &overrides)?;
     let scenario = load_scenario(scenario_path(&config).as_deref())?;
-    let experiment = Experiment::new(&config, &scenario.scenario).map_err(|e| bad_input(e.to_string()))?;
+    let experiment =
+        Experiment::new(&config, &scenario.scenario).map_err(|e| bad_input(e.to_string()))?;
     if experiment.cppn_spec().outputs != champion.genome.num_outputs() {
         return Err(bad_input(format!(
             "{}: the genome's CPPN has {} outputs, this substrate needs {}",

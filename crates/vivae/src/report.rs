@@ -12,6 +12,8 @@ use crate::config::Config;
 use crate::evolve::{self, Champion, Run, files};
 use crate::experiment::{Episode, Experiment};
 use crate::figures;
+use crate::figures::convergence::ConvergenceOptions;
+use crate::figures::network::NetworkOptions;
 use crate::io::{bad_input, read_text, write_atomic};
 use crate::substrate::PolarGrid;
 
@@ -47,9 +49,8 @@ pub fn trajectory_figure(
         episode.fitness,
         100.0 * episode.on_road
     );
-    let trajectories = episode.trajectories.as_deref().unwrap_or_default();
     let options = DrawOptions {
-        trajectories: Some(trajectories),
+        trajectories: true,
         title: Some(title),
         ..DrawOptions::default()
     };
@@ -83,16 +84,20 @@ pub fn finish_run(run: &Run) -> anyhow::Result<RunSummary> {
     )?;
 
     let fitness = evolve::read_population_csv(&run.dir().join(files::POPULATION))?;
-    let title = "Sorted fitness of every generation";
-    let svg = figures::convergence::render_svg(&fitness, title)?;
-    let png = figures::convergence::render_png(&fitness, title)?;
-    write_figure(&dir, "convergence", &svg, &png)?;
+    let convergence = figures::convergence::render(&fitness, &ConvergenceOptions::default())?;
+    write_figure(&dir, "convergence", &convergence.svg, &convergence.png)?;
 
     let controller = experiment.controller(&champion.genome);
-    let spec = experiment.substrate_spec();
-    let svg = figures::network::render_svg(spec, &controller)?;
-    let png = figures::network::render_png(spec, &controller)?;
-    write_figure(&dir, "network", &svg, &png)?;
+    let options = NetworkOptions {
+        title: format!(
+            "Champion controller (generation {}, fitness {:.3})",
+            champion.generation, champion.fitness
+        ),
+        weight_scale: run.config().hyperneat.amplitude,
+        ..NetworkOptions::default()
+    };
+    let network = figures::network::render(experiment.substrate_spec(), &controller, &options)?;
+    write_figure(&dir, "network", &network.svg, &network.png)?;
 
     Ok(RunSummary {
         champion_fitness: champion.fitness,
@@ -108,10 +113,15 @@ pub fn load_genome_source(source: &Path) -> anyhow::Result<(Champion, Config, Pa
         let champion = read_champion(&source.join(files::CHAMPION))?;
         let config_path = source.join(files::CONFIG);
         let text = read_text(&config_path)?;
-        let mut config =
-            Config::from_toml(&text).map_err(|e| bad_input(format!("{}: {e}", config_path.display())))?;
-        if !config.experiment.scenario.is_empty() && Path::new(&config.experiment.scenario).is_relative() {
-            config.experiment.scenario = source.join(&config.experiment.scenario).to_string_lossy().into_owned();
+        let mut config = Config::from_toml(&text)
+            .map_err(|e| bad_input(format!("{}: {e}", config_path.display())))?;
+        if !config.experiment.scenario.is_empty()
+            && Path::new(&config.experiment.scenario).is_relative()
+        {
+            config.experiment.scenario = source
+                .join(&config.experiment.scenario)
+                .to_string_lossy()
+                .into_owned();
         }
         Ok((champion, config, source.to_path_buf()))
     } else {
@@ -125,7 +135,10 @@ pub fn load_genome_source(source: &Path) -> anyhow::Result<(Champion, Config, Pa
 pub fn read_champion(path: &Path) -> anyhow::Result<Champion> {
     let text = read_text(path)?;
     let champion: Champion = serde_json::from_str(&text).map_err(|e| {
-        bad_input(format!("{}: not a vivae champion genome: {e}", path.display()))
+        bad_input(format!(
+            "{}: not a vivae champion genome: {e}",
+            path.display()
+        ))
     })?;
     if champion.format != "vivae-champion" {
         return Err(bad_input(format!(
@@ -153,7 +166,12 @@ pub struct Replay {
 }
 
 /// Runs a champion on `experiment` and draws its trajectories into `out`.
-pub fn replay(experiment: &Experiment, config: &Config, champion: &Champion, out: &Path) -> anyhow::Result<Replay> {
+pub fn replay(
+    experiment: &Experiment,
+    config: &Config,
+    champion: &Champion,
+    out: &Path,
+) -> anyhow::Result<Replay> {
     let s = &config.surface_sensors;
     let n = config.substrate.neurons;
     let name = format!("replay-s{}x{}-n{}x{}", s.rings, s.angles, n.rings, n.angles);
@@ -182,7 +200,11 @@ pub fn scenario_text(s: &ScenarioSummary) -> String {
     );
     let _ = writeln!(out, "robots: {}", s.robots.len());
     for r in &s.robots {
-        let _ = writeln!(out, "  x {:.1} y {:.1} heading {:.1}°", r.x, r.y, r.heading_deg);
+        let _ = writeln!(
+            out,
+            "  x {:.1} y {:.1} heading {:.1}°",
+            r.x, r.y, r.heading_deg
+        );
     }
     for w in &s.warnings {
         let _ = writeln!(out, "warning: {w}");
@@ -191,21 +213,32 @@ pub fn scenario_text(s: &ScenarioSummary) -> String {
 }
 
 /// Draws a scenario (with sensors of `sensors` on every robot) as SVG or PNG by `out`'s extension.
-pub fn render_scenario(scenario: &Scenario, sensors: Option<PolarGrid>, out: &Path) -> anyhow::Result<Vec<u8>> {
+pub fn render_scenario(
+    scenario: &Scenario,
+    sensors: Option<PolarGrid>,
+    out: &Path,
+) -> anyhow::Result<Vec<u8>> {
     let world = World::new(scenario, &Default::default()).map_err(|e| bad_input(e.to_string()))?;
-    let layout = sensors.map(|g| SurfaceSensors {
-        rings: g.rings,
-        angles: g.angles,
-        ..SurfaceSensors::default()
-    });
     let options = DrawOptions {
-        sensors: layout.as_ref(),
+        surface_sensors: sensors.map(|g| SurfaceSensors {
+            rings: g.rings,
+            angles: g.angles,
+            ..SurfaceSensors::default()
+        }),
         title: Some(scenario.source.clone()),
         ..DrawOptions::default()
     };
-    match out.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
+    match out
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+        .as_deref()
+    {
         Some("svg") => Ok(draw::render_svg(&world, &options).into_bytes()),
         Some("png") => Ok(draw::render_png(&world, &options).context("rendering scenario")?),
-        _ => Err(bad_input(format!("{}: output must end in .png or .svg", out.display()))),
+        _ => Err(bad_input(format!(
+            "{}: output must end in .png or .svg",
+            out.display()
+        ))),
     }
 }

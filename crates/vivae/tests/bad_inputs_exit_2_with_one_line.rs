@@ -11,7 +11,12 @@ fn corpus() -> Vec<PathBuf> {
     let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
         .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
         .map(|e| e.unwrap().path())
-        .filter(|p| matches!(p.extension().and_then(|e| e.to_str()), Some("svg" | "toml" | "json")))
+        .filter(|p| {
+            matches!(
+                p.extension().and_then(|e| e.to_str()),
+                Some("svg" | "toml" | "json")
+            )
+        })
         .collect();
     files.sort();
     files
@@ -20,15 +25,27 @@ fn corpus() -> Vec<PathBuf> {
 #[test]
 fn every_bad_input_is_refused_cleanly() {
     let files = corpus();
-    assert!(files.len() >= 30, "the corpus has only {} files", files.len());
+    assert!(
+        files.len() >= 30,
+        "the corpus has only {} files",
+        files.len()
+    );
     let scratch_dir = scratch("bad-inputs");
     let mut failures = Vec::new();
     for (i, file) in files.iter().enumerate() {
         let out_dir = scratch_dir.join(format!("out-{i}"));
         let mut cmd = vivae();
         match file.extension().and_then(|e| e.to_str()) {
-            Some("svg") => cmd.args(["evolve", "-q", "--generations", "1", "--scenario"]).arg(file).arg("--out").arg(&out_dir),
-            Some("toml") => cmd.args(["evolve", "-q", "--config"]).arg(file).arg("--out").arg(&out_dir),
+            Some("svg") => cmd
+                .args(["evolve", "-q", "--generations", "1", "--scenario"])
+                .arg(file)
+                .arg("--out")
+                .arg(&out_dir),
+            Some("toml") => cmd
+                .args(["evolve", "-q", "--config"])
+                .arg(file)
+                .arg("--out")
+                .arg(&out_dir),
             _ => cmd.arg("replay").arg(file).arg("-o").arg(&out_dir),
         };
         let out = run(&mut cmd);
@@ -53,5 +70,10 @@ fn every_bad_input_is_refused_cleanly() {
         }
     }
     std::fs::remove_dir_all(&scratch_dir).unwrap();
-    assert!(failures.is_empty(), "{} bad inputs not refused cleanly:\n{}", failures.len(), failures.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "{} bad inputs not refused cleanly:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
 }

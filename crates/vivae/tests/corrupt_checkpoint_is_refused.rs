@@ -6,10 +6,15 @@ use common::*;
 use std::path::Path;
 
 fn snapshot(dir: &Path) -> Vec<(String, Vec<u8>)> {
-    let mut files: Vec<(String, Vec<u8>)> = ["generations.csv", "population.csv", "champion.json", "config.toml"]
-        .iter()
-        .map(|n| (n.to_string(), read(dir, n)))
-        .collect();
+    let mut files: Vec<(String, Vec<u8>)> = [
+        "generations.csv",
+        "population.csv",
+        "champion.json",
+        "config.toml",
+    ]
+    .iter()
+    .map(|n| (n.to_string(), read(dir, n)))
+    .collect();
     files.sort();
     files
 }
@@ -20,7 +25,11 @@ fn damaged_checkpoints_are_refused_without_touching_the_run() {
     let config = dir.join("c.toml");
     std::fs::write(&config, small_config(2)).unwrap();
     let run_dir = dir.join("run");
-    ok(vivae().args(["evolve", "-q", "--config"]).arg(&config).arg("--out").arg(&run_dir));
+    ok(vivae()
+        .args(["evolve", "-q", "--config"])
+        .arg(&config)
+        .arg("--out")
+        .arg(&run_dir));
     let ckpt = run_dir.join("checkpoints/gen-000002.ckpt");
     let good = std::fs::read(&ckpt).unwrap();
     let before = snapshot(&run_dir);
@@ -30,16 +39,27 @@ fn damaged_checkpoints_are_refused_without_touching_the_run() {
     let at = flipped.len() - 50;
     flipped[at] ^= 0x01;
     let foreign = b"{\"generation\": 3, \"population\": []}".to_vec();
-    for (what, bytes) in [("truncated", truncated), ("bit flip", flipped), ("foreign", foreign), ("empty", Vec::new())] {
+    for (what, bytes) in [
+        ("truncated", truncated),
+        ("bit flip", flipped),
+        ("foreign", foreign),
+        ("empty", Vec::new()),
+    ] {
         std::fs::write(&ckpt, &bytes).unwrap();
-        let out = run(vivae().args(["resume", "-q", "--generations", "3"]).arg(&run_dir));
+        let out = run(vivae()
+            .args(["resume", "-q", "--generations", "3"])
+            .arg(&run_dir));
         let stderr = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(2), "{what}: {stderr}");
         assert_eq!(stderr.trim().lines().count(), 1, "{what}: {stderr}");
         assert!(stderr.contains("gen-000002.ckpt"), "{what}: {stderr}");
         assert!(!stderr.contains("panicked"), "{what}: {stderr}");
         assert_eq!(snapshot(&run_dir), before, "{what}: run directory changed");
-        assert_eq!(std::fs::read(&ckpt).unwrap(), bytes, "{what}: checkpoint overwritten");
+        assert_eq!(
+            std::fs::read(&ckpt).unwrap(),
+            bytes,
+            "{what}: checkpoint overwritten"
+        );
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
@@ -50,12 +70,24 @@ fn existing_output_directory_needs_force() {
     let config = dir.join("c.toml");
     std::fs::write(&config, small_config(1)).unwrap();
     let run_dir = dir.join("run");
-    ok(vivae().args(["evolve", "-q", "--config"]).arg(&config).arg("--out").arg(&run_dir));
+    ok(vivae()
+        .args(["evolve", "-q", "--config"])
+        .arg(&config)
+        .arg("--out")
+        .arg(&run_dir));
     let before = read(&run_dir, "generations.csv");
-    let out = run(vivae().args(["evolve", "-q", "--config"]).arg(&config).arg("--out").arg(&run_dir));
+    let out = run(vivae()
+        .args(["evolve", "-q", "--config"])
+        .arg(&config)
+        .arg("--out")
+        .arg(&run_dir));
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--force"));
     assert_eq!(read(&run_dir, "generations.csv"), before);
-    ok(vivae().args(["evolve", "-q", "--force", "--config"]).arg(&config).arg("--out").arg(&run_dir));
+    ok(vivae()
+        .args(["evolve", "-q", "--force", "--config"])
+        .arg(&config)
+        .arg("--out")
+        .arg(&run_dir));
     std::fs::remove_dir_all(&dir).unwrap();
 }

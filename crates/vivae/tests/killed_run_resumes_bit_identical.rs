@@ -10,7 +10,11 @@ const GENERATIONS: u32 = 8;
 
 fn checkpoints(run_dir: &Path) -> usize {
     std::fs::read_dir(run_dir.join("checkpoints"))
-        .map(|d| d.filter_map(|e| e.ok()).filter(|e| e.file_name().to_string_lossy().ends_with(".ckpt")).count())
+        .map(|d| {
+            d.filter_map(|e| e.ok())
+                .filter(|e| e.file_name().to_string_lossy().ends_with(".ckpt"))
+                .count()
+        })
         .unwrap_or(0)
 }
 
@@ -22,7 +26,12 @@ fn newest_generation(run_dir: &Path) -> Option<u32> {
         .filter(|n| n.starts_with("gen-") && n.ends_with(".ckpt"))
         .collect();
     names.sort();
-    names.pop()?.trim_start_matches("gen-").trim_end_matches(".ckpt").parse().ok()
+    names
+        .pop()?
+        .trim_start_matches("gen-")
+        .trim_end_matches(".ckpt")
+        .parse()
+        .ok()
 }
 
 #[test]
@@ -31,11 +40,16 @@ fn sigkill_at_several_points_then_resume_matches() {
     let config = dir.join("c.toml");
     std::fs::write(&config, small_config(GENERATIONS)).unwrap();
     let reference = dir.join("reference");
-    ok(vivae().args(["evolve", "-q", "--config"]).arg(&config).arg("--out").arg(&reference));
+    ok(vivae()
+        .args(["evolve", "-q", "--config"])
+        .arg(&config)
+        .arg("--out")
+        .arg(&reference));
 
     // Kill once a given generation's checkpoint exists, and once after a bare delay
     // (anywhere: even while a file is being written).
-    let kill_points: [(Option<u32>, u64); 4] = [(Some(1), 0), (Some(4), 3), (None, 150), (Some(6), 1)];
+    let kill_points: [(Option<u32>, u64); 4] =
+        [(Some(1), 0), (Some(4), 3), (None, 150), (Some(6), 1)];
     for (i, (after_generation, extra_ms)) in kill_points.into_iter().enumerate() {
         let run_dir = dir.join(format!("killed-{i}"));
         let mut child = vivae()

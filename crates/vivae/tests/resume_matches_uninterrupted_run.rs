@@ -10,18 +10,32 @@ fn extended_run_matches_uninterrupted_run() {
     let config = dir.join("c.toml");
     std::fs::write(&config, small_config(6)).unwrap();
     let full = dir.join("full");
-    ok(vivae().args(["evolve", "-q", "--config"]).arg(&config).arg("--out").arg(&full));
+    ok(vivae()
+        .args(["evolve", "-q", "--config"])
+        .arg(&config)
+        .arg("--out")
+        .arg(&full));
 
     let short = dir.join("short");
-    ok(vivae().args(["evolve", "-q", "--generations", "3", "--config"]).arg(&config).arg("--out").arg(&short));
-    ok(vivae().args(["resume", "-q", "--generations", "6"]).arg(&short));
+    ok(vivae()
+        .args(["evolve", "-q", "--generations", "3", "--config"])
+        .arg(&config)
+        .arg("--out")
+        .arg(&short));
+    ok(vivae()
+        .args(["resume", "-q", "--generations", "6"])
+        .arg(&short));
     assert_same_results(&full, &short);
     // The resolved config of the extended run equals the uninterrupted run's.
     assert_eq!(read(&full, "config.toml"), read(&short, "config.toml"));
 
     // And the resolved config reproduces the run bit for bit.
     let again = dir.join("again");
-    ok(vivae().args(["evolve", "-q", "--config"]).arg(full.join("config.toml")).arg("--out").arg(&again));
+    ok(vivae()
+        .args(["evolve", "-q", "--config"])
+        .arg(full.join("config.toml"))
+        .arg("--out")
+        .arg(&again));
     assert_same_results(&full, &again);
     std::fs::remove_dir_all(&dir).unwrap();
 }
@@ -32,8 +46,14 @@ fn resume_refuses_to_shrink_a_run() {
     let config = dir.join("c.toml");
     std::fs::write(&config, small_config(2)).unwrap();
     let run_dir = dir.join("run");
-    ok(vivae().args(["evolve", "-q", "--config"]).arg(&config).arg("--out").arg(&run_dir));
-    let out = run(vivae().args(["resume", "-q", "--generations", "1"]).arg(&run_dir));
+    ok(vivae()
+        .args(["evolve", "-q", "--config"])
+        .arg(&config)
+        .arg("--out")
+        .arg(&run_dir));
+    let out = run(vivae()
+        .args(["resume", "-q", "--generations", "1"])
+        .arg(&run_dir));
     assert_eq!(out.status.code(), Some(2));
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -52,6 +52,11 @@ pub const DETERMINISTIC_FILES: [&str; 3] = ["generations.csv", "population.csv",
 /// Asserts the deterministic outputs of two run directories are identical.
 pub fn assert_same_results(a: &Path, b: &Path) {
     for name in DETERMINISTIC_FILES {
-        assert!(read(a, name) == read(b, name), "{name} differs between {} and {}", a.display(), b.display());
+        assert!(
+            read(a, name) == read(b, name),
+            "{name} differs between {} and {}",
+            a.display(),
+            b.display()
+        );
     }
 }

@@ -1,0 +1,72 @@
+//! Speed of the experiment: one full evaluation (5 robots × 1000 steps, decode
+//! included) and decoding a CPPN onto the paper's substrates.
+//!
+//! Throughput is reported in robot-steps (one robot, one simulation step with its
+//! sensor reading and controller update) and in evaluations.
+
+use divan::counter::ItemsCount;
+use vivae::config::Config;
+use vivae::experiment::Experiment;
+use vivae::io::load_scenario;
+use vivae_neat::{Genome, NeatParams, Population};
+
+fn main() {
+    divan::main();
+}
+
+/// An evolved-looking CPPN: a few generations of the real experiment's mutations.
+fn genome(experiment: &Experiment) -> Genome {
+    let params = NeatParams {
+        population_size: 20,
+        ..NeatParams::default()
+    };
+    let mut pop = Population::new(params, experiment.cppn_spec(), 5).unwrap();
+    for _ in 0..15 {
+        pop.evaluate(|g, _| g.num_hidden() as f64 + g.num_enabled_links() as f64 * 0.1);
+        pop.next_generation();
+    }
+    pop.evaluate(|g, _| g.num_hidden() as f64 + g.num_enabled_links() as f64 * 0.1);
+    pop.champion().unwrap().0.clone()
+}
+
+fn experiment(config: &Config) -> Experiment {
+    let scenario = load_scenario(None).unwrap();
+    Experiment::new(config, &scenario.scenario).unwrap()
+}
+
+/// One evaluation of the paper's experiment: decode + 5 robots × 1000 steps.
+#[divan::bench]
+fn evaluation_3x5_to_3x3(bencher: divan::Bencher) {
+    let config = Config::default();
+    let exp = experiment(&config);
+    let g = genome(&exp);
+    let robot_steps = (exp.robots() as u64) * u64::from(exp.steps());
+    bencher
+        .counter(ItemsCount::new(robot_steps))
+        .bench(|| divan::black_box(exp.fitness(divan::black_box(&g))));
+}
+
+/// The same at the re-sampled resolution 3×6 → 9×9.
+#[divan::bench]
+fn evaluation_3x6_to_9x9(bencher: divan::Bencher) {
+    let mut config = Config::default();
+    config.surface_sensors.angles = 6;
+    config.substrate.neurons = vivae::substrate::PolarGrid {
+        rings: 9,
+        angles: 9,
+    };
+    let exp = experiment(&config);
+    let g = genome(&exp);
+    let robot_steps = (exp.robots() as u64) * u64::from(exp.steps());
+    bencher
+        .counter(ItemsCount::new(robot_steps))
+        .bench(|| divan::black_box(exp.fitness(divan::black_box(&g))));
+}
+
+/// Decoding the paper's substrate (15 inputs, 9 neurons: 225 CPPN queries).
+#[divan::bench]
+fn decode_paper_substrate(bencher: divan::Bencher) {
+    let exp = experiment(&Config::default());
+    let g = genome(&exp);
+    bencher.bench(|| divan::black_box(exp.controller(divan::black_box(&g))));
+}
