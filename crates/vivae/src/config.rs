@@ -231,7 +231,7 @@ impl Config {
         let mut out = String::from(
             "# vivae configuration: every parameter of a run.\n\
              # Keys left out take their defaults; command-line flags override the file.\n\
-             # Each comment gives: what the key is [unit] (paper's value where it has one).\n",
+             # Each comment gives: what the key is [unit]; its default; the paper's value where it has one.\n",
         );
         let table = value.as_table().expect("config is a table");
         for (section, sub) in table {
@@ -279,7 +279,7 @@ fn write_section(out: &mut String, path: &str, table: &toml::map::Map<String, to
             continue;
         }
         let full = format!("{path}.{key}");
-        write_doc(out, &full);
+        write_doc(out, &full, Some(&value.to_string()));
         let _ = writeln!(out, "{key} = {value}");
     }
     // Optional keys have no value by default: show them commented out.
@@ -287,7 +287,7 @@ fn write_section(out: &mut String, path: &str, table: &toml::map::Map<String, to
         if let Some((section, key)) = doc.key.rsplit_once('.')
             && section == path
         {
-            write_doc(out, doc.key);
+            write_doc(out, doc.key, None);
             let _ = writeln!(out, "# {key} = {}", doc.example);
         }
     }
@@ -296,19 +296,18 @@ fn write_section(out: &mut String, path: &str, table: &toml::map::Map<String, to
     }
 }
 
-fn write_doc(out: &mut String, key: &str) {
+fn write_doc(out: &mut String, key: &str, default: Option<&str>) {
     let doc = key_doc(key).unwrap_or(&MISSING);
-    let unit = if doc.unit.is_empty() {
-        String::new()
+    let mut parts = vec![if doc.unit.is_empty() {
+        doc.what.to_string()
     } else {
-        format!(" [{}]", doc.unit)
-    };
-    let paper = if doc.paper.is_empty() {
-        String::new()
-    } else {
-        format!(" (paper: {})", doc.paper)
-    };
-    let _ = writeln!(out, "# {}{unit}{paper}", doc.what);
+        format!("{} [{}]", doc.what, doc.unit)
+    }];
+    parts.push(format!("default: {}", default.unwrap_or("unset")));
+    if !doc.paper.is_empty() {
+        parts.push(format!("paper: {}", doc.paper));
+    }
+    let _ = writeln!(out, "# {}", parts.join("; "));
 }
 
 /// Every leaf key of a TOML value as (dotted key, value as TOML text).
@@ -408,7 +407,7 @@ pub static KEY_DOCS: &[KeyDoc] = &[
     ),
     doc(
         "substrate.neurons",
-        "output neuron sheet as RINGSxANGLES; wheel neurons L/R sit on the middle ring at the outer angles",
+        "output neuron sheet as RINGSxANGLES; the wheel neurons L/R sit at the outer angles of the ring nearest radius 2/3 (the middle ring of 3)",
         "",
         "3x3, re-sampled to 9x9",
     ),

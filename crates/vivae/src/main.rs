@@ -288,13 +288,22 @@ fn cmd_evolve(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
         None => Config::default(),
     };
     apply_overrides(&mut config, &args.overrides)?;
-    let scenario = load_scenario(scenario_path(&config).as_deref())?;
-    let experiment =
-        Experiment::new(&config, &scenario.scenario).map_err(|e| bad_input(e.to_string()))?;
-    let init = if config.experiment.init_population.is_empty() {
-        None
-    } else {
-        Some(evolve::population_from_checkpoint(Path::new(&config.experiment.init_population))?.1)
+    let setup = || -> anyhow::Result<_> {
+        let scenario = load_scenario(scenario_path(&config).as_deref())?;
+        let experiment =
+            Experiment::new(&config, &scenario.scenario).map_err(|e| bad_input(e.to_string()))?;
+        let init = if config.experiment.init_population.is_empty() {
+            None
+        } else {
+            let path = Path::new(&config.experiment.init_population);
+            Some(evolve::population_from_checkpoint(path)?.1)
+        };
+        Ok((scenario, experiment, init))
+    };
+    // Problems with what a config file names are reported against that file too.
+    let (scenario, experiment, init) = match &args.config {
+        Some(path) => setup().with_context(|| path.display().to_string())?,
+        None => setup()?,
     };
     let dir = args.out.clone().unwrap_or_else(vivae::io::default_run_dir);
     let run = Run::create(&dir, config, experiment, &scenario.text, init, args.force)?;

@@ -135,7 +135,10 @@ fn evolve_replay_retrain_workflow() {
 fn config_default_is_complete_and_parses() {
     let text = ok(vivae().args(["config", "default"]));
     assert!(text.contains("population_size = 100"));
-    assert!(text.contains("(paper: 100)"));
+    assert!(
+        text.contains("# genomes per generation; default: 100; paper: 100\n"),
+        "{text}"
+    );
     let dir = scratch("config-default");
     let path = dir.join("default.toml");
     std::fs::write(&path, &text).unwrap();
