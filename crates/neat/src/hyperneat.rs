@@ -358,6 +358,24 @@ impl SubstrateController {
         &self.state
     }
 
+    /// Multiplies every weight leaving source sheet `sheet` by `factor`: input
+    /// sheets are `0..sheet_sizes().len()`, the neuron sheet (recurrent links)
+    /// is `sheet_sizes().len()`. Used to keep a sheet's total drive constant
+    /// when it is re-sampled at another density. Panics when `sheet` is out of range.
+    pub fn scale_source_sheet(&mut self, sheet: usize, factor: f64) {
+        let first: usize = self.sheet_sizes[..sheet.min(self.sheet_sizes.len())]
+            .iter()
+            .sum();
+        let count = match self.sheet_sizes.get(sheet) {
+            Some(&size) => size,
+            None if sheet == self.sheet_sizes.len() => self.n,
+            None => panic!("sheet {sheet} out of range"),
+        };
+        for w in &mut self.weights[first * self.n..(first + count) * self.n] {
+            *w *= factor;
+        }
+    }
+
     /// Weight of input `input` (over all sheets concatenated) → neuron `target`; 0 = no link.
     /// Panics when an index is out of range.
     pub fn input_weight(&self, input: usize, target: usize) -> f64 {
@@ -806,6 +824,45 @@ mod tests {
             neurons,
             bias_output: 1,
             recurrent_output: 2,
+        }
+    }
+
+    #[test]
+    fn scaling_a_source_sheet_touches_only_its_links() {
+        let layout = SubstrateLayout {
+            inputs: vec![
+                InputSheet {
+                    coords: vec![[0.1, 0.2], [0.3, 0.4]],
+                    cppn_output: 0,
+                },
+                InputSheet {
+                    coords: vec![[0.5, 0.6]],
+                    cppn_output: 0,
+                },
+            ],
+            neurons: vec![[0.0, 0.5], [0.5, 0.0]],
+            bias_output: 1,
+            recurrent_output: 2,
+        };
+        let mut cppn = FnCppn(|q: &[f64]| {
+            let v = (3.0 * q[0] + 2.0 * q[1] - q[2] + 0.5 * q[3]).sin();
+            [v, 0.5, -v]
+        });
+        let c = decode(&mut cppn, &layout, &HyperParams::default()).unwrap();
+        assert!(c.expressed_links() > 4, "the test needs expressed links");
+        let mut scaled = c.clone();
+        scaled.scale_source_sheet(1, 0.5);
+        scaled.scale_source_sheet(2, 2.0);
+        for t in 0..2 {
+            assert_eq!(scaled.biases()[t], c.biases()[t]);
+            for s in 0..2 {
+                assert_eq!(scaled.input_weight(s, t), c.input_weight(s, t));
+                assert_eq!(
+                    scaled.recurrent_weight(s, t),
+                    2.0 * c.recurrent_weight(s, t)
+                );
+            }
+            assert_eq!(scaled.input_weight(2, t), 0.5 * c.input_weight(2, t));
         }
     }
 

@@ -78,6 +78,9 @@ pub struct SubstrateConfig {
     pub neurons: PolarGrid,
     /// CPPN coordinates of substrate nodes.
     pub coordinates: CoordMode,
+    /// Scale each sheet's outgoing weights by (nodes of the paper's sheet) /
+    /// (nodes of this sheet), so a re-sampled sheet drives the neurons as strongly.
+    pub normalize: bool,
 }
 
 impl Default for SubstrateConfig {
@@ -88,6 +91,7 @@ impl Default for SubstrateConfig {
                 angles: 3,
             },
             coordinates: CoordMode::default(),
+            normalize: true,
         }
     }
 }

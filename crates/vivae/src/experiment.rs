@@ -2,10 +2,15 @@
 
 use vivae_neat::hyperneat::{HyperParams, SubstrateController, SubstrateLayout, decode_genome};
 use vivae_neat::{Genome, GenomeSpec, Network};
-use vivae_sim::{DVec2, DistanceGrid, Scenario, SurfaceGrid, World};
+use vivae_sim::{DVec2, DistanceGrid, DistanceSensors, Scenario, SurfaceGrid, World};
 
 use crate::config::Config;
 use crate::substrate::{PolarGrid, SubstrateSpec, WheelNeurons};
+
+/// Surface sensors of the paper's substrate (3×5): the weight-normalisation reference.
+const PAPER_SENSORS: usize = 15;
+/// Neurons of the paper's substrate (3×3): the weight-normalisation reference.
+const PAPER_NEURONS: usize = 9;
 
 /// Everything needed to evaluate genomes on one scenario with one config.
 ///
@@ -19,6 +24,8 @@ pub struct Experiment {
     layout: SubstrateLayout,
     wheels: WheelNeurons,
     hyper: HyperParams,
+    /// Factor per source sheet (input sheets, then the neuron sheet).
+    sheet_scale: Vec<f64>,
     steps: u32,
     cppn_outputs: usize,
 }
@@ -85,6 +92,21 @@ impl Experiment {
             .wheels()
             .map_err(|e| ExperimentError::Config(format!("substrate: {e}")))?;
         let cppn_outputs = cppn_outputs(&layout);
+        let mut sheet_sizes: Vec<(usize, usize)> = vec![(spec.sensors.len(), PAPER_SENSORS)];
+        if let Some(d) = &distance_layout {
+            sheet_sizes.push((d.rays, DistanceSensors::default().rays));
+        }
+        sheet_sizes.push((spec.neurons.len(), PAPER_NEURONS));
+        let sheet_scale = sheet_sizes
+            .iter()
+            .map(|&(n, paper)| {
+                if config.substrate.normalize {
+                    paper as f64 / n as f64
+                } else {
+                    1.0
+                }
+            })
+            .collect();
         Ok(Experiment {
             world,
             surface: config.surface_sensors.grid(),
@@ -93,6 +115,7 @@ impl Experiment {
             layout,
             wheels,
             hyper: config.hyperneat,
+            sheet_scale,
             steps: config.experiment.steps,
             cppn_outputs,
         })
@@ -143,8 +166,14 @@ impl Experiment {
 
     /// Decodes `genome` (a CPPN) into the controller for this substrate.
     pub fn controller(&self, genome: &Genome) -> SubstrateController {
-        decode_genome(genome, &self.layout, &self.hyper)
-            .expect("layout and hyper-parameters were checked when the experiment was built")
+        let mut controller = decode_genome(genome, &self.layout, &self.hyper)
+            .expect("layout and hyper-parameters were checked when the experiment was built");
+        for (sheet, &factor) in self.sheet_scale.iter().enumerate() {
+            if factor != 1.0 {
+                controller.scale_source_sheet(sheet, factor);
+            }
+        }
+        controller
     }
 
     /// Average speed of `genome`'s controller (the fitness).

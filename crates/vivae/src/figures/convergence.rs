@@ -33,6 +33,16 @@ impl Default for ConvergenceOptions {
     }
 }
 
+/// Axis label of a generation tick: only whole generations are labelled
+/// (short runs would otherwise repeat rounded labels at fractional ticks).
+fn generation_label(x: &f64) -> String {
+    if (x - x.round()).abs() < 1e-6 {
+        format!("{x:.0}")
+    } else {
+        String::new()
+    }
+}
+
 /// Per-generation summary used by the curves.
 struct GenStats {
     best: f64,
@@ -151,7 +161,7 @@ fn draw(
             .y_desc("rank (1 = best)")
             .axis_desc_style(label_font.clone())
             .label_style(axis_font.clone())
-            .x_label_formatter(&|x| format!("{x:.0}"))
+            .x_label_formatter(&generation_label)
             .y_label_formatter(&|y| format!("{y:.0}"))
             .draw()
             .map_err(draw_err)?;
@@ -233,7 +243,7 @@ fn draw(
             .y_desc("fitness (px/step)")
             .axis_desc_style(label_font)
             .label_style(axis_font.clone())
-            .x_label_formatter(&|x| format!("{x:.0}"))
+            .x_label_formatter(&generation_label)
             .draw()
             .map_err(draw_err)?;
         let best_colour = viridis(0.15);
