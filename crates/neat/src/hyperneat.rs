@@ -426,13 +426,31 @@ impl Network for SubstrateController {
         assert_eq!(outputs.len(), self.n, "controller output length");
         let n = self.n;
         let acc = &mut self.acc[..n];
-        acc.copy_from_slice(&self.bias);
+        // Blocks of BLOCK neurons keep their sums in registers over all sources;
+        // each neuron still adds its terms in source order (bias, inputs, then
+        // neurons), so results do not depend on the blocking.
         let (w_in, w_rec) = self.weights.split_at(self.num_inputs * n);
-        for (column, &x) in w_in.chunks_exact(n).zip(inputs) {
-            axpy(acc, column, x);
+        let mut start = 0;
+        while start + BLOCK <= n {
+            let mut sum: [f64; BLOCK] = self.bias[start..start + BLOCK].try_into().expect("block");
+            for (column, &x) in w_in.chunks_exact(n).zip(inputs) {
+                accumulate(&mut sum, &column[start..start + BLOCK], x);
+            }
+            for (column, &x) in w_rec.chunks_exact(n).zip(&self.state) {
+                accumulate(&mut sum, &column[start..start + BLOCK], x);
+            }
+            acc[start..start + BLOCK].copy_from_slice(&sum);
+            start += BLOCK;
         }
-        for (column, &y) in w_rec.chunks_exact(n).zip(self.state.iter()) {
-            axpy(acc, column, y);
+        for (i, a) in acc.iter_mut().enumerate().skip(start) {
+            let mut sum = self.bias[i];
+            for (column, &x) in w_in.chunks_exact(n).zip(inputs) {
+                sum += column[i] * x;
+            }
+            for (column, &x) in w_rec.chunks_exact(n).zip(&self.state) {
+                sum += column[i] * x;
+            }
+            *a = sum;
         }
         for ((y, out), &a) in self
             .state
@@ -451,11 +469,15 @@ impl Network for SubstrateController {
     }
 }
 
-/// `acc += column · x`, element-wise (vectorisable, no reassociation).
+/// Neurons whose sums are accumulated together in registers.
+const BLOCK: usize = 4;
+
+/// `sum += w · x` for one block of neurons.
 #[inline(always)]
-fn axpy(acc: &mut [f64], column: &[f64], x: f64) {
-    for (a, &w) in acc.iter_mut().zip(column) {
-        *a += w * x;
+fn accumulate(sum: &mut [f64; BLOCK], w: &[f64], x: f64) {
+    let w: &[f64; BLOCK] = w.try_into().expect("block");
+    for k in 0..BLOCK {
+        sum[k] += w[k] * x;
     }
 }
 
