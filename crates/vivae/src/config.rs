@@ -422,6 +422,12 @@ pub static KEY_DOCS: &[KeyDoc] = &[
         "cartesian",
     ),
     doc(
+        "substrate.normalize",
+        "scale each sheet's outgoing weights by (its node count in the paper: 15 sensors, 9 neurons, 5 rays) / (its node count here), so a re-sampled substrate drives its neurons as strongly; exactly 1 at the paper's resolution",
+        "",
+        "",
+    ),
+    doc(
         "hyperneat.threshold",
         "CPPN outputs with |o| <= threshold express no connection",
         "",

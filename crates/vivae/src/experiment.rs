@@ -35,8 +35,9 @@ pub struct Experiment {
 pub struct Episode {
     /// Average speed: Σ odometer / (robots × steps), px per step.
     pub fitness: f64,
-    /// Fraction of robot-steps that ended with the robot's centre on a road.
-    pub on_road: f64,
+    /// Fraction of robot-steps that ended with the robot's centre on a road
+    /// (measured when recording: evolution does not need it).
+    pub on_road: Option<f64>,
     /// Every robot's path (start position first), when recorded.
     pub trajectories: Option<Vec<Vec<DVec2>>>,
 }
@@ -181,7 +182,8 @@ impl Experiment {
         self.run(&self.controller(genome), false).fitness
     }
 
-    /// Runs one episode with a copy of `controller` per robot.
+    /// Runs one episode with a copy of `controller` per robot; `record` also
+    /// keeps the trajectories and measures the time on road.
     pub fn run(&self, controller: &SubstrateController, record: bool) -> Episode {
         self.run_world(controller, record).0
     }
@@ -215,13 +217,15 @@ impl Experiment {
                 controls[i] = [outputs[self.wheels.left], outputs[self.wheels.right]];
             }
             world.step(&controls);
-            on_road += (0..n).filter(|&i| world.on_road(i)).count() as u64;
+            if record {
+                on_road += (0..n).filter(|&i| world.on_road(i)).count() as u64;
+            }
         }
         let robot_steps = (n as f64) * f64::from(self.steps);
         let odometer: f64 = world.robots().iter().map(|r| r.odometer).sum();
         let episode = Episode {
             fitness: odometer / robot_steps,
-            on_road: on_road as f64 / robot_steps,
+            on_road: record.then_some(on_road as f64 / robot_steps),
             trajectories: world.trajectories().map(|t| t.to_vec()),
         };
         (episode, world)
@@ -248,6 +252,26 @@ mod tests {
 
     fn paper_experiment(config: &Config) -> Experiment {
         Experiment::new(config, &load_scenario(None).unwrap().scenario).unwrap()
+    }
+
+    #[test]
+    fn recording_does_not_change_the_episode() {
+        let config = Config::default();
+        let exp = paper_experiment(&config);
+        let pop = Population::new(config.neat.clone(), exp.cppn_spec(), 11).unwrap();
+        for g in pop.genomes().iter().take(5) {
+            let c = exp.controller(g);
+            let plain = exp.run(&c, false);
+            let recorded = exp.run(&c, true);
+            assert_eq!(plain.fitness, recorded.fitness);
+            assert_eq!(plain.fitness, exp.fitness(g));
+            assert!(plain.on_road.is_none() && plain.trajectories.is_none());
+            let on_road = recorded.on_road.unwrap();
+            assert!((0.0..=1.0).contains(&on_road));
+            let t = recorded.trajectories.unwrap();
+            assert_eq!(t.len(), exp.robots());
+            assert!(t.iter().all(|p| p.len() == exp.steps() as usize + 1));
+        }
     }
 
     #[test]

@@ -305,6 +305,11 @@ fn cmd_evolve(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
         Some(path) => setup().with_context(|| path.display().to_string())?,
         None => setup()?,
     };
+    if !args.quiet {
+        for w in &scenario.scenario.warnings {
+            eprintln!("warning: {w}");
+        }
+    }
     let dir = args.out.clone().unwrap_or_else(vivae::io::default_run_dir);
     let run = Run::create(&dir, config, experiment, &scenario.text, init, args.force)?;
     drive(run, args.quiet, interrupted)

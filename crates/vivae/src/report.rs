@@ -44,10 +44,13 @@ pub fn trajectory_figure(
 ) -> anyhow::Result<Episode> {
     let controller = experiment.controller(genome);
     let (episode, world) = experiment.run_world(&controller, true);
+    let on_road = episode
+        .on_road
+        .expect("a recorded episode measures time on road");
     let title = format!(
         "{title} — fitness {:.3} px/step, {:.1}% on road",
         episode.fitness,
-        100.0 * episode.on_road
+        100.0 * on_road
     );
     let options = DrawOptions {
         trajectories: true,
@@ -102,7 +105,7 @@ pub fn finish_run(run: &Run) -> anyhow::Result<RunSummary> {
     Ok(RunSummary {
         champion_fitness: champion.fitness,
         champion_generation: champion.generation,
-        champion_on_road: episode.on_road,
+        champion_on_road: episode.on_road.unwrap_or_default(),
     })
 }
 
@@ -182,7 +185,7 @@ pub fn replay(
     let episode = trajectory_figure(experiment, &champion.genome, &title, out, &name)?;
     Ok(Replay {
         fitness: episode.fitness,
-        on_road: episode.on_road,
+        on_road: episode.on_road.unwrap_or_default(),
         figure: out.join(format!("{name}.png")),
     })
 }
