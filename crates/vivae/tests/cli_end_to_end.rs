@@ -49,14 +49,9 @@ fn scenario_render_writes_png_and_svg() {
 #[test]
 fn evolve_replay_retrain_workflow() {
     let dir = scratch("workflow");
-    let config = dir.join("c.toml");
-    std::fs::write(&config, small_config(3)).unwrap();
+    let config = write_small_config(&dir, 3);
     let run_dir = dir.join("run");
-    let summary = ok(vivae()
-        .args(["evolve", "-q", "--config"])
-        .arg(&config)
-        .arg("--out")
-        .arg(&run_dir));
+    let summary = evolve(&config, &run_dir, &[]);
     assert!(summary.starts_with("evolve: generations=3 "), "{summary}");
     for f in [
         "config.toml",

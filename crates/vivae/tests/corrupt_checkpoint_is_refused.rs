@@ -22,14 +22,9 @@ fn snapshot(dir: &Path) -> Vec<(String, Vec<u8>)> {
 #[test]
 fn damaged_checkpoints_are_refused_without_touching_the_run() {
     let dir = scratch("corrupt-ckpt");
-    let config = dir.join("c.toml");
-    std::fs::write(&config, small_config(2)).unwrap();
+    let config = write_small_config(&dir, 2);
     let run_dir = dir.join("run");
-    ok(vivae()
-        .args(["evolve", "-q", "--config"])
-        .arg(&config)
-        .arg("--out")
-        .arg(&run_dir));
+    evolve(&config, &run_dir, &[]);
     let ckpt = run_dir.join("checkpoints/gen-000002.ckpt");
     let good = std::fs::read(&ckpt).unwrap();
     let before = snapshot(&run_dir);
@@ -67,14 +62,9 @@ fn damaged_checkpoints_are_refused_without_touching_the_run() {
 #[test]
 fn existing_output_directory_needs_force() {
     let dir = scratch("force");
-    let config = dir.join("c.toml");
-    std::fs::write(&config, small_config(1)).unwrap();
+    let config = write_small_config(&dir, 1);
     let run_dir = dir.join("run");
-    ok(vivae()
-        .args(["evolve", "-q", "--config"])
-        .arg(&config)
-        .arg("--out")
-        .arg(&run_dir));
+    evolve(&config, &run_dir, &[]);
     let before = read(&run_dir, "generations.csv");
     let out = run(vivae()
         .args(["evolve", "-q", "--config"])
@@ -84,10 +74,6 @@ fn existing_output_directory_needs_force() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--force"));
     assert_eq!(read(&run_dir, "generations.csv"), before);
-    ok(vivae()
-        .args(["evolve", "-q", "--force", "--config"])
-        .arg(&config)
-        .arg("--out")
-        .arg(&run_dir));
+    evolve(&config, &run_dir, &["--force"]);
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -6,20 +6,11 @@ use common::*;
 #[test]
 fn one_and_two_threads_give_identical_runs() {
     let dir = scratch("threads");
-    let config = dir.join("c.toml");
-    std::fs::write(&config, small_config(4)).unwrap();
+    let config = write_small_config(&dir, 4);
     let one = dir.join("one");
     let two = dir.join("two");
-    ok(vivae()
-        .args(["evolve", "-q", "--threads", "1", "--config"])
-        .arg(&config)
-        .arg("--out")
-        .arg(&one));
-    ok(vivae()
-        .args(["evolve", "-q", "--threads", "2", "--config"])
-        .arg(&config)
-        .arg("--out")
-        .arg(&two));
+    evolve(&config, &one, &["--threads", "1"]);
+    evolve(&config, &two, &["--threads", "2"]);
     assert_same_results(&one, &two);
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -12,11 +12,7 @@ fn sigint_then_resume_matches() {
     // Long enough that the interrupt lands before the end.
     std::fs::write(&config, small_config(40)).unwrap();
     let reference = dir.join("reference");
-    ok(vivae()
-        .args(["evolve", "-q", "--config"])
-        .arg(&config)
-        .arg("--out")
-        .arg(&reference));
+    evolve(&config, &reference, &[]);
 
     let run_dir = dir.join("interrupted");
     let child = vivae()

@@ -37,14 +37,9 @@ fn newest_generation(run_dir: &Path) -> Option<u32> {
 #[test]
 fn sigkill_at_several_points_then_resume_matches() {
     let dir = scratch("sigkill");
-    let config = dir.join("c.toml");
-    std::fs::write(&config, small_config(GENERATIONS)).unwrap();
+    let config = write_small_config(&dir, GENERATIONS);
     let reference = dir.join("reference");
-    ok(vivae()
-        .args(["evolve", "-q", "--config"])
-        .arg(&config)
-        .arg("--out")
-        .arg(&reference));
+    evolve(&config, &reference, &[]);
 
     // Kill once a given generation's checkpoint exists, and once after a bare delay
     // (anywhere: even while a file is being written).

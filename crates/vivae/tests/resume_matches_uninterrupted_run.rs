@@ -7,21 +7,12 @@ use common::*;
 #[test]
 fn extended_run_matches_uninterrupted_run() {
     let dir = scratch("resume-extend");
-    let config = dir.join("c.toml");
-    std::fs::write(&config, small_config(6)).unwrap();
+    let config = write_small_config(&dir, 6);
     let full = dir.join("full");
-    ok(vivae()
-        .args(["evolve", "-q", "--config"])
-        .arg(&config)
-        .arg("--out")
-        .arg(&full));
+    evolve(&config, &full, &[]);
 
     let short = dir.join("short");
-    ok(vivae()
-        .args(["evolve", "-q", "--generations", "3", "--config"])
-        .arg(&config)
-        .arg("--out")
-        .arg(&short));
+    evolve(&config, &short, &["--generations", "3"]);
     ok(vivae()
         .args(["resume", "-q", "--generations", "6"])
         .arg(&short));
@@ -43,14 +34,9 @@ fn extended_run_matches_uninterrupted_run() {
 #[test]
 fn resume_refuses_to_shrink_a_run() {
     let dir = scratch("resume-shrink");
-    let config = dir.join("c.toml");
-    std::fs::write(&config, small_config(2)).unwrap();
+    let config = write_small_config(&dir, 2);
     let run_dir = dir.join("run");
-    ok(vivae()
-        .args(["evolve", "-q", "--config"])
-        .arg(&config)
-        .arg("--out")
-        .arg(&run_dir));
+    evolve(&config, &run_dir, &[]);
     let out = run(vivae()
         .args(["resume", "-q", "--generations", "1"])
         .arg(&run_dir));

@@ -24,6 +24,24 @@ pub fn small_config(generations: u32) -> String {
     )
 }
 
+/// Writes `small_config(generations)` to `dir/c.toml` and returns its path.
+pub fn write_small_config(dir: &Path, generations: u32) -> PathBuf {
+    let path = dir.join("c.toml");
+    std::fs::write(&path, small_config(generations)).unwrap();
+    path
+}
+
+/// `vivae evolve -q [extra…] --config CONFIG --out OUT`, which must succeed; returns stdout.
+pub fn evolve(config: &Path, out: &Path, extra: &[&str]) -> String {
+    ok(vivae()
+        .args(["evolve", "-q"])
+        .args(extra)
+        .arg("--config")
+        .arg(config)
+        .arg("--out")
+        .arg(out))
+}
+
 /// Runs a command to completion; panics with its stderr if it could not start.
 pub fn run(cmd: &mut Command) -> Output {
     cmd.output().expect("vivae runs")
