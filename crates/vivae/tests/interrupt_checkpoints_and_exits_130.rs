@@ -5,12 +5,14 @@ mod common;
 use common::*;
 use std::time::{Duration, Instant};
 
+const GENERATIONS: u32 = 150;
+
 #[test]
 fn sigint_then_resume_matches() {
     let dir = scratch("sigint");
     let config = dir.join("c.toml");
-    // Long enough that the interrupt lands before the end.
-    std::fs::write(&config, small_config(40)).unwrap();
+    // Long enough (about a second) that the interrupt lands well before the end.
+    std::fs::write(&config, small_config(GENERATIONS)).unwrap();
     let reference = dir.join("reference");
     evolve(&config, &reference, &[]);
 
@@ -37,7 +39,10 @@ fn sigint_then_resume_matches() {
     assert_eq!(out.status.code(), Some(130), "stderr: {stderr}");
     assert!(stderr.contains("vivae resume"), "stderr: {stderr}");
     let csv = String::from_utf8(read(&run_dir, "generations.csv")).unwrap();
-    assert!(csv.lines().count() < 41, "the run stopped early");
+    assert!(
+        csv.lines().count() < 1 + GENERATIONS as usize,
+        "the run stopped early"
+    );
     ok(vivae().args(["resume", "-q"]).arg(&run_dir));
     assert_same_results(&reference, &run_dir);
     std::fs::remove_dir_all(&dir).unwrap();
