@@ -17,7 +17,8 @@
 //!
 //! Evaluations are counted up to and including the solving genome.
 
-use std::time::Instant;
+mod common;
+use common::{RunResult, override_param, summarize};
 
 use vivae_neat::{
     Activation, FeedForwardNetwork, Genome, GenomeSpec, NeatParams, Network, Population,
@@ -212,11 +213,6 @@ fn pole_params(markov: bool) -> NeatParams {
     }
 }
 
-struct RunResult {
-    evals: Option<usize>,
-    hidden: usize,
-}
-
 fn run(params: &NeatParams, markov: bool, seed: u64, max_generations: u32) -> RunResult {
     let mut pop = Population::new(params.clone(), spec(markov), seed).expect("valid parameters");
     for _ in 0..max_generations {
@@ -252,16 +248,6 @@ fn run(params: &NeatParams, markov: bool, seed: u64, max_generations: u32) -> Ru
     }
 }
 
-/// Applies `field=value` (value in JSON) to the parameters, for experiments.
-fn override_param(params: &NeatParams, kv: &str) -> NeatParams {
-    let (k, v) = kv.split_once('=').expect("--set needs field=json_value");
-    let mut json = serde_json::to_value(params).expect("params serialise");
-    json[k] = serde_json::from_str(v).expect("value must be JSON");
-    let p: NeatParams = serde_json::from_value(json).expect("known field");
-    p.validate().expect("valid value");
-    p
-}
-
 fn main() {
     let mut runs = 50usize;
     let mut seed = 1u64;
@@ -292,41 +278,13 @@ fn main() {
         params = override_param(&params, kv);
     }
     let max_generations = max_generations.unwrap_or(if markov { 200 } else { 150 });
-    let mut evals = Vec::new();
-    let mut hidden = 0usize;
-    let mut total_ms = 0.0;
-    for r in 0..runs {
-        let t = Instant::now();
-        let res = run(
-            &params,
-            markov,
-            seed.wrapping_add(r as u64),
-            max_generations,
-        );
-        total_ms += t.elapsed().as_secs_f64() * 1e3;
-        if let Some(e) = res.evals {
-            evals.push(e);
-            hidden += res.hidden;
-        }
-    }
-    let solved = evals.len();
-    evals.sort_unstable();
-    let mean = evals.iter().sum::<usize>() as f64 / solved.max(1) as f64;
-    let median = if solved == 0 {
-        0.0
-    } else if solved % 2 == 1 {
-        evals[solved / 2] as f64
-    } else {
-        (evals[solved / 2 - 1] + evals[solved / 2]) as f64 / 2.0
-    };
     let name = if markov {
         "pole-markov"
     } else {
         "pole-nonmarkov"
     };
-    println!(
-        "{name}: solved={solved}/{runs} mean_evals={mean:.0} median_evals={median:.0} mean_hidden={:.2} mean_ms={:.1}",
-        hidden as f64 / solved.max(1) as f64,
-        total_ms / runs.max(1) as f64
-    );
+    let line = summarize(name, runs, seed, |seed| {
+        run(&params, markov, seed, max_generations)
+    });
+    println!("{line}");
 }

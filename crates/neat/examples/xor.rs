@@ -7,7 +7,8 @@
 //! that solves (as if evaluated one by one). Parameters are Stanley's XOR settings
 //! where our operators match his (see `xor_params`).
 
-use std::time::Instant;
+mod common;
+use common::{RunResult, override_param, summarize};
 
 use vivae_neat::{
     Activation, FeedForwardNetwork, Genome, GenomeSpec, NeatParams, Network, Population,
@@ -76,11 +77,6 @@ fn evaluate(g: &Genome) -> (f64, bool) {
     ((4.0 - err).powi(2), solved)
 }
 
-struct RunResult {
-    evals: Option<usize>,
-    hidden: usize,
-}
-
 fn run(params: &NeatParams, seed: u64, max_generations: u32) -> RunResult {
     let mut pop = Population::new(params.clone(), xor_spec(), seed).expect("valid parameters");
     for _ in 0..max_generations {
@@ -106,16 +102,6 @@ fn run(params: &NeatParams, seed: u64, max_generations: u32) -> RunResult {
         evals: None,
         hidden: 0,
     }
-}
-
-/// Applies `field=value` (value in JSON) to the parameters, for experiments.
-fn override_param(params: &NeatParams, kv: &str) -> NeatParams {
-    let (k, v) = kv.split_once('=').expect("--set needs field=json_value");
-    let mut json = serde_json::to_value(params).expect("params serialise");
-    json[k] = serde_json::from_str(v).expect("value must be JSON");
-    let p: NeatParams = serde_json::from_value(json).expect("known field");
-    p.validate().expect("valid value");
-    p
 }
 
 fn main() {
@@ -144,31 +130,8 @@ fn main() {
             ),
         }
     }
-    let mut evals = Vec::new();
-    let mut hidden = 0usize;
-    let mut total_ms = 0.0;
-    for r in 0..runs {
-        let t = Instant::now();
-        let res = run(&params, seed.wrapping_add(r as u64), max_generations);
-        total_ms += t.elapsed().as_secs_f64() * 1e3;
-        if let Some(e) = res.evals {
-            evals.push(e);
-            hidden += res.hidden;
-        }
-    }
-    let solved = evals.len();
-    evals.sort_unstable();
-    let mean = evals.iter().sum::<usize>() as f64 / solved.max(1) as f64;
-    let median = if solved == 0 {
-        0.0
-    } else if solved % 2 == 1 {
-        evals[solved / 2] as f64
-    } else {
-        (evals[solved / 2 - 1] + evals[solved / 2]) as f64 / 2.0
-    };
-    println!(
-        "xor: solved={solved}/{runs} mean_evals={mean:.0} median_evals={median:.0} mean_hidden={:.2} mean_ms={:.1}",
-        hidden as f64 / solved.max(1) as f64,
-        total_ms / runs.max(1) as f64
-    );
+    let line = summarize("xor", runs, seed, |seed| {
+        run(&params, seed, max_generations)
+    });
+    println!("{line}");
 }
