@@ -185,13 +185,7 @@ pub fn latest_checkpoint(run_dir: &Path) -> anyhow::Result<PathBuf> {
             crate::io::io_reason(&e)
         ))
     })?;
-    let mut names: Vec<String> = entries
-        .filter_map(|e| e.ok())
-        .map(|e| e.file_name().to_string_lossy().into_owned())
-        .filter(|n| n.starts_with("gen-") && n.ends_with(".ckpt"))
-        .collect();
-    names.sort();
-    names
+    checkpoint_names(entries)
         .pop()
         .map(|n| dir.join(n))
         .ok_or_else(|| bad_input(format!("{}: no checkpoint to resume from", dir.display())))
@@ -465,14 +459,8 @@ impl Run {
     }
 
     fn write_champion(&self) -> anyhow::Result<()> {
-        let Some((genome, fitness, generation)) = self.population.best_ever() else {
+        let Some(champion) = self.champion() else {
             return Ok(());
-        };
-        let champion = Champion {
-            format: "vivae-champion".into(),
-            generation: generation - self.progress.start_generation + 1,
-            fitness,
-            genome: genome.clone(),
         };
         let text = serde_json::to_string_pretty(&champion)? + "\n";
         write_atomic(&self.dir.join(files::CHAMPION), text.as_bytes())
@@ -558,13 +546,19 @@ fn truncate(path: &Path, len: u64) -> anyhow::Result<()> {
         .with_context(|| format!("cannot truncate {}", path.display()))
 }
 
-fn prune_checkpoints(dir: &Path, keep: usize) -> anyhow::Result<()> {
-    let mut names: Vec<String> = fs::read_dir(dir)?
+/// Checkpoint file names in a listing, oldest first (names sort by generation).
+fn checkpoint_names(entries: fs::ReadDir) -> Vec<String> {
+    let mut names: Vec<String> = entries
         .filter_map(|e| e.ok())
         .map(|e| e.file_name().to_string_lossy().into_owned())
         .filter(|n| n.starts_with("gen-") && n.ends_with(".ckpt"))
         .collect();
     names.sort();
+    names
+}
+
+fn prune_checkpoints(dir: &Path, keep: usize) -> anyhow::Result<()> {
+    let names = checkpoint_names(fs::read_dir(dir)?);
     let excess = names.len().saturating_sub(keep);
     for n in &names[..excess] {
         fs::remove_file(dir.join(n)).with_context(|| format!("cannot prune {n}"))?;

@@ -50,6 +50,24 @@ pub fn read_text(path: &Path) -> anyhow::Result<String> {
     String::from_utf8(bytes).map_err(|_| bad_input(format!("{}: not UTF-8 text", path.display())))
 }
 
+/// Reads and validates a config file; relative paths in it (scenario, initial
+/// population) become relative to the file's folder.
+pub fn read_config(path: &Path) -> anyhow::Result<crate::config::Config> {
+    let text = read_text(path)?;
+    let mut config = crate::config::Config::from_toml(&text)
+        .map_err(|e| bad_input(format!("{}: {e}", path.display())))?;
+    let base = path.parent().unwrap_or(Path::new(""));
+    for p in [
+        &mut config.experiment.scenario,
+        &mut config.experiment.init_population,
+    ] {
+        if !p.is_empty() && Path::new(p.as_str()).is_relative() {
+            *p = base.join(&*p).to_string_lossy().into_owned();
+        }
+    }
+    Ok(config)
+}
+
 /// A short reason for an I/O error, without the OS error code noise.
 pub fn io_reason(e: &std::io::Error) -> String {
     match e.kind() {

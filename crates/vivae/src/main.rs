@@ -14,7 +14,7 @@ use clap::{Args, Parser, Subcommand};
 use vivae::config::Config;
 use vivae::evolve::{self, GenerationRecord, Outcome, Run, files};
 use vivae::experiment::Experiment;
-use vivae::io::{BadInput, bad_input, load_scenario, one_line, write_atomic};
+use vivae::io::{BadInput, bad_input, load_scenario, one_line, read_config, write_atomic};
 use vivae::report;
 use vivae::substrate::PolarGrid;
 
@@ -215,23 +215,6 @@ fn dispatch(cli: Cli, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode>
         Command::Scenario(c) => cmd_scenario(c),
         Command::Config(c) => cmd_config(c),
     }
-}
-
-/// Reads and validates a config file; relative paths in it become relative to its folder.
-fn read_config(path: &Path) -> anyhow::Result<Config> {
-    let text = vivae::io::read_text(path)?;
-    let mut config =
-        Config::from_toml(&text).map_err(|e| bad_input(format!("{}: {e}", path.display())))?;
-    let base = path.parent().unwrap_or(Path::new(""));
-    for p in [
-        &mut config.experiment.scenario,
-        &mut config.experiment.init_population,
-    ] {
-        if !p.is_empty() && Path::new(p.as_str()).is_relative() {
-            *p = base.join(&*p).to_string_lossy().into_owned();
-        }
-    }
-    Ok(config)
 }
 
 fn apply_overrides(config: &mut Config, o: &Overrides) -> anyhow::Result<()> {

@@ -14,7 +14,7 @@ use crate::experiment::{Episode, Experiment};
 use crate::figures;
 use crate::figures::convergence::ConvergenceOptions;
 use crate::figures::network::NetworkOptions;
-use crate::io::{bad_input, read_text, write_atomic};
+use crate::io::{bad_input, read_config, read_text, write_atomic};
 use crate::substrate::PolarGrid;
 
 /// What the end of a run reports.
@@ -114,18 +114,7 @@ pub fn finish_run(run: &Run) -> anyhow::Result<RunSummary> {
 pub fn load_genome_source(source: &Path) -> anyhow::Result<(Champion, Config, PathBuf)> {
     if source.is_dir() {
         let champion = read_champion(&source.join(files::CHAMPION))?;
-        let config_path = source.join(files::CONFIG);
-        let text = read_text(&config_path)?;
-        let mut config = Config::from_toml(&text)
-            .map_err(|e| bad_input(format!("{}: {e}", config_path.display())))?;
-        if !config.experiment.scenario.is_empty()
-            && Path::new(&config.experiment.scenario).is_relative()
-        {
-            config.experiment.scenario = source
-                .join(&config.experiment.scenario)
-                .to_string_lossy()
-                .into_owned();
-        }
+        let config = read_config(&source.join(files::CONFIG))?;
         Ok((champion, config, source.to_path_buf()))
     } else {
         let champion = read_champion(source)?;
