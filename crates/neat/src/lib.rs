@@ -14,6 +14,7 @@ pub mod feedforward;
 pub mod genome;
 pub mod hyperneat;
 pub mod innovation;
+pub mod math;
 pub mod mutation;
 pub mod network;
 pub mod params;

@@ -532,7 +532,7 @@ fn map_point(ts: tiny_skia::Transform, p: DVec2) -> DVec2 {
 
 /// Heading of the local "up" direction under `ts` (0 = up, clockwise).
 fn heading_of(ts: tiny_skia::Transform) -> f64 {
-    let h = (-(ts.kx as f64)).atan2(ts.sy as f64);
+    let h = libm::atan2(-(ts.kx as f64), ts.sy as f64);
     if h.abs() < 1e-6 { 0.0 } else { h }
 }
 

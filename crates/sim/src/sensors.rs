@@ -21,7 +21,8 @@ fn spread(n: usize, fov_deg: f64) -> impl Iterator<Item = f64> {
 /// Robot-frame offset of a point at `distance` and relative `angle`:
 /// x = ahead, y = to the right.
 fn local(distance: f64, angle: f64) -> DVec2 {
-    DVec2::new(distance * angle.cos(), distance * angle.sin())
+    let (sin, cos) = libm::sincos(angle);
+    DVec2::new(distance * cos, distance * sin)
 }
 
 /// Surface sensors on a polar grid in front of the robot.

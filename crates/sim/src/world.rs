@@ -39,7 +39,7 @@ impl Robot {
 
     fn set_heading(&mut self, heading: f64) {
         self.heading = wrap_angle(heading);
-        let (s, c) = self.heading.sin_cos();
+        let (s, c) = libm::sincos(self.heading);
         self.dir = DVec2::new(s, -c);
     }
 }

@@ -18,6 +18,8 @@ use vivae::io::{BadInput, bad_input, load_scenario, one_line, read_config, write
 use vivae::report;
 use vivae::substrate::PolarGrid;
 
+mod portable_libm;
+
 /// HyperNEAT-controlled robots that learn to drive on roads (ViVAE).
 #[derive(Parser, Debug)]
 #[command(name = "vivae", version, about, long_about = None)]

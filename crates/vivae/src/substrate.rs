@@ -244,7 +244,8 @@ pub struct PolarNode {
 impl PolarNode {
     /// The node's position in the drawing plane: `(ρ·sin φ, ρ·cos φ)`, x right, y ahead.
     pub fn cartesian(&self) -> [f64; 2] {
-        [self.rho * self.phi.sin(), self.rho * self.phi.cos()]
+        let (sin, cos) = vivae_neat::math::sin_cos(self.phi);
+        [self.rho * sin, self.rho * cos]
     }
 
     /// The node's CPPN coordinates in the given mode.

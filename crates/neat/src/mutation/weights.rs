@@ -10,7 +10,7 @@ pub fn gaussian<R: Rng + ?Sized>(rng: &mut R) -> f64 {
     // 1 - u keeps the logarithm's argument in (0, 1].
     let u1 = 1.0 - rng.random::<f64>();
     let u2 = rng.random::<f64>();
-    (-2.0 * u1.ln()).sqrt() * (std::f64::consts::TAU * u2).cos()
+    (-2.0 * crate::math::ln(u1)).sqrt() * crate::math::cos(std::f64::consts::TAU * u2)
 }
 
 /// Changes each link's weight with `weight_link_probability`: replaced by a fresh

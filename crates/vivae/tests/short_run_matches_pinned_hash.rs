@@ -1,0 +1,50 @@
+//! A short default run gives exactly the outputs pinned in the repository.
+//!
+//! Any machine that computes one bit differently (another libm, a fused
+//! multiply-add, a changed summation order) fails here. When a change of
+//! results is intended, update `PINNED` to the hash this test prints and say
+//! so in the commit and docs/results.md.
+
+mod common;
+
+use common::{DETERMINISTIC_FILES, read, scratch, vivae};
+
+/// FNV-1a 64 of `generations.csv`, `population.csv` and `champion.json`
+/// (in that order, each preceded by its name) of
+/// `vivae evolve --generations 12 --seed 2`.
+const PINNED: u64 = 0x29c0_74f4_6346_30b7;
+
+fn fnv1a(h: u64, bytes: &[u8]) -> u64 {
+    bytes
+        .iter()
+        .fold(h, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3))
+}
+
+#[test]
+fn short_default_run_matches_pinned_hash() {
+    let dir = scratch("pinned");
+    let out = dir.join("run");
+    common::ok(
+        vivae()
+            .args([
+                "evolve",
+                "-q",
+                "--generations",
+                "12",
+                "--seed",
+                "2",
+                "--out",
+            ])
+            .arg(&out),
+    );
+    let mut h = 0xcbf2_9ce4_8422_2325;
+    for name in DETERMINISTIC_FILES {
+        h = fnv1a(h, name.as_bytes());
+        h = fnv1a(h, &read(&out, name));
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    assert_eq!(
+        h, PINNED,
+        "the short default run's outputs hash to {h:#018x}, the repository pins {PINNED:#018x}"
+    );
+}
