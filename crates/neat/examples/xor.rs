@@ -5,14 +5,12 @@
 //! Population 150, fitness (4 − Σ|error|)², solved when all four outputs are on the
 //! right side of 0.5. Evaluations are counted up to and including the first genome
 //! that solves (as if evaluated one by one). Parameters are Stanley's XOR settings
-//! where our operators match his (see `xor_params`).
+//! where our operators match his: the `NeatParams::plain_neat` preset.
 
 mod common;
 use common::{RunResult, override_param, summarize};
 
-use vivae_neat::{
-    Activation, FeedForwardNetwork, Genome, GenomeSpec, NeatParams, Network, Population,
-};
+use vivae_neat::{FeedForwardNetwork, Genome, GenomeSpec, NeatParams, Network, Population};
 
 const CASES: [([f64; 3], f64); 4] = [
     ([0.0, 0.0, 1.0], 0.0),
@@ -20,48 +18,6 @@ const CASES: [([f64; 3], f64); 4] = [
     ([1.0, 0.0, 1.0], 1.0),
     ([1.0, 1.0, 1.0], 0.0),
 ];
-
-/// XOR parameters: Stanley's XOR settings (compatibility 3.0 with C1 = C2 = 1.0,
-/// C3 = 0.4; add-node 0.03; weights capped at ±8; survival 20 %; stagnation 15) except
-/// that add-link is 0.3 (his value for larger populations, and Table II's) and the
-/// weight mutation was tuned on seeds 1000–1039 (not the reported seeds): Gaussian
-/// perturbation σ = 2.5, 20 % replacement by a uniform weight in ±2.5.
-fn xor_params() -> NeatParams {
-    NeatParams {
-        population_size: 150,
-        weight_amplitude: 8.0,
-        initial_weight_range: 2.5,
-        compatibility_threshold: 3.0,
-        c_excess: 1.0,
-        c_disjoint: 1.0,
-        c_weight: 0.4,
-        c_activation: 0.0,
-        add_node_probability: 0.03,
-        add_link_probability: 0.3,
-        weight_mutation_probability: 0.9,
-        weight_link_probability: 0.9,
-        weight_replace_probability: 0.2,
-        weight_perturb_power: 2.5,
-        toggle_enable_probability: 0.0,
-        activation_mutation_probability: 0.0,
-        mating_probability: 0.75,
-        interspecies_mating_probability: 0.001,
-        mate_only_probability: 0.2,
-        survival_threshold: 0.2,
-        stagnation_limit: 15,
-        ..NeatParams::default()
-    }
-}
-
-fn xor_spec() -> GenomeSpec {
-    GenomeSpec {
-        inputs: 3,
-        outputs: 1,
-        output_activation: Activation::Sigmoid,
-        hidden_activations: vec![Activation::Sigmoid],
-        allow_recurrent: false,
-    }
-}
 
 /// Fitness and whether all four cases are on the right side of 0.5.
 fn evaluate(g: &Genome) -> (f64, bool) {
@@ -78,7 +34,8 @@ fn evaluate(g: &Genome) -> (f64, bool) {
 }
 
 fn run(params: &NeatParams, seed: u64, max_generations: u32) -> RunResult {
-    let mut pop = Population::new(params.clone(), xor_spec(), seed).expect("valid parameters");
+    let mut pop =
+        Population::new(params.clone(), GenomeSpec::plain(3, 1), seed).expect("valid parameters");
     for _ in 0..max_generations {
         pop.evaluate(|g, _| evaluate(g).0);
         if std::env::var_os("XOR_TRACE").is_some() {
@@ -108,7 +65,7 @@ fn main() {
     let mut runs = 100usize;
     let mut seed = 1u64;
     let mut max_generations = 500u32;
-    let mut params = xor_params();
+    let mut params = NeatParams::plain_neat();
     let args: Vec<String> = std::env::args().skip(1).collect();
     let mut it = args.iter();
     while let Some(a) = it.next() {

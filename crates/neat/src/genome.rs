@@ -43,6 +43,19 @@ impl GenomeSpec {
         }
     }
 
+    /// A plain NEAT network: `inputs` (include a constant bias input if you
+    /// want one) and `outputs` with Stanley's steepened sigmoid everywhere,
+    /// feed-forward only. The spec [`NeatParams::plain_neat`](crate::NeatParams::plain_neat) is tuned for.
+    pub fn plain(inputs: usize, outputs: usize) -> GenomeSpec {
+        GenomeSpec {
+            inputs,
+            outputs,
+            output_activation: Activation::Sigmoid,
+            hidden_activations: vec![Activation::Sigmoid],
+            allow_recurrent: false,
+        }
+    }
+
     /// Checks that the spec describes a usable genome.
     pub fn validate(&self) -> Result<(), NeatError> {
         if self.inputs == 0 {

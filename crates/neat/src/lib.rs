@@ -3,11 +3,44 @@
 //! A pure library: genomes evolve through [`Population`], phenotypes are built with
 //! [`FeedForwardNetwork::from_genome`] (the CPPN) or [`RecurrentNetwork::from_genome`],
 //! and everything the rest of the project needs from a network is the [`Network`]
-//! trait. All randomness comes from seeded `rand_pcg` generators.
+//! trait. All randomness comes from seeded `rand_pcg` generators, and every
+//! transcendental function from [`math`], so a run gives the same bits on
+//! every machine and at any thread count.
+//!
+//! [`driver::Evolution`] runs generations of a population on a [`driver::Task`]
+//! until a [`driver::StopCriteria`] holds and says why it stopped. XOR, the
+//! classic NEAT benchmark, in full:
+//!
+//! ```
+//! use vivae_neat::driver::{Evolution, NoCheckpoints, ParallelEvaluator, StopCriteria, StopReason};
+//! use vivae_neat::{EvalContext, FeedForwardNetwork, Genome, GenomeSpec, NeatParams, Network, Population};
+//!
+//! // Fitness (4 − Σ|error|)²: 16 is perfect.
+//! let xor = |genome: &Genome, _: &EvalContext| {
+//!     let mut net = FeedForwardNetwork::from_genome(genome);
+//!     let mut error = 0.0;
+//!     for (a, b) in [(0.0, 0.0), (0.0, 1.0), (1.0, 0.0), (1.0, 1.0)] {
+//!         let mut out = [0.0];
+//!         net.activate(&[a, b, 1.0], &mut out); // the third input is a bias
+//!         error += (out[0] - if a != b { 1.0 } else { 0.0 }).abs();
+//!     }
+//!     (4.0 - error).powi(2)
+//! };
+//! let population = Population::new(NeatParams::plain_neat(), GenomeSpec::plain(3, 1), 1)?;
+//! let mut evolution = Evolution::new(population, ParallelEvaluator::new(xor));
+//! let stop = StopCriteria::generations(300).or_target(15.0);
+//! let reason = evolution.run(&stop, &mut (), &mut NoCheckpoints)?;
+//! assert!(matches!(reason, StopReason::TargetFitness { .. }), "{reason:?}");
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! Use [`NeatParams::plain_neat`] for direct encodings like this one and
+//! [`NeatParams::paper_cppn`] (the default, the paper's Table II) for CPPNs.
 
 pub mod activation;
 pub mod crossover;
 pub mod distance;
+pub mod driver;
 pub mod error;
 pub mod eval;
 pub mod feedforward;

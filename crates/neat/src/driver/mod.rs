@@ -1,0 +1,234 @@
+//! The evolution driver: runs generations of a [`Population`] on an
+//! [`Evaluator`] until a stop criterion holds, telling [`Observer`]s and a
+//! [`Checkpointer`] as it goes, and returns why it stopped as data.
+//!
+//! The driver does no I/O: result files, progress bars and checkpoint files
+//! are observer and checkpointer implementations that live with the program.
+
+mod observer;
+mod task;
+
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use serde::{Deserialize, Serialize};
+
+pub use observer::{
+    CheckpointState, Checkpointer, GenerationReport, HookError, NoCheckpoints, Observer,
+};
+pub use task::{Evaluation, Evaluator, EvaluatorError, ParallelEvaluator, Task};
+
+use crate::error::NeatError;
+use crate::eval::EvalContext;
+use crate::population::Population;
+
+/// When a run stops; every criterion that is set is checked after each generation.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct StopCriteria<'a> {
+    /// Stop once this many generations of the run are done.
+    pub generations: Option<u32>,
+    /// Stop once a genome reaches this fitness.
+    pub target_fitness: Option<f64>,
+    /// Stop when the best-ever fitness has not improved for this many generations.
+    pub stagnation: Option<u32>,
+    /// Stop (after finishing the generation) once this flag is set, e.g. by Ctrl-C.
+    pub interrupt: Option<&'a AtomicBool>,
+}
+
+impl<'a> StopCriteria<'a> {
+    /// Stop after `n` generations.
+    pub fn generations(n: u32) -> Self {
+        StopCriteria {
+            generations: Some(n),
+            ..StopCriteria::default()
+        }
+    }
+
+    /// Also stop once a genome reaches `fitness`.
+    pub fn or_target(mut self, fitness: f64) -> Self {
+        self.target_fitness = Some(fitness);
+        self
+    }
+
+    /// Also stop when the best has not improved for `n` generations.
+    pub fn or_stagnation(mut self, n: u32) -> Self {
+        self.stagnation = Some(n);
+        self
+    }
+
+    /// Also stop once `flag` is set.
+    pub fn or_interrupt(mut self, flag: &'a AtomicBool) -> Self {
+        self.interrupt = Some(flag);
+        self
+    }
+}
+
+/// Why a run stopped.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub enum StopReason {
+    /// The requested number of generations is done.
+    Generations(u32),
+    /// A genome reached the target fitness.
+    TargetFitness {
+        /// The fitness reached.
+        fitness: f64,
+        /// The run's generation (1-based) in which it was reached.
+        generation: u32,
+    },
+    /// The best-ever fitness did not improve for this many generations.
+    Stagnation(u32),
+    /// The interrupt flag was set.
+    Interrupted,
+}
+
+/// Why a run could not go on.
+#[derive(Debug, thiserror::Error)]
+pub enum DriverError {
+    /// The evaluator failed.
+    #[error("evaluation: {0}")]
+    Evaluation(#[from] EvaluatorError),
+    /// An observer or the checkpointer failed.
+    #[error("{0}")]
+    Hook(HookError),
+    /// The population refused the evaluations.
+    #[error(transparent)]
+    Neat(#[from] NeatError),
+}
+
+/// A population evolving on an evaluator.
+pub struct Evolution<E> {
+    population: Population,
+    evaluator: E,
+    done: u32,
+    /// Best fitness of the generation evaluated last.
+    last_best: Option<f64>,
+}
+
+impl<E: Evaluator> Evolution<E> {
+    /// Starts a run of `population` (generation counting from 0 done).
+    pub fn new(population: Population, evaluator: E) -> Self {
+        Evolution::resume(population, evaluator, 0)
+    }
+
+    /// Continues a run of which `done` generations are already done (e.g. from a checkpoint).
+    pub fn resume(population: Population, evaluator: E, done: u32) -> Self {
+        Evolution {
+            population,
+            evaluator,
+            done,
+            last_best: None,
+        }
+    }
+
+    /// Generations of this run done so far.
+    pub fn generations_done(&self) -> u32 {
+        self.done
+    }
+
+    /// The population (ready to evaluate the next generation between runs).
+    pub fn population(&self) -> &Population {
+        &self.population
+    }
+
+    /// The evaluator.
+    pub fn evaluator(&self) -> &E {
+        &self.evaluator
+    }
+
+    /// Gives the population back.
+    pub fn into_population(self) -> Population {
+        self.population
+    }
+
+    /// The stop reason that already holds before any generation is run, if any.
+    pub fn already_stopped(&self, stop: &StopCriteria<'_>) -> Option<StopReason> {
+        stop.generations
+            .filter(|&n| self.done >= n)
+            .map(StopReason::Generations)
+    }
+
+    /// Runs generations until a criterion of `stop` holds; observers hear of
+    /// each evaluated generation, the checkpointer of each bred one.
+    pub fn run(
+        &mut self,
+        stop: &StopCriteria<'_>,
+        observer: &mut dyn Observer,
+        checkpointer: &mut dyn Checkpointer,
+    ) -> Result<StopReason, DriverError> {
+        if let Some(reason) = self.already_stopped(stop) {
+            return Ok(reason);
+        }
+        loop {
+            self.evaluate_generation(observer)?;
+            let reason = self.stop_reason(stop);
+            checkpointer
+                .after_generation(&CheckpointState {
+                    generations_done: self.done,
+                    population: &self.population,
+                    stopping: reason.as_ref(),
+                })
+                .map_err(DriverError::Hook)?;
+            if let Some(reason) = reason {
+                return Ok(reason);
+            }
+        }
+    }
+
+    /// Evaluates one generation, tells `observer`, breeds the next.
+    fn evaluate_generation(&mut self, observer: &mut dyn Observer) -> Result<(), DriverError> {
+        let contexts: Vec<EvalContext> = (0..self.population.genomes().len())
+            .map(|i| self.population.eval_context(i))
+            .collect();
+        let evaluations = self
+            .evaluator
+            .evaluate(self.population.genomes(), &contexts)?;
+        if evaluations.len() != contexts.len() {
+            return Err(EvaluatorError(format!(
+                "the evaluator returned {} evaluations for {} genomes",
+                evaluations.len(),
+                contexts.len()
+            ))
+            .into());
+        }
+        self.population
+            .set_fitnesses(evaluations.iter().map(|e| e.fitness).collect())?;
+        let stats = self.population.stats();
+        observer
+            .on_generation(&GenerationReport {
+                generation: self.done + 1,
+                population: &self.population,
+                evaluations: &evaluations,
+                stats: &stats,
+            })
+            .map_err(DriverError::Hook)?;
+        self.last_best = stats.best_fitness;
+        self.population.next_generation();
+        self.done += 1;
+        Ok(())
+    }
+
+    /// The criterion of `stop` that holds after the generation just bred, if any.
+    fn stop_reason(&self, stop: &StopCriteria<'_>) -> Option<StopReason> {
+        if let Some(reason) = self.already_stopped(stop) {
+            return Some(reason);
+        }
+        if let (Some(target), Some(best)) = (stop.target_fitness, self.last_best)
+            && best >= target
+        {
+            return Some(StopReason::TargetFitness {
+                fitness: best,
+                generation: self.done,
+            });
+        }
+        if let (Some(n), Some(best)) = (stop.stagnation, self.population.best_ever()) {
+            // The population now holds the next, unevaluated generation.
+            let since = self.population.generation().saturating_sub(best.2 + 1);
+            if since >= n {
+                return Some(StopReason::Stagnation(since));
+            }
+        }
+        if stop.interrupt.is_some_and(|f| f.load(Ordering::SeqCst)) {
+            return Some(StopReason::Interrupted);
+        }
+        None
+    }
+}
