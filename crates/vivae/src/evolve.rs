@@ -12,11 +12,15 @@ use std::fmt::Write as _;
 use std::fs;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
 use anyhow::Context as _;
 use serde::{Deserialize, Serialize};
+use vivae_neat::driver::{
+    CheckpointState, Checkpointer, Evolution, GenerationReport, HookError, Observer,
+    ParallelEvaluator, StopCriteria, StopReason,
+};
 use vivae_neat::{Genome, Population};
 
 use crate::config::Config;
@@ -351,45 +355,103 @@ impl Run {
     pub fn run(
         &mut self,
         stop: &AtomicBool,
-        mut on_generation: impl FnMut(&GenerationRecord),
+        on_generation: impl FnMut(&GenerationRecord),
     ) -> anyhow::Result<Outcome> {
         let total = self.config.experiment.generations;
-        while self.progress.done < total {
-            let record = self.step(total)?;
-            on_generation(&record);
-            let last = self.progress.done == total;
-            let interrupted = stop.load(Ordering::SeqCst);
-            if last
-                || interrupted
-                || self
-                    .progress
-                    .done
-                    .is_multiple_of(self.config.run.checkpoint_interval)
-            {
-                self.write_checkpoint()?;
-            }
-            if interrupted && !last {
-                return Ok(Outcome::Interrupted);
-            }
+        let mut evolution = Evolution::resume(
+            self.population.clone(),
+            ParallelEvaluator::with_pool(self.experiment.clone(), &self.pool),
+            self.progress.done,
+        );
+        let mut recorder = Recorder {
+            dir: &self.dir,
+            config: &self.config,
+            experiment: &self.experiment,
+            progress: &mut self.progress,
+            total,
+            started: Instant::now(),
+            on_generation,
+        };
+        let criteria = StopCriteria::generations(total).or_interrupt(stop);
+        let result = evolution.run_with(&criteria, &mut recorder);
+        self.population = evolution.into_population();
+        match result.map_err(|e| anyhow::anyhow!(e))? {
+            StopReason::Interrupted => Ok(Outcome::Interrupted),
+            _ => Ok(Outcome::Finished),
         }
-        Ok(Outcome::Finished)
     }
 
-    /// Evaluates one generation, appends its records and breeds the next.
-    fn step(&mut self, total: u32) -> anyhow::Result<GenerationRecord> {
-        let start = Instant::now();
-        let experiment = &self.experiment;
-        let population = &mut self.population;
-        self.pool
-            .install(|| population.evaluate(|genome, _ctx| experiment.fitness(genome)));
-        let seconds = start.elapsed().as_secs_f64();
-        let generation = self.progress.done + 1;
-        let fitness = self.population.fitnesses();
+    fn write_checkpoint(&self) -> anyhow::Result<()> {
+        write_checkpoint(&self.dir, &self.config, &self.progress, &self.population)
+    }
+
+    /// The best individual of each figure generation reached.
+    pub fn figure_genomes(&self) -> impl Iterator<Item = (u32, f64, &Genome)> {
+        self.progress
+            .figure_genomes
+            .iter()
+            .map(|(g, f, genome)| (*g, *f, genome))
+    }
+
+    /// The champion (best ever) with its run-relative generation.
+    pub fn champion(&self) -> Option<Champion> {
+        champion(&self.population, &self.progress)
+    }
+}
+
+/// The champion (best ever) of `population` with its run-relative generation.
+fn champion(population: &Population, progress: &Progress) -> Option<Champion> {
+    population
+        .best_ever()
+        .map(|(genome, fitness, generation)| Champion {
+            format: "vivae-champion".into(),
+            generation: generation - progress.start_generation + 1,
+            fitness,
+            genome: genome.clone(),
+        })
+}
+
+fn write_checkpoint(
+    dir: &Path,
+    config: &Config,
+    progress: &Progress,
+    population: &Population,
+) -> anyhow::Result<()> {
+    let cp = Checkpoint {
+        config: config.clone(),
+        progress: progress.clone(),
+        population: population.clone(),
+    };
+    let dir = dir.join(files::CHECKPOINTS);
+    let path = dir.join(format!("gen-{:06}.ckpt", progress.done));
+    write_atomic(&path, encode_checkpoint(&cp)?.as_bytes())?;
+    prune_checkpoints(&dir, config.run.checkpoint_keep)
+}
+
+/// Writes a run directory's per-generation files and its checkpoints: the
+/// observer and checkpointer of a run.
+struct Recorder<'a, F> {
+    dir: &'a Path,
+    config: &'a Config,
+    experiment: &'a Experiment,
+    progress: &'a mut Progress,
+    total: u32,
+    /// When the generation under way started.
+    started: Instant,
+    on_generation: F,
+}
+
+impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
+    /// Appends one generation's rows and rewrites the champion.
+    fn record(&mut self, report: &GenerationReport<'_>) -> anyhow::Result<()> {
+        let seconds = self.started.elapsed().as_secs_f64();
+        let population = report.population;
+        let generation = report.generation;
+        let fitness = population.fitnesses();
         let mut sorted = fitness.clone();
         sorted.sort_by(|a, b| b.total_cmp(a));
-        let stats = self.population.stats();
-        let (best_genome, best) = self
-            .population
+        let stats = report.stats;
+        let (best_genome, best) = population
             .champion()
             .map(|(g, f)| (g.clone(), f))
             .expect("an evaluated population has a champion");
@@ -404,7 +466,7 @@ impl Run {
             (n * self.experiment.robots()) as f64 * f64::from(self.experiment.steps());
         let record = GenerationRecord {
             generation,
-            total,
+            total: self.total,
             best,
             mean: fitness.iter().sum::<f64>() / n as f64,
             median,
@@ -416,7 +478,7 @@ impl Run {
             possible_links: controller.possible_links(),
             seconds,
             robot_steps_per_second: robot_steps / seconds.max(1e-9),
-            best_ever: self.population.best_ever().map_or(best, |b| b.1),
+            best_ever: population.best_ever().map_or(best, |b| b.1),
         };
         if FIGURE_GENERATIONS.contains(&generation) {
             self.progress
@@ -451,51 +513,34 @@ impl Run {
             record.robot_steps_per_second
         );
         self.progress.timing_len = append(&self.dir.join(files::TIMING), &timing)?;
-        self.write_champion()?;
-
-        self.population.next_generation();
+        if let Some(champion) = champion(population, self.progress) {
+            let text = serde_json::to_string_pretty(&champion)? + "\n";
+            write_atomic(&self.dir.join(files::CHAMPION), text.as_bytes())?;
+        }
         self.progress.done = generation;
-        Ok(record)
+        (self.on_generation)(&record);
+        Ok(())
     }
+}
 
-    fn write_champion(&self) -> anyhow::Result<()> {
-        let Some(champion) = self.champion() else {
-            return Ok(());
-        };
-        let text = serde_json::to_string_pretty(&champion)? + "\n";
-        write_atomic(&self.dir.join(files::CHAMPION), text.as_bytes())
+impl<F: FnMut(&GenerationRecord)> Observer for Recorder<'_, F> {
+    fn on_generation(&mut self, report: &GenerationReport<'_>) -> Result<(), HookError> {
+        self.record(report).map_err(Into::into)
     }
+}
 
-    fn write_checkpoint(&self) -> anyhow::Result<()> {
-        let cp = Checkpoint {
-            config: self.config.clone(),
-            progress: self.progress.clone(),
-            population: self.population.clone(),
-        };
-        let dir = self.dir.join(files::CHECKPOINTS);
-        let path = dir.join(format!("gen-{:06}.ckpt", self.progress.done));
-        write_atomic(&path, encode_checkpoint(&cp)?.as_bytes())?;
-        prune_checkpoints(&dir, self.config.run.checkpoint_keep)
-    }
-
-    /// The best individual of each figure generation reached.
-    pub fn figure_genomes(&self) -> impl Iterator<Item = (u32, f64, &Genome)> {
-        self.progress
-            .figure_genomes
-            .iter()
-            .map(|(g, f, genome)| (*g, *f, genome))
-    }
-
-    /// The champion (best ever) with its run-relative generation.
-    pub fn champion(&self) -> Option<Champion> {
-        self.population
-            .best_ever()
-            .map(|(genome, fitness, generation)| Champion {
-                format: "vivae-champion".into(),
-                generation: generation - self.progress.start_generation + 1,
-                fitness,
-                genome: genome.clone(),
-            })
+impl<F> Checkpointer for Recorder<'_, F> {
+    fn after_generation(&mut self, state: &CheckpointState<'_>) -> Result<(), HookError> {
+        // A stopping run (finished or interrupted) always leaves a checkpoint.
+        if state.stopping.is_some()
+            || state
+                .generations_done
+                .is_multiple_of(self.config.run.checkpoint_interval)
+        {
+            write_checkpoint(self.dir, self.config, self.progress, state.population)?;
+        }
+        self.started = Instant::now();
+        Ok(())
     }
 }
 

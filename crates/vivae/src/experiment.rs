@@ -1,7 +1,8 @@
 //! The driving experiment: a substrate controller per robot, episodes, fitness.
 
+use vivae_neat::driver::{Evaluation, Task};
 use vivae_neat::hyperneat::{HyperParams, SubstrateController, SubstrateLayout, decode_genome};
-use vivae_neat::{Genome, GenomeSpec, Network};
+use vivae_neat::{EvalContext, Genome, GenomeSpec, Network};
 use vivae_sim::{DVec2, DistanceGrid, DistanceSensors, Scenario, SurfaceGrid, World};
 
 use crate::config::Config;
@@ -229,6 +230,14 @@ impl Experiment {
             trajectories: world.trajectories().map(|t| t.to_vec()),
         };
         (episode, world)
+    }
+}
+
+/// The driving experiment as a NEAT task: a genome's fitness is its
+/// controller's average speed (deterministic: the episode has no randomness).
+impl Task for Experiment {
+    fn evaluate(&self, genome: &Genome, _ctx: &EvalContext) -> Evaluation {
+        Evaluation::fitness(self.fitness(genome))
     }
 }
 

@@ -94,6 +94,21 @@ pub enum DriverError {
     Neat(#[from] NeatError),
 }
 
+/// An observer and a checkpointer seen as one set of hooks.
+struct Pair<'a, 'b>(&'a mut dyn Observer, &'b mut dyn Checkpointer);
+
+impl Observer for Pair<'_, '_> {
+    fn on_generation(&mut self, report: &GenerationReport<'_>) -> Result<(), HookError> {
+        self.0.on_generation(report)
+    }
+}
+
+impl Checkpointer for Pair<'_, '_> {
+    fn after_generation(&mut self, state: &CheckpointState<'_>) -> Result<(), HookError> {
+        self.1.after_generation(state)
+    }
+}
+
 /// A population evolving on an evaluator.
 pub struct Evolution<E> {
     population: Population,
@@ -154,13 +169,23 @@ impl<E: Evaluator> Evolution<E> {
         observer: &mut dyn Observer,
         checkpointer: &mut dyn Checkpointer,
     ) -> Result<StopReason, DriverError> {
+        self.run_with(stop, &mut Pair(observer, checkpointer))
+    }
+
+    /// [`Evolution::run`] with one value that is both observer and checkpointer
+    /// (e.g. a run directory whose checkpoints record how far its files got).
+    pub fn run_with<H: Observer + Checkpointer + ?Sized>(
+        &mut self,
+        stop: &StopCriteria<'_>,
+        hooks: &mut H,
+    ) -> Result<StopReason, DriverError> {
         if let Some(reason) = self.already_stopped(stop) {
             return Ok(reason);
         }
         loop {
-            self.evaluate_generation(observer)?;
+            self.evaluate_generation(hooks)?;
             let reason = self.stop_reason(stop);
-            checkpointer
+            hooks
                 .after_generation(&CheckpointState {
                     generations_done: self.done,
                     population: &self.population,
@@ -174,7 +199,10 @@ impl<E: Evaluator> Evolution<E> {
     }
 
     /// Evaluates one generation, tells `observer`, breeds the next.
-    fn evaluate_generation(&mut self, observer: &mut dyn Observer) -> Result<(), DriverError> {
+    fn evaluate_generation<O: Observer + ?Sized>(
+        &mut self,
+        observer: &mut O,
+    ) -> Result<(), DriverError> {
         let contexts: Vec<EvalContext> = (0..self.population.genomes().len())
             .map(|i| self.population.eval_context(i))
             .collect();
