@@ -1,7 +1,9 @@
 //! Simulator speed: world steps with sensor reads (robot-steps/s), scenario loading.
 
 use divan::{Bencher, black_box, counter::ItemsCount};
-use vivae_sim::{DistanceSensors, LoadOptions, PhysicsParams, Scenario, SurfaceSensors, World};
+use vivae_sim::{
+    DistanceSensors, LoadOptions, PhysicsParams, Scenario, Sensor, SurfaceSensors, World,
+};
 
 fn main() {
     divan::main();
@@ -28,7 +30,7 @@ fn surface_steps(bencher: Bencher, rings: usize, angles: usize) {
     let mut controls = vec![[0.0; 2]; n];
     bencher.counter(ItemsCount::new(n)).bench_local(|| {
         for (i, c) in controls.iter_mut().enumerate() {
-            world.read_surface(i, &grid, &mut buf);
+            grid.read(&world, i, &mut buf);
             let half = buf.len() / 2;
             let left: f64 = buf[..half].iter().sum();
             let right: f64 = buf[half..].iter().sum();
@@ -76,8 +78,8 @@ fn step_5_robots_3x5_surface_and_8_distance_sensors(bencher: Bencher) {
     let mut controls = vec![[0.0; 2]; n];
     bencher.counter(ItemsCount::new(n)).bench_local(|| {
         for (i, c) in controls.iter_mut().enumerate() {
-            world.read_surface(i, &sgrid, &mut s);
-            world.read_distance(i, &dgrid, &mut d);
+            sgrid.read(&world, i, &mut s);
+            dgrid.read(&world, i, &mut d);
             *c = [1.0 - d[7] + s[0], 1.0 - d[0] + s[4]];
         }
         world.step(black_box(&controls));

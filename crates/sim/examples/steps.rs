@@ -3,7 +3,7 @@
 //! when the machine is too busy for wall-clock benchmarks.
 //! Usage: `cargo run --release --example steps -- STEPS [RINGS ANGLES]`
 
-use vivae_sim::{LoadOptions, PhysicsParams, Scenario, SurfaceSensors, World};
+use vivae_sim::{LoadOptions, PhysicsParams, Scenario, Sensor, SurfaceSensors, World};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<usize> = std::env::args()
@@ -28,7 +28,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut controls = vec![[0.0; 2]; n];
     for _ in 0..steps {
         for (i, c) in controls.iter_mut().enumerate() {
-            world.read_surface(i, &grid, &mut buf);
+            grid.read(&world, i, &mut buf);
             let half = buf.len() / 2;
             let left: f64 = buf[..half].iter().sum();
             let right: f64 = buf[half..].iter().sum();

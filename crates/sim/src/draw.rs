@@ -5,8 +5,9 @@ use std::fmt::Write;
 use std::sync::{Arc, OnceLock};
 
 use crate::geometry::fmt_num;
-use crate::sensors::{DistanceSensors, SurfaceSensors};
-use crate::snapshot::{surface_color, xml_escape};
+use crate::sensors::{DistanceSensors, Sensor, SurfaceSensors};
+pub use crate::style::robot_color;
+use crate::style::{surface_color, xml_escape};
 use crate::world::World;
 
 /// DejaVu Sans (see `assets/LICENSE-DejaVu.txt`), the font of every drawing.
@@ -14,17 +15,6 @@ pub static FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
 
 /// Height of the title band in px.
 const TITLE_BAND: f64 = 28.0;
-
-/// Distinct colours for robots and their trajectories (cycled).
-const ROBOT_COLORS: [&str; 10] = [
-    "#e41a1c", "#377eb8", "#ff7f00", "#984ea3", "#ffff33", "#00d0d0", "#f781bf", "#a65628",
-    "#4daf4a", "#ffffff",
-];
-
-/// Colour of robot `i` (and of its trajectory).
-pub fn robot_color(i: usize) -> &'static str {
-    ROBOT_COLORS[i % ROBOT_COLORS.len()]
-}
 
 /// What to draw besides the world itself.
 #[derive(Clone, Debug, PartialEq)]
@@ -89,7 +79,7 @@ pub fn render_svg(world: &World, opts: &DrawOptions) -> String {
     } else {
         0.0
     };
-    let (w, h) = (sc.width, sc.height + band);
+    let (w, h) = (sc.width(), sc.height() + band);
     let mut s = String::new();
     let _ = writeln!(
         s,
@@ -111,15 +101,15 @@ pub fn render_svg(world: &World, opts: &DrawOptions) -> String {
     let _ = writeln!(
         s,
         r##"<rect x="0" y="0" width="{}" height="{}" fill="{}"/>"##,
-        fmt_num(sc.width),
-        fmt_num(sc.height),
-        surface_color(sc.background)
+        fmt_num(sc.width()),
+        fmt_num(sc.height()),
+        surface_color(sc.background())
     );
     let rule = |r: crate::geometry::FillRule| match r {
         crate::geometry::FillRule::NonZero => "nonzero",
         crate::geometry::FillRule::EvenOdd => "evenodd",
     };
-    for surf in &sc.surfaces {
+    for surf in sc.surfaces() {
         let _ = writeln!(
             s,
             r##"<path d="{}" fill="{}" fill-rule="{}"/>"##,
@@ -187,7 +177,7 @@ pub fn render_svg(world: &World, opts: &DrawOptions) -> String {
         let grid = layout.grid();
         let mut out = vec![0.0; grid.len()];
         for i in 0..world.robots().len() {
-            world.read_distance(i, &grid, &mut out);
+            grid.read(world, i, &mut out);
             let rb = &world.robots()[i];
             let (ahead, right) = (rb.ahead(), rb.right());
             for (d, v) in grid.dirs.iter().zip(&out) {
@@ -215,8 +205,8 @@ pub fn render_svg(world: &World, opts: &DrawOptions) -> String {
         let mut out = vec![0.0; grid.len()];
         let dot = (r * 0.35).clamp(1.0, 3.0);
         for i in 0..world.robots().len() {
-            world.read_surface(i, &grid, &mut out);
-            for (p, v) in world.surface_sensor_positions(i, &grid).iter().zip(&out) {
+            grid.read(world, i, &mut out);
+            for (p, v) in grid.positions(world, i).iter().zip(&out) {
                 let _ = writeln!(
                     s,
                     r##"<circle cx="{}" cy="{}" r="{}" fill="{}" stroke="#000000" stroke-width="0.4"/>"##,
@@ -264,6 +254,7 @@ fn fontdb() -> Arc<usvg::fontdb::Database> {
 pub fn svg_to_png(svg: &str, scale: f64) -> Result<Vec<u8>, DrawError> {
     let opt = usvg::Options {
         fontdb: fontdb(),
+        font_family: "DejaVu Sans".to_string(),
         ..Default::default()
     };
     let tree = usvg::Tree::from_str(svg, &opt).map_err(|e| DrawError::Svg(e.to_string()))?;

@@ -11,6 +11,7 @@ pub mod raster;
 pub mod scenario;
 pub mod sensors;
 mod snapshot;
+mod style;
 pub mod world;
 
 pub use draw::{DrawError, DrawOptions, render_png, render_svg};
@@ -20,7 +21,9 @@ pub use scenario::{
     LoadOptions, Mark, Obstacle, Puck, PuckKind, RobotStart, Scenario, ScenarioError,
     ScenarioSummary, Surface, SurfaceKind,
 };
-pub use sensors::{DistanceGrid, DistanceSensors, SensorPlace, SurfaceGrid, SurfaceSensors};
+pub use sensors::{
+    DistanceGrid, DistanceSensors, Sensor, SensorPlace, SurfaceGrid, SurfaceSensors, spread,
+};
 pub use world::{MovableState, PuckState, Robot, SurfaceHere, World};
 
 /// The default scenario (`scenarios/roads.svg`): a road network with 5 robots.

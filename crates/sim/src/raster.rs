@@ -5,8 +5,7 @@
 
 use glam::DVec2;
 
-use crate::geometry::FillRule;
-use crate::scenario::Surface;
+use crate::geometry::{FillRule, Shape};
 
 /// Tile side in cells (8×8 one-byte cells = one cache line).
 const TILE: usize = 8;
@@ -59,14 +58,13 @@ impl SurfaceRaster {
         }
     }
 
-    /// Rasterises `surfaces` (later ones cover earlier ones) on a `width`×`height`
-    /// arena; `material[i]` is the material id of `surfaces[i]`.
-    pub fn build(
+    /// Rasterises `(shape, material id)` pairs (later ones cover earlier ones)
+    /// on a `width`×`height` arena.
+    pub fn build<'a>(
         width: f64,
         height: f64,
         cell: f64,
-        surfaces: &[Surface],
-        material: &[u8],
+        shapes: impl IntoIterator<Item = (&'a Shape, u8)>,
     ) -> SurfaceRaster {
         let cols = (width / cell).ceil().max(1.0) as usize;
         let rows = (height / cell).ceil().max(1.0) as usize;
@@ -80,8 +78,8 @@ impl SurfaceRaster {
             ids: vec![0u8; tiles_x * tiles_y * TILE * TILE],
         };
         let mut xs: Vec<(f64, i32)> = Vec::new();
-        for (s, &m) in surfaces.iter().zip(material) {
-            let b = s.shape.bbox;
+        for (shape, m) in shapes {
+            let b = shape.bbox;
             let r0 = (b.min.y / cell - 0.5).ceil().max(0.0) as usize;
             let r1 = (b.max.y / cell - 0.5).floor().min(rows as f64 - 1.0) as isize;
             if r1 < 0 {
@@ -90,7 +88,7 @@ impl SurfaceRaster {
             for r in r0..=(r1 as usize) {
                 let y = (r as f64 + 0.5) * cell;
                 xs.clear();
-                for ring in &s.shape.rings {
+                for ring in &shape.rings {
                     let n = ring.len();
                     let mut a = ring[n - 1];
                     for &p in ring {
@@ -113,7 +111,7 @@ impl SurfaceRaster {
                 let mut w = 0;
                 for k in 0..xs.len().saturating_sub(1) {
                     w += xs[k].1;
-                    let inside = match s.shape.fill_rule {
+                    let inside = match shape.fill_rule {
                         FillRule::NonZero => w != 0,
                         FillRule::EvenOdd => w % 2 != 0,
                     };

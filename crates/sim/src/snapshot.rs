@@ -4,25 +4,8 @@ use std::fmt::Write;
 
 use crate::geometry::{FillRule, fmt_num};
 use crate::scenario::{SurfaceKind, heading_degrees};
+use crate::style::{robot_color, surface_color, xml_escape};
 use crate::world::World;
-
-/// Fill colour of a surface kind (shared with the drawings).
-pub(crate) fn surface_color(kind: SurfaceKind) -> &'static str {
-    match kind {
-        SurfaceKind::Road => "#2b2b2b",
-        SurfaceKind::Grass => "#3a8a2e",
-        SurfaceKind::Sand => "#d4aa00",
-        SurfaceKind::Water => "#3b8fd9",
-    }
-}
-
-/// Escapes text for XML attributes and content.
-pub(crate) fn xml_escape(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
-}
 
 fn fill_rule(r: FillRule) -> &'static str {
     match r {
@@ -42,24 +25,24 @@ impl World {
             s,
             r##"<?xml version="1.0" encoding="UTF-8" standalone="no"?>
 <svg xmlns="http://www.w3.org/2000/svg" xmlns:inkscape="http://www.inkscape.org/namespaces/inkscape" width="{w}" height="{h}" viewBox="0 0 {w} {h}" id="snapshot"{bg} data-step="{step}">"##,
-            w = fmt_num(sc.width),
-            h = fmt_num(sc.height),
-            bg = if sc.background == SurfaceKind::Grass {
+            w = fmt_num(sc.width()),
+            h = fmt_num(sc.height()),
+            bg = if sc.background() == SurfaceKind::Grass {
                 String::new()
             } else {
-                format!(r##" data-background="{}""##, sc.background.name())
+                format!(r##" data-background="{}""##, sc.background().name())
             },
             step = self.steps()
         );
         let _ = writeln!(
             s,
             r##"  <rect id="background" x="0" y="0" width="{}" height="{}" style="fill:{}"/>"##,
-            fmt_num(sc.width),
-            fmt_num(sc.height),
-            surface_color(sc.background)
+            fmt_num(sc.width()),
+            fmt_num(sc.height()),
+            surface_color(sc.background())
         );
         s.push_str("  <g inkscape:groupmode=\"layer\" inkscape:label=\"Surfaces\" id=\"layer-surfaces\">\n");
-        for surf in &sc.surfaces {
+        for surf in sc.surfaces() {
             let fr = surf
                 .friction
                 .map(|f| format!(r##" data-friction="{f}""##))
@@ -135,7 +118,7 @@ impl World {
                 heading_degrees(rb.heading),
                 fmt_num(rb.pos.x),
                 fmt_num(rb.pos.y),
-                crate::draw::robot_color(i)
+                robot_color(i)
             );
         }
         s.push_str("  </g>\n</svg>\n");

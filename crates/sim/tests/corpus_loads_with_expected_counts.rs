@@ -121,7 +121,7 @@ fn corpus_geometry_lands_where_the_files_put_it() {
     };
     // ushape: robot rect x=150..170, y=360..380 inside a layer translated by (-55, 0).
     let u = load("ushape.svg");
-    assert_eq!((u.width, u.height), (210.0, 390.0));
+    assert_eq!((u.width(), u.height()), (210.0, 390.0));
     assert!((u.robots[0].pos - vivae_sim::DVec2::new(105.0, 370.0)).length() < 1e-3);
     assert_eq!(u.robots[0].heading, 0.0);
     // arena1: a road rect 160..590 x 50..90; the raster says road in its middle.

@@ -154,23 +154,8 @@ fn robot_pushes_a_puck_and_a_movable_obstacle() {
 
 #[test]
 fn same_controls_give_bit_identical_state_and_clones_are_independent() {
-    let text = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../scenarios/roads.svg"
-    ));
-    let Ok(text) = text else {
-        eprintln!("roads.svg not there yet; using a hand-made scenario");
-        return run_determinism(&world(
-            &format!(
-                "{}{}",
-                robot("a", 100.0, 150.0, 30.0),
-                robot("b", 120.0, 150.0, -30.0)
-            ),
-            300.0,
-            300.0,
-        ));
-    };
-    run_determinism(&World::new(&load(&text), &PhysicsParams::default()).unwrap());
+    let text = vivae_sim::ROADS_SVG;
+    run_determinism(&World::new(&load(text), &PhysicsParams::default()).unwrap());
 }
 
 fn run_determinism(w0: &World) {
@@ -202,7 +187,21 @@ fn run_determinism(w0: &World) {
     let a = run(w0.clone());
     let b = run(w0.clone());
     assert_eq!(a, b);
-    assert_eq!(w0.steps(), 0, "the original is untouched by its clones");
+    // Clones share the scenario; stepping one must not move another.
+    let mut stepped = w0.clone();
+    let untouched = w0.clone();
+    stepped.step(&vec![[1.0, 1.0]; w0.robots().len()]);
+    assert_ne!(
+        stepped.robots(),
+        w0.robots(),
+        "full throttle moves the robots"
+    );
+    assert_eq!(
+        untouched.robots(),
+        w0.robots(),
+        "a clone is independent of its siblings"
+    );
+    assert_eq!(untouched.steps(), w0.steps());
 }
 
 #[test]

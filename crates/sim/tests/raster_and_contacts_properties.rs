@@ -20,7 +20,7 @@ fn surfaces_svg() -> String {
 }
 
 fn near_any_edge(sc: &Scenario, p: DVec2, margin: f64) -> bool {
-    sc.surfaces.iter().any(|s| {
+    sc.surfaces().iter().any(|s| {
         s.shape.bbox.contains_with_margin(p, margin) && s.shape.closest_boundary_point(p).1 < margin
     })
 }

@@ -14,8 +14,8 @@ fn inkscape_1_document_in_mm_loads_at_px_scale() {
         </g></svg>"#;
     let sc = load(text);
     let mm = 96.0 / 25.4;
-    assert!((sc.width - 200.0 * mm).abs() < 0.01, "{}", sc.width);
-    assert!((sc.height - 100.0 * mm).abs() < 0.01);
+    assert!((sc.width() - 200.0 * mm).abs() < 0.01, "{}", sc.width());
+    assert!((sc.height() - 100.0 * mm).abs() < 0.01);
     assert!(
         (sc.robots[0].pos - DVec2::splat(42.0 * mm)).length() < 0.01,
         "{:?}",
@@ -109,6 +109,6 @@ fn data_friction_overrides_the_table() {
 fn hidden_elements_and_layer_labels_are_ignored_silently() {
     let body = r#"<rect id="h" inkscape:label="Road" style="display:none" x="0" y="0" width="50" height="50"/>"#;
     let sc = load(&svg(100.0, 100.0, body));
-    assert_eq!(sc.surfaces.len(), 0);
+    assert_eq!(sc.surfaces().len(), 0);
     assert!(sc.warnings.is_empty());
 }

@@ -2,7 +2,7 @@
 
 mod common;
 use common::*;
-use vivae_sim::{DistanceSensors, PhysicsParams, SurfaceSensors, World};
+use vivae_sim::{DistanceSensors, PhysicsParams, Sensor, SurfaceSensors, World};
 
 fn vertical_road(robot_deg: f64) -> World {
     let body = format!(
@@ -25,7 +25,7 @@ fn robot_on_straight_road_sees_road_ahead_and_grass_beside() {
     let w = vertical_road(0.0);
     let grid = SurfaceSensors::default().grid();
     let mut out = vec![f64::NAN; grid.len()];
-    w.read_surface(0, &grid, &mut out);
+    grid.read(&w, 0, &mut out);
     // Ring-major, angles left→right: −90, −45, 0, 45, 90 at d = 10, 30, 50.
     for ring in 0..3 {
         assert_eq!(out[ring * 5 + 2], 1.0, "straight ahead, ring {ring}");
@@ -47,11 +47,11 @@ fn rotating_the_robot_rotates_the_pattern() {
     .grid();
     let mut a = vec![0.0; grid.len()];
     let mut b = vec![0.0; grid.len()];
-    vertical_road(0.0).read_surface(0, &grid, &mut a);
-    horizontal_road(90.0).read_surface(0, &grid, &mut b);
+    grid.read(&vertical_road(0.0), 0, &mut a);
+    grid.read(&horizontal_road(90.0), 0, &mut b);
     assert_eq!(a, b);
     let mut c = vec![0.0; grid.len()];
-    vertical_road(90.0).read_surface(0, &grid, &mut c);
+    grid.read(&vertical_road(90.0), 0, &mut c);
     assert_ne!(a, c, "facing across the road must look different");
     // Facing across the road: ahead (ring ≥ 1) is grass, sideways is road.
     assert_eq!(c[9 + 4], 0.0);
@@ -67,7 +67,7 @@ fn sensors_outside_the_arena_read_zero() {
     let w = World::new(&load(&svg(100.0, 100.0, &body)), &PhysicsParams::default()).unwrap();
     let grid = SurfaceSensors::default().grid();
     let mut out = vec![0.0; grid.len()];
-    w.read_surface(0, &grid, &mut out);
+    grid.read(&w, 0, &mut out);
     assert_eq!(out[2], 0.0, "10 px ahead is above the top edge");
     assert_eq!(out[0], 1.0, "10 px to the left is road");
 }
@@ -95,7 +95,7 @@ fn wall_at_known_distance_reads_one_minus_d_over_range() {
     }
     .grid();
     let mut out = vec![f64::NAN; 3];
-    w.read_distance(0, &grid, &mut out);
+    grid.read(&w, 0, &mut out);
     // Robot at (100, 150), radius 6: top wall 144 px from its rim; side walls 94 px.
     assert!((out[1] - (1.0 - 144.0 / 200.0)).abs() < 1e-9, "{out:?}");
     assert!((out[0] - (1.0 - 94.0 / 200.0)).abs() < 1e-9, "{out:?}");
@@ -107,7 +107,7 @@ fn wall_at_known_distance_reads_one_minus_d_over_range() {
     }
     .grid();
     let mut one = [f64::NAN];
-    w.read_distance(0, &short, &mut one);
+    short.read(&w, 0, &mut one);
     assert_eq!(one[0], 0.0, "nothing within range reads 0");
 }
 
@@ -126,7 +126,7 @@ fn distance_sensors_see_robots_and_obstacles() {
     }
     .grid();
     let mut out = [0.0; 3];
-    w.read_distance(0, &grid, &mut out);
+    grid.read(&w, 0, &mut out);
     // Obstacle bottom at y = 30: 120 − 6 = 114 px from the rim.
     assert!((out[1] - (1.0 - 114.0 / 200.0)).abs() < 1e-6, "{out:?}");
     // Other robot to the right: centres 50 apart, rims 38 apart.

@@ -3,7 +3,8 @@
 mod common;
 use common::*;
 use vivae_sim::{
-    DistanceSensors, DrawOptions, LoadOptions, PhysicsParams, Scenario, SurfaceSensors, World,
+    DistanceSensors, DrawOptions, LoadOptions, PhysicsParams, Scenario, Sensor, SurfaceSensors,
+    World,
 };
 
 fn busy_world() -> World {
@@ -43,9 +44,9 @@ fn snapshot_reloads_to_the_same_objects_at_the_same_poses() {
         .unwrap_or_else(|e| panic!("{e}\n{text}"));
     assert!(sc2.warnings.is_empty(), "{:?}", sc2.warnings);
     let sc = w.scenario();
-    assert_eq!((sc2.width, sc2.height), (sc.width, sc.height));
-    assert_eq!(sc2.surfaces.len(), sc.surfaces.len());
-    for (a, b) in sc.surfaces.iter().zip(&sc2.surfaces) {
+    assert_eq!((sc2.width(), sc2.height()), (sc.width(), sc.height()));
+    assert_eq!(sc2.surfaces().len(), sc.surfaces().len());
+    for (a, b) in sc.surfaces().iter().zip(sc2.surfaces()) {
         assert_eq!((a.kind, &a.id, a.friction), (b.kind, &b.id, b.friction));
         assert!(
             (a.shape.area() - b.shape.area()).abs() < 0.5,
@@ -90,8 +91,8 @@ fn snapshot_reloads_to_the_same_objects_at_the_same_poses() {
     .grid();
     let (mut a, mut b) = (vec![0.0; grid.len()], vec![0.0; grid.len()]);
     for i in 0..2 {
-        w.read_surface(i, &grid, &mut a);
-        w2.read_surface(i, &grid, &mut b);
+        grid.read(&w, i, &mut a);
+        grid.read(&w2, i, &mut b);
         assert_eq!(a, b);
     }
 }
@@ -142,7 +143,7 @@ fn default_scenario_has_five_robots_on_the_road() {
         Scenario::from_svg(vivae_sim::ROADS_SVG, "roads.svg", &LoadOptions::default()).unwrap();
     assert!(sc.warnings.is_empty(), "{:?}", sc.warnings);
     assert_eq!(sc.robots.len(), 5);
-    assert!((sc.width, sc.height) == (800.0, 600.0));
+    assert!((sc.width(), sc.height()) == (800.0, 600.0));
     let w = World::new(&sc, &PhysicsParams::default()).unwrap();
     for i in 0..5 {
         assert!(w.on_road(i), "robot {i} starts on the road");

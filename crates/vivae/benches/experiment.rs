@@ -68,5 +68,5 @@ fn evaluation_3x6_to_9x9(bencher: divan::Bencher) {
 fn decode_paper_substrate(bencher: divan::Bencher) {
     let exp = experiment(&Config::default());
     let g = genome(&exp);
-    bencher.bench(|| divan::black_box(exp.controller(divan::black_box(&g))));
+    bencher.bench(|| divan::black_box(exp.controller(divan::black_box(&g)).unwrap()));
 }

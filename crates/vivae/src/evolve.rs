@@ -455,7 +455,7 @@ impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
             .champion()
             .map(|(g, f)| (g.clone(), f))
             .expect("an evaluated population has a champion");
-        let controller = self.experiment.controller(&best_genome);
+        let controller = self.experiment.controller(&best_genome)?;
         let n = sorted.len();
         let median = if n % 2 == 1 {
             sorted[n / 2]

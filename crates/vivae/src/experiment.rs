@@ -3,13 +3,12 @@
 use vivae_neat::driver::{Evaluation, Task};
 use vivae_neat::hyperneat::{HyperParams, SubstrateController, SubstrateLayout, decode_genome};
 use vivae_neat::{EvalContext, Genome, GenomeSpec, Network};
-use vivae_sim::{DVec2, DistanceGrid, DistanceSensors, Scenario, SurfaceGrid, World};
+use vivae_sim::{DVec2, Scenario, World};
 
 use crate::config::Config;
-use crate::substrate::{PolarGrid, SubstrateSpec, WheelNeurons};
+use crate::sensors::{SensorSheet, sensor_sheets};
+use crate::substrate::{PolarGrid, SubstrateSpec, WheelNeurons, cppn_outputs, layout_of};
 
-/// Surface sensors of the paper's substrate (3×5): the weight-normalisation reference.
-const PAPER_SENSORS: usize = 15;
 /// Neurons of the paper's substrate (3×3): the weight-normalisation reference.
 const PAPER_NEURONS: usize = 9;
 
@@ -19,8 +18,8 @@ const PAPER_NEURONS: usize = 9;
 #[derive(Debug, Clone)]
 pub struct Experiment {
     world: World,
-    surface: SurfaceGrid,
-    distance: Option<DistanceGrid>,
+    /// The robots' sensors, in controller-input order.
+    sensors: Vec<SensorSheet>,
     spec: SubstrateSpec,
     layout: SubstrateLayout,
     wheels: WheelNeurons,
@@ -52,6 +51,9 @@ pub enum ExperimentError {
     /// The parameters do not fit together.
     #[error("{0}")]
     Config(String),
+    /// The genome does not fit this experiment's substrate.
+    #[error("{0}")]
+    Genome(String),
 }
 
 impl Experiment {
@@ -75,35 +77,36 @@ impl Experiment {
         let world = World::new(&scenario, &config.physics)
             .map_err(|e| ExperimentError::Config(format!("physics.{e}")))?;
         let distance_layout = config.distance_sensors.layout();
-        let sensors = &config.surface_sensors;
+        let surface = &config.surface_sensors;
         let spec = SubstrateSpec {
             sensors: PolarGrid {
-                rings: sensors.rings,
-                angles: sensors.angles,
+                rings: surface.rings,
+                angles: surface.angles,
             },
             neurons: config.substrate.neurons,
             distance_rays: distance_layout.as_ref().map(|d| d.rays),
-            fov: sensors.fov,
+            fov: surface.fov,
             neuron_fov: 180.0,
             coords: config.substrate.coordinates,
         };
-        let layout = spec
-            .layout()
+        spec.validate()
             .map_err(|e| ExperimentError::Config(format!("substrate: {e}")))?;
         let wheels = spec
             .wheels()
             .map_err(|e| ExperimentError::Config(format!("substrate: {e}")))?;
-        let cppn_outputs = cppn_outputs(&layout);
-        let mut sheet_sizes: Vec<(usize, usize)> = vec![(spec.sensors.len(), PAPER_SENSORS)];
-        if let Some(d) = &distance_layout {
-            sheet_sizes.push((d.rays, DistanceSensors::default().rays));
-        }
-        sheet_sizes.push((spec.neurons.len(), PAPER_NEURONS));
-        let sheet_scale = sheet_sizes
+        // The layout comes from the sensors the robots really carry, so a
+        // sensor's input nodes sit where it looks.
+        let sensors = sensor_sheets(surface, distance_layout.as_ref());
+        let layout = layout_of(&sensors, &spec.neuron_nodes(), spec.coords);
+        let cppn_outputs = cppn_outputs(&sensors);
+        let sheet_sizes = sensors
             .iter()
-            .map(|&(n, paper)| {
+            .map(|s| (s.len(), s.reference_len))
+            .chain([(spec.neurons.len(), PAPER_NEURONS)]);
+        let sheet_scale = sheet_sizes
+            .map(|(n, reference)| {
                 if config.substrate.normalize {
-                    paper as f64 / n as f64
+                    reference as f64 / n as f64
                 } else {
                     1.0
                 }
@@ -111,8 +114,7 @@ impl Experiment {
             .collect();
         Ok(Experiment {
             world,
-            surface: config.surface_sensors.grid(),
-            distance: distance_layout.map(|d| d.grid()),
+            sensors,
             spec,
             layout,
             wheels,
@@ -151,9 +153,9 @@ impl Experiment {
         &self.world
     }
 
-    /// The surface-sensor grid.
-    pub fn surface_grid(&self) -> &SurfaceGrid {
-        &self.surface
+    /// The robots' sensors with their input sheets, in controller-input order.
+    pub fn sensors(&self) -> &[SensorSheet] {
+        &self.sensors
     }
 
     /// Simulation steps per episode.
@@ -166,53 +168,67 @@ impl Experiment {
         self.world.robots().len()
     }
 
-    /// Decodes `genome` (a CPPN) into the controller for this substrate.
-    pub fn controller(&self, genome: &Genome) -> SubstrateController {
+    /// Decodes `genome` (a CPPN) into the controller for this substrate; an
+    /// error if its CPPN has the wrong number of inputs or outputs.
+    pub fn controller(&self, genome: &Genome) -> Result<SubstrateController, ExperimentError> {
+        let want = self.cppn_spec();
+        let (inputs, outputs) = (genome.num_inputs(), genome.num_outputs());
+        if inputs != want.inputs || outputs != want.outputs {
+            return Err(ExperimentError::Genome(format!(
+                "CPPN has {inputs} inputs and {outputs} outputs, this substrate needs {} and {}",
+                want.inputs, want.outputs
+            )));
+        }
         let mut controller = decode_genome(genome, &self.layout, &self.hyper)
-            .expect("layout and hyper-parameters were checked when the experiment was built");
+            .map_err(|e| ExperimentError::Genome(e.to_string()))?;
         for (sheet, &factor) in self.sheet_scale.iter().enumerate() {
             if factor != 1.0 {
                 controller.scale_source_sheet(sheet, factor);
             }
         }
-        controller
+        Ok(controller)
     }
 
-    /// Average speed of `genome`'s controller (the fitness).
+    /// Average speed of `genome`'s controller (the fitness); 0 for a genome
+    /// that does not fit the substrate (evolution never makes one).
     pub fn fitness(&self, genome: &Genome) -> f64 {
-        self.run(&self.controller(genome), false).fitness
+        match self.controller(genome) {
+            Ok(c) => self.run(&c, false).fitness,
+            Err(_) => 0.0,
+        }
     }
 
     /// Runs one episode with a copy of `controller` per robot; `record` also
     /// keeps the trajectories and measures the time on road.
-    pub fn run(&self, controller: &SubstrateController, record: bool) -> Episode {
+    pub fn run<N: Network + Clone>(&self, controller: &N, record: bool) -> Episode {
         self.run_world(controller, record).0
     }
 
     /// Runs one episode and also returns the final world (for drawing).
-    pub fn run_world(&self, controller: &SubstrateController, record: bool) -> (Episode, World) {
+    pub fn run_world<N: Network + Clone>(&self, controller: &N, record: bool) -> (Episode, World) {
         let n = self.robots();
         let mut world = self.world.clone();
         if record {
             world.record_trajectories(self.steps as usize);
         }
-        let mut controllers: Vec<SubstrateController> = (0..n)
+        let mut controllers: Vec<N> = (0..n)
             .map(|_| {
                 let mut c = controller.clone();
                 c.reset();
                 c
             })
             .collect();
-        let num_surface = self.surface.len();
         let mut inputs = vec![0.0; controller.num_inputs()];
         let mut outputs = vec![0.0; controller.num_outputs()];
         let mut controls = vec![[0.0; 2]; n];
         let mut on_road = 0u64;
         for _ in 0..self.steps {
             for (i, c) in controllers.iter_mut().enumerate() {
-                world.read_surface(i, &self.surface, &mut inputs[..num_surface]);
-                if let Some(d) = &self.distance {
-                    world.read_distance(i, d, &mut inputs[num_surface..]);
+                let mut rest = &mut inputs[..];
+                for sheet in &self.sensors {
+                    let (mine, others) = rest.split_at_mut(sheet.len());
+                    sheet.sensor.read(&world, i, mine);
+                    rest = others;
                 }
                 c.activate(&inputs, &mut outputs);
                 controls[i] = [outputs[self.wheels.left], outputs[self.wheels.right]];
@@ -241,18 +257,6 @@ impl Task for Experiment {
     }
 }
 
-/// CPPN outputs a layout needs: one more than the highest output it reads.
-fn cppn_outputs(layout: &SubstrateLayout) -> usize {
-    layout
-        .inputs
-        .iter()
-        .map(|s| s.cppn_output)
-        .chain([layout.bias_output, layout.recurrent_output])
-        .max()
-        .unwrap_or(0)
-        + 1
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -269,7 +273,7 @@ mod tests {
         let exp = paper_experiment(&config);
         let pop = Population::new(config.neat.clone(), exp.cppn_spec(), 11).unwrap();
         for g in pop.genomes().iter().take(5) {
-            let c = exp.controller(g);
+            let c = exp.controller(g).unwrap();
             let plain = exp.run(&c, false);
             let recorded = exp.run(&c, true);
             assert_eq!(plain.fitness, recorded.fitness);
@@ -295,7 +299,7 @@ mod tests {
         let exp = paper_experiment(&config);
         let pop = Population::new(config.neat.clone(), exp.cppn_spec(), 3).unwrap();
         for g in pop.genomes().iter().take(30) {
-            let episode = exp.run(&exp.controller(g), true);
+            let episode = exp.run(&exp.controller(g).unwrap(), true);
             for t in episode.trajectories.unwrap() {
                 for w in t.windows(2) {
                     let d = w[0].distance(w[1]);

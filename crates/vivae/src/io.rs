@@ -17,7 +17,7 @@ pub fn bad_input(message: impl Into<String>) -> anyhow::Error {
 }
 
 /// The default scenario shipped in the binary (`scenarios/roads.svg`).
-pub const DEFAULT_SCENARIO: &str = include_str!("../../../scenarios/roads.svg");
+pub const DEFAULT_SCENARIO: &str = vivae_sim::ROADS_SVG;
 
 /// Name the embedded default scenario goes by in messages.
 pub const DEFAULT_SCENARIO_NAME: &str = "roads.svg (embedded default)";

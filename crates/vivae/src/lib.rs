@@ -11,4 +11,9 @@ pub mod experiment;
 pub mod figures;
 pub mod io;
 pub mod report;
+pub mod sensors;
 pub mod substrate;
+
+/// The architecture page (docs/architecture.md): its examples are compiled and run as doctests.
+#[doc = include_str!("../../../docs/architecture.md")]
+pub mod architecture {}

@@ -42,7 +42,7 @@ pub fn trajectory_figure(
     dir: &Path,
     name: &str,
 ) -> anyhow::Result<Episode> {
-    let controller = experiment.controller(genome);
+    let controller = experiment.controller(genome)?;
     let (episode, world) = experiment.run_world(&controller, true);
     let on_road = episode
         .on_road
@@ -90,7 +90,7 @@ pub fn finish_run(run: &Run) -> anyhow::Result<RunSummary> {
     let convergence = figures::convergence::render(&fitness, &ConvergenceOptions::default())?;
     write_figure(&dir, "convergence", &convergence.svg, &convergence.png)?;
 
-    let controller = experiment.controller(&champion.genome);
+    let controller = experiment.controller(&champion.genome)?;
     let options = NetworkOptions {
         title: format!(
             "Champion controller (generation {}, fitness {:.3})",

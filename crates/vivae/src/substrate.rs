@@ -35,6 +35,9 @@ use std::str::FromStr;
 
 use serde::{Deserialize, Serialize};
 use vivae_neat::hyperneat::{InputSheet, SubstrateLayout};
+use vivae_sim::{DistanceSensors, SurfaceSensors};
+
+use crate::sensors::{SensorSheet, sensor_sheets};
 
 /// CPPN output painting surface sensor → neuron weights.
 pub const SURFACE_OUTPUT: usize = 0;
@@ -128,7 +131,7 @@ impl PolarGrid {
 
     /// The grid's nodes, ring-major, left to right, with angles over `fov_deg`.
     pub fn nodes(&self, fov_deg: f64) -> Vec<PolarNode> {
-        let angles = spread(self.angles, fov_deg);
+        let angles: Vec<f64> = vivae_sim::spread(self.angles, fov_deg).collect();
         (0..self.rings)
             .flat_map(|ring| {
                 let rho = self.radius(ring);
@@ -162,20 +165,6 @@ impl PolarGrid {
             right: self.index(ring, self.angles - 1),
         })
     }
-}
-
-/// Angles (radians) spread evenly over `fov_deg`, left (negative) to right; one angle → 0.
-fn spread(n: usize, fov_deg: f64) -> Vec<f64> {
-    let fov = fov_deg.to_radians();
-    (0..n)
-        .map(|j| {
-            if n == 1 {
-                0.0
-            } else {
-                -fov / 2.0 + fov * j as f64 / (n - 1) as f64
-            }
-        })
-        .collect()
 }
 
 impl fmt::Display for PolarGrid {
@@ -345,26 +334,39 @@ impl SubstrateSpec {
         }
     }
 
+    /// The sensor sheets this spec describes (surface, then distance if any),
+    /// with default ranges: the ranges do not move the substrate's nodes.
+    pub fn sheets(&self) -> Vec<SensorSheet> {
+        let surface = SurfaceSensors {
+            rings: self.sensors.rings,
+            angles: self.sensors.angles,
+            fov: self.fov,
+            ..SurfaceSensors::default()
+        };
+        let distance = self.distance_rays.map(|rays| DistanceSensors {
+            rays,
+            fov: self.fov,
+            ..DistanceSensors::default()
+        });
+        sensor_sheets(&surface, distance.as_ref())
+    }
+
     /// Number of CPPN outputs this substrate needs: 3, or 4 with distance sensors.
     pub fn cppn_outputs(&self) -> usize {
-        if self.distance_rays.is_some() { 4 } else { 3 }
+        cppn_outputs(&self.sheets())
     }
 
     /// Surface sensor nodes in controller-input order.
     pub fn sensor_nodes(&self) -> Vec<PolarNode> {
-        self.sensors.nodes(self.fov)
+        self.sheets()[0].nodes()
     }
 
     /// Distance sensor nodes (one ring at ρ = 1), empty without distance sensors.
     pub fn distance_nodes(&self) -> Vec<PolarNode> {
-        match self.distance_rays {
-            Some(rays) => PolarGrid {
-                rings: 1,
-                angles: rays,
-            }
-            .nodes(self.fov),
-            None => Vec::new(),
-        }
+        self.sheets()
+            .get(1)
+            .map(SensorSheet::nodes)
+            .unwrap_or_default()
     }
 
     /// Neuron nodes in controller-output order.
@@ -380,26 +382,43 @@ impl SubstrateSpec {
     /// The geometry-agnostic layout `vivae_neat::hyperneat::decode` takes.
     pub fn layout(&self) -> Result<SubstrateLayout, SubstrateError> {
         self.validate()?;
-        let coords = |nodes: Vec<PolarNode>| -> Vec<[f64; 2]> {
-            nodes.iter().map(|n| n.coords(self.coords)).collect()
-        };
-        let mut inputs = vec![InputSheet {
-            coords: coords(self.sensor_nodes()),
-            cppn_output: SURFACE_OUTPUT,
-        }];
-        if self.distance_rays.is_some() {
-            inputs.push(InputSheet {
-                coords: coords(self.distance_nodes()),
-                cppn_output: DISTANCE_OUTPUT,
-            });
-        }
-        Ok(SubstrateLayout {
-            inputs,
-            neurons: coords(self.neuron_nodes()),
-            bias_output: BIAS_OUTPUT,
-            recurrent_output: RECURRENT_OUTPUT,
-        })
+        Ok(layout_of(&self.sheets(), &self.neuron_nodes(), self.coords))
     }
+}
+
+/// The decoder's layout for input `sheets` (in controller-input order) and
+/// `neurons`: the one place sheets become CPPN coordinates.
+pub fn layout_of(
+    sheets: &[SensorSheet],
+    neurons: &[PolarNode],
+    mode: CoordMode,
+) -> SubstrateLayout {
+    let coords =
+        |nodes: &[PolarNode]| -> Vec<[f64; 2]> { nodes.iter().map(|n| n.coords(mode)).collect() };
+    SubstrateLayout {
+        inputs: sheets
+            .iter()
+            .map(|s| InputSheet {
+                coords: coords(&s.nodes()),
+                cppn_output: s.cppn_output,
+            })
+            .collect(),
+        neurons: coords(neurons),
+        bias_output: BIAS_OUTPUT,
+        recurrent_output: RECURRENT_OUTPUT,
+    }
+}
+
+/// CPPN outputs a substrate with `sheets` needs: one more than the highest
+/// output any sheet, the bias or the recurrent links read.
+pub fn cppn_outputs(sheets: &[SensorSheet]) -> usize {
+    sheets
+        .iter()
+        .map(|s| s.cppn_output)
+        .chain([BIAS_OUTPUT, RECURRENT_OUTPUT])
+        .max()
+        .unwrap_or(0)
+        + 1
 }
 
 /// Builds the layout and wheel neurons from the parts of a [`SubstrateSpec`]

@@ -67,34 +67,7 @@ pub(crate) fn draw_err(e: impl std::fmt::Display) -> FigureError {
 
 /// Renders an SVG document (as produced by the figures) to PNG bytes at [`PNG_SCALE`].
 pub fn svg_to_png(svg: &str) -> Result<Vec<u8>, FigureError> {
-    static FONTDB: OnceLock<std::sync::Arc<usvg::fontdb::Database>> = OnceLock::new();
-    let fontdb = FONTDB.get_or_init(|| {
-        let mut db = usvg::fontdb::Database::new();
-        db.load_font_data(FONT.to_vec());
-        db.set_sans_serif_family("DejaVu Sans");
-        std::sync::Arc::new(db)
-    });
-    let options = usvg::Options {
-        fontdb: fontdb.clone(),
-        font_family: "DejaVu Sans".to_string(),
-        ..usvg::Options::default()
-    };
-    let tree = usvg::Tree::from_str(svg, &options).map_err(|e| FigureError::Png(e.to_string()))?;
-    let size = tree
-        .size()
-        .to_int_size()
-        .scale_by(PNG_SCALE)
-        .ok_or_else(|| FigureError::Png("figure size out of range".to_string()))?;
-    let mut pixmap = tiny_skia::Pixmap::new(size.width(), size.height())
-        .ok_or_else(|| FigureError::Png("figure size out of range".to_string()))?;
-    pixmap.fill(tiny_skia::Color::WHITE);
-    resvg::render(
-        &tree,
-        tiny_skia::Transform::from_scale(PNG_SCALE, PNG_SCALE),
-        &mut pixmap.as_mut(),
-    );
-    pixmap
-        .encode_png()
+    vivae_sim::draw::svg_to_png(svg, f64::from(PNG_SCALE))
         .map_err(|e| FigureError::Png(e.to_string()))
 }
 

@@ -1,4 +1,4 @@
-//! Loading ViVAE scenario files (SVG drawn in Inkscape) into a [`Scenario`].
+//! Loading ViVAE scenario files (SVG drawn in Inkscape).
 //!
 //! roxmltree reads the raw document (labels, layers, document order, custom
 //! attributes); usvg resolves shapes, arcs, CSS, units, the `viewBox` and every
@@ -13,114 +13,11 @@ use serde::{Deserialize, Serialize};
 use crate::geometry::{Aabb, FillRule, Shape, flatten_path};
 use crate::raster::SurfaceRaster;
 
+use super::labels::{Class, classify, surface_kind};
+use super::{Mark, Obstacle, Puck, RobotStart, Scenario, ScenarioError, Surface, SurfaceKind};
+
 /// Flattening tolerance for curves, in px.
 const FLATTEN_TOLERANCE: f64 = 0.1;
-
-/// Kind of ground surface (ViVAE's friction classes).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum SurfaceKind {
-    /// Road: lowest friction.
-    Road,
-    /// Grass: highest friction, the default background.
-    Grass,
-    /// Sand.
-    Sand,
-    /// Water.
-    Water,
-}
-
-impl SurfaceKind {
-    /// All kinds, in a fixed order.
-    pub const ALL: [SurfaceKind; 4] = [
-        SurfaceKind::Road,
-        SurfaceKind::Grass,
-        SurfaceKind::Sand,
-        SurfaceKind::Water,
-    ];
-
-    /// Lower-case name as used in labels and summaries.
-    pub fn name(self) -> &'static str {
-        match self {
-            SurfaceKind::Road => "road",
-            SurfaceKind::Grass => "grass",
-            SurfaceKind::Sand => "sand",
-            SurfaceKind::Water => "water",
-        }
-    }
-
-    /// Label written into snapshots (ViVAE spelling).
-    pub fn label(self) -> &'static str {
-        match self {
-            SurfaceKind::Road => "Road",
-            SurfaceKind::Grass => "Grass",
-            SurfaceKind::Sand => "Sand",
-            SurfaceKind::Water => "Water",
-        }
-    }
-
-    fn from_name(s: &str) -> Option<SurfaceKind> {
-        SurfaceKind::ALL
-            .into_iter()
-            .find(|k| k.name().eq_ignore_ascii_case(s))
-    }
-}
-
-/// What an `inkscape:label` says an element is.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Class {
-    Surface(SurfaceKind),
-    Fixed,
-    Movable,
-    Puck(PuckKind),
-    Robot,
-    Mark,
-}
-
-/// Which puck label an element carried (kept so snapshots write it back).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-pub enum PuckKind {
-    /// `SmallPuck`.
-    Small,
-    /// `BigPuck`.
-    Big,
-    /// `Puck`.
-    Plain,
-}
-
-impl PuckKind {
-    /// Label written into snapshots.
-    pub fn label(self) -> &'static str {
-        match self {
-            PuckKind::Small => "SmallPuck",
-            PuckKind::Big => "BigPuck",
-            PuckKind::Plain => "Puck",
-        }
-    }
-}
-
-/// Classifies a label: the last dot-separated part, case-insensitively.
-fn classify(label: &str) -> Option<Class> {
-    let last = label
-        .trim()
-        .rsplit('.')
-        .next()
-        .unwrap_or("")
-        .to_ascii_lowercase();
-    if let Some(k) = SurfaceKind::from_name(&last) {
-        return Some(Class::Surface(k));
-    }
-    match last.as_str() {
-        "fixedobstacle" | "fixed" => Some(Class::Fixed),
-        "obstacle" => Some(Class::Movable),
-        "smallpuck" => Some(Class::Puck(PuckKind::Small)),
-        "bigpuck" => Some(Class::Puck(PuckKind::Big)),
-        "puck" => Some(Class::Puck(PuckKind::Plain)),
-        "positionmark" => Some(Class::Mark),
-        s if s.contains("robot") => Some(Class::Robot),
-        _ => None,
-    }
-}
 
 /// Options for [`Scenario::from_svg`].
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -141,345 +38,13 @@ impl Default for LoadOptions {
     }
 }
 
-/// Why a scenario could not be loaded. Every variant names the source file.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum ScenarioError {
-    /// The bytes are not UTF-8 text.
-    #[error("{source_name}: not UTF-8 text")]
-    NotUtf8 {
-        /// File name.
-        source_name: String,
-    },
-    /// The text is not well-formed XML.
-    #[error("{source_name}: not XML: {message}")]
-    Xml {
-        /// File name.
-        source_name: String,
-        /// Parser message with position.
-        message: String,
-    },
-    /// The XML root is not `<svg>`.
-    #[error("{source_name}: not an SVG document (root element is <{root}>)")]
-    NotSvg {
-        /// File name.
-        source_name: String,
-        /// The root element's name.
-        root: String,
-    },
-    /// The arena is zero, negative, not a number or absurdly large.
-    #[error("{source_name}: bad arena size {width} x {height}: {problem}")]
-    ArenaSize {
-        /// File name.
-        source_name: String,
-        /// Width in px (0 when unreadable).
-        width: f64,
-        /// Height in px (0 when unreadable).
-        height: f64,
-        /// What is wrong.
-        problem: String,
-    },
-    /// An element's `d` attribute cannot be parsed.
-    #[error("{source_name}: element '{id}': malformed path data: {message}")]
-    PathData {
-        /// File name.
-        source_name: String,
-        /// Element id.
-        id: String,
-        /// Parser message.
-        message: String,
-    },
-    /// An attribute has a value the loader cannot use.
-    #[error("{source_name}: element '{id}': bad attribute {attribute}=\"{value}\"")]
-    Attribute {
-        /// File name.
-        source_name: String,
-        /// Element id.
-        id: String,
-        /// Attribute name.
-        attribute: String,
-        /// The offending value.
-        value: String,
-    },
-    /// A robot's start position is outside the arena.
-    #[error(
-        "{source_name}: robot '{id}' at ({x:.1}, {y:.1}) is outside the {width} x {height} arena"
-    )]
-    RobotOutsideArena {
-        /// File name.
-        source_name: String,
-        /// Element id.
-        id: String,
-        /// Position x.
-        x: f64,
-        /// Position y.
-        y: f64,
-        /// Arena width.
-        width: f64,
-        /// Arena height.
-        height: f64,
-    },
-    /// The scenario has no robot, but the caller needs robots.
-    #[error("{source_name}: no robots (label an element e.g. 'Robot' to place one)")]
-    NoRobots {
-        /// File name.
-        source_name: String,
-    },
-    /// usvg rejected the document.
-    #[error("{source_name}: invalid SVG: {message}")]
-    Svg {
-        /// File name.
-        source_name: String,
-        /// usvg's message.
-        message: String,
-    },
-    /// More than 256 distinct surface materials (kind + friction override).
-    #[error("{source_name}: more than 256 distinct surface frictions")]
-    TooManyMaterials {
-        /// File name.
-        source_name: String,
-    },
-    /// The load options are invalid.
-    #[error("invalid load option {field} = {value}")]
-    Options {
-        /// Field name.
-        field: &'static str,
-        /// Its value.
-        value: f64,
-    },
-}
-
-/// A ground surface: a shape of one kind, optionally with its own friction.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Surface {
-    /// Element id.
-    pub id: String,
-    /// Kind (road, grass, sand, water).
-    pub kind: SurfaceKind,
-    /// `data-friction` override, if any.
-    pub friction: Option<f64>,
-    /// Area covered, in px.
-    pub shape: Shape,
-}
-
-/// A polygonal obstacle (fixed or movable).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Obstacle {
-    /// Element id.
-    pub id: String,
-    /// Outline, in px.
-    pub shape: Shape,
-}
-
-/// A round movable puck.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Puck {
-    /// Element id.
-    pub id: String,
-    /// Which puck label it had.
-    pub kind: PuckKind,
-    /// Centre.
-    pub pos: DVec2,
-    /// Radius.
-    pub radius: f64,
-}
-
-/// A named position mark (ViVAE `PositionMark`).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Mark {
-    /// Element id (the mark's name).
-    pub id: String,
-    /// Centre.
-    pub pos: DVec2,
-    /// Bounding-box size.
-    pub size: DVec2,
-}
-
-/// Where and how a robot starts.
-#[derive(Clone, Debug, PartialEq)]
-pub struct RobotStart {
-    /// Element id.
-    pub id: String,
-    /// Label (e.g. the ViVAE robot class name).
-    pub label: String,
-    /// Start position (bounding-box centre).
-    pub pos: DVec2,
-    /// Heading in radians, 0 = up (−y), clockwise positive.
-    pub heading: f64,
-}
-
-/// A loaded scenario: the arena and everything in it, plus the surface raster.
-#[derive(Clone, Debug)]
-pub struct Scenario {
-    /// Source file name (for messages).
-    pub source: String,
-    /// Arena width in px.
-    pub width: f64,
-    /// Arena height in px.
-    pub height: f64,
-    /// Surface of points covered by no surface shape.
-    pub background: SurfaceKind,
-    /// Surfaces in document order (later ones cover earlier ones).
-    pub surfaces: Vec<Surface>,
-    /// Distinct (kind, friction override) pairs; index 0 is the background.
-    /// The raster stores indices into this list.
-    pub materials: Vec<(SurfaceKind, Option<f64>)>,
-    /// Immovable obstacles.
-    pub fixed_obstacles: Vec<Obstacle>,
-    /// Movable (heavy) obstacles.
-    pub movable_obstacles: Vec<Obstacle>,
-    /// Movable (light) pucks.
-    pub pucks: Vec<Puck>,
-    /// Position marks.
-    pub marks: Vec<Mark>,
-    /// Robot starts in document order.
-    pub robots: Vec<RobotStart>,
-    /// Non-fatal problems (unknown labels, elements without geometry).
-    pub warnings: Vec<String>,
-    /// Surface ids on a grid, built once at load.
-    pub raster: Arc<SurfaceRaster>,
-}
-
-/// Arena size in a summary.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct ArenaSummary {
-    /// Width in px.
-    pub width: f64,
-    /// Height in px.
-    pub height: f64,
-}
-
-/// A robot start in a summary.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct RobotSummary {
-    /// Element id.
-    pub id: String,
-    /// Position x in px.
-    pub x: f64,
-    /// Position y in px.
-    pub y: f64,
-    /// Heading in degrees in [0, 360), 0 = up, clockwise.
-    pub heading_deg: f64,
-}
-
-/// What `vivae scenario info` prints: a serialisable overview of a scenario.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct ScenarioSummary {
-    /// Arena size.
-    pub arena: ArenaSummary,
-    /// Robot starts.
-    pub robots: Vec<RobotSummary>,
-    /// Number of surface shapes per kind (all four kinds present).
-    pub surfaces: BTreeMap<String, usize>,
-    /// Number of fixed obstacles.
-    pub fixed_obstacles: usize,
-    /// Number of movable obstacles.
-    pub movable_obstacles: usize,
-    /// Number of pucks.
-    pub pucks: usize,
-    /// Number of position marks.
-    pub marks: usize,
-    /// Loader warnings.
-    pub warnings: Vec<String>,
-}
-
-impl Scenario {
-    /// Loads a scenario from raw bytes (checks UTF-8 first).
-    pub fn from_svg_bytes(
-        bytes: &[u8],
-        source: &str,
-        opts: &LoadOptions,
-    ) -> Result<Scenario, ScenarioError> {
-        let text = std::str::from_utf8(bytes).map_err(|_| ScenarioError::NotUtf8 {
-            source_name: source.to_string(),
-        })?;
-        Scenario::from_svg(text, source, opts)
-    }
-
-    /// Loads a scenario from SVG text; `source` names the file in messages.
-    pub fn from_svg(
-        text: &str,
-        source: &str,
-        opts: &LoadOptions,
-    ) -> Result<Scenario, ScenarioError> {
-        Loader::load(text, source, opts)
-    }
-
-    /// Errors with [`ScenarioError::NoRobots`] if the scenario has no robot.
-    pub fn require_robots(&self) -> Result<&Self, ScenarioError> {
-        if self.robots.is_empty() {
-            Err(ScenarioError::NoRobots {
-                source_name: self.source.clone(),
-            })
-        } else {
-            Ok(self)
-        }
-    }
-
-    /// Number of surface shapes of `kind`.
-    pub fn surface_count(&self, kind: SurfaceKind) -> usize {
-        self.surfaces.iter().filter(|s| s.kind == kind).count()
-    }
-
-    /// Surface kind and `data-friction` override at `p` from exact geometry
-    /// (slow; the raster is the fast path). `None` outside the arena.
-    pub fn surface_exact(&self, p: DVec2) -> Option<(SurfaceKind, Option<f64>)> {
-        if !(p.x >= 0.0 && p.y >= 0.0 && p.x < self.width && p.y < self.height) {
-            return None;
-        }
-        Some(
-            self.surfaces
-                .iter()
-                .rev()
-                .find(|s| s.shape.contains(p))
-                .map(|s| (s.kind, s.friction))
-                .unwrap_or((self.background, None)),
-        )
-    }
-
-    /// Serialisable overview (arena, robots, counts, warnings).
-    pub fn summary(&self) -> ScenarioSummary {
-        ScenarioSummary {
-            arena: ArenaSummary {
-                width: self.width,
-                height: self.height,
-            },
-            robots: self
-                .robots
-                .iter()
-                .map(|r| RobotSummary {
-                    id: r.id.clone(),
-                    x: r.pos.x,
-                    y: r.pos.y,
-                    heading_deg: heading_degrees(r.heading),
-                })
-                .collect(),
-            surfaces: SurfaceKind::ALL
-                .iter()
-                .map(|k| (k.name().to_string(), self.surface_count(*k)))
-                .collect(),
-            fixed_obstacles: self.fixed_obstacles.len(),
-            movable_obstacles: self.movable_obstacles.len(),
-            pucks: self.pucks.len(),
-            marks: self.marks.len(),
-            warnings: self.warnings.clone(),
-        }
-    }
-}
-
-/// Heading in radians → degrees in [0, 360), rounded to 1e-9 to hide float noise.
-pub fn heading_degrees(heading: f64) -> f64 {
-    let d = heading.to_degrees().rem_euclid(360.0);
-    let d = (d * 1e9).round() / 1e9;
-    if d >= 360.0 { 0.0 } else { d }
-}
-
 /// Geometry usvg resolved for one element id.
 enum Resolved<'a> {
     Path(&'a usvg::Path),
     Group(&'a usvg::Group),
 }
 
-struct Loader<'a> {
+pub(super) struct Loader<'a> {
     source: &'a str,
     ids: BTreeMap<String, Resolved<'a>>,
     sc: Scenario,
@@ -559,7 +124,11 @@ fn path_shape(p: &usvg::Path) -> Shape {
 }
 
 impl<'a> Loader<'a> {
-    fn load(text: &str, source: &str, opts: &LoadOptions) -> Result<Scenario, ScenarioError> {
+    pub(super) fn load(
+        text: &str,
+        source: &str,
+        opts: &LoadOptions,
+    ) -> Result<Scenario, ScenarioError> {
         if !(opts.cell_size.is_finite() && opts.cell_size > 0.0) {
             return Err(ScenarioError::Options {
                 field: "cell_size",
@@ -640,14 +209,12 @@ impl<'a> Loader<'a> {
         }
         let background = match root.attribute("data-background") {
             None => SurfaceKind::Grass,
-            Some(v) => {
-                SurfaceKind::from_name(v.trim()).ok_or_else(|| ScenarioError::Attribute {
-                    source_name: err_src(),
-                    id: root.attribute("id").unwrap_or("svg").to_string(),
-                    attribute: "data-background".into(),
-                    value: v.into(),
-                })?
-            }
+            Some(v) => surface_kind(v.trim()).ok_or_else(|| ScenarioError::Attribute {
+                source_name: err_src(),
+                id: root.attribute("id").unwrap_or("svg").to_string(),
+                attribute: "data-background".into(),
+                value: v.into(),
+            })?,
         };
         let mut ids = BTreeMap::new();
         collect_ids(tree.root(), &mut ids);
@@ -708,8 +275,7 @@ impl<'a> Loader<'a> {
             width,
             height,
             opts.cell_size,
-            &sc.surfaces,
-            &ids,
+            sc.surfaces.iter().map(|s| &s.shape).zip(ids),
         ));
         Ok(sc)
     }
@@ -950,37 +516,5 @@ impl<'a> Loader<'a> {
                 }),
             },
         }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn labels_classify_by_last_dotted_part_case_insensitively() {
-        assert_eq!(classify("Road"), Some(Class::Surface(SurfaceKind::Road)));
-        assert_eq!(classify("road"), Some(Class::Surface(SurfaceKind::Road)));
-        assert_eq!(
-            classify("vivae.arena.parts.PositionMark"),
-            Some(Class::Mark)
-        );
-        assert_eq!(classify("fixed"), Some(Class::Fixed));
-        assert_eq!(
-            classify("hyper.experiments.robots.friction.NetControlledRobotFriction"),
-            Some(Class::Robot)
-        );
-        assert_eq!(
-            classify("vivae.example.FRNNControlledRobot"),
-            Some(Class::Robot)
-        );
-        assert_eq!(classify("Layer 1"), None);
-        assert_eq!(classify("SmallPuck"), Some(Class::Puck(PuckKind::Small)));
-    }
-
-    #[test]
-    fn headings_normalise_to_degrees() {
-        assert_eq!(heading_degrees(0.0), 0.0);
-        assert!((heading_degrees(-std::f64::consts::FRAC_PI_2) - 270.0).abs() < 1e-9);
     }
 }

@@ -1,0 +1,152 @@
+//! Sensors (DESIGN §6): what a robot perceives, one slice of readings per robot.
+//!
+//! Each sensor type lives in its own file: a serde layout for configs and a
+//! compiled form that implements [`Sensor`]. A new sensor type is a new file
+//! here plus one line in the `pub use` list below.
+
+mod distance;
+mod surface;
+
+use std::fmt;
+
+use glam::DVec2;
+
+use crate::world::World;
+
+pub use distance::{DistanceGrid, DistanceSensors};
+pub use surface::{SurfaceGrid, SurfaceSensors};
+
+/// A sensor every robot carries: a fixed number of readings, each from a
+/// place on a polar sheet in front of the robot.
+///
+/// Reading is allocation-free and deterministic; the places tell a
+/// HyperNEAT substrate where each reading's input node sits.
+pub trait Sensor: fmt::Debug + Send + Sync {
+    /// Short name of the sensor type, e.g. `"surface"`.
+    fn name(&self) -> &'static str;
+
+    /// Number of readings per robot.
+    fn len(&self) -> usize {
+        self.places().len()
+    }
+
+    /// Whether the sensor has no reading.
+    fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Number of rings the places are arranged in (≥ 1).
+    fn rings(&self) -> usize;
+
+    /// Where each reading is taken, in reading order (ring-major, left to right).
+    fn places(&self) -> &[SensorPlace];
+
+    /// Writes robot `robot`'s readings, each in [0, 1], to `out[..self.len()]`
+    /// (entries beyond are left untouched).
+    fn read(&self, world: &World, robot: usize, out: &mut [f64]);
+}
+
+/// Where one reading of a sensor is taken, relative to the robot.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SensorPlace {
+    /// Ring index (0 = nearest).
+    pub ring: usize,
+    /// Angle index (0 = leftmost).
+    pub angle_index: usize,
+    /// Distance from the robot centre, px (for rays: their length from the rim).
+    pub distance: f64,
+    /// Angle from straight ahead in radians, negative = left.
+    pub angle: f64,
+}
+
+/// `n` angles in radians spread evenly over `fov_deg` degrees centred ahead,
+/// left (negative) to right; a single angle looks straight ahead.
+///
+/// The one formula for sensor and substrate angles, so that a substrate node
+/// and the sensor it stands for agree to the bit.
+pub fn spread(n: usize, fov_deg: f64) -> impl Iterator<Item = f64> {
+    let fov = fov_deg.to_radians();
+    (0..n).map(move |j| {
+        if n == 1 {
+            0.0
+        } else {
+            -fov / 2.0 + fov * j as f64 / (n - 1) as f64
+        }
+    })
+}
+
+/// Robot-frame offset of a point at `distance` and relative `angle`:
+/// x = ahead, y = to the right.
+fn local(distance: f64, angle: f64) -> DVec2 {
+    let (sin, cos) = libm::sincos(angle);
+    DVec2::new(distance * cos, distance * sin)
+}
+
+/// Robot `i`'s position and its ahead and right unit vectors.
+#[inline]
+fn frame(world: &World, i: usize) -> (DVec2, DVec2, DVec2) {
+    let r = &world.robots[i];
+    (r.pos, r.dir, r.right())
+}
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn paper_layout_spreads_angles_and_rings_evenly() {
+        let s = SurfaceSensors::default();
+        s.validate().unwrap();
+        let p = s.places();
+        assert_eq!(p.len(), 15);
+        assert!((p[0].angle + std::f64::consts::FRAC_PI_2).abs() < 1e-12);
+        assert!(p[2].angle.abs() < 1e-12);
+        assert_eq!(p[0].distance, 10.0);
+        assert_eq!(p[5].distance, 30.0);
+        assert_eq!(p[14].distance, 50.0);
+    }
+
+    #[test]
+    fn single_sensor_looks_ahead_midway() {
+        let s = SurfaceSensors {
+            rings: 1,
+            angles: 1,
+            ..Default::default()
+        };
+        let g = s.grid();
+        assert!((g.offsets[0] - DVec2::new(30.0, 0.0)).length() < 1e-12);
+    }
+
+    #[test]
+    fn bad_layouts_are_rejected() {
+        assert_eq!(
+            SurfaceSensors {
+                rings: 0,
+                ..Default::default()
+            }
+            .validate()
+            .unwrap_err()
+            .field,
+            "rings"
+        );
+        assert_eq!(
+            SurfaceSensors {
+                d_max: 5.0,
+                ..Default::default()
+            }
+            .validate()
+            .unwrap_err()
+            .field,
+            "d_max"
+        );
+        assert_eq!(
+            DistanceSensors {
+                range: 0.0,
+                ..Default::default()
+            }
+            .validate()
+            .unwrap_err()
+            .field,
+            "range"
+        );
+    }
+}

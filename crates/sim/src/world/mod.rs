@@ -1,0 +1,336 @@
+//! The simulated world: robots, movable bodies and the physics step.
+
+mod contacts;
+
+use std::sync::Arc;
+
+use glam::DVec2;
+
+use crate::physics::{ParamError, PhysicsParams};
+use crate::scenario::{Scenario, SurfaceKind};
+
+/// A robot's state.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Robot {
+    /// Centre, px.
+    pub pos: DVec2,
+    /// Heading in radians, 0 = up (−y), clockwise positive, kept in (−π, π].
+    pub heading: f64,
+    /// Forward speed, px/step, in [0, v_max].
+    pub speed: f64,
+    /// Distance actually travelled, px.
+    pub odometer: f64,
+    /// Cached unit vector of `heading` (updated whenever the heading changes).
+    pub(crate) dir: DVec2,
+}
+
+impl Robot {
+    /// Unit vector the robot faces.
+    #[inline]
+    pub fn ahead(&self) -> DVec2 {
+        self.dir
+    }
+
+    /// Unit vector to the robot's right.
+    #[inline]
+    pub fn right(&self) -> DVec2 {
+        DVec2::new(-self.dir.y, self.dir.x)
+    }
+
+    fn set_heading(&mut self, heading: f64) {
+        self.heading = wrap_angle(heading);
+        let (s, c) = libm::sincos(self.heading);
+        self.dir = DVec2::new(s, -c);
+    }
+}
+
+/// A movable puck's state.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PuckState {
+    /// Centre.
+    pub pos: DVec2,
+    /// Velocity, px/step.
+    pub vel: DVec2,
+    /// Radius.
+    pub radius: f64,
+    /// Mass.
+    pub mass: f64,
+}
+
+/// A movable obstacle's state: its loaded shape moved by `offset`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MovableState {
+    /// Translation from the loaded position.
+    pub offset: DVec2,
+    /// Velocity, px/step.
+    pub vel: DVec2,
+    /// Mass.
+    pub mass: f64,
+}
+
+/// The surface under a point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfaceHere {
+    /// Kind of surface.
+    pub kind: SurfaceKind,
+    /// Friction in force there.
+    pub friction: f64,
+    /// What a surface sensor reads there (road 1 … grass 0).
+    pub reading: f64,
+}
+
+/// Per-surface-id constants shared by all clones of a world.
+#[derive(Debug)]
+pub(crate) struct Statics {
+    pub(crate) scenario: Scenario,
+    /// Sensor reading per material id (same indexing as `here`); 256 entries so
+    /// that indexing by a `u8` needs no bounds check.
+    pub(crate) readings: Box<[f64; 256]>,
+    /// Arena size in raster cells (the outside test of the fast look-up).
+    pub(crate) limit: DVec2,
+    /// 1 / cell size.
+    pub(crate) inv_cell: f64,
+    /// Indexed by material id (`scenario.materials()`).
+    pub(crate) here: Vec<SurfaceHere>,
+}
+
+/// A running simulation: `Clone` is cheap-ish (shares the scenario and raster).
+#[derive(Clone, Debug)]
+pub struct World {
+    pub(crate) statics: Arc<Statics>,
+    pub(crate) params: PhysicsParams,
+    pub(crate) robots: Vec<Robot>,
+    pub(crate) pucks: Vec<PuckState>,
+    pub(crate) movables: Vec<MovableState>,
+    prev_robots: Vec<DVec2>,
+    prev_pucks: Vec<DVec2>,
+    prev_movables: Vec<DVec2>,
+    trajectories: Option<Vec<Vec<DVec2>>>,
+    steps: u64,
+}
+
+impl World {
+    /// A world at the scenario's start state. Fails if `params` is invalid.
+    pub fn new(scenario: &Scenario, params: &PhysicsParams) -> Result<World, ParamError> {
+        params.validate()?;
+        let (lo, hi) = params.friction.range();
+        let here = |kind: SurfaceKind, over: Option<f64>| {
+            let friction = over.unwrap_or(params.friction.of(kind));
+            SurfaceHere {
+                kind,
+                friction,
+                reading: ((hi - friction) / (hi - lo)).clamp(0.0, 1.0),
+            }
+        };
+        let table: Vec<SurfaceHere> = scenario
+            .materials()
+            .iter()
+            .map(|(k, f)| here(*k, *f))
+            .collect();
+        let robots: Vec<Robot> = scenario
+            .robots
+            .iter()
+            .map(|r| {
+                let mut rb = Robot {
+                    pos: r.pos,
+                    heading: 0.0,
+                    speed: 0.0,
+                    odometer: 0.0,
+                    dir: DVec2::ZERO,
+                };
+                rb.set_heading(r.heading);
+                rb
+            })
+            .collect();
+        let pucks: Vec<PuckState> = scenario
+            .pucks
+            .iter()
+            .map(|p| PuckState {
+                pos: p.pos,
+                vel: DVec2::ZERO,
+                radius: p.radius,
+                mass: params.puck_density * std::f64::consts::PI * p.radius * p.radius,
+            })
+            .collect();
+        let movables: Vec<MovableState> = scenario
+            .movable_obstacles
+            .iter()
+            .map(|o| MovableState {
+                offset: DVec2::ZERO,
+                vel: DVec2::ZERO,
+                mass: params.obstacle_density * o.shape.area(),
+            })
+            .collect();
+        Ok(World {
+            prev_robots: vec![DVec2::ZERO; robots.len()],
+            prev_pucks: vec![DVec2::ZERO; pucks.len()],
+            prev_movables: vec![DVec2::ZERO; movables.len()],
+            statics: Arc::new(Statics {
+                readings: {
+                    let mut r = Box::new([0.0; 256]);
+                    for (slot, h) in r.iter_mut().zip(&table) {
+                        *slot = h.reading;
+                    }
+                    r
+                },
+                limit: DVec2::new(scenario.width(), scenario.height()) / scenario.raster().cell,
+                inv_cell: 1.0 / scenario.raster().cell,
+                scenario: scenario.clone(),
+                here: table,
+            }),
+            params: params.clone(),
+            robots,
+            pucks,
+            movables,
+            trajectories: None,
+            steps: 0,
+        })
+    }
+
+    /// The scenario this world was built from.
+    pub fn scenario(&self) -> &Scenario {
+        &self.statics.scenario
+    }
+
+    /// The physics constants in force.
+    pub fn params(&self) -> &PhysicsParams {
+        &self.params
+    }
+
+    /// Robots in scenario order.
+    pub fn robots(&self) -> &[Robot] {
+        &self.robots
+    }
+    /// Places robot `i` by hand (position, heading) and stops it; false if no such robot.
+    pub fn set_pose(&mut self, i: usize, pos: DVec2, heading: f64) -> bool {
+        match self.robots.get_mut(i) {
+            Some(r) => {
+                r.pos = pos;
+                r.set_heading(heading);
+                r.speed = 0.0;
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// Pucks in scenario order.
+    pub fn pucks(&self) -> &[PuckState] {
+        &self.pucks
+    }
+
+    /// Movable obstacles in scenario order.
+    pub fn movables(&self) -> &[MovableState] {
+        &self.movables
+    }
+
+    /// Steps taken since the start.
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+
+    /// Starts recording every robot's position after each step (the current
+    /// position is the first point). Recording allocates; stepping without it does not.
+    pub fn record_trajectories(&mut self, capacity: usize) {
+        let mut t: Vec<Vec<DVec2>> = self
+            .robots
+            .iter()
+            .map(|_| Vec::with_capacity(capacity + 1))
+            .collect();
+        for (v, r) in t.iter_mut().zip(&self.robots) {
+            v.push(r.pos);
+        }
+        self.trajectories = Some(t);
+    }
+
+    /// Recorded trajectories (one per robot), if recording.
+    pub fn trajectories(&self) -> Option<&[Vec<DVec2>]> {
+        self.trajectories.as_deref()
+    }
+
+    /// Surface at `p` (via the raster); `None` outside the arena.
+    #[inline]
+    pub fn surface_at(&self, p: DVec2) -> Option<SurfaceHere> {
+        let sc = &self.statics.scenario;
+        if !(p.x >= 0.0 && p.y >= 0.0 && p.x < sc.width() && p.y < sc.height()) {
+            return None;
+        }
+        sc.raster()
+            .id_at(p)
+            .map(|id| self.statics.here[id as usize])
+    }
+
+    /// Whether robot `i`'s centre is on a road.
+    pub fn on_road(&self, i: usize) -> bool {
+        self.robots
+            .get(i)
+            .and_then(|r| self.surface_at(r.pos))
+            .is_some_and(|s| s.kind == SurfaceKind::Road)
+    }
+    /// One time step: `controls[i] = [L, R]` in [−1, 1] for robot `i` (missing
+    /// entries count as [0, 0], extra ones are ignored). Allocation-free
+    /// unless trajectories are being recorded.
+    pub fn step(&mut self, controls: &[[f64; 2]]) {
+        let pp = &self.params;
+        let (v_max, a_max, om_max, k) = (pp.v_max, pp.a_max, pp.omega_max, pp.k);
+        for i in 0..self.robots.len() {
+            let [l, r] = controls.get(i).copied().unwrap_or([0.0, 0.0]);
+            let l = if l.is_nan() { 0.0 } else { l.clamp(-1.0, 1.0) };
+            let r = if r.is_nan() { 0.0 } else { r.clamp(-1.0, 1.0) };
+            let mu = self.surface_at(self.robots[i].pos).map_or(
+                self.params.friction.of(self.statics.scenario.background()),
+                |s| s.friction,
+            );
+            let rb = &mut self.robots[i];
+            self.prev_robots[i] = rb.pos;
+            let a = a_max * (l + r) * 0.5;
+            let omega = om_max * (l - r) * 0.5 * (1.0 - rb.speed / v_max);
+            rb.speed = (rb.speed + a - k * mu * rb.speed).clamp(0.0, v_max);
+            if omega != 0.0 {
+                rb.set_heading(rb.heading + omega);
+            }
+            rb.pos += rb.dir * rb.speed;
+        }
+        let (pd, od) = (self.params.puck_damping, self.params.obstacle_damping);
+        for (i, pk) in self.pucks.iter_mut().enumerate() {
+            self.prev_pucks[i] = pk.pos;
+            pk.vel *= 1.0 - pd;
+            pk.pos += pk.vel;
+        }
+        for (i, m) in self.movables.iter_mut().enumerate() {
+            self.prev_movables[i] = m.offset;
+            m.vel *= 1.0 - od;
+            m.offset += m.vel;
+        }
+        self.resolve_contacts();
+        for (i, rb) in self.robots.iter_mut().enumerate() {
+            let moved = rb.pos - self.prev_robots[i];
+            // Inelastic: only the part of the motion along the heading survives as speed.
+            rb.speed = moved.dot(rb.dir).clamp(0.0, rb.speed);
+            rb.odometer += moved.length();
+        }
+        for (i, pk) in self.pucks.iter_mut().enumerate() {
+            pk.vel = pk.pos - self.prev_pucks[i];
+        }
+        for (i, m) in self.movables.iter_mut().enumerate() {
+            m.vel = m.offset - self.prev_movables[i];
+        }
+        if let Some(t) = &mut self.trajectories {
+            for (v, r) in t.iter_mut().zip(&self.robots) {
+                v.push(r.pos);
+            }
+        }
+        self.steps += 1;
+    }
+}
+
+/// Wraps an angle into (−π, π].
+#[inline]
+fn wrap_angle(a: f64) -> f64 {
+    use std::f64::consts::{PI, TAU};
+    if a > -PI && a <= PI {
+        return a;
+    }
+    let r = (a + PI).rem_euclid(TAU) - PI;
+    if r <= -PI { r + TAU } else { r }
+}
