@@ -413,14 +413,10 @@ fn cmd_replay(args: ReplayArgs) -> anyhow::Result<ExitCode> {
     let scenario = load_scenario(scenario_path(&config).as_deref())?;
     let experiment =
         Experiment::new(&config, &scenario.scenario).map_err(|e| bad_input(e.to_string()))?;
-    if experiment.cppn_spec().outputs != champion.genome.num_outputs() {
-        return Err(bad_input(format!(
-            "{}: the genome's CPPN has {} outputs, this substrate needs {}",
-            args.source.display(),
-            champion.genome.num_outputs(),
-            experiment.cppn_spec().outputs
-        )));
-    }
+    // Checked before anything is written: a genome that does not fit is bad input.
+    experiment
+        .controller(&champion.genome)
+        .map_err(|e| bad_input(format!("{}: the genome's {e}", args.source.display())))?;
     let out = args.out.clone().unwrap_or_else(|| base.join("replay"));
     std::fs::create_dir_all(&out).with_context(|| format!("cannot create {}", out.display()))?;
     let replay = report::replay(&experiment, &config, &champion, &out)?;
