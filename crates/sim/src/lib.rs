@@ -3,6 +3,22 @@
 //! Data flows `scenario.svg text → Scenario → World`; the world steps robots
 //! driven by two numbers (L, R) each and answers sensor queries. Nothing here
 //! touches the file system or knows about neural networks.
+//!
+//! ```
+//! use vivae_sim::{LoadOptions, PhysicsParams, Scenario, Sensor, SurfaceSensors, World};
+//!
+//! let scenario = Scenario::from_svg(vivae_sim::ROADS_SVG, "roads.svg", &LoadOptions::default())?;
+//! let mut world = World::new(&scenario, &PhysicsParams::default())?;
+//! let eyes = SurfaceSensors::default().grid(); // the paper's 3×5 polar grid
+//! let mut seen = vec![0.0; eyes.len()];
+//! for _ in 0..100 {
+//!     eyes.read(&world, 0, &mut seen); // road reads 1, grass 0
+//!     let controls = vec![[1.0, 1.0]; world.robots().len()]; // full throttle, straight
+//!     world.step(&controls);
+//! }
+//! assert!(world.robots()[0].odometer > 0.0);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 
 pub mod draw;
 pub mod geometry;

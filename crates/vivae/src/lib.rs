@@ -4,6 +4,26 @@
 //! world; this crate joins them ([`experiment`]), drives evolution with
 //! checkpoints ([`evolve`]), owns every file format and all I/O ([`config`],
 //! [`io`]) and draws the paper's figures ([`figures`], [`report`]).
+//!
+//! The driving experiment as a library: evaluate a random CPPN on the
+//! embedded road scenario (docs/architecture.md shows how to add a task,
+//! a sensor or an observer).
+//!
+//! ```
+//! use vivae::config::Config;
+//! use vivae::experiment::Experiment;
+//! use vivae_neat::Population;
+//! use vivae_sim::{LoadOptions, Scenario};
+//!
+//! let config = Config::default(); // the paper's setup: 3×5 sensors, 3×3 neurons, 5 robots
+//! let scenario = Scenario::from_svg(vivae_sim::ROADS_SVG, "roads.svg", &LoadOptions::default())?;
+//! let experiment = Experiment::new(&config, &scenario)?;
+//! let population = Population::new(config.neat.clone(), experiment.cppn_spec(), 1)?;
+//! let controller = experiment.controller(&population.genomes()[0])?;
+//! let episode = experiment.run(&controller, true);
+//! println!("{:.3} px/step, {:.0}% on road", episode.fitness, 100.0 * episode.on_road.unwrap());
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 
 pub mod config;
 pub mod evolve;
