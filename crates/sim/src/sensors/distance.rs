@@ -85,27 +85,11 @@ pub struct DistanceGrid {
     places: Vec<SensorPlace>,
 }
 
-impl DistanceGrid {
-    /// Number of rays.
-    pub fn len(&self) -> usize {
-        self.dirs.len()
-    }
-
-    /// Whether there is no ray.
-    pub fn is_empty(&self) -> bool {
-        self.dirs.is_empty()
-    }
-}
-
 /// Reads `1 − d/range` for the nearest robot, obstacle, puck or wall along
 /// each ray, `d` measured from the robot's rim; 0 when nothing is in range.
 impl Sensor for DistanceGrid {
     fn name(&self) -> &'static str {
         "distance"
-    }
-
-    fn len(&self) -> usize {
-        self.dirs.len()
     }
 
     fn rings(&self) -> usize {

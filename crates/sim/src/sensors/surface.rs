@@ -120,16 +120,6 @@ pub struct SurfaceGrid {
 }
 
 impl SurfaceGrid {
-    /// Number of sensors.
-    pub fn len(&self) -> usize {
-        self.offsets.len()
-    }
-
-    /// Whether there is no sensor.
-    pub fn is_empty(&self) -> bool {
-        self.offsets.is_empty()
-    }
-
     /// World positions of robot `i`'s sensors (for drawing).
     pub fn positions(&self, world: &World, i: usize) -> Vec<DVec2> {
         let (p, ahead, right) = frame(world, i);
@@ -143,10 +133,6 @@ impl SurfaceGrid {
 impl Sensor for SurfaceGrid {
     fn name(&self) -> &'static str {
         "surface"
-    }
-
-    fn len(&self) -> usize {
-        self.offsets.len()
     }
 
     fn rings(&self) -> usize {
