@@ -20,14 +20,22 @@ pub(super) fn surface_kind(s: &str) -> Option<SurfaceKind> {
         .find(|k| k.name().eq_ignore_ascii_case(s))
 }
 
-/// Classifies a label: the last dot-separated part, case-insensitively.
+/// `name` without a trailing number and the separator before it: Inkscape
+/// labels copies "Road 1", "road-2", "Road_3" or "road4".
+fn without_number(name: &str) -> &str {
+    let stem = name.trim_end_matches(|c: char| c.is_ascii_digit());
+    if stem.len() == name.len() {
+        return name;
+    }
+    let stem = stem.trim_end_matches([' ', '-', '_', '#']);
+    if stem.is_empty() { name } else { stem }
+}
+
+/// Classifies a label: the last dot-separated part, case-insensitively,
+/// ignoring a trailing number ("Road 1", "road-2").
 pub(super) fn classify(label: &str) -> Option<Class> {
-    let last = label
-        .trim()
-        .rsplit('.')
-        .next()
-        .unwrap_or("")
-        .to_ascii_lowercase();
+    let last = label.trim().rsplit('.').next().unwrap_or("").trim();
+    let last = without_number(last).to_ascii_lowercase();
     if let Some(k) = surface_kind(&last) {
         return Some(Class::Surface(k));
     }
@@ -66,5 +74,21 @@ mod tests {
         );
         assert_eq!(classify("Layer 1"), None);
         assert_eq!(classify("SmallPuck"), Some(Class::Puck(PuckKind::Small)));
+    }
+
+    #[test]
+    fn numbered_copies_keep_their_class() {
+        let road = Some(Class::Surface(SurfaceKind::Road));
+        for label in ["Road 1", "road-2", "Road_3", "road4", "ROAD 12", " Road 7 "] {
+            assert_eq!(classify(label), road, "{label}");
+        }
+        assert_eq!(classify("Water 2"), Some(Class::Surface(SurfaceKind::Water)));
+        assert_eq!(classify("fixedObstacle-3"), Some(Class::Fixed));
+        assert_eq!(classify("SmallPuck 2"), Some(Class::Puck(PuckKind::Small)));
+        assert_eq!(classify("PositionMark_1"), Some(Class::Mark));
+        assert_eq!(classify("Robot 3"), Some(Class::Robot));
+        assert_eq!(classify("Layer 1"), None);
+        assert_eq!(classify("Roadside 1"), None);
+        assert_eq!(classify("1"), None);
     }
 }
