@@ -15,6 +15,14 @@ pub static FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
 
 /// Height of the title band in px.
 const TITLE_BAND: f64 = 28.0;
+/// Height of one line of the legend band in px.
+const LEGEND_LINE: f64 = 20.0;
+/// Fill of fixed obstacles: a slate grey no robot colour resembles.
+const FIXED_FILL: &str = "#5d6d7e";
+/// Fill of movable obstacles.
+const MOVABLE_FILL: &str = "#c8c8c8";
+/// Fill of pucks.
+const PUCK_FILL: &str = "#f0f0f0";
 
 /// What to draw besides the world itself.
 #[derive(Clone, Debug, PartialEq)]
@@ -29,6 +37,8 @@ pub struct DrawOptions {
     pub distance_sensors: Option<DistanceSensors>,
     /// Pixels per world px in PNG output (default 1).
     pub scale: f64,
+    /// Explain colours and marks in a band below the arena (default on).
+    pub legend: bool,
 }
 
 impl Default for DrawOptions {
@@ -39,6 +49,7 @@ impl Default for DrawOptions {
             surface_sensors: None,
             distance_sensors: None,
             scale: 1.0,
+            legend: true,
         }
     }
 }
@@ -71,6 +82,110 @@ fn reading_color(v: f64) -> String {
     format!("#ff{g:02x}{g:02x}")
 }
 
+/// One legend entry: a small symbol (SVG drawn around the origin) and its text.
+struct LegendItem {
+    symbol: String,
+    text: String,
+}
+
+impl LegendItem {
+    fn new(symbol: String, text: impl Into<String>) -> LegendItem {
+        LegendItem {
+            symbol,
+            text: text.into(),
+        }
+    }
+
+    /// Width in px: symbol, gap, text (DejaVu Sans at 12 px averages about 7 px a glyph).
+    fn width(&self) -> f64 {
+        14.0 + 6.0 + 7.0 * self.text.chars().count() as f64 + 16.0
+    }
+}
+
+/// What the picture shows that needs explaining, in drawing order.
+fn legend_items(world: &World, opts: &DrawOptions) -> Vec<LegendItem> {
+    let sc = world.scenario();
+    let disc = |fill: &str, stroke: &str| {
+        format!(
+            r##"<circle cx="0" cy="0" r="5" fill="{fill}" stroke="{stroke}" stroke-width="1.2"/>"##
+        )
+    };
+    let mut items = Vec::new();
+    let trajectories = opts.trajectories && world.trajectories().is_some();
+    for i in 0..world.robots().len() {
+        let name = if trajectories {
+            format!("robot {}", i + 1)
+        } else {
+            match sc.robots.get(i) {
+                Some(start) if !start.id.is_empty() => start.id.clone(),
+                _ => format!("robot {}", i + 1),
+            }
+        };
+        items.push(LegendItem::new(disc(robot_color(i), "#000000"), name));
+    }
+    if trajectories {
+        items.push(LegendItem::new(
+            disc("none", "#000000"),
+            "start (hollow), end (filled); lines: paths",
+        ));
+    }
+    if opts.surface_sensors.is_some() {
+        items.push(LegendItem::new(
+            disc(&reading_color(1.0), "#000000"),
+            "sensor on road (reads 1)",
+        ));
+        items.push(LegendItem::new(
+            disc(&reading_color(0.0), "#000000"),
+            "sensor on grass (reads 0)",
+        ));
+    }
+    if opts.distance_sensors.is_some() {
+        items.push(LegendItem::new(
+            format!(
+                r##"<line x1="-6" y1="0" x2="6" y2="0" stroke="{}" stroke-width="2"/>"##,
+                reading_color(0.0)
+            ),
+            "ray: red = nothing in range, pale = something near",
+        ));
+    }
+    let block = |fill: &str| {
+        format!(
+            r##"<rect x="-6" y="-5" width="12" height="10" fill="{fill}" stroke="#000000" stroke-width="0.8"/>"##
+        )
+    };
+    if !sc.fixed_obstacles.is_empty() {
+        items.push(LegendItem::new(block(FIXED_FILL), "fixed obstacle"));
+    }
+    if !sc.movable_obstacles.is_empty() {
+        items.push(LegendItem::new(block(MOVABLE_FILL), "movable obstacle"));
+    }
+    if !sc.pucks.is_empty() {
+        items.push(LegendItem::new(disc(PUCK_FILL, "#000000"), "puck"));
+    }
+    if !sc.marks.is_empty() {
+        items.push(LegendItem::new(
+            r##"<rect x="-5" y="-5" width="10" height="10" fill="none" stroke="#ff00ff" stroke-width="1.5"/>"##.to_string(),
+            "position mark",
+        ));
+    }
+    items
+}
+
+/// Lays legend items out in lines no wider than `width`: (x, line) of each.
+fn legend_layout(items: &[LegendItem], width: f64) -> (Vec<(f64, usize)>, usize) {
+    let mut places = Vec::with_capacity(items.len());
+    let (mut x, mut line) = (8.0, 0);
+    for item in items {
+        if x > 8.0 && x + item.width() > width {
+            x = 8.0;
+            line += 1;
+        }
+        places.push((x, line));
+        x += item.width();
+    }
+    (places, if items.is_empty() { 0 } else { line + 1 })
+}
+
 /// The world as an SVG picture (not a loadable scenario: see [`World::to_svg`]).
 pub fn render_svg(world: &World, opts: &DrawOptions) -> String {
     let sc = world.scenario();
@@ -79,7 +194,18 @@ pub fn render_svg(world: &World, opts: &DrawOptions) -> String {
     } else {
         0.0
     };
-    let (w, h) = (sc.width(), sc.height() + band);
+    let items = if opts.legend {
+        legend_items(world, opts)
+    } else {
+        Vec::new()
+    };
+    let (places, lines) = legend_layout(&items, sc.width());
+    let legend_band = if lines > 0 {
+        LEGEND_LINE * lines as f64 + 6.0
+    } else {
+        0.0
+    };
+    let (w, h) = (sc.width(), sc.height() + band + legend_band);
     let mut s = String::new();
     let _ = writeln!(
         s,
@@ -131,7 +257,7 @@ pub fn render_svg(world: &World, opts: &DrawOptions) -> String {
     for ob in &sc.fixed_obstacles {
         let _ = writeln!(
             s,
-            r##"<path d="{}" fill="#c0392b" fill-rule="{}" stroke="#000000" stroke-width="0.5"/>"##,
+            r##"<path d="{}" fill="{FIXED_FILL}" fill-rule="{}" stroke="#000000" stroke-width="0.8"/>"##,
             ob.shape.to_path_data(),
             rule(ob.shape.fill_rule)
         );
@@ -139,7 +265,7 @@ pub fn render_svg(world: &World, opts: &DrawOptions) -> String {
     for (ob, m) in sc.movable_obstacles.iter().zip(world.movables()) {
         let _ = writeln!(
             s,
-            r##"<path d="{}" fill="#999999" fill-rule="{}" stroke="#000000" stroke-width="0.5"/>"##,
+            r##"<path d="{}" fill="{MOVABLE_FILL}" fill-rule="{}" stroke="#000000" stroke-width="0.8" stroke-dasharray="3 2"/>"##,
             ob.shape.translated(m.offset).to_path_data(),
             rule(ob.shape.fill_rule)
         );
@@ -147,7 +273,7 @@ pub fn render_svg(world: &World, opts: &DrawOptions) -> String {
     for pk in world.pucks() {
         let _ = writeln!(
             s,
-            r##"<circle cx="{}" cy="{}" r="{}" fill="#f0f0f0" stroke="#000000" stroke-width="0.5"/>"##,
+            r##"<circle cx="{}" cy="{}" r="{}" fill="{PUCK_FILL}" stroke="#000000" stroke-width="0.5"/>"##,
             fmt_num(pk.pos.x),
             fmt_num(pk.pos.y),
             fmt_num(pk.radius)
@@ -170,6 +296,35 @@ pub fn render_svg(world: &World, opts: &DrawOptions) -> String {
                 pts.trim_end(),
                 robot_color(i)
             );
+        }
+        // Start poses: hollow discs (the filled discs drawn last are the end poses).
+        let r = world.params().robot_radius;
+        for (i, t) in trajs.iter().enumerate() {
+            let Some(&p) = t.first() else { continue };
+            let _ = writeln!(
+                s,
+                r##"<circle cx="{}" cy="{}" r="{}" fill="none" stroke="{}" stroke-width="2"/><circle cx="{}" cy="{}" r="{}" fill="none" stroke="#000000" stroke-width="0.6"/>"##,
+                fmt_num(p.x),
+                fmt_num(p.y),
+                fmt_num(r),
+                robot_color(i),
+                fmt_num(p.x),
+                fmt_num(p.y),
+                fmt_num(r + 1.0)
+            );
+            if let Some(start) = sc.robots.get(i).filter(|st| st.pos == p) {
+                let (sin, cos) = libm::sincos(start.heading);
+                let tip = p + glam::DVec2::new(sin, -cos) * r;
+                let _ = writeln!(
+                    s,
+                    r##"<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="{}" stroke-width="1.5"/>"##,
+                    fmt_num(p.x),
+                    fmt_num(p.y),
+                    fmt_num(tip.x),
+                    fmt_num(tip.y),
+                    robot_color(i)
+                );
+            }
         }
     }
     let r = world.params().robot_radius;
@@ -233,7 +388,31 @@ pub fn render_svg(world: &World, opts: &DrawOptions) -> String {
             fmt_num(tip.y)
         );
     }
-    s.push_str("</g>\n</svg>\n");
+    s.push_str("</g>\n");
+    if lines > 0 {
+        let top = band + sc.height();
+        let _ = writeln!(
+            s,
+            r##"<rect x="0" y="{}" width="{}" height="{}" fill="#ffffff"/>"##,
+            fmt_num(top),
+            fmt_num(w),
+            fmt_num(legend_band)
+        );
+        for (item, &(x, line)) in items.iter().zip(&places) {
+            let y = top + 3.0 + LEGEND_LINE * (line as f64 + 0.5);
+            let _ = writeln!(
+                s,
+                r##"<g transform="translate({} {})">{}</g><text x="{}" y="{}" font-family="DejaVu Sans" font-size="12" fill="#000000">{}</text>"##,
+                fmt_num(x + 7.0),
+                fmt_num(y),
+                item.symbol,
+                fmt_num(x + 20.0),
+                fmt_num(y + 4.0),
+                xml_escape(&item.text)
+            );
+        }
+    }
+    s.push_str("</svg>\n");
     s
 }
 

@@ -118,9 +118,22 @@ fn drawings_render_to_svg_and_png_with_title_and_sensors() {
         "one trajectory per robot"
     );
     assert_eq!(
-        svg.matches(r##"stroke="#e41a1c""##).count(),
+        svg.lines()
+            .filter(|l| l.starts_with("<polyline") && l.contains(r##"stroke="#e41a1c""##))
+            .count(),
         1,
         "robot 0's trajectory colour"
+    );
+    assert_eq!(
+        svg.lines()
+            .filter(|l| l.starts_with("<circle") && l.contains(r##"fill="none" stroke="#e41a1c""##))
+            .count(),
+        1,
+        "robot 0's start pose is marked"
+    );
+    assert!(
+        svg.contains("start (hollow), end (filled)"),
+        "a legend explains the marks"
     );
     assert!(svg.matches("<circle").count() >= 2 * 15 + 2);
     let png = vivae_sim::render_png(&w, &DrawOptions { scale: 0.5, ..opts }).unwrap();

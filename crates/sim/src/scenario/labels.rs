@@ -82,7 +82,10 @@ mod tests {
         for label in ["Road 1", "road-2", "Road_3", "road4", "ROAD 12", " Road 7 "] {
             assert_eq!(classify(label), road, "{label}");
         }
-        assert_eq!(classify("Water 2"), Some(Class::Surface(SurfaceKind::Water)));
+        assert_eq!(
+            classify("Water 2"),
+            Some(Class::Surface(SurfaceKind::Water))
+        );
         assert_eq!(classify("fixedObstacle-3"), Some(Class::Fixed));
         assert_eq!(classify("SmallPuck 2"), Some(Class::Puck(PuckKind::Small)));
         assert_eq!(classify("PositionMark_1"), Some(Class::Mark));
