@@ -3,12 +3,17 @@
 //! `vivae-neat` evolves CPPNs and decodes substrates, `vivae-sim` simulates the
 //! world; this crate joins them ([`experiment`]), drives evolution with
 //! checkpoints ([`evolve`]), owns every file format and all I/O ([`config`],
-//! [`io`]) and draws the paper's figures ([`figures`], [`report`]).
+//! [`io`]) and draws the paper's figures ([`figures`], [`report`]). Every
+//! fallible function returns the typed [`Error`], which says whether the
+//! user's input was at fault.
 
 pub mod config;
+pub mod error;
 pub mod evolve;
 pub mod experiment;
 pub mod figures;
 pub mod io;
 pub mod report;
 pub mod substrate;
+
+pub use error::{Error, Result};
