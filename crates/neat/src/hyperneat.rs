@@ -73,12 +73,16 @@ pub enum HyperError {
 }
 
 /// HyperNEAT expression parameters (DESIGN §7).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct HyperParams {
-    /// Expression threshold `t`: CPPN outputs with `|o| ≤ t` express no connection (0.2).
+    /// Expression threshold `t`: CPPN outputs with `|o| <= t` express no connection.
+    ///
+    /// Paper: 0.2.
     pub threshold: f64,
-    /// Controller weight amplitude: an output of magnitude 1 maps to this weight (3.0).
+    /// Largest controller weight: an output `o` maps to `sign(o)·(|o| − t)/(1 − t)·amplitude`.
+    ///
+    /// Paper: 3.0.
     pub amplitude: f64,
 }
 

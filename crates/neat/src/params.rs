@@ -9,46 +9,73 @@ use crate::error::NeatError;
 /// Defaults are the paper's Table II (population 100, weight amplitude 3.0,
 /// threshold 15.0, C1 = C2 = 2.0, C3 = 0.5, C_ACT = 1.0, mating 0.75,
 /// add-link 0.3, add-node 0.1, elitism 5 %) and Stanley's NEAT values elsewhere.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct NeatParams {
-    /// Number of genomes per generation.
+    // Each field's doc comment is also its entry in `vivae config reference`:
+    // a closing paragraph may give `Unit:`, `Paper:` (the paper's value) and,
+    // for an `Option`, `Example:`.
+    /// Genomes per generation.
+    ///
+    /// Paper: 100.
     pub population_size: usize,
-    /// Link weights are clamped to `[-weight_amplitude, weight_amplitude]`.
+    /// CPPN link weights are clamped to `[-weight_amplitude, weight_amplitude]`.
+    ///
+    /// Paper: 3.0.
     pub weight_amplitude: f64,
     /// Initial and replacement weights are uniform in `[-r, r]` (clamped to the amplitude).
     pub initial_weight_range: f64,
     /// Compatibility distance below which a genome joins a species.
+    ///
+    /// Paper: 15.0.
     pub compatibility_threshold: f64,
     /// C1: coefficient of excess genes.
+    ///
+    /// Paper: 2.0.
     pub c_excess: f64,
     /// C2: coefficient of disjoint genes.
+    ///
+    /// Paper: 2.0.
     pub c_disjoint: f64,
     /// C3: coefficient of the mean absolute weight difference of matching genes.
+    ///
+    /// Paper: 0.5.
     pub c_weight: f64,
-    /// C_ACT: coefficient of matching links whose target nodes' activations differ.
+    /// C_ACT: coefficient of matching links whose target nodes' activation functions differ.
+    ///
+    /// Paper: 1.0.
     pub c_activation: f64,
-    /// Divide E, D and A by the larger genome's link count.
+    /// Divide the excess, disjoint and activation terms by the larger genome's link count.
     pub normalize_distance: bool,
     /// Genomes with fewer links than this are not normalised (N = 1), as in Stanley's NEAT.
+    ///
+    /// Unit: links.
     pub normalize_min_genes: usize,
-    /// When set, the threshold is adjusted every generation towards this many species.
+    /// When set, the threshold moves each generation towards this many species.
+    ///
+    /// Unit: species. Example: 10.
     pub target_species: Option<usize>,
-    /// Step by which the dynamic threshold moves each generation.
+    /// Step by which the dynamic compatibility threshold moves each generation.
     pub threshold_step: f64,
-    /// Lower bound of the dynamic threshold.
+    /// Lower bound of the dynamic compatibility threshold.
     pub threshold_min: f64,
     /// Probability that an offspring is produced by crossover (else cloned and mutated).
+    ///
+    /// Paper: 0.75.
     pub mating_probability: f64,
     /// Probability that a crossover takes its second parent from another species.
     pub interspecies_mating_probability: f64,
     /// Probability that a crossover child is not mutated afterwards.
     pub mate_only_probability: f64,
-    /// Probability of the add-link mutation.
+    /// Probability of the add-link mutation (tried when add-node did not happen).
+    ///
+    /// Paper: 0.3.
     pub add_link_probability: f64,
     /// Probability of the add-node mutation.
+    ///
+    /// Paper: 0.1.
     pub add_node_probability: f64,
-    /// Probability that a (non-structural) mutation touches the link weights.
+    /// Probability that a non-structural mutation (neither add-node nor add-link) changes weights.
     pub weight_mutation_probability: f64,
     /// Per-link probability of changing its weight during a weight mutation.
     pub weight_link_probability: f64,
@@ -56,21 +83,29 @@ pub struct NeatParams {
     pub weight_replace_probability: f64,
     /// Standard deviation of the Gaussian weight perturbation.
     pub weight_perturb_power: f64,
-    /// Probability of toggling one link's enabled flag.
+    /// Probability that a non-structural mutation toggles one link's enabled flag.
     pub toggle_enable_probability: f64,
-    /// Probability of changing one hidden node's activation function.
+    /// Probability that a non-structural mutation changes one hidden node's activation function.
     pub activation_mutation_probability: f64,
     /// A gene disabled in either parent stays disabled in the child with this probability.
+    ///
+    /// Paper: 0.75 (Stanley).
     pub disabled_inherit_probability: f64,
     /// Attempts the add-link mutation makes to find an unconnected node pair.
     pub add_link_attempts: usize,
     /// Fraction of each species (best first) allowed to reproduce.
     pub survival_threshold: f64,
     /// Fraction of each species copied unchanged into the next generation (rounded up).
+    ///
+    /// Paper: 0.05.
     pub elitism_fraction: f64,
     /// Species smaller than this keep no elites (the champion's species always keeps one).
+    ///
+    /// Unit: genomes.
     pub elitism_min_species_size: usize,
     /// A species that has not improved for this many generations gets no offspring.
+    ///
+    /// Unit: generations. Paper: 15 (Stanley).
     pub stagnation_limit: u32,
 }
 

@@ -5,16 +5,24 @@ use serde::{Deserialize, Serialize};
 use crate::scenario::SurfaceKind;
 
 /// Friction coefficient of each surface kind (ViVAE's table).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct FrictionTable {
-    /// Road (default 1).
+    /// Friction of road.
+    ///
+    /// Paper: 1 (ViVAE).
     pub road: f64,
-    /// Grass (default 10).
+    /// Friction of grass (the background, unless the scenario names another).
+    ///
+    /// Paper: 10 (ViVAE).
     pub grass: f64,
-    /// Sand (default 3.5).
+    /// Friction of sand.
+    ///
+    /// Paper: 3.5 (ViVAE).
     pub sand: f64,
-    /// Water (default 6.5).
+    /// Friction of water.
+    ///
+    /// Paper: 6.5 (ViVAE).
     pub water: f64,
 }
 
@@ -51,30 +59,47 @@ impl FrictionTable {
 }
 
 /// Physics constants: robot kinematics, movable-object masses and damping, friction.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+///
+/// The defaults are DESIGN §5's; each field's doc comment is also its entry in
+/// `vivae config reference` (a closing `Unit:` note gives its unit).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct PhysicsParams {
-    /// Robot disc radius in px (default 6).
+    /// Robot disc radius.
+    ///
+    /// Unit: px.
     pub robot_radius: f64,
-    /// Top forward speed in px/step (default 5).
+    /// Top forward speed.
+    ///
+    /// Unit: px/step.
     pub v_max: f64,
-    /// Acceleration at full throttle in px/step² (default 0.5).
+    /// Acceleration at full throttle.
+    ///
+    /// Unit: px/step².
     pub a_max: f64,
-    /// Turn rate at full differential and standstill, rad/step (default 0.2).
+    /// Turn rate at full wheel difference and standstill.
+    ///
+    /// Unit: rad/step.
     pub omega_max: f64,
-    /// Friction drag factor: speed loses `k·μ·v` per step (default 0.1).
+    /// Friction drag factor: the speed loses `k·μ·v` per step on a surface of friction `μ`.
+    ///
+    /// Unit: 1/step.
     pub k: f64,
-    /// Robot mass, for pushing (default 1).
+    /// Robot mass, for pushing movable objects.
     pub robot_mass: f64,
-    /// Puck mass per px² of area (default 0.002: a radius-10 puck weighs ~0.6 robots).
+    /// Puck mass per unit area (at 0.002 a radius-10 puck weighs about 0.6 robots).
+    ///
+    /// Unit: 1/px².
     pub puck_density: f64,
-    /// Fraction of a puck's velocity lost per step (default 0.2).
+    /// Fraction of a puck's velocity lost per step.
     pub puck_damping: f64,
-    /// Movable-obstacle mass per px² of area (default 0.02: heavy).
+    /// Movable-obstacle mass per unit area.
+    ///
+    /// Unit: 1/px².
     pub obstacle_density: f64,
-    /// Fraction of a movable obstacle's velocity lost per step (default 0.5).
+    /// Fraction of a movable obstacle's velocity lost per step.
     pub obstacle_damping: f64,
-    /// Contact-resolution passes per step (default 4).
+    /// Contact-resolution passes per step.
     pub collision_iterations: u32,
     /// Friction of each surface kind.
     pub friction: FrictionTable,

@@ -1,13 +1,15 @@
 //! The experiment configuration: one TOML file holding every parameter.
 //!
-//! Sections map one-to-one onto the library parameter structs, so a key
-//! documented here is exactly the field the library reads. Every key has an
-//! entry in [`KEY_DOCS`]; a test walks the serialised default and fails when a
-//! key lacks documentation, so `vivae config default` and the guide's table
-//! cannot drift from the code.
+//! Sections map one-to-one onto the library parameter structs, so a key is
+//! exactly the field the library reads, and the field's doc comment is the
+//! key's documentation: [`reference`] reads them (through the structs'
+//! `schemars::JsonSchema` derive) for `vivae config default`, `vivae config
+//! reference` and the guide's table, so there is no second copy to drift. A
+//! test fails when a key lacks a doc comment or the guide's table is stale.
 
 use std::fmt::Write as _;
 
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use vivae_neat::NeatParams;
 use vivae_neat::hyperneat::HyperParams;
@@ -16,7 +18,7 @@ use vivae_sim::{DistanceSensors, PhysicsParams, SurfaceSensors};
 use crate::substrate::{CoordMode, PolarGrid};
 
 /// Every parameter of a run.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct Config {
     /// What is run: scenario, seed, generations, steps, robots.
@@ -38,22 +40,32 @@ pub struct Config {
 }
 
 /// What is run.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct ExperimentConfig {
-    /// Scenario SVG file; empty = the embedded default. Relative paths are
-    /// resolved against the directory of the config file.
+    /// Scenario SVG file; empty = the embedded default (a relative path is
+    /// relative to the config file's folder).
+    ///
+    /// Unit: path. Paper: the road scenario of Fig. 1.
     pub scenario: String,
     /// Seed of the run's random number generator.
     pub seed: u64,
     /// Generations to evolve.
+    ///
+    /// Paper: 400.
     pub generations: u32,
     /// Simulation steps per evaluation.
+    ///
+    /// Unit: steps. Paper: 1000.
     pub steps: u32,
-    /// Robots driven by copies of the controller; 0 = every robot of the scenario.
+    /// Robots driven by copies of the controller: the scenario's first N; 0 = all of them.
+    ///
+    /// Paper: 5.
     pub robots: usize,
-    /// Checkpoint whose population the run starts from instead of a fresh one
-    /// (set by `vivae retrain`); empty = a fresh population.
+    /// Checkpoint whose population the run starts from (set by `vivae retrain`);
+    /// empty = a fresh population.
+    ///
+    /// Unit: path.
     pub init_population: String,
 }
 
@@ -71,15 +83,23 @@ impl Default for ExperimentConfig {
 }
 
 /// The neuron sheet of the substrate.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct SubstrateConfig {
-    /// Output neuron sheet, rings × angles.
+    /// Output neuron sheet as RINGSxANGLES; the wheel neurons L and R sit at the
+    /// outer angles of the ring nearest radius 2/3 (the middle ring of 3).
+    ///
+    /// Paper: 3x3, re-sampled to 9x9.
+    #[schemars(with = "String")]
     pub neurons: PolarGrid,
-    /// CPPN coordinates of substrate nodes.
+    /// CPPN coordinates of a node at ring radius r and angle a:
+    /// `cartesian` = (r sin a, r cos a), `polar` = (r, a/pi).
+    ///
+    /// Paper: cartesian.
     pub coordinates: CoordMode,
-    /// Scale each sheet's outgoing weights by (nodes of the paper's sheet) /
-    /// (nodes of this sheet), so a re-sampled sheet drives the neurons as strongly.
+    /// Scale each sheet's outgoing weights by (its node count in the paper: 15
+    /// sensors, 9 neurons, 5 rays) / (its node count here), so a re-sampled
+    /// substrate drives its neurons as strongly; exactly 1 at the paper's resolution.
     pub normalize: bool,
 }
 
@@ -97,14 +117,21 @@ impl Default for SubstrateConfig {
 }
 
 /// Distance sensors: off unless `rays > 0`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct DistanceConfig {
-    /// Number of rays; 0 switches the distance sensors off.
+    /// Distance-sensor rays, a second input sheet; 0 switches the distance sensors off.
+    ///
+    /// Paper: none (future work).
     pub rays: usize,
-    /// Field of view in degrees.
+    /// Field of view of the distance sensors, centred ahead.
+    ///
+    /// Unit: degrees.
     pub fov: f64,
-    /// Ray length from the robot's rim, px.
+    /// Ray length from the robot's rim; a ray reads 1 - d/range for the
+    /// nearest obstacle at distance d, 0 when none is in range.
+    ///
+    /// Unit: px.
     pub range: f64,
 }
 
@@ -131,12 +158,14 @@ impl DistanceConfig {
 }
 
 /// How a run is executed.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct RunConfig {
-    /// Worker threads for evaluation; 0 = one per core. Results do not depend on it.
+    /// Evaluation threads; 0 = one per core (results do not depend on it).
     pub threads: usize,
-    /// Write a checkpoint every this many generations (the last generation always gets one).
+    /// Write a checkpoint every this many generations (and always after the last).
+    ///
+    /// Unit: generations.
     pub checkpoint_interval: u32,
     /// Checkpoints kept on disk; older ones are pruned.
     pub checkpoint_keep: usize,
@@ -229,41 +258,51 @@ impl Config {
         Ok(())
     }
 
-    /// The default config as TOML with a comment on every key.
+    /// The default config as TOML with a comment on every section and key.
     pub fn default_commented() -> String {
-        let value = toml::Value::try_from(Config::default()).expect("default config is TOML");
         let mut out = String::from(
             "# vivae configuration: every parameter of a run.\n\
              # Keys left out take their defaults; command-line flags override the file.\n\
              # Each comment gives: what the key is [unit]; its default; the paper's value where it has one.\n",
         );
-        let table = value.as_table().expect("config is a table");
-        for (section, sub) in table {
-            let sub = sub.as_table().expect("every section is a table");
-            write_section(&mut out, section, sub);
+        for section in reference() {
+            let _ = writeln!(out, "\n# {}", section.what);
+            let _ = writeln!(out, "[{}]", section.path);
+            for key in &section.keys {
+                let _ = writeln!(out, "# {}", key.comment());
+                let name = key.name();
+                match &key.default {
+                    Some(value) => {
+                        let _ = writeln!(out, "{name} = {value}");
+                    }
+                    // A key unset by default is shown commented out, with an example.
+                    None => {
+                        let _ = writeln!(out, "# {name} = {}", key.example);
+                    }
+                }
+            }
         }
         out
     }
 
     /// A Markdown table of every key: name, default, unit, paper's value, meaning.
     pub fn markdown_reference() -> String {
-        let value = toml::Value::try_from(Config::default()).expect("default config is TOML");
         let mut out = String::from(
             "| key | default | unit | paper | meaning |\n| --- | --- | --- | --- | --- |\n",
         );
-        for (key, default) in flatten(&value) {
-            let doc = key_doc(&key).unwrap_or(&MISSING);
+        for key in reference().iter().flat_map(|s| &s.keys) {
+            let default = match &key.default {
+                Some(value) => format!("`{value}`"),
+                None => "unset".to_string(),
+            };
             let _ = writeln!(
                 out,
-                "| `{key}` | `{default}` | {} | {} | {} |",
-                doc.unit, doc.paper, doc.what
-            );
-        }
-        for doc in KEY_DOCS.iter().filter(|d| d.optional) {
-            let _ = writeln!(
-                out,
-                "| `{}` | unset | {} | {} | {} |",
-                doc.key, doc.unit, doc.paper, doc.what
+                "| `{}` | {} | {} | {} | {} |",
+                key.key,
+                markdown_cell(&default),
+                markdown_cell(&key.unit),
+                markdown_cell(&key.paper),
+                markdown_cell(&key.what)
             );
         }
         out
@@ -274,492 +313,255 @@ fn param_message(err: &vivae_sim::ParamError) -> String {
     format!("{} = {}: {}", err.field, err.value, err.reason)
 }
 
-fn write_section(out: &mut String, path: &str, table: &toml::map::Map<String, toml::Value>) {
-    let _ = writeln!(out, "\n[{path}]");
-    let mut subtables = Vec::new();
-    for (key, value) in table {
-        if let toml::Value::Table(t) = value {
-            subtables.push((format!("{path}.{key}"), t));
-            continue;
-        }
-        let full = format!("{path}.{key}");
-        write_doc(out, &full, Some(&value.to_string()));
-        let _ = writeln!(out, "{key} = {value}");
+/// A table cell's text: a `|` would end the cell, so it is escaped.
+fn markdown_cell(text: &str) -> String {
+    text.replace('|', "\\|")
+}
+
+/// Documentation of one config key, read from the doc comment of the field it sets.
+///
+/// A field's doc comment is its meaning, optionally followed by a paragraph of
+/// notes: `Unit: px/step.`, `Paper: 100.` (the paper's value) and, for a key
+/// that is unset by default, `Example: 10.` (the value `vivae config default`
+/// shows commented out).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct KeyDoc {
+    /// Dotted key, e.g. `neat.population_size`.
+    pub key: String,
+    /// What the key is: the doc comment without its notes, lower-case first, no final period.
+    pub what: String,
+    /// Unit, empty when dimensionless.
+    pub unit: String,
+    /// The paper's value, empty when the paper gives none.
+    pub paper: String,
+    /// The default as TOML; `None` when the key is unset by default.
+    pub default: Option<String>,
+    /// A value to show for a key that is unset by default; empty otherwise.
+    pub example: String,
+}
+
+impl KeyDoc {
+    /// The key's name within its section.
+    pub fn name(&self) -> &str {
+        self.key.rsplit('.').next().unwrap_or(&self.key)
     }
-    // Optional keys have no value by default: show them commented out.
-    for doc in KEY_DOCS.iter().filter(|d| d.optional) {
-        if let Some((section, key)) = doc.key.rsplit_once('.')
-            && section == path
-        {
-            write_doc(out, doc.key, None);
-            let _ = writeln!(out, "# {key} = {}", doc.example);
+
+    /// One line: what the key is [unit]; default: D; paper: P.
+    pub fn comment(&self) -> String {
+        let mut parts = vec![if self.unit.is_empty() {
+            self.what.clone()
+        } else {
+            format!("{} [{}]", self.what, self.unit)
+        }];
+        parts.push(format!(
+            "default: {}",
+            self.default.as_deref().unwrap_or("unset")
+        ));
+        if !self.paper.is_empty() {
+            parts.push(format!("paper: {}", self.paper));
         }
-    }
-    for (sub_path, sub) in subtables {
-        write_section(out, &sub_path, sub);
+        parts.join("; ")
     }
 }
 
-fn write_doc(out: &mut String, key: &str, default: Option<&str>) {
-    let doc = key_doc(key).unwrap_or(&MISSING);
-    let mut parts = vec![if doc.unit.is_empty() {
-        doc.what.to_string()
-    } else {
-        format!("{} [{}]", doc.what, doc.unit)
-    }];
-    parts.push(format!("default: {}", default.unwrap_or("unset")));
-    if !doc.paper.is_empty() {
-        parts.push(format!("paper: {}", doc.paper));
-    }
-    let _ = writeln!(out, "# {}", parts.join("; "));
+/// Documentation of one config section (a TOML table) and of its keys.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SectionDoc {
+    /// Dotted path of the table, e.g. `physics.friction`.
+    pub path: String,
+    /// What the section holds: the doc comment of the field that holds it.
+    pub what: String,
+    /// Its keys: those set by default in declaration order, then those unset by default.
+    pub keys: Vec<KeyDoc>,
 }
 
-/// Every leaf key of a TOML value as (dotted key, value as TOML text).
-pub fn flatten(value: &toml::Value) -> Vec<(String, String)> {
-    fn walk(prefix: &str, value: &toml::Value, out: &mut Vec<(String, String)>) {
-        match value {
-            toml::Value::Table(t) => {
-                for (k, v) in t {
-                    let key = if prefix.is_empty() {
-                        k.clone()
-                    } else {
-                        format!("{prefix}.{k}")
-                    };
-                    walk(&key, v, out);
-                }
-            }
-            other => out.push((prefix.to_string(), other.to_string())),
-        }
-    }
+/// Every section and key of the config, documented from the doc comments of
+/// the fields they set: the one source of `vivae config default`, `vivae
+/// config reference` and the guide's table.
+pub fn reference() -> Vec<SectionDoc> {
+    let schema = schemars::schema_for!(Config);
+    let root = schema.as_value();
+    let defaults = toml::Value::try_from(Config::default()).expect("the default config is TOML");
+    let defaults = defaults.as_table().expect("the config is a table");
     let mut out = Vec::new();
-    walk("", value, &mut out);
+    for (name, value) in defaults {
+        let property = property(root, root, name);
+        let table = value.as_table().expect("every top-level key is a section");
+        document_section(root, property, name, table, &mut out);
+    }
     out
 }
 
-/// Documentation of one config key.
-#[derive(Debug, Clone, Copy)]
-pub struct KeyDoc {
-    /// Dotted key, e.g. `neat.population_size`.
-    pub key: &'static str,
-    /// What the key is.
-    pub what: &'static str,
-    /// Unit, empty when dimensionless.
-    pub unit: &'static str,
-    /// The paper's value, empty when the paper does not give one.
-    pub paper: &'static str,
-    /// Whether the key is unset by default (an `Option`).
-    pub optional: bool,
-    /// Example value shown for optional keys.
-    pub example: &'static str,
+/// Documentation of the key `key` (dotted), if there is such a key.
+pub fn key_doc(key: &str) -> Option<KeyDoc> {
+    reference()
+        .into_iter()
+        .flat_map(|s| s.keys)
+        .find(|k| k.key == key)
 }
 
-const MISSING: KeyDoc = doc("?", "UNDOCUMENTED", "", "");
-
-const fn doc(
-    key: &'static str,
-    what: &'static str,
-    unit: &'static str,
-    paper: &'static str,
-) -> KeyDoc {
-    KeyDoc {
-        key,
+/// Documents the section at `path` whose schema is `schema` and whose defaults are `defaults`,
+/// then its sub-sections.
+fn document_section(
+    root: &serde_json::Value,
+    schema: &serde_json::Value,
+    path: &str,
+    defaults: &toml::Table,
+    out: &mut Vec<SectionDoc>,
+) {
+    let what = ParsedDoc::new(&description(schema)).what;
+    let body = resolve(root, schema);
+    let mut keys = Vec::new();
+    let mut sections = Vec::new();
+    // The defaults list the keys in declaration order (serde serialises fields in order).
+    for (name, value) in defaults {
+        let field = property(root, body, name);
+        match value {
+            toml::Value::Table(table) => sections.push((name, field, table)),
+            value => keys.push(
+                ParsedDoc::new(&description(field))
+                    .key(format!("{path}.{name}"), Some(value.to_string())),
+            ),
+        }
+    }
+    // Keys the serialised default leaves out are `Option`s that are unset by default.
+    if let Some(properties) = body.get("properties").and_then(|p| p.as_object()) {
+        for (name, field) in properties {
+            if !defaults.contains_key(name) {
+                keys.push(ParsedDoc::new(&description(field)).key(format!("{path}.{name}"), None));
+            }
+        }
+    }
+    out.push(SectionDoc {
+        path: path.to_string(),
         what,
-        unit,
-        paper,
-        optional: false,
-        example: "",
+        keys,
+    });
+    for (name, field, table) in sections {
+        document_section(root, field, &format!("{path}.{name}"), table, out);
     }
 }
 
-/// Documentation of the key `key`, if any.
-pub fn key_doc(key: &str) -> Option<&'static KeyDoc> {
-    KEY_DOCS.iter().find(|d| d.key == key)
+/// The schema of property `name` of the object schema `object`; `null` when absent.
+fn property<'a>(
+    root: &'a serde_json::Value,
+    object: &'a serde_json::Value,
+    name: &str,
+) -> &'a serde_json::Value {
+    resolve(root, object)
+        .get("properties")
+        .and_then(|p| p.get(name))
+        .unwrap_or(&serde_json::Value::Null)
 }
 
-/// Documentation of every config key.
-pub static KEY_DOCS: &[KeyDoc] = &[
-    doc(
-        "experiment.scenario",
-        "scenario SVG file; empty = the embedded default (relative to this file)",
-        "path",
-        "the road scenario of Fig. 1",
-    ),
-    doc(
-        "experiment.seed",
-        "seed of the run's random number generator",
-        "",
-        "",
-    ),
-    doc("experiment.generations", "generations to evolve", "", "400"),
-    doc(
-        "experiment.steps",
-        "simulation steps per evaluation",
-        "steps",
-        "1000",
-    ),
-    doc(
-        "experiment.robots",
-        "robots sharing the controller (first N of the scenario; 0 = all)",
-        "",
-        "5",
-    ),
-    doc(
-        "experiment.init_population",
-        "checkpoint whose population the run starts from (set by retrain); empty = fresh population",
-        "path",
-        "",
-    ),
-    doc(
-        "substrate.neurons",
-        "output neuron sheet as RINGSxANGLES; the wheel neurons L/R sit at the outer angles of the ring nearest radius 2/3 (the middle ring of 3)",
-        "",
-        "3x3, re-sampled to 9x9",
-    ),
-    doc(
-        "substrate.coordinates",
-        "CPPN coordinates of a node at ring radius r and angle a: cartesian = (r sin a, r cos a), polar = (r, a/pi)",
-        "",
-        "cartesian",
-    ),
-    doc(
-        "substrate.normalize",
-        "scale each sheet's outgoing weights by (its node count in the paper: 15 sensors, 9 neurons, 5 rays) / (its node count here), so a re-sampled substrate drives its neurons as strongly; exactly 1 at the paper's resolution",
-        "",
-        "",
-    ),
-    doc(
-        "hyperneat.threshold",
-        "CPPN outputs with |o| <= threshold express no connection",
-        "",
-        "0.2",
-    ),
-    doc(
-        "hyperneat.amplitude",
-        "largest controller weight: w = sign(o)(|o| - t)/(1 - t) * amplitude",
-        "",
-        "3.0",
-    ),
-    doc(
-        "surface_sensors.rings",
-        "surface sensor rings (distances) of the input sheet",
-        "",
-        "3, re-sampled to 3",
-    ),
-    doc(
-        "surface_sensors.angles",
-        "surface sensor angles per ring",
-        "",
-        "5, re-sampled to 6",
-    ),
-    doc(
-        "surface_sensors.fov",
-        "field of view of the surface sensors, centred ahead",
-        "degrees",
-        "180",
-    ),
-    doc(
-        "surface_sensors.d_min",
-        "distance of the nearest sensor ring from the robot centre",
-        "px",
-        "",
-    ),
-    doc(
-        "surface_sensors.d_max",
-        "distance of the farthest sensor ring",
-        "px",
-        "",
-    ),
-    doc(
-        "distance_sensors.rays",
-        "distance-sensor rays, a second input sheet; 0 = off",
-        "",
-        "none (future work)",
-    ),
-    doc(
-        "distance_sensors.fov",
-        "field of view of the distance sensors",
-        "degrees",
-        "",
-    ),
-    doc(
-        "distance_sensors.range",
-        "ray length from the robot's rim; a reading is 1 - d/range",
-        "px",
-        "",
-    ),
-    doc("physics.robot_radius", "robot disc radius", "px", ""),
-    doc("physics.v_max", "top forward speed", "px/step", ""),
-    doc(
-        "physics.a_max",
-        "acceleration at full throttle",
-        "px/step^2",
-        "",
-    ),
-    doc(
-        "physics.omega_max",
-        "turn rate at full wheel difference and standstill",
-        "rad/step",
-        "",
-    ),
-    doc(
-        "physics.k",
-        "drag factor: speed loses k * friction * v per step",
-        "1/step",
-        "",
-    ),
-    doc(
-        "physics.robot_mass",
-        "robot mass, for pushing movable objects",
-        "",
-        "",
-    ),
-    doc(
-        "physics.puck_density",
-        "puck mass per unit area",
-        "1/px^2",
-        "",
-    ),
-    doc(
-        "physics.puck_damping",
-        "fraction of a puck's velocity lost per step",
-        "",
-        "",
-    ),
-    doc(
-        "physics.obstacle_density",
-        "movable obstacle mass per unit area",
-        "1/px^2",
-        "",
-    ),
-    doc(
-        "physics.obstacle_damping",
-        "fraction of a movable obstacle's velocity lost per step",
-        "",
-        "",
-    ),
-    doc(
-        "physics.collision_iterations",
-        "contact-resolution passes per step",
-        "",
-        "",
-    ),
-    doc("physics.friction.road", "friction of road", "", "1 (ViVAE)"),
-    doc(
-        "physics.friction.grass",
-        "friction of grass (also the background)",
-        "",
-        "10 (ViVAE)",
-    ),
-    doc(
-        "physics.friction.sand",
-        "friction of sand",
-        "",
-        "3.5 (ViVAE)",
-    ),
-    doc(
-        "physics.friction.water",
-        "friction of water",
-        "",
-        "6.5 (ViVAE)",
-    ),
-    doc("neat.population_size", "genomes per generation", "", "100"),
-    doc(
-        "neat.weight_amplitude",
-        "CPPN link weights are clamped to [-a, a]",
-        "",
-        "3.0",
-    ),
-    doc(
-        "neat.initial_weight_range",
-        "initial and replacement weights are uniform in [-r, r]",
-        "",
-        "",
-    ),
-    doc(
-        "neat.compatibility_threshold",
-        "compatibility distance below which a genome joins a species",
-        "",
-        "15.0",
-    ),
-    doc(
-        "neat.c_excess",
-        "C1: coefficient of excess genes",
-        "",
-        "2.0",
-    ),
-    doc(
-        "neat.c_disjoint",
-        "C2: coefficient of disjoint genes",
-        "",
-        "2.0",
-    ),
-    doc(
-        "neat.c_weight",
-        "C3: coefficient of the mean weight difference of matching genes",
-        "",
-        "0.5",
-    ),
-    doc(
-        "neat.c_activation",
-        "C_ACT: coefficient of matching links whose target nodes' functions differ",
-        "",
-        "1.0",
-    ),
-    doc(
-        "neat.normalize_distance",
-        "divide excess, disjoint and activation terms by the larger genome's size",
-        "",
-        "",
-    ),
-    doc(
-        "neat.normalize_min_genes",
-        "genomes smaller than this are not normalised",
-        "links",
-        "",
-    ),
-    KeyDoc {
-        optional: true,
-        example: "10",
-        ..doc(
-            "neat.target_species",
-            "when set, the threshold moves each generation towards this many species",
-            "species",
-            "",
-        )
-    },
-    doc(
-        "neat.threshold_step",
-        "step of the dynamic compatibility threshold",
-        "",
-        "",
-    ),
-    doc(
-        "neat.threshold_min",
-        "lower bound of the dynamic compatibility threshold",
-        "",
-        "",
-    ),
-    doc(
-        "neat.mating_probability",
-        "probability that an offspring comes from crossover",
-        "",
-        "0.75",
-    ),
-    doc(
-        "neat.interspecies_mating_probability",
-        "probability that the second parent comes from another species",
-        "",
-        "",
-    ),
-    doc(
-        "neat.mate_only_probability",
-        "probability that a crossover child is not mutated",
-        "",
-        "",
-    ),
-    doc(
-        "neat.add_link_probability",
-        "probability of the add-link mutation",
-        "",
-        "0.3",
-    ),
-    doc(
-        "neat.add_node_probability",
-        "probability of the add-node mutation",
-        "",
-        "0.1",
-    ),
-    doc(
-        "neat.weight_mutation_probability",
-        "probability that an offspring's weights are mutated",
-        "",
-        "",
-    ),
-    doc(
-        "neat.weight_link_probability",
-        "per-link probability of changing its weight in a weight mutation",
-        "",
-        "",
-    ),
-    doc(
-        "neat.weight_replace_probability",
-        "per-changed-link probability of replacing instead of perturbing",
-        "",
-        "",
-    ),
-    doc(
-        "neat.weight_perturb_power",
-        "standard deviation of the Gaussian weight perturbation",
-        "",
-        "",
-    ),
-    doc(
-        "neat.toggle_enable_probability",
-        "probability of toggling one link's enabled flag",
-        "",
-        "",
-    ),
-    doc(
-        "neat.activation_mutation_probability",
-        "probability of changing one hidden node's function",
-        "",
-        "",
-    ),
-    doc(
-        "neat.disabled_inherit_probability",
-        "a gene disabled in either parent stays disabled with this probability",
-        "",
-        "0.75 (Stanley)",
-    ),
-    doc(
-        "neat.add_link_attempts",
-        "attempts to find an unconnected node pair for add-link",
-        "",
-        "",
-    ),
-    doc(
-        "neat.survival_threshold",
-        "fraction of each species (best first) allowed to reproduce",
-        "",
-        "",
-    ),
-    doc(
-        "neat.elitism_fraction",
-        "fraction of each species copied unchanged into the next generation",
-        "",
-        "0.05",
-    ),
-    doc(
-        "neat.elitism_min_species_size",
-        "species smaller than this keep no elites (the champion's always keeps one)",
-        "genomes",
-        "",
-    ),
-    doc(
-        "neat.stagnation_limit",
-        "generations without improvement after which a species gets no offspring",
-        "generations",
-        "15 (Stanley)",
-    ),
-    doc(
-        "run.threads",
-        "evaluation threads; 0 = one per core (results do not depend on it)",
-        "",
-        "",
-    ),
-    doc(
-        "run.checkpoint_interval",
-        "write a checkpoint every N generations (and always after the last)",
-        "generations",
-        "",
-    ),
-    doc(
-        "run.checkpoint_keep",
-        "checkpoints kept on disk; older ones are pruned",
-        "",
-        "",
-    ),
-];
+/// Follows `$ref` (directly or as the single entry of an `allOf`) into the root's definitions.
+fn resolve<'a>(
+    root: &'a serde_json::Value,
+    schema: &'a serde_json::Value,
+) -> &'a serde_json::Value {
+    let reference = schema.get("$ref").or_else(|| {
+        schema
+            .get("allOf")
+            .and_then(|a| a.as_array())
+            .filter(|a| a.len() == 1)
+            .and_then(|a| a[0].get("$ref"))
+    });
+    match reference.and_then(|r| r.as_str()) {
+        Some(r) => r
+            .strip_prefix("#/")
+            .and_then(|pointer| root.pointer(&format!("/{pointer}")))
+            .map(|target| resolve(root, target))
+            .unwrap_or(schema),
+        None => schema,
+    }
+}
+
+/// A schema's doc text: its title (a doc comment's `#` heading) and description.
+fn description(schema: &serde_json::Value) -> String {
+    ["title", "description"]
+        .iter()
+        .filter_map(|k| schema.get(*k).and_then(|v| v.as_str()))
+        .collect::<Vec<_>>()
+        .join("\n\n")
+}
+
+/// A doc comment split into its meaning and its notes.
+#[derive(Debug, Default, PartialEq)]
+struct ParsedDoc {
+    what: String,
+    unit: String,
+    paper: String,
+    example: String,
+}
+
+/// The notes a doc comment may end with.
+const NOTES: [&str; 3] = ["Unit:", "Paper:", "Example:"];
+
+impl ParsedDoc {
+    fn new(doc: &str) -> ParsedDoc {
+        let mut parsed = ParsedDoc::default();
+        let mut what = Vec::new();
+        for paragraph in doc.split("\n\n") {
+            let paragraph = paragraph.split_whitespace().collect::<Vec<_>>().join(" ");
+            if NOTES.iter().any(|n| paragraph.starts_with(n)) {
+                parsed.read_notes(&paragraph);
+            } else if !paragraph.is_empty() {
+                what.push(paragraph);
+            }
+        }
+        parsed.what = what.join(" ");
+        parsed
+    }
+
+    /// Reads `Unit: u. Paper: p. Example: e.` (any order, any subset).
+    fn read_notes(&mut self, text: &str) {
+        let mut starts: Vec<(usize, &str)> = NOTES
+            .iter()
+            .filter_map(|n| text.find(n).map(|at| (at, *n)))
+            .collect();
+        starts.sort();
+        for (i, &(at, note)) in starts.iter().enumerate() {
+            let end = starts.get(i + 1).map_or(text.len(), |&(next, _)| next);
+            let value = text[at + note.len()..end].trim();
+            let value = value.strip_suffix('.').unwrap_or(value).to_string();
+            match note {
+                "Unit:" => self.unit = value,
+                "Paper:" => self.paper = value,
+                _ => self.example = value,
+            }
+        }
+    }
+
+    fn key(self, key: String, default: Option<String>) -> KeyDoc {
+        KeyDoc {
+            key,
+            what: sentence_fragment(&self.what),
+            unit: self.unit,
+            paper: self.paper,
+            default,
+            example: self.example,
+        }
+    }
+}
+
+/// A doc sentence as a fragment for a one-line comment: first word lower-case
+/// (unless it is an acronym or symbol such as `CPPN`, `C1` or `C_ACT`), no final period.
+fn sentence_fragment(text: &str) -> String {
+    let text = text.strip_suffix('.').unwrap_or(text);
+    let word = text
+        .split_whitespace()
+        .next()
+        .unwrap_or("")
+        .trim_end_matches([':', ',', ';']);
+    let mut chars = word.chars();
+    match chars.next() {
+        Some(first) if first.is_uppercase() && chars.all(|c| c.is_lowercase()) => first
+            .to_lowercase()
+            .chain(text[first.len_utf8()..].chars())
+            .collect(),
+        _ => text.to_string(),
+    }
+}
 
 /// Turns a toml parse error into one line: `line L: key K: reason`.
 fn describe_toml_error(text: &str, err: &toml::de::Error) -> ConfigError {
@@ -827,30 +629,145 @@ mod tests {
         assert_eq!(Config::from_toml(&text).unwrap(), Config::default());
     }
 
-    #[test]
-    fn every_key_is_documented_and_every_doc_is_a_key() {
-        let value = toml::Value::try_from(Config::default()).unwrap();
-        let keys: Vec<String> = flatten(&value).into_iter().map(|(k, _)| k).collect();
-        let undocumented: Vec<&String> = keys.iter().filter(|k| key_doc(k).is_none()).collect();
-        assert!(
-            undocumented.is_empty(),
-            "undocumented keys: {undocumented:?}"
-        );
-        for d in KEY_DOCS {
-            if d.optional {
-                let (section, key) = d.key.rsplit_once('.').unwrap();
-                let text = format!("[{section}]\n{key} = {}\n", d.example);
-                Config::from_toml(&text)
-                    .unwrap_or_else(|e| panic!("optional key {} example rejected: {e}", d.key));
-            } else {
-                assert!(
-                    keys.iter().any(|k| k == d.key),
-                    "doc for missing key {}",
-                    d.key
-                );
+    /// Every leaf key of a TOML value as (dotted key, value as TOML text).
+    fn flatten(value: &toml::Value) -> Vec<(String, String)> {
+        fn walk(prefix: &str, value: &toml::Value, out: &mut Vec<(String, String)>) {
+            match value {
+                toml::Value::Table(t) => {
+                    for (k, v) in t {
+                        let key = if prefix.is_empty() {
+                            k.clone()
+                        } else {
+                            format!("{prefix}.{k}")
+                        };
+                        walk(&key, v, out);
+                    }
+                }
+                other => out.push((prefix.to_string(), other.to_string())),
             }
         }
-        assert!(!Config::default_commented().contains("UNDOCUMENTED"));
+        let mut out = Vec::new();
+        walk("", value, &mut out);
+        out
+    }
+
+    #[test]
+    fn every_key_and_section_is_documented_and_every_doc_is_a_key() {
+        let value = toml::Value::try_from(Config::default()).unwrap();
+        let defaults = flatten(&value);
+        let sections = reference();
+        let docs: Vec<&KeyDoc> = sections.iter().flat_map(|s| &s.keys).collect();
+        for s in &sections {
+            assert!(
+                !s.what.is_empty(),
+                "section [{}] has no doc comment",
+                s.path
+            );
+        }
+        for (key, default) in &defaults {
+            let doc = docs
+                .iter()
+                .find(|d| &d.key == key)
+                .unwrap_or_else(|| panic!("{key} is missing from the reference"));
+            assert!(!doc.what.is_empty(), "{key} has no doc comment");
+            assert_eq!(doc.default.as_ref(), Some(default), "{key}");
+        }
+        for d in &docs {
+            assert_eq!(
+                docs.iter().filter(|o| o.key == d.key).count(),
+                1,
+                "{}",
+                d.key
+            );
+            if d.default.is_none() {
+                assert!(!d.what.is_empty(), "{} has no doc comment", d.key);
+                let (section, key) = d.key.rsplit_once('.').unwrap();
+                let text = format!("[{section}]\n{key} = {}\n", d.example);
+                Config::from_toml(&text).unwrap_or_else(|e| {
+                    panic!("unset key {}: its Example: note is rejected: {e}", d.key)
+                });
+            } else {
+                assert!(defaults.iter().any(|(k, _)| k == &d.key), "{}", d.key);
+            }
+        }
+    }
+
+    #[test]
+    fn doc_comments_are_the_reference() {
+        let doc = key_doc("neat.population_size").unwrap();
+        assert_eq!(doc.what, "genomes per generation");
+        assert_eq!(doc.paper, "100");
+        assert_eq!(doc.default.as_deref(), Some("100"));
+        let doc = key_doc("physics.v_max").unwrap();
+        assert_eq!(
+            (doc.what.as_str(), doc.unit.as_str()),
+            ("top forward speed", "px/step")
+        );
+        assert_eq!(doc.comment(), "top forward speed [px/step]; default: 5.0");
+        let doc = key_doc("neat.target_species").unwrap();
+        assert_eq!((doc.default.as_deref(), doc.example.as_str()), (None, "10"));
+        assert!(key_doc("neat.no_such_key").is_none());
+    }
+
+    #[test]
+    fn notes_are_split_from_the_meaning() {
+        let d = ParsedDoc::new(
+            "CPPN link weights are clamped.\n\nMore text here.\n\nUnit: px/step. Paper: 0.75 (Stanley).\nExample: 10.",
+        );
+        assert_eq!(d.what, "CPPN link weights are clamped. More text here.");
+        assert_eq!(
+            (d.unit.as_str(), d.paper.as_str(), d.example.as_str()),
+            ("px/step", "0.75 (Stanley)", "10")
+        );
+        assert_eq!(ParsedDoc::new("Paper: 3.5.").paper, "3.5");
+        assert_eq!(sentence_fragment("C1: coefficient."), "C1: coefficient");
+        assert_eq!(sentence_fragment("Robot disc radius."), "robot disc radius");
+        assert_eq!(sentence_fragment("A gene stays."), "a gene stays");
+        assert_eq!(
+            sentence_fragment("C_ACT: coefficient"),
+            "C_ACT: coefficient"
+        );
+        assert_eq!(sentence_fragment("CPPN weights."), "CPPN weights");
+        assert_eq!(sentence_fragment(""), "");
+    }
+
+    #[test]
+    fn markdown_reference_escapes_table_pipes() {
+        let table = Config::markdown_reference();
+        let columns = |line: &str| line.replace("\\|", "").matches('|').count();
+        for line in table.lines() {
+            assert_eq!(columns(line), 6, "{line}");
+        }
+        assert!(table.contains("`neat.target_species` | unset |"), "{table}");
+    }
+
+    #[test]
+    fn commented_default_shows_unset_keys_and_section_docs() {
+        let text = Config::default_commented();
+        assert!(text.contains("\n# target_species = 10\n"), "{text}");
+        assert!(text.contains("[physics.friction]\n"), "{text}");
+        let before_neat = text.split("\n[neat]\n").next().unwrap();
+        assert!(
+            before_neat.ends_with("\n# NEAT hyper-parameters for the CPPNs."),
+            "{before_neat}"
+        );
+    }
+
+    /// The guide's key table is exactly `vivae config reference` (regenerate it
+    /// with `scripts/update-config-reference.sh`).
+    #[test]
+    fn guide_table_equals_the_generated_reference() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/guide.md");
+        let guide = std::fs::read_to_string(path).unwrap();
+        let begin = "<!-- BEGIN CONFIG REFERENCE -->\n";
+        let end = "<!-- END CONFIG REFERENCE -->";
+        let start = guide.find(begin).expect("docs/guide.md has a BEGIN marker") + begin.len();
+        let stop = guide.find(end).expect("docs/guide.md has an END marker");
+        assert!(
+            guide[start..stop] == Config::markdown_reference(),
+            "docs/guide.md's key table differs from `vivae config reference`: \
+             run scripts/update-config-reference.sh"
+        );
     }
 
     #[test]

@@ -15,15 +15,15 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
-use anyhow::Context as _;
 use serde::{Deserialize, Serialize};
 use vivae_neat::driver::{
-    CheckpointState, Checkpointer, Evolution, GenerationReport, HookError, Observer,
+    CheckpointState, Checkpointer, DriverError, Evolution, GenerationReport, HookError, Observer,
     ParallelEvaluator, StopCriteria, StopReason,
 };
 use vivae_neat::{Genome, Population};
 
 use crate::config::Config;
+use crate::error::{Error, Result};
 use crate::experiment::Experiment;
 use crate::io::{bad_input, write_atomic};
 
@@ -138,17 +138,23 @@ fn fnv1a(bytes: &[u8]) -> u64 {
     })
 }
 
-fn encode_checkpoint(cp: &Checkpoint) -> anyhow::Result<String> {
-    let body = serde_json::to_string(cp).context("serialising checkpoint")?;
+fn encode_checkpoint(cp: &Checkpoint) -> Result<String> {
+    let body = serde_json::to_string(cp).map_err(|e| Error::Serialize {
+        what: "checkpoint",
+        reason: e.to_string(),
+    })?;
     Ok(format!(
         "{CHECKPOINT_MAGIC} {:016x}\n{body}",
         fnv1a(body.as_bytes())
     ))
 }
 
-fn decode_checkpoint(path: &Path) -> anyhow::Result<Checkpoint> {
+fn decode_checkpoint(path: &Path) -> Result<Checkpoint> {
     let text = crate::io::read_text(path)?;
-    let bad = |why: &str| bad_input(format!("{}: {why}", path.display()));
+    let bad = |why: &str| Error::Checkpoint {
+        path: path.to_path_buf(),
+        reason: why.to_string(),
+    };
     let (header, body) = text
         .split_once('\n')
         .ok_or_else(|| bad("not a vivae checkpoint (no header line)"))?;
@@ -173,26 +179,29 @@ fn decode_checkpoint(path: &Path) -> anyhow::Result<Checkpoint> {
 }
 
 /// Reads the population stored in a checkpoint file (for `retrain` and `init_population`).
-pub fn population_from_checkpoint(path: &Path) -> anyhow::Result<(Config, Population)> {
+pub fn population_from_checkpoint(path: &Path) -> Result<(Config, Population)> {
     let cp = decode_checkpoint(path)?;
     Ok((cp.config, cp.population))
 }
 
 /// Path of the newest checkpoint in a run directory.
-pub fn latest_checkpoint(run_dir: &Path) -> anyhow::Result<PathBuf> {
+pub fn latest_checkpoint(run_dir: &Path) -> Result<PathBuf> {
     let dir = run_dir.join(files::CHECKPOINTS);
-    let entries = fs::read_dir(&dir).map_err(|e| {
-        bad_input(format!(
-            "{}: not a vivae run directory ({}: {})",
-            run_dir.display(),
+    let entries = fs::read_dir(&dir).map_err(|e| Error::Checkpoint {
+        path: run_dir.to_path_buf(),
+        reason: format!(
+            "not a vivae run directory ({}: {})",
             files::CHECKPOINTS,
             crate::io::io_reason(&e)
-        ))
+        ),
     })?;
     checkpoint_names(entries)
         .pop()
         .map(|n| dir.join(n))
-        .ok_or_else(|| bad_input(format!("{}: no checkpoint to resume from", dir.display())))
+        .ok_or_else(|| Error::Checkpoint {
+            path: dir.clone(),
+            reason: "no checkpoint to resume from".into(),
+        })
 }
 
 /// How a run ended.
@@ -227,7 +236,7 @@ impl Run {
         scenario_text: &str,
         init: Option<Population>,
         force: bool,
-    ) -> anyhow::Result<Run> {
+    ) -> Result<Run> {
         let population = match init {
             // Only the genomes carry over: fitness, species and the champion were
             // measured on another substrate and mean nothing here.
@@ -246,7 +255,8 @@ impl Run {
             .map_err(|e| bad_input(format!("neat: {e}")))?,
         };
         crate::io::create_out_dir(dir, force)?;
-        fs::create_dir_all(dir.join(files::CHECKPOINTS))?;
+        let checkpoints = dir.join(files::CHECKPOINTS);
+        fs::create_dir_all(&checkpoints).map_err(Error::io("create", checkpoints))?;
         write_atomic(&dir.join(files::SCENARIO), scenario_text.as_bytes())?;
         if !config.experiment.init_population.is_empty() {
             // Keep the starting population beside the config that names it.
@@ -286,11 +296,7 @@ impl Run {
     /// Opens an existing run at its newest checkpoint; `generations` extends (or
     /// shortens, if not yet reached) the total. Files written after that
     /// checkpoint are truncated back to it.
-    pub fn resume(
-        dir: &Path,
-        generations: Option<u32>,
-        threads: Option<usize>,
-    ) -> anyhow::Result<Run> {
+    pub fn resume(dir: &Path, generations: Option<u32>, threads: Option<usize>) -> Result<Run> {
         let path = latest_checkpoint(dir)?;
         let mut cp = decode_checkpoint(&path)?;
         if let Some(n) = generations {
@@ -303,8 +309,7 @@ impl Run {
             cp.config.experiment.generations = n;
         }
         let scenario = crate::io::load_scenario(Some(&dir.join(files::SCENARIO)))?;
-        let experiment = Experiment::new(&cp.config, &scenario.scenario)
-            .map_err(|e| bad_input(e.to_string()))?;
+        let experiment = Experiment::new(&cp.config, &scenario.scenario)?;
         for (name, len) in [
             (files::GENERATIONS, cp.progress.generations_len),
             (files::POPULATION, cp.progress.population_len),
@@ -356,7 +361,7 @@ impl Run {
         &mut self,
         stop: &AtomicBool,
         on_generation: impl FnMut(&GenerationRecord),
-    ) -> anyhow::Result<Outcome> {
+    ) -> Result<Outcome> {
         let total = self.config.experiment.generations;
         let mut evolution = Evolution::resume(
             self.population.clone(),
@@ -375,13 +380,13 @@ impl Run {
         let criteria = StopCriteria::generations(total).or_interrupt(stop);
         let result = evolution.run_with(&criteria, &mut recorder);
         self.population = evolution.into_population();
-        match result.map_err(|e| anyhow::anyhow!(e))? {
+        match result.map_err(driver_error)? {
             StopReason::Interrupted => Ok(Outcome::Interrupted),
             _ => Ok(Outcome::Finished),
         }
     }
 
-    fn write_checkpoint(&self) -> anyhow::Result<()> {
+    fn write_checkpoint(&self) -> Result<()> {
         write_checkpoint(&self.dir, &self.config, &self.progress, &self.population)
     }
 
@@ -411,12 +416,23 @@ fn champion(population: &Population, progress: &Progress) -> Option<Champion> {
         })
 }
 
+/// The driver's error as ours; an error of our own observer comes back unchanged.
+fn driver_error(e: DriverError) -> Error {
+    match e {
+        DriverError::Hook(hook) => match hook.downcast::<Error>() {
+            Ok(ours) => *ours,
+            Err(other) => Error::Evolution(other.to_string()),
+        },
+        other => Error::Evolution(other.to_string()),
+    }
+}
+
 fn write_checkpoint(
     dir: &Path,
     config: &Config,
     progress: &Progress,
     population: &Population,
-) -> anyhow::Result<()> {
+) -> Result<()> {
     let cp = Checkpoint {
         config: config.clone(),
         progress: progress.clone(),
@@ -443,7 +459,7 @@ struct Recorder<'a, F> {
 
 impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
     /// Appends one generation's rows and rewrites the champion.
-    fn record(&mut self, report: &GenerationReport<'_>) -> anyhow::Result<()> {
+    fn record(&mut self, report: &GenerationReport<'_>) -> Result<()> {
         let seconds = self.started.elapsed().as_secs_f64();
         let population = report.population;
         let generation = report.generation;
@@ -514,7 +530,10 @@ impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
         );
         self.progress.timing_len = append(&self.dir.join(files::TIMING), &timing)?;
         if let Some(champion) = champion(population, self.progress) {
-            let text = serde_json::to_string_pretty(&champion)? + "\n";
+            let text = serde_json::to_string_pretty(&champion).map_err(|e| Error::Serialize {
+                what: "champion",
+                reason: e.to_string(),
+            })? + "\n";
             write_atomic(&self.dir.join(files::CHAMPION), text.as_bytes())?;
         }
         self.progress.done = generation;
@@ -557,38 +576,40 @@ impl Progress {
     }
 }
 
-fn thread_pool(threads: usize) -> anyhow::Result<rayon::ThreadPool> {
+fn thread_pool(threads: usize) -> Result<rayon::ThreadPool> {
     rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
-        .context("starting worker threads")
+        .map_err(|e| Error::Threads(e.to_string()))
 }
 
 /// Appends `text` and returns the file's new length.
-fn append(path: &Path, text: &str) -> anyhow::Result<u64> {
+fn append(path: &Path, text: &str) -> Result<u64> {
     let mut f = fs::OpenOptions::new()
         .append(true)
         .open(path)
-        .with_context(|| format!("cannot open {}", path.display()))?;
+        .map_err(Error::io("open", path))?;
     f.write_all(text.as_bytes())
-        .with_context(|| format!("cannot write {}", path.display()))?;
-    Ok(f.metadata()?.len())
+        .map_err(Error::io("write", path))?;
+    Ok(f.metadata().map_err(Error::io("read", path))?.len())
 }
 
-fn truncate(path: &Path, len: u64) -> anyhow::Result<()> {
+fn truncate(path: &Path, len: u64) -> Result<()> {
+    let damaged = |reason: String| Error::Checkpoint {
+        path: path.to_path_buf(),
+        reason,
+    };
     let f = fs::OpenOptions::new()
         .write(true)
         .open(path)
-        .map_err(|e| bad_input(format!("{}: {}", path.display(), crate::io::io_reason(&e))))?;
-    let actual = f.metadata()?.len();
+        .map_err(|e| damaged(crate::io::io_reason(&e)))?;
+    let actual = f.metadata().map_err(Error::io("read", path))?.len();
     if actual < len {
-        return Err(bad_input(format!(
-            "{}: shorter ({actual} bytes) than its checkpoint says ({len} bytes)",
-            path.display()
+        return Err(damaged(format!(
+            "shorter ({actual} bytes) than its checkpoint says ({len} bytes)"
         )));
     }
-    f.set_len(len)
-        .with_context(|| format!("cannot truncate {}", path.display()))
+    f.set_len(len).map_err(Error::io("truncate", path))
 }
 
 /// Checkpoint file names in a listing, oldest first (names sort by generation).
@@ -602,37 +623,33 @@ fn checkpoint_names(entries: fs::ReadDir) -> Vec<String> {
     names
 }
 
-fn prune_checkpoints(dir: &Path, keep: usize) -> anyhow::Result<()> {
-    let names = checkpoint_names(fs::read_dir(dir)?);
+fn prune_checkpoints(dir: &Path, keep: usize) -> Result<()> {
+    let names = checkpoint_names(fs::read_dir(dir).map_err(Error::io("list", dir))?);
     let excess = names.len().saturating_sub(keep);
     for n in &names[..excess] {
-        fs::remove_file(dir.join(n)).with_context(|| format!("cannot prune {n}"))?;
+        let path = dir.join(n);
+        fs::remove_file(&path).map_err(Error::io("prune", path))?;
     }
     Ok(())
 }
 
 /// Reads `population.csv` back: per generation, the fitnesses best first.
-pub fn read_population_csv(path: &Path) -> anyhow::Result<Vec<Vec<f64>>> {
-    let text =
-        fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
+pub fn read_population_csv(path: &Path) -> Result<Vec<Vec<f64>>> {
+    let text = fs::read_to_string(path).map_err(Error::io("read", path))?;
+    let malformed = |line: usize, what: &dyn std::fmt::Display| Error::RunFile {
+        path: path.to_path_buf(),
+        reason: format!("line {}: {what}", line + 1),
+    };
     let mut out: Vec<Vec<f64>> = Vec::new();
     for (i, line) in text.lines().enumerate().skip(1) {
         let mut parts = line.split(',');
         let (Some(g), Some(_), Some(f)) = (parts.next(), parts.next(), parts.next()) else {
-            anyhow::bail!(
-                "{}: line {}: expected generation,rank,fitness",
-                path.display(),
-                i + 1
-            );
+            return Err(malformed(i, &"expected generation,rank,fitness"));
         };
-        let g: usize = g
-            .parse()
-            .with_context(|| format!("{}: line {}", path.display(), i + 1))?;
-        let f: f64 = f
-            .parse()
-            .with_context(|| format!("{}: line {}", path.display(), i + 1))?;
+        let g: usize = g.parse().map_err(|e| malformed(i, &e))?;
+        let f: f64 = f.parse().map_err(|e| malformed(i, &e))?;
         if g == 0 {
-            anyhow::bail!("{}: line {}: generation 0", path.display(), i + 1);
+            return Err(malformed(i, &"generation 0"));
         }
         if out.len() < g {
             out.resize(g, Vec::new());
@@ -643,9 +660,8 @@ pub fn read_population_csv(path: &Path) -> anyhow::Result<Vec<Vec<f64>>> {
 }
 
 /// Reads `generations.csv` back as (generation, best, mean) rows.
-pub fn read_generations_csv(path: &Path) -> anyhow::Result<Vec<(u32, f64, f64)>> {
-    let text =
-        fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
+pub fn read_generations_csv(path: &Path) -> Result<Vec<(u32, f64, f64)>> {
+    let text = fs::read_to_string(path).map_err(Error::io("read", path))?;
     text.lines()
         .enumerate()
         .skip(1)
@@ -658,7 +674,10 @@ pub fn read_generations_csv(path: &Path) -> anyhow::Result<Vec<(u32, f64, f64)>>
                     v.get(2)?.parse().ok()?,
                 ))
             };
-            parse().with_context(|| format!("{}: line {}: malformed row", path.display(), i + 1))
+            parse().ok_or_else(|| Error::RunFile {
+                path: path.to_path_buf(),
+                reason: format!("line {}: malformed row", i + 1),
+            })
         })
         .collect()
 }

@@ -6,14 +6,11 @@ use std::path::{Path, PathBuf};
 
 use vivae_sim::{LoadOptions, Scenario};
 
-/// Bad input from the user (a file or a value): exit code 2.
-#[derive(Debug, thiserror::Error)]
-#[error("{0}")]
-pub struct BadInput(pub String);
+use crate::error::{Error, Result};
 
-/// Wraps a message as [`BadInput`].
-pub fn bad_input(message: impl Into<String>) -> anyhow::Error {
-    anyhow::Error::new(BadInput(message.into()))
+/// An [`Error::Invalid`]: bad input from the user (exit code 2) that is not about one file.
+pub fn bad_input(message: impl Into<String>) -> Error {
+    Error::Invalid(message.into())
 }
 
 /// The default scenario shipped in the binary (`scenarios/roads.svg`).
@@ -23,7 +20,7 @@ pub const DEFAULT_SCENARIO: &str = vivae_sim::ROADS_SVG;
 pub const DEFAULT_SCENARIO_NAME: &str = "roads.svg (embedded default)";
 
 /// Writes `bytes` to `path` atomically: a temporary file beside it, then rename.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     let dir = path.parent().unwrap_or(Path::new("."));
     let name = path
         .file_name()
@@ -38,24 +35,29 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
     })();
     if let Err(e) = result {
         let _ = fs::remove_file(&tmp);
-        return Err(anyhow::anyhow!("cannot write {}: {e}", path.display()));
+        return Err(Error::io("write", path)(e));
     }
     Ok(())
 }
 
 /// Reads a whole file as UTF-8; errors are bad input naming the file.
-pub fn read_text(path: &Path) -> anyhow::Result<String> {
-    let bytes =
-        fs::read(path).map_err(|e| bad_input(format!("{}: {}", path.display(), io_reason(&e))))?;
-    String::from_utf8(bytes).map_err(|_| bad_input(format!("{}: not UTF-8 text", path.display())))
+pub fn read_text(path: &Path) -> Result<String> {
+    let unreadable = |reason: String| Error::Read {
+        path: path.to_path_buf(),
+        reason,
+    };
+    let bytes = fs::read(path).map_err(|e| unreadable(io_reason(&e)))?;
+    String::from_utf8(bytes).map_err(|_| unreadable("not UTF-8 text".into()))
 }
 
 /// Reads and validates a config file; relative paths in it (scenario, initial
 /// population) become relative to the file's folder.
-pub fn read_config(path: &Path) -> anyhow::Result<crate::config::Config> {
+pub fn read_config(path: &Path) -> Result<crate::config::Config> {
     let text = read_text(path)?;
-    let mut config = crate::config::Config::from_toml(&text)
-        .map_err(|e| bad_input(format!("{}: {e}", path.display())))?;
+    let mut config = crate::config::Config::from_toml(&text).map_err(|error| Error::Config {
+        path: path.to_path_buf(),
+        error,
+    })?;
     let base = path.parent().unwrap_or(Path::new(""));
     for p in [
         &mut config.experiment.scenario,
@@ -88,7 +90,7 @@ pub struct LoadedScenario {
 }
 
 /// Loads the scenario at `path`, or the embedded default when `path` is `None`.
-pub fn load_scenario(path: Option<&Path>) -> anyhow::Result<LoadedScenario> {
+pub fn load_scenario(path: Option<&Path>) -> Result<LoadedScenario> {
     let (text, name) = match path {
         Some(p) => (read_text(p)?, p.display().to_string()),
         None => (
@@ -96,8 +98,7 @@ pub fn load_scenario(path: Option<&Path>) -> anyhow::Result<LoadedScenario> {
             DEFAULT_SCENARIO_NAME.to_string(),
         ),
     };
-    let scenario = Scenario::from_svg(&text, &name, &LoadOptions::default())
-        .map_err(|e| bad_input(one_line(&e.to_string())))?;
+    let scenario = Scenario::from_svg(&text, &name, &LoadOptions::default())?;
     Ok(LoadedScenario { scenario, text })
 }
 
@@ -107,7 +108,7 @@ pub fn one_line(message: &str) -> String {
 }
 
 /// Creates a fresh output directory; an existing one is refused unless `force`.
-pub fn create_out_dir(path: &Path, force: bool) -> anyhow::Result<()> {
+pub fn create_out_dir(path: &Path, force: bool) -> Result<()> {
     if path.exists() {
         if !force {
             return Err(bad_input(format!(
@@ -121,10 +122,9 @@ pub fn create_out_dir(path: &Path, force: bool) -> anyhow::Result<()> {
                 path.display()
             )));
         }
-        fs::remove_dir_all(path)
-            .map_err(|e| anyhow::anyhow!("cannot clear {}: {e}", path.display()))?;
+        fs::remove_dir_all(path).map_err(Error::io("clear", path))?;
     }
-    fs::create_dir_all(path).map_err(|e| anyhow::anyhow!("cannot create {}: {e}", path.display()))
+    fs::create_dir_all(path).map_err(Error::io("create", path))
 }
 
 /// A fresh `runs/<timestamp>` directory name (suffixed if taken).

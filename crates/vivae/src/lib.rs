@@ -3,7 +3,9 @@
 //! `vivae-neat` evolves CPPNs and decodes substrates, `vivae-sim` simulates the
 //! world; this crate joins them ([`experiment`]), drives evolution with
 //! checkpoints ([`evolve`]), owns every file format and all I/O ([`config`],
-//! [`io`]) and draws the paper's figures ([`figures`], [`report`]).
+//! [`io`]) and draws the paper's figures ([`figures`], [`report`]). Every
+//! fallible function returns the typed [`Error`], which says whether the
+//! user's input was at fault.
 //!
 //! The driving experiment as a library: evaluate a random CPPN on the
 //! embedded road scenario (docs/architecture.md shows how to add a task,
@@ -26,6 +28,7 @@
 //! ```
 
 pub mod config;
+pub mod error;
 pub mod evolve;
 pub mod experiment;
 pub mod figures;
@@ -33,6 +36,8 @@ pub mod io;
 pub mod report;
 pub mod sensors;
 pub mod substrate;
+
+pub use error::{Error, Result};
 
 /// The architecture page (docs/architecture.md): its examples are compiled and run as doctests.
 #[doc = include_str!("../../../docs/architecture.md")]

@@ -14,7 +14,7 @@ use clap::{Args, Parser, Subcommand};
 use vivae::config::Config;
 use vivae::evolve::{self, GenerationRecord, Outcome, Run, files};
 use vivae::experiment::Experiment;
-use vivae::io::{BadInput, bad_input, load_scenario, one_line, read_config, write_atomic};
+use vivae::io::{bad_input, load_scenario, one_line, read_config, write_atomic};
 use vivae::report;
 use vivae::substrate::PolarGrid;
 
@@ -199,7 +199,11 @@ fn main() -> ExitCode {
         Ok(code) => code,
         Err(err) => {
             eprintln!("error: {}", one_line(&format!("{err:#}")));
-            if err.chain().any(|c| c.is::<BadInput>()) {
+            let users_fault = err
+                .chain()
+                .filter_map(|c| c.downcast_ref::<vivae::Error>())
+                .any(vivae::Error::is_bad_input);
+            if users_fault {
                 ExitCode::from(2)
             } else {
                 ExitCode::from(1)
@@ -247,7 +251,7 @@ fn apply_overrides(config: &mut Config, o: &Overrides) -> anyhow::Result<()> {
     }
     config
         .validate()
-        .map_err(|e| bad_input(format!("command line: {e}")))
+        .map_err(|e| bad_input(format!("command line: {e}")).into())
 }
 
 fn scenario_path(config: &Config) -> Option<PathBuf> {
@@ -273,10 +277,9 @@ fn cmd_evolve(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
         None => Config::default(),
     };
     apply_overrides(&mut config, &args.overrides)?;
-    let setup = || -> anyhow::Result<_> {
+    let setup = || -> vivae::Result<_> {
         let scenario = load_scenario(scenario_path(&config).as_deref())?;
-        let experiment =
-            Experiment::new(&config, &scenario.scenario).map_err(|e| bad_input(e.to_string()))?;
+        let experiment = Experiment::new(&config, &scenario.scenario)?;
         let init = if config.experiment.init_population.is_empty() {
             None
         } else {
@@ -323,8 +326,7 @@ fn cmd_retrain(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Resu
     };
     apply_overrides(&mut config, &overrides)?;
     let scenario = load_scenario(scenario_path(&config).as_deref())?;
-    let experiment =
-        Experiment::new(&config, &scenario.scenario).map_err(|e| bad_input(e.to_string()))?;
+    let experiment = Experiment::new(&config, &scenario.scenario).map_err(vivae::Error::from)?;
     let dir = args.out.clone().unwrap_or_else(vivae::io::default_run_dir);
     let run = Run::create(
         &dir,
@@ -411,12 +413,14 @@ fn cmd_replay(args: ReplayArgs) -> anyhow::Result<ExitCode> {
     };
     apply_overrides(&mut config, &overrides)?;
     let scenario = load_scenario(scenario_path(&config).as_deref())?;
-    let experiment =
-        Experiment::new(&config, &scenario.scenario).map_err(|e| bad_input(e.to_string()))?;
+    let experiment = Experiment::new(&config, &scenario.scenario).map_err(vivae::Error::from)?;
     // Checked before anything is written: a genome that does not fit is bad input.
     experiment
         .controller(&champion.genome)
-        .map_err(|e| bad_input(format!("{}: the genome's {e}", args.source.display())))?;
+        .map_err(|e| vivae::Error::Genome {
+            path: args.source.clone(),
+            reason: format!("the genome's {e}"),
+        })?;
     let out = args.out.clone().unwrap_or_else(|| base.join("replay"));
     std::fs::create_dir_all(&out).with_context(|| format!("cannot create {}", out.display()))?;
     let replay = report::replay(&experiment, &config, &champion, &out)?;

@@ -3,12 +3,12 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use anyhow::Context as _;
 use vivae_neat::Genome;
 use vivae_sim::draw::{self, DrawOptions};
 use vivae_sim::{Scenario, ScenarioSummary, SurfaceSensors, World};
 
 use crate::config::Config;
+use crate::error::{Error, Result};
 use crate::evolve::{self, Champion, Run, files};
 use crate::experiment::{Episode, Experiment};
 use crate::figures;
@@ -29,7 +29,7 @@ pub struct RunSummary {
 }
 
 /// Writes a figure as `NAME.svg` and `NAME.png` in `dir`.
-fn write_figure(dir: &Path, name: &str, svg: &str, png: &[u8]) -> anyhow::Result<()> {
+fn write_figure(dir: &Path, name: &str, svg: &str, png: &[u8]) -> Result<()> {
     write_atomic(&dir.join(format!("{name}.svg")), svg.as_bytes())?;
     write_atomic(&dir.join(format!("{name}.png")), png)
 }
@@ -41,7 +41,7 @@ pub fn trajectory_figure(
     title: &str,
     dir: &Path,
     name: &str,
-) -> anyhow::Result<Episode> {
+) -> Result<Episode> {
     let controller = experiment.controller(genome)?;
     let (episode, world) = experiment.run_world(&controller, true);
     let on_road = episode
@@ -58,15 +58,18 @@ pub fn trajectory_figure(
         ..DrawOptions::default()
     };
     let svg = draw::render_svg(&world, &options);
-    let png = draw::render_png(&world, &options).context("rendering trajectories")?;
+    let png = draw::render_png(&world, &options).map_err(|e| Error::Render {
+        what: "trajectories",
+        reason: e.to_string(),
+    })?;
     write_figure(dir, name, &svg, &png)?;
     Ok(episode)
 }
 
 /// Writes every figure of a finished run into `RUN/figures/`.
-pub fn finish_run(run: &Run) -> anyhow::Result<RunSummary> {
+pub fn finish_run(run: &Run) -> Result<RunSummary> {
     let dir = run.dir().join(files::FIGURES);
-    std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    std::fs::create_dir_all(&dir).map_err(Error::io("create", &dir))?;
     let experiment = run.experiment();
     for (generation, _, genome) in run.figure_genomes() {
         trajectory_figure(
@@ -77,7 +80,7 @@ pub fn finish_run(run: &Run) -> anyhow::Result<RunSummary> {
             &format!("trajectories-gen{generation:03}"),
         )?;
     }
-    let champion = run.champion().context("the run evaluated no genome")?;
+    let champion = run.champion().ok_or(Error::NoChampion)?;
     let episode = trajectory_figure(
         experiment,
         &champion.genome,
@@ -111,7 +114,7 @@ pub fn finish_run(run: &Run) -> anyhow::Result<RunSummary> {
 
 /// Reads a genome source for `replay`: a run directory (its champion and config)
 /// or a champion JSON file (default config). Returns the folder outputs go beside.
-pub fn load_genome_source(source: &Path) -> anyhow::Result<(Champion, Config, PathBuf)> {
+pub fn load_genome_source(source: &Path) -> Result<(Champion, Config, PathBuf)> {
     if source.is_dir() {
         let champion = read_champion(&source.join(files::CHAMPION))?;
         let config = read_config(&source.join(files::CONFIG))?;
@@ -124,25 +127,24 @@ pub fn load_genome_source(source: &Path) -> anyhow::Result<(Champion, Config, Pa
 }
 
 /// Reads `champion.json` (or any file in its format), checking the genome.
-pub fn read_champion(path: &Path) -> anyhow::Result<Champion> {
+pub fn read_champion(path: &Path) -> Result<Champion> {
     let text = read_text(path)?;
-    let champion: Champion = serde_json::from_str(&text).map_err(|e| {
-        bad_input(format!(
-            "{}: not a vivae champion genome: {e}",
-            path.display()
-        ))
-    })?;
+    let invalid = |reason: String| Error::Genome {
+        path: path.to_path_buf(),
+        reason,
+    };
+    let champion: Champion = serde_json::from_str(&text)
+        .map_err(|e| invalid(format!("not a vivae champion genome: {e}")))?;
     if champion.format != "vivae-champion" {
-        return Err(bad_input(format!(
-            "{}: format is {:?}, expected \"vivae-champion\"",
-            path.display(),
+        return Err(invalid(format!(
+            "format is {:?}, expected \"vivae-champion\"",
             champion.format
         )));
     }
     champion
         .genome
         .check()
-        .map_err(|e| bad_input(format!("{}: invalid genome: {e}", path.display())))?;
+        .map_err(|e| invalid(format!("invalid genome: {e}")))?;
     Ok(champion)
 }
 
@@ -163,7 +165,7 @@ pub fn replay(
     config: &Config,
     champion: &Champion,
     out: &Path,
-) -> anyhow::Result<Replay> {
+) -> Result<Replay> {
     let s = &config.surface_sensors;
     let n = config.substrate.neurons;
     let name = format!("replay-s{}x{}-n{}x{}", s.rings, s.angles, n.rings, n.angles);
@@ -209,7 +211,7 @@ pub fn render_scenario(
     scenario: &Scenario,
     sensors: Option<PolarGrid>,
     out: &Path,
-) -> anyhow::Result<Vec<u8>> {
+) -> Result<Vec<u8>> {
     let world = World::new(scenario, &Default::default()).map_err(|e| bad_input(e.to_string()))?;
     let options = DrawOptions {
         surface_sensors: sensors.map(|g| SurfaceSensors {
@@ -227,7 +229,10 @@ pub fn render_scenario(
         .as_deref()
     {
         Some("svg") => Ok(draw::render_svg(&world, &options).into_bytes()),
-        Some("png") => Ok(draw::render_png(&world, &options).context("rendering scenario")?),
+        Some("png") => draw::render_png(&world, &options).map_err(|e| Error::Render {
+            what: "scenario",
+            reason: e.to_string(),
+        }),
         _ => Err(bad_input(format!(
             "{}: output must end in .png or .svg",
             out.display()

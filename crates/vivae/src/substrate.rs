@@ -247,7 +247,9 @@ impl PolarNode {
 }
 
 /// How node positions are fed to the CPPN.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum CoordMode {
     /// `(ρ·sin φ, ρ·cos φ)` (DESIGN §7 default).

@@ -9,18 +9,28 @@ use crate::physics::{ParamError, check};
 use crate::world::World;
 
 /// Surface sensors on a polar grid in front of the robot.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct SurfaceSensors {
-    /// Number of rings (distances), default 3.
+    /// Rings (distances) of surface sensors: the rows of the input sheet.
+    ///
+    /// Paper: 3, re-sampled to 3.
     pub rings: usize,
-    /// Number of angles per ring, default 5.
+    /// Surface sensors per ring, spread evenly over the field of view.
+    ///
+    /// Paper: 5, re-sampled to 6.
     pub angles: usize,
-    /// Field of view in degrees, centred ahead (default 180: −90°…+90°).
+    /// Field of view of the surface sensors, centred ahead (180 = 90° to each side).
+    ///
+    /// Unit: degrees. Paper: 180.
     pub fov: f64,
-    /// Distance of the first ring from the robot centre, px (default 10).
+    /// Distance of the nearest ring from the robot's centre.
+    ///
+    /// Unit: px.
     pub d_min: f64,
-    /// Distance of the last ring, px (default 50).
+    /// Distance of the farthest ring from the robot's centre.
+    ///
+    /// Unit: px.
     pub d_max: f64,
 }
 

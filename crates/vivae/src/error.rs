@@ -1,0 +1,227 @@
+//! The library's error type: what went wrong, and whether the user's input was at fault.
+//!
+//! Every message is one line that names the file (or flag) and what is wrong
+//! with it. Reasons are part of the message rather than a `source()` chain so
+//! that printing an error once says everything, with nothing repeated.
+
+use std::path::PathBuf;
+
+use vivae_sim::ScenarioError;
+
+use crate::config::ConfigError;
+use crate::experiment::ExperimentError;
+use crate::figures::FigureError;
+use crate::io::one_line;
+
+/// The result type of the vivae library.
+pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// Everything that can go wrong in the vivae library.
+///
+/// [`Error::is_bad_input`] separates the user's mistakes (the program exits
+/// with code 2) from failures of the machine or the program (code 1).
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// A file the user named cannot be read: missing, unreadable or not UTF-8.
+    #[error("{}: {reason}", path.display())]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// Why it cannot be read.
+        reason: String,
+    },
+    /// A config file is malformed or holds an invalid value.
+    #[error("{}: {error}", path.display())]
+    Config {
+        /// The config file.
+        path: PathBuf,
+        /// The key and what is wrong with it.
+        error: ConfigError,
+    },
+    /// A scenario cannot be loaded (the error names the file).
+    #[error("{}", one_line(&.0.to_string()))]
+    Scenario(ScenarioError),
+    /// The configuration does not fit the scenario, or its parts do not fit together.
+    #[error("{0}")]
+    Experiment(ExperimentError),
+    /// A run directory or checkpoint is missing, damaged or not vivae's.
+    #[error("{}: {reason}", path.display())]
+    Checkpoint {
+        /// The run directory or checkpoint file.
+        path: PathBuf,
+        /// What is wrong with it.
+        reason: String,
+    },
+    /// A genome file is not a valid vivae champion genome.
+    #[error("{}: {reason}", path.display())]
+    Genome {
+        /// The genome file.
+        path: PathBuf,
+        /// What is wrong with it.
+        reason: String,
+    },
+    /// Any other invalid request: a command-line value, an existing output directory.
+    #[error("{0}")]
+    Invalid(String),
+    /// A file or directory the program writes could not be written, created or removed.
+    #[error("cannot {action} {}: {error}", path.display())]
+    Io {
+        /// What was attempted: `write`, `create`, `read`, …
+        action: &'static str,
+        /// The file or directory.
+        path: PathBuf,
+        /// The operating system's error.
+        error: std::io::Error,
+    },
+    /// One of a run directory's own files (a CSV file) is malformed.
+    #[error("{}: {reason}", path.display())]
+    RunFile {
+        /// The file.
+        path: PathBuf,
+        /// Where and what is wrong.
+        reason: String,
+    },
+    /// A figure could not be drawn.
+    #[error("{0}")]
+    Figure(FigureError),
+    /// The simulator could not render a picture of the world.
+    #[error("rendering {what}: {reason}")]
+    Render {
+        /// What was being drawn.
+        what: &'static str,
+        /// The renderer's message.
+        reason: String,
+    },
+    /// A run ended without evaluating a single genome.
+    #[error("the run evaluated no genome")]
+    NoChampion,
+    /// The evolution driver failed (the evaluator or the population).
+    #[error("{0}")]
+    Evolution(String),
+    /// Data could not be serialised (a bug: every vivae type serialises).
+    #[error("serialising {what}: {reason}")]
+    Serialize {
+        /// What was being serialised.
+        what: &'static str,
+        /// The serialiser's message.
+        reason: String,
+    },
+    /// The evaluation worker threads could not be started.
+    #[error("starting worker threads: {0}")]
+    Threads(String),
+}
+
+impl Error {
+    /// Whether the user's input is at fault (exit code 2) rather than the machine or the program.
+    pub fn is_bad_input(&self) -> bool {
+        matches!(
+            self,
+            Error::Read { .. }
+                | Error::Config { .. }
+                | Error::Scenario(_)
+                | Error::Experiment(_)
+                | Error::Checkpoint { .. }
+                | Error::Genome { .. }
+                | Error::Invalid(_)
+        )
+    }
+
+    /// An [`Error::Io`] for `action` on `path` (for `map_err`).
+    pub fn io(
+        action: &'static str,
+        path: impl Into<PathBuf>,
+    ) -> impl FnOnce(std::io::Error) -> Error {
+        let path = path.into();
+        move |error| Error::Io {
+            action,
+            path,
+            error,
+        }
+    }
+}
+
+impl From<ScenarioError> for Error {
+    fn from(e: ScenarioError) -> Self {
+        Error::Scenario(e)
+    }
+}
+
+impl From<ExperimentError> for Error {
+    fn from(e: ExperimentError) -> Self {
+        Error::Experiment(e)
+    }
+}
+
+impl From<FigureError> for Error {
+    fn from(e: FigureError) -> Self {
+        Error::Figure(e)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn user_mistakes_are_bad_input_and_machine_failures_are_not() {
+        let read = Error::Read {
+            path: "a.toml".into(),
+            reason: "no such file or directory".into(),
+        };
+        assert!(read.is_bad_input());
+        assert_eq!(read.to_string(), "a.toml: no such file or directory");
+        let io = Error::io("write", "out/b.csv")(std::io::Error::other("disk full"));
+        assert!(!io.is_bad_input());
+        assert_eq!(io.to_string(), "cannot write out/b.csv: disk full");
+        assert!(!Error::NoChampion.is_bad_input());
+    }
+
+    #[test]
+    fn messages_carry_their_reason_and_expose_no_source_chain() {
+        use std::error::Error as _;
+        let e = Error::Experiment(ExperimentError::Config("substrate: bad".into()));
+        assert!(e.source().is_none());
+        assert_eq!(e.to_string(), "substrate: bad");
+        let io = Error::io("create", "d")(std::io::Error::other("denied"));
+        assert!(
+            io.source().is_none(),
+            "the reason is in the message already"
+        );
+    }
+
+    /// The catch-all error crate belongs to the program's `main.rs` (and the
+    /// modules only it declares); the library's functions return the typed [`Error`].
+    #[test]
+    fn only_the_program_uses_the_catch_all_error_crate() {
+        fn rust_files(dir: &std::path::Path, out: &mut Vec<PathBuf>) {
+            for entry in std::fs::read_dir(dir).unwrap() {
+                let path = entry.unwrap().path();
+                if path.is_dir() {
+                    rust_files(&path, out);
+                } else if path.extension().is_some_and(|e| e == "rs") {
+                    out.push(path);
+                }
+            }
+        }
+        let src = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+        let mut files = Vec::new();
+        rust_files(&src, &mut files);
+        let program_only = ["main.rs", "portable_libm.rs"];
+        // Spelled in two parts so that this file does not match itself.
+        let needle = concat!("any", "how");
+        let offenders: Vec<String> = files
+            .iter()
+            .filter(|p| {
+                let name = p.strip_prefix(&src).unwrap().to_string_lossy().into_owned();
+                !program_only.contains(&name.as_str())
+                    && std::fs::read_to_string(p).unwrap().contains(needle)
+            })
+            .map(|p| p.display().to_string())
+            .collect();
+        assert!(files.len() > 5, "{files:?}");
+        assert!(
+            offenders.is_empty(),
+            "library modules use {needle}: {offenders:?}"
+        );
+    }
+}
