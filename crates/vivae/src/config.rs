@@ -2,7 +2,7 @@
 //!
 //! Sections map one-to-one onto the library parameter structs, so a key is
 //! exactly the field the library reads, and the field's doc comment is the
-//! key's documentation: [`reference`] reads them (through the structs'
+//! key's documentation: [`reference()`] reads them (through the structs'
 //! `schemars::JsonSchema` derive) for `vivae config default`, `vivae config
 //! reference` and the guide's table, so there is no second copy to drift. A
 //! test fails when a key lacks a doc comment or the guide's table is stale.
