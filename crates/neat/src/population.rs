@@ -7,15 +7,16 @@ use serde::{Deserialize, Serialize};
 
 use crate::crossover::crossover;
 use crate::distance::distance;
-use crate::error::NeatError;
+use crate::error::{GenomeAt, NeatError, PopulationError};
 use crate::eval::{EvalContext, eval_seed};
-use crate::genome::{Genome, GenomeSpec};
+use crate::genome::{Genome, GenomeSpec, RawGenome};
 use crate::innovation::InnovationTracker;
 use crate::mutation::mutate;
 use crate::params::NeatParams;
 use crate::species::Species;
+use crate::stats;
 
-/// The best genome seen so far in the run.
+/// The best genome seen so far in the run (see [`Population::best_ever`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct BestEver {
     /// The genome.
@@ -51,8 +52,11 @@ pub struct GenerationStats {
 
 /// A NEAT population with its complete state (RNG, species, innovations, best-ever),
 /// serialisable so that a restored checkpoint continues bit-identically.
+///
+/// Deserialising validates the whole state (see [`Population::from_json`]):
+/// a `Population` read from JSON is always consistent.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(deny_unknown_fields, try_from = "RawPopulation")]
 pub struct Population {
     params: NeatParams,
     spec: GenomeSpec,
@@ -95,22 +99,17 @@ impl Population {
         params.validate()?;
         spec.validate()?;
         if genomes.is_empty() {
-            return Err(NeatError::InvalidGenome("no genomes given".into()));
+            return Err(PopulationError::Empty.into());
         }
         let mut tracker = InnovationTracker::new((spec.inputs + spec.outputs) as u32);
         for (i, g) in genomes.iter().enumerate() {
-            g.check()
-                .map_err(|e| NeatError::InvalidGenome(format!("genome {i}: {e}")))?;
-            if g.num_inputs() != spec.inputs || g.num_outputs() != spec.outputs {
-                return Err(NeatError::InvalidGenome(format!(
-                    "genome {i} has {} inputs and {} outputs, the spec {} and {}",
-                    g.num_inputs(),
-                    g.num_outputs(),
-                    spec.inputs,
-                    spec.outputs
-                )));
+            check_genome(GenomeAt::Member(i), g, &spec)?;
+            for l in g.links() {
+                tracker.absorb_link(l.from, l.to, l.innovation);
             }
-            tracker.absorb(g);
+            for n in g.nodes() {
+                tracker.absorb_node(n.id);
+            }
         }
         let rng = Pcg64::seed_from_u64(seed);
         Ok(Population::assemble(
@@ -206,11 +205,9 @@ impl Population {
         self.fitness.clone().unwrap_or_default()
     }
 
-    /// The best genome of the run so far, its fitness and generation.
-    pub fn best_ever(&self) -> Option<(&Genome, f64, u32)> {
-        self.best_ever
-            .as_ref()
-            .map(|b| (&b.genome, b.fitness, b.generation))
+    /// The best genome of the run so far, with its fitness and generation.
+    pub fn best_ever(&self) -> Option<&BestEver> {
+        self.best_ever.as_ref()
     }
 
     /// The context of evaluation `index` in the current generation.
@@ -243,11 +240,10 @@ impl Population {
     /// Sets fitness values computed elsewhere (one per genome, in order).
     pub fn set_fitnesses(&mut self, fitness: Vec<f64>) -> Result<(), NeatError> {
         if fitness.len() != self.genomes.len() {
-            return Err(NeatError::InvalidGenome(format!(
-                "{} fitness values for {} genomes",
-                fitness.len(),
-                self.genomes.len()
-            )));
+            return Err(NeatError::FitnessCount {
+                given: fitness.len(),
+                genomes: self.genomes.len(),
+            });
         }
         self.record_fitness(fitness);
         Ok(())
@@ -294,7 +290,7 @@ impl Population {
             mean_hidden: sum(|g| g.num_hidden()),
             mean_links: sum(|g| g.num_enabled_links()),
             best_fitness: self.fitness.as_ref().and_then(|f| argmax(f).map(|i| f[i])),
-            mean_fitness: self.fitness.as_ref().map(|f| f.iter().sum::<f64>() / n),
+            mean_fitness: self.fitness.as_deref().and_then(stats::mean),
         }
     }
 
@@ -303,24 +299,17 @@ impl Population {
         serde_json::to_string(self).map_err(|e| NeatError::Checkpoint(e.to_string()))
     }
 
-    /// Restores a population written by [`Population::to_json`], re-validating it.
+    /// Restores a population written by [`Population::to_json`], validating
+    /// it: parameters and spec, every genome (members, species
+    /// representatives, best ever) against [`Genome::check`] and the spec's
+    /// inputs and outputs, one finite fitness per genome, species that
+    /// partition the genomes, and counters above every id in use. Malformed
+    /// JSON is [`NeatError::Checkpoint`]; anything inconsistent is the typed
+    /// error naming it.
     pub fn from_json(text: &str) -> Result<Population, NeatError> {
-        let pop: Population =
+        let raw: RawPopulation =
             serde_json::from_str(text).map_err(|e| NeatError::Checkpoint(e.to_string()))?;
-        pop.params.validate()?;
-        pop.spec.validate()?;
-        for g in &pop.genomes {
-            g.check()?;
-        }
-        let n = pop.genomes.len();
-        if pop.fitness.as_ref().is_some_and(|f| f.len() != n)
-            || pop.species.iter().flat_map(|s| &s.members).any(|&m| m >= n)
-        {
-            return Err(NeatError::Checkpoint(
-                "fitness or species members do not match the genomes".into(),
-            ));
-        }
-        Ok(pop)
+        Population::try_from(raw)
     }
 
     /// Produces the next generation: species stagnation, explicit fitness sharing,
@@ -516,6 +505,228 @@ impl Population {
             }
         }
         self.species.retain(|s| !s.members.is_empty());
+    }
+}
+
+/// A population as read, not yet checked (the serialised form of [`Population`]).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawPopulation {
+    params: NeatParams,
+    spec: GenomeSpec,
+    seed: u64,
+    generation: u32,
+    rng: Pcg64,
+    tracker: InnovationTracker,
+    genomes: Vec<RawGenome>,
+    fitness: Option<Vec<f64>>,
+    species: Vec<RawSpecies>,
+    next_species_id: u32,
+    threshold: f64,
+    best_ever: Option<RawBestEver>,
+}
+
+/// A [`Species`] as read, its representative not yet checked.
+#[derive(Deserialize)]
+struct RawSpecies {
+    id: u32,
+    representative: RawGenome,
+    members: Vec<usize>,
+    created: u32,
+    best_fitness: Option<f64>,
+    last_improved: u32,
+}
+
+/// A [`BestEver`] as read, its genome not yet checked.
+#[derive(Deserialize)]
+struct RawBestEver {
+    genome: RawGenome,
+    fitness: f64,
+    generation: u32,
+}
+
+/// Checks a raw genome's invariants and its shape against `spec`.
+fn checked_genome(at: GenomeAt, raw: RawGenome, spec: &GenomeSpec) -> Result<Genome, NeatError> {
+    let genome = Genome::try_from(raw).map_err(|error| PopulationError::Genome { at, error })?;
+    check_genome(at, &genome, spec)?;
+    Ok(genome)
+}
+
+/// Checks a genome's invariants and that its inputs and outputs match `spec`.
+fn check_genome(at: GenomeAt, genome: &Genome, spec: &GenomeSpec) -> Result<(), PopulationError> {
+    genome
+        .check()
+        .map_err(|error| PopulationError::Genome { at, error })?;
+    let (inputs, outputs) = (genome.num_inputs(), genome.num_outputs());
+    if inputs != spec.inputs || outputs != spec.outputs {
+        return Err(PopulationError::Shape {
+            at,
+            inputs,
+            outputs,
+            spec_inputs: spec.inputs,
+            spec_outputs: spec.outputs,
+        });
+    }
+    Ok(())
+}
+
+impl TryFrom<RawPopulation> for Population {
+    type Error = NeatError;
+
+    fn try_from(raw: RawPopulation) -> Result<Population, NeatError> {
+        use PopulationError as E;
+        raw.params.validate()?;
+        raw.spec.validate()?;
+        let spec = &raw.spec;
+        if raw.genomes.is_empty() {
+            return Err(E::Empty.into());
+        }
+        let genomes = raw
+            .genomes
+            .into_iter()
+            .enumerate()
+            .map(|(i, g)| checked_genome(GenomeAt::Member(i), g, spec))
+            .collect::<Result<Vec<Genome>, NeatError>>()?;
+        let n = genomes.len();
+        if let Some(fitness) = &raw.fitness {
+            if fitness.len() != n {
+                return Err(E::FitnessCount {
+                    given: fitness.len(),
+                    genomes: n,
+                }
+                .into());
+            }
+            if let Some(i) = fitness.iter().position(|f| !f.is_finite()) {
+                return Err(E::NonFiniteFitness(format!("genome {i}")).into());
+            }
+        }
+
+        // Species: unique ids, members that partition the genomes.
+        let mut ids = std::collections::BTreeSet::new();
+        let mut listed = vec![0usize; n];
+        let mut species = Vec::with_capacity(raw.species.len());
+        for s in raw.species {
+            if !ids.insert(s.id) {
+                return Err(E::DuplicateSpecies(s.id).into());
+            }
+            if s.members.is_empty() {
+                return Err(E::EmptySpecies(s.id).into());
+            }
+            for &member in &s.members {
+                let count = listed.get_mut(member).ok_or(E::MissingMember {
+                    species: s.id,
+                    member,
+                    genomes: n,
+                })?;
+                *count += 1;
+            }
+            if s.best_fitness.is_some_and(|f| !f.is_finite()) {
+                return Err(E::NonFiniteFitness(format!("species {}", s.id)).into());
+            }
+            species.push(Species {
+                id: s.id,
+                representative: checked_genome(
+                    GenomeAt::Representative(s.id),
+                    s.representative,
+                    spec,
+                )?,
+                members: s.members,
+                created: s.created,
+                best_fitness: s.best_fitness,
+                last_improved: s.last_improved,
+            });
+        }
+        if let Some(member) = listed.iter().position(|&c| c != 1) {
+            return Err(E::Membership {
+                member,
+                count: listed[member],
+            }
+            .into());
+        }
+
+        let best_ever = match raw.best_ever {
+            None => None,
+            Some(b) => {
+                if !b.fitness.is_finite() {
+                    return Err(E::NonFiniteFitness("the best-ever genome".into()).into());
+                }
+                if b.generation > raw.generation {
+                    return Err(E::FutureGeneration {
+                        what: "the best-ever record",
+                        generation: b.generation,
+                        current: raw.generation,
+                    }
+                    .into());
+                }
+                Some(BestEver {
+                    genome: checked_genome(GenomeAt::BestEver, b.genome, spec)?,
+                    fitness: b.fitness,
+                    generation: b.generation,
+                })
+            }
+        };
+        if !(raw.threshold.is_finite() && raw.threshold >= 0.0) {
+            return Err(E::Threshold(raw.threshold).into());
+        }
+
+        // Counters: every id in use was handed out by them.
+        let every_genome = genomes
+            .iter()
+            .chain(species.iter().map(|s| &s.representative))
+            .chain(best_ever.iter().map(|b| &b.genome));
+        let (mut innovation, mut node) = raw.tracker.largest_recorded();
+        for g in every_genome {
+            innovation = innovation.max(g.links().iter().map(|l| l.innovation).max());
+            node = node.max(g.nodes().iter().map(|n| n.id).max());
+        }
+        let counters = [
+            (
+                "the innovation counter",
+                raw.tracker.innovations(),
+                "innovation number",
+                innovation,
+            ),
+            (
+                "the node counter",
+                raw.tracker.next_node_id(),
+                "node id",
+                node,
+            ),
+            (
+                "next_species_id",
+                raw.next_species_id,
+                "species id",
+                ids.last().copied(),
+            ),
+        ];
+        for (counter, value, what, used) in counters {
+            if let Some(used) = used
+                && used >= value
+            {
+                return Err(E::Counter {
+                    counter,
+                    value,
+                    what,
+                    used,
+                }
+                .into());
+            }
+        }
+
+        Ok(Population {
+            params: raw.params,
+            spec: raw.spec,
+            seed: raw.seed,
+            generation: raw.generation,
+            rng: raw.rng,
+            tracker: raw.tracker,
+            genomes,
+            fitness: raw.fitness,
+            species,
+            next_species_id: raw.next_species_id,
+            threshold: raw.threshold,
+            best_ever,
+        })
     }
 }
 

@@ -123,7 +123,7 @@ pub fn load_genome_source(source: &Path) -> anyhow::Result<(Champion, Config, Pa
     }
 }
 
-/// Reads `champion.json` (or any file in its format), checking the genome.
+/// Reads `champion.json` (or any file in its format); the genome is checked as it is read.
 pub fn read_champion(path: &Path) -> anyhow::Result<Champion> {
     let text = read_text(path)?;
     let champion: Champion = serde_json::from_str(&text).map_err(|e| {
@@ -139,10 +139,7 @@ pub fn read_champion(path: &Path) -> anyhow::Result<Champion> {
             champion.format
         )));
     }
-    champion
-        .genome
-        .check()
-        .map_err(|e| bad_input(format!("{}: invalid genome: {e}", path.display())))?;
+    // The genome validated itself while being deserialised.
     Ok(champion)
 }
 
