@@ -10,11 +10,13 @@ const BATCH: usize = 256;
 
 /// A CPPN genome compiled for batched substrate queries.
 ///
-/// Gives bit-identical outputs to [`FeedForwardNetwork`](crate::FeedForwardNetwork) (same per-node sum
-/// order, same activation functions), but evaluates one output at a time for
-/// a whole batch of source nodes: each node's weighted sum runs over
-/// contiguous arrays (vectorised), activation functions run in tight loops,
-/// and only the nodes the requested output depends on are computed.
+/// Evaluates the same compiled plan as
+/// [`FeedForwardNetwork`](crate::FeedForwardNetwork) (same nodes, same
+/// per-node sum order, same activation functions), so its outputs are
+/// bit-identical, but one output at a time for a whole batch of source nodes:
+/// each node's weighted sum runs over contiguous arrays (vectorised),
+/// activation functions run in tight loops, and only the nodes the requested
+/// output depends on are computed.
 #[derive(Debug, Clone)]
 pub struct BatchCppn {
     /// The compiled genome (the same plan `FeedForwardNetwork` evaluates).
