@@ -186,6 +186,39 @@ pub enum PopulationError {
         /// The largest id in use.
         used: u32,
     },
+    /// A node's kind does not match its id (inputs are `0..inputs`, outputs
+    /// follow, hidden nodes come after).
+    #[error("{at}: node {id} is an {kind} node, but by its id it must be an {expected} node")]
+    NodeKind {
+        /// Which genome.
+        at: GenomeAt,
+        /// The node id.
+        id: u32,
+        /// Its kind in the genome (`input`, `hidden`, `output`).
+        kind: &'static str,
+        /// The kind its id implies.
+        expected: &'static str,
+    },
+    /// A genome's link is numbered differently from the run's innovation history.
+    #[error("{at}: link {from} -> {to} has innovation {innovation}, but the innovation history gives it {}", recorded.map_or("none".to_string(), |r| r.to_string()))]
+    InnovationMismatch {
+        /// Which genome.
+        at: GenomeAt,
+        /// Source node id.
+        from: u32,
+        /// Target node id.
+        to: u32,
+        /// The genome's innovation number for it.
+        innovation: u32,
+        /// The history's number for it, if it has one.
+        recorded: Option<u32>,
+    },
+    /// The innovation history gives one number to two different links.
+    #[error("innovation {0} is recorded for two different links")]
+    SharedInnovation(u32),
+    /// The innovation history records a split node that is not a hidden id, or records it twice.
+    #[error("split node id {0} is not a hidden node id or is recorded twice")]
+    SplitNode(u32),
     /// A record refers to a generation after the current one.
     #[error("{what} refers to generation {generation}, after the current generation {current}")]
     FutureGeneration {

@@ -95,6 +95,30 @@ pub enum NodeKind {
     Output,
 }
 
+impl NodeKind {
+    /// The kind's name as written in JSON (`input`, `hidden`, `output`).
+    pub fn name(self) -> &'static str {
+        match self {
+            NodeKind::Input => "input",
+            NodeKind::Hidden => "hidden",
+            NodeKind::Output => "output",
+        }
+    }
+
+    /// The kind a node with this id has in genomes of `spec`: inputs are
+    /// `0..inputs`, outputs follow, every later id is hidden.
+    pub fn of_id(id: u32, spec: &GenomeSpec) -> NodeKind {
+        let id = id as usize;
+        if id < spec.inputs {
+            NodeKind::Input
+        } else if id < spec.inputs + spec.outputs {
+            NodeKind::Output
+        } else {
+            NodeKind::Hidden
+        }
+    }
+}
+
 /// A node gene: id (shared across the population for the same structural origin),
 /// role and activation function.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]

@@ -82,13 +82,19 @@ impl InnovationTracker {
         self.next_node = self.next_node.max(id + 1);
     }
 
-    /// The largest innovation number and the largest split-node id the
-    /// tracker has recorded (for consistency checks on restore).
-    pub(crate) fn largest_recorded(&self) -> (Option<u32>, Option<u32>) {
-        (
-            self.links.values().copied().max(),
-            self.splits.values().flatten().copied().max(),
-        )
+    /// The innovation number recorded for link `from → to`, if any.
+    pub fn innovation_of(&self, from: u32, to: u32) -> Option<u32> {
+        self.links.get(&(from, to)).copied()
+    }
+
+    /// Every recorded link as `(from, to, innovation)` (for consistency checks on restore).
+    pub(crate) fn recorded_links(&self) -> impl Iterator<Item = (u32, u32, u32)> + '_ {
+        self.links.iter().map(|(&(f, t), &i)| (f, t, i))
+    }
+
+    /// Every node id recorded for a split (for consistency checks on restore).
+    pub(crate) fn split_ids(&self) -> impl Iterator<Item = u32> + '_ {
+        self.splits.values().flatten().copied()
     }
 }
 

@@ -1,5 +1,7 @@
 //! The population: evaluation, speciation, fitness sharing and reproduction.
 
+use std::collections::BTreeSet;
+
 use rand::{RngExt, SeedableRng};
 use rand_pcg::Pcg64;
 use rayon::prelude::*;
@@ -9,7 +11,7 @@ use crate::crossover::crossover;
 use crate::distance::distance;
 use crate::error::{GenomeAt, NeatError, PopulationError};
 use crate::eval::{EvalContext, eval_seed};
-use crate::genome::{Genome, GenomeSpec, RawGenome};
+use crate::genome::{Genome, GenomeSpec, NodeKind, RawGenome};
 use crate::innovation::InnovationTracker;
 use crate::mutation::mutate;
 use crate::params::NeatParams;
@@ -88,7 +90,8 @@ impl Population {
     }
 
     /// A generation-0 population made of existing genomes (e.g. a previous run's final
-    /// population); each must pass [`Genome::check`] and match the spec's inputs/outputs.
+    /// population); each must pass [`Genome::check`] and match the spec's inputs/outputs,
+    /// and together they must number every link alike.
     /// The population size is the number of genomes given until `params` says otherwise.
     pub fn from_genomes(
         params: NeatParams,
@@ -111,6 +114,16 @@ impl Population {
                 tracker.absorb_node(n.id);
             }
         }
+        // Genomes that number the same link differently (or two links alike)
+        // cannot evolve together.
+        check_history(
+            &tracker,
+            &spec,
+            genomes
+                .iter()
+                .enumerate()
+                .map(|(i, g)| (GenomeAt::Member(i), g)),
+        )?;
         let rng = Pcg64::seed_from_u64(seed);
         Ok(Population::assemble(
             params, spec, seed, rng, tracker, genomes,
@@ -303,9 +316,10 @@ impl Population {
     /// it: parameters and spec, every genome (members, species
     /// representatives, best ever) against [`Genome::check`] and the spec's
     /// inputs and outputs, one finite fitness per genome, species that
-    /// partition the genomes, and counters above every id in use. Malformed
-    /// JSON is [`NeatError::Checkpoint`]; anything inconsistent is the typed
-    /// error naming it.
+    /// partition the genomes, an innovation history consistent with itself
+    /// and the genomes, and counters above every id in use. Malformed JSON is
+    /// [`NeatError::Checkpoint`]; anything inconsistent is the typed error
+    /// naming it.
     pub fn from_json(text: &str) -> Result<Population, NeatError> {
         let raw: RawPopulation =
             serde_json::from_str(text).map_err(|e| NeatError::Checkpoint(e.to_string()))?;
@@ -567,6 +581,84 @@ fn check_genome(at: GenomeAt, genome: &Genome, spec: &GenomeSpec) -> Result<(), 
             spec_outputs: spec.outputs,
         });
     }
+    // Ids say what a node is in every genome of the run; crossover relies on it.
+    for n in genome.nodes() {
+        let expected = NodeKind::of_id(n.id, spec);
+        if n.kind != expected {
+            return Err(PopulationError::NodeKind {
+                at,
+                id: n.id,
+                kind: n.kind.name(),
+                expected: expected.name(),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Checks the innovation history against itself and the genomes: one number
+/// per link and one link per number, every genome link numbered as the
+/// history says, split nodes hidden and unique, counters above every id in
+/// use. Together these keep later mutations from ever duplicating a number.
+fn check_history<'a>(
+    tracker: &InnovationTracker,
+    spec: &GenomeSpec,
+    genomes: impl Iterator<Item = (GenomeAt, &'a Genome)>,
+) -> Result<(), PopulationError> {
+    use PopulationError as E;
+    let mut numbers = BTreeSet::new();
+    let mut innovation = None;
+    for (_, _, i) in tracker.recorded_links() {
+        if !numbers.insert(i) {
+            return Err(E::SharedInnovation(i));
+        }
+        innovation = innovation.max(Some(i));
+    }
+    let first_hidden = (spec.inputs + spec.outputs) as u64;
+    let mut splits = BTreeSet::new();
+    let mut node = None;
+    for id in tracker.split_ids() {
+        if u64::from(id) < first_hidden || !splits.insert(id) {
+            return Err(E::SplitNode(id));
+        }
+        node = node.max(Some(id));
+    }
+    for (at, g) in genomes {
+        for l in g.links() {
+            let recorded = tracker.innovation_of(l.from, l.to);
+            if recorded != Some(l.innovation) {
+                return Err(E::InnovationMismatch {
+                    at,
+                    from: l.from,
+                    to: l.to,
+                    innovation: l.innovation,
+                    recorded,
+                });
+            }
+        }
+        node = node.max(g.nodes().last().map(|n| n.id));
+    }
+    let counters = [
+        (
+            "the innovation counter",
+            tracker.innovations(),
+            "innovation number",
+            innovation,
+        ),
+        ("the node counter", tracker.next_node_id(), "node id", node),
+    ];
+    for (counter, value, what, used) in counters {
+        if let Some(used) = used
+            && used >= value
+        {
+            return Err(E::Counter {
+                counter,
+                value,
+                what,
+                used,
+            });
+        }
+    }
     Ok(())
 }
 
@@ -602,7 +694,7 @@ impl TryFrom<RawPopulation> for Population {
         }
 
         // Species: unique ids, members that partition the genomes.
-        let mut ids = std::collections::BTreeSet::new();
+        let mut ids = BTreeSet::new();
         let mut listed = vec![0usize; n];
         let mut species = Vec::with_capacity(raw.species.len());
         for s in raw.species {
@@ -669,48 +761,27 @@ impl TryFrom<RawPopulation> for Population {
             return Err(E::Threshold(raw.threshold).into());
         }
 
-        // Counters: every id in use was handed out by them.
         let every_genome = genomes
             .iter()
-            .chain(species.iter().map(|s| &s.representative))
-            .chain(best_ever.iter().map(|b| &b.genome));
-        let (mut innovation, mut node) = raw.tracker.largest_recorded();
-        for g in every_genome {
-            innovation = innovation.max(g.links().iter().map(|l| l.innovation).max());
-            node = node.max(g.nodes().iter().map(|n| n.id).max());
-        }
-        let counters = [
-            (
-                "the innovation counter",
-                raw.tracker.innovations(),
-                "innovation number",
-                innovation,
-            ),
-            (
-                "the node counter",
-                raw.tracker.next_node_id(),
-                "node id",
-                node,
-            ),
-            (
-                "next_species_id",
-                raw.next_species_id,
-                "species id",
-                ids.last().copied(),
-            ),
-        ];
-        for (counter, value, what, used) in counters {
-            if let Some(used) = used
-                && used >= value
-            {
-                return Err(E::Counter {
-                    counter,
-                    value,
-                    what,
-                    used,
-                }
-                .into());
+            .enumerate()
+            .map(|(i, g)| (GenomeAt::Member(i), g))
+            .chain(
+                species
+                    .iter()
+                    .map(|s| (GenomeAt::Representative(s.id), &s.representative)),
+            )
+            .chain(best_ever.iter().map(|b| (GenomeAt::BestEver, &b.genome)));
+        check_history(&raw.tracker, spec, every_genome)?;
+        if let Some(&used) = ids.last()
+            && used >= raw.next_species_id
+        {
+            return Err(E::Counter {
+                counter: "next_species_id",
+                value: raw.next_species_id,
+                what: "species id",
+                used,
             }
+            .into());
         }
 
         Ok(Population {

@@ -309,6 +309,106 @@ fn each_kind_of_bad_population_is_named() {
 }
 
 #[test]
+fn a_history_that_could_duplicate_innovations_is_refused() {
+    let p = evolved();
+    let base = as_value(&p);
+    let edit = |f: &dyn Fn(&mut Value)| {
+        let mut v = base.clone();
+        f(&mut v);
+        population_error(&v)
+    };
+    let links = p.genomes()[0].links();
+    let fresh = p.tracker().innovations() + 5;
+    assert_eq!(
+        edit(&|v| v["genomes"][0]["links"][0]["innovation"] = json!(fresh)),
+        PopulationError::InnovationMismatch {
+            at: GenomeAt::Member(0),
+            from: links[0].from,
+            to: links[0].to,
+            innovation: fresh,
+            recorded: Some(links[0].innovation),
+        }
+    );
+    let first = base["tracker"]["links"][0][2].clone();
+    assert!(matches!(
+        edit(&|v| v["tracker"]["links"][1][2] = first.clone()),
+        PopulationError::SharedInnovation(_)
+    ));
+    assert!(
+        !base["tracker"]["splits"].as_array().unwrap().is_empty(),
+        "the case needs a split"
+    );
+    assert_eq!(
+        edit(&|v| v["tracker"]["splits"][0][1][0] = json!(0)),
+        PopulationError::SplitNode(0)
+    );
+    // Swap the kinds of an output and a hidden node: counts stay right, ids do not.
+    let (i, g) = p
+        .genomes()
+        .iter()
+        .enumerate()
+        .find(|(_, g)| g.num_hidden() > 0)
+        .unwrap();
+    let e = edit(&|v| {
+        for n in v["genomes"][i]["nodes"].as_array_mut().unwrap() {
+            let id = n["id"].as_u64().unwrap();
+            if id == 5 {
+                n["kind"] = json!("hidden");
+            } else if n["kind"] == "hidden" && id == u64::from(g.nodes().last().unwrap().id) {
+                n["kind"] = json!("output");
+            }
+        }
+    });
+    assert_eq!(
+        e,
+        PopulationError::NodeKind {
+            at: GenomeAt::Member(i),
+            id: 5,
+            kind: "hidden",
+            expected: "output",
+        }
+    );
+}
+
+#[test]
+fn genomes_that_number_links_differently_cannot_form_a_population() {
+    let p = evolved();
+    let a = p.genomes()[0].clone();
+    let mut raw: RawGenome = serde_json::from_value(serde_json::to_value(&a).unwrap()).unwrap();
+    let (x, y) = (raw.links[0].innovation, raw.links[1].innovation);
+    raw.links[0].innovation = y;
+    raw.links[1].innovation = x;
+    let b = Genome::try_from(raw).unwrap();
+    let e = Population::from_genomes(
+        p.params().clone(),
+        GenomeSpec::cppn(),
+        vec![a.clone(), b],
+        1,
+    )
+    .unwrap_err();
+    assert!(
+        matches!(
+            e,
+            NeatError::InvalidPopulation(PopulationError::InnovationMismatch {
+                at: GenomeAt::Member(1),
+                ..
+            })
+        ),
+        "{e}"
+    );
+    // The same genomes, consistently numbered, are fine.
+    assert!(
+        Population::from_genomes(
+            p.params().clone(),
+            GenomeSpec::cppn(),
+            p.genomes().to_vec(),
+            1
+        )
+        .is_ok()
+    );
+}
+
+#[test]
 fn bad_parameters_specs_and_syntax_keep_their_own_errors() {
     let p = evolved();
     let base = as_value(&p);
