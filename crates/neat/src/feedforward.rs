@@ -1,15 +1,16 @@
 //! The acyclic phenotype (the CPPN): flat arrays in topological order, one pass.
 
-use std::collections::BTreeMap;
-
 use crate::activation::Activation;
-use crate::genome::{Genome, NodeKind};
+use crate::compile::Plan;
+use crate::genome::Genome;
 use crate::network::Network;
 
 /// An acyclic network evaluated in one pass; no allocation per activation.
 ///
 /// Only nodes from which an output can be reached are kept. Should the genome
 /// contain a cycle (a recurrent genome), the links closing it are dropped.
+/// The plan (node order, links and their sum order) is the crate's one
+/// compiled-CPPN ordering, shared with the batched substrate decoder.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FeedForwardNetwork {
     num_inputs: usize,
@@ -28,105 +29,15 @@ pub struct FeedForwardNetwork {
 impl FeedForwardNetwork {
     /// Compiles a genome's enabled links into an evaluation plan.
     pub fn from_genome(genome: &Genome) -> FeedForwardNetwork {
-        let inputs: Vec<u32> = ids_of(genome, NodeKind::Input);
-        let outputs: Vec<u32> = ids_of(genome, NodeKind::Output);
-        let enabled: Vec<_> = genome.links().iter().filter(|l| l.enabled).collect();
-
-        // Nodes that can reach an output (reverse search over enabled links).
-        let mut needed: BTreeMap<u32, bool> = BTreeMap::new();
-        let mut stack: Vec<u32> = outputs.clone();
-        for &o in &outputs {
-            needed.insert(o, true);
-        }
-        while let Some(n) = stack.pop() {
-            for l in enabled.iter().filter(|l| l.to == n) {
-                if needed.insert(l.from, true).is_none() {
-                    stack.push(l.from);
-                }
-            }
-        }
-
-        // Kahn's algorithm over needed non-input nodes, smallest id first.
-        let is_input = |id: u32| inputs.binary_search(&id).is_ok();
-        let mut indegree: BTreeMap<u32, usize> = needed
-            .keys()
-            .filter(|&&id| !is_input(id))
-            .map(|&id| (id, 0))
-            .collect();
-        for l in &enabled {
-            if !is_input(l.from)
-                && needed.contains_key(&l.from)
-                && let Some(d) = indegree.get_mut(&l.to)
-            {
-                *d += 1;
-            }
-        }
-        let mut order = Vec::with_capacity(indegree.len());
-        let mut ready: std::collections::BTreeSet<u32> = indegree
-            .iter()
-            .filter(|(_, d)| **d == 0)
-            .map(|(&id, _)| id)
-            .collect();
-        let mut done = std::collections::BTreeSet::new();
-        loop {
-            let next = match ready.pop_first() {
-                Some(n) => n,
-                // A cycle: take the smallest remaining node; its back-links are dropped.
-                None => match indegree.keys().find(|id| !done.contains(*id)) {
-                    Some(&n) => n,
-                    None => break,
-                },
-            };
-            done.insert(next);
-            order.push(next);
-            for l in enabled.iter().filter(|l| l.from == next) {
-                if done.contains(&l.to) {
-                    continue;
-                }
-                if let Some(d) = indegree.get_mut(&l.to) {
-                    *d -= 1;
-                    if *d == 0 {
-                        ready.insert(l.to);
-                    }
-                }
-            }
-        }
-
-        let mut slot: BTreeMap<u32, u32> = BTreeMap::new();
-        for (k, &id) in inputs.iter().enumerate() {
-            slot.insert(id, k as u32);
-        }
-        for (k, &id) in order.iter().enumerate() {
-            slot.insert(id, (inputs.len() + k) as u32);
-        }
-        let mut acts = Vec::with_capacity(order.len());
-        let mut conn_start = Vec::with_capacity(order.len() + 1);
-        let mut conn_src = Vec::new();
-        let mut conn_weight = Vec::new();
-        conn_start.push(0);
-        for (k, &id) in order.iter().enumerate() {
-            let my_slot = (inputs.len() + k) as u32;
-            acts.push(genome.node(id).map_or(Activation::Linear, |n| n.activation));
-            for l in enabled.iter().filter(|l| l.to == id) {
-                // Only sources evaluated earlier; anything else would close a cycle.
-                if let Some(&s) = slot.get(&l.from)
-                    && s < my_slot
-                {
-                    conn_src.push(s);
-                    conn_weight.push(l.weight);
-                }
-            }
-            conn_start.push(conn_src.len() as u32);
-        }
-        let output_slots = outputs.iter().map(|o| slot[o]).collect();
+        let plan = Plan::compile(genome);
         FeedForwardNetwork {
-            num_inputs: inputs.len(),
-            values: vec![0.0; inputs.len() + order.len()],
-            acts,
-            conn_start,
-            conn_src,
-            conn_weight,
-            output_slots,
+            num_inputs: plan.num_inputs,
+            values: vec![0.0; plan.num_inputs + plan.acts.len()],
+            acts: plan.acts,
+            conn_start: plan.conn_start,
+            conn_src: plan.conn_src,
+            conn_weight: plan.conn_weight,
+            output_slots: plan.output_slots,
         }
     }
 
@@ -139,15 +50,6 @@ impl FeedForwardNetwork {
     pub fn num_links(&self) -> usize {
         self.conn_src.len()
     }
-}
-
-pub(crate) fn ids_of(genome: &Genome, kind: NodeKind) -> Vec<u32> {
-    genome
-        .nodes()
-        .iter()
-        .filter(|n| n.kind == kind)
-        .map(|n| n.id)
-        .collect()
 }
 
 impl Network for FeedForwardNetwork {
@@ -188,7 +90,7 @@ impl Network for FeedForwardNetwork {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::genome::{LinkGene, NodeGene};
+    use crate::genome::{LinkGene, NodeGene, NodeKind};
 
     fn node(id: u32, kind: NodeKind, activation: Activation) -> NodeGene {
         NodeGene {

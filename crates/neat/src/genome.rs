@@ -6,7 +6,7 @@ use rand::{Rng, RngExt};
 use serde::{Deserialize, Serialize};
 
 use crate::activation::Activation;
-use crate::error::NeatError;
+use crate::error::{GenomeError, NeatError};
 use crate::innovation::InnovationTracker;
 use crate::params::NeatParams;
 
@@ -95,6 +95,30 @@ pub enum NodeKind {
     Output,
 }
 
+impl NodeKind {
+    /// The kind's name as written in JSON (`input`, `hidden`, `output`).
+    pub fn name(self) -> &'static str {
+        match self {
+            NodeKind::Input => "input",
+            NodeKind::Hidden => "hidden",
+            NodeKind::Output => "output",
+        }
+    }
+
+    /// The kind a node with this id has in genomes of `spec`: inputs are
+    /// `0..inputs`, outputs follow, every later id is hidden.
+    pub fn of_id(id: u32, spec: &GenomeSpec) -> NodeKind {
+        let id = id as usize;
+        if id < spec.inputs {
+            NodeKind::Input
+        } else if id < spec.inputs + spec.outputs {
+            NodeKind::Output
+        } else {
+            NodeKind::Hidden
+        }
+    }
+}
+
 /// A node gene: id (shared across the population for the same structural origin),
 /// role and activation function.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -123,10 +147,40 @@ pub struct LinkGene {
 }
 
 /// A NEAT genome: nodes sorted by id, links sorted by innovation.
+///
+/// Deserialising checks every invariant of [`Genome::check`] (through
+/// [`RawGenome`]), so a `Genome` read from JSON is always valid.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "RawGenome")]
 pub struct Genome {
     pub(crate) nodes: Vec<NodeGene>,
     pub(crate) links: Vec<LinkGene>,
+}
+
+/// A genome's genes as read, not yet checked; `Genome::try_from` validates them.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RawGenome {
+    /// Node genes, in any order.
+    pub nodes: Vec<NodeGene>,
+    /// Link genes, in any order.
+    pub links: Vec<LinkGene>,
+}
+
+impl TryFrom<RawGenome> for Genome {
+    type Error = GenomeError;
+
+    /// Sorts the genes and checks every invariant of [`Genome::check`].
+    fn try_from(raw: RawGenome) -> Result<Genome, GenomeError> {
+        let RawGenome {
+            mut nodes,
+            mut links,
+        } = raw;
+        nodes.sort_by_key(|n| n.id);
+        links.sort_by_key(|l| l.innovation);
+        let g = Genome { nodes, links };
+        g.check()?;
+        Ok(g)
+    }
 }
 
 impl Genome {
@@ -171,15 +225,8 @@ impl Genome {
     }
 
     /// Builds a genome from explicit genes, checking every invariant (for tests and tools).
-    pub fn from_parts(
-        mut nodes: Vec<NodeGene>,
-        mut links: Vec<LinkGene>,
-    ) -> Result<Genome, NeatError> {
-        nodes.sort_by_key(|n| n.id);
-        links.sort_by_key(|l| l.innovation);
-        let g = Genome { nodes, links };
-        g.check()?;
-        Ok(g)
+    pub fn from_parts(nodes: Vec<NodeGene>, links: Vec<LinkGene>) -> Result<Genome, NeatError> {
+        Ok(Genome::try_from(RawGenome { nodes, links })?)
     }
 
     /// Node genes, sorted by id.
@@ -277,49 +324,50 @@ impl Genome {
     }
 
     /// Checks the structural invariants: sorted unique node ids and innovations,
-    /// no duplicate `(from, to)`, every link's nodes exist, no link into an input.
-    pub fn check(&self) -> Result<(), NeatError> {
+    /// no duplicate `(from, to)`, every link's nodes exist, no link into an
+    /// input, finite weights.
+    pub fn check(&self) -> Result<(), GenomeError> {
         for w in self.nodes.windows(2) {
-            if w[0].id >= w[1].id {
-                return Err(NeatError::InvalidGenome(format!(
-                    "node ids not strictly increasing at {}",
-                    w[1].id
-                )));
+            if w[0].id == w[1].id {
+                return Err(GenomeError::DuplicateNode(w[1].id));
+            }
+            if w[0].id > w[1].id {
+                return Err(GenomeError::NodeOrder(w[1].id));
             }
         }
         for w in self.links.windows(2) {
-            if w[0].innovation >= w[1].innovation {
-                return Err(NeatError::InvalidGenome(format!(
-                    "innovation numbers not strictly increasing at {}",
-                    w[1].innovation
-                )));
+            if w[0].innovation == w[1].innovation {
+                return Err(GenomeError::DuplicateInnovation(w[1].innovation));
+            }
+            if w[0].innovation > w[1].innovation {
+                return Err(GenomeError::InnovationOrder(w[1].innovation));
             }
         }
         let mut pairs = BTreeSet::new();
         for l in &self.links {
             if !pairs.insert((l.from, l.to)) {
-                return Err(NeatError::InvalidGenome(format!(
-                    "duplicate link {} -> {}",
-                    l.from, l.to
-                )));
+                return Err(GenomeError::DuplicateLink {
+                    from: l.from,
+                    to: l.to,
+                });
             }
             let (Some(_), Some(to)) = (self.node(l.from), self.node(l.to)) else {
-                return Err(NeatError::InvalidGenome(format!(
-                    "link {} ({} -> {}) refers to a missing node",
-                    l.innovation, l.from, l.to
-                )));
+                return Err(GenomeError::MissingNode {
+                    innovation: l.innovation,
+                    from: l.from,
+                    to: l.to,
+                });
             };
             if to.kind == NodeKind::Input {
-                return Err(NeatError::InvalidGenome(format!(
-                    "link {} targets input node {}",
-                    l.innovation, l.to
-                )));
+                return Err(GenomeError::LinkIntoInput {
+                    innovation: l.innovation,
+                    to: l.to,
+                });
             }
             if !l.weight.is_finite() {
-                return Err(NeatError::InvalidGenome(format!(
-                    "link {} has non-finite weight",
-                    l.innovation
-                )));
+                return Err(GenomeError::NonFiniteWeight {
+                    innovation: l.innovation,
+                });
             }
         }
         Ok(())

@@ -9,8 +9,6 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
-use crate::genome::Genome;
-
 /// Hands out innovation numbers and node ids; part of the population state.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(from = "TrackerRepr", into = "TrackerRepr")]
@@ -44,11 +42,15 @@ impl InnovationTracker {
         i
     }
 
-    /// The id of the node created by splitting link `innovation` in `genome`: the first
-    /// id already used for that split that `genome` does not contain, else a new one.
-    pub fn split_node(&mut self, innovation: u32, genome: &Genome) -> u32 {
+    /// The id of the node created by splitting link `innovation` in a genome:
+    /// the first id already used for that split that the genome does not
+    /// contain (`has_node(id)` is false), else a new one.
+    ///
+    /// Takes the genome's membership test rather than the genome so that the
+    /// tracker stays below the genome in the module graph.
+    pub fn split_node(&mut self, innovation: u32, has_node: impl Fn(u32) -> bool) -> u32 {
         let ids = self.splits.entry(innovation).or_default();
-        if let Some(&id) = ids.iter().find(|&&id| !genome.has_node(id)) {
+        if let Some(&id) = ids.iter().find(|&&id| !has_node(id)) {
             return id;
         }
         let id = self.next_node;
@@ -67,16 +69,32 @@ impl InnovationTracker {
         self.next_node
     }
 
-    /// Makes sure the tracker knows every gene of `genome` (used when a population is
-    /// built from existing genomes) so that later innovations never collide.
-    pub(crate) fn absorb(&mut self, genome: &Genome) {
-        for l in genome.links() {
-            self.links.entry((l.from, l.to)).or_insert(l.innovation);
-            self.next_innovation = self.next_innovation.max(l.innovation + 1);
-        }
-        for n in genome.nodes() {
-            self.next_node = self.next_node.max(n.id + 1);
-        }
+    /// Makes sure the tracker knows a genome's link `from → to` with its
+    /// `innovation` (used when a population is built from existing genomes)
+    /// so that later innovations never collide.
+    pub(crate) fn absorb_link(&mut self, from: u32, to: u32, innovation: u32) {
+        self.links.entry((from, to)).or_insert(innovation);
+        self.next_innovation = self.next_innovation.max(innovation + 1);
+    }
+
+    /// Makes sure later hidden-node ids never collide with node `id`.
+    pub(crate) fn absorb_node(&mut self, id: u32) {
+        self.next_node = self.next_node.max(id + 1);
+    }
+
+    /// The innovation number recorded for link `from → to`, if any.
+    pub fn innovation_of(&self, from: u32, to: u32) -> Option<u32> {
+        self.links.get(&(from, to)).copied()
+    }
+
+    /// Every recorded link as `(from, to, innovation)` (for consistency checks on restore).
+    pub(crate) fn recorded_links(&self) -> impl Iterator<Item = (u32, u32, u32)> + '_ {
+        self.links.iter().map(|(&(f, t), &i)| (f, t, i))
+    }
+
+    /// Every node id recorded for a split (for consistency checks on restore).
+    pub(crate) fn split_ids(&self) -> impl Iterator<Item = u32> + '_ {
+        self.splits.values().flatten().copied()
     }
 }
 

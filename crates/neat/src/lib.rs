@@ -34,10 +34,22 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!
-//! Use [`NeatParams::plain_neat`] for direct encodings like this one and
-//! [`NeatParams::paper_cppn`] (the default, the paper's Table II) for CPPNs.
+//! ## Which parameter preset when
+//!
+//! * [`NeatParams::paper_cppn`] (= [`NeatParams::default`], the paper's
+//!   Table II) for CPPNs and HyperNEAT: a genome that paints a substrate, with
+//!   [`GenomeSpec::cppn`] and a large population.
+//! * [`NeatParams::plain_neat`] for direct encodings, where the genome *is* the
+//!   network (XOR, parity, pole balancing), with [`GenomeSpec::plain`]
+//!   (Stanley's XOR settings). Do not use the default there: its high
+//!   compatibility threshold and small weight steps make such tasks stall.
+//!
+//! Restored state is checked: deserialising a [`Genome`] or a [`Population`]
+//! validates it (typed [`GenomeError`] / [`PopulationError`]), and
+//! [`stats`] holds the mean and median every summary uses.
 
 pub mod activation;
+mod compile;
 pub mod crossover;
 pub mod distance;
 pub mod driver;
@@ -54,14 +66,15 @@ pub mod params;
 pub mod population;
 pub mod recurrent;
 pub mod species;
+pub mod stats;
 
 pub use activation::{Activation, bipolar_sigmoid};
 pub use crossover::crossover;
 pub use distance::distance;
-pub use error::NeatError;
+pub use error::{GenomeAt, GenomeError, NeatError, PopulationError};
 pub use eval::{EvalContext, eval_seed};
 pub use feedforward::FeedForwardNetwork;
-pub use genome::{Genome, GenomeSpec, LinkGene, NodeGene, NodeKind};
+pub use genome::{Genome, GenomeSpec, LinkGene, NodeGene, NodeKind, RawGenome};
 pub use innovation::InnovationTracker;
 pub use network::Network;
 pub use params::NeatParams;

@@ -1,5 +1,7 @@
 //! The population: evaluation, speciation, fitness sharing and reproduction.
 
+use std::collections::BTreeSet;
+
 use rand::{RngExt, SeedableRng};
 use rand_pcg::Pcg64;
 use rayon::prelude::*;
@@ -7,15 +9,16 @@ use serde::{Deserialize, Serialize};
 
 use crate::crossover::crossover;
 use crate::distance::distance;
-use crate::error::NeatError;
+use crate::error::{GenomeAt, NeatError, PopulationError};
 use crate::eval::{EvalContext, eval_seed};
-use crate::genome::{Genome, GenomeSpec};
+use crate::genome::{Genome, GenomeSpec, NodeKind, RawGenome};
 use crate::innovation::InnovationTracker;
 use crate::mutation::mutate;
 use crate::params::NeatParams;
 use crate::species::Species;
+use crate::stats;
 
-/// The best genome seen so far in the run.
+/// The best genome seen so far in the run (see [`Population::best_ever`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct BestEver {
     /// The genome.
@@ -51,8 +54,11 @@ pub struct GenerationStats {
 
 /// A NEAT population with its complete state (RNG, species, innovations, best-ever),
 /// serialisable so that a restored checkpoint continues bit-identically.
+///
+/// Deserialising validates the whole state (see [`Population::from_json`]):
+/// a `Population` read from JSON is always consistent.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(deny_unknown_fields, try_from = "RawPopulation")]
 pub struct Population {
     params: NeatParams,
     spec: GenomeSpec,
@@ -84,7 +90,8 @@ impl Population {
     }
 
     /// A generation-0 population made of existing genomes (e.g. a previous run's final
-    /// population); each must pass [`Genome::check`] and match the spec's inputs/outputs.
+    /// population); each must pass [`Genome::check`] and match the spec's inputs/outputs,
+    /// and together they must number every link alike.
     /// The population size is the number of genomes given until `params` says otherwise.
     pub fn from_genomes(
         params: NeatParams,
@@ -95,23 +102,28 @@ impl Population {
         params.validate()?;
         spec.validate()?;
         if genomes.is_empty() {
-            return Err(NeatError::InvalidGenome("no genomes given".into()));
+            return Err(PopulationError::Empty.into());
         }
         let mut tracker = InnovationTracker::new((spec.inputs + spec.outputs) as u32);
         for (i, g) in genomes.iter().enumerate() {
-            g.check()
-                .map_err(|e| NeatError::InvalidGenome(format!("genome {i}: {e}")))?;
-            if g.num_inputs() != spec.inputs || g.num_outputs() != spec.outputs {
-                return Err(NeatError::InvalidGenome(format!(
-                    "genome {i} has {} inputs and {} outputs, the spec {} and {}",
-                    g.num_inputs(),
-                    g.num_outputs(),
-                    spec.inputs,
-                    spec.outputs
-                )));
+            check_genome(GenomeAt::Member(i), g, &spec)?;
+            for l in g.links() {
+                tracker.absorb_link(l.from, l.to, l.innovation);
             }
-            tracker.absorb(g);
+            for n in g.nodes() {
+                tracker.absorb_node(n.id);
+            }
         }
+        // Genomes that number the same link differently (or two links alike)
+        // cannot evolve together.
+        check_history(
+            &tracker,
+            &spec,
+            genomes
+                .iter()
+                .enumerate()
+                .map(|(i, g)| (GenomeAt::Member(i), g)),
+        )?;
         let rng = Pcg64::seed_from_u64(seed);
         Ok(Population::assemble(
             params, spec, seed, rng, tracker, genomes,
@@ -206,11 +218,9 @@ impl Population {
         self.fitness.clone().unwrap_or_default()
     }
 
-    /// The best genome of the run so far, its fitness and generation.
-    pub fn best_ever(&self) -> Option<(&Genome, f64, u32)> {
-        self.best_ever
-            .as_ref()
-            .map(|b| (&b.genome, b.fitness, b.generation))
+    /// The best genome of the run so far, with its fitness and generation.
+    pub fn best_ever(&self) -> Option<&BestEver> {
+        self.best_ever.as_ref()
     }
 
     /// The context of evaluation `index` in the current generation.
@@ -243,11 +253,10 @@ impl Population {
     /// Sets fitness values computed elsewhere (one per genome, in order).
     pub fn set_fitnesses(&mut self, fitness: Vec<f64>) -> Result<(), NeatError> {
         if fitness.len() != self.genomes.len() {
-            return Err(NeatError::InvalidGenome(format!(
-                "{} fitness values for {} genomes",
-                fitness.len(),
-                self.genomes.len()
-            )));
+            return Err(NeatError::FitnessCount {
+                given: fitness.len(),
+                genomes: self.genomes.len(),
+            });
         }
         self.record_fitness(fitness);
         Ok(())
@@ -294,7 +303,7 @@ impl Population {
             mean_hidden: sum(|g| g.num_hidden()),
             mean_links: sum(|g| g.num_enabled_links()),
             best_fitness: self.fitness.as_ref().and_then(|f| argmax(f).map(|i| f[i])),
-            mean_fitness: self.fitness.as_ref().map(|f| f.iter().sum::<f64>() / n),
+            mean_fitness: self.fitness.as_deref().and_then(stats::mean),
         }
     }
 
@@ -303,24 +312,18 @@ impl Population {
         serde_json::to_string(self).map_err(|e| NeatError::Checkpoint(e.to_string()))
     }
 
-    /// Restores a population written by [`Population::to_json`], re-validating it.
+    /// Restores a population written by [`Population::to_json`], validating
+    /// it: parameters and spec, every genome (members, species
+    /// representatives, best ever) against [`Genome::check`] and the spec's
+    /// inputs and outputs, one finite fitness per genome, species that
+    /// partition the genomes, an innovation history consistent with itself
+    /// and the genomes, and counters above every id in use. Malformed JSON is
+    /// [`NeatError::Checkpoint`]; anything inconsistent is the typed error
+    /// naming it.
     pub fn from_json(text: &str) -> Result<Population, NeatError> {
-        let pop: Population =
+        let raw: RawPopulation =
             serde_json::from_str(text).map_err(|e| NeatError::Checkpoint(e.to_string()))?;
-        pop.params.validate()?;
-        pop.spec.validate()?;
-        for g in &pop.genomes {
-            g.check()?;
-        }
-        let n = pop.genomes.len();
-        if pop.fitness.as_ref().is_some_and(|f| f.len() != n)
-            || pop.species.iter().flat_map(|s| &s.members).any(|&m| m >= n)
-        {
-            return Err(NeatError::Checkpoint(
-                "fitness or species members do not match the genomes".into(),
-            ));
-        }
-        Ok(pop)
+        Population::try_from(raw)
     }
 
     /// Produces the next generation: species stagnation, explicit fitness sharing,
@@ -516,6 +519,285 @@ impl Population {
             }
         }
         self.species.retain(|s| !s.members.is_empty());
+    }
+}
+
+/// A population as read, not yet checked (the serialised form of [`Population`]).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawPopulation {
+    params: NeatParams,
+    spec: GenomeSpec,
+    seed: u64,
+    generation: u32,
+    rng: Pcg64,
+    tracker: InnovationTracker,
+    genomes: Vec<RawGenome>,
+    fitness: Option<Vec<f64>>,
+    species: Vec<RawSpecies>,
+    next_species_id: u32,
+    threshold: f64,
+    best_ever: Option<RawBestEver>,
+}
+
+/// A [`Species`] as read, its representative not yet checked.
+#[derive(Deserialize)]
+struct RawSpecies {
+    id: u32,
+    representative: RawGenome,
+    members: Vec<usize>,
+    created: u32,
+    best_fitness: Option<f64>,
+    last_improved: u32,
+}
+
+/// A [`BestEver`] as read, its genome not yet checked.
+#[derive(Deserialize)]
+struct RawBestEver {
+    genome: RawGenome,
+    fitness: f64,
+    generation: u32,
+}
+
+/// Checks a raw genome's invariants and its shape against `spec`.
+fn checked_genome(at: GenomeAt, raw: RawGenome, spec: &GenomeSpec) -> Result<Genome, NeatError> {
+    let genome = Genome::try_from(raw).map_err(|error| PopulationError::Genome { at, error })?;
+    check_genome(at, &genome, spec)?;
+    Ok(genome)
+}
+
+/// Checks a genome's invariants and that its inputs and outputs match `spec`.
+fn check_genome(at: GenomeAt, genome: &Genome, spec: &GenomeSpec) -> Result<(), PopulationError> {
+    genome
+        .check()
+        .map_err(|error| PopulationError::Genome { at, error })?;
+    let (inputs, outputs) = (genome.num_inputs(), genome.num_outputs());
+    if inputs != spec.inputs || outputs != spec.outputs {
+        return Err(PopulationError::Shape {
+            at,
+            inputs,
+            outputs,
+            spec_inputs: spec.inputs,
+            spec_outputs: spec.outputs,
+        });
+    }
+    // Ids say what a node is in every genome of the run; crossover relies on it.
+    for n in genome.nodes() {
+        let expected = NodeKind::of_id(n.id, spec);
+        if n.kind != expected {
+            return Err(PopulationError::NodeKind {
+                at,
+                id: n.id,
+                kind: n.kind.name(),
+                expected: expected.name(),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Checks the innovation history against itself and the genomes: one number
+/// per link and one link per number, every genome link numbered as the
+/// history says, split nodes hidden and unique, counters above every id in
+/// use. Together these keep later mutations from ever duplicating a number.
+fn check_history<'a>(
+    tracker: &InnovationTracker,
+    spec: &GenomeSpec,
+    genomes: impl Iterator<Item = (GenomeAt, &'a Genome)>,
+) -> Result<(), PopulationError> {
+    use PopulationError as E;
+    let mut numbers = BTreeSet::new();
+    let mut innovation = None;
+    for (_, _, i) in tracker.recorded_links() {
+        if !numbers.insert(i) {
+            return Err(E::SharedInnovation(i));
+        }
+        innovation = innovation.max(Some(i));
+    }
+    let first_hidden = (spec.inputs + spec.outputs) as u64;
+    let mut splits = BTreeSet::new();
+    let mut node = None;
+    for id in tracker.split_ids() {
+        if u64::from(id) < first_hidden || !splits.insert(id) {
+            return Err(E::SplitNode(id));
+        }
+        node = node.max(Some(id));
+    }
+    for (at, g) in genomes {
+        for l in g.links() {
+            let recorded = tracker.innovation_of(l.from, l.to);
+            if recorded != Some(l.innovation) {
+                return Err(E::InnovationMismatch {
+                    at,
+                    from: l.from,
+                    to: l.to,
+                    innovation: l.innovation,
+                    recorded,
+                });
+            }
+        }
+        node = node.max(g.nodes().last().map(|n| n.id));
+    }
+    let counters = [
+        (
+            "the innovation counter",
+            tracker.innovations(),
+            "innovation number",
+            innovation,
+        ),
+        ("the node counter", tracker.next_node_id(), "node id", node),
+    ];
+    for (counter, value, what, used) in counters {
+        if let Some(used) = used
+            && used >= value
+        {
+            return Err(E::Counter {
+                counter,
+                value,
+                what,
+                used,
+            });
+        }
+    }
+    Ok(())
+}
+
+impl TryFrom<RawPopulation> for Population {
+    type Error = NeatError;
+
+    fn try_from(raw: RawPopulation) -> Result<Population, NeatError> {
+        use PopulationError as E;
+        raw.params.validate()?;
+        raw.spec.validate()?;
+        let spec = &raw.spec;
+        if raw.genomes.is_empty() {
+            return Err(E::Empty.into());
+        }
+        let genomes = raw
+            .genomes
+            .into_iter()
+            .enumerate()
+            .map(|(i, g)| checked_genome(GenomeAt::Member(i), g, spec))
+            .collect::<Result<Vec<Genome>, NeatError>>()?;
+        let n = genomes.len();
+        if let Some(fitness) = &raw.fitness {
+            if fitness.len() != n {
+                return Err(E::FitnessCount {
+                    given: fitness.len(),
+                    genomes: n,
+                }
+                .into());
+            }
+            if let Some(i) = fitness.iter().position(|f| !f.is_finite()) {
+                return Err(E::NonFiniteFitness(format!("genome {i}")).into());
+            }
+        }
+
+        // Species: unique ids, members that partition the genomes.
+        let mut ids = BTreeSet::new();
+        let mut listed = vec![0usize; n];
+        let mut species = Vec::with_capacity(raw.species.len());
+        for s in raw.species {
+            if !ids.insert(s.id) {
+                return Err(E::DuplicateSpecies(s.id).into());
+            }
+            if s.members.is_empty() {
+                return Err(E::EmptySpecies(s.id).into());
+            }
+            for &member in &s.members {
+                let count = listed.get_mut(member).ok_or(E::MissingMember {
+                    species: s.id,
+                    member,
+                    genomes: n,
+                })?;
+                *count += 1;
+            }
+            if s.best_fitness.is_some_and(|f| !f.is_finite()) {
+                return Err(E::NonFiniteFitness(format!("species {}", s.id)).into());
+            }
+            species.push(Species {
+                id: s.id,
+                representative: checked_genome(
+                    GenomeAt::Representative(s.id),
+                    s.representative,
+                    spec,
+                )?,
+                members: s.members,
+                created: s.created,
+                best_fitness: s.best_fitness,
+                last_improved: s.last_improved,
+            });
+        }
+        if let Some(member) = listed.iter().position(|&c| c != 1) {
+            return Err(E::Membership {
+                member,
+                count: listed[member],
+            }
+            .into());
+        }
+
+        let best_ever = match raw.best_ever {
+            None => None,
+            Some(b) => {
+                if !b.fitness.is_finite() {
+                    return Err(E::NonFiniteFitness("the best-ever genome".into()).into());
+                }
+                if b.generation > raw.generation {
+                    return Err(E::FutureGeneration {
+                        what: "the best-ever record",
+                        generation: b.generation,
+                        current: raw.generation,
+                    }
+                    .into());
+                }
+                Some(BestEver {
+                    genome: checked_genome(GenomeAt::BestEver, b.genome, spec)?,
+                    fitness: b.fitness,
+                    generation: b.generation,
+                })
+            }
+        };
+        if !(raw.threshold.is_finite() && raw.threshold >= 0.0) {
+            return Err(E::Threshold(raw.threshold).into());
+        }
+
+        let every_genome = genomes
+            .iter()
+            .enumerate()
+            .map(|(i, g)| (GenomeAt::Member(i), g))
+            .chain(
+                species
+                    .iter()
+                    .map(|s| (GenomeAt::Representative(s.id), &s.representative)),
+            )
+            .chain(best_ever.iter().map(|b| (GenomeAt::BestEver, &b.genome)));
+        check_history(&raw.tracker, spec, every_genome)?;
+        if let Some(&used) = ids.last()
+            && used >= raw.next_species_id
+        {
+            return Err(E::Counter {
+                counter: "next_species_id",
+                value: raw.next_species_id,
+                what: "species id",
+                used,
+            }
+            .into());
+        }
+
+        Ok(Population {
+            params: raw.params,
+            spec: raw.spec,
+            seed: raw.seed,
+            generation: raw.generation,
+            rng: raw.rng,
+            tracker: raw.tracker,
+            genomes,
+            fitness: raw.fitness,
+            species,
+            next_species_id: raw.next_species_id,
+            threshold: raw.threshold,
+            best_ever,
+        })
     }
 }
 

@@ -3,7 +3,7 @@
 use std::collections::BTreeMap;
 
 use crate::activation::Activation;
-use crate::feedforward::ids_of;
+use crate::compile::ids_of;
 use crate::genome::{Genome, NodeKind};
 use crate::network::Network;
 

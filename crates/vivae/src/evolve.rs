@@ -20,7 +20,7 @@ use vivae_neat::driver::{
     CheckpointState, Checkpointer, DriverError, Evolution, GenerationReport, HookError, Observer,
     ParallelEvaluator, StopCriteria, StopReason,
 };
-use vivae_neat::{Genome, Population};
+use vivae_neat::{Genome, Population, stats};
 
 use crate::config::Config;
 use crate::error::{Error, Result};
@@ -169,12 +169,10 @@ fn decode_checkpoint(path: &Path) -> Result<Checkpoint> {
     }
     let cp: Checkpoint =
         serde_json::from_str(body).map_err(|e| bad(&format!("unreadable checkpoint: {e}")))?;
+    // The population validated itself while being deserialised.
     cp.config
         .validate()
         .map_err(|e| bad(&format!("checkpoint config: {e}")))?;
-    // Re-validate the population through the library's checks.
-    let pop_json = cp.population.to_json().map_err(|e| bad(&e.to_string()))?;
-    Population::from_json(&pop_json).map_err(|e| bad(&format!("checkpoint population: {e}")))?;
     Ok(cp)
 }
 
@@ -406,14 +404,12 @@ impl Run {
 
 /// The champion (best ever) of `population` with its run-relative generation.
 fn champion(population: &Population, progress: &Progress) -> Option<Champion> {
-    population
-        .best_ever()
-        .map(|(genome, fitness, generation)| Champion {
-            format: "vivae-champion".into(),
-            generation: generation - progress.start_generation + 1,
-            fitness,
-            genome: genome.clone(),
-        })
+    population.best_ever().map(|best| Champion {
+        format: "vivae-champion".into(),
+        generation: best.generation - progress.start_generation + 1,
+        fitness: best.fitness,
+        genome: best.genome.clone(),
+    })
 }
 
 /// The driver's error as ours; an error of our own observer comes back unchanged.
@@ -464,8 +460,7 @@ impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
         let population = report.population;
         let generation = report.generation;
         let fitness = population.fitnesses();
-        let mut sorted = fitness.clone();
-        sorted.sort_by(|a, b| b.total_cmp(a));
+        let sorted = stats::sorted_descending(&fitness);
         let stats = report.stats;
         let (best_genome, best) = population
             .champion()
@@ -473,18 +468,16 @@ impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
             .expect("an evaluated population has a champion");
         let controller = self.experiment.controller(&best_genome)?;
         let n = sorted.len();
-        let median = if n % 2 == 1 {
-            sorted[n / 2]
-        } else {
-            (sorted[n / 2 - 1] + sorted[n / 2]) / 2.0
-        };
+        let (mean, median) = stats::mean(&fitness)
+            .zip(stats::median_of_sorted(&sorted))
+            .expect("an evaluated population has fitnesses");
         let robot_steps =
             (n * self.experiment.robots()) as f64 * f64::from(self.experiment.steps());
         let record = GenerationRecord {
             generation,
             total: self.total,
             best,
-            mean: fitness.iter().sum::<f64>() / n as f64,
+            mean,
             median,
             worst: sorted[n - 1],
             species: stats.species,
@@ -494,7 +487,7 @@ impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
             possible_links: controller.possible_links(),
             seconds,
             robot_steps_per_second: robot_steps / seconds.max(1e-9),
-            best_ever: population.best_ever().map_or(best, |b| b.1),
+            best_ever: population.best_ever().map_or(best, |b| b.fitness),
         };
         if FIGURE_GENERATIONS.contains(&generation) {
             self.progress

@@ -126,7 +126,7 @@ pub fn load_genome_source(source: &Path) -> Result<(Champion, Config, PathBuf)> 
     }
 }
 
-/// Reads `champion.json` (or any file in its format), checking the genome.
+/// Reads `champion.json` (or any file in its format); the genome is checked as it is read.
 pub fn read_champion(path: &Path) -> Result<Champion> {
     let text = read_text(path)?;
     let invalid = |reason: String| Error::Genome {
@@ -141,10 +141,7 @@ pub fn read_champion(path: &Path) -> Result<Champion> {
             champion.format
         )));
     }
-    champion
-        .genome
-        .check()
-        .map_err(|e| invalid(format!("invalid genome: {e}")))?;
+    // The genome validated itself while being deserialised.
     Ok(champion)
 }
 

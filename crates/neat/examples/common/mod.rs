@@ -3,7 +3,7 @@
 
 use std::time::Instant;
 
-use vivae_neat::NeatParams;
+use vivae_neat::{NeatParams, stats};
 
 /// The outcome of one run.
 pub struct RunResult {
@@ -44,15 +44,9 @@ pub fn summarize(
         }
     }
     let solved = evals.len();
-    evals.sort_unstable();
-    let mean = evals.iter().sum::<usize>() as f64 / solved.max(1) as f64;
-    let median = if solved == 0 {
-        0.0
-    } else if solved % 2 == 1 {
-        evals[solved / 2] as f64
-    } else {
-        (evals[solved / 2 - 1] + evals[solved / 2]) as f64 / 2.0
-    };
+    let evals: Vec<f64> = evals.iter().map(|&e| e as f64).collect();
+    let mean = stats::mean(&evals).unwrap_or(0.0);
+    let median = stats::median(&evals).unwrap_or(0.0);
     format!(
         "{name}: solved={solved}/{runs} mean_evals={mean:.0} median_evals={median:.0} mean_hidden={:.2} mean_ms={:.1}",
         hidden as f64 / solved.max(1) as f64,

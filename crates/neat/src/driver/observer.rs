@@ -1,7 +1,7 @@
 //! Per-generation hooks: [`Observer`]s report, a [`Checkpointer`] saves state.
 
-use crate::driver::StopReason;
-use crate::driver::task::Evaluation;
+use super::stop::StopReason;
+use super::task::Evaluation;
 use crate::population::{GenerationStats, Population};
 
 /// An error raised by an observer or a checkpointer (e.g. a file that could not be written).

@@ -29,7 +29,7 @@ pub fn mutate_add_node<R: Rng + ?Sized>(
         .expect("pick < enabled count");
     let old = genome.links[idx];
     genome.links[idx].enabled = false;
-    let id = tracker.split_node(old.innovation, genome);
+    let id = tracker.split_node(old.innovation, |id| genome.has_node(id));
     let activation = spec.hidden_activations[rng.random_range(0..spec.hidden_activations.len())];
     genome.insert_node(NodeGene {
         id,

@@ -3,6 +3,7 @@
 //! colour; below it the best and mean fitness per generation.
 
 use plotters::prelude::*;
+use vivae_neat::stats;
 
 use super::{FAMILY, Figure, FigureError, draw_err, register_font, svg_to_png, viridis};
 
@@ -85,9 +86,8 @@ fn draw(
     let sorted: Vec<Vec<f64>> = generations
         .iter()
         .map(|g| {
-            let mut v: Vec<f64> = g.iter().copied().filter(|f| f.is_finite()).collect();
-            v.sort_by(|a, b| b.total_cmp(a));
-            v
+            let finite: Vec<f64> = g.iter().copied().filter(|f| f.is_finite()).collect();
+            stats::sorted_descending(&finite)
         })
         .collect();
     let ranks = sorted.iter().map(Vec::len).max().unwrap_or(0);
@@ -120,12 +120,7 @@ fn draw(
     let colour_of_level = |l: usize| viridis(l as f64 / (LEVELS - 1) as f64);
     let stats: Vec<Option<GenStats>> = sorted
         .iter()
-        .map(|g| {
-            (!g.is_empty()).then(|| GenStats {
-                best: g[0],
-                mean: g.iter().sum::<f64>() / g.len() as f64,
-            })
-        })
+        .map(|g| stats::mean(g).map(|mean| GenStats { best: g[0], mean }))
         .collect();
 
     let g0 = f64::from(opts.first_generation);

@@ -1,0 +1,86 @@
+//! Substrate geometry: input sheets and the neuron sheet in CPPN space.
+
+use serde::{Deserialize, Serialize};
+
+use super::error::HyperError;
+
+/// Number of CPPN inputs a substrate query feeds: `(x1, y1, x2, y2, 1)`.
+pub const CPPN_INPUTS: usize = 5;
+
+/// One input sheet: node coordinates and which CPPN output paints its links.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct InputSheet {
+    /// CPPN-space coordinates of the sheet's nodes, in controller-input order.
+    pub coords: Vec<[f64; 2]>,
+    /// Index of the CPPN output giving the weight sheet node → neuron.
+    pub cppn_output: usize,
+}
+
+/// The geometry of a substrate: input sheets and the neuron sheet.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SubstrateLayout {
+    /// Input sheets; the controller's inputs are their nodes concatenated in order.
+    pub inputs: Vec<InputSheet>,
+    /// CPPN-space coordinates of the neurons (the controller's outputs, in order).
+    pub neurons: Vec<[f64; 2]>,
+    /// CPPN output giving each neuron's bias (queried with `x2 = y2 = 0`).
+    pub bias_output: usize,
+    /// CPPN output giving the weight neuron → neuron.
+    pub recurrent_output: usize,
+}
+
+impl SubstrateLayout {
+    /// Total number of input nodes over all sheets.
+    pub fn num_inputs(&self) -> usize {
+        self.inputs.iter().map(|s| s.coords.len()).sum()
+    }
+
+    /// Number of CPPN queries a decode makes: one per possible link plus one per bias.
+    pub fn num_queries(&self) -> usize {
+        let n = self.neurons.len();
+        n * (self.num_inputs() + n + 1)
+    }
+
+    /// Checks the layout against a CPPN's input and output counts.
+    pub fn check(&self, cppn_inputs: usize, cppn_outputs: usize) -> Result<(), HyperError> {
+        if cppn_inputs != CPPN_INPUTS {
+            return Err(HyperError::CppnInputs(cppn_inputs));
+        }
+        if self.neurons.is_empty() {
+            return Err(HyperError::NoNeurons);
+        }
+        let out = |role, output| {
+            if output < cppn_outputs {
+                Ok(())
+            } else {
+                Err(HyperError::CppnOutput {
+                    role,
+                    output,
+                    available: cppn_outputs,
+                })
+            }
+        };
+        out("the neuron bias", self.bias_output)?;
+        out("neuron -> neuron weights", self.recurrent_output)?;
+        for sheet in &self.inputs {
+            out("input -> neuron weights", sheet.cppn_output)?;
+        }
+        let finite = |sheet, coords: &[[f64; 2]]| {
+            for (index, c) in coords.iter().enumerate() {
+                if !(c[0].is_finite() && c[1].is_finite()) {
+                    return Err(HyperError::BadCoordinate {
+                        sheet,
+                        index,
+                        coord: *c,
+                    });
+                }
+            }
+            Ok(())
+        };
+        finite("neuron", &self.neurons)?;
+        for sheet in &self.inputs {
+            finite("input", &sheet.coords)?;
+        }
+        Ok(())
+    }
+}
