@@ -9,22 +9,12 @@
 
 mod common;
 
-use common::{DETERMINISTIC_FILES, read, scratch, vivae};
+use common::{DETERMINISTIC_FILES, read, scratch};
 
 const OLD_CPU: &str = "glibc.cpu.hwcaps=-AVX2,-FMA";
 
 fn short_run(out: &std::path::Path, tunables: Option<&str>) {
-    let mut cmd = vivae();
-    cmd.args([
-        "evolve",
-        "-q",
-        "--generations",
-        "12",
-        "--seed",
-        "2",
-        "--out",
-    ])
-    .arg(out);
+    let mut cmd = common::short_run_command(out);
     match tunables {
         Some(t) => cmd.env("GLIBC_TUNABLES", t),
         None => cmd.env_remove("GLIBC_TUNABLES"),

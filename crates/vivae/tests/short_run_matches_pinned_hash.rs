@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::{DETERMINISTIC_FILES, read, scratch, vivae};
+use common::{DETERMINISTIC_FILES, read, scratch};
 
 /// FNV-1a 64 of `generations.csv`, `population.csv` and `champion.json`
 /// (in that order, each preceded by its name) of
@@ -24,19 +24,7 @@ fn fnv1a(h: u64, bytes: &[u8]) -> u64 {
 fn short_default_run_matches_pinned_hash() {
     let dir = scratch("pinned");
     let out = dir.join("run");
-    common::ok(
-        vivae()
-            .args([
-                "evolve",
-                "-q",
-                "--generations",
-                "12",
-                "--seed",
-                "2",
-                "--out",
-            ])
-            .arg(&out),
-    );
+    common::ok(&mut common::short_run_command(&out));
     let mut h = 0xcbf2_9ce4_8422_2325;
     for name in DETERMINISTIC_FILES {
         h = fnv1a(h, name.as_bytes());

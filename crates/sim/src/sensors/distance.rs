@@ -4,7 +4,7 @@
 use glam::DVec2;
 use serde::{Deserialize, Serialize};
 
-use super::{Sensor, SensorPlace, frame, local, spread};
+use super::{Sensor, SensorPlace, check_fov, frame, local, spread};
 use crate::geometry::{Aabb, ray_disc};
 use crate::physics::{ParamError, check};
 use crate::world::World;
@@ -40,12 +40,7 @@ impl DistanceSensors {
             (1..=10_000).contains(&self.rays),
             "must be in 1..=10000",
         )?;
-        check(
-            "fov",
-            self.fov,
-            (0.0..=360.0).contains(&self.fov),
-            "must be in [0, 360] degrees",
-        )?;
+        check_fov(self.fov)?;
         check("range", self.range, self.range > 0.0, "must be > 0")?;
         Ok(())
     }

@@ -75,6 +75,16 @@ pub fn spread(n: usize, fov_deg: f64) -> impl Iterator<Item = f64> {
     })
 }
 
+/// Checks a field of view in degrees (shared by every sensor layout).
+fn check_fov(fov: f64) -> Result<(), crate::physics::ParamError> {
+    crate::physics::check(
+        "fov",
+        fov,
+        (0.0..=360.0).contains(&fov),
+        "must be in [0, 360] degrees",
+    )
+}
+
 /// Robot-frame offset of a point at `distance` and relative `angle`:
 /// x = ahead, y = to the right.
 fn local(distance: f64, angle: f64) -> DVec2 {

@@ -4,7 +4,7 @@
 use glam::DVec2;
 use serde::{Deserialize, Serialize};
 
-use super::{Sensor, SensorPlace, frame, local, spread};
+use super::{Sensor, SensorPlace, check_fov, frame, local, spread};
 use crate::physics::{ParamError, check};
 use crate::world::World;
 
@@ -61,12 +61,7 @@ impl SurfaceSensors {
             (1..=10_000).contains(&self.angles),
             "must be in 1..=10000",
         )?;
-        check(
-            "fov",
-            self.fov,
-            (0.0..=360.0).contains(&self.fov),
-            "must be in [0, 360] degrees",
-        )?;
+        check_fov(self.fov)?;
         check("d_min", self.d_min, self.d_min >= 0.0, "must be >= 0")?;
         check(
             "d_max",

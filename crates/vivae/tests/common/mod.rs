@@ -78,3 +78,20 @@ pub fn assert_same_results(a: &Path, b: &Path) {
         );
     }
 }
+
+/// `vivae evolve -q --generations 12 --seed 2 --out OUT`: the short run the
+/// determinism tests compare.
+pub fn short_run_command(out: &Path) -> Command {
+    let mut cmd = vivae();
+    cmd.args([
+        "evolve",
+        "-q",
+        "--generations",
+        "12",
+        "--seed",
+        "2",
+        "--out",
+    ])
+    .arg(out);
+    cmd
+}
