@@ -10,7 +10,7 @@ use mpi_common::*;
 use std::path::Path;
 use std::time::{Duration, Instant};
 
-const GENERATIONS: u32 = 12;
+const GENERATIONS: u32 = 30;
 
 /// The newest checkpoint's generation, if any.
 fn newest_generation(run_dir: &Path) -> Option<u32> {
@@ -98,7 +98,13 @@ fn run_and_kill_rank(config: &Path, run_dir: &Path, victim: u32) -> String {
 #[test]
 fn killed_worker_rank_then_resume_matches() {
     let dir = scratch("mpi-killed");
-    let config = write_small_config(&dir, GENERATIONS);
+    // Longer episodes than the other tests': generations must outlast finding and killing a rank.
+    let config = dir.join("c.toml");
+    std::fs::write(
+        &config,
+        small_config(GENERATIONS).replace("steps = 150", "steps = 400"),
+    )
+    .unwrap();
     let reference = dir.join("reference");
     evolve(&config, &reference, &[]);
 
