@@ -168,24 +168,16 @@ impl Drop for Launch {
         if self.universe.is_none() {
             return;
         }
-        let summary = state(|s| {
-            let s = s.as_mut()?;
-            if s.rank != 0 {
-                return None;
-            }
+        state(|s| {
             // Workers wait for this whether rank 0 finished, failed or refused them.
-            if !s.stopped {
+            if let Some(s) = s.as_mut().filter(|s| s.rank == 0 && !s.stopped) {
                 let world = SimpleCommunicator::world();
                 for r in 1..s.size {
                     world.process_at_rank(r).send_with_tag(&[0u8][..], TAG_STOP);
                 }
                 s.stopped = true;
             }
-            (!s.quiet && s.traffic.generations > 0).then(|| s.traffic.summary(s.size))
         });
-        if let Some(line) = summary {
-            eprintln!("{line}");
-        }
         // Dropping the universe finalises MPI.
         self.universe = None;
     }
@@ -500,6 +492,20 @@ impl MpiEvaluator {
     }
 }
 
+impl Drop for MpiEvaluator {
+    /// Reports the run's traffic (before rank 0 goes on to draw the figures).
+    fn drop(&mut self) {
+        let summary = state(|s| {
+            s.as_ref()
+                .filter(|s| !s.quiet && s.traffic.generations > 0)
+                .map(|s| s.traffic.summary(s.size))
+        });
+        if let Some(line) = summary {
+            eprintln!("{line}");
+        }
+    }
+}
+
 /// One generation's traffic, added to the run's when it is done.
 #[derive(Default)]
 struct Tally {
@@ -530,11 +536,16 @@ impl Evaluator for MpiEvaluator {
             let i = next.fetch_add(1, Ordering::Relaxed);
             (i < n).then_some(i)
         };
-        let world = SimpleCommunicator::world();
         let task = &self.task;
-        let mut results: Vec<Option<Evaluation>> = vec![None; n];
-        let mut tally = Tally::default();
-        let outcome = self.pool.in_place_scope(|scope| -> Result<(), EvaluatorError> {
+        let mut round = Round {
+            world: SimpleCommunicator::world(),
+            genomes,
+            contexts,
+            results: vec![None; n],
+            done: 0,
+            tally: Tally::default(),
+        };
+        let outcome = self.pool.in_place_scope(|scope| {
             // Rank 0's own threads take genomes from the same queue.
             let (tx, rx) = mpsc::channel::<(usize, Result<Evaluation, String>)>();
             for _ in 0..self.pool.current_num_threads() {
@@ -542,113 +553,25 @@ impl Evaluator for MpiEvaluator {
                 let take = &take;
                 scope.spawn(move |_| {
                     while let Some(i) = take() {
-                        if tx
-                            .send((i, evaluate_caught(task, &genomes[i], &contexts[i])))
-                            .is_err()
-                        {
+                        let result = evaluate_caught(task, &genomes[i], &contexts[i]);
+                        if tx.send((i, result)).is_err() {
                             break;
                         }
                     }
                 });
             }
             drop(tx);
-            let send = |rank: i32, i: usize, tally: &mut Tally| -> Result<(), EvaluatorError> {
-                let bytes = encode(&(&contexts[i], &genomes[i]))
-                    .map_err(|e| EvaluatorError(e.to_string()))?;
-                world.process_at_rank(rank).send_with_tag(&bytes[..], TAG_WORK);
-                tally.bytes_sent += bytes.len() as u64;
-                tally.messages_sent += 1;
-                Ok(())
-            };
-            for w in &self.workers {
-                for _ in 0..w.depth {
-                    match take() {
-                        Some(i) => send(w.rank, i, &mut tally)?,
-                        None => break,
-                    }
-                }
+            let outcome = round.run(&self.workers, &take, &rx);
+            if outcome.is_err() {
+                // Rank 0's threads stop taking genomes (the scope waits for them);
+                // workers are stopped when the process ends.
+                next.store(n, Ordering::Relaxed);
             }
-            let mut done = 0;
-            while done < n {
-                let mut progressed = false;
-                while let Some((msg, status)) = world.any_process().immediate_matched_probe() {
-                    progressed = true;
-                    let from = status.source_rank();
-                    let (bytes, _) = (msg, status).matched_receive_vec::<u8>();
-                    tally.bytes_received += bytes.len() as u64;
-                    match status.tag() {
-                        TAG_RESULT => {
-                            let (index, evaluation): (u64, Evaluation) =
-                                decode(&bytes).map_err(|e| {
-                                    EvaluatorError(format!("rank {from} sent an unreadable result: {e}"))
-                                })?;
-                            let slot = usize::try_from(index)
-                                .ok()
-                                .and_then(|i| results.get_mut(i))
-                                .filter(|r| r.is_none())
-                                .ok_or_else(|| {
-                                    EvaluatorError(format!(
-                                        "rank {from} sent a result for genome {index}, which it was not given"
-                                    ))
-                                })?;
-                            *slot = Some(evaluation);
-                            done += 1;
-                            if let Some(i) = take() {
-                                send(from, i, &mut tally)?;
-                            }
-                        }
-                        TAG_FAILED => {
-                            return Err(EvaluatorError(String::from_utf8_lossy(&bytes).into()));
-                        }
-                        tag => {
-                            return Err(EvaluatorError(format!(
-                                "rank {from} sent an unexpected message (tag {tag})"
-                            )));
-                        }
-                    }
-                }
-                loop {
-                    match rx.try_recv() {
-                        Ok((i, Ok(evaluation))) => {
-                            results[i] = Some(evaluation);
-                            tally.by_rank0 += 1;
-                            done += 1;
-                            progressed = true;
-                        }
-                        Ok((i, Err(why))) => {
-                            return Err(EvaluatorError(format!(
-                                "rank 0: evaluating genome {i} panicked: {why}"
-                            )));
-                        }
-                        Err(_) => break,
-                    }
-                }
-                if !progressed && done < n {
-                    // Nothing arrived: wait a little, waking early for a local result.
-                    match rx.recv_timeout(POLL) {
-                        Ok((i, Ok(evaluation))) => {
-                            results[i] = Some(evaluation);
-                            tally.by_rank0 += 1;
-                            done += 1;
-                        }
-                        Ok((i, Err(why))) => {
-                            return Err(EvaluatorError(format!(
-                                "rank 0: evaluating genome {i} panicked: {why}"
-                            )));
-                        }
-                        Err(RecvTimeoutError::Timeout) => {}
-                        Err(RecvTimeoutError::Disconnected) => std::thread::sleep(POLL),
-                    }
-                }
-            }
-            Ok(())
+            outcome
         });
-        if let Err(e) = outcome {
-            // Rank 0's threads stop taking genomes; workers are stopped on exit.
-            next.store(n, Ordering::Relaxed);
-            return Err(e);
-        }
+        outcome?;
         let evaluating = entered.elapsed();
+        let tally = &round.tally;
         state(|s| {
             if let Some(s) = s.as_mut() {
                 let t = &mut s.traffic;
@@ -666,11 +589,122 @@ impl Evaluator for MpiEvaluator {
             }
         });
         self.returned = Some(Instant::now());
-        results
+        round
+            .results
             .into_iter()
             .enumerate()
             .map(|(i, r)| r.ok_or_else(|| EvaluatorError(format!("genome {i} was not evaluated"))))
             .collect()
+    }
+}
+
+/// One generation being evaluated across the job (rank 0's main thread).
+struct Round<'g> {
+    world: SimpleCommunicator,
+    genomes: &'g [Genome],
+    contexts: &'g [EvalContext],
+    results: Vec<Option<Evaluation>>,
+    done: usize,
+    tally: Tally,
+}
+
+impl Round<'_> {
+    /// Hands out genomes and collects evaluations until every genome has one.
+    fn run(
+        &mut self,
+        workers: &[WorkerRank],
+        take: &dyn Fn() -> Option<usize>,
+        local: &mpsc::Receiver<(usize, Result<Evaluation, String>)>,
+    ) -> Result<(), EvaluatorError> {
+        for w in workers {
+            for _ in 0..w.depth {
+                match take() {
+                    Some(i) => self.send(w.rank, i)?,
+                    None => break,
+                }
+            }
+        }
+        let n = self.results.len();
+        while self.done < n {
+            let mut progressed = false;
+            while let Some((msg, status)) = self.world.any_process().immediate_matched_probe() {
+                progressed = true;
+                let (bytes, _) = (msg, status).matched_receive_vec::<u8>();
+                self.tally.bytes_received += bytes.len() as u64;
+                let from = status.source_rank();
+                self.receive(from, status.tag(), &bytes)?;
+                if let Some(i) = take() {
+                    self.send(from, i)?;
+                }
+            }
+            while let Ok((i, result)) = local.try_recv() {
+                progressed = true;
+                self.place_local(i, result)?;
+            }
+            if !progressed {
+                // Nothing arrived: wait a little, waking early for a local result.
+                match local.recv_timeout(POLL) {
+                    Ok((i, result)) => self.place_local(i, result)?,
+                    Err(RecvTimeoutError::Timeout) => {}
+                    Err(RecvTimeoutError::Disconnected) => std::thread::sleep(POLL),
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Sends genome `i` to worker `rank`.
+    fn send(&mut self, rank: i32, i: usize) -> Result<(), EvaluatorError> {
+        let bytes = encode(&(&self.contexts[i], &self.genomes[i]))
+            .map_err(|e| EvaluatorError(e.to_string()))?;
+        self.world
+            .process_at_rank(rank)
+            .send_with_tag(&bytes[..], TAG_WORK);
+        self.tally.bytes_sent += bytes.len() as u64;
+        self.tally.messages_sent += 1;
+        Ok(())
+    }
+
+    /// Takes in a worker's message.
+    fn receive(&mut self, from: i32, tag: i32, bytes: &[u8]) -> Result<(), EvaluatorError> {
+        match tag {
+            TAG_RESULT => {
+                let (index, evaluation): (u64, Evaluation) = decode(bytes).map_err(|e| {
+                    EvaluatorError(format!("rank {from} sent an unreadable result: {e}"))
+                })?;
+                let slot = usize::try_from(index)
+                    .ok()
+                    .and_then(|i| self.results.get_mut(i))
+                    .filter(|r| r.is_none())
+                    .ok_or_else(|| {
+                        EvaluatorError(format!(
+                            "rank {from} sent a result for genome {index}, which it was not given"
+                        ))
+                    })?;
+                *slot = Some(evaluation);
+                self.done += 1;
+                Ok(())
+            }
+            TAG_FAILED => Err(EvaluatorError(String::from_utf8_lossy(bytes).into())),
+            tag => Err(EvaluatorError(format!(
+                "rank {from} sent an unexpected message (tag {tag})"
+            ))),
+        }
+    }
+
+    /// Places an evaluation made by rank 0's own threads.
+    fn place_local(
+        &mut self,
+        i: usize,
+        result: Result<Evaluation, String>,
+    ) -> Result<(), EvaluatorError> {
+        let evaluation = result.map_err(|why| {
+            EvaluatorError(format!("rank 0: evaluating genome {i} panicked: {why}"))
+        })?;
+        self.results[i] = Some(evaluation);
+        self.tally.by_rank0 += 1;
+        self.done += 1;
+        Ok(())
     }
 }
 
