@@ -10,7 +10,7 @@ use mpi_common::*;
 use std::path::Path;
 use std::time::{Duration, Instant};
 
-const GENERATIONS: u32 = 30;
+const GENERATIONS: u32 = 60;
 
 /// The newest checkpoint's generation, if any.
 fn newest_generation(run_dir: &Path) -> Option<u32> {
