@@ -12,13 +12,14 @@ use std::fmt::Write as _;
 use std::fs;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
 use vivae_neat::driver::{
-    CheckpointState, Checkpointer, DriverError, Evolution, GenerationReport, HookError, Observer,
-    ParallelEvaluator, StopCriteria, StopReason,
+    CheckpointState, Checkpointer, DriverError, Evaluator, Evolution, GenerationReport, HookError,
+    Observer, ParallelEvaluator, StopCriteria, StopReason,
 };
 use vivae_neat::{Genome, Population, stats};
 
@@ -218,7 +219,7 @@ pub struct Run {
     experiment: Experiment,
     population: Population,
     progress: Progress,
-    pool: rayon::ThreadPool,
+    pool: Arc<rayon::ThreadPool>,
 }
 
 impl Run {
@@ -360,12 +361,28 @@ impl Run {
         stop: &AtomicBool,
         on_generation: impl FnMut(&GenerationRecord),
     ) -> Result<Outcome> {
+        let pool = Arc::clone(&self.pool);
+        // Rank 0 of an MPI job spreads each generation over the job's ranks.
+        #[cfg(feature = "mpi")]
+        if let Some(evaluator) =
+            crate::mpi::MpiEvaluator::for_leader(self.experiment.clone(), Arc::clone(&pool))
+        {
+            return self.run_on(evaluator, stop, on_generation);
+        }
+        let evaluator = ParallelEvaluator::with_pool(self.experiment.clone(), &pool);
+        self.run_on(evaluator, stop, on_generation)
+    }
+
+    /// [`Run::run`] on a given evaluator.
+    fn run_on<E: Evaluator>(
+        &mut self,
+        evaluator: E,
+        stop: &AtomicBool,
+        on_generation: impl FnMut(&GenerationRecord),
+    ) -> Result<Outcome> {
         let total = self.config.experiment.generations;
-        let mut evolution = Evolution::resume(
-            self.population.clone(),
-            ParallelEvaluator::with_pool(self.experiment.clone(), &self.pool),
-            self.progress.done,
-        );
+        let mut evolution =
+            Evolution::resume(self.population.clone(), evaluator, self.progress.done);
         let mut recorder = Recorder {
             dir: &self.dir,
             config: &self.config,
@@ -569,10 +586,11 @@ impl Progress {
     }
 }
 
-fn thread_pool(threads: usize) -> Result<rayon::ThreadPool> {
+fn thread_pool(threads: usize) -> Result<Arc<rayon::ThreadPool>> {
     rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
+        .map(Arc::new)
         .map_err(|e| Error::Threads(e.to_string()))
 }
 

@@ -33,6 +33,8 @@ pub mod evolve;
 pub mod experiment;
 pub mod figures;
 pub mod io;
+#[cfg(feature = "mpi")]
+pub mod mpi;
 pub mod report;
 pub mod sensors;
 pub mod substrate;

@@ -195,6 +195,13 @@ enum ConfigCommand {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let interrupted = Arc::new(AtomicBool::new(false));
+    // Under an MPI launcher the evolving commands join the job; MPI ends when `_mpi` drops.
+    #[cfg(feature = "mpi")]
+    let _mpi = matches!(
+        cli.command,
+        Command::Evolve(_) | Command::Resume(_) | Command::Retrain(_)
+    )
+    .then(vivae::mpi::Launch::init);
     match dispatch(cli, &interrupted) {
         Ok(code) => code,
         Err(err) => {
@@ -289,10 +296,21 @@ fn cmd_evolve(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
         Ok((scenario, experiment, init))
     };
     // Problems with what a config file names are reported against that file too.
-    let (scenario, experiment, init) = match &args.config {
-        Some(path) => setup().with_context(|| path.display().to_string())?,
-        None => setup()?,
+    let prepared = match &args.config {
+        Some(path) => setup().with_context(|| path.display().to_string()),
+        None => setup().map_err(anyhow::Error::from),
     };
+    #[cfg(feature = "mpi")]
+    if let Some(code) = mpi_start(
+        prepared
+            .as_ref()
+            .map(|(s, e, _)| (&config, s.text.as_str(), e)),
+        config.run.threads,
+        args.quiet,
+    )? {
+        return Ok(code);
+    }
+    let (scenario, experiment, init) = prepared?;
     if !args.quiet {
         for w in &scenario.scenario.warnings {
             eprintln!("warning: {w}");
@@ -304,6 +322,26 @@ fn cmd_evolve(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
 }
 
 fn cmd_resume(args: ResumeArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode> {
+    #[cfg(feature = "mpi")]
+    if vivae::mpi::launched_by_mpi() {
+        // Every rank reads the run (rank 0 writes to it only after the handshake).
+        let prepared = (|| -> anyhow::Result<_> {
+            let checkpoint = evolve::latest_checkpoint(&args.run_dir)?;
+            let (config, _) = evolve::population_from_checkpoint(&checkpoint)?;
+            let scenario = load_scenario(Some(&args.run_dir.join(files::SCENARIO)))?;
+            let experiment =
+                Experiment::new(&config, &scenario.scenario).map_err(vivae::Error::from)?;
+            Ok((config, scenario, experiment))
+        })();
+        let threads = prepared.as_ref().map_or(0, |(c, _, _)| c.run.threads);
+        if let Some(code) = mpi_start(
+            prepared.as_ref().map(|(c, s, e)| (c, s.text.as_str(), e)),
+            args.threads.unwrap_or(threads),
+            args.quiet,
+        )? {
+            return Ok(code);
+        }
+    }
     let run = Run::resume(&args.run_dir, args.generations, args.threads)?;
     drive(run, args.quiet, interrupted)
 }
@@ -325,8 +363,23 @@ fn cmd_retrain(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Resu
         ..Overrides::default()
     };
     apply_overrides(&mut config, &overrides)?;
-    let scenario = load_scenario(scenario_path(&config).as_deref())?;
-    let experiment = Experiment::new(&config, &scenario.scenario).map_err(vivae::Error::from)?;
+    let prepared = (|| -> anyhow::Result<_> {
+        let scenario = load_scenario(scenario_path(&config).as_deref())?;
+        let experiment =
+            Experiment::new(&config, &scenario.scenario).map_err(vivae::Error::from)?;
+        Ok((scenario, experiment))
+    })();
+    #[cfg(feature = "mpi")]
+    if let Some(code) = mpi_start(
+        prepared
+            .as_ref()
+            .map(|(s, e)| (&config, s.text.as_str(), e)),
+        config.run.threads,
+        args.quiet,
+    )? {
+        return Ok(code);
+    }
+    let (scenario, experiment) = prepared?;
     let dir = args.out.clone().unwrap_or_else(vivae::io::default_run_dir);
     let run = Run::create(
         &dir,
@@ -337,6 +390,31 @@ fn cmd_retrain(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Resu
         args.force,
     )?;
     drive(run, args.quiet, interrupted)
+}
+
+/// Under an MPI launcher, the start-up handshake of every rank (see `vivae::mpi`):
+/// `Some(code)` on a worker rank whose work is done, `None` where the run goes on.
+#[cfg(feature = "mpi")]
+fn mpi_start(
+    prepared: Result<(&Config, &str, &Experiment), &anyhow::Error>,
+    threads: usize,
+    quiet: bool,
+) -> anyhow::Result<Option<ExitCode>> {
+    use vivae::mpi::{MpiError, Setup, Started, start};
+    let setup = prepared
+        .map(|(config, scenario_text, experiment)| Setup {
+            config,
+            scenario_text,
+            experiment,
+            threads,
+        })
+        .map_err(|e| one_line(&format!("{e:#}")));
+    match start(setup, quiet) {
+        Ok(Started::Lead) => Ok(None),
+        Ok(Started::WorkerDone) => Ok(Some(ExitCode::SUCCESS)),
+        Err(e @ MpiError::Refused(_)) => Err(bad_input(e.to_string()).into()),
+        Err(e) => Err(e.into()),
+    }
 }
 
 /// Runs evolution with progress output, then writes the figures.
