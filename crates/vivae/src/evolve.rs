@@ -47,6 +47,10 @@ pub mod files {
     pub const FIGURES: &str = "figures";
     /// A copy of the population a run starts from (retrain).
     pub const INIT_POPULATION: &str = "init-population.json";
+    /// Each generation's best genome and species sizes, one JSON line per generation.
+    pub const BEST_GENOMES: &str = "best-genomes.jsonl";
+    /// The self-contained HTML report of the run.
+    pub const REPORT: &str = "report.html";
 }
 
 const GENERATIONS_HEADER: &str = "generation,best,mean,median,worst,species,mean_cppn_nodes,mean_cppn_links,best_substrate_links,possible_substrate_links\n";
@@ -101,6 +105,64 @@ pub struct GenerationRecord {
     pub robot_steps_per_second: f64,
     /// Best fitness of the run so far.
     pub best_ever: f64,
+}
+
+/// One line of `best-genomes.jsonl`: a generation's best genome and its species.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GenerationBest {
+    /// Generation, 1-based.
+    pub generation: u32,
+    /// The best genome's fitness.
+    pub fitness: f64,
+    /// `[species id, members]` of every species, in the population's order.
+    pub species: Vec<(u32, usize)>,
+    /// The generation's best CPPN genome.
+    pub genome: Genome,
+}
+
+/// Reads `best-genomes.jsonl`; a missing file is an empty history (older runs).
+pub fn read_best_genomes(path: &Path) -> anyhow::Result<Vec<GenerationBest>> {
+    let text = match fs::read_to_string(path) {
+        Ok(t) => t,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Vec::new()),
+        Err(e) => return Err(bad_input(format!("{}: {}", path.display(), crate::io::io_reason(&e)))),
+    };
+    // A last line without its newline is still being written by a running evolution.
+    let complete = text.rfind('\n').map_or("", |end| &text[..end]);
+    complete
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| !l.trim().is_empty())
+        .map(|(i, line)| {
+            let best: GenerationBest = serde_json::from_str(line).map_err(|e| {
+                bad_input(format!("{}: line {}: {e}", path.display(), i + 1))
+            })?;
+            best.genome
+                .check()
+                .map_err(|e| bad_input(format!("{}: line {}: {e}", path.display(), i + 1)))?;
+            Ok(best)
+        })
+        .collect()
+}
+
+/// Keeps the first `lines` lines of a file (creating it empty if missing).
+fn truncate_lines(path: &Path, lines: u32) -> anyhow::Result<()> {
+    let text = match fs::read_to_string(path) {
+        Ok(t) => t,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => String::new(),
+        Err(e) => return Err(bad_input(format!("{}: {}", path.display(), crate::io::io_reason(&e)))),
+    };
+    let keep: usize = text
+        .split_inclusive('\n')
+        .take(lines as usize)
+        .filter(|l| l.ends_with('\n'))
+        .map(str::len)
+        .sum();
+    if keep != text.len() || !path.exists() {
+        write_atomic(path, &text.as_bytes()[..keep])?;
+    }
+    Ok(())
 }
 
 /// State saved in a checkpoint besides the population.
@@ -267,6 +329,7 @@ impl Run {
             (files::GENERATIONS, GENERATIONS_HEADER),
             (files::POPULATION, POPULATION_HEADER),
             (files::TIMING, TIMING_HEADER),
+            (files::BEST_GENOMES, ""),
         ] {
             write_atomic(&dir.join(name), header.as_bytes())?;
         }
@@ -312,6 +375,7 @@ impl Run {
         ] {
             truncate(&dir.join(name), len)?;
         }
+        truncate_lines(&dir.join(files::BEST_GENOMES), cp.progress.done)?;
         // The resolved config records the (possibly extended) total.
         write_atomic(&dir.join(files::CONFIG), cp.config.to_toml().as_bytes())?;
         Ok(Run {
@@ -480,10 +544,24 @@ impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
             robot_steps_per_second: robot_steps / seconds.max(1e-9),
             best_ever: population.best_ever().map_or(best, |b| b.1),
         };
+        let line = GenerationBest {
+            generation,
+            fitness: best,
+            species: population
+                .species()
+                .iter()
+                .map(|s| (s.id, s.members.len()))
+                .collect(),
+            genome: best_genome,
+        };
+        append(
+            &self.dir.join(files::BEST_GENOMES),
+            &(serde_json::to_string(&line)? + "\n"),
+        )?;
         if FIGURE_GENERATIONS.contains(&generation) {
             self.progress
                 .figure_genomes
-                .push((generation, best, best_genome));
+                .push((generation, best, line.genome));
         }
 
         let mut row = String::new();

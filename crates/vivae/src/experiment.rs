@@ -156,6 +156,11 @@ impl Experiment {
         &self.surface
     }
 
+    /// The distance-sensor grid, when the substrate has distance sensors.
+    pub fn distance_grid(&self) -> Option<&DistanceGrid> {
+        self.distance.as_ref()
+    }
+
     /// Simulation steps per episode.
     pub fn steps(&self) -> u32 {
         self.steps

@@ -11,4 +11,6 @@ pub mod experiment;
 pub mod figures;
 pub mod io;
 pub mod report;
+pub mod report_html;
 pub mod substrate;
+pub mod view;
