@@ -88,6 +88,9 @@
     $("play").textContent = m.playing ? "Pause" : "Play";
     $("driver").textContent = "controller: " + m.driver;
     if (String(m.selected) !== $("robot").value) { $("robot").value = m.selected; }
+    if (document.activeElement !== $("controller") && $("controller").value !== m.choice) {
+      $("controller").value = m.choice;
+    }
     $("drive").checked = m.manual !== null && m.manual === m.selected;
   }
 

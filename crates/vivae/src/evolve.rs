@@ -121,29 +121,63 @@ pub struct GenerationBest {
     pub genome: Genome,
 }
 
+/// A line as stored: a genome equal to the previous line's (the usual case,
+/// by elitism) is stored as a reference to that line's generation.
+#[derive(Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BestLine {
+    generation: u32,
+    fitness: f64,
+    species: Vec<(u32, usize)>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    genome: Option<Genome>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    same_as: Option<u32>,
+}
+
 /// Reads `best-genomes.jsonl`; a missing file is an empty history (older runs).
 pub fn read_best_genomes(path: &Path) -> anyhow::Result<Vec<GenerationBest>> {
     let text = match fs::read_to_string(path) {
         Ok(t) => t,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Vec::new()),
-        Err(e) => return Err(bad_input(format!("{}: {}", path.display(), crate::io::io_reason(&e)))),
+        Err(e) => {
+            return Err(bad_input(format!(
+                "{}: {}",
+                path.display(),
+                crate::io::io_reason(&e)
+            )));
+        }
     };
     // A last line without its newline is still being written by a running evolution.
     let complete = text.rfind('\n').map_or("", |end| &text[..end]);
-    complete
-        .lines()
-        .enumerate()
-        .filter(|(_, l)| !l.trim().is_empty())
-        .map(|(i, line)| {
-            let best: GenerationBest = serde_json::from_str(line).map_err(|e| {
-                bad_input(format!("{}: line {}: {e}", path.display(), i + 1))
-            })?;
-            best.genome
-                .check()
-                .map_err(|e| bad_input(format!("{}: line {}: {e}", path.display(), i + 1)))?;
-            Ok(best)
-        })
-        .collect()
+    let mut out: Vec<GenerationBest> = Vec::new();
+    for (i, line) in complete.lines().enumerate() {
+        if line.trim().is_empty() {
+            continue;
+        }
+        let bad = |why: String| bad_input(format!("{}: line {}: {why}", path.display(), i + 1));
+        let stored: BestLine = serde_json::from_str(line).map_err(|e| bad(e.to_string()))?;
+        let genome = match (stored.genome, stored.same_as) {
+            (Some(g), None) => {
+                g.check().map_err(|e| bad(e.to_string()))?;
+                g
+            }
+            (None, Some(k)) => out
+                .iter()
+                .rev()
+                .find(|b| b.generation == k)
+                .map(|b| b.genome.clone())
+                .ok_or_else(|| bad(format!("same_as {k}: no such earlier generation")))?,
+            _ => return Err(bad("needs exactly one of genome and same_as".into())),
+        };
+        out.push(GenerationBest {
+            generation: stored.generation,
+            fitness: stored.fitness,
+            species: stored.species,
+            genome,
+        });
+    }
+    Ok(out)
 }
 
 /// Keeps the first `lines` lines of a file (creating it empty if missing).
@@ -151,7 +185,13 @@ fn truncate_lines(path: &Path, lines: u32) -> anyhow::Result<()> {
     let text = match fs::read_to_string(path) {
         Ok(t) => t,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => String::new(),
-        Err(e) => return Err(bad_input(format!("{}: {}", path.display(), crate::io::io_reason(&e)))),
+        Err(e) => {
+            return Err(bad_input(format!(
+                "{}: {}",
+                path.display(),
+                crate::io::io_reason(&e)
+            )));
+        }
     };
     let keep: usize = text
         .split_inclusive('\n')
@@ -434,6 +474,9 @@ impl Run {
             progress: &mut self.progress,
             total,
             started: Instant::now(),
+            last_best: read_best_genomes(&self.dir.join(files::BEST_GENOMES))?
+                .pop()
+                .map(|b| (b.generation, b.genome)),
             on_generation,
         };
         let criteria = StopCriteria::generations(total).or_interrupt(stop);
@@ -502,6 +545,8 @@ struct Recorder<'a, F> {
     total: u32,
     /// When the generation under way started.
     started: Instant,
+    /// The last line written to `best-genomes.jsonl`: (generation, genome).
+    last_best: Option<(u32, Genome)>,
     on_generation: F,
 }
 
@@ -544,7 +589,12 @@ impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
             robot_steps_per_second: robot_steps / seconds.max(1e-9),
             best_ever: population.best_ever().map_or(best, |b| b.1),
         };
-        let line = GenerationBest {
+        let same_as = self
+            .last_best
+            .as_ref()
+            .filter(|(_, g)| *g == best_genome)
+            .map(|(k, _)| *k);
+        let line = BestLine {
             generation,
             fitness: best,
             species: population
@@ -552,16 +602,19 @@ impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
                 .iter()
                 .map(|s| (s.id, s.members.len()))
                 .collect(),
-            genome: best_genome,
+            genome: same_as.is_none().then(|| best_genome.clone()),
+            same_as,
         };
         append(
             &self.dir.join(files::BEST_GENOMES),
             &(serde_json::to_string(&line)? + "\n"),
         )?;
+        // Referring to the previous line only keeps a resumed run's file identical.
+        self.last_best = Some((generation, best_genome.clone()));
         if FIGURE_GENERATIONS.contains(&generation) {
             self.progress
                 .figure_genomes
-                .push((generation, best, line.genome));
+                .push((generation, best, best_genome));
         }
 
         let mut row = String::new();

@@ -4,9 +4,9 @@
 //! `.ci/run` installs both so CI always runs these. Screenshots are left in
 //! `target/browser-screenshots/` to look at.
 
-mod common;
 #[path = "common/browser.rs"]
 mod browser;
+mod common;
 
 use std::path::PathBuf;
 
@@ -69,7 +69,11 @@ fn viewer_page_loads_cleanly_robots_move_and_resampling_shows() {
         &format!("return window.vivaeView.step > {};", step + 5),
         "frames after re-sampling",
     );
-    assert_ne!(b.eval(panel), neurons_before, "the neuron panel did not change");
+    assert_ne!(
+        b.eval(panel),
+        neurons_before,
+        "the neuron panel did not change"
+    );
     b.save_screenshot(&shots().join("view-9x9.png"));
 
     // The page's own requests cannot reach outside what the server lists.
@@ -108,7 +112,11 @@ fn report_html_animates_from_file_with_networking_off() {
     let t1 = b.eval("return window.vivaeReport.t;").as_u64().unwrap();
     let shot1 = b.save_screenshot(&shots().join("report-1.png"));
     b.wait_for(
-        &format!("return window.vivaeReport.t > {} || window.vivaeReport.t < {};", t1 + 20, t1),
+        &format!(
+            "return window.vivaeReport.t > {} || window.vivaeReport.t < {};",
+            t1 + 20,
+            t1
+        ),
         "the time slider advancing",
     );
     let shot2 = b.save_screenshot(&shots().join("report-2.png"));

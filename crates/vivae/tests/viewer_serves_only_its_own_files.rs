@@ -2,9 +2,9 @@
 //! else, survives hostile WebSocket messages, bounds its viewers, frees a
 //! closed page's slot, and refuses a busy port with exit 2.
 
-mod common;
 #[path = "common/browser.rs"]
 mod browser;
+mod common;
 
 use browser::{Viewer, http};
 use common::{scratch, vivae, write_small_config};
@@ -88,11 +88,17 @@ fn hostile_messages_get_an_error_reply_and_the_server_lives_on() {
     let url = format!("ws://127.0.0.1:{}/ws", v.port);
     let rt = tokio::runtime::Runtime::new().unwrap();
     rt.block_on(async {
-        let (mut ws, _) = tokio_tungstenite::connect_async(url.as_str()).await.unwrap();
+        let (mut ws, _) = tokio_tungstenite::connect_async(url.as_str())
+            .await
+            .unwrap();
         let frame = next_of(&mut ws, "frame").await;
         assert_eq!(frame["robots"].as_array().unwrap().len(), 5);
         // A second page is refused while the only slot is taken.
-        assert!(tokio_tungstenite::connect_async(url.as_str()).await.is_err());
+        assert!(
+            tokio_tungstenite::connect_async(url.as_str())
+                .await
+                .is_err()
+        );
         let huge = "x".repeat(1 << 20);
         for bad in [
             "not json",
@@ -106,7 +112,9 @@ fn hostile_messages_get_an_error_reply_and_the_server_lives_on() {
             let e = next_of(&mut ws, "error").await;
             assert!(!e["message"].as_str().unwrap().is_empty(), "{bad}");
         }
-        ws.send(Message::Binary(vec![0u8; 16].into())).await.unwrap();
+        ws.send(Message::Binary(vec![0u8; 16].into()))
+            .await
+            .unwrap();
         next_of(&mut ws, "error").await;
         // Still simulating: a valid command is obeyed.
         ws.send(Message::Text("{\"type\":\"step\",\"n\":3}".into()))

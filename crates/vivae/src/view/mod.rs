@@ -20,7 +20,6 @@ use source::Source;
 
 use crate::io::bad_input;
 
-
 /// Command-line options of `vivae view`.
 #[derive(Args, Debug, Clone)]
 pub struct ViewArgs {
@@ -52,15 +51,19 @@ pub fn run(args: ViewArgs) -> anyhow::Result<ExitCode> {
         .enable_all()
         .build()?;
     let addr = SocketAddr::new(args.host, args.port);
-    let listener = runtime.block_on(tokio::net::TcpListener::bind(addr)).map_err(|e| {
-        let why = match e.kind() {
-            std::io::ErrorKind::AddrInUse => "port already in use (choose another --port)".into(),
-            std::io::ErrorKind::AddrNotAvailable => "no such address on this machine".into(),
-            std::io::ErrorKind::PermissionDenied => "permission denied".into(),
-            _ => e.to_string(),
-        };
-        bad_input(format!("cannot listen on {addr}: {why}"))
-    })?;
+    let listener = runtime
+        .block_on(tokio::net::TcpListener::bind(addr))
+        .map_err(|e| {
+            let why = match e.kind() {
+                std::io::ErrorKind::AddrInUse => {
+                    "port already in use (choose another --port)".into()
+                }
+                std::io::ErrorKind::AddrNotAvailable => "no such address on this machine".into(),
+                std::io::ErrorKind::PermissionDenied => "permission denied".into(),
+                _ => e.to_string(),
+            };
+            bad_input(format!("cannot listen on {addr}: {why}"))
+        })?;
     let local = listener.local_addr()?;
     if !args.host.is_loopback() {
         eprintln!(

@@ -183,7 +183,11 @@ async fn session(mut socket: WebSocket, mut app: App) {
         "scenarios": app.source.scenarios.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>(),
         "real_time_steps": super::session::REAL_TIME_STEPS,
     });
-    if socket.send(Message::Text(info.to_string().into())).await.is_err() {
+    if socket
+        .send(Message::Text(info.to_string().into()))
+        .await
+        .is_err()
+    {
         return;
     }
     let progress = serde_json::to_string(&snap.progress()).unwrap_or_default();

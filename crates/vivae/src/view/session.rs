@@ -287,7 +287,8 @@ impl Sim {
                     &mut self.inputs[..num_surface],
                 );
                 if let Some(d) = self.experiment.distance_grid() {
-                    self.world.read_distance(i, d, &mut self.inputs[num_surface..]);
+                    self.world
+                        .read_distance(i, d, &mut self.inputs[num_surface..]);
                 }
                 c.activate(&self.inputs, &mut self.outputs[i]);
                 self.controls[i] = [self.outputs[i][wheels.left], self.outputs[i][wheels.right]];
@@ -378,8 +379,7 @@ impl Sim {
         source: &Source,
         snap: &RunSnapshot,
     ) -> Result<(), String> {
-        let msg: ClientMsg =
-            serde_json::from_str(text).map_err(|e| format!("bad message: {e}"))?;
+        let msg: ClientMsg = serde_json::from_str(text).map_err(|e| format!("bad message: {e}"))?;
         let robots = self.world.robots().len();
         let robot_ok = |i: usize| {
             if i < robots {
@@ -418,7 +418,11 @@ impl Sim {
                             .and_then(|g| u32::try_from(g).ok())
                             .ok_or_else(|| format!("controller {n}: not a generation"))?,
                     ),
-                    other => return Err(format!("controller {other}: expected \"champion\", \"none\" or a generation")),
+                    other => {
+                        return Err(format!(
+                            "controller {other}: expected \"champion\", \"none\" or a generation"
+                        ));
+                    }
                 };
                 self.set_choice(choice, snap)?;
             }
@@ -474,9 +478,11 @@ impl Sim {
             } => {
                 robot_ok(robot)?;
                 let sc = self.world.scenario();
-                if !(x.is_finite() && y.is_finite() && (0.0..=sc.width).contains(&x))
-                    || !(0.0..=sc.height).contains(&y)
-                {
+                let inside = x.is_finite()
+                    && y.is_finite()
+                    && (0.0..=sc.width).contains(&x)
+                    && (0.0..=sc.height).contains(&y);
+                if !inside {
                     return Err(format!("drag to ({x}, {y}): outside the arena"));
                 }
                 let heading = heading.unwrap_or(self.world.robots()[robot].heading);
@@ -525,8 +531,13 @@ impl Sim {
         let mut s = String::with_capacity(256 + 24 * self.surface.len());
         let _ = write!(
             s,
-            r#"{{"type":"frame","step":{},"playing":{},"speed":{},"selected":{},"manual":{},"driver":{},"robots":["#,
+            r#"{{"type":"frame","step":{},"choice":{},"playing":{},"speed":{},"selected":{},"manual":{},"driver":{},"robots":["#,
             self.steps,
+            match self.choice {
+                Choice::None => "\"none\"".to_string(),
+                Choice::Champion => "\"champion\"".to_string(),
+                Choice::Generation(g) => format!("\"{g}\""),
+            },
             self.playing,
             self.speed,
             self.selected,
@@ -660,7 +671,11 @@ mod tests {
             sim.handle(r#"{"type":"step","n":40}"#, &source, &snap)
                 .unwrap();
             let r = &sim.world.robots()[0];
-            assert!(r.pos.distance(start) > 20.0, "moved {}", r.pos.distance(start));
+            assert!(
+                r.pos.distance(start) > 20.0,
+                "moved {}",
+                r.pos.distance(start)
+            );
             // Reset puts it back.
             sim.handle(r#"{"type":"reset"}"#, &source, &snap).unwrap();
             assert_eq!(sim.world.robots()[0].pos, start);

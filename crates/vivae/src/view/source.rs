@@ -47,7 +47,10 @@ pub struct Source {
 impl Source {
     /// Loads `path` (run directory, genome JSON or scenario SVG) and the extra scenario folder.
     pub fn load(path: Option<&Path>, extra: Option<&Path>) -> anyhow::Result<Source> {
-        let default = (DEFAULT_SCENARIO_NAME.to_string(), DEFAULT_SCENARIO.to_string());
+        let default = (
+            DEFAULT_SCENARIO_NAME.to_string(),
+            DEFAULT_SCENARIO.to_string(),
+        );
         let mut source = match path {
             None => Source {
                 kind: SourceKind::Default,
@@ -131,7 +134,8 @@ impl Source {
         if let Some(dir) = self.run_dir() {
             // A run being written may be read half-way; the next poll sees the rest.
             snap.champion = read_champion(&dir.join(files::CHAMPION)).ok();
-            snap.best = evolve::read_best_genomes(&dir.join(files::BEST_GENOMES)).unwrap_or_default();
+            snap.best =
+                evolve::read_best_genomes(&dir.join(files::BEST_GENOMES)).unwrap_or_default();
             snap.generations =
                 read_generation_rows(&dir.join(files::GENERATIONS)).unwrap_or_default();
             snap.total = Some(self.config.experiment.generations);
@@ -166,18 +170,12 @@ fn file_name(p: &Path) -> String {
 
 /// Every `.svg` file in `dir`, sorted by name (read now; parsed when chosen).
 fn scenario_folder(dir: &Path) -> anyhow::Result<Vec<(String, String)>> {
-    let entries = std::fs::read_dir(dir).map_err(|e| {
-        bad_input(format!(
-            "{}: {}",
-            dir.display(),
-            crate::io::io_reason(&e)
-        ))
-    })?;
+    let entries = std::fs::read_dir(dir)
+        .map_err(|e| bad_input(format!("{}: {}", dir.display(), crate::io::io_reason(&e))))?;
     let mut paths: Vec<PathBuf> = entries
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| {
-            p.extension()
-                .is_some_and(|e| e.eq_ignore_ascii_case("svg"))
+            p.extension().is_some_and(|e| e.eq_ignore_ascii_case("svg"))
                 && p.metadata()
                     .is_ok_and(|m| m.is_file() && m.len() <= MAX_SCENARIO_BYTES)
         })
