@@ -87,6 +87,9 @@
   }
   scene.setScene(data.scene, function () {
     if (data.episodes.length) { choose(0); }
+    // "#t=STEP" opens the animation at that step.
+    var at = /t=(\d+)/.exec(location.hash);
+    if (at && data.episodes.length) { state.t = Math.min(parseInt(at[1], 10), steps()); render(); }
     window.requestAnimationFrame(tick);
   });
 })();

@@ -15,6 +15,36 @@ var VivaeScene = (function () {
     return "rgb(255," + g + "," + g + ")";
   }
 
+  // Draws dots [{x, y, v}] coloured by reading. Many dots are batched into 16
+  // colour levels (one fill per level) so that 32x96 sensors stay cheap.
+  function drawDots(c, dots, size, colorOf) {
+    colorOf = colorOf || readingColor;
+    if (dots.length <= 400) {
+      c.lineWidth = 0.4;
+      c.strokeStyle = "#000";
+      for (var k = 0; k < dots.length; k++) {
+        c.fillStyle = colorOf(dots[k].v);
+        c.beginPath();
+        c.arc(dots[k].x, dots[k].y, size, 0, 2 * Math.PI);
+        c.fill();
+        c.stroke();
+      }
+      return;
+    }
+    var levels = 16, paths = [];
+    for (var l = 0; l < levels; l++) { paths.push(new Path2D()); }
+    var lo = colorOf === readingColor ? 0 : -1;
+    var d = Math.max(1.2, size);
+    for (var j = 0; j < dots.length; j++) {
+      var t = (Math.max(lo, Math.min(1, dots[j].v)) - lo) / (1 - lo);
+      paths[Math.min(levels - 1, Math.floor(t * levels))].rect(dots[j].x - d / 2, dots[j].y - d / 2, d, d);
+    }
+    for (var m = 0; m < levels; m++) {
+      c.fillStyle = colorOf(lo + (m + 0.5) / levels * (1 - lo));
+      c.fill(paths[m]);
+    }
+  }
+
   function Scene(canvas) {
     this.canvas = canvas;
     this.ctx = canvas.getContext("2d");
@@ -80,20 +110,7 @@ var VivaeScene = (function () {
         c.globalAlpha = 1;
       }
     }
-    if (opts.sensors) {
-      var dot = Math.max(1, Math.min(3, rr * 0.35));
-      if (opts.sensors.length > 400) { dot = 1; }
-      c.lineWidth = 0.4;
-      c.strokeStyle = "#000";
-      for (k = 0; k < opts.sensors.length; k++) {
-        var s = opts.sensors[k];
-        c.fillStyle = readingColor(s.v);
-        c.beginPath();
-        c.arc(s.x, s.y, dot, 0, 2 * Math.PI);
-        c.fill();
-        if (opts.sensors.length <= 400) { c.stroke(); }
-      }
-    }
+    if (opts.sensors) { drawDots(c, opts.sensors, Math.max(1, Math.min(3, rr * 0.35))); }
     for (i = 0; i < robots.length; i++) {
       var r = robots[i];
       var ax = Math.sin(r.h), ay = -Math.cos(r.h);
@@ -121,5 +138,5 @@ var VivaeScene = (function () {
     }
   };
 
-  return { Scene: Scene, color: color, readingColor: readingColor };
+  return { Scene: Scene, color: color, readingColor: readingColor, drawDots: drawDots };
 })();

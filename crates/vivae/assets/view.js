@@ -135,14 +135,19 @@
     c.arc(cx, cy, rad, Math.PI, 2 * Math.PI);
     c.stroke();
     var dot = Math.max(1.5, Math.min(7, 0.45 * rad / Math.sqrt(Math.max(nodes.length, 1))));
-    nodes.forEach(function (n, i) {
-      var x = cx + n[0] * Math.sin(n[1]) * rad, y = cy - n[0] * Math.cos(n[1]) * rad;
-      c.fillStyle = values && i < values.length ? colorOf(values[i]) : "#eee";
-      c.beginPath();
-      c.arc(x, y, dot, 0, 2 * Math.PI);
-      c.fill();
-      if (nodes.length <= 400) { c.strokeStyle = "#555"; c.lineWidth = 0.5; c.stroke(); }
-      if (marks && marks[i]) { c.fillStyle = "#000"; c.font = "10px sans-serif"; c.fillText(marks[i], x + dot + 1, y - dot); }
+    var dots = nodes.map(function (n, i) {
+      return {
+        x: cx + n[0] * Math.sin(n[1]) * rad,
+        y: cy - n[0] * Math.cos(n[1]) * rad,
+        v: values && i < values.length ? values[i] : 0
+      };
+    });
+    VivaeScene.drawDots(c, dots, dot, colorOf);
+    c.fillStyle = "#000";
+    c.font = "10px sans-serif";
+    Object.keys(marks || {}).forEach(function (i) {
+      var p = dots[i];
+      if (p) { c.fillText(marks[i], p.x + dot + 1, p.y - dot); }
     });
   }
 
