@@ -170,3 +170,28 @@ fn bad_sources_are_one_line_and_exit_2() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn listening_beyond_loopback_warns_that_the_network_can_watch() {
+    use std::io::{BufRead, BufReader};
+    // Listening on all interfaces; the test itself talks only to 127.0.0.1.
+    let mut child = vivae()
+        .args(["view", "--host", "0.0.0.0", "--port", "0"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut line = String::new();
+    BufReader::new(child.stderr.take().unwrap())
+        .read_line(&mut line)
+        .unwrap();
+    let mut url = String::new();
+    BufReader::new(child.stdout.take().unwrap())
+        .read_line(&mut url)
+        .unwrap();
+    let _ = child.kill();
+    let _ = child.wait();
+    assert!(line.starts_with("warning:"), "{line}");
+    assert!(line.contains("anyone"), "{line}");
+    assert!(url.starts_with("vivae view: http://127.0.0.1:"), "{url}");
+}

@@ -681,4 +681,40 @@ mod tests {
             assert_eq!(sim.world.robots()[0].pos, start);
         });
     }
+
+    #[test]
+    fn dragging_places_a_robot_and_scenarios_switch_by_index() {
+        let source = Source::load(None, None).unwrap();
+        let snap = source.snapshot();
+        let rt = tokio::runtime::Builder::new_multi_thread()
+            .worker_threads(1)
+            .build()
+            .unwrap();
+        rt.block_on(async {
+            let mut sim = Sim::new(&source, &snap).unwrap();
+            sim.handle(
+                r#"{"type":"drag","robot":2,"x":100.5,"y":200.25,"heading":1.0}"#,
+                &source,
+                &snap,
+            )
+            .unwrap();
+            let r = &sim.world.robots()[2];
+            assert_eq!((r.pos.x, r.pos.y), (100.5, 200.25));
+            assert_eq!(sim.selected, 2);
+            assert!(sim.frame_msg().contains(r#""selected":2"#));
+            sim.handle(r#"{"type":"scenario","index":0}"#, &source, &snap)
+                .unwrap();
+            assert!(sim.scene_msg(&source).contains(r#""scenario_index":0"#));
+            // Re-sampling keeps the scenario and changes the substrate the page is sent.
+            sim.handle(
+                r#"{"type":"resolution","sensors":"32x96","neurons":"9x9"}"#,
+                &source,
+                &snap,
+            )
+            .unwrap();
+            let scene: serde_json::Value = serde_json::from_str(&sim.scene_msg(&source)).unwrap();
+            assert_eq!(scene["sensor_nodes"].as_array().unwrap().len(), 32 * 96);
+            assert_eq!(scene["neuron_nodes"].as_array().unwrap().len(), 81);
+        });
+    }
 }
