@@ -244,7 +244,7 @@ impl Browser {
         v["value"].clone()
     }
 
-    fn at(&self, rest: &str) -> String {
+    pub fn at(&self, rest: &str) -> String {
         format!("/session/{}{rest}", self.session)
     }
 
