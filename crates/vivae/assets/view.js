@@ -8,7 +8,7 @@
   window.vivaeView = stats;
   var sceneInfo = null, frame = null, fresh = false;
   var trails = [], lastStep = -1;
-  var progress = null, knownChampion = null;
+  var progress = null, knownChampion = null, progressSeen = 0;
   var dragging = -1, dragMoved = false;
   var keys = { up: false, down: false, left: false, right: false };
 
@@ -111,7 +111,10 @@
       { name: "mean", color: "#1f77b4", values: m.generations.map(function (r) { return r.mean; }) }
     ], "generation", "fitness (px/step)");
     $("species").innerHTML = VivaePlots.stacked(m.species, m.genomes.length ? m.genomes[0] : 1);
-    if (m.champion && knownChampion && (m.champion[0] !== knownChampion[0] || m.champion[1] !== knownChampion[1])) {
+    var firstChampion = m.champion && !knownChampion && progressSeen > 0;
+    progressSeen += 1;
+    if (firstChampion || (m.champion && knownChampion &&
+        (m.champion[0] !== knownChampion[0] || m.champion[1] !== knownChampion[1]))) {
       $("newchamptext").textContent = "New champion: generation " + m.champion[0] + ", fitness " + m.champion[1].toFixed(3);
       $("newchamp").style.display = "";
     }

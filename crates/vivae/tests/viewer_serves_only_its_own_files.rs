@@ -195,3 +195,23 @@ fn listening_beyond_loopback_warns_that_the_network_can_watch() {
     assert!(line.contains("anyone"), "{line}");
     assert!(url.starts_with("vivae view: http://127.0.0.1:"), "{url}");
 }
+
+#[test]
+fn another_site_cannot_open_the_websocket() {
+    use tokio_tungstenite::tungstenite::client::IntoClientRequest;
+    let v = Viewer::start(&[]);
+    let url = format!("ws://127.0.0.1:{}/ws", v.port);
+    let rt = tokio::runtime::Runtime::new().unwrap();
+    rt.block_on(async {
+        let mut foreign = url.as_str().into_client_request().unwrap();
+        foreign
+            .headers_mut()
+            .insert("Origin", "http://evil.example".parse().unwrap());
+        assert!(tokio_tungstenite::connect_async(foreign).await.is_err());
+        let mut own = url.as_str().into_client_request().unwrap();
+        let origin = format!("http://127.0.0.1:{}", v.port);
+        own.headers_mut().insert("Origin", origin.parse().unwrap());
+        let (mut ws, _) = tokio_tungstenite::connect_async(own).await.unwrap();
+        next_of(&mut ws, "frame").await;
+    });
+}

@@ -7,7 +7,7 @@ use std::time::{Duration, Instant};
 use axum::Router;
 use axum::extract::ws::{Message, WebSocket, WebSocketUpgrade};
 use axum::extract::{Path as UrlPath, State};
-use axum::http::{StatusCode, header};
+use axum::http::{HeaderMap, StatusCode, header};
 use axum::response::{IntoResponse, Response};
 use axum::routing::get;
 use tokio::sync::watch;
@@ -142,7 +142,24 @@ async fn run_file(State(app): State<App>, UrlPath(name): UrlPath<String>) -> Res
     }
 }
 
-async fn ws(State(app): State<App>, upgrade: WebSocketUpgrade) -> Response {
+/// A browser page may open the WebSocket only from this server's own page:
+/// another site open in the same browser must not read the run.
+fn same_origin(headers: &HeaderMap) -> bool {
+    let Some(origin) = headers.get(header::ORIGIN) else {
+        // Not a browser page (a script or a test client).
+        return true;
+    };
+    let host = headers.get(header::HOST).and_then(|h| h.to_str().ok());
+    match (origin.to_str().ok(), host) {
+        (Some(o), Some(h)) => o == format!("http://{h}") || o == format!("https://{h}"),
+        _ => false,
+    }
+}
+
+async fn ws(State(app): State<App>, headers: HeaderMap, upgrade: WebSocketUpgrade) -> Response {
+    if !same_origin(&headers) {
+        return (StatusCode::FORBIDDEN, "foreign origin\n").into_response();
+    }
     if app.viewers.fetch_add(1, Ordering::SeqCst) >= app.max_viewers {
         app.viewers.fetch_sub(1, Ordering::SeqCst);
         return (
