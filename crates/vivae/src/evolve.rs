@@ -48,6 +48,10 @@ pub mod files {
     pub const FIGURES: &str = "figures";
     /// A copy of the population a run starts from (retrain).
     pub const INIT_POPULATION: &str = "init-population.json";
+    /// Each generation's best genome and species sizes, one JSON line per generation.
+    pub const BEST_GENOMES: &str = "best-genomes.jsonl";
+    /// The self-contained HTML report of the run.
+    pub const REPORT: &str = "report.html";
 }
 
 const GENERATIONS_HEADER: &str = "generation,best,mean,median,worst,species,mean_cppn_nodes,mean_cppn_links,best_substrate_links,possible_substrate_links\n";
@@ -102,6 +106,104 @@ pub struct GenerationRecord {
     pub robot_steps_per_second: f64,
     /// Best fitness of the run so far.
     pub best_ever: f64,
+}
+
+/// One line of `best-genomes.jsonl`: a generation's best genome and its species.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GenerationBest {
+    /// Generation, 1-based.
+    pub generation: u32,
+    /// The best genome's fitness.
+    pub fitness: f64,
+    /// `[species id, members]` of every species, in the population's order.
+    pub species: Vec<(u32, usize)>,
+    /// The generation's best CPPN genome.
+    pub genome: Genome,
+}
+
+/// A line as stored: a genome equal to the previous line's (the usual case,
+/// by elitism) is stored as a reference to that line's generation.
+#[derive(Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BestLine {
+    generation: u32,
+    fitness: f64,
+    species: Vec<(u32, usize)>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    genome: Option<Genome>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    same_as: Option<u32>,
+}
+
+/// Reads `best-genomes.jsonl`; a missing file is an empty history (older runs).
+pub fn read_best_genomes(path: &Path) -> Result<Vec<GenerationBest>> {
+    let text = match fs::read_to_string(path) {
+        Ok(t) => t,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Vec::new()),
+        Err(e) => {
+            return Err(bad_input(format!(
+                "{}: {}",
+                path.display(),
+                crate::io::io_reason(&e)
+            )));
+        }
+    };
+    // A last line without its newline is still being written by a running evolution.
+    let complete = text.rfind('\n').map_or("", |end| &text[..end]);
+    let mut out: Vec<GenerationBest> = Vec::new();
+    for (i, line) in complete.lines().enumerate() {
+        if line.trim().is_empty() {
+            continue;
+        }
+        let bad = |why: String| bad_input(format!("{}: line {}: {why}", path.display(), i + 1));
+        let stored: BestLine = serde_json::from_str(line).map_err(|e| bad(e.to_string()))?;
+        let genome = match (stored.genome, stored.same_as) {
+            (Some(g), None) => {
+                g.check().map_err(|e| bad(e.to_string()))?;
+                g
+            }
+            (None, Some(k)) => out
+                .iter()
+                .rev()
+                .find(|b| b.generation == k)
+                .map(|b| b.genome.clone())
+                .ok_or_else(|| bad(format!("same_as {k}: no such earlier generation")))?,
+            _ => return Err(bad("needs exactly one of genome and same_as".into())),
+        };
+        out.push(GenerationBest {
+            generation: stored.generation,
+            fitness: stored.fitness,
+            species: stored.species,
+            genome,
+        });
+    }
+    Ok(out)
+}
+
+/// Keeps the first `lines` lines of a file (creating it empty if missing).
+fn truncate_lines(path: &Path, lines: u32) -> Result<()> {
+    let text = match fs::read_to_string(path) {
+        Ok(t) => t,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => String::new(),
+        Err(e) => {
+            return Err(bad_input(format!(
+                "{}: {}",
+                path.display(),
+                crate::io::io_reason(&e)
+            )));
+        }
+    };
+    let keep: usize = text
+        .split_inclusive('\n')
+        .take(lines as usize)
+        .filter(|l| l.ends_with('\n'))
+        .map(str::len)
+        .sum();
+    if keep != text.len() || !path.exists() {
+        write_atomic(path, &text.as_bytes()[..keep])?;
+    }
+    Ok(())
 }
 
 /// State saved in a checkpoint besides the population.
@@ -276,6 +378,7 @@ impl Run {
             (files::GENERATIONS, GENERATIONS_HEADER),
             (files::POPULATION, POPULATION_HEADER),
             (files::TIMING, TIMING_HEADER),
+            (files::BEST_GENOMES, ""),
         ] {
             write_atomic(&dir.join(name), header.as_bytes())?;
         }
@@ -316,6 +419,7 @@ impl Run {
         ] {
             truncate(&dir.join(name), len)?;
         }
+        truncate_lines(&dir.join(files::BEST_GENOMES), cp.progress.done)?;
         // The resolved config records the (possibly extended) total.
         write_atomic(&dir.join(files::CONFIG), cp.config.to_toml().as_bytes())?;
         Ok(Run {
@@ -390,6 +494,9 @@ impl Run {
             progress: &mut self.progress,
             total,
             started: Instant::now(),
+            last_best: read_best_genomes(&self.dir.join(files::BEST_GENOMES))?
+                .pop()
+                .map(|b| (b.generation, b.genome)),
             on_generation,
         };
         let criteria = StopCriteria::generations(total).or_interrupt(stop);
@@ -467,6 +574,8 @@ struct Recorder<'a, F> {
     total: u32,
     /// When the generation under way started.
     started: Instant,
+    /// The last line written to `best-genomes.jsonl`: (generation, genome).
+    last_best: Option<(u32, Genome)>,
     on_generation: F,
 }
 
@@ -506,6 +615,31 @@ impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
             robot_steps_per_second: robot_steps / seconds.max(1e-9),
             best_ever: population.best_ever().map_or(best, |b| b.fitness),
         };
+        let same_as = self
+            .last_best
+            .as_ref()
+            .filter(|(_, g)| *g == best_genome)
+            .map(|(k, _)| *k);
+        let line = BestLine {
+            generation,
+            fitness: best,
+            species: population
+                .species()
+                .iter()
+                .map(|s| (s.id, s.members.len()))
+                .collect(),
+            genome: same_as.is_none().then(|| best_genome.clone()),
+            same_as,
+        };
+        append(
+            &self.dir.join(files::BEST_GENOMES),
+            &(serde_json::to_string(&line).map_err(|e| Error::Serialize {
+                what: "a best-genomes line",
+                reason: e.to_string(),
+            })? + "\n"),
+        )?;
+        // Referring to the previous line only keeps a resumed run's file identical.
+        self.last_best = Some((generation, best_genome.clone()));
         if FIGURE_GENERATIONS.contains(&generation) {
             self.progress
                 .figure_genomes

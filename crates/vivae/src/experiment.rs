@@ -3,7 +3,7 @@
 use vivae_neat::driver::{Evaluation, Task};
 use vivae_neat::hyperneat::{HyperParams, SubstrateController, SubstrateLayout, decode_genome};
 use vivae_neat::{EvalContext, Genome, GenomeSpec, Network};
-use vivae_sim::{DVec2, Scenario, World};
+use vivae_sim::{DVec2, Scenario, SurfaceGrid, World};
 
 use crate::config::Config;
 use crate::sensors::{SensorSheet, sensor_sheets};
@@ -20,6 +20,8 @@ pub struct Experiment {
     world: World,
     /// The robots' sensors, in controller-input order.
     sensors: Vec<SensorSheet>,
+    /// The surface sensors again, typed, for pictures of what robots see.
+    surface: SurfaceGrid,
     spec: SubstrateSpec,
     layout: SubstrateLayout,
     wheels: WheelNeurons,
@@ -115,6 +117,7 @@ impl Experiment {
         Ok(Experiment {
             world,
             sensors,
+            surface: surface.grid(),
             spec,
             layout,
             wheels,
@@ -156,6 +159,23 @@ impl Experiment {
     /// The robots' sensors with their input sheets, in controller-input order.
     pub fn sensors(&self) -> &[SensorSheet] {
         &self.sensors
+    }
+
+    /// The surface sensors (the first sheet), for drawing what a robot sees.
+    pub fn surface_grid(&self) -> &SurfaceGrid {
+        &self.surface
+    }
+
+    /// Reads robot `robot`'s sensors in `world` into `inputs`, sheet after
+    /// sheet: the controller's input vector. Allocation-free.
+    #[inline]
+    pub fn read_inputs(&self, world: &World, robot: usize, inputs: &mut [f64]) {
+        let mut rest = inputs;
+        for sheet in &self.sensors {
+            let (mine, others) = rest.split_at_mut(sheet.len());
+            sheet.sensor.read(world, robot, mine);
+            rest = others;
+        }
     }
 
     /// Simulation steps per episode.
@@ -224,12 +244,7 @@ impl Experiment {
         let mut on_road = 0u64;
         for _ in 0..self.steps {
             for (i, c) in controllers.iter_mut().enumerate() {
-                let mut rest = &mut inputs[..];
-                for sheet in &self.sensors {
-                    let (mine, others) = rest.split_at_mut(sheet.len());
-                    sheet.sensor.read(&world, i, mine);
-                    rest = others;
-                }
+                self.read_inputs(&world, i, &mut inputs);
                 c.activate(&inputs, &mut outputs);
                 controls[i] = [outputs[self.wheels.left], outputs[self.wheels.right]];
             }

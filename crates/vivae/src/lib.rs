@@ -36,8 +36,10 @@ pub mod io;
 #[cfg(feature = "mpi")]
 pub mod mpi;
 pub mod report;
+pub mod report_html;
 pub mod sensors;
 pub mod substrate;
+pub mod view;
 
 pub use error::{Error, Result};
 

@@ -38,6 +38,13 @@ enum Command {
     Replay(ReplayArgs),
     /// Continue a run's final population on a re-sampled substrate.
     Retrain(RetrainArgs),
+    /// Rebuild a run's self-contained report.html.
+    Report {
+        /// The run directory.
+        run_dir: PathBuf,
+    },
+    /// Watch robots drive in the browser (a local web server).
+    View(vivae::view::ViewArgs),
     /// Inspect and draw scenarios.
     #[command(subcommand)]
     Scenario(ScenarioCommand),
@@ -225,6 +232,12 @@ fn dispatch(cli: Cli, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode>
         Command::Resume(args) => cmd_resume(args, interrupted),
         Command::Replay(args) => cmd_replay(args),
         Command::Retrain(args) => cmd_retrain(args, interrupted),
+        Command::Report { run_dir } => {
+            let path = vivae::report_html::write(&run_dir)?;
+            eprintln!("report: {}", path.display());
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::View(args) => Ok(vivae::view::run(args)?),
         Command::Scenario(c) => cmd_scenario(c),
         Command::Config(c) => cmd_config(c),
     }

@@ -104,6 +104,7 @@ pub fn finish_run(run: &Run) -> Result<RunSummary> {
     };
     let network = figures::network::render(experiment.substrate_spec(), &controller, &options)?;
     write_figure(&dir, "network", &network.svg, &network.png)?;
+    crate::report_html::write(run.dir())?;
 
     Ok(RunSummary {
         champion_fitness: champion.fitness,

@@ -1,0 +1,275 @@
+//! `report.html`: one self-contained, offline page describing a finished run.
+//!
+//! Everything is read from the run directory (config, scenario, CSV files,
+//! champion, per-generation best genomes), so `vivae report RUN_DIR` rebuilds
+//! exactly what the end of a run writes. Data goes into the page as one JSON
+//! block; the scripts that draw it are the viewer's own (`assets/`), inlined.
+
+use std::path::{Path, PathBuf};
+
+use serde::Serialize;
+use vivae_neat::Genome;
+use vivae_sim::draw::{self, DrawOptions};
+use vivae_sim::{Scenario, World};
+
+use crate::evolve::{self, files};
+use crate::experiment::Experiment;
+use crate::figures::convergence::{self, ConvergenceOptions};
+use crate::figures::network::{self, NetworkOptions};
+use crate::io::{bad_input, load_scenario, read_config, read_text, write_atomic};
+use crate::report::read_champion;
+
+/// The page template; `/*VIVAE-DATA*/`, `/*VIVAE-CSS*/` and `/*VIVAE-JS*/` are filled in.
+const TEMPLATE: &str = include_str!("../assets/report.html");
+/// Styles shared with the viewer.
+pub(crate) const STYLE_CSS: &str = include_str!("../assets/style.css");
+/// Drawing of scenarios, robots and trails (shared with the viewer).
+pub(crate) const SCENE_JS: &str = include_str!("../assets/scene.js");
+/// Line, stacked-area and table drawing (shared with the viewer).
+pub(crate) const PLOTS_JS: &str = include_str!("../assets/plots.js");
+/// The report page's own script.
+const REPORT_JS: &str = include_str!("../assets/report.js");
+
+/// One animated episode in the report.
+#[derive(Debug, Serialize)]
+struct EpisodeData {
+    label: String,
+    fitness: f64,
+    on_road: f64,
+    /// Per robot, `[x0, y0, x1, y1, …]` rounded to 0.01 px.
+    paths: Vec<Vec<f64>>,
+}
+
+/// One row of `generations.csv` (what the pages show of it).
+#[derive(Debug, Clone, Serialize)]
+pub(crate) struct GenerationRow {
+    pub(crate) generation: u32,
+    pub(crate) best: f64,
+    pub(crate) mean: f64,
+    pub(crate) median: f64,
+    pub(crate) worst: f64,
+    pub(crate) species: usize,
+    pub(crate) cppn_nodes: f64,
+    pub(crate) cppn_links: f64,
+    pub(crate) substrate_links: usize,
+}
+
+/// Everything the report page shows.
+#[derive(Debug, Serialize)]
+struct ReportData {
+    title: String,
+    config: String,
+    scene: SceneData,
+    episodes: Vec<EpisodeData>,
+    generations: Vec<GenerationRow>,
+    /// Per generation, `[species id, members]`.
+    species: Vec<Vec<(u32, usize)>>,
+    convergence_svg: String,
+    network_svg: String,
+}
+
+/// A scenario as the pages draw it: the static picture and the robot size.
+#[derive(Debug, Clone, Serialize)]
+pub(crate) struct SceneData {
+    /// Arena width in px.
+    pub width: f64,
+    /// Arena height in px.
+    pub height: f64,
+    /// Robot radius in px.
+    pub robot_radius: f64,
+    /// SVG of the arena without robots.
+    pub svg: String,
+}
+
+impl SceneData {
+    /// The static picture of `scenario` (its robots left out: the pages draw them).
+    pub(crate) fn new(scenario: &Scenario, world: &World) -> SceneData {
+        let mut empty = scenario.clone();
+        empty.robots.clear();
+        let svg = World::new(&empty, world.params())
+            .map(|w| {
+                draw::render_svg(
+                    &w,
+                    &DrawOptions {
+                        trajectories: false,
+                        // The page explains colours itself and lays robots over the arena.
+                        legend: false,
+                        ..DrawOptions::default()
+                    },
+                )
+            })
+            .unwrap_or_default();
+        SceneData {
+            width: scenario.width(),
+            height: scenario.height(),
+            robot_radius: world.params().robot_radius,
+            svg,
+        }
+    }
+}
+
+/// Rounds to 0.01 so the page stays small.
+fn round2(v: f64) -> f64 {
+    (v * 100.0).round() / 100.0
+}
+
+fn episode(experiment: &Experiment, genome: &Genome, label: String) -> crate::Result<EpisodeData> {
+    let run = experiment.run(&experiment.controller(genome)?, true);
+    let paths = run
+        .trajectories
+        .unwrap_or_default()
+        .iter()
+        .map(|t| t.iter().flat_map(|p| [round2(p.x), round2(p.y)]).collect())
+        .collect();
+    Ok(EpisodeData {
+        label,
+        fitness: run.fitness,
+        on_road: run.on_road.unwrap_or_default(),
+        paths,
+    })
+}
+
+pub(crate) fn read_generation_rows(path: &Path) -> crate::Result<Vec<GenerationRow>> {
+    let text = read_text(path)?;
+    text.lines()
+        .enumerate()
+        .skip(1)
+        .filter(|(_, l)| !l.is_empty())
+        .map(|(i, line)| {
+            let v: Vec<&str> = line.split(',').collect();
+            let f = |k: usize| v.get(k).and_then(|s| s.parse::<f64>().ok());
+            let row = || -> Option<GenerationRow> {
+                Some(GenerationRow {
+                    generation: v.first()?.parse().ok()?,
+                    best: f(1)?,
+                    mean: f(2)?,
+                    median: f(3)?,
+                    worst: f(4)?,
+                    species: v.get(5)?.parse().ok()?,
+                    cppn_nodes: f(6)?,
+                    cppn_links: f(7)?,
+                    substrate_links: v.get(8)?.parse().ok()?,
+                })
+            };
+            row().ok_or_else(|| {
+                bad_input(format!("{}: line {}: malformed row", path.display(), i + 1))
+            })
+        })
+        .collect()
+}
+
+/// Embeds JSON in a `<script>` block: `</` cannot close it early.
+fn script_safe(json: &str) -> String {
+    json.replace("</", "<\\/")
+}
+
+/// Builds the report of the run in `dir` as one HTML document.
+pub fn build(dir: &Path) -> crate::Result<String> {
+    let config = read_config(&dir.join(files::CONFIG))?;
+    let config_text = read_text(&dir.join(files::CONFIG))?;
+    let scenario = load_scenario(Some(&dir.join(files::SCENARIO)))?;
+    let experiment = Experiment::new(&config, &scenario.scenario)
+        .map_err(|e| bad_input(format!("{}: {e}", dir.display())))?;
+    let champion = read_champion(&dir.join(files::CHAMPION))?;
+    let best = evolve::read_best_genomes(&dir.join(files::BEST_GENOMES))?;
+    let generations = read_generation_rows(&dir.join(files::GENERATIONS))?;
+    let fitness = evolve::read_population_csv(&dir.join(files::POPULATION))?;
+
+    let mut episodes = vec![episode(
+        &experiment,
+        &champion.genome,
+        format!("Champion (generation {})", champion.generation),
+    )?];
+    for g in evolve::FIGURE_GENERATIONS {
+        if let Some(b) = best.iter().find(|b| b.generation == g) {
+            episodes.push(episode(
+                &experiment,
+                &b.genome,
+                format!("Best of generation {g}"),
+            )?);
+        }
+    }
+    let convergence_svg = convergence::render_svg(&fitness, &ConvergenceOptions::default())
+        .map_err(crate::Error::Figure)?;
+    let network_svg = network::render_svg(
+        experiment.substrate_spec(),
+        &experiment.controller(&champion.genome)?,
+        &NetworkOptions {
+            title: format!(
+                "Champion controller (generation {}, fitness {:.3})",
+                champion.generation, champion.fitness
+            ),
+            weight_scale: config.hyperneat.amplitude,
+            ..NetworkOptions::default()
+        },
+    )
+    .map_err(crate::Error::Figure)?;
+    let title = dir
+        .canonicalize()
+        .unwrap_or_else(|_| dir.to_path_buf())
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "run".into());
+    let data = ReportData {
+        title,
+        config: config_text,
+        scene: SceneData::new(&scenario.scenario, experiment.world()),
+        episodes,
+        generations,
+        species: best.into_iter().map(|b| b.species).collect(),
+        convergence_svg,
+        network_svg,
+    };
+    let json = script_safe(
+        &serde_json::to_string(&data).map_err(|e| crate::Error::Serialize {
+            what: "the report's data",
+            reason: e.to_string(),
+        })?,
+    );
+    let js = [SCENE_JS, PLOTS_JS, REPORT_JS].join("\n");
+    Ok(TEMPLATE
+        .replacen("/*VIVAE-CSS*/", STYLE_CSS, 1)
+        .replacen("/*VIVAE-JS*/", &js, 1)
+        .replacen("/*VIVAE-DATA*/", &json, 1))
+}
+
+/// Writes `report.html` into the run directory `dir`; returns its path.
+pub fn write(dir: &Path) -> crate::Result<PathBuf> {
+    let html = build(dir)?;
+    let path = dir.join(files::REPORT);
+    write_atomic(&path, html.as_bytes())?;
+    Ok(path)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn script_blocks_cannot_be_closed_by_data() {
+        let s = script_safe(r#"{"a":"</script><script>alert(1)</script>"}"#);
+        assert!(!s.contains("</script"));
+        let v: serde_json::Value = serde_json::from_str(&s).unwrap();
+        assert_eq!(v["a"], "</script><script>alert(1)</script>");
+    }
+
+    #[test]
+    fn scripts_never_close_their_block_and_load_nothing() {
+        for js in [SCENE_JS, PLOTS_JS, REPORT_JS] {
+            assert!(!js.to_ascii_lowercase().contains("</script"));
+        }
+        for text in [TEMPLATE, STYLE_CSS, SCENE_JS, PLOTS_JS, REPORT_JS] {
+            // The SVG namespace is a name, not a request.
+            let stripped = text.replace("http://www.w3.org/2000/svg", "");
+            assert!(!stripped.contains("http://") && !stripped.contains("https://"));
+            assert!(!stripped.contains("@import") && !stripped.contains("url("));
+        }
+    }
+
+    #[test]
+    fn template_has_every_slot_once() {
+        for slot in ["/*VIVAE-DATA*/", "/*VIVAE-CSS*/", "/*VIVAE-JS*/"] {
+            assert_eq!(TEMPLATE.matches(slot).count(), 1, "{slot}");
+        }
+    }
+}

@@ -1,0 +1,95 @@
+//! `vivae view`: a local web server where robots drive live in the browser.
+//!
+//! The robots are simulated here, by the real [`Experiment`] controller and
+//! `vivae-sim` world, one simulation per open page, and streamed to the page
+//! over a WebSocket ([`session`]). The page is plain HTML/CSS/JS embedded in
+//! the binary. The server answers only its own assets, a fixed list of the
+//! given run's files and the WebSocket; every other path is a 404.
+
+mod server;
+mod session;
+mod source;
+
+use std::net::{IpAddr, Ipv4Addr, SocketAddr};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::Args;
+
+use source::Source;
+
+use crate::io::bad_input;
+
+/// Command-line options of `vivae view`.
+#[derive(Args, Debug, Clone)]
+pub struct ViewArgs {
+    /// A run directory (follows it while it runs), a champion genome JSON, or a
+    /// scenario SVG (drive by keyboard). Default: the embedded road scenario.
+    pub source: Option<PathBuf>,
+    /// Port to listen on (0 = any free port).
+    #[arg(long, default_value_t = 7878, value_name = "N")]
+    pub port: u16,
+    /// Address to listen on; anything but a loopback address lets the network watch.
+    #[arg(long, default_value_t = IpAddr::V4(Ipv4Addr::LOCALHOST), value_name = "ADDR")]
+    pub host: IpAddr,
+    /// Extra scenarios to offer: every `.svg` file in this folder.
+    #[arg(long, value_name = "DIR")]
+    pub scenarios: Option<PathBuf>,
+    /// Most pages simulated at once; more are refused until one closes.
+    #[arg(long, default_value_t = 8, value_name = "N")]
+    pub max_viewers: usize,
+}
+
+/// Runs `vivae view` until interrupted.
+pub fn run(args: ViewArgs) -> crate::Result<ExitCode> {
+    if args.max_viewers == 0 {
+        return Err(bad_input("--max-viewers 0: must be at least 1"));
+    }
+    let source = Source::load(args.source.as_deref(), args.scenarios.as_deref())?;
+    let runtime = tokio::runtime::Builder::new_multi_thread()
+        .worker_threads(2)
+        .enable_all()
+        .build()
+        .map_err(|e| crate::Error::Threads(e.to_string()))?;
+    let addr = SocketAddr::new(args.host, args.port);
+    let listener = runtime
+        .block_on(tokio::net::TcpListener::bind(addr))
+        .map_err(|e| {
+            let why = match e.kind() {
+                std::io::ErrorKind::AddrInUse => {
+                    "port already in use (choose another --port)".into()
+                }
+                std::io::ErrorKind::AddrNotAvailable => "no such address on this machine".into(),
+                std::io::ErrorKind::PermissionDenied => "permission denied".into(),
+                _ => e.to_string(),
+            };
+            bad_input(format!("cannot listen on {addr}: {why}"))
+        })?;
+    let io = |action: &'static str| {
+        move |error: std::io::Error| crate::Error::Io {
+            action,
+            path: std::path::PathBuf::from(addr.to_string()),
+            error,
+        }
+    };
+    let local = listener.local_addr().map_err(io("listen on"))?;
+    if !args.host.is_loopback() {
+        eprintln!(
+            "warning: listening on {} — anyone who can reach this machine on the network can watch this run",
+            args.host
+        );
+    }
+    let shown = if args.host.is_unspecified() {
+        SocketAddr::new(IpAddr::V4(Ipv4Addr::LOCALHOST), local.port())
+    } else {
+        local
+    };
+    println!("vivae view: http://{shown}/");
+    eprintln!("{} (Ctrl-C stops the server)", source.describe());
+    use std::io::Write as _;
+    let _ = std::io::stdout().flush();
+    runtime
+        .block_on(server::serve(listener, source, args.max_viewers))
+        .map_err(io("serve on"))?;
+    Ok(ExitCode::SUCCESS)
+}

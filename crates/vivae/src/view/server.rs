@@ -1,0 +1,261 @@
+//! The HTTP side of `vivae view`: routes, the WebSocket, the run watcher.
+
+use std::sync::Arc;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::{Duration, Instant};
+
+use axum::Router;
+use axum::extract::ws::{Message, WebSocket, WebSocketUpgrade};
+use axum::extract::{Path as UrlPath, State};
+use axum::http::{HeaderMap, StatusCode, header};
+use axum::response::{IntoResponse, Response};
+use axum::routing::get;
+use tokio::sync::watch;
+
+use super::session::Sim;
+use super::source::{SharedSnapshot, Source};
+use crate::evolve::files;
+use crate::report_html::{PLOTS_JS, SCENE_JS, STYLE_CSS};
+
+/// The viewer page.
+const INDEX_HTML: &str = include_str!("../../assets/view.html");
+/// The viewer page's script.
+const VIEW_JS: &str = include_str!("../../assets/view.js");
+
+/// Run files a page may fetch (as `/run/NAME`); nothing else of the disk is served.
+const RUN_FILES: [(&str, &str); 7] = [
+    (files::CONFIG, "text/plain; charset=utf-8"),
+    (files::SCENARIO, "image/svg+xml"),
+    (files::GENERATIONS, "text/csv; charset=utf-8"),
+    (files::POPULATION, "text/csv; charset=utf-8"),
+    (files::CHAMPION, "application/json"),
+    (files::BEST_GENOMES, "text/plain; charset=utf-8"),
+    (files::REPORT, "text/html; charset=utf-8"),
+];
+
+/// How often a followed run directory is checked for new generations.
+const POLL: Duration = Duration::from_millis(700);
+/// Interval between frames sent to a page.
+const FRAME: Duration = Duration::from_millis(16);
+/// Largest message a page may send.
+const MAX_MESSAGE: usize = 16 * 1024;
+
+#[derive(Clone)]
+struct App {
+    source: Arc<Source>,
+    snapshot: watch::Receiver<SharedSnapshot>,
+    viewers: Arc<AtomicUsize>,
+    max_viewers: usize,
+}
+
+/// Frees a viewer slot when its page's session ends (however it ends).
+struct ViewerSlot(Arc<AtomicUsize>);
+
+impl Drop for ViewerSlot {
+    fn drop(&mut self) {
+        self.0.fetch_sub(1, Ordering::SeqCst);
+    }
+}
+
+/// Serves until the process is stopped.
+pub(super) async fn serve(
+    listener: tokio::net::TcpListener,
+    source: Source,
+    max_viewers: usize,
+) -> std::io::Result<()> {
+    let source = Arc::new(source);
+    let (tx, rx) = watch::channel(Arc::new(source.snapshot()));
+    if source.run_dir().is_some() {
+        let watched = source.clone();
+        tokio::spawn(async move {
+            let mut stamp = watched.stamp();
+            loop {
+                tokio::time::sleep(POLL).await;
+                let now = watched.stamp();
+                if now != stamp {
+                    stamp = now;
+                    let w = watched.clone();
+                    if let Ok(snap) = tokio::task::spawn_blocking(move || w.snapshot()).await {
+                        let _ = tx.send(Arc::new(snap));
+                    }
+                }
+            }
+        });
+    }
+    let app = App {
+        source,
+        snapshot: rx,
+        viewers: Arc::new(AtomicUsize::new(0)),
+        max_viewers,
+    };
+    let router = Router::new()
+        .route("/", get(index))
+        .route("/assets/{name}", get(asset))
+        .route("/run/{name}", get(run_file))
+        .route("/ws", get(ws))
+        .fallback(not_found)
+        .with_state(app);
+    axum::serve(listener, router).await?;
+    Ok(())
+}
+
+async fn not_found() -> Response {
+    (StatusCode::NOT_FOUND, "not found\n").into_response()
+}
+
+fn text(content_type: &'static str, body: impl Into<axum::body::Body>) -> Response {
+    (
+        [
+            (header::CONTENT_TYPE, content_type),
+            (header::CACHE_CONTROL, "no-store"),
+        ],
+        body.into(),
+    )
+        .into_response()
+}
+
+async fn index() -> Response {
+    text("text/html; charset=utf-8", INDEX_HTML)
+}
+
+async fn asset(UrlPath(name): UrlPath<String>) -> Response {
+    match name.as_str() {
+        "style.css" => text("text/css; charset=utf-8", STYLE_CSS),
+        "scene.js" => text("text/javascript; charset=utf-8", SCENE_JS),
+        "plots.js" => text("text/javascript; charset=utf-8", PLOTS_JS),
+        "view.js" => text("text/javascript; charset=utf-8", VIEW_JS),
+        _ => not_found().await,
+    }
+}
+
+async fn run_file(State(app): State<App>, UrlPath(name): UrlPath<String>) -> Response {
+    let Some(dir) = app.source.run_dir() else {
+        return not_found().await;
+    };
+    // Only the exact names listed: no path of the page's choosing reaches the disk.
+    let Some((file, content_type)) = RUN_FILES.iter().find(|(n, _)| *n == name) else {
+        return not_found().await;
+    };
+    match tokio::fs::read(dir.join(file)).await {
+        Ok(bytes) => text(content_type, bytes),
+        Err(_) => not_found().await,
+    }
+}
+
+/// A browser page may open the WebSocket only from this server's own page:
+/// another site open in the same browser must not read the run.
+fn same_origin(headers: &HeaderMap) -> bool {
+    let Some(origin) = headers.get(header::ORIGIN) else {
+        // Not a browser page (a script or a test client).
+        return true;
+    };
+    let host = headers.get(header::HOST).and_then(|h| h.to_str().ok());
+    match (origin.to_str().ok(), host) {
+        (Some(o), Some(h)) => o == format!("http://{h}") || o == format!("https://{h}"),
+        _ => false,
+    }
+}
+
+async fn ws(State(app): State<App>, headers: HeaderMap, upgrade: WebSocketUpgrade) -> Response {
+    if !same_origin(&headers) {
+        return (StatusCode::FORBIDDEN, "foreign origin\n").into_response();
+    }
+    if app.viewers.fetch_add(1, Ordering::SeqCst) >= app.max_viewers {
+        app.viewers.fetch_sub(1, Ordering::SeqCst);
+        return (
+            StatusCode::SERVICE_UNAVAILABLE,
+            "too many viewers: close another page first\n",
+        )
+            .into_response();
+    }
+    let slot = ViewerSlot(app.viewers.clone());
+    upgrade
+        .max_message_size(MAX_MESSAGE)
+        .max_frame_size(MAX_MESSAGE)
+        .on_upgrade(move |socket| async move {
+            let _slot = slot;
+            session(socket, app).await;
+        })
+}
+
+fn error_msg(message: &str) -> String {
+    serde_json::json!({"type": "error", "message": message}).to_string()
+}
+
+/// One page's session: runs its simulation until the page goes away.
+async fn session(mut socket: WebSocket, mut app: App) {
+    let snap = app.snapshot.borrow_and_update().clone();
+    let mut sim = match tokio::task::block_in_place(|| Sim::new(&app.source, &snap)) {
+        Ok(sim) => sim,
+        Err(e) => {
+            let _ = socket.send(Message::Text(error_msg(&e).into())).await;
+            return;
+        }
+    };
+    let mut snap = snap;
+    let info = serde_json::json!({
+        "type": "info",
+        "source": app.source.describe(),
+        "run": app.source.run_dir().is_some(),
+        "scenarios": app.source.scenarios.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>(),
+        "real_time_steps": super::session::REAL_TIME_STEPS,
+    });
+    if socket
+        .send(Message::Text(info.to_string().into()))
+        .await
+        .is_err()
+    {
+        return;
+    }
+    let progress = serde_json::to_string(&snap.progress()).unwrap_or_default();
+    if socket.send(Message::Text(progress.into())).await.is_err() {
+        return;
+    }
+    let mut tick = tokio::time::interval(FRAME);
+    tick.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Skip);
+    let mut last = Instant::now();
+    let mut watching = true;
+    loop {
+        let mut out: Vec<String> = Vec::new();
+        tokio::select! {
+            msg = socket.recv() => match msg {
+                // A closed tab ends its simulation here.
+                None | Some(Err(_)) | Some(Ok(Message::Close(_))) => break,
+                Some(Ok(Message::Text(t))) => {
+                    if let Err(e) = sim.handle(t.as_str(), &app.source, &snap) {
+                        out.push(error_msg(&e));
+                    }
+                }
+                Some(Ok(Message::Binary(_))) => out.push(error_msg("binary messages are not understood")),
+                Some(Ok(_)) => {}
+            },
+            _ = tick.tick() => {
+                let now = Instant::now();
+                // A stalled page does not make the simulation jump ahead.
+                sim.advance((now - last).as_secs_f64().min(0.25));
+                last = now;
+            }
+            changed = app.snapshot.changed(), if watching => {
+                if changed.is_err() {
+                    // No watcher (not a run): nothing will change.
+                    watching = false;
+                } else {
+                    snap = app.snapshot.borrow_and_update().clone();
+                    out.push(serde_json::to_string(&snap.progress()).unwrap_or_default());
+                }
+            }
+        }
+        if sim.scene_dirty {
+            sim.scene_dirty = false;
+            out.push(sim.scene_msg(&app.source));
+        }
+        if sim.dirty {
+            out.push(sim.frame_msg());
+        }
+        for m in out {
+            if socket.send(Message::Text(m.into())).await.is_err() {
+                return;
+            }
+        }
+    }
+}

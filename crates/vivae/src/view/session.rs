@@ -1,0 +1,706 @@
+//! One page's live simulation and the messages it exchanges with the page.
+//!
+//! Page → server messages are JSON objects with a `type`; anything malformed,
+//! unknown or out of range gets `{"type":"error","message":…}` and changes
+//! nothing. Server → page: `info` (once), `scene` (arena, substrate), `frame`
+//! (robots and the selected robot's sensors and neurons), `progress` (the
+//! run's history, again whenever it grows) and `error`.
+
+use std::fmt::Write as _;
+
+use serde::Deserialize;
+use serde_json::{Value, json};
+use vivae_neat::Network;
+use vivae_neat::hyperneat::SubstrateController;
+use vivae_sim::{DVec2, Scenario, Sensor, World};
+
+use super::source::{RunSnapshot, Source};
+use crate::config::Config;
+use crate::experiment::Experiment;
+use crate::io::one_line;
+use crate::report_html::SceneData;
+use crate::substrate::PolarGrid;
+
+/// Simulation steps per second at speed 1 ("real time").
+pub(crate) const REAL_TIME_STEPS: f64 = 30.0;
+/// Most simulation steps computed for one frame, whatever the speed.
+const MAX_STEPS_PER_FRAME: u32 = 400;
+/// Most surface sensors a page may ask for.
+const MAX_SENSORS: usize = 64 * 128;
+/// Most neurons a page may ask for (decoding grows with sensors × neurons).
+const MAX_NEURONS: usize = 400;
+
+/// A message from the page.
+#[derive(Debug, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case")]
+enum ClientMsg {
+    Play,
+    Pause,
+    Step {
+        #[serde(default)]
+        n: Option<u32>,
+    },
+    Speed {
+        value: f64,
+    },
+    Controller {
+        which: Value,
+    },
+    Drive {
+        robot: Option<usize>,
+    },
+    Keys {
+        up: bool,
+        down: bool,
+        left: bool,
+        right: bool,
+    },
+    Resolution {
+        sensors: String,
+        neurons: String,
+    },
+    Select {
+        robot: usize,
+    },
+    Drag {
+        robot: usize,
+        x: f64,
+        y: f64,
+        #[serde(default)]
+        heading: Option<f64>,
+    },
+    Reset,
+    Scenario {
+        index: usize,
+    },
+}
+
+/// Which genome drives the robots.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Choice {
+    /// Nobody: robots stand still unless driven by hand.
+    None,
+    /// The best genome so far.
+    Champion,
+    /// The best genome of one generation.
+    Generation(u32),
+}
+
+/// Arrow keys held down.
+#[derive(Debug, Clone, Copy, Default)]
+struct Keys {
+    up: bool,
+    down: bool,
+    left: bool,
+    right: bool,
+}
+
+impl Keys {
+    /// Wheel commands `[L, R]` for the keys held, as ViVAE's keyboard controller.
+    fn controls(self) -> [f64; 2] {
+        let forward = f64::from(i8::from(self.up) - i8::from(self.down));
+        let turn = f64::from(i8::from(self.right) - i8::from(self.left));
+        if forward == 0.0 {
+            [0.6 * turn, -0.6 * turn]
+        } else {
+            let f = forward;
+            [
+                (f + 0.7 * turn).clamp(-1.0, 1.0),
+                (f - 0.7 * turn).clamp(-1.0, 1.0),
+            ]
+        }
+    }
+}
+
+/// One page's simulation.
+pub(crate) struct Sim {
+    config: Config,
+    scenario_index: usize,
+    experiment: Experiment,
+    world: World,
+    choice: Choice,
+    /// Label of the genome driving, for the page.
+    driver: String,
+    controllers: Vec<SubstrateController>,
+    manual: Option<usize>,
+    keys: Keys,
+    selected: usize,
+    inputs: Vec<f64>,
+    /// Per robot, its controller's last outputs (neuron activations).
+    outputs: Vec<Vec<f64>>,
+    controls: Vec<[f64; 2]>,
+    surface: Vec<f64>,
+    /// Running or paused.
+    pub playing: bool,
+    speed: f64,
+    /// Fraction of a step carried to the next frame.
+    carry: f64,
+    steps: u64,
+    /// Something changed that the page has not been sent.
+    pub dirty: bool,
+    /// The scene changed (arena or substrate).
+    pub scene_dirty: bool,
+}
+
+/// Builds the experiment of `config` on `scenario`, using all its robots when
+/// the config asks for more than it has.
+fn experiment_for(config: &mut Config, scenario: &Scenario) -> Result<Experiment, String> {
+    if scenario.robots.len() < config.experiment.robots {
+        config.experiment.robots = 0;
+    }
+    Experiment::new(config, scenario).map_err(|e| one_line(&e.to_string()))
+}
+
+fn parse_scenario(name: &str, text: &str) -> Result<Scenario, String> {
+    Scenario::from_svg(text, name, &vivae_sim::LoadOptions::default())
+        .map_err(|e| one_line(&e.to_string()))
+}
+
+impl Sim {
+    /// A paused simulation of the source's own scenario, driven by its best genome.
+    pub fn new(source: &Source, snap: &RunSnapshot) -> Result<Sim, String> {
+        let mut config = source.config.clone();
+        let (name, text) = &source.scenarios[0];
+        let scenario = parse_scenario(name, text)?;
+        let experiment = experiment_for(&mut config, &scenario)?;
+        let world = experiment.world().clone();
+        let mut sim = Sim {
+            config,
+            scenario_index: 0,
+            world,
+            experiment,
+            choice: Choice::None,
+            driver: "nobody (drive a robot with the arrow keys)".into(),
+            controllers: Vec::new(),
+            manual: None,
+            keys: Keys::default(),
+            selected: 0,
+            inputs: Vec::new(),
+            outputs: Vec::new(),
+            controls: Vec::new(),
+            surface: Vec::new(),
+            playing: true,
+            speed: 1.0,
+            carry: 0.0,
+            steps: 0,
+            dirty: true,
+            scene_dirty: true,
+        };
+        let choice = if snap.champion.is_some() {
+            Choice::Champion
+        } else {
+            Choice::None
+        };
+        sim.set_choice(choice, snap)?;
+        Ok(sim)
+    }
+
+    /// Rebuilds the per-robot controllers for the current choice and substrate.
+    fn set_choice(&mut self, choice: Choice, snap: &RunSnapshot) -> Result<(), String> {
+        let found = match choice {
+            Choice::None => None,
+            Choice::Champion => Some(
+                snap.champion
+                    .as_ref()
+                    .map(|c| {
+                        (
+                            c.genome.clone(),
+                            format!(
+                                "champion (generation {}, fitness {:.3})",
+                                c.generation, c.fitness
+                            ),
+                        )
+                    })
+                    .ok_or("there is no champion yet")?,
+            ),
+            Choice::Generation(g) => Some(
+                snap.best
+                    .iter()
+                    .find(|b| b.generation == g)
+                    .map(|b| {
+                        (
+                            b.genome.clone(),
+                            format!("best of generation {g} (fitness {:.3})", b.fitness),
+                        )
+                    })
+                    .ok_or_else(|| format!("generation {g} has no recorded best genome"))?,
+            ),
+        };
+        let n = self.world.robots().len();
+        match found {
+            None => {
+                self.controllers.clear();
+                self.driver = "nobody (drive a robot with the arrow keys)".into();
+            }
+            Some((genome, label)) => {
+                // Decoding a large substrate takes a while: not on the async workers' time.
+                let controller =
+                    tokio::task::block_in_place(|| self.experiment.controller(&genome))
+                        .map_err(|e| format!("the genome's {e}"))?;
+                self.controllers = (0..n)
+                    .map(|_| {
+                        let mut c = controller.clone();
+                        c.reset();
+                        c
+                    })
+                    .collect();
+                self.driver = label;
+            }
+        }
+        self.choice = choice;
+        self.resize_buffers();
+        self.dirty = true;
+        Ok(())
+    }
+
+    fn resize_buffers(&mut self) {
+        let n = self.world.robots().len();
+        let inputs = self.controllers.first().map_or(0, |c| c.num_inputs());
+        let outputs = self.controllers.first().map_or(0, |c| c.num_outputs());
+        self.inputs = vec![0.0; inputs.max(self.experiment.surface_grid().len())];
+        self.outputs = vec![vec![0.0; outputs]; n];
+        self.controls = vec![[0.0; 2]; n];
+        self.surface = vec![0.0; self.experiment.surface_grid().len()];
+        self.selected = self.selected.min(n.saturating_sub(1));
+        if self.manual.is_some_and(|m| m >= n) {
+            self.manual = None;
+        }
+    }
+
+    /// One simulation step: every controller (or the keyboard) moves its robot.
+    fn step_once(&mut self) {
+        let wheels = self.experiment.wheels();
+        for i in 0..self.world.robots().len() {
+            if self.manual == Some(i) {
+                self.controls[i] = self.keys.controls();
+            } else if let Some(c) = self.controllers.get_mut(i) {
+                self.experiment
+                    .read_inputs(&self.world, i, &mut self.inputs);
+                c.activate(&self.inputs, &mut self.outputs[i]);
+                self.controls[i] = [self.outputs[i][wheels.left], self.outputs[i][wheels.right]];
+            } else {
+                self.controls[i] = [0.0, 0.0];
+            }
+        }
+        self.world.step(&self.controls);
+        self.steps += 1;
+        self.dirty = true;
+    }
+
+    /// Advances by one frame of `seconds` at the current speed (if playing).
+    pub fn advance(&mut self, seconds: f64) {
+        if !self.playing {
+            return;
+        }
+        self.carry += self.speed * REAL_TIME_STEPS * seconds;
+        let n = (self.carry.floor() as u32).min(MAX_STEPS_PER_FRAME);
+        self.carry = (self.carry - f64::from(n)).min(1.0);
+        tokio::task::block_in_place(|| {
+            for _ in 0..n {
+                self.step_once();
+            }
+        });
+    }
+
+    /// Puts every robot back at its start and clears the controllers' state.
+    fn reset(&mut self) {
+        self.world = self.experiment.world().clone();
+        for c in &mut self.controllers {
+            c.reset();
+        }
+        for o in &mut self.outputs {
+            o.fill(0.0);
+        }
+        self.steps = 0;
+        self.carry = 0.0;
+        self.dirty = true;
+        self.scene_dirty = true;
+    }
+
+    /// Rebuilds the experiment (new scenario or resolution), keeping the genome choice.
+    fn rebuild(
+        &mut self,
+        mut config: Config,
+        index: usize,
+        source: &Source,
+        snap: &RunSnapshot,
+    ) -> Result<(), String> {
+        config.validate().map_err(|e| one_line(&e.to_string()))?;
+        let (name, text) = source
+            .scenarios
+            .get(index)
+            .ok_or_else(|| format!("no scenario {index}"))?;
+        let scenario = parse_scenario(name, text)?;
+        let experiment = experiment_for(&mut config, &scenario)?;
+        let old = (
+            std::mem::replace(&mut self.experiment, experiment),
+            std::mem::replace(&mut self.config, config),
+            self.scenario_index,
+        );
+        self.scenario_index = index;
+        let scenario_changed = old.2 != index;
+        if scenario_changed {
+            self.world = self.experiment.world().clone();
+            self.steps = 0;
+        }
+        if let Err(e) = self.set_choice(self.choice, snap) {
+            // Keep the page's simulation as it was.
+            self.experiment = old.0;
+            self.config = old.1;
+            self.scenario_index = old.2;
+            if scenario_changed {
+                self.world = self.experiment.world().clone();
+            }
+            self.set_choice(self.choice, snap)?;
+            return Err(e);
+        }
+        self.scene_dirty = true;
+        Ok(())
+    }
+
+    /// Handles one text message from the page; `Err` is sent back as an error.
+    pub fn handle(
+        &mut self,
+        text: &str,
+        source: &Source,
+        snap: &RunSnapshot,
+    ) -> Result<(), String> {
+        let msg: ClientMsg = serde_json::from_str(text).map_err(|e| format!("bad message: {e}"))?;
+        let robots = self.world.robots().len();
+        let robot_ok = |i: usize| {
+            if i < robots {
+                Ok(())
+            } else {
+                Err(format!("no robot {i} (there are {robots})"))
+            }
+        };
+        match msg {
+            ClientMsg::Play => self.playing = true,
+            ClientMsg::Pause => self.playing = false,
+            ClientMsg::Step { n } => {
+                let n = n.unwrap_or(1);
+                if n == 0 || n > 10_000 {
+                    return Err(format!("step {n}: must be 1 to 10000"));
+                }
+                self.playing = false;
+                tokio::task::block_in_place(|| {
+                    for _ in 0..n {
+                        self.step_once();
+                    }
+                });
+            }
+            ClientMsg::Speed { value } => {
+                if !(value.is_finite() && (0.05..=200.0).contains(&value)) {
+                    return Err(format!("speed {value}: must be 0.05 to 200"));
+                }
+                self.speed = value;
+            }
+            ClientMsg::Controller { which } => {
+                let choice = match &which {
+                    Value::String(s) if s == "champion" => Choice::Champion,
+                    Value::String(s) if s == "none" => Choice::None,
+                    Value::Number(n) => Choice::Generation(
+                        n.as_u64()
+                            .and_then(|g| u32::try_from(g).ok())
+                            .ok_or_else(|| format!("controller {n}: not a generation"))?,
+                    ),
+                    other => {
+                        return Err(format!(
+                            "controller {other}: expected \"champion\", \"none\" or a generation"
+                        ));
+                    }
+                };
+                self.set_choice(choice, snap)?;
+            }
+            ClientMsg::Drive { robot } => {
+                if let Some(i) = robot {
+                    robot_ok(i)?;
+                    self.selected = i;
+                }
+                self.manual = robot;
+                self.keys = Keys::default();
+            }
+            ClientMsg::Keys {
+                up,
+                down,
+                left,
+                right,
+            } => {
+                self.keys = Keys {
+                    up,
+                    down,
+                    left,
+                    right,
+                };
+            }
+            ClientMsg::Resolution { sensors, neurons } => {
+                let parse = |what: &str, s: &str, max: usize| -> Result<PolarGrid, String> {
+                    let g: PolarGrid = s
+                        .parse()
+                        .map_err(|e| format!("{what} {s:?}: {}", one_line(&format!("{e}"))))?;
+                    if g.rings.saturating_mul(g.angles) > max {
+                        return Err(format!("{what} {s}: at most {max} in the viewer"));
+                    }
+                    Ok(g)
+                };
+                let s = parse("sensors", &sensors, MAX_SENSORS)?;
+                let n = parse("neurons", &neurons, MAX_NEURONS)?;
+                let mut config = self.config.clone();
+                config.surface_sensors.rings = s.rings;
+                config.surface_sensors.angles = s.angles;
+                config.substrate.neurons = n;
+                self.rebuild(config, self.scenario_index, source, snap)?;
+            }
+            ClientMsg::Select { robot } => {
+                robot_ok(robot)?;
+                self.selected = robot;
+                self.dirty = true;
+            }
+            ClientMsg::Drag {
+                robot,
+                x,
+                y,
+                heading,
+            } => {
+                robot_ok(robot)?;
+                let sc = self.world.scenario();
+                let inside = x.is_finite()
+                    && y.is_finite()
+                    && (0.0..=sc.width()).contains(&x)
+                    && (0.0..=sc.height()).contains(&y);
+                if !inside {
+                    return Err(format!("drag to ({x}, {y}): outside the arena"));
+                }
+                let heading = heading.unwrap_or(self.world.robots()[robot].heading);
+                if !heading.is_finite() {
+                    return Err("drag: heading must be a number".into());
+                }
+                self.world.set_pose(robot, DVec2::new(x, y), heading);
+                self.selected = robot;
+                self.dirty = true;
+            }
+            ClientMsg::Reset => self.reset(),
+            ClientMsg::Scenario { index } => {
+                self.rebuild(self.config.clone(), index, source, snap)?;
+            }
+        }
+        self.dirty = true;
+        Ok(())
+    }
+
+    /// The `scene` message: arena picture and substrate geometry.
+    pub fn scene_msg(&self, source: &Source) -> String {
+        let spec = self.experiment.substrate_spec();
+        let polar = |nodes: Vec<crate::substrate::PolarNode>| -> Vec<[f64; 2]> {
+            nodes.iter().map(|n| [n.rho, n.phi]).collect()
+        };
+        let wheels = self.experiment.wheels();
+        json!({
+            "type": "scene",
+            "scene": SceneData::new(self.world.scenario(), &self.world),
+            "scenario_index": self.scenario_index,
+            "scenario_name": source.scenarios[self.scenario_index].0,
+            "sensors": format!("{}x{}", spec.sensors.rings, spec.sensors.angles),
+            "neurons": format!("{}x{}", spec.neurons.rings, spec.neurons.angles),
+            "sensor_nodes": polar(spec.sensor_nodes()),
+            "neuron_nodes": polar(spec.neuron_nodes()),
+            "wheels": [wheels.left, wheels.right],
+            "robots": self.world.robots().len(),
+        })
+        .to_string()
+    }
+
+    /// The `frame` message: every robot's pose and the selected robot's insides.
+    ///
+    /// Written by hand: it goes out up to 60 times a second per page.
+    pub fn frame_msg(&mut self) -> String {
+        let mut s = String::with_capacity(256 + 24 * self.surface.len());
+        let _ = write!(
+            s,
+            r#"{{"type":"frame","step":{},"choice":{},"playing":{},"speed":{},"selected":{},"manual":{},"driver":{},"robots":["#,
+            self.steps,
+            match self.choice {
+                Choice::None => "\"none\"".to_string(),
+                Choice::Champion => "\"champion\"".to_string(),
+                Choice::Generation(g) => format!("\"{g}\""),
+            },
+            self.playing,
+            self.speed,
+            self.selected,
+            self.manual.map_or("null".to_string(), |m| m.to_string()),
+            serde_json::to_string(&self.driver).unwrap_or_default(),
+        );
+        for (i, r) in self.world.robots().iter().enumerate() {
+            let _ = write!(
+                s,
+                r#"{}{{"x":{:.2},"y":{:.2},"h":{:.4},"v":{:.3},"odo":{:.1}}}"#,
+                if i > 0 { "," } else { "" },
+                r.pos.x,
+                r.pos.y,
+                r.heading,
+                r.speed,
+                r.odometer
+            );
+        }
+        s.push(']');
+        if let Some(i) = (self.selected < self.world.robots().len()).then_some(self.selected) {
+            let grid = self.experiment.surface_grid();
+            grid.read(&self.world, i, &mut self.surface);
+            let places = grid.positions(&self.world, i);
+            s.push_str(r#","sensors":["#);
+            for (k, (p, v)) in places.iter().zip(&self.surface).enumerate() {
+                let _ = write!(
+                    s,
+                    "{}{:.1},{:.1},{:.3}",
+                    if k > 0 { "," } else { "" },
+                    p.x,
+                    p.y,
+                    v
+                );
+            }
+            s.push_str(r#"],"neurons":["#);
+            if let Some(o) = self.outputs.get(i) {
+                for (k, v) in o.iter().enumerate() {
+                    let _ = write!(s, "{}{:.4}", if k > 0 { "," } else { "" }, v);
+                }
+            }
+            let c = self.controls.get(i).copied().unwrap_or_default();
+            let _ = write!(s, r#"],"wheels":[{:.4},{:.4}]"#, c[0], c[1]);
+        }
+        s.push('}');
+        self.dirty = false;
+        s
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn arrow_keys_turn_the_right_way() {
+        let k = |up, down, left, right| {
+            Keys {
+                up,
+                down,
+                left,
+                right,
+            }
+            .controls()
+        };
+        assert_eq!(k(false, false, false, false), [0.0, 0.0]);
+        let fwd = k(true, false, false, false);
+        assert!(fwd[0] > 0.0 && fwd[0] == fwd[1]);
+        let l = k(true, false, true, false);
+        assert!(l[0] < l[1], "turning left slows the left wheel");
+        let spin = k(false, false, false, true);
+        assert!(spin[0] > 0.0 && spin[1] < 0.0);
+        assert!(k(false, true, false, false)[0] < 0.0);
+    }
+
+    #[test]
+    fn hostile_messages_are_refused_and_change_nothing() {
+        let source = Source::load(None, None).unwrap();
+        let snap = source.snapshot();
+        let rt = tokio::runtime::Builder::new_multi_thread()
+            .worker_threads(1)
+            .build()
+            .unwrap();
+        rt.block_on(async {
+            let mut sim = Sim::new(&source, &snap).unwrap();
+            let before = sim.frame_msg();
+            for bad in [
+                "",
+                "null",
+                "{}",
+                "[1,2]",
+                r#"{"type":"nope"}"#,
+                r#"{"type":"speed","value":1e308}"#,
+                r#"{"type":"speed","value":-1}"#,
+                r#"{"type":"step","n":4000000000}"#,
+                r#"{"type":"select","robot":99}"#,
+                r#"{"type":"drag","robot":0,"x":-5,"y":3}"#,
+                r#"{"type":"drag","robot":7,"x":5,"y":3}"#,
+                r#"{"type":"resolution","sensors":"100000x100000","neurons":"3x3"}"#,
+                r#"{"type":"resolution","sensors":"3x5","neurons":"0x3"}"#,
+                r#"{"type":"resolution","sensors":"3x5","neurons":"../../etc"}"#,
+                r#"{"type":"scenario","index":12345}"#,
+                r#"{"type":"controller","which":"champion"}"#,
+                r#"{"type":"controller","which":-3}"#,
+                r#"{"type":"controller","which":7}"#,
+            ] {
+                assert!(sim.handle(bad, &source, &snap).is_err(), "accepted {bad:?}");
+            }
+            assert_eq!(sim.frame_msg(), before);
+        });
+    }
+
+    #[test]
+    fn keyboard_driving_moves_the_robot_forward() {
+        let source = Source::load(None, None).unwrap();
+        let snap = source.snapshot();
+        let rt = tokio::runtime::Builder::new_multi_thread()
+            .worker_threads(1)
+            .build()
+            .unwrap();
+        rt.block_on(async {
+            let mut sim = Sim::new(&source, &snap).unwrap();
+            let start = sim.world.robots()[0].pos;
+            sim.handle(r#"{"type":"drive","robot":0}"#, &source, &snap)
+                .unwrap();
+            sim.handle(
+                r#"{"type":"keys","up":true,"down":false,"left":false,"right":false}"#,
+                &source,
+                &snap,
+            )
+            .unwrap();
+            sim.handle(r#"{"type":"step","n":40}"#, &source, &snap)
+                .unwrap();
+            let r = &sim.world.robots()[0];
+            assert!(
+                r.pos.distance(start) > 20.0,
+                "moved {}",
+                r.pos.distance(start)
+            );
+            // Reset puts it back.
+            sim.handle(r#"{"type":"reset"}"#, &source, &snap).unwrap();
+            assert_eq!(sim.world.robots()[0].pos, start);
+        });
+    }
+
+    #[test]
+    fn dragging_places_a_robot_and_scenarios_switch_by_index() {
+        let source = Source::load(None, None).unwrap();
+        let snap = source.snapshot();
+        let rt = tokio::runtime::Builder::new_multi_thread()
+            .worker_threads(1)
+            .build()
+            .unwrap();
+        rt.block_on(async {
+            let mut sim = Sim::new(&source, &snap).unwrap();
+            sim.handle(
+                r#"{"type":"drag","robot":2,"x":100.5,"y":200.25,"heading":1.0}"#,
+                &source,
+                &snap,
+            )
+            .unwrap();
+            let r = &sim.world.robots()[2];
+            assert_eq!((r.pos.x, r.pos.y), (100.5, 200.25));
+            assert_eq!(sim.selected, 2);
+            assert!(sim.frame_msg().contains(r#""selected":2"#));
+            sim.handle(r#"{"type":"scenario","index":0}"#, &source, &snap)
+                .unwrap();
+            assert!(sim.scene_msg(&source).contains(r#""scenario_index":0"#));
+            // Re-sampling keeps the scenario and changes the substrate the page is sent.
+            sim.handle(
+                r#"{"type":"resolution","sensors":"32x96","neurons":"9x9"}"#,
+                &source,
+                &snap,
+            )
+            .unwrap();
+            let scene: serde_json::Value = serde_json::from_str(&sim.scene_msg(&source)).unwrap();
+            assert_eq!(scene["sensor_nodes"].as_array().unwrap().len(), 32 * 96);
+            assert_eq!(scene["neuron_nodes"].as_array().unwrap().len(), 81);
+        });
+    }
+}
