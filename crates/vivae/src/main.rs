@@ -70,6 +70,9 @@ struct Overrides {
     /// Simulation steps per evaluation.
     #[arg(long, value_name = "N")]
     steps: Option<u32>,
+    /// Robots: the scenario's first N (0 = all of them; paper: 5).
+    #[arg(long, value_name = "N")]
+    robots: Option<usize>,
     /// Evaluation threads (0 = one per core); results do not depend on it.
     #[arg(long, value_name = "N")]
     threads: Option<usize>,
@@ -124,6 +127,10 @@ struct ReplayArgs {
     /// Simulation steps.
     #[arg(long, value_name = "N")]
     steps: Option<u32>,
+    /// Robots: the scenario's first N, 0 = all (default: the run's number on
+    /// the run's scenario, all of them on another scenario).
+    #[arg(long, value_name = "N")]
+    robots: Option<usize>,
     /// Folder for the trajectory figure (default: replay/ beside the source).
     #[arg(short, long, value_name = "DIR")]
     out: Option<PathBuf>,
@@ -245,6 +252,9 @@ fn apply_overrides(config: &mut Config, o: &Overrides) -> anyhow::Result<()> {
     }
     if let Some(n) = o.steps {
         config.experiment.steps = n;
+    }
+    if let Some(n) = o.robots {
+        config.experiment.robots = n;
     }
     if let Some(n) = o.threads {
         config.run.threads = n;
@@ -409,10 +419,24 @@ fn cmd_replay(args: ReplayArgs) -> anyhow::Result<ExitCode> {
         sensors: args.sensors,
         neurons: args.neurons,
         steps: args.steps,
+        // Another scenario has its own robot starts: all of them, unless told.
+        robots: args.robots.or(args.scenario.as_ref().map(|_| 0)),
         ..Overrides::default()
     };
     apply_overrides(&mut config, &overrides)?;
-    let scenario = load_scenario(scenario_path(&config).as_deref())?;
+    let path = scenario_path(&config);
+    if let Some(p) = path
+        .as_deref()
+        .filter(|p| args.scenario.is_none() && !p.exists())
+    {
+        return Err(bad_input(format!(
+            "{}: the champion's scenario {} is not there; name one with --scenario FILE",
+            args.source.display(),
+            p.display()
+        ))
+        .into());
+    }
+    let scenario = load_scenario(path.as_deref())?;
     let experiment = Experiment::new(&config, &scenario.scenario).map_err(vivae::Error::from)?;
     // Checked before anything is written: a genome that does not fit is bad input.
     experiment
@@ -423,7 +447,8 @@ fn cmd_replay(args: ReplayArgs) -> anyhow::Result<ExitCode> {
         })?;
     let out = args.out.clone().unwrap_or_else(|| base.join("replay"));
     std::fs::create_dir_all(&out).with_context(|| format!("cannot create {}", out.display()))?;
-    let replay = report::replay(&experiment, &config, &champion, &out)?;
+    let name = report::scenario_name(path.as_deref());
+    let replay = report::replay(&experiment, &config, &champion, &name, &out)?;
     println!("fitness={} on_road={:.4}", replay.fitness, replay.on_road);
     eprintln!("figure: {}", replay.figure.display());
     Ok(ExitCode::SUCCESS)

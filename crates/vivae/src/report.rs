@@ -112,8 +112,9 @@ pub fn finish_run(run: &Run) -> Result<RunSummary> {
     })
 }
 
-/// Reads a genome source for `replay`: a run directory (its champion and config)
-/// or a champion JSON file (default config). Returns the folder outputs go beside.
+/// Reads a genome source for `replay`: a run directory (its champion and
+/// `config.toml`) or a champion JSON file (the config it records; the default
+/// config for files that record none). Returns the folder outputs go beside.
 pub fn load_genome_source(source: &Path) -> Result<(Champion, Config, PathBuf)> {
     if source.is_dir() {
         let champion = read_champion(&source.join(files::CHAMPION))?;
@@ -122,7 +123,20 @@ pub fn load_genome_source(source: &Path) -> Result<(Champion, Config, PathBuf)> 
     } else {
         let champion = read_champion(source)?;
         let base = source.parent().map(Path::to_path_buf).unwrap_or_default();
-        Ok((champion, Config::default(), base))
+        let config = match &champion.config {
+            Some(recorded) => {
+                let mut config = recorded.clone();
+                // As in a config file, a relative scenario is relative to the file's folder.
+                let scenario = &mut config.experiment.scenario;
+                if !scenario.is_empty() && Path::new(scenario.as_str()).is_relative() {
+                    *scenario = base.join(&*scenario).to_string_lossy().into_owned();
+                }
+                config.experiment.init_population.clear();
+                config
+            }
+            None => Config::default(),
+        };
+        Ok((champion, config, base))
     }
 }
 
@@ -141,6 +155,11 @@ pub fn read_champion(path: &Path) -> Result<Champion> {
             champion.format
         )));
     }
+    if let Some(config) = &champion.config {
+        config
+            .validate()
+            .map_err(|e| invalid(format!("its recorded config: {e}")))?;
+    }
     // The genome validated itself while being deserialised.
     Ok(champion)
 }
@@ -156,18 +175,42 @@ pub struct Replay {
     pub figure: PathBuf,
 }
 
-/// Runs a champion on `experiment` and draws its trajectories into `out`.
+/// Short name of a scenario for file names and titles: its file stem, or
+/// `roads` for the embedded default.
+pub fn scenario_name(path: Option<&Path>) -> String {
+    path.and_then(Path::file_stem)
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "roads".to_string())
+}
+
+/// Runs a champion on `experiment` (on scenario `scenario`) and draws its
+/// trajectories into `out` as `replay-<scenario>-s<RxA>-n<RxA>`.
 pub fn replay(
     experiment: &Experiment,
     config: &Config,
     champion: &Champion,
+    scenario: &str,
     out: &Path,
 ) -> Result<Replay> {
     let s = &config.surface_sensors;
     let n = config.substrate.neurons;
-    let name = format!("replay-s{}x{}-n{}x{}", s.rings, s.angles, n.rings, n.angles);
+    // File names keep to characters every file system accepts.
+    let safe: String = scenario
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    let name = format!(
+        "replay-{safe}-s{}x{}-n{}x{}",
+        s.rings, s.angles, n.rings, n.angles
+    );
     let title = format!(
-        "Champion of generation {}, sensors {}x{}, neurons {}x{}",
+        "Champion of generation {} on {scenario}, sensors {}x{}, neurons {}x{}",
         champion.generation, s.rings, s.angles, n.rings, n.angles
     );
     let episode = trajectory_figure(experiment, &champion.genome, &title, out, &name)?;
