@@ -140,10 +140,10 @@ struct ReplayArgs {
 struct RetrainArgs {
     /// The run whose final population continues.
     run_dir: PathBuf,
-    /// Surface sensors of the new substrate, RINGSxANGLES.
-    #[arg(long, value_name = "RxA")]
-    sensors: PolarGrid,
-    /// Output neurons of the new substrate, RINGSxANGLES.
+    /// Surface sensors of the new substrate, RINGSxANGLES (default: the run's).
+    #[arg(long, value_name = "RxA", required_unless_present = "neurons")]
+    sensors: Option<PolarGrid>,
+    /// Output neurons of the new substrate, RINGSxANGLES (default: the run's).
     #[arg(long, value_name = "RxA")]
     neurons: Option<PolarGrid>,
     /// Generations to evolve on the new substrate.
@@ -310,12 +310,27 @@ fn cmd_evolve(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
     }
     let dir = args.out.clone().unwrap_or_else(vivae::io::default_run_dir);
     let run = Run::create(&dir, config, experiment, &scenario.text, init, args.force)?;
-    drive(run, args.quiet, interrupted)
+    let source = scenario.scenario.source.clone();
+    drive(run, &source, args.quiet, interrupted)
 }
 
 fn cmd_resume(args: ResumeArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode> {
     let run = Run::resume(&args.run_dir, args.generations, args.threads)?;
-    drive(run, args.quiet, interrupted)
+    let total = run.config().experiment.generations;
+    if run.done() >= total {
+        let dir = run.dir().display();
+        eprintln!(
+            "{dir} is already finished ({total} of {total} generations); to extend it: vivae resume {dir} --generations N (N > {total})"
+        );
+        // A run that stopped while drawing gets its figures now.
+        if !run.dir().join(files::FIGURES).join("network.png").exists() {
+            report::finish_run(&run).context("writing figures")?;
+            eprintln!("figures: {}", run.dir().join(files::FIGURES).display());
+        }
+        return Ok(ExitCode::SUCCESS);
+    }
+    let source = run.dir().join(files::SCENARIO).display().to_string();
+    drive(run, &source, args.quiet, interrupted)
 }
 
 fn cmd_retrain(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode> {
@@ -329,7 +344,7 @@ fn cmd_retrain(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Resu
     config.experiment.init_population = checkpoint.to_string_lossy().into_owned();
     let overrides = Overrides {
         generations: Some(args.generations),
-        sensors: Some(args.sensors),
+        sensors: args.sensors,
         neurons: args.neurons,
         threads: args.threads,
         ..Overrides::default()
@@ -346,12 +361,92 @@ fn cmd_retrain(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Resu
         Some(population),
         args.force,
     )?;
-    drive(run, args.quiet, interrupted)
+    let source = scenario.scenario.source.clone();
+    drive(run, &source, args.quiet, interrupted)
+}
+
+/// What a run is about to do, for a person reading the terminal.
+fn header(run: &Run, scenario: &str) -> String {
+    let c = run.config();
+    let s = &c.surface_sensors;
+    let n = c.substrate.neurons;
+    let threads = match c.run.threads {
+        0 => format!(
+            "{} (one per core)",
+            std::thread::available_parallelism().map_or(1, |n| n.get())
+        ),
+        t => t.to_string(),
+    };
+    let distance = match c.distance_sensors.rays {
+        0 => String::new(),
+        r => format!(" + {r} distance rays"),
+    };
+    let start = match run.done() {
+        0 => String::new(),
+        d => format!(" (resuming after generation {d})"),
+    };
+    format!(
+        "vivae evolve: {scenario}\n\
+         \x20 robots {}, {} steps per evaluation, population {}, {} generations{start}\n\
+         \x20 substrate: {}x{} surface sensors{distance}, {}x{} neurons; threads {threads}, seed {}\n\
+         \x20 output: {}\n\
+         \x20 fitness = average speed in px/step over all robots and steps (full throttle on road tends to 5)",
+        run.experiment().robots(),
+        c.experiment.steps,
+        c.neat.population_size,
+        c.experiment.generations,
+        s.rings,
+        s.angles,
+        n.rings,
+        n.angles,
+        c.experiment.seed,
+        run.dir().display(),
+    )
+}
+
+/// The closing summary: rounded figures and the run directory's main files.
+fn closing(run: &Run, summary: &report::RunSummary, wall: f64, steps_per_s: f64) -> String {
+    let dir = run.dir().display();
+    let mut figures: Vec<String> = run
+        .figure_genomes()
+        .map(|(g, _, _)| format!("trajectories-gen{g:03}.png"))
+        .collect();
+    figures.extend(
+        [
+            "trajectories-champion.png",
+            "convergence.png",
+            "network.png",
+        ]
+        .map(String::from),
+    );
+    format!(
+        "done: {} generations in {wall:.1} s ({:.2} M robot-steps/s)\n\
+         champion: fitness {:.3} px/step (generation {}), {:.1}% of robot-steps on road\n\
+         run directory: {dir}/\n\
+         \x20 config.toml     the resolved config: vivae evolve --config {dir}/config.toml repeats the run\n\
+         \x20 champion.json   the best genome and its config: vivae replay {dir}/champion.json\n\
+         \x20 generations.csv, population.csv, timing.csv, checkpoints/\n\
+         \x20 figures/        {} (and .svg)",
+        run.done(),
+        steps_per_s / 1e6,
+        summary.champion_fitness,
+        summary.champion_generation,
+        100.0 * summary.champion_on_road,
+        figures.join(", "),
+    )
 }
 
 /// Runs evolution with progress output, then writes the figures.
-fn drive(mut run: Run, quiet: bool, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode> {
+fn drive(
+    mut run: Run,
+    scenario: &str,
+    quiet: bool,
+    interrupted: &Arc<AtomicBool>,
+) -> anyhow::Result<ExitCode> {
     install_ctrlc(interrupted);
+    if !quiet {
+        eprintln!("{}", header(&run, scenario));
+    }
     let start = Instant::now();
     let total = run.config().experiment.generations;
     let bar = (!quiet && std::io::stderr().is_terminal()).then(|| progress_bar(total, run.done()));
@@ -381,6 +476,10 @@ fn drive(mut run: Run, quiet: bool, interrupted: &Arc<AtomicBool>) -> anyhow::Re
     }
     let dir = run.dir().display().to_string();
     if outcome == Outcome::Interrupted {
+        // The figures show the run so far; a resumed run redraws them at its end.
+        if run.done() > 0 {
+            report::finish_run(&run).context("writing figures")?;
+        }
         eprintln!(
             "interrupted after generation {}; checkpoint written. Resume with: vivae resume {dir}",
             run.done()
@@ -389,6 +488,13 @@ fn drive(mut run: Run, quiet: bool, interrupted: &Arc<AtomicBool>) -> anyhow::Re
     }
     let summary = report::finish_run(&run).context("writing figures")?;
     let wall = start.elapsed().as_secs_f64();
+    if !quiet {
+        eprintln!(
+            "{}",
+            closing(&run, &summary, wall, robot_steps / busy.max(1e-9))
+        );
+    }
+    // The machine-readable summary, for scripts.
     println!(
         "evolve: generations={} best={} champion_generation={} on_road={:.4} wall_s={:.1} robot_steps_per_s={:.0} out={dir}",
         run.done(),
