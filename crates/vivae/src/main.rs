@@ -565,10 +565,13 @@ fn cmd_scenario(command: ScenarioCommand) -> anyhow::Result<ExitCode> {
         ScenarioCommand::Info { file, json } => {
             let loaded = load_scenario(file.as_deref())?;
             let summary = loaded.scenario.summary();
+            let marks: Vec<String> = loaded.scenario.marks.iter().map(|m| m.id.clone()).collect();
             if json {
-                println!("{}", serde_json::to_string(&summary)?);
+                let mut value = serde_json::to_value(&summary)?;
+                value["mark_names"] = serde_json::json!(marks);
+                println!("{}", serde_json::to_string(&value)?);
             } else {
-                print!("{}", report::scenario_text(&summary));
+                print!("{}", report::scenario_text(&summary, &marks));
             }
         }
         ScenarioCommand::Render { file, out, sensors } => {

@@ -221,10 +221,14 @@ pub fn replay(
     })
 }
 
-/// A plain-text scenario summary.
-pub fn scenario_text(s: &ScenarioSummary) -> String {
+/// A plain-text scenario summary; `marks` are the position marks' names.
+pub fn scenario_text(s: &ScenarioSummary, marks: &[String]) -> String {
     let mut out = String::new();
-    let _ = writeln!(out, "arena: {} x {} px", s.arena.width, s.arena.height);
+    let _ = writeln!(
+        out,
+        "arena: {:.1} x {:.1} px",
+        s.arena.width, s.arena.height
+    );
     let surfaces: Vec<String> = s.surfaces.iter().map(|(k, n)| format!("{k} {n}")).collect();
     let _ = writeln!(out, "surfaces: {}", surfaces.join(", "));
     let _ = writeln!(
@@ -232,12 +236,15 @@ pub fn scenario_text(s: &ScenarioSummary) -> String {
         "fixed obstacles: {}, movable obstacles: {}, pucks: {}, marks: {}",
         s.fixed_obstacles, s.movable_obstacles, s.pucks, s.marks
     );
+    if !marks.is_empty() {
+        let _ = writeln!(out, "mark names: {}", marks.join(", "));
+    }
     let _ = writeln!(out, "robots: {}", s.robots.len());
     for r in &s.robots {
         let _ = writeln!(
             out,
-            "  x {:.1} y {:.1} heading {:.1}°",
-            r.x, r.y, r.heading_deg
+            "  {}: x {:.1} y {:.1} heading {:.1}°",
+            r.id, r.x, r.y, r.heading_deg
         );
     }
     for w in &s.warnings {
@@ -277,5 +284,21 @@ pub fn render_scenario(
             "{}: output must end in .png or .svg",
             out.display()
         ))),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn scenario_text_rounds_and_names_robots_and_marks() {
+        let scenario = crate::io::load_scenario(None).unwrap().scenario;
+        let mut summary = scenario.summary();
+        summary.arena.width = 793.700_787_4;
+        let text = scenario_text(&summary, &["start".to_string()]);
+        assert!(text.starts_with("arena: 793.7 x 600.0 px\n"), "{text}");
+        assert!(text.contains("mark names: start\n"), "{text}");
+        assert!(text.contains("  robot1: x "), "{text}");
     }
 }
