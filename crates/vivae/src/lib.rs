@@ -35,6 +35,7 @@ pub mod figures;
 pub mod io;
 pub mod report;
 pub mod sensors;
+pub mod shipped;
 pub mod substrate;
 
 pub use error::{Error, Result};

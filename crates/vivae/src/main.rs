@@ -49,8 +49,9 @@ enum Command {
 /// Options that override config keys.
 #[derive(Args, Debug, Default)]
 struct Overrides {
-    /// Scenario SVG file (default: the embedded road scenario).
-    #[arg(long, value_name = "FILE")]
+    /// Scenario SVG file, or the name of a shipped one (`vivae scenario list`;
+    /// default: the embedded road scenario).
+    #[arg(long, value_name = "FILE|NAME")]
     scenario: Option<PathBuf>,
     /// Generations to evolve.
     #[arg(long, value_name = "N")]
@@ -115,8 +116,8 @@ struct ResumeArgs {
 struct ReplayArgs {
     /// A run directory or a genome JSON file (champion.json).
     source: PathBuf,
-    /// Scenario SVG file (default: the run's).
-    #[arg(long, value_name = "FILE")]
+    /// Scenario SVG file or shipped name (default: the run's).
+    #[arg(long, value_name = "FILE|NAME")]
     scenario: Option<PathBuf>,
     /// Surface sensors as RINGSxANGLES (re-samples the substrate).
     #[arg(long, value_name = "RxA")]
@@ -165,9 +166,11 @@ struct RetrainArgs {
 
 #[derive(Subcommand, Debug)]
 enum ScenarioCommand {
+    /// The scenarios shipped with vivae (usable as `--scenario NAME`).
+    List,
     /// Arena size, objects by kind, robots and warnings.
     Info {
-        /// Scenario SVG file (default: the embedded one).
+        /// Scenario SVG file or shipped name (default: the embedded one).
         file: Option<PathBuf>,
         /// One JSON object instead of text.
         #[arg(long)]
@@ -175,7 +178,7 @@ enum ScenarioCommand {
     },
     /// Draw a scenario to PNG or SVG (by the extension of OUT).
     Render {
-        /// Scenario SVG file (default: the embedded one).
+        /// Scenario SVG file or shipped name (default: the embedded one).
         file: Option<PathBuf>,
         /// Output file, .png or .svg.
         #[arg(short, long, value_name = "OUT")]
@@ -562,6 +565,11 @@ fn cmd_replay(args: ReplayArgs) -> anyhow::Result<ExitCode> {
 
 fn cmd_scenario(command: ScenarioCommand) -> anyhow::Result<ExitCode> {
     match command {
+        ScenarioCommand::List => {
+            for s in vivae::shipped::SHIPPED {
+                println!("{:<10} {}", s.name, s.what);
+            }
+        }
         ScenarioCommand::Info { file, json } => {
             let loaded = load_scenario(file.as_deref())?;
             let summary = loaded.scenario.summary();
