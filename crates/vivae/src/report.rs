@@ -209,8 +209,9 @@ pub fn replay(
         "replay-{safe}-s{}x{}-n{}x{}",
         s.rings, s.angles, n.rings, n.angles
     );
+    // Short enough that the fitness appended to it fits an 800 px figure.
     let title = format!(
-        "Champion of generation {} on {scenario}, sensors {}x{}, neurons {}x{}",
+        "Champion (gen {}) on {scenario}, s{}x{} n{}x{}",
         champion.generation, s.rings, s.angles, n.rings, n.angles
     );
     let episode = trajectory_figure(experiment, &champion.genome, &title, out, &name)?;
