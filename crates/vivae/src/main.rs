@@ -523,6 +523,12 @@ fn progress_bar(total: u32, done: u32) -> indicatif::ProgressBar {
 
 fn cmd_replay(args: ReplayArgs) -> anyhow::Result<ExitCode> {
     let (champion, mut config, base) = report::load_genome_source(&args.source)?;
+    if champion.config.is_none() && !args.source.is_dir() {
+        eprintln!(
+            "warning: {} records no config (written by an older vivae): replaying with the default config and flags; replay its run directory instead if you have it",
+            args.source.display()
+        );
+    }
     let overrides = Overrides {
         scenario: args.scenario.clone(),
         sensors: args.sensors,

@@ -55,6 +55,19 @@ fn replay_of_champion_file_equals_replay_of_run_dir() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--scenario"));
 
+    // A champion file of an older vivae (no config) replays with the defaults, saying so.
+    let mut old: serde_json::Value = recorded.clone();
+    old.as_object_mut().unwrap().remove("config");
+    let old_file = elsewhere.join("old.json");
+    std::fs::write(&old_file, serde_json::to_string_pretty(&old).unwrap()).unwrap();
+    let out =
+        run(vivae()
+            .arg("replay")
+            .arg(&old_file)
+            .args(["--sensors", "3x6", "--neurons", "2x4"]));
+    assert!(out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("records no config"));
+
     // Flags override what the file records.
     let resampled = ok(vivae()
         .arg("replay")
