@@ -523,12 +523,6 @@ fn progress_bar(total: u32, done: u32) -> indicatif::ProgressBar {
 
 fn cmd_replay(args: ReplayArgs) -> anyhow::Result<ExitCode> {
     let (champion, mut config, base) = report::load_genome_source(&args.source)?;
-    if champion.config.is_none() && !args.source.is_dir() {
-        eprintln!(
-            "warning: {} records no config (written by an older vivae): replaying with the default config and flags; replay its run directory instead if you have it",
-            args.source.display()
-        );
-    }
     let overrides = Overrides {
         scenario: args.scenario.clone(),
         sensors: args.sensors,
@@ -560,6 +554,13 @@ fn cmd_replay(args: ReplayArgs) -> anyhow::Result<ExitCode> {
             path: args.source.clone(),
             reason: format!("the genome's {e}"),
         })?;
+    // Said once the genome is known to fit, so that an error stays one line.
+    if champion.config.is_none() && !args.source.is_dir() {
+        eprintln!(
+            "warning: {} records no config (written by an older vivae): replaying with the default config and flags; replay its run directory instead if you have it",
+            args.source.display()
+        );
+    }
     let out = args.out.clone().unwrap_or_else(|| base.join("replay"));
     std::fs::create_dir_all(&out).with_context(|| format!("cannot create {}", out.display()))?;
     let name = report::scenario_name(path.as_deref());
