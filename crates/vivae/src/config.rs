@@ -201,7 +201,14 @@ impl Config {
     /// Parses TOML text; errors are one line naming the line, key and reason.
     pub fn from_toml(text: &str) -> Result<Config, ConfigError> {
         let config: Config = toml::from_str(text).map_err(|e| describe_toml_error(text, &e))?;
-        config.validate()?;
+        config.validate().map_err(|e| {
+            // A bad value is reported at the line that sets it, as parse errors are.
+            let key = e.message.split(" = ").next().unwrap_or_default();
+            match line_of_key(text, key) {
+                Some(line) => ConfigError::new(format!("line {line}: {}", e.message)),
+                None => e,
+            }
+        })?;
         Ok(config)
     }
 
@@ -221,12 +228,28 @@ impl Config {
         if e.steps == 0 {
             return Err(ConfigError::new("experiment.steps = 0: must be at least 1"));
         }
-        self.neat
-            .validate()
-            .map_err(|err| ConfigError::new(format!("neat.{err}")))?;
-        self.hyperneat
-            .validate()
-            .map_err(|err| ConfigError::new(format!("hyperneat.{err}")))?;
+        if self.neat.population_size < 2 {
+            return Err(ConfigError::new(format!(
+                "neat.population_size = {}: must be at least 2 (NEAT breeds from pairs)",
+                self.neat.population_size
+            )));
+        }
+        self.neat.validate().map_err(|err| match err {
+            vivae_neat::NeatError::InvalidParam {
+                field,
+                value,
+                reason,
+            } => ConfigError::new(format!("neat.{field} = {value}: {reason}")),
+            other => ConfigError::new(format!("neat: {other}")),
+        })?;
+        self.hyperneat.validate().map_err(|err| match err {
+            vivae_neat::hyperneat::HyperError::InvalidParam {
+                field,
+                value,
+                reason,
+            } => ConfigError::new(format!("hyperneat.{field} = {value}: {reason}")),
+            other => ConfigError::new(format!("hyperneat: {other}")),
+        })?;
         self.physics
             .validate()
             .map_err(|err| ConfigError::new(format!("physics.{}", param_message(&err))))?;
@@ -577,6 +600,24 @@ fn describe_toml_error(text: &str, err: &toml::de::Error) -> ConfigError {
     }
 }
 
+/// The 1-based line that assigns dotted key `key` (`section.name`) in `text`, if any.
+fn line_of_key(text: &str, key: &str) -> Option<usize> {
+    let (section, name) = key.rsplit_once('.')?;
+    let mut current = "";
+    for (i, line) in text.lines().enumerate() {
+        let trimmed = line.trim();
+        if let Some(header) = trimmed.strip_prefix('[') {
+            current = header.split(']').next().unwrap_or("").trim();
+        } else if current == section
+            && trimmed.split('=').next().map(str::trim) == Some(name)
+            && trimmed.contains('=')
+        {
+            return Some(i + 1);
+        }
+    }
+    None
+}
+
 /// The dotted key whose assignment contains byte offset `pos`, if any.
 fn key_at(text: &str, pos: usize) -> Option<String> {
     let mut section = String::new();
@@ -776,6 +817,23 @@ mod tests {
         assert!(err.message.contains("line 3"), "{}", err.message);
         assert!(err.message.contains("neat.popsize"), "{}", err.message);
         assert!(!err.message.contains('\n'));
+    }
+
+    #[test]
+    fn invalid_values_read_cleanly_with_their_line() {
+        let err = Config::from_toml("[experiment]\nseed = 3\n\n[hyperneat]\nthreshold = 1.5\n")
+            .unwrap_err();
+        assert!(
+            err.message
+                .starts_with("line 5: hyperneat.threshold = 1.5: must satisfy"),
+            "{}",
+            err.message
+        );
+        let err = Config::from_toml("[neat]\n population_size = 1\n").unwrap_err();
+        assert_eq!(
+            err.message,
+            "line 2: neat.population_size = 1: must be at least 2 (NEAT breeds from pairs)"
+        );
     }
 
     #[test]

@@ -71,8 +71,24 @@ pub struct Champion {
     pub generation: u32,
     /// Its fitness (average speed, px/step).
     pub fitness: f64,
+    /// The run's resolved config (substrate, sensors, physics, steps, robots),
+    /// so that the file alone rebuilds the controller; `None` in files written
+    /// before it was recorded. Its scenario is relative to the file's folder.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub config: Option<Config>,
     /// The CPPN genome.
     pub genome: Genome,
+}
+
+impl Champion {
+    /// The config a champion file records: the run's, without the settings
+    /// (threads, checkpoints) that change how a run is executed but not its results.
+    pub fn recorded_config(config: &Config) -> Config {
+        Config {
+            run: crate::config::RunConfig::default(),
+            ..config.clone()
+        }
+    }
 }
 
 /// One generation's record (a row of `generations.csv`).
@@ -522,16 +538,17 @@ impl Run {
 
     /// The champion (best ever) with its run-relative generation.
     pub fn champion(&self) -> Option<Champion> {
-        champion(&self.population, &self.progress)
+        champion(&self.population, &self.progress, &self.config)
     }
 }
 
 /// The champion (best ever) of `population` with its run-relative generation.
-fn champion(population: &Population, progress: &Progress) -> Option<Champion> {
+fn champion(population: &Population, progress: &Progress, config: &Config) -> Option<Champion> {
     population.best_ever().map(|best| Champion {
         format: "vivae-champion".into(),
         generation: best.generation - progress.start_generation + 1,
         fitness: best.fitness,
+        config: Some(Champion::recorded_config(config)),
         genome: best.genome.clone(),
     })
 }
@@ -673,7 +690,7 @@ impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
             record.robot_steps_per_second
         );
         self.progress.timing_len = append(&self.dir.join(files::TIMING), &timing)?;
-        if let Some(champion) = champion(population, self.progress) {
+        if let Some(champion) = champion(population, self.progress, self.config) {
             let text = serde_json::to_string_pretty(&champion).map_err(|e| Error::Serialize {
                 what: "champion",
                 reason: e.to_string(),

@@ -68,10 +68,12 @@ impl Experiment {
         let mut scenario = scenario.clone();
         if wanted > 0 {
             if scenario.robots.len() < wanted {
+                let have = scenario.robots.len();
                 return Err(ExperimentError::Scenario(format!(
-                    "{}: has {} robots, the config asks for experiment.robots = {wanted}",
+                    "{}: has {have} robot{}, the config asks for experiment.robots = {wanted}; \
+                     use --robots {have} (or --robots 0 for all of them), or draw more robots",
                     scenario.source,
-                    scenario.robots.len()
+                    if have == 1 { "" } else { "s" }
                 )));
             }
             scenario.robots.truncate(wanted);

@@ -89,9 +89,23 @@ pub struct LoadedScenario {
     pub text: String,
 }
 
-/// Loads the scenario at `path`, or the embedded default when `path` is `None`.
+/// Loads the scenario at `path`, or the embedded default when `path` is `None`;
+/// a bare name that is no file, such as `oval`, is a shipped scenario.
 pub fn load_scenario(path: Option<&Path>) -> Result<LoadedScenario> {
+    let shipped = path
+        .filter(|p| !p.exists() && p.parent() == Some(Path::new("")))
+        .and_then(|p| crate::shipped::find(&p.to_string_lossy()));
+    if let Some(p) = path.filter(|p| shipped.is_none() && !p.exists() && p.extension().is_none()) {
+        return Err(bad_input(format!(
+            "{}: no such file, nor a shipped scenario (see `vivae scenario list`)",
+            p.display()
+        )));
+    }
     let (text, name) = match path {
+        _ if shipped.is_some() => {
+            let s = shipped.expect("checked");
+            (s.svg.to_string(), format!("{}.svg (shipped)", s.name))
+        }
         Some(p) => (read_text(p)?, p.display().to_string()),
         None => (
             DEFAULT_SCENARIO.to_string(),

@@ -38,6 +38,7 @@ pub mod mpi;
 pub mod report;
 pub mod report_html;
 pub mod sensors;
+pub mod shipped;
 pub mod substrate;
 pub mod view;
 

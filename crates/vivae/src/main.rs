@@ -56,8 +56,9 @@ enum Command {
 /// Options that override config keys.
 #[derive(Args, Debug, Default)]
 struct Overrides {
-    /// Scenario SVG file (default: the embedded road scenario).
-    #[arg(long, value_name = "FILE")]
+    /// Scenario SVG file, or the name of a shipped one (`vivae scenario list`;
+    /// default: the embedded road scenario).
+    #[arg(long, value_name = "FILE|NAME")]
     scenario: Option<PathBuf>,
     /// Generations to evolve.
     #[arg(long, value_name = "N")]
@@ -77,6 +78,9 @@ struct Overrides {
     /// Simulation steps per evaluation.
     #[arg(long, value_name = "N")]
     steps: Option<u32>,
+    /// Robots: the scenario's first N (0 = all of them; paper: 5).
+    #[arg(long, value_name = "N")]
+    robots: Option<usize>,
     /// Evaluation threads (0 = one per core); results do not depend on it.
     #[arg(long, value_name = "N")]
     threads: Option<usize>,
@@ -119,8 +123,8 @@ struct ResumeArgs {
 struct ReplayArgs {
     /// A run directory or a genome JSON file (champion.json).
     source: PathBuf,
-    /// Scenario SVG file (default: the run's).
-    #[arg(long, value_name = "FILE")]
+    /// Scenario SVG file or shipped name (default: the run's).
+    #[arg(long, value_name = "FILE|NAME")]
     scenario: Option<PathBuf>,
     /// Surface sensors as RINGSxANGLES (re-samples the substrate).
     #[arg(long, value_name = "RxA")]
@@ -131,6 +135,10 @@ struct ReplayArgs {
     /// Simulation steps.
     #[arg(long, value_name = "N")]
     steps: Option<u32>,
+    /// Robots: the scenario's first N, 0 = all (default: the run's number on
+    /// the run's scenario, all of them on another scenario).
+    #[arg(long, value_name = "N")]
+    robots: Option<usize>,
     /// Folder for the trajectory figure (default: replay/ beside the source).
     #[arg(short, long, value_name = "DIR")]
     out: Option<PathBuf>,
@@ -140,10 +148,10 @@ struct ReplayArgs {
 struct RetrainArgs {
     /// The run whose final population continues.
     run_dir: PathBuf,
-    /// Surface sensors of the new substrate, RINGSxANGLES.
-    #[arg(long, value_name = "RxA")]
-    sensors: PolarGrid,
-    /// Output neurons of the new substrate, RINGSxANGLES.
+    /// Surface sensors of the new substrate, RINGSxANGLES (default: the run's).
+    #[arg(long, value_name = "RxA", required_unless_present = "neurons")]
+    sensors: Option<PolarGrid>,
+    /// Output neurons of the new substrate, RINGSxANGLES (default: the run's).
     #[arg(long, value_name = "RxA")]
     neurons: Option<PolarGrid>,
     /// Generations to evolve on the new substrate.
@@ -165,9 +173,11 @@ struct RetrainArgs {
 
 #[derive(Subcommand, Debug)]
 enum ScenarioCommand {
+    /// The scenarios shipped with vivae (usable as `--scenario NAME`).
+    List,
     /// Arena size, objects by kind, robots and warnings.
     Info {
-        /// Scenario SVG file (default: the embedded one).
+        /// Scenario SVG file or shipped name (default: the embedded one).
         file: Option<PathBuf>,
         /// One JSON object instead of text.
         #[arg(long)]
@@ -175,7 +185,7 @@ enum ScenarioCommand {
     },
     /// Draw a scenario to PNG or SVG (by the extension of OUT).
     Render {
-        /// Scenario SVG file (default: the embedded one).
+        /// Scenario SVG file or shipped name (default: the embedded one).
         file: Option<PathBuf>,
         /// Output file, .png or .svg.
         #[arg(short, long, value_name = "OUT")]
@@ -266,6 +276,9 @@ fn apply_overrides(config: &mut Config, o: &Overrides) -> anyhow::Result<()> {
     if let Some(n) = o.steps {
         config.experiment.steps = n;
     }
+    if let Some(n) = o.robots {
+        config.experiment.robots = n;
+    }
     if let Some(n) = o.threads {
         config.run.threads = n;
     }
@@ -331,7 +344,8 @@ fn cmd_evolve(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
     }
     let dir = args.out.clone().unwrap_or_else(vivae::io::default_run_dir);
     let run = Run::create(&dir, config, experiment, &scenario.text, init, args.force)?;
-    drive(run, args.quiet, interrupted)
+    let source = scenario.scenario.source.clone();
+    drive(run, &source, args.quiet, interrupted)
 }
 
 fn cmd_resume(args: ResumeArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode> {
@@ -356,7 +370,21 @@ fn cmd_resume(args: ResumeArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
         }
     }
     let run = Run::resume(&args.run_dir, args.generations, args.threads)?;
-    drive(run, args.quiet, interrupted)
+    let total = run.config().experiment.generations;
+    if run.done() >= total {
+        let dir = run.dir().display();
+        eprintln!(
+            "{dir} is already finished ({total} of {total} generations); to extend it: vivae resume {dir} --generations N (N > {total})"
+        );
+        // A run that stopped while drawing gets its figures now.
+        if !run.dir().join(files::FIGURES).join("network.png").exists() {
+            report::finish_run(&run).context("writing figures")?;
+            eprintln!("figures: {}", run.dir().join(files::FIGURES).display());
+        }
+        return Ok(ExitCode::SUCCESS);
+    }
+    let source = run.dir().join(files::SCENARIO).display().to_string();
+    drive(run, &source, args.quiet, interrupted)
 }
 
 fn cmd_retrain(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode> {
@@ -370,7 +398,7 @@ fn cmd_retrain(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Resu
     config.experiment.init_population = checkpoint.to_string_lossy().into_owned();
     let overrides = Overrides {
         generations: Some(args.generations),
-        sensors: Some(args.sensors),
+        sensors: args.sensors,
         neurons: args.neurons,
         threads: args.threads,
         ..Overrides::default()
@@ -402,7 +430,79 @@ fn cmd_retrain(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Resu
         Some(population),
         args.force,
     )?;
-    drive(run, args.quiet, interrupted)
+    let source = scenario.scenario.source.clone();
+    drive(run, &source, args.quiet, interrupted)
+}
+
+/// What a run is about to do, for a person reading the terminal.
+fn header(run: &Run, scenario: &str) -> String {
+    let c = run.config();
+    let s = &c.surface_sensors;
+    let n = c.substrate.neurons;
+    let threads = match c.run.threads {
+        0 => format!(
+            "{} (one per core)",
+            std::thread::available_parallelism().map_or(1, |n| n.get())
+        ),
+        t => t.to_string(),
+    };
+    let distance = match c.distance_sensors.rays {
+        0 => String::new(),
+        r => format!(" + {r} distance rays"),
+    };
+    let start = match run.done() {
+        0 => String::new(),
+        d => format!(" (resuming after generation {d})"),
+    };
+    format!(
+        "vivae evolve: {scenario}\n\
+         \x20 robots {}, {} steps per evaluation, population {}, {} generations{start}\n\
+         \x20 substrate: {}x{} surface sensors{distance}, {}x{} neurons; threads {threads}, seed {}\n\
+         \x20 output: {}\n\
+         \x20 fitness = average speed in px/step over all robots and steps (full throttle on road tends to 5)",
+        run.experiment().robots(),
+        c.experiment.steps,
+        c.neat.population_size,
+        c.experiment.generations,
+        s.rings,
+        s.angles,
+        n.rings,
+        n.angles,
+        c.experiment.seed,
+        run.dir().display(),
+    )
+}
+
+/// The closing summary: rounded figures and the run directory's main files.
+fn closing(run: &Run, summary: &report::RunSummary, wall: f64, steps_per_s: f64) -> String {
+    let dir = run.dir().display();
+    let mut figures: Vec<String> = run
+        .figure_genomes()
+        .map(|(g, _, _)| format!("trajectories-gen{g:03}.png"))
+        .collect();
+    figures.extend(
+        [
+            "trajectories-champion.png",
+            "convergence.png",
+            "network.png",
+        ]
+        .map(String::from),
+    );
+    format!(
+        "done: {} generations in {wall:.1} s ({:.2} M robot-steps/s)\n\
+         champion: fitness {:.3} px/step (generation {}), {:.1}% of robot-steps on road\n\
+         run directory: {dir}/\n\
+         \x20 config.toml     the resolved config: vivae evolve --config {dir}/config.toml repeats the run\n\
+         \x20 champion.json   the best genome and its config: vivae replay {dir}/champion.json\n\
+         \x20 generations.csv, population.csv, timing.csv, checkpoints/\n\
+         \x20 figures/        {} (and .svg)",
+        run.done(),
+        steps_per_s / 1e6,
+        summary.champion_fitness,
+        summary.champion_generation,
+        100.0 * summary.champion_on_road,
+        figures.join(", "),
+    )
 }
 
 /// Under an MPI launcher, the start-up handshake of every rank (see `vivae::mpi`):
@@ -431,8 +531,16 @@ fn mpi_start(
 }
 
 /// Runs evolution with progress output, then writes the figures.
-fn drive(mut run: Run, quiet: bool, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode> {
+fn drive(
+    mut run: Run,
+    scenario: &str,
+    quiet: bool,
+    interrupted: &Arc<AtomicBool>,
+) -> anyhow::Result<ExitCode> {
     install_ctrlc(interrupted);
+    if !quiet {
+        eprintln!("{}", header(&run, scenario));
+    }
     let start = Instant::now();
     let total = run.config().experiment.generations;
     let bar = (!quiet && std::io::stderr().is_terminal()).then(|| progress_bar(total, run.done()));
@@ -462,6 +570,10 @@ fn drive(mut run: Run, quiet: bool, interrupted: &Arc<AtomicBool>) -> anyhow::Re
     }
     let dir = run.dir().display().to_string();
     if outcome == Outcome::Interrupted {
+        // The figures show the run so far; a resumed run redraws them at its end.
+        if run.done() > 0 {
+            report::finish_run(&run).context("writing figures")?;
+        }
         eprintln!(
             "interrupted after generation {}; checkpoint written. Resume with: vivae resume {dir}",
             run.done()
@@ -470,6 +582,13 @@ fn drive(mut run: Run, quiet: bool, interrupted: &Arc<AtomicBool>) -> anyhow::Re
     }
     let summary = report::finish_run(&run).context("writing figures")?;
     let wall = start.elapsed().as_secs_f64();
+    if !quiet {
+        eprintln!(
+            "{}",
+            closing(&run, &summary, wall, robot_steps / busy.max(1e-9))
+        );
+    }
+    // The machine-readable summary, for scripts.
     println!(
         "evolve: generations={} best={} champion_generation={} on_road={:.4} wall_s={:.1} robot_steps_per_s={:.0} out={dir}",
         run.done(),
@@ -500,10 +619,24 @@ fn cmd_replay(args: ReplayArgs) -> anyhow::Result<ExitCode> {
         sensors: args.sensors,
         neurons: args.neurons,
         steps: args.steps,
+        // Another scenario has its own robot starts: all of them, unless told.
+        robots: args.robots.or(args.scenario.as_ref().map(|_| 0)),
         ..Overrides::default()
     };
     apply_overrides(&mut config, &overrides)?;
-    let scenario = load_scenario(scenario_path(&config).as_deref())?;
+    let path = scenario_path(&config);
+    if let Some(p) = path
+        .as_deref()
+        .filter(|p| args.scenario.is_none() && !p.exists())
+    {
+        return Err(bad_input(format!(
+            "{}: the champion's scenario {} is not there; name one with --scenario FILE",
+            args.source.display(),
+            p.display()
+        ))
+        .into());
+    }
+    let scenario = load_scenario(path.as_deref())?;
     let experiment = Experiment::new(&config, &scenario.scenario).map_err(vivae::Error::from)?;
     // Checked before anything is written: a genome that does not fit is bad input.
     experiment
@@ -512,9 +645,17 @@ fn cmd_replay(args: ReplayArgs) -> anyhow::Result<ExitCode> {
             path: args.source.clone(),
             reason: format!("the genome's {e}"),
         })?;
+    // Said once the genome is known to fit, so that an error stays one line.
+    if champion.config.is_none() && !args.source.is_dir() {
+        eprintln!(
+            "warning: {} records no config (written by an older vivae): replaying with the default config and flags; replay its run directory instead if you have it",
+            args.source.display()
+        );
+    }
     let out = args.out.clone().unwrap_or_else(|| base.join("replay"));
     std::fs::create_dir_all(&out).with_context(|| format!("cannot create {}", out.display()))?;
-    let replay = report::replay(&experiment, &config, &champion, &out)?;
+    let name = report::scenario_name(path.as_deref());
+    let replay = report::replay(&experiment, &config, &champion, &name, &out)?;
     println!("fitness={} on_road={:.4}", replay.fitness, replay.on_road);
     eprintln!("figure: {}", replay.figure.display());
     Ok(ExitCode::SUCCESS)
@@ -522,13 +663,21 @@ fn cmd_replay(args: ReplayArgs) -> anyhow::Result<ExitCode> {
 
 fn cmd_scenario(command: ScenarioCommand) -> anyhow::Result<ExitCode> {
     match command {
+        ScenarioCommand::List => {
+            for s in vivae::shipped::SHIPPED {
+                println!("{:<10} {}", s.name, s.what);
+            }
+        }
         ScenarioCommand::Info { file, json } => {
             let loaded = load_scenario(file.as_deref())?;
             let summary = loaded.scenario.summary();
+            let marks: Vec<String> = loaded.scenario.marks.iter().map(|m| m.id.clone()).collect();
             if json {
-                println!("{}", serde_json::to_string(&summary)?);
+                let mut value = serde_json::to_value(&summary)?;
+                value["mark_names"] = serde_json::json!(marks);
+                println!("{}", serde_json::to_string(&value)?);
             } else {
-                print!("{}", report::scenario_text(&summary));
+                print!("{}", report::scenario_text(&summary, &marks));
             }
         }
         ScenarioCommand::Render { file, out, sensors } => {

@@ -113,8 +113,9 @@ pub fn finish_run(run: &Run) -> Result<RunSummary> {
     })
 }
 
-/// Reads a genome source for `replay`: a run directory (its champion and config)
-/// or a champion JSON file (default config). Returns the folder outputs go beside.
+/// Reads a genome source for `replay`: a run directory (its champion and
+/// `config.toml`) or a champion JSON file (the config it records; the default
+/// config for files that record none). Returns the folder outputs go beside.
 pub fn load_genome_source(source: &Path) -> Result<(Champion, Config, PathBuf)> {
     if source.is_dir() {
         let champion = read_champion(&source.join(files::CHAMPION))?;
@@ -123,7 +124,20 @@ pub fn load_genome_source(source: &Path) -> Result<(Champion, Config, PathBuf)> 
     } else {
         let champion = read_champion(source)?;
         let base = source.parent().map(Path::to_path_buf).unwrap_or_default();
-        Ok((champion, Config::default(), base))
+        let config = match &champion.config {
+            Some(recorded) => {
+                let mut config = recorded.clone();
+                // As in a config file, a relative scenario is relative to the file's folder.
+                let scenario = &mut config.experiment.scenario;
+                if !scenario.is_empty() && Path::new(scenario.as_str()).is_relative() {
+                    *scenario = base.join(&*scenario).to_string_lossy().into_owned();
+                }
+                config.experiment.init_population.clear();
+                config
+            }
+            None => Config::default(),
+        };
+        Ok((champion, config, base))
     }
 }
 
@@ -142,6 +156,11 @@ pub fn read_champion(path: &Path) -> Result<Champion> {
             champion.format
         )));
     }
+    if let Some(config) = &champion.config {
+        config
+            .validate()
+            .map_err(|e| invalid(format!("its recorded config: {e}")))?;
+    }
     // The genome validated itself while being deserialised.
     Ok(champion)
 }
@@ -157,18 +176,43 @@ pub struct Replay {
     pub figure: PathBuf,
 }
 
-/// Runs a champion on `experiment` and draws its trajectories into `out`.
+/// Short name of a scenario for file names and titles: its file stem, or
+/// `roads` for the embedded default.
+pub fn scenario_name(path: Option<&Path>) -> String {
+    path.and_then(Path::file_stem)
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "roads".to_string())
+}
+
+/// Runs a champion on `experiment` (on scenario `scenario`) and draws its
+/// trajectories into `out` as `replay-<scenario>-s<RxA>-n<RxA>`.
 pub fn replay(
     experiment: &Experiment,
     config: &Config,
     champion: &Champion,
+    scenario: &str,
     out: &Path,
 ) -> Result<Replay> {
     let s = &config.surface_sensors;
     let n = config.substrate.neurons;
-    let name = format!("replay-s{}x{}-n{}x{}", s.rings, s.angles, n.rings, n.angles);
+    // File names keep to characters every file system accepts.
+    let safe: String = scenario
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    let name = format!(
+        "replay-{safe}-s{}x{}-n{}x{}",
+        s.rings, s.angles, n.rings, n.angles
+    );
+    // Short enough that the fitness appended to it fits an 800 px figure.
     let title = format!(
-        "Champion of generation {}, sensors {}x{}, neurons {}x{}",
+        "Champion (gen {}) on {scenario}, s{}x{} n{}x{}",
         champion.generation, s.rings, s.angles, n.rings, n.angles
     );
     let episode = trajectory_figure(experiment, &champion.genome, &title, out, &name)?;
@@ -179,10 +223,14 @@ pub fn replay(
     })
 }
 
-/// A plain-text scenario summary.
-pub fn scenario_text(s: &ScenarioSummary) -> String {
+/// A plain-text scenario summary; `marks` are the position marks' names.
+pub fn scenario_text(s: &ScenarioSummary, marks: &[String]) -> String {
     let mut out = String::new();
-    let _ = writeln!(out, "arena: {} x {} px", s.arena.width, s.arena.height);
+    let _ = writeln!(
+        out,
+        "arena: {:.1} x {:.1} px",
+        s.arena.width, s.arena.height
+    );
     let surfaces: Vec<String> = s.surfaces.iter().map(|(k, n)| format!("{k} {n}")).collect();
     let _ = writeln!(out, "surfaces: {}", surfaces.join(", "));
     let _ = writeln!(
@@ -190,12 +238,15 @@ pub fn scenario_text(s: &ScenarioSummary) -> String {
         "fixed obstacles: {}, movable obstacles: {}, pucks: {}, marks: {}",
         s.fixed_obstacles, s.movable_obstacles, s.pucks, s.marks
     );
+    if !marks.is_empty() {
+        let _ = writeln!(out, "mark names: {}", marks.join(", "));
+    }
     let _ = writeln!(out, "robots: {}", s.robots.len());
     for r in &s.robots {
         let _ = writeln!(
             out,
-            "  x {:.1} y {:.1} heading {:.1}°",
-            r.x, r.y, r.heading_deg
+            "  {}: x {:.1} y {:.1} heading {:.1}°",
+            r.id, r.x, r.y, r.heading_deg
         );
     }
     for w in &s.warnings {
@@ -235,5 +286,21 @@ pub fn render_scenario(
             "{}: output must end in .png or .svg",
             out.display()
         ))),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn scenario_text_rounds_and_names_robots_and_marks() {
+        let scenario = crate::io::load_scenario(None).unwrap().scenario;
+        let mut summary = scenario.summary();
+        summary.arena.width = 793.700_787_4;
+        let text = scenario_text(&summary, &["start".to_string()]);
+        assert!(text.starts_with("arena: 793.7 x 600.0 px\n"), "{text}");
+        assert!(text.contains("mark names: start\n"), "{text}");
+        assert!(text.contains("  robot1: x "), "{text}");
     }
 }

@@ -88,7 +88,11 @@ fn evolve_replay_retrain_workflow() {
         .unwrap();
     assert_eq!(fitness, champion["fitness"].as_f64().unwrap(), "{line}");
     assert!(line.contains("on_road="));
-    assert!(run_dir.join("replay/replay-s3x5-n3x3.png").exists());
+    assert!(
+        run_dir
+            .join("replay/replay-scenario-s3x5-n3x3.png")
+            .exists()
+    );
 
     // Re-sampled substrates run without re-training.
     let line =
@@ -97,7 +101,11 @@ fn evolve_replay_retrain_workflow() {
             .arg(&run_dir)
             .args(["--neurons", "9x9", "--sensors", "3x6"]));
     assert!(line.starts_with("fitness="), "{line}");
-    assert!(run_dir.join("replay/replay-s3x6-n9x9.png").exists());
+    assert!(
+        run_dir
+            .join("replay/replay-scenario-s3x6-n9x9.png")
+            .exists()
+    );
 
     // Retrain continues the final population on the new substrate.
     let retrained = dir.join("retrained");

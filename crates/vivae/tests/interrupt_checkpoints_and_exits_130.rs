@@ -1,5 +1,6 @@
 //! Ctrl-C (SIGINT) finishes the current generation, writes a checkpoint, says
-//! how to resume and exits 130; resuming then matches an uninterrupted run.
+//! how to resume, draws the figures so far and exits 130; resuming then
+//! matches an uninterrupted run.
 
 mod common;
 use common::*;
@@ -43,6 +44,14 @@ fn sigint_then_resume_matches() {
         csv.lines().count() < 1 + GENERATIONS as usize,
         "the run stopped early"
     );
+    // The figures show the run up to its last generation.
+    for f in [
+        "trajectories-champion.png",
+        "convergence.png",
+        "network.png",
+    ] {
+        assert!(run_dir.join("figures").join(f).exists(), "missing {f}");
+    }
     ok(vivae().args(["resume", "-q"]).arg(&run_dir));
     assert_same_results(&reference, &run_dir);
     std::fs::remove_dir_all(&dir).unwrap();

@@ -301,7 +301,7 @@ pub fn render_svg(
                 .map_err(draw_err)?;
             }
         }
-        draw_legend(&root, (w, h), !distance.is_empty(), small)?;
+        draw_legend(&root, (w, h), !distance.is_empty(), small, scale)?;
         root.present().map_err(draw_err)?;
     }
     Ok(svg)
@@ -398,6 +398,7 @@ fn draw_legend(
     (w, h): (f64, f64),
     with_distance: bool,
     font: FontDesc<'_>,
+    scale: f64,
 ) -> Result<(), FigureError> {
     let y = h - 26.0;
     let left = Pos::new(HPos::Left, VPos::Center);
@@ -448,19 +449,60 @@ fn draw_legend(
         },
         if with_distance { 210.0 } else { 110.0 },
     )?;
-    item(
-        &|x| {
-            root.draw(&Circle::new(
-                px((x + 12.0, y)),
-                8,
-                blend(POSITIVE, 0.5).filled(),
-            ))
-            .map_err(draw_err)?;
-            root.draw(&Circle::new(px((x + 12.0, y)), 8, BLACK.stroke_width(1)))
-                .map_err(draw_err)
-        },
-        "fill = bias",
-        0.0,
+    // Second row: what the rings beside neurons are, and the bias colour scale.
+    let y2 = y - 28.0;
+    let x0 = w * 0.04;
+    root.draw(&Circle::new(
+        px((x0 + 12.0, y2)),
+        7,
+        POSITIVE.stroke_width(2),
+    ))
+    .map_err(draw_err)?;
+    root.draw(&Text::new(
+        "ring beside a neuron = self-loop (feeds its own output back; colour, width as links)",
+        px((x0 + 30.0, y2)),
+        TextStyle::from(font.clone()).pos(left),
+    ))
+    .map_err(draw_err)?;
+    // Neuron fill: bias from −scale (full negative colour) through 0 (white) to +scale.
+    let steps = 11;
+    let cell = 14.0;
+    let bar_x = w * 0.96 - cell * steps as f64 - 60.0;
+    let label = |text: String, at: f64, pos: Pos| {
+        root.draw(&Text::new(
+            text,
+            px((at, y2)),
+            TextStyle::from(font.clone()).pos(pos),
+        ))
+        .map_err(draw_err)
+    };
+    label(
+        format!("neuron fill = bias:  {:+}", -scale),
+        bar_x - 6.0,
+        Pos::new(HPos::Right, VPos::Center),
+    )?;
+    for i in 0..steps {
+        let b = -1.0 + 2.0 * i as f64 / (steps - 1) as f64;
+        let base = if b >= 0.0 { POSITIVE } else { NEGATIVE };
+        let x = bar_x + cell * i as f64;
+        root.draw(&Rectangle::new(
+            [px((x, y2 - 7.0)), px((x + cell, y2 + 7.0))],
+            blend(base, b.abs() * 0.8).filled(),
+        ))
+        .map_err(draw_err)?;
+    }
+    root.draw(&Rectangle::new(
+        [
+            px((bar_x, y2 - 7.0)),
+            px((bar_x + cell * steps as f64, y2 + 7.0)),
+        ],
+        BLACK.stroke_width(1),
+    ))
+    .map_err(draw_err)?;
+    label(
+        format!("{:+}", scale),
+        bar_x + cell * steps as f64 + 6.0,
+        left,
     )?;
     Ok(())
 }
@@ -529,6 +571,9 @@ mod tests {
             "wheel neuron",
             ">\nL\n<",
             ">\nR\n<",
+            "= self-loop",
+            "neuron fill = bias:  -3",
+            ">\n+3\n<",
         ] {
             assert!(fig.svg.contains(label), "missing {label:?}");
         }

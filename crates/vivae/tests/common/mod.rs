@@ -95,3 +95,21 @@ pub fn short_run_command(out: &Path) -> Command {
     .arg(out);
     cmd
 }
+
+/// The ViVAE scenario corpus beside the repository (`../shared/vivae-scenarios`).
+///
+/// When it is absent the test fails, saying so, unless `VIVAE_ALLOW_NO_SHARED=1`
+/// is set: then it returns `None` and the caller skips. A silent skip would
+/// look like a pass in the summary.
+pub fn shared_scenarios() -> Option<PathBuf> {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/vivae-scenarios");
+    if dir.is_dir() {
+        return Some(dir);
+    }
+    assert!(
+        std::env::var("VIVAE_ALLOW_NO_SHARED").is_ok_and(|v| v == "1"),
+        "the scenario corpus {} is absent: put it there, or set VIVAE_ALLOW_NO_SHARED=1 to skip the tests that need it",
+        dir.display()
+    );
+    None
+}

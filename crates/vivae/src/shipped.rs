@@ -1,0 +1,89 @@
+//! The scenarios shipped in `scenarios/`, built into the program so that
+//! `--scenario NAME` works wherever `vivae` is installed.
+
+/// A shipped scenario: its name (file name without `.svg`), what it is, its SVG text.
+#[derive(Debug, Clone, Copy)]
+pub struct Shipped {
+    /// Name, e.g. `oval` (the file `scenarios/oval.svg`).
+    pub name: &'static str,
+    /// One line on what it is.
+    pub what: &'static str,
+    /// The SVG text.
+    pub svg: &'static str,
+}
+
+/// Every shipped scenario; `roads` is the default.
+pub const SHIPPED: [Shipped; 5] = [
+    Shipped {
+        name: "roads",
+        what: "the default: a road loop with a crossroad, a spur and an S-curve (5 robots)",
+        svg: vivae_sim::ROADS_SVG,
+    },
+    Shipped {
+        name: "oval",
+        what: "an oval (stadium) track (5 robots)",
+        svg: include_str!("../../../scenarios/oval.svg"),
+    },
+    Shipped {
+        name: "town",
+        what: "a town grid around four houses with a roundabout (5 robots)",
+        svg: include_str!("../../../scenarios/town.svg"),
+    },
+    Shipped {
+        name: "figure8",
+        what: "a figure-8 track whose loops cross in the middle (5 robots)",
+        svg: include_str!("../../../scenarios/figure8.svg"),
+    },
+    Shipped {
+        name: "obstacles",
+        what: "a road loop with sand, a pond, walls, movable crates and pucks (5 robots)",
+        svg: include_str!("../../../scenarios/obstacles.svg"),
+    },
+];
+
+/// The shipped scenario called `name` (with or without `.svg`), if any.
+pub fn find(name: &str) -> Option<&'static Shipped> {
+    let name = name.strip_suffix(".svg").unwrap_or(name);
+    SHIPPED.iter().find(|s| s.name == name)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use vivae_sim::{LoadOptions, Scenario};
+
+    #[test]
+    fn every_shipped_scenario_loads_without_warnings_and_fits_the_default_experiment() {
+        let config = crate::config::Config::default();
+        for s in SHIPPED {
+            let scenario = Scenario::from_svg(s.svg, s.name, &LoadOptions::default())
+                .unwrap_or_else(|e| panic!("{}: {e}", s.name));
+            assert!(
+                scenario.warnings.is_empty(),
+                "{}: {:?}",
+                s.name,
+                scenario.warnings
+            );
+            assert_eq!(scenario.robots.len(), 5, "{}", s.name);
+            for r in &scenario.robots {
+                let surface = scenario.surface_exact(r.pos).map(|(k, _)| k);
+                assert_eq!(
+                    surface,
+                    Some(vivae_sim::SurfaceKind::Road),
+                    "{} {}",
+                    s.name,
+                    r.id
+                );
+            }
+            crate::experiment::Experiment::new(&config, &scenario)
+                .unwrap_or_else(|e| panic!("{}: {e}", s.name));
+        }
+    }
+
+    #[test]
+    fn names_resolve_with_or_without_extension() {
+        assert_eq!(find("oval").unwrap().name, "oval");
+        assert_eq!(find("town.svg").unwrap().name, "town");
+        assert!(find("nowhere").is_none());
+    }
+}
