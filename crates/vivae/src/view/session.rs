@@ -577,6 +577,21 @@ impl Sim {
 mod tests {
     use super::*;
 
+    /// Runs `f` on a fresh simulation of the default source, inside a Tokio
+    /// runtime (decoding uses `block_in_place`).
+    fn with_sim(f: impl FnOnce(&mut Sim, &Source, &RunSnapshot)) {
+        let source = Source::load(None, None).unwrap();
+        let snap = source.snapshot();
+        let rt = tokio::runtime::Builder::new_multi_thread()
+            .worker_threads(1)
+            .build()
+            .unwrap();
+        rt.block_on(async {
+            let mut sim = Sim::new(&source, &snap).unwrap();
+            f(&mut sim, &source, &snap);
+        });
+    }
+
     #[test]
     fn arrow_keys_turn_the_right_way() {
         let k = |up, down, left, right| {
@@ -600,14 +615,7 @@ mod tests {
 
     #[test]
     fn hostile_messages_are_refused_and_change_nothing() {
-        let source = Source::load(None, None).unwrap();
-        let snap = source.snapshot();
-        let rt = tokio::runtime::Builder::new_multi_thread()
-            .worker_threads(1)
-            .build()
-            .unwrap();
-        rt.block_on(async {
-            let mut sim = Sim::new(&source, &snap).unwrap();
+        with_sim(|sim, source, snap| {
             let before = sim.frame_msg();
             for bad in [
                 "",
@@ -629,7 +637,7 @@ mod tests {
                 r#"{"type":"controller","which":-3}"#,
                 r#"{"type":"controller","which":7}"#,
             ] {
-                assert!(sim.handle(bad, &source, &snap).is_err(), "accepted {bad:?}");
+                assert!(sim.handle(bad, source, snap).is_err(), "accepted {bad:?}");
             }
             assert_eq!(sim.frame_msg(), before);
         });
@@ -637,24 +645,17 @@ mod tests {
 
     #[test]
     fn keyboard_driving_moves_the_robot_forward() {
-        let source = Source::load(None, None).unwrap();
-        let snap = source.snapshot();
-        let rt = tokio::runtime::Builder::new_multi_thread()
-            .worker_threads(1)
-            .build()
-            .unwrap();
-        rt.block_on(async {
-            let mut sim = Sim::new(&source, &snap).unwrap();
+        with_sim(|sim, source, snap| {
             let start = sim.world.robots()[0].pos;
-            sim.handle(r#"{"type":"drive","robot":0}"#, &source, &snap)
+            sim.handle(r#"{"type":"drive","robot":0}"#, source, snap)
                 .unwrap();
             sim.handle(
                 r#"{"type":"keys","up":true,"down":false,"left":false,"right":false}"#,
-                &source,
-                &snap,
+                source,
+                snap,
             )
             .unwrap();
-            sim.handle(r#"{"type":"step","n":40}"#, &source, &snap)
+            sim.handle(r#"{"type":"step","n":40}"#, source, snap)
                 .unwrap();
             let r = &sim.world.robots()[0];
             assert!(
@@ -663,42 +664,35 @@ mod tests {
                 r.pos.distance(start)
             );
             // Reset puts it back.
-            sim.handle(r#"{"type":"reset"}"#, &source, &snap).unwrap();
+            sim.handle(r#"{"type":"reset"}"#, source, snap).unwrap();
             assert_eq!(sim.world.robots()[0].pos, start);
         });
     }
 
     #[test]
     fn dragging_places_a_robot_and_scenarios_switch_by_index() {
-        let source = Source::load(None, None).unwrap();
-        let snap = source.snapshot();
-        let rt = tokio::runtime::Builder::new_multi_thread()
-            .worker_threads(1)
-            .build()
-            .unwrap();
-        rt.block_on(async {
-            let mut sim = Sim::new(&source, &snap).unwrap();
+        with_sim(|sim, source, snap| {
             sim.handle(
                 r#"{"type":"drag","robot":2,"x":100.5,"y":200.25,"heading":1.0}"#,
-                &source,
-                &snap,
+                source,
+                snap,
             )
             .unwrap();
             let r = &sim.world.robots()[2];
             assert_eq!((r.pos.x, r.pos.y), (100.5, 200.25));
             assert_eq!(sim.selected, 2);
             assert!(sim.frame_msg().contains(r#""selected":2"#));
-            sim.handle(r#"{"type":"scenario","index":0}"#, &source, &snap)
+            sim.handle(r#"{"type":"scenario","index":0}"#, source, snap)
                 .unwrap();
-            assert!(sim.scene_msg(&source).contains(r#""scenario_index":0"#));
+            assert!(sim.scene_msg(source).contains(r#""scenario_index":0"#));
             // Re-sampling keeps the scenario and changes the substrate the page is sent.
             sim.handle(
                 r#"{"type":"resolution","sensors":"32x96","neurons":"9x9"}"#,
-                &source,
-                &snap,
+                source,
+                snap,
             )
             .unwrap();
-            let scene: serde_json::Value = serde_json::from_str(&sim.scene_msg(&source)).unwrap();
+            let scene: serde_json::Value = serde_json::from_str(&sim.scene_msg(source)).unwrap();
             assert_eq!(scene["sensor_nodes"].as_array().unwrap().len(), 32 * 96);
             assert_eq!(scene["neuron_nodes"].as_array().unwrap().len(), 81);
         });
