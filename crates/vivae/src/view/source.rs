@@ -88,10 +88,12 @@ impl Source {
                         genome: None,
                     }
                 } else {
-                    let champion = read_champion(p)?;
+                    // The champion's own recorded config rebuilds its controller
+                    // (substrate, sensors, physics), as `vivae replay` does.
+                    let (champion, config, _) = crate::report::load_genome_source(p)?;
                     Source {
                         kind: SourceKind::Genome(p.to_path_buf()),
-                        config: Config::default(),
+                        config,
                         scenarios: vec![default.clone()],
                         genome: Some(champion),
                     }
