@@ -214,6 +214,8 @@ pub enum Outcome {
 /// A run in a run directory.
 pub struct Run {
     dir: PathBuf,
+    /// Held while the run exists: one writer per run directory.
+    _lock: RunLock,
     config: Config,
     experiment: Experiment,
     population: Population,
@@ -253,6 +255,7 @@ impl Run {
             .map_err(|e| bad_input(format!("neat: {e}")))?,
         };
         crate::io::create_out_dir(dir, force)?;
+        let lock = RunLock::acquire(dir)?;
         let checkpoints = dir.join(files::CHECKPOINTS);
         fs::create_dir_all(&checkpoints).map_err(Error::io("create", checkpoints))?;
         write_atomic(&dir.join(files::SCENARIO), scenario_text.as_bytes())?;
@@ -281,6 +284,7 @@ impl Run {
         let progress = Progress::start(population.generation());
         let run = Run {
             dir: dir.to_path_buf(),
+            _lock: lock,
             pool: thread_pool(config.run.threads)?,
             config,
             experiment,
@@ -296,6 +300,8 @@ impl Run {
     /// checkpoint are truncated back to it.
     pub fn resume(dir: &Path, generations: Option<u32>, threads: Option<usize>) -> Result<Run> {
         let path = latest_checkpoint(dir)?;
+        // Locked before anything is read: another writer may be mid-generation.
+        let lock = RunLock::acquire(dir)?;
         let mut cp = decode_checkpoint(&path)?;
         if let Some(n) = generations {
             if n < cp.progress.done {
@@ -308,6 +314,9 @@ impl Run {
         }
         let scenario = crate::io::load_scenario(Some(&dir.join(files::SCENARIO)))?;
         let experiment = Experiment::new(&cp.config, &scenario.scenario)?;
+        // Everything is validated before anything in the directory changes.
+        validate_progress(&path, &cp, &experiment)?;
+        remove_stale_temporaries(dir);
         for (name, len) in [
             (files::GENERATIONS, cp.progress.generations_len),
             (files::POPULATION, cp.progress.population_len),
@@ -319,6 +328,7 @@ impl Run {
         write_atomic(&dir.join(files::CONFIG), cp.config.to_toml().as_bytes())?;
         Ok(Run {
             dir: dir.to_path_buf(),
+            _lock: lock,
             // A thread count given at resume changes speed, not results: not recorded.
             pool: thread_pool(threads.unwrap_or(cp.config.run.threads))?,
             config: cp.config,
@@ -673,4 +683,91 @@ pub fn read_generations_csv(path: &Path) -> Result<Vec<(u32, f64, f64)>> {
             })
         })
         .collect()
+}
+
+/// Checks a decoded checkpoint against itself and the run's experiment: the
+/// genomes fit the substrate (a wrong CPPN would fail in every later
+/// generation) and the recorded file lengths are possible.
+fn validate_progress(path: &Path, cp: &Checkpoint, experiment: &Experiment) -> Result<()> {
+    let bad = |reason: String| Error::Checkpoint {
+        path: path.to_path_buf(),
+        reason,
+    };
+    let p = &cp.progress;
+    if p.done > cp.config.experiment.generations {
+        return Err(bad(format!(
+            "{} generations done, more than the run's {}",
+            p.done, cp.config.experiment.generations
+        )));
+    }
+    for (name, len, header) in [
+        (files::GENERATIONS, p.generations_len, GENERATIONS_HEADER),
+        (files::POPULATION, p.population_len, POPULATION_HEADER),
+        (files::TIMING, p.timing_len, TIMING_HEADER),
+    ] {
+        if len < header.len() as u64 {
+            return Err(bad(format!(
+                "{name} length {len} is shorter than its header"
+            )));
+        }
+    }
+    if cp.population.genomes().is_empty() {
+        return Err(bad("the population has no genomes".into()));
+    }
+    let genomes = cp
+        .population
+        .genomes()
+        .iter()
+        .chain(p.figure_genomes.iter().map(|(_, _, g)| g));
+    for g in genomes {
+        experiment
+            .controller(g)
+            .map_err(|e| bad(format!("a genome does not fit the run: {e}")))?;
+    }
+    Ok(())
+}
+
+/// Removes temporary files a killed process left behind (`.NAME.tmp-PID`).
+fn remove_stale_temporaries(dir: &Path) {
+    for d in [
+        dir.to_path_buf(),
+        dir.join(files::CHECKPOINTS),
+        dir.join(files::FIGURES),
+    ] {
+        let Ok(entries) = fs::read_dir(&d) else {
+            continue;
+        };
+        for e in entries.flatten() {
+            let name = e.file_name();
+            let name = name.to_string_lossy();
+            if name.starts_with('.') && name.contains(".tmp-") {
+                let _ = fs::remove_file(e.path());
+            }
+        }
+    }
+}
+
+/// An exclusive advisory lock (flock) on a run directory, released when
+/// dropped or when the process exits in any way.
+struct RunLock(#[allow(dead_code)] fs::File);
+
+impl RunLock {
+    /// Locks `dir`, or refuses (bad input) when another process holds it.
+    fn acquire(dir: &Path) -> Result<RunLock> {
+        use std::os::fd::AsRawFd;
+        let file = fs::File::open(dir).map_err(Error::io("open", dir))?;
+        // SAFETY: flock on a valid descriptor owned by `file`; no memory is touched.
+        let rc = unsafe { libc::flock(file.as_raw_fd(), libc::LOCK_EX | libc::LOCK_NB) };
+        if rc != 0 {
+            let e = std::io::Error::last_os_error();
+            if e.kind() == std::io::ErrorKind::WouldBlock {
+                return Err(bad_input(format!(
+                    "{}: another vivae process is writing this run directory",
+                    dir.display()
+                )));
+            }
+            return Err(Error::io("lock", dir)(e));
+        }
+        Ok(RunLock(file))
+    }
 }

@@ -97,6 +97,36 @@ pub enum ScenarioError {
         /// File name.
         source_name: String,
     },
+    /// The root's `width`, `height` or `viewBox` cannot give an arena size.
+    #[error("{source_name}: bad arena {attribute}=\"{value}\": {problem}")]
+    RootSize {
+        /// File name.
+        source_name: String,
+        /// `width`, `height` or `viewBox`.
+        attribute: &'static str,
+        /// The value as written.
+        value: String,
+        /// What is wrong.
+        problem: String,
+    },
+    /// An element's geometry reaches far outside the arena (flattening it would be unbounded work).
+    #[error(
+        "{source_name}: element '{id}' reaches ({min_x:.3e}, {min_y:.3e})..({max_x:.3e}, {max_y:.3e}), far outside the arena"
+    )]
+    FarOutside {
+        /// File name.
+        source_name: String,
+        /// Element id.
+        id: String,
+        /// Smallest x reached.
+        min_x: f64,
+        /// Smallest y reached.
+        min_y: f64,
+        /// Largest x reached.
+        max_x: f64,
+        /// Largest y reached.
+        max_y: f64,
+    },
     /// The load options are invalid.
     #[error("invalid load option {field} = {value}")]
     Options {
