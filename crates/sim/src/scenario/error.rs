@@ -26,7 +26,11 @@ pub enum ScenarioError {
         root: String,
     },
     /// The arena is zero, negative, not a number or absurdly large.
-    #[error("{source_name}: bad arena size {width} x {height}: {problem}")]
+    #[error(
+        "{source_name}: bad arena size {} x {}: {problem}",
+        size_text(*.width),
+        size_text(*.height)
+    )]
     ArenaSize {
         /// File name.
         source_name: String,
@@ -135,4 +139,14 @@ pub enum ScenarioError {
         /// Its value.
         value: f64,
     },
+}
+
+/// A size for a message: plain when moderate, scientific when huge (1e308
+/// would print 309 digits).
+fn size_text(v: f64) -> String {
+    if v.abs() < 1e9 {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
 }

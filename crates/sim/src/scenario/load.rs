@@ -228,7 +228,8 @@ fn check_root_size(root: roxmltree::Node, source: &str, max: f64) -> Result<(), 
         value: value.to_string(),
         problem: problem.to_string(),
     };
-    for attribute in ["width", "height"] {
+    let mut size = [0.0; 2];
+    for (i, attribute) in ["width", "height"].into_iter().enumerate() {
         let Some(v) = root.attribute(attribute) else {
             continue;
         };
@@ -239,17 +240,27 @@ fn check_root_size(root: roxmltree::Node, source: &str, max: f64) -> Result<(), 
         if length.unit == svgtypes::LengthUnit::Percent {
             return Err(bad(attribute, v, "percentages are not supported, give px"));
         }
-        if !length.number.is_finite() || length.number <= 0.0 {
-            return Err(bad(attribute, v, "must be a positive number"));
+        if !length.number.is_finite() {
+            return Err(bad(attribute, v, "not a finite number"));
         }
-        // Units (mm, in, pt) scale by at most 96/2.54·10 px; a generous bound before f32 overflow.
-        if length.number > max * 100.0 {
-            return Err(bad(
-                attribute,
-                v,
-                &format!("larger than the limit of {max} px"),
-            ));
-        }
+        size[i] = length.number;
+    }
+    // Units (mm, in, pt) scale by at most 96/2.54·10 px: a generous bound
+    // before the f32 overflow that usvg would report as "0 x 0".
+    for (i, attribute) in ["width", "height"].into_iter().enumerate() {
+        let problem = if root.attribute(attribute).is_some() && size[i] <= 0.0 {
+            "width and height must be positive".to_string()
+        } else if size[i] > max * 100.0 {
+            format!("larger than the limit of {max} px")
+        } else {
+            continue;
+        };
+        return Err(ScenarioError::ArenaSize {
+            source_name: source.to_string(),
+            width: size[0],
+            height: size[1],
+            problem,
+        });
     }
     if let Some(v) = root.attribute("viewBox") {
         let nums: Vec<f64> = svgtypes::NumberListParser::from(v)
