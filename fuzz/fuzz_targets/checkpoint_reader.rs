@@ -11,7 +11,13 @@ fn fnv1a(bytes: &[u8]) -> u64 {
 
 fuzz_target!(|data: &[u8]| {
     if let Ok(body) = std::str::from_utf8(data) {
-        let text = format!("vivae-checkpoint v1 {:016x}\n{body}", fnv1a(body.as_bytes()));
-        let _ = vivae::evolve::population_from_checkpoint_text(&text, std::path::Path::new("fuzz.ckpt"));
+        let text = format!(
+            "vivae-checkpoint v1 {:016x}\n{body}",
+            fnv1a(body.as_bytes())
+        );
+        let _ = vivae::evolve::population_from_checkpoint_text(
+            &text,
+            std::path::Path::new("fuzz.ckpt"),
+        );
     }
 });
