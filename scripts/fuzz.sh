@@ -2,6 +2,8 @@
 # Coverage-guided fuzzing of the input readers (docs/fuzzing.md).
 # Usage: scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]
 # Needs the nightly toolchain and cargo-fuzz (cargo install cargo-fuzz).
+# One fuzzing process, targets one after another (no -jobs: with it libFuzzer
+# writes fuzz-N.log into the current folder).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${1:-1800}"
@@ -32,6 +34,6 @@ done
 for t in "${targets[@]}"; do
     echo "== $t (${seconds}s)"
     cargo +nightly fuzz run --fuzz-dir fuzz "$t" "fuzz/corpus/$t" -- \
-        -jobs=1 -workers=1 -max_total_time="$seconds" -rss_limit_mb=2048 -timeout=10 \
+        -max_total_time="$seconds" -rss_limit_mb=2048 -timeout=10 \
         -max_len=262144 -print_final_stats=1
 done
