@@ -146,6 +146,11 @@ impl Default for NeatParams {
     }
 }
 
+/// Largest accepted `population_size`.
+pub const MAX_POPULATION: usize = 100_000;
+/// Largest accepted `add_link_attempts`.
+pub const MAX_ADD_LINK_ATTEMPTS: usize = 10_000;
+
 fn invalid(field: &'static str, value: impl ToString, reason: &'static str) -> NeatError {
     NeatError::InvalidParam {
         field,
@@ -229,6 +234,20 @@ impl NeatParams {
     pub fn validate(&self) -> Result<(), NeatError> {
         if self.population_size == 0 {
             return Err(invalid("population_size", 0, "must be at least 1"));
+        }
+        if self.population_size > MAX_POPULATION {
+            return Err(invalid(
+                "population_size",
+                self.population_size,
+                "must be at most 100000",
+            ));
+        }
+        if self.add_link_attempts > MAX_ADD_LINK_ATTEMPTS {
+            return Err(invalid(
+                "add_link_attempts",
+                self.add_link_attempts,
+                "must be at most 10000",
+            ));
         }
         positive("weight_amplitude", self.weight_amplitude)?;
         positive("initial_weight_range", self.initial_weight_range)?;

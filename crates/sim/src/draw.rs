@@ -428,9 +428,18 @@ fn fontdb() -> Arc<usvg::fontdb::Database> {
     .clone()
 }
 
-/// Renders any SVG text to PNG bytes at `scale` pixels per user unit, using
+/// Most pixels in one PNG (400 MB of RGBA); larger pictures are scaled down to fit.
+pub const MAX_PIXELS: f64 = 1.0e8;
+
+/// Renders any SVG text to PNG bytes at `scale` pixels per user unit (less
+/// when the picture would exceed [`MAX_PIXELS`]), using
 /// only the shipped font. Useful for every figure the project draws.
 pub fn svg_to_png(svg: &str, scale: f64) -> Result<Vec<u8>, DrawError> {
+    svg_to_png_capped(svg, scale, MAX_PIXELS)
+}
+
+/// [`svg_to_png`] with a pixel cap of `max_pixels`.
+fn svg_to_png_capped(svg: &str, scale: f64, max_pixels: f64) -> Result<Vec<u8>, DrawError> {
     let opt = usvg::Options {
         fontdb: fontdb(),
         font_family: "DejaVu Sans".to_string(),
@@ -438,8 +447,17 @@ pub fn svg_to_png(svg: &str, scale: f64) -> Result<Vec<u8>, DrawError> {
     };
     let tree = usvg::Tree::from_str(svg, &opt).map_err(|e| DrawError::Svg(e.to_string()))?;
     let size = tree.size();
-    let (pw, ph) = (size.width() as f64 * scale, size.height() as f64 * scale);
-    if !(scale.is_finite() && scale > 0.0 && pw >= 1.0 && ph >= 1.0 && pw * ph <= 1.0e8) {
+    let (w, h) = (size.width() as f64, size.height() as f64);
+    // A picture that would exceed the pixel cap is drawn smaller rather than
+    // refused: a large arena still gets its figures.
+    let scale = if scale.is_finite() && scale > 0.0 && w * h * scale * scale > max_pixels {
+        (max_pixels / (w * h)).sqrt()
+    } else {
+        scale
+    };
+    let (pw, ph) = (w * scale, h * scale);
+    if !(scale.is_finite() && scale > 0.0 && pw >= 1.0 && ph >= 1.0 && pw * ph <= max_pixels * 1.01)
+    {
         return Err(DrawError::Size {
             width: pw,
             height: ph,
@@ -466,4 +484,22 @@ pub fn svg_to_png(svg: &str, scale: f64) -> Result<Vec<u8>, DrawError> {
 /// The world as a PNG picture (see [`render_svg`]).
 pub fn render_png(world: &World, opts: &DrawOptions) -> Result<Vec<u8>, DrawError> {
     svg_to_png(&render_svg(world, opts), opts.scale)
+}
+
+#[cfg(test)]
+mod pixel_cap_tests {
+    use super::*;
+
+    #[test]
+    fn a_picture_over_the_pixel_cap_is_scaled_down_to_fit() {
+        let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" width="2000" height="1000"><rect width="10" height="10"/></svg>"#;
+        let png = svg_to_png_capped(svg, 2.0, 20_000.0).expect("drawn, smaller");
+        let w = u32::from_be_bytes(png[16..20].try_into().unwrap());
+        let h = u32::from_be_bytes(png[20..24].try_into().unwrap());
+        assert!(f64::from(w) * f64::from(h) <= 20_000.0 * 1.01, "{w} x {h}");
+        assert!(
+            (199..=201).contains(&w) && (99..=101).contains(&h),
+            "{w} x {h}"
+        );
+    }
 }

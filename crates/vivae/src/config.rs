@@ -17,6 +17,17 @@ use vivae_sim::{DistanceSensors, PhysicsParams, SurfaceSensors};
 
 use crate::substrate::{CoordMode, PolarGrid};
 
+/// Most simulation steps per evaluation (`experiment.steps`, `replay --steps`).
+pub const MAX_STEPS: u32 = 1_000_000;
+/// Most output neurons (`substrate.neurons` rings × angles).
+pub const MAX_NEURONS: usize = 4_096;
+/// Most surface sensors (`surface_sensors` rings × angles).
+pub const MAX_SENSORS: usize = 65_536;
+/// Most distance-sensor rays.
+pub const MAX_RAYS: usize = 1_024;
+/// Largest substrate weight matrix (possible links × 8 bytes) one thread may hold.
+pub const MAX_SUBSTRATE_BYTES: u64 = 256 << 20;
+
 /// Every parameter of a run.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
@@ -261,6 +272,7 @@ impl Config {
                 ConfigError::new(format!("distance_sensors.{}", param_message(&err)))
             })?;
         }
+        self.check_sizes()?;
         let r = &self.run;
         if r.checkpoint_interval == 0 {
             return Err(ConfigError::new(
@@ -276,6 +288,46 @@ impl Config {
             return Err(ConfigError::new(format!(
                 "run.threads = {}: must be at most 1024",
                 r.threads
+            )));
+        }
+        Ok(())
+    }
+
+    /// Refuses sizes that validate one by one but cannot run: a substrate whose
+    /// weight matrix would not fit in memory, absurd step counts.
+    fn check_sizes(&self) -> Result<(), ConfigError> {
+        let e = &self.experiment;
+        if e.steps > MAX_STEPS {
+            return Err(ConfigError::new(format!(
+                "experiment.steps = {}: must be at most {MAX_STEPS}",
+                e.steps
+            )));
+        }
+        let n = &self.substrate.neurons;
+        let neurons = n.rings.saturating_mul(n.angles);
+        let s = &self.surface_sensors;
+        let sensors = s.rings.saturating_mul(s.angles);
+        let rays = self.distance_sensors.rays;
+        for (key, value, max) in [
+            ("substrate.neurons", neurons, MAX_NEURONS),
+            ("surface_sensors (rings x angles)", sensors, MAX_SENSORS),
+            ("distance_sensors.rays", rays, MAX_RAYS),
+        ] {
+            if value > max {
+                return Err(ConfigError::new(format!(
+                    "{key} = {value} nodes: must be at most {max}"
+                )));
+            }
+        }
+        // Every sensor and neuron may link to every neuron: one f64 weight each,
+        // held per evaluation thread.
+        let links = (sensors + rays + neurons) as u64 * neurons as u64;
+        let bytes = links * 8;
+        if bytes > MAX_SUBSTRATE_BYTES {
+            return Err(ConfigError::new(format!(
+                "substrate of {sensors} sensors, {rays} rays and {neurons} neurons: its {links} possible links need about {} MiB per thread, more than the limit of {} MiB",
+                bytes >> 20,
+                MAX_SUBSTRATE_BYTES >> 20
             )));
         }
         Ok(())

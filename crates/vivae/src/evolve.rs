@@ -236,6 +236,10 @@ struct Progress {
     timing_len: u64,
     /// Best individual of each figure generation (generation, fitness, genome).
     figure_genomes: Vec<(u32, f64, Genome)>,
+    /// FNV-1a hash of `scenario.svg`: a replaced scenario is refused on resume.
+    /// Absent in checkpoints written before it was recorded.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    scenario_fnv: Option<u64>,
 }
 
 /// A checkpoint: everything needed to continue the run exactly.
@@ -269,7 +273,11 @@ fn encode_checkpoint(cp: &Checkpoint) -> Result<String> {
 }
 
 fn decode_checkpoint(path: &Path) -> Result<Checkpoint> {
-    let text = crate::io::read_text(path)?;
+    decode_checkpoint_text(&crate::io::read_text(path)?, path)
+}
+
+/// Decodes checkpoint `text`; errors name `path`.
+fn decode_checkpoint_text(text: &str, path: &Path) -> Result<Checkpoint> {
     let bad = |why: &str| Error::Checkpoint {
         path: path.to_path_buf(),
         reason: why.to_string(),
@@ -298,6 +306,13 @@ fn decode_checkpoint(path: &Path) -> Result<Checkpoint> {
 /// Reads the population stored in a checkpoint file (for `retrain` and `init_population`).
 pub fn population_from_checkpoint(path: &Path) -> Result<(Config, Population)> {
     let cp = decode_checkpoint(path)?;
+    Ok((cp.config, cp.population))
+}
+
+/// Reads the config and population of checkpoint `text` (read from `path`,
+/// which errors name); the entry point of the checkpoint fuzz target.
+pub fn population_from_checkpoint_text(text: &str, path: &Path) -> Result<(Config, Population)> {
+    let cp = decode_checkpoint_text(text, path)?;
     Ok((cp.config, cp.population))
 }
 
@@ -333,6 +348,8 @@ pub enum Outcome {
 /// A run in a run directory.
 pub struct Run {
     dir: PathBuf,
+    /// Held while the run exists: one writer per run directory.
+    _lock: RunLock,
     config: Config,
     experiment: Experiment,
     population: Population,
@@ -371,44 +388,57 @@ impl Run {
             )
             .map_err(|e| bad_input(format!("neat: {e}")))?,
         };
-        crate::io::create_out_dir(dir, force)?;
-        let checkpoints = dir.join(files::CHECKPOINTS);
-        fs::create_dir_all(&checkpoints).map_err(Error::io("create", checkpoints))?;
-        write_atomic(&dir.join(files::SCENARIO), scenario_text.as_bytes())?;
-        if !config.experiment.init_population.is_empty() {
-            // Keep the starting population beside the config that names it.
-            let init_cp = Checkpoint {
-                config: config.clone(),
-                progress: Progress::start(population.generation()),
-                population: population.clone(),
-            };
-            write_atomic(
-                &dir.join(files::INIT_POPULATION),
-                encode_checkpoint(&init_cp)?.as_bytes(),
-            )?;
-            config.experiment.init_population = files::INIT_POPULATION.into();
+        // The run is built in a temporary sibling and renamed into place once its
+        // first checkpoint exists: a kill or an error before that leaves no
+        // directory that could neither be resumed nor re-run without --force.
+        let old_lock = check_out_dir(dir, force)?;
+        let parent = match dir.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+            _ => PathBuf::from("."),
+        };
+        fs::create_dir_all(&parent).map_err(Error::io("create", dir))?;
+        let name = dir
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "run".into());
+        let tmp = parent.join(format!(".{name}.tmp-{}", std::process::id()));
+        if tmp.exists() {
+            fs::remove_dir_all(&tmp).map_err(Error::io("clear", &tmp))?;
         }
-        config.experiment.scenario = files::SCENARIO.into();
-        write_atomic(&dir.join(files::CONFIG), config.to_toml().as_bytes())?;
-        for (name, header) in [
-            (files::GENERATIONS, GENERATIONS_HEADER),
-            (files::POPULATION, POPULATION_HEADER),
-            (files::TIMING, TIMING_HEADER),
-            (files::BEST_GENOMES, ""),
-        ] {
-            write_atomic(&dir.join(name), header.as_bytes())?;
+        fs::create_dir(&tmp).map_err(Error::io("create", dir))?;
+        // The lock is on the directory itself, so it survives the rename.
+        let lock = match RunLock::acquire(&tmp) {
+            Ok(l) => l,
+            Err(e) => {
+                let _ = fs::remove_dir_all(&tmp);
+                return Err(e);
+            }
+        };
+        let progress = Progress {
+            scenario_fnv: Some(fnv1a(scenario_text.as_bytes())),
+            ..Progress::start(population.generation())
+        };
+        let filled = fill_new_run(&tmp, &mut config, scenario_text, &population, &progress);
+        let placed = filled.and_then(|()| {
+            if old_lock.is_some() {
+                fs::remove_dir_all(dir).map_err(Error::io("clear", dir))?;
+            }
+            fs::rename(&tmp, dir).map_err(Error::io("create", dir))
+        });
+        if let Err(e) = placed {
+            let _ = fs::remove_dir_all(&tmp);
+            return Err(e);
         }
-        let progress = Progress::start(population.generation());
-        let run = Run {
+        drop(old_lock);
+        Ok(Run {
             dir: dir.to_path_buf(),
+            _lock: lock,
             pool: thread_pool(config.run.threads)?,
             config,
             experiment,
             population,
             progress,
-        };
-        run.write_checkpoint()?;
-        Ok(run)
+        })
     }
 
     /// Opens an existing run at its newest checkpoint; `generations` extends (or
@@ -416,6 +446,8 @@ impl Run {
     /// checkpoint are truncated back to it.
     pub fn resume(dir: &Path, generations: Option<u32>, threads: Option<usize>) -> Result<Run> {
         let path = latest_checkpoint(dir)?;
+        // Locked before anything is read: another writer may be mid-generation.
+        let lock = RunLock::acquire(dir)?;
         let mut cp = decode_checkpoint(&path)?;
         if let Some(n) = generations {
             if n < cp.progress.done {
@@ -428,6 +460,21 @@ impl Run {
         }
         let scenario = crate::io::load_scenario(Some(&dir.join(files::SCENARIO)))?;
         let experiment = Experiment::new(&cp.config, &scenario.scenario)?;
+        // Everything is validated before anything in the directory changes.
+        validate_progress(&path, &cp, &experiment)?;
+        if let Some(h) = cp.progress.scenario_fnv
+            && h != fnv1a(scenario.text.as_bytes())
+        {
+            return Err(Error::Checkpoint {
+                path: dir.join(files::SCENARIO),
+                reason: format!(
+                    "changed since the run started (it does not match {})",
+                    path.display()
+                ),
+            });
+        }
+        check_csv_prefixes(dir, &path, &cp.progress)?;
+        remove_stale_temporaries(dir);
         for (name, len) in [
             (files::GENERATIONS, cp.progress.generations_len),
             (files::POPULATION, cp.progress.population_len),
@@ -440,6 +487,7 @@ impl Run {
         write_atomic(&dir.join(files::CONFIG), cp.config.to_toml().as_bytes())?;
         Ok(Run {
             dir: dir.to_path_buf(),
+            _lock: lock,
             // A thread count given at resume changes speed, not results: not recorded.
             pool: thread_pool(threads.unwrap_or(cp.config.run.threads))?,
             config: cp.config,
@@ -522,10 +570,6 @@ impl Run {
             StopReason::Interrupted => Ok(Outcome::Interrupted),
             _ => Ok(Outcome::Finished),
         }
-    }
-
-    fn write_checkpoint(&self) -> Result<()> {
-        write_checkpoint(&self.dir, &self.config, &self.progress, &self.population)
     }
 
     /// The best individual of each figure generation reached.
@@ -733,6 +777,7 @@ impl Progress {
             population_len: POPULATION_HEADER.len() as u64,
             timing_len: TIMING_HEADER.len() as u64,
             figure_genomes: Vec::new(),
+            scenario_fnv: None,
         }
     }
 }
@@ -842,4 +887,220 @@ pub fn read_generations_csv(path: &Path) -> Result<Vec<(u32, f64, f64)>> {
             })
         })
         .collect()
+}
+
+/// Checks a decoded checkpoint against itself and the run's experiment: the
+/// genomes fit the substrate (a wrong CPPN would fail in every later
+/// generation) and the recorded file lengths are possible.
+fn validate_progress(path: &Path, cp: &Checkpoint, experiment: &Experiment) -> Result<()> {
+    let bad = |reason: String| Error::Checkpoint {
+        path: path.to_path_buf(),
+        reason,
+    };
+    let p = &cp.progress;
+    if p.done > cp.config.experiment.generations {
+        return Err(bad(format!(
+            "{} generations done, more than the run's {}",
+            p.done, cp.config.experiment.generations
+        )));
+    }
+    for (name, len, header) in [
+        (files::GENERATIONS, p.generations_len, GENERATIONS_HEADER),
+        (files::POPULATION, p.population_len, POPULATION_HEADER),
+        (files::TIMING, p.timing_len, TIMING_HEADER),
+    ] {
+        if len < header.len() as u64 {
+            return Err(bad(format!(
+                "{name} length {len} is shorter than its header"
+            )));
+        }
+    }
+    if cp.population.genomes().is_empty() {
+        return Err(bad("the population has no genomes".into()));
+    }
+    let genomes = cp
+        .population
+        .genomes()
+        .iter()
+        .chain(p.figure_genomes.iter().map(|(_, _, g)| g));
+    for g in genomes {
+        experiment
+            .controller(g)
+            .map_err(|e| bad(format!("a genome does not fit the run: {e}")))?;
+    }
+    Ok(())
+}
+
+/// Removes temporary files a killed process left behind (`.NAME.tmp-PID`).
+fn remove_stale_temporaries(dir: &Path) {
+    for d in [
+        dir.to_path_buf(),
+        dir.join(files::CHECKPOINTS),
+        dir.join(files::FIGURES),
+    ] {
+        let Ok(entries) = fs::read_dir(&d) else {
+            continue;
+        };
+        for e in entries.flatten() {
+            let name = e.file_name();
+            let name = name.to_string_lossy();
+            if name.starts_with('.') && name.contains(".tmp-") {
+                let _ = fs::remove_file(e.path());
+            }
+        }
+    }
+}
+
+/// An exclusive advisory lock (flock) on a run directory, released when
+/// dropped or when the process exits in any way.
+struct RunLock(#[allow(dead_code)] fs::File);
+
+impl RunLock {
+    /// Locks `dir`, or refuses (bad input) when another process holds it.
+    fn acquire(dir: &Path) -> Result<RunLock> {
+        use std::os::fd::AsRawFd;
+        let file = fs::File::open(dir).map_err(Error::io("open", dir))?;
+        // SAFETY: flock on a valid descriptor owned by `file`; no memory is touched.
+        let rc = unsafe { libc::flock(file.as_raw_fd(), libc::LOCK_EX | libc::LOCK_NB) };
+        if rc != 0 {
+            let e = std::io::Error::last_os_error();
+            if e.kind() == std::io::ErrorKind::WouldBlock {
+                return Err(bad_input(format!(
+                    "{}: another vivae process is writing this run directory",
+                    dir.display()
+                )));
+            }
+            return Err(Error::io("lock", dir)(e));
+        }
+        Ok(RunLock(file))
+    }
+}
+
+/// Refuses an existing `dir` unless `force`; with `force`, locks it so that a
+/// run still writing there is not deleted under its feet.
+fn check_out_dir(dir: &Path, force: bool) -> Result<Option<RunLock>> {
+    if !dir.exists() {
+        return Ok(None);
+    }
+    if !force {
+        return Err(bad_input(format!(
+            "{}: already exists (choose another --out, or pass --force to overwrite)",
+            dir.display()
+        )));
+    }
+    if !dir.is_dir() {
+        return Err(bad_input(format!(
+            "{}: exists and is not a directory",
+            dir.display()
+        )));
+    }
+    RunLock::acquire(dir).map(Some)
+}
+
+/// Writes a new run's files and its first checkpoint into `dir`.
+fn fill_new_run(
+    dir: &Path,
+    config: &mut Config,
+    scenario_text: &str,
+    population: &Population,
+    progress: &Progress,
+) -> Result<()> {
+    let checkpoints = dir.join(files::CHECKPOINTS);
+    fs::create_dir_all(&checkpoints).map_err(Error::io("create", checkpoints))?;
+    write_atomic(&dir.join(files::SCENARIO), scenario_text.as_bytes())?;
+    if !config.experiment.init_population.is_empty() {
+        // Keep the starting population beside the config that names it.
+        let init_cp = Checkpoint {
+            config: config.clone(),
+            progress: progress.clone(),
+            population: population.clone(),
+        };
+        write_atomic(
+            &dir.join(files::INIT_POPULATION),
+            encode_checkpoint(&init_cp)?.as_bytes(),
+        )?;
+        config.experiment.init_population = files::INIT_POPULATION.into();
+    }
+    config.experiment.scenario = files::SCENARIO.into();
+    write_atomic(&dir.join(files::CONFIG), config.to_toml().as_bytes())?;
+    for (name, header) in [
+        (files::GENERATIONS, GENERATIONS_HEADER),
+        (files::POPULATION, POPULATION_HEADER),
+        (files::TIMING, TIMING_HEADER),
+        (files::BEST_GENOMES, ""),
+    ] {
+        write_atomic(&dir.join(name), header.as_bytes())?;
+    }
+    write_checkpoint(dir, config, progress, population)
+}
+
+/// Checks that the CSV files, cut at the lengths the checkpoint records, end
+/// exactly after its last generation: a checkpoint of another run, or one
+/// with forged lengths, would otherwise cut a row in half.
+fn check_csv_prefixes(dir: &Path, checkpoint: &Path, p: &Progress) -> Result<()> {
+    for (name, len, count_rows) in [
+        (files::GENERATIONS, p.generations_len, true),
+        // One row per individual: only its end is read.
+        (files::POPULATION, p.population_len, false),
+        (files::TIMING, p.timing_len, true),
+    ] {
+        let path = dir.join(name);
+        let mismatch = || Error::Checkpoint {
+            path: checkpoint.to_path_buf(),
+            reason: format!(
+                "does not belong to this run: {name} does not end after generation {} at byte {len}",
+                p.done
+            ),
+        };
+        let Some((prefix, from_start)) = csv_prefix(&path, len, !count_rows)? else {
+            // Shorter than recorded: `truncate` reports it with both lengths.
+            continue;
+        };
+        if !prefix.ends_with(b"\n") {
+            return Err(mismatch());
+        }
+        let body = &prefix[..prefix.len() - 1];
+        let last = body.rsplit(|&b| b == b'\n').next().unwrap_or(b"");
+        let last_generation = std::str::from_utf8(last)
+            .ok()
+            .and_then(|l| l.split(',').next())
+            .and_then(|g| g.parse::<u32>().ok());
+        let fits = match p.done {
+            // Only the header: no row starts with a generation number.
+            0 => last_generation.is_none() && (!from_start || !body.contains(&b'\n')),
+            d => last_generation == Some(d),
+        };
+        let rows_fit =
+            !count_rows || prefix.iter().filter(|&&b| b == b'\n').count() == p.done as usize + 1;
+        if !fits || !rows_fit {
+            return Err(mismatch());
+        }
+    }
+    Ok(())
+}
+
+/// The first `len` bytes of `path` (only their last 64 KiB when `tail_only`),
+/// and whether they start at the file's start; `None` when the file is shorter.
+fn csv_prefix(path: &Path, len: u64, tail_only: bool) -> Result<Option<(Vec<u8>, bool)>> {
+    use std::io::{Read, Seek, SeekFrom};
+    let unreadable = |e: std::io::Error| Error::Checkpoint {
+        path: path.to_path_buf(),
+        reason: crate::io::io_reason(&e),
+    };
+    let mut f = fs::File::open(path).map_err(unreadable)?;
+    let actual = f.metadata().map_err(unreadable)?.len();
+    if actual < len || len > crate::io::MAX_INPUT_BYTES && !tail_only {
+        return Ok(None);
+    }
+    let start = if tail_only {
+        len.saturating_sub(64 << 10)
+    } else {
+        0
+    };
+    f.seek(SeekFrom::Start(start)).map_err(unreadable)?;
+    let mut bytes = Vec::with_capacity((len - start) as usize);
+    f.take(len - start)
+        .read_to_end(&mut bytes)
+        .map_err(unreadable)?;
+    Ok(Some((bytes, start == 0)))
 }

@@ -40,14 +40,68 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     Ok(())
 }
 
-/// Reads a whole file as UTF-8; errors are bad input naming the file.
+/// Largest input file read (scenario, config, genome, checkpoint), in bytes.
+pub const MAX_INPUT_BYTES: u64 = 64 << 20;
+
+/// Reads a whole input file as UTF-8; errors are bad input naming the file.
+///
+/// Every file the user names goes through here. Only regular files (after
+/// following symlinks) of at most [`MAX_INPUT_BYTES`] are read: a FIFO would
+/// block forever and `/dev/zero` would be read until memory runs out.
 pub fn read_text(path: &Path) -> Result<String> {
     let unreadable = |reason: String| Error::Read {
         path: path.to_path_buf(),
         reason,
     };
-    let bytes = fs::read(path).map_err(|e| unreadable(io_reason(&e)))?;
+    // Checked before opening: opening a FIFO for reading blocks until a writer appears.
+    let meta = fs::metadata(path).map_err(|e| unreadable(io_reason(&e)))?;
+    check_regular(&meta).map_err(unreadable)?;
+    let file = fs::File::open(path).map_err(|e| unreadable(io_reason(&e)))?;
+    // Checked again on the open file, in case the path was swapped in between.
+    let meta = file.metadata().map_err(|e| unreadable(io_reason(&e)))?;
+    check_regular(&meta).map_err(unreadable)?;
+    let mut bytes = Vec::with_capacity(meta.len() as usize);
+    // A file growing while it is read still stops at the limit.
+    std::io::Read::read_to_end(
+        &mut std::io::Read::take(file, MAX_INPUT_BYTES + 1),
+        &mut bytes,
+    )
+    .map_err(|e| unreadable(io_reason(&e)))?;
+    if bytes.len() as u64 > MAX_INPUT_BYTES {
+        return Err(unreadable(too_big()));
+    }
     String::from_utf8(bytes).map_err(|_| unreadable("not UTF-8 text".into()))
+}
+
+fn too_big() -> String {
+    format!(
+        "larger than the input size limit of {} MiB",
+        MAX_INPUT_BYTES >> 20
+    )
+}
+
+/// Refuses anything but a regular file of at most [`MAX_INPUT_BYTES`].
+fn check_regular(meta: &fs::Metadata) -> std::result::Result<(), String> {
+    let ft = meta.file_type();
+    if !ft.is_file() {
+        use std::os::unix::fs::FileTypeExt;
+        let what = if ft.is_dir() {
+            "is a directory"
+        } else if ft.is_fifo() {
+            "is a FIFO (named pipe), not a regular file"
+        } else if ft.is_char_device() || ft.is_block_device() {
+            "is a device, not a regular file"
+        } else if ft.is_socket() {
+            "is a socket, not a regular file"
+        } else {
+            "is not a regular file"
+        };
+        return Err(what.into());
+    }
+    if meta.len() > MAX_INPUT_BYTES {
+        return Err(too_big());
+    }
+    Ok(())
 }
 
 /// Reads and validates a config file; relative paths in it (scenario, initial

@@ -26,7 +26,11 @@ pub enum ScenarioError {
         root: String,
     },
     /// The arena is zero, negative, not a number or absurdly large.
-    #[error("{source_name}: bad arena size {width} x {height}: {problem}")]
+    #[error(
+        "{source_name}: bad arena size {} x {}: {problem}",
+        size_text(*.width),
+        size_text(*.height)
+    )]
     ArenaSize {
         /// File name.
         source_name: String,
@@ -97,6 +101,36 @@ pub enum ScenarioError {
         /// File name.
         source_name: String,
     },
+    /// The root's `width`, `height` or `viewBox` cannot give an arena size.
+    #[error("{source_name}: bad arena {attribute}=\"{value}\": {problem}")]
+    RootSize {
+        /// File name.
+        source_name: String,
+        /// `width`, `height` or `viewBox`.
+        attribute: &'static str,
+        /// The value as written.
+        value: String,
+        /// What is wrong.
+        problem: String,
+    },
+    /// An element's geometry reaches far outside the arena (flattening it would be unbounded work).
+    #[error(
+        "{source_name}: element '{id}' reaches ({min_x:.3e}, {min_y:.3e})..({max_x:.3e}, {max_y:.3e}), far outside the arena"
+    )]
+    FarOutside {
+        /// File name.
+        source_name: String,
+        /// Element id.
+        id: String,
+        /// Smallest x reached.
+        min_x: f64,
+        /// Smallest y reached.
+        min_y: f64,
+        /// Largest x reached.
+        max_x: f64,
+        /// Largest y reached.
+        max_y: f64,
+    },
     /// The load options are invalid.
     #[error("invalid load option {field} = {value}")]
     Options {
@@ -105,4 +139,14 @@ pub enum ScenarioError {
         /// Its value.
         value: f64,
     },
+}
+
+/// A size for a message: plain when moderate, scientific when huge (1e308
+/// would print 309 digits).
+fn size_text(v: f64) -> String {
+    if v.abs() < 1e9 {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
 }

@@ -19,6 +19,20 @@ use super::{Mark, Obstacle, Puck, RobotStart, Scenario, ScenarioError, Surface, 
 /// Flattening tolerance for curves, in px.
 const FLATTEN_TOLERANCE: f64 = 0.1;
 
+/// Largest magnitude of a number in path data: beyond it usvg's arc
+/// conversion can run for minutes (an endpoint of 3.4e38 never finishes).
+const MAX_PATH_NUMBER: f64 = 1e9;
+
+/// How far (in arena sizes) geometry may reach outside the arena: further out
+/// it cannot matter, and flattening it could take unbounded time and memory.
+const MAX_OUTSIDE_ARENAS: f64 = 4.0;
+
+/// Most XML nodes a scenario may have (the shipped ones have a few thousand).
+const MAX_XML_NODES: u32 = 200_000;
+
+/// Most attributes one element may have (roxmltree's duplicate check is quadratic).
+const MAX_ATTRIBUTES: usize = 1_000;
+
 /// Options for [`Scenario::from_svg`].
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -47,6 +61,8 @@ enum Resolved<'a> {
 pub(super) struct Loader<'a> {
     source: &'a str,
     ids: BTreeMap<String, Resolved<'a>>,
+    /// Geometry reaching beyond this box is refused.
+    limit: Aabb,
     sc: Scenario,
 }
 
@@ -101,26 +117,166 @@ fn heading_of(ts: tiny_skia::Transform) -> f64 {
     if h.abs() < 1e-6 { 0.0 } else { h }
 }
 
-/// Area geometry of a usvg path: its fill, else its stroke outline, else its outline.
-fn path_shape(p: &usvg::Path) -> Shape {
+/// Bounding box of a path's control points under `ts`, grown by `pad` (cheap:
+/// no flattening), or `None` when a coordinate is not finite.
+fn control_box(p: &tiny_skia::Path, ts: tiny_skia::Transform, pad: f64) -> Option<Aabb> {
+    let mut b = Aabb::EMPTY;
+    for pt in p.points() {
+        let q = map_point(ts, DVec2::new(pt.x as f64, pt.y as f64));
+        if !(q.x.is_finite() && q.y.is_finite()) {
+            return None;
+        }
+        b.include(q - DVec2::splat(pad));
+        b.include(q + DVec2::splat(pad));
+    }
+    Some(b)
+}
+
+/// Area geometry of a usvg path: its fill, else its stroke outline, else its
+/// outline; `Err` with the furthest reach when it extends far outside `limit`.
+fn path_shape(p: &usvg::Path, limit: &Aabb) -> Result<Shape, Aabb> {
     let ts = p.abs_transform();
-    if p.fill().is_none()
-        && let Some(stroke) = p.stroke()
-    {
-        let (sx, sy) = ts.get_scale();
+    let stroked = p.fill().is_none() && p.stroke().is_some();
+    let (sx, sy) = ts.get_scale();
+    let pad = match p.stroke() {
+        Some(s) if stroked => s.width().get() as f64 * (sx.abs().max(sy.abs()) as f64),
+        _ => 0.0,
+    };
+    // Refused before stroking or flattening, whose cost grows with size.
+    match control_box(p.data(), ts, pad) {
+        Some(b)
+            if b.is_empty()
+                || (limit.contains_with_margin(b.min, 0.0)
+                    && limit.contains_with_margin(b.max, 0.0)) => {}
+        Some(b) => return Err(b),
+        None => {
+            return Err(Aabb {
+                min: DVec2::splat(f64::NAN),
+                max: DVec2::splat(f64::NAN),
+            });
+        }
+    }
+    if stroked && let Some(stroke) = p.stroke() {
         let res = (sx * sy).abs().sqrt().max(1e-3);
         if let Some(outline) = p.data().stroke(&stroke.to_tiny_skia(), res) {
-            return Shape::new(
+            return Ok(Shape::new(
                 flatten_path(&outline, ts, FLATTEN_TOLERANCE),
                 FillRule::NonZero,
-            );
+            ));
         }
     }
     let rule = match p.fill().map(|f| f.rule()) {
         Some(usvg::FillRule::EvenOdd) => FillRule::EvenOdd,
         _ => FillRule::NonZero,
     };
-    Shape::new(flatten_path(p.data(), ts, FLATTEN_TOLERANCE), rule)
+    Ok(Shape::new(
+        flatten_path(p.data(), ts, FLATTEN_TOLERANCE),
+        rule,
+    ))
+}
+
+/// Refuses what would make parsing slow or huge before roxmltree sees it:
+/// entity declarations (a small file can expand to gigabytes) and elements
+/// with too many attributes.
+fn prescan(text: &str, source: &str) -> Result<(), ScenarioError> {
+    let refuse = |message: String| ScenarioError::Svg {
+        source_name: source.to_string(),
+        message,
+    };
+    if text.contains("<!ENTITY") {
+        return Err(refuse(
+            "entity declarations (<!ENTITY>) are not supported".into(),
+        ));
+    }
+    // Counts `=` outside quoted values within each tag: an upper bound on attributes.
+    let (mut in_tag, mut quote, mut count) = (false, 0u8, 0usize);
+    for &b in text.as_bytes() {
+        if quote != 0 {
+            if b == quote {
+                quote = 0;
+            }
+            continue;
+        }
+        match b {
+            b'<' => {
+                in_tag = true;
+                count = 0;
+            }
+            b'>' => in_tag = false,
+            b'"' | b'\'' if in_tag => quote = b,
+            b'=' if in_tag => {
+                count += 1;
+                if count > MAX_ATTRIBUTES {
+                    return Err(refuse(format!(
+                        "an element has more than {MAX_ATTRIBUTES} attributes"
+                    )));
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
+/// Reads the root's `width`, `height` and `viewBox` as written, refusing
+/// values usvg would silently replace (`inf`, `100%`, an empty `viewBox`) or
+/// overflow (`1e308` does not fit an f32).
+fn check_root_size(root: roxmltree::Node, source: &str, max: f64) -> Result<(), ScenarioError> {
+    let bad = |attribute: &'static str, value: &str, problem: &str| ScenarioError::RootSize {
+        source_name: source.to_string(),
+        attribute,
+        value: value.to_string(),
+        problem: problem.to_string(),
+    };
+    let mut size = [0.0; 2];
+    for (i, attribute) in ["width", "height"].into_iter().enumerate() {
+        let Some(v) = root.attribute(attribute) else {
+            continue;
+        };
+        let length: svgtypes::Length = v
+            .trim()
+            .parse()
+            .map_err(|_| bad(attribute, v, "not a length"))?;
+        if length.unit == svgtypes::LengthUnit::Percent {
+            return Err(bad(attribute, v, "percentages are not supported, give px"));
+        }
+        if !length.number.is_finite() {
+            return Err(bad(attribute, v, "not a finite number"));
+        }
+        size[i] = length.number;
+    }
+    // Units (mm, in, pt) scale by at most 96/2.54·10 px: a generous bound
+    // before the f32 overflow that usvg would report as "0 x 0".
+    for (i, attribute) in ["width", "height"].into_iter().enumerate() {
+        let problem = if root.attribute(attribute).is_some() && size[i] <= 0.0 {
+            "width and height must be positive".to_string()
+        } else if size[i] > max * 100.0 {
+            format!("larger than the limit of {max} px")
+        } else {
+            continue;
+        };
+        return Err(ScenarioError::ArenaSize {
+            source_name: source.to_string(),
+            width: size[0],
+            height: size[1],
+            problem,
+        });
+    }
+    if let Some(v) = root.attribute("viewBox") {
+        let nums: Vec<f64> = svgtypes::NumberListParser::from(v)
+            .collect::<Result<_, _>>()
+            .map_err(|_| bad("viewBox", v, "not four numbers"))?;
+        match nums[..] {
+            [x, y, w, h] if [x, y, w, h].iter().all(|n| n.is_finite() && n.abs() < 1e9) => {
+                if w <= 0.0 || h <= 0.0 {
+                    return Err(bad("viewBox", v, "width and height must be positive"));
+                }
+            }
+            [_, _, _, _] => return Err(bad("viewBox", v, "numbers out of range")),
+            _ => return Err(bad("viewBox", v, "not four numbers")),
+        }
+    }
+    Ok(())
 }
 
 impl<'a> Loader<'a> {
@@ -142,10 +298,12 @@ impl<'a> Loader<'a> {
             });
         }
         let err_src = || source.to_string();
+        prescan(text, source)?;
         let doc = roxmltree::Document::parse_with_options(
             text,
             roxmltree::ParsingOptions {
                 allow_dtd: true,
+                nodes_limit: MAX_XML_NODES,
                 ..Default::default()
             },
         )
@@ -160,6 +318,7 @@ impl<'a> Loader<'a> {
                 root: root.tag_name().name().to_string(),
             });
         }
+        check_root_size(root, source, opts.max_arena_size)?;
         // Validate all path data before usvg, which silently truncates bad paths.
         for n in doc
             .descendants()
@@ -167,13 +326,18 @@ impl<'a> Loader<'a> {
         {
             if let Some(d) = n.attribute("d") {
                 for seg in svgtypes::PathParser::from(d) {
-                    if let Err(e) = seg {
-                        return Err(ScenarioError::PathData {
-                            source_name: err_src(),
-                            id: n.attribute("id").unwrap_or("(no id)").to_string(),
-                            message: e.to_string(),
-                        });
-                    }
+                    let message = match seg {
+                        Err(e) => e.to_string(),
+                        Ok(seg) if !path_numbers_in_range(&seg) => {
+                            format!("a number is beyond ±{MAX_PATH_NUMBER:e} (or not finite)")
+                        }
+                        Ok(_) => continue,
+                    };
+                    return Err(ScenarioError::PathData {
+                        source_name: err_src(),
+                        id: n.attribute("id").unwrap_or("(no id)").to_string(),
+                        message,
+                    });
                 }
             }
         }
@@ -218,9 +382,14 @@ impl<'a> Loader<'a> {
         };
         let mut ids = BTreeMap::new();
         collect_ids(tree.root(), &mut ids);
+        let reach = MAX_OUTSIDE_ARENAS * width.max(height);
         let mut loader = Loader {
             source,
             ids,
+            limit: Aabb {
+                min: DVec2::splat(-reach),
+                max: DVec2::new(width + reach, height + reach),
+            },
             sc: Scenario {
                 source: source.to_string(),
                 width,
@@ -355,7 +524,10 @@ impl<'a> Loader<'a> {
     }
 
     /// Shapes (with transforms) of an element: itself if a shape, else its descendant shapes.
-    fn shapes_of(&self, n: roxmltree::Node<'a, 'a>) -> Vec<(&'a usvg::Path, Shape)> {
+    fn shapes_of(
+        &self,
+        n: roxmltree::Node<'a, 'a>,
+    ) -> Result<Vec<(&'a usvg::Path, Shape)>, ScenarioError> {
         let mut out = Vec::new();
         for d in n
             .descendants()
@@ -365,11 +537,19 @@ impl<'a> Loader<'a> {
                 continue;
             }
             if let Some(Resolved::Path(p)) = d.attribute("id").and_then(|id| self.ids.get(id)) {
-                let shape = path_shape(p);
+                let shape =
+                    path_shape(p, &self.limit).map_err(|reach| ScenarioError::FarOutside {
+                        source_name: self.source.to_string(),
+                        id: d.attribute("id").unwrap_or("(no id)").to_string(),
+                        min_x: reach.min.x,
+                        min_y: reach.min.y,
+                        max_x: reach.max.x,
+                        max_y: reach.max.y,
+                    })?;
                 out.push((*p, shape));
             }
         }
-        out
+        Ok(out)
     }
 
     fn add_object(
@@ -379,7 +559,7 @@ impl<'a> Loader<'a> {
         owner: roxmltree::Node<'a, 'a>,
     ) -> Result<(), ScenarioError> {
         let id = n.attribute("id").unwrap_or("(no id)").to_string();
-        let shapes = self.shapes_of(n);
+        let shapes = self.shapes_of(n)?;
         let mut bbox = Aabb::EMPTY;
         for (_, s) in &shapes {
             if !s.bbox.is_empty() {
@@ -517,4 +697,44 @@ impl<'a> Loader<'a> {
             },
         }
     }
+}
+
+/// Whether every number of a path segment is finite and within ±[`MAX_PATH_NUMBER`].
+fn path_numbers_in_range(seg: &svgtypes::PathSegment) -> bool {
+    use svgtypes::PathSegment as S;
+    let nums: &[f64] = match *seg {
+        S::MoveTo { x, y, .. } | S::LineTo { x, y, .. } | S::SmoothQuadratic { x, y, .. } => {
+            &[x, y]
+        }
+        S::HorizontalLineTo { x, .. } => &[x],
+        S::VerticalLineTo { y, .. } => &[y],
+        S::CurveTo {
+            x1,
+            y1,
+            x2,
+            y2,
+            x,
+            y,
+            ..
+        } => &[x1, y1, x2, y2, x, y],
+        S::SmoothCurveTo { x2, y2, x, y, .. }
+        | S::Quadratic {
+            x1: x2,
+            y1: y2,
+            x,
+            y,
+            ..
+        } => &[x2, y2, x, y],
+        S::EllipticalArc {
+            rx,
+            ry,
+            x_axis_rotation,
+            x,
+            y,
+            ..
+        } => &[rx, ry, x_axis_rotation, x, y],
+        S::ClosePath { .. } => &[],
+    };
+    nums.iter()
+        .all(|v| v.is_finite() && v.abs() <= MAX_PATH_NUMBER)
 }
