@@ -20,9 +20,7 @@ fn resume_while_the_run_is_going_is_refused() {
         .stderr(std::process::Stdio::null())
         .spawn()
         .unwrap();
-    while !run_dir.join("checkpoints/gen-000001.ckpt").exists() {
-        std::thread::sleep(std::time::Duration::from_millis(5));
-    }
+    wait_for_file(&run_dir.join("checkpoints/gen-000001.ckpt"), 300);
     let out = run(vivae()
         .args(["resume", "-q", "--threads", "1"])
         .arg(&run_dir));

@@ -18,9 +18,7 @@ fn sigterm_checkpoints_then_resumes() {
         .stderr(std::process::Stdio::piped())
         .spawn()
         .unwrap();
-    while !run_dir.join("checkpoints/gen-000001.ckpt").exists() {
-        std::thread::sleep(std::time::Duration::from_millis(2));
-    }
+    wait_for_file(&run_dir.join("checkpoints/gen-000001.ckpt"), 300);
     let status = std::process::Command::new("kill")
         .args(["-TERM", &child.id().to_string()])
         .status()

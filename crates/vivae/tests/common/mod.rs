@@ -113,3 +113,17 @@ pub fn shared_scenarios() -> Option<PathBuf> {
     );
     None
 }
+
+/// Waits until `path` exists; panics after `secs` seconds, so that a run that
+/// died early fails the test instead of hanging it.
+pub fn wait_for_file(path: &Path, secs: u64) {
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(secs);
+    while !path.exists() {
+        assert!(
+            std::time::Instant::now() < deadline,
+            "{} did not appear within {secs} s",
+            path.display()
+        );
+        std::thread::sleep(std::time::Duration::from_millis(2));
+    }
+}
