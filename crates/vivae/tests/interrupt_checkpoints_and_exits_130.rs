@@ -4,7 +4,6 @@
 
 mod common;
 use common::*;
-use std::time::{Duration, Instant};
 
 const GENERATIONS: u32 = 150;
 
@@ -18,24 +17,7 @@ fn sigint_then_resume_matches() {
     evolve(&config, &reference, &[]);
 
     let run_dir = dir.join("interrupted");
-    let child = vivae()
-        .args(["evolve", "-q", "--threads", "1", "--config"])
-        .arg(&config)
-        .arg("--out")
-        .arg(&run_dir)
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    let deadline = Instant::now() + Duration::from_secs(120);
-    while !run_dir.join("checkpoints/gen-000002.ckpt").exists() && Instant::now() < deadline {
-        std::thread::sleep(Duration::from_millis(2));
-    }
-    let status = std::process::Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(status.success());
-    let out = child.wait_with_output().unwrap();
+    let out = evolve_until_signalled(&config, &run_dir, 2, "-INT");
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(130), "stderr: {stderr}");
     assert!(stderr.contains("vivae resume"), "stderr: {stderr}");

@@ -10,21 +10,7 @@ fn sigterm_checkpoints_then_resumes() {
     let dir = scratch("sigterm");
     let config = write_small_config(&dir, 100_000);
     let run_dir = dir.join("run");
-    let child = vivae()
-        .args(["evolve", "-q", "--threads", "1", "--config"])
-        .arg(&config)
-        .arg("--out")
-        .arg(&run_dir)
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    wait_for_file(&run_dir.join("checkpoints/gen-000001.ckpt"), 300);
-    let status = std::process::Command::new("kill")
-        .args(["-TERM", &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(status.success());
-    let out = child.wait_with_output().unwrap();
+    let out = evolve_until_signalled(&config, &run_dir, 1, "-TERM");
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(130), "stderr: {stderr}");
     assert!(stderr.contains("vivae resume"), "stderr: {stderr}");

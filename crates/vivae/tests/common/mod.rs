@@ -127,3 +127,32 @@ pub fn wait_for_file(path: &Path, secs: u64) {
         std::thread::sleep(std::time::Duration::from_millis(2));
     }
 }
+
+/// Starts `vivae evolve -q --threads 1 --config CONFIG --out RUN_DIR`, sends
+/// `signal` (e.g. `"-INT"`) once generation `generation`'s checkpoint exists,
+/// and returns what the process did (its stderr captured).
+pub fn evolve_until_signalled(
+    config: &Path,
+    run_dir: &Path,
+    generation: u32,
+    signal: &str,
+) -> Output {
+    let child = vivae()
+        .args(["evolve", "-q", "--threads", "1", "--config"])
+        .arg(config)
+        .arg("--out")
+        .arg(run_dir)
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    wait_for_file(
+        &run_dir.join(format!("checkpoints/gen-{generation:06}.ckpt")),
+        300,
+    );
+    let status = Command::new("kill")
+        .args([signal, &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    child.wait_with_output().unwrap()
+}
