@@ -1,12 +1,14 @@
 //! The driving experiment: a substrate controller per robot, episodes, fitness.
 
+use std::sync::Arc;
+
 use vivae_neat::driver::{Evaluation, Task};
 use vivae_neat::hyperneat::{HyperParams, SubstrateController, SubstrateLayout, decode_genome};
 use vivae_neat::{EvalContext, Genome, GenomeSpec, Network};
 use vivae_sim::{DVec2, Scenario, SurfaceGrid, World};
 
 use crate::config::Config;
-use crate::sensors::{SensorSheet, sensor_sheets};
+use crate::sensors::{SensorSheet, sheets_with_surface};
 use crate::substrate::{PolarGrid, SubstrateSpec, WheelNeurons, cppn_outputs, layout_of};
 
 /// Neurons of the paper's substrate (3×3): the weight-normalisation reference.
@@ -20,8 +22,8 @@ pub struct Experiment {
     world: World,
     /// The robots' sensors, in controller-input order.
     sensors: Vec<SensorSheet>,
-    /// The surface sensors again, typed, for pictures of what robots see.
-    surface: SurfaceGrid,
+    /// The first sheet's surface sensors, typed, for pictures of what robots see.
+    surface: Arc<SurfaceGrid>,
     spec: SubstrateSpec,
     layout: SubstrateLayout,
     wheels: WheelNeurons,
@@ -100,7 +102,8 @@ impl Experiment {
             .map_err(|e| ExperimentError::Config(format!("substrate: {e}")))?;
         // The layout comes from the sensors the robots really carry, so a
         // sensor's input nodes sit where it looks.
-        let sensors = sensor_sheets(surface, distance_layout.as_ref());
+        let surface_grid = Arc::new(surface.grid());
+        let sensors = sheets_with_surface(Arc::clone(&surface_grid), distance_layout.as_ref());
         let layout = layout_of(&sensors, &spec.neuron_nodes(), spec.coords);
         let cppn_outputs = cppn_outputs(&sensors);
         let sheet_sizes = sensors
@@ -119,7 +122,7 @@ impl Experiment {
         Ok(Experiment {
             world,
             sensors,
-            surface: surface.grid(),
+            surface: surface_grid,
             spec,
             layout,
             wheels,

@@ -9,7 +9,7 @@
 
 use std::sync::Arc;
 
-use vivae_sim::{DistanceSensors, Sensor, SurfaceSensors};
+use vivae_sim::{DistanceSensors, Sensor, SurfaceGrid, SurfaceSensors};
 
 use crate::substrate::{DISTANCE_OUTPUT, PolarNode, SURFACE_OUTPUT};
 
@@ -60,8 +60,17 @@ pub fn sensor_sheets(
     surface: &SurfaceSensors,
     distance: Option<&DistanceSensors>,
 ) -> Vec<SensorSheet> {
+    sheets_with_surface(Arc::new(surface.grid()), distance)
+}
+
+/// As [`sensor_sheets`], with the surface sensors already compiled (so a
+/// caller that also draws them shares the one grid).
+pub fn sheets_with_surface(
+    surface: Arc<SurfaceGrid>,
+    distance: Option<&DistanceSensors>,
+) -> Vec<SensorSheet> {
     let mut sheets = vec![SensorSheet {
-        sensor: Arc::new(surface.grid()),
+        sensor: surface,
         cppn_output: SURFACE_OUTPUT,
         reference_len: SurfaceSensors::default().len(),
     }];
