@@ -22,12 +22,6 @@ fn snapshot(dir: &Path) -> Vec<(String, Vec<u8>)> {
     .collect()
 }
 
-fn fnv1a(bytes: &[u8]) -> u64 {
-    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
-        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
-    })
-}
-
 /// A checkpoint with a valid checksum over `body`.
 fn encode(body: &Value) -> Vec<u8> {
     let body = serde_json::to_string(body).unwrap();

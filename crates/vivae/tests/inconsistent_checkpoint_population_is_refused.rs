@@ -5,13 +5,6 @@
 mod common;
 use common::*;
 
-/// FNV-1a 64, the checkpoint checksum.
-fn fnv1a(bytes: &[u8]) -> u64 {
-    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
-        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
-    })
-}
-
 #[test]
 fn a_checksummed_but_inconsistent_population_is_refused() {
     let dir = scratch("inconsistent-ckpt");

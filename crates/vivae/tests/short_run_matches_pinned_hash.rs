@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::{DETERMINISTIC_FILES, read, scratch};
+use common::{DETERMINISTIC_FILES, fnv1a_from, read, scratch};
 
 /// FNV-1a 64 of `generations.csv`, `population.csv` and `champion.json`
 /// (in that order, each preceded by its name) of
@@ -18,12 +18,6 @@ use common::{DETERMINISTIC_FILES, read, scratch};
 /// `config` field the file hashes to the old value.
 const PINNED: u64 = 0x8b3b_eb74_273b_9cda;
 
-fn fnv1a(h: u64, bytes: &[u8]) -> u64 {
-    bytes
-        .iter()
-        .fold(h, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3))
-}
-
 #[test]
 fn short_default_run_matches_pinned_hash() {
     let dir = scratch("pinned");
@@ -31,8 +25,8 @@ fn short_default_run_matches_pinned_hash() {
     common::ok(&mut common::short_run_command(&out));
     let mut h = 0xcbf2_9ce4_8422_2325;
     for name in DETERMINISTIC_FILES {
-        h = fnv1a(h, name.as_bytes());
-        h = fnv1a(h, &read(&out, name));
+        h = fnv1a_from(h, name.as_bytes());
+        h = fnv1a_from(h, &read(&out, name));
     }
     let _ = std::fs::remove_dir_all(&dir);
     assert_eq!(

@@ -156,3 +156,15 @@ pub fn evolve_until_signalled(
     assert!(status.success());
     child.wait_with_output().unwrap()
 }
+
+/// FNV-1a 64 of `bytes`, continuing from the hash `h`.
+pub fn fnv1a_from(h: u64, bytes: &[u8]) -> u64 {
+    bytes
+        .iter()
+        .fold(h, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3))
+}
+
+/// FNV-1a 64 of `bytes`: the checkpoint checksum.
+pub fn fnv1a(bytes: &[u8]) -> u64 {
+    fnv1a_from(0xcbf2_9ce4_8422_2325, bytes)
+}
