@@ -13,6 +13,7 @@ use serde::{Deserialize, Serialize};
 use crate::geometry::{Aabb, FillRule, Shape, flatten_path};
 use crate::raster::SurfaceRaster;
 
+use super::ids::unique_ids;
 use super::labels::{Class, classify, surface_kind};
 use super::{Mark, Obstacle, Puck, RobotStart, Scenario, ScenarioError, Surface, SurfaceKind};
 
@@ -60,6 +61,8 @@ enum Resolved<'a> {
 
 pub(super) struct Loader<'a> {
     source: &'a str,
+    /// The user's name for each id the loader invented (see `ids.rs`).
+    display: BTreeMap<String, String>,
     ids: BTreeMap<String, Resolved<'a>>,
     /// Geometry reaching beyond this box is refused.
     limit: Aabb,
@@ -83,7 +86,7 @@ fn collect_ids<'a>(g: &'a usvg::Group, out: &mut BTreeMap<String, Resolved<'a>>)
     }
 }
 
-fn is_shape(name: &str) -> bool {
+pub(super) fn is_shape(name: &str) -> bool {
     matches!(
         name,
         "rect" | "circle" | "ellipse" | "line" | "polyline" | "polygon" | "path"
@@ -299,18 +302,27 @@ impl<'a> Loader<'a> {
         }
         let err_src = || source.to_string();
         prescan(text, source)?;
-        let doc = roxmltree::Document::parse_with_options(
-            text,
-            roxmltree::ParsingOptions {
-                allow_dtd: true,
-                nodes_limit: MAX_XML_NODES,
-                ..Default::default()
-            },
-        )
-        .map_err(|e| ScenarioError::Xml {
-            source_name: err_src(),
-            message: e.to_string(),
-        })?;
+        let parse = |text| {
+            roxmltree::Document::parse_with_options(
+                text,
+                roxmltree::ParsingOptions {
+                    allow_dtd: true,
+                    nodes_limit: MAX_XML_NODES,
+                    ..Default::default()
+                },
+            )
+            .map_err(|e| ScenarioError::Xml {
+                source_name: err_src(),
+                message: e.to_string(),
+            })
+        };
+        let doc = parse(text)?;
+        // The join with usvg is by id: give every element its own first.
+        let rewritten = unique_ids(&doc, text, source)?;
+        let (doc, display) = match &rewritten {
+            Some(u) => (parse(&u.text)?, u.display.clone()),
+            None => (doc, BTreeMap::new()),
+        };
         let root = doc.root_element();
         if root.tag_name().name() != "svg" {
             return Err(ScenarioError::NotSvg {
@@ -335,7 +347,11 @@ impl<'a> Loader<'a> {
                     };
                     return Err(ScenarioError::PathData {
                         source_name: err_src(),
-                        id: n.attribute("id").unwrap_or("(no id)").to_string(),
+                        id: n
+                            .attribute("id")
+                            .map(|id| display.get(id).map_or(id, |d| d.as_str()))
+                            .unwrap_or("(no id)")
+                            .to_string(),
                         message,
                     });
                 }
@@ -385,6 +401,7 @@ impl<'a> Loader<'a> {
         let reach = MAX_OUTSIDE_ARENAS * width.max(height);
         let mut loader = Loader {
             source,
+            display,
             ids,
             limit: Aabb {
                 min: DVec2::splat(-reach),
@@ -449,6 +466,18 @@ impl<'a> Loader<'a> {
         Ok(sc)
     }
 
+    /// The element's id as the user wrote it (or where it is, if it had none).
+    fn name_of(&self, n: roxmltree::Node) -> String {
+        match n.attribute("id") {
+            Some(id) => self
+                .display
+                .get(id)
+                .cloned()
+                .unwrap_or_else(|| id.to_string()),
+            None => "(no id)".to_string(),
+        }
+    }
+
     fn warn(&mut self, msg: String) {
         self.sc.warnings.push(msg);
     }
@@ -463,7 +492,7 @@ impl<'a> Loader<'a> {
             return Ok(());
         }
         let name = n.tag_name().name();
-        let id = n.attribute("id").unwrap_or("(no id)");
+        let id = self.name_of(n);
         let own = label_of(n);
         let own_class = own.and_then(classify);
         let is_container = matches!(name, "g" | "a" | "switch");
@@ -540,7 +569,7 @@ impl<'a> Loader<'a> {
                 let shape =
                     path_shape(p, &self.limit).map_err(|reach| ScenarioError::FarOutside {
                         source_name: self.source.to_string(),
-                        id: d.attribute("id").unwrap_or("(no id)").to_string(),
+                        id: self.name_of(d),
                         min_x: reach.min.x,
                         min_y: reach.min.y,
                         max_x: reach.max.x,
@@ -558,7 +587,7 @@ impl<'a> Loader<'a> {
         class: Class,
         owner: roxmltree::Node<'a, 'a>,
     ) -> Result<(), ScenarioError> {
-        let id = n.attribute("id").unwrap_or("(no id)").to_string();
+        let id = self.name_of(n);
         let shapes = self.shapes_of(n)?;
         let mut bbox = Aabb::EMPTY;
         for (_, s) in &shapes {
@@ -690,7 +719,7 @@ impl<'a> Loader<'a> {
                 Ok(f) if f.is_finite() && f >= 0.0 => Ok(Some(f)),
                 _ => Err(ScenarioError::Attribute {
                     source_name: self.source.to_string(),
-                    id: e.attribute("id").unwrap_or("(no id)").to_string(),
+                    id: self.name_of(e),
                     attribute: "data-friction".into(),
                     value: v.to_string(),
                 }),

@@ -4,6 +4,7 @@
 //! scenario), `error`, `summary`.
 
 mod error;
+mod ids;
 mod labels;
 mod load;
 mod summary;
