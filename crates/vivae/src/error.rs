@@ -123,7 +123,26 @@ impl Error {
                 | Error::Checkpoint { .. }
                 | Error::Genome { .. }
                 | Error::Invalid(_)
-        )
+        ) || self.is_path_mistake()
+    }
+
+    /// Whether an output failed because of the path the user gave: a missing
+    /// folder, a file where a folder should be, a folder where a file should
+    /// be, no permission. A full disk or any other failure is the machine's.
+    fn is_path_mistake(&self) -> bool {
+        use std::io::ErrorKind as K;
+        match self {
+            Error::Io { error, .. } => matches!(
+                error.kind(),
+                K::NotFound
+                    | K::NotADirectory
+                    | K::IsADirectory
+                    | K::PermissionDenied
+                    | K::ReadOnlyFilesystem
+                    | K::InvalidFilename
+            ),
+            _ => false,
+        }
     }
 
     /// An [`Error::Io`] for `action` on `path` (for `map_err`).
@@ -172,6 +191,13 @@ mod tests {
         assert_eq!(read.to_string(), "a.toml: no such file or directory");
         let io = Error::io("write", "out/b.csv")(std::io::Error::other("disk full"));
         assert!(!io.is_bad_input());
+        let full = Error::io("write", "out/b.csv")(std::io::ErrorKind::StorageFull.into());
+        assert!(
+            !full.is_bad_input(),
+            "a full disk is not the user's mistake"
+        );
+        let missing = Error::io("write", "no/such/b.csv")(std::io::ErrorKind::NotFound.into());
+        assert!(missing.is_bad_input(), "a missing output folder is");
         assert_eq!(io.to_string(), "cannot write out/b.csv: disk full");
         assert!(!Error::NoChampion.is_bad_input());
     }

@@ -396,7 +396,7 @@ impl Run {
             Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
             _ => PathBuf::from("."),
         };
-        fs::create_dir_all(&parent).map_err(Error::io("create", dir))?;
+        crate::io::create_dirs_for(&parent, dir)?;
         let name = dir
             .file_name()
             .map(|n| n.to_string_lossy().into_owned())

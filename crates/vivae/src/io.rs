@@ -192,7 +192,30 @@ pub fn create_out_dir(path: &Path, force: bool) -> Result<()> {
         }
         fs::remove_dir_all(path).map_err(Error::io("clear", path))?;
     }
-    fs::create_dir_all(path).map_err(Error::io("create", path))
+    create_dirs(path)
+}
+
+/// Creates `path` and its missing parents; a file in the way is the user's
+/// mistake and is named (the OS would only say "File exists").
+pub fn create_dirs(path: &Path) -> Result<()> {
+    create_dirs_for(path, path)
+}
+
+/// [`create_dirs`] for the folders that will hold `output`: errors name `output`.
+pub fn create_dirs_for(path: &Path, output: &Path) -> Result<()> {
+    fs::create_dir_all(path).map_err(|e| {
+        let blocker = path
+            .ancestors()
+            .find(|a| !a.as_os_str().is_empty() && a.exists() && !a.is_dir());
+        match blocker {
+            Some(b) => bad_input(format!(
+                "cannot create {}: {} is a file, not a folder",
+                output.display(),
+                b.display()
+            )),
+            None => Error::io("create", output)(e),
+        }
+    })
 }
 
 /// A fresh `runs/<timestamp>` directory name (suffixed if taken).

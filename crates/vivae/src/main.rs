@@ -653,7 +653,7 @@ fn cmd_replay(args: ReplayArgs) -> anyhow::Result<ExitCode> {
         );
     }
     let out = args.out.clone().unwrap_or_else(|| base.join("replay"));
-    std::fs::create_dir_all(&out).with_context(|| format!("cannot create {}", out.display()))?;
+    vivae::io::create_dirs(&out)?;
     let name = report::scenario_name(path.as_deref());
     let replay = report::replay(&experiment, &config, &champion, &name, &out)?;
     println!("fitness={} on_road={:.4}", replay.fitness, replay.on_road);

@@ -69,7 +69,7 @@ pub fn trajectory_figure(
 /// Writes every figure of a finished run into `RUN/figures/`.
 pub fn finish_run(run: &Run) -> Result<RunSummary> {
     let dir = run.dir().join(files::FIGURES);
-    std::fs::create_dir_all(&dir).map_err(Error::io("create", &dir))?;
+    crate::io::create_dirs(&dir)?;
     let experiment = run.experiment();
     for (generation, _, genome) in run.figure_genomes() {
         trajectory_figure(
