@@ -242,6 +242,44 @@ struct Progress {
     scenario_fnv: Option<u64>,
 }
 
+/// Refuses a run whose `config.toml` was edited since its newest checkpoint:
+/// a run continues with the config it started with (its checkpoint's), so an
+/// edit would otherwise be silently undone. Only `run.threads` (speed, not
+/// results) and `experiment.generations` (set by `resume --generations`, which
+/// rewrites `config.toml` before the next checkpoint records it) may differ;
+/// a missing `config.toml` is rewritten.
+fn check_config_unchanged(dir: &Path, checkpoint: &Path, recorded: &Config) -> Result<()> {
+    let path = dir.join(files::CONFIG);
+    let Ok(text) = crate::io::read_text(&path) else {
+        return Ok(());
+    };
+    let expected = recorded.to_toml();
+    if text == expected {
+        return Ok(());
+    }
+    if let Ok(mut on_disk) = Config::from_toml(&text) {
+        on_disk.run.threads = recorded.run.threads;
+        on_disk.experiment.generations = recorded.experiment.generations;
+        if on_disk == *recorded {
+            return Ok(());
+        }
+    }
+    let (line, differs) = text
+        .lines()
+        .zip(expected.lines().chain(std::iter::repeat("")))
+        .enumerate()
+        .find(|(_, (a, b))| a != b)
+        .map(|(i, (a, _))| (i + 1, a.trim().to_string()))
+        .unwrap_or((text.lines().count() + 1, "(end of file)".to_string()));
+    Err(Error::Checkpoint {
+        path,
+        reason: format!(
+            "differs from the run's newest checkpoint {} (line {line}: `{differs}`); a run resumes with the config it started with: undo the edit (extend a run with `resume --generations N`), or start a new run with `evolve --config`",
+            checkpoint.display()
+        ),
+    })
+}
+
 /// A checkpoint: everything needed to continue the run exactly.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -401,6 +439,7 @@ impl Run {
             .file_name()
             .map(|n| n.to_string_lossy().into_owned())
             .unwrap_or_else(|| "run".into());
+        remove_abandoned_builds(&parent, &name);
         let tmp = parent.join(format!(".{name}.tmp-{}", std::process::id()));
         if tmp.exists() {
             fs::remove_dir_all(&tmp).map_err(Error::io("clear", &tmp))?;
@@ -449,6 +488,7 @@ impl Run {
         // Locked before anything is read: another writer may be mid-generation.
         let lock = RunLock::acquire(dir)?;
         let mut cp = decode_checkpoint(&path)?;
+        check_config_unchanged(dir, &path, &cp.config)?;
         if let Some(n) = generations {
             if n < cp.progress.done {
                 return Err(bad_input(format!(
@@ -973,6 +1013,37 @@ impl RunLock {
             return Err(Error::io("lock", dir)(e));
         }
         Ok(RunLock(file))
+    }
+}
+
+/// Removes hidden `.NAME.tmp-PID` folders that runs killed before their first
+/// checkpoint left in `parent`: those whose process is gone and whose lock is
+/// free (both, so neither a live run's fresh folder nor a reused PID is hit).
+fn remove_abandoned_builds(parent: &Path, name: &str) {
+    let prefix = format!(".{name}.tmp-");
+    let Ok(entries) = fs::read_dir(parent) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let file_name = entry.file_name();
+        let Some(pid) = file_name
+            .to_str()
+            .and_then(|n| n.strip_prefix(&prefix))
+            .and_then(|p| p.parse::<i32>().ok())
+        else {
+            continue;
+        };
+        // SAFETY: kill with signal 0 sends nothing; it only asks whether `pid` exists.
+        let gone = pid > 0
+            && unsafe { libc::kill(pid, 0) } != 0
+            && std::io::Error::last_os_error().raw_os_error() == Some(libc::ESRCH);
+        let path = entry.path();
+        if gone && path.is_dir() && !path.is_symlink() {
+            if let Ok(lock) = RunLock::acquire(&path) {
+                let _ = fs::remove_dir_all(&path);
+                drop(lock);
+            }
+        }
     }
 }
 

@@ -122,6 +122,25 @@ fn another_runs_checkpoint_or_a_replaced_scenario_is_refused() {
     assert_eq!(snapshot(&run_dir), before, "foreign: run directory changed");
     std::fs::remove_file(&foreign).unwrap();
 
+    // config.toml edited after the run started (a resume would silently undo it).
+    let config_toml = run_dir.join("config.toml");
+    let original = std::fs::read_to_string(&config_toml).unwrap();
+    let edited = original.replacen("steps = 150", "steps = 151", 1);
+    assert_ne!(edited, original, "the test edits the steps");
+    std::fs::write(&config_toml, &edited).unwrap();
+    let out = run(vivae()
+        .args(["resume", "-q", "--generations", "4"])
+        .arg(&run_dir));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert_eq!(stderr.trim().lines().count(), 1, "{stderr}");
+    assert!(
+        stderr.contains("config.toml") && stderr.contains("steps = 151"),
+        "{stderr}"
+    );
+    std::fs::write(&config_toml, &original).unwrap();
+    assert_eq!(snapshot(&run_dir), before, "config: run directory changed");
+
     // The scenario replaced after the run started.
     let scenario = run_dir.join("scenario.svg");
     let mut text = std::fs::read_to_string(&scenario).unwrap();

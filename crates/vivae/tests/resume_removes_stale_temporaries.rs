@@ -29,3 +29,25 @@ fn resume_removes_temporary_files_of_a_killed_process() {
     assert!(keep.exists(), "a file of the user's was removed");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A run killed before its first checkpoint leaves its hidden build folder
+/// (`.DIR.tmp-PID`); the next run of that directory removes it, but never the
+/// folder of a process that is still alive.
+#[test]
+fn a_new_run_removes_build_folders_of_killed_runs() {
+    let dir = scratch("stale-build");
+    let config = write_small_config(&dir, 1);
+    let dead = dir.join(".run.tmp-999999");
+    let alive = dir.join(format!(".run.tmp-{}", std::process::id()));
+    for d in [&dead, &alive] {
+        std::fs::create_dir_all(d.join("checkpoints")).unwrap();
+        std::fs::write(d.join("config.toml"), b"half").unwrap();
+    }
+    let other = dir.join(".other.tmp-999999");
+    std::fs::create_dir(&other).unwrap();
+    evolve(&config, &dir.join("run"), &[]);
+    assert!(!dead.exists(), "the killed run's build folder is left");
+    assert!(alive.exists(), "a live process's build folder was removed");
+    assert!(other.exists(), "another run's folder was touched");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
