@@ -1038,11 +1038,13 @@ fn remove_abandoned_builds(parent: &Path, name: &str) {
             && unsafe { libc::kill(pid, 0) } != 0
             && std::io::Error::last_os_error().raw_os_error() == Some(libc::ESRCH);
         let path = entry.path();
-        if gone && path.is_dir() && !path.is_symlink() {
-            if let Ok(lock) = RunLock::acquire(&path) {
-                let _ = fs::remove_dir_all(&path);
-                drop(lock);
-            }
+        if gone
+            && path.is_dir()
+            && !path.is_symlink()
+            && let Ok(lock) = RunLock::acquire(&path)
+        {
+            let _ = fs::remove_dir_all(&path);
+            drop(lock);
         }
     }
 }
