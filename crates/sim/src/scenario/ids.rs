@@ -61,15 +61,21 @@ pub(super) fn unique_ids(
             Some(a) if seen.insert(a.value()) => {}
             Some(a) => {
                 let range = a.range_value();
-                // roxmltree's ranges are approximate for extreme spacing, and a
-                // value with character references differs from its text: such a
-                // duplicate is refused rather than guessed at.
-                if text.get(range.clone()) != Some(a.value()) {
-                    return Err(ScenarioError::Attribute {
+                // roxmltree's value range is exact unless more than 255 spaces
+                // surround the `=`: then the quotes are not where it says, and
+                // the duplicate is refused rather than guessed at.
+                let quoted = |i: usize| matches!(text.as_bytes().get(i), Some(b'"' | b'\''));
+                if range.start == 0
+                    || !quoted(range.start - 1)
+                    || !quoted(range.end)
+                    || text.get(range.clone()).is_none()
+                {
+                    return Err(ScenarioError::Xml {
                         source_name: source.to_string(),
-                        id: a.value().to_string(),
-                        attribute: "id".into(),
-                        value: format!("{} (used twice; second use on line {line})", a.value()),
+                        message: format!(
+                            "id '{}' is used twice (again on line {line}) and cannot be renamed: too many spaces around its '='",
+                            a.value()
+                        ),
                     });
                 }
                 let id = fresh();
@@ -138,6 +144,27 @@ mod tests {
         assert_eq!(ids, ["vivae-element-1", "r", "vivae-element-2"]);
         assert_eq!(u.display["vivae-element-1"], "<path> on line 2");
         assert_eq!(u.display["vivae-element-2"], "r (<rect> on line 4)");
+    }
+
+    #[test]
+    fn a_repeated_id_written_with_a_character_reference_is_renamed() {
+        let u = rewrite(r#"<svg><path id="a"/><path id="&#97;"/></svg>"#).unwrap();
+        assert!(
+            u.text.contains(r#"<path id="vivae-element-1"/>"#),
+            "{}",
+            u.text
+        );
+    }
+
+    #[test]
+    fn a_repeated_id_whose_position_is_unknown_is_refused() {
+        let svg = format!(
+            r#"<svg><path id="a"/><path id{}="a"/></svg>"#,
+            " ".repeat(300)
+        );
+        let doc = roxmltree::Document::parse(&svg).unwrap();
+        let e = unique_ids(&doc, &svg, "t.svg").err().expect("refused");
+        assert!(e.to_string().contains("used twice"), "{e}");
     }
 
     #[test]

@@ -42,6 +42,9 @@ pub struct LoadOptions {
     pub cell_size: f64,
     /// Largest accepted arena width or height in px (default 20 000).
     pub max_arena_size: f64,
+    /// Largest accepted arena area in px² (default 10⁸: a 100 MB surface
+    /// raster at 1 px cells, the memory a run needs for it).
+    pub max_arena_area: f64,
 }
 
 impl Default for LoadOptions {
@@ -49,6 +52,7 @@ impl Default for LoadOptions {
         LoadOptions {
             cell_size: 1.0,
             max_arena_size: 20_000.0,
+            max_arena_area: 1e8,
         }
     }
 }
@@ -294,6 +298,12 @@ impl<'a> Loader<'a> {
                 value: opts.cell_size,
             });
         }
+        if !(opts.max_arena_area.is_finite() && opts.max_arena_area > 0.0) {
+            return Err(ScenarioError::Options {
+                field: "max_arena_area",
+                value: opts.max_arena_area,
+            });
+        }
         if !(opts.max_arena_size.is_finite() && opts.max_arena_size > 0.0) {
             return Err(ScenarioError::Options {
                 field: "max_arena_size",
@@ -385,6 +395,18 @@ impl<'a> Loader<'a> {
                 width,
                 height,
                 problem: format!("larger than the limit of {} px", opts.max_arena_size),
+            });
+        }
+        if width * height > opts.max_arena_area {
+            return Err(ScenarioError::ArenaSize {
+                source_name: err_src(),
+                width,
+                height,
+                problem: format!(
+                    "larger than the limit of {:e} px² in area (its surface raster would take {:.0} MB)",
+                    opts.max_arena_area,
+                    width * height / (opts.cell_size * opts.cell_size) / 1e6
+                ),
             });
         }
         let background = match root.attribute("data-background") {
