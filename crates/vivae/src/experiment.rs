@@ -1,5 +1,6 @@
 //! The driving experiment: a substrate controller per robot, episodes, fitness.
 
+use crate::behaviour::{Behaviour, BehaviourMeter};
 use std::sync::Arc;
 
 use vivae_neat::driver::{Evaluation, Task};
@@ -44,6 +45,8 @@ pub struct Episode {
     pub on_road: Option<f64>,
     /// Every robot's path (start position first), when recorded.
     pub trajectories: Option<Vec<Vec<DVec2>>>,
+    /// Collisions, turns, loops and side of the road, when recorded.
+    pub behaviour: Option<Behaviour>,
 }
 
 /// Why an experiment cannot be set up.
@@ -247,6 +250,7 @@ impl Experiment {
         let mut outputs = vec![0.0; controller.num_outputs()];
         let mut controls = vec![[0.0; 2]; n];
         let mut on_road = 0u64;
+        let mut meter = record.then(|| BehaviourMeter::new(&world, self.steps as usize));
         for _ in 0..self.steps {
             for (i, c) in controllers.iter_mut().enumerate() {
                 self.read_inputs(&world, i, &mut inputs);
@@ -254,8 +258,9 @@ impl Experiment {
                 controls[i] = [outputs[self.wheels.left], outputs[self.wheels.right]];
             }
             world.step(&controls);
-            if record {
+            if let Some(meter) = &mut meter {
                 on_road += (0..n).filter(|&i| world.on_road(i)).count() as u64;
+                meter.observe(&world);
             }
         }
         let robot_steps = (n as f64) * f64::from(self.steps);
@@ -264,6 +269,7 @@ impl Experiment {
             fitness: odometer / robot_steps,
             on_road: record.then_some(on_road as f64 / robot_steps),
             trajectories: world.trajectories().map(|t| t.to_vec()),
+            behaviour: meter.map(|m| m.finish()),
         };
         (episode, world)
     }

@@ -656,7 +656,12 @@ fn cmd_replay(args: ReplayArgs) -> anyhow::Result<ExitCode> {
     vivae::io::create_dirs(&out)?;
     let name = report::scenario_name(path.as_deref());
     let replay = report::replay(&experiment, &config, &champion, &name, &out)?;
-    println!("fitness={} on_road={:.4}", replay.fitness, replay.on_road);
+    println!(
+        "fitness={} on_road={:.4} {}",
+        replay.fitness,
+        replay.on_road,
+        replay.behaviour.fields()
+    );
     eprintln!("figure: {}", replay.figure.display());
     Ok(ExitCode::SUCCESS)
 }

@@ -172,6 +172,8 @@ pub struct Replay {
     pub fitness: f64,
     /// Fraction of robot-steps on road.
     pub on_road: f64,
+    /// Collisions, turns, loops and side of the road.
+    pub behaviour: crate::behaviour::Behaviour,
     /// The trajectory figure (PNG).
     pub figure: PathBuf,
 }
@@ -219,6 +221,9 @@ pub fn replay(
     Ok(Replay {
         fitness: episode.fitness,
         on_road: episode.on_road.unwrap_or_default(),
+        behaviour: episode.behaviour.ok_or(Error::Invalid(
+            "the replay recorded no behaviour measures".into(),
+        ))?,
         figure: out.join(format!("{name}.png")),
     })
 }

@@ -88,6 +88,17 @@ fn evolve_replay_retrain_workflow() {
         .unwrap();
     assert_eq!(fitness, champion["fitness"].as_f64().unwrap(), "{line}");
     assert!(line.contains("on_road="));
+    // The behaviour measures, each a number (side may be `none`).
+    for key in ["collisions", "left_turns", "right_turns", "loops", "side"] {
+        let value = line
+            .split_whitespace()
+            .find_map(|f| f.strip_prefix(&format!("{key}=")))
+            .unwrap_or_else(|| panic!("no {key}= in {line}"));
+        assert!(
+            value == "none" || value.parse::<f64>().is_ok(),
+            "{key}={value}"
+        );
+    }
     assert!(
         run_dir
             .join("replay/replay-scenario-s3x5-n3x3.png")
