@@ -112,7 +112,70 @@ pub struct SubstrateConfig {
     /// sensors, 9 neurons, 5 rays) / (its node count here), so a re-sampled
     /// substrate drives its neurons as strongly; exactly 1 at the paper's resolution.
     pub normalize: bool,
+    /// Neuron sheets (RINGSxANGLES) every genome is
+    /// evaluated at during evolution, its fitness aggregating them
+    /// (multi-resolution evolution); unset = `neurons` only. `neurons` stays
+    /// the resolution reported and drawn.
+    ///
+    /// Example: ["3x3", "5x5", "9x9"].
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    #[schemars(with = "Vec<String>")]
+    pub train_neurons: Vec<PolarGrid>,
+    /// Surface-sensor sheets (RINGSxANGLES) every genome is evaluated at during
+    /// evolution, each with every one of `train_neurons`; unset = the
+    /// `surface_sensors` sheet only.
+    ///
+    /// Example: ["3x5", "3x6"].
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    #[schemars(with = "Vec<String>")]
+    pub train_sensors: Vec<PolarGrid>,
+    /// How the fitnesses at the training resolutions combine: `mean` (unset) or `min`.
+    ///
+    /// Example: "min".
+    #[serde(default, skip_serializing_if = "Aggregate::is_mean")]
+    pub train_aggregate: Aggregate,
 }
+
+/// How a genome's fitnesses at several training resolutions combine into one.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Aggregate {
+    /// The arithmetic mean (in the listed order).
+    #[default]
+    Mean,
+    /// The worst of them.
+    Min,
+}
+
+impl Aggregate {
+    /// Whether this is the default, [`Aggregate::Mean`].
+    pub fn is_mean(&self) -> bool {
+        *self == Aggregate::Mean
+    }
+
+    /// Combines `values` (at least one).
+    pub fn combine(&self, values: &[f64]) -> f64 {
+        match self {
+            Aggregate::Mean => values.iter().sum::<f64>() / values.len() as f64,
+            Aggregate::Min => values.iter().copied().fold(f64::INFINITY, f64::min),
+        }
+    }
+}
+
+impl std::str::FromStr for Aggregate {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "mean" => Ok(Aggregate::Mean),
+            "min" => Ok(Aggregate::Min),
+            other => Err(format!("'{other}': expected mean or min")),
+        }
+    }
+}
+
+/// Most resolutions one genome may be evaluated at (neurons × sensors).
+pub const MAX_TRAINING_RESOLUTIONS: usize = 16;
 
 impl Default for SubstrateConfig {
     fn default() -> Self {
@@ -123,6 +186,9 @@ impl Default for SubstrateConfig {
             },
             coordinates: CoordMode::default(),
             normalize: true,
+            train_neurons: Vec::new(),
+            train_sensors: Vec::new(),
+            train_aggregate: Aggregate::Mean,
         }
     }
 }
@@ -273,6 +339,18 @@ impl Config {
             })?;
         }
         self.check_sizes()?;
+        let training =
+            self.substrate.train_neurons.len().max(1) * self.substrate.train_sensors.len().max(1);
+        if training > MAX_TRAINING_RESOLUTIONS {
+            return Err(ConfigError::new(format!(
+                "substrate.train_neurons x train_sensors = {training} resolutions: must be at most {MAX_TRAINING_RESOLUTIONS}"
+            )));
+        }
+        for c in self.training_configs() {
+            c.check_sizes().map_err(|e| {
+                ConfigError::new(format!("substrate.train_neurons/train_sensors: {e}"))
+            })?;
+        }
         let r = &self.run;
         if r.checkpoint_interval == 0 {
             return Err(ConfigError::new(
@@ -295,6 +373,44 @@ impl Config {
 
     /// Refuses sizes that validate one by one but cannot run: a substrate whose
     /// weight matrix would not fit in memory, absurd step counts.
+    /// The configs of the resolutions every genome is evaluated at during
+    /// evolution (`substrate.train_neurons` × `train_sensors`, neurons first);
+    /// empty when training uses this config's own resolution only. Each has
+    /// empty training lists.
+    pub fn training_configs(&self) -> Vec<Config> {
+        let sub = &self.substrate;
+        if sub.train_neurons.is_empty() && sub.train_sensors.is_empty() {
+            return Vec::new();
+        }
+        let own_sensors = PolarGrid {
+            rings: self.surface_sensors.rings,
+            angles: self.surface_sensors.angles,
+        };
+        let neurons = if sub.train_neurons.is_empty() {
+            vec![sub.neurons]
+        } else {
+            sub.train_neurons.clone()
+        };
+        let sensors = if sub.train_sensors.is_empty() {
+            vec![own_sensors]
+        } else {
+            sub.train_sensors.clone()
+        };
+        let mut out = Vec::with_capacity(neurons.len() * sensors.len());
+        for n in &neurons {
+            for s in &sensors {
+                let mut c = self.clone();
+                c.substrate.neurons = *n;
+                c.surface_sensors.rings = s.rings;
+                c.surface_sensors.angles = s.angles;
+                c.substrate.train_neurons.clear();
+                c.substrate.train_sensors.clear();
+                out.push(c);
+            }
+        }
+        out
+    }
+
     fn check_sizes(&self) -> Result<(), ConfigError> {
         let e = &self.experiment;
         if e.steps > MAX_STEPS {

@@ -698,8 +698,7 @@ impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
         let (mean, median) = stats::mean(&fitness)
             .zip(stats::median_of_sorted(&sorted))
             .expect("an evaluated population has fitnesses");
-        let robot_steps =
-            (n * self.experiment.robots()) as f64 * f64::from(self.experiment.steps());
+        let robot_steps = n as f64 * self.experiment.evaluation_robot_steps() as f64;
         let record = GenerationRecord {
             generation,
             total: self.total,

@@ -1,6 +1,7 @@
 //! The driving experiment: a substrate controller per robot, episodes, fitness.
 
 use crate::behaviour::{Behaviour, BehaviourMeter};
+use crate::training::Training;
 use std::sync::Arc;
 
 use vivae_neat::driver::{Evaluation, Task};
@@ -33,6 +34,8 @@ pub struct Experiment {
     sheet_scale: Vec<f64>,
     steps: u32,
     cppn_outputs: usize,
+    /// Multi-resolution evolution: the resolutions a genome is evaluated at.
+    training: Option<Arc<Training>>,
 }
 
 /// The outcome of one episode.
@@ -133,6 +136,7 @@ impl Experiment {
             sheet_scale,
             steps: config.experiment.steps,
             cppn_outputs,
+            training: Training::new(config, &scenario)?.map(Arc::new),
         })
     }
 
@@ -184,6 +188,21 @@ impl Experiment {
             sheet.sensor.read(world, robot, mine);
             rest = others;
         }
+    }
+
+    /// The resolutions evolution evaluates each genome at, when more than this
+    /// experiment's own (`substrate.train_neurons` / `train_sensors`).
+    pub fn training(&self) -> Option<&Training> {
+        self.training.as_deref()
+    }
+
+    /// Robot-steps one evaluation during evolution simulates (over every
+    /// training resolution).
+    pub fn evaluation_robot_steps(&self) -> u64 {
+        self.training.as_ref().map_or_else(
+            || self.robots() as u64 * u64::from(self.steps),
+            |t| t.robot_steps(),
+        )
     }
 
     /// Simulation steps per episode.
@@ -279,7 +298,10 @@ impl Experiment {
 /// controller's average speed (deterministic: the episode has no randomness).
 impl Task for Experiment {
     fn evaluate(&self, genome: &Genome, _ctx: &EvalContext) -> Evaluation {
-        Evaluation::fitness(self.fitness(genome))
+        match &self.training {
+            Some(training) => Evaluation::fitness(training.fitness(genome)),
+            None => Evaluation::fitness(self.fitness(genome)),
+        }
     }
 }
 

@@ -41,6 +41,7 @@ pub mod report_html;
 pub mod sensors;
 pub mod shipped;
 pub mod substrate;
+pub mod training;
 pub mod view;
 
 pub use error::{Error, Result};

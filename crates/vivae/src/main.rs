@@ -84,6 +84,17 @@ struct Overrides {
     /// Evaluation threads (0 = one per core); results do not depend on it.
     #[arg(long, value_name = "N")]
     threads: Option<usize>,
+    /// Multi-resolution evolution: evaluate every genome at these neuron
+    /// sheets (e.g. 3x3,5x5,9x9) and aggregate; --neurons stays the one reported.
+    #[arg(long, value_name = "RxA,...", value_delimiter = ',')]
+    train_neurons: Option<Vec<PolarGrid>>,
+    /// Multi-resolution evolution: evaluate every genome at these sensor sheets
+    /// (e.g. 3x5,3x6), with each of --train-neurons.
+    #[arg(long, value_name = "RxA,...", value_delimiter = ',')]
+    train_sensors: Option<Vec<PolarGrid>>,
+    /// How the training resolutions' fitnesses combine: mean (default) or min.
+    #[arg(long, value_name = "mean|min")]
+    train_aggregate: Option<vivae::config::Aggregate>,
 }
 
 #[derive(Args, Debug)]
@@ -282,6 +293,15 @@ fn apply_overrides(config: &mut Config, o: &Overrides) -> anyhow::Result<()> {
     if let Some(n) = o.threads {
         config.run.threads = n;
     }
+    if let Some(g) = &o.train_neurons {
+        config.substrate.train_neurons = g.clone();
+    }
+    if let Some(g) = &o.train_sensors {
+        config.substrate.train_sensors = g.clone();
+    }
+    if let Some(a) = o.train_aggregate {
+        config.substrate.train_aggregate = a;
+    }
     config
         .validate()
         .map_err(|e| bad_input(format!("command line: {e}")).into())
@@ -454,10 +474,18 @@ fn header(run: &Run, scenario: &str) -> String {
         0 => String::new(),
         d => format!(" (resuming after generation {d})"),
     };
+    let training = match run.experiment().training() {
+        None => String::new(),
+        Some(t) => format!(
+            "\n  training: every genome at {} ({:?} of their fitnesses)",
+            t.labels().collect::<Vec<_>>().join(", "),
+            t.aggregate()
+        ),
+    };
     format!(
         "vivae evolve: {scenario}\n\
          \x20 robots {}, {} steps per evaluation, population {}, {} generations{start}\n\
-         \x20 substrate: {}x{} surface sensors{distance}, {}x{} neurons; threads {threads}, seed {}\n\
+         \x20 substrate: {}x{} surface sensors{distance}, {}x{} neurons; threads {threads}, seed {}{training}\n\
          \x20 output: {}\n\
          \x20 fitness = average speed in px/step over all robots and steps (full throttle on road tends to 5)",
         run.experiment().robots(),
