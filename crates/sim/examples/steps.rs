@@ -30,8 +30,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         for (i, c) in controls.iter_mut().enumerate() {
             grid.read(&world, i, &mut buf);
             let half = buf.len() / 2;
-            let left: f64 = buf[..half].iter().sum();
-            let right: f64 = buf[half..].iter().sum();
+            let (left, right) = (lane_sum(&buf[..half]), lane_sum(&buf[half..]));
             *c = [
                 0.2 + 0.8 * (right > left) as u8 as f64,
                 0.2 + 0.8 * (left >= right) as u8 as f64,
@@ -42,4 +41,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let odo: f64 = world.robots().iter().map(|r| r.odometer).sum();
     println!("{} robot-steps, total odometer {odo:.1}", steps * n);
     Ok(())
+}
+
+/// Sum in eight independent lanes: the one-chain sum of 1,200 readings took
+/// as long as reading them, hiding the sensors' cost.
+fn lane_sum(v: &[f64]) -> f64 {
+    let mut acc = [0.0; 8];
+    let mut chunks = v.chunks_exact(8);
+    for c in &mut chunks {
+        for (a, x) in acc.iter_mut().zip(c) {
+            *a += x;
+        }
+    }
+    acc.iter().sum::<f64>() + chunks.remainder().iter().sum::<f64>()
 }
