@@ -1,6 +1,7 @@
 //! The simulated world: robots, movable bodies and the physics step.
 
 mod contacts;
+mod sincos;
 
 use std::sync::Arc;
 
@@ -86,6 +87,8 @@ pub(crate) struct Statics {
     /// Sensor reading per material id (same indexing as `here`); 256 entries so
     /// that indexing by a `u8` needs no bounds check.
     pub(crate) readings: Box<[f64; 256]>,
+    /// Friction per material id, 256 entries like `readings`.
+    pub(crate) frictions: Box<[f64; 256]>,
     /// Arena size in raster cells (the outside test of the fast look-up).
     pub(crate) limit: DVec2,
     /// 1 / cell size.
@@ -182,6 +185,13 @@ impl World {
                     }
                     r
                 },
+                frictions: {
+                    let mut f = Box::new([0.0; 256]);
+                    for (slot, h) in f.iter_mut().zip(&table) {
+                        *slot = h.friction;
+                    }
+                    f
+                },
                 limit,
                 lanes: {
                     let ras = scenario.raster();
@@ -271,19 +281,24 @@ impl World {
     /// Surface at `p` (via the raster); `None` outside the arena.
     #[inline]
     pub fn surface_at(&self, p: DVec2) -> Option<SurfaceHere> {
+        self.id_at(p).map(|id| self.statics.here[id as usize])
+    }
+
+    /// Material id at `p` (via the raster); `None` outside the arena.
+    #[inline(always)]
+    fn id_at(&self, p: DVec2) -> Option<u8> {
         let st = &*self.statics;
         let sc = &st.scenario;
         if !(p.x >= 0.0 && p.y >= 0.0 && p.x < sc.width() && p.y < sc.height()) {
             return None;
         }
         let ras = sc.raster();
-        let id = if st.cell_pow2 {
+        if st.cell_pow2 {
             // x / 2^k and x · 2^-k are the same correctly rounded number: no division.
             ras.id_at_cell(p.x * st.inv_cell, p.y * st.inv_cell)
         } else {
             ras.id_at(p)
-        };
-        id.map(|id| st.here[id as usize])
+        }
     }
 
     /// Whether robot `i`'s centre is on a road.
@@ -300,22 +315,45 @@ impl World {
         let pp = &self.params;
         let (v_max, a_max, om_max, k) = (pp.v_max, pp.a_max, pp.omega_max, pp.k);
         let outside = pp.friction.of(self.statics.scenario.background());
-        for i in 0..self.robots.len() {
-            let [l, r] = controls.get(i).copied().unwrap_or([0.0, 0.0]);
-            let l = if l.is_nan() { 0.0 } else { l.clamp(-1.0, 1.0) };
-            let r = if r.is_nan() { 0.0 } else { r.clamp(-1.0, 1.0) };
-            let mu = self
-                .surface_at(self.robots[i].pos)
-                .map_or(outside, |s| s.friction);
-            let rb = &mut self.robots[i];
-            self.prev_robots[i] = rb.pos;
-            let a = a_max * (l + r) * 0.5;
-            let omega = om_max * (l - r) * 0.5 * (1.0 - rb.speed / v_max);
-            rb.speed = (rb.speed + a - k * mu * rb.speed).clamp(0.0, v_max);
-            if omega != 0.0 {
-                rb.set_heading(rb.heading + omega);
+        let n = self.robots.len();
+        let mut start = 0;
+        // Robots in batches of eight, so that one vectorised sincos turns them all.
+        while start < n {
+            let end = (start + sincos::LANES).min(n);
+            // New headings of the batch's turning robots (1.0, a cheap angle, elsewhere).
+            let mut heading = [1.0; sincos::LANES];
+            let mut turns = [false; sincos::LANES];
+            for i in start..end {
+                let [l, r] = controls.get(i).copied().unwrap_or([0.0, 0.0]);
+                let l = if l.is_nan() { 0.0 } else { l.clamp(-1.0, 1.0) };
+                let r = if r.is_nan() { 0.0 } else { r.clamp(-1.0, 1.0) };
+                let mu = self
+                    .id_at(self.robots[i].pos)
+                    .map_or(outside, |id| self.statics.frictions[id as usize]);
+                let rb = &mut self.robots[i];
+                self.prev_robots[i] = rb.pos;
+                let a = a_max * (l + r) * 0.5;
+                let omega = om_max * (l - r) * 0.5 * (1.0 - rb.speed / v_max);
+                rb.speed = (rb.speed + a - k * mu * rb.speed).clamp(0.0, v_max);
+                if omega != 0.0 {
+                    // `set_heading`, its sincos batched below.
+                    rb.heading = wrap_angle(rb.heading + omega);
+                    heading[i - start] = rb.heading;
+                    turns[i - start] = true;
+                }
             }
-            rb.pos += rb.dir * rb.speed;
+            if turns.contains(&true) {
+                let (sin, cos) = sincos::sincos(&heading);
+                for i in start..end {
+                    if turns[i - start] {
+                        self.robots[i].dir = DVec2::new(sin[i - start], -cos[i - start]);
+                    }
+                }
+            }
+            for rb in &mut self.robots[start..end] {
+                rb.pos += rb.dir * rb.speed;
+            }
+            start = end;
         }
         let (pd, od) = (self.params.puck_damping, self.params.obstacle_damping);
         for (i, pk) in self.pucks.iter_mut().enumerate() {
