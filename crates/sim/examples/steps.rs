@@ -1,15 +1,26 @@
 //! Runs `STEPS` world steps of roads.svg (5 robots) reading `RINGSxANGLES`
 //! surface sensors, for measuring CPU time per robot-step with `perf stat`
 //! when the machine is too busy for wall-clock benchmarks.
-//! Usage: `cargo run --release --example steps -- STEPS [RINGS ANGLES]`
+//! Usage: `cargo run --release --example steps -- STEPS [RINGS ANGLES] [scalar|avx2|avx512]`
+//! (the last argument forces the simulator's SIMD level; the default is the best detected).
 
+use vivae_sim::simd::{SimdLevel, set_level};
 use vivae_sim::{LoadOptions, PhysicsParams, Scenario, Sensor, SurfaceSensors, World};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let args: Vec<usize> = std::env::args()
-        .skip(1)
-        .map(|a| a.parse())
-        .collect::<Result<_, _>>()?;
+    let mut args: Vec<String> = std::env::args().skip(1).collect();
+    // An optional last argument forces the simulator's SIMD level.
+    let level = match args.last().map(String::as_str) {
+        Some("scalar") => Some(SimdLevel::Scalar),
+        Some("avx2") => Some(SimdLevel::Avx2),
+        Some("avx512") => Some(SimdLevel::Avx512),
+        _ => None,
+    };
+    if let Some(l) = level {
+        args.pop();
+        eprintln!("SIMD level {:?}", set_level(l));
+    }
+    let args: Vec<usize> = args.iter().map(|a| a.parse()).collect::<Result<_, _>>()?;
     let steps = args.first().copied().unwrap_or(1_000_000);
     let (rings, angles) = (
         args.get(1).copied().unwrap_or(3),

@@ -397,6 +397,9 @@ impl SurfaceGrid {
         };
         let n = self.ox.len().min(out.len());
         let out = &mut out[..n];
+        if n == 0 {
+            return;
+        }
         if !st.lanes {
             return q.scalar(&self.ox, &self.oy, out);
         }

@@ -1,7 +1,6 @@
 //! The simulated world: robots, movable bodies and the physics step.
 
 mod contacts;
-mod sincos;
 
 use std::sync::Arc;
 
@@ -315,45 +314,22 @@ impl World {
         let pp = &self.params;
         let (v_max, a_max, om_max, k) = (pp.v_max, pp.a_max, pp.omega_max, pp.k);
         let outside = pp.friction.of(self.statics.scenario.background());
-        let n = self.robots.len();
-        let mut start = 0;
-        // Robots in batches of eight, so that one vectorised sincos turns them all.
-        while start < n {
-            let end = (start + sincos::LANES).min(n);
-            // New headings of the batch's turning robots (1.0, a cheap angle, elsewhere).
-            let mut heading = [1.0; sincos::LANES];
-            let mut turns = [false; sincos::LANES];
-            for i in start..end {
-                let [l, r] = controls.get(i).copied().unwrap_or([0.0, 0.0]);
-                let l = if l.is_nan() { 0.0 } else { l.clamp(-1.0, 1.0) };
-                let r = if r.is_nan() { 0.0 } else { r.clamp(-1.0, 1.0) };
-                let mu = self
-                    .id_at(self.robots[i].pos)
-                    .map_or(outside, |id| self.statics.frictions[id as usize]);
-                let rb = &mut self.robots[i];
-                self.prev_robots[i] = rb.pos;
-                let a = a_max * (l + r) * 0.5;
-                let omega = om_max * (l - r) * 0.5 * (1.0 - rb.speed / v_max);
-                rb.speed = (rb.speed + a - k * mu * rb.speed).clamp(0.0, v_max);
-                if omega != 0.0 {
-                    // `set_heading`, its sincos batched below.
-                    rb.heading = wrap_angle(rb.heading + omega);
-                    heading[i - start] = rb.heading;
-                    turns[i - start] = true;
-                }
+        for i in 0..self.robots.len() {
+            let [l, r] = controls.get(i).copied().unwrap_or([0.0, 0.0]);
+            let l = if l.is_nan() { 0.0 } else { l.clamp(-1.0, 1.0) };
+            let r = if r.is_nan() { 0.0 } else { r.clamp(-1.0, 1.0) };
+            let mu = self
+                .id_at(self.robots[i].pos)
+                .map_or(outside, |id| self.statics.frictions[id as usize]);
+            let rb = &mut self.robots[i];
+            self.prev_robots[i] = rb.pos;
+            let a = a_max * (l + r) * 0.5;
+            let omega = om_max * (l - r) * 0.5 * (1.0 - rb.speed / v_max);
+            rb.speed = (rb.speed + a - k * mu * rb.speed).clamp(0.0, v_max);
+            if omega != 0.0 {
+                rb.set_heading(rb.heading + omega);
             }
-            if turns.contains(&true) {
-                let (sin, cos) = sincos::sincos(&heading);
-                for i in start..end {
-                    if turns[i - start] {
-                        self.robots[i].dir = DVec2::new(sin[i - start], -cos[i - start]);
-                    }
-                }
-            }
-            for rb in &mut self.robots[start..end] {
-                rb.pos += rb.dir * rb.speed;
-            }
-            start = end;
+            rb.pos += rb.dir * rb.speed;
         }
         let (pd, od) = (self.params.puck_damping, self.params.obstacle_damping);
         for (i, pk) in self.pucks.iter_mut().enumerate() {
