@@ -319,10 +319,11 @@ mod lanes {
                 _mm512_mul_pd(rxy, y),
             );
             // Ordered compares: NaN is outside, as in `one`.
-            let ins = _mm512_cmp_pd_mask::<_CMP_GE_OQ>(cx, zero)
-                & _mm512_cmp_pd_mask::<_CMP_GE_OQ>(cy, zero)
-                & _mm512_cmp_pd_mask::<_CMP_LT_OQ>(cx, lx)
-                & _mm512_cmp_pd_mask::<_CMP_LT_OQ>(cy, ly);
+            // Each compare is masked by the previous ones: the AND costs no extra op.
+            let ins = _mm512_cmp_pd_mask::<_CMP_GE_OQ>(cx, zero);
+            let ins = _mm512_mask_cmp_pd_mask::<_CMP_GE_OQ>(ins, cy, zero);
+            let ins = _mm512_mask_cmp_pd_mask::<_CMP_LT_OQ>(ins, cx, lx);
+            let ins = _mm512_mask_cmp_pd_mask::<_CMP_LT_OQ>(ins, cy, ly);
             // Outside lanes become 0, so cell 0; their reading is discarded below.
             let c = _mm512_maskz_cvttpd_epi32(ins, cx);
             let r = _mm512_maskz_cvttpd_epi32(ins, cy);
