@@ -32,8 +32,7 @@ fn surface_steps(bencher: Bencher, rings: usize, angles: usize) {
         for (i, c) in controls.iter_mut().enumerate() {
             grid.read(&world, i, &mut buf);
             let half = buf.len() / 2;
-            let left: f64 = buf[..half].iter().sum();
-            let right: f64 = buf[half..].iter().sum();
+            let (left, right) = (lane_sum(&buf[..half]), lane_sum(&buf[half..]));
             *c = [
                 0.2 + 0.8 * (right > left) as u8 as f64,
                 0.2 + 0.8 * (left >= right) as u8 as f64,
@@ -52,6 +51,81 @@ fn step_5_robots_3x5_surface_sensors(bencher: Bencher) {
 #[divan::bench]
 fn step_5_robots_20x60_surface_sensors(bencher: Bencher) {
     surface_steps(bencher, 20, 60);
+}
+
+/// roads.svg at 16 moments of a run whose robots turn more and more slowly.
+fn driven_worlds() -> Vec<World> {
+    let mut world = roads_world();
+    let n = world.robots().len();
+    let mut worlds = Vec::new();
+    for k in 0..16 * 50 {
+        if k % 50 == 0 {
+            worlds.push(world.clone());
+        }
+        world.step(&vec![[1.0, 0.3 + 0.05 * (k / 50) as f64]; n]);
+    }
+    worlds
+}
+
+/// Surface sensors alone (no step): each of 5 robots reads `rings × angles`
+/// sensors, at poses taken from 16 moments of a driven run so that the
+/// look-ups are not all the same cells.
+fn surface_reads(bencher: Bencher, rings: usize, angles: usize) {
+    let grid = SurfaceSensors {
+        rings,
+        angles,
+        ..Default::default()
+    }
+    .grid();
+    let worlds = driven_worlds();
+    let n = worlds[0].robots().len();
+    let mut buf = vec![0.0; grid.len()];
+    let mut k = 0;
+    bencher.counter(ItemsCount::new(n)).bench_local(|| {
+        let w = &worlds[k % worlds.len()];
+        k += 1;
+        for i in 0..n {
+            grid.read(black_box(w), i, &mut buf);
+            black_box(&mut buf);
+        }
+    });
+}
+
+#[divan::bench]
+fn read_5_robots_3x5_surface_sensors(bencher: Bencher) {
+    surface_reads(bencher, 3, 5);
+}
+
+#[divan::bench]
+fn read_5_robots_20x60_surface_sensors(bencher: Bencher) {
+    surface_reads(bencher, 20, 60);
+}
+
+#[divan::bench]
+fn read_5_robots_32x96_surface_sensors(bencher: Bencher) {
+    surface_reads(bencher, 32, 96);
+}
+
+/// The 5 robots' 8 distance rays alone (no step), at the same 16 moments' poses.
+#[divan::bench]
+fn read_5_robots_8_distance_sensors(bencher: Bencher) {
+    let grid = DistanceSensors {
+        rays: 8,
+        ..Default::default()
+    }
+    .grid();
+    let worlds = driven_worlds();
+    let n = worlds[0].robots().len();
+    let mut buf = vec![0.0; grid.len()];
+    let mut k = 0;
+    bencher.counter(ItemsCount::new(n)).bench_local(|| {
+        let w = &worlds[k % worlds.len()];
+        k += 1;
+        for i in 0..n {
+            grid.read(black_box(w), i, &mut buf);
+            black_box(&mut buf);
+        }
+    });
 }
 
 #[divan::bench]
@@ -126,4 +200,17 @@ fn load_scenario(bencher: Bencher, name: &str) {
 fn clone_world(bencher: Bencher) {
     let world = roads_world();
     bencher.bench(|| black_box(&world).clone());
+}
+
+/// Sum in eight independent lanes: the one-chain sum of 1,200 readings took
+/// as long as reading them, hiding the sensors' cost.
+fn lane_sum(v: &[f64]) -> f64 {
+    let mut acc = [0.0; 8];
+    let mut chunks = v.chunks_exact(8);
+    for c in &mut chunks {
+        for (a, x) in acc.iter_mut().zip(c) {
+            *a += x;
+        }
+    }
+    acc.iter().sum::<f64>() + chunks.remainder().iter().sum::<f64>()
 }

@@ -26,6 +26,7 @@ pub mod physics;
 pub mod raster;
 pub mod scenario;
 pub mod sensors;
+pub mod simd;
 mod snapshot;
 mod style;
 pub mod world;

@@ -10,6 +10,10 @@ use crate::geometry::{FillRule, Shape};
 /// Tile side in cells (8×8 one-byte cells = one cache line).
 const TILE: usize = 8;
 
+/// Zero bytes after the last tile, so that a 4-byte gather at any cell's
+/// index stays inside the allocation (the sensors' vector look-up).
+pub(crate) const PAD: usize = 3;
+
 /// Grid of material ids (0 = background, `m` = `Scenario::materials[m]`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct SurfaceRaster {
@@ -48,6 +52,13 @@ impl SurfaceRaster {
         self.ids.get(idx).copied().unwrap_or(0)
     }
 
+    /// The tiled ids (then `PAD` zero bytes) and the number of tiles per row
+    /// (for the sensors' own look-up).
+    #[inline(always)]
+    pub(crate) fn tiles(&self) -> (&[u8], usize) {
+        (&self.ids, self.tiles_x)
+    }
+
     /// Material id of cell (`c`, `r`) (0 when out of range).
     #[inline(always)]
     pub fn get(&self, c: usize, r: usize) -> u8 {
@@ -75,7 +86,7 @@ impl SurfaceRaster {
             rows,
             cell,
             tiles_x,
-            ids: vec![0u8; tiles_x * tiles_y * TILE * TILE],
+            ids: vec![0u8; tiles_x * tiles_y * TILE * TILE + PAD],
         };
         let mut xs: Vec<(f64, i32)> = Vec::new();
         for (shape, m) in shapes {
@@ -133,15 +144,22 @@ impl SurfaceRaster {
     /// Material id at `p`: `None` outside the grid, `Some(0)` background.
     #[inline]
     pub fn id_at(&self, p: DVec2) -> Option<u8> {
-        let cx = p.x / self.cell;
-        let cy = p.y / self.cell;
-        if cx >= 0.0 && cy >= 0.0 {
-            let (c, r) = (cx as usize, cy as usize);
-            if c < self.cols && r < self.rows {
-                return Some(self.get(c, r));
-            }
+        self.id_at_cell(p.x / self.cell, p.y / self.cell)
+    }
+
+    /// Material id at cell coordinates (`cx`, `cy`) = position / cell side:
+    /// `None` outside the grid.
+    #[inline(always)]
+    pub(crate) fn id_at_cell(&self, cx: f64, cy: f64) -> Option<u8> {
+        // For cx >= 0, `(cx as usize) < cols` holds exactly when `cx < cols` (cols
+        // is an integer); testing in f64 first lets the conversion be the cheap
+        // signed one instead of the branchy float-to-unsigned one.
+        if cx >= 0.0 && cy >= 0.0 && cx < self.cols as f64 && cy < self.rows as f64 {
+            let (c, r) = (cx as i64 as usize, cy as i64 as usize);
+            Some(self.ids.get(self.index(c, r)).copied().unwrap_or(0))
+        } else {
+            None
         }
-        None
     }
 }
 

@@ -86,10 +86,20 @@ pub(crate) struct Statics {
     /// Sensor reading per material id (same indexing as `here`); 256 entries so
     /// that indexing by a `u8` needs no bounds check.
     pub(crate) readings: Box<[f64; 256]>,
+    /// Friction per material id, 256 entries like `readings`.
+    pub(crate) frictions: Box<[f64; 256]>,
     /// Arena size in raster cells (the outside test of the fast look-up).
     pub(crate) limit: DVec2,
     /// 1 / cell size.
     pub(crate) inv_cell: f64,
+    /// Whether the scenario has at most 16 materials (every raster id below 16).
+    pub(crate) few_materials: bool,
+    /// Whether the cell side is a power of two (so dividing by it is multiplying by `inv_cell`).
+    pub(crate) cell_pow2: bool,
+    /// Whether every in-arena cell's tiled index fits in 31 bits (`limit` within
+    /// the raster, under 2³¹ ids, padded for gathers), so the sensors may
+    /// compute it in u32 lanes.
+    pub(crate) lanes: bool,
     /// Indexed by material id (`scenario.materials()`).
     pub(crate) here: Vec<SurfaceHere>,
 }
@@ -161,6 +171,7 @@ impl World {
                 mass: params.obstacle_density * o.shape.area(),
             })
             .collect();
+        let limit = DVec2::new(scenario.width(), scenario.height()) / scenario.raster().cell;
         Ok(World {
             prev_robots: vec![DVec2::ZERO; robots.len()],
             prev_pucks: vec![DVec2::ZERO; pucks.len()],
@@ -173,8 +184,26 @@ impl World {
                     }
                     r
                 },
-                limit: DVec2::new(scenario.width(), scenario.height()) / scenario.raster().cell,
+                frictions: {
+                    let mut f = Box::new([0.0; 256]);
+                    for (slot, h) in f.iter_mut().zip(&table) {
+                        *slot = h.friction;
+                    }
+                    f
+                },
+                limit,
+                lanes: {
+                    let ras = scenario.raster();
+                    let n = ras.tiles().0.len();
+                    limit.x <= ras.cols as f64
+                        && limit.y <= ras.rows as f64
+                        && n > crate::raster::PAD
+                        && n < 1 << 31
+                },
                 inv_cell: 1.0 / scenario.raster().cell,
+                few_materials: table.len() <= 16,
+                cell_pow2: is_normal_pow2(scenario.raster().cell)
+                    && is_normal_pow2(1.0 / scenario.raster().cell),
                 scenario: scenario.clone(),
                 here: table,
             }),
@@ -251,13 +280,24 @@ impl World {
     /// Surface at `p` (via the raster); `None` outside the arena.
     #[inline]
     pub fn surface_at(&self, p: DVec2) -> Option<SurfaceHere> {
-        let sc = &self.statics.scenario;
+        self.id_at(p).map(|id| self.statics.here[id as usize])
+    }
+
+    /// Material id at `p` (via the raster); `None` outside the arena.
+    #[inline(always)]
+    fn id_at(&self, p: DVec2) -> Option<u8> {
+        let st = &*self.statics;
+        let sc = &st.scenario;
         if !(p.x >= 0.0 && p.y >= 0.0 && p.x < sc.width() && p.y < sc.height()) {
             return None;
         }
-        sc.raster()
-            .id_at(p)
-            .map(|id| self.statics.here[id as usize])
+        let ras = sc.raster();
+        if st.cell_pow2 {
+            // x / 2^k and x · 2^-k are the same correctly rounded number: no division.
+            ras.id_at_cell(p.x * st.inv_cell, p.y * st.inv_cell)
+        } else {
+            ras.id_at(p)
+        }
     }
 
     /// Whether robot `i`'s centre is on a road.
@@ -273,14 +313,14 @@ impl World {
     pub fn step(&mut self, controls: &[[f64; 2]]) {
         let pp = &self.params;
         let (v_max, a_max, om_max, k) = (pp.v_max, pp.a_max, pp.omega_max, pp.k);
+        let outside = pp.friction.of(self.statics.scenario.background());
         for i in 0..self.robots.len() {
             let [l, r] = controls.get(i).copied().unwrap_or([0.0, 0.0]);
             let l = if l.is_nan() { 0.0 } else { l.clamp(-1.0, 1.0) };
             let r = if r.is_nan() { 0.0 } else { r.clamp(-1.0, 1.0) };
-            let mu = self.surface_at(self.robots[i].pos).map_or(
-                self.params.friction.of(self.statics.scenario.background()),
-                |s| s.friction,
-            );
+            let mu = self
+                .id_at(self.robots[i].pos)
+                .map_or(outside, |id| self.statics.frictions[id as usize]);
             let rb = &mut self.robots[i];
             self.prev_robots[i] = rb.pos;
             let a = a_max * (l + r) * 0.5;
@@ -322,6 +362,12 @@ impl World {
         }
         self.steps += 1;
     }
+}
+
+/// Whether `x` is a power of two with a normal exponent (a positive, normal
+/// number with an all-zero mantissa).
+fn is_normal_pow2(x: f64) -> bool {
+    x.is_normal() && x > 0.0 && x.to_bits() & ((1u64 << 52) - 1) == 0
 }
 
 /// Wraps an angle into (−π, π].
