@@ -19,9 +19,10 @@ const CASES: [([f64; 3], f64); 4] = [
     ([1.0, 1.0, 1.0], 0.0),
 ];
 
-/// Fitness and whether all four cases are on the right side of 0.5.
-fn evaluate(g: &Genome) -> (f64, bool) {
-    let mut net = FeedForwardNetwork::from_genome(g);
+/// Fitness and whether all four cases are on the right side of 0.5; `net` is
+/// any network, recompiled for `g` in place (no allocation per genome).
+fn evaluate(net: &mut FeedForwardNetwork, g: &Genome) -> (f64, bool) {
+    net.recompile(g);
     let mut out = [0.0];
     let mut err = 0.0;
     let mut solved = true;
@@ -36,21 +37,31 @@ fn evaluate(g: &Genome) -> (f64, bool) {
 fn run(params: &NeatParams, seed: u64, max_generations: u32) -> RunResult {
     let mut pop =
         Population::new(params.clone(), GenomeSpec::plain(3, 1), seed).expect("valid parameters");
+    let mut fitness = Vec::with_capacity(params.population_size);
+    let mut net = FeedForwardNetwork::from_genome(&pop.genomes()[0]);
     for _ in 0..max_generations {
-        pop.evaluate(|g, _| evaluate(g).0);
+        // One network per genome gives both its fitness and whether it solves;
+        // evaluated in order on this thread (150 tiny networks are far too
+        // little work to be worth waking a thread pool for).
+        fitness.clear();
+        let mut first_solver = None;
+        for (i, g) in pop.genomes().iter().enumerate() {
+            let (f, solved) = evaluate(&mut net, g);
+            fitness.push(f);
+            if solved && first_solver.is_none() {
+                first_solver = Some(i);
+            }
+        }
+        pop.set_fitnesses(fitness.clone())
+            .expect("one fitness per genome");
         if std::env::var_os("XOR_TRACE").is_some() {
             eprintln!("{:?}", pop.stats());
         }
-        let gen_evals = pop.generation() as usize * pop.params().population_size;
-        if let Some((i, g)) = pop
-            .genomes()
-            .iter()
-            .enumerate()
-            .find(|(_, g)| evaluate(g).1)
-        {
+        if let Some(i) = first_solver {
+            let gen_evals = pop.generation() as usize * pop.params().population_size;
             return RunResult {
                 evals: Some(gen_evals + i + 1),
-                hidden: g.num_hidden(),
+                hidden: pop.genomes()[i].num_hidden(),
             };
         }
         pop.next_generation();

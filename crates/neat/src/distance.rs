@@ -12,7 +12,7 @@ use crate::params::NeatParams;
 /// (when it has at least `normalize_min_genes` links).
 ///
 /// This is the reference definition; speciation computes the same value through
-/// [`GeneTable`] and [`within`], which give the same bits and the same decisions.
+/// [`GeneTable`] and [`Compatibility`], which give the same bits and the same decisions.
 pub fn distance(a: &Genome, b: &Genome, params: &NeatParams) -> f64 {
     let (la, lb) = (&a.links, &b.links);
     let (mut i, mut j) = (0, 0);
@@ -78,44 +78,48 @@ fn combine(
         + params.c_weight * w_bar
 }
 
-/// The link genes of many genomes laid out for distance computations: innovation
-/// numbers, weights and target-node functions as flat arrays, genome after genome.
+/// The link genes of many genomes laid out for distance computations: for
+/// each link its innovation number, weight and target-node function, in one
+/// flat array, genome after genome.
 ///
 /// Built once per genome per speciation, so that the genome × representative
-/// comparisons walk contiguous arrays and never look a node up or allocate.
+/// comparisons walk contiguous memory and never look a node up or allocate.
 #[derive(Debug, Clone, Default)]
 pub struct GeneTable {
-    innovation: Vec<u32>,
-    weight: Vec<f64>,
-    /// Function of each link's target node (as its enum index); all 0 when
-    /// `c_activation` is 0, as A then cannot change δ (c·A = +0 is exact).
-    target_fn: Vec<u8>,
+    genes: Vec<Gene>,
     /// Genome `k` is `start[k]..start[k + 1]`.
     start: Vec<usize>,
+}
+
+/// One link gene as the distance sees it (16 bytes: one walk step reads one
+/// gene of each genome from one cache line).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Gene {
+    weight: f64,
+    innovation: u32,
+    /// Function of the link's target node (its enum index); 0 for every gene
+    /// when `c_activation` is 0, as A then cannot change δ (0·A = +0 is exact).
+    target_fn: u32,
 }
 
 /// One genome's entry of a [`GeneTable`].
 #[derive(Debug, Clone, Copy)]
 pub struct GeneView<'a> {
-    innovation: &'a [u32],
-    weight: &'a [f64],
-    target_fn: &'a [u8],
+    genes: &'a [Gene],
 }
 
 impl GeneTable {
     /// An empty table.
     pub fn new() -> GeneTable {
         GeneTable {
+            genes: Vec::new(),
             start: vec![0],
-            ..GeneTable::default()
         }
     }
 
     /// Removes every genome, keeping the memory.
     pub fn clear(&mut self) {
-        self.innovation.clear();
-        self.weight.clear();
-        self.target_fn.clear();
+        self.genes.clear();
         self.start.clear();
         self.start.push(0);
     }
@@ -130,34 +134,30 @@ impl GeneTable {
         self.len() == 0
     }
 
-    /// Appends `genome` (the activation column only when `params` weighs it).
+    /// Appends `genome` (the function column only when `params` weighs it).
     pub fn push(&mut self, genome: &Genome, params: &NeatParams) {
         if self.start.is_empty() {
             self.start.push(0);
         }
         let with_fn = params.c_activation != 0.0;
-        for l in &genome.links {
-            self.innovation.push(l.innovation);
-            self.weight.push(l.weight);
+        self.genes.extend(genome.links.iter().map(|l| Gene {
+            weight: l.weight,
+            innovation: l.innovation,
             // A link's target always exists in a checked genome; a missing one
             // compares as "no function" exactly like the reference's `None`.
-            let f = if with_fn {
-                genome.node(l.to).map_or(u8::MAX, |n| n.activation as u8)
+            target_fn: if with_fn {
+                genome.node(l.to).map_or(u32::MAX, |n| n.activation as u32)
             } else {
                 0
-            };
-            self.target_fn.push(f);
-        }
-        self.start.push(self.innovation.len());
+            },
+        }));
+        self.start.push(self.genes.len());
     }
 
     /// Genome `k` of the table.
     pub fn view(&self, k: usize) -> GeneView<'_> {
-        let (s, e) = (self.start[k], self.start[k + 1]);
         GeneView {
-            innovation: &self.innovation[s..e],
-            weight: &self.weight[s..e],
-            target_fn: &self.target_fn[s..e],
+            genes: &self.genes[self.start[k]..self.start[k + 1]],
         }
     }
 }
@@ -165,51 +165,101 @@ impl GeneTable {
 /// The speciation test `distance(a, b) < threshold` for genomes laid out in
 /// [`GeneTable`]s (built with the same `params`).
 ///
-/// Gives exactly the reference's decision: a walk stops early only once the
-/// disjoint genes seen so far alone put δ at or above the threshold, which
-/// every later gene can only raise (see [`combine`]).
+/// Gives exactly the reference's decision. It first counts the excess genes
+/// exactly (two binary searches) and bounds the disjoint ones from below by
+/// the difference of the overlapping lengths; the walk then stops as soon as
+/// the disjoint genes seen, plus those the rest must still hold, reach the
+/// count that with the excess genes alone puts δ at or above the threshold.
+/// Every gene not yet seen can only raise δ (see [`combine`]), so no pair is
+/// ever placed differently.
 #[derive(Debug, Clone)]
 pub struct Compatibility<'p> {
     params: &'p NeatParams,
     threshold: f64,
-    /// The disjoint-gene limit when the counts are not normalised (n = 1).
-    limit_unnormalised: usize,
+    /// `limits[e]`: the disjoint limit for `e` excess genes when the counts
+    /// are not normalised (n = 1), for the usual small `e`.
+    limits: [usize; LIMIT_TABLE],
 }
+
+/// Excess counts whose disjoint limit [`Compatibility`] keeps at hand.
+const LIMIT_TABLE: usize = 48;
 
 impl<'p> Compatibility<'p> {
     /// The test for `params` and `threshold`.
     pub fn new(params: &'p NeatParams, threshold: f64) -> Compatibility<'p> {
+        let mut limits = [0; LIMIT_TABLE];
+        let mut most = u32::MAX as usize;
+        for (e, l) in limits.iter_mut().enumerate() {
+            *l = disjoint_limit(params, threshold, 1.0, e, most);
+            // The limit never grows with more excess genes.
+            if *l != usize::MAX {
+                most = *l;
+            }
+        }
         Compatibility {
             params,
             threshold,
-            limit_unnormalised: disjoint_limit(params, threshold, 1.0, u32::MAX as usize),
+            limits,
         }
     }
 
     /// Whether `distance(a, b) < threshold`.
     pub fn within(&self, a: GeneView<'_>, b: GeneView<'_>) -> bool {
-        let (na, nb) = (a.innovation.len(), b.innovation.len());
+        let (na, nb) = (a.genes.len(), b.genes.len());
         let n = normaliser(na, nb, self.params);
-        let limit = if n == 1.0 {
-            self.limit_unnormalised
+        let (oa, ob) = overlap(a, b);
+        let excess = (na - oa) + (nb - ob);
+        let limit = if n == 1.0 && excess < LIMIT_TABLE {
+            self.limits[excess]
         } else {
-            disjoint_limit(self.params, self.threshold, n, na + nb)
+            disjoint_limit(self.params, self.threshold, n, excess, na + nb)
         };
-        walk(a, b, self.params, n, limit).is_some_and(|d| d < self.threshold)
+        walk(a, b, oa, ob, self.params, n, limit).is_some_and(|d| d < self.threshold)
     }
 }
 
 /// `distance` computed from [`GeneTable`] entries (same bits as [`distance`]).
 pub fn distance_of(a: GeneView<'_>, b: GeneView<'_>, params: &NeatParams) -> f64 {
-    let n = normaliser(a.innovation.len(), b.innovation.len(), params);
-    walk(a, b, params, n, usize::MAX).unwrap_or(f64::INFINITY)
+    let n = normaliser(a.genes.len(), b.genes.len(), params);
+    let (oa, ob) = overlap(a, b);
+    walk(a, b, oa, ob, params, n, usize::MAX).unwrap_or(f64::INFINITY)
 }
 
-/// The smallest disjoint count that alone makes δ ≥ `threshold` (E = A = W̄ = 0),
-/// or `usize::MAX` if even `most` disjoint genes do not.
-fn disjoint_limit(params: &NeatParams, threshold: f64, n: f64, most: usize) -> usize {
-    let alone = |d: usize| combine(params, 0, d, 0, 0, 0.0, n);
-    if alone(most) < threshold {
+/// How many genes of each list lie within the other's innovation range
+/// (up to its last); the rest are the excess genes.
+fn overlap(a: GeneView<'_>, b: GeneView<'_>) -> (usize, usize) {
+    let (ga, gb) = (a.genes, b.genes);
+    match (ga.last(), gb.last()) {
+        (Some(la), Some(lb)) => {
+            // Scanned from the end: excess genes are few, and a short linear
+            // scan beats a binary search's unpredictable branches.
+            let within =
+                |g: &[Gene], last: u32| g.iter().rev().take_while(|x| x.innovation > last).count();
+            (
+                ga.len() - within(ga, lb.innovation),
+                gb.len() - within(gb, la.innovation),
+            )
+        }
+        // Against an empty list every gene is excess.
+        _ => (0, 0),
+    }
+}
+
+/// The smallest disjoint count that with `excess` excess genes alone
+/// (A = W̄ = 0) makes δ ≥ `threshold`, or `usize::MAX` if even `most` do not.
+fn disjoint_limit(
+    params: &NeatParams,
+    threshold: f64,
+    n: f64,
+    excess: usize,
+    most: usize,
+) -> usize {
+    let alone = |d: usize| combine(params, excess, d, 0, 0, 0.0, n);
+    // (Also when δ or the threshold is NaN: then no count decides early.)
+    if alone(most)
+        .partial_cmp(&threshold)
+        .is_none_or(|o| o.is_lt())
+    {
         return usize::MAX;
     }
     // δ(d) is monotone in d: bisect for the first d with δ(d) ≥ threshold.
@@ -225,42 +275,51 @@ fn disjoint_limit(params: &NeatParams, threshold: f64, n: f64, most: usize) -> u
     lo
 }
 
-/// The merge walk over two innovation-sorted gene lists; `None` once `limit`
-/// disjoint genes have been seen (δ is then known to reach the threshold).
+/// The merge walk over the overlapping parts (`a[..oa]`, `b[..ob]`, see
+/// [`overlap`]) of two innovation-sorted gene lists; genes past them are
+/// excess. `None` once the disjoint genes are known to reach `limit`.
 #[inline]
 fn walk(
     a: GeneView<'_>,
     b: GeneView<'_>,
+    oa: usize,
+    ob: usize,
     params: &NeatParams,
     n: f64,
     limit: usize,
 ) -> Option<f64> {
-    let (ia, ib) = (a.innovation, b.innovation);
-    let (na, nb) = (ia.len(), ib.len());
-    if limit == 0 {
+    let (ga, gb) = (&a.genes[..oa], &b.genes[..ob]);
+    let excess = (a.genes.len() - oa) + (b.genes.len() - ob);
+    // Of two lists the longer one keeps at least the difference unmatched.
+    if oa.abs_diff(ob) >= limit {
         return None;
     }
     let (mut i, mut j) = (0, 0);
     let (mut disjoint, mut matching, mut act_diff) = (0usize, 0usize, 0usize);
     let mut weight_diff = 0.0;
-    while i < na && j < nb {
-        let (x, y) = (ia[i], ib[j]);
-        if x == y {
+    while i < oa && j < ob {
+        let (x, y) = (ga[i], gb[j]);
+        if x.innovation == y.innovation {
             matching += 1;
-            weight_diff += (a.weight[i] - b.weight[j]).abs();
-            act_diff += usize::from(a.target_fn[i] != b.target_fn[j]);
+            weight_diff += (x.weight - y.weight).abs();
+            act_diff += usize::from(x.target_fn != y.target_fn);
             i += 1;
             j += 1;
         } else {
             disjoint += 1;
-            if disjoint >= limit {
+            i += usize::from(x.innovation < y.innovation);
+            j += usize::from(y.innovation < x.innovation);
+            if disjoint + (oa - i).abs_diff(ob - j) >= limit {
                 return None;
             }
-            i += usize::from(x < y);
-            j += usize::from(y < x);
         }
     }
-    let excess = (na - i) + (nb - j);
+    // Genes left in the overlapping parts are below the other list's last
+    // gene: disjoint, not excess.
+    disjoint += (oa - i) + (ob - j);
+    if disjoint >= limit {
+        return None;
+    }
     Some(combine(
         params,
         excess,

@@ -41,6 +41,30 @@ impl FeedForwardNetwork {
         }
     }
 
+    /// Makes this network the network of `genome`, reusing its memory: the
+    /// same network as [`FeedForwardNetwork::from_genome`], without allocating
+    /// once the arrays are large enough (for evaluating many genomes in turn).
+    pub fn recompile(&mut self, genome: &Genome) {
+        let mut plan = Plan {
+            num_inputs: self.num_inputs,
+            acts: std::mem::take(&mut self.acts),
+            conn_start: std::mem::take(&mut self.conn_start),
+            conn_src: std::mem::take(&mut self.conn_src),
+            conn_weight: std::mem::take(&mut self.conn_weight),
+            output_slots: std::mem::take(&mut self.output_slots),
+            cyclic: false,
+        };
+        plan.recompile(genome);
+        self.num_inputs = plan.num_inputs;
+        self.values.clear();
+        self.values.resize(plan.num_inputs + plan.acts.len(), 0.0);
+        self.acts = plan.acts;
+        self.conn_start = plan.conn_start;
+        self.conn_src = plan.conn_src;
+        self.conn_weight = plan.conn_weight;
+        self.output_slots = plan.output_slots;
+    }
+
     /// Number of computed (hidden and output) nodes actually evaluated.
     pub fn num_computed(&self) -> usize {
         self.acts.len()
@@ -168,5 +192,34 @@ mod tests {
         let first = out[0];
         net.activate(&[2.0], &mut out);
         assert_eq!(out[0], first, "stateless");
+    }
+
+    #[test]
+    fn recompile_equals_a_fresh_network() {
+        use crate::genome::GenomeSpec;
+        use crate::innovation::InnovationTracker;
+        use crate::mutation::{mutate_add_link, mutate_add_node};
+        use crate::params::NeatParams;
+        use rand::SeedableRng;
+        let spec = GenomeSpec::cppn();
+        let params = NeatParams::default();
+        let mut rng = rand_pcg::Pcg64::seed_from_u64(5);
+        let mut tracker = InnovationTracker::new(8);
+        let mut genomes = vec![Genome::minimal(&spec, &params, &mut tracker, &mut rng)];
+        for _ in 0..12 {
+            let mut g = genomes.last().unwrap().clone();
+            mutate_add_node(&mut g, &spec, &mut tracker, &mut rng);
+            mutate_add_link(&mut g, &spec, &params, &mut tracker, &mut rng);
+            genomes.push(g);
+        }
+        // Large after small and small after large, with values left over.
+        genomes.push(genomes[0].clone());
+        let mut net = FeedForwardNetwork::from_genome(genomes.last().unwrap());
+        let mut out = [0.0; 3];
+        for g in &genomes {
+            net.activate(&[0.1, 0.2, 0.3, 0.4, 1.0], &mut out);
+            net.recompile(g);
+            assert_eq!(net, FeedForwardNetwork::from_genome(g));
+        }
     }
 }
