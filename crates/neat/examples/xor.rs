@@ -8,67 +8,23 @@
 //! where our operators match his: the `NeatParams::plain_neat` preset.
 
 mod common;
+#[path = "common/xor_task.rs"]
+mod xor_task;
 use common::{RunResult, override_param, summarize};
+use xor_task::run_xor;
 
-use vivae_neat::{FeedForwardNetwork, Genome, GenomeSpec, NeatParams, Network, Population};
-
-const CASES: [([f64; 3], f64); 4] = [
-    ([0.0, 0.0, 1.0], 0.0),
-    ([0.0, 1.0, 1.0], 1.0),
-    ([1.0, 0.0, 1.0], 1.0),
-    ([1.0, 1.0, 1.0], 0.0),
-];
-
-/// Fitness and whether all four cases are on the right side of 0.5; `net` is
-/// any network, recompiled for `g` in place (no allocation per genome).
-fn evaluate(net: &mut FeedForwardNetwork, g: &Genome) -> (f64, bool) {
-    net.recompile(g);
-    let mut out = [0.0];
-    let mut err = 0.0;
-    let mut solved = true;
-    for (input, target) in CASES {
-        net.activate(&input, &mut out);
-        err += (out[0] - target).abs();
-        solved &= (out[0] > 0.5) == (target > 0.5);
-    }
-    ((4.0 - err).powi(2), solved)
-}
+use vivae_neat::NeatParams;
 
 fn run(params: &NeatParams, seed: u64, max_generations: u32) -> RunResult {
-    let mut pop =
-        Population::new(params.clone(), GenomeSpec::plain(3, 1), seed).expect("valid parameters");
-    let mut fitness = Vec::with_capacity(params.population_size);
-    let mut net = FeedForwardNetwork::from_genome(&pop.genomes()[0]);
-    for _ in 0..max_generations {
-        // One network per genome gives both its fitness and whether it solves;
-        // evaluated in order on this thread (150 tiny networks are far too
-        // little work to be worth waking a thread pool for).
-        fitness.clear();
-        let mut first_solver = None;
-        for (i, g) in pop.genomes().iter().enumerate() {
-            let (f, solved) = evaluate(&mut net, g);
-            fitness.push(f);
-            if solved && first_solver.is_none() {
-                first_solver = Some(i);
-            }
-        }
-        pop.set_fitnesses(fitness.clone())
-            .expect("one fitness per genome");
-        if std::env::var_os("XOR_TRACE").is_some() {
-            eprintln!("{:?}", pop.stats());
-        }
-        if let Some(i) = first_solver {
-            let gen_evals = pop.generation() as usize * pop.params().population_size;
-            return RunResult {
-                evals: Some(gen_evals + i + 1),
-                hidden: pop.genomes()[i].num_hidden(),
-            };
-        }
-        pop.next_generation();
-    }
-    RunResult {
-        evals: None,
-        hidden: 0,
+    match run_xor(params, seed, max_generations) {
+        Some((evals, hidden)) => RunResult {
+            evals: Some(evals),
+            hidden,
+        },
+        None => RunResult {
+            evals: None,
+            hidden: 0,
+        },
     }
 }
 
