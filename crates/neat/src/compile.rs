@@ -73,7 +73,31 @@ impl Plan {
     fn build(&mut self, genome: &Genome, s: &mut Scratch) {
         let nodes = genome.nodes();
         let nn = nodes.len();
-        let position = |id: u32| nodes.binary_search_by_key(&id, |n| n.id).ok();
+        // Node id → position: a direct table while ids are not much larger
+        // than the genome (entries of other genomes left in it are caught by
+        // checking the id found), else a binary search.
+        let max_id = nodes.last().map_or(0, |n| n.id as usize);
+        let direct = max_id < 8 * nn + 1024;
+        if direct {
+            if s.position_of.len() <= max_id {
+                s.position_of.resize(max_id + 1, u32::MAX);
+            }
+            for (k, n) in nodes.iter().enumerate() {
+                s.position_of[n.id as usize] = k as u32;
+            }
+        }
+        let position_of = &s.position_of;
+        let position = |id: u32| -> Option<u32> {
+            if direct {
+                let p = *position_of.get(id as usize)?;
+                (nodes.get(p as usize)?.id == id).then_some(p)
+            } else {
+                nodes
+                    .binary_search_by_key(&id, |n| n.id)
+                    .ok()
+                    .map(|p| p as u32)
+            }
+        };
         // Enabled links as (source, target, weight), in innovation order.
         // A checked genome has every link's nodes; anything else is skipped.
         s.enabled.clear();
@@ -82,7 +106,7 @@ impl Plan {
                 .links()
                 .iter()
                 .filter(|l| l.enabled)
-                .filter_map(|l| Some((position(l.from)? as u32, position(l.to)? as u32, l.weight))),
+                .filter_map(|l| Some((position(l.from)?, position(l.to)?, l.weight))),
         );
         let enabled = &s.enabled;
         // Links by target and by source (counting sorts: stable, so each
@@ -240,6 +264,8 @@ impl Plan {
 /// The compiler's working arrays (see [`Plan::recompile`]).
 #[derive(Debug, Default)]
 struct Scratch {
+    /// Node id → position in the genome being compiled (see `build`).
+    position_of: Vec<u32>,
     enabled: Vec<(u32, u32, f64)>,
     incoming: Adjacency,
     outgoing: Adjacency,
