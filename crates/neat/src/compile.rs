@@ -101,13 +101,11 @@ impl Plan {
         // Enabled links as (source, target, weight), in innovation order.
         // A checked genome has every link's nodes; anything else is skipped.
         s.enabled.clear();
-        s.enabled.extend(
-            genome
-                .links()
-                .iter()
-                .filter(|l| l.enabled)
-                .filter_map(|l| Some((position(l.from)?, position(l.to)?, l.weight))),
-        );
+        for l in genome.links().iter().filter(|l| l.enabled) {
+            if let (Some(from), Some(to)) = (position(l.from), position(l.to)) {
+                s.enabled.push((from, to, l.weight));
+            }
+        }
         let enabled = &s.enabled;
         // Links by target and by source (counting sorts: stable, so each
         // node's incoming links stay in innovation order).
