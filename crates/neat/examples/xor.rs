@@ -8,56 +8,23 @@
 //! where our operators match his: the `NeatParams::plain_neat` preset.
 
 mod common;
+#[path = "common/xor_task.rs"]
+mod xor_task;
 use common::{RunResult, override_param, summarize};
+use xor_task::run_xor;
 
-use vivae_neat::{FeedForwardNetwork, Genome, GenomeSpec, NeatParams, Network, Population};
-
-const CASES: [([f64; 3], f64); 4] = [
-    ([0.0, 0.0, 1.0], 0.0),
-    ([0.0, 1.0, 1.0], 1.0),
-    ([1.0, 0.0, 1.0], 1.0),
-    ([1.0, 1.0, 1.0], 0.0),
-];
-
-/// Fitness and whether all four cases are on the right side of 0.5.
-fn evaluate(g: &Genome) -> (f64, bool) {
-    let mut net = FeedForwardNetwork::from_genome(g);
-    let mut out = [0.0];
-    let mut err = 0.0;
-    let mut solved = true;
-    for (input, target) in CASES {
-        net.activate(&input, &mut out);
-        err += (out[0] - target).abs();
-        solved &= (out[0] > 0.5) == (target > 0.5);
-    }
-    ((4.0 - err).powi(2), solved)
-}
+use vivae_neat::NeatParams;
 
 fn run(params: &NeatParams, seed: u64, max_generations: u32) -> RunResult {
-    let mut pop =
-        Population::new(params.clone(), GenomeSpec::plain(3, 1), seed).expect("valid parameters");
-    for _ in 0..max_generations {
-        pop.evaluate(|g, _| evaluate(g).0);
-        if std::env::var_os("XOR_TRACE").is_some() {
-            eprintln!("{:?}", pop.stats());
-        }
-        let gen_evals = pop.generation() as usize * pop.params().population_size;
-        if let Some((i, g)) = pop
-            .genomes()
-            .iter()
-            .enumerate()
-            .find(|(_, g)| evaluate(g).1)
-        {
-            return RunResult {
-                evals: Some(gen_evals + i + 1),
-                hidden: g.num_hidden(),
-            };
-        }
-        pop.next_generation();
-    }
-    RunResult {
-        evals: None,
-        hidden: 0,
+    match run_xor(params, seed, max_generations) {
+        Some((evals, hidden)) => RunResult {
+            evals: Some(evals),
+            hidden,
+        },
+        None => RunResult {
+            evals: None,
+            hidden: 0,
+        },
     }
 }
 

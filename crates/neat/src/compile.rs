@@ -4,7 +4,9 @@
 //! feed-forward network and hyperneat's batched CPPN both evaluate this plan,
 //! so they add the same terms in the same order and give the same bits.
 
-use std::collections::{BTreeMap, BTreeSet};
+use std::cell::RefCell;
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
 
 use crate::activation::Activation;
 use crate::genome::{Genome, NodeKind};
@@ -36,6 +38,312 @@ pub(crate) struct Plan {
 impl Plan {
     /// Compiles the enabled links of `genome`.
     pub fn compile(genome: &Genome) -> Plan {
+        let mut plan = Plan {
+            num_inputs: 0,
+            acts: Vec::new(),
+            conn_start: Vec::new(),
+            conn_src: Vec::new(),
+            conn_weight: Vec::new(),
+            output_slots: Vec::new(),
+            cyclic: false,
+        };
+        plan.recompile(genome);
+        plan
+    }
+
+    /// Replaces this plan by the plan of `genome`, reusing its memory.
+    ///
+    /// The compiler's working arrays are kept per thread, so compiling
+    /// allocates at most the plan's own arrays (and nothing once they are
+    /// large enough).
+    pub fn recompile(&mut self, genome: &Genome) {
+        SCRATCH.with(|scratch| match scratch.try_borrow_mut() {
+            Ok(mut scratch) => self.build(genome, &mut scratch),
+            // Only reachable if compiling ever re-entered itself on one thread.
+            Err(_) => self.build(genome, &mut Scratch::default()),
+        });
+    }
+
+    /// The compiler. Works on node positions (nodes are sorted by id, so the
+    /// smallest position is the smallest id) with flat adjacency lists: the
+    /// same reachability, the same smallest-id-first topological order and
+    /// the same per-node link order (innovation order) as the set-based
+    /// definition (kept in the tests), in time linear in the genome's size
+    /// plus a heap for the ready nodes.
+    fn build(&mut self, genome: &Genome, s: &mut Scratch) {
+        let nodes = genome.nodes();
+        let nn = nodes.len();
+        // Node id → position: a direct table while ids are not much larger
+        // than the genome (entries of other genomes left in it are caught by
+        // checking the id found), else a binary search.
+        let max_id = nodes.last().map_or(0, |n| n.id as usize);
+        let direct = max_id < 8 * nn + 1024;
+        if direct {
+            if s.position_of.len() <= max_id {
+                s.position_of.resize(max_id + 1, u32::MAX);
+            }
+            for (k, n) in nodes.iter().enumerate() {
+                s.position_of[n.id as usize] = k as u32;
+            }
+        }
+        let position_of = &s.position_of;
+        let position = |id: u32| -> Option<u32> {
+            if direct {
+                let p = *position_of.get(id as usize)?;
+                (nodes.get(p as usize)?.id == id).then_some(p)
+            } else {
+                nodes
+                    .binary_search_by_key(&id, |n| n.id)
+                    .ok()
+                    .map(|p| p as u32)
+            }
+        };
+        // Enabled links as (source, target, weight), in innovation order.
+        // A checked genome has every link's nodes; anything else is skipped.
+        s.enabled.clear();
+        for l in genome.links().iter().filter(|l| l.enabled) {
+            if let (Some(from), Some(to)) = (position(l.from), position(l.to)) {
+                s.enabled.push((from, to, l.weight));
+            }
+        }
+        let enabled = &s.enabled;
+        // Links by target and by source (counting sorts: stable, so each
+        // node's incoming links stay in innovation order).
+        s.incoming.group(nn, enabled.iter().map(|&(_, t, _)| t));
+        s.outgoing.group(nn, enabled.iter().map(|&(f, _, _)| f));
+        let is_input = |k: usize| nodes[k].kind == NodeKind::Input;
+
+        // Nodes that can reach an output (reverse search over enabled links).
+        let needed = &mut s.needed;
+        needed.clear();
+        needed.resize(nn, false);
+        s.stack.clear();
+        for (k, n) in nodes.iter().enumerate() {
+            if n.kind == NodeKind::Output {
+                needed[k] = true;
+                s.stack.push(k as u32);
+            }
+        }
+        while let Some(n) = s.stack.pop() {
+            for &e in s.incoming.of(n as usize) {
+                let from = enabled[e as usize].0;
+                if !needed[from as usize] {
+                    needed[from as usize] = true;
+                    s.stack.push(from);
+                }
+            }
+        }
+
+        // Kahn's algorithm over needed non-input nodes (members), smallest id first.
+        let member = &mut s.member;
+        member.clear();
+        member.extend((0..nn).map(|k| needed[k] && !is_input(k)));
+        let indegree = &mut s.indegree;
+        indegree.clear();
+        indegree.resize(nn, 0);
+        for &(f, t, _) in enabled {
+            if member[f as usize] && member[t as usize] {
+                indegree[t as usize] += 1;
+            }
+        }
+        let ready = &mut s.ready;
+        ready.clear();
+        ready.extend(
+            (0..nn)
+                .filter(|&k| member[k] && indegree[k] == 0)
+                .map(|k| Reverse(k as u32)),
+        );
+        let done = &mut s.done;
+        done.clear();
+        done.resize(nn, false);
+        let order = &mut s.order;
+        order.clear();
+        let mut cyclic = false;
+        // The smallest member not yet done only ever moves up.
+        let mut smallest_left = 0usize;
+        loop {
+            let next = match ready.pop() {
+                Some(Reverse(n)) => n as usize,
+                // A cycle: take the smallest remaining node; its back-links are dropped.
+                None => {
+                    while smallest_left < nn && (done[smallest_left] || !member[smallest_left]) {
+                        smallest_left += 1;
+                    }
+                    if smallest_left == nn {
+                        break;
+                    }
+                    cyclic = true;
+                    smallest_left
+                }
+            };
+            done[next] = true;
+            order.push(next as u32);
+            for &e in s.outgoing.of(next) {
+                let to = enabled[e as usize].1 as usize;
+                if done[to] || !member[to] {
+                    continue;
+                }
+                indegree[to] -= 1;
+                if indegree[to] == 0 {
+                    ready.push(Reverse(to as u32));
+                }
+            }
+        }
+
+        // Slots: inputs by id, then computed nodes in evaluation order.
+        let slot = &mut s.slot;
+        slot.clear();
+        slot.resize(nn, u32::MAX);
+        let mut num_inputs = 0usize;
+        for k in (0..nn).filter(|&k| is_input(k)) {
+            slot[k] = num_inputs as u32;
+            num_inputs += 1;
+        }
+        for (k, &n) in order.iter().enumerate() {
+            slot[n as usize] = (num_inputs + k) as u32;
+        }
+        self.num_inputs = num_inputs;
+        self.cyclic = cyclic;
+        self.acts.clear();
+        self.conn_start.clear();
+        self.conn_src.clear();
+        self.conn_weight.clear();
+        self.conn_start.push(0);
+        for (k, &n) in order.iter().enumerate() {
+            let my_slot = (num_inputs + k) as u32;
+            self.acts.push(nodes[n as usize].activation);
+            // In genome (innovation) order: the order every evaluator sums in.
+            for &e in s.incoming.of(n as usize) {
+                let (from, _, weight) = enabled[e as usize];
+                let src = slot[from as usize];
+                // Only sources evaluated earlier; anything else would close a cycle.
+                if src < my_slot {
+                    self.conn_src.push(src);
+                    self.conn_weight.push(weight);
+                }
+            }
+            self.conn_start.push(self.conn_src.len() as u32);
+        }
+        self.output_slots.clear();
+        self.output_slots.extend(
+            (0..nn)
+                .filter(|&k| nodes[k].kind == NodeKind::Output)
+                .map(|k| slot[k]),
+        );
+    }
+
+    /// Incoming links of computed node `k`: source slots and weights.
+    pub fn links(&self, k: usize) -> (&[u32], &[f64]) {
+        let (s, e) = (self.conn_start[k] as usize, self.conn_start[k + 1] as usize);
+        (&self.conn_src[s..e], &self.conn_weight[s..e])
+    }
+
+    /// The computed nodes output `output` depends on (itself included), in evaluation order.
+    pub fn dependencies(&self, output: usize) -> Vec<usize> {
+        let mut needed = vec![false; self.acts.len()];
+        let Some(k) = (self.output_slots[output] as usize).checked_sub(self.num_inputs) else {
+            return Vec::new();
+        };
+        needed[k] = true;
+        // Sources always come earlier, so one backward sweep finds every ancestor.
+        for k in (0..=k).rev() {
+            if needed[k] {
+                for &src in self.links(k).0 {
+                    if let Some(j) = (src as usize).checked_sub(self.num_inputs) {
+                        needed[j] = true;
+                    }
+                }
+            }
+        }
+        (0..needed.len()).filter(|&k| needed[k]).collect()
+    }
+}
+
+/// The compiler's working arrays (see [`Plan::recompile`]).
+#[derive(Debug, Default)]
+struct Scratch {
+    /// Node id → position in the genome being compiled (see `build`).
+    position_of: Vec<u32>,
+    enabled: Vec<(u32, u32, f64)>,
+    incoming: Adjacency,
+    outgoing: Adjacency,
+    needed: Vec<bool>,
+    stack: Vec<u32>,
+    member: Vec<bool>,
+    indegree: Vec<u32>,
+    ready: BinaryHeap<Reverse<u32>>,
+    done: Vec<bool>,
+    order: Vec<u32>,
+    slot: Vec<u32>,
+}
+
+thread_local! {
+    /// One compiler scratch per thread: compiling many genomes allocates nothing.
+    static SCRATCH: RefCell<Scratch> = RefCell::new(Scratch::default());
+}
+
+/// Links grouped by one end: the links of node `k` are `list[start[k]..start[k + 1]]`
+/// (indices into the enabled-link list, ascending).
+#[derive(Debug, Default)]
+struct Adjacency {
+    start: Vec<u32>,
+    list: Vec<u32>,
+}
+
+impl Adjacency {
+    /// Groups links `0..` by `ends` (one node position per link), keeping their order.
+    fn group(&mut self, nodes: usize, ends: impl Iterator<Item = u32> + Clone) {
+        // Counting sort. Counts go two places up so that after the prefix
+        // sum `start[e + 1]` is where group `e` begins; filling advances it to
+        // where group `e` ends, which is where group `e + 1` begins.
+        let start = &mut self.start;
+        start.clear();
+        start.resize(nodes + 2, 0);
+        for e in ends.clone() {
+            start[e as usize + 2] += 1;
+        }
+        for k in 0..=nodes {
+            start[k + 1] += start[k];
+        }
+        self.list.clear();
+        self.list.resize(start[nodes + 1] as usize, 0);
+        for (i, e) in ends.enumerate() {
+            let at = &mut start[e as usize + 1];
+            self.list[*at as usize] = i as u32;
+            *at += 1;
+        }
+    }
+
+    /// The links of node `k`.
+    fn of(&self, k: usize) -> &[u32] {
+        &self.list[self.start[k] as usize..self.start[k + 1] as usize]
+    }
+}
+
+/// Ids of the nodes of `kind`, ascending.
+pub(crate) fn ids_of(genome: &Genome, kind: NodeKind) -> Vec<u32> {
+    genome
+        .nodes()
+        .iter()
+        .filter(|n| n.kind == kind)
+        .map(|n| n.id)
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use std::collections::{BTreeMap, BTreeSet};
+
+    use super::*;
+    use crate::genome::GenomeSpec;
+    use crate::innovation::InnovationTracker;
+    use crate::mutation::{mutate_add_link, mutate_add_node, mutate_toggle_enable};
+    use crate::params::NeatParams;
+    use rand::SeedableRng;
+
+    /// The set-based compiler this module started with: the definition the
+    /// fast one must reproduce exactly.
+    fn compile_reference(genome: &Genome) -> Plan {
         let inputs = ids_of(genome, NodeKind::Input);
         let outputs = ids_of(genome, NodeKind::Output);
         let enabled: Vec<_> = genome.links().iter().filter(|l| l.enabled).collect();
@@ -140,39 +448,37 @@ impl Plan {
         }
     }
 
-    /// Incoming links of computed node `k`: source slots and weights.
-    pub fn links(&self, k: usize) -> (&[u32], &[f64]) {
-        let (s, e) = (self.conn_start[k] as usize, self.conn_start[k + 1] as usize);
-        (&self.conn_src[s..e], &self.conn_weight[s..e])
-    }
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(300))]
 
-    /// The computed nodes output `output` depends on (itself included), in evaluation order.
-    pub fn dependencies(&self, output: usize) -> Vec<usize> {
-        let mut needed = vec![false; self.acts.len()];
-        let Some(k) = (self.output_slots[output] as usize).checked_sub(self.num_inputs) else {
-            return Vec::new();
-        };
-        needed[k] = true;
-        // Sources always come earlier, so one backward sweep finds every ancestor.
-        for k in (0..=k).rev() {
-            if needed[k] {
-                for &src in self.links(k).0 {
-                    if let Some(j) = (src as usize).checked_sub(self.num_inputs) {
-                        needed[j] = true;
+        /// Same plan (order, slots, links and their order, cycle flag) as the
+        /// reference, for grown genomes with disabled links and, when
+        /// recurrent, cycles and self-loops.
+        #[test]
+        fn compile_matches_reference(
+            seed in proptest::prelude::any::<u64>(),
+            ops in proptest::collection::vec(0u8..4, 0..80),
+            recurrent in proptest::prelude::any::<bool>(),
+        ) {
+            let spec = GenomeSpec { allow_recurrent: recurrent, ..GenomeSpec::cppn() };
+            let params = NeatParams::default();
+            let mut rng = rand_pcg::Pcg64::seed_from_u64(seed);
+            let mut tracker = InnovationTracker::new((spec.inputs + spec.outputs) as u32);
+            let mut g = Genome::minimal(&spec, &params, &mut tracker, &mut rng);
+            for op in ops {
+                match op {
+                    0 => {
+                        mutate_add_node(&mut g, &spec, &mut tracker, &mut rng);
+                    }
+                    1 | 2 => {
+                        mutate_add_link(&mut g, &spec, &params, &mut tracker, &mut rng);
+                    }
+                    _ => {
+                        mutate_toggle_enable(&mut g, &mut rng);
                     }
                 }
+                proptest::prop_assert_eq!(Plan::compile(&g), compile_reference(&g));
             }
         }
-        (0..needed.len()).filter(|&k| needed[k]).collect()
     }
-}
-
-/// Ids of the nodes of `kind`, ascending.
-pub(crate) fn ids_of(genome: &Genome, kind: NodeKind) -> Vec<u32> {
-    genome
-        .nodes()
-        .iter()
-        .filter(|n| n.kind == kind)
-        .map(|n| n.id)
-        .collect()
 }

@@ -41,6 +41,70 @@ impl FeedForwardNetwork {
         }
     }
 
+    /// Makes this network the network of `genome`, reusing its memory: the
+    /// same network as [`FeedForwardNetwork::from_genome`], without allocating
+    /// once the arrays are large enough (for evaluating many genomes in turn).
+    pub fn recompile(&mut self, genome: &Genome) {
+        let mut plan = Plan {
+            num_inputs: self.num_inputs,
+            acts: std::mem::take(&mut self.acts),
+            conn_start: std::mem::take(&mut self.conn_start),
+            conn_src: std::mem::take(&mut self.conn_src),
+            conn_weight: std::mem::take(&mut self.conn_weight),
+            output_slots: std::mem::take(&mut self.output_slots),
+            cyclic: false,
+        };
+        plan.recompile(genome);
+        self.num_inputs = plan.num_inputs;
+        self.values.clear();
+        self.values.resize(plan.num_inputs + plan.acts.len(), 0.0);
+        self.acts = plan.acts;
+        self.conn_start = plan.conn_start;
+        self.conn_src = plan.conn_src;
+        self.conn_weight = plan.conn_weight;
+        self.output_slots = plan.output_slots;
+    }
+
+    /// Feeds `L` input vectors at once and writes the `L` output vectors:
+    /// `inputs[i][lane]` is input `i` of vector `lane`, `outputs[o][lane]`
+    /// receives output `o`. Gives exactly the bits of `L` calls of
+    /// [`Network::activate`] (each lane adds the same terms in the same
+    /// order); computing the lanes in lockstep lets their activation
+    /// functions, long chains of dependent operations, overlap. `values` is
+    /// the caller's scratch (resized as needed, so nothing is allocated once
+    /// it is large enough).
+    pub fn activate_lanes<const L: usize>(
+        &self,
+        inputs: &[[f64; L]],
+        outputs: &mut [[f64; L]],
+        values: &mut Vec<[f64; L]>,
+    ) {
+        assert_eq!(inputs.len(), self.num_inputs, "wrong number of inputs");
+        assert_eq!(
+            outputs.len(),
+            self.output_slots.len(),
+            "wrong number of outputs"
+        );
+        let n_in = self.num_inputs;
+        values.clear();
+        values.extend_from_slice(inputs);
+        for (k, &act) in self.acts.iter().enumerate() {
+            let (s, e) = (self.conn_start[k] as usize, self.conn_start[k + 1] as usize);
+            let mut sum = [0.0; L];
+            for (&src, &w) in self.conn_src[s..e].iter().zip(&self.conn_weight[s..e]) {
+                let v = &values[src as usize];
+                for lane in 0..L {
+                    sum[lane] += v[lane] * w;
+                }
+            }
+            values.push(sum.map(|x| act.apply(x)));
+            debug_assert_eq!(values.len(), n_in + k + 1);
+        }
+        for (o, &s) in outputs.iter_mut().zip(&self.output_slots) {
+            *o = values[s as usize];
+        }
+    }
+
     /// Number of computed (hidden and output) nodes actually evaluated.
     pub fn num_computed(&self) -> usize {
         self.acts.len()
@@ -168,5 +232,69 @@ mod tests {
         let first = out[0];
         net.activate(&[2.0], &mut out);
         assert_eq!(out[0], first, "stateless");
+    }
+
+    #[test]
+    fn recompile_equals_a_fresh_network() {
+        use crate::genome::GenomeSpec;
+        use crate::innovation::InnovationTracker;
+        use crate::mutation::{mutate_add_link, mutate_add_node};
+        use crate::params::NeatParams;
+        use rand::SeedableRng;
+        let spec = GenomeSpec::cppn();
+        let params = NeatParams::default();
+        let mut rng = rand_pcg::Pcg64::seed_from_u64(5);
+        let mut tracker = InnovationTracker::new(8);
+        let mut genomes = vec![Genome::minimal(&spec, &params, &mut tracker, &mut rng)];
+        for _ in 0..12 {
+            let mut g = genomes.last().unwrap().clone();
+            mutate_add_node(&mut g, &spec, &mut tracker, &mut rng);
+            mutate_add_link(&mut g, &spec, &params, &mut tracker, &mut rng);
+            genomes.push(g);
+        }
+        // Large after small and small after large, with values left over.
+        genomes.push(genomes[0].clone());
+        let mut net = FeedForwardNetwork::from_genome(genomes.last().unwrap());
+        let mut out = [0.0; 3];
+        for g in &genomes {
+            net.activate(&[0.1, 0.2, 0.3, 0.4, 1.0], &mut out);
+            net.recompile(g);
+            assert_eq!(net, FeedForwardNetwork::from_genome(g));
+        }
+    }
+
+    #[test]
+    fn lanes_give_the_bits_of_single_activations() {
+        use crate::genome::GenomeSpec;
+        use crate::innovation::InnovationTracker;
+        use crate::mutation::{mutate_activation, mutate_add_link, mutate_add_node};
+        use crate::params::NeatParams;
+        use rand::{RngExt, SeedableRng};
+        let spec = GenomeSpec::cppn();
+        let params = NeatParams::default();
+        let mut rng = rand_pcg::Pcg64::seed_from_u64(8);
+        let mut tracker = InnovationTracker::new(8);
+        let mut g = Genome::minimal(&spec, &params, &mut tracker, &mut rng);
+        let mut scratch = Vec::new();
+        for _ in 0..30 {
+            mutate_add_node(&mut g, &spec, &mut tracker, &mut rng);
+            mutate_add_link(&mut g, &spec, &params, &mut tracker, &mut rng);
+            mutate_activation(&mut g, &spec, &mut rng);
+            let mut net = FeedForwardNetwork::from_genome(&g);
+            let mut inputs = [[0.0; 4]; 5];
+            for x in inputs.iter_mut().flatten() {
+                *x = rng.random::<f64>() * 6.0 - 3.0;
+            }
+            let mut lanes = [[0.0; 4]; 3];
+            net.activate_lanes(&inputs, &mut lanes, &mut scratch);
+            for lane in 0..4 {
+                let single: Vec<f64> = inputs.iter().map(|i| i[lane]).collect();
+                let mut out = [0.0; 3];
+                net.activate(&single, &mut out);
+                for o in 0..3 {
+                    assert_eq!(lanes[o][lane].to_bits(), out[o].to_bits());
+                }
+            }
+        }
     }
 }

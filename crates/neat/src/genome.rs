@@ -308,14 +308,20 @@ impl Genome {
         if start == target {
             return true;
         }
-        let mut seen = BTreeSet::new();
+        // Visited marks by node position (nodes are sorted by id); a link to
+        // an id that is not a node cannot lead anywhere further.
+        let position = |id: u32| self.nodes.binary_search_by_key(&id, |n| n.id).ok();
+        let mut seen = vec![false; self.nodes.len()];
         let mut stack = vec![start];
         while let Some(n) = stack.pop() {
             for l in self.links.iter().filter(|l| l.from == n) {
                 if l.to == target {
                     return true;
                 }
-                if seen.insert(l.to) {
+                if let Some(p) = position(l.to)
+                    && !seen[p]
+                {
+                    seen[p] = true;
                     stack.push(l.to);
                 }
             }

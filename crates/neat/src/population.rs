@@ -8,7 +8,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::crossover::crossover;
-use crate::distance::distance;
+use crate::distance::{Compatibility, GeneTable};
 use crate::error::{GenomeAt, NeatError, PopulationError};
 use crate::eval::{EvalContext, eval_seed};
 use crate::genome::{Genome, GenomeSpec, NodeKind, RawGenome};
@@ -498,14 +498,23 @@ impl Population {
             }
             s.members.clear();
         }
+        // Every genome meets many representatives: lay each out once (the
+        // representatives in one table, the genome being placed in another).
+        let compatible = Compatibility::new(&self.params, self.threshold);
+        let mut reps = GeneTable::new();
+        for s in &self.species {
+            reps.push(&s.representative, &self.params);
+        }
+        let mut this = GeneTable::new();
         for (i, g) in genomes.iter().enumerate() {
-            let found = self
-                .species
-                .iter()
-                .position(|s| distance(g, &s.representative, &self.params) < self.threshold);
+            this.clear();
+            this.push(g, &self.params);
+            let found =
+                (0..self.species.len()).find(|&k| compatible.within(this.view(0), reps.view(k)));
             match found {
                 Some(k) => self.species[k].members.push(i),
                 None => {
+                    reps.push(g, &self.params);
                     self.species.push(Species {
                         id: self.next_species_id,
                         representative: g.clone(),

@@ -23,12 +23,14 @@ pub fn mutate_add_link<R: Rng + ?Sized>(
         if to.kind == NodeKind::Input {
             continue;
         }
+        // Both tests only reject (no randomness is drawn), so the cheap one
+        // goes first.
+        if genome.has_link(from.id, to.id) {
+            continue;
+        }
         if !spec.allow_recurrent
             && (from.kind == NodeKind::Output || genome.reaches(to.id, from.id))
         {
-            continue;
-        }
-        if genome.has_link(from.id, to.id) {
             continue;
         }
         let link = LinkGene {
