@@ -191,7 +191,7 @@ pub fn build(dir: &Path) -> crate::Result<String> {
     }
     let convergence_svg = convergence::render_svg(&fitness, &ConvergenceOptions::default())
         .map_err(crate::Error::Figure)?;
-    let network_svg = network::render_svg(
+    let network_svg = network::figure_svg(
         experiment.substrate_spec(),
         &experiment.controller(&champion.genome)?,
         &NetworkOptions {

@@ -7,6 +7,7 @@
 //! picture, anti-aliased. Functions return bytes; callers write the files.
 
 pub mod convergence;
+mod fields;
 pub mod network;
 
 use std::sync::OnceLock;
@@ -69,6 +70,61 @@ pub(crate) fn draw_err(e: impl std::fmt::Display) -> FigureError {
 pub fn svg_to_png(svg: &str) -> Result<Vec<u8>, FigureError> {
     vivae_sim::draw::svg_to_png(svg, f64::from(PNG_SCALE))
         .map_err(|e| FigureError::Png(e.to_string()))
+}
+
+/// A font database holding only the shipped [`FONT`], built once.
+fn fontdb() -> std::sync::Arc<usvg::fontdb::Database> {
+    static DB: OnceLock<std::sync::Arc<usvg::fontdb::Database>> = OnceLock::new();
+    DB.get_or_init(|| {
+        let mut db = usvg::fontdb::Database::new();
+        db.load_font_data(FONT.to_vec());
+        db.set_sans_serif_family("DejaVu Sans");
+        std::sync::Arc::new(db)
+    })
+    .clone()
+}
+
+/// Draws an SVG document over `base` at `scale` pixels per SVG unit (as
+/// [`svg_to_png`] draws it over white).
+pub(crate) fn draw_svg_over(
+    svg: &str,
+    base: &mut tiny_skia::Pixmap,
+    scale: f32,
+) -> Result<(), FigureError> {
+    let opt = usvg::Options {
+        fontdb: fontdb(),
+        font_family: "DejaVu Sans".to_string(),
+        ..Default::default()
+    };
+    let tree = usvg::Tree::from_str(svg, &opt).map_err(|e| FigureError::Png(e.to_string()))?;
+    resvg::render(
+        &tree,
+        tiny_skia::Transform::from_scale(scale, scale),
+        &mut base.as_mut(),
+    );
+    Ok(())
+}
+
+/// Standard base64 (RFC 4648, with padding), for images embedded in SVG.
+pub(crate) fn base64(bytes: &[u8]) -> String {
+    const ABC: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut out = String::with_capacity(bytes.len().div_ceil(3) * 4);
+    for chunk in bytes.chunks(3) {
+        let b = [
+            chunk[0],
+            chunk.get(1).copied().unwrap_or(0),
+            chunk.get(2).copied().unwrap_or(0),
+        ];
+        let n = u32::from(b[0]) << 16 | u32::from(b[1]) << 8 | u32::from(b[2]);
+        for (i, shift) in [18, 12, 6, 0].into_iter().enumerate() {
+            if i <= chunk.len() {
+                out.push(char::from(ABC[(n >> shift & 63) as usize]));
+            } else {
+                out.push('=');
+            }
+        }
+    }
+    out
 }
 
 /// Colour for positive weights (blue).
@@ -138,6 +194,22 @@ mod tests {
         assert_eq!(viridis(0.5), RGBColor(33, 145, 140));
         assert_eq!(viridis(f64::NAN), viridis(0.0));
         assert_eq!(viridis(7.0), viridis(1.0));
+    }
+
+    #[test]
+    fn base64_matches_rfc_4648_vectors() {
+        for (plain, coded) in [
+            ("", ""),
+            ("f", "Zg=="),
+            ("fo", "Zm8="),
+            ("foo", "Zm9v"),
+            ("foob", "Zm9vYg=="),
+            ("fooba", "Zm9vYmE="),
+            ("foobar", "Zm9vYmFy"),
+        ] {
+            assert_eq!(base64(plain.as_bytes()), coded);
+        }
+        assert_eq!(base64(&[0xff, 0xfe, 0xfd]), "//79");
     }
 
     #[test]
