@@ -21,7 +21,10 @@ fn main() {
 
 /// The camera-resolution experiment and its champion's controller.
 fn camera() -> (Experiment, SubstrateController) {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/paper-champion.json");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/paper-champion.json"
+    );
     let champion = vivae::report::read_champion(std::path::Path::new(path)).unwrap();
     let mut config = Config::default();
     config.surface_sensors.rings = 32;
@@ -52,7 +55,10 @@ fn network_svg_32x96_to_9x9(bencher: divan::Bencher) {
 /// Decoding the champion at 32×96 → 9×9 (the figure's first step at the end of a run).
 #[divan::bench]
 fn decode_32x96_to_9x9(bencher: divan::Bencher) {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/paper-champion.json");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/paper-champion.json"
+    );
     let champion = vivae::report::read_champion(std::path::Path::new(path)).unwrap();
     let (experiment, _) = camera();
     bencher.bench(|| experiment.controller(&champion.genome).unwrap());

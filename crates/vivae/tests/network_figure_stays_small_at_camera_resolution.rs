@@ -36,8 +36,10 @@ fn figure(sensors: (usize, usize), neurons: (usize, usize)) -> (usize, vivae::fi
     };
     let fig = network::render(experiment.substrate_spec(), &controller, &options).unwrap();
     if let Ok(dir) = std::env::var("VIVAE_FIGURES") {
+        // Relative to the workspace root, where the command is typed.
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
         let name = format!("network-{}x{}.png", sensors.0, sensors.1);
-        std::fs::write(Path::new(&dir).join(name), &fig.png).unwrap();
+        std::fs::write(root.join(dir).join(name), &fig.png).unwrap();
     }
     (controller.expressed_links(), fig)
 }

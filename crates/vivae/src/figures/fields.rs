@@ -34,7 +34,7 @@ use vivae_neat::hyperneat::SubstrateController;
 use super::network::{Checked, GUIDE, NetworkOptions, WHEEL, blend, check, px};
 use super::{
     FAMILY, Figure, FigureError, NEGATIVE, PNG_SCALE, POSITIVE, base64, draw_err, draw_svg_over,
-    register_font,
+    encode_png_fast, register_font,
 };
 use crate::substrate::{PolarNode, SubstrateSpec};
 
@@ -86,9 +86,7 @@ pub(crate) fn render(
         );
     }
     draw_svg_over(&overlay, &mut base, PNG_SCALE)?;
-    let png = base
-        .encode_png()
-        .map_err(|e| FigureError::Png(e.to_string()))?;
+    let png = encode_png_fast(&base)?;
     let svg = with_images(overlay, &heats, (w, h))?;
     Ok(Figure { svg, png })
 }
@@ -112,10 +110,7 @@ fn with_images(overlay: String, heats: &[Heat], (w, h): (f64, f64)) -> Result<St
     let scale = f64::from(PNG_SCALE);
     let mut images = format!(r##"<rect x="0" y="0" width="{w}" height="{h}" fill="#FFFFFF"/>"##);
     for heat in heats {
-        let png = heat
-            .pixmap
-            .encode_png()
-            .map_err(|e| FigureError::Png(e.to_string()))?;
+        let png = encode_png_fast(&heat.pixmap)?;
         images.push_str(&format!(
             r#"<image x="{}" y="{}" width="{}" height="{}" preserveAspectRatio="none" href="data:image/png;base64,{}"/>"#,
             f64::from(heat.x) / scale,

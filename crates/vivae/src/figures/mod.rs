@@ -105,6 +105,28 @@ pub(crate) fn draw_svg_over(
     Ok(())
 }
 
+/// Encodes `pixmap` as PNG with fast compression (tiny-skia's own encoder
+/// spends most of a large figure's time compressing).
+pub(crate) fn encode_png_fast(pixmap: &tiny_skia::Pixmap) -> Result<Vec<u8>, FigureError> {
+    let png_err = |e: png::EncodingError| FigureError::Png(e.to_string());
+    let mut rgba = Vec::with_capacity(pixmap.data().len());
+    for p in pixmap.pixels() {
+        let c = p.demultiply();
+        rgba.extend_from_slice(&[c.red(), c.green(), c.blue(), c.alpha()]);
+    }
+    let mut out = Vec::new();
+    {
+        let mut encoder = png::Encoder::new(&mut out, pixmap.width(), pixmap.height());
+        encoder.set_color(png::ColorType::Rgba);
+        encoder.set_depth(png::BitDepth::Eight);
+        encoder.set_compression(png::Compression::Fast);
+        let mut writer = encoder.write_header().map_err(png_err)?;
+        writer.write_image_data(&rgba).map_err(png_err)?;
+        writer.finish().map_err(png_err)?;
+    }
+    Ok(out)
+}
+
 /// Standard base64 (RFC 4648, with padding), for images embedded in SVG.
 pub(crate) fn base64(bytes: &[u8]) -> String {
     const ABC: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -194,6 +216,15 @@ mod tests {
         assert_eq!(viridis(0.5), RGBColor(33, 145, 140));
         assert_eq!(viridis(f64::NAN), viridis(0.0));
         assert_eq!(viridis(7.0), viridis(1.0));
+    }
+
+    #[test]
+    fn fast_png_decodes_to_the_same_pixels() {
+        let mut pixmap = tiny_skia::Pixmap::new(7, 3).unwrap();
+        pixmap.fill(tiny_skia::Color::from_rgba8(10, 200, 30, 255));
+        pixmap.pixels_mut()[4] = tiny_skia::PremultipliedColorU8::TRANSPARENT;
+        let back = tiny_skia::Pixmap::decode_png(&encode_png_fast(&pixmap).unwrap()).unwrap();
+        assert_eq!(back.data(), pixmap.data());
     }
 
     #[test]
