@@ -109,11 +109,26 @@ pub(crate) fn draw_svg_over(
 /// spends most of a large figure's time compressing).
 pub(crate) fn encode_png_fast(pixmap: &tiny_skia::Pixmap) -> Result<Vec<u8>, FigureError> {
     let png_err = |e: png::EncodingError| FigureError::Png(e.to_string());
-    let mut rgba = Vec::with_capacity(pixmap.data().len());
-    for p in pixmap.pixels() {
-        let c = p.demultiply();
-        rgba.extend_from_slice(&[c.red(), c.green(), c.blue(), c.alpha()]);
-    }
+    // Opaque and fully transparent pixels read the same premultiplied or not:
+    // a figure's pixmap (opaque background) needs no straight-alpha copy.
+    let straight = pixmap
+        .pixels()
+        .iter()
+        .all(|p| p.alpha() == 255 || p.alpha() == 0);
+    let copy;
+    let rgba = if straight {
+        pixmap.data()
+    } else {
+        copy = pixmap
+            .pixels()
+            .iter()
+            .flat_map(|p| {
+                let c = p.demultiply();
+                [c.red(), c.green(), c.blue(), c.alpha()]
+            })
+            .collect::<Vec<u8>>();
+        &copy
+    };
     let mut out = Vec::new();
     {
         let mut encoder = png::Encoder::new(&mut out, pixmap.width(), pixmap.height());
@@ -121,7 +136,7 @@ pub(crate) fn encode_png_fast(pixmap: &tiny_skia::Pixmap) -> Result<Vec<u8>, Fig
         encoder.set_depth(png::BitDepth::Eight);
         encoder.set_compression(png::Compression::Fast);
         let mut writer = encoder.write_header().map_err(png_err)?;
-        writer.write_image_data(&rgba).map_err(png_err)?;
+        writer.write_image_data(rgba).map_err(png_err)?;
         writer.finish().map_err(png_err)?;
     }
     Ok(out)
@@ -225,6 +240,13 @@ mod tests {
         pixmap.pixels_mut()[4] = tiny_skia::PremultipliedColorU8::TRANSPARENT;
         let back = tiny_skia::Pixmap::decode_png(&encode_png_fast(&pixmap).unwrap()).unwrap();
         assert_eq!(back.data(), pixmap.data());
+        // Half-transparent pixels are written with straight alpha.
+        pixmap.pixels_mut()[5] =
+            tiny_skia::PremultipliedColorU8::from_rgba(50, 60, 70, 128).unwrap();
+        let back = tiny_skia::Pixmap::decode_png(&encode_png_fast(&pixmap).unwrap()).unwrap();
+        assert_eq!(back.pixels()[5].alpha(), 128);
+        assert!(back.pixels()[5].red().abs_diff(50) <= 1);
+        assert_eq!(back.pixels()[6], pixmap.pixels()[6]);
     }
 
     #[test]
