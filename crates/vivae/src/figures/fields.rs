@@ -735,6 +735,41 @@ mod tests {
     }
 
     #[test]
+    fn outer_sensors_and_distance_rays_get_their_own_pixels() {
+        use crate::substrate::PolarGrid;
+        let spec = SubstrateSpec {
+            sensors: PolarGrid::new(32, 96).unwrap(),
+            distance_rays: Some(7),
+            ..SubstrateSpec::default()
+        };
+        let (sensors, distance) = (spec.sensor_nodes(), spec.distance_nodes());
+        let half = spec.fov.to_radians() / 2.0;
+        // A panel as large as the 9×9 figure draws it (radius ≈ 90 pixels).
+        let stencil = Stencil::new(90.0, half, &sensors, &distance);
+        let mut seen = vec![0usize; sensors.len() + distance.len()];
+        for &i in stencil.input.iter().filter(|&&i| i != OUTSIDE) {
+            seen[i as usize] += 1;
+        }
+        // Wedges of inner rings are narrower than a pixel (true to the geometry:
+        // they are that close together); every sensor of the outer half of the
+        // rings and every distance ray has pixels of its own.
+        let outer_half = sensors.iter().enumerate().filter(|(_, n)| n.ring >= 16);
+        assert!(outer_half.clone().count() == 16 * 96);
+        assert!(outer_half.into_iter().all(|(i, _)| seen[i] > 0));
+        assert!(
+            seen[sensors.len()..].iter().all(|&n| n > 0),
+            "a ray has no pixel"
+        );
+        // The left-most outer sensor is drawn left of the centre, the right-most right of it.
+        let column_of = |input: u32| {
+            let at = stencil.input.iter().position(|&i| i == input).unwrap();
+            at as i32 % stencil.width as i32 + stencil.x0
+        };
+        let outer_left = (31 * 96) as u32;
+        assert!(column_of(outer_left) < 0 && column_of(outer_left + 95) > 0);
+    }
+
+    #[test]
     fn scales_and_labels() {
         assert_eq!(max_abs([0.5, -2.0, 1.0].into_iter()), 2.0);
         assert_eq!(max_abs([0.0, 0.0].into_iter()), 1.0);
