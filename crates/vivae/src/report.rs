@@ -13,7 +13,6 @@ use crate::evolve::{self, Champion, Run, files};
 use crate::experiment::{Episode, Experiment};
 use crate::figures;
 use crate::figures::convergence::ConvergenceOptions;
-use crate::figures::network::NetworkOptions;
 use crate::io::{bad_input, read_config, read_text, write_atomic};
 use crate::substrate::PolarGrid;
 
@@ -71,14 +70,16 @@ pub fn finish_run(run: &Run) -> Result<RunSummary> {
     let dir = run.dir().join(files::FIGURES);
     crate::io::create_dirs(&dir)?;
     let experiment = run.experiment();
+    let mut episodes = Vec::new();
     for (generation, _, genome) in run.figure_genomes() {
-        trajectory_figure(
+        let episode = trajectory_figure(
             experiment,
             genome,
             &format!("Best of generation {generation}"),
             &dir,
             &format!("trajectories-gen{generation:03}"),
         )?;
+        episodes.push((genome, episode));
     }
     let champion = run.champion().ok_or(Error::NoChampion)?;
     let episode = trajectory_figure(
@@ -94,17 +95,21 @@ pub fn finish_run(run: &Run) -> Result<RunSummary> {
     write_figure(&dir, "convergence", &convergence.svg, &convergence.png)?;
 
     let controller = experiment.controller(&champion.genome)?;
-    let options = NetworkOptions {
-        title: format!(
-            "Champion controller (generation {}, fitness {:.3})",
-            champion.generation, champion.fitness
-        ),
-        weight_scale: run.config().hyperneat.amplitude,
-        ..NetworkOptions::default()
-    };
+    let options = crate::report_html::network_options(
+        champion.generation,
+        champion.fitness,
+        run.config().hyperneat.amplitude,
+    );
     let network = figures::network::render(experiment.substrate_spec(), &controller, &options)?;
+    drop(controller);
     write_figure(&dir, "network", &network.svg, &network.png)?;
-    crate::report_html::write(run.dir())?;
+    // The report shows the same episodes and network: reuse them rather than run them again.
+    let mut reuse = crate::report_html::Reuse {
+        episodes: episodes.iter().map(|(g, e)| (*g, e)).collect(),
+        network_svg: Some(network.svg),
+    };
+    reuse.episodes.push((&champion.genome, &episode));
+    crate::report_html::write_reusing(run.dir(), &reuse)?;
 
     Ok(RunSummary {
         champion_fitness: champion.fitness,

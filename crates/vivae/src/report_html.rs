@@ -13,7 +13,7 @@ use vivae_sim::draw::{self, DrawOptions};
 use vivae_sim::{Scenario, World};
 
 use crate::evolve::{self, files};
-use crate::experiment::Experiment;
+use crate::experiment::{Episode, Experiment};
 use crate::figures::convergence::{self, ConvergenceOptions};
 use crate::figures::network::{self, NetworkOptions};
 use crate::io::{bad_input, load_scenario, read_config, read_text, write_atomic};
@@ -113,10 +113,39 @@ fn round2(v: f64) -> f64 {
     (v * 100.0).round() / 100.0
 }
 
-fn episode(experiment: &Experiment, genome: &Genome, label: String) -> crate::Result<EpisodeData> {
-    let run = experiment.run(&experiment.controller(genome)?, true);
+/// What the end of a run has computed already and the report can reuse
+/// (recorded episodes by genome, the network figure's SVG): the file is the
+/// same either way, only faster to build (at 32×96 → 9×9 the episodes and the
+/// network dominate the end of a run).
+#[derive(Debug, Default)]
+pub struct Reuse<'a> {
+    /// Episodes recorded with trajectories, and the genome each one ran.
+    pub episodes: Vec<(&'a Genome, &'a Episode)>,
+    /// The champion's network figure, drawn with the report's own options.
+    pub network_svg: Option<String>,
+}
+
+fn episode(
+    experiment: &Experiment,
+    genome: &Genome,
+    label: String,
+    reuse: &Reuse<'_>,
+) -> crate::Result<EpisodeData> {
+    let recorded = reuse
+        .episodes
+        .iter()
+        .find(|(g, e)| *g == genome && e.trajectories.is_some() && e.on_road.is_some());
+    let ran;
+    let run = match recorded {
+        Some((_, e)) => *e,
+        None => {
+            ran = experiment.run(&experiment.controller(genome)?, true);
+            &ran
+        }
+    };
     let paths = run
         .trajectories
+        .as_deref()
         .unwrap_or_default()
         .iter()
         .map(|t| t.iter().flat_map(|p| [round2(p.x), round2(p.y)]).collect())
@@ -165,6 +194,20 @@ fn script_safe(json: &str) -> String {
 
 /// Builds the report of the run in `dir` as one HTML document.
 pub fn build(dir: &Path) -> crate::Result<String> {
+    build_reusing(dir, &Reuse::default())
+}
+
+/// The champion's network figure options as the report and the end of a run draw it.
+pub(crate) fn network_options(generation: u32, fitness: f64, amplitude: f64) -> NetworkOptions {
+    NetworkOptions {
+        title: format!("Champion controller (generation {generation}, fitness {fitness:.3})"),
+        weight_scale: amplitude,
+        ..NetworkOptions::default()
+    }
+}
+
+/// [`build`], reusing what the end of a run computed already.
+pub fn build_reusing(dir: &Path, reuse: &Reuse<'_>) -> crate::Result<String> {
     let config = read_config(&dir.join(files::CONFIG))?;
     let config_text = read_text(&dir.join(files::CONFIG))?;
     let scenario = load_scenario(Some(&dir.join(files::SCENARIO)))?;
@@ -179,6 +222,7 @@ pub fn build(dir: &Path) -> crate::Result<String> {
         &experiment,
         &champion.genome,
         format!("Champion (generation {})", champion.generation),
+        reuse,
     )?];
     for g in evolve::FIGURE_GENERATIONS {
         if let Some(b) = best.iter().find(|b| b.generation == g) {
@@ -186,24 +230,25 @@ pub fn build(dir: &Path) -> crate::Result<String> {
                 &experiment,
                 &b.genome,
                 format!("Best of generation {g}"),
+                reuse,
             )?);
         }
     }
     let convergence_svg = convergence::render_svg(&fitness, &ConvergenceOptions::default())
         .map_err(crate::Error::Figure)?;
-    let network_svg = network::render_svg(
-        experiment.substrate_spec(),
-        &experiment.controller(&champion.genome)?,
-        &NetworkOptions {
-            title: format!(
-                "Champion controller (generation {}, fitness {:.3})",
-                champion.generation, champion.fitness
+    let network_svg = match &reuse.network_svg {
+        Some(svg) => svg.clone(),
+        None => network::figure_svg(
+            experiment.substrate_spec(),
+            &experiment.controller(&champion.genome)?,
+            &network_options(
+                champion.generation,
+                champion.fitness,
+                config.hyperneat.amplitude,
             ),
-            weight_scale: config.hyperneat.amplitude,
-            ..NetworkOptions::default()
-        },
-    )
-    .map_err(crate::Error::Figure)?;
+        )
+        .map_err(crate::Error::Figure)?,
+    };
     let title = dir
         .canonicalize()
         .unwrap_or_else(|_| dir.to_path_buf())
@@ -235,7 +280,12 @@ pub fn build(dir: &Path) -> crate::Result<String> {
 
 /// Writes `report.html` into the run directory `dir`; returns its path.
 pub fn write(dir: &Path) -> crate::Result<PathBuf> {
-    let html = build(dir)?;
+    write_reusing(dir, &Reuse::default())
+}
+
+/// [`write`], reusing what the end of a run computed already.
+pub fn write_reusing(dir: &Path, reuse: &Reuse<'_>) -> crate::Result<PathBuf> {
+    let html = build_reusing(dir, reuse)?;
     let path = dir.join(files::REPORT);
     write_atomic(&path, html.as_bytes())?;
     Ok(path)

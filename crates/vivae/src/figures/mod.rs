@@ -7,6 +7,7 @@
 //! picture, anti-aliased. Functions return bytes; callers write the files.
 
 pub mod convergence;
+mod fields;
 pub mod network;
 
 use std::sync::OnceLock;
@@ -69,6 +70,98 @@ pub(crate) fn draw_err(e: impl std::fmt::Display) -> FigureError {
 pub fn svg_to_png(svg: &str) -> Result<Vec<u8>, FigureError> {
     vivae_sim::draw::svg_to_png(svg, f64::from(PNG_SCALE))
         .map_err(|e| FigureError::Png(e.to_string()))
+}
+
+/// A font database holding only the shipped [`FONT`], built once.
+fn fontdb() -> std::sync::Arc<usvg::fontdb::Database> {
+    static DB: OnceLock<std::sync::Arc<usvg::fontdb::Database>> = OnceLock::new();
+    DB.get_or_init(|| {
+        let mut db = usvg::fontdb::Database::new();
+        db.load_font_data(FONT.to_vec());
+        db.set_sans_serif_family("DejaVu Sans");
+        std::sync::Arc::new(db)
+    })
+    .clone()
+}
+
+/// Draws an SVG document over `base` at `scale` pixels per SVG unit (as
+/// [`svg_to_png`] draws it over white).
+pub(crate) fn draw_svg_over(
+    svg: &str,
+    base: &mut tiny_skia::Pixmap,
+    scale: f32,
+) -> Result<(), FigureError> {
+    let opt = usvg::Options {
+        fontdb: fontdb(),
+        font_family: "DejaVu Sans".to_string(),
+        ..Default::default()
+    };
+    let tree = usvg::Tree::from_str(svg, &opt).map_err(|e| FigureError::Png(e.to_string()))?;
+    resvg::render(
+        &tree,
+        tiny_skia::Transform::from_scale(scale, scale),
+        &mut base.as_mut(),
+    );
+    Ok(())
+}
+
+/// Encodes `pixmap` as PNG with fast compression (tiny-skia's own encoder
+/// spends most of a large figure's time compressing).
+pub(crate) fn encode_png_fast(pixmap: &tiny_skia::Pixmap) -> Result<Vec<u8>, FigureError> {
+    let png_err = |e: png::EncodingError| FigureError::Png(e.to_string());
+    // Opaque and fully transparent pixels read the same premultiplied or not:
+    // a figure's pixmap (opaque background) needs no straight-alpha copy.
+    let straight = pixmap
+        .pixels()
+        .iter()
+        .all(|p| p.alpha() == 255 || p.alpha() == 0);
+    let copy;
+    let rgba = if straight {
+        pixmap.data()
+    } else {
+        copy = pixmap
+            .pixels()
+            .iter()
+            .flat_map(|p| {
+                let c = p.demultiply();
+                [c.red(), c.green(), c.blue(), c.alpha()]
+            })
+            .collect::<Vec<u8>>();
+        &copy
+    };
+    let mut out = Vec::new();
+    {
+        let mut encoder = png::Encoder::new(&mut out, pixmap.width(), pixmap.height());
+        encoder.set_color(png::ColorType::Rgba);
+        encoder.set_depth(png::BitDepth::Eight);
+        encoder.set_compression(png::Compression::Fast);
+        let mut writer = encoder.write_header().map_err(png_err)?;
+        writer.write_image_data(rgba).map_err(png_err)?;
+        writer.finish().map_err(png_err)?;
+    }
+    Ok(out)
+}
+
+/// Standard base64 (RFC 4648, with padding), for images embedded in SVG.
+pub(crate) fn base64(bytes: &[u8]) -> String {
+    const ABC: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut out = String::with_capacity(bytes.len().div_ceil(3) * 4);
+    for chunk in bytes.chunks(3) {
+        let b = [
+            chunk[0],
+            chunk.get(1).copied().unwrap_or(0),
+            chunk.get(2).copied().unwrap_or(0),
+        ];
+        let n = u32::from(b[0]) << 16 | u32::from(b[1]) << 8 | u32::from(b[2]);
+        for (i, shift) in [18, 12, 6, 0].into_iter().enumerate() {
+            if i <= chunk.len() {
+                out.push(char::from(ABC[(n >> shift & 63) as usize]));
+            } else {
+                out.push('=');
+            }
+        }
+    }
+    out
 }
 
 /// Colour for positive weights (blue).
@@ -138,6 +231,38 @@ mod tests {
         assert_eq!(viridis(0.5), RGBColor(33, 145, 140));
         assert_eq!(viridis(f64::NAN), viridis(0.0));
         assert_eq!(viridis(7.0), viridis(1.0));
+    }
+
+    #[test]
+    fn fast_png_decodes_to_the_same_pixels() {
+        let mut pixmap = tiny_skia::Pixmap::new(7, 3).unwrap();
+        pixmap.fill(tiny_skia::Color::from_rgba8(10, 200, 30, 255));
+        pixmap.pixels_mut()[4] = tiny_skia::PremultipliedColorU8::TRANSPARENT;
+        let back = tiny_skia::Pixmap::decode_png(&encode_png_fast(&pixmap).unwrap()).unwrap();
+        assert_eq!(back.data(), pixmap.data());
+        // Half-transparent pixels are written with straight alpha.
+        pixmap.pixels_mut()[5] =
+            tiny_skia::PremultipliedColorU8::from_rgba(50, 60, 70, 128).unwrap();
+        let back = tiny_skia::Pixmap::decode_png(&encode_png_fast(&pixmap).unwrap()).unwrap();
+        assert_eq!(back.pixels()[5].alpha(), 128);
+        assert!(back.pixels()[5].red().abs_diff(50) <= 1);
+        assert_eq!(back.pixels()[6], pixmap.pixels()[6]);
+    }
+
+    #[test]
+    fn base64_matches_rfc_4648_vectors() {
+        for (plain, coded) in [
+            ("", ""),
+            ("f", "Zg=="),
+            ("fo", "Zm8="),
+            ("foo", "Zm9v"),
+            ("foob", "Zm9vYg=="),
+            ("fooba", "Zm9vYmE="),
+            ("foobar", "Zm9vYmFy"),
+        ] {
+            assert_eq!(base64(plain.as_bytes()), coded);
+        }
+        assert_eq!(base64(&[0xff, 0xfe, 0xfd]), "//79");
     }
 
     #[test]

@@ -4,6 +4,10 @@
 //! with width and opacity growing with |weight| (blue positive, orange
 //! negative), recurrent links as arrows curving inside the neuron sheet,
 //! self-loops as small loops, wheel neurons red.
+//!
+//! Above [`NetworkOptions::max_links`] expressed links (a few hundred) lines
+//! stop being readable and cost time and bytes per link, so [`render`] draws
+//! the receptive-field form of [`super::fields`] instead.
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -11,12 +15,12 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 use vivae_neat::hyperneat::{LinkSource, SubstrateController};
 
 use super::{FAMILY, Figure, FigureError, NEGATIVE, POSITIVE, draw_err, register_font, svg_to_png};
-use crate::substrate::{PolarNode, SubstrateSpec};
+use crate::substrate::{PolarNode, SubstrateSpec, WheelNeurons};
 
 /// Wheel neurons' colour.
-const WHEEL: RGBColor = RGBColor(214, 39, 40);
+pub(super) const WHEEL: RGBColor = RGBColor(214, 39, 40);
 /// Guide lines (rings, baseline).
-const GUIDE: RGBColor = RGBColor(200, 200, 200);
+pub(super) const GUIDE: RGBColor = RGBColor(200, 200, 200);
 /// Display radius (fraction of the sheet radius) of the distance-sensor ring.
 const DISTANCE_RING: f64 = 1.13;
 
@@ -31,6 +35,9 @@ pub struct NetworkOptions {
     pub width: u32,
     /// Height in SVG units.
     pub height: u32,
+    /// Most expressed links drawn one line each; a larger controller is drawn
+    /// as receptive fields (heat maps), whose cost does not grow with its links.
+    pub max_links: usize,
 }
 
 impl Default for NetworkOptions {
@@ -40,69 +47,58 @@ impl Default for NetworkOptions {
             weight_scale: 3.0,
             width: 1000,
             height: 720,
+            max_links: 400,
         }
     }
 }
 
-/// Renders the controller decoded on `spec` as SVG and PNG.
+/// Renders the controller decoded on `spec` as SVG and PNG: a line per link
+/// up to `opts.max_links` expressed links, receptive fields above.
 pub fn render(
     spec: &SubstrateSpec,
     controller: &SubstrateController,
     opts: &NetworkOptions,
 ) -> Result<Figure, FigureError> {
+    if draws_fields(controller, opts) {
+        return super::fields::render(spec, controller, opts);
+    }
     let svg = render_svg(spec, controller, opts)?;
     let png = svg_to_png(&svg)?;
     Ok(Figure { svg, png })
 }
 
-/// Where one sheet is drawn: centre of its half-disc and its radius, in pixels.
-#[derive(Clone, Copy)]
-struct Panel {
-    cx: f64,
-    cy: f64,
-    radius: f64,
-    /// Vertical squash of the perspective view (1 = seen from above).
-    squash: f64,
-}
-
-impl Panel {
-    /// Pixel position of a point at radius `rho` (sheet units) and angle `phi`.
-    fn at(&self, rho: f64, phi: f64) -> (f64, f64) {
-        (
-            self.cx + rho * phi.sin() * self.radius,
-            self.cy - rho * phi.cos() * self.radius * self.squash,
-        )
-    }
-
-    /// Pixel position of a node.
-    fn node(&self, n: &PolarNode) -> (f64, f64) {
-        self.at(n.rho, n.phi)
-    }
-}
-
-/// Rounds a pixel position for plotters.
-fn px((x, y): (f64, f64)) -> (i32, i32) {
-    (x.round() as i32, y.round() as i32)
-}
-
-/// Link style for a weight: colour by sign, width and opacity by magnitude.
-/// `density` ≤ 1 thins links out when there are very many of them.
-fn link_style(w: f64, scale: f64, density: f64) -> ShapeStyle {
-    let m = (w.abs() / scale).clamp(0.0, 1.0);
-    let colour = if w >= 0.0 { POSITIVE } else { NEGATIVE };
-    let max_extra = if density < 0.5 { 1.0 } else { 2.0 };
-    colour
-        .mix((0.15 + 0.75 * m) * density)
-        .stroke_width(1 + (max_extra * m).round() as u32)
-}
-
-/// Renders the figure as an SVG document.
-pub fn render_svg(
+/// The SVG of [`render`]'s figure (either form), without drawing the PNG.
+pub fn figure_svg(
     spec: &SubstrateSpec,
     controller: &SubstrateController,
     opts: &NetworkOptions,
 ) -> Result<String, FigureError> {
-    register_font()?;
+    if draws_fields(controller, opts) {
+        super::fields::render_svg(spec, controller, opts)
+    } else {
+        render_svg(spec, controller, opts)
+    }
+}
+
+/// Whether [`render`] draws `controller` as receptive fields.
+pub fn draws_fields(controller: &SubstrateController, opts: &NetworkOptions) -> bool {
+    controller.expressed_links() > opts.max_links
+}
+
+/// The sheets' nodes and wheel neurons, once `spec`, `controller` and `opts` are checked.
+pub(super) struct Checked {
+    pub sensors: Vec<PolarNode>,
+    pub distance: Vec<PolarNode>,
+    pub neurons: Vec<PolarNode>,
+    pub wheels: WheelNeurons,
+}
+
+/// Checks that `controller` was decoded on `spec` and that `opts` are usable.
+pub(super) fn check(
+    spec: &SubstrateSpec,
+    controller: &SubstrateController,
+    opts: &NetworkOptions,
+) -> Result<Checked, FigureError> {
     spec.validate()
         .map_err(|e| FigureError::Invalid(e.to_string()))?;
     let sensors = spec.sensor_nodes();
@@ -138,6 +134,68 @@ pub fn render_svg(
             opts.width, opts.height
         )));
     }
+    Ok(Checked {
+        sensors,
+        distance,
+        neurons,
+        wheels,
+    })
+}
+
+/// Where one sheet is drawn: centre of its half-disc and its radius, in pixels.
+#[derive(Clone, Copy)]
+struct Panel {
+    cx: f64,
+    cy: f64,
+    radius: f64,
+    /// Vertical squash of the perspective view (1 = seen from above).
+    squash: f64,
+}
+
+impl Panel {
+    /// Pixel position of a point at radius `rho` (sheet units) and angle `phi`.
+    fn at(&self, rho: f64, phi: f64) -> (f64, f64) {
+        (
+            self.cx + rho * phi.sin() * self.radius,
+            self.cy - rho * phi.cos() * self.radius * self.squash,
+        )
+    }
+
+    /// Pixel position of a node.
+    fn node(&self, n: &PolarNode) -> (f64, f64) {
+        self.at(n.rho, n.phi)
+    }
+}
+
+/// Rounds a pixel position for plotters.
+pub(super) fn px((x, y): (f64, f64)) -> (i32, i32) {
+    (x.round() as i32, y.round() as i32)
+}
+
+/// Link style for a weight: colour by sign, width and opacity by magnitude.
+/// `density` ≤ 1 thins links out when there are very many of them.
+fn link_style(w: f64, scale: f64, density: f64) -> ShapeStyle {
+    let m = (w.abs() / scale).clamp(0.0, 1.0);
+    let colour = if w >= 0.0 { POSITIVE } else { NEGATIVE };
+    let max_extra = if density < 0.5 { 1.0 } else { 2.0 };
+    colour
+        .mix((0.15 + 0.75 * m) * density)
+        .stroke_width(1 + (max_extra * m).round() as u32)
+}
+
+/// Renders the figure with a line per link (at any size) as an SVG document.
+pub fn render_svg(
+    spec: &SubstrateSpec,
+    controller: &SubstrateController,
+    opts: &NetworkOptions,
+) -> Result<String, FigureError> {
+    register_font()?;
+    let Checked {
+        sensors,
+        distance,
+        neurons,
+        wheels,
+    } = check(spec, controller, opts)?;
 
     let (w, h) = (f64::from(opts.width), f64::from(opts.height));
     // The two sheets stacked in perspective, input sheet below the neuron
@@ -308,7 +366,7 @@ pub fn render_svg(
 }
 
 /// Mixes `c` with white: `m = 0` white, `m = 1` the colour.
-fn blend(c: RGBColor, m: f64) -> RGBColor {
+pub(super) fn blend(c: RGBColor, m: f64) -> RGBColor {
     let f = |v: u8| (255.0 + (f64::from(v) - 255.0) * m).round() as u8;
     RGBColor(f(c.0), f(c.1), f(c.2))
 }

@@ -1,0 +1,784 @@
+//! The network figure of a large controller: receptive fields.
+//!
+//! A line per link stops being readable after a few hundred links and costs
+//! time and bytes per link (243,286 links at 32×96 → 9×9). This form shows
+//! every weight as a colour instead:
+//!
+//! * one panel per neuron, placed by its ring (rows, outermost at the top) and
+//!   angle (columns, left to right): its incoming weights over the sensor
+//!   sheet, in the sheet's polar layout seen from above (ahead is up, the robot
+//!   at the centre; ring `k` of `R` is the band from radius `k/R` to `(k+1)/R`,
+//!   each wedge one sensor), distance rays as a band outside it; the dot at the
+//!   centre is the neuron's bias; wheel neurons are outlined red;
+//! * the recurrent weights as a neuron × neuron matrix;
+//! * the biases as a row, aligned with the matrix columns.
+//!
+//! Colours run from orange (negative) through white (0 or no link) to blue
+//! (positive); each block has its own scale, up to its largest |weight|,
+//! because sheet normalisation makes input weights far smaller than recurrent
+//! ones at high resolution.
+//!
+//! The heat maps are rasters at the PNG's resolution, so drawing costs grow
+//! with the figure's pixels, not with its links. The SVG embeds them as PNG
+//! images under the vector labels; the PNG output draws the same pixels under
+//! the same labels, so both files show one picture.
+
+use std::f64::consts::FRAC_PI_2;
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+use tiny_skia::{Pixmap, PixmapPaint, PremultipliedColorU8, Transform};
+use vivae_neat::hyperneat::SubstrateController;
+
+use super::network::{Checked, GUIDE, NetworkOptions, WHEEL, blend, check, px};
+use super::{
+    FAMILY, Figure, FigureError, NEGATIVE, PNG_SCALE, POSITIVE, base64, draw_err, draw_svg_over,
+    encode_png_fast, register_font,
+};
+use crate::substrate::{PolarNode, SubstrateSpec};
+
+/// The receptive-field figure is this much larger than the link figure (more to show).
+const ENLARGE: f64 = 1.6;
+/// Inner and outer radius (sheet radius = 1) of the distance rays' band.
+const DISTANCE_BAND: (f64, f64) = (1.06, 1.22);
+/// Marks a pixel outside every sensor's wedge.
+const OUTSIDE: u32 = u32::MAX;
+
+/// A raster heat map and where it lies, in pixels of the PNG.
+struct Heat {
+    x: i32,
+    y: i32,
+    pixmap: Pixmap,
+}
+
+/// The figure's parts: labels and outlines (SVG without background), heat maps, size in units.
+struct Drawn {
+    overlay: String,
+    heats: Vec<Heat>,
+    size: (f64, f64),
+}
+
+/// Renders the receptive-field figure as SVG and PNG.
+pub(crate) fn render(
+    spec: &SubstrateSpec,
+    controller: &SubstrateController,
+    opts: &NetworkOptions,
+) -> Result<Figure, FigureError> {
+    let Drawn {
+        overlay,
+        heats,
+        size: (w, h),
+    } = draw(spec, controller, opts)?;
+    let scale = f64::from(PNG_SCALE);
+    let too_big = || FigureError::Png(format!("figure of {w}x{h} units is too large"));
+    let mut base =
+        Pixmap::new((w * scale).ceil() as u32, (h * scale).ceil() as u32).ok_or_else(too_big)?;
+    base.fill(tiny_skia::Color::WHITE);
+    for heat in &heats {
+        base.draw_pixmap(
+            heat.x,
+            heat.y,
+            heat.pixmap.as_ref(),
+            &PixmapPaint::default(),
+            Transform::identity(),
+            None,
+        );
+    }
+    draw_svg_over(&overlay, &mut base, PNG_SCALE)?;
+    let png = encode_png_fast(&base)?;
+    let svg = with_images(overlay, &heats, (w, h))?;
+    Ok(Figure { svg, png })
+}
+
+/// Renders the receptive-field figure as an SVG document (heat maps embedded as PNG).
+pub(crate) fn render_svg(
+    spec: &SubstrateSpec,
+    controller: &SubstrateController,
+    opts: &NetworkOptions,
+) -> Result<String, FigureError> {
+    let d = draw(spec, controller, opts)?;
+    with_images(d.overlay, &d.heats, d.size)
+}
+
+/// Puts a white background and the heat maps under the labels of `overlay`.
+fn with_images(overlay: String, heats: &[Heat], (w, h): (f64, f64)) -> Result<String, FigureError> {
+    let open = overlay
+        .find("<svg")
+        .and_then(|at| overlay[at..].find('>').map(|end| at + end + 1))
+        .ok_or_else(|| FigureError::Draw("the overlay is not an SVG document".into()))?;
+    let scale = f64::from(PNG_SCALE);
+    let mut images = format!(r##"<rect x="0" y="0" width="{w}" height="{h}" fill="#FFFFFF"/>"##);
+    for heat in heats {
+        let png = encode_png_fast(&heat.pixmap)?;
+        images.push_str(&format!(
+            r#"<image x="{}" y="{}" width="{}" height="{}" preserveAspectRatio="none" href="data:image/png;base64,{}"/>"#,
+            f64::from(heat.x) / scale,
+            f64::from(heat.y) / scale,
+            f64::from(heat.pixmap.width()) / scale,
+            f64::from(heat.pixmap.height()) / scale,
+            base64(&png)
+        ));
+    }
+    let mut svg = String::with_capacity(overlay.len() + images.len() + 1);
+    svg.push_str(&overlay[..open]);
+    svg.push('\n');
+    svg.push_str(&images);
+    svg.push_str(&overlay[open..]);
+    Ok(svg)
+}
+
+/// An opaque pixel of colour `c`.
+fn pixel(c: RGBColor) -> PremultipliedColorU8 {
+    PremultipliedColorU8::from_rgba(c.0, c.1, c.2, 255).expect("opaque colours are premultiplied")
+}
+
+/// The diverging colour of `v` on a symmetric scale `±scale`: orange, white at 0, blue.
+fn diverging(v: f64, scale: f64) -> RGBColor {
+    let m = (v.abs() / scale).clamp(0.0, 1.0);
+    let m = if m.is_nan() { 0.0 } else { m };
+    blend(if v >= 0.0 { POSITIVE } else { NEGATIVE }, m)
+}
+
+/// Largest |value|, or 1 when all are 0 (a scale never divides by 0).
+fn max_abs(values: impl Iterator<Item = f64>) -> f64 {
+    let m = values.fold(0.0f64, |m, v| m.max(v.abs()));
+    if m > 0.0 && m.is_finite() { m } else { 1.0 }
+}
+
+/// A value with three significant digits, for scale labels.
+fn short(v: f64) -> String {
+    if v >= 100.0 {
+        format!("{v:.0}")
+    } else if v >= 0.01 {
+        let digits = (2 - v.log10().floor() as i32).max(0) as usize;
+        format!("{v:.digits$}")
+    } else {
+        format!("{v:.2e}")
+    }
+}
+
+/// Boundaries between the wedges of nodes at angles `phis` (ascending): midway
+/// between neighbours, half a spacing beyond the ends (`half_fov` for one node).
+fn wedge_bounds(phis: &[f64], half_fov: f64) -> Vec<f64> {
+    match phis {
+        [] => Vec::new(),
+        [only] => vec![only - half_fov, only + half_fov],
+        _ => {
+            let first = phis[0] - (phis[1] - phis[0]) / 2.0;
+            let last = phis[phis.len() - 1] + (phis[phis.len() - 1] - phis[phis.len() - 2]) / 2.0;
+            std::iter::once(first)
+                .chain(phis.windows(2).map(|p| (p[0] + p[1]) / 2.0))
+                .chain(std::iter::once(last))
+                .collect()
+        }
+    }
+}
+
+/// Index of the wedge holding angle `phi`.
+fn wedge(bounds: &[f64], phi: f64) -> Option<usize> {
+    if bounds.len() < 2 || !(phi >= bounds[0] && phi < bounds[bounds.len() - 1]) {
+        return None;
+    }
+    Some(bounds.partition_point(|&b| b <= phi) - 1)
+}
+
+/// Which input feeds each pixel of a panel: the same for every panel, so
+/// computed once. `radius` is the sheet radius in pixels; the panel's box
+/// spans `x0..x0+width`, `y0..y0+height` pixels around the centre.
+struct Stencil {
+    x0: i32,
+    y0: i32,
+    width: u32,
+    /// Input index per pixel, row-major, [`OUTSIDE`] where there is none.
+    input: Vec<u32>,
+}
+
+impl Stencil {
+    fn new(radius: f64, half: f64, sensors: &[PolarNode], distance: &[PolarNode]) -> Stencil {
+        let rings = sensors.iter().map(|n| n.ring + 1).max().unwrap_or(1);
+        let angles = sensors.iter().map(|n| n.angle_index + 1).max().unwrap_or(1);
+        // Input index by (ring, angle): the sheet need not list them in grid order.
+        let mut by_place = vec![OUTSIDE; rings * angles];
+        let mut phis = vec![0.0; angles];
+        for (i, n) in sensors.iter().enumerate() {
+            by_place[n.ring * angles + n.angle_index] = i as u32;
+            phis[n.angle_index] = n.phi;
+        }
+        let bounds = wedge_bounds(&phis, half);
+        let distance_phis: Vec<f64> = distance.iter().map(|n| n.phi).collect();
+        let distance_bounds = wedge_bounds(&distance_phis, half);
+        let outer = if distance.is_empty() {
+            1.0
+        } else {
+            DISTANCE_BAND.1
+        };
+        let side = outer * half.min(FRAC_PI_2).sin().max(0.05);
+        let below = if half > FRAC_PI_2 { -half.cos() } else { 0.0 };
+        let x0 = -(side * radius).ceil() as i32 - 1;
+        let y0 = -(outer * radius).ceil() as i32 - 1;
+        let width = (2 * -x0) as u32;
+        let height = (-y0 + (below * outer * radius).ceil() as i32 + 1) as u32;
+        let mut input = Vec::with_capacity(width as usize * height as usize);
+        for y in 0..height as i32 {
+            for x in 0..width as i32 {
+                let (dx, dy) = (f64::from(x0 + x) + 0.5, f64::from(y0 + y) + 0.5);
+                let rho = dx.hypot(dy) / radius;
+                // Angle from straight ahead (up), positive to the right.
+                let phi = dx.atan2(-dy);
+                let index = if rho < 1.0 {
+                    let ring = ((rho * rings as f64) as usize).min(rings - 1);
+                    wedge(&bounds, phi).map_or(OUTSIDE, |a| by_place[ring * angles + a])
+                } else if (DISTANCE_BAND.0..DISTANCE_BAND.1).contains(&rho) {
+                    wedge(&distance_bounds, phi).map_or(OUTSIDE, |a| (sensors.len() + a) as u32)
+                } else {
+                    OUTSIDE
+                };
+                input.push(index);
+            }
+        }
+        Stencil {
+            x0,
+            y0,
+            width,
+            input,
+        }
+    }
+}
+
+/// Where the blocks go, in SVG units.
+struct Layout {
+    w: f64,
+    h: f64,
+    /// Panel grid: left, top, cell width, cell height.
+    grid: (f64, f64, f64, f64),
+    /// Sheet radius of a panel.
+    radius: f64,
+    /// Recurrent matrix: left, top, side.
+    matrix: (f64, f64, f64),
+    /// Bias row: top and height (left and width are the matrix's).
+    bias: (f64, f64),
+}
+
+impl Layout {
+    fn new(opts: &NetworkOptions, rows: usize, cols: usize, half: f64, distance: bool) -> Layout {
+        let (w, h) = (
+            (f64::from(opts.width) * ENLARGE).round(),
+            (f64::from(opts.height) * ENLARGE).round(),
+        );
+        let (left, top) = (w * 0.07, 130.0);
+        let (right, bottom) = (w * 0.63, h - 150.0);
+        let (cw, ch) = ((right - left) / cols as f64, (bottom - top) / rows as f64);
+        let outer = if distance { DISTANCE_BAND.1 } else { 1.0 };
+        let fan_w = 2.0 * outer * half.min(FRAC_PI_2).sin().max(0.05);
+        let fan_h = outer * (1.0 + if half > FRAC_PI_2 { -half.cos() } else { 0.0 });
+        let radius = (cw * 0.9 / fan_w).min(ch * 0.86 / fan_h);
+        let mx = w * 0.68;
+        let side = (w - 40.0 - mx).min(h - 330.0 - top);
+        Layout {
+            w,
+            h,
+            grid: (left, top, cw, ch),
+            radius,
+            matrix: (mx, top + 20.0, side),
+            bias: (top + 20.0 + side + 46.0, 24.0),
+        }
+    }
+
+    /// Centre of the panel at `row`, `col`, rounded to whole PNG pixels so
+    /// every panel shares one [`Stencil`].
+    fn centre(&self, row: usize, col: usize, half: f64, distance: bool) -> (f64, f64) {
+        let (left, top, cw, ch) = self.grid;
+        let outer = if distance { DISTANCE_BAND.1 } else { 1.0 };
+        let fan_h = outer * (1.0 + if half > FRAC_PI_2 { -half.cos() } else { 0.0 });
+        let cx = left + cw * (col as f64 + 0.5);
+        let cy = top + ch * row as f64 + (ch - fan_h * self.radius) / 2.0 + outer * self.radius;
+        let s = f64::from(PNG_SCALE);
+        ((cx * s).round() / s, (cy * s).round() / s)
+    }
+}
+
+/// Draws the figure: the vector overlay (labels, outlines; no background) and the heat maps.
+fn draw(
+    spec: &SubstrateSpec,
+    controller: &SubstrateController,
+    opts: &NetworkOptions,
+) -> Result<Drawn, FigureError> {
+    register_font()?;
+    let Checked {
+        sensors,
+        distance,
+        neurons,
+        wheels,
+    } = check(spec, controller, opts)?;
+    let n = neurons.len();
+    let inputs = sensors.len() + distance.len();
+    let (rows, cols) = (spec.neurons.rings, spec.neurons.angles);
+    let half = spec.fov.to_radians() / 2.0;
+    let has_distance = !distance.is_empty();
+    let layout = Layout::new(opts, rows, cols, half, has_distance);
+    let scale = f64::from(PNG_SCALE);
+
+    // Colour scales, one per block.
+    let input_scale = max_abs(
+        (0..inputs)
+            .flat_map(|i| (0..n).map(move |t| (i, t)))
+            .map(|(i, t)| controller.input_weight(i, t)),
+    );
+    let recurrent_scale = max_abs(
+        (0..n)
+            .flat_map(|s| (0..n).map(move |t| (s, t)))
+            .map(|(s, t)| controller.recurrent_weight(s, t)),
+    );
+    let bias_scale = max_abs(controller.biases().iter().copied());
+
+    // Panels: one raster over the whole grid.
+    let stencil = Stencil::new(layout.radius * scale, half, &sensors, &distance);
+    let (left, top, cw, ch) = layout.grid;
+    let grid_x = (left * scale).floor() as i32;
+    let grid_y = (top * scale).floor() as i32;
+    let too_big = || FigureError::Draw("heat map too large".into());
+    let mut grid = Pixmap::new(
+        (cw * cols as f64 * scale).ceil() as u32 + 2,
+        (ch * rows as f64 * scale).ceil() as u32 + 2,
+    )
+    .ok_or_else(too_big)?;
+    let mut colours = vec![pixel(WHITE); inputs];
+    let centre_of = |i: usize| {
+        let node = &neurons[i];
+        layout.centre(rows - 1 - node.ring, node.angle_index, half, has_distance)
+    };
+    for t in 0..n {
+        for (i, c) in colours.iter_mut().enumerate() {
+            *c = pixel(diverging(controller.input_weight(i, t), input_scale));
+        }
+        let (cx, cy) = centre_of(t);
+        let ox = (cx * scale).round() as i32 + stencil.x0 - grid_x;
+        let oy = (cy * scale).round() as i32 + stencil.y0 - grid_y;
+        let (gw, gh) = (grid.width() as i32, grid.height() as i32);
+        let pixels = grid.pixels_mut();
+        for (row, line) in stencil
+            .input
+            .chunks_exact(stencil.width as usize)
+            .enumerate()
+        {
+            let y = oy + row as i32;
+            if !(0..gh).contains(&y) {
+                continue;
+            }
+            for (col, &input) in line.iter().enumerate() {
+                let x = ox + col as i32;
+                if input != OUTSIDE && (0..gw).contains(&x) {
+                    pixels[(y * gw + x) as usize] = colours[input as usize];
+                }
+            }
+        }
+    }
+    let mut heats = vec![Heat {
+        x: grid_x,
+        y: grid_y,
+        pixmap: grid,
+    }];
+
+    // Recurrent matrix (row = target, column = source) and bias row, sampled per pixel.
+    let (mx, my, side) = layout.matrix;
+    let side_px = (side * scale).round().max(1.0) as u32;
+    let mut matrix = Pixmap::new(side_px, side_px).ok_or_else(too_big)?;
+    let cell = |p: u32| ((f64::from(p) + 0.5) / f64::from(side_px) * n as f64) as usize;
+    let lookup: Vec<usize> = (0..side_px).map(|p| cell(p).min(n - 1)).collect();
+    for (py, &target) in lookup.iter().enumerate() {
+        let line = &mut matrix.pixels_mut()[py * side_px as usize..(py + 1) * side_px as usize];
+        for (p, &source) in line.iter_mut().zip(&lookup) {
+            *p = pixel(diverging(
+                controller.recurrent_weight(source, target),
+                recurrent_scale,
+            ));
+        }
+    }
+    heats.push(Heat {
+        x: (mx * scale).round() as i32,
+        y: (my * scale).round() as i32,
+        pixmap: matrix,
+    });
+    let (by, bh) = layout.bias;
+    let bh_px = (bh * scale).round() as u32;
+    let mut bias = Pixmap::new(side_px, bh_px).ok_or_else(too_big)?;
+    for line in bias.pixels_mut().chunks_exact_mut(side_px as usize) {
+        for (p, &i) in line.iter_mut().zip(&lookup) {
+            *p = pixel(diverging(controller.biases()[i], bias_scale));
+        }
+    }
+    heats.push(Heat {
+        x: (mx * scale).round() as i32,
+        y: (by * scale).round() as i32,
+        pixmap: bias,
+    });
+
+    // The vector overlay.
+    let (w, h) = (layout.w, layout.h);
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (w as u32, h as u32)).into_drawing_area();
+        let title_font = (FAMILY, 24).into_font().style(FontStyle::Bold);
+        let font = (FAMILY, 17).into_font();
+        let small = (FAMILY, 14).into_font();
+        let text = |s: &str, at: (f64, f64), f: &FontDesc<'_>, pos: Pos| {
+            root.draw(&Text::new(
+                s.to_string(),
+                px(at),
+                TextStyle::from(f.clone()).pos(pos),
+            ))
+            .map_err(draw_err)
+        };
+        let centre_top = Pos::new(HPos::Center, VPos::Top);
+        let centre_bottom = Pos::new(HPos::Center, VPos::Bottom);
+        let left_mid = Pos::new(HPos::Left, VPos::Center);
+        let right_mid = Pos::new(HPos::Right, VPos::Center);
+        text(&opts.title, (w / 2.0, 10.0), &title_font, centre_top)?;
+        text(
+            &format!(
+                "{} expressed of {} possible links, drawn as receptive fields: surface sensors {}{} → neurons {}",
+                controller.expressed_links(),
+                controller.possible_links(),
+                spec.sensors,
+                if has_distance {
+                    format!(" + {} distance rays", distance.len())
+                } else {
+                    String::new()
+                },
+                spec.neurons
+            ),
+            (w / 2.0, 42.0),
+            &font,
+            centre_top,
+        )?;
+
+        // Column (angle) and row (ring) labels of the panel grid.
+        text(
+            "incoming weights of each neuron, by its angle →",
+            (left + cw * cols as f64 / 2.0, top - 42.0),
+            &font,
+            centre_bottom,
+        )?;
+        let every = ((60.0 / cw).ceil() as usize).max(1);
+        for node in neurons.iter().filter(|n| n.ring == 0) {
+            if node.angle_index % every == 0 || node.angle_index + 1 == cols {
+                let (cx, _) = layout.centre(0, node.angle_index, half, has_distance);
+                text(
+                    &format!("{:+.0}°", node.phi.to_degrees()),
+                    (cx, top - 8.0),
+                    &small,
+                    centre_bottom,
+                )?;
+            }
+        }
+        text(
+            "ring ρ",
+            (left - 10.0, top - 8.0),
+            &small,
+            Pos::new(HPos::Right, VPos::Bottom),
+        )?;
+        let every_row = ((22.0 / ch).ceil() as usize).max(1);
+        for ring in (0..rows).filter(|r| r % every_row == 0 || r + 1 == rows) {
+            let row = rows - 1 - ring;
+            text(
+                &format!("{:.2}", spec.neurons.radius(ring)),
+                (left - 10.0, top + ch * (row as f64 + 0.5)),
+                &small,
+                right_mid,
+            )?;
+        }
+
+        // Panel outlines, wheel neurons red, bias dots.
+        let r = layout.radius;
+        let dot = (r * 0.1).clamp(1.5, 5.0);
+        for (i, node) in neurons.iter().enumerate() {
+            let (cx, cy) = centre_of(i);
+            let wheel = if i == wheels.left {
+                Some("L")
+            } else if i == wheels.right {
+                Some("R")
+            } else {
+                None
+            };
+            let style = match wheel {
+                Some(_) => WHEEL.stroke_width(3),
+                None => GUIDE.stroke_width(1),
+            };
+            let outline: Vec<(i32, i32)> = std::iter::once((cx, cy))
+                .chain((0..=48).map(|k| {
+                    let phi = -half + 2.0 * half * f64::from(k) / 48.0;
+                    (cx + r * phi.sin(), cy - r * phi.cos())
+                }))
+                .chain(std::iter::once((cx, cy)))
+                .map(px)
+                .collect();
+            root.draw(&PathElement::new(outline, style))
+                .map_err(draw_err)?;
+            root.draw(&Circle::new(
+                px((cx, cy)),
+                dot as i32,
+                diverging(controller.biases()[i], bias_scale).filled(),
+            ))
+            .map_err(draw_err)?;
+            root.draw(&Circle::new(
+                px((cx, cy)),
+                dot as i32,
+                BLACK.stroke_width(1),
+            ))
+            .map_err(draw_err)?;
+            if let Some(label) = wheel {
+                let side = if node.phi < 0.0 { -1.0 } else { 1.0 };
+                let at = (cx + side * (r * 0.75), cy - r * 0.95);
+                root.draw(&Text::new(
+                    label,
+                    px(at),
+                    (FAMILY, 18)
+                        .into_font()
+                        .style(FontStyle::Bold)
+                        .color(&WHEEL)
+                        .pos(Pos::new(HPos::Center, VPos::Center)),
+                ))
+                .map_err(draw_err)?;
+            }
+        }
+
+        // Recurrent matrix: frame, ring blocks, wheel ticks, captions.
+        let (mx, my, side) = layout.matrix;
+        text(
+            "recurrent weights: column = from neuron, row = to neuron",
+            (mx + side / 2.0, my - 26.0),
+            &font,
+            centre_bottom,
+        )?;
+        text(
+            "(neurons ring by ring from the inside, left to right)",
+            (mx + side / 2.0, my - 6.0),
+            &small,
+            centre_bottom,
+        )?;
+        let per = side / n as f64;
+        if spec.neurons.rings > 1 && per * cols as f64 >= 4.0 {
+            for ring in 1..rows {
+                let at = per * (ring * cols) as f64;
+                for line in [
+                    vec![px((mx + at, my)), px((mx + at, my + side))],
+                    vec![px((mx, my + at)), px((mx + side, my + at))],
+                ] {
+                    root.draw(&PathElement::new(
+                        line,
+                        RGBColor(120, 120, 120).stroke_width(1),
+                    ))
+                    .map_err(draw_err)?;
+                }
+            }
+        }
+        root.draw(&Rectangle::new(
+            [px((mx, my)), px((mx + side, my + side))],
+            BLACK.stroke_width(1),
+        ))
+        .map_err(draw_err)?;
+        let (by, bh) = layout.bias;
+        root.draw(&Rectangle::new(
+            [px((mx, by)), px((mx + side, by + bh))],
+            BLACK.stroke_width(1),
+        ))
+        .map_err(draw_err)?;
+        text("bias", (mx - 8.0, by + bh / 2.0), &font, right_mid)?;
+        let wheel_font = (FAMILY, 16)
+            .into_font()
+            .style(FontStyle::Bold)
+            .color(&WHEEL);
+        for (i, label) in [(wheels.left, "L"), (wheels.right, "R")] {
+            let c = mx + per * (i as f64 + 0.5);
+            let rmid = my + per * (i as f64 + 0.5);
+            for tick in [
+                vec![px((c, my + side)), px((c, my + side + 8.0))],
+                vec![px((mx - 8.0, rmid)), px((mx, rmid))],
+                vec![px((c, by + bh)), px((c, by + bh + 8.0))],
+            ] {
+                root.draw(&PathElement::new(tick, WHEEL.stroke_width(3)))
+                    .map_err(draw_err)?;
+            }
+            root.draw(&Text::new(
+                label,
+                px((c, by + bh + 10.0)),
+                wheel_font.clone().pos(centre_top),
+            ))
+            .map_err(draw_err)?;
+            root.draw(&Text::new(
+                label,
+                px((mx - 11.0, rmid)),
+                wheel_font.clone().pos(right_mid),
+            ))
+            .map_err(draw_err)?;
+        }
+
+        // Colour scales.
+        let bar_y = by + bh + 62.0;
+        colour_bar(
+            &root,
+            (mx + 110.0, bar_y),
+            side - 190.0,
+            "recurrent",
+            recurrent_scale,
+            &small,
+        )?;
+        colour_bar(
+            &root,
+            (mx + 110.0, bar_y + 34.0),
+            side - 190.0,
+            "bias",
+            bias_scale,
+            &small,
+        )?;
+        let grid_bottom = top + ch * rows as f64;
+        colour_bar(
+            &root,
+            (left + 170.0, grid_bottom + 30.0),
+            (cw * cols as f64 - 260.0).max(120.0),
+            "sensor → neuron",
+            input_scale,
+            &small,
+        )?;
+
+        // How to read the panels.
+        let mut lines = vec![
+            "Each panel is one neuron: its weight from every sensor, drawn where the sensor looks (ahead is up, robot at the centre;".to_string(),
+            "each wedge one sensor). The dot is the neuron's bias. Red outline, L/R: wheel neurons. White: no link (or 0).".to_string(),
+        ];
+        if has_distance {
+            lines.push(
+                "The outer band of each panel holds the distance rays' weights (same colour scale)."
+                    .to_string(),
+            );
+        }
+        for (k, line) in lines.iter().enumerate() {
+            text(
+                line,
+                (left - 40.0, h - 70.0 + 22.0 * k as f64),
+                &small,
+                left_mid,
+            )?;
+        }
+        root.present().map_err(draw_err)?;
+    }
+    Ok(Drawn {
+        overlay: svg,
+        heats,
+        size: (w, h),
+    })
+}
+
+/// A horizontal colour bar from `−scale` through 0 to `+scale`, named `label`.
+fn colour_bar(
+    root: &DrawingArea<SVGBackend<'_>, Shift>,
+    (x, y): (f64, f64),
+    width: f64,
+    label: &str,
+    scale: f64,
+    font: &FontDesc<'_>,
+) -> Result<(), FigureError> {
+    let steps = 41;
+    let cell = width / steps as f64;
+    for i in 0..steps {
+        let v = scale * (-1.0 + 2.0 * i as f64 / (steps - 1) as f64);
+        let x0 = x + cell * i as f64;
+        root.draw(&Rectangle::new(
+            [px((x0, y - 8.0)), px((x0 + cell + 0.5, y + 8.0))],
+            diverging(v, scale).filled(),
+        ))
+        .map_err(draw_err)?;
+    }
+    root.draw(&Rectangle::new(
+        [px((x, y - 8.0)), px((x + width, y + 8.0))],
+        BLACK.stroke_width(1),
+    ))
+    .map_err(draw_err)?;
+    let style = |pos| TextStyle::from(font.clone()).pos(pos);
+    root.draw(&Text::new(
+        format!("{label}  −{}", short(scale)),
+        px((x - 6.0, y)),
+        style(Pos::new(HPos::Right, VPos::Center)),
+    ))
+    .map_err(draw_err)?;
+    root.draw(&Text::new(
+        format!("+{}", short(scale)),
+        px((x + width + 6.0, y)),
+        style(Pos::new(HPos::Left, VPos::Center)),
+    ))
+    .map_err(draw_err)?;
+    root.draw(&Text::new(
+        "0",
+        px((x + width / 2.0, y + 10.0)),
+        style(Pos::new(HPos::Center, VPos::Top)),
+    ))
+    .map_err(draw_err)?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn wedges_split_halfway_between_nodes() {
+        let b = wedge_bounds(&[-1.0, 0.0, 1.0], 1.0);
+        assert_eq!(b, vec![-1.5, -0.5, 0.5, 1.5]);
+        assert_eq!(wedge(&b, -1.5), Some(0));
+        assert_eq!(wedge(&b, 0.0), Some(1));
+        assert_eq!(wedge(&b, 1.49), Some(2));
+        assert_eq!(wedge(&b, 1.5), None);
+        assert_eq!(wedge(&b, f64::NAN), None);
+        assert_eq!(wedge_bounds(&[0.0], 0.5), vec![-0.5, 0.5]);
+        assert_eq!(wedge_bounds(&[], 0.5), Vec::<f64>::new());
+    }
+
+    #[test]
+    fn outer_sensors_and_distance_rays_get_their_own_pixels() {
+        use crate::substrate::PolarGrid;
+        let spec = SubstrateSpec {
+            sensors: PolarGrid::new(32, 96).unwrap(),
+            distance_rays: Some(7),
+            ..SubstrateSpec::default()
+        };
+        let (sensors, distance) = (spec.sensor_nodes(), spec.distance_nodes());
+        let half = spec.fov.to_radians() / 2.0;
+        // A panel as large as the 9×9 figure draws it (radius ≈ 90 pixels).
+        let stencil = Stencil::new(90.0, half, &sensors, &distance);
+        let mut seen = vec![0usize; sensors.len() + distance.len()];
+        for &i in stencil.input.iter().filter(|&&i| i != OUTSIDE) {
+            seen[i as usize] += 1;
+        }
+        // Wedges of inner rings are narrower than a pixel (true to the geometry:
+        // they are that close together); every sensor of the outer half of the
+        // rings and every distance ray has pixels of its own.
+        let outer_half = sensors.iter().enumerate().filter(|(_, n)| n.ring >= 16);
+        assert!(outer_half.clone().count() == 16 * 96);
+        assert!(outer_half.into_iter().all(|(i, _)| seen[i] > 0));
+        assert!(
+            seen[sensors.len()..].iter().all(|&n| n > 0),
+            "a ray has no pixel"
+        );
+        // The left-most outer sensor is drawn left of the centre, the right-most right of it.
+        let column_of = |input: u32| {
+            let at = stencil.input.iter().position(|&i| i == input).unwrap();
+            at as i32 % stencil.width as i32 + stencil.x0
+        };
+        let outer_left = (31 * 96) as u32;
+        assert!(column_of(outer_left) < 0 && column_of(outer_left + 95) > 0);
+    }
+
+    #[test]
+    fn scales_and_labels() {
+        assert_eq!(max_abs([0.5, -2.0, 1.0].into_iter()), 2.0);
+        assert_eq!(max_abs([0.0, 0.0].into_iter()), 1.0);
+        assert_eq!(short(2.9876), "2.99");
+        assert_eq!(short(0.0146), "0.0146");
+        assert_eq!(short(123.4), "123");
+        assert_eq!(short(0.001), "1.00e-3");
+        assert_eq!(diverging(0.0, 1.0), WHITE);
+        assert_eq!(diverging(5.0, 1.0), POSITIVE);
+        assert_eq!(diverging(-1.0, 1.0), NEGATIVE);
+    }
+}
