@@ -37,7 +37,7 @@ impl Activation {
     ];
 
     /// Applies the function to `x`.
-    #[inline]
+    #[inline(always)]
     pub fn apply(self, x: f64) -> f64 {
         match self {
             Activation::BipolarSigmoid => bipolar_sigmoid(x),

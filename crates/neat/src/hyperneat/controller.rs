@@ -601,15 +601,34 @@ fn tile<S: Simd, const RT: usize, const NB: usize>(
 }
 
 impl SubstrateController {
-    /// Assembles a decoded controller (sizes already consistent with `layout`).
-    pub(super) fn from_parts(layout: &SubstrateLayout, bias: Vec<f64>, weights: Vec<f64>) -> Self {
+    /// Assembles a decoded controller (sizes consistent with `layout`):
+    /// `bias` per neuron, and `column(j, out)` writes the weights from source
+    /// `j` (inputs, then neurons) to every neuron into `out` (one per neuron),
+    /// sources in order. The columns go straight into the padded panels.
+    pub(super) fn build(
+        layout: &SubstrateLayout,
+        bias: &[f64],
+        mut column: impl FnMut(usize, &mut [f64]),
+    ) -> Self {
         let n = bias.len();
-        SubstrateController::new(
+        let mut c = SubstrateController::new(
             layout.inputs.iter().map(|s| s.coords.len()).collect(),
             n,
-            &bias,
-            &weights,
-        )
+            bias,
+            &[],
+        );
+        let m = c.num_inputs + n;
+        let mut values = vec![0.0; n];
+        for j in 0..m {
+            column(j, &mut values);
+            for p0 in (0..c.stride).step_by(PANEL) {
+                let width = PANEL.min(c.stride - p0);
+                let end = (p0 + width).min(n);
+                c.weights[p0 * m + j * width..][..end - p0].copy_from_slice(&values[p0..end]);
+            }
+        }
+        c.expressed = c.weights.iter().filter(|w| **w != 0.0).count();
+        c
     }
 }
 
