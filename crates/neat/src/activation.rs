@@ -37,7 +37,7 @@ impl Activation {
     ];
 
     /// Applies the function to `x`.
-    #[inline]
+    #[inline(always)]
     pub fn apply(self, x: f64) -> f64 {
         match self {
             Activation::BipolarSigmoid => bipolar_sigmoid(x),
@@ -52,7 +52,7 @@ impl Activation {
 }
 
 /// The bipolar sigmoid `2/(1+e^(−4.9x)) − 1` used by CPPN outputs and controllers.
-#[inline]
+#[inline(always)]
 pub fn bipolar_sigmoid(x: f64) -> f64 {
     2.0 / (1.0 + exp(-4.9 * x)) - 1.0
 }

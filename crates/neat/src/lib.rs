@@ -65,6 +65,7 @@ pub mod network;
 pub mod params;
 pub mod population;
 pub mod recurrent;
+pub mod simd;
 pub mod species;
 pub mod stats;
 

@@ -91,6 +91,203 @@ pub fn tanh(x: f64) -> f64 {
     libm::tanh(x)
 }
 
+/// `sin` of every element, in place: exactly the bits of [`sin`].
+///
+/// When every |x| < 2²⁰·π/2 (always, for CPPN sums of coordinates), a
+/// branch-free copy of musl's `sin` runs over the slice, so the loop
+/// vectorises: every branch of the scalar code is computed and the one the
+/// scalar code takes is selected, with the same operations in the same
+/// order, so the bits are the same. Otherwise the slice goes to [`sin`].
+#[inline(always)]
+pub fn sin_in_place(xs: &mut [f64]) {
+    if xs.iter().fold(true, |ok, &x| ok & lane_range(x)) {
+        for x in xs.iter_mut() {
+            *x = sin_lane(*x);
+        }
+    } else {
+        for x in xs.iter_mut() {
+            *x = sin(*x);
+        }
+    }
+}
+
+/// `cos` of every element, in place: exactly the bits of [`cos`] (as [`sin_in_place`]).
+#[inline(always)]
+pub fn cos_in_place(xs: &mut [f64]) {
+    if xs.iter().fold(true, |ok, &x| ok & lane_range(x)) {
+        for x in xs.iter_mut() {
+            *x = cos_lane(*x);
+        }
+    } else {
+        for x in xs.iter_mut() {
+            *x = cos(*x);
+        }
+    }
+}
+
+/// High word of |x|, as musl's trigonometric functions test it.
+#[inline(always)]
+fn high_word(x: f64) -> u32 {
+    ((x.to_bits() >> 32) as u32) & 0x7fff_ffff
+}
+
+/// Whether `x` is in the range of [`sin_lane`] / [`cos_lane`]: |x| ≲ 2²⁰·π/2
+/// (musl's small and medium argument reductions; no NaN, no infinity).
+#[inline(always)]
+fn lane_range(x: f64) -> bool {
+    high_word(x) < 0x4139_21fb
+}
+
+// musl's constants (libm crate: rem_pio2.rs, k_sin.rs, k_cos.rs).
+const TO_INT: f64 = 1.5 / f64::EPSILON;
+const INV_PIO2: f64 = f64::from_bits(0x3fe4_5f30_6dc9_c883); // 6.36619772367581382433e-1
+const PIO2_1: f64 = f64::from_bits(0x3ff9_21fb_5440_0000); // 1.57079632673412561417e0
+const PIO2_1T: f64 = f64::from_bits(0x3dd0_b461_1a62_6331); // 6.07710050650619224932e-11
+const PIO2_2: f64 = f64::from_bits(0x3dd0_b461_1a60_0000); // 6.07710050630396597660e-11
+const PIO2_2T: f64 = f64::from_bits(0x3ba3_198a_2e03_7073); // 2.02226624879595063154e-21
+const PIO2_3: f64 = f64::from_bits(0x3ba3_198a_2e00_0000); // 2.02226624871116645580e-21
+const PIO2_3T: f64 = f64::from_bits(0x397b_839a_2520_49c1); // 8.47842766036889956997e-32
+const S1: f64 = f64::from_bits(0xbfc5_5555_5555_5549); // -1.66666666666666324348e-1
+const S2: f64 = f64::from_bits(0x3f81_1111_1110_f8a6); // 8.33333333332248946124e-3
+const S3: f64 = f64::from_bits(0xbf2a_01a0_19c1_61d5); // -1.98412698298579493134e-4
+const S4: f64 = f64::from_bits(0x3ec7_1de3_57b1_fe7d); // 2.75573137070700676789e-6
+const S5: f64 = f64::from_bits(0xbe5a_e5e6_8a2b_9ceb); // -2.50507602534068634195e-8
+const S6: f64 = f64::from_bits(0x3de5_d93a_5acf_d57c); // 1.58969099521155010221e-10
+const C1: f64 = f64::from_bits(0x3fa5_5555_5555_554c); // 4.16666666666666019037e-2
+const C2: f64 = f64::from_bits(0xbf56_c16c_16c1_5177); // -1.38888888888741095749e-3
+const C3: f64 = f64::from_bits(0x3efa_01a0_19cb_1590); // 2.48015872894767294178e-5
+const C4: f64 = f64::from_bits(0xbe92_7e4f_809c_52ad); // -2.75573143513906633035e-7
+const C5: f64 = f64::from_bits(0x3e21_ee9e_bdb4_b1c4); // 2.08757232129817482790e-9
+const C6: f64 = f64::from_bits(0xbda8_fae9_be88_38d4); // -1.13596475577881948265e-11
+
+/// musl's `__sin(x, y, iy)`.
+#[inline(always)]
+fn k_sin(x: f64, y: f64, iy: bool) -> f64 {
+    let z = x * x;
+    let w = z * z;
+    let r = S2 + z * (S3 + z * S4) + z * w * (S5 + z * S6);
+    let v = z * x;
+    if iy {
+        x - ((z * (0.5 * y - v * r) - y) - v * S1)
+    } else {
+        x + v * (S1 + z * r)
+    }
+}
+
+/// musl's `__cos(x, y)`.
+#[inline(always)]
+fn k_cos(x: f64, y: f64) -> f64 {
+    let z = x * x;
+    let w = z * z;
+    let r = z * (C1 + z * (C2 + z * C3)) + w * w * (C4 + z * (C5 + z * C6));
+    let hz = 0.5 * z;
+    let w = 1.0 - hz;
+    w + (((1.0 - w) - hz) + (z * r - x * y))
+}
+
+/// musl's `__rem_pio2` for π/4 < |x| < 2²⁰·π/2, branch-free: `(n mod 4, y0, y1)`
+/// with x ≈ n·π/2 + y0 + y1.
+#[inline(always)]
+fn rem_pio2_lane(x: f64) -> (u64, f64, f64) {
+    let ix = high_word(x);
+    // |x| ≤ 9π/4: x − k·π/2 for the k musl picks (signed like x).
+    let k = if ix <= 0x4002_d97c {
+        1.0
+    } else if ix <= 0x400f_6a7a {
+        2.0
+    } else if ix <= 0x4015_fdbc {
+        3.0
+    } else {
+        4.0
+    };
+    // x + c equals x − (−c) and (−k)·c equals −(k·c) in IEEE arithmetic, so
+    // one formula covers musl's separate branches for either sign.
+    let nf = if x.is_sign_negative() { -k } else { k };
+    let z = x - nf * PIO2_1;
+    let small_y0 = z - nf * PIO2_1T;
+    let small_y1 = (z - small_y0) - nf * PIO2_1T;
+    // n mod 4 from the low bits of n + 1.5·2⁵² (two's complement, so negative n too).
+    let small_n = (nf + TO_INT).to_bits() & 3;
+    // Medium: Cody–Waite with up to three rounds.
+    let tmp = x * INV_PIO2 + TO_INT;
+    let f_n = tmp - TO_INT;
+    let medium_n = tmp.to_bits() & 3;
+    let r1 = x - f_n * PIO2_1;
+    let w1 = f_n * PIO2_1T;
+    let y0_1 = r1 - w1;
+    let ex = (ix >> 20) as i32;
+    let exponent = |y: f64| ((y.to_bits() >> 52) & 0x7ff) as i32;
+    let w2 = f_n * PIO2_2;
+    let r2 = r1 - w2;
+    let w2 = f_n * PIO2_2T - ((r1 - r2) - w2);
+    let y0_2 = r2 - w2;
+    let w3 = f_n * PIO2_3;
+    let r3 = r2 - w3;
+    let w3 = f_n * PIO2_3T - ((r2 - r3) - w3);
+    let y0_3 = r3 - w3;
+    let second = ex - exponent(y0_1) > 16;
+    let third = second & (ex - exponent(y0_2) > 49);
+    let (r, w, y0) = if third {
+        (r3, w3, y0_3)
+    } else if second {
+        (r2, w2, y0_2)
+    } else {
+        (r1, w1, y0_1)
+    };
+    let medium_y1 = (r - y0) - w;
+    let medium = (ix > 0x401c_463b)
+        | ((ix <= 0x400f_6a7a) & ((ix & 0xfffff) == 0x921fb))
+        | (ix == 0x4012_d97c)
+        | (ix == 0x4019_21fb);
+    if medium {
+        (medium_n, y0, medium_y1)
+    } else {
+        (small_n, small_y0, small_y1)
+    }
+}
+
+/// musl's `sin` for |x| < 2²⁰·π/2, branch-free (the same bits as [`sin`]).
+#[inline(always)]
+fn sin_lane(x: f64) -> f64 {
+    let ix = high_word(x);
+    let tiny = x;
+    let small = k_sin(x, 0.0, false);
+    let (n, y0, y1) = rem_pio2_lane(x);
+    let s = k_sin(y0, y1, true);
+    let c = k_cos(y0, y1);
+    // n = 0, 1, 2, 3 → s, c, −s, −c (selects, not a switch, so it vectorises).
+    let odd = if n & 1 == 0 { s } else { c };
+    let reduced = if n & 2 == 0 { odd } else { -odd };
+    if ix < 0x3e50_0000 {
+        tiny
+    } else if ix <= 0x3fe9_21fb {
+        small
+    } else {
+        reduced
+    }
+}
+
+/// musl's `cos` for |x| < 2²⁰·π/2, branch-free (the same bits as [`cos`]).
+#[inline(always)]
+fn cos_lane(x: f64) -> f64 {
+    let ix = high_word(x);
+    // musl returns 1 when also `x as i32 == 0`, always true for such tiny x.
+    let small = k_cos(x, 0.0);
+    let (n, y0, y1) = rem_pio2_lane(x);
+    let s = k_sin(y0, y1, true);
+    let c = k_cos(y0, y1);
+    // n = 0, 1, 2, 3 → c, −s, −c, s (selects, not a switch, so it vectorises).
+    let odd = if n & 1 == 0 { c } else { s };
+    let reduced = if (n + 1) & 2 == 0 { odd } else { -odd };
+    if ix < 0x3e46_a09e {
+        1.0
+    } else if ix <= 0x3fe9_21fb {
+        small
+    } else {
+        reduced
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -139,6 +336,102 @@ mod tests {
                 assert!(ulp <= 1, "ln {x}");
             }
             x += 0.0371;
+        }
+    }
+
+    /// Inputs that reach every branch of musl's sin/cos and their edges.
+    fn trig_inputs() -> Vec<f64> {
+        let mut xs = vec![
+            0.0,
+            -0.0,
+            f64::MIN_POSITIVE,
+            -f64::MIN_POSITIVE,
+            5e-324,
+            1e-300,
+            1e-9,
+            -1e-8,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            1e300,
+            -1e22,
+            1e7,
+            1.7e6,
+            -1.6e6,
+            f64::MAX,
+        ];
+        // Dense sweeps.
+        let mut x = -40.0;
+        while x < 40.0 {
+            xs.push(x);
+            x += 0.000_731;
+        }
+        // Near multiples of π/4 up to large n, a few ULP either side.
+        for k in -400i64..=400 {
+            let c = k as f64 * std::f64::consts::FRAC_PI_4;
+            for d in -3i64..=3 {
+                xs.push(f64::from_bits((c.to_bits() as i64 + d) as u64));
+            }
+        }
+        // musl's branch thresholds (high words) with several low words, both signs.
+        for hi in [
+            0x3e46_a09e_u64,
+            0x3e50_0000,
+            0x3fe9_21fb,
+            0x4002_d97c,
+            0x400f_6a7a,
+            0x4012_d97c,
+            0x4015_fdbc,
+            0x4019_21fb,
+            0x401c_463b,
+            0x4139_21fb,
+            0x3ff9_21fb,
+            0x4009_21fb,
+            0x4029_21fb,
+        ] {
+            for h in [hi - 1, hi, hi + 1] {
+                for lo in [0u64, 1, 0x5444_2d18, 0x8000_0000, 0xffff_ffff] {
+                    let bits = (h << 32) | lo;
+                    xs.push(f64::from_bits(bits));
+                    xs.push(-f64::from_bits(bits));
+                }
+            }
+        }
+        // Random bit patterns over all exponents below the medium limit.
+        let mut s = 0x2545_f491_4f6c_dd1d_u64;
+        for _ in 0..200_000 {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            let exponent = 900 + (s >> 53) % 150; // 2^-123 .. 2^26
+            xs.push(f64::from_bits(
+                (s & 0x800f_ffff_ffff_ffff) | (exponent << 52),
+            ));
+        }
+        xs
+    }
+
+    #[test]
+    fn lane_wise_sin_and_cos_equal_libm_bit_for_bit() {
+        let xs = trig_inputs();
+        let mut lanes = 0;
+        for &x in &xs {
+            if lane_range(x) {
+                lanes += 1;
+                assert_eq!(sin_lane(x).to_bits(), sin(x).to_bits(), "sin({x:e})");
+                assert_eq!(cos_lane(x).to_bits(), cos(x).to_bits(), "cos({x:e})");
+            }
+        }
+        assert!(lanes > 200_000, "{lanes}");
+        // The slice versions, with and without out-of-range values in the slice.
+        for chunk in xs.chunks(37) {
+            let (mut s, mut c) = (chunk.to_vec(), chunk.to_vec());
+            sin_in_place(&mut s);
+            cos_in_place(&mut c);
+            for ((&x, s), c) in chunk.iter().zip(&s).zip(&c) {
+                assert_eq!(s.to_bits(), sin(x).to_bits(), "sin({x:e})");
+                assert_eq!(c.to_bits(), cos(x).to_bits(), "cos({x:e})");
+            }
         }
     }
 }

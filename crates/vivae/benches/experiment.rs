@@ -1,5 +1,6 @@
 //! Speed of the experiment: one full evaluation (5 robots × 1000 steps, decode
-//! included) and decoding a CPPN onto the paper's substrates.
+//! included) at the paper's, a re-sampled and a camera resolution, and
+//! decoding a CPPN onto the paper's substrate.
 //!
 //! Throughput is reported in robot-steps (one robot, one simulation step with its
 //! sensor reading and controller update) and in evaluations.
@@ -51,6 +52,25 @@ fn evaluation_3x5_to_3x3(bencher: divan::Bencher) {
 fn evaluation_3x6_to_9x9(bencher: divan::Bencher) {
     let mut config = Config::default();
     config.surface_sensors.angles = 6;
+    config.substrate.neurons = vivae::substrate::PolarGrid {
+        rings: 9,
+        angles: 9,
+    };
+    let exp = experiment(&config);
+    let g = genome(&exp);
+    let robot_steps = (exp.robots() as u64) * u64::from(exp.steps());
+    bencher
+        .counter(ItemsCount::new(robot_steps))
+        .bench(|| divan::black_box(exp.fitness(divan::black_box(&g))));
+}
+
+/// One evaluation at camera resolution: 32×96 surface sensors → 9×9 neurons
+/// (decode of 255,474 links + 5 robots × 1000 steps).
+#[divan::bench(sample_count = 10, sample_size = 1)]
+fn evaluation_32x96_to_9x9(bencher: divan::Bencher) {
+    let mut config = Config::default();
+    config.surface_sensors.rings = 32;
+    config.surface_sensors.angles = 96;
     config.substrate.neurons = vivae::substrate::PolarGrid {
         rings: 9,
         angles: 9,

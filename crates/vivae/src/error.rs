@@ -12,6 +12,7 @@ use crate::config::ConfigError;
 use crate::experiment::ExperimentError;
 use crate::figures::FigureError;
 use crate::io::one_line;
+use crate::simd::SimdError;
 
 /// The result type of the vivae library.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
@@ -106,6 +107,9 @@ pub enum Error {
         /// The serialiser's message.
         reason: String,
     },
+    /// An environment variable holds an invalid value.
+    #[error("{0}")]
+    Simd(SimdError),
     /// The evaluation worker threads could not be started.
     #[error("starting worker threads: {0}")]
     Threads(String),
@@ -123,6 +127,7 @@ impl Error {
                 | Error::Checkpoint { .. }
                 | Error::Genome { .. }
                 | Error::Invalid(_)
+                | Error::Simd(_)
         ) || self.is_path_mistake()
     }
 
@@ -168,6 +173,12 @@ impl From<ScenarioError> for Error {
 impl From<ExperimentError> for Error {
     fn from(e: ExperimentError) -> Self {
         Error::Experiment(e)
+    }
+}
+
+impl From<SimdError> for Error {
+    fn from(e: SimdError) -> Self {
+        Error::Simd(e)
     }
 }
 

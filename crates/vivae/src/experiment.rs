@@ -245,36 +245,40 @@ impl Experiment {
         }
     }
 
-    /// Runs one episode with a copy of `controller` per robot; `record` also
-    /// keeps the trajectories and measures the time on road.
-    pub fn run<N: Network + Clone>(&self, controller: &N, record: bool) -> Episode {
+    /// Runs one episode, every robot driven by `controller` (each with its own
+    /// neuron states); `record` also keeps the trajectories and measures the
+    /// time on road.
+    pub fn run(&self, controller: &SubstrateController, record: bool) -> Episode {
         self.run_world(controller, record).0
     }
 
     /// Runs one episode and also returns the final world (for drawing).
-    pub fn run_world<N: Network + Clone>(&self, controller: &N, record: bool) -> (Episode, World) {
+    ///
+    /// The robots share the controller's weights: one batched update per step
+    /// reads each weight once for all robots, and gives each robot exactly
+    /// the bits its own copy of the controller would.
+    pub fn run_world(&self, controller: &SubstrateController, record: bool) -> (Episode, World) {
         let n = self.robots();
         let mut world = self.world.clone();
         if record {
             world.record_trajectories(self.steps as usize);
         }
-        let mut controllers: Vec<N> = (0..n)
-            .map(|_| {
-                let mut c = controller.clone();
-                c.reset();
-                c
-            })
-            .collect();
-        let mut inputs = vec![0.0; controller.num_inputs()];
-        let mut outputs = vec![0.0; controller.num_outputs()];
+        let mut states = controller.batch_state(n);
+        let (ni, nn) = (controller.num_inputs(), controller.num_outputs());
+        let mut inputs = vec![0.0; n * ni];
+        let mut outputs = vec![0.0; n * nn];
         let mut controls = vec![[0.0; 2]; n];
         let mut on_road = 0u64;
         let mut meter = record.then(|| BehaviourMeter::new(&world, self.steps as usize));
         for _ in 0..self.steps {
-            for (i, c) in controllers.iter_mut().enumerate() {
-                self.read_inputs(&world, i, &mut inputs);
-                c.activate(&inputs, &mut outputs);
-                controls[i] = [outputs[self.wheels.left], outputs[self.wheels.right]];
+            if ni > 0 {
+                for (i, inputs) in inputs.chunks_exact_mut(ni).enumerate() {
+                    self.read_inputs(&world, i, inputs);
+                }
+            }
+            controller.activate_batch(&mut states, &inputs, &mut outputs);
+            for (c, out) in controls.iter_mut().zip(outputs.chunks_exact(nn)) {
+                *c = [out[self.wheels.left], out[self.wheels.right]];
             }
             world.step(&controls);
             if let Some(meter) = &mut meter {

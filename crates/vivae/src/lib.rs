@@ -40,6 +40,7 @@ pub mod report;
 pub mod report_html;
 pub mod sensors;
 pub mod shipped;
+pub mod simd;
 pub mod substrate;
 pub mod training;
 pub mod view;

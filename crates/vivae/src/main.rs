@@ -222,6 +222,10 @@ enum ConfigCommand {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    if let Err(err) = vivae::simd::apply_env() {
+        eprintln!("error: {err}");
+        return ExitCode::from(2);
+    }
     let interrupted = Arc::new(AtomicBool::new(false));
     // Under an MPI launcher the evolving commands join the job; MPI ends when `_mpi` drops.
     #[cfg(feature = "mpi")]

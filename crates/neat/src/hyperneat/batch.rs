@@ -4,6 +4,7 @@ use super::layout::CPPN_INPUTS;
 use crate::activation::Activation;
 use crate::compile::Plan;
 use crate::genome::Genome;
+use crate::simd::{self, SimdLevel};
 
 /// Queries per batch: the batch's node values (≈ 14 nodes × 256 × 8 bytes) stay in L1.
 const BATCH: usize = 256;
@@ -25,6 +26,8 @@ pub struct BatchCppn {
     dependencies: Vec<Vec<usize>>,
     /// Node values, slot-major: `values[slot * BATCH + q]`.
     values: Vec<f64>,
+    /// A forced instruction level (tests); `None`: the process-wide [`simd::level`].
+    level: Option<SimdLevel>,
 }
 
 impl BatchCppn {
@@ -42,6 +45,7 @@ impl BatchCppn {
             values: vec![0.0; (plan.num_inputs + plan.acts.len()) * BATCH],
             plan,
             dependencies,
+            level: None,
         })
     }
 
@@ -80,6 +84,7 @@ impl BatchCppn {
     }
 
     fn query(&mut self, output: usize, sources: Points<'_>, targets: Points<'_>, out: &mut [f64]) {
+        let level = self.level.unwrap_or_else(simd::level);
         assert_eq!(
             self.plan.num_inputs, CPPN_INPUTS,
             "substrate queries need 5 CPPN inputs"
@@ -113,23 +118,68 @@ impl BatchCppn {
             }
             v[4 * BATCH..4 * BATCH + b].fill(1.0);
             let out_slot = self.plan.output_slots[output] as usize;
-            for &k in &self.dependencies[output] {
-                let slot = self.plan.num_inputs + k;
-                let (before, rest) = v.split_at_mut(slot * BATCH);
-                let acc = &mut rest[..b];
-                acc.fill(0.0);
-                let (sources, weights) = self.plan.links(k);
-                for (&src, &w) in sources.iter().zip(weights) {
-                    let src = src as usize;
-                    let x = &before[src * BATCH..src * BATCH + b];
-                    for (a, &x) in acc.iter_mut().zip(x) {
-                        *a += x * w;
-                    }
-                }
-                apply_all(self.plan.acts[k], acc);
-            }
+            evaluate(level, &self.plan, &self.dependencies[output], v, b);
             out.copy_from_slice(&v[out_slot * BATCH..out_slot * BATCH + b]);
         }
+    }
+}
+
+/// Computes the nodes `dependencies` (in order) for the first `b` queries of
+/// the batch in `v`, at instruction level `level` (clamped to the CPU's).
+fn evaluate(level: SimdLevel, plan: &Plan, dependencies: &[usize], v: &mut [f64], b: usize) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if level >= SimdLevel::Avx512 && std::arch::is_x86_feature_detected!("avx512f") {
+            // SAFETY: this CPU supports AVX-512F (checked just above).
+            return unsafe { evaluate_avx512(plan, dependencies, v, b) };
+        }
+        if level >= SimdLevel::Avx2 && std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: this CPU supports AVX2 (checked just above).
+            return unsafe { evaluate_avx2(plan, dependencies, v, b) };
+        }
+    }
+    let _ = level;
+    evaluate_body(plan, dependencies, v, b);
+}
+
+/// [`evaluate_body`] compiled with AVX-512F (no FMA: the same bits).
+///
+/// # Safety
+/// The CPU must support AVX-512F.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+unsafe fn evaluate_avx512(plan: &Plan, dependencies: &[usize], v: &mut [f64], b: usize) {
+    evaluate_body(plan, dependencies, v, b)
+}
+
+/// [`evaluate_body`] compiled with AVX2 (no FMA: the same bits).
+///
+/// # Safety
+/// The CPU must support AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn evaluate_avx2(plan: &Plan, dependencies: &[usize], v: &mut [f64], b: usize) {
+    evaluate_body(plan, dependencies, v, b)
+}
+
+/// Each node's weighted sum in link order, lane-wise over the queries (so
+/// vectorised across queries, never re-associated), then its activation.
+#[inline(always)]
+fn evaluate_body(plan: &Plan, dependencies: &[usize], v: &mut [f64], b: usize) {
+    for &k in dependencies {
+        let slot = plan.num_inputs + k;
+        let (before, rest) = v.split_at_mut(slot * BATCH);
+        let acc = &mut rest[..b];
+        acc.fill(0.0);
+        let (sources, weights) = plan.links(k);
+        for (&src, &w) in sources.iter().zip(weights) {
+            let src = src as usize;
+            let x = &before[src * BATCH..src * BATCH + b];
+            for (a, &x) in acc.iter_mut().zip(x) {
+                *a += x * w;
+            }
+        }
+        apply_all(plan.acts[k], acc);
     }
 }
 
@@ -141,6 +191,7 @@ enum Points<'a> {
 }
 
 /// Applies `act` to every element, one tight loop per function.
+#[inline(always)]
 fn apply_all(act: Activation, xs: &mut [f64]) {
     macro_rules! each {
         ($f:expr) => {
@@ -154,8 +205,9 @@ fn apply_all(act: Activation, xs: &mut [f64]) {
         Activation::Linear => {}
         Activation::Gaussian => each!(Activation::Gaussian),
         Activation::Abs => each!(Activation::Abs),
-        Activation::Sine => each!(Activation::Sine),
-        Activation::Cosine => each!(Activation::Cosine),
+        // Lane-wise copies of libm's sin/cos (the same bits), so they vectorise.
+        Activation::Sine => crate::math::sin_in_place(xs),
+        Activation::Cosine => crate::math::cos_in_place(xs),
         Activation::Sigmoid => each!(Activation::Sigmoid),
     }
 }
@@ -166,6 +218,35 @@ mod tests {
     use crate::feedforward::FeedForwardNetwork;
     use crate::hyperneat::test_util::random_genomes;
     use crate::network::Network;
+
+    #[test]
+    fn every_simd_level_gives_the_same_bits() {
+        let sources: Vec<[f64; 2]> = (0..700)
+            .map(|i| {
+                let t = i as f64;
+                [(t * 0.37).sin() * 4.0, (t * 0.011).cos() * 30.0 - 2.0]
+            })
+            .collect();
+        for g in random_genomes(30, 5) {
+            let mut expected: Option<Vec<u64>> = None;
+            for level in simd::available() {
+                let mut b = BatchCppn::new(&g).unwrap();
+                b.level = Some(level);
+                let mut all = Vec::new();
+                for output in 0..3 {
+                    let mut out = vec![0.0; sources.len()];
+                    b.query_sources(output, [0.25, -0.5], &sources, &mut out);
+                    all.extend(out.iter().map(|v| v.to_bits()));
+                    b.query_targets(output, &sources, [-0.7, 0.9], &mut out);
+                    all.extend(out.iter().map(|v| v.to_bits()));
+                }
+                match &expected {
+                    None => expected = Some(all),
+                    Some(e) => assert!(e == &all, "{level:?} differs from the baseline"),
+                }
+            }
+        }
+    }
 
     #[test]
     fn batch_cppn_matches_single_queries() {

@@ -6,6 +6,7 @@ use super::error::HyperError;
 use super::layout::SubstrateLayout;
 use crate::activation::bipolar_sigmoid;
 use crate::network::Network;
+use crate::simd::{self, Simd, SimdLevel};
 
 /// The source end of a controller link.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -42,17 +43,35 @@ struct ControllerData {
     weights: Vec<f64>,
 }
 
+/// Neuron columns are padded to a multiple of this many lanes (one AVX-512
+/// vector of f64), so every vector loop runs on whole vectors.
+const PAD: usize = 8;
+
+/// Neurons per weight panel: the weights to neurons `16p..16p + 16` from
+/// every source are stored together, so a step streams each panel once,
+/// sequentially (the last panel is 8 wide when the padded count is not a
+/// multiple of 16).
+const PANEL: usize = 2 * PAD;
+
 /// A one-layer, fully recurrent controller decoded from a CPPN.
 ///
 /// `y(t+1) = σ(b + W·s(t) + U·y(t))`, σ the bipolar sigmoid, all neurons
 /// updated synchronously once per `activate`. Inputs are the input sheets'
 /// nodes concatenated; outputs are the neuron states `y(t+1)`.
 ///
-/// Storage is one dense, source-major matrix `[W | U]`: column `j` holds the
-/// weights from source `j` (inputs first, then neurons) to every neuron, so a
-/// step is a sequence of `acc += column_j · x_j` updates over contiguous
+/// Storage is one dense matrix `[W | U]`, neurons padded with zeros to a
+/// multiple of 8 and cut into panels of 16 neurons; within a panel it is
+/// source-major: the panel's column `j` holds the weights from source `j`
+/// (inputs first, then neurons) to the panel's neurons. A step is a sequence
+/// of `acc += column_j · x_j` updates over whole vectors and contiguous
 /// memory, which vectorises without reordering any sum (results are
-/// bit-identical on every machine). Unexpressed links are stored as 0.
+/// bit-identical on every machine and at every [`SimdLevel`]). Unexpressed
+/// links are stored as 0.
+///
+/// The weights are read-only during a step: one controller drives any number
+/// of robots through [`activate_batch`](Self::activate_batch), each robot's
+/// neuron states held in a [`BatchState`]. The [`Network`] implementation is
+/// the same step for one robot whose state the controller holds itself.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(try_from = "ControllerData", into = "ControllerData")]
 pub struct SubstrateController {
@@ -62,13 +81,16 @@ pub struct SubstrateController {
     num_inputs: usize,
     /// Number of neurons.
     n: usize,
-    /// Bias per neuron (0 = none).
+    /// `n` rounded up to a multiple of [`PAD`]: the length of a column.
+    stride: usize,
+    /// Bias per neuron (0 = none), padded to `stride`.
     bias: Vec<f64>,
-    /// Source-major weights, `(num_inputs + n) × n`.
+    /// Panel-major, then source-major weights, `(num_inputs + n) × stride`
+    /// values (padding lanes 0); see [`SubstrateController::at`].
     weights: Vec<f64>,
-    /// Neuron states `y(t)`.
+    /// Neuron states `y(t)` of the [`Network`] interface, padded to `stride`.
     state: Vec<f64>,
-    /// Scratch for the synchronous update.
+    /// Scratch for the synchronous update, padded to `stride`.
     acc: Vec<f64>,
     /// Number of non-zero entries of `weights`.
     expressed: usize,
@@ -93,32 +115,67 @@ impl TryFrom<ControllerData> for SubstrateController {
         if d.weights.iter().chain(&d.bias).any(|w| !w.is_finite()) {
             return Err(HyperError::Inconsistent("non-finite weight or bias"));
         }
-        let expressed = d.weights.iter().filter(|w| **w != 0.0).count();
-        Ok(SubstrateController {
-            sheet_sizes: d.sheet_sizes,
-            num_inputs,
-            n: d.neurons,
-            bias: d.bias,
-            weights: d.weights,
-            state: vec![0.0; d.neurons],
-            acc: vec![0.0; d.neurons],
-            expressed,
-        })
+        Ok(SubstrateController::new(
+            d.sheet_sizes,
+            d.neurons,
+            &d.bias,
+            &d.weights,
+        ))
     }
 }
 
 impl From<SubstrateController> for ControllerData {
     fn from(c: SubstrateController) -> Self {
+        let m = c.num_inputs + c.n;
+        let weights = (0..m)
+            .flat_map(|j| (0..c.n).map(move |i| (j, i)))
+            .map(|(j, i)| c.weights[c.at(j, i)])
+            .collect();
         ControllerData {
-            sheet_sizes: c.sheet_sizes,
             neurons: c.n,
-            bias: c.bias,
-            weights: c.weights,
+            bias: c.biases().to_vec(),
+            sheet_sizes: c.sheet_sizes,
+            weights,
         }
     }
 }
 
 impl SubstrateController {
+    /// A controller from dense, unpadded parts: `bias` (one per neuron) and
+    /// source-major `weights` (`(inputs + neurons) × neurons`).
+    fn new(sheet_sizes: Vec<usize>, n: usize, bias: &[f64], weights: &[f64]) -> Self {
+        let num_inputs: usize = sheet_sizes.iter().sum();
+        let stride = n.next_multiple_of(PAD);
+        let mut padded_bias = vec![0.0; stride];
+        padded_bias[..n].copy_from_slice(bias);
+        let expressed = weights.iter().filter(|w| **w != 0.0).count();
+        let mut c = SubstrateController {
+            sheet_sizes,
+            num_inputs,
+            n,
+            stride,
+            bias: padded_bias,
+            weights: vec![0.0; (num_inputs + n) * stride],
+            state: vec![0.0; stride],
+            acc: vec![0.0; stride],
+            expressed,
+        };
+        for (j, column) in weights.chunks_exact(n).enumerate() {
+            for (i, &w) in column.iter().enumerate() {
+                let at = c.at(j, i);
+                c.weights[at] = w;
+            }
+        }
+        c
+    }
+
+    /// Index in `weights` of the weight from source `j` to neuron `i`.
+    fn at(&self, j: usize, i: usize) -> usize {
+        let p0 = i / PANEL * PANEL;
+        let width = PANEL.min(self.stride - p0);
+        p0 * (self.num_inputs + self.n) + j * width + (i - p0)
+    }
+
     /// Number of neurons.
     pub fn num_neurons(&self) -> usize {
         self.n
@@ -136,17 +193,17 @@ impl SubstrateController {
 
     /// Number of possible links: `neurons × (inputs + neurons)`.
     pub fn possible_links(&self) -> usize {
-        self.weights.len()
+        self.n * (self.num_inputs + self.n)
     }
 
     /// Biases of the neurons (0 where the CPPN expressed none).
     pub fn biases(&self) -> &[f64] {
-        &self.bias
+        &self.bias[..self.n]
     }
 
-    /// Current neuron states `y(t)`.
+    /// Current neuron states `y(t)` (of the [`Network`] interface).
     pub fn state(&self) -> &[f64] {
-        &self.state
+        &self.state[..self.n]
     }
 
     /// Multiplies every weight leaving source sheet `sheet` by `factor`: input
@@ -162,8 +219,13 @@ impl SubstrateController {
             None if sheet == self.sheet_sizes.len() => self.n,
             None => panic!("sheet {sheet} out of range"),
         };
-        for w in &mut self.weights[first * self.n..(first + count) * self.n] {
-            *w *= factor;
+        let m = self.num_inputs + self.n;
+        for p0 in (0..self.stride).step_by(PANEL) {
+            let width = PANEL.min(self.stride - p0);
+            let panel = &mut self.weights[p0 * m..][..m * width];
+            for w in &mut panel[first * width..(first + count) * width] {
+                *w *= factor;
+            }
         }
     }
 
@@ -171,13 +233,13 @@ impl SubstrateController {
     /// Panics when an index is out of range.
     pub fn input_weight(&self, input: usize, target: usize) -> f64 {
         assert!(input < self.num_inputs && target < self.n);
-        self.weights[input * self.n + target]
+        self.weights[self.at(input, target)]
     }
 
     /// Weight of neuron `source` → neuron `target`; 0 = no link. Panics when out of range.
     pub fn recurrent_weight(&self, source: usize, target: usize) -> f64 {
         assert!(source < self.n && target < self.n);
-        self.weights[(self.num_inputs + source) * self.n + target]
+        self.weights[self.at(self.num_inputs + source, target)]
     }
 
     /// All expressed links, input links first (sheet by sheet), then recurrent links.
@@ -189,17 +251,114 @@ impl SubstrateController {
             .enumerate()
             .flat_map(|(sheet, &len)| (0..len).map(move |index| LinkSource::Input { sheet, index }))
             .chain((0..self.n).map(LinkSource::Neuron));
-        sources
-            .zip(self.weights.chunks_exact(self.n))
-            .flat_map(|(source, column)| {
-                column.iter().enumerate().filter(|(_, w)| **w != 0.0).map(
-                    move |(target, &weight)| Link {
-                        source,
-                        target,
-                        weight,
-                    },
-                )
+        sources.enumerate().flat_map(move |(j, source)| {
+            (0..self.n).filter_map(move |target| {
+                let weight = self.weights[self.at(j, target)];
+                (weight != 0.0).then_some(Link {
+                    source,
+                    target,
+                    weight,
+                })
             })
+        })
+    }
+
+    /// Fresh (all-zero) neuron states for `robots` robots driven by this controller.
+    pub fn batch_state(&self, robots: usize) -> BatchState {
+        BatchState {
+            robots,
+            n: self.n,
+            stride: self.stride,
+            state: vec![0.0; robots * self.stride],
+            acc: vec![0.0; robots * self.stride],
+        }
+    }
+
+    /// One synchronous update of every robot in `states`: robot `r` reads
+    /// `inputs[r * num_inputs..][..num_inputs]` and writes its new neuron
+    /// states to `outputs[r * neurons..][..neurons]`.
+    ///
+    /// Bit for bit the same as a separate controller per robot, each
+    /// [`activate`](Network::activate)d in turn; but each weight column is
+    /// read once per step for all robots (streamed once rather than once per
+    /// robot when the weights outgrow the caches). Never allocates. Panics
+    /// when a length does not fit.
+    pub fn activate_batch(&self, states: &mut BatchState, inputs: &[f64], outputs: &mut [f64]) {
+        self.activate_batch_at(simd::level(), states, inputs, outputs);
+    }
+
+    /// [`activate_batch`](Self::activate_batch) at a given instruction level
+    /// (clamped to what the CPU supports).
+    pub(crate) fn activate_batch_at(
+        &self,
+        level: SimdLevel,
+        states: &mut BatchState,
+        inputs: &[f64],
+        outputs: &mut [f64],
+    ) {
+        let robots = states.robots;
+        assert!(
+            states.n == self.n && states.stride == self.stride,
+            "batch state of another controller shape"
+        );
+        assert_eq!(
+            inputs.len(),
+            robots * self.num_inputs,
+            "controller input length"
+        );
+        assert_eq!(outputs.len(), robots * self.n, "controller output length");
+        self.kernel()
+            .step(level, robots, inputs, &mut states.state, &mut states.acc);
+        if self.n > 0 {
+            for (out, y) in outputs
+                .chunks_exact_mut(self.n)
+                .zip(states.state.chunks_exact(self.stride))
+            {
+                out.copy_from_slice(&y[..self.n]);
+            }
+        }
+    }
+
+    fn kernel(&self) -> Kernel<'_> {
+        Kernel {
+            ni: self.num_inputs,
+            n: self.n,
+            stride: self.stride,
+            bias: &self.bias,
+            weights: &self.weights,
+        }
+    }
+}
+
+/// The neuron states of several robots that one [`SubstrateController`] drives.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BatchState {
+    /// Number of robots.
+    robots: usize,
+    /// Neurons per robot.
+    n: usize,
+    /// The controller's padded column length.
+    stride: usize,
+    /// `y(t)` of robot `r` at `state[r * stride..][..n]` (padding lanes stay 0).
+    state: Vec<f64>,
+    /// Scratch for the synchronous update, laid out as `state`.
+    acc: Vec<f64>,
+}
+
+impl BatchState {
+    /// Number of robots.
+    pub fn robots(&self) -> usize {
+        self.robots
+    }
+
+    /// Current neuron states `y(t)` of robot `robot`.
+    pub fn state(&self, robot: usize) -> &[f64] {
+        &self.state[robot * self.stride..][..self.n]
+    }
+
+    /// Clears every robot's state (as [`Network::reset`]).
+    pub fn reset(&mut self) {
+        self.state.fill(0.0);
     }
 }
 
@@ -215,44 +374,15 @@ impl Network for SubstrateController {
     fn activate(&mut self, inputs: &[f64], outputs: &mut [f64]) {
         assert_eq!(inputs.len(), self.num_inputs, "controller input length");
         assert_eq!(outputs.len(), self.n, "controller output length");
-        let n = self.n;
-        let acc = &mut self.acc[..n];
-        // Blocks of BLOCK neurons keep their sums in registers over all sources;
-        // each neuron still adds its terms in source order (bias, inputs, then
-        // neurons), so results do not depend on the blocking.
-        let (w_in, w_rec) = self.weights.split_at(self.num_inputs * n);
-        let mut start = 0;
-        while start + BLOCK <= n {
-            let mut sum: [f64; BLOCK] = self.bias[start..start + BLOCK].try_into().expect("block");
-            for (column, &x) in w_in.chunks_exact(n).zip(inputs) {
-                accumulate(&mut sum, &column[start..start + BLOCK], x);
-            }
-            for (column, &x) in w_rec.chunks_exact(n).zip(&self.state) {
-                accumulate(&mut sum, &column[start..start + BLOCK], x);
-            }
-            acc[start..start + BLOCK].copy_from_slice(&sum);
-            start += BLOCK;
-        }
-        for (i, a) in acc.iter_mut().enumerate().skip(start) {
-            let mut sum = self.bias[i];
-            for (column, &x) in w_in.chunks_exact(n).zip(inputs) {
-                sum += column[i] * x;
-            }
-            for (column, &x) in w_rec.chunks_exact(n).zip(&self.state) {
-                sum += column[i] * x;
-            }
-            *a = sum;
-        }
-        for ((y, out), &a) in self
-            .state
-            .iter_mut()
-            .zip(outputs.iter_mut())
-            .zip(acc.iter())
-        {
-            let v = bipolar_sigmoid(a);
-            *y = v;
-            *out = v;
-        }
+        let kernel = Kernel {
+            ni: self.num_inputs,
+            n: self.n,
+            stride: self.stride,
+            bias: &self.bias,
+            weights: &self.weights,
+        };
+        kernel.step(simd::level(), 1, inputs, &mut self.state, &mut self.acc);
+        outputs.copy_from_slice(&self.state[..self.n]);
     }
 
     fn reset(&mut self) {
@@ -260,33 +390,245 @@ impl Network for SubstrateController {
     }
 }
 
-/// Neurons whose sums are accumulated together in registers.
-const BLOCK: usize = 4;
+/// The read-only parts of a controller one step needs.
+struct Kernel<'a> {
+    /// Inputs per robot.
+    ni: usize,
+    /// Neurons.
+    n: usize,
+    /// Padded column length (a multiple of [`PAD`]).
+    stride: usize,
+    /// Padded biases.
+    bias: &'a [f64],
+    /// Padded, panelled weights (see [`SubstrateController::at`]).
+    weights: &'a [f64],
+}
 
-/// `sum += w · x` for one block of neurons.
+impl Kernel<'_> {
+    /// Updates `state` (robots × stride) from `inputs` (robots × ni), using `acc` as scratch.
+    fn step(
+        &self,
+        level: SimdLevel,
+        robots: usize,
+        inputs: &[f64],
+        state: &mut [f64],
+        acc: &mut [f64],
+    ) {
+        assert!(
+            inputs.len() == robots * self.ni
+                && state.len() == robots * self.stride
+                && acc.len() == state.len()
+                && self.bias.len() == self.stride
+                && self.weights.len() == (self.ni + self.n) * self.stride
+                && self.stride.is_multiple_of(PAD)
+        );
+        #[cfg(target_arch = "x86_64")]
+        {
+            use crate::simd::x86::{Avx2, Avx512};
+            if level >= SimdLevel::Avx512
+                && let Some(t) = Avx512::new()
+            {
+                // SAFETY: the token `t` exists only when this CPU supports AVX-512F.
+                return unsafe { step_avx512(t, self, robots, inputs, state, acc) };
+            }
+            if level >= SimdLevel::Avx2
+                && let Some(t) = Avx2::new()
+            {
+                // SAFETY: the token `t` exists only when this CPU supports AVX2.
+                return unsafe { step_avx2(t, self, robots, inputs, state, acc) };
+            }
+        }
+        step_body(crate::simd::Baseline, self, robots, inputs, state, acc);
+    }
+}
+
+/// The step compiled with AVX-512F (no FMA: the same bits as the baseline).
+///
+/// # Safety
+/// The CPU must support AVX-512F (the token proves it).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+unsafe fn step_avx512(
+    t: crate::simd::x86::Avx512,
+    k: &Kernel,
+    robots: usize,
+    x: &[f64],
+    y: &mut [f64],
+    acc: &mut [f64],
+) {
+    step_body(t, k, robots, x, y, acc)
+}
+
+/// The step compiled with AVX2 (no FMA: the same bits as the baseline).
+///
+/// # Safety
+/// The CPU must support AVX2 (the token proves it).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn step_avx2(
+    t: crate::simd::x86::Avx2,
+    k: &Kernel,
+    robots: usize,
+    x: &[f64],
+    y: &mut [f64],
+    acc: &mut [f64],
+) {
+    step_body(t, k, robots, x, y, acc)
+}
+
+/// One step of all robots: neuron groups of two vectors (one for the last
+/// vector of a column), robots in tiles of up to `S::MAX_TILE`.
+///
+/// Every neuron's sum is `bias`, then `+= w·x` for each input in order, then
+/// for each neuron in order — the update equation's order, whatever the
+/// vector width or the tiling, so every level gives the same bits.
 #[inline(always)]
-fn accumulate(sum: &mut [f64; BLOCK], w: &[f64], x: f64) {
-    let w: &[f64; BLOCK] = w.try_into().expect("block");
-    for k in 0..BLOCK {
-        sum[k] += w[k] * x;
+fn step_body<S: Simd>(s: S, k: &Kernel, robots: usize, x: &[f64], y: &mut [f64], acc: &mut [f64]) {
+    let mut r0 = 0;
+    while r0 < robots {
+        let rt = (robots - r0).min(S::MAX_TILE);
+        let m = k.ni + k.n;
+        for p0 in (0..k.stride).step_by(PANEL) {
+            let width = PANEL.min(k.stride - p0);
+            let panel = Panel {
+                p0,
+                width,
+                weights: &k.weights[p0 * m..][..m * width],
+            };
+            let mut sub = 0;
+            while sub < width {
+                if width - sub >= 2 * S::LANES {
+                    tile_rt::<S, 2>(s, k, &panel, rt, r0, sub, x, y, acc);
+                    sub += 2 * S::LANES;
+                } else {
+                    tile_rt::<S, 1>(s, k, &panel, rt, r0, sub, x, y, acc);
+                    sub += S::LANES;
+                }
+            }
+        }
+        r0 += rt;
+    }
+    // σ over every lane of every robot (padding lanes: σ(0) = 0).
+    for (y, &a) in y.iter_mut().zip(acc.iter()) {
+        *y = bipolar_sigmoid(a);
+    }
+}
+
+/// Dispatches a tile of `rt` robots to the kernel compiled for that count.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn tile_rt<S: Simd, const NB: usize>(
+    s: S,
+    k: &Kernel,
+    panel: &Panel,
+    rt: usize,
+    r0: usize,
+    sub: usize,
+    x: &[f64],
+    y: &[f64],
+    acc: &mut [f64],
+) {
+    macro_rules! tiles {
+        ($($n:literal),*) => {
+            match rt {
+                $($n => tile::<S, $n, NB>(s, k, panel, r0, sub, x, y, acc),)*
+                _ => unreachable!("robot tile of {rt}"),
+            }
+        };
+    }
+    tiles!(1, 2, 3, 4, 5, 6, 7, 8);
+}
+
+/// One panel of weights: neurons `p0..p0 + width`, every source.
+struct Panel<'a> {
+    /// First neuron.
+    p0: usize,
+    /// Neurons in the panel.
+    width: usize,
+    /// `(ni + n) × width` weights, source-major.
+    weights: &'a [f64],
+}
+
+/// Sums of the `NB` vectors of neurons from `panel.p0 + sub` of robots
+/// `r0..r0 + RT` into `acc`: the `RT × NB` sums stay in registers while the
+/// panel's columns stream by once.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn tile<S: Simd, const RT: usize, const NB: usize>(
+    s: S,
+    k: &Kernel,
+    panel: &Panel,
+    r0: usize,
+    sub: usize,
+    x: &[f64],
+    y: &[f64],
+    acc: &mut [f64],
+) {
+    let group = NB * S::LANES;
+    let i0 = panel.p0 + sub;
+    let load = |column: &[f64], from: usize| -> [S::V; NB] {
+        let column = &column[from..from + group];
+        std::array::from_fn(|b| s.load(&column[b * S::LANES..]))
+    };
+    let mut sum = [load(k.bias, i0); RT];
+    let xs: [&[f64]; RT] = std::array::from_fn(|r| &x[(r0 + r) * k.ni..][..k.ni]);
+    let ys: [&[f64]; RT] = std::array::from_fn(|r| &y[(r0 + r) * k.stride..][..k.n]);
+    let (w_in, w_rec) = panel.weights.split_at(k.ni * panel.width);
+    for (j, column) in w_in.chunks_exact(panel.width).enumerate() {
+        let w = load(column, sub);
+        for r in 0..RT {
+            let v = s.splat(xs[r][j]);
+            for b in 0..NB {
+                sum[r][b] = s.add(sum[r][b], s.mul(w[b], v));
+            }
+        }
+    }
+    for (j, column) in w_rec.chunks_exact(panel.width).enumerate() {
+        let w = load(column, sub);
+        for r in 0..RT {
+            let v = s.splat(ys[r][j]);
+            for b in 0..NB {
+                sum[r][b] = s.add(sum[r][b], s.mul(w[b], v));
+            }
+        }
+    }
+    for (r, sums) in sum.iter().enumerate() {
+        let out = &mut acc[(r0 + r) * k.stride + i0..][..group];
+        for (b, &v) in sums.iter().enumerate() {
+            s.store(v, &mut out[b * S::LANES..]);
+        }
     }
 }
 
 impl SubstrateController {
-    /// Assembles a decoded controller (sizes already consistent with `layout`).
-    pub(super) fn from_parts(layout: &SubstrateLayout, bias: Vec<f64>, weights: Vec<f64>) -> Self {
+    /// Assembles a decoded controller (sizes consistent with `layout`):
+    /// `bias` per neuron, and `column(j, out)` writes the weights from source
+    /// `j` (inputs, then neurons) to every neuron into `out` (one per neuron),
+    /// sources in order. The columns go straight into the padded panels.
+    pub(super) fn build(
+        layout: &SubstrateLayout,
+        bias: &[f64],
+        mut column: impl FnMut(usize, &mut [f64]),
+    ) -> Self {
         let n = bias.len();
-        let expressed = weights.iter().filter(|w| **w != 0.0).count();
-        SubstrateController {
-            sheet_sizes: layout.inputs.iter().map(|s| s.coords.len()).collect(),
-            num_inputs: layout.num_inputs(),
+        let mut c = SubstrateController::new(
+            layout.inputs.iter().map(|s| s.coords.len()).collect(),
             n,
             bias,
-            weights,
-            state: vec![0.0; n],
-            acc: vec![0.0; n],
-            expressed,
+            &[],
+        );
+        let m = c.num_inputs + n;
+        let mut values = vec![0.0; n];
+        for j in 0..m {
+            column(j, &mut values);
+            for p0 in (0..c.stride).step_by(PANEL) {
+                let width = PANEL.min(c.stride - p0);
+                let end = (p0 + width).min(n);
+                c.weights[p0 * m + j * width..][..end - p0].copy_from_slice(&values[p0..end]);
+            }
         }
+        c.expressed = c.weights.iter().filter(|w| **w != 0.0).count();
+        c
     }
 }
 
@@ -407,6 +749,147 @@ mod tests {
         let mut out2 = [0.0; 3];
         d.activate(&s[0], &mut out2);
         assert_eq!(out, out2);
+    }
+
+    /// Deterministic pseudo-random values in [-3, 3), a quarter of them 0.
+    fn values(count: usize, seed: u64) -> Vec<f64> {
+        let mut s = seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1;
+        (0..count)
+            .map(|_| {
+                s ^= s << 13;
+                s ^= s >> 7;
+                s ^= s << 17;
+                let u = (s >> 11) as f64 / (1u64 << 53) as f64;
+                if s.is_multiple_of(4) {
+                    0.0
+                } else {
+                    6.0 * u - 3.0
+                }
+            })
+            .collect()
+    }
+
+    /// The update equation written out plainly, one neuron at a time.
+    fn reference_step(c: &SubstrateController, x: &[f64], y: &mut Vec<f64>) {
+        let next: Vec<f64> = (0..c.num_neurons())
+            .map(|i| {
+                let mut a = c.biases()[i];
+                for (j, v) in x.iter().enumerate() {
+                    a += c.input_weight(j, i) * v;
+                }
+                for (k, v) in y.iter().enumerate() {
+                    a += c.recurrent_weight(k, i) * v;
+                }
+                bipolar_sigmoid(a)
+            })
+            .collect();
+        *y = next;
+    }
+
+    fn random_controller(sheets: Vec<usize>, n: usize, seed: u64) -> SubstrateController {
+        let inputs: usize = sheets.iter().sum();
+        let bias = values(n, seed);
+        let weights = values((inputs + n) * n, seed + 1);
+        SubstrateController::new(sheets, n, &bias, &weights)
+    }
+
+    #[test]
+    fn batched_step_equals_one_controller_per_robot_at_every_level() {
+        for (case, &(sheets, n)) in [
+            (&[15][..], 9),
+            (&[15, 4][..], 1),
+            (&[3][..], 7),
+            (&[2][..], 8),
+            (&[40][..], 17),
+            (&[5, 6][..], 24),
+            (&[300][..], 81),
+        ]
+        .iter()
+        .enumerate()
+        {
+            let c = random_controller(sheets.to_vec(), n, 100 + case as u64);
+            let ni = c.num_inputs();
+            for robots in [1, 2, 5, 8, 9, 13] {
+                let mut expected: Vec<Vec<f64>> = vec![vec![0.0; n]; robots];
+                let mut per_robot: Vec<SubstrateController> = vec![c.clone(); robots];
+                let mut batches: Vec<(SimdLevel, BatchState)> = simd::available()
+                    .into_iter()
+                    .map(|l| (l, c.batch_state(robots)))
+                    .collect();
+                let mut out = vec![0.0; robots * n];
+                let mut one = vec![0.0; n];
+                for step in 0..6 {
+                    let x = values(robots * ni, 1000 * step + robots as u64);
+                    for (r, y) in expected.iter_mut().enumerate() {
+                        reference_step(&c, &x[r * ni..][..ni], y);
+                        per_robot[r].activate(&x[r * ni..][..ni], &mut one);
+                        assert_eq!(bits(&one), bits(y), "robot {r} alone, step {step}");
+                    }
+                    for (level, state) in &mut batches {
+                        c.activate_batch_at(*level, state, &x, &mut out);
+                        for (r, y) in expected.iter().enumerate() {
+                            assert_eq!(
+                                bits(&out[r * n..][..n]),
+                                bits(y),
+                                "{level:?}, {n} neurons, robot {r} of {robots}, step {step}"
+                            );
+                            assert_eq!(bits(state.state(r)), bits(y));
+                        }
+                    }
+                }
+                for (_, state) in &mut batches {
+                    state.reset();
+                    assert!(state.state(robots - 1).iter().all(|&v| v == 0.0));
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn extreme_sums_give_the_same_bits_at_every_level() {
+        // Sums far outside exp's range, exact zeros and signed zeros.
+        let n = 11;
+        let mut bias = values(n, 3);
+        bias[0] = 1e300;
+        bias[1] = -1e300;
+        bias[2] = -0.0;
+        bias[3] = 0.0;
+        let mut weights = values((2 + n) * n, 4);
+        weights[4] = 1e308;
+        weights[5] = -1e308;
+        let c = SubstrateController::new(vec![2], n, &bias, &weights);
+        let x = [1e10, -0.0];
+        let mut first: Option<Vec<u64>> = None;
+        for level in simd::available() {
+            let mut state = c.batch_state(1);
+            let mut out = vec![0.0; n];
+            for _ in 0..3 {
+                c.activate_batch_at(level, &mut state, &x, &mut out);
+            }
+            let b = bits(&out);
+            assert!(out.iter().all(|v| (-1.0..=1.0).contains(v)), "{out:?}");
+            match &first {
+                None => first = Some(b),
+                Some(f) => assert_eq!(&b, f, "{level:?}"),
+            }
+        }
+    }
+
+    fn bits(v: &[f64]) -> Vec<u64> {
+        v.iter().map(|x| x.to_bits()).collect()
+    }
+
+    #[test]
+    fn padded_storage_round_trips_through_the_unpadded_form() {
+        let c = random_controller(vec![5, 2], 9, 7);
+        assert_eq!(c.possible_links(), 9 * 16);
+        let json = serde_json::to_value(&c).unwrap();
+        assert_eq!(json["weights"].as_array().unwrap().len(), 9 * 16);
+        assert_eq!(json["bias"].as_array().unwrap().len(), 9);
+        let d: SubstrateController = serde_json::from_value(json).unwrap();
+        assert_eq!(c, d);
+        assert_eq!(c.links().count(), c.expressed_links());
+        assert!(c.links().all(|l| l.target < 9));
     }
 
     #[test]

@@ -25,7 +25,6 @@ pub fn decode(
     layout.check(cppn.num_inputs(), num_outputs)?;
     let n = layout.neurons.len();
     let num_inputs = layout.num_inputs();
-    let mut weights = vec![0.0; (num_inputs + n) * n];
     let mut bias = vec![0.0; n];
     let mut out = vec![0.0; num_outputs];
     let mut query = [0.0, 0.0, 0.0, 0.0, 1.0];
@@ -35,14 +34,16 @@ pub fn decode(
         cppn.activate(&query, &mut out);
         bias[target] = params.weight_or_zero(out[layout.bias_output]);
     }
-    // Source-major so that each source's column `weights[j*n..(j+1)*n]` is
-    // written contiguously (target-major writes stride through the matrix).
-    let sources = layout
+    // Source by source, so that each source's column is written contiguously.
+    let sources: Vec<([f64; 2], usize)> = layout
         .inputs
         .iter()
         .flat_map(|s| s.coords.iter().map(move |&c| (c, s.cppn_output)))
-        .chain(layout.neurons.iter().map(|&c| (c, layout.recurrent_output)));
-    for (([x2, y2], output), column) in sources.zip(weights.chunks_exact_mut(n)) {
+        .chain(layout.neurons.iter().map(|&c| (c, layout.recurrent_output)))
+        .collect();
+    debug_assert_eq!(sources.len(), num_inputs + n);
+    Ok(SubstrateController::build(layout, &bias, |j, column| {
+        let ([x2, y2], output) = sources[j];
         query[2] = x2;
         query[3] = y2;
         for (&[x1, y1], w) in layout.neurons.iter().zip(column.iter_mut()) {
@@ -51,8 +52,7 @@ pub fn decode(
             cppn.activate(&query, &mut out);
             *w = params.weight_or_zero(out[output]);
         }
-    }
-    Ok(SubstrateController::from_parts(layout, bias, weights))
+    }))
 }
 
 /// Decodes a CPPN genome over `layout`: the batched path ([`BatchCppn`]) for
@@ -69,7 +69,6 @@ pub fn decode_genome(
     params.validate()?;
     layout.check(cppn.num_inputs(), cppn.num_outputs())?;
     let n = layout.neurons.len();
-    let mut weights = vec![0.0; (layout.num_inputs() + n) * n];
     let mut bias = vec![0.0; n];
     let mut out = vec![0.0; n];
     cppn.query_targets(layout.bias_output, &layout.neurons, [0.0, 0.0], &mut out);
@@ -77,18 +76,19 @@ pub fn decode_genome(
         *b = params.weight_or_zero(o);
     }
     // One batch per source: all targets, written to the source's column.
-    let sources = layout
+    let sources: Vec<([f64; 2], usize)> = layout
         .inputs
         .iter()
         .flat_map(|s| s.coords.iter().map(move |&c| (c, s.cppn_output)))
-        .chain(layout.neurons.iter().map(|&c| (c, layout.recurrent_output)));
-    for ((source, output), column) in sources.zip(weights.chunks_exact_mut(n)) {
-        cppn.query_targets(output, &layout.neurons, source, &mut out);
-        for (w, &o) in column.iter_mut().zip(&out) {
-            *w = params.weight_or_zero(o);
+        .chain(layout.neurons.iter().map(|&c| (c, layout.recurrent_output)))
+        .collect();
+    Ok(SubstrateController::build(layout, &bias, |j, column| {
+        let (source, output) = sources[j];
+        cppn.query_targets(output, &layout.neurons, source, column);
+        for w in column.iter_mut() {
+            *w = params.weight_or_zero(*w);
         }
-    }
-    Ok(SubstrateController::from_parts(layout, bias, weights))
+    }))
 }
 
 #[cfg(test)]

@@ -29,7 +29,7 @@ mod params;
 mod test_util;
 
 pub use batch::BatchCppn;
-pub use controller::{Link, LinkSource, SubstrateController};
+pub use controller::{BatchState, Link, LinkSource, SubstrateController};
 pub use decode::{decode, decode_genome};
 pub use error::HyperError;
 pub use layout::{CPPN_INPUTS, InputSheet, SubstrateLayout};

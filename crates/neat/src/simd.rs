@@ -1,0 +1,297 @@
+//! Which vector instructions the library's hot loops may use (chosen at run time).
+//!
+//! The batched controller step ([`SubstrateController::activate_batch`]) and
+//! the batched CPPN queries of decoding have one safe, generic body each,
+//! compiled three times: for the baseline x86_64 (SSE2), with AVX2 and with
+//! AVX-512F enabled. All three perform the same IEEE operations in the same
+//! order per value (vectorised only across independent neurons, robots or
+//! queries; no fused multiply-add is enabled), so they give the same bits; the
+//! level only changes speed. The active level starts as the best the CPU
+//! supports and can be lowered (e.g. to test that the bits really agree).
+//!
+//! [`SubstrateController::activate_batch`]: crate::hyperneat::SubstrateController::activate_batch
+
+use std::sync::atomic::{AtomicU8, Ordering};
+
+/// A vector instruction level of the hot loops.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum SimdLevel {
+    /// The baseline instruction set (SSE2 on x86_64).
+    Scalar,
+    /// AVX2 (256-bit vectors), without FMA.
+    Avx2,
+    /// AVX-512F (512-bit vectors), without FMA.
+    Avx512,
+}
+
+/// Marks "not chosen yet": the first [`level`] call picks [`detected`].
+const UNSET: u8 = u8::MAX;
+
+/// The active level (a `SimdLevel as u8`, or [`UNSET`]).
+static LEVEL: AtomicU8 = AtomicU8::new(UNSET);
+
+impl SimdLevel {
+    fn from_u8(v: u8) -> SimdLevel {
+        match v {
+            0 => SimdLevel::Scalar,
+            1 => SimdLevel::Avx2,
+            _ => SimdLevel::Avx512,
+        }
+    }
+}
+
+/// The best level this CPU supports.
+pub fn detected() -> SimdLevel {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::arch::is_x86_feature_detected!("avx512f") {
+            return SimdLevel::Avx512;
+        }
+        if std::arch::is_x86_feature_detected!("avx2") {
+            return SimdLevel::Avx2;
+        }
+    }
+    SimdLevel::Scalar
+}
+
+/// The level the hot loops use now (initially [`detected`]).
+pub fn level() -> SimdLevel {
+    match LEVEL.load(Ordering::Relaxed) {
+        UNSET => {
+            let l = detected();
+            LEVEL.store(l as u8, Ordering::Relaxed);
+            l
+        }
+        v => SimdLevel::from_u8(v),
+    }
+}
+
+/// Makes `wanted` the active level for the whole process, clamped to what
+/// the CPU supports ([`detected`]); returns the level now active.
+pub fn set_level(wanted: SimdLevel) -> SimdLevel {
+    let l = wanted.min(detected());
+    LEVEL.store(l as u8, Ordering::Relaxed);
+    l
+}
+
+/// The levels this CPU can run, lowest first (for tests that compare them).
+pub fn available() -> Vec<SimdLevel> {
+    [SimdLevel::Scalar, SimdLevel::Avx2, SimdLevel::Avx512]
+        .into_iter()
+        .filter(|&l| l <= detected())
+        .collect()
+}
+
+/// Vector operations of one instruction level, as used by the hot loops.
+///
+/// Implemented by zero-sized tokens: a token of a level above the baseline
+/// can only be made on a CPU that supports it, which is what makes its
+/// (safe) methods sound. Only separately rounded `mul` and `add` are offered:
+/// no fused multiply-add, so every level computes the same bits.
+pub(crate) trait Simd: Copy {
+    /// A vector of `LANES` f64.
+    type V: Copy;
+    /// f64 per vector.
+    const LANES: usize;
+    /// Robots per tile of the batched controller step (sums kept in registers).
+    const MAX_TILE: usize;
+    /// All lanes `x`.
+    fn splat(self, x: f64) -> Self::V;
+    /// The first `LANES` values of `s` (panics when `s` is shorter).
+    fn load(self, s: &[f64]) -> Self::V;
+    /// Writes `v` to the first `LANES` values of `s` (panics when shorter).
+    fn store(self, v: Self::V, s: &mut [f64]);
+    /// Lane-wise `a + b`.
+    fn add(self, a: Self::V, b: Self::V) -> Self::V;
+    /// Lane-wise `a · b`.
+    fn mul(self, a: Self::V, b: Self::V) -> Self::V;
+}
+
+/// The baseline level: SSE2 on x86_64 (part of the architecture), plain
+/// pairs of f64 elsewhere.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Baseline;
+
+#[cfg(target_arch = "x86_64")]
+impl Simd for Baseline {
+    type V = std::arch::x86_64::__m128d;
+    const LANES: usize = 2;
+    const MAX_TILE: usize = 6;
+    #[inline(always)]
+    fn splat(self, x: f64) -> Self::V {
+        // SAFETY: SSE2 is part of the x86_64 baseline.
+        unsafe { std::arch::x86_64::_mm_set1_pd(x) }
+    }
+    #[inline(always)]
+    fn load(self, s: &[f64]) -> Self::V {
+        let s = &s[..2];
+        // SAFETY: `s` holds 2 f64 (checked above); the load is unaligned.
+        unsafe { std::arch::x86_64::_mm_loadu_pd(s.as_ptr()) }
+    }
+    #[inline(always)]
+    fn store(self, v: Self::V, s: &mut [f64]) {
+        let s = &mut s[..2];
+        // SAFETY: `s` holds 2 f64 (checked above); the store is unaligned.
+        unsafe { std::arch::x86_64::_mm_storeu_pd(s.as_mut_ptr(), v) }
+    }
+    #[inline(always)]
+    fn add(self, a: Self::V, b: Self::V) -> Self::V {
+        // SAFETY: SSE2 is part of the x86_64 baseline.
+        unsafe { std::arch::x86_64::_mm_add_pd(a, b) }
+    }
+    #[inline(always)]
+    fn mul(self, a: Self::V, b: Self::V) -> Self::V {
+        // SAFETY: SSE2 is part of the x86_64 baseline.
+        unsafe { std::arch::x86_64::_mm_mul_pd(a, b) }
+    }
+}
+
+#[cfg(not(target_arch = "x86_64"))]
+impl Simd for Baseline {
+    type V = [f64; 2];
+    const LANES: usize = 2;
+    const MAX_TILE: usize = 6;
+    #[inline(always)]
+    fn splat(self, x: f64) -> Self::V {
+        [x; 2]
+    }
+    #[inline(always)]
+    fn load(self, s: &[f64]) -> Self::V {
+        [s[0], s[1]]
+    }
+    #[inline(always)]
+    fn store(self, v: Self::V, s: &mut [f64]) {
+        s[..2].copy_from_slice(&v);
+    }
+    #[inline(always)]
+    fn add(self, a: Self::V, b: Self::V) -> Self::V {
+        [a[0] + b[0], a[1] + b[1]]
+    }
+    #[inline(always)]
+    fn mul(self, a: Self::V, b: Self::V) -> Self::V {
+        [a[0] * b[0], a[1] * b[1]]
+    }
+}
+
+/// The AVX2 and AVX-512F tokens.
+#[cfg(target_arch = "x86_64")]
+pub(crate) mod x86 {
+    use std::arch::x86_64::*;
+
+    use super::Simd;
+
+    /// Proof that the CPU supports AVX2 (made only by [`Avx2::new`]).
+    #[derive(Debug, Clone, Copy)]
+    pub(crate) struct Avx2(());
+
+    impl Avx2 {
+        /// The token, if this CPU supports AVX2.
+        #[inline]
+        pub(crate) fn new() -> Option<Avx2> {
+            is_x86_feature_detected!("avx2").then_some(Avx2(()))
+        }
+    }
+
+    // SAFETY (every `unsafe` block of this impl): an `Avx2` token exists only
+    // when `is_x86_feature_detected!("avx2")` held, so the AVX intrinsics are
+    // supported; loads and stores go through slices checked to hold 4 f64.
+    impl Simd for Avx2 {
+        type V = __m256d;
+        const LANES: usize = 4;
+        const MAX_TILE: usize = 6;
+        #[inline(always)]
+        fn splat(self, x: f64) -> __m256d {
+            // SAFETY: see the impl: AVX is supported.
+            unsafe { _mm256_set1_pd(x) }
+        }
+        #[inline(always)]
+        fn load(self, s: &[f64]) -> __m256d {
+            let s = &s[..4];
+            // SAFETY: see the impl: AVX is supported, `s` holds 4 f64.
+            unsafe { _mm256_loadu_pd(s.as_ptr()) }
+        }
+        #[inline(always)]
+        fn store(self, v: __m256d, s: &mut [f64]) {
+            let s = &mut s[..4];
+            // SAFETY: see the impl: AVX is supported, `s` holds 4 f64.
+            unsafe { _mm256_storeu_pd(s.as_mut_ptr(), v) }
+        }
+        #[inline(always)]
+        fn add(self, a: __m256d, b: __m256d) -> __m256d {
+            // SAFETY: see the impl: AVX is supported.
+            unsafe { _mm256_add_pd(a, b) }
+        }
+        #[inline(always)]
+        fn mul(self, a: __m256d, b: __m256d) -> __m256d {
+            // SAFETY: see the impl: AVX is supported.
+            unsafe { _mm256_mul_pd(a, b) }
+        }
+    }
+
+    /// Proof that the CPU supports AVX-512F (made only by [`Avx512::new`]).
+    #[derive(Debug, Clone, Copy)]
+    pub(crate) struct Avx512(());
+
+    impl Avx512 {
+        /// The token, if this CPU supports AVX-512F.
+        #[inline]
+        pub(crate) fn new() -> Option<Avx512> {
+            is_x86_feature_detected!("avx512f").then_some(Avx512(()))
+        }
+    }
+
+    // SAFETY (every `unsafe` block of this impl): an `Avx512` token exists
+    // only when `is_x86_feature_detected!("avx512f")` held, so the AVX-512F
+    // intrinsics are supported; loads and stores go through slices checked to
+    // hold 8 f64.
+    impl Simd for Avx512 {
+        type V = __m512d;
+        const LANES: usize = 8;
+        const MAX_TILE: usize = 8;
+        #[inline(always)]
+        fn splat(self, x: f64) -> __m512d {
+            // SAFETY: see the impl: AVX-512F is supported.
+            unsafe { _mm512_set1_pd(x) }
+        }
+        #[inline(always)]
+        fn load(self, s: &[f64]) -> __m512d {
+            let s = &s[..8];
+            // SAFETY: see the impl: AVX-512F is supported, `s` holds 8 f64.
+            unsafe { _mm512_loadu_pd(s.as_ptr()) }
+        }
+        #[inline(always)]
+        fn store(self, v: __m512d, s: &mut [f64]) {
+            let s = &mut s[..8];
+            // SAFETY: see the impl: AVX-512F is supported, `s` holds 8 f64.
+            unsafe { _mm512_storeu_pd(s.as_mut_ptr(), v) }
+        }
+        #[inline(always)]
+        fn add(self, a: __m512d, b: __m512d) -> __m512d {
+            // SAFETY: see the impl: AVX-512F is supported.
+            unsafe { _mm512_add_pd(a, b) }
+        }
+        #[inline(always)]
+        fn mul(self, a: __m512d, b: __m512d) -> __m512d {
+            // SAFETY: see the impl: AVX-512F is supported.
+            unsafe { _mm512_mul_pd(a, b) }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn set_level_clamps_to_the_cpu_and_round_trips() {
+        let before = level();
+        assert!(before <= detected());
+        assert_eq!(set_level(SimdLevel::Scalar), SimdLevel::Scalar);
+        assert_eq!(level(), SimdLevel::Scalar);
+        assert_eq!(set_level(SimdLevel::Avx512), detected());
+        assert_eq!(level(), detected());
+        assert_eq!(available().first(), Some(&SimdLevel::Scalar));
+        assert_eq!(available().last(), Some(&detected()));
+        set_level(before);
+    }
+}
