@@ -112,6 +112,20 @@ pub struct SubstrateConfig {
     /// sensors, 9 neurons, 5 rays) / (its node count here), so a re-sampled
     /// substrate drives its neurons as strongly; exactly 1 at the paper's resolution.
     pub normalize: bool,
+    /// With `normalize`: `count` (the paper's: every node of a sheet weighs
+    /// reference/count) or `area` (each node weighs reference × its share of
+    /// the sheet's polar area, ∝ its ring radius; see docs/guide.md). Unset = count.
+    ///
+    /// Example: "area".
+    #[serde(default, skip_serializing_if = "NormalizeBy::is_count")]
+    pub normalize_by: NormalizeBy,
+    /// With `normalize`: whether self-loops are scaled with the neuron sheet
+    /// (the paper's setting); `false` keeps each neuron's self-loop at the
+    /// CPPN's weight at any resolution. Unset = true.
+    ///
+    /// Example: false.
+    #[serde(default = "yes", skip_serializing_if = "is_true")]
+    pub normalize_self_loops: bool,
     /// Neuron sheets (RINGSxANGLES) every genome is
     /// evaluated at during evolution, its fitness aggregating them
     /// (multi-resolution evolution); unset = `neurons` only. `neurons` stays
@@ -134,6 +148,44 @@ pub struct SubstrateConfig {
     /// Example: "min".
     #[serde(default, skip_serializing_if = "Aggregate::is_mean")]
     pub train_aggregate: Aggregate,
+}
+
+/// Which share of a re-sampled sheet's drive each of its nodes carries.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum NormalizeBy {
+    /// Every node the same: reference / count (the paper's).
+    #[default]
+    Count,
+    /// Each node by its share of the sheet's polar area.
+    Area,
+}
+
+impl NormalizeBy {
+    /// Whether this is the default, [`NormalizeBy::Count`].
+    pub fn is_count(&self) -> bool {
+        *self == NormalizeBy::Count
+    }
+}
+
+impl std::str::FromStr for NormalizeBy {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "count" => Ok(NormalizeBy::Count),
+            "area" => Ok(NormalizeBy::Area),
+            other => Err(format!("'{other}': expected count or area")),
+        }
+    }
+}
+
+fn yes() -> bool {
+    true
+}
+
+fn is_true(b: &bool) -> bool {
+    *b
 }
 
 /// How a genome's fitnesses at several training resolutions combine into one.
@@ -186,6 +238,8 @@ impl Default for SubstrateConfig {
             },
             coordinates: CoordMode::default(),
             normalize: true,
+            normalize_by: NormalizeBy::Count,
+            normalize_self_loops: true,
             train_neurons: Vec::new(),
             train_sensors: Vec::new(),
             train_aggregate: Aggregate::Mean,

@@ -1,6 +1,7 @@
 //! The driving experiment: a substrate controller per robot, episodes, fitness.
 
 use crate::behaviour::{Behaviour, BehaviourMeter};
+use crate::normalize::SourceScale;
 use crate::training::Training;
 use std::sync::Arc;
 
@@ -12,9 +13,6 @@ use vivae_sim::{DVec2, Scenario, SurfaceGrid, World};
 use crate::config::Config;
 use crate::sensors::{SensorSheet, sheets_with_surface};
 use crate::substrate::{PolarGrid, SubstrateSpec, WheelNeurons, cppn_outputs, layout_of};
-
-/// Neurons of the paper's substrate (3×3): the weight-normalisation reference.
-const PAPER_NEURONS: usize = 9;
 
 /// Everything needed to evaluate genomes on one scenario with one config.
 ///
@@ -30,8 +28,8 @@ pub struct Experiment {
     layout: SubstrateLayout,
     wheels: WheelNeurons,
     hyper: HyperParams,
-    /// Factor per source sheet (input sheets, then the neuron sheet).
-    sheet_scale: Vec<f64>,
+    /// Factor per source node (`substrate.normalize` and its rules).
+    scale: SourceScale,
     steps: u32,
     cppn_outputs: usize,
     /// Multi-resolution evolution: the resolutions a genome is evaluated at.
@@ -112,19 +110,7 @@ impl Experiment {
         let sensors = sheets_with_surface(Arc::clone(&surface_grid), distance_layout.as_ref());
         let layout = layout_of(&sensors, &spec.neuron_nodes(), spec.coords);
         let cppn_outputs = cppn_outputs(&sensors);
-        let sheet_sizes = sensors
-            .iter()
-            .map(|s| (s.len(), s.reference_len))
-            .chain([(spec.neurons.len(), PAPER_NEURONS)]);
-        let sheet_scale = sheet_sizes
-            .map(|(n, reference)| {
-                if config.substrate.normalize {
-                    reference as f64 / n as f64
-                } else {
-                    1.0
-                }
-            })
-            .collect();
+        let scale = SourceScale::new(&config.substrate, &sensors, &spec.neuron_nodes());
         Ok(Experiment {
             world,
             sensors,
@@ -133,7 +119,7 @@ impl Experiment {
             layout,
             wheels,
             hyper: config.hyperneat,
-            sheet_scale,
+            scale,
             steps: config.experiment.steps,
             cppn_outputs,
             training: Training::new(config, &scenario)?.map(Arc::new),
@@ -228,11 +214,7 @@ impl Experiment {
         }
         let mut controller = decode_genome(genome, &self.layout, &self.hyper)
             .map_err(|e| ExperimentError::Genome(e.to_string()))?;
-        for (sheet, &factor) in self.sheet_scale.iter().enumerate() {
-            if factor != 1.0 {
-                controller.scale_source_sheet(sheet, factor);
-            }
-        }
+        self.scale.apply(&mut controller);
         Ok(controller)
     }
 

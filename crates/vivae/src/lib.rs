@@ -36,6 +36,7 @@ pub mod figures;
 pub mod io;
 #[cfg(feature = "mpi")]
 pub mod mpi;
+pub mod normalize;
 pub mod report;
 pub mod report_html;
 pub mod sensors;

@@ -95,6 +95,14 @@ struct Overrides {
     /// How the training resolutions' fitnesses combine: mean (default) or min.
     #[arg(long, value_name = "mean|min")]
     train_aggregate: Option<vivae::config::Aggregate>,
+    /// With substrate.normalize: count (the paper's) or area (each node by its
+    /// share of the sheet's polar area).
+    #[arg(long, value_name = "count|area")]
+    normalize_by: Option<vivae::config::NormalizeBy>,
+    /// With substrate.normalize: false keeps self-loops at the CPPN's weight
+    /// at any neuron resolution (default true, the paper's).
+    #[arg(long, value_name = "true|false")]
+    normalize_self_loops: Option<bool>,
 }
 
 #[derive(Args, Debug)]
@@ -153,6 +161,14 @@ struct ReplayArgs {
     /// Folder for the trajectory figure (default: replay/ beside the source).
     #[arg(short, long, value_name = "DIR")]
     out: Option<PathBuf>,
+    /// With substrate.normalize: count (the paper's) or area (each node by its
+    /// share of the sheet's polar area).
+    #[arg(long, value_name = "count|area")]
+    normalize_by: Option<vivae::config::NormalizeBy>,
+    /// With substrate.normalize: false keeps self-loops at the CPPN's weight
+    /// at any neuron resolution (default true, the paper's).
+    #[arg(long, value_name = "true|false")]
+    normalize_self_loops: Option<bool>,
 }
 
 #[derive(Args, Debug)]
@@ -305,6 +321,12 @@ fn apply_overrides(config: &mut Config, o: &Overrides) -> anyhow::Result<()> {
     }
     if let Some(a) = o.train_aggregate {
         config.substrate.train_aggregate = a;
+    }
+    if let Some(b) = o.normalize_by {
+        config.substrate.normalize_by = b;
+    }
+    if let Some(b) = o.normalize_self_loops {
+        config.substrate.normalize_self_loops = b;
     }
     config
         .validate()
@@ -653,6 +675,8 @@ fn cmd_replay(args: ReplayArgs) -> anyhow::Result<ExitCode> {
         steps: args.steps,
         // Another scenario has its own robot starts: all of them, unless told.
         robots: args.robots.or(args.scenario.as_ref().map(|_| 0)),
+        normalize_by: args.normalize_by,
+        normalize_self_loops: args.normalize_self_loops,
         ..Overrides::default()
     };
     apply_overrides(&mut config, &overrides)?;

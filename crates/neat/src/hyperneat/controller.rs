@@ -229,6 +229,27 @@ impl SubstrateController {
         }
     }
 
+    /// Multiplies every weight leaving source `source` by `factor`: sources are
+    /// the inputs (all sheets concatenated), then the neurons. Panics when out of range.
+    pub fn scale_source(&mut self, source: usize, factor: f64) {
+        assert!(
+            source < self.num_inputs + self.n,
+            "source {source} out of range"
+        );
+        for target in 0..self.n {
+            let k = self.at(source, target);
+            self.weights[k] *= factor;
+        }
+    }
+
+    /// Multiplies the weight of neuron `source` → neuron `target` by `factor`.
+    /// Panics when out of range.
+    pub fn scale_recurrent(&mut self, source: usize, target: usize, factor: f64) {
+        assert!(source < self.n && target < self.n);
+        let k = self.at(self.num_inputs + source, target);
+        self.weights[k] *= factor;
+    }
+
     /// Weight of input `input` (over all sheets concatenated) → neuron `target`; 0 = no link.
     /// Panics when an index is out of range.
     pub fn input_weight(&self, input: usize, target: usize) -> f64 {

@@ -1,0 +1,168 @@
+//! How a re-sampled substrate keeps its drive: the scale of each link's
+//! weight by its source node (`substrate.normalize`, `normalize_by`,
+//! `normalize_self_loops`).
+//!
+//! A CPPN paints a weight on every link; with more nodes in a sheet, a neuron
+//! sums more inputs. The rules rescale the weights leaving each source node:
+//!
+//! * `count` (the default, the paper's setting): every node of a sheet gets
+//!   `reference / count` — the sheet's node count in the paper (15 surface
+//!   sensors, 9 neurons, 5 rays) over its count here. Exactly 1 at the paper's
+//!   resolution.
+//! * `area`: each node gets `reference × (its share of the sheet's area)`. On
+//!   the substrate's polar grid ring k of R sits at radius ρ = (k+1)/R and its
+//!   annulus, bounded half-way to the neighbouring rings, has area ∝ ρ; so a
+//!   node's share is ρ / Σρ over the sheet. Inner nodes, packed closer, count
+//!   less; a dense sheet is weighted like an integral over the sheet rather
+//!   than a sum. Not 1 at the paper's resolution (outer nodes weigh more).
+//! * `normalize_self_loops = false` leaves each neuron's self-loop at the
+//!   CPPN's weight: a neuron has one self-loop at any resolution, while the
+//!   count rule shrinks it with the neuron sheet (by 9/81 at 9×9), taking away
+//!   the memory the controller evolved with.
+
+use vivae_neat::hyperneat::SubstrateController;
+
+use crate::config::{NormalizeBy, SubstrateConfig};
+use crate::sensors::SensorSheet;
+use crate::substrate::PolarNode;
+
+/// The paper's neuron count (3×3): the neuron sheet's reference size.
+pub const PAPER_NEURONS: usize = 9;
+
+/// The factor of every source node and whether self-loops are exempt.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SourceScale {
+    /// One factor per controller source: inputs (sheet after sheet), then neurons.
+    per_source: Vec<f64>,
+    /// Whether each neuron's self-loop keeps the CPPN's weight.
+    keep_self_loops: bool,
+    /// Number of input nodes (the first neuron's source index).
+    inputs: usize,
+}
+
+impl SourceScale {
+    /// The scale of `config`'s rule for `sheets` and `neurons`.
+    pub fn new(config: &SubstrateConfig, sheets: &[SensorSheet], neurons: &[PolarNode]) -> Self {
+        let inputs: usize = sheets.iter().map(SensorSheet::len).sum();
+        let mut per_source = Vec::with_capacity(inputs + neurons.len());
+        let mut sheet = |nodes: &[PolarNode], reference: usize| {
+            let count = nodes.len() as f64;
+            let total_rho: f64 = nodes.iter().map(|n| n.rho).sum();
+            per_source.extend(nodes.iter().map(|n| {
+                match (config.normalize, config.normalize_by) {
+                    (false, _) => 1.0,
+                    (true, NormalizeBy::Count) => reference as f64 / count,
+                    (true, NormalizeBy::Area) => reference as f64 * n.rho / total_rho,
+                }
+            }));
+        };
+        for s in sheets {
+            sheet(&s.nodes(), s.reference_len);
+        }
+        sheet(neurons, PAPER_NEURONS);
+        SourceScale {
+            per_source,
+            keep_self_loops: config.normalize && !config.normalize_self_loops,
+            inputs,
+        }
+    }
+
+    /// The factor of each source (inputs, then neurons).
+    pub fn factors(&self) -> &[f64] {
+        &self.per_source
+    }
+
+    /// Rescales `controller`'s weights (a factor of 1 leaves a weight's bits untouched).
+    pub fn apply(&self, controller: &mut SubstrateController) {
+        for (source, &factor) in self.per_source.iter().enumerate() {
+            if factor != 1.0 {
+                controller.scale_source(source, factor);
+            }
+        }
+        if self.keep_self_loops {
+            for (i, &factor) in self.per_source[self.inputs..].iter().enumerate() {
+                if factor != 1.0 {
+                    controller.scale_recurrent(i, i, 1.0 / factor);
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::Config;
+    use crate::experiment::Experiment;
+    use crate::io::load_scenario;
+    use crate::substrate::PolarGrid;
+    use vivae_neat::Population;
+
+    fn experiment(neurons: usize, by: NormalizeBy, self_loops: bool) -> Experiment {
+        let mut c = Config::default();
+        c.substrate.neurons = PolarGrid::new(neurons, neurons).unwrap();
+        c.substrate.normalize_by = by;
+        c.substrate.normalize_self_loops = self_loops;
+        Experiment::new(&c, &load_scenario(None).unwrap().scenario).unwrap()
+    }
+
+    fn scale_of(e: &Experiment, c: &SubstrateConfig) -> SourceScale {
+        SourceScale::new(c, e.sensors(), &e.substrate_spec().neuron_nodes())
+    }
+
+    #[test]
+    fn count_is_one_at_the_papers_resolution_and_area_follows_the_radius() {
+        let e = experiment(3, NormalizeBy::Count, true);
+        let mut c = Config::default().substrate;
+        assert!(scale_of(&e, &c).factors().iter().all(|&f| f == 1.0));
+        c.normalize_by = NormalizeBy::Area;
+        let area = scale_of(&e, &c);
+        // 15 sensors on 3 rings (ρ = 1/3, 2/3, 1), then 9 neurons on 3 rings.
+        let (sensors, neurons) = area.factors().split_at(15);
+        for (f, ring) in sensors.iter().zip((0..3).flat_map(|r| [r; 5])) {
+            let want = 15.0 * (ring + 1) as f64 / 3.0 / 10.0; // Σρ = 5·(1/3 + 2/3 + 1) = 10
+            assert!((f - want).abs() < 1e-12, "{f} vs {want}");
+        }
+        assert!((sensors.iter().sum::<f64>() - 15.0).abs() < 1e-9);
+        assert!((neurons.iter().sum::<f64>() - 9.0).abs() < 1e-9);
+        c.normalize = false;
+        assert!(scale_of(&e, &c).factors().iter().all(|&f| f == 1.0));
+    }
+
+    #[test]
+    fn unscaled_self_loops_keep_the_cppns_weight() {
+        let plain = {
+            let mut c = Config::default();
+            c.substrate.neurons = PolarGrid::new(9, 9).unwrap();
+            c.substrate.normalize = false;
+            Experiment::new(&c, &load_scenario(None).unwrap().scenario).unwrap()
+        };
+        let scaled = experiment(9, NormalizeBy::Count, true);
+        let kept = experiment(9, NormalizeBy::Count, false);
+        let pop = Population::new(Config::default().neat, plain.cppn_spec(), 3).unwrap();
+        let g = &pop.genomes()[1];
+        let (p, s, k) = (
+            plain.controller(g).unwrap(),
+            scaled.controller(g).unwrap(),
+            kept.controller(g).unwrap(),
+        );
+        let f = 9.0 / 81.0;
+        let mut checked = 0;
+        for i in 0..81 {
+            for j in 0..81 {
+                let w = p.recurrent_weight(j, i);
+                if w == 0.0 {
+                    continue;
+                }
+                checked += 1;
+                assert_eq!(s.recurrent_weight(j, i), w * f);
+                if i == j {
+                    assert!((k.recurrent_weight(j, i) - w).abs() <= 1e-15 * w.abs());
+                } else {
+                    assert_eq!(k.recurrent_weight(j, i), w * f);
+                }
+            }
+        }
+        assert!(checked > 0, "the genome expresses recurrent links");
+    }
+}
