@@ -41,7 +41,7 @@ pub use scenario::{
 pub use sensors::{
     DistanceGrid, DistanceSensors, Sensor, SensorPlace, SurfaceGrid, SurfaceSensors, spread,
 };
-pub use world::{MovableState, PuckState, Robot, SurfaceHere, World};
+pub use world::{MovableState, PuckState, Robot, SurfaceHere, World, wrap_angle};
 
 /// The default scenario (`scenarios/roads.svg`): a road network with 5 robots.
 pub const ROADS_SVG: &str = include_str!("../../../scenarios/roads.svg");

@@ -26,7 +26,7 @@
 
 use serde::Serialize;
 use vivae_sim::DVec2;
-use vivae_sim::{SurfaceKind, World};
+use vivae_sim::{SurfaceKind, World, wrap_angle};
 
 /// Largest gap between outlines, in px, that still counts as touching.
 pub const TOUCH: f64 = 0.05;
@@ -114,7 +114,7 @@ impl BehaviourMeter {
         for (i, robot) in robots.iter().enumerate() {
             let history = &mut self.headings[i];
             let last = *history.last().expect("starts with the initial heading");
-            history.push(last + wrap(robot.heading - wrap(last)));
+            history.push(last + wrap_angle(robot.heading - wrap_angle(last)));
             let touched = &mut self.touching[i * others..(i + 1) * others];
             for (k, was_touching) in touched.iter_mut().enumerate() {
                 let touches = if k < n {
@@ -160,17 +160,6 @@ impl BehaviourMeter {
             loops,
             side: (self.side_steps > 0).then(|| self.side_sum / self.side_steps as f64),
         }
-    }
-}
-
-/// Angle wrapped to (−π, π].
-fn wrap(a: f64) -> f64 {
-    let two_pi = 2.0 * std::f64::consts::PI;
-    let w = a - two_pi * ((a + std::f64::consts::PI) / two_pi).floor();
-    if w <= -std::f64::consts::PI {
-        w + two_pi
-    } else {
-        w
     }
 }
 
@@ -354,7 +343,7 @@ mod tests {
     fn wrap_stays_in_the_half_open_interval() {
         use std::f64::consts::PI;
         for a in [-7.0, -PI, -1.0, 0.0, 1.0, PI, 4.0, 13.0] {
-            let w = wrap(a);
+            let w = wrap_angle(a);
             assert!(w > -PI && w <= PI, "{a} -> {w}");
             assert!(
                 ((a - w) / (2.0 * PI)).fract().abs() < 1e-9

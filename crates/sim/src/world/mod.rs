@@ -372,7 +372,7 @@ fn is_normal_pow2(x: f64) -> bool {
 
 /// Wraps an angle into (−π, π].
 #[inline]
-fn wrap_angle(a: f64) -> f64 {
+pub fn wrap_angle(a: f64) -> f64 {
     use std::f64::consts::{PI, TAU};
     if a > -PI && a <= PI {
         return a;
