@@ -126,6 +126,13 @@ pub struct SubstrateConfig {
     /// Example: false.
     #[serde(default = "yes", skip_serializing_if = "is_true")]
     pub normalize_self_loops: bool,
+    /// Which neuron→neuron links the substrate keeps: `full` (every pair, the
+    /// paper's fully recurrent sheet), `self` (each neuron's self-loop only:
+    /// no lateral links) or `none` (a reactive sheet). Unset = full.
+    ///
+    /// Example: "self".
+    #[serde(default, skip_serializing_if = "Recurrence::is_full")]
+    pub recurrence: Recurrence,
     /// Neuron sheets (RINGSxANGLES) every genome is
     /// evaluated at during evolution, its fitness aggregating them
     /// (multi-resolution evolution); unset = `neurons` only. `neurons` stays
@@ -176,6 +183,40 @@ impl std::str::FromStr for NormalizeBy {
             "count" => Ok(NormalizeBy::Count),
             "area" => Ok(NormalizeBy::Area),
             other => Err(format!("'{other}': expected count or area")),
+        }
+    }
+}
+
+/// Which neuron→neuron links of the fully recurrent neuron sheet a controller keeps.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Recurrence {
+    /// Every neuron listens to every neuron, itself included (the paper's).
+    #[default]
+    Full,
+    /// Each neuron listens only to itself: no lateral links.
+    #[serde(rename = "self")]
+    SelfLoops,
+    /// No neuron→neuron links at all.
+    None,
+}
+
+impl Recurrence {
+    /// Whether this is the default, [`Recurrence::Full`].
+    pub fn is_full(&self) -> bool {
+        *self == Recurrence::Full
+    }
+}
+
+impl std::str::FromStr for Recurrence {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "full" => Ok(Recurrence::Full),
+            "self" => Ok(Recurrence::SelfLoops),
+            "none" => Ok(Recurrence::None),
+            other => Err(format!("'{other}': expected full, self or none")),
         }
     }
 }
@@ -239,6 +280,7 @@ impl Default for SubstrateConfig {
             coordinates: CoordMode::default(),
             normalize: true,
             normalize_by: NormalizeBy::Count,
+            recurrence: Recurrence::Full,
             normalize_self_loops: true,
             train_neurons: Vec::new(),
             train_sensors: Vec::new(),

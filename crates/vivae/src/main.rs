@@ -103,6 +103,10 @@ struct Overrides {
     /// at any neuron resolution (default true, the paper's).
     #[arg(long, value_name = "true|false")]
     normalize_self_loops: Option<bool>,
+    /// Neuron→neuron links kept: full (the paper's), self (self-loops only,
+    /// no lateral links) or none.
+    #[arg(long, value_name = "full|self|none")]
+    recurrence: Option<vivae::config::Recurrence>,
 }
 
 #[derive(Args, Debug)]
@@ -169,6 +173,10 @@ struct ReplayArgs {
     /// at any neuron resolution (default true, the paper's).
     #[arg(long, value_name = "true|false")]
     normalize_self_loops: Option<bool>,
+    /// Neuron→neuron links kept: full (the paper's), self (self-loops only,
+    /// no lateral links) or none.
+    #[arg(long, value_name = "full|self|none")]
+    recurrence: Option<vivae::config::Recurrence>,
 }
 
 #[derive(Args, Debug)]
@@ -327,6 +335,9 @@ fn apply_overrides(config: &mut Config, o: &Overrides) -> anyhow::Result<()> {
     }
     if let Some(b) = o.normalize_self_loops {
         config.substrate.normalize_self_loops = b;
+    }
+    if let Some(r) = o.recurrence {
+        config.substrate.recurrence = r;
     }
     config
         .validate()
@@ -677,6 +688,7 @@ fn cmd_replay(args: ReplayArgs) -> anyhow::Result<ExitCode> {
         robots: args.robots.or(args.scenario.as_ref().map(|_| 0)),
         normalize_by: args.normalize_by,
         normalize_self_loops: args.normalize_self_loops,
+        recurrence: args.recurrence,
         ..Overrides::default()
     };
     apply_overrides(&mut config, &overrides)?;

@@ -19,10 +19,17 @@
 //!   CPPN's weight: a neuron has one self-loop at any resolution, while the
 //!   count rule shrinks it with the neuron sheet (by 9/81 at 9×9), taking away
 //!   the memory the controller evolved with.
+//!
+//! `substrate.recurrence` then removes neuron→neuron links: `self` keeps only
+//! each neuron's self-loop (no lateral links), `none` every recurrent link.
+//! Without lateral links a wheel neuron's drive does not depend on the other
+//! neurons, so re-sampling the neuron sheet leaves it unchanged wherever the
+//! wheel neurons keep their positions (3×3 → 9×9 does): the experiment that
+//! tells the lateral field's share of a re-sampling loss (docs/results.md).
 
 use vivae_neat::hyperneat::SubstrateController;
 
-use crate::config::{NormalizeBy, SubstrateConfig};
+use crate::config::{NormalizeBy, Recurrence, SubstrateConfig};
 use crate::sensors::SensorSheet;
 use crate::substrate::PolarNode;
 
@@ -38,6 +45,8 @@ pub struct SourceScale {
     keep_self_loops: bool,
     /// Number of input nodes (the first neuron's source index).
     inputs: usize,
+    /// Which neuron→neuron links are kept.
+    recurrence: Recurrence,
 }
 
 impl SourceScale {
@@ -64,6 +73,7 @@ impl SourceScale {
             per_source,
             keep_self_loops: config.normalize && !config.normalize_self_loops,
             inputs,
+            recurrence: config.recurrence,
         }
     }
 
@@ -83,6 +93,17 @@ impl SourceScale {
             for (i, &factor) in self.per_source[self.inputs..].iter().enumerate() {
                 if factor != 1.0 {
                     controller.scale_recurrent(i, i, 1.0 / factor);
+                }
+            }
+        }
+        if !self.recurrence.is_full() {
+            let n = self.per_source.len() - self.inputs;
+            for source in 0..n {
+                for target in 0..n {
+                    if source != target || self.recurrence == Recurrence::None {
+                        // w × 0 is ±0: the cut link adds nothing to any sum.
+                        controller.scale_recurrent(source, target, 0.0);
+                    }
                 }
             }
         }
@@ -164,5 +185,38 @@ mod tests {
             }
         }
         assert!(checked > 0, "the genome expresses recurrent links");
+    }
+
+    #[test]
+    fn recurrence_self_cuts_lateral_links_and_none_cuts_all() {
+        let base = experiment(3, NormalizeBy::Count, true);
+        let pop = Population::new(Config::default().neat, base.cppn_spec(), 5).unwrap();
+        let g = &pop.genomes()[2];
+        let full = base.controller(g).unwrap();
+        for (recurrence, keep_self) in [(Recurrence::SelfLoops, true), (Recurrence::None, false)] {
+            let mut c = Config::default();
+            c.substrate.recurrence = recurrence;
+            let cut = Experiment::new(&c, &load_scenario(None).unwrap().scenario)
+                .unwrap()
+                .controller(g)
+                .unwrap();
+            for i in 0..9 {
+                for j in 0..9 {
+                    let want = if i == j && keep_self {
+                        full.recurrent_weight(j, i)
+                    } else {
+                        0.0
+                    };
+                    assert_eq!(cut.recurrent_weight(j, i), want, "{recurrence:?} {j}->{i}");
+                }
+                for input in 0..15 {
+                    assert_eq!(cut.input_weight(input, i), full.input_weight(input, i));
+                }
+            }
+        }
+        assert!(
+            (0..9).any(|i| (0..9).any(|j| i != j && full.recurrent_weight(j, i) != 0.0)),
+            "the genome expresses lateral links"
+        );
     }
 }
