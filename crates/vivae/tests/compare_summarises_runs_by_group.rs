@@ -208,6 +208,11 @@ fn missing_or_corrupt_run_files_exit_2_naming_the_file() {
         "--label x=zzz*: matches none",
     );
     refused(&[a(&good), a(&good)], &out, "given twice");
+    refused(
+        &[a(&good), a("--csv"), a(dir.join("no/such/t.csv"))],
+        &out,
+        "no/such/t.csv: its folder does not exist",
+    );
     let txt = dir.join("out.txt");
     refused(&[a(&good)], &txt, "must be a .png or .svg");
 
