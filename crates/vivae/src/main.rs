@@ -45,6 +45,8 @@ enum Command {
     },
     /// Watch robots drive in the browser (a local web server).
     View(vivae::view::ViewArgs),
+    /// Compare runs: fitness per generation and per wall-clock second, figure and table.
+    Compare(vivae::figures::compare::CompareArgs),
     /// Inspect and draw scenarios.
     #[command(subcommand)]
     Scenario(ScenarioCommand),
@@ -287,6 +289,11 @@ fn dispatch(cli: Cli, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode>
             Ok(ExitCode::SUCCESS)
         }
         Command::View(args) => Ok(vivae::view::run(args)?),
+        Command::Compare(args) => {
+            print!("{}", vivae::figures::compare::run(&args)?);
+            eprintln!("figure: {}", args.out.display());
+            Ok(ExitCode::SUCCESS)
+        }
         Command::Scenario(c) => cmd_scenario(c),
         Command::Config(c) => cmd_config(c),
     }

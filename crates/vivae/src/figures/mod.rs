@@ -4,8 +4,11 @@
 //! with the DejaVu Sans font shipped in the repository, registered with
 //! plotters' `ab_glyph` support — no system fonts), and the PNG is that SVG
 //! rendered by resvg with the same font, so the two files always show the same
-//! picture, anti-aliased. Functions return bytes; callers write the files.
+//! picture, anti-aliased. Functions return bytes; callers write the files
+//! (except [`compare::run`], the `vivae compare` command, which reads run
+//! directories and writes its figure and table itself).
 
+pub mod compare;
 pub mod convergence;
 mod fields;
 pub mod network;
