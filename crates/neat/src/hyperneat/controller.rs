@@ -206,29 +206,6 @@ impl SubstrateController {
         &self.state[..self.n]
     }
 
-    /// Multiplies every weight leaving source sheet `sheet` by `factor`: input
-    /// sheets are `0..sheet_sizes().len()`, the neuron sheet (recurrent links)
-    /// is `sheet_sizes().len()`. Used to keep a sheet's total drive constant
-    /// when it is re-sampled at another density. Panics when `sheet` is out of range.
-    pub fn scale_source_sheet(&mut self, sheet: usize, factor: f64) {
-        let first: usize = self.sheet_sizes[..sheet.min(self.sheet_sizes.len())]
-            .iter()
-            .sum();
-        let count = match self.sheet_sizes.get(sheet) {
-            Some(&size) => size,
-            None if sheet == self.sheet_sizes.len() => self.n,
-            None => panic!("sheet {sheet} out of range"),
-        };
-        let m = self.num_inputs + self.n;
-        for p0 in (0..self.stride).step_by(PANEL) {
-            let width = PANEL.min(self.stride - p0);
-            let panel = &mut self.weights[p0 * m..][..m * width];
-            for w in &mut panel[first * width..(first + count) * width] {
-                *w *= factor;
-            }
-        }
-    }
-
     /// Multiplies every weight leaving source `source` by `factor`: sources are
     /// the inputs (all sheets concatenated), then the neurons. Panics when out of range.
     pub fn scale_source(&mut self, source: usize, factor: f64) {
@@ -660,7 +637,7 @@ mod tests {
     use crate::hyperneat::{HyperParams, InputSheet, decode};
 
     #[test]
-    fn scaling_a_source_sheet_touches_only_its_links() {
+    fn scaling_a_source_or_one_link_touches_only_its_links() {
         let layout = SubstrateLayout {
             inputs: vec![
                 InputSheet {
@@ -683,19 +660,20 @@ mod tests {
         let c = decode(&mut cppn, &layout, &HyperParams::default()).unwrap();
         assert!(c.expressed_links() > 4, "the test needs expressed links");
         let mut scaled = c.clone();
-        scaled.scale_source_sheet(1, 0.5);
-        scaled.scale_source_sheet(2, 2.0);
+        // Source 2 is the second sheet's only input; sources 3 and 4 are the neurons.
+        scaled.scale_source(2, 0.5);
+        scaled.scale_source(3, 2.0);
+        scaled.scale_recurrent(1, 0, -1.0);
         for t in 0..2 {
             assert_eq!(scaled.biases()[t], c.biases()[t]);
             for s in 0..2 {
                 assert_eq!(scaled.input_weight(s, t), c.input_weight(s, t));
-                assert_eq!(
-                    scaled.recurrent_weight(s, t),
-                    2.0 * c.recurrent_weight(s, t)
-                );
             }
             assert_eq!(scaled.input_weight(2, t), 0.5 * c.input_weight(2, t));
+            assert_eq!(scaled.recurrent_weight(0, t), 2.0 * c.recurrent_weight(0, t));
         }
+        assert_eq!(scaled.recurrent_weight(1, 0), -c.recurrent_weight(1, 0));
+        assert_eq!(scaled.recurrent_weight(1, 1), c.recurrent_weight(1, 1));
     }
 
     #[test]
