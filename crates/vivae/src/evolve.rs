@@ -488,9 +488,8 @@ impl Run {
             }),
             ..Progress::start(population.generation())
         };
-        let filled = copy_maps(&tmp, &mut config, maps).and_then(|()| {
-            fill_new_run(&tmp, &mut config, scenario_text, &population, &progress)
-        });
+        let filled = copy_maps(&tmp, &mut config, maps)
+            .and_then(|()| fill_new_run(&tmp, &mut config, scenario_text, &population, &progress));
         let placed = filled.and_then(|()| {
             if old_lock.is_some() {
                 fs::remove_dir_all(dir).map_err(Error::io("clear", dir))?;

@@ -1,8 +1,8 @@
 //! The driving experiment: a substrate controller per robot, episodes, fitness.
 
 use crate::behaviour::{Behaviour, BehaviourMeter};
-use crate::normalize::SourceScale;
 use crate::maps::Maps;
+use crate::normalize::SourceScale;
 use crate::training::Training;
 use std::sync::Arc;
 

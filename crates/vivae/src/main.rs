@@ -387,9 +387,10 @@ fn cmd_evolve(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
         None => setup().map_err(anyhow::Error::from),
     };
     #[cfg(feature = "mpi")]
-    let fingerprint = prepared
-        .as_ref()
-        .map_or_else(|_| String::new(), |(m, _, _)| vivae::maps::fingerprint_text(m));
+    let fingerprint = prepared.as_ref().map_or_else(
+        |_| String::new(),
+        |(m, _, _)| vivae::maps::fingerprint_text(m),
+    );
     #[cfg(feature = "mpi")]
     if let Some(code) = mpi_start(
         prepared

@@ -102,7 +102,14 @@ impl Source {
         };
         // A multi-map run also offers its other training maps (the first is scenario.svg).
         if matches!(source.kind, SourceKind::Run(_)) {
-            for (k, map) in source.config.experiment.scenarios.iter().enumerate().skip(1) {
+            for (k, map) in source
+                .config
+                .experiment
+                .scenarios
+                .iter()
+                .enumerate()
+                .skip(1)
+            {
                 let text = read_text(Path::new(map))?;
                 let name = Path::new(map)
                     .file_name()
