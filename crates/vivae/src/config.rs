@@ -59,6 +59,13 @@ pub struct ExperimentConfig {
     ///
     /// Unit: path. Paper: the road scenario of Fig. 1.
     pub scenario: String,
+    /// Training on several maps: scenario SVG files or shipped names; every
+    /// genome is evaluated on each (with that map's own robots) and its fitness
+    /// is the mean over maps. Unset = `scenario` only; setting both is refused.
+    ///
+    /// Example: ["roads", "oval", "figure8"].
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub scenarios: Vec<String>,
     /// Seed of the run's random number generator.
     pub seed: u64,
     /// Generations to evolve.
@@ -84,6 +91,7 @@ impl Default for ExperimentConfig {
     fn default() -> Self {
         ExperimentConfig {
             scenario: String::new(),
+            scenarios: Vec::new(),
             seed: 1,
             generations: 400,
             steps: 1000,
@@ -269,6 +277,8 @@ impl std::str::FromStr for Aggregate {
 
 /// Most resolutions one genome may be evaluated at (neurons × sensors).
 pub const MAX_TRAINING_RESOLUTIONS: usize = 16;
+/// Most training maps (`experiment.scenarios`).
+pub const MAX_MAPS: usize = 64;
 
 impl Default for SubstrateConfig {
     fn default() -> Self {
@@ -400,6 +410,23 @@ impl Config {
         }
         if e.steps == 0 {
             return Err(ConfigError::new("experiment.steps = 0: must be at least 1"));
+        }
+        if !e.scenario.is_empty() && !e.scenarios.is_empty() {
+            return Err(ConfigError::new(format!(
+                "experiment.scenarios = [...] and experiment.scenario = \"{}\" are both set: train on one map with `scenario` or on several with `scenarios`, not both",
+                e.scenario
+            )));
+        }
+        if e.scenarios.len() > MAX_MAPS {
+            return Err(ConfigError::new(format!(
+                "experiment.scenarios = {} maps: must be at most {MAX_MAPS}",
+                e.scenarios.len()
+            )));
+        }
+        if e.scenarios.iter().any(String::is_empty) {
+            return Err(ConfigError::new(
+                "experiment.scenarios = [.., \"\", ..]: a map name is empty",
+            ));
         }
         if self.neat.population_size < 2 {
             return Err(ConfigError::new(format!(

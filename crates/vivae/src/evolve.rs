@@ -240,6 +240,10 @@ struct Progress {
     /// Absent in checkpoints written before it was recorded.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     scenario_fnv: Option<u64>,
+    /// FNV-1a hash of each training map's copy under `scenarios/` (multi-map
+    /// runs only): an edited copy is refused on resume.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    maps_fnv: Option<Vec<u64>>,
 }
 
 /// Refuses a run whose `config.toml` was edited since its newest checkpoint:
@@ -403,12 +407,34 @@ impl Run {
     /// `init` is a population to start from (retrain) instead of a fresh one.
     pub fn create(
         dir: &Path,
-        mut config: Config,
+        config: Config,
         experiment: Experiment,
         scenario_text: &str,
         init: Option<Population>,
         force: bool,
     ) -> Result<Run> {
+        Run::create_on_maps(dir, config, experiment, scenario_text, &[], init, force)
+    }
+
+    /// [`Run::create`] for a run on several training maps (`maps`, from
+    /// [`crate::maps::load`]; empty for a single-scenario run): `scenario_text`
+    /// (the first map's) goes to `scenario.svg` as ever, and every map is
+    /// copied to `scenarios/` with a manifest of their hashes;
+    /// `experiment.scenarios` is rewritten to name the copies.
+    pub fn create_on_maps(
+        dir: &Path,
+        mut config: Config,
+        experiment: Experiment,
+        scenario_text: &str,
+        maps: &[crate::maps::TrainingMap],
+        init: Option<Population>,
+        force: bool,
+    ) -> Result<Run> {
+        let maps = if crate::maps::is_multi_map(&config) {
+            maps
+        } else {
+            &[]
+        };
         let population = match init {
             // Only the genomes carry over: fitness, species and the champion were
             // measured on another substrate and mean nothing here.
@@ -455,9 +481,15 @@ impl Run {
         };
         let progress = Progress {
             scenario_fnv: Some(fnv1a(scenario_text.as_bytes())),
+            maps_fnv: (!maps.is_empty()).then(|| {
+                maps.iter()
+                    .map(|m| crate::maps::fnv1a(m.loaded.text.as_bytes()))
+                    .collect()
+            }),
             ..Progress::start(population.generation())
         };
-        let filled = fill_new_run(&tmp, &mut config, scenario_text, &population, &progress);
+        let filled = copy_maps(&tmp, &mut config, maps)
+            .and_then(|()| fill_new_run(&tmp, &mut config, scenario_text, &population, &progress));
         let placed = filled.and_then(|()| {
             if old_lock.is_some() {
                 fs::remove_dir_all(dir).map_err(Error::io("clear", dir))?;
@@ -498,8 +530,9 @@ impl Run {
             }
             cp.config.experiment.generations = n;
         }
+        let maps = crate::maps::load_run(dir, &cp.config, cp.progress.maps_fnv.as_deref())?;
         let scenario = crate::io::load_scenario(Some(&dir.join(files::SCENARIO)))?;
-        let experiment = Experiment::new(&cp.config, &scenario.scenario)?;
+        let experiment = crate::maps::experiment(&cp.config, &maps)?;
         // Everything is validated before anything in the directory changes.
         validate_progress(&path, &cp, &experiment)?;
         if let Some(h) = cp.progress.scenario_fnv
@@ -817,6 +850,7 @@ impl Progress {
             timing_len: TIMING_HEADER.len() as u64,
             figure_genomes: Vec::new(),
             scenario_fnv: None,
+            maps_fnv: None,
         }
     }
 }
@@ -1093,7 +1127,9 @@ fn fill_new_run(
         )?;
         config.experiment.init_population = files::INIT_POPULATION.into();
     }
-    config.experiment.scenario = files::SCENARIO.into();
+    if !crate::maps::is_multi_map(config) {
+        config.experiment.scenario = files::SCENARIO.into();
+    }
     write_atomic(&dir.join(files::CONFIG), config.to_toml().as_bytes())?;
     for (name, header) in [
         (files::GENERATIONS, GENERATIONS_HEADER),
@@ -1104,6 +1140,29 @@ fn fill_new_run(
         write_atomic(&dir.join(name), header.as_bytes())?;
     }
     write_checkpoint(dir, config, progress, population)
+}
+
+/// Copies the training maps of a multi-map run into `dir/scenarios/` with
+/// their manifest, and points `experiment.scenarios` at the copies.
+fn copy_maps(dir: &Path, config: &mut Config, maps: &[crate::maps::TrainingMap]) -> Result<()> {
+    if maps.is_empty() {
+        return Ok(());
+    }
+    let folder = dir.join(crate::maps::MAPS_DIR);
+    fs::create_dir_all(&folder).map_err(Error::io("create", &folder))?;
+    let names = crate::maps::copy_names(maps);
+    for (name, m) in names.iter().zip(maps) {
+        write_atomic(&folder.join(name), m.loaded.text.as_bytes())?;
+    }
+    write_atomic(
+        &folder.join(crate::maps::MANIFEST),
+        crate::maps::manifest(&names, maps).as_bytes(),
+    )?;
+    config.experiment.scenarios = names
+        .iter()
+        .map(|n| format!("{}/{n}", crate::maps::MAPS_DIR))
+        .collect();
+    Ok(())
 }
 
 /// Checks that the CSV files, cut at the lengths the checkpoint records, end

@@ -1,6 +1,7 @@
 //! The driving experiment: a substrate controller per robot, episodes, fitness.
 
 use crate::behaviour::{Behaviour, BehaviourMeter};
+use crate::maps::Maps;
 use crate::normalize::SourceScale;
 use crate::training::Training;
 use std::sync::Arc;
@@ -34,6 +35,8 @@ pub struct Experiment {
     cppn_outputs: usize,
     /// Multi-resolution evolution: the resolutions a genome is evaluated at.
     training: Option<Arc<Training>>,
+    /// Training on several maps: every map's experiment (this one's map first).
+    maps: Option<Arc<Maps>>,
 }
 
 /// The outcome of one episode.
@@ -123,7 +126,20 @@ impl Experiment {
             steps: config.experiment.steps,
             cppn_outputs,
             training: Training::new(config, &scenario)?.map(Arc::new),
+            maps: None,
         })
+    }
+
+    /// This experiment (on the first map) evaluating genomes on all of `maps` during evolution.
+    pub(crate) fn with_maps(mut self, maps: Maps) -> Experiment {
+        self.maps = Some(Arc::new(maps));
+        self
+    }
+
+    /// The training maps every genome is evaluated on, when more than this
+    /// experiment's own (`experiment.scenarios`).
+    pub fn maps(&self) -> Option<&Maps> {
+        self.maps.as_deref()
     }
 
     /// The shape of the CPPN genomes this experiment evolves.
@@ -183,8 +199,11 @@ impl Experiment {
     }
 
     /// Robot-steps one evaluation during evolution simulates (over every
-    /// training resolution).
+    /// training map and resolution).
     pub fn evaluation_robot_steps(&self) -> u64 {
+        if let Some(maps) = &self.maps {
+            return maps.robot_steps();
+        }
         self.training.as_ref().map_or_else(
             || self.robots() as u64 * u64::from(self.steps),
             |t| t.robot_steps(),
@@ -224,6 +243,15 @@ impl Experiment {
         match self.controller(genome) {
             Ok(c) => self.run(&c, false).fitness,
             Err(_) => 0.0,
+        }
+    }
+
+    /// The fitness evolution gives `genome` on this experiment's map: the
+    /// aggregate over the training resolutions when there are several.
+    pub fn training_fitness(&self, genome: &Genome) -> f64 {
+        match &self.training {
+            Some(training) => training.fitness(genome),
+            None => self.fitness(genome),
         }
     }
 
@@ -284,9 +312,9 @@ impl Experiment {
 /// controller's average speed (deterministic: the episode has no randomness).
 impl Task for Experiment {
     fn evaluate(&self, genome: &Genome, _ctx: &EvalContext) -> Evaluation {
-        match &self.training {
-            Some(training) => Evaluation::fitness(training.fitness(genome)),
-            None => Evaluation::fitness(self.fitness(genome)),
+        match &self.maps {
+            Some(maps) => Evaluation::fitness(maps.fitness(genome)),
+            None => Evaluation::fitness(self.training_fitness(genome)),
         }
     }
 }

@@ -121,7 +121,26 @@ pub fn read_config(path: &Path) -> Result<crate::config::Config> {
             *p = base.join(&*p).to_string_lossy().into_owned();
         }
     }
+    for p in &mut config.experiment.scenarios {
+        *p = resolve_map(base, p);
+    }
     Ok(config)
+}
+
+/// A training map named in a config file in folder `base`: a relative path is
+/// relative to `base`, but a bare shipped name (`oval`) with no such file
+/// there stays a shipped name.
+pub fn resolve_map(base: &Path, name: &str) -> String {
+    let path = Path::new(name);
+    if path.is_absolute() {
+        return name.to_string();
+    }
+    let joined = base.join(path);
+    let bare = path.parent() == Some(Path::new(""));
+    if bare && !joined.exists() && crate::shipped::find(name).is_some() {
+        return name.to_string();
+    }
+    joined.to_string_lossy().into_owned()
 }
 
 /// A short reason for an I/O error, without the OS error code noise.

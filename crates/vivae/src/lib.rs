@@ -34,6 +34,7 @@ pub mod evolve;
 pub mod experiment;
 pub mod figures;
 pub mod io;
+pub mod maps;
 #[cfg(feature = "mpi")]
 pub mod mpi;
 pub mod normalize;

@@ -59,9 +59,10 @@ enum Command {
 #[derive(Args, Debug, Default)]
 struct Overrides {
     /// Scenario SVG file, or the name of a shipped one (`vivae scenario list`;
-    /// default: the embedded road scenario).
+    /// default: the embedded road scenario). Repeat it to train on several
+    /// maps at once (fitness = the mean over maps).
     #[arg(long, value_name = "FILE|NAME")]
-    scenario: Option<PathBuf>,
+    scenario: Vec<PathBuf>,
     /// Generations to evolve.
     #[arg(long, value_name = "N")]
     generations: Option<u32>,
@@ -300,8 +301,21 @@ fn dispatch(cli: Cli, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode>
 }
 
 fn apply_overrides(config: &mut Config, o: &Overrides) -> anyhow::Result<()> {
-    if let Some(p) = &o.scenario {
-        config.experiment.scenario = p.to_string_lossy().into_owned();
+    // Flags replace the config file's map(s): one --scenario is a single-map
+    // run, several are a multi-map run.
+    match o.scenario.as_slice() {
+        [] => {}
+        [one] => {
+            config.experiment.scenario = one.to_string_lossy().into_owned();
+            config.experiment.scenarios.clear();
+        }
+        several => {
+            config.experiment.scenario.clear();
+            config.experiment.scenarios = several
+                .iter()
+                .map(|p| p.to_string_lossy().into_owned())
+                .collect();
+        }
     }
     if let Some(n) = o.generations {
         config.experiment.generations = n;
@@ -375,15 +389,15 @@ fn cmd_evolve(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
     };
     apply_overrides(&mut config, &args.overrides)?;
     let setup = || -> vivae::Result<_> {
-        let scenario = load_scenario(scenario_path(&config).as_deref())?;
-        let experiment = Experiment::new(&config, &scenario.scenario)?;
+        let maps = vivae::maps::load(&config)?;
+        let experiment = vivae::maps::experiment(&config, &maps)?;
         let init = if config.experiment.init_population.is_empty() {
             None
         } else {
             let path = Path::new(&config.experiment.init_population);
             Some(evolve::population_from_checkpoint(path)?.1)
         };
-        Ok((scenario, experiment, init))
+        Ok((maps, experiment, init))
     };
     // Problems with what a config file names are reported against that file too.
     let prepared = match &args.config {
@@ -391,24 +405,32 @@ fn cmd_evolve(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
         None => setup().map_err(anyhow::Error::from),
     };
     #[cfg(feature = "mpi")]
+    let fingerprint = prepared.as_ref().map_or_else(
+        |_| String::new(),
+        |(m, _, _)| vivae::maps::fingerprint_text(m),
+    );
+    #[cfg(feature = "mpi")]
     if let Some(code) = mpi_start(
         prepared
             .as_ref()
-            .map(|(s, e, _)| (&config, s.text.as_str(), e)),
+            .map(|(_, e, _)| (&config, fingerprint.as_str(), e)),
         config.run.threads,
         args.quiet,
     )? {
         return Ok(code);
     }
-    let (scenario, experiment, init) = prepared?;
+    let (maps, experiment, init) = prepared?;
     if !args.quiet {
-        for w in &scenario.scenario.warnings {
-            eprintln!("warning: {w}");
+        for m in &maps {
+            for w in &m.loaded.scenario.warnings {
+                eprintln!("warning: {w}");
+            }
         }
     }
     let dir = args.out.clone().unwrap_or_else(vivae::io::default_run_dir);
-    let run = Run::create(&dir, config, experiment, &scenario.text, init, args.force)?;
-    let source = scenario.scenario.source.clone();
+    let source = vivae::maps::describe(&maps, &experiment);
+    let first = &maps[0].loaded.text;
+    let run = Run::create_on_maps(&dir, config, experiment, first, &maps, init, args.force)?;
     drive(run, &source, args.quiet, interrupted)
 }
 
@@ -419,14 +441,13 @@ fn cmd_resume(args: ResumeArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
         let prepared = (|| -> anyhow::Result<_> {
             let checkpoint = evolve::latest_checkpoint(&args.run_dir)?;
             let (config, _) = evolve::population_from_checkpoint(&checkpoint)?;
-            let scenario = load_scenario(Some(&args.run_dir.join(files::SCENARIO)))?;
-            let experiment =
-                Experiment::new(&config, &scenario.scenario).map_err(vivae::Error::from)?;
-            Ok((config, scenario, experiment))
+            let maps = vivae::maps::load_run(&args.run_dir, &config, None)?;
+            let experiment = vivae::maps::experiment(&config, &maps)?;
+            Ok((config, vivae::maps::fingerprint_text(&maps), experiment))
         })();
         let threads = prepared.as_ref().map_or(0, |(c, _, _)| c.run.threads);
         if let Some(code) = mpi_start(
-            prepared.as_ref().map(|(c, s, e)| (c, s.text.as_str(), e)),
+            prepared.as_ref().map(|(c, s, e)| (c, s.as_str(), e)),
             args.threads.unwrap_or(threads),
             args.quiet,
         )? {
@@ -447,18 +468,36 @@ fn cmd_resume(args: ResumeArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
         }
         return Ok(ExitCode::SUCCESS);
     }
-    let source = run.dir().join(files::SCENARIO).display().to_string();
+    let source = if vivae::maps::is_multi_map(run.config()) {
+        let dir = run.dir();
+        run.config()
+            .experiment
+            .scenarios
+            .iter()
+            .map(|s| dir.join(s).display().to_string())
+            .collect::<Vec<_>>()
+            .join(", ")
+    } else {
+        run.dir().join(files::SCENARIO).display().to_string()
+    };
     drive(run, &source, args.quiet, interrupted)
 }
 
 fn cmd_retrain(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode> {
     let checkpoint = evolve::latest_checkpoint(&args.run_dir)?;
     let (mut config, population) = evolve::population_from_checkpoint(&checkpoint)?;
-    config.experiment.scenario = args
-        .run_dir
-        .join(files::SCENARIO)
-        .to_string_lossy()
-        .into_owned();
+    if vivae::maps::is_multi_map(&config) {
+        // A multi-map run retrains on the copies of its maps.
+        for s in &mut config.experiment.scenarios {
+            *s = args.run_dir.join(&*s).to_string_lossy().into_owned();
+        }
+    } else {
+        config.experiment.scenario = args
+            .run_dir
+            .join(files::SCENARIO)
+            .to_string_lossy()
+            .into_owned();
+    }
     config.experiment.init_population = checkpoint.to_string_lossy().into_owned();
     let overrides = Overrides {
         generations: Some(args.generations),
@@ -469,32 +508,36 @@ fn cmd_retrain(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Resu
     };
     apply_overrides(&mut config, &overrides)?;
     let prepared = (|| -> anyhow::Result<_> {
-        let scenario = load_scenario(scenario_path(&config).as_deref())?;
-        let experiment =
-            Experiment::new(&config, &scenario.scenario).map_err(vivae::Error::from)?;
-        Ok((scenario, experiment))
+        let maps = vivae::maps::load(&config)?;
+        let experiment = vivae::maps::experiment(&config, &maps)?;
+        Ok((maps, experiment))
     })();
+    #[cfg(feature = "mpi")]
+    let fingerprint = prepared
+        .as_ref()
+        .map_or_else(|_| String::new(), |(m, _)| vivae::maps::fingerprint_text(m));
     #[cfg(feature = "mpi")]
     if let Some(code) = mpi_start(
         prepared
             .as_ref()
-            .map(|(s, e)| (&config, s.text.as_str(), e)),
+            .map(|(_, e)| (&config, fingerprint.as_str(), e)),
         config.run.threads,
         args.quiet,
     )? {
         return Ok(code);
     }
-    let (scenario, experiment) = prepared?;
+    let (maps, experiment) = prepared?;
     let dir = args.out.clone().unwrap_or_else(vivae::io::default_run_dir);
-    let run = Run::create(
+    let source = vivae::maps::describe(&maps, &experiment);
+    let run = Run::create_on_maps(
         &dir,
         config,
         experiment,
-        &scenario.text,
+        &maps[0].loaded.text,
+        &maps,
         Some(population),
         args.force,
     )?;
-    let source = scenario.scenario.source.clone();
     drive(run, &source, args.quiet, interrupted)
 }
 
@@ -518,6 +561,13 @@ fn header(run: &Run, scenario: &str) -> String {
         0 => String::new(),
         d => format!(" (resuming after generation {d})"),
     };
+    let maps = match run.experiment().maps() {
+        None => String::new(),
+        Some(m) => format!(
+            "\n  training maps: {} (fitness = mean over maps; robots, figures and replay: the first)",
+            m.labels().collect::<Vec<_>>().join(", ")
+        ),
+    };
     let training = match run.experiment().training() {
         None => String::new(),
         Some(t) => format!(
@@ -529,7 +579,7 @@ fn header(run: &Run, scenario: &str) -> String {
     format!(
         "vivae evolve: {scenario}\n\
          \x20 robots {}, {} steps per evaluation, population {}, {} generations{start}\n\
-         \x20 substrate: {}x{} surface sensors{distance}, {}x{} neurons; threads {threads}, seed {}{training}\n\
+         \x20 substrate: {}x{} surface sensors{distance}, {}x{} neurons; threads {threads}, seed {}{training}{maps}\n\
          \x20 output: {}\n\
          \x20 fitness = average speed in px/step over all robots and steps (full throttle on road tends to 5)",
         run.experiment().robots(),
@@ -686,8 +736,19 @@ fn progress_bar(total: u32, done: u32) -> indicatif::ProgressBar {
 
 fn cmd_replay(args: ReplayArgs) -> anyhow::Result<ExitCode> {
     let (champion, mut config, base) = report::load_genome_source(&args.source)?;
+    // A multi-map run replays on its first training map unless told otherwise.
+    if args.scenario.is_none() && vivae::maps::is_multi_map(&config) {
+        let maps = std::mem::take(&mut config.experiment.scenarios);
+        eprintln!(
+            "replaying on the first training map, {} (of {}: {}); choose another with --scenario",
+            maps[0],
+            maps.len(),
+            maps.join(", ")
+        );
+        config.experiment.scenario = maps[0].clone();
+    }
     let overrides = Overrides {
-        scenario: args.scenario.clone(),
+        scenario: args.scenario.iter().cloned().collect(),
         sensors: args.sensors,
         neurons: args.neurons,
         steps: args.steps,

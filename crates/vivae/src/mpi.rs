@@ -349,6 +349,7 @@ fn evaluation_config(config: &Config) -> String {
     let mut c = config.clone();
     c.experiment.generations = 0;
     c.experiment.scenario.clear();
+    c.experiment.scenarios.clear();
     c.experiment.init_population.clear();
     c.run = RunConfig::default();
     c.to_toml()

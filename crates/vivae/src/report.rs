@@ -111,10 +111,21 @@ pub fn finish_run(run: &Run) -> Result<RunSummary> {
     reuse.episodes.push((&champion.genome, &episode));
     crate::report_html::write_reusing(run.dir(), &reuse)?;
 
+    // On several maps the champion's fitness is the mean over maps: its time on road too.
+    let champion_on_road = match experiment.maps() {
+        None => episode.on_road.unwrap_or_default(),
+        Some(maps) => crate::maps::mean(
+            &maps
+                .episodes(&champion.genome)?
+                .iter()
+                .map(|e| e.on_road.unwrap_or_default())
+                .collect::<Vec<_>>(),
+        ),
+    };
     Ok(RunSummary {
         champion_fitness: champion.fitness,
         champion_generation: champion.generation,
-        champion_on_road: episode.on_road.unwrap_or_default(),
+        champion_on_road,
     })
 }
 
@@ -136,6 +147,9 @@ pub fn load_genome_source(source: &Path) -> Result<(Champion, Config, PathBuf)> 
                 let scenario = &mut config.experiment.scenario;
                 if !scenario.is_empty() && Path::new(scenario.as_str()).is_relative() {
                     *scenario = base.join(&*scenario).to_string_lossy().into_owned();
+                }
+                for map in &mut config.experiment.scenarios {
+                    *map = crate::io::resolve_map(&base, map);
                 }
                 config.experiment.init_population.clear();
                 config

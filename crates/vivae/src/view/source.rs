@@ -100,6 +100,25 @@ impl Source {
                 }
             }
         };
+        // A multi-map run also offers its other training maps (the first is scenario.svg).
+        if matches!(source.kind, SourceKind::Run(_)) {
+            for (k, map) in source
+                .config
+                .experiment
+                .scenarios
+                .iter()
+                .enumerate()
+                .skip(1)
+            {
+                let text = read_text(Path::new(map))?;
+                let name = Path::new(map)
+                    .file_name()
+                    .map_or_else(|| map.clone(), |n| n.to_string_lossy().into_owned());
+                source
+                    .scenarios
+                    .push((format!("{name} (training map {})", k + 1), text));
+            }
+        }
         if source.scenarios[0].1 != default.1 {
             source.scenarios.push(default);
         }

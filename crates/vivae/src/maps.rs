@@ -1,0 +1,357 @@
+//! Training on several maps at once: every genome is evaluated on each
+//! training map, with that map's own robots, and its fitness is the mean over
+//! maps (each map weighs the same, whatever its number of robots).
+//!
+//! The maps are `experiment.scenarios` (`vivae evolve --scenario A --scenario
+//! B`). Each map's evaluation is deterministic and composes with
+//! multi-resolution evolution (a map's fitness is then its own aggregate over
+//! the training resolutions), so the mean does not depend on thread or process
+//! count. A run directory keeps a copy of every map under `scenarios/` with a
+//! manifest of their FNV-1a hashes; the checkpoint records the hashes too, and
+//! `resume` refuses a copy that changed.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use vivae_neat::Genome;
+
+use crate::config::Config;
+use crate::error::{Error, Result};
+use crate::experiment::{Episode, Experiment, ExperimentError};
+use crate::io::{LoadedScenario, load_scenario};
+
+/// Folder of a multi-map run directory holding the copies of the training maps.
+pub const MAPS_DIR: &str = "scenarios";
+/// The manifest in [`MAPS_DIR`]: one line per map, `file fnv1a64 source`.
+pub const MANIFEST: &str = "manifest.txt";
+
+/// The experiments of every training map, in the order given.
+#[derive(Debug, Clone)]
+pub struct Maps {
+    /// (label such as `oval`, experiment on that map).
+    maps: Vec<(String, Experiment)>,
+}
+
+impl Maps {
+    /// Labels of the maps (file stems), in evaluation order.
+    pub fn labels(&self) -> impl Iterator<Item = &str> {
+        self.maps.iter().map(|(l, _)| l.as_str())
+    }
+
+    /// The experiment of each map, in evaluation order.
+    pub fn experiments(&self) -> impl Iterator<Item = &Experiment> {
+        self.maps.iter().map(|(_, e)| e)
+    }
+
+    /// Fitness of `genome` on every map (each over its training resolutions
+    /// when there are several), in evaluation order.
+    pub fn fitnesses(&self, genome: &Genome) -> Vec<f64> {
+        self.maps
+            .iter()
+            .map(|(_, e)| e.training_fitness(genome))
+            .collect()
+    }
+
+    /// The map-weighted mean fitness of `genome`.
+    pub fn fitness(&self, genome: &Genome) -> f64 {
+        mean(&self.fitnesses(genome))
+    }
+
+    /// Recorded episodes of `genome` on every map (at each map's own
+    /// resolution), for on-road and behaviour figures.
+    pub fn episodes(&self, genome: &Genome) -> std::result::Result<Vec<Episode>, ExperimentError> {
+        self.maps
+            .iter()
+            .map(|(_, e)| Ok(e.run(&e.controller(genome)?, true)))
+            .collect()
+    }
+
+    /// Robot-steps one evaluation simulates over all maps and resolutions.
+    pub fn robot_steps(&self) -> u64 {
+        self.maps
+            .iter()
+            .map(|(_, e)| e.evaluation_robot_steps())
+            .sum()
+    }
+}
+
+/// The map-weighted mean: the sum in map order over the number of maps (so
+/// that a test can repeat it bit for bit).
+pub fn mean(values: &[f64]) -> f64 {
+    values.iter().sum::<f64>() / values.len().max(1) as f64
+}
+
+/// A training map as loaded: its label and its SVG.
+#[derive(Debug, Clone)]
+pub struct TrainingMap {
+    /// Short name (the file stem, e.g. `oval`).
+    pub label: String,
+    /// The parsed scenario and its text.
+    pub loaded: LoadedScenario,
+}
+
+/// Whether `config` trains on a list of maps (`experiment.scenarios`).
+pub fn is_multi_map(config: &Config) -> bool {
+    !config.experiment.scenarios.is_empty()
+}
+
+/// Loads the training maps `config` names: `experiment.scenarios`, else the
+/// single `experiment.scenario` (empty = the embedded default).
+pub fn load(config: &Config) -> Result<Vec<TrainingMap>> {
+    if !is_multi_map(config) {
+        let path = (!config.experiment.scenario.is_empty())
+            .then(|| PathBuf::from(&config.experiment.scenario));
+        let loaded = load_scenario(path.as_deref())?;
+        return Ok(vec![TrainingMap {
+            label: crate::report::scenario_name(path.as_deref()),
+            loaded,
+        }]);
+    }
+    config
+        .experiment
+        .scenarios
+        .iter()
+        .map(|name| {
+            let path = Path::new(name);
+            Ok(TrainingMap {
+                label: crate::report::scenario_name(Some(path)),
+                loaded: load_scenario(Some(path))?,
+            })
+        })
+        .collect()
+}
+
+/// The experiment of `config` on `maps`: for a single-scenario config exactly
+/// [`Experiment::new`]; otherwise the first map's experiment, which evaluates
+/// every genome on all maps during evolution and reports, draws and replays
+/// the first.
+pub fn experiment(config: &Config, maps: &[TrainingMap]) -> Result<Experiment> {
+    let first = maps
+        .first()
+        .ok_or_else(|| crate::io::bad_input("no training map"))?;
+    if !is_multi_map(config) {
+        return Ok(Experiment::new(config, &first.loaded.scenario)?);
+    }
+    let mut experiments = Vec::with_capacity(maps.len());
+    for m in maps {
+        let e = Experiment::new(config, &m.loaded.scenario).map_err(|e| match e {
+            ExperimentError::Scenario(s) => ExperimentError::Scenario(s),
+            other => ExperimentError::Config(format!("training map {}: {other}", m.label)),
+        })?;
+        experiments.push((m.label.clone(), e));
+    }
+    let primary = experiments[0].1.clone();
+    Ok(primary.with_maps(Maps { maps: experiments }))
+}
+
+/// File names the copies of `maps` get in `scenarios/`: `LABEL.svg`, with
+/// `-2`, `-3`, … after a label already taken.
+pub fn copy_names(maps: &[TrainingMap]) -> Vec<String> {
+    let mut names: Vec<String> = Vec::with_capacity(maps.len());
+    for m in maps {
+        let safe: String = m
+            .label
+            .chars()
+            .map(|c| {
+                if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                    c
+                } else {
+                    '_'
+                }
+            })
+            .collect();
+        let mut name = format!("{safe}.svg");
+        let mut k = 2;
+        while names.contains(&name) {
+            name = format!("{safe}-{k}.svg");
+            k += 1;
+        }
+        names.push(name);
+    }
+    names
+}
+
+/// FNV-1a 64 of a map's text: what the manifest and the checkpoint record.
+pub fn fnv1a(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
+    })
+}
+
+/// The manifest's text for copies `names` of `maps`.
+pub fn manifest(names: &[String], maps: &[TrainingMap]) -> String {
+    let mut out = String::from("# file fnv1a64 source (the training maps, in evaluation order)\n");
+    for (name, m) in names.iter().zip(maps) {
+        let _ = writeln!(
+            out,
+            "{name} {:016x} {}",
+            fnv1a(m.loaded.text.as_bytes()),
+            m.loaded.scenario.source
+        );
+    }
+    out
+}
+
+/// Loads the training maps of the run in `dir` (its config `config`): the
+/// copies under `scenarios/` for a multi-map run, else `scenario.svg`.
+/// With `hashes` (from the checkpoint), a copy whose text changed is refused.
+pub fn load_run(dir: &Path, config: &Config, hashes: Option<&[u64]>) -> Result<Vec<TrainingMap>> {
+    if !is_multi_map(config) {
+        let path = dir.join(crate::evolve::files::SCENARIO);
+        return Ok(vec![TrainingMap {
+            label: crate::report::scenario_name(Some(&path)),
+            loaded: load_scenario(Some(&path))?,
+        }]);
+    }
+    let names = &config.experiment.scenarios;
+    if let Some(h) = hashes
+        && h.len() != names.len()
+    {
+        return Err(Error::Checkpoint {
+            path: dir.to_path_buf(),
+            reason: format!(
+                "the checkpoint records {} training maps, config.toml names {}",
+                h.len(),
+                names.len()
+            ),
+        });
+    }
+    let mut maps = Vec::with_capacity(names.len());
+    for (i, name) in names.iter().enumerate() {
+        let path = dir.join(name);
+        let text = crate::io::read_text(&path)?;
+        if let Some(h) = hashes
+            && h[i] != fnv1a(text.as_bytes())
+        {
+            return Err(Error::Checkpoint {
+                path,
+                reason: format!(
+                    "training map {} was edited since the run started (its hash is not the one the checkpoint records); restore it, or start a new run",
+                    i + 1
+                ),
+            });
+        }
+        maps.push(TrainingMap {
+            label: crate::report::scenario_name(Some(&path)),
+            loaded: load_scenario(Some(&path))?,
+        });
+    }
+    Ok(maps)
+}
+
+/// One text standing for all training maps (compared between MPI ranks):
+/// the single map's text, or every map's text after its name.
+pub fn fingerprint_text(maps: &[TrainingMap]) -> String {
+    match maps {
+        [one] => one.loaded.text.clone(),
+        _ => maps.iter().fold(String::new(), |mut s, m| {
+            let _ = write!(s, "\n--- {} ---\n{}", m.label, m.loaded.text);
+            s
+        }),
+    }
+}
+
+/// The training maps for a person: `roads.svg (shipped): 5 robots, …`.
+pub fn describe(maps: &[TrainingMap], experiment: &Experiment) -> String {
+    match experiment.maps() {
+        None => maps
+            .first()
+            .map(|m| m.loaded.scenario.source.clone())
+            .unwrap_or_default(),
+        Some(ms) => maps
+            .iter()
+            .zip(ms.experiments())
+            .map(|(m, e)| format!("{}: {} robots", m.loaded.scenario.source, e.robots()))
+            .collect::<Vec<_>>()
+            .join(", "),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use vivae_neat::driver::Task;
+    use vivae_neat::{EvalContext, Population};
+
+    fn config(maps: &[&str]) -> Config {
+        let mut c = Config::default();
+        c.experiment.steps = 60;
+        c.experiment.scenarios = maps.iter().map(|s| s.to_string()).collect();
+        c
+    }
+
+    #[test]
+    fn fitness_is_the_mean_over_maps_of_each_maps_own_fitness() {
+        let c = config(&["roads", "oval", "traffic"]);
+        let maps = load(&c).unwrap();
+        let e = experiment(&c, &maps).unwrap();
+        let pop = Population::new(c.neat.clone(), e.cppn_spec(), 3).unwrap();
+        let ctx = EvalContext {
+            generation: 1,
+            index: 0,
+            seed: 0,
+        };
+        for g in pop.genomes().iter().take(4) {
+            let alone: Vec<f64> = maps
+                .iter()
+                .map(|m| {
+                    let mut single = c.clone();
+                    single.experiment.scenarios.clear();
+                    Experiment::new(&single, &m.loaded.scenario)
+                        .unwrap()
+                        .fitness(g)
+                })
+                .collect();
+            let want = (alone[0] + alone[1] + alone[2]) / 3.0;
+            assert_eq!(e.evaluate(g, &ctx).fitness.to_bits(), want.to_bits());
+        }
+        // Reported and drawn: the first map.
+        assert_eq!(e.robots(), 5);
+        let steps: u64 = [5u64, 5, 5].iter().map(|r| r * 60).sum();
+        assert_eq!(e.evaluation_robot_steps(), steps);
+    }
+
+    #[test]
+    fn maps_compose_with_training_resolutions() {
+        let mut c = config(&["roads", "oval"]);
+        c.substrate.train_neurons = vec![
+            crate::substrate::PolarGrid {
+                rings: 3,
+                angles: 3,
+            },
+            crate::substrate::PolarGrid {
+                rings: 5,
+                angles: 5,
+            },
+        ];
+        let maps = load(&c).unwrap();
+        let e = experiment(&c, &maps).unwrap();
+        let ms = e.maps().unwrap();
+        assert_eq!(ms.labels().collect::<Vec<_>>(), ["roads", "oval"]);
+        let pop = Population::new(c.neat.clone(), e.cppn_spec(), 5).unwrap();
+        let g = &pop.genomes()[0];
+        let per_map: Vec<f64> = ms
+            .experiments()
+            .map(|m| m.training().unwrap().fitness(g))
+            .collect();
+        assert_eq!(ms.fitness(g).to_bits(), mean(&per_map).to_bits());
+        assert_eq!(e.evaluation_robot_steps(), 2 * 2 * 5 * 60);
+    }
+
+    #[test]
+    fn copies_of_maps_with_one_name_get_distinct_files() {
+        let c = config(&["oval", "oval", "roads"]);
+        let maps = load(&c).unwrap();
+        assert_eq!(copy_names(&maps), ["oval.svg", "oval-2.svg", "roads.svg"]);
+        let m = manifest(&copy_names(&maps), &maps);
+        assert_eq!(m.lines().count(), 4);
+        assert!(m.contains("oval-2.svg "));
+    }
+
+    #[test]
+    fn a_single_scenario_config_builds_the_plain_experiment() {
+        let c = Config::default();
+        let e = experiment(&c, &load(&c).unwrap()).unwrap();
+        assert!(e.maps().is_none());
+    }
+}
