@@ -670,7 +670,10 @@ mod tests {
                 assert_eq!(scaled.input_weight(s, t), c.input_weight(s, t));
             }
             assert_eq!(scaled.input_weight(2, t), 0.5 * c.input_weight(2, t));
-            assert_eq!(scaled.recurrent_weight(0, t), 2.0 * c.recurrent_weight(0, t));
+            assert_eq!(
+                scaled.recurrent_weight(0, t),
+                2.0 * c.recurrent_weight(0, t)
+            );
         }
         assert_eq!(scaled.recurrent_weight(1, 0), -c.recurrent_weight(1, 0));
         assert_eq!(scaled.recurrent_weight(1, 1), c.recurrent_weight(1, 1));
