@@ -26,7 +26,7 @@ use vivae_neat::{Genome, Population, stats};
 use crate::config::Config;
 use crate::error::{Error, Result};
 use crate::experiment::Experiment;
-use crate::io::{bad_input, write_atomic};
+use crate::io::{bad_input, fnv1a, write_atomic};
 
 /// File names inside a run directory.
 pub mod files {
@@ -296,13 +296,6 @@ struct Checkpoint {
 
 const CHECKPOINT_MAGIC: &str = "vivae-checkpoint v1";
 
-/// FNV-1a 64: detects truncation and bit rot in checkpoints.
-fn fnv1a(bytes: &[u8]) -> u64 {
-    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
-        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
-    })
-}
-
 fn encode_checkpoint(cp: &Checkpoint) -> Result<String> {
     let body = serde_json::to_string(cp).map_err(|e| Error::Serialize {
         what: "checkpoint",
@@ -483,7 +476,7 @@ impl Run {
             scenario_fnv: Some(fnv1a(scenario_text.as_bytes())),
             maps_fnv: (!maps.is_empty()).then(|| {
                 maps.iter()
-                    .map(|m| crate::maps::fnv1a(m.loaded.text.as_bytes()))
+                    .map(|m| fnv1a(m.loaded.text.as_bytes()))
                     .collect()
             }),
             ..Progress::start(population.generation())

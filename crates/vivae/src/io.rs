@@ -8,6 +8,27 @@ use vivae_sim::{LoadOptions, Scenario};
 
 use crate::error::{Error, Result};
 
+/// FNV-1a 64 of `bytes`: the checksum of checkpoints and stored training maps.
+pub fn fnv1a(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
+    })
+}
+
+/// `name` with every character but ASCII letters, digits, `-` and `_`
+/// replaced by `_`: a file-name stem every file system accepts.
+pub fn safe_file_stem(name: &str) -> String {
+    name.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}
+
 /// An [`Error::Invalid`]: bad input from the user (exit code 2) that is not about one file.
 pub fn bad_input(message: impl Into<String>) -> Error {
     Error::Invalid(message.into())

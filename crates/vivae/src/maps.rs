@@ -18,7 +18,7 @@ use vivae_neat::Genome;
 use crate::config::Config;
 use crate::error::{Error, Result};
 use crate::experiment::{Episode, Experiment, ExperimentError};
-use crate::io::{LoadedScenario, load_scenario};
+use crate::io::{LoadedScenario, fnv1a, load_scenario, safe_file_stem};
 
 /// Folder of a multi-map run directory holding the copies of the training maps.
 pub const MAPS_DIR: &str = "scenarios";
@@ -149,17 +149,7 @@ pub fn experiment(config: &Config, maps: &[TrainingMap]) -> Result<Experiment> {
 pub fn copy_names(maps: &[TrainingMap]) -> Vec<String> {
     let mut names: Vec<String> = Vec::with_capacity(maps.len());
     for m in maps {
-        let safe: String = m
-            .label
-            .chars()
-            .map(|c| {
-                if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
-                    c
-                } else {
-                    '_'
-                }
-            })
-            .collect();
+        let safe = safe_file_stem(&m.label);
         let mut name = format!("{safe}.svg");
         let mut k = 2;
         while names.contains(&name) {
@@ -169,13 +159,6 @@ pub fn copy_names(maps: &[TrainingMap]) -> Vec<String> {
         names.push(name);
     }
     names
-}
-
-/// FNV-1a 64 of a map's text: what the manifest and the checkpoint record.
-pub fn fnv1a(bytes: &[u8]) -> u64 {
-    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
-        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
-    })
 }
 
 /// The manifest's text for copies `names` of `maps`.

@@ -216,17 +216,7 @@ pub fn replay(
 ) -> Result<Replay> {
     let s = &config.surface_sensors;
     let n = config.substrate.neurons;
-    // File names keep to characters every file system accepts.
-    let safe: String = scenario
-        .chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
-                c
-            } else {
-                '_'
-            }
-        })
-        .collect();
+    let safe = crate::io::safe_file_stem(scenario);
     let name = format!(
         "replay-{safe}-s{}x{}-n{}x{}",
         s.rings, s.angles, n.rings, n.angles
