@@ -27,14 +27,26 @@ pub struct HttpResponse {
 
 /// Sends one raw HTTP/1.1 request (the target is sent exactly as given, unnormalised).
 pub fn http(port: u16, method: &str, target: &str, body: Option<&str>) -> HttpResponse {
-    let mut s = TcpStream::connect(("127.0.0.1", port)).expect("connect");
-    s.set_read_timeout(Some(PATIENCE)).unwrap();
+    try_http(port, method, target, body).expect("HTTP exchange")
+}
+
+/// [`http`], but a refused or broken connection is an error instead of a panic.
+pub fn try_http(
+    port: u16,
+    method: &str,
+    target: &str,
+    body: Option<&str>,
+) -> std::io::Result<HttpResponse> {
+    let broken =
+        |what: &str| std::io::Error::new(std::io::ErrorKind::UnexpectedEof, what.to_string());
+    let mut s = TcpStream::connect(("127.0.0.1", port))?;
+    s.set_read_timeout(Some(PATIENCE))?;
     let body = body.unwrap_or("");
     let req = format!(
         "{method} {target} HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\nConnection: close\r\nContent-Type: application/json\r\nContent-Length: {}\r\n\r\n{body}",
         body.len()
     );
-    s.write_all(req.as_bytes()).unwrap();
+    s.write_all(req.as_bytes())?;
     // Read the head, then exactly the body it announces: a keep-alive server
     // (chromedriver) may not close the connection.
     let mut raw = Vec::new();
@@ -43,8 +55,10 @@ pub fn http(port: u16, method: &str, target: &str, body: Option<&str>) -> HttpRe
         if let Some(p) = raw.windows(4).position(|w| w == b"\r\n\r\n") {
             break p;
         }
-        let n = s.read(&mut buf).unwrap();
-        assert!(n > 0, "connection closed before the HTTP head ended");
+        let n = s.read(&mut buf)?;
+        if n == 0 {
+            return Err(broken("connection closed before the HTTP head ended"));
+        }
         raw.extend_from_slice(&buf[..n]);
     };
     let head = String::from_utf8_lossy(&raw[..split]).to_ascii_lowercase();
@@ -53,7 +67,7 @@ pub fn http(port: u16, method: &str, target: &str, body: Option<&str>) -> HttpRe
         .split_whitespace()
         .nth(1)
         .and_then(|c| c.parse().ok())
-        .expect("status code");
+        .ok_or_else(|| broken("no status code"))?;
     let length = head
         .lines()
         .find_map(|l| l.strip_prefix("content-length:"))
@@ -68,7 +82,7 @@ pub fn http(port: u16, method: &str, target: &str, body: Option<&str>) -> HttpRe
         if done {
             break;
         }
-        let n = s.read(&mut buf).unwrap();
+        let n = s.read(&mut buf)?;
         if n == 0 {
             break;
         }
@@ -77,10 +91,10 @@ pub fn http(port: u16, method: &str, target: &str, body: Option<&str>) -> HttpRe
     if chunked {
         payload = dechunk(&payload);
     }
-    HttpResponse {
+    Ok(HttpResponse {
         status,
         body: payload,
-    }
+    })
 }
 
 fn dechunk(mut data: &[u8]) -> Vec<u8> {
@@ -171,32 +185,6 @@ impl Browser {
             );
             return None;
         };
-        let port = free_port();
-        let child = Command::new(driver)
-            .arg(format!("--port={port}"))
-            .stdout(Stdio::null())
-            .stderr(Stdio::null())
-            .spawn()
-            .expect("chromedriver starts");
-        let profile =
-            std::env::temp_dir().join(format!("vivae-chromium-{}-{port}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&profile);
-        let mut browser = Browser {
-            driver: child,
-            port,
-            session: String::new(),
-            profile: profile.clone(),
-        };
-        // chromedriver answers /status once it listens.
-        let mut up = false;
-        for _ in 0..200 {
-            if TcpStream::connect(("127.0.0.1", port)).is_ok() {
-                up = true;
-                break;
-            }
-            std::thread::sleep(Duration::from_millis(100));
-        }
-        assert!(up, "chromedriver did not start listening");
         let mut args: Vec<String> = [
             "--headless",
             "--no-sandbox",
@@ -212,8 +200,60 @@ impl Browser {
         .iter()
         .map(|s| s.to_string())
         .collect();
-        args.push(format!("--user-data-dir={}", profile.display()));
         args.extend(extra.iter().map(|s| s.to_string()));
+        // The port comes from a listener that is closed before chromedriver
+        // binds it, so another test's chromedriver or Chromium may take it in
+        // between (then our driver exits, or our requests reach a stranger):
+        // such a start is abandoned and retried on a fresh port.
+        let mut last_failure = String::new();
+        for _ in 0..8 {
+            match Self::try_start(&chromium, &driver, &args) {
+                Ok(browser) => return Some(browser),
+                Err(why) => last_failure = why,
+            }
+        }
+        panic!("could not start chromedriver with a session: {last_failure}");
+    }
+
+    /// One attempt at a driver on a fresh port with one session.
+    fn try_start(chromium: &Path, driver: &Path, args: &[String]) -> Result<Browser, String> {
+        let port = free_port();
+        let child = Command::new(driver)
+            .arg(format!("--port={port}"))
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("chromedriver starts");
+        let profile =
+            std::env::temp_dir().join(format!("vivae-chromium-{}-{port}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&profile);
+        // Dropping `browser` on any failure below kills this driver.
+        let mut browser = Browser {
+            driver: child,
+            port,
+            session: String::new(),
+            profile: profile.clone(),
+        };
+        // Ready only when *our* driver is alive and its /status says so.
+        let mut up = false;
+        for _ in 0..200 {
+            if let Ok(Some(status)) = browser.driver.try_wait() {
+                return Err(format!("chromedriver on port {port} exited: {status}"));
+            }
+            if let Ok(r) = try_http(port, "GET", "/status", None) {
+                let v: Value = serde_json::from_slice(&r.body).unwrap_or(Value::Null);
+                if v["value"]["ready"] == Value::Bool(true) {
+                    up = true;
+                    break;
+                }
+            }
+            std::thread::sleep(Duration::from_millis(100));
+        }
+        if !up {
+            return Err(format!("chromedriver on port {port} never became ready"));
+        }
+        let mut args = args.to_vec();
+        args.push(format!("--user-data-dir={}", profile.display()));
         let caps = json!({
             "capabilities": {
                 "alwaysMatch": {
@@ -226,12 +266,19 @@ impl Browser {
                 }
             }
         });
-        let v = browser.call("POST", "/session", Some(caps));
-        browser.session = v["sessionId"]
-            .as_str()
-            .unwrap_or_else(|| panic!("no WebDriver session: {v}"))
-            .to_string();
-        Some(browser)
+        let r = try_http(port, "POST", "/session", Some(&caps.to_string()))
+            .map_err(|e| format!("POST /session on port {port}: {e}"))?;
+        let v: Value = serde_json::from_slice(&r.body).unwrap_or(Value::Null);
+        match v["value"]["sessionId"].as_str() {
+            Some(id) if r.status == 200 => {
+                browser.session = id.to_string();
+                Ok(browser)
+            }
+            _ => Err(format!(
+                "no WebDriver session on port {port}: {}",
+                String::from_utf8_lossy(&r.body)
+            )),
+        }
     }
 
     /// One WebDriver command; returns its `value`, panicking on a WebDriver error.
