@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Measures every row of the speed table in docs/benchmarks.md ("Speed at every
-# resolution") on this machine and prints one line per row. Run it on a quiet
-# machine: every figure is a wall-clock one.
+# resolution") on this machine and prints each row's measurement under a
+# heading. Run it on a quiet machine: every figure is a wall-clock one.
 #
 #   scripts/speed-table.sh [OUT_DIR]     (default target/speed-table)
 #
@@ -14,7 +14,7 @@ mkdir -p "$out"
 rm -rf "$out/default-run" "$out/memory-run"
 
 cargo build --release -q -p vivae
-cargo bench -q --workspace --no-run 2>/dev/null
+cargo bench -q --workspace --no-run
 
 # `bench CRATE BENCH FILTER`: divan's rows for FILTER (fastest, slowest, median,
 # mean; with a counter, a second row gives the same as throughput).
