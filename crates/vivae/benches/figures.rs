@@ -6,12 +6,12 @@
 //! The champion is the paper's (tests/data/paper-champion.json) re-sampled to
 //! 32×96 sensors and 9×9 neurons, as `--sensors 32x96 --neurons 9x9` do.
 
-use vivae::config::Config;
-use vivae::experiment::Experiment;
 use vivae::figures::convergence::{self, ConvergenceOptions};
 use vivae::figures::network::{self, NetworkOptions};
-use vivae::io::load_scenario;
-use vivae::substrate::PolarGrid;
+use vivae_lab::config::Config;
+use vivae_lab::experiment::Experiment;
+use vivae_lab::io::load_scenario;
+use vivae_lab::substrate::PolarGrid;
 use vivae_neat::hyperneat::SubstrateController;
 use vivae_sim::draw::{self, DrawOptions};
 
@@ -25,7 +25,7 @@ fn camera() -> (Experiment, SubstrateController) {
         env!("CARGO_MANIFEST_DIR"),
         "/tests/data/paper-champion.json"
     );
-    let champion = vivae::report::read_champion(std::path::Path::new(path)).unwrap();
+    let champion = vivae_lab::evolve::read_champion(std::path::Path::new(path)).unwrap();
     let mut config = Config::default();
     config.surface_sensors.rings = 32;
     config.surface_sensors.angles = 96;
@@ -59,7 +59,7 @@ fn decode_32x96_to_9x9(bencher: divan::Bencher) {
         env!("CARGO_MANIFEST_DIR"),
         "/tests/data/paper-champion.json"
     );
-    let champion = vivae::report::read_champion(std::path::Path::new(path)).unwrap();
+    let champion = vivae_lab::evolve::read_champion(std::path::Path::new(path)).unwrap();
     let (experiment, _) = camera();
     bencher.bench(|| experiment.controller(&champion.genome).unwrap());
 }

@@ -11,12 +11,12 @@ use std::time::Instant;
 
 use anyhow::Context as _;
 use clap::{Args, Parser, Subcommand};
-use vivae::config::Config;
-use vivae::evolve::{self, GenerationRecord, Outcome, Run, files};
-use vivae::experiment::Experiment;
-use vivae::io::{bad_input, load_scenario, one_line, read_config, write_atomic};
 use vivae::report;
-use vivae::substrate::PolarGrid;
+use vivae_lab::config::Config;
+use vivae_lab::evolve::{self, GenerationRecord, Outcome, Run, files};
+use vivae_lab::experiment::Experiment;
+use vivae_lab::io::{bad_input, load_scenario, one_line, read_config, write_atomic};
+use vivae_lab::substrate::PolarGrid;
 
 mod portable_libm;
 
@@ -97,11 +97,11 @@ struct Overrides {
     train_sensors: Option<Vec<PolarGrid>>,
     /// How the training resolutions' fitnesses combine: mean (default) or min.
     #[arg(long, value_name = "mean|min")]
-    train_aggregate: Option<vivae::config::Aggregate>,
+    train_aggregate: Option<vivae_lab::config::Aggregate>,
     /// With substrate.normalize: count (the paper's) or area (each node by its
     /// share of the sheet's polar area).
     #[arg(long, value_name = "count|area")]
-    normalize_by: Option<vivae::config::NormalizeBy>,
+    normalize_by: Option<vivae_lab::config::NormalizeBy>,
     /// With substrate.normalize: false keeps self-loops at the CPPN's weight
     /// at any neuron resolution (default true, the paper's).
     #[arg(long, value_name = "true|false")]
@@ -109,7 +109,7 @@ struct Overrides {
     /// Neuron→neuron links kept: full (the paper's), self (self-loops only,
     /// no lateral links) or none.
     #[arg(long, value_name = "full|self|none")]
-    recurrence: Option<vivae::config::Recurrence>,
+    recurrence: Option<vivae_lab::config::Recurrence>,
 }
 
 #[derive(Args, Debug)]
@@ -171,7 +171,7 @@ struct ReplayArgs {
     /// With substrate.normalize: count (the paper's) or area (each node by its
     /// share of the sheet's polar area).
     #[arg(long, value_name = "count|area")]
-    normalize_by: Option<vivae::config::NormalizeBy>,
+    normalize_by: Option<vivae_lab::config::NormalizeBy>,
     /// With substrate.normalize: false keeps self-loops at the CPPN's weight
     /// at any neuron resolution (default true, the paper's).
     #[arg(long, value_name = "true|false")]
@@ -179,7 +179,7 @@ struct ReplayArgs {
     /// Neuron→neuron links kept: full (the paper's), self (self-loops only,
     /// no lateral links) or none.
     #[arg(long, value_name = "full|self|none")]
-    recurrence: Option<vivae::config::Recurrence>,
+    recurrence: Option<vivae_lab::config::Recurrence>,
 }
 
 #[derive(Args, Debug)]
@@ -249,7 +249,7 @@ enum ConfigCommand {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    if let Err(err) = vivae::simd::apply_env() {
+    if let Err(err) = vivae_lab::simd::apply_env() {
         eprintln!("error: {err}");
         return ExitCode::from(2);
     }
@@ -267,8 +267,8 @@ fn main() -> ExitCode {
             eprintln!("error: {}", one_line(&format!("{err:#}")));
             let users_fault = err
                 .chain()
-                .filter_map(|c| c.downcast_ref::<vivae::Error>())
-                .any(vivae::Error::is_bad_input);
+                .filter_map(|c| c.downcast_ref::<vivae_lab::Error>())
+                .any(vivae_lab::Error::is_bad_input);
             if users_fault {
                 ExitCode::from(2)
             } else {
@@ -388,9 +388,9 @@ fn cmd_evolve(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
         None => Config::default(),
     };
     apply_overrides(&mut config, &args.overrides)?;
-    let setup = || -> vivae::Result<_> {
-        let maps = vivae::maps::load(&config)?;
-        let experiment = vivae::maps::experiment(&config, &maps)?;
+    let setup = || -> vivae_lab::Result<_> {
+        let maps = vivae_lab::maps::load(&config)?;
+        let experiment = vivae_lab::maps::experiment(&config, &maps)?;
         let init = if config.experiment.init_population.is_empty() {
             None
         } else {
@@ -407,7 +407,7 @@ fn cmd_evolve(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
     #[cfg(feature = "mpi")]
     let fingerprint = prepared.as_ref().map_or_else(
         |_| String::new(),
-        |(m, _, _)| vivae::maps::fingerprint_text(m),
+        |(m, _, _)| vivae_lab::maps::fingerprint_text(m),
     );
     #[cfg(feature = "mpi")]
     if let Some(code) = mpi_start(
@@ -427,8 +427,11 @@ fn cmd_evolve(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
             }
         }
     }
-    let dir = args.out.clone().unwrap_or_else(vivae::io::default_run_dir);
-    let source = vivae::maps::describe(&maps, &experiment);
+    let dir = args
+        .out
+        .clone()
+        .unwrap_or_else(vivae_lab::io::default_run_dir);
+    let source = vivae_lab::maps::describe(&maps, &experiment);
     let first = &maps[0].loaded.text;
     let run = Run::create_on_maps(&dir, config, experiment, first, &maps, init, args.force)?;
     drive(run, &source, args.quiet, interrupted)
@@ -441,9 +444,9 @@ fn cmd_resume(args: ResumeArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
         let prepared = (|| -> anyhow::Result<_> {
             let checkpoint = evolve::latest_checkpoint(&args.run_dir)?;
             let (config, _) = evolve::population_from_checkpoint(&checkpoint)?;
-            let maps = vivae::maps::load_run(&args.run_dir, &config, None)?;
-            let experiment = vivae::maps::experiment(&config, &maps)?;
-            Ok((config, vivae::maps::fingerprint_text(&maps), experiment))
+            let maps = vivae_lab::maps::load_run(&args.run_dir, &config, None)?;
+            let experiment = vivae_lab::maps::experiment(&config, &maps)?;
+            Ok((config, vivae_lab::maps::fingerprint_text(&maps), experiment))
         })();
         let threads = prepared.as_ref().map_or(0, |(c, _, _)| c.run.threads);
         if let Some(code) = mpi_start(
@@ -468,7 +471,7 @@ fn cmd_resume(args: ResumeArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
         }
         return Ok(ExitCode::SUCCESS);
     }
-    let source = if vivae::maps::is_multi_map(run.config()) {
+    let source = if vivae_lab::maps::is_multi_map(run.config()) {
         let dir = run.dir();
         run.config()
             .experiment
@@ -486,7 +489,7 @@ fn cmd_resume(args: ResumeArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
 fn cmd_retrain(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode> {
     let checkpoint = evolve::latest_checkpoint(&args.run_dir)?;
     let (mut config, population) = evolve::population_from_checkpoint(&checkpoint)?;
-    if vivae::maps::is_multi_map(&config) {
+    if vivae_lab::maps::is_multi_map(&config) {
         // A multi-map run retrains on the copies of its maps.
         for s in &mut config.experiment.scenarios {
             *s = args.run_dir.join(&*s).to_string_lossy().into_owned();
@@ -508,14 +511,15 @@ fn cmd_retrain(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Resu
     };
     apply_overrides(&mut config, &overrides)?;
     let prepared = (|| -> anyhow::Result<_> {
-        let maps = vivae::maps::load(&config)?;
-        let experiment = vivae::maps::experiment(&config, &maps)?;
+        let maps = vivae_lab::maps::load(&config)?;
+        let experiment = vivae_lab::maps::experiment(&config, &maps)?;
         Ok((maps, experiment))
     })();
     #[cfg(feature = "mpi")]
-    let fingerprint = prepared
-        .as_ref()
-        .map_or_else(|_| String::new(), |(m, _)| vivae::maps::fingerprint_text(m));
+    let fingerprint = prepared.as_ref().map_or_else(
+        |_| String::new(),
+        |(m, _)| vivae_lab::maps::fingerprint_text(m),
+    );
     #[cfg(feature = "mpi")]
     if let Some(code) = mpi_start(
         prepared
@@ -527,8 +531,11 @@ fn cmd_retrain(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Resu
         return Ok(code);
     }
     let (maps, experiment) = prepared?;
-    let dir = args.out.clone().unwrap_or_else(vivae::io::default_run_dir);
-    let source = vivae::maps::describe(&maps, &experiment);
+    let dir = args
+        .out
+        .clone()
+        .unwrap_or_else(vivae_lab::io::default_run_dir);
+    let source = vivae_lab::maps::describe(&maps, &experiment);
     let run = Run::create_on_maps(
         &dir,
         config,
@@ -652,6 +659,21 @@ fn mpi_start(
     }
 }
 
+/// Runs the generations of `run`; rank 0 of an MPI job spreads each one over the job's ranks.
+fn run_generations(
+    run: &mut Run,
+    interrupted: &AtomicBool,
+    on_generation: impl FnMut(&GenerationRecord),
+) -> vivae_lab::Result<Outcome> {
+    #[cfg(feature = "mpi")]
+    if let Some(evaluator) =
+        vivae::mpi::MpiEvaluator::for_leader(run.experiment().clone(), run.pool())
+    {
+        return run.run_on(evaluator, interrupted, on_generation);
+    }
+    run.run(interrupted, on_generation)
+}
+
 /// Runs evolution with progress output, then writes the figures.
 fn drive(
     mut run: Run,
@@ -668,7 +690,7 @@ fn drive(
     let bar = (!quiet && std::io::stderr().is_terminal()).then(|| progress_bar(total, run.done()));
     let mut robot_steps = 0.0;
     let mut busy = 0.0;
-    let outcome = run.run(interrupted, |r: &GenerationRecord| {
+    let outcome = run_generations(&mut run, interrupted, |r: &GenerationRecord| {
         robot_steps += r.robot_steps_per_second * r.seconds;
         busy += r.seconds;
         let line = format!(
@@ -735,9 +757,9 @@ fn progress_bar(total: u32, done: u32) -> indicatif::ProgressBar {
 }
 
 fn cmd_replay(args: ReplayArgs) -> anyhow::Result<ExitCode> {
-    let (champion, mut config, base) = report::load_genome_source(&args.source)?;
+    let (champion, mut config, base) = vivae_lab::evolve::load_genome_source(&args.source)?;
     // A multi-map run replays on its first training map unless told otherwise.
-    if args.scenario.is_none() && vivae::maps::is_multi_map(&config) {
+    if args.scenario.is_none() && vivae_lab::maps::is_multi_map(&config) {
         let maps = std::mem::take(&mut config.experiment.scenarios);
         eprintln!(
             "replaying on the first training map, {} (of {}: {}); choose another with --scenario",
@@ -773,11 +795,12 @@ fn cmd_replay(args: ReplayArgs) -> anyhow::Result<ExitCode> {
         .into());
     }
     let scenario = load_scenario(path.as_deref())?;
-    let experiment = Experiment::new(&config, &scenario.scenario).map_err(vivae::Error::from)?;
+    let experiment =
+        Experiment::new(&config, &scenario.scenario).map_err(vivae_lab::Error::from)?;
     // Checked before anything is written: a genome that does not fit is bad input.
     experiment
         .controller(&champion.genome)
-        .map_err(|e| vivae::Error::Genome {
+        .map_err(|e| vivae_lab::Error::Genome {
             path: args.source.clone(),
             reason: format!("the genome's {e}"),
         })?;
@@ -789,8 +812,8 @@ fn cmd_replay(args: ReplayArgs) -> anyhow::Result<ExitCode> {
         );
     }
     let out = args.out.clone().unwrap_or_else(|| base.join("replay"));
-    vivae::io::create_dirs(&out)?;
-    let name = report::scenario_name(path.as_deref());
+    vivae_lab::io::create_dirs(&out)?;
+    let name = vivae_lab::io::scenario_name(path.as_deref());
     let replay = report::replay(&experiment, &config, &champion, &name, &out)?;
     println!(
         "fitness={} on_road={:.4} {}",
@@ -805,7 +828,7 @@ fn cmd_replay(args: ReplayArgs) -> anyhow::Result<ExitCode> {
 fn cmd_scenario(command: ScenarioCommand) -> anyhow::Result<ExitCode> {
     match command {
         ScenarioCommand::List => {
-            for s in vivae::shipped::SHIPPED {
+            for s in vivae_lab::shipped::SHIPPED {
                 println!("{:<10} {}", s.name, s.what);
             }
         }

@@ -28,8 +28,8 @@ use serde::{Deserialize, Serialize};
 use vivae_neat::driver::{Evaluation, Evaluator, EvaluatorError, Task};
 use vivae_neat::{EvalContext, Genome};
 
-use crate::config::{Config, RunConfig};
-use crate::experiment::Experiment;
+use vivae_lab::config::{Config, RunConfig};
+use vivae_lab::experiment::Experiment;
 
 /// Message tags. Rank 0 → worker: GO, WORK, STOP; worker → rank 0: HELLO, RESULT, FAILED.
 const TAG_HELLO: i32 = 1;

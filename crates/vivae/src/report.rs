@@ -7,14 +7,14 @@ use vivae_neat::Genome;
 use vivae_sim::draw::{self, DrawOptions};
 use vivae_sim::{Scenario, ScenarioSummary, SurfaceSensors, World};
 
-use crate::config::Config;
-use crate::error::{Error, Result};
-use crate::evolve::{self, Champion, Run, files};
-use crate::experiment::{Episode, Experiment};
 use crate::figures;
 use crate::figures::convergence::ConvergenceOptions;
-use crate::io::{bad_input, read_config, read_text, write_atomic};
-use crate::substrate::PolarGrid;
+use vivae_lab::config::Config;
+use vivae_lab::error::{Error, Result};
+use vivae_lab::evolve::{self, Champion, Run, files};
+use vivae_lab::experiment::{Episode, Experiment};
+use vivae_lab::io::{bad_input, write_atomic};
+use vivae_lab::substrate::PolarGrid;
 
 /// What the end of a run reports.
 #[derive(Debug, Clone, PartialEq)]
@@ -68,7 +68,7 @@ pub fn trajectory_figure(
 /// Writes every figure of a finished run into `RUN/figures/`.
 pub fn finish_run(run: &Run) -> Result<RunSummary> {
     let dir = run.dir().join(files::FIGURES);
-    crate::io::create_dirs(&dir)?;
+    vivae_lab::io::create_dirs(&dir)?;
     let experiment = run.experiment();
     let mut episodes = Vec::new();
     for (generation, _, genome) in run.figure_genomes() {
@@ -114,7 +114,7 @@ pub fn finish_run(run: &Run) -> Result<RunSummary> {
     // On several maps the champion's fitness is the mean over maps: its time on road too.
     let champion_on_road = match experiment.maps() {
         None => episode.on_road.unwrap_or_default(),
-        Some(maps) => crate::maps::mean(
+        Some(maps) => vivae_lab::maps::mean(
             &maps
                 .episodes(&champion.genome)?
                 .iter()
@@ -129,61 +129,6 @@ pub fn finish_run(run: &Run) -> Result<RunSummary> {
     })
 }
 
-/// Reads a genome source for `replay`: a run directory (its champion and
-/// `config.toml`) or a champion JSON file (the config it records; the default
-/// config for files that record none). Returns the folder outputs go beside.
-pub fn load_genome_source(source: &Path) -> Result<(Champion, Config, PathBuf)> {
-    if source.is_dir() {
-        let champion = read_champion(&source.join(files::CHAMPION))?;
-        let config = read_config(&source.join(files::CONFIG))?;
-        Ok((champion, config, source.to_path_buf()))
-    } else {
-        let champion = read_champion(source)?;
-        let base = source.parent().map(Path::to_path_buf).unwrap_or_default();
-        let config = match &champion.config {
-            Some(recorded) => {
-                let mut config = recorded.clone();
-                // As in a config file, a relative scenario is relative to the file's folder.
-                let scenario = &mut config.experiment.scenario;
-                if !scenario.is_empty() && Path::new(scenario.as_str()).is_relative() {
-                    *scenario = base.join(&*scenario).to_string_lossy().into_owned();
-                }
-                for map in &mut config.experiment.scenarios {
-                    *map = crate::io::resolve_map(&base, map);
-                }
-                config.experiment.init_population.clear();
-                config
-            }
-            None => Config::default(),
-        };
-        Ok((champion, config, base))
-    }
-}
-
-/// Reads `champion.json` (or any file in its format); the genome is checked as it is read.
-pub fn read_champion(path: &Path) -> Result<Champion> {
-    let text = read_text(path)?;
-    let invalid = |reason: String| Error::Genome {
-        path: path.to_path_buf(),
-        reason,
-    };
-    let champion: Champion = serde_json::from_str(&text)
-        .map_err(|e| invalid(format!("not a vivae champion genome: {e}")))?;
-    if champion.format != "vivae-champion" {
-        return Err(invalid(format!(
-            "format is {:?}, expected \"vivae-champion\"",
-            champion.format
-        )));
-    }
-    if let Some(config) = &champion.config {
-        config
-            .validate()
-            .map_err(|e| invalid(format!("its recorded config: {e}")))?;
-    }
-    // The genome validated itself while being deserialised.
-    Ok(champion)
-}
-
 /// A replay's result.
 #[derive(Debug, Clone)]
 pub struct Replay {
@@ -192,17 +137,9 @@ pub struct Replay {
     /// Fraction of robot-steps on road.
     pub on_road: f64,
     /// Collisions, turns, loops and side of the road.
-    pub behaviour: crate::behaviour::Behaviour,
+    pub behaviour: vivae_lab::behaviour::Behaviour,
     /// The trajectory figure (PNG).
     pub figure: PathBuf,
-}
-
-/// Short name of a scenario for file names and titles: its file stem, or
-/// `roads` for the embedded default.
-pub fn scenario_name(path: Option<&Path>) -> String {
-    path.and_then(Path::file_stem)
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "roads".to_string())
 }
 
 /// Runs a champion on `experiment` (on scenario `scenario`) and draws its
@@ -216,7 +153,7 @@ pub fn replay(
 ) -> Result<Replay> {
     let s = &config.surface_sensors;
     let n = config.substrate.neurons;
-    let safe = crate::io::safe_file_stem(scenario);
+    let safe = vivae_lab::io::safe_file_stem(scenario);
     let name = format!(
         "replay-{safe}-s{}x{}-n{}x{}",
         s.rings, s.angles, n.rings, n.angles
@@ -309,7 +246,7 @@ mod tests {
 
     #[test]
     fn scenario_text_rounds_and_names_robots_and_marks() {
-        let scenario = crate::io::load_scenario(None).unwrap().scenario;
+        let scenario = vivae_lab::io::load_scenario(None).unwrap().scenario;
         let mut summary = scenario.summary();
         summary.arena.width = 793.700_787_4;
         let text = scenario_text(&summary, &["start".to_string()]);

@@ -12,12 +12,12 @@ use vivae_neat::Genome;
 use vivae_sim::draw::{self, DrawOptions};
 use vivae_sim::{Scenario, World};
 
-use crate::evolve::{self, files};
-use crate::experiment::{Episode, Experiment};
 use crate::figures::convergence::{self, ConvergenceOptions};
 use crate::figures::network::{self, NetworkOptions};
-use crate::io::{bad_input, load_scenario, read_config, read_text, write_atomic};
-use crate::report::read_champion;
+use vivae_lab::evolve::read_champion;
+use vivae_lab::evolve::{self, files};
+use vivae_lab::experiment::{Episode, Experiment};
+use vivae_lab::io::{bad_input, load_scenario, read_config, read_text, write_atomic};
 
 /// The page template; `/*VIVAE-DATA*/`, `/*VIVAE-CSS*/` and `/*VIVAE-JS*/` are filled in.
 const TEMPLATE: &str = include_str!("../assets/report.html");
@@ -130,7 +130,7 @@ fn episode(
     genome: &Genome,
     label: String,
     reuse: &Reuse<'_>,
-) -> crate::Result<EpisodeData> {
+) -> vivae_lab::Result<EpisodeData> {
     let recorded = reuse
         .episodes
         .iter()
@@ -158,7 +158,7 @@ fn episode(
     })
 }
 
-pub(crate) fn read_generation_rows(path: &Path) -> crate::Result<Vec<GenerationRow>> {
+pub(crate) fn read_generation_rows(path: &Path) -> vivae_lab::Result<Vec<GenerationRow>> {
     let text = read_text(path)?;
     text.lines()
         .enumerate()
@@ -193,7 +193,7 @@ fn script_safe(json: &str) -> String {
 }
 
 /// Builds the report of the run in `dir` as one HTML document.
-pub fn build(dir: &Path) -> crate::Result<String> {
+pub fn build(dir: &Path) -> vivae_lab::Result<String> {
     build_reusing(dir, &Reuse::default())
 }
 
@@ -207,7 +207,7 @@ pub(crate) fn network_options(generation: u32, fitness: f64, amplitude: f64) -> 
 }
 
 /// [`build`], reusing what the end of a run computed already.
-pub fn build_reusing(dir: &Path, reuse: &Reuse<'_>) -> crate::Result<String> {
+pub fn build_reusing(dir: &Path, reuse: &Reuse<'_>) -> vivae_lab::Result<String> {
     let config = read_config(&dir.join(files::CONFIG))?;
     let config_text = read_text(&dir.join(files::CONFIG))?;
     let scenario = load_scenario(Some(&dir.join(files::SCENARIO)))?;
@@ -235,7 +235,7 @@ pub fn build_reusing(dir: &Path, reuse: &Reuse<'_>) -> crate::Result<String> {
         }
     }
     let convergence_svg = convergence::render_svg(&fitness, &ConvergenceOptions::default())
-        .map_err(crate::Error::Figure)?;
+        .map_err(vivae_lab::Error::from)?;
     let network_svg = match &reuse.network_svg {
         Some(svg) => svg.clone(),
         None => network::figure_svg(
@@ -247,7 +247,7 @@ pub fn build_reusing(dir: &Path, reuse: &Reuse<'_>) -> crate::Result<String> {
                 config.hyperneat.amplitude,
             ),
         )
-        .map_err(crate::Error::Figure)?,
+        .map_err(vivae_lab::Error::from)?,
     };
     let title = dir
         .canonicalize()
@@ -265,12 +265,13 @@ pub fn build_reusing(dir: &Path, reuse: &Reuse<'_>) -> crate::Result<String> {
         convergence_svg,
         network_svg,
     };
-    let json = script_safe(
-        &serde_json::to_string(&data).map_err(|e| crate::Error::Serialize {
-            what: "the report's data",
-            reason: e.to_string(),
-        })?,
-    );
+    let json =
+        script_safe(
+            &serde_json::to_string(&data).map_err(|e| vivae_lab::Error::Serialize {
+                what: "the report's data",
+                reason: e.to_string(),
+            })?,
+        );
     let js = [SCENE_JS, PLOTS_JS, REPORT_JS].join("\n");
     Ok(TEMPLATE
         .replacen("/*VIVAE-CSS*/", STYLE_CSS, 1)
@@ -279,12 +280,12 @@ pub fn build_reusing(dir: &Path, reuse: &Reuse<'_>) -> crate::Result<String> {
 }
 
 /// Writes `report.html` into the run directory `dir`; returns its path.
-pub fn write(dir: &Path) -> crate::Result<PathBuf> {
+pub fn write(dir: &Path) -> vivae_lab::Result<PathBuf> {
     write_reusing(dir, &Reuse::default())
 }
 
 /// [`write`], reusing what the end of a run computed already.
-pub fn write_reusing(dir: &Path, reuse: &Reuse<'_>) -> crate::Result<PathBuf> {
+pub fn write_reusing(dir: &Path, reuse: &Reuse<'_>) -> vivae_lab::Result<PathBuf> {
     let html = build_reusing(dir, reuse)?;
     let path = dir.join(files::REPORT);
     write_atomic(&path, html.as_bytes())?;

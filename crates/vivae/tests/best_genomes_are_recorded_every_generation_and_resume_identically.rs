@@ -5,8 +5,8 @@
 mod common;
 
 use common::{evolve, read, scratch, vivae, write_small_config};
-use vivae::evolve::read_best_genomes;
-use vivae::report::read_champion;
+use vivae_lab::evolve::read_best_genomes;
+use vivae_lab::evolve::read_champion;
 
 #[test]
 fn every_generation_is_recorded_and_resume_writes_the_same_file() {

@@ -1,7 +1,7 @@
 //! An output path the user got wrong — `-o` into a missing folder or onto a
 //! folder, `--out` below a file — is the user's mistake: exit code 2 with one
 //! line naming the path, no panic, and nothing left behind. (A full disk or
-//! another failure of the machine exits 1; see `vivae::Error::is_bad_input`.)
+//! another failure of the machine exits 1; see `vivae_lab::Error::is_bad_input`.)
 
 mod common;
 use common::*;

@@ -17,10 +17,10 @@ use plotters::prelude::*;
 use vivae_neat::stats;
 
 use super::{FAMILY, Figure, FigureError, draw_err, register_font, svg_to_png};
-use crate::config::Config;
-use crate::error::{Error, Result};
-use crate::evolve::files;
-use crate::io::{bad_input, read_config, read_text, write_atomic};
+use vivae_lab::config::Config;
+use vivae_lab::error::{Error, Result};
+use vivae_lab::evolve::files;
+use vivae_lab::io::{bad_input, read_config, read_text, write_atomic};
 
 /// Generations at which the table reports the median best fitness.
 pub const AT_GENERATIONS: [u32; 5] = [10, 50, 100, 200, 400];
@@ -279,7 +279,7 @@ pub fn substrate_label(config: &Config) -> String {
     let _ = write!(label, "→{}", config.substrate.neurons);
     let sub = &config.substrate;
     if !sub.train_neurons.is_empty() || !sub.train_sensors.is_empty() {
-        let list = |g: &[crate::substrate::PolarGrid]| {
+        let list = |g: &[vivae_lab::substrate::PolarGrid]| {
             g.iter()
                 .map(ToString::to_string)
                 .collect::<Vec<_>>()

@@ -36,7 +36,7 @@ use super::{
     FAMILY, Figure, FigureError, NEGATIVE, PNG_SCALE, POSITIVE, base64, draw_err, draw_svg_over,
     encode_png_fast, register_font,
 };
-use crate::substrate::{PolarNode, SubstrateSpec};
+use vivae_lab::substrate::{PolarNode, SubstrateSpec};
 
 /// The receptive-field figure is this much larger than the link figure (more to show).
 const ENLARGE: f64 = 1.6;
@@ -736,7 +736,7 @@ mod tests {
 
     #[test]
     fn outer_sensors_and_distance_rays_get_their_own_pixels() {
-        use crate::substrate::PolarGrid;
+        use vivae_lab::substrate::PolarGrid;
         let spec = SubstrateSpec {
             sensors: PolarGrid::new(32, 96).unwrap(),
             distance_rays: Some(7),

@@ -15,7 +15,7 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 use vivae_neat::hyperneat::{LinkSource, SubstrateController};
 
 use super::{FAMILY, Figure, FigureError, NEGATIVE, POSITIVE, draw_err, register_font, svg_to_png};
-use crate::substrate::{PolarNode, SubstrateSpec, WheelNeurons};
+use vivae_lab::substrate::{PolarNode, SubstrateSpec, WheelNeurons};
 
 /// Wheel neurons' colour.
 pub(super) const WHEEL: RGBColor = RGBColor(214, 39, 40);
@@ -569,7 +569,7 @@ fn draw_legend(
 mod tests {
     use super::*;
     use crate::figures::test_util::{distinct_colours, png_size};
-    use crate::substrate::PolarGrid;
+    use vivae_lab::substrate::PolarGrid;
     use vivae_neat::Network;
     use vivae_neat::hyperneat::{HyperParams, decode};
 

@@ -18,7 +18,7 @@ use clap::Args;
 
 use source::Source;
 
-use crate::io::bad_input;
+use vivae_lab::io::bad_input;
 
 /// Command-line options of `vivae view`.
 #[derive(Args, Debug, Clone)]
@@ -41,7 +41,7 @@ pub struct ViewArgs {
 }
 
 /// Runs `vivae view` until interrupted.
-pub fn run(args: ViewArgs) -> crate::Result<ExitCode> {
+pub fn run(args: ViewArgs) -> vivae_lab::Result<ExitCode> {
     if args.max_viewers == 0 {
         return Err(bad_input("--max-viewers 0: must be at least 1"));
     }
@@ -50,7 +50,7 @@ pub fn run(args: ViewArgs) -> crate::Result<ExitCode> {
         .worker_threads(2)
         .enable_all()
         .build()
-        .map_err(|e| crate::Error::Threads(e.to_string()))?;
+        .map_err(|e| vivae_lab::Error::Threads(e.to_string()))?;
     let addr = SocketAddr::new(args.host, args.port);
     let listener = runtime
         .block_on(tokio::net::TcpListener::bind(addr))
@@ -66,7 +66,7 @@ pub fn run(args: ViewArgs) -> crate::Result<ExitCode> {
             bad_input(format!("cannot listen on {addr}: {why}"))
         })?;
     let io = |action: &'static str| {
-        move |error: std::io::Error| crate::Error::Io {
+        move |error: std::io::Error| vivae_lab::Error::Io {
             action,
             path: std::path::PathBuf::from(addr.to_string()),
             error,

@@ -14,8 +14,8 @@ use tokio::sync::watch;
 
 use super::session::Sim;
 use super::source::{SharedSnapshot, Source};
-use crate::evolve::files;
 use crate::report_html::{PLOTS_JS, SCENE_JS, STYLE_CSS};
+use vivae_lab::evolve::files;
 
 /// The viewer page.
 const INDEX_HTML: &str = include_str!("../../assets/view.html");

@@ -15,11 +15,11 @@ use vivae_neat::hyperneat::SubstrateController;
 use vivae_sim::{DVec2, Scenario, Sensor, World};
 
 use super::source::{RunSnapshot, Source};
-use crate::config::Config;
-use crate::experiment::Experiment;
-use crate::io::one_line;
 use crate::report_html::SceneData;
-use crate::substrate::PolarGrid;
+use vivae_lab::config::Config;
+use vivae_lab::experiment::Experiment;
+use vivae_lab::io::one_line;
+use vivae_lab::substrate::PolarGrid;
 
 /// Simulation steps per second at speed 1 ("real time").
 pub(crate) const REAL_TIME_STEPS: f64 = 30.0;
@@ -491,7 +491,7 @@ impl Sim {
     /// The `scene` message: arena picture and substrate geometry.
     pub fn scene_msg(&self, source: &Source) -> String {
         let spec = self.experiment.substrate_spec();
-        let polar = |nodes: Vec<crate::substrate::PolarNode>| -> Vec<[f64; 2]> {
+        let polar = |nodes: Vec<vivae_lab::substrate::PolarNode>| -> Vec<[f64; 2]> {
             nodes.iter().map(|n| [n.rho, n.phi]).collect()
         };
         let wheels = self.experiment.wheels();

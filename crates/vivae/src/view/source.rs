@@ -7,11 +7,11 @@ use std::time::SystemTime;
 
 use serde::Serialize;
 
-use crate::config::Config;
-use crate::evolve::{self, Champion, GenerationBest, files};
-use crate::io::{DEFAULT_SCENARIO, DEFAULT_SCENARIO_NAME, bad_input, read_config, read_text};
-use crate::report::read_champion;
 use crate::report_html::{GenerationRow, read_generation_rows};
+use vivae_lab::config::Config;
+use vivae_lab::evolve::read_champion;
+use vivae_lab::evolve::{self, Champion, GenerationBest, files};
+use vivae_lab::io::{DEFAULT_SCENARIO, DEFAULT_SCENARIO_NAME, bad_input, read_config, read_text};
 
 /// Most extra scenarios offered from `--scenarios`.
 const MAX_SCENARIOS: usize = 200;
@@ -46,7 +46,7 @@ pub struct Source {
 
 impl Source {
     /// Loads `path` (run directory, genome JSON or scenario SVG) and the extra scenario folder.
-    pub fn load(path: Option<&Path>, extra: Option<&Path>) -> crate::Result<Source> {
+    pub fn load(path: Option<&Path>, extra: Option<&Path>) -> vivae_lab::Result<Source> {
         let default = (
             DEFAULT_SCENARIO_NAME.to_string(),
             DEFAULT_SCENARIO.to_string(),
@@ -75,11 +75,11 @@ impl Source {
                     .and_then(|e| e.to_str())
                     .map(str::to_ascii_lowercase);
                 if ext.as_deref() == Some("svg") {
-                    let loaded = crate::io::load_scenario(Some(p))?;
+                    let loaded = vivae_lab::io::load_scenario(Some(p))?;
                     loaded
                         .scenario
                         .require_robots()
-                        .map_err(|e| bad_input(crate::io::one_line(&e.to_string())))?;
+                        .map_err(|e| bad_input(vivae_lab::io::one_line(&e.to_string())))?;
                     let text = loaded.text;
                     Source {
                         kind: SourceKind::Scenario(p.to_path_buf()),
@@ -90,7 +90,7 @@ impl Source {
                 } else {
                     // The champion's own recorded config rebuilds its controller
                     // (substrate, sensors, physics), as `vivae replay` does.
-                    let (champion, config, _) = crate::report::load_genome_source(p)?;
+                    let (champion, config, _) = vivae_lab::evolve::load_genome_source(p)?;
                     Source {
                         kind: SourceKind::Genome(p.to_path_buf()),
                         config,
@@ -190,9 +190,14 @@ fn file_name(p: &Path) -> String {
 }
 
 /// Every `.svg` file in `dir`, sorted by name (read now; parsed when chosen).
-fn scenario_folder(dir: &Path) -> crate::Result<Vec<(String, String)>> {
-    let entries = std::fs::read_dir(dir)
-        .map_err(|e| bad_input(format!("{}: {}", dir.display(), crate::io::io_reason(&e))))?;
+fn scenario_folder(dir: &Path) -> vivae_lab::Result<Vec<(String, String)>> {
+    let entries = std::fs::read_dir(dir).map_err(|e| {
+        bad_input(format!(
+            "{}: {}",
+            dir.display(),
+            vivae_lab::io::io_reason(&e)
+        ))
+    })?;
     let mut paths: Vec<PathBuf> = entries
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| {

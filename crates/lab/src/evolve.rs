@@ -26,7 +26,7 @@ use vivae_neat::{Genome, Population, stats};
 use crate::config::Config;
 use crate::error::{Error, Result};
 use crate::experiment::Experiment;
-use crate::io::{bad_input, fnv1a, write_atomic};
+use crate::io::{bad_input, fnv1a, read_config, read_text, write_atomic};
 
 /// File names inside a run directory.
 pub mod files {
@@ -89,6 +89,61 @@ impl Champion {
             ..config.clone()
         }
     }
+}
+
+/// Reads a genome source for `replay`: a run directory (its champion and
+/// `config.toml`) or a champion JSON file (the config it records; the default
+/// config for files that record none). Returns the folder outputs go beside.
+pub fn load_genome_source(source: &Path) -> Result<(Champion, Config, PathBuf)> {
+    if source.is_dir() {
+        let champion = read_champion(&source.join(files::CHAMPION))?;
+        let config = read_config(&source.join(files::CONFIG))?;
+        Ok((champion, config, source.to_path_buf()))
+    } else {
+        let champion = read_champion(source)?;
+        let base = source.parent().map(Path::to_path_buf).unwrap_or_default();
+        let config = match &champion.config {
+            Some(recorded) => {
+                let mut config = recorded.clone();
+                // As in a config file, a relative scenario is relative to the file's folder.
+                let scenario = &mut config.experiment.scenario;
+                if !scenario.is_empty() && Path::new(scenario.as_str()).is_relative() {
+                    *scenario = base.join(&*scenario).to_string_lossy().into_owned();
+                }
+                for map in &mut config.experiment.scenarios {
+                    *map = crate::io::resolve_map(&base, map);
+                }
+                config.experiment.init_population.clear();
+                config
+            }
+            None => Config::default(),
+        };
+        Ok((champion, config, base))
+    }
+}
+
+/// Reads `champion.json` (or any file in its format); the genome is checked as it is read.
+pub fn read_champion(path: &Path) -> Result<Champion> {
+    let text = read_text(path)?;
+    let invalid = |reason: String| Error::Genome {
+        path: path.to_path_buf(),
+        reason,
+    };
+    let champion: Champion = serde_json::from_str(&text)
+        .map_err(|e| invalid(format!("not a vivae champion genome: {e}")))?;
+    if champion.format != "vivae-champion" {
+        return Err(invalid(format!(
+            "format is {:?}, expected \"vivae-champion\"",
+            champion.format
+        )));
+    }
+    if let Some(config) = &champion.config {
+        config
+            .validate()
+            .map_err(|e| invalid(format!("its recorded config: {e}")))?;
+    }
+    // The genome validated itself while being deserialised.
+    Ok(champion)
 }
 
 /// One generation's record (a row of `generations.csv`).
@@ -596,19 +651,18 @@ impl Run {
         on_generation: impl FnMut(&GenerationRecord),
     ) -> Result<Outcome> {
         let pool = Arc::clone(&self.pool);
-        // Rank 0 of an MPI job spreads each generation over the job's ranks.
-        #[cfg(feature = "mpi")]
-        if let Some(evaluator) =
-            crate::mpi::MpiEvaluator::for_leader(self.experiment.clone(), Arc::clone(&pool))
-        {
-            return self.run_on(evaluator, stop, on_generation);
-        }
         let evaluator = ParallelEvaluator::with_pool(self.experiment.clone(), &pool);
         self.run_on(evaluator, stop, on_generation)
     }
 
-    /// [`Run::run`] on a given evaluator.
-    fn run_on<E: Evaluator>(
+    /// The worker threads this run evaluates on (for an evaluator of the program's own).
+    pub fn pool(&self) -> Arc<rayon::ThreadPool> {
+        Arc::clone(&self.pool)
+    }
+
+    /// [`Run::run`] on a given evaluator (e.g. one that spreads each
+    /// generation over the processes of an MPI job).
+    pub fn run_on<E: Evaluator>(
         &mut self,
         evaluator: E,
         stop: &AtomicBool,

@@ -10,7 +10,6 @@ use vivae_sim::ScenarioError;
 
 use crate::config::ConfigError;
 use crate::experiment::ExperimentError;
-use crate::figures::FigureError;
 use crate::io::one_line;
 use crate::simd::SimdError;
 
@@ -82,9 +81,9 @@ pub enum Error {
         /// Where and what is wrong.
         reason: String,
     },
-    /// A figure could not be drawn.
+    /// An output the program makes (a figure, a report) could not be made.
     #[error("{0}")]
-    Figure(FigureError),
+    Output(String),
     /// The simulator could not render a picture of the world.
     #[error("rendering {what}: {reason}")]
     Render {
@@ -179,12 +178,6 @@ impl From<ExperimentError> for Error {
 impl From<SimdError> for Error {
     fn from(e: SimdError) -> Self {
         Error::Simd(e)
-    }
-}
-
-impl From<FigureError> for Error {
-    fn from(e: FigureError) -> Self {
-        Error::Figure(e)
     }
 }
 

@@ -298,6 +298,14 @@ fn utc_stamp(secs: u64) -> String {
     )
 }
 
+/// Short name of a scenario for file names and titles: its file stem, or
+/// `roads` for the embedded default.
+pub fn scenario_name(path: Option<&Path>) -> String {
+    path.and_then(Path::file_stem)
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "roads".to_string())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -103,7 +103,7 @@ pub fn load(config: &Config) -> Result<Vec<TrainingMap>> {
             .then(|| PathBuf::from(&config.experiment.scenario));
         let loaded = load_scenario(path.as_deref())?;
         return Ok(vec![TrainingMap {
-            label: crate::report::scenario_name(path.as_deref()),
+            label: crate::io::scenario_name(path.as_deref()),
             loaded,
         }]);
     }
@@ -114,7 +114,7 @@ pub fn load(config: &Config) -> Result<Vec<TrainingMap>> {
         .map(|name| {
             let path = Path::new(name);
             Ok(TrainingMap {
-                label: crate::report::scenario_name(Some(path)),
+                label: crate::io::scenario_name(Some(path)),
                 loaded: load_scenario(Some(path))?,
             })
         })
@@ -182,7 +182,7 @@ pub fn load_run(dir: &Path, config: &Config, hashes: Option<&[u64]>) -> Result<V
     if !is_multi_map(config) {
         let path = dir.join(crate::evolve::files::SCENARIO);
         return Ok(vec![TrainingMap {
-            label: crate::report::scenario_name(Some(&path)),
+            label: crate::io::scenario_name(Some(&path)),
             loaded: load_scenario(Some(&path))?,
         }]);
     }
@@ -215,7 +215,7 @@ pub fn load_run(dir: &Path, config: &Config, hashes: Option<&[u64]>) -> Result<V
             });
         }
         maps.push(TrainingMap {
-            label: crate::report::scenario_name(Some(&path)),
+            label: crate::io::scenario_name(Some(&path)),
             loaded: load_scenario(Some(&path))?,
         });
     }
