@@ -21,9 +21,17 @@ pub(super) struct UniqueIds {
     pub display: BTreeMap<String, String>,
 }
 
+/// Whether an element is one of the SVG shapes the loader reads.
+pub(super) fn is_shape(name: &str) -> bool {
+    matches!(
+        name,
+        "rect" | "circle" | "ellipse" | "line" | "polyline" | "polygon" | "path"
+    )
+}
+
 /// Whether the loader looks an element up by id: shapes and containers.
 fn joined(name: &str) -> bool {
-    super::load::is_shape(name) || matches!(name, "g" | "a" | "switch")
+    is_shape(name) || matches!(name, "g" | "a" | "switch")
 }
 
 /// Returns `None` when every element already has a unique id (the usual

@@ -13,7 +13,7 @@ use serde::{Deserialize, Serialize};
 use crate::geometry::{Aabb, FillRule, Shape, flatten_path};
 use crate::raster::SurfaceRaster;
 
-use super::ids::unique_ids;
+use super::ids::{is_shape, unique_ids};
 use super::labels::{Class, classify, surface_kind};
 use super::{Mark, Obstacle, Puck, RobotStart, Scenario, ScenarioError, Surface, SurfaceKind};
 
@@ -88,13 +88,6 @@ fn collect_ids<'a>(g: &'a usvg::Group, out: &mut BTreeMap<String, Resolved<'a>>)
             _ => {}
         }
     }
-}
-
-pub(super) fn is_shape(name: &str) -> bool {
-    matches!(
-        name,
-        "rect" | "circle" | "ellipse" | "line" | "polyline" | "polygon" | "path"
-    )
 }
 
 const INKSCAPE_NS: &str = "http://www.inkscape.org/namespaces/inkscape";
