@@ -4,7 +4,9 @@
 use std::fmt::Write;
 use std::sync::{Arc, OnceLock};
 
-use crate::geometry::fmt_num;
+use glam::DVec2;
+
+use crate::geometry::{FillRule, fmt_num};
 use crate::sensors::{DistanceSensors, Sensor, SurfaceSensors};
 pub use crate::style::robot_color;
 use crate::style::{surface_color, xml_escape};
@@ -224,6 +226,41 @@ pub fn render_svg(world: &World, opts: &DrawOptions) -> String {
         );
     }
     let _ = writeln!(s, r##"<g transform="translate(0 {band})">"##);
+    draw_arena(&mut s, world);
+    if opts.trajectories
+        && let Some(trajs) = world.trajectories()
+    {
+        draw_trajectories(&mut s, world, trajs);
+    }
+    let r = world.params().robot_radius;
+    if let Some(layout) = &opts.distance_sensors {
+        draw_distance_rays(&mut s, world, layout, r);
+    }
+    if let Some(layout) = &opts.surface_sensors {
+        draw_surface_dots(&mut s, world, layout, r);
+    }
+    draw_robots(&mut s, world, r);
+    s.push_str("</g>\n");
+    if lines > 0 {
+        let top = band + sc.height();
+        draw_legend(&mut s, &items, &places, (top, w, legend_band));
+    }
+    s.push_str("</svg>\n");
+    s
+}
+
+/// SVG's name for a fill rule.
+fn fill_rule_name(r: FillRule) -> &'static str {
+    match r {
+        FillRule::NonZero => "nonzero",
+        FillRule::EvenOdd => "evenodd",
+    }
+}
+
+/// The arena: background, surfaces, marks, obstacles (movable ones where they
+/// were pushed) and pucks.
+fn draw_arena(s: &mut String, world: &World) {
+    let sc = world.scenario();
     let _ = writeln!(
         s,
         r##"<rect x="0" y="0" width="{}" height="{}" fill="{}"/>"##,
@@ -231,17 +268,13 @@ pub fn render_svg(world: &World, opts: &DrawOptions) -> String {
         fmt_num(sc.height()),
         surface_color(sc.background())
     );
-    let rule = |r: crate::geometry::FillRule| match r {
-        crate::geometry::FillRule::NonZero => "nonzero",
-        crate::geometry::FillRule::EvenOdd => "evenodd",
-    };
     for surf in sc.surfaces() {
         let _ = writeln!(
             s,
             r##"<path d="{}" fill="{}" fill-rule="{}"/>"##,
             surf.shape.to_path_data(),
             surface_color(surf.kind),
-            rule(surf.shape.fill_rule)
+            fill_rule_name(surf.shape.fill_rule)
         );
     }
     for mk in &sc.marks {
@@ -259,7 +292,7 @@ pub fn render_svg(world: &World, opts: &DrawOptions) -> String {
             s,
             r##"<path d="{}" fill="{FIXED_FILL}" fill-rule="{}" stroke="#000000" stroke-width="0.8"/>"##,
             ob.shape.to_path_data(),
-            rule(ob.shape.fill_rule)
+            fill_rule_name(ob.shape.fill_rule)
         );
     }
     for (ob, m) in sc.movable_obstacles.iter().zip(world.movables()) {
@@ -267,7 +300,7 @@ pub fn render_svg(world: &World, opts: &DrawOptions) -> String {
             s,
             r##"<path d="{}" fill="{MOVABLE_FILL}" fill-rule="{}" stroke="#000000" stroke-width="0.8" stroke-dasharray="3 2"/>"##,
             ob.shape.translated(m.offset).to_path_data(),
-            rule(ob.shape.fill_rule)
+            fill_rule_name(ob.shape.fill_rule)
         );
     }
     for pk in world.pucks() {
@@ -279,100 +312,109 @@ pub fn render_svg(world: &World, opts: &DrawOptions) -> String {
             fmt_num(pk.radius)
         );
     }
-    if opts.trajectories
-        && let Some(trajs) = world.trajectories()
-    {
-        for (i, t) in trajs.iter().enumerate() {
-            if t.len() < 2 {
-                continue;
-            }
-            let mut pts = String::new();
-            for p in t {
-                let _ = write!(pts, "{},{} ", fmt_num(p.x), fmt_num(p.y));
-            }
+}
+
+/// Each robot's recorded path, and its start pose as hollow discs (with a
+/// heading tick when the path starts at the scenario's start).
+fn draw_trajectories(s: &mut String, world: &World, trajs: &[Vec<DVec2>]) {
+    let sc = world.scenario();
+    for (i, t) in trajs.iter().enumerate() {
+        if t.len() < 2 {
+            continue;
+        }
+        let mut pts = String::new();
+        for p in t {
+            let _ = write!(pts, "{},{} ", fmt_num(p.x), fmt_num(p.y));
+        }
+        let _ = writeln!(
+            s,
+            r##"<polyline points="{}" fill="none" stroke="{}" stroke-width="1.5" stroke-linejoin="round" stroke-opacity="0.9"/>"##,
+            pts.trim_end(),
+            robot_color(i)
+        );
+    }
+    // Start poses: hollow discs (the filled discs drawn last are the end poses).
+    let r = world.params().robot_radius;
+    for (i, t) in trajs.iter().enumerate() {
+        let Some(&p) = t.first() else { continue };
+        let _ = writeln!(
+            s,
+            r##"<circle cx="{}" cy="{}" r="{}" fill="none" stroke="{}" stroke-width="2"/><circle cx="{}" cy="{}" r="{}" fill="none" stroke="#000000" stroke-width="0.6"/>"##,
+            fmt_num(p.x),
+            fmt_num(p.y),
+            fmt_num(r),
+            robot_color(i),
+            fmt_num(p.x),
+            fmt_num(p.y),
+            fmt_num(r + 1.0)
+        );
+        if let Some(start) = sc.robots.get(i).filter(|st| st.pos == p) {
+            let (sin, cos) = libm::sincos(start.heading);
+            let tip = p + glam::DVec2::new(sin, -cos) * r;
             let _ = writeln!(
                 s,
-                r##"<polyline points="{}" fill="none" stroke="{}" stroke-width="1.5" stroke-linejoin="round" stroke-opacity="0.9"/>"##,
-                pts.trim_end(),
+                r##"<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="{}" stroke-width="1.5"/>"##,
+                fmt_num(p.x),
+                fmt_num(p.y),
+                fmt_num(tip.x),
+                fmt_num(tip.y),
                 robot_color(i)
             );
         }
-        // Start poses: hollow discs (the filled discs drawn last are the end poses).
-        let r = world.params().robot_radius;
-        for (i, t) in trajs.iter().enumerate() {
-            let Some(&p) = t.first() else { continue };
+    }
+}
+
+/// Each robot's distance rays, as far as they reach, coloured by reading.
+fn draw_distance_rays(s: &mut String, world: &World, layout: &DistanceSensors, r: f64) {
+    let grid = layout.grid();
+    let mut out = vec![0.0; grid.len()];
+    for i in 0..world.robots().len() {
+        grid.read(world, i, &mut out);
+        let rb = &world.robots()[i];
+        let (ahead, right) = (rb.ahead(), rb.right());
+        for (d, v) in grid.dirs.iter().zip(&out) {
+            let dir = ahead * d.x + right * d.y;
+            let len = if *v > 0.0 {
+                (1.0 - v) * grid.range
+            } else {
+                grid.range
+            };
+            let (a, b) = (rb.pos + dir * r, rb.pos + dir * (r + len));
             let _ = writeln!(
                 s,
-                r##"<circle cx="{}" cy="{}" r="{}" fill="none" stroke="{}" stroke-width="2"/><circle cx="{}" cy="{}" r="{}" fill="none" stroke="#000000" stroke-width="0.6"/>"##,
-                fmt_num(p.x),
-                fmt_num(p.y),
-                fmt_num(r),
-                robot_color(i),
-                fmt_num(p.x),
-                fmt_num(p.y),
-                fmt_num(r + 1.0)
+                r##"<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="{}" stroke-width="1" stroke-opacity="0.8"/>"##,
+                fmt_num(a.x),
+                fmt_num(a.y),
+                fmt_num(b.x),
+                fmt_num(b.y),
+                reading_color(*v)
             );
-            if let Some(start) = sc.robots.get(i).filter(|st| st.pos == p) {
-                let (sin, cos) = libm::sincos(start.heading);
-                let tip = p + glam::DVec2::new(sin, -cos) * r;
-                let _ = writeln!(
-                    s,
-                    r##"<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="{}" stroke-width="1.5"/>"##,
-                    fmt_num(p.x),
-                    fmt_num(p.y),
-                    fmt_num(tip.x),
-                    fmt_num(tip.y),
-                    robot_color(i)
-                );
-            }
         }
     }
-    let r = world.params().robot_radius;
-    if let Some(layout) = &opts.distance_sensors {
-        let grid = layout.grid();
-        let mut out = vec![0.0; grid.len()];
-        for i in 0..world.robots().len() {
-            grid.read(world, i, &mut out);
-            let rb = &world.robots()[i];
-            let (ahead, right) = (rb.ahead(), rb.right());
-            for (d, v) in grid.dirs.iter().zip(&out) {
-                let dir = ahead * d.x + right * d.y;
-                let len = if *v > 0.0 {
-                    (1.0 - v) * grid.range
-                } else {
-                    grid.range
-                };
-                let (a, b) = (rb.pos + dir * r, rb.pos + dir * (r + len));
-                let _ = writeln!(
-                    s,
-                    r##"<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="{}" stroke-width="1" stroke-opacity="0.8"/>"##,
-                    fmt_num(a.x),
-                    fmt_num(a.y),
-                    fmt_num(b.x),
-                    fmt_num(b.y),
-                    reading_color(*v)
-                );
-            }
+}
+
+/// Each robot's surface sensor points, coloured by reading.
+fn draw_surface_dots(s: &mut String, world: &World, layout: &SurfaceSensors, r: f64) {
+    let grid = layout.grid();
+    let mut out = vec![0.0; grid.len()];
+    let dot = (r * 0.35).clamp(1.0, 3.0);
+    for i in 0..world.robots().len() {
+        grid.read(world, i, &mut out);
+        for (p, v) in grid.positions(world, i).iter().zip(&out) {
+            let _ = writeln!(
+                s,
+                r##"<circle cx="{}" cy="{}" r="{}" fill="{}" stroke="#000000" stroke-width="0.4"/>"##,
+                fmt_num(p.x),
+                fmt_num(p.y),
+                fmt_num(dot),
+                reading_color(*v)
+            );
         }
     }
-    if let Some(layout) = &opts.surface_sensors {
-        let grid = layout.grid();
-        let mut out = vec![0.0; grid.len()];
-        let dot = (r * 0.35).clamp(1.0, 3.0);
-        for i in 0..world.robots().len() {
-            grid.read(world, i, &mut out);
-            for (p, v) in grid.positions(world, i).iter().zip(&out) {
-                let _ = writeln!(
-                    s,
-                    r##"<circle cx="{}" cy="{}" r="{}" fill="{}" stroke="#000000" stroke-width="0.4"/>"##,
-                    fmt_num(p.x),
-                    fmt_num(p.y),
-                    fmt_num(dot),
-                    reading_color(*v)
-                );
-            }
-        }
-    }
+}
+
+/// Each robot as a disc in its colour with a heading line.
+fn draw_robots(s: &mut String, world: &World, r: f64) {
     for (i, rb) in world.robots().iter().enumerate() {
         let tip = rb.pos + rb.ahead() * r;
         let _ = writeln!(
@@ -388,32 +430,36 @@ pub fn render_svg(world: &World, opts: &DrawOptions) -> String {
             fmt_num(tip.y)
         );
     }
-    s.push_str("</g>\n");
-    if lines > 0 {
-        let top = band + sc.height();
+}
+
+/// The legend band below the arena: its white background, then each item's
+/// symbol and text at its place `(x, line)`.
+fn draw_legend(
+    s: &mut String,
+    items: &[LegendItem],
+    places: &[(f64, usize)],
+    (top, w, legend_band): (f64, f64, f64),
+) {
+    let _ = writeln!(
+        s,
+        r##"<rect x="0" y="{}" width="{}" height="{}" fill="#ffffff"/>"##,
+        fmt_num(top),
+        fmt_num(w),
+        fmt_num(legend_band)
+    );
+    for (item, &(x, line)) in items.iter().zip(places) {
+        let y = top + 3.0 + LEGEND_LINE * (line as f64 + 0.5);
         let _ = writeln!(
             s,
-            r##"<rect x="0" y="{}" width="{}" height="{}" fill="#ffffff"/>"##,
-            fmt_num(top),
-            fmt_num(w),
-            fmt_num(legend_band)
+            r##"<g transform="translate({} {})">{}</g><text x="{}" y="{}" font-family="DejaVu Sans" font-size="12" fill="#000000">{}</text>"##,
+            fmt_num(x + 7.0),
+            fmt_num(y),
+            item.symbol,
+            fmt_num(x + 20.0),
+            fmt_num(y + 4.0),
+            xml_escape(&item.text)
         );
-        for (item, &(x, line)) in items.iter().zip(&places) {
-            let y = top + 3.0 + LEGEND_LINE * (line as f64 + 0.5);
-            let _ = writeln!(
-                s,
-                r##"<g transform="translate({} {})">{}</g><text x="{}" y="{}" font-family="DejaVu Sans" font-size="12" fill="#000000">{}</text>"##,
-                fmt_num(x + 7.0),
-                fmt_num(y),
-                item.symbol,
-                fmt_num(x + 20.0),
-                fmt_num(y + 4.0),
-                xml_escape(&item.text)
-            );
-        }
     }
-    s.push_str("</svg>\n");
-    s
 }
 
 /// A font database holding only [`FONT`], built once.

@@ -19,8 +19,18 @@ impl World {
     /// it gives the same objects at the same poses (robots at their current
     /// position and heading, movable bodies where they were pushed).
     pub fn to_svg(&self) -> String {
-        let sc = self.scenario();
         let mut s = String::new();
+        self.write_svg_header(&mut s);
+        self.write_surfaces_layer(&mut s);
+        self.write_objects_layer(&mut s);
+        self.write_robots_layer(&mut s);
+        s.push_str("  </g>\n</svg>\n");
+        s
+    }
+
+    /// The XML declaration, the `<svg>` element and the background rect.
+    fn write_svg_header(&self, s: &mut String) {
+        let sc = self.scenario();
         let _ = writeln!(
             s,
             r##"<?xml version="1.0" encoding="UTF-8" standalone="no"?>
@@ -41,6 +51,11 @@ impl World {
             fmt_num(sc.height()),
             surface_color(sc.background())
         );
+    }
+
+    /// Opens the surfaces layer and writes every surface.
+    fn write_surfaces_layer(&self, s: &mut String) {
+        let sc = self.scenario();
         s.push_str("  <g inkscape:groupmode=\"layer\" inkscape:label=\"Surfaces\" id=\"layer-surfaces\">\n");
         for surf in sc.surfaces() {
             let fr = surf
@@ -57,6 +72,12 @@ impl World {
                 surf.shape.to_path_data()
             );
         }
+    }
+
+    /// Closes the previous layer, opens the objects layer and writes the
+    /// obstacles (movable ones where they were pushed), pucks and marks.
+    fn write_objects_layer(&self, s: &mut String) {
+        let sc = self.scenario();
         s.push_str("  </g>\n  <g inkscape:groupmode=\"layer\" inkscape:label=\"Objects\" id=\"layer-objects\">\n");
         for ob in &sc.fixed_obstacles {
             let _ = writeln!(
@@ -98,6 +119,12 @@ impl World {
                 fmt_num(mk.size.y)
             );
         }
+    }
+
+    /// Closes the previous layer, opens the robots layer and writes every
+    /// robot at its current pose.
+    fn write_robots_layer(&self, s: &mut String) {
+        let sc = self.scenario();
         s.push_str("  </g>\n  <g inkscape:groupmode=\"layer\" inkscape:label=\"Robots\" id=\"layer-robots\">\n");
         let r = self.params().robot_radius;
         for (i, (start, rb)) in sc.robots.iter().zip(self.robots()).enumerate() {
@@ -121,7 +148,5 @@ impl World {
                 robot_color(i)
             );
         }
-        s.push_str("  </g>\n</svg>\n");
-        s
     }
 }

@@ -21,9 +21,17 @@ pub(super) struct UniqueIds {
     pub display: BTreeMap<String, String>,
 }
 
+/// Whether an element is one of the SVG shapes the loader reads.
+pub(super) fn is_shape(name: &str) -> bool {
+    matches!(
+        name,
+        "rect" | "circle" | "ellipse" | "line" | "polyline" | "polygon" | "path"
+    )
+}
+
 /// Whether the loader looks an element up by id: shapes and containers.
 fn joined(name: &str) -> bool {
-    super::load::is_shape(name) || matches!(name, "g" | "a" | "switch")
+    is_shape(name) || matches!(name, "g" | "a" | "switch")
 }
 
 /// Returns `None` when every element already has a unique id (the usual
@@ -60,24 +68,7 @@ pub(super) fn unique_ids(
         {
             Some(a) if seen.insert(a.value()) => {}
             Some(a) => {
-                let range = a.range_value();
-                // roxmltree's value range is exact unless more than 255 spaces
-                // surround the `=`: then the quotes are not where it says, and
-                // the duplicate is refused rather than guessed at.
-                let quoted = |i: usize| matches!(text.as_bytes().get(i), Some(b'"' | b'\''));
-                if range.start == 0
-                    || !quoted(range.start - 1)
-                    || !quoted(range.end)
-                    || text.get(range.clone()).is_none()
-                {
-                    return Err(ScenarioError::Xml {
-                        source_name: source.to_string(),
-                        message: format!(
-                            "id '{}' is used twice (again on line {line}) and cannot be renamed: too many spaces around its '='",
-                            a.value()
-                        ),
-                    });
-                }
+                let range = repeated_id_range(text, &a, line, source)?;
                 let id = fresh();
                 display.insert(
                     id.clone(),
@@ -86,16 +77,7 @@ pub(super) fn unique_ids(
                 edits.push((range, id));
             }
             None => {
-                // Insert after the tag's qualified name: `<svg:path` → `<svg:path id="…"`.
-                let start = n.range().start;
-                let name_len = text
-                    .get(start + 1..)
-                    .and_then(|rest| rest.find(|c: char| c.is_whitespace() || c == '/' || c == '>'))
-                    .ok_or_else(|| ScenarioError::Xml {
-                        source_name: source.to_string(),
-                        message: format!("cannot find the end of <{tag}> on line {line}"),
-                    })?;
-                let at = start + 1 + name_len;
+                let at = id_insertion_point(text, n.range().start, tag, line, source)?;
                 let id = fresh();
                 display.insert(id.clone(), format!("<{tag}> on line {line}"));
                 edits.push((at..at, format!(" id=\"{id}\"")));
@@ -105,6 +87,61 @@ pub(super) fn unique_ids(
     if edits.is_empty() {
         return Ok(None);
     }
+    Ok(Some(UniqueIds {
+        text: apply_edits(text, edits),
+        display,
+    }))
+}
+
+/// The byte range of a repeated id's value, to rename it. roxmltree's value
+/// range is exact unless more than 255 spaces surround the `=`: then the
+/// quotes are not where it says, and the duplicate is refused rather than
+/// guessed at.
+fn repeated_id_range(
+    text: &str,
+    a: &roxmltree::Attribute,
+    line: u32,
+    source: &str,
+) -> Result<std::ops::Range<usize>, ScenarioError> {
+    let range = a.range_value();
+    let quoted = |i: usize| matches!(text.as_bytes().get(i), Some(b'"' | b'\''));
+    if range.start == 0
+        || !quoted(range.start - 1)
+        || !quoted(range.end)
+        || text.get(range.clone()).is_none()
+    {
+        return Err(ScenarioError::Xml {
+            source_name: source.to_string(),
+            message: format!(
+                "id '{}' is used twice (again on line {line}) and cannot be renamed: too many spaces around its '='",
+                a.value()
+            ),
+        });
+    }
+    Ok(range)
+}
+
+/// Where to insert an id into the element whose `<` is at byte `start`:
+/// after the tag's qualified name (`<svg:path` → `<svg:path id="…"`).
+fn id_insertion_point(
+    text: &str,
+    start: usize,
+    tag: &str,
+    line: u32,
+    source: &str,
+) -> Result<usize, ScenarioError> {
+    let name_len = text
+        .get(start + 1..)
+        .and_then(|rest| rest.find(|c: char| c.is_whitespace() || c == '/' || c == '>'))
+        .ok_or_else(|| ScenarioError::Xml {
+            source_name: source.to_string(),
+            message: format!("cannot find the end of <{tag}> on line {line}"),
+        })?;
+    Ok(start + 1 + name_len)
+}
+
+/// `text` with each `(byte range, replacement)` edit applied.
+fn apply_edits(text: &str, mut edits: Vec<(std::ops::Range<usize>, String)>) -> String {
     edits.sort_by_key(|(r, _)| r.start);
     let mut out = String::with_capacity(text.len() + edits.len() * 28);
     let mut at = 0;
@@ -114,7 +151,7 @@ pub(super) fn unique_ids(
         at = range.end;
     }
     out.push_str(&text[at..]);
-    Ok(Some(UniqueIds { text: out, display }))
+    out
 }
 
 #[cfg(test)]

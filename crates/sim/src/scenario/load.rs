@@ -13,9 +13,11 @@ use serde::{Deserialize, Serialize};
 use crate::geometry::{Aabb, FillRule, Shape, flatten_path};
 use crate::raster::SurfaceRaster;
 
-use super::ids::unique_ids;
+use super::ids::{is_shape, unique_ids};
 use super::labels::{Class, classify, surface_kind};
-use super::{Mark, Obstacle, Puck, RobotStart, Scenario, ScenarioError, Surface, SurfaceKind};
+use super::{
+    Mark, Obstacle, Puck, PuckKind, RobotStart, Scenario, ScenarioError, Surface, SurfaceKind,
+};
 
 /// Flattening tolerance for curves, in px.
 const FLATTEN_TOLERANCE: f64 = 0.1;
@@ -88,13 +90,6 @@ fn collect_ids<'a>(g: &'a usvg::Group, out: &mut BTreeMap<String, Resolved<'a>>)
             _ => {}
         }
     }
-}
-
-pub(super) fn is_shape(name: &str) -> bool {
-    matches!(
-        name,
-        "rect" | "circle" | "ellipse" | "line" | "polyline" | "polygon" | "path"
-    )
 }
 
 const INKSCAPE_NS: &str = "http://www.inkscape.org/namespaces/inkscape";
@@ -286,30 +281,189 @@ fn check_root_size(root: roxmltree::Node, source: &str, max: f64) -> Result<(), 
     Ok(())
 }
 
+/// Refuses load options that are not finite and positive.
+fn check_options(opts: &LoadOptions) -> Result<(), ScenarioError> {
+    if !(opts.cell_size.is_finite() && opts.cell_size > 0.0) {
+        return Err(ScenarioError::Options {
+            field: "cell_size",
+            value: opts.cell_size,
+        });
+    }
+    if !(opts.max_arena_area.is_finite() && opts.max_arena_area > 0.0) {
+        return Err(ScenarioError::Options {
+            field: "max_arena_area",
+            value: opts.max_arena_area,
+        });
+    }
+    if !(opts.max_arena_size.is_finite() && opts.max_arena_size > 0.0) {
+        return Err(ScenarioError::Options {
+            field: "max_arena_size",
+            value: opts.max_arena_size,
+        });
+    }
+    Ok(())
+}
+
+/// Refuses path data usvg would silently truncate: syntax errors and numbers
+/// beyond ±[`MAX_PATH_NUMBER`].
+fn check_path_data(
+    doc: &roxmltree::Document,
+    display: &BTreeMap<String, String>,
+    source: &str,
+) -> Result<(), ScenarioError> {
+    let err_src = || source.to_string();
+    for n in doc
+        .descendants()
+        .filter(|n| n.is_element() && n.tag_name().name() == "path")
+    {
+        if let Some(d) = n.attribute("d") {
+            for seg in svgtypes::PathParser::from(d) {
+                let message = match seg {
+                    Err(e) => e.to_string(),
+                    Ok(seg) if !path_numbers_in_range(&seg) => {
+                        format!("a number is beyond ±{MAX_PATH_NUMBER:e} (or not finite)")
+                    }
+                    Ok(_) => continue,
+                };
+                return Err(ScenarioError::PathData {
+                    source_name: err_src(),
+                    id: n
+                        .attribute("id")
+                        .map(|id| display.get(id).map_or(id, |d| d.as_str()))
+                        .unwrap_or("(no id)")
+                        .to_string(),
+                    message,
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Refuses an arena smaller than 1 px, or beyond the options' size or area.
+fn check_arena_size(
+    width: f64,
+    height: f64,
+    opts: &LoadOptions,
+    source: &str,
+) -> Result<(), ScenarioError> {
+    let err_src = || source.to_string();
+    if !(width.is_finite() && height.is_finite() && width >= 1.0 && height >= 1.0) {
+        return Err(ScenarioError::ArenaSize {
+            source_name: err_src(),
+            width,
+            height,
+            problem: "must be at least 1 px each way".into(),
+        });
+    }
+    if width > opts.max_arena_size || height > opts.max_arena_size {
+        return Err(ScenarioError::ArenaSize {
+            source_name: err_src(),
+            width,
+            height,
+            problem: format!("larger than the limit of {} px", opts.max_arena_size),
+        });
+    }
+    if width * height > opts.max_arena_area {
+        return Err(ScenarioError::ArenaSize {
+            source_name: err_src(),
+            width,
+            height,
+            problem: format!(
+                "larger than the limit of {:e} px² in area (its surface raster would take {:.0} MB)",
+                opts.max_arena_area,
+                width * height / (opts.cell_size * opts.cell_size) / 1e6
+            ),
+        });
+    }
+    Ok(())
+}
+
+/// Refuses a robot that starts outside the arena.
+fn check_robots_inside(sc: &Scenario, source: &str) -> Result<(), ScenarioError> {
+    let (width, height) = (sc.width, sc.height);
+    for r in &sc.robots {
+        if !(r.pos.x >= 0.0 && r.pos.y >= 0.0 && r.pos.x <= width && r.pos.y <= height) {
+            return Err(ScenarioError::RobotOutsideArena {
+                source_name: source.to_string(),
+                id: r.id.clone(),
+                x: r.pos.x,
+                y: r.pos.y,
+                width,
+                height,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Each surface's material id, adding the distinct (kind, friction override)
+/// pairs to `sc.materials`; the raster stores one byte each.
+fn material_ids(sc: &mut Scenario, source: &str) -> Result<Vec<u8>, ScenarioError> {
+    // Materials: distinct (kind, friction override) pairs; the raster stores one byte each.
+    let mut ids = Vec::with_capacity(sc.surfaces.len());
+    for s in &sc.surfaces {
+        let key = (s.kind, s.friction);
+        let m = match sc.materials.iter().position(|k| *k == key) {
+            Some(m) => m,
+            None => {
+                sc.materials.push(key);
+                sc.materials.len() - 1
+            }
+        };
+        if m > u8::MAX as usize {
+            return Err(ScenarioError::TooManyMaterials {
+                source_name: source.to_string(),
+            });
+        }
+        ids.push(m as u8);
+    }
+    Ok(ids)
+}
+
+/// usvg's tree of the (checked) document.
+fn usvg_tree(doc: &roxmltree::Document, source: &str) -> Result<usvg::Tree, ScenarioError> {
+    let err_src = || source.to_string();
+    usvg::Tree::from_xmltree(doc, &usvg::Options::default()).map_err(|e| match e {
+        usvg::Error::InvalidSize => ScenarioError::ArenaSize {
+            source_name: err_src(),
+            width: 0.0,
+            height: 0.0,
+            problem: "width and height (or viewBox) must be positive".into(),
+        },
+        e => ScenarioError::Svg {
+            source_name: err_src(),
+            message: e.to_string(),
+        },
+    })
+}
+
+/// A scenario with its arena and nothing in it yet.
+fn empty_scenario(source: &str, width: f64, height: f64, background: SurfaceKind) -> Scenario {
+    Scenario {
+        source: source.to_string(),
+        width,
+        height,
+        background,
+        surfaces: Vec::new(),
+        materials: vec![(background, None)],
+        fixed_obstacles: Vec::new(),
+        movable_obstacles: Vec::new(),
+        pucks: Vec::new(),
+        marks: Vec::new(),
+        robots: Vec::new(),
+        warnings: Vec::new(),
+        raster: Arc::new(SurfaceRaster::empty()),
+    }
+}
+
 impl<'a> Loader<'a> {
     pub(super) fn load(
         text: &str,
         source: &str,
         opts: &LoadOptions,
     ) -> Result<Scenario, ScenarioError> {
-        if !(opts.cell_size.is_finite() && opts.cell_size > 0.0) {
-            return Err(ScenarioError::Options {
-                field: "cell_size",
-                value: opts.cell_size,
-            });
-        }
-        if !(opts.max_arena_area.is_finite() && opts.max_arena_area > 0.0) {
-            return Err(ScenarioError::Options {
-                field: "max_arena_area",
-                value: opts.max_arena_area,
-            });
-        }
-        if !(opts.max_arena_size.is_finite() && opts.max_arena_size > 0.0) {
-            return Err(ScenarioError::Options {
-                field: "max_arena_size",
-                value: opts.max_arena_size,
-            });
-        }
+        check_options(opts)?;
         let err_src = || source.to_string();
         prescan(text, source)?;
         let parse = |text| {
@@ -342,73 +496,10 @@ impl<'a> Loader<'a> {
         }
         check_root_size(root, source, opts.max_arena_size)?;
         // Validate all path data before usvg, which silently truncates bad paths.
-        for n in doc
-            .descendants()
-            .filter(|n| n.is_element() && n.tag_name().name() == "path")
-        {
-            if let Some(d) = n.attribute("d") {
-                for seg in svgtypes::PathParser::from(d) {
-                    let message = match seg {
-                        Err(e) => e.to_string(),
-                        Ok(seg) if !path_numbers_in_range(&seg) => {
-                            format!("a number is beyond ±{MAX_PATH_NUMBER:e} (or not finite)")
-                        }
-                        Ok(_) => continue,
-                    };
-                    return Err(ScenarioError::PathData {
-                        source_name: err_src(),
-                        id: n
-                            .attribute("id")
-                            .map(|id| display.get(id).map_or(id, |d| d.as_str()))
-                            .unwrap_or("(no id)")
-                            .to_string(),
-                        message,
-                    });
-                }
-            }
-        }
-        let tree =
-            usvg::Tree::from_xmltree(&doc, &usvg::Options::default()).map_err(|e| match e {
-                usvg::Error::InvalidSize => ScenarioError::ArenaSize {
-                    source_name: err_src(),
-                    width: 0.0,
-                    height: 0.0,
-                    problem: "width and height (or viewBox) must be positive".into(),
-                },
-                e => ScenarioError::Svg {
-                    source_name: err_src(),
-                    message: e.to_string(),
-                },
-            })?;
+        check_path_data(&doc, &display, source)?;
+        let tree = usvg_tree(&doc, source)?;
         let (width, height) = (tree.size().width() as f64, tree.size().height() as f64);
-        if !(width.is_finite() && height.is_finite() && width >= 1.0 && height >= 1.0) {
-            return Err(ScenarioError::ArenaSize {
-                source_name: err_src(),
-                width,
-                height,
-                problem: "must be at least 1 px each way".into(),
-            });
-        }
-        if width > opts.max_arena_size || height > opts.max_arena_size {
-            return Err(ScenarioError::ArenaSize {
-                source_name: err_src(),
-                width,
-                height,
-                problem: format!("larger than the limit of {} px", opts.max_arena_size),
-            });
-        }
-        if width * height > opts.max_arena_area {
-            return Err(ScenarioError::ArenaSize {
-                source_name: err_src(),
-                width,
-                height,
-                problem: format!(
-                    "larger than the limit of {:e} px² in area (its surface raster would take {:.0} MB)",
-                    opts.max_arena_area,
-                    width * height / (opts.cell_size * opts.cell_size) / 1e6
-                ),
-            });
-        }
+        check_arena_size(width, height, opts, source)?;
         let background = match root.attribute("data-background") {
             None => SurfaceKind::Grass,
             Some(v) => surface_kind(v.trim()).ok_or_else(|| ScenarioError::Attribute {
@@ -429,56 +520,14 @@ impl<'a> Loader<'a> {
                 min: DVec2::splat(-reach),
                 max: DVec2::new(width + reach, height + reach),
             },
-            sc: Scenario {
-                source: source.to_string(),
-                width,
-                height,
-                background,
-                surfaces: Vec::new(),
-                materials: vec![(background, None)],
-                fixed_obstacles: Vec::new(),
-                movable_obstacles: Vec::new(),
-                pucks: Vec::new(),
-                marks: Vec::new(),
-                robots: Vec::new(),
-                warnings: Vec::new(),
-                raster: Arc::new(SurfaceRaster::empty()),
-            },
+            sc: empty_scenario(source, width, height, background),
         };
         for c in root.children().filter(|c| c.is_element()) {
             loader.walk(c, None)?;
         }
         let mut sc = loader.sc;
-        for r in &sc.robots {
-            if !(r.pos.x >= 0.0 && r.pos.y >= 0.0 && r.pos.x <= width && r.pos.y <= height) {
-                return Err(ScenarioError::RobotOutsideArena {
-                    source_name: err_src(),
-                    id: r.id.clone(),
-                    x: r.pos.x,
-                    y: r.pos.y,
-                    width,
-                    height,
-                });
-            }
-        }
-        // Materials: distinct (kind, friction override) pairs; the raster stores one byte each.
-        let mut ids = Vec::with_capacity(sc.surfaces.len());
-        for s in &sc.surfaces {
-            let key = (s.kind, s.friction);
-            let m = match sc.materials.iter().position(|k| *k == key) {
-                Some(m) => m,
-                None => {
-                    sc.materials.push(key);
-                    sc.materials.len() - 1
-                }
-            };
-            if m > u8::MAX as usize {
-                return Err(ScenarioError::TooManyMaterials {
-                    source_name: err_src(),
-                });
-            }
-            ids.push(m as u8);
-        }
+        check_robots_inside(&sc, source)?;
+        let ids = material_ids(&mut sc, source)?;
         sc.raster = Arc::new(SurfaceRaster::build(
             width,
             height,
@@ -633,50 +682,21 @@ impl<'a> Loader<'a> {
             Class::Surface(kind) => {
                 let friction = self.friction_of(n, owner)?;
                 let (_, shape) = shapes.into_iter().next().expect("checked non-empty");
-                if shape.is_empty() {
-                    self.warn(format!(
-                        "{}: element '{id}' (label '{label}') has no area, ignored",
-                        self.source
-                    ));
-                } else {
-                    self.sc.surfaces.push(Surface {
+                self.add_surface(
+                    Surface {
                         id,
                         kind,
                         friction,
                         shape,
-                    });
-                }
+                    },
+                    &label,
+                );
             }
             Class::Fixed | Class::Movable => {
                 let (_, shape) = shapes.into_iter().next().expect("checked non-empty");
-                if shape.is_empty() || shape.area() <= 0.0 {
-                    self.warn(format!(
-                        "{}: element '{id}' (label '{label}') has no area, ignored",
-                        self.source
-                    ));
-                } else if class == Class::Fixed {
-                    self.sc.fixed_obstacles.push(Obstacle { id, shape });
-                } else {
-                    self.sc.movable_obstacles.push(Obstacle { id, shape });
-                }
+                self.add_obstacle(class == Class::Fixed, Obstacle { id, shape }, &label);
             }
-            Class::Puck(kind) => {
-                let size = bbox.size();
-                let radius = (size.x + size.y) * 0.25;
-                if radius > 0.0 {
-                    self.sc.pucks.push(Puck {
-                        id,
-                        kind,
-                        pos: bbox.center(),
-                        radius,
-                    });
-                } else {
-                    self.warn(format!(
-                        "{}: element '{id}' (label '{label}') has zero size, ignored",
-                        self.source
-                    ));
-                }
-            }
+            Class::Puck(kind) => self.add_puck(kind, id, &label, bbox),
             Class::Mark => {
                 let (pos, _) = self.pose(n, &shapes, bbox);
                 self.sc.marks.push(Mark {
@@ -696,6 +716,52 @@ impl<'a> Loader<'a> {
             }
         }
         Ok(())
+    }
+
+    /// Adds `surface`, or warns (labelled `label`) when it has no area.
+    fn add_surface(&mut self, surface: Surface, label: &str) {
+        if surface.shape.is_empty() {
+            self.warn(format!(
+                "{}: element '{}' (label '{label}') has no area, ignored",
+                self.source, surface.id
+            ));
+        } else {
+            self.sc.surfaces.push(surface);
+        }
+    }
+
+    /// Adds a fixed or movable obstacle, or warns when it has no area.
+    fn add_obstacle(&mut self, fixed: bool, ob: Obstacle, label: &str) {
+        if ob.shape.is_empty() || ob.shape.area() <= 0.0 {
+            self.warn(format!(
+                "{}: element '{}' (label '{label}') has no area, ignored",
+                self.source, ob.id
+            ));
+        } else if fixed {
+            self.sc.fixed_obstacles.push(ob);
+        } else {
+            self.sc.movable_obstacles.push(ob);
+        }
+    }
+
+    /// Adds a puck filling `bbox` (radius: the mean half-side), or warns when
+    /// it has zero size.
+    fn add_puck(&mut self, kind: PuckKind, id: String, label: &str, bbox: Aabb) {
+        let size = bbox.size();
+        let radius = (size.x + size.y) * 0.25;
+        if radius > 0.0 {
+            self.sc.pucks.push(Puck {
+                id,
+                kind,
+                pos: bbox.center(),
+                radius,
+            });
+        } else {
+            self.warn(format!(
+                "{}: element '{id}' (label '{label}') has zero size, ignored",
+                self.source
+            ));
+        }
     }
 
     /// Position (local bounding-box centre under the element's transform) and heading.

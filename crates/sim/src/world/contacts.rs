@@ -3,7 +3,8 @@
 use glam::DVec2;
 
 use crate::geometry::{Aabb, Shape};
-use crate::world::World;
+use crate::scenario::Obstacle;
+use crate::world::{MovableState, PuckState, Robot, World};
 
 /// Push needed to move a disc (centre `c`, radius `r`) out of `shape` seen
 /// from offset `off`, or `None` when they do not overlap.
@@ -110,145 +111,185 @@ impl World {
             ..
         } = self;
         let sc = &statics.scenario;
-        let (w, h) = (sc.width(), sc.height());
-        let rr = params.robot_radius;
-        let rm = params.robot_mass;
+        let arena = (sc.width(), sc.height());
+        let (rr, rm) = (params.robot_radius, params.robot_mass);
+        let (loose, fixed) = (&sc.movable_obstacles[..], &sc.fixed_obstacles[..]);
         for _ in 0..params.collision_iterations {
-            let mut any = false;
-            // Robot–robot (equal masses).
-            let n = robots.len();
-            for i in 0..n {
-                for j in (i + 1)..n {
-                    let d = robots[j].pos - robots[i].pos;
-                    let dist2 = d.length_squared();
-                    if dist2 < 4.0 * rr * rr {
-                        let dist = dist2.sqrt();
-                        let nrm = if dist > 1e-12 { d / dist } else { DVec2::X };
-                        let push = nrm * ((2.0 * rr - dist) * 0.5);
-                        robots[i].pos -= push;
-                        robots[j].pos += push;
-                        any = true;
-                    }
-                }
-            }
-            // Robot–puck and robot–movable obstacle: momentum shared by mass.
-            for rb in robots.iter_mut() {
-                for pk in pucks.iter_mut() {
-                    let d = pk.pos - rb.pos;
-                    let min = rr + pk.radius;
-                    let dist2 = d.length_squared();
-                    if dist2 < min * min {
-                        let dist = dist2.sqrt();
-                        let nrm = if dist > 1e-12 { d / dist } else { DVec2::X };
-                        let pen = min - dist;
-                        let total = rm + pk.mass;
-                        rb.pos -= nrm * (pen * pk.mass / total);
-                        pk.pos += nrm * (pen * rm / total);
-                        any = true;
-                    }
-                }
-                for (ob, m) in sc.movable_obstacles.iter().zip(movables.iter_mut()) {
-                    if let Some(push) = disc_out_of_shape(rb.pos, rr, &ob.shape, m.offset) {
-                        let total = rm + m.mass;
-                        rb.pos += push * (m.mass / total);
-                        m.offset -= push * (rm / total);
-                        any = true;
-                    }
-                }
-            }
-            // Puck–puck, puck–movable, movable–movable.
-            let np = pucks.len();
-            for i in 0..np {
-                for j in (i + 1)..np {
-                    let (a, b) = (&pucks[i], &pucks[j]);
-                    let d = b.pos - a.pos;
-                    let min = a.radius + b.radius;
-                    let dist2 = d.length_squared();
-                    if dist2 < min * min {
-                        let dist = dist2.sqrt();
-                        let nrm = if dist > 1e-12 { d / dist } else { DVec2::X };
-                        let pen = min - dist;
-                        let total = a.mass + b.mass;
-                        let (ma, mb) = (a.mass, b.mass);
-                        pucks[i].pos -= nrm * (pen * mb / total);
-                        pucks[j].pos += nrm * (pen * ma / total);
-                        any = true;
-                    }
-                }
-                for (ob, m) in sc.movable_obstacles.iter().zip(movables.iter_mut()) {
-                    let pk = &mut pucks[i];
-                    if let Some(push) = disc_out_of_shape(pk.pos, pk.radius, &ob.shape, m.offset) {
-                        let total = pk.mass + m.mass;
-                        pk.pos += push * (m.mass / total);
-                        m.offset -= push * (pk.mass / total);
-                        any = true;
-                    }
-                }
-            }
-            let nm = movables.len();
-            for i in 0..nm {
-                for j in (i + 1)..nm {
-                    let (a, b) = (
-                        &sc.movable_obstacles[i].shape,
-                        &sc.movable_obstacles[j].shape,
-                    );
-                    if let Some(push) =
-                        shape_out_of_shape(a, movables[i].offset, b, movables[j].offset)
-                    {
-                        let (ma, mb) = (movables[i].mass, movables[j].mass);
-                        let total = ma + mb;
-                        movables[i].offset += push * (mb / total);
-                        movables[j].offset -= push * (ma / total);
-                        any = true;
-                    }
-                }
-            }
+            // `|=` on bool does not short-circuit: every pass runs in order.
+            let mut any = robots_apart(robots, rr);
+            any |= robots_push_loose_bodies(robots, pucks, movables, loose, rr, rm);
+            any |= pucks_apart(pucks, movables, loose);
+            any |= movables_apart(movables, loose);
             // Hard constraints: fixed obstacles, then walls (walls win).
-            for (ob, m) in sc.movable_obstacles.iter().zip(movables.iter_mut()) {
-                for fx in &sc.fixed_obstacles {
-                    if let Some(push) =
-                        shape_out_of_shape(&ob.shape, m.offset, &fx.shape, DVec2::ZERO)
-                    {
-                        m.offset += push;
-                        any = true;
-                    }
-                }
-                let push = box_into_arena(&ob.shape.bbox, m.offset, w, h);
-                if push != DVec2::ZERO {
-                    m.offset += push;
-                    any = true;
-                }
-            }
-            for pk in pucks.iter_mut() {
-                for fx in &sc.fixed_obstacles {
-                    if let Some(push) = disc_out_of_shape(pk.pos, pk.radius, &fx.shape, DVec2::ZERO)
-                    {
-                        pk.pos += push;
-                        any = true;
-                    }
-                }
-                let c = clamp_disc(pk.pos, pk.radius, w, h);
-                if c != pk.pos {
-                    pk.pos = c;
-                    any = true;
-                }
-            }
-            for rb in robots.iter_mut() {
-                for fx in &sc.fixed_obstacles {
-                    if let Some(push) = disc_out_of_shape(rb.pos, rr, &fx.shape, DVec2::ZERO) {
-                        rb.pos += push;
-                        any = true;
-                    }
-                }
-                let c = clamp_disc(rb.pos, rr, w, h);
-                if c != rb.pos {
-                    rb.pos = c;
-                    any = true;
-                }
-            }
+            any |= movables_against_fixed(movables, loose, fixed, arena);
+            any |= discs_against_fixed(
+                pucks.iter_mut().map(|p| (&mut p.pos, p.radius)),
+                fixed,
+                arena,
+            );
+            any |= discs_against_fixed(robots.iter_mut().map(|r| (&mut r.pos, rr)), fixed, arena);
             if !any {
                 break;
             }
         }
     }
+}
+
+/// Robot–robot contacts (equal masses); whether any robot moved.
+fn robots_apart(robots: &mut [Robot], rr: f64) -> bool {
+    let mut any = false;
+    let n = robots.len();
+    for i in 0..n {
+        for j in (i + 1)..n {
+            let d = robots[j].pos - robots[i].pos;
+            let dist2 = d.length_squared();
+            if dist2 < 4.0 * rr * rr {
+                let dist = dist2.sqrt();
+                let nrm = if dist > 1e-12 { d / dist } else { DVec2::X };
+                let push = nrm * ((2.0 * rr - dist) * 0.5);
+                robots[i].pos -= push;
+                robots[j].pos += push;
+                any = true;
+            }
+        }
+    }
+    any
+}
+
+/// Robot–puck and robot–movable obstacle contacts: momentum shared by mass.
+fn robots_push_loose_bodies(
+    robots: &mut [Robot],
+    pucks: &mut [PuckState],
+    movables: &mut [MovableState],
+    loose: &[Obstacle],
+    rr: f64,
+    rm: f64,
+) -> bool {
+    let mut any = false;
+    for rb in robots.iter_mut() {
+        for pk in pucks.iter_mut() {
+            let d = pk.pos - rb.pos;
+            let min = rr + pk.radius;
+            let dist2 = d.length_squared();
+            if dist2 < min * min {
+                let dist = dist2.sqrt();
+                let nrm = if dist > 1e-12 { d / dist } else { DVec2::X };
+                let pen = min - dist;
+                let total = rm + pk.mass;
+                rb.pos -= nrm * (pen * pk.mass / total);
+                pk.pos += nrm * (pen * rm / total);
+                any = true;
+            }
+        }
+        for (ob, m) in loose.iter().zip(movables.iter_mut()) {
+            if let Some(push) = disc_out_of_shape(rb.pos, rr, &ob.shape, m.offset) {
+                let total = rm + m.mass;
+                rb.pos += push * (m.mass / total);
+                m.offset -= push * (rm / total);
+                any = true;
+            }
+        }
+    }
+    any
+}
+
+/// Puck–puck and puck–movable obstacle contacts, shared by mass.
+fn pucks_apart(pucks: &mut [PuckState], movables: &mut [MovableState], loose: &[Obstacle]) -> bool {
+    let mut any = false;
+    let np = pucks.len();
+    for i in 0..np {
+        for j in (i + 1)..np {
+            let (a, b) = (&pucks[i], &pucks[j]);
+            let d = b.pos - a.pos;
+            let min = a.radius + b.radius;
+            let dist2 = d.length_squared();
+            if dist2 < min * min {
+                let dist = dist2.sqrt();
+                let nrm = if dist > 1e-12 { d / dist } else { DVec2::X };
+                let pen = min - dist;
+                let total = a.mass + b.mass;
+                let (ma, mb) = (a.mass, b.mass);
+                pucks[i].pos -= nrm * (pen * mb / total);
+                pucks[j].pos += nrm * (pen * ma / total);
+                any = true;
+            }
+        }
+        for (ob, m) in loose.iter().zip(movables.iter_mut()) {
+            let pk = &mut pucks[i];
+            if let Some(push) = disc_out_of_shape(pk.pos, pk.radius, &ob.shape, m.offset) {
+                let total = pk.mass + m.mass;
+                pk.pos += push * (m.mass / total);
+                m.offset -= push * (pk.mass / total);
+                any = true;
+            }
+        }
+    }
+    any
+}
+
+/// Movable–movable obstacle contacts, shared by mass.
+fn movables_apart(movables: &mut [MovableState], loose: &[Obstacle]) -> bool {
+    let mut any = false;
+    let nm = movables.len();
+    for i in 0..nm {
+        for j in (i + 1)..nm {
+            let (a, b) = (&loose[i].shape, &loose[j].shape);
+            if let Some(push) = shape_out_of_shape(a, movables[i].offset, b, movables[j].offset) {
+                let (ma, mb) = (movables[i].mass, movables[j].mass);
+                let total = ma + mb;
+                movables[i].offset += push * (mb / total);
+                movables[j].offset -= push * (ma / total);
+                any = true;
+            }
+        }
+    }
+    any
+}
+
+/// Pushes movable obstacles out of fixed ones, then into the `(w, h)` arena.
+fn movables_against_fixed(
+    movables: &mut [MovableState],
+    loose: &[Obstacle],
+    fixed: &[Obstacle],
+    (w, h): (f64, f64),
+) -> bool {
+    let mut any = false;
+    for (ob, m) in loose.iter().zip(movables.iter_mut()) {
+        for fx in fixed {
+            if let Some(push) = shape_out_of_shape(&ob.shape, m.offset, &fx.shape, DVec2::ZERO) {
+                m.offset += push;
+                any = true;
+            }
+        }
+        let push = box_into_arena(&ob.shape.bbox, m.offset, w, h);
+        if push != DVec2::ZERO {
+            m.offset += push;
+            any = true;
+        }
+    }
+    any
+}
+
+/// Pushes discs `(centre, radius)` out of fixed obstacles, then into the
+/// `(w, h)` arena.
+fn discs_against_fixed<'a>(
+    discs: impl Iterator<Item = (&'a mut DVec2, f64)>,
+    fixed: &[Obstacle],
+    (w, h): (f64, f64),
+) -> bool {
+    let mut any = false;
+    for (pos, r) in discs {
+        for fx in fixed {
+            if let Some(push) = disc_out_of_shape(*pos, r, &fx.shape, DVec2::ZERO) {
+                *pos += push;
+                any = true;
+            }
+        }
+        let c = clamp_disc(*pos, r, w, h);
+        if c != *pos {
+            *pos = c;
+            any = true;
+        }
+    }
+    any
 }

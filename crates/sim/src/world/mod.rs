@@ -119,24 +119,67 @@ pub struct World {
     steps: u64,
 }
 
+/// The per-material surface table (`scenario.materials()` order): friction
+/// from `params` unless the scenario overrides it, and the sensor reading.
+fn surface_table(scenario: &Scenario, params: &PhysicsParams) -> Vec<SurfaceHere> {
+    let (lo, hi) = params.friction.range();
+    let here = |kind: SurfaceKind, over: Option<f64>| {
+        let friction = over.unwrap_or(params.friction.of(kind));
+        SurfaceHere {
+            kind,
+            friction,
+            reading: ((hi - friction) / (hi - lo)).clamp(0.0, 1.0),
+        }
+    };
+    scenario
+        .materials()
+        .iter()
+        .map(|(k, f)| here(*k, *f))
+        .collect()
+}
+
+impl Statics {
+    /// The shared, never-changing part of a world on `scenario`.
+    fn new(scenario: &Scenario, table: Vec<SurfaceHere>) -> Statics {
+        let limit = DVec2::new(scenario.width(), scenario.height()) / scenario.raster().cell;
+        Statics {
+            readings: {
+                let mut r = Box::new([0.0; 256]);
+                for (slot, h) in r.iter_mut().zip(&table) {
+                    *slot = h.reading;
+                }
+                r
+            },
+            frictions: {
+                let mut f = Box::new([0.0; 256]);
+                for (slot, h) in f.iter_mut().zip(&table) {
+                    *slot = h.friction;
+                }
+                f
+            },
+            limit,
+            lanes: {
+                let ras = scenario.raster();
+                let n = ras.tiles().0.len();
+                limit.x <= ras.cols as f64
+                    && limit.y <= ras.rows as f64
+                    && n > crate::raster::PAD
+                    && n < 1 << 31
+            },
+            inv_cell: 1.0 / scenario.raster().cell,
+            few_materials: table.len() <= 16,
+            cell_pow2: is_normal_pow2(scenario.raster().cell)
+                && is_normal_pow2(1.0 / scenario.raster().cell),
+            scenario: scenario.clone(),
+            here: table,
+        }
+    }
+}
+
 impl World {
     /// A world at the scenario's start state. Fails if `params` is invalid.
     pub fn new(scenario: &Scenario, params: &PhysicsParams) -> Result<World, ParamError> {
         params.validate()?;
-        let (lo, hi) = params.friction.range();
-        let here = |kind: SurfaceKind, over: Option<f64>| {
-            let friction = over.unwrap_or(params.friction.of(kind));
-            SurfaceHere {
-                kind,
-                friction,
-                reading: ((hi - friction) / (hi - lo)).clamp(0.0, 1.0),
-            }
-        };
-        let table: Vec<SurfaceHere> = scenario
-            .materials()
-            .iter()
-            .map(|(k, f)| here(*k, *f))
-            .collect();
         let robots: Vec<Robot> = scenario
             .robots
             .iter()
@@ -171,42 +214,11 @@ impl World {
                 mass: params.obstacle_density * o.shape.area(),
             })
             .collect();
-        let limit = DVec2::new(scenario.width(), scenario.height()) / scenario.raster().cell;
         Ok(World {
             prev_robots: vec![DVec2::ZERO; robots.len()],
             prev_pucks: vec![DVec2::ZERO; pucks.len()],
             prev_movables: vec![DVec2::ZERO; movables.len()],
-            statics: Arc::new(Statics {
-                readings: {
-                    let mut r = Box::new([0.0; 256]);
-                    for (slot, h) in r.iter_mut().zip(&table) {
-                        *slot = h.reading;
-                    }
-                    r
-                },
-                frictions: {
-                    let mut f = Box::new([0.0; 256]);
-                    for (slot, h) in f.iter_mut().zip(&table) {
-                        *slot = h.friction;
-                    }
-                    f
-                },
-                limit,
-                lanes: {
-                    let ras = scenario.raster();
-                    let n = ras.tiles().0.len();
-                    limit.x <= ras.cols as f64
-                        && limit.y <= ras.rows as f64
-                        && n > crate::raster::PAD
-                        && n < 1 << 31
-                },
-                inv_cell: 1.0 / scenario.raster().cell,
-                few_materials: table.len() <= 16,
-                cell_pow2: is_normal_pow2(scenario.raster().cell)
-                    && is_normal_pow2(1.0 / scenario.raster().cell),
-                scenario: scenario.clone(),
-                here: table,
-            }),
+            statics: Arc::new(Statics::new(scenario, surface_table(scenario, params))),
             params: params.clone(),
             robots,
             pucks,

@@ -1,7 +1,6 @@
 //! DESIGN §5 kinematics, collisions, odometer and determinism on hand-made worlds.
 
-mod common;
-use common::*;
+use crate::common::*;
 use vivae_sim::{DVec2, PhysicsParams, World};
 
 fn world(body: &str, w: f64, h: f64) -> World {

@@ -1,7 +1,6 @@
 //! Format features of DESIGN §4: units and viewBox, groups, stroked roads, friction overrides.
 
-mod common;
-use common::*;
+use crate::common::*;
 use vivae_sim::{DVec2, PhysicsParams, SurfaceKind, World};
 
 #[test]

@@ -1,8 +1,7 @@
 //! Every ViVAE corpus scenario loads with the objects its labels name.
 //! Expected counts were written by reading each file's `inkscape:label`s.
 
-use std::path::PathBuf;
-
+use crate::common::{corpus_at, shared_corpus};
 use vivae_sim::{LoadOptions, Scenario, SurfaceKind};
 
 /// (file, robots, road, grass, sand, water, fixed, movable, pucks, marks)
@@ -35,22 +34,24 @@ const TABLE: &[Row] = &[
     ("ushape.svg", 1, 0, 1, 0, 0, 1, 0, 0, 0),
 ];
 
-fn corpus_dir() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/vivae-scenarios")
+#[test]
+fn a_missing_corpus_is_skipped_with_a_note_by_default() {
+    let missing = std::env::temp_dir().join("vivae-no-such-corpus-dir");
+    assert_eq!(corpus_at(&missing, false), None);
+}
+
+#[test]
+#[should_panic(expected = "VIVAE_REQUIRE_SHARED=1 requires it")]
+fn a_missing_corpus_fails_when_required() {
+    let missing = std::env::temp_dir().join("vivae-no-such-corpus-dir");
+    corpus_at(&missing, true);
 }
 
 #[test]
 fn every_corpus_file_loads_with_the_labelled_objects() {
-    let dir = corpus_dir();
-    if !dir.is_dir() {
-        // A skip must show in the test summary: fail unless the person opted out.
-        assert!(
-            std::env::var("VIVAE_ALLOW_NO_SHARED").is_ok_and(|v| v == "1"),
-            "the scenario corpus {} is absent: put it there, or set VIVAE_ALLOW_NO_SHARED=1 to skip the tests that need it",
-            dir.display()
-        );
+    let Some(dir) = shared_corpus() else {
         return;
-    }
+    };
     let mut files: Vec<String> = std::fs::read_dir(&dir)
         .unwrap()
         .filter_map(|e| e.ok())
@@ -105,16 +106,9 @@ fn every_corpus_file_loads_with_the_labelled_objects() {
 
 #[test]
 fn corpus_geometry_lands_where_the_files_put_it() {
-    let dir = corpus_dir();
-    if !dir.is_dir() {
-        // A skip must show in the test summary: fail unless the person opted out.
-        assert!(
-            std::env::var("VIVAE_ALLOW_NO_SHARED").is_ok_and(|v| v == "1"),
-            "the scenario corpus {} is absent: put it there, or set VIVAE_ALLOW_NO_SHARED=1 to skip the tests that need it",
-            dir.display()
-        );
+    let Some(dir) = shared_corpus() else {
         return;
-    }
+    };
     let load = |n: &str| {
         Scenario::from_svg(
             &std::fs::read_to_string(dir.join(n)).unwrap(),

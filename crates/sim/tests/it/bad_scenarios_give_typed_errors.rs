@@ -1,7 +1,6 @@
 //! Bad scenario files give typed errors naming file, element and problem; odd ones warn.
 
-mod common;
-use common::*;
+use crate::common::*;
 use vivae_sim::{LoadOptions, Scenario, ScenarioError};
 
 fn err(text: &str) -> ScenarioError {

@@ -1,8 +1,7 @@
 //! Property tests: the surface raster agrees with exact geometry away from
 //! edges, and no two bodies overlap after any step.
 
-mod common;
-use common::*;
+use crate::common::*;
 use proptest::prelude::*;
 use vivae_sim::{DVec2, LoadOptions, PhysicsParams, Scenario, World};
 

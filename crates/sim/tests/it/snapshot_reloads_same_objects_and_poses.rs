@@ -1,7 +1,6 @@
 //! `world.to_svg()` loads back to the same objects at the same poses; drawings render.
 
-mod common;
-use common::*;
+use crate::common::*;
 use vivae_sim::{
     DistanceSensors, DrawOptions, LoadOptions, PhysicsParams, Scenario, Sensor, SurfaceSensors,
     World,

@@ -1,7 +1,6 @@
 //! Surface and distance sensors on hand-made worlds.
 
-mod common;
-use common::*;
+use crate::common::*;
 use vivae_sim::{DistanceSensors, PhysicsParams, Sensor, SurfaceSensors, World};
 
 fn vertical_road(robot_deg: f64) -> World {
