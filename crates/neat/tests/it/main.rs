@@ -1,6 +1,10 @@
 //! Integration tests of vivae-neat, one module per behaviour.
 
+mod common;
+
+mod checkpoint_of_any_strategy_resumes_identically;
 mod checkpoint_roundtrip_continues_identically;
+mod driver_runs_any_strategy;
 mod driver_stops_for_the_reason_it_reports;
 mod genome_invariants_under_random_mutations;
 mod inconsistent_genomes_and_populations_are_refused;
