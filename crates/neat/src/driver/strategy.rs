@@ -18,52 +18,64 @@
 //! use rand::SeedableRng;
 //! use rand_pcg::Pcg64;
 //! use serde::{Deserialize, Serialize};
-//! use vivae_neat::driver::{Batch, Evaluation, Evolution, NoCheckpoints, ParallelEvaluator, StopCriteria, StopReason, Strategy};
-//! use vivae_neat::{mutation::mutate, BestEver, EvalContext, GenerationStats, Genome, GenomeSpec, InnovationTracker, NeatError, NeatParams};
+//! use vivae_neat::driver::{Batch, Evaluation, Evolution, NoCheckpoints};
+//! use vivae_neat::driver::{ParallelEvaluator, StopCriteria, StopReason, Strategy};
+//! use vivae_neat::{BestEver, EvalContext, GenerationStats, Genome, GenomeSpec};
+//! use vivae_neat::{InnovationTracker, NeatError, NeatParams, mutation::mutate};
 //!
 //! /// Mutates the best genome so far; the child replaces it when better.
 //! #[derive(Serialize, Deserialize)]
-//! struct OnePlusOne { spec: GenomeSpec, params: NeatParams, tracker: InnovationTracker, rng: Pcg64,
-//!     seed: u64, generation: u32, child: Vec<Genome>, fitness: Option<f64>, best: Option<BestEver> }
-//!
-//! impl OnePlusOne {
-//!     fn new(spec: GenomeSpec, params: NeatParams, seed: u64) -> Self {
-//!         let (mut rng, mut tracker) = (Pcg64::seed_from_u64(seed), InnovationTracker::new((spec.inputs + spec.outputs) as u32));
-//!         let child = vec![Genome::minimal(&spec, &params, &mut tracker, &mut rng)];
-//!         OnePlusOne { spec, params, tracker, rng, seed, generation: 0, child, fitness: None, best: None }
-//!     }
+//! struct OnePlusOne {
+//!     spec: GenomeSpec, params: NeatParams, tracker: InnovationTracker, rng: Pcg64, seed: u64,
+//!     generation: u32, child: [Genome; 1], fitness: Option<f64>, best: Option<BestEver>,
 //! }
 //!
 //! impl Strategy for OnePlusOne {
 //!     fn ask(&mut self) -> Batch<'_> {
 //!         if let (Some(_), Some(best)) = (self.fitness.take(), &self.best) {
+//!             let (child, params) = (&mut self.child[0], &self.params);
+//!             *child = best.genome.clone();
+//!             mutate(child, &self.spec, params, &mut self.tracker, &mut self.rng);
 //!             self.generation += 1;
-//!             self.child = vec![best.genome.clone()];
-//!             mutate(&mut self.child[0], &self.spec, &self.params, &mut self.tracker, &mut self.rng);
 //!         }
 //!         Batch::new(&self.child, self.seed, self.generation)
 //!     }
-//!     fn tell(&mut self, evaluations: &[Evaluation]) -> Result<(), NeatError> {
-//!         let [e] = evaluations else { return Err(NeatError::FitnessCount { given: evaluations.len(), genomes: 1 }) };
+//!     fn tell(&mut self, told: &[Evaluation]) -> Result<(), NeatError> {
+//!         let given = told.len();
+//!         let [e] = told else { return Err(NeatError::FitnessCount { given, genomes: 1 }) };
 //!         let f = if e.fitness.is_finite() { e.fitness } else { 0.0 };
 //!         if self.best.as_ref().is_none_or(|b| f > b.fitness) {
-//!             self.best = Some(BestEver { genome: self.child[0].clone(), fitness: f, generation: self.generation });
+//!             let genome = self.child[0].clone();
+//!             self.best = Some(BestEver { genome, fitness: f, generation: self.generation });
 //!         }
 //!         self.fitness = Some(f);
 //!         Ok(())
 //!     }
 //!     fn generation(&self) -> u32 { self.generation }
-//!     fn champion(&self) -> Option<(&Genome, f64)> { self.fitness.map(|f| (&self.child[0], f)) }
+//!     fn champion(&self) -> Option<(&Genome, f64)> { Some((&self.child[0], self.fitness?)) }
 //!     fn best_ever(&self) -> Option<&BestEver> { self.best.as_ref() }
-//!     fn stats(&self) -> GenerationStats { GenerationStats::of_batch(self.generation, &self.child, self.fitness.as_slice()) }
+//!     fn stats(&self) -> GenerationStats {
+//!         GenerationStats::of_batch(self.generation, &self.child, self.fitness.as_slice())
+//!     }
 //! }
 //!
-//! // Drive the sum of the link weights to 3.
-//! let task = |g: &Genome, _: &EvalContext| -(g.links().iter().map(|l| l.weight).sum::<f64>() - 3.0).abs();
-//! let mut evolution = Evolution::new(OnePlusOne::new(GenomeSpec::plain(2, 1), NeatParams::plain_neat(), 7), ParallelEvaluator::new(task));
-//! let reason = evolution.run(&StopCriteria::generations(2000).or_target(-0.01), &mut (), &mut NoCheckpoints)?;
-//! assert!(matches!(reason, StopReason::TargetFitness { .. }), "{reason:?}");
-//! assert!(evolution.strategy().best_ever().unwrap().fitness >= -0.01);
+//! // Starting from a minimal genome, drive the sum of the link weights to 3.
+//! let (spec, params, seed) = (GenomeSpec::plain(2, 1), NeatParams::plain_neat(), 7);
+//! let (mut rng, mut tracker) = (Pcg64::seed_from_u64(seed), InnovationTracker::new(3));
+//! let child = [Genome::minimal(&spec, &params, &mut tracker, &mut rng)];
+//! let (generation, fitness, best) = (0, None, None);
+//! let es = OnePlusOne { spec, params, tracker, rng, seed, generation, child, fitness, best };
+//! let task = |g: &Genome, _: &EvalContext| {
+//!     -(g.links().iter().map(|l| l.weight).sum::<f64>() - 3.0).abs()
+//! };
+//! let mut evolution = Evolution::new(es, ParallelEvaluator::new(task));
+//! let stop = StopCriteria::generations(2000).or_target(-0.01);
+//! let reason = evolution.run(&stop, &mut (), &mut NoCheckpoints)?;
+//! let StopReason::TargetFitness { generation, .. } = reason else { panic!("{reason:?}") };
+//! assert!(generation > 1 && evolution.strategy().best_ever().unwrap().fitness >= -0.01);
+//! // The strategy is the run's state: a checkpoint is its JSON.
+//! let restored: OnePlusOne = serde_json::from_str(&serde_json::to_string(evolution.strategy())?)?;
+//! assert_eq!(restored.best_ever(), evolution.strategy().best_ever());
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
