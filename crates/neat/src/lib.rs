@@ -8,8 +8,11 @@
 //! every machine and at any thread count.
 //!
 //! [`driver::Evolution`] runs generations of a population on a [`driver::Task`]
-//! until a [`driver::StopCriteria`] holds and says why it stopped. XOR, the
-//! classic NEAT benchmark, in full:
+//! until a [`driver::StopCriteria`] holds and says why it stopped. The
+//! population is one [`driver::Strategy`], the ask/tell seam behind the
+//! driver: any other search over genomes (see [`driver::strategy`] for a
+//! (1+1) evolution strategy) runs, is observed and is checkpointed the same
+//! way. XOR, the classic NEAT benchmark, in full:
 //!
 //! ```
 //! use vivae_neat::driver::{Evolution, NoCheckpoints, ParallelEvaluator, StopCriteria, StopReason};

@@ -52,6 +52,27 @@ pub struct GenerationStats {
     pub mean_fitness: Option<f64>,
 }
 
+impl GenerationStats {
+    /// Statistics of any batch of genomes, without species (`species` and
+    /// `compatibility_threshold` are 0); `fitness` is empty before evaluation,
+    /// else one value per genome.
+    pub fn of_batch(generation: u32, genomes: &[Genome], fitness: &[f64]) -> GenerationStats {
+        let n = genomes.len().max(1) as f64;
+        let sum = |g: fn(&Genome) -> usize| genomes.iter().map(g).sum::<usize>() as f64 / n;
+        GenerationStats {
+            generation,
+            population: genomes.len(),
+            species: 0,
+            compatibility_threshold: 0.0,
+            mean_nodes: sum(|g| g.nodes().len()),
+            mean_hidden: sum(|g| g.num_hidden()),
+            mean_links: sum(|g| g.num_enabled_links()),
+            best_fitness: argmax(fitness).map(|i| fitness[i]),
+            mean_fitness: stats::mean(fitness),
+        }
+    }
+}
+
 /// A NEAT population with its complete state (RNG, species, innovations, best-ever),
 /// serialisable so that a restored checkpoint continues bit-identically.
 ///
@@ -292,18 +313,14 @@ impl Population {
 
     /// Statistics of the current generation.
     pub fn stats(&self) -> GenerationStats {
-        let n = self.genomes.len().max(1) as f64;
-        let sum = |g: fn(&Genome) -> usize| self.genomes.iter().map(g).sum::<usize>() as f64 / n;
         GenerationStats {
-            generation: self.generation,
-            population: self.genomes.len(),
             species: self.species.len(),
             compatibility_threshold: self.threshold,
-            mean_nodes: sum(|g| g.nodes().len()),
-            mean_hidden: sum(|g| g.num_hidden()),
-            mean_links: sum(|g| g.num_enabled_links()),
-            best_fitness: self.fitness.as_ref().and_then(|f| argmax(f).map(|i| f[i])),
-            mean_fitness: self.fitness.as_deref().and_then(stats::mean),
+            ..GenerationStats::of_batch(
+                self.generation,
+                &self.genomes,
+                self.fitness.as_deref().unwrap_or_default(),
+            )
         }
     }
 

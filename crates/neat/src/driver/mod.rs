@@ -1,12 +1,19 @@
-//! The evolution driver: runs generations of a [`Population`] on an
-//! [`Evaluator`] until a stop criterion holds, telling [`Observer`]s and a
-//! [`Checkpointer`] as it goes, and returns why it stopped as data.
+//! The evolution driver: runs generations of a search [`Strategy`] (NEAT's
+//! [`Population`], or any other) on an [`Evaluator`] until a stop criterion
+//! holds, telling [`Observer`]s and a [`Checkpointer`] as it goes, and
+//! returns why it stopped as data.
+//!
+//! One generation is: [`Strategy::ask`] for a batch, evaluate it, [`Strategy::tell`]
+//! the evaluations, tell the observers, [`Strategy::prepare`] the next batch,
+//! check the stop criteria, tell the checkpointer. [`strategy`] shows a
+//! strategy of a dozen lines run by the same driver.
 //!
 //! The driver does no I/O: result files, progress bars and checkpoint files
 //! are observer and checkpointer implementations that live with the program.
 
 mod observer;
 mod stop;
+pub mod strategy;
 mod task;
 
 use std::sync::atomic::Ordering;
@@ -15,10 +22,10 @@ pub use observer::{
     CheckpointState, Checkpointer, GenerationReport, HookError, NoCheckpoints, Observer,
 };
 pub use stop::{StopCriteria, StopReason};
+pub use strategy::{Batch, Strategy};
 pub use task::{Evaluation, Evaluator, EvaluatorError, ParallelEvaluator, Task};
 
 use crate::error::NeatError;
-use crate::eval::EvalContext;
 use crate::population::Population;
 
 /// Why a run could not go on.
@@ -30,48 +37,53 @@ pub enum DriverError {
     /// An observer or the checkpointer failed.
     #[error("{0}")]
     Hook(HookError),
-    /// The population refused the evaluations.
+    /// The strategy refused the evaluations.
     #[error(transparent)]
     Neat(#[from] NeatError),
 }
 
 /// An observer and a checkpointer seen as one set of hooks.
-struct Pair<'a, 'b>(&'a mut dyn Observer, &'b mut dyn Checkpointer);
+struct Pair<'a, 'b, S>(&'a mut dyn Observer<S>, &'b mut dyn Checkpointer<S>);
 
-impl Observer for Pair<'_, '_> {
-    fn on_generation(&mut self, report: &GenerationReport<'_>) -> Result<(), HookError> {
+impl<S> Observer<S> for Pair<'_, '_, S> {
+    fn on_generation(&mut self, report: &GenerationReport<'_, S>) -> Result<(), HookError> {
         self.0.on_generation(report)
     }
 }
 
-impl Checkpointer for Pair<'_, '_> {
-    fn after_generation(&mut self, state: &CheckpointState<'_>) -> Result<(), HookError> {
+impl<S> Checkpointer<S> for Pair<'_, '_, S> {
+    fn after_generation(&mut self, state: &CheckpointState<'_, S>) -> Result<(), HookError> {
         self.1.after_generation(state)
     }
 }
 
-/// A population evolving on an evaluator.
-pub struct Evolution<E> {
-    population: Population,
-    evaluator: E,
-    done: u32,
-    /// Best fitness of the generation evaluated last.
-    last_best: Option<f64>,
+/// What the stop criteria need of the generation just told.
+struct Told {
+    /// Best fitness of the batch.
+    best: Option<f64>,
+    /// Generations since the best-ever genome was found.
+    since_best: Option<u32>,
 }
 
-impl<E: Evaluator> Evolution<E> {
-    /// Starts a run of `population` (generation counting from 0 done).
-    pub fn new(population: Population, evaluator: E) -> Self {
-        Evolution::resume(population, evaluator, 0)
+/// A strategy (by default a NEAT [`Population`]) evolving on an evaluator.
+pub struct Evolution<S, E> {
+    strategy: S,
+    evaluator: E,
+    done: u32,
+}
+
+impl<S: Strategy, E: Evaluator> Evolution<S, E> {
+    /// Starts a run of `strategy` (generation counting from 0 done).
+    pub fn new(strategy: S, evaluator: E) -> Self {
+        Evolution::resume(strategy, evaluator, 0)
     }
 
     /// Continues a run of which `done` generations are already done (e.g. from a checkpoint).
-    pub fn resume(population: Population, evaluator: E, done: u32) -> Self {
+    pub fn resume(strategy: S, evaluator: E, done: u32) -> Self {
         Evolution {
-            population,
+            strategy,
             evaluator,
             done,
-            last_best: None,
         }
     }
 
@@ -80,9 +92,9 @@ impl<E: Evaluator> Evolution<E> {
         self.done
     }
 
-    /// The population (ready to evaluate the next generation between runs).
-    pub fn population(&self) -> &Population {
-        &self.population
+    /// The strategy (ready to evaluate the next generation between runs).
+    pub fn strategy(&self) -> &S {
+        &self.strategy
     }
 
     /// The evaluator.
@@ -90,9 +102,9 @@ impl<E: Evaluator> Evolution<E> {
         &self.evaluator
     }
 
-    /// Gives the population back.
-    pub fn into_population(self) -> Population {
-        self.population
+    /// Gives the strategy back.
+    pub fn into_strategy(self) -> S {
+        self.strategy
     }
 
     /// The stop reason that already holds before any generation is run, if any.
@@ -103,19 +115,19 @@ impl<E: Evaluator> Evolution<E> {
     }
 
     /// Runs generations until a criterion of `stop` holds; observers hear of
-    /// each evaluated generation, the checkpointer of each bred one.
+    /// each evaluated generation, the checkpointer of each prepared one.
     pub fn run(
         &mut self,
         stop: &StopCriteria<'_>,
-        observer: &mut dyn Observer,
-        checkpointer: &mut dyn Checkpointer,
+        observer: &mut dyn Observer<S>,
+        checkpointer: &mut dyn Checkpointer<S>,
     ) -> Result<StopReason, DriverError> {
         self.run_with(stop, &mut Pair(observer, checkpointer))
     }
 
     /// [`Evolution::run`] with one value that is both observer and checkpointer
     /// (e.g. a run directory whose checkpoints record how far its files got).
-    pub fn run_with<H: Observer + Checkpointer + ?Sized>(
+    pub fn run_with<H: Observer<S> + Checkpointer<S> + ?Sized>(
         &mut self,
         stop: &StopCriteria<'_>,
         hooks: &mut H,
@@ -124,12 +136,13 @@ impl<E: Evaluator> Evolution<E> {
             return Ok(reason);
         }
         loop {
-            self.evaluate_generation(hooks)?;
-            let reason = self.stop_reason(stop);
+            let told = self.evaluate_generation(hooks)?;
+            self.strategy.prepare();
+            let reason = self.stop_reason(stop, &told);
             hooks
                 .after_generation(&CheckpointState {
                     generations_done: self.done,
-                    population: &self.population,
+                    strategy: &self.strategy,
                     stopping: reason.as_ref(),
                 })
                 .map_err(DriverError::Hook)?;
@@ -139,48 +152,46 @@ impl<E: Evaluator> Evolution<E> {
         }
     }
 
-    /// Evaluates one generation, tells `observer`, breeds the next.
-    fn evaluate_generation<O: Observer + ?Sized>(
+    /// Asks for a generation, evaluates it, tells the strategy and `observer`.
+    fn evaluate_generation<O: Observer<S> + ?Sized>(
         &mut self,
         observer: &mut O,
-    ) -> Result<(), DriverError> {
-        let contexts: Vec<EvalContext> = (0..self.population.genomes().len())
-            .map(|i| self.population.eval_context(i))
-            .collect();
-        let evaluations = self
-            .evaluator
-            .evaluate(self.population.genomes(), &contexts)?;
-        if evaluations.len() != contexts.len() {
+    ) -> Result<Told, DriverError> {
+        let batch = self.strategy.ask();
+        let evaluations = self.evaluator.evaluate(batch.genomes, &batch.contexts)?;
+        if evaluations.len() != batch.contexts.len() {
             return Err(EvaluatorError(format!(
                 "the evaluator returned {} evaluations for {} genomes",
                 evaluations.len(),
-                contexts.len()
+                batch.contexts.len()
             ))
             .into());
         }
-        self.population
-            .set_fitnesses(evaluations.iter().map(|e| e.fitness).collect())?;
-        let stats = self.population.stats();
+        self.strategy.tell(&evaluations)?;
+        let stats = self.strategy.stats();
         observer
             .on_generation(&GenerationReport {
                 generation: self.done + 1,
-                population: &self.population,
+                strategy: &self.strategy,
                 evaluations: &evaluations,
                 stats: &stats,
             })
             .map_err(DriverError::Hook)?;
-        self.last_best = stats.best_fitness;
-        self.population.next_generation();
         self.done += 1;
-        Ok(())
+        let generation = self.strategy.generation();
+        Ok(Told {
+            best: self.strategy.champion().map(|(_, fitness)| fitness),
+            since_best: (self.strategy.best_ever())
+                .map(|b| generation.saturating_sub(b.generation)),
+        })
     }
 
-    /// The criterion of `stop` that holds after the generation just bred, if any.
-    fn stop_reason(&self, stop: &StopCriteria<'_>) -> Option<StopReason> {
+    /// The criterion of `stop` that holds after the generation just told, if any.
+    fn stop_reason(&self, stop: &StopCriteria<'_>, told: &Told) -> Option<StopReason> {
         if let Some(reason) = self.already_stopped(stop) {
             return Some(reason);
         }
-        if let (Some(target), Some(best)) = (stop.target_fitness, self.last_best)
+        if let (Some(target), Some(best)) = (stop.target_fitness, told.best)
             && best >= target
         {
             return Some(StopReason::TargetFitness {
@@ -188,19 +199,26 @@ impl<E: Evaluator> Evolution<E> {
                 generation: self.done,
             });
         }
-        if let (Some(n), Some(best)) = (stop.stagnation, self.population.best_ever()) {
-            // The population now holds the next, unevaluated generation.
-            let since = self
-                .population
-                .generation()
-                .saturating_sub(best.generation + 1);
-            if since >= n {
-                return Some(StopReason::Stagnation(since));
-            }
+        if let (Some(n), Some(since)) = (stop.stagnation, told.since_best)
+            && since >= n
+        {
+            return Some(StopReason::Stagnation(since));
         }
         if stop.interrupt.is_some_and(|f| f.load(Ordering::SeqCst)) {
             return Some(StopReason::Interrupted);
         }
         None
+    }
+}
+
+impl<E: Evaluator> Evolution<Population, E> {
+    /// The population (ready to evaluate the next generation between runs).
+    pub fn population(&self) -> &Population {
+        &self.strategy
+    }
+
+    /// Gives the population back.
+    pub fn into_population(self) -> Population {
+        self.strategy
     }
 }

@@ -26,8 +26,8 @@ struct Log(Vec<String>);
 
 impl Observer for Log {
     fn on_generation(&mut self, r: &GenerationReport<'_>) -> Result<(), HookError> {
-        assert_eq!(r.evaluations.len(), r.population.genomes().len());
-        assert_eq!(r.population.fitnesses().len(), r.evaluations.len());
+        assert_eq!(r.evaluations.len(), r.strategy.genomes().len());
+        assert_eq!(r.strategy.fitnesses().len(), r.evaluations.len());
         self.0.push(format!("eval {}", r.generation));
         Ok(())
     }
@@ -36,7 +36,7 @@ impl Observer for Log {
 impl Checkpointer for Log {
     fn after_generation(&mut self, s: &CheckpointState<'_>) -> Result<(), HookError> {
         assert!(
-            !s.population.is_evaluated(),
+            !s.strategy.is_evaluated(),
             "checkpoints hold a bred population"
         );
         self.0

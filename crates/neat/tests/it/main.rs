@@ -1,0 +1,15 @@
+//! Integration tests of vivae-neat, one module per behaviour.
+
+mod common;
+
+mod checkpoint_of_any_strategy_resumes_identically;
+mod checkpoint_roundtrip_continues_identically;
+mod driver_runs_any_strategy;
+mod driver_stops_for_the_reason_it_reports;
+mod genome_invariants_under_random_mutations;
+mod inconsistent_genomes_and_populations_are_refused;
+mod offspring_count_equals_population_size;
+mod parallel_evaluation_matches_serial;
+mod same_seed_gives_identical_population;
+mod short_xor_run_solves;
+mod valid_genomes_round_trip_through_json;
