@@ -764,7 +764,7 @@ impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
     /// Appends one generation's rows and rewrites the champion.
     fn record(&mut self, report: &GenerationReport<'_>) -> Result<()> {
         let seconds = self.started.elapsed().as_secs_f64();
-        let population = report.population;
+        let population = report.strategy;
         let generation = report.generation;
         let fitness = population.fitnesses();
         let sorted = stats::sorted_descending(&fitness);
@@ -880,7 +880,7 @@ impl<F> Checkpointer for Recorder<'_, F> {
                 .generations_done
                 .is_multiple_of(self.config.run.checkpoint_interval)
         {
-            write_checkpoint(self.dir, self.config, self.progress, state.population)?;
+            write_checkpoint(self.dir, self.config, self.progress, state.strategy)?;
         }
         self.started = Instant::now();
         Ok(())
