@@ -27,6 +27,7 @@ use crate::config::Config;
 use crate::error::{Error, Result};
 use crate::experiment::Experiment;
 use crate::io::{bad_input, fnv1a, read_config, read_text, write_atomic};
+use crate::training::Training;
 
 /// File names inside a run directory.
 pub mod files {
@@ -441,7 +442,7 @@ pub struct Run {
     /// Held while the run exists: one writer per run directory.
     _lock: RunLock,
     config: Config,
-    experiment: Experiment,
+    training: Training,
     population: Population,
     progress: Progress,
     pool: Arc<rayon::ThreadPool>,
@@ -456,12 +457,12 @@ impl Run {
     pub fn create(
         dir: &Path,
         config: Config,
-        experiment: Experiment,
+        training: Training,
         scenario_text: &str,
         init: Option<Population>,
         force: bool,
     ) -> Result<Run> {
-        Run::create_on_maps(dir, config, experiment, scenario_text, &[], init, force)
+        Run::create_on_maps(dir, config, training, scenario_text, &[], init, force)
     }
 
     /// [`Run::create`] for a run on several training maps (`maps`, from
@@ -472,7 +473,7 @@ impl Run {
     pub fn create_on_maps(
         dir: &Path,
         mut config: Config,
-        experiment: Experiment,
+        training: Training,
         scenario_text: &str,
         maps: &[crate::maps::TrainingMap],
         init: Option<Population>,
@@ -488,14 +489,14 @@ impl Run {
             // measured on another substrate and mean nothing here.
             Some(p) => Population::from_genomes(
                 config.neat.clone(),
-                experiment.cppn_spec(),
+                training.primary().cppn_spec(),
                 p.genomes().to_vec(),
                 config.experiment.seed,
             )
             .map_err(|e| bad_input(format!("initial population: {e}")))?,
             None => Population::new(
                 config.neat.clone(),
-                experiment.cppn_spec(),
+                training.primary().cppn_spec(),
                 config.experiment.seed,
             )
             .map_err(|e| bad_input(format!("neat: {e}")))?,
@@ -554,7 +555,7 @@ impl Run {
             _lock: lock,
             pool: thread_pool(config.run.threads)?,
             config,
-            experiment,
+            training,
             population,
             progress,
         })
@@ -580,9 +581,9 @@ impl Run {
         }
         let maps = crate::maps::load_run(dir, &cp.config, cp.progress.maps_fnv.as_deref())?;
         let scenario = crate::io::load_scenario(Some(&dir.join(files::SCENARIO)))?;
-        let experiment = crate::maps::experiment(&cp.config, &maps)?;
+        let training = Training::new(&cp.config, &maps)?;
         // Everything is validated before anything in the directory changes.
-        validate_progress(&path, &cp, &experiment)?;
+        validate_progress(&path, &cp, training.primary())?;
         if let Some(h) = cp.progress.scenario_fnv
             && h != fnv1a(scenario.text.as_bytes())
         {
@@ -612,7 +613,7 @@ impl Run {
             // A thread count given at resume changes speed, not results: not recorded.
             pool: thread_pool(threads.unwrap_or(cp.config.run.threads))?,
             config: cp.config,
-            experiment,
+            training,
             population: cp.population,
             progress: cp.progress,
         })
@@ -628,9 +629,14 @@ impl Run {
         &self.config
     }
 
-    /// The experiment.
+    /// The experiment reported, drawn and replayed (the first map at the run's own resolution).
     pub fn experiment(&self) -> &Experiment {
-        &self.experiment
+        self.training.primary()
+    }
+
+    /// What genomes are evaluated on: every training map and resolution.
+    pub fn training(&self) -> &Training {
+        &self.training
     }
 
     /// Generations done so far.
@@ -651,7 +657,7 @@ impl Run {
         on_generation: impl FnMut(&GenerationRecord),
     ) -> Result<Outcome> {
         let pool = Arc::clone(&self.pool);
-        let evaluator = ParallelEvaluator::with_pool(self.experiment.clone(), &pool);
+        let evaluator = ParallelEvaluator::with_pool(self.training.clone(), &pool);
         self.run_on(evaluator, stop, on_generation)
     }
 
@@ -674,7 +680,7 @@ impl Run {
         let mut recorder = Recorder {
             dir: &self.dir,
             config: &self.config,
-            experiment: &self.experiment,
+            training: &self.training,
             progress: &mut self.progress,
             total,
             started: Instant::now(),
@@ -750,7 +756,7 @@ fn write_checkpoint(
 struct Recorder<'a, F> {
     dir: &'a Path,
     config: &'a Config,
-    experiment: &'a Experiment,
+    training: &'a Training,
     progress: &'a mut Progress,
     total: u32,
     /// When the generation under way started.
@@ -773,12 +779,12 @@ impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
             .champion()
             .map(|(g, f)| (g.clone(), f))
             .expect("an evaluated population has a champion");
-        let controller = self.experiment.controller(&best_genome)?;
+        let controller = self.training.primary().controller(&best_genome)?;
         let n = sorted.len();
         let (mean, median) = stats::mean(&fitness)
             .zip(stats::median_of_sorted(&sorted))
             .expect("an evaluated population has fitnesses");
-        let robot_steps = n as f64 * self.experiment.evaluation_robot_steps() as f64;
+        let robot_steps = n as f64 * self.training.robot_steps() as f64;
         let record = GenerationRecord {
             generation,
             total: self.total,

@@ -1,19 +1,21 @@
-//! The driving experiment: a substrate controller per robot, episodes, fitness.
+//! The driving experiment's one task: an episode on one map, at one
+//! substrate resolution, scored by one fitness function.
 
-use crate::behaviour::{Behaviour, BehaviourMeter};
-use crate::maps::Maps;
-use crate::normalize::SourceScale;
-use crate::training::Training;
 use std::sync::Arc;
 
 use vivae_neat::driver::{Evaluation, Task};
 use vivae_neat::hyperneat::{HyperParams, SubstrateController, SubstrateLayout, decode_genome};
-use vivae_neat::{EvalContext, Genome, GenomeSpec, Network};
+use vivae_neat::{EvalContext, Genome, GenomeSpec};
 use vivae_sim::{DVec2, Scenario, SurfaceGrid, World};
 
+use crate::behaviour::{Behaviour, BehaviourMeter};
 use crate::config::Config;
-use crate::sensors::{SensorSheet, sheets_with_surface};
+use crate::fitness::{AverageSpeed, Fitness};
+use crate::normalize::SourceScale;
+use crate::rollout::Rollout;
+use crate::sensors::{SensorSheet, read_sheets, sheets_with_surface};
 use crate::substrate::{PolarGrid, SubstrateSpec, WheelNeurons, cppn_outputs, layout_of};
+use crate::task::DrivingTask;
 
 /// Everything needed to evaluate genomes on one scenario with one config.
 ///
@@ -33,16 +35,15 @@ pub struct Experiment {
     scale: SourceScale,
     steps: u32,
     cppn_outputs: usize,
-    /// Multi-resolution evolution: the resolutions a genome is evaluated at.
-    training: Option<Arc<Training>>,
-    /// Training on several maps: every map's experiment (this one's map first).
-    maps: Option<Arc<Maps>>,
+    /// What an episode scores.
+    fitness: Arc<dyn Fitness>,
 }
 
 /// The outcome of one episode.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Episode {
-    /// Average speed: Σ odometer / (robots × steps), px per step.
+    /// The experiment's fitness (by default average speed: Σ odometer /
+    /// (robots × steps), px per step).
     pub fitness: f64,
     /// Fraction of robot-steps that ended with the robot's centre on a road
     /// (measured when recording: evolution does not need it).
@@ -125,21 +126,19 @@ impl Experiment {
             scale,
             steps: config.experiment.steps,
             cppn_outputs,
-            training: Training::new(config, &scenario)?.map(Arc::new),
-            maps: None,
+            fitness: Arc::new(AverageSpeed),
         })
     }
 
-    /// This experiment (on the first map) evaluating genomes on all of `maps` during evolution.
-    pub(crate) fn with_maps(mut self, maps: Maps) -> Experiment {
-        self.maps = Some(Arc::new(maps));
+    /// This experiment scored by `fitness` instead of average speed.
+    pub fn with_fitness(mut self, fitness: Arc<dyn Fitness>) -> Experiment {
+        self.fitness = fitness;
         self
     }
 
-    /// The training maps every genome is evaluated on, when more than this
-    /// experiment's own (`experiment.scenarios`).
-    pub fn maps(&self) -> Option<&Maps> {
-        self.maps.as_deref()
+    /// The fitness function episodes are scored by.
+    pub fn fitness_function(&self) -> &dyn Fitness {
+        &*self.fitness
     }
 
     /// The shape of the CPPN genomes this experiment evolves.
@@ -184,30 +183,7 @@ impl Experiment {
     /// sheet: the controller's input vector. Allocation-free.
     #[inline]
     pub fn read_inputs(&self, world: &World, robot: usize, inputs: &mut [f64]) {
-        let mut rest = inputs;
-        for sheet in &self.sensors {
-            let (mine, others) = rest.split_at_mut(sheet.len());
-            sheet.sensor.read(world, robot, mine);
-            rest = others;
-        }
-    }
-
-    /// The resolutions evolution evaluates each genome at, when more than this
-    /// experiment's own (`substrate.train_neurons` / `train_sensors`).
-    pub fn training(&self) -> Option<&Training> {
-        self.training.as_deref()
-    }
-
-    /// Robot-steps one evaluation during evolution simulates (over every
-    /// training map and resolution).
-    pub fn evaluation_robot_steps(&self) -> u64 {
-        if let Some(maps) = &self.maps {
-            return maps.robot_steps();
-        }
-        self.training.as_ref().map_or_else(
-            || self.robots() as u64 * u64::from(self.steps),
-            |t| t.robot_steps(),
-        )
+        read_sheets(&self.sensors, world, robot, inputs);
     }
 
     /// Simulation steps per episode.
@@ -237,21 +213,12 @@ impl Experiment {
         Ok(controller)
     }
 
-    /// Average speed of `genome`'s controller (the fitness); 0 for a genome
-    /// that does not fit the substrate (evolution never makes one).
+    /// The fitness of `genome`'s controller (average speed by default); 0 for
+    /// a genome that does not fit the substrate (evolution never makes one).
     pub fn fitness(&self, genome: &Genome) -> f64 {
         match self.controller(genome) {
             Ok(c) => self.run(&c, false).fitness,
             Err(_) => 0.0,
-        }
-    }
-
-    /// The fitness evolution gives `genome` on this experiment's map: the
-    /// aggregate over the training resolutions when there are several.
-    pub fn training_fitness(&self, genome: &Genome) -> f64 {
-        match &self.training {
-            Some(training) => training.fitness(genome),
-            None => self.fitness(genome),
         }
     }
 
@@ -262,60 +229,66 @@ impl Experiment {
         self.run_world(controller, record).0
     }
 
+    /// The start of an episode of this experiment driven by `controller`.
+    pub fn rollout(&self, controller: &SubstrateController) -> Rollout {
+        self.rollout_in(self.world.clone(), controller)
+    }
+
+    fn rollout_in(&self, world: World, controller: &SubstrateController) -> Rollout {
+        Rollout::new(world, self.sensors.clone(), self.wheels, controller)
+    }
+
     /// Runs one episode and also returns the final world (for drawing).
-    ///
-    /// The robots share the controller's weights: one batched update per step
-    /// reads each weight once for all robots, and gives each robot exactly
-    /// the bits its own copy of the controller would.
     pub fn run_world(&self, controller: &SubstrateController, record: bool) -> (Episode, World) {
         let n = self.robots();
         let mut world = self.world.clone();
         if record {
             world.record_trajectories(self.steps as usize);
         }
-        let mut states = controller.batch_state(n);
-        let (ni, nn) = (controller.num_inputs(), controller.num_outputs());
-        let mut inputs = vec![0.0; n * ni];
-        let mut outputs = vec![0.0; n * nn];
-        let mut controls = vec![[0.0; 2]; n];
+        let mut meter = self.fitness.meter(&world);
+        let observe = self.fitness.observes_steps();
+        let mut rollout = self.rollout_in(world, controller);
         let mut on_road = 0u64;
-        let mut meter = record.then(|| BehaviourMeter::new(&world, self.steps as usize));
+        let mut behaviour =
+            record.then(|| BehaviourMeter::new(rollout.world(), self.steps as usize));
         for _ in 0..self.steps {
-            if ni > 0 {
-                for (i, inputs) in inputs.chunks_exact_mut(ni).enumerate() {
-                    self.read_inputs(&world, i, inputs);
-                }
+            rollout.step(controller, None);
+            let world = rollout.world();
+            if observe {
+                meter.observe(world);
             }
-            controller.activate_batch(&mut states, &inputs, &mut outputs);
-            for (c, out) in controls.iter_mut().zip(outputs.chunks_exact(nn)) {
-                *c = [out[self.wheels.left], out[self.wheels.right]];
-            }
-            world.step(&controls);
-            if let Some(meter) = &mut meter {
+            if let Some(b) = &mut behaviour {
                 on_road += (0..n).filter(|&i| world.on_road(i)).count() as u64;
-                meter.observe(&world);
+                b.observe(world);
             }
         }
+        let world = rollout.into_world();
         let robot_steps = (n as f64) * f64::from(self.steps);
-        let odometer: f64 = world.robots().iter().map(|r| r.odometer).sum();
         let episode = Episode {
-            fitness: odometer / robot_steps,
+            fitness: meter.score(&world, robot_steps),
             on_road: record.then_some(on_road as f64 / robot_steps),
             trajectories: world.trajectories().map(|t| t.to_vec()),
-            behaviour: meter.map(|m| m.finish()),
+            behaviour: behaviour.map(|m| m.finish()),
         };
         (episode, world)
     }
 }
 
 /// The driving experiment as a NEAT task: a genome's fitness is its
-/// controller's average speed (deterministic: the episode has no randomness).
+/// controller's episode score (deterministic: the episode has no randomness).
 impl Task for Experiment {
     fn evaluate(&self, genome: &Genome, _ctx: &EvalContext) -> Evaluation {
-        match &self.maps {
-            Some(maps) => Evaluation::fitness(maps.fitness(genome)),
-            None => Evaluation::fitness(self.training_fitness(genome)),
-        }
+        Evaluation::fitness(self.fitness(genome))
+    }
+}
+
+impl DrivingTask for Experiment {
+    fn robot_steps(&self) -> u64 {
+        self.robots() as u64 * u64::from(self.steps)
+    }
+
+    fn cppn_spec(&self) -> GenomeSpec {
+        Experiment::cppn_spec(self)
     }
 }
 

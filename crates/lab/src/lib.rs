@@ -33,13 +33,17 @@ pub mod config;
 pub mod error;
 pub mod evolve;
 pub mod experiment;
+pub mod fitness;
 pub mod io;
 pub mod maps;
 pub mod normalize;
+pub mod resolutions;
+pub mod rollout;
 pub mod sensors;
 pub mod shipped;
 pub mod simd;
 pub mod substrate;
+pub mod task;
 pub mod training;
 
 pub use error::{Error, Result};

@@ -13,67 +13,14 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use vivae_neat::Genome;
-
 use crate::config::Config;
 use crate::error::{Error, Result};
-use crate::experiment::{Episode, Experiment, ExperimentError};
 use crate::io::{LoadedScenario, fnv1a, load_scenario, safe_file_stem};
 
 /// Folder of a multi-map run directory holding the copies of the training maps.
 pub const MAPS_DIR: &str = "scenarios";
 /// The manifest in [`MAPS_DIR`]: one line per map, `file fnv1a64 source`.
 pub const MANIFEST: &str = "manifest.txt";
-
-/// The experiments of every training map, in the order given.
-#[derive(Debug, Clone)]
-pub struct Maps {
-    /// (label such as `oval`, experiment on that map).
-    maps: Vec<(String, Experiment)>,
-}
-
-impl Maps {
-    /// Labels of the maps (file stems), in evaluation order.
-    pub fn labels(&self) -> impl Iterator<Item = &str> {
-        self.maps.iter().map(|(l, _)| l.as_str())
-    }
-
-    /// The experiment of each map, in evaluation order.
-    pub fn experiments(&self) -> impl Iterator<Item = &Experiment> {
-        self.maps.iter().map(|(_, e)| e)
-    }
-
-    /// Fitness of `genome` on every map (each over its training resolutions
-    /// when there are several), in evaluation order.
-    pub fn fitnesses(&self, genome: &Genome) -> Vec<f64> {
-        self.maps
-            .iter()
-            .map(|(_, e)| e.training_fitness(genome))
-            .collect()
-    }
-
-    /// The map-weighted mean fitness of `genome`.
-    pub fn fitness(&self, genome: &Genome) -> f64 {
-        mean(&self.fitnesses(genome))
-    }
-
-    /// Recorded episodes of `genome` on every map (at each map's own
-    /// resolution), for on-road and behaviour figures.
-    pub fn episodes(&self, genome: &Genome) -> std::result::Result<Vec<Episode>, ExperimentError> {
-        self.maps
-            .iter()
-            .map(|(_, e)| Ok(e.run(&e.controller(genome)?, true)))
-            .collect()
-    }
-
-    /// Robot-steps one evaluation simulates over all maps and resolutions.
-    pub fn robot_steps(&self) -> u64 {
-        self.maps
-            .iter()
-            .map(|(_, e)| e.evaluation_robot_steps())
-            .sum()
-    }
-}
 
 /// The map-weighted mean: the sum in map order over the number of maps (so
 /// that a test can repeat it bit for bit).
@@ -119,29 +66,6 @@ pub fn load(config: &Config) -> Result<Vec<TrainingMap>> {
             })
         })
         .collect()
-}
-
-/// The experiment of `config` on `maps`: for a single-scenario config exactly
-/// [`Experiment::new`]; otherwise the first map's experiment, which evaluates
-/// every genome on all maps during evolution and reports, draws and replays
-/// the first.
-pub fn experiment(config: &Config, maps: &[TrainingMap]) -> Result<Experiment> {
-    let first = maps
-        .first()
-        .ok_or_else(|| crate::io::bad_input("no training map"))?;
-    if !is_multi_map(config) {
-        return Ok(Experiment::new(config, &first.loaded.scenario)?);
-    }
-    let mut experiments = Vec::with_capacity(maps.len());
-    for m in maps {
-        let e = Experiment::new(config, &m.loaded.scenario).map_err(|e| match e {
-            ExperimentError::Scenario(s) => ExperimentError::Scenario(s),
-            other => ExperimentError::Config(format!("training map {}: {other}", m.label)),
-        })?;
-        experiments.push((m.label.clone(), e));
-    }
-    let primary = experiments[0].1.clone();
-    Ok(primary.with_maps(Maps { maps: experiments }))
 }
 
 /// File names the copies of `maps` get in `scenarios/`: `LABEL.svg`, with
@@ -234,25 +158,12 @@ pub fn fingerprint_text(maps: &[TrainingMap]) -> String {
     }
 }
 
-/// The training maps for a person: `roads.svg (shipped): 5 robots, …`.
-pub fn describe(maps: &[TrainingMap], experiment: &Experiment) -> String {
-    match experiment.maps() {
-        None => maps
-            .first()
-            .map(|m| m.loaded.scenario.source.clone())
-            .unwrap_or_default(),
-        Some(ms) => maps
-            .iter()
-            .zip(ms.experiments())
-            .map(|(m, e)| format!("{}: {} robots", m.loaded.scenario.source, e.robots()))
-            .collect::<Vec<_>>()
-            .join(", "),
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::experiment::Experiment;
+    use crate::task::DrivingTask;
+    use crate::training::Training;
     use vivae_neat::driver::Task;
     use vivae_neat::{EvalContext, Population};
 
@@ -267,7 +178,7 @@ mod tests {
     fn fitness_is_the_mean_over_maps_of_each_maps_own_fitness() {
         let c = config(&["roads", "oval", "traffic"]);
         let maps = load(&c).unwrap();
-        let e = experiment(&c, &maps).unwrap();
+        let e = Training::new(&c, &maps).unwrap();
         let pop = Population::new(c.neat.clone(), e.cppn_spec(), 3).unwrap();
         let ctx = EvalContext {
             generation: 1,
@@ -289,9 +200,9 @@ mod tests {
             assert_eq!(e.evaluate(g, &ctx).fitness.to_bits(), want.to_bits());
         }
         // Reported and drawn: the first map.
-        assert_eq!(e.robots(), 5);
+        assert_eq!(e.primary().robots(), 5);
         let steps: u64 = [5u64, 5, 5].iter().map(|r| r * 60).sum();
-        assert_eq!(e.evaluation_robot_steps(), steps);
+        assert_eq!(e.robot_steps(), steps);
     }
 
     #[test]
@@ -308,17 +219,31 @@ mod tests {
             },
         ];
         let maps = load(&c).unwrap();
-        let e = experiment(&c, &maps).unwrap();
-        let ms = e.maps().unwrap();
-        assert_eq!(ms.labels().collect::<Vec<_>>(), ["roads", "oval"]);
+        let e = Training::new(&c, &maps).unwrap();
+        assert_eq!(e.map_labels().collect::<Vec<_>>(), ["roads", "oval"]);
+        assert_eq!(e.resolution_labels(), ["s3x5-n3x3", "s3x5-n5x5"]);
         let pop = Population::new(c.neat.clone(), e.cppn_spec(), 5).unwrap();
         let g = &pop.genomes()[0];
-        let per_map: Vec<f64> = ms
-            .experiments()
-            .map(|m| m.training().unwrap().fitness(g))
+        let ctx = EvalContext {
+            generation: 1,
+            index: 0,
+            seed: 0,
+        };
+        let per_map: Vec<f64> = maps
+            .iter()
+            .map(|m| {
+                crate::resolutions::at_resolutions(&c, &m.loaded.scenario)
+                    .unwrap()
+                    .unwrap()
+                    .evaluate(g, &ctx)
+                    .fitness
+            })
             .collect();
-        assert_eq!(ms.fitness(g).to_bits(), mean(&per_map).to_bits());
-        assert_eq!(e.evaluation_robot_steps(), 2 * 2 * 5 * 60);
+        assert_eq!(
+            e.evaluate(g, &ctx).fitness.to_bits(),
+            mean(&per_map).to_bits()
+        );
+        assert_eq!(e.robot_steps(), 2 * 2 * 5 * 60);
     }
 
     #[test]
@@ -334,7 +259,8 @@ mod tests {
     #[test]
     fn a_single_scenario_config_builds_the_plain_experiment() {
         let c = Config::default();
-        let e = experiment(&c, &load(&c).unwrap()).unwrap();
-        assert!(e.maps().is_none());
+        let e = Training::new(&c, &load(&c).unwrap()).unwrap();
+        assert_eq!(e.map_labels().count(), 0);
+        assert!(e.resolution_labels().is_empty());
     }
 }

@@ -7,84 +7,44 @@
 //! one reported, drawn and replayed. Each evaluation is deterministic, so the
 //! aggregate does not depend on thread or process count.
 
-use vivae_neat::Genome;
 use vivae_sim::Scenario;
 
-use crate::config::{Aggregate, Config};
+use crate::config::Config;
 use crate::experiment::{Experiment, ExperimentError};
+use crate::task::{Combined, DrivingTask};
 
-/// The experiments of every training resolution and how their fitnesses combine.
-#[derive(Debug, Clone)]
-pub struct Training {
-    /// (label such as `s3x5-n9x9`, experiment), in config order.
-    resolutions: Vec<(String, Experiment)>,
-    aggregate: Aggregate,
+/// Label of a resolution, such as `s3x5-n9x9`.
+pub fn label(config: &Config) -> String {
+    let s = &config.surface_sensors;
+    let n = config.substrate.neurons;
+    format!("s{}x{}-n{}x{}", s.rings, s.angles, n.rings, n.angles)
 }
 
-impl Training {
-    /// The training set of `config` on `scenario`; `None` when the config
-    /// trains at its own resolution only.
-    pub fn new(config: &Config, scenario: &Scenario) -> Result<Option<Training>, ExperimentError> {
-        let configs = config.training_configs();
-        if configs.is_empty() {
-            return Ok(None);
-        }
-        let mut resolutions = Vec::with_capacity(configs.len());
-        for c in &configs {
-            let s = &c.surface_sensors;
-            let n = c.substrate.neurons;
-            let label = format!("s{}x{}-n{}x{}", s.rings, s.angles, n.rings, n.angles);
-            let experiment = Experiment::new(c, scenario).map_err(|e| {
-                ExperimentError::Config(format!("training resolution {label}: {e}"))
-            })?;
-            resolutions.push((label, experiment));
-        }
-        Ok(Some(Training {
-            resolutions,
-            aggregate: config.substrate.train_aggregate,
-        }))
+/// The task of `config` on `scenario` at every training resolution, their
+/// fitnesses combined by `substrate.train_aggregate`; `None` when the config
+/// trains at its own resolution only.
+pub fn at_resolutions(
+    config: &Config,
+    scenario: &Scenario,
+) -> Result<Option<Combined>, ExperimentError> {
+    let configs = config.training_configs();
+    if configs.is_empty() {
+        return Ok(None);
     }
-
-    /// Labels of the resolutions (`sRxA-nRxA`), in evaluation order.
-    pub fn labels(&self) -> impl Iterator<Item = &str> {
-        self.resolutions.iter().map(|(l, _)| l.as_str())
+    let mut parts: Vec<(String, Box<dyn DrivingTask>)> = Vec::with_capacity(configs.len());
+    for c in &configs {
+        let label = label(c);
+        let experiment = Experiment::new(c, scenario)
+            .map_err(|e| ExperimentError::Config(format!("training resolution {label}: {e}")))?;
+        parts.push((label, Box::new(experiment)));
     }
-
-    /// The experiment of each resolution, in evaluation order.
-    pub fn experiments(&self) -> impl Iterator<Item = &Experiment> {
-        self.resolutions.iter().map(|(_, e)| e)
-    }
-
-    /// How the fitnesses combine.
-    pub fn aggregate(&self) -> Aggregate {
-        self.aggregate
-    }
-
-    /// Fitness of `genome` at every resolution, in evaluation order.
-    pub fn fitnesses(&self, genome: &Genome) -> Vec<f64> {
-        self.resolutions
-            .iter()
-            .map(|(_, e)| e.fitness(genome))
-            .collect()
-    }
-
-    /// The aggregated fitness of `genome`.
-    pub fn fitness(&self, genome: &Genome) -> f64 {
-        self.aggregate.combine(&self.fitnesses(genome))
-    }
-
-    /// Robot-steps one evaluation simulates over all resolutions.
-    pub fn robot_steps(&self) -> u64 {
-        self.resolutions
-            .iter()
-            .map(|(_, e)| e.robots() as u64 * u64::from(e.steps()))
-            .sum()
-    }
+    Ok(Some(Combined::new(parts, config.substrate.train_aggregate)))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::config::Aggregate;
     use crate::io::load_scenario;
     use crate::substrate::PolarGrid;
     use vivae_neat::driver::Task;
@@ -94,6 +54,12 @@ mod tests {
         PolarGrid { rings, angles }
     }
 
+    const CTX: EvalContext = EvalContext {
+        generation: 1,
+        index: 0,
+        seed: 0,
+    };
+
     #[test]
     fn a_genome_is_evaluated_at_every_listed_resolution() {
         let scenario = load_scenario(None).unwrap().scenario;
@@ -102,13 +68,15 @@ mod tests {
         config.substrate.train_neurons = vec![grid(3, 3), grid(5, 5)];
         config.substrate.train_sensors = vec![grid(3, 5), grid(3, 6)];
         let experiment = Experiment::new(&config, &scenario).unwrap();
-        let training = experiment.training().expect("a training set");
+        let training = at_resolutions(&config, &scenario)
+            .unwrap()
+            .expect("a training set");
         let labels: Vec<&str> = training.labels().collect();
         assert_eq!(labels, ["s3x5-n3x3", "s3x6-n3x3", "s3x5-n5x5", "s3x6-n5x5"]);
         let pop = Population::new(config.neat.clone(), experiment.cppn_spec(), 4).unwrap();
         let genome = &pop.genomes()[0];
+        let single = training.fitnesses(genome, &CTX);
         // Each resolution on its own, as `replay --neurons/--sensors` would run it.
-        let single: Vec<f64> = training.experiments().map(|e| e.fitness(genome)).collect();
         for (i, (n, s)) in [
             (grid(3, 3), grid(3, 5)),
             (grid(3, 3), grid(3, 6)),
@@ -127,20 +95,15 @@ mod tests {
             assert_eq!(alone.to_bits(), single[i].to_bits(), "resolution {i}");
         }
         let mean = single.iter().sum::<f64>() / 4.0;
-        let ctx = EvalContext {
-            generation: 1,
-            index: 0,
-            seed: 0,
-        };
         assert_eq!(
-            experiment.evaluate(genome, &ctx).fitness.to_bits(),
+            training.evaluate(genome, &CTX).fitness.to_bits(),
             mean.to_bits()
         );
         config.substrate.train_aggregate = Aggregate::Min;
-        let min = Experiment::new(&config, &scenario).unwrap();
+        let min = at_resolutions(&config, &scenario).unwrap().unwrap();
         let lowest = single.iter().copied().fold(f64::INFINITY, f64::min);
         assert_eq!(
-            min.evaluate(genome, &ctx).fitness.to_bits(),
+            min.evaluate(genome, &CTX).fitness.to_bits(),
             lowest.to_bits()
         );
         // The experiment itself still runs (and reports) its own resolution.
@@ -150,7 +113,10 @@ mod tests {
     #[test]
     fn no_lists_means_no_training_set() {
         let scenario = load_scenario(None).unwrap().scenario;
-        let experiment = Experiment::new(&Config::default(), &scenario).unwrap();
-        assert!(experiment.training().is_none());
+        assert!(
+            at_resolutions(&Config::default(), &scenario)
+                .unwrap()
+                .is_none()
+        );
     }
 }

@@ -9,7 +9,7 @@
 
 use std::sync::Arc;
 
-use vivae_sim::{DistanceSensors, Sensor, SurfaceGrid, SurfaceSensors};
+use vivae_sim::{DistanceSensors, Sensor, SurfaceGrid, SurfaceSensors, World};
 
 use crate::substrate::{DISTANCE_OUTPUT, PolarNode, SURFACE_OUTPUT};
 
@@ -51,6 +51,18 @@ impl SensorSheet {
                 phi: p.angle,
             })
             .collect()
+    }
+}
+
+/// Reads robot `robot`'s sensors in `world` into `inputs`, sheet after
+/// sheet: the controller's input vector. Allocation-free.
+#[inline]
+pub fn read_sheets(sheets: &[SensorSheet], world: &World, robot: usize, inputs: &mut [f64]) {
+    let mut rest = inputs;
+    for sheet in sheets {
+        let (mine, others) = rest.split_at_mut(sheet.len());
+        sheet.sensor.read(world, robot, mine);
+        rest = others;
     }
 }
 

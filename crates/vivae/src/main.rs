@@ -390,7 +390,7 @@ fn cmd_evolve(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
     apply_overrides(&mut config, &args.overrides)?;
     let setup = || -> vivae_lab::Result<_> {
         let maps = vivae_lab::maps::load(&config)?;
-        let experiment = vivae_lab::maps::experiment(&config, &maps)?;
+        let experiment = vivae_lab::training::Training::new(&config, &maps)?;
         let init = if config.experiment.init_population.is_empty() {
             None
         } else {
@@ -431,7 +431,7 @@ fn cmd_evolve(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
         .out
         .clone()
         .unwrap_or_else(vivae_lab::io::default_run_dir);
-    let source = vivae_lab::maps::describe(&maps, &experiment);
+    let source = experiment.describe(&maps);
     let first = &maps[0].loaded.text;
     let run = Run::create_on_maps(&dir, config, experiment, first, &maps, init, args.force)?;
     drive(run, &source, args.quiet, interrupted)
@@ -445,7 +445,7 @@ fn cmd_resume(args: ResumeArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
             let checkpoint = evolve::latest_checkpoint(&args.run_dir)?;
             let (config, _) = evolve::population_from_checkpoint(&checkpoint)?;
             let maps = vivae_lab::maps::load_run(&args.run_dir, &config, None)?;
-            let experiment = vivae_lab::maps::experiment(&config, &maps)?;
+            let experiment = vivae_lab::training::Training::new(&config, &maps)?;
             Ok((config, vivae_lab::maps::fingerprint_text(&maps), experiment))
         })();
         let threads = prepared.as_ref().map_or(0, |(c, _, _)| c.run.threads);
@@ -512,7 +512,7 @@ fn cmd_retrain(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Resu
     apply_overrides(&mut config, &overrides)?;
     let prepared = (|| -> anyhow::Result<_> {
         let maps = vivae_lab::maps::load(&config)?;
-        let experiment = vivae_lab::maps::experiment(&config, &maps)?;
+        let experiment = vivae_lab::training::Training::new(&config, &maps)?;
         Ok((maps, experiment))
     })();
     #[cfg(feature = "mpi")]
@@ -535,7 +535,7 @@ fn cmd_retrain(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Resu
         .out
         .clone()
         .unwrap_or_else(vivae_lab::io::default_run_dir);
-    let source = vivae_lab::maps::describe(&maps, &experiment);
+    let source = experiment.describe(&maps);
     let run = Run::create_on_maps(
         &dir,
         config,
@@ -568,20 +568,24 @@ fn header(run: &Run, scenario: &str) -> String {
         0 => String::new(),
         d => format!(" (resuming after generation {d})"),
     };
-    let maps = match run.experiment().maps() {
-        None => String::new(),
-        Some(m) => format!(
+    let t = run.training();
+    let map_labels: Vec<&str> = t.map_labels().collect();
+    let maps = if map_labels.is_empty() {
+        String::new()
+    } else {
+        format!(
             "\n  training maps: {} (fitness = mean over maps; robots, figures and replay: the first)",
-            m.labels().collect::<Vec<_>>().join(", ")
-        ),
+            map_labels.join(", ")
+        )
     };
-    let training = match run.experiment().training() {
-        None => String::new(),
-        Some(t) => format!(
+    let training = if t.resolution_labels().is_empty() {
+        String::new()
+    } else {
+        format!(
             "\n  training: every genome at {} ({:?} of their fitnesses)",
-            t.labels().collect::<Vec<_>>().join(", "),
+            t.resolution_labels().join(", "),
             t.aggregate()
-        ),
+        )
     };
     format!(
         "vivae evolve: {scenario}\n\
@@ -638,7 +642,7 @@ fn closing(run: &Run, summary: &report::RunSummary, wall: f64, steps_per_s: f64)
 /// `Some(code)` on a worker rank whose work is done, `None` where the run goes on.
 #[cfg(feature = "mpi")]
 fn mpi_start(
-    prepared: Result<(&Config, &str, &Experiment), &anyhow::Error>,
+    prepared: Result<(&Config, &str, &vivae_lab::training::Training), &anyhow::Error>,
     threads: usize,
     quiet: bool,
 ) -> anyhow::Result<Option<ExitCode>> {
@@ -667,7 +671,7 @@ fn run_generations(
 ) -> vivae_lab::Result<Outcome> {
     #[cfg(feature = "mpi")]
     if let Some(evaluator) =
-        vivae::mpi::MpiEvaluator::for_leader(run.experiment().clone(), run.pool())
+        vivae::mpi::MpiEvaluator::for_leader(run.training().clone(), run.pool())
     {
         return run.run_on(evaluator, interrupted, on_generation);
     }

@@ -29,7 +29,7 @@ use vivae_neat::driver::{Evaluation, Evaluator, EvaluatorError, Task};
 use vivae_neat::{EvalContext, Genome};
 
 use vivae_lab::config::{Config, RunConfig};
-use vivae_lab::experiment::Experiment;
+use vivae_lab::training::Training;
 
 /// Message tags. Rank 0 → worker: GO, WORK, STOP; worker → rank 0: HELLO, RESULT, FAILED.
 const TAG_HELLO: i32 = 1;
@@ -197,7 +197,7 @@ pub struct Setup<'a> {
     /// The scenario's text.
     pub scenario_text: &'a str,
     /// The experiment built from both.
-    pub experiment: &'a Experiment,
+    pub experiment: &'a Training,
     /// Evaluation threads for this rank (0 = one per core).
     pub threads: usize,
 }
@@ -399,7 +399,7 @@ fn wait_from_root(world: &SimpleCommunicator) -> (Vec<u8>, i32) {
 
 /// Evaluates `genome` in `ctx`, turning a panic into a message.
 fn evaluate_caught(
-    task: &Experiment,
+    task: &Training,
     genome: &Genome,
     ctx: &EvalContext,
 ) -> Result<Evaluation, String> {
@@ -412,7 +412,7 @@ fn evaluate_caught(
 }
 
 /// A worker's life: evaluate what rank 0 sends until it says stop.
-fn serve(world: &SimpleCommunicator, task: &Experiment, threads: usize) -> Result<(), MpiError> {
+fn serve(world: &SimpleCommunicator, task: &Training, threads: usize) -> Result<(), MpiError> {
     let rank = world.rank();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
@@ -468,7 +468,7 @@ fn serve(world: &SimpleCommunicator, task: &Experiment, threads: usize) -> Resul
 
 /// Evaluates generations across the ranks of an MPI job (rank 0's side).
 pub struct MpiEvaluator {
-    task: Experiment,
+    task: Training,
     pool: Arc<rayon::ThreadPool>,
     workers: Vec<WorkerRank>,
     /// When the last `evaluate` returned.
@@ -478,7 +478,7 @@ pub struct MpiEvaluator {
 impl MpiEvaluator {
     /// The evaluator for rank 0 of a job whose workers passed the handshake;
     /// `None` without MPI, in a job of one rank, or on a worker.
-    pub fn for_leader(task: Experiment, pool: Arc<rayon::ThreadPool>) -> Option<MpiEvaluator> {
+    pub fn for_leader(task: Training, pool: Arc<rayon::ThreadPool>) -> Option<MpiEvaluator> {
         let workers = state(|s| {
             s.as_ref()
                 .filter(|s| s.rank == 0 && !s.stopped && !s.workers.is_empty())

@@ -112,15 +112,17 @@ pub fn finish_run(run: &Run) -> Result<RunSummary> {
     crate::report_html::write_reusing(run.dir(), &reuse)?;
 
     // On several maps the champion's fitness is the mean over maps: its time on road too.
-    let champion_on_road = match experiment.maps() {
-        None => episode.on_road.unwrap_or_default(),
-        Some(maps) => vivae_lab::maps::mean(
-            &maps
+    let training = run.training();
+    let champion_on_road = if training.map_labels().next().is_none() {
+        episode.on_road.unwrap_or_default()
+    } else {
+        vivae_lab::maps::mean(
+            &training
                 .episodes(&champion.genome)?
                 .iter()
                 .map(|e| e.on_road.unwrap_or_default())
                 .collect::<Vec<_>>(),
-        ),
+        )
     };
     Ok(RunSummary {
         champion_fitness: champion.fitness,

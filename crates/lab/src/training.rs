@@ -1,0 +1,182 @@
+//! What a run trains on: the task every genome is evaluated on (its maps,
+//! each at its resolutions), and the experiment that reports, draws and
+//! replays (the first map at the run's own resolution).
+//!
+//! A single-map, single-resolution run trains on exactly its
+//! [`Experiment`]. With `substrate.train_neurons`/`train_sensors` a map's
+//! task is a [`Combined`] over resolutions ([`crate::resolutions`]); with
+//! `experiment.scenarios` the run's task is the mean over maps of each
+//! map's task, each map with its own robots.
+
+use std::sync::Arc;
+
+use vivae_neat::driver::{Evaluation, Task};
+use vivae_neat::{EvalContext, Genome, GenomeSpec};
+
+use crate::config::{Aggregate, Config};
+use crate::error::Result;
+use crate::experiment::{Episode, Experiment, ExperimentError};
+use crate::maps::{TrainingMap, is_multi_map};
+use crate::resolutions::at_resolutions;
+use crate::task::{Combined, DrivingTask};
+
+/// The task a run evaluates genomes on, and the experiment it reports.
+#[derive(Debug, Clone)]
+pub struct Training {
+    /// The first map at the run's own resolution: reported, drawn, replayed.
+    primary: Experiment,
+    /// With several maps: (label, experiment) of each at the run's own resolution.
+    maps: Vec<(String, Experiment)>,
+    /// With several resolutions: their labels, in evaluation order.
+    resolutions: Vec<String>,
+    aggregate: Aggregate,
+    task: Arc<dyn DrivingTask>,
+}
+
+impl Training {
+    /// The training of `config` on `maps` (loaded by [`crate::maps::load`]
+    /// or [`crate::maps::load_run`]).
+    pub fn new(config: &Config, maps: &[TrainingMap]) -> Result<Training> {
+        let first = maps
+            .first()
+            .ok_or_else(|| crate::io::bad_input("no training map"))?;
+        if !is_multi_map(config) {
+            let (primary, task, resolutions) = map_task(config, first)?;
+            return Ok(Training::of(primary, Vec::new(), resolutions, config, task));
+        }
+        let mut experiments = Vec::with_capacity(maps.len());
+        let mut parts: Vec<(String, Box<dyn DrivingTask>)> = Vec::with_capacity(maps.len());
+        let mut resolutions = Vec::new();
+        for m in maps {
+            let (e, task, r) = map_task(config, m).map_err(|e| match e {
+                ExperimentError::Scenario(s) => ExperimentError::Scenario(s),
+                other => ExperimentError::Config(format!("training map {}: {other}", m.label)),
+            })?;
+            experiments.push((m.label.clone(), e));
+            parts.push((m.label.clone(), task));
+            resolutions = r;
+        }
+        let primary = experiments[0].1.clone();
+        let task: Box<dyn DrivingTask> = Box::new(Combined::new(parts, Aggregate::Mean));
+        Ok(Training::of(
+            primary,
+            experiments,
+            resolutions,
+            config,
+            task,
+        ))
+    }
+
+    fn of(
+        primary: Experiment,
+        maps: Vec<(String, Experiment)>,
+        resolutions: Vec<String>,
+        config: &Config,
+        task: Box<dyn DrivingTask>,
+    ) -> Training {
+        Training {
+            primary,
+            maps,
+            resolutions,
+            aggregate: config.substrate.train_aggregate,
+            task: Arc::from(task),
+        }
+    }
+
+    /// The experiment reported, drawn and replayed: the first map at the run's own resolution.
+    pub fn primary(&self) -> &Experiment {
+        &self.primary
+    }
+
+    /// The task genomes are evaluated on.
+    pub fn task(&self) -> &dyn DrivingTask {
+        &*self.task
+    }
+
+    /// Labels of the training maps when there are several (else none), in evaluation order.
+    pub fn map_labels(&self) -> impl Iterator<Item = &str> {
+        self.maps.iter().map(|(l, _)| l.as_str())
+    }
+
+    /// Each training map's experiment at the run's own resolution, when there are several maps.
+    pub fn map_experiments(&self) -> impl Iterator<Item = &Experiment> {
+        self.maps.iter().map(|(_, e)| e)
+    }
+
+    /// Labels (`sRxA-nRxA`) of the training resolutions when there are several (else none).
+    pub fn resolution_labels(&self) -> &[String] {
+        &self.resolutions
+    }
+
+    /// How the fitnesses at several resolutions combine.
+    pub fn aggregate(&self) -> Aggregate {
+        self.aggregate
+    }
+
+    /// Robot-steps one evaluation simulates, over every map and resolution.
+    pub fn robot_steps(&self) -> u64 {
+        self.task.robot_steps()
+    }
+
+    /// Recorded episodes of `genome` on every training map (the primary one
+    /// alone for a single map), each at the run's own resolution.
+    pub fn episodes(&self, genome: &Genome) -> std::result::Result<Vec<Episode>, ExperimentError> {
+        let one = [&self.primary];
+        let experiments: Vec<&Experiment> = if self.maps.is_empty() {
+            one.to_vec()
+        } else {
+            self.map_experiments().collect()
+        };
+        experiments
+            .into_iter()
+            .map(|e| Ok(e.run(&e.controller(genome)?, true)))
+            .collect()
+    }
+
+    /// The training maps for a person: `roads.svg (shipped): 5 robots, …`.
+    pub fn describe(&self, maps: &[TrainingMap]) -> String {
+        if self.maps.is_empty() {
+            return maps
+                .first()
+                .map(|m| m.loaded.scenario.source.clone())
+                .unwrap_or_default();
+        }
+        maps.iter()
+            .zip(self.map_experiments())
+            .map(|(m, e)| format!("{}: {} robots", m.loaded.scenario.source, e.robots()))
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+}
+
+/// A map's experiment at the run's own resolution, its training task, and
+/// the labels of its resolutions.
+type MapTask = (Experiment, Box<dyn DrivingTask>, Vec<String>);
+
+/// The [`MapTask`] of `map` under `config`.
+fn map_task(config: &Config, map: &TrainingMap) -> std::result::Result<MapTask, ExperimentError> {
+    let experiment = Experiment::new(config, &map.loaded.scenario)?;
+    Ok(match at_resolutions(config, &map.loaded.scenario)? {
+        Some(combined) => {
+            let labels = combined.labels().map(String::from).collect();
+            (experiment, Box::new(combined), labels)
+        }
+        None => (experiment.clone(), Box::new(experiment), Vec::new()),
+    })
+}
+
+impl Task for Training {
+    fn evaluate(&self, genome: &Genome, ctx: &EvalContext) -> Evaluation {
+        self.task.evaluate(genome, ctx)
+    }
+}
+
+impl DrivingTask for Training {
+    fn robot_steps(&self) -> u64 {
+        self.task.robot_steps()
+    }
+
+    fn cppn_spec(&self) -> GenomeSpec {
+        self.primary.cppn_spec()
+    }
+}
