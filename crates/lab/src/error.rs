@@ -10,8 +10,12 @@ use vivae_sim::ScenarioError;
 
 use crate::config::ConfigError;
 use crate::experiment::ExperimentError;
-use crate::io::one_line;
 use crate::simd::SimdError;
+
+/// Collapses a message onto one line.
+pub fn one_line(message: &str) -> String {
+    message.split_whitespace().collect::<Vec<_>>().join(" ")
+}
 
 /// The result type of the vivae library.
 pub type Result<T, E = Error> = std::result::Result<T, E>;

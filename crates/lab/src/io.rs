@@ -8,6 +8,8 @@ use vivae_sim::{LoadOptions, Scenario};
 
 use crate::error::{Error, Result};
 
+pub use crate::error::one_line;
+
 /// FNV-1a 64 of `bytes`: the checksum of checkpoints and stored training maps.
 pub fn fnv1a(bytes: &[u8]) -> u64 {
     bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
@@ -208,11 +210,6 @@ pub fn load_scenario(path: Option<&Path>) -> Result<LoadedScenario> {
     };
     let scenario = Scenario::from_svg(&text, &name, &LoadOptions::default())?;
     Ok(LoadedScenario { scenario, text })
-}
-
-/// Collapses a message onto one line.
-pub fn one_line(message: &str) -> String {
-    message.split_whitespace().collect::<Vec<_>>().join(" ")
 }
 
 /// Creates a fresh output directory; an existing one is refused unless `force`.

@@ -14,13 +14,8 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use crate::config::Config;
-use crate::error::{Error, Result};
-use crate::io::{LoadedScenario, fnv1a, load_scenario, safe_file_stem};
-
-/// Folder of a multi-map run directory holding the copies of the training maps.
-pub const MAPS_DIR: &str = "scenarios";
-/// The manifest in [`MAPS_DIR`]: one line per map, `file fnv1a64 source`.
-pub const MANIFEST: &str = "manifest.txt";
+use crate::error::Result;
+use crate::io::{LoadedScenario, load_scenario};
 
 /// The map-weighted mean: the sum in map order over the number of maps (so
 /// that a test can repeat it bit for bit).
@@ -68,84 +63,6 @@ pub fn load(config: &Config) -> Result<Vec<TrainingMap>> {
         .collect()
 }
 
-/// File names the copies of `maps` get in `scenarios/`: `LABEL.svg`, with
-/// `-2`, `-3`, … after a label already taken.
-pub fn copy_names(maps: &[TrainingMap]) -> Vec<String> {
-    let mut names: Vec<String> = Vec::with_capacity(maps.len());
-    for m in maps {
-        let safe = safe_file_stem(&m.label);
-        let mut name = format!("{safe}.svg");
-        let mut k = 2;
-        while names.contains(&name) {
-            name = format!("{safe}-{k}.svg");
-            k += 1;
-        }
-        names.push(name);
-    }
-    names
-}
-
-/// The manifest's text for copies `names` of `maps`.
-pub fn manifest(names: &[String], maps: &[TrainingMap]) -> String {
-    let mut out = String::from("# file fnv1a64 source (the training maps, in evaluation order)\n");
-    for (name, m) in names.iter().zip(maps) {
-        let _ = writeln!(
-            out,
-            "{name} {:016x} {}",
-            fnv1a(m.loaded.text.as_bytes()),
-            m.loaded.scenario.source
-        );
-    }
-    out
-}
-
-/// Loads the training maps of the run in `dir` (its config `config`): the
-/// copies under `scenarios/` for a multi-map run, else `scenario.svg`.
-/// With `hashes` (from the checkpoint), a copy whose text changed is refused.
-pub fn load_run(dir: &Path, config: &Config, hashes: Option<&[u64]>) -> Result<Vec<TrainingMap>> {
-    if !is_multi_map(config) {
-        let path = dir.join(crate::evolve::files::SCENARIO);
-        return Ok(vec![TrainingMap {
-            label: crate::io::scenario_name(Some(&path)),
-            loaded: load_scenario(Some(&path))?,
-        }]);
-    }
-    let names = &config.experiment.scenarios;
-    if let Some(h) = hashes
-        && h.len() != names.len()
-    {
-        return Err(Error::Checkpoint {
-            path: dir.to_path_buf(),
-            reason: format!(
-                "the checkpoint records {} training maps, config.toml names {}",
-                h.len(),
-                names.len()
-            ),
-        });
-    }
-    let mut maps = Vec::with_capacity(names.len());
-    for (i, name) in names.iter().enumerate() {
-        let path = dir.join(name);
-        let text = crate::io::read_text(&path)?;
-        if let Some(h) = hashes
-            && h[i] != fnv1a(text.as_bytes())
-        {
-            return Err(Error::Checkpoint {
-                path,
-                reason: format!(
-                    "training map {} was edited since the run started (its hash is not the one the checkpoint records); restore it, or start a new run",
-                    i + 1
-                ),
-            });
-        }
-        maps.push(TrainingMap {
-            label: crate::io::scenario_name(Some(&path)),
-            loaded: load_scenario(Some(&path))?,
-        });
-    }
-    Ok(maps)
-}
-
 /// One text standing for all training maps (compared between MPI ranks):
 /// the single map's text, or every map's text after its name.
 pub fn fingerprint_text(maps: &[TrainingMap]) -> String {
@@ -162,6 +79,7 @@ pub fn fingerprint_text(maps: &[TrainingMap]) -> String {
 mod tests {
     use super::*;
     use crate::experiment::Experiment;
+    use crate::rundir::{copy_names, manifest};
     use crate::task::DrivingTask;
     use crate::training::Training;
     use vivae_neat::driver::Task;

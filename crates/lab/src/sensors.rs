@@ -11,7 +11,7 @@ use std::sync::Arc;
 
 use vivae_sim::{DistanceSensors, Sensor, SurfaceGrid, SurfaceSensors, World};
 
-use crate::substrate::{DISTANCE_OUTPUT, PolarNode, SURFACE_OUTPUT};
+use crate::polar::{DISTANCE_OUTPUT, PolarNode, SURFACE_OUTPUT};
 
 /// One sensor and the input sheet that stands for it on the substrate.
 #[derive(Debug, Clone)]

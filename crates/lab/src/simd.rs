@@ -29,7 +29,7 @@ pub fn parse(name: &str) -> Result<vivae_neat::simd::SimdLevel, SimdError> {
 
 /// Applies `VIVAE_SIMD` if it is set (a level above what the CPU supports
 /// gives the best it does support); an unknown value is an error.
-pub fn apply_env() -> Result<(), crate::Error> {
+pub fn apply_env() -> Result<(), SimdError> {
     match std::env::var_os(VAR) {
         None => Ok(()),
         Some(value) => {

@@ -444,7 +444,7 @@ fn cmd_resume(args: ResumeArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
         let prepared = (|| -> anyhow::Result<_> {
             let checkpoint = evolve::latest_checkpoint(&args.run_dir)?;
             let (config, _) = evolve::population_from_checkpoint(&checkpoint)?;
-            let maps = vivae_lab::maps::load_run(&args.run_dir, &config, None)?;
+            let maps = vivae_lab::rundir::load_run(&args.run_dir, &config, None)?;
             let experiment = vivae_lab::training::Training::new(&config, &maps)?;
             Ok((config, vivae_lab::maps::fingerprint_text(&maps), experiment))
         })();
