@@ -31,7 +31,7 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 use tiny_skia::{Pixmap, PixmapPaint, PremultipliedColorU8, Transform};
 use vivae_neat::hyperneat::SubstrateController;
 
-use super::network::{Checked, GUIDE, NetworkOptions, WHEEL, blend, check, px};
+use super::controller::{Checked, GUIDE, NetworkOptions, WHEEL, blend, check, px};
 use super::{
     FAMILY, Figure, FigureError, NEGATIVE, PNG_SCALE, POSITIVE, base64, draw_err, draw_svg_over,
     encode_png_fast, register_font,
