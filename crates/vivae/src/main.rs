@@ -16,7 +16,9 @@ use vivae_lab::config::Config;
 use vivae_lab::evolve::{self, GenerationRecord, Outcome, Run, files};
 use vivae_lab::experiment::Experiment;
 use vivae_lab::io::{bad_input, load_scenario, one_line, read_config, write_atomic};
+use vivae_lab::maps::TrainingMap;
 use vivae_lab::substrate::PolarGrid;
+use vivae_lab::training::Training;
 
 mod portable_libm;
 
@@ -55,6 +57,63 @@ enum Command {
     Config(ConfigCommand),
 }
 
+/// The substrate's resolution; a genome's CPPN is re-sampled onto any.
+#[derive(Args, Debug, Default, Clone, Copy)]
+struct Resolution {
+    /// Surface sensors as RINGSxANGLES (default: the run's, or the config's;
+    /// paper: 3x5); a run's genomes are re-sampled onto it.
+    #[arg(long, value_name = "RxA")]
+    sensors: Option<PolarGrid>,
+    /// Output neurons as RINGSxANGLES (default: the run's, or the config's;
+    /// paper: 3x3); a run's genomes are re-sampled onto it.
+    #[arg(long, value_name = "RxA")]
+    neurons: Option<PolarGrid>,
+}
+
+/// How the substrate's links are weighted and which are kept.
+#[derive(Args, Debug, Default, Clone, Copy)]
+struct Wiring {
+    /// With substrate.normalize: count (the paper's) or area (each node by its
+    /// share of the sheet's polar area).
+    #[arg(long, value_name = "count|area")]
+    normalize_by: Option<vivae_lab::config::NormalizeBy>,
+    /// With substrate.normalize: false keeps self-loops at the CPPN's weight
+    /// at any neuron resolution (default true, the paper's).
+    #[arg(long, value_name = "true|false")]
+    normalize_self_loops: Option<bool>,
+    /// Neuron→neuron links kept: full (the paper's), self (self-loops only,
+    /// no lateral links) or none.
+    #[arg(long, value_name = "full|self|none")]
+    recurrence: Option<vivae_lab::config::Recurrence>,
+}
+
+/// The evaluation thread pool.
+#[derive(Args, Debug, Default, Clone, Copy)]
+struct Threads {
+    /// Evaluation threads (0 = one per core); results do not depend on it.
+    #[arg(long, value_name = "N")]
+    threads: Option<usize>,
+}
+
+/// Where a new run goes.
+#[derive(Args, Debug)]
+struct NewRun {
+    /// New run directory (default: runs/<timestamp>).
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+    /// Overwrite an existing run directory.
+    #[arg(long)]
+    force: bool,
+}
+
+/// Terminal output of the evolving commands.
+#[derive(Args, Debug, Clone, Copy)]
+struct Quiet {
+    /// No progress output.
+    #[arg(short, long)]
+    quiet: bool,
+}
+
 /// Options that override config keys.
 #[derive(Args, Debug, Default)]
 struct Overrides {
@@ -72,21 +131,16 @@ struct Overrides {
     /// Random seed.
     #[arg(long, value_name = "N")]
     seed: Option<u64>,
-    /// Surface sensors as RINGSxANGLES (paper: 3x5).
-    #[arg(long, value_name = "RxA")]
-    sensors: Option<PolarGrid>,
-    /// Output neurons as RINGSxANGLES (paper: 3x3).
-    #[arg(long, value_name = "RxA")]
-    neurons: Option<PolarGrid>,
+    #[command(flatten)]
+    resolution: Resolution,
     /// Simulation steps per evaluation.
     #[arg(long, value_name = "N")]
     steps: Option<u32>,
     /// Robots: the scenario's first N (0 = all of them; paper: 5).
     #[arg(long, value_name = "N")]
     robots: Option<usize>,
-    /// Evaluation threads (0 = one per core); results do not depend on it.
-    #[arg(long, value_name = "N")]
-    threads: Option<usize>,
+    #[command(flatten)]
+    threads: Threads,
     /// Multi-resolution evolution: evaluate every genome at these neuron
     /// sheets (e.g. 3x3,5x5,9x9) and aggregate; --neurons stays the one reported.
     #[arg(long, value_name = "RxA,...", value_delimiter = ',')]
@@ -98,18 +152,8 @@ struct Overrides {
     /// How the training resolutions' fitnesses combine: mean (default) or min.
     #[arg(long, value_name = "mean|min")]
     train_aggregate: Option<vivae_lab::config::Aggregate>,
-    /// With substrate.normalize: count (the paper's) or area (each node by its
-    /// share of the sheet's polar area).
-    #[arg(long, value_name = "count|area")]
-    normalize_by: Option<vivae_lab::config::NormalizeBy>,
-    /// With substrate.normalize: false keeps self-loops at the CPPN's weight
-    /// at any neuron resolution (default true, the paper's).
-    #[arg(long, value_name = "true|false")]
-    normalize_self_loops: Option<bool>,
-    /// Neuron→neuron links kept: full (the paper's), self (self-loops only,
-    /// no lateral links) or none.
-    #[arg(long, value_name = "full|self|none")]
-    recurrence: Option<vivae_lab::config::Recurrence>,
+    #[command(flatten)]
+    wiring: Wiring,
 }
 
 #[derive(Args, Debug)]
@@ -119,15 +163,10 @@ struct EvolveArgs {
     config: Option<PathBuf>,
     #[command(flatten)]
     overrides: Overrides,
-    /// Run directory (default: runs/<timestamp>).
-    #[arg(long, value_name = "DIR")]
-    out: Option<PathBuf>,
-    /// Overwrite an existing run directory.
-    #[arg(long)]
-    force: bool,
-    /// No progress output.
-    #[arg(short, long)]
-    quiet: bool,
+    #[command(flatten)]
+    new_run: NewRun,
+    #[command(flatten)]
+    quiet: Quiet,
 }
 
 #[derive(Args, Debug)]
@@ -137,12 +176,10 @@ struct ResumeArgs {
     /// Total generations (extends a finished run).
     #[arg(long, value_name = "N")]
     generations: Option<u32>,
-    /// Evaluation threads (0 = one per core).
-    #[arg(long, value_name = "N")]
-    threads: Option<usize>,
-    /// No progress output.
-    #[arg(short, long)]
-    quiet: bool,
+    #[command(flatten)]
+    threads: Threads,
+    #[command(flatten)]
+    quiet: Quiet,
 }
 
 #[derive(Args, Debug)]
@@ -152,12 +189,8 @@ struct ReplayArgs {
     /// Scenario SVG file or shipped name (default: the run's).
     #[arg(long, value_name = "FILE|NAME")]
     scenario: Option<PathBuf>,
-    /// Surface sensors as RINGSxANGLES (re-samples the substrate).
-    #[arg(long, value_name = "RxA")]
-    sensors: Option<PolarGrid>,
-    /// Output neurons as RINGSxANGLES (re-samples the substrate).
-    #[arg(long, value_name = "RxA")]
-    neurons: Option<PolarGrid>,
+    #[command(flatten)]
+    resolution: Resolution,
     /// Simulation steps.
     #[arg(long, value_name = "N")]
     steps: Option<u32>,
@@ -168,45 +201,26 @@ struct ReplayArgs {
     /// Folder for the trajectory figure (default: replay/ beside the source).
     #[arg(short, long, value_name = "DIR")]
     out: Option<PathBuf>,
-    /// With substrate.normalize: count (the paper's) or area (each node by its
-    /// share of the sheet's polar area).
-    #[arg(long, value_name = "count|area")]
-    normalize_by: Option<vivae_lab::config::NormalizeBy>,
-    /// With substrate.normalize: false keeps self-loops at the CPPN's weight
-    /// at any neuron resolution (default true, the paper's).
-    #[arg(long, value_name = "true|false")]
-    normalize_self_loops: Option<bool>,
-    /// Neuron→neuron links kept: full (the paper's), self (self-loops only,
-    /// no lateral links) or none.
-    #[arg(long, value_name = "full|self|none")]
-    recurrence: Option<vivae_lab::config::Recurrence>,
+    #[command(flatten)]
+    wiring: Wiring,
 }
 
 #[derive(Args, Debug)]
+#[command(mut_arg("sensors", |a| a.required_unless_present("neurons")))]
 struct RetrainArgs {
     /// The run whose final population continues.
     run_dir: PathBuf,
-    /// Surface sensors of the new substrate, RINGSxANGLES (default: the run's).
-    #[arg(long, value_name = "RxA", required_unless_present = "neurons")]
-    sensors: Option<PolarGrid>,
-    /// Output neurons of the new substrate, RINGSxANGLES (default: the run's).
-    #[arg(long, value_name = "RxA")]
-    neurons: Option<PolarGrid>,
+    #[command(flatten)]
+    resolution: Resolution,
     /// Generations to evolve on the new substrate.
     #[arg(long, value_name = "N")]
     generations: u32,
-    /// New run directory (default: runs/<timestamp>).
-    #[arg(long, value_name = "DIR")]
-    out: Option<PathBuf>,
-    /// Overwrite an existing run directory.
-    #[arg(long)]
-    force: bool,
-    /// Evaluation threads (0 = one per core).
-    #[arg(long, value_name = "N")]
-    threads: Option<usize>,
-    /// No progress output.
-    #[arg(short, long)]
-    quiet: bool,
+    #[command(flatten)]
+    new_run: NewRun,
+    #[command(flatten)]
+    threads: Threads,
+    #[command(flatten)]
+    quiet: Quiet,
 }
 
 #[derive(Subcommand, Debug)]
@@ -326,11 +340,11 @@ fn apply_overrides(config: &mut Config, o: &Overrides) -> anyhow::Result<()> {
     if let Some(n) = o.seed {
         config.experiment.seed = n;
     }
-    if let Some(g) = o.sensors {
+    if let Some(g) = o.resolution.sensors {
         config.surface_sensors.rings = g.rings;
         config.surface_sensors.angles = g.angles;
     }
-    if let Some(g) = o.neurons {
+    if let Some(g) = o.resolution.neurons {
         config.substrate.neurons = g;
     }
     if let Some(n) = o.steps {
@@ -339,7 +353,7 @@ fn apply_overrides(config: &mut Config, o: &Overrides) -> anyhow::Result<()> {
     if let Some(n) = o.robots {
         config.experiment.robots = n;
     }
-    if let Some(n) = o.threads {
+    if let Some(n) = o.threads.threads {
         config.run.threads = n;
     }
     if let Some(g) = &o.train_neurons {
@@ -351,13 +365,13 @@ fn apply_overrides(config: &mut Config, o: &Overrides) -> anyhow::Result<()> {
     if let Some(a) = o.train_aggregate {
         config.substrate.train_aggregate = a;
     }
-    if let Some(b) = o.normalize_by {
+    if let Some(b) = o.wiring.normalize_by {
         config.substrate.normalize_by = b;
     }
-    if let Some(b) = o.normalize_self_loops {
+    if let Some(b) = o.wiring.normalize_self_loops {
         config.substrate.normalize_self_loops = b;
     }
-    if let Some(r) = o.recurrence {
+    if let Some(r) = o.wiring.recurrence {
         config.substrate.recurrence = r;
     }
     config
@@ -404,23 +418,15 @@ fn cmd_evolve(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
         Some(path) => setup().with_context(|| path.display().to_string()),
         None => setup().map_err(anyhow::Error::from),
     };
-    #[cfg(feature = "mpi")]
-    let fingerprint = prepared.as_ref().map_or_else(
-        |_| String::new(),
-        |(m, _, _)| vivae_lab::maps::fingerprint_text(m),
-    );
-    #[cfg(feature = "mpi")]
-    if let Some(code) = mpi_start(
-        prepared
-            .as_ref()
-            .map(|(_, e, _)| (&config, fingerprint.as_str(), e)),
-        config.run.threads,
-        args.quiet,
-    )? {
+    let quiet = args.quiet.quiet;
+    let joining = prepared
+        .as_ref()
+        .map(|(m, e, _)| (&config, m.as_slice(), e));
+    if let Some(code) = join_mpi_job(joining, config.run.threads, quiet)? {
         return Ok(code);
     }
     let (maps, experiment, init) = prepared?;
-    if !args.quiet {
+    if !quiet {
         for m in &maps {
             for w in &m.loaded.scenario.warnings {
                 eprintln!("warning: {w}");
@@ -428,36 +434,37 @@ fn cmd_evolve(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
         }
     }
     let dir = args
+        .new_run
         .out
         .clone()
         .unwrap_or_else(vivae_lab::io::default_run_dir);
     let source = experiment.describe(&maps);
     let first = &maps[0].loaded.text;
-    let run = Run::create_on_maps(&dir, config, experiment, first, &maps, init, args.force)?;
-    drive(run, &source, args.quiet, interrupted)
+    let threads = config.run.threads;
+    let force = args.new_run.force;
+    let run = Run::create_on_maps(&dir, config, experiment, first, &maps, init, force)?;
+    drive(run, &source, threads, quiet, interrupted)
 }
 
 fn cmd_resume(args: ResumeArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode> {
-    #[cfg(feature = "mpi")]
-    if vivae::mpi::launched_by_mpi() {
+    let quiet = args.quiet.quiet;
+    if launched_by_mpi() {
         // Every rank reads the run (rank 0 writes to it only after the handshake).
         let prepared = (|| -> anyhow::Result<_> {
             let checkpoint = evolve::latest_checkpoint(&args.run_dir)?;
             let (config, _) = evolve::population_from_checkpoint(&checkpoint)?;
             let maps = vivae_lab::rundir::load_run(&args.run_dir, &config, None)?;
             let experiment = vivae_lab::training::Training::new(&config, &maps)?;
-            Ok((config, vivae_lab::maps::fingerprint_text(&maps), experiment))
+            Ok((config, maps, experiment))
         })();
-        let threads = prepared.as_ref().map_or(0, |(c, _, _)| c.run.threads);
-        if let Some(code) = mpi_start(
-            prepared.as_ref().map(|(c, s, e)| (c, s.as_str(), e)),
-            args.threads.unwrap_or(threads),
-            args.quiet,
-        )? {
+        let recorded = prepared.as_ref().map_or(0, |(c, _, _)| c.run.threads);
+        let joining = prepared.as_ref().map(|(c, m, e)| (c, m.as_slice(), e));
+        if let Some(code) = join_mpi_job(joining, args.threads.threads.unwrap_or(recorded), quiet)?
+        {
             return Ok(code);
         }
     }
-    let run = Run::resume(&args.run_dir, args.generations, args.threads)?;
+    let run = Run::resume(&args.run_dir, args.generations, args.threads.threads)?;
     let total = run.config().experiment.generations;
     if run.done() >= total {
         let dir = run.dir().display();
@@ -483,7 +490,9 @@ fn cmd_resume(args: ResumeArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
     } else {
         run.dir().join(files::SCENARIO).display().to_string()
     };
-    drive(run, &source, args.quiet, interrupted)
+    // The pool runs on the threads given now, if any, not the recorded ones.
+    let threads = args.threads.threads.unwrap_or(run.config().run.threads);
+    drive(run, &source, threads, quiet, interrupted)
 }
 
 fn cmd_retrain(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode> {
@@ -504,8 +513,7 @@ fn cmd_retrain(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Resu
     config.experiment.init_population = checkpoint.to_string_lossy().into_owned();
     let overrides = Overrides {
         generations: Some(args.generations),
-        sensors: args.sensors,
-        neurons: args.neurons,
+        resolution: args.resolution,
         threads: args.threads,
         ..Overrides::default()
     };
@@ -515,27 +523,19 @@ fn cmd_retrain(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Resu
         let experiment = vivae_lab::training::Training::new(&config, &maps)?;
         Ok((maps, experiment))
     })();
-    #[cfg(feature = "mpi")]
-    let fingerprint = prepared.as_ref().map_or_else(
-        |_| String::new(),
-        |(m, _)| vivae_lab::maps::fingerprint_text(m),
-    );
-    #[cfg(feature = "mpi")]
-    if let Some(code) = mpi_start(
-        prepared
-            .as_ref()
-            .map(|(_, e)| (&config, fingerprint.as_str(), e)),
-        config.run.threads,
-        args.quiet,
-    )? {
+    let quiet = args.quiet.quiet;
+    let joining = prepared.as_ref().map(|(m, e)| (&config, m.as_slice(), e));
+    if let Some(code) = join_mpi_job(joining, config.run.threads, quiet)? {
         return Ok(code);
     }
     let (maps, experiment) = prepared?;
     let dir = args
+        .new_run
         .out
         .clone()
         .unwrap_or_else(vivae_lab::io::default_run_dir);
     let source = experiment.describe(&maps);
+    let threads = config.run.threads;
     let run = Run::create_on_maps(
         &dir,
         config,
@@ -543,17 +543,18 @@ fn cmd_retrain(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Resu
         &maps[0].loaded.text,
         &maps,
         Some(population),
-        args.force,
+        args.new_run.force,
     )?;
-    drive(run, &source, args.quiet, interrupted)
+    drive(run, &source, threads, quiet, interrupted)
 }
 
-/// What a run is about to do, for a person reading the terminal.
-fn header(run: &Run, scenario: &str) -> String {
+/// What a run is about to do, for a person reading the terminal; `threads`
+/// is the evaluation pool's size as asked for (0 = one per core).
+fn header(run: &Run, scenario: &str, threads: usize) -> String {
     let c = run.config();
     let s = &c.surface_sensors;
     let n = c.substrate.neurons;
-    let threads = match c.run.threads {
+    let threads = match threads {
         0 => format!(
             "{} (one per core)",
             std::thread::available_parallelism().map_or(1, |n| n.get())
@@ -638,28 +639,50 @@ fn closing(run: &Run, summary: &report::RunSummary, wall: f64, steps_per_s: f64)
     )
 }
 
-/// Under an MPI launcher, the start-up handshake of every rank (see `vivae::mpi`):
-/// `Some(code)` on a worker rank whose work is done, `None` where the run goes on.
-#[cfg(feature = "mpi")]
-fn mpi_start(
-    prepared: Result<(&Config, &str, &vivae_lab::training::Training), &anyhow::Error>,
+/// Whether an MPI launcher started this process (never without the `mpi` feature).
+fn launched_by_mpi() -> bool {
+    #[cfg(feature = "mpi")]
+    return vivae::mpi::launched_by_mpi();
+    #[cfg(not(feature = "mpi"))]
+    false
+}
+
+/// Under an MPI launcher, the start-up handshake of every rank (see
+/// `vivae::mpi`), for every command that evolves: each rank brings the run it
+/// prepared (config, training maps, experiment) or why it could not, and the
+/// evaluation threads it will use. `Some(code)` on a worker rank whose work is
+/// done, `None` where the run goes on (always, without MPI).
+fn join_mpi_job(
+    prepared: Result<(&Config, &[TrainingMap], &Training), &anyhow::Error>,
     threads: usize,
     quiet: bool,
 ) -> anyhow::Result<Option<ExitCode>> {
-    use vivae::mpi::{MpiError, Setup, Started, start};
-    let setup = prepared
-        .map(|(config, scenario_text, experiment)| Setup {
-            config,
-            scenario_text,
-            experiment,
-            threads,
-        })
-        .map_err(|e| one_line(&format!("{e:#}")));
-    match start(setup, quiet) {
-        Ok(Started::Lead) => Ok(None),
-        Ok(Started::WorkerDone) => Ok(Some(ExitCode::SUCCESS)),
-        Err(e @ MpiError::Refused(_)) => Err(bad_input(e.to_string()).into()),
-        Err(e) => Err(e.into()),
+    #[cfg(feature = "mpi")]
+    {
+        use vivae::mpi::{MpiError, Setup, Started, start};
+        let fingerprint = prepared.as_ref().map_or_else(
+            |_| String::new(),
+            |(_, maps, _)| vivae_lab::maps::fingerprint_text(maps),
+        );
+        let setup = prepared
+            .map(|(config, _, experiment)| Setup {
+                config,
+                scenario_text: &fingerprint,
+                experiment,
+                threads,
+            })
+            .map_err(|e| one_line(&format!("{e:#}")));
+        match start(setup, quiet) {
+            Ok(Started::Lead) => Ok(None),
+            Ok(Started::WorkerDone) => Ok(Some(ExitCode::SUCCESS)),
+            Err(e @ MpiError::Refused(_)) => Err(bad_input(e.to_string()).into()),
+            Err(e) => Err(e.into()),
+        }
+    }
+    #[cfg(not(feature = "mpi"))]
+    {
+        let _ = (prepared, threads, quiet);
+        Ok(None)
     }
 }
 
@@ -682,12 +705,13 @@ fn run_generations(
 fn drive(
     mut run: Run,
     scenario: &str,
+    threads: usize,
     quiet: bool,
     interrupted: &Arc<AtomicBool>,
 ) -> anyhow::Result<ExitCode> {
     install_ctrlc(interrupted);
     if !quiet {
-        eprintln!("{}", header(&run, scenario));
+        eprintln!("{}", header(&run, scenario, threads));
     }
     let start = Instant::now();
     let total = run.config().experiment.generations;
@@ -775,14 +799,11 @@ fn cmd_replay(args: ReplayArgs) -> anyhow::Result<ExitCode> {
     }
     let overrides = Overrides {
         scenario: args.scenario.iter().cloned().collect(),
-        sensors: args.sensors,
-        neurons: args.neurons,
+        resolution: args.resolution,
         steps: args.steps,
         // Another scenario has its own robot starts: all of them, unless told.
         robots: args.robots.or(args.scenario.as_ref().map(|_| 0)),
-        normalize_by: args.normalize_by,
-        normalize_self_loops: args.normalize_self_loops,
-        recurrence: args.recurrence,
+        wiring: args.wiring,
         ..Overrides::default()
     };
     apply_overrides(&mut config, &overrides)?;

@@ -13,6 +13,8 @@ use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
 use clap::Args;
+use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use vivae_neat::stats;
 
@@ -682,9 +684,50 @@ pub fn render(groups: &[Group], opts: &CompareOptions) -> Result<Figure, FigureE
     Ok(Figure { svg, png })
 }
 
-/// Draws the figure into an SVG string.
-fn draw(groups: &[Group], opts: &CompareOptions) -> Result<String, FigureError> {
-    register_font()?;
+/// The left panel: fitness against generation.
+type GenerationChart<'a, 'b> =
+    ChartContext<'a, SVGBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+/// The right panel: fitness against seconds on a log scale.
+type SecondsChart<'a, 'b> =
+    ChartContext<'a, SVGBackend<'b>, Cartesian2d<LogCoord<f64>, RangedCoordf64>>;
+
+/// The axes' ranges shared by the panels.
+struct Ranges {
+    /// Fitness, both panels.
+    fitness: std::ops::Range<f64>,
+    /// Generations, the left panel.
+    generations: std::ops::Range<f64>,
+    /// Seconds, the right panel.
+    seconds: std::ops::Range<f64>,
+}
+
+impl Ranges {
+    /// Ranges holding every run of `groups` (each with at least one generation).
+    fn new(groups: &[Group]) -> Ranges {
+        let runs = || groups.iter().flat_map(|g| &g.runs);
+        let all_best = || runs().flat_map(|r| r.best[..r.generations()].iter().copied());
+        let lo = all_best().fold(f64::INFINITY, f64::min);
+        let hi = all_best().fold(f64::NEG_INFINITY, f64::max);
+        let pad = ((hi - lo) * 0.06).max(1e-3);
+        let max_gen = runs().map(RunData::generations).max().unwrap_or(1);
+        let t_min = runs()
+            .map(|r| r.cumulative_seconds()[0])
+            .fold(f64::INFINITY, f64::min)
+            .max(1e-3);
+        let t_max = runs()
+            .map(|r| r.cumulative_seconds()[r.generations() - 1])
+            .fold(0.0, f64::max)
+            .max(t_min * 10.0);
+        Ranges {
+            fitness: (lo - pad)..(hi + pad),
+            generations: 0.5..(max_gen as f64 + 0.5),
+            seconds: (t_min / 1.25)..(t_max * 1.25),
+        }
+    }
+}
+
+/// Checks that there is something to draw, every run has a generation, and the size is usable.
+fn check(groups: &[Group], opts: &CompareOptions) -> Result<(), FigureError> {
     if groups.iter().all(|g| g.runs.is_empty()) {
         return Err(FigureError::NoData("no runs to compare"));
     }
@@ -704,24 +747,157 @@ fn draw(groups: &[Group], opts: &CompareOptions) -> Result<String, FigureError> 
             opts.width, opts.height
         )));
     }
-    let runs = || groups.iter().flat_map(|g| &g.runs);
-    let all_best = || runs().flat_map(|r| r.best[..r.generations()].iter().copied());
-    let lo = all_best().fold(f64::INFINITY, f64::min);
-    let hi = all_best().fold(f64::NEG_INFINITY, f64::max);
-    let pad = ((hi - lo) * 0.06).max(1e-3);
-    let y_range = (lo - pad)..(hi + pad);
-    let max_gen = runs().map(RunData::generations).max().unwrap_or(1);
-    let x_gen = 0.5..(max_gen as f64 + 0.5);
-    let t_min = runs()
-        .map(|r| r.cumulative_seconds()[0])
-        .fold(f64::INFINITY, f64::min)
-        .max(1e-3);
-    let t_max = runs()
-        .map(|r| r.cumulative_seconds()[r.generations() - 1])
-        .fold(0.0, f64::max)
-        .max(t_min * 10.0);
-    let x_time = (t_min / 1.25)..(t_max * 1.25);
+    Ok(())
+}
 
+/// The font of axis descriptions.
+fn label_font() -> FontDesc<'static> {
+    (FAMILY, 18).into_font()
+}
+
+/// The font of axis labels and the legend.
+fn axis_font() -> FontDesc<'static> {
+    (FAMILY, 15).into_font()
+}
+
+/// The font of the panels' captions.
+fn caption_font() -> FontDesc<'static> {
+    (FAMILY, 17).into_font()
+}
+
+/// A run's line.
+fn thin(c: RGBColor) -> ShapeStyle {
+    c.mix(0.3).stroke_width(1)
+}
+
+/// A group's median line.
+fn thick(c: RGBColor) -> ShapeStyle {
+    c.stroke_width(3)
+}
+
+/// The left panel with its axes: best fitness of each generation.
+fn generation_chart<'a, 'b>(
+    area: &'a DrawingArea<SVGBackend<'b>, Shift>,
+    ranges: &Ranges,
+) -> Result<GenerationChart<'a, 'b>, FigureError> {
+    let mut chart = ChartBuilder::on(area)
+        .caption("best of each generation", caption_font())
+        .margin(10)
+        .margin_right(20)
+        .x_label_area_size(46)
+        .y_label_area_size(64)
+        .build_cartesian_2d(ranges.generations.clone(), ranges.fitness.clone())
+        .map_err(draw_err)?;
+    chart
+        .configure_mesh()
+        .light_line_style(TRANSPARENT)
+        .bold_line_style(RGBColor(225, 225, 225))
+        .x_desc("generation")
+        .y_desc("best fitness (px/step)")
+        .axis_desc_style(label_font())
+        .label_style(axis_font())
+        .x_label_formatter(&|x| {
+            if (x - x.round()).abs() < 1e-6 {
+                format!("{x:.0}")
+            } else {
+                String::new()
+            }
+        })
+        .draw()
+        .map_err(draw_err)?;
+    Ok(chart)
+}
+
+/// The right panel with its axes: best-so-far fitness against wall-clock seconds.
+fn seconds_chart<'a, 'b>(
+    area: &'a DrawingArea<SVGBackend<'b>, Shift>,
+    ranges: &Ranges,
+) -> Result<SecondsChart<'a, 'b>, FigureError> {
+    let mut chart = ChartBuilder::on(area)
+        .caption("best so far, against wall-clock time", caption_font())
+        .margin(10)
+        .margin_right(20)
+        .x_label_area_size(46)
+        .y_label_area_size(64)
+        .build_cartesian_2d(ranges.seconds.clone().log_scale(), ranges.fitness.clone())
+        .map_err(draw_err)?;
+    chart
+        .configure_mesh()
+        .light_line_style(TRANSPARENT)
+        .bold_line_style(RGBColor(225, 225, 225))
+        .x_desc("cumulative wall-clock seconds (log scale)")
+        .y_desc("best-so-far fitness (px/step)")
+        .axis_desc_style(label_font())
+        .label_style(axis_font())
+        .x_label_formatter(&seconds_label)
+        .draw()
+        .map_err(draw_err)?;
+    Ok(chart)
+}
+
+/// Every run's thin line in both panels.
+fn draw_run_lines(
+    groups: &[Group],
+    per_gen: &mut GenerationChart<'_, '_>,
+    per_second: &mut SecondsChart<'_, '_>,
+) -> Result<(), FigureError> {
+    for (gi, g) in groups.iter().enumerate() {
+        let colour = COLOURS[gi % COLOURS.len()];
+        for r in &g.runs {
+            per_gen
+                .draw_series(LineSeries::new(
+                    r.best[..r.generations()]
+                        .iter()
+                        .enumerate()
+                        .map(|(i, &b)| (i as f64 + 1.0, b)),
+                    thin(colour),
+                ))
+                .map_err(draw_err)?;
+            per_second
+                .draw_series(LineSeries::new(steps(r), thin(colour)))
+                .map_err(draw_err)?;
+        }
+    }
+    Ok(())
+}
+
+/// Every group's thick median line in both panels, labelled for the legend.
+fn draw_median_lines(
+    groups: &[Group],
+    per_gen: &mut GenerationChart<'_, '_>,
+    per_second: &mut SecondsChart<'_, '_>,
+) -> Result<(), FigureError> {
+    for (gi, g) in groups.iter().enumerate() {
+        let colour = COLOURS[gi % COLOURS.len()];
+        let n = g.runs.len();
+        let label = if n == 1 {
+            format!("{} (1 run)", g.name)
+        } else {
+            format!("{} ({n} runs, median)", g.name)
+        };
+        per_gen
+            .draw_series(LineSeries::new(
+                median_per_generation(g)
+                    .into_iter()
+                    .enumerate()
+                    .map(|(i, b)| (i as f64 + 1.0, b)),
+                thick(colour),
+            ))
+            .map_err(draw_err)?
+            .label(label)
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], thick(colour)));
+        per_second
+            .draw_series(LineSeries::new(median_per_second(g), thick(colour)))
+            .map_err(draw_err)?;
+    }
+    Ok(())
+}
+
+/// Draws the figure into an SVG string.
+fn draw(groups: &[Group], opts: &CompareOptions) -> Result<String, FigureError> {
+    register_font()?;
+    check(groups, opts)?;
+    let ranges = Ranges::new(groups);
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (opts.width, opts.height)).into_drawing_area();
@@ -730,105 +906,17 @@ fn draw(groups: &[Group], opts: &CompareOptions) -> Result<String, FigureError> 
             .titled(&opts.title, (FAMILY, 22).into_font().style(FontStyle::Bold))
             .map_err(draw_err)?;
         let (left, right) = root.split_horizontally(opts.width / 2);
-        let label_font = (FAMILY, 18).into_font();
-        let axis_font = (FAMILY, 15).into_font();
-        let caption_font = (FAMILY, 17).into_font();
-        let thin = |c: RGBColor| c.mix(0.3).stroke_width(1);
-        let thick = |c: RGBColor| c.stroke_width(3);
-
-        let mut per_gen = ChartBuilder::on(&left)
-            .caption("best of each generation", caption_font.clone())
-            .margin(10)
-            .margin_right(20)
-            .x_label_area_size(46)
-            .y_label_area_size(64)
-            .build_cartesian_2d(x_gen, y_range.clone())
-            .map_err(draw_err)?;
-        per_gen
-            .configure_mesh()
-            .light_line_style(TRANSPARENT)
-            .bold_line_style(RGBColor(225, 225, 225))
-            .x_desc("generation")
-            .y_desc("best fitness (px/step)")
-            .axis_desc_style(label_font.clone())
-            .label_style(axis_font.clone())
-            .x_label_formatter(&|x| {
-                if (x - x.round()).abs() < 1e-6 {
-                    format!("{x:.0}")
-                } else {
-                    String::new()
-                }
-            })
-            .draw()
-            .map_err(draw_err)?;
-
-        let mut per_second = ChartBuilder::on(&right)
-            .caption("best so far, against wall-clock time", caption_font.clone())
-            .margin(10)
-            .margin_right(20)
-            .x_label_area_size(46)
-            .y_label_area_size(64)
-            .build_cartesian_2d(x_time.log_scale(), y_range)
-            .map_err(draw_err)?;
-        per_second
-            .configure_mesh()
-            .light_line_style(TRANSPARENT)
-            .bold_line_style(RGBColor(225, 225, 225))
-            .x_desc("cumulative wall-clock seconds (log scale)")
-            .y_desc("best-so-far fitness (px/step)")
-            .axis_desc_style(label_font)
-            .label_style(axis_font.clone())
-            .x_label_formatter(&seconds_label)
-            .draw()
-            .map_err(draw_err)?;
-
+        let mut per_gen = generation_chart(&left, &ranges)?;
+        let mut per_second = seconds_chart(&right, &ranges)?;
         // Every run's thin line first, so that no median line is hidden under one.
-        for (gi, g) in groups.iter().enumerate() {
-            let colour = COLOURS[gi % COLOURS.len()];
-            for r in &g.runs {
-                per_gen
-                    .draw_series(LineSeries::new(
-                        r.best[..r.generations()]
-                            .iter()
-                            .enumerate()
-                            .map(|(i, &b)| (i as f64 + 1.0, b)),
-                        thin(colour),
-                    ))
-                    .map_err(draw_err)?;
-                per_second
-                    .draw_series(LineSeries::new(steps(r), thin(colour)))
-                    .map_err(draw_err)?;
-            }
-        }
-        for (gi, g) in groups.iter().enumerate() {
-            let colour = COLOURS[gi % COLOURS.len()];
-            let n = g.runs.len();
-            let label = if n == 1 {
-                format!("{} (1 run)", g.name)
-            } else {
-                format!("{} ({n} runs, median)", g.name)
-            };
-            per_gen
-                .draw_series(LineSeries::new(
-                    median_per_generation(g)
-                        .into_iter()
-                        .enumerate()
-                        .map(|(i, b)| (i as f64 + 1.0, b)),
-                    thick(colour),
-                ))
-                .map_err(draw_err)?
-                .label(label)
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], thick(colour)));
-            per_second
-                .draw_series(LineSeries::new(median_per_second(g), thick(colour)))
-                .map_err(draw_err)?;
-        }
+        draw_run_lines(groups, &mut per_gen, &mut per_second)?;
+        draw_median_lines(groups, &mut per_gen, &mut per_second)?;
         per_gen
             .configure_series_labels()
             .position(SeriesLabelPosition::LowerRight)
             .background_style(WHITE.mix(0.9))
             .border_style(RGBColor(180, 180, 180))
-            .label_font(axis_font)
+            .label_font(axis_font())
             .draw()
             .map_err(draw_err)?;
         root.present().map_err(draw_err)?;

@@ -75,6 +75,104 @@ pub fn render_svg(
     draw(generations, opts, Cells::Image)
 }
 
+/// Every generation's fitnesses sorted best-first, and the scales drawn from them.
+struct Sorted {
+    /// Per generation, its finite fitnesses best-first.
+    columns: Vec<Vec<f64>>,
+    /// The most individuals in a generation.
+    ranks: usize,
+    /// The colour scale's ends (never equal).
+    lo: f64,
+    hi: f64,
+    /// Per generation, best and mean (`None` for a generation without finite fitness).
+    stats: Vec<Option<GenStats>>,
+    /// Number of the first generation.
+    g0: f64,
+}
+
+impl Sorted {
+    /// Sorts `generations` best-first (non-finite fitnesses dropped: they have
+    /// no colour) and checks that there is something to draw at `opts`' size.
+    fn new(generations: &[Vec<f64>], opts: &ConvergenceOptions) -> Result<Sorted, FigureError> {
+        let columns: Vec<Vec<f64>> = generations
+            .iter()
+            .map(|g| {
+                let finite: Vec<f64> = g.iter().copied().filter(|f| f.is_finite()).collect();
+                stats::sorted_descending(&finite)
+            })
+            .collect();
+        let ranks = columns.iter().map(Vec::len).max().unwrap_or(0);
+        if columns.is_empty() || ranks == 0 {
+            return Err(FigureError::NoData("no finite fitness in any generation"));
+        }
+        if opts.width < 300 || opts.height < 300 {
+            return Err(FigureError::Invalid(format!(
+                "figure size {}x{} is too small (at least 300x300)",
+                opts.width, opts.height
+            )));
+        }
+        let lo = columns
+            .iter()
+            .flatten()
+            .copied()
+            .fold(f64::INFINITY, f64::min);
+        let hi = columns
+            .iter()
+            .flatten()
+            .copied()
+            .fold(f64::NEG_INFINITY, f64::max);
+        // A flat population still needs a non-empty colour range.
+        let (lo, hi) = if hi - lo > 1e-12 {
+            (lo, hi)
+        } else {
+            (lo - 0.5, hi + 0.5)
+        };
+        let stats = columns
+            .iter()
+            .map(|g| stats::mean(g).map(|mean| GenStats { best: g[0], mean }))
+            .collect();
+        Ok(Sorted {
+            columns,
+            ranks,
+            lo,
+            hi,
+            stats,
+            g0: f64::from(opts.first_generation),
+        })
+    }
+
+    /// The colour level of fitness `f`.
+    fn level(&self, f: f64) -> usize {
+        (((f - self.lo) / (self.hi - self.lo)) * (LEVELS - 1) as f64).round() as usize
+    }
+
+    /// The x range of the generation axes.
+    fn x_range(&self) -> std::ops::Range<f64> {
+        (self.g0 - 0.5)..(self.g0 + self.columns.len() as f64 - 0.5)
+    }
+}
+
+/// The colour of level `l`.
+fn colour_of_level(l: usize) -> RGBColor {
+    viridis(l as f64 / (LEVELS - 1) as f64)
+}
+
+/// The font of axis descriptions.
+fn label_font() -> FontDesc<'static> {
+    (FAMILY, 18).into_font()
+}
+
+/// The font of axis labels and the legend.
+fn axis_font() -> FontDesc<'static> {
+    (FAMILY, 15).into_font()
+}
+
+/// A drawing area of the figure.
+type Area<'a> = DrawingArea<SVGBackend<'a>, plotters::coord::Shift>;
+
+/// A pixel range `(x, y)` of a drawing area.
+type PixelRange = (std::ops::Range<i32>, std::ops::Range<i32>);
+
 /// Draws the figure into an SVG string.
 fn draw(
     generations: &[Vec<f64>],
@@ -82,50 +180,7 @@ fn draw(
     cells: Cells,
 ) -> Result<String, FigureError> {
     register_font()?;
-    // Sorted best-first, non-finite fitnesses dropped (they have no colour).
-    let sorted: Vec<Vec<f64>> = generations
-        .iter()
-        .map(|g| {
-            let finite: Vec<f64> = g.iter().copied().filter(|f| f.is_finite()).collect();
-            stats::sorted_descending(&finite)
-        })
-        .collect();
-    let ranks = sorted.iter().map(Vec::len).max().unwrap_or(0);
-    if sorted.is_empty() || ranks == 0 {
-        return Err(FigureError::NoData("no finite fitness in any generation"));
-    }
-    if opts.width < 300 || opts.height < 300 {
-        return Err(FigureError::Invalid(format!(
-            "figure size {}x{} is too small (at least 300x300)",
-            opts.width, opts.height
-        )));
-    }
-    let lo = sorted
-        .iter()
-        .flatten()
-        .copied()
-        .fold(f64::INFINITY, f64::min);
-    let hi = sorted
-        .iter()
-        .flatten()
-        .copied()
-        .fold(f64::NEG_INFINITY, f64::max);
-    // A flat population still needs a non-empty colour range.
-    let (lo, hi) = if hi - lo > 1e-12 {
-        (lo, hi)
-    } else {
-        (lo - 0.5, hi + 0.5)
-    };
-    let level = |f: f64| (((f - lo) / (hi - lo)) * (LEVELS - 1) as f64).round() as usize;
-    let colour_of_level = |l: usize| viridis(l as f64 / (LEVELS - 1) as f64);
-    let stats: Vec<Option<GenStats>> = sorted
-        .iter()
-        .map(|g| stats::mean(g).map(|mean| GenStats { best: g[0], mean }))
-        .collect();
-
-    let g0 = f64::from(opts.first_generation);
-    let x_range = (g0 - 0.5)..(g0 + sorted.len() as f64 - 0.5);
-
+    let data = Sorted::new(generations, opts)?;
     let mut svg = String::new();
     let heat_px;
     {
@@ -137,184 +192,205 @@ fn draw(
         let top_height = root.dim_in_pixel().1 * 60 / 100;
         let (top, bottom) = root.split_vertically(top_height);
         let (heat_area, bar_area) = top.split_horizontally(opts.width - 110);
-
-        let label_font = (FAMILY, 18).into_font();
-        let axis_font = (FAMILY, 15).into_font();
-
-        // Heat map: one column per generation, ranks top (best) to bottom.
-        let mut heat = ChartBuilder::on(&heat_area)
-            .margin_left(10)
-            .margin_right(10)
-            .margin_top(6)
-            .x_label_area_size(44)
-            .y_label_area_size(60)
-            .build_cartesian_2d(x_range.clone(), (ranks as f64 + 0.5)..0.5)
-            .map_err(draw_err)?;
-        heat.configure_mesh()
-            .disable_mesh()
-            .x_desc("generation")
-            .y_desc("rank (1 = best)")
-            .axis_desc_style(label_font.clone())
-            .label_style(axis_font.clone())
-            .x_label_formatter(&generation_label)
-            .y_label_formatter(&|y| format!("{y:.0}"))
-            .draw()
-            .map_err(draw_err)?;
-        // Runs of equal colour within a column become one rectangle: the
-        // sorted column is smooth, so this keeps the SVG small.
-        heat_px = heat.plotting_area().get_pixel_range();
-        let mut rects = Vec::new();
-        for (gi, column) in sorted.iter().enumerate().filter(|_| cells == Cells::Rects) {
-            let x = g0 + gi as f64;
-            let mut start = 0;
-            while start < column.len() {
-                let l = level(column[start]);
-                let mut end = start + 1;
-                while end < column.len() && level(column[end]) == l {
-                    end += 1;
-                }
-                rects.push(Rectangle::new(
-                    [(x - 0.5, start as f64 + 0.5), (x + 0.5, end as f64 + 0.5)],
-                    colour_of_level(l).filled(),
-                ));
-                start = end;
-            }
-        }
-        heat.draw_series(rects).map_err(draw_err)?;
-
-        // Colour bar with the fitness scale.
-        let mut bar = ChartBuilder::on(&bar_area)
-            .margin_top(6)
-            .margin_right(8)
-            .x_label_area_size(44)
-            .y_label_area_size(0)
-            .right_y_label_area_size(58)
-            .build_cartesian_2d(0.0..1.0, lo..hi)
-            .map_err(draw_err)?;
-        bar.configure_mesh()
-            .disable_mesh()
-            .disable_x_axis()
-            .y_desc("fitness (px/step)")
-            .axis_desc_style(label_font.clone())
-            .label_style(axis_font.clone())
-            .draw()
-            .map_err(draw_err)?;
-        let step = (hi - lo) / LEVELS as f64;
-        bar.draw_series((0..LEVELS).map(|l| {
-            let y = lo + l as f64 * step;
-            Rectangle::new(
-                [(0.0, y), (1.0, y + step * 1.02)],
-                colour_of_level(l).filled(),
-            )
-        }))
-        .map_err(draw_err)?;
-
-        // Best and mean curves on the same generation axis.
-        let best_hi = stats
-            .iter()
-            .flatten()
-            .map(|s| s.best)
-            .fold(f64::NEG_INFINITY, f64::max);
-        let mean_lo = stats
-            .iter()
-            .flatten()
-            .map(|s| s.mean)
-            .fold(f64::INFINITY, f64::min);
-        let pad = ((best_hi - mean_lo) * 0.08).max(1e-3);
-        let mut curves = ChartBuilder::on(&bottom)
-            .margin_left(10)
-            .margin_right(120)
-            .margin_top(14)
-            .margin_bottom(6)
-            .x_label_area_size(44)
-            .y_label_area_size(60)
-            .build_cartesian_2d(x_range, (mean_lo - pad)..(best_hi + pad))
-            .map_err(draw_err)?;
-        curves
-            .configure_mesh()
-            .light_line_style(TRANSPARENT)
-            .bold_line_style(RGBColor(225, 225, 225))
-            .x_desc("generation")
-            .y_desc("fitness (px/step)")
-            .axis_desc_style(label_font)
-            .label_style(axis_font.clone())
-            .x_label_formatter(&generation_label)
-            .draw()
-            .map_err(draw_err)?;
-        let best_colour = viridis(0.15);
-        let mean_colour = RGBColor(230, 97, 1);
-        let points = |f: fn(&GenStats) -> f64| {
-            stats
-                .iter()
-                .enumerate()
-                .filter_map(|(gi, s)| s.as_ref().map(|s| (g0 + gi as f64, f(s))))
-                .collect::<Vec<_>>()
-        };
-        curves
-            .draw_series(LineSeries::new(
-                points(|s| s.best),
-                best_colour.stroke_width(2),
-            ))
-            .map_err(draw_err)?
-            .label("best")
-            .legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 22, y)], best_colour.stroke_width(2))
-            });
-        curves
-            .draw_series(LineSeries::new(
-                points(|s| s.mean),
-                mean_colour.stroke_width(2),
-            ))
-            .map_err(draw_err)?
-            .label("mean")
-            .legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 22, y)], mean_colour.stroke_width(2))
-            });
-        curves
-            .configure_series_labels()
-            .position(SeriesLabelPosition::LowerRight)
-            .background_style(WHITE.mix(0.9))
-            .border_style(RGBColor(180, 180, 180))
-            .label_font(axis_font)
-            .draw()
-            .map_err(draw_err)?;
+        heat_px = draw_heat_map(&heat_area, &data, cells)?;
+        draw_colour_bar(&bar_area, &data)?;
+        draw_curves(&bottom, &data)?;
         root.present().map_err(draw_err)?;
     }
     if cells == Cells::Image {
-        // One pixel per (generation, rank) cell, rank 1 in the top row.
-        let mut image = tiny_skia::Pixmap::new(sorted.len() as u32, ranks as u32)
-            .ok_or_else(|| FigureError::Invalid("heat map too large".to_string()))?;
-        let width = sorted.len();
-        let pixels = image.pixels_mut();
-        for (gi, column) in sorted.iter().enumerate() {
-            for (r, &f) in column.iter().enumerate() {
-                let c = colour_of_level(level(f));
-                pixels[r * width + gi] =
-                    tiny_skia::ColorU8::from_rgba(c.0, c.1, c.2, 255).premultiply();
-            }
-        }
-        let png = image
-            .encode_png()
-            .map_err(|e| FigureError::Png(e.to_string()))?;
-        let (xs, ys) = heat_px;
-        let element = format!(
-            "<image x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" preserveAspectRatio=\"none\" \
-             image-rendering=\"optimizeSpeed\" style=\"image-rendering:pixelated\" \
-             href=\"data:image/png;base64,{}\"/>\n",
-            xs.start,
-            ys.start,
-            xs.end - xs.start,
-            ys.end - ys.start,
-            base64(&png)
-        );
-        // After the white background (the first element), before the axes.
-        let at = svg
-            .find("/>\n")
-            .map(|i| i + 3)
-            .ok_or_else(|| FigureError::Draw("unexpected SVG from plotters".to_string()))?;
-        svg.insert_str(at, &element);
+        embed_heat_image(&mut svg, &data, heat_px)?;
     }
     Ok(svg)
+}
+
+/// The heat map: one column per generation, ranks top (best) to bottom; its
+/// cells drawn as rectangles with [`Cells::Rects`], else left to
+/// [`embed_heat_image`]. Returns the plotting area's pixel range.
+fn draw_heat_map(area: &Area<'_>, data: &Sorted, cells: Cells) -> Result<PixelRange, FigureError> {
+    let mut heat = ChartBuilder::on(area)
+        .margin_left(10)
+        .margin_right(10)
+        .margin_top(6)
+        .x_label_area_size(44)
+        .y_label_area_size(60)
+        .build_cartesian_2d(data.x_range(), (data.ranks as f64 + 0.5)..0.5)
+        .map_err(draw_err)?;
+    heat.configure_mesh()
+        .disable_mesh()
+        .x_desc("generation")
+        .y_desc("rank (1 = best)")
+        .axis_desc_style(label_font())
+        .label_style(axis_font())
+        .x_label_formatter(&generation_label)
+        .y_label_formatter(&|y| format!("{y:.0}"))
+        .draw()
+        .map_err(draw_err)?;
+    // Runs of equal colour within a column become one rectangle: the
+    // sorted column is smooth, so this keeps the SVG small.
+    let heat_px = heat.plotting_area().get_pixel_range();
+    let mut rects = Vec::new();
+    for (gi, column) in data
+        .columns
+        .iter()
+        .enumerate()
+        .filter(|_| cells == Cells::Rects)
+    {
+        let x = data.g0 + gi as f64;
+        let mut start = 0;
+        while start < column.len() {
+            let l = data.level(column[start]);
+            let mut end = start + 1;
+            while end < column.len() && data.level(column[end]) == l {
+                end += 1;
+            }
+            rects.push(Rectangle::new(
+                [(x - 0.5, start as f64 + 0.5), (x + 0.5, end as f64 + 0.5)],
+                colour_of_level(l).filled(),
+            ));
+            start = end;
+        }
+    }
+    heat.draw_series(rects).map_err(draw_err)?;
+    Ok(heat_px)
+}
+
+/// The colour bar with the fitness scale.
+fn draw_colour_bar(area: &Area<'_>, data: &Sorted) -> Result<(), FigureError> {
+    let (lo, hi) = (data.lo, data.hi);
+    let mut bar = ChartBuilder::on(area)
+        .margin_top(6)
+        .margin_right(8)
+        .x_label_area_size(44)
+        .y_label_area_size(0)
+        .right_y_label_area_size(58)
+        .build_cartesian_2d(0.0..1.0, lo..hi)
+        .map_err(draw_err)?;
+    bar.configure_mesh()
+        .disable_mesh()
+        .disable_x_axis()
+        .y_desc("fitness (px/step)")
+        .axis_desc_style(label_font())
+        .label_style(axis_font())
+        .draw()
+        .map_err(draw_err)?;
+    let step = (hi - lo) / LEVELS as f64;
+    bar.draw_series((0..LEVELS).map(|l| {
+        let y = lo + l as f64 * step;
+        Rectangle::new(
+            [(0.0, y), (1.0, y + step * 1.02)],
+            colour_of_level(l).filled(),
+        )
+    }))
+    .map_err(draw_err)?;
+    Ok(())
+}
+
+/// The best and mean curves, on the same generation axis as the heat map.
+fn draw_curves(area: &Area<'_>, data: &Sorted) -> Result<(), FigureError> {
+    let best_hi = data
+        .stats
+        .iter()
+        .flatten()
+        .map(|s| s.best)
+        .fold(f64::NEG_INFINITY, f64::max);
+    let mean_lo = data
+        .stats
+        .iter()
+        .flatten()
+        .map(|s| s.mean)
+        .fold(f64::INFINITY, f64::min);
+    let pad = ((best_hi - mean_lo) * 0.08).max(1e-3);
+    let mut curves = ChartBuilder::on(area)
+        .margin_left(10)
+        .margin_right(120)
+        .margin_top(14)
+        .margin_bottom(6)
+        .x_label_area_size(44)
+        .y_label_area_size(60)
+        .build_cartesian_2d(data.x_range(), (mean_lo - pad)..(best_hi + pad))
+        .map_err(draw_err)?;
+    curves
+        .configure_mesh()
+        .light_line_style(TRANSPARENT)
+        .bold_line_style(RGBColor(225, 225, 225))
+        .x_desc("generation")
+        .y_desc("fitness (px/step)")
+        .axis_desc_style(label_font())
+        .label_style(axis_font())
+        .x_label_formatter(&generation_label)
+        .draw()
+        .map_err(draw_err)?;
+    let points = |f: fn(&GenStats) -> f64| {
+        data.stats
+            .iter()
+            .enumerate()
+            .filter_map(|(gi, s)| s.as_ref().map(|s| (data.g0 + gi as f64, f(s))))
+            .collect::<Vec<_>>()
+    };
+    let best_colour = viridis(0.15);
+    let mean_colour = RGBColor(230, 97, 1);
+    for (label, colour, values) in [
+        ("best", best_colour, points(|s| s.best)),
+        ("mean", mean_colour, points(|s| s.mean)),
+    ] {
+        curves
+            .draw_series(LineSeries::new(values, colour.stroke_width(2)))
+            .map_err(draw_err)?
+            .label(label)
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 22, y)], colour.stroke_width(2))
+            });
+    }
+    curves
+        .configure_series_labels()
+        .position(SeriesLabelPosition::LowerRight)
+        .background_style(WHITE.mix(0.9))
+        .border_style(RGBColor(180, 180, 180))
+        .label_font(axis_font())
+        .draw()
+        .map_err(draw_err)?;
+    Ok(())
+}
+
+/// Puts the heat map into `svg` as one embedded PNG image over the pixel
+/// range `heat_px`, with a pixel per (generation, rank) cell, rank 1 in the top row.
+fn embed_heat_image(
+    svg: &mut String,
+    data: &Sorted,
+    heat_px: PixelRange,
+) -> Result<(), FigureError> {
+    let mut image = tiny_skia::Pixmap::new(data.columns.len() as u32, data.ranks as u32)
+        .ok_or_else(|| FigureError::Invalid("heat map too large".to_string()))?;
+    let width = data.columns.len();
+    let pixels = image.pixels_mut();
+    for (gi, column) in data.columns.iter().enumerate() {
+        for (r, &f) in column.iter().enumerate() {
+            let c = colour_of_level(data.level(f));
+            pixels[r * width + gi] =
+                tiny_skia::ColorU8::from_rgba(c.0, c.1, c.2, 255).premultiply();
+        }
+    }
+    let png = image
+        .encode_png()
+        .map_err(|e| FigureError::Png(e.to_string()))?;
+    let (xs, ys) = heat_px;
+    let element = format!(
+        "<image x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" preserveAspectRatio=\"none\" \
+         image-rendering=\"optimizeSpeed\" style=\"image-rendering:pixelated\" \
+         href=\"data:image/png;base64,{}\"/>\n",
+        xs.start,
+        ys.start,
+        xs.end - xs.start,
+        ys.end - ys.start,
+        base64(&png)
+    );
+    // After the white background (the first element), before the axes.
+    let at = svg
+        .find("/>\n")
+        .map(|i| i + 3)
+        .ok_or_else(|| FigureError::Draw("unexpected SVG from plotters".to_string()))?;
+    svg.insert_str(at, &element);
+    Ok(())
 }
 
 /// Standard base64 with padding (for the embedded heat-map image).

@@ -31,7 +31,7 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 use tiny_skia::{Pixmap, PixmapPaint, PremultipliedColorU8, Transform};
 use vivae_neat::hyperneat::SubstrateController;
 
-use super::network::{Checked, GUIDE, NetworkOptions, WHEEL, blend, check, px};
+use super::controller::{Checked, GUIDE, NetworkOptions, WHEEL, blend, check, px};
 use super::{
     FAMILY, Figure, FigureError, NEGATIVE, PNG_SCALE, POSITIVE, base64, draw_err, draw_svg_over,
     encode_png_fast, register_font,
@@ -298,202 +298,292 @@ impl Layout {
     }
 }
 
-/// Draws the figure: the vector overlay (labels, outlines; no background) and the heat maps.
-fn draw(
-    spec: &SubstrateSpec,
-    controller: &SubstrateController,
-    opts: &NetworkOptions,
-) -> Result<Drawn, FigureError> {
-    register_font()?;
-    let Checked {
-        sensors,
-        distance,
-        neurons,
-        wheels,
-    } = check(spec, controller, opts)?;
-    let n = neurons.len();
-    let inputs = sensors.len() + distance.len();
-    let (rows, cols) = (spec.neurons.rings, spec.neurons.angles);
-    let half = spec.fov.to_radians() / 2.0;
-    let has_distance = !distance.is_empty();
-    let layout = Layout::new(opts, rows, cols, half, has_distance);
-    let scale = f64::from(PNG_SCALE);
+/// The drawing area of the vector overlay.
+type Root<'a> = DrawingArea<SVGBackend<'a>, Shift>;
 
-    // Colour scales, one per block.
-    let input_scale = max_abs(
-        (0..inputs)
-            .flat_map(|i| (0..n).map(move |t| (i, t)))
-            .map(|(i, t)| controller.input_weight(i, t)),
-    );
-    let recurrent_scale = max_abs(
-        (0..n)
-            .flat_map(|s| (0..n).map(move |t| (s, t)))
-            .map(|(s, t)| controller.recurrent_weight(s, t)),
-    );
-    let bias_scale = max_abs(controller.biases().iter().copied());
+/// The font of captions.
+fn font() -> FontDesc<'static> {
+    (FAMILY, 17).into_font()
+}
 
-    // Panels: one raster over the whole grid.
-    let stencil = Stencil::new(layout.radius * scale, half, &sensors, &distance);
-    let (left, top, cw, ch) = layout.grid;
-    let grid_x = (left * scale).floor() as i32;
-    let grid_y = (top * scale).floor() as i32;
-    let too_big = || FigureError::Draw("heat map too large".into());
-    let mut grid = Pixmap::new(
-        (cw * cols as f64 * scale).ceil() as u32 + 2,
-        (ch * rows as f64 * scale).ceil() as u32 + 2,
-    )
-    .ok_or_else(too_big)?;
-    let mut colours = vec![pixel(WHITE); inputs];
-    let centre_of = |i: usize| {
-        let node = &neurons[i];
-        layout.centre(rows - 1 - node.ring, node.angle_index, half, has_distance)
-    };
-    for t in 0..n {
-        for (i, c) in colours.iter_mut().enumerate() {
-            *c = pixel(diverging(controller.input_weight(i, t), input_scale));
+/// The font of labels and notes.
+fn small() -> FontDesc<'static> {
+    (FAMILY, 14).into_font()
+}
+
+/// Draws `s` at `at` in font `f`, anchored at `pos`.
+fn text(
+    root: &Root<'_>,
+    s: &str,
+    at: (f64, f64),
+    f: &FontDesc<'_>,
+    pos: Pos,
+) -> Result<(), FigureError> {
+    root.draw(&Text::new(
+        s.to_string(),
+        px(at),
+        TextStyle::from(f.clone()).pos(pos),
+    ))
+    .map_err(draw_err)
+}
+
+fn too_big() -> FigureError {
+    FigureError::Draw("heat map too large".into())
+}
+
+/// Everything the figure is drawn from: the checked controller and
+/// substrate, the layout and the three blocks' colour scales.
+struct Fields<'a> {
+    spec: &'a SubstrateSpec,
+    controller: &'a SubstrateController,
+    opts: &'a NetworkOptions,
+    nodes: Checked,
+    layout: Layout,
+    /// Rings and angles of the neuron sheet (the panel grid's rows and columns).
+    rows: usize,
+    cols: usize,
+    /// Half the sensors' field of view, in radians.
+    half: f64,
+    has_distance: bool,
+    /// Largest |weight| of each block: sensor → neuron, recurrent, bias.
+    input_scale: f64,
+    recurrent_scale: f64,
+    bias_scale: f64,
+}
+
+impl<'a> Fields<'a> {
+    fn new(
+        spec: &'a SubstrateSpec,
+        controller: &'a SubstrateController,
+        opts: &'a NetworkOptions,
+    ) -> Result<Fields<'a>, FigureError> {
+        let nodes = check(spec, controller, opts)?;
+        let n = nodes.neurons.len();
+        let inputs = nodes.sensors.len() + nodes.distance.len();
+        let (rows, cols) = (spec.neurons.rings, spec.neurons.angles);
+        let half = spec.fov.to_radians() / 2.0;
+        let has_distance = !nodes.distance.is_empty();
+        let layout = Layout::new(opts, rows, cols, half, has_distance);
+        // Colour scales, one per block.
+        let input_scale = max_abs(
+            (0..inputs)
+                .flat_map(|i| (0..n).map(move |t| (i, t)))
+                .map(|(i, t)| controller.input_weight(i, t)),
+        );
+        let recurrent_scale = max_abs(
+            (0..n)
+                .flat_map(|s| (0..n).map(move |t| (s, t)))
+                .map(|(s, t)| controller.recurrent_weight(s, t)),
+        );
+        let bias_scale = max_abs(controller.biases().iter().copied());
+        Ok(Fields {
+            spec,
+            controller,
+            opts,
+            nodes,
+            layout,
+            rows,
+            cols,
+            half,
+            has_distance,
+            input_scale,
+            recurrent_scale,
+            bias_scale,
+        })
+    }
+
+    /// Centre of neuron `i`'s panel.
+    fn centre_of(&self, i: usize) -> (f64, f64) {
+        let node = &self.nodes.neurons[i];
+        self.layout.centre(
+            self.rows - 1 - node.ring,
+            node.angle_index,
+            self.half,
+            self.has_distance,
+        )
+    }
+
+    /// The panels' heat maps: one raster over the whole grid.
+    fn panels_heat(&self) -> Result<Heat, FigureError> {
+        let Checked {
+            sensors, distance, ..
+        } = &self.nodes;
+        let scale = f64::from(PNG_SCALE);
+        let stencil = Stencil::new(self.layout.radius * scale, self.half, sensors, distance);
+        let (left, top, cw, ch) = self.layout.grid;
+        let grid_x = (left * scale).floor() as i32;
+        let grid_y = (top * scale).floor() as i32;
+        let mut grid = Pixmap::new(
+            (cw * self.cols as f64 * scale).ceil() as u32 + 2,
+            (ch * self.rows as f64 * scale).ceil() as u32 + 2,
+        )
+        .ok_or_else(too_big)?;
+        let mut colours = vec![pixel(WHITE); sensors.len() + distance.len()];
+        for t in 0..self.nodes.neurons.len() {
+            for (i, c) in colours.iter_mut().enumerate() {
+                *c = pixel(diverging(
+                    self.controller.input_weight(i, t),
+                    self.input_scale,
+                ));
+            }
+            let (cx, cy) = self.centre_of(t);
+            let ox = (cx * scale).round() as i32 + stencil.x0 - grid_x;
+            let oy = (cy * scale).round() as i32 + stencil.y0 - grid_y;
+            stamp(&mut grid, &stencil, (ox, oy), &colours);
         }
-        let (cx, cy) = centre_of(t);
-        let ox = (cx * scale).round() as i32 + stencil.x0 - grid_x;
-        let oy = (cy * scale).round() as i32 + stencil.y0 - grid_y;
-        let (gw, gh) = (grid.width() as i32, grid.height() as i32);
-        let pixels = grid.pixels_mut();
-        for (row, line) in stencil
-            .input
-            .chunks_exact(stencil.width as usize)
-            .enumerate()
+        Ok(Heat {
+            x: grid_x,
+            y: grid_y,
+            pixmap: grid,
+        })
+    }
+
+    /// The recurrent matrix (row = target, column = source) and the bias row,
+    /// sampled per pixel.
+    fn matrix_heats(&self) -> Result<[Heat; 2], FigureError> {
+        let n = self.nodes.neurons.len();
+        let scale = f64::from(PNG_SCALE);
+        let (mx, my, side) = self.layout.matrix;
+        let side_px = (side * scale).round().max(1.0) as u32;
+        let mut matrix = Pixmap::new(side_px, side_px).ok_or_else(too_big)?;
+        let cell = |p: u32| ((f64::from(p) + 0.5) / f64::from(side_px) * n as f64) as usize;
+        let lookup: Vec<usize> = (0..side_px).map(|p| cell(p).min(n - 1)).collect();
+        for (py, &target) in lookup.iter().enumerate() {
+            let line = &mut matrix.pixels_mut()[py * side_px as usize..(py + 1) * side_px as usize];
+            for (p, &source) in line.iter_mut().zip(&lookup) {
+                *p = pixel(diverging(
+                    self.controller.recurrent_weight(source, target),
+                    self.recurrent_scale,
+                ));
+            }
+        }
+        let (by, bh) = self.layout.bias;
+        let bh_px = (bh * scale).round() as u32;
+        let mut bias = Pixmap::new(side_px, bh_px).ok_or_else(too_big)?;
+        for line in bias.pixels_mut().chunks_exact_mut(side_px as usize) {
+            for (p, &i) in line.iter_mut().zip(&lookup) {
+                *p = pixel(diverging(self.controller.biases()[i], self.bias_scale));
+            }
+        }
+        Ok([
+            Heat {
+                x: (mx * scale).round() as i32,
+                y: (my * scale).round() as i32,
+                pixmap: matrix,
+            },
+            Heat {
+                x: (mx * scale).round() as i32,
+                y: (by * scale).round() as i32,
+                pixmap: bias,
+            },
+        ])
+    }
+
+    /// The vector overlay: labels, outlines and scales (no background), as SVG.
+    fn overlay(&self) -> Result<String, FigureError> {
+        let (w, h) = (self.layout.w, self.layout.h);
+        let mut svg = String::new();
         {
-            let y = oy + row as i32;
-            if !(0..gh).contains(&y) {
-                continue;
-            }
-            for (col, &input) in line.iter().enumerate() {
-                let x = ox + col as i32;
-                if input != OUTSIDE && (0..gw).contains(&x) {
-                    pixels[(y * gw + x) as usize] = colours[input as usize];
-                }
-            }
+            let root = SVGBackend::with_string(&mut svg, (w as u32, h as u32)).into_drawing_area();
+            self.draw_titles(&root)?;
+            self.draw_grid_labels(&root)?;
+            self.draw_panels(&root)?;
+            self.draw_matrix_frame(&root)?;
+            self.draw_wheel_ticks(&root)?;
+            self.draw_colour_bars(&root)?;
+            self.draw_reading_guide(&root)?;
+            root.present().map_err(draw_err)?;
         }
+        Ok(svg)
     }
-    let mut heats = vec![Heat {
-        x: grid_x,
-        y: grid_y,
-        pixmap: grid,
-    }];
 
-    // Recurrent matrix (row = target, column = source) and bias row, sampled per pixel.
-    let (mx, my, side) = layout.matrix;
-    let side_px = (side * scale).round().max(1.0) as u32;
-    let mut matrix = Pixmap::new(side_px, side_px).ok_or_else(too_big)?;
-    let cell = |p: u32| ((f64::from(p) + 0.5) / f64::from(side_px) * n as f64) as usize;
-    let lookup: Vec<usize> = (0..side_px).map(|p| cell(p).min(n - 1)).collect();
-    for (py, &target) in lookup.iter().enumerate() {
-        let line = &mut matrix.pixels_mut()[py * side_px as usize..(py + 1) * side_px as usize];
-        for (p, &source) in line.iter_mut().zip(&lookup) {
-            *p = pixel(diverging(
-                controller.recurrent_weight(source, target),
-                recurrent_scale,
-            ));
-        }
-    }
-    heats.push(Heat {
-        x: (mx * scale).round() as i32,
-        y: (my * scale).round() as i32,
-        pixmap: matrix,
-    });
-    let (by, bh) = layout.bias;
-    let bh_px = (bh * scale).round() as u32;
-    let mut bias = Pixmap::new(side_px, bh_px).ok_or_else(too_big)?;
-    for line in bias.pixels_mut().chunks_exact_mut(side_px as usize) {
-        for (p, &i) in line.iter_mut().zip(&lookup) {
-            *p = pixel(diverging(controller.biases()[i], bias_scale));
-        }
-    }
-    heats.push(Heat {
-        x: (mx * scale).round() as i32,
-        y: (by * scale).round() as i32,
-        pixmap: bias,
-    });
-
-    // The vector overlay.
-    let (w, h) = (layout.w, layout.h);
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (w as u32, h as u32)).into_drawing_area();
-        let title_font = (FAMILY, 24).into_font().style(FontStyle::Bold);
-        let font = (FAMILY, 17).into_font();
-        let small = (FAMILY, 14).into_font();
-        let text = |s: &str, at: (f64, f64), f: &FontDesc<'_>, pos: Pos| {
-            root.draw(&Text::new(
-                s.to_string(),
-                px(at),
-                TextStyle::from(f.clone()).pos(pos),
-            ))
-            .map_err(draw_err)
-        };
+    /// The title and the line under it.
+    fn draw_titles(&self, root: &Root<'_>) -> Result<(), FigureError> {
+        let w = self.layout.w;
         let centre_top = Pos::new(HPos::Center, VPos::Top);
-        let centre_bottom = Pos::new(HPos::Center, VPos::Bottom);
-        let left_mid = Pos::new(HPos::Left, VPos::Center);
-        let right_mid = Pos::new(HPos::Right, VPos::Center);
-        text(&opts.title, (w / 2.0, 10.0), &title_font, centre_top)?;
+        let title_font = (FAMILY, 24).into_font().style(FontStyle::Bold);
         text(
+            root,
+            &self.opts.title,
+            (w / 2.0, 10.0),
+            &title_font,
+            centre_top,
+        )?;
+        text(
+            root,
             &format!(
                 "{} expressed of {} possible links, drawn as receptive fields: surface sensors {}{} → neurons {}",
-                controller.expressed_links(),
-                controller.possible_links(),
-                spec.sensors,
-                if has_distance {
-                    format!(" + {} distance rays", distance.len())
+                self.controller.expressed_links(),
+                self.controller.possible_links(),
+                self.spec.sensors,
+                if self.has_distance {
+                    format!(" + {} distance rays", self.nodes.distance.len())
                 } else {
                     String::new()
                 },
-                spec.neurons
+                self.spec.neurons
             ),
             (w / 2.0, 42.0),
-            &font,
+            &font(),
             centre_top,
-        )?;
+        )
+    }
 
-        // Column (angle) and row (ring) labels of the panel grid.
+    /// Column (angle) and row (ring) labels of the panel grid.
+    fn draw_grid_labels(&self, root: &Root<'_>) -> Result<(), FigureError> {
+        let (left, top, cw, ch) = self.layout.grid;
+        let (rows, cols) = (self.rows, self.cols);
+        let centre_bottom = Pos::new(HPos::Center, VPos::Bottom);
         text(
+            root,
             "incoming weights of each neuron, by its angle →",
             (left + cw * cols as f64 / 2.0, top - 42.0),
-            &font,
+            &font(),
             centre_bottom,
         )?;
         let every = ((60.0 / cw).ceil() as usize).max(1);
-        for node in neurons.iter().filter(|n| n.ring == 0) {
+        for node in self.nodes.neurons.iter().filter(|n| n.ring == 0) {
             if node.angle_index % every == 0 || node.angle_index + 1 == cols {
-                let (cx, _) = layout.centre(0, node.angle_index, half, has_distance);
+                let (cx, _) = self
+                    .layout
+                    .centre(0, node.angle_index, self.half, self.has_distance);
                 text(
+                    root,
                     &format!("{:+.0}°", node.phi.to_degrees()),
                     (cx, top - 8.0),
-                    &small,
+                    &small(),
                     centre_bottom,
                 )?;
             }
         }
         text(
+            root,
             "ring ρ",
             (left - 10.0, top - 8.0),
-            &small,
+            &small(),
             Pos::new(HPos::Right, VPos::Bottom),
         )?;
         let every_row = ((22.0 / ch).ceil() as usize).max(1);
         for ring in (0..rows).filter(|r| r % every_row == 0 || r + 1 == rows) {
             let row = rows - 1 - ring;
             text(
-                &format!("{:.2}", spec.neurons.radius(ring)),
+                root,
+                &format!("{:.2}", self.spec.neurons.radius(ring)),
                 (left - 10.0, top + ch * (row as f64 + 0.5)),
-                &small,
-                right_mid,
+                &small(),
+                Pos::new(HPos::Right, VPos::Center),
             )?;
         }
+        Ok(())
+    }
 
-        // Panel outlines, wheel neurons red, bias dots.
-        let r = layout.radius;
+    /// Panel outlines, wheel neurons red (labelled L and R), bias dots.
+    fn draw_panels(&self, root: &Root<'_>) -> Result<(), FigureError> {
+        let (r, half) = (self.layout.radius, self.half);
+        let wheels = &self.nodes.wheels;
         let dot = (r * 0.1).clamp(1.5, 5.0);
-        for (i, node) in neurons.iter().enumerate() {
-            let (cx, cy) = centre_of(i);
+        for (i, node) in self.nodes.neurons.iter().enumerate() {
+            let (cx, cy) = self.centre_of(i);
             let wheel = if i == wheels.left {
                 Some("L")
             } else if i == wheels.right {
@@ -515,12 +605,9 @@ fn draw(
                 .collect();
             root.draw(&PathElement::new(outline, style))
                 .map_err(draw_err)?;
-            root.draw(&Circle::new(
-                px((cx, cy)),
-                dot as i32,
-                diverging(controller.biases()[i], bias_scale).filled(),
-            ))
-            .map_err(draw_err)?;
+            let bias = diverging(self.controller.biases()[i], self.bias_scale);
+            root.draw(&Circle::new(px((cx, cy)), dot as i32, bias.filled()))
+                .map_err(draw_err)?;
             root.draw(&Circle::new(
                 px((cx, cy)),
                 dot as i32,
@@ -542,23 +629,30 @@ fn draw(
                 .map_err(draw_err)?;
             }
         }
+        Ok(())
+    }
 
-        // Recurrent matrix: frame, ring blocks, wheel ticks, captions.
-        let (mx, my, side) = layout.matrix;
+    /// The recurrent matrix's captions, ring blocks and frame, and the bias row's frame.
+    fn draw_matrix_frame(&self, root: &Root<'_>) -> Result<(), FigureError> {
+        let (mx, my, side) = self.layout.matrix;
+        let (rows, cols) = (self.rows, self.cols);
+        let centre_bottom = Pos::new(HPos::Center, VPos::Bottom);
         text(
+            root,
             "recurrent weights: column = from neuron, row = to neuron",
             (mx + side / 2.0, my - 26.0),
-            &font,
+            &font(),
             centre_bottom,
         )?;
         text(
+            root,
             "(neurons ring by ring from the inside, left to right)",
             (mx + side / 2.0, my - 6.0),
-            &small,
+            &small(),
             centre_bottom,
         )?;
-        let per = side / n as f64;
-        if spec.neurons.rings > 1 && per * cols as f64 >= 4.0 {
+        let per = side / self.nodes.neurons.len() as f64;
+        if self.spec.neurons.rings > 1 && per * cols as f64 >= 4.0 {
             for ring in 1..rows {
                 let at = per * (ring * cols) as f64;
                 for line in [
@@ -578,13 +672,22 @@ fn draw(
             BLACK.stroke_width(1),
         ))
         .map_err(draw_err)?;
-        let (by, bh) = layout.bias;
+        let (by, bh) = self.layout.bias;
         root.draw(&Rectangle::new(
             [px((mx, by)), px((mx + side, by + bh))],
             BLACK.stroke_width(1),
         ))
         .map_err(draw_err)?;
-        text("bias", (mx - 8.0, by + bh / 2.0), &font, right_mid)?;
+        let right_mid = Pos::new(HPos::Right, VPos::Center);
+        text(root, "bias", (mx - 8.0, by + bh / 2.0), &font(), right_mid)
+    }
+
+    /// The wheel neurons' ticks and L/R labels along the matrix and the bias row.
+    fn draw_wheel_ticks(&self, root: &Root<'_>) -> Result<(), FigureError> {
+        let (mx, my, side) = self.layout.matrix;
+        let (by, bh) = self.layout.bias;
+        let per = side / self.nodes.neurons.len() as f64;
+        let wheels = &self.nodes.wheels;
         let wheel_font = (FAMILY, 16)
             .into_font()
             .style(FontStyle::Bold)
@@ -603,51 +706,60 @@ fn draw(
             root.draw(&Text::new(
                 label,
                 px((c, by + bh + 10.0)),
-                wheel_font.clone().pos(centre_top),
+                wheel_font.clone().pos(Pos::new(HPos::Center, VPos::Top)),
             ))
             .map_err(draw_err)?;
             root.draw(&Text::new(
                 label,
                 px((mx - 11.0, rmid)),
-                wheel_font.clone().pos(right_mid),
+                wheel_font.clone().pos(Pos::new(HPos::Right, VPos::Center)),
             ))
             .map_err(draw_err)?;
         }
+        Ok(())
+    }
 
-        // Colour scales.
+    /// The colour scales of the three blocks.
+    fn draw_colour_bars(&self, root: &Root<'_>) -> Result<(), FigureError> {
+        let (mx, _, side) = self.layout.matrix;
+        let (by, bh) = self.layout.bias;
+        let (left, top, cw, ch) = self.layout.grid;
         let bar_y = by + bh + 62.0;
         colour_bar(
-            &root,
+            root,
             (mx + 110.0, bar_y),
             side - 190.0,
             "recurrent",
-            recurrent_scale,
-            &small,
+            self.recurrent_scale,
+            &small(),
         )?;
         colour_bar(
-            &root,
+            root,
             (mx + 110.0, bar_y + 34.0),
             side - 190.0,
             "bias",
-            bias_scale,
-            &small,
+            self.bias_scale,
+            &small(),
         )?;
-        let grid_bottom = top + ch * rows as f64;
+        let grid_bottom = top + ch * self.rows as f64;
         colour_bar(
-            &root,
+            root,
             (left + 170.0, grid_bottom + 30.0),
-            (cw * cols as f64 - 260.0).max(120.0),
+            (cw * self.cols as f64 - 260.0).max(120.0),
             "sensor → neuron",
-            input_scale,
-            &small,
-        )?;
+            self.input_scale,
+            &small(),
+        )
+    }
 
-        // How to read the panels.
+    /// How to read the panels, along the bottom.
+    fn draw_reading_guide(&self, root: &Root<'_>) -> Result<(), FigureError> {
+        let (left, _, _, _) = self.layout.grid;
         let mut lines = vec![
             "Each panel is one neuron: its weight from every sensor, drawn where the sensor looks (ahead is up, robot at the centre;".to_string(),
             "each wedge one sensor). The dot is the neuron's bias. Red outline, L/R: wheel neurons. White: no link (or 0).".to_string(),
         ];
-        if has_distance {
+        if self.has_distance {
             lines.push(
                 "The outer band of each panel holds the distance rays' weights (same colour scale)."
                     .to_string(),
@@ -655,18 +767,59 @@ fn draw(
         }
         for (k, line) in lines.iter().enumerate() {
             text(
+                root,
                 line,
-                (left - 40.0, h - 70.0 + 22.0 * k as f64),
-                &small,
-                left_mid,
+                (left - 40.0, self.layout.h - 70.0 + 22.0 * k as f64),
+                &small(),
+                Pos::new(HPos::Left, VPos::Center),
             )?;
         }
-        root.present().map_err(draw_err)?;
+        Ok(())
     }
+}
+
+/// Paints `stencil`'s inputs in `colours` onto `grid`, its top left corner at
+/// `(ox, oy)` pixels (clipped to the grid).
+fn stamp(
+    grid: &mut Pixmap,
+    stencil: &Stencil,
+    (ox, oy): (i32, i32),
+    colours: &[PremultipliedColorU8],
+) {
+    let (gw, gh) = (grid.width() as i32, grid.height() as i32);
+    let pixels = grid.pixels_mut();
+    for (row, line) in stencil
+        .input
+        .chunks_exact(stencil.width as usize)
+        .enumerate()
+    {
+        let y = oy + row as i32;
+        if !(0..gh).contains(&y) {
+            continue;
+        }
+        for (col, &input) in line.iter().enumerate() {
+            let x = ox + col as i32;
+            if input != OUTSIDE && (0..gw).contains(&x) {
+                pixels[(y * gw + x) as usize] = colours[input as usize];
+            }
+        }
+    }
+}
+
+/// Draws the figure: the vector overlay (labels, outlines; no background) and the heat maps.
+fn draw(
+    spec: &SubstrateSpec,
+    controller: &SubstrateController,
+    opts: &NetworkOptions,
+) -> Result<Drawn, FigureError> {
+    register_font()?;
+    let fields = Fields::new(spec, controller, opts)?;
+    let mut heats = vec![fields.panels_heat()?];
+    heats.extend(fields.matrix_heats()?);
     Ok(Drawn {
-        overlay: svg,
+        overlay: fields.overlay()?,
         heats,
-        size: (w, h),
+        size: (fields.layout.w, fields.layout.h),
     })
 }
 

@@ -9,6 +9,7 @@
 //! directories and writes its figure and table itself).
 
 pub mod compare;
+mod controller;
 pub mod convergence;
 mod fields;
 pub mod network;

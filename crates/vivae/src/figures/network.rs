@@ -14,43 +14,13 @@ use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 use vivae_neat::hyperneat::{LinkSource, SubstrateController};
 
+pub use super::controller::NetworkOptions;
+use super::controller::{Checked, GUIDE, WHEEL, blend, check, px};
 use super::{FAMILY, Figure, FigureError, NEGATIVE, POSITIVE, draw_err, register_font, svg_to_png};
-use vivae_lab::substrate::{PolarNode, SubstrateSpec, WheelNeurons};
+use vivae_lab::substrate::{PolarNode, SubstrateSpec};
 
-/// Wheel neurons' colour.
-pub(super) const WHEEL: RGBColor = RGBColor(214, 39, 40);
-/// Guide lines (rings, baseline).
-pub(super) const GUIDE: RGBColor = RGBColor(200, 200, 200);
 /// Display radius (fraction of the sheet radius) of the distance-sensor ring.
 const DISTANCE_RING: f64 = 1.13;
-
-/// What the network figure shows and how large it is.
-#[derive(Debug, Clone, PartialEq)]
-pub struct NetworkOptions {
-    /// Figure title.
-    pub title: String,
-    /// |weight| drawn at full width and opacity (the HyperNEAT amplitude, 3.0).
-    pub weight_scale: f64,
-    /// Width in SVG units (the PNG is `PNG_SCALE` times larger).
-    pub width: u32,
-    /// Height in SVG units.
-    pub height: u32,
-    /// Most expressed links drawn one line each; a larger controller is drawn
-    /// as receptive fields (heat maps), whose cost does not grow with its links.
-    pub max_links: usize,
-}
-
-impl Default for NetworkOptions {
-    fn default() -> Self {
-        NetworkOptions {
-            title: "Controller network".to_string(),
-            weight_scale: 3.0,
-            width: 1000,
-            height: 720,
-            max_links: 400,
-        }
-    }
-}
 
 /// Renders the controller decoded on `spec` as SVG and PNG: a line per link
 /// up to `opts.max_links` expressed links, receptive fields above.
@@ -85,63 +55,6 @@ pub fn draws_fields(controller: &SubstrateController, opts: &NetworkOptions) -> 
     controller.expressed_links() > opts.max_links
 }
 
-/// The sheets' nodes and wheel neurons, once `spec`, `controller` and `opts` are checked.
-pub(super) struct Checked {
-    pub sensors: Vec<PolarNode>,
-    pub distance: Vec<PolarNode>,
-    pub neurons: Vec<PolarNode>,
-    pub wheels: WheelNeurons,
-}
-
-/// Checks that `controller` was decoded on `spec` and that `opts` are usable.
-pub(super) fn check(
-    spec: &SubstrateSpec,
-    controller: &SubstrateController,
-    opts: &NetworkOptions,
-) -> Result<Checked, FigureError> {
-    spec.validate()
-        .map_err(|e| FigureError::Invalid(e.to_string()))?;
-    let sensors = spec.sensor_nodes();
-    let distance = spec.distance_nodes();
-    let neurons = spec.neuron_nodes();
-    let wheels = spec
-        .wheels()
-        .map_err(|e| FigureError::Invalid(e.to_string()))?;
-    let mut expected_sheets = vec![sensors.len()];
-    if !distance.is_empty() {
-        expected_sheets.push(distance.len());
-    }
-    if controller.sheet_sizes() != expected_sheets.as_slice()
-        || controller.num_neurons() != neurons.len()
-    {
-        return Err(FigureError::Invalid(format!(
-            "controller with input sheets {:?} and {} neurons does not match substrate {} → {}",
-            controller.sheet_sizes(),
-            controller.num_neurons(),
-            spec.sensors,
-            spec.neurons
-        )));
-    }
-    if !(opts.weight_scale.is_finite() && opts.weight_scale > 0.0) {
-        return Err(FigureError::Invalid(format!(
-            "weight_scale {} must be finite and positive",
-            opts.weight_scale
-        )));
-    }
-    if opts.width < 400 || opts.height < 300 {
-        return Err(FigureError::Invalid(format!(
-            "figure size {}x{} is too small (at least 400x300)",
-            opts.width, opts.height
-        )));
-    }
-    Ok(Checked {
-        sensors,
-        distance,
-        neurons,
-        wheels,
-    })
-}
-
 /// Where one sheet is drawn: centre of its half-disc and its radius, in pixels.
 #[derive(Clone, Copy)]
 struct Panel {
@@ -167,11 +80,6 @@ impl Panel {
     }
 }
 
-/// Rounds a pixel position for plotters.
-pub(super) fn px((x, y): (f64, f64)) -> (i32, i32) {
-    (x.round() as i32, y.round() as i32)
-}
-
 /// Link style for a weight: colour by sign, width and opacity by magnitude.
 /// `density` ≤ 1 thins links out when there are very many of them.
 fn link_style(w: f64, scale: f64, density: f64) -> ShapeStyle {
@@ -183,78 +91,105 @@ fn link_style(w: f64, scale: f64, density: f64) -> ShapeStyle {
         .stroke_width(1 + (max_extra * m).round() as u32)
 }
 
-/// Renders the figure with a line per link (at any size) as an SVG document.
-pub fn render_svg(
-    spec: &SubstrateSpec,
-    controller: &SubstrateController,
-    opts: &NetworkOptions,
-) -> Result<String, FigureError> {
-    register_font()?;
-    let Checked {
-        sensors,
-        distance,
-        neurons,
-        wheels,
-    } = check(spec, controller, opts)?;
+/// The drawing area of the figure.
+type Root<'a> = DrawingArea<SVGBackend<'a>, Shift>;
 
-    let (w, h) = (f64::from(opts.width), f64::from(opts.height));
-    // The two sheets stacked in perspective, input sheet below the neuron
-    // sheet, so input→neuron links run between the layers instead of along
-    // the sheets' baselines (where every ±90° node sits).
-    let radius = (w * 0.3).min(h * 0.75);
-    let squash = 0.5;
-    let neuron_panel = Panel {
-        cx: w * 0.55,
-        cy: h * 0.44,
-        radius,
-        squash,
-    };
-    let inputs_panel = Panel {
-        cx: w * 0.55,
-        cy: h * 0.87,
-        radius,
-        squash,
-    };
-    let scale = opts.weight_scale;
+/// What the figure is drawn from: the checked controller and substrate, and
+/// where its two sheets go.
+struct Scene<'a> {
+    spec: &'a SubstrateSpec,
+    controller: &'a SubstrateController,
+    opts: &'a NetworkOptions,
+    nodes: Checked,
+    /// Figure size in units.
+    w: f64,
+    h: f64,
+    neuron_panel: Panel,
+    inputs_panel: Panel,
+    /// Radius of a neuron's disc.
+    neuron_r: f64,
+}
 
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (opts.width, opts.height)).into_drawing_area();
-        root.fill(&WHITE).map_err(draw_err)?;
+impl<'a> Scene<'a> {
+    fn new(
+        spec: &'a SubstrateSpec,
+        controller: &'a SubstrateController,
+        opts: &'a NetworkOptions,
+    ) -> Result<Scene<'a>, FigureError> {
+        let nodes = check(spec, controller, opts)?;
+        let (w, h) = (f64::from(opts.width), f64::from(opts.height));
+        // The two sheets stacked in perspective, input sheet below the neuron
+        // sheet, so input→neuron links run between the layers instead of along
+        // the sheets' baselines (where every ±90° node sits).
+        let radius = (w * 0.3).min(h * 0.75);
+        let squash = 0.5;
+        let neuron_panel = Panel {
+            cx: w * 0.55,
+            cy: h * 0.44,
+            radius,
+            squash,
+        };
+        let inputs_panel = Panel {
+            cx: w * 0.55,
+            cy: h * 0.87,
+            radius,
+            squash,
+        };
+        // Smaller nodes for dense substrates (e.g. 9×9).
+        let side = spec.neurons.rings.max(spec.neurons.angles) as f64;
+        let neuron_r = (9.0 * (3.0 / side).sqrt()).clamp(4.0, 9.0).round();
+        Ok(Scene {
+            spec,
+            controller,
+            opts,
+            nodes,
+            w,
+            h,
+            neuron_panel,
+            inputs_panel,
+            neuron_r,
+        })
+    }
+
+    /// The title and the count of links under it.
+    fn draw_titles(&self, root: &Root<'_>) -> Result<(), FigureError> {
         let title_font = (FAMILY, 24).into_font().style(FontStyle::Bold);
         let font = (FAMILY, 17).into_font();
-        let small = (FAMILY, 15).into_font();
         let centre_top = Pos::new(HPos::Center, VPos::Top);
         root.draw(&Text::new(
-            opts.title.clone(),
-            px((w / 2.0, 10.0)),
+            self.opts.title.clone(),
+            px((self.w / 2.0, 10.0)),
             TextStyle::from(title_font).pos(centre_top),
         ))
         .map_err(draw_err)?;
         root.draw(&Text::new(
             format!(
                 "{} expressed of {} possible links",
-                controller.expressed_links(),
-                controller.possible_links()
+                self.controller.expressed_links(),
+                self.controller.possible_links()
             ),
-            px((w / 2.0, 42.0)),
-            TextStyle::from(font.clone()).pos(centre_top),
+            px((self.w / 2.0, 42.0)),
+            TextStyle::from(font).pos(centre_top),
         ))
-        .map_err(draw_err)?;
+        .map_err(draw_err)
+    }
 
-        // Guides: ring arcs and baseline of each sheet.
-        draw_guides(&root, &inputs_panel, spec.sensors.rings, spec.fov)?;
-        draw_guides(&root, &neuron_panel, spec.neurons.rings, spec.neuron_fov)?;
-
-        // Links, weakest first so strong links stay visible on top.
-        let mut links: Vec<_> = controller.links().collect();
+    /// Every expressed link, weakest first so strong links stay visible on top.
+    fn draw_links(&self, root: &Root<'_>) -> Result<(), FigureError> {
+        let Checked {
+            sensors,
+            distance,
+            neurons,
+            ..
+        } = &self.nodes;
+        let (inputs_panel, neuron_panel) = (&self.inputs_panel, &self.neuron_panel);
+        let neuron_r = self.neuron_r;
+        let mut links: Vec<_> = self.controller.links().collect();
         links.sort_by(|a, b| a.weight.abs().total_cmp(&b.weight.abs()));
-        // Smaller nodes and fainter links for dense substrates (e.g. 9×9).
-        let side = spec.neurons.rings.max(spec.neurons.angles) as f64;
-        let neuron_r = (9.0 * (3.0 / side).sqrt()).clamp(4.0, 9.0).round();
+        // Fainter links for dense substrates (e.g. 9×9).
         let density = (300.0 / links.len().max(1) as f64).sqrt().clamp(0.2, 1.0);
         for link in &links {
-            let style = link_style(link.weight, scale, density);
+            let style = link_style(link.weight, self.opts.weight_scale, density);
             let to = neuron_panel.node(&neurons[link.target]);
             match link.source {
                 LinkSource::Input { sheet, index } => {
@@ -269,7 +204,7 @@ pub fn render_svg(
                 LinkSource::Neuron(s) if s == link.target => {
                     // Self-loop: a small circle just outside the node, away from the centre.
                     let n = &neurons[s];
-                    let (dx, dy) = (n.phi.sin(), -n.phi.cos() * squash);
+                    let (dx, dy) = (n.phi.sin(), -n.phi.cos() * neuron_panel.squash);
                     let norm = (dx * dx + dy * dy).sqrt().max(1e-9);
                     let (dx, dy) = (dx / norm, dy / norm);
                     let c = (to.0 + dx * neuron_r * 1.6, to.1 + dy * neuron_r * 1.6);
@@ -278,36 +213,47 @@ pub fn render_svg(
                 }
                 LinkSource::Neuron(s) => {
                     let from = neuron_panel.node(&neurons[s]);
-                    draw_curved_arrow(&root, from, to, neuron_r, style)?;
+                    draw_curved_arrow(root, from, to, neuron_r, style)?;
                 }
             }
         }
+        Ok(())
+    }
 
-        // Nodes on top of the links.
-        for n in &sensors {
+    /// The nodes, on top of the links: sensors grey, distance rays dark
+    /// squares, neurons filled by their bias, wheel neurons red.
+    fn draw_nodes(&self, root: &Root<'_>) -> Result<(), FigureError> {
+        let Checked {
+            sensors,
+            distance,
+            neurons,
+            wheels,
+        } = &self.nodes;
+        for n in sensors {
             root.draw(&Circle::new(
-                px(inputs_panel.node(n)),
+                px(self.inputs_panel.node(n)),
                 6,
                 RGBColor(150, 150, 150).filled(),
             ))
             .map_err(draw_err)?;
         }
-        for n in &distance {
-            let (x, y) = inputs_panel.at(DISTANCE_RING, n.phi);
+        for n in distance {
+            let (x, y) = self.inputs_panel.at(DISTANCE_RING, n.phi);
             root.draw(&Rectangle::new(
                 [px((x - 5.0, y - 5.0)), px((x + 5.0, y + 5.0))],
                 RGBColor(90, 90, 90).filled(),
             ))
             .map_err(draw_err)?;
         }
+        let neuron_r = self.neuron_r;
         for (i, n) in neurons.iter().enumerate() {
-            let c = px(neuron_panel.node(n));
+            let c = px(self.neuron_panel.node(n));
             let is_wheel = i == wheels.left || i == wheels.right;
             let fill = if is_wheel {
                 WHEEL.filled()
             } else {
-                let b = controller.biases()[i];
-                let m = (b.abs() / scale).clamp(0.0, 1.0);
+                let b = self.controller.biases()[i];
+                let m = (b.abs() / self.opts.weight_scale).clamp(0.0, 1.0);
                 let base = if b >= 0.0 { POSITIVE } else { NEGATIVE };
                 blend(base, m * 0.8).filled()
             };
@@ -316,13 +262,19 @@ pub fn render_svg(
             root.draw(&Circle::new(c, neuron_r as i32, BLACK.stroke_width(1)))
                 .map_err(draw_err)?;
         }
+        Ok(())
+    }
+
+    /// L and R above-outside the wheel neurons, on a white patch to stay legible.
+    fn draw_wheel_labels(&self, root: &Root<'_>) -> Result<(), FigureError> {
         let wheel_font = (FAMILY, 17)
             .into_font()
             .style(FontStyle::Bold)
             .color(&WHEEL);
-        // L and R above-outside their neurons, on a white patch to stay legible.
+        let (neurons, wheels) = (&self.nodes.neurons, &self.nodes.wheels);
+        let neuron_r = self.neuron_r;
         for (i, label, side) in [(wheels.left, "L", -1.0), (wheels.right, "R", 1.0)] {
-            let (x, y) = neuron_panel.node(&neurons[i]);
+            let (x, y) = self.neuron_panel.node(&neurons[i]);
             let at = (x + side * (neuron_r + 9.0), y - neuron_r - 11.0);
             root.draw(&Rectangle::new(
                 [px((at.0 - 8.0, at.1 - 10.0)), px((at.0 + 8.0, at.1 + 10.0))],
@@ -336,44 +288,81 @@ pub fn render_svg(
             ))
             .map_err(draw_err)?;
         }
-        // Sheet captions left of the layers.
+        Ok(())
+    }
+
+    /// The sheets' captions, left of the layers.
+    fn draw_captions(&self, root: &Root<'_>) -> Result<(), FigureError> {
+        let font = (FAMILY, 17).into_font();
         let left_top = Pos::new(HPos::Left, VPos::Center);
-        let mut input_caption = vec!["surface sensors".to_string(), spec.sensors.to_string()];
+        let distance = &self.nodes.distance;
+        let mut input_caption = vec!["surface sensors".to_string(), self.spec.sensors.to_string()];
         if !distance.is_empty() {
             input_caption.push(format!("+ {} distance rays", distance.len()));
         }
         for (panel, lines) in [
-            (&inputs_panel, input_caption),
+            (&self.inputs_panel, input_caption),
             (
-                &neuron_panel,
-                vec!["neurons".to_string(), spec.neurons.to_string()],
+                &self.neuron_panel,
+                vec!["neurons".to_string(), self.spec.neurons.to_string()],
             ),
         ] {
-            let top = panel.cy - radius * squash * 0.5;
+            let top = panel.cy - panel.radius * panel.squash * 0.5;
             for (i, line) in lines.into_iter().enumerate() {
                 root.draw(&Text::new(
                     line,
-                    px((w * 0.02, top + 22.0 * i as f64)),
+                    px((self.w * 0.02, top + 22.0 * i as f64)),
                     TextStyle::from(font.clone()).pos(left_top),
                 ))
                 .map_err(draw_err)?;
             }
         }
-        draw_legend(&root, (w, h), !distance.is_empty(), small, scale)?;
+        Ok(())
+    }
+}
+
+/// Renders the figure with a line per link (at any size) as an SVG document.
+pub fn render_svg(
+    spec: &SubstrateSpec,
+    controller: &SubstrateController,
+    opts: &NetworkOptions,
+) -> Result<String, FigureError> {
+    register_font()?;
+    let scene = Scene::new(spec, controller, opts)?;
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (opts.width, opts.height)).into_drawing_area();
+        root.fill(&WHITE).map_err(draw_err)?;
+        scene.draw_titles(&root)?;
+        // Guides: ring arcs and baseline of each sheet.
+        draw_guides(&root, &scene.inputs_panel, spec.sensors.rings, spec.fov)?;
+        draw_guides(
+            &root,
+            &scene.neuron_panel,
+            spec.neurons.rings,
+            spec.neuron_fov,
+        )?;
+        scene.draw_links(&root)?;
+        scene.draw_nodes(&root)?;
+        scene.draw_wheel_labels(&root)?;
+        scene.draw_captions(&root)?;
+        let small = (FAMILY, 15).into_font();
+        let with_distance = !scene.nodes.distance.is_empty();
+        draw_legend(
+            &root,
+            (scene.w, scene.h),
+            with_distance,
+            small,
+            opts.weight_scale,
+        )?;
         root.present().map_err(draw_err)?;
     }
     Ok(svg)
 }
 
-/// Mixes `c` with white: `m = 0` white, `m = 1` the colour.
-pub(super) fn blend(c: RGBColor, m: f64) -> RGBColor {
-    let f = |v: u8| (255.0 + (f64::from(v) - 255.0) * m).round() as u8;
-    RGBColor(f(c.0), f(c.1), f(c.2))
-}
-
 /// Draws a sheet's ring arcs over its field of view and its baseline.
 fn draw_guides(
-    root: &DrawingArea<SVGBackend<'_>, Shift>,
+    root: &Root<'_>,
     panel: &Panel,
     rings: usize,
     fov_deg: f64,
@@ -408,7 +397,7 @@ fn draw_guides(
 /// A recurrent link: a quadratic curve bending to its left (so `a→b` and
 /// `b→a` do not overlap), with an arrowhead at the target's rim.
 fn draw_curved_arrow(
-    root: &DrawingArea<SVGBackend<'_>, Shift>,
+    root: &Root<'_>,
     from: (f64, f64),
     to: (f64, f64),
     node_r: f64,
@@ -450,15 +439,27 @@ fn draw_curved_arrow(
     Ok(())
 }
 
-/// Legend along the bottom edge.
+/// Legend along the bottom edge: what lines and nodes mean, and above it
+/// self-loops and the bias colour scale.
 fn draw_legend(
-    root: &DrawingArea<SVGBackend<'_>, Shift>,
+    root: &Root<'_>,
     (w, h): (f64, f64),
     with_distance: bool,
     font: FontDesc<'_>,
     scale: f64,
 ) -> Result<(), FigureError> {
     let y = h - 26.0;
+    draw_legend_items(root, (w, y), with_distance, &font)?;
+    draw_bias_legend(root, (w, y - 28.0), &font, scale)
+}
+
+/// The legend's bottom row, at height `y`: link colours, wheel neurons, sensors.
+fn draw_legend_items(
+    root: &Root<'_>,
+    (w, y): (f64, f64),
+    with_distance: bool,
+    font: &FontDesc<'_>,
+) -> Result<(), FigureError> {
     let left = Pos::new(HPos::Left, VPos::Center);
     let mut x = w * 0.04;
     let mut item = |draw: &dyn Fn(f64) -> Result<(), FigureError>, text: &str, step: f64| {
@@ -507,8 +508,18 @@ fn draw_legend(
         },
         if with_distance { 210.0 } else { 110.0 },
     )?;
-    // Second row: what the rings beside neurons are, and the bias colour scale.
-    let y2 = y - 28.0;
+    Ok(())
+}
+
+/// The legend's second row, at height `y2`: what the rings beside neurons
+/// are, and the bias colour scale.
+fn draw_bias_legend(
+    root: &Root<'_>,
+    (w, y2): (f64, f64),
+    font: &FontDesc<'_>,
+    scale: f64,
+) -> Result<(), FigureError> {
+    let left = Pos::new(HPos::Left, VPos::Center);
     let x0 = w * 0.04;
     root.draw(&Circle::new(
         px((x0 + 12.0, y2)),

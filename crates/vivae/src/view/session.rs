@@ -366,55 +366,20 @@ impl Sim {
         snap: &RunSnapshot,
     ) -> Result<(), String> {
         let msg: ClientMsg = serde_json::from_str(text).map_err(|e| format!("bad message: {e}"))?;
-        let robots = self.world.robots().len();
-        let robot_ok = |i: usize| {
-            if i < robots {
-                Ok(())
-            } else {
-                Err(format!("no robot {i} (there are {robots})"))
-            }
-        };
         match msg {
             ClientMsg::Play => self.playing = true,
             ClientMsg::Pause => self.playing = false,
-            ClientMsg::Step { n } => {
-                let n = n.unwrap_or(1);
-                if n == 0 || n > 10_000 {
-                    return Err(format!("step {n}: must be 1 to 10000"));
-                }
-                self.playing = false;
-                tokio::task::block_in_place(|| {
-                    for _ in 0..n {
-                        self.step_once();
-                    }
-                });
-            }
+            ClientMsg::Step { n } => self.step_paused(n.unwrap_or(1))?,
             ClientMsg::Speed { value } => {
                 if !(value.is_finite() && (0.05..=200.0).contains(&value)) {
                     return Err(format!("speed {value}: must be 0.05 to 200"));
                 }
                 self.speed = value;
             }
-            ClientMsg::Controller { which } => {
-                let choice = match &which {
-                    Value::String(s) if s == "champion" => Choice::Champion,
-                    Value::String(s) if s == "none" => Choice::None,
-                    Value::Number(n) => Choice::Generation(
-                        n.as_u64()
-                            .and_then(|g| u32::try_from(g).ok())
-                            .ok_or_else(|| format!("controller {n}: not a generation"))?,
-                    ),
-                    other => {
-                        return Err(format!(
-                            "controller {other}: expected \"champion\", \"none\" or a generation"
-                        ));
-                    }
-                };
-                self.set_choice(choice, snap)?;
-            }
+            ClientMsg::Controller { which } => self.set_choice(parse_choice(&which)?, snap)?,
             ClientMsg::Drive { robot } => {
                 if let Some(i) = robot {
-                    robot_ok(i)?;
+                    self.check_robot(i)?;
                     self.selected = i;
                 }
                 self.manual = robot;
@@ -434,25 +399,10 @@ impl Sim {
                 };
             }
             ClientMsg::Resolution { sensors, neurons } => {
-                let parse = |what: &str, s: &str, max: usize| -> Result<PolarGrid, String> {
-                    let g: PolarGrid = s
-                        .parse()
-                        .map_err(|e| format!("{what} {s:?}: {}", one_line(&format!("{e}"))))?;
-                    if g.rings.saturating_mul(g.angles) > max {
-                        return Err(format!("{what} {s}: at most {max} in the viewer"));
-                    }
-                    Ok(g)
-                };
-                let s = parse("sensors", &sensors, MAX_SENSORS)?;
-                let n = parse("neurons", &neurons, MAX_NEURONS)?;
-                let mut config = self.config.clone();
-                config.surface_sensors.rings = s.rings;
-                config.surface_sensors.angles = s.angles;
-                config.substrate.neurons = n;
-                self.rebuild(config, self.scenario_index, source, snap)?;
+                self.set_resolution(&sensors, &neurons, source, snap)?;
             }
             ClientMsg::Select { robot } => {
-                robot_ok(robot)?;
+                self.check_robot(robot)?;
                 self.selected = robot;
                 self.dirty = true;
             }
@@ -461,29 +411,88 @@ impl Sim {
                 x,
                 y,
                 heading,
-            } => {
-                robot_ok(robot)?;
-                let sc = self.world.scenario();
-                let inside = x.is_finite()
-                    && y.is_finite()
-                    && (0.0..=sc.width()).contains(&x)
-                    && (0.0..=sc.height()).contains(&y);
-                if !inside {
-                    return Err(format!("drag to ({x}, {y}): outside the arena"));
-                }
-                let heading = heading.unwrap_or(self.world.robots()[robot].heading);
-                if !heading.is_finite() {
-                    return Err("drag: heading must be a number".into());
-                }
-                self.world.set_pose(robot, DVec2::new(x, y), heading);
-                self.selected = robot;
-                self.dirty = true;
-            }
+            } => self.drag(robot, (x, y), heading)?,
             ClientMsg::Reset => self.reset(),
             ClientMsg::Scenario { index } => {
                 self.rebuild(self.config.clone(), index, source, snap)?;
             }
         }
+        self.dirty = true;
+        Ok(())
+    }
+
+    /// `Err` unless robot `i` exists.
+    fn check_robot(&self, i: usize) -> Result<(), String> {
+        let robots = self.world.robots().len();
+        if i < robots {
+            Ok(())
+        } else {
+            Err(format!("no robot {i} (there are {robots})"))
+        }
+    }
+
+    /// Pauses and advances `n` steps (1 to 10000).
+    fn step_paused(&mut self, n: u32) -> Result<(), String> {
+        if n == 0 || n > 10_000 {
+            return Err(format!("step {n}: must be 1 to 10000"));
+        }
+        self.playing = false;
+        tokio::task::block_in_place(|| {
+            for _ in 0..n {
+                self.step_once();
+            }
+        });
+        Ok(())
+    }
+
+    /// Re-samples the substrate at `sensors` and `neurons` (RINGSxANGLES).
+    fn set_resolution(
+        &mut self,
+        sensors: &str,
+        neurons: &str,
+        source: &Source,
+        snap: &RunSnapshot,
+    ) -> Result<(), String> {
+        let parse = |what: &str, s: &str, max: usize| -> Result<PolarGrid, String> {
+            let g: PolarGrid = s
+                .parse()
+                .map_err(|e| format!("{what} {s:?}: {}", one_line(&format!("{e}"))))?;
+            if g.rings.saturating_mul(g.angles) > max {
+                return Err(format!("{what} {s}: at most {max} in the viewer"));
+            }
+            Ok(g)
+        };
+        let s = parse("sensors", sensors, MAX_SENSORS)?;
+        let n = parse("neurons", neurons, MAX_NEURONS)?;
+        let mut config = self.config.clone();
+        config.surface_sensors.rings = s.rings;
+        config.surface_sensors.angles = s.angles;
+        config.substrate.neurons = n;
+        self.rebuild(config, self.scenario_index, source, snap)
+    }
+
+    /// Puts `robot` at `(x, y)` (inside the arena), facing `heading` (default: as it was), and selects it.
+    fn drag(
+        &mut self,
+        robot: usize,
+        (x, y): (f64, f64),
+        heading: Option<f64>,
+    ) -> Result<(), String> {
+        self.check_robot(robot)?;
+        let sc = self.world.scenario();
+        let inside = x.is_finite()
+            && y.is_finite()
+            && (0.0..=sc.width()).contains(&x)
+            && (0.0..=sc.height()).contains(&y);
+        if !inside {
+            return Err(format!("drag to ({x}, {y}): outside the arena"));
+        }
+        let heading = heading.unwrap_or(self.world.robots()[robot].heading);
+        if !heading.is_finite() {
+            return Err("drag: heading must be a number".into());
+        }
+        self.world.set_pose(robot, DVec2::new(x, y), heading);
+        self.selected = robot;
         self.dirty = true;
         Ok(())
     }
@@ -570,6 +579,22 @@ impl Sim {
         s.push('}');
         self.dirty = false;
         s
+    }
+}
+
+/// The controller a `controller` message chooses: `"champion"`, `"none"` or a generation.
+fn parse_choice(which: &Value) -> Result<Choice, String> {
+    match which {
+        Value::String(s) if s == "champion" => Ok(Choice::Champion),
+        Value::String(s) if s == "none" => Ok(Choice::None),
+        Value::Number(n) => Ok(Choice::Generation(
+            n.as_u64()
+                .and_then(|g| u32::try_from(g).ok())
+                .ok_or_else(|| format!("controller {n}: not a generation"))?,
+        )),
+        other => Err(format!(
+            "controller {other}: expected \"champion\", \"none\" or a generation"
+        )),
     }
 }
 

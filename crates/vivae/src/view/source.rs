@@ -58,66 +58,11 @@ impl Source {
                 scenarios: vec![default.clone()],
                 genome: None,
             },
-            Some(p) if p.is_dir() => {
-                let config = read_config(&p.join(files::CONFIG))?;
-                let scenario = read_text(&p.join(files::SCENARIO))?;
-                // A run that has not finished its first generation has no champion yet.
-                Source {
-                    kind: SourceKind::Run(p.to_path_buf()),
-                    config,
-                    scenarios: vec![(format!("{} (the run's)", files::SCENARIO), scenario)],
-                    genome: None,
-                }
-            }
-            Some(p) => {
-                let ext = p
-                    .extension()
-                    .and_then(|e| e.to_str())
-                    .map(str::to_ascii_lowercase);
-                if ext.as_deref() == Some("svg") {
-                    let loaded = vivae_lab::io::load_scenario(Some(p))?;
-                    loaded
-                        .scenario
-                        .require_robots()
-                        .map_err(|e| bad_input(vivae_lab::io::one_line(&e.to_string())))?;
-                    let text = loaded.text;
-                    Source {
-                        kind: SourceKind::Scenario(p.to_path_buf()),
-                        config: Config::default(),
-                        scenarios: vec![(file_name(p), text)],
-                        genome: None,
-                    }
-                } else {
-                    // The champion's own recorded config rebuilds its controller
-                    // (substrate, sensors, physics), as `vivae replay` does.
-                    let (champion, config, _) = vivae_lab::evolve::load_genome_source(p)?;
-                    Source {
-                        kind: SourceKind::Genome(p.to_path_buf()),
-                        config,
-                        scenarios: vec![default.clone()],
-                        genome: Some(champion),
-                    }
-                }
-            }
+            Some(p) if p.is_dir() => Source::from_run_dir(p)?,
+            Some(p) => Source::from_file(p, &default)?,
         };
-        // A multi-map run also offers its other training maps (the first is scenario.svg).
         if matches!(source.kind, SourceKind::Run(_)) {
-            for (k, map) in source
-                .config
-                .experiment
-                .scenarios
-                .iter()
-                .enumerate()
-                .skip(1)
-            {
-                let text = read_text(Path::new(map))?;
-                let name = Path::new(map)
-                    .file_name()
-                    .map_or_else(|| map.clone(), |n| n.to_string_lossy().into_owned());
-                source
-                    .scenarios
-                    .push((format!("{name} (training map {})", k + 1), text));
-            }
+            source.add_training_maps()?;
         }
         if source.scenarios[0].1 != default.1 {
             source.scenarios.push(default);
@@ -126,6 +71,64 @@ impl Source {
             source.scenarios.extend(scenario_folder(dir)?);
         }
         Ok(source)
+    }
+
+    /// A run directory: its config and scenario.
+    fn from_run_dir(p: &Path) -> vivae_lab::Result<Source> {
+        let config = read_config(&p.join(files::CONFIG))?;
+        let scenario = read_text(&p.join(files::SCENARIO))?;
+        // A run that has not finished its first generation has no champion yet.
+        Ok(Source {
+            kind: SourceKind::Run(p.to_path_buf()),
+            config,
+            scenarios: vec![(format!("{} (the run's)", files::SCENARIO), scenario)],
+            genome: None,
+        })
+    }
+
+    /// A scenario SVG (with robots) or else a genome file, shown on `default`.
+    fn from_file(p: &Path, default: &(String, String)) -> vivae_lab::Result<Source> {
+        let ext = p
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        if ext.as_deref() == Some("svg") {
+            let loaded = vivae_lab::io::load_scenario(Some(p))?;
+            loaded
+                .scenario
+                .require_robots()
+                .map_err(|e| bad_input(vivae_lab::io::one_line(&e.to_string())))?;
+            let text = loaded.text;
+            Ok(Source {
+                kind: SourceKind::Scenario(p.to_path_buf()),
+                config: Config::default(),
+                scenarios: vec![(file_name(p), text)],
+                genome: None,
+            })
+        } else {
+            // The champion's own recorded config rebuilds its controller
+            // (substrate, sensors, physics), as `vivae replay` does.
+            let (champion, config, _) = vivae_lab::evolve::load_genome_source(p)?;
+            Ok(Source {
+                kind: SourceKind::Genome(p.to_path_buf()),
+                config,
+                scenarios: vec![default.clone()],
+                genome: Some(champion),
+            })
+        }
+    }
+
+    /// A multi-map run also offers its other training maps (the first is scenario.svg).
+    fn add_training_maps(&mut self) -> vivae_lab::Result<()> {
+        for (k, map) in self.config.experiment.scenarios.iter().enumerate().skip(1) {
+            let text = read_text(Path::new(map))?;
+            let name = Path::new(map)
+                .file_name()
+                .map_or_else(|| map.clone(), |n| n.to_string_lossy().into_owned());
+            self.scenarios
+                .push((format!("{name} (training map {})", k + 1), text));
+        }
+        Ok(())
     }
 
     /// One line saying what is shown.
