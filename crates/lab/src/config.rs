@@ -402,6 +402,14 @@ impl Config {
 
     /// Checks every value; the error names the key and the reason.
     pub fn validate(&self) -> Result<(), ConfigError> {
+        self.validate_experiment()?;
+        self.validate_parameters()?;
+        self.validate_sizes()?;
+        self.validate_run()
+    }
+
+    /// Checks the `experiment` section.
+    fn validate_experiment(&self) -> Result<(), ConfigError> {
         let e = &self.experiment;
         if e.generations == 0 {
             return Err(ConfigError::new(
@@ -428,6 +436,11 @@ impl Config {
                 "experiment.scenarios = [.., \"\", ..]: a map name is empty",
             ));
         }
+        Ok(())
+    }
+
+    /// Checks the NEAT, HyperNEAT, physics and sensor parameters.
+    fn validate_parameters(&self) -> Result<(), ConfigError> {
         if self.neat.population_size < 2 {
             return Err(ConfigError::new(format!(
                 "neat.population_size = {}: must be at least 2 (NEAT breeds from pairs)",
@@ -461,6 +474,11 @@ impl Config {
                 ConfigError::new(format!("distance_sensors.{}", param_message(&err)))
             })?;
         }
+        Ok(())
+    }
+
+    /// Checks the sizes of the run's substrates at every training resolution.
+    fn validate_sizes(&self) -> Result<(), ConfigError> {
         self.check_sizes()?;
         let training =
             self.substrate.train_neurons.len().max(1) * self.substrate.train_sensors.len().max(1);
@@ -474,6 +492,11 @@ impl Config {
                 ConfigError::new(format!("substrate.train_neurons/train_sensors: {e}"))
             })?;
         }
+        Ok(())
+    }
+
+    /// Checks the `run` section.
+    fn validate_run(&self) -> Result<(), ConfigError> {
         let r = &self.run;
         if r.checkpoint_interval == 0 {
             return Err(ConfigError::new(

@@ -8,7 +8,6 @@
 //! uninterrupted run's. Wall-clock times live only in `timing.csv`, the one
 //! file that is allowed to differ between two runs of the same config.
 
-use std::fmt::Write as _;
 use std::fs;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -29,54 +28,21 @@ use crate::maps::{TrainingMap, is_multi_map};
 use crate::rundir::{
     BestLine, Checkpoint, GENERATIONS_HEADER, POPULATION_HEADER, Progress, RunLock, TIMING_HEADER,
     append, check_config_unchanged, check_csv_prefixes, check_out_dir, copy_maps,
-    decode_checkpoint, fill_new_run, load_run, remove_abandoned_builds, remove_stale_temporaries,
-    truncate, truncate_lines, write_checkpoint,
+    decode_checkpoint, fill_new_run, load_run, population_rows, remove_abandoned_builds,
+    remove_stale_temporaries, truncate, truncate_lines, write_checkpoint,
 };
 use crate::training::Training;
 
 // The run directory's formats are `rundir`'s; these names stay reachable here
 // for code written against this module.
 pub use crate::rundir::{
-    Champion, GenerationBest, files, latest_checkpoint, load_genome_source,
+    Champion, GenerationBest, GenerationRecord, files, latest_checkpoint, load_genome_source,
     population_from_checkpoint, population_from_checkpoint_text, read_best_genomes, read_champion,
     read_generations_csv, read_population_csv,
 };
 
 /// Generations whose best individual gets a trajectory figure (besides the champion).
 pub const FIGURE_GENERATIONS: [u32; 2] = [1, 10];
-
-/// One generation's record (a row of `generations.csv`).
-#[derive(Debug, Clone, PartialEq)]
-pub struct GenerationRecord {
-    /// Generation, 1-based.
-    pub generation: u32,
-    /// Generations the run will have in all.
-    pub total: u32,
-    /// Best fitness.
-    pub best: f64,
-    /// Mean fitness.
-    pub mean: f64,
-    /// Median fitness.
-    pub median: f64,
-    /// Worst fitness.
-    pub worst: f64,
-    /// Species.
-    pub species: usize,
-    /// Mean CPPN nodes.
-    pub mean_nodes: f64,
-    /// Mean enabled CPPN links.
-    pub mean_links: f64,
-    /// Links the generation's best CPPN expresses in the substrate.
-    pub best_links: usize,
-    /// Links the substrate could have.
-    pub possible_links: usize,
-    /// Wall time of the generation.
-    pub seconds: f64,
-    /// Simulated robot-steps per second of wall time.
-    pub robot_steps_per_second: f64,
-    /// Best fitness of the run so far.
-    pub best_ever: f64,
-}
 
 /// How a run ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -131,50 +97,12 @@ impl Run {
         force: bool,
     ) -> Result<Run> {
         let maps = if is_multi_map(&config) { maps } else { &[] };
-        let population = match init {
-            // Only the genomes carry over: fitness, species and the champion were
-            // measured on another substrate and mean nothing here.
-            Some(p) => Population::from_genomes(
-                config.neat.clone(),
-                training.primary().cppn_spec(),
-                p.genomes().to_vec(),
-                config.experiment.seed,
-            )
-            .map_err(|e| bad_input(format!("initial population: {e}")))?,
-            None => Population::new(
-                config.neat.clone(),
-                training.primary().cppn_spec(),
-                config.experiment.seed,
-            )
-            .map_err(|e| bad_input(format!("neat: {e}")))?,
-        };
+        let population = initial_population(&config, &training, init)?;
         // The run is built in a temporary sibling and renamed into place once its
         // first checkpoint exists: a kill or an error before that leaves no
         // directory that could neither be resumed nor re-run without --force.
         let old_lock = check_out_dir(dir, force)?;
-        let parent = match dir.parent() {
-            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-            _ => PathBuf::from("."),
-        };
-        crate::io::create_dirs_for(&parent, dir)?;
-        let name = dir
-            .file_name()
-            .map(|n| n.to_string_lossy().into_owned())
-            .unwrap_or_else(|| "run".into());
-        remove_abandoned_builds(&parent, &name);
-        let tmp = parent.join(format!(".{name}.tmp-{}", std::process::id()));
-        if tmp.exists() {
-            fs::remove_dir_all(&tmp).map_err(Error::io("clear", &tmp))?;
-        }
-        fs::create_dir(&tmp).map_err(Error::io("create", dir))?;
-        // The lock is on the directory itself, so it survives the rename.
-        let lock = match RunLock::acquire(&tmp) {
-            Ok(l) => l,
-            Err(e) => {
-                let _ = fs::remove_dir_all(&tmp);
-                return Err(e);
-            }
-        };
+        let (tmp, lock) = temporary_sibling(dir)?;
         let progress = Progress {
             scenario_fnv: Some(fnv1a(scenario_text.as_bytes())),
             maps_fnv: (!maps.is_empty()).then(|| {
@@ -359,6 +287,58 @@ impl Run {
     }
 }
 
+/// The population a new run starts from: `init`'s genomes, or a fresh one.
+fn initial_population(
+    config: &Config,
+    training: &Training,
+    init: Option<Population>,
+) -> Result<Population> {
+    Ok(match init {
+        // Only the genomes carry over: fitness, species and the champion were
+        // measured on another substrate and mean nothing here.
+        Some(p) => Population::from_genomes(
+            config.neat.clone(),
+            training.primary().cppn_spec(),
+            p.genomes().to_vec(),
+            config.experiment.seed,
+        )
+        .map_err(|e| bad_input(format!("initial population: {e}")))?,
+        None => Population::new(
+            config.neat.clone(),
+            training.primary().cppn_spec(),
+            config.experiment.seed,
+        )
+        .map_err(|e| bad_input(format!("neat: {e}")))?,
+    })
+}
+
+/// A fresh, locked temporary sibling of `dir` to build a new run in (the
+/// lock is on the directory itself, so it survives the rename into place).
+fn temporary_sibling(dir: &Path) -> Result<(PathBuf, RunLock)> {
+    let parent = match dir.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    crate::io::create_dirs_for(&parent, dir)?;
+    let name = dir
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "run".into());
+    remove_abandoned_builds(&parent, &name);
+    let tmp = parent.join(format!(".{name}.tmp-{}", std::process::id()));
+    if tmp.exists() {
+        fs::remove_dir_all(&tmp).map_err(Error::io("clear", &tmp))?;
+    }
+    fs::create_dir(&tmp).map_err(Error::io("create", dir))?;
+    match RunLock::acquire(&tmp) {
+        Ok(lock) => Ok((tmp, lock)),
+        Err(e) => {
+            let _ = fs::remove_dir_all(&tmp);
+            Err(e)
+        }
+    }
+}
+
 /// The champion (best ever) of `population` with its run-relative generation.
 fn champion(population: &Population, progress: &Progress, config: &Config) -> Option<Champion> {
     population.best_ever().map(|best| Champion {
@@ -402,21 +382,54 @@ impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
         let seconds = self.started.elapsed().as_secs_f64();
         let population = report.strategy;
         let generation = report.generation;
-        let fitness = population.fitnesses();
-        let sorted = stats::sorted_descending(&fitness);
-        let stats = report.stats;
+        let sorted = stats::sorted_descending(&population.fitnesses());
         let (best_genome, best) = population
             .champion()
             .map(|(g, f)| (g.clone(), f))
             .expect("an evaluated population has a champion");
-        let controller = self.training.primary().controller(&best_genome)?;
+        let record = self.measure(report, &sorted, (&best_genome, best), seconds)?;
+        self.append_best_line(population, generation, best, best_genome)?;
+        let p = &mut *self.progress;
+        p.generations_len = append(
+            &self.dir.join(files::GENERATIONS),
+            &record.generations_row(),
+        )?;
+        p.population_len = append(
+            &self.dir.join(files::POPULATION),
+            &population_rows(generation, &sorted),
+        )?;
+        p.timing_len = append(&self.dir.join(files::TIMING), &record.timing_row())?;
+        if let Some(champion) = champion(population, self.progress, self.config) {
+            let text = serde_json::to_string_pretty(&champion).map_err(|e| Error::Serialize {
+                what: "champion",
+                reason: e.to_string(),
+            })? + "\n";
+            write_atomic(&self.dir.join(files::CHAMPION), text.as_bytes())?;
+        }
+        self.progress.done = generation;
+        (self.on_generation)(&record);
+        Ok(())
+    }
+
+    /// The generation's record: fitness statistics of `sorted` (best first),
+    /// the best genome's substrate, and the time it took.
+    fn measure(
+        &self,
+        report: &GenerationReport<'_>,
+        sorted: &[f64],
+        (best_genome, best): (&Genome, f64),
+        seconds: f64,
+    ) -> Result<GenerationRecord> {
+        let population = report.strategy;
+        let stats = report.stats;
+        let controller = self.training.primary().controller(best_genome)?;
         let n = sorted.len();
-        let (mean, median) = stats::mean(&fitness)
-            .zip(stats::median_of_sorted(&sorted))
+        let (mean, median) = stats::mean(&population.fitnesses())
+            .zip(stats::median_of_sorted(sorted))
             .expect("an evaluated population has fitnesses");
         let robot_steps = n as f64 * self.training.robot_steps() as f64;
-        let record = GenerationRecord {
-            generation,
+        Ok(GenerationRecord {
+            generation: report.generation,
             total: self.total,
             best,
             mean,
@@ -430,7 +443,18 @@ impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
             seconds,
             robot_steps_per_second: robot_steps / seconds.max(1e-9),
             best_ever: population.best_ever().map_or(best, |b| b.fitness),
-        };
+        })
+    }
+
+    /// Appends the generation's line to `best-genomes.jsonl` (a genome equal
+    /// to the previous line's is stored as a reference to it).
+    fn append_best_line(
+        &mut self,
+        population: &Population,
+        generation: u32,
+        best: f64,
+        best_genome: Genome,
+    ) -> Result<()> {
         let same_as = self
             .last_best
             .as_ref()
@@ -461,43 +485,6 @@ impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
                 .figure_genomes
                 .push((generation, best, best_genome));
         }
-
-        let mut row = String::new();
-        let r = &record;
-        let _ = writeln!(
-            row,
-            "{},{},{},{},{},{},{},{},{},{}",
-            r.generation,
-            r.best,
-            r.mean,
-            r.median,
-            r.worst,
-            r.species,
-            r.mean_nodes,
-            r.mean_links,
-            r.best_links,
-            r.possible_links
-        );
-        self.progress.generations_len = append(&self.dir.join(files::GENERATIONS), &row)?;
-        let mut rows = String::with_capacity(n * 24);
-        for (rank, f) in sorted.iter().enumerate() {
-            let _ = writeln!(rows, "{generation},{},{f}", rank + 1);
-        }
-        self.progress.population_len = append(&self.dir.join(files::POPULATION), &rows)?;
-        let timing = format!(
-            "{generation},{seconds:.6},{:.0}\n",
-            record.robot_steps_per_second
-        );
-        self.progress.timing_len = append(&self.dir.join(files::TIMING), &timing)?;
-        if let Some(champion) = champion(population, self.progress, self.config) {
-            let text = serde_json::to_string_pretty(&champion).map_err(|e| Error::Serialize {
-                what: "champion",
-                reason: e.to_string(),
-            })? + "\n";
-            write_atomic(&self.dir.join(files::CHAMPION), text.as_bytes())?;
-        }
-        self.progress.done = generation;
-        (self.on_generation)(&record);
         Ok(())
     }
 }

@@ -140,6 +140,76 @@ pub fn read_champion(path: &Path) -> Result<Champion> {
     Ok(champion)
 }
 
+/// One generation's record (a row of `generations.csv`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct GenerationRecord {
+    /// Generation, 1-based.
+    pub generation: u32,
+    /// Generations the run will have in all.
+    pub total: u32,
+    /// Best fitness.
+    pub best: f64,
+    /// Mean fitness.
+    pub mean: f64,
+    /// Median fitness.
+    pub median: f64,
+    /// Worst fitness.
+    pub worst: f64,
+    /// Species.
+    pub species: usize,
+    /// Mean CPPN nodes.
+    pub mean_nodes: f64,
+    /// Mean enabled CPPN links.
+    pub mean_links: f64,
+    /// Links the generation's best CPPN expresses in the substrate.
+    pub best_links: usize,
+    /// Links the substrate could have.
+    pub possible_links: usize,
+    /// Wall time of the generation.
+    pub seconds: f64,
+    /// Simulated robot-steps per second of wall time.
+    pub robot_steps_per_second: f64,
+    /// Best fitness of the run so far.
+    pub best_ever: f64,
+}
+
+impl GenerationRecord {
+    /// The record's row of `generations.csv`.
+    pub fn generations_row(&self) -> String {
+        let r = self;
+        format!(
+            "{},{},{},{},{},{},{},{},{},{}\n",
+            r.generation,
+            r.best,
+            r.mean,
+            r.median,
+            r.worst,
+            r.species,
+            r.mean_nodes,
+            r.mean_links,
+            r.best_links,
+            r.possible_links
+        )
+    }
+
+    /// The record's row of `timing.csv`.
+    pub fn timing_row(&self) -> String {
+        format!(
+            "{},{:.6},{:.0}\n",
+            self.generation, self.seconds, self.robot_steps_per_second
+        )
+    }
+}
+
+/// The rows of `population.csv` for a generation's fitnesses `sorted` best first.
+pub fn population_rows(generation: u32, sorted: &[f64]) -> String {
+    let mut rows = String::with_capacity(sorted.len() * 24);
+    for (rank, f) in sorted.iter().enumerate() {
+        let _ = writeln!(rows, "{generation},{},{f}", rank + 1);
+    }
+    rows
+}
+
 /// One line of `best-genomes.jsonl`: a generation's best genome and its species.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
