@@ -15,7 +15,7 @@ fuzz_target!(|data: &[u8]| {
             "vivae-checkpoint v1 {:016x}\n{body}",
             fnv1a(body.as_bytes())
         );
-        let _ = vivae::evolve::population_from_checkpoint_text(
+        let _ = vivae_lab::rundir::population_from_checkpoint_text(
             &text,
             std::path::Path::new("fuzz.ckpt"),
         );

@@ -7,6 +7,6 @@ fuzz_target!(|data: &[u8]| {
         if let Ok(g) = serde_json::from_str::<vivae_neat::Genome>(text) {
             let _ = vivae_neat::FeedForwardNetwork::from_genome(&g);
         }
-        let _ = serde_json::from_str::<vivae::evolve::Champion>(text);
+        let _ = serde_json::from_str::<vivae_lab::rundir::Champion>(text);
     }
 });
