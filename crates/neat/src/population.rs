@@ -351,10 +351,28 @@ impl Population {
             .fitness
             .take()
             .unwrap_or_else(|| vec![0.0; self.genomes.len()]);
-        let generation = self.generation;
         let champion = argmax(&fitness).unwrap_or(0);
+        self.update_species_records(&fitness, champion);
+        let champ_species = self
+            .species
+            .iter()
+            .position(|s| s.members.contains(&champion));
+        let alloc = self.allocate(&fitness, champ_species);
+        let next = self.reproduce(&fitness, &alloc, champ_species);
 
-        // Species records and stagnation.
+        // Speciate the new generation against representatives of the old one.
+        let old = std::mem::take(&mut self.genomes);
+        self.speciate(&next, &old);
+        self.genomes = next;
+        self.generation += 1;
+        self.adjust_threshold();
+    }
+
+    /// Species records and stagnation: updates each species' best fitness,
+    /// then drops the species stagnant for `stagnation_limit` generations
+    /// (never the champion's).
+    fn update_species_records(&mut self, fitness: &[f64], champion: usize) {
+        let generation = self.generation;
         for s in &mut self.species {
             let best = s
                 .members
@@ -369,7 +387,11 @@ impl Population {
         let limit = self.params.stagnation_limit;
         self.species
             .retain(|s| s.members.contains(&champion) || s.stagnation(generation) < limit);
+    }
 
+    /// Offspring per species: explicit fitness sharing, then at least one
+    /// child for the champion's species (taken from the largest allocation).
+    fn allocate(&self, fitness: &[f64], champ_species: Option<usize>) -> Vec<usize> {
         // Explicit fitness sharing: a species' share is the sum of its members' f/|S|,
         // i.e. its mean fitness. Negative fitness is shifted so that the lowest is 0.
         let min = fitness.iter().copied().fold(0.0, f64::min);
@@ -380,12 +402,7 @@ impl Population {
                 s.members.iter().map(|&m| fitness[m] - min).sum::<f64>() / s.members.len() as f64
             })
             .collect();
-        let size = self.params.population_size;
-        let mut alloc = allocate_offspring(&shares, size);
-        let champ_species = self
-            .species
-            .iter()
-            .position(|s| s.members.contains(&champion));
+        let mut alloc = allocate_offspring(&shares, self.params.population_size);
         if let Some(c) = champ_species
             && alloc[c] == 0
             && let Some(donor) = (0..alloc.len()).max_by_key(|&i| (alloc[i], usize::MAX - i))
@@ -393,9 +410,19 @@ impl Population {
             alloc[donor] -= 1;
             alloc[c] += 1;
         }
+        alloc
+    }
 
-        // Reproduction, species by species.
-        let mut next: Vec<Genome> = Vec::with_capacity(size);
+    /// Reproduction, species by species: each species' elites, then
+    /// `alloc[si]` children in all bred from its best members.
+    fn reproduce(
+        &mut self,
+        fitness: &[f64],
+        alloc: &[usize],
+        champ_species: Option<usize>,
+    ) -> Vec<Genome> {
+        let mut next: Vec<Genome> = Vec::with_capacity(self.params.population_size);
+        // Each species' members, best first.
         let pools: Vec<Vec<usize>> = self
             .species
             .iter()
@@ -411,15 +438,7 @@ impl Population {
                 continue;
             }
             let len = sorted.len();
-            let mut elites = if len >= self.params.elitism_min_species_size {
-                (self.params.elitism_fraction * len as f64).ceil() as usize
-            } else {
-                0
-            };
-            if Some(si) == champ_species {
-                elites = elites.max(1);
-            }
-            let elites = elites.min(n_off);
+            let elites = self.elites(len, Some(si) == champ_species).min(n_off);
             for &m in &sorted[..elites] {
                 next.push(self.genomes[m].clone());
             }
@@ -427,16 +446,26 @@ impl Population {
                 ((self.params.survival_threshold * len as f64).ceil() as usize).clamp(1, len);
             let pool = &sorted[..keep];
             for _ in elites..n_off {
-                let child = self.offspring(pool, si, &pools, &fitness);
+                let child = self.offspring(pool, si, &pools, fitness);
                 next.push(child);
             }
         }
+        next
+    }
 
-        // Speciate the new generation against representatives of the old one.
-        let old = std::mem::take(&mut self.genomes);
-        self.speciate(&next, &old);
-        self.genomes = next;
-        self.generation += 1;
+    /// How many of a species of `len` members are copied unchanged (before
+    /// capping at its offspring count): at least one for the champion's.
+    fn elites(&self, len: usize, has_champion: bool) -> usize {
+        let elites = if len >= self.params.elitism_min_species_size {
+            (self.params.elitism_fraction * len as f64).ceil() as usize
+        } else {
+            0
+        };
+        if has_champion { elites.max(1) } else { elites }
+    }
+
+    /// Moves the compatibility threshold towards `target_species`, if set.
+    fn adjust_threshold(&mut self) {
         if let Some(target) = self.params.target_species {
             let n = self.species.len();
             if n < target {
