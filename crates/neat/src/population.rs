@@ -721,101 +721,16 @@ impl TryFrom<RawPopulation> for Population {
     type Error = NeatError;
 
     fn try_from(raw: RawPopulation) -> Result<Population, NeatError> {
-        use PopulationError as E;
         raw.params.validate()?;
         raw.spec.validate()?;
         let spec = &raw.spec;
-        if raw.genomes.is_empty() {
-            return Err(E::Empty.into());
-        }
-        let genomes = raw
-            .genomes
-            .into_iter()
-            .enumerate()
-            .map(|(i, g)| checked_genome(GenomeAt::Member(i), g, spec))
-            .collect::<Result<Vec<Genome>, NeatError>>()?;
-        let n = genomes.len();
-        if let Some(fitness) = &raw.fitness {
-            if fitness.len() != n {
-                return Err(E::FitnessCount {
-                    given: fitness.len(),
-                    genomes: n,
-                }
-                .into());
-            }
-            if let Some(i) = fitness.iter().position(|f| !f.is_finite()) {
-                return Err(E::NonFiniteFitness(format!("genome {i}")).into());
-            }
-        }
-
-        // Species: unique ids, members that partition the genomes.
-        let mut ids = BTreeSet::new();
-        let mut listed = vec![0usize; n];
-        let mut species = Vec::with_capacity(raw.species.len());
-        for s in raw.species {
-            if !ids.insert(s.id) {
-                return Err(E::DuplicateSpecies(s.id).into());
-            }
-            if s.members.is_empty() {
-                return Err(E::EmptySpecies(s.id).into());
-            }
-            for &member in &s.members {
-                let count = listed.get_mut(member).ok_or(E::MissingMember {
-                    species: s.id,
-                    member,
-                    genomes: n,
-                })?;
-                *count += 1;
-            }
-            if s.best_fitness.is_some_and(|f| !f.is_finite()) {
-                return Err(E::NonFiniteFitness(format!("species {}", s.id)).into());
-            }
-            species.push(Species {
-                id: s.id,
-                representative: checked_genome(
-                    GenomeAt::Representative(s.id),
-                    s.representative,
-                    spec,
-                )?,
-                members: s.members,
-                created: s.created,
-                best_fitness: s.best_fitness,
-                last_improved: s.last_improved,
-            });
-        }
-        if let Some(member) = listed.iter().position(|&c| c != 1) {
-            return Err(E::Membership {
-                member,
-                count: listed[member],
-            }
-            .into());
-        }
-
-        let best_ever = match raw.best_ever {
-            None => None,
-            Some(b) => {
-                if !b.fitness.is_finite() {
-                    return Err(E::NonFiniteFitness("the best-ever genome".into()).into());
-                }
-                if b.generation > raw.generation {
-                    return Err(E::FutureGeneration {
-                        what: "the best-ever record",
-                        generation: b.generation,
-                        current: raw.generation,
-                    }
-                    .into());
-                }
-                Some(BestEver {
-                    genome: checked_genome(GenomeAt::BestEver, b.genome, spec)?,
-                    fitness: b.fitness,
-                    generation: b.generation,
-                })
-            }
-        };
+        let genomes = checked_genomes(raw.genomes, spec)?;
+        check_fitness(raw.fitness.as_deref(), genomes.len())?;
+        let species = checked_species(raw.species, genomes.len(), spec)?;
+        let best_ever = checked_best_ever(raw.best_ever, raw.generation, spec)?;
         if !(raw.threshold.is_finite() && raw.threshold >= 0.0) {
-            return Err(E::Threshold(raw.threshold).into());
+            return Err(PopulationError::Threshold(raw.threshold).into());
         }
-
         let every_genome = genomes
             .iter()
             .enumerate()
@@ -827,17 +742,7 @@ impl TryFrom<RawPopulation> for Population {
             )
             .chain(best_ever.iter().map(|b| (GenomeAt::BestEver, &b.genome)));
         check_history(&raw.tracker, spec, every_genome)?;
-        if let Some(&used) = ids.last()
-            && used >= raw.next_species_id
-        {
-            return Err(E::Counter {
-                counter: "next_species_id",
-                value: raw.next_species_id,
-                what: "species id",
-                used,
-            }
-            .into());
-        }
+        check_species_counter(&species, raw.next_species_id)?;
 
         Ok(Population {
             params: raw.params,
@@ -854,6 +759,124 @@ impl TryFrom<RawPopulation> for Population {
             best_ever,
         })
     }
+}
+
+/// The members: at least one, each checked against `spec`.
+fn checked_genomes(raw: Vec<RawGenome>, spec: &GenomeSpec) -> Result<Vec<Genome>, NeatError> {
+    if raw.is_empty() {
+        return Err(PopulationError::Empty.into());
+    }
+    raw.into_iter()
+        .enumerate()
+        .map(|(i, g)| checked_genome(GenomeAt::Member(i), g, spec))
+        .collect()
+}
+
+/// Fitness values, if recorded: one per genome, all finite.
+fn check_fitness(fitness: Option<&[f64]>, genomes: usize) -> Result<(), PopulationError> {
+    if let Some(fitness) = fitness {
+        if fitness.len() != genomes {
+            return Err(PopulationError::FitnessCount {
+                given: fitness.len(),
+                genomes,
+            });
+        }
+        if let Some(i) = fitness.iter().position(|f| !f.is_finite()) {
+            return Err(PopulationError::NonFiniteFitness(format!("genome {i}")));
+        }
+    }
+    Ok(())
+}
+
+/// Species: unique ids, members that partition the `n` genomes, finite
+/// records, representatives checked against `spec`.
+fn checked_species(
+    raw: Vec<RawSpecies>,
+    n: usize,
+    spec: &GenomeSpec,
+) -> Result<Vec<Species>, NeatError> {
+    use PopulationError as E;
+    let mut ids = BTreeSet::new();
+    let mut listed = vec![0usize; n];
+    let mut species = Vec::with_capacity(raw.len());
+    for s in raw {
+        if !ids.insert(s.id) {
+            return Err(E::DuplicateSpecies(s.id).into());
+        }
+        if s.members.is_empty() {
+            return Err(E::EmptySpecies(s.id).into());
+        }
+        for &member in &s.members {
+            let count = listed.get_mut(member).ok_or(E::MissingMember {
+                species: s.id,
+                member,
+                genomes: n,
+            })?;
+            *count += 1;
+        }
+        if s.best_fitness.is_some_and(|f| !f.is_finite()) {
+            return Err(E::NonFiniteFitness(format!("species {}", s.id)).into());
+        }
+        species.push(Species {
+            id: s.id,
+            representative: checked_genome(GenomeAt::Representative(s.id), s.representative, spec)?,
+            members: s.members,
+            created: s.created,
+            best_fitness: s.best_fitness,
+            last_improved: s.last_improved,
+        });
+    }
+    if let Some(member) = listed.iter().position(|&c| c != 1) {
+        return Err(E::Membership {
+            member,
+            count: listed[member],
+        }
+        .into());
+    }
+    Ok(species)
+}
+
+/// The best-ever record, if any: finite fitness, not from a generation
+/// after `current`, its genome checked against `spec`.
+fn checked_best_ever(
+    raw: Option<RawBestEver>,
+    current: u32,
+    spec: &GenomeSpec,
+) -> Result<Option<BestEver>, NeatError> {
+    let Some(b) = raw else {
+        return Ok(None);
+    };
+    if !b.fitness.is_finite() {
+        return Err(PopulationError::NonFiniteFitness("the best-ever genome".into()).into());
+    }
+    if b.generation > current {
+        return Err(PopulationError::FutureGeneration {
+            what: "the best-ever record",
+            generation: b.generation,
+            current,
+        }
+        .into());
+    }
+    Ok(Some(BestEver {
+        genome: checked_genome(GenomeAt::BestEver, b.genome, spec)?,
+        fitness: b.fitness,
+        generation: b.generation,
+    }))
+}
+
+/// The species counter is above every species id in use.
+fn check_species_counter(species: &[Species], next_species_id: u32) -> Result<(), PopulationError> {
+    if let Some(used) = species.iter().map(|s| s.id).max()
+        && used >= next_species_id
+    {
+        return Err(PopulationError::Counter {
+            counter: "next_species_id",
+            value: next_species_id,
+            what: "species id",
+            used,
+        });
+    }
+    Ok(())
 }
 
 /// Index of the first maximum.
