@@ -9,7 +9,7 @@ use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
 use crate::activation::Activation;
-use crate::genome::{Genome, NodeKind};
+use crate::genome::{Genome, NodeGene, NodeKind};
 
 /// A genome's enabled links as flat arrays in evaluation order.
 ///
@@ -72,136 +72,17 @@ impl Plan {
     /// plus a heap for the ready nodes.
     fn build(&mut self, genome: &Genome, s: &mut Scratch) {
         let nodes = genome.nodes();
-        let nn = nodes.len();
-        // Node id → position: a direct table while ids are not much larger
-        // than the genome (entries of other genomes left in it are caught by
-        // checking the id found), else a binary search.
-        let max_id = nodes.last().map_or(0, |n| n.id as usize);
-        let direct = max_id < 8 * nn + 1024;
-        if direct {
-            if s.position_of.len() <= max_id {
-                s.position_of.resize(max_id + 1, u32::MAX);
-            }
-            for (k, n) in nodes.iter().enumerate() {
-                s.position_of[n.id as usize] = k as u32;
-            }
-        }
-        let position_of = &s.position_of;
-        let position = |id: u32| -> Option<u32> {
-            if direct {
-                let p = *position_of.get(id as usize)?;
-                (nodes.get(p as usize)?.id == id).then_some(p)
-            } else {
-                nodes
-                    .binary_search_by_key(&id, |n| n.id)
-                    .ok()
-                    .map(|p| p as u32)
-            }
-        };
-        // Enabled links as (source, target, weight), in innovation order.
-        // A checked genome has every link's nodes; anything else is skipped.
-        s.enabled.clear();
-        for l in genome.links().iter().filter(|l| l.enabled) {
-            if let (Some(from), Some(to)) = (position(l.from), position(l.to)) {
-                s.enabled.push((from, to, l.weight));
-            }
-        }
-        let enabled = &s.enabled;
-        // Links by target and by source (counting sorts: stable, so each
-        // node's incoming links stay in innovation order).
-        s.incoming.group(nn, enabled.iter().map(|&(_, t, _)| t));
-        s.outgoing.group(nn, enabled.iter().map(|&(f, _, _)| f));
-        let is_input = |k: usize| nodes[k].kind == NodeKind::Input;
+        s.collect_links(genome);
+        s.mark_needed(nodes);
+        let cyclic = s.order_members(nodes);
+        let num_inputs = s.assign_slots(nodes);
+        self.write(nodes, s, num_inputs, cyclic);
+    }
 
-        // Nodes that can reach an output (reverse search over enabled links).
-        let needed = &mut s.needed;
-        needed.clear();
-        needed.resize(nn, false);
-        s.stack.clear();
-        for (k, n) in nodes.iter().enumerate() {
-            if n.kind == NodeKind::Output {
-                needed[k] = true;
-                s.stack.push(k as u32);
-            }
-        }
-        while let Some(n) = s.stack.pop() {
-            for &e in s.incoming.of(n as usize) {
-                let from = enabled[e as usize].0;
-                if !needed[from as usize] {
-                    needed[from as usize] = true;
-                    s.stack.push(from);
-                }
-            }
-        }
-
-        // Kahn's algorithm over needed non-input nodes (members), smallest id first.
-        let member = &mut s.member;
-        member.clear();
-        member.extend((0..nn).map(|k| needed[k] && !is_input(k)));
-        let indegree = &mut s.indegree;
-        indegree.clear();
-        indegree.resize(nn, 0);
-        for &(f, t, _) in enabled {
-            if member[f as usize] && member[t as usize] {
-                indegree[t as usize] += 1;
-            }
-        }
-        let ready = &mut s.ready;
-        ready.clear();
-        ready.extend(
-            (0..nn)
-                .filter(|&k| member[k] && indegree[k] == 0)
-                .map(|k| Reverse(k as u32)),
-        );
-        let done = &mut s.done;
-        done.clear();
-        done.resize(nn, false);
-        let order = &mut s.order;
-        order.clear();
-        let mut cyclic = false;
-        // The smallest member not yet done only ever moves up.
-        let mut smallest_left = 0usize;
-        loop {
-            let next = match ready.pop() {
-                Some(Reverse(n)) => n as usize,
-                // A cycle: take the smallest remaining node; its back-links are dropped.
-                None => {
-                    while smallest_left < nn && (done[smallest_left] || !member[smallest_left]) {
-                        smallest_left += 1;
-                    }
-                    if smallest_left == nn {
-                        break;
-                    }
-                    cyclic = true;
-                    smallest_left
-                }
-            };
-            done[next] = true;
-            order.push(next as u32);
-            for &e in s.outgoing.of(next) {
-                let to = enabled[e as usize].1 as usize;
-                if done[to] || !member[to] {
-                    continue;
-                }
-                indegree[to] -= 1;
-                if indegree[to] == 0 {
-                    ready.push(Reverse(to as u32));
-                }
-            }
-        }
-
-        // Slots: inputs by id, then computed nodes in evaluation order.
-        let slot = &mut s.slot;
-        slot.clear();
-        slot.resize(nn, u32::MAX);
-        let mut num_inputs = 0usize;
-        for k in (0..nn).filter(|&k| is_input(k)) {
-            slot[k] = num_inputs as u32;
-            num_inputs += 1;
-        }
-        for (k, &n) in order.iter().enumerate() {
-            slot[n as usize] = (num_inputs + k) as u32;
-        }
+    /// Writes the plan from the compiled scratch: the computed nodes in
+    /// evaluation order with their incoming links, then the output slots.
+    fn write(&mut self, nodes: &[NodeGene], s: &Scratch, num_inputs: usize, cyclic: bool) {
+        let (enabled, order, slot) = (&s.enabled, &s.order, &s.slot);
         self.num_inputs = num_inputs;
         self.cyclic = cyclic;
         self.acts.clear();
@@ -226,7 +107,7 @@ impl Plan {
         }
         self.output_slots.clear();
         self.output_slots.extend(
-            (0..nn)
+            (0..nodes.len())
                 .filter(|&k| nodes[k].kind == NodeKind::Output)
                 .map(|k| slot[k]),
         );
@@ -262,7 +143,7 @@ impl Plan {
 /// The compiler's working arrays (see [`Plan::recompile`]).
 #[derive(Debug, Default)]
 struct Scratch {
-    /// Node id → position in the genome being compiled (see `build`).
+    /// Node id → position in the genome being compiled (see `collect_links`).
     position_of: Vec<u32>,
     enabled: Vec<(u32, u32, f64)>,
     incoming: Adjacency,
@@ -275,6 +156,157 @@ struct Scratch {
     done: Vec<bool>,
     order: Vec<u32>,
     slot: Vec<u32>,
+}
+
+impl Scratch {
+    /// Enabled links as (source, target, weight) node positions, in
+    /// innovation order, and grouped by target (`incoming`) and by source
+    /// (`outgoing`).
+    fn collect_links(&mut self, genome: &Genome) {
+        let nodes = genome.nodes();
+        let nn = nodes.len();
+        // Node id → position: a direct table while ids are not much larger
+        // than the genome (entries of other genomes left in it are caught by
+        // checking the id found), else a binary search.
+        let max_id = nodes.last().map_or(0, |n| n.id as usize);
+        let direct = max_id < 8 * nn + 1024;
+        if direct {
+            if self.position_of.len() <= max_id {
+                self.position_of.resize(max_id + 1, u32::MAX);
+            }
+            for (k, n) in nodes.iter().enumerate() {
+                self.position_of[n.id as usize] = k as u32;
+            }
+        }
+        let position_of = &self.position_of;
+        let position = |id: u32| -> Option<u32> {
+            if direct {
+                let p = *position_of.get(id as usize)?;
+                (nodes.get(p as usize)?.id == id).then_some(p)
+            } else {
+                nodes
+                    .binary_search_by_key(&id, |n| n.id)
+                    .ok()
+                    .map(|p| p as u32)
+            }
+        };
+        // A checked genome has every link's nodes; anything else is skipped.
+        self.enabled.clear();
+        for l in genome.links().iter().filter(|l| l.enabled) {
+            if let (Some(from), Some(to)) = (position(l.from), position(l.to)) {
+                self.enabled.push((from, to, l.weight));
+            }
+        }
+        let enabled = &self.enabled;
+        // Counting sorts: stable, so each node's incoming links stay in
+        // innovation order.
+        self.incoming.group(nn, enabled.iter().map(|&(_, t, _)| t));
+        self.outgoing.group(nn, enabled.iter().map(|&(f, _, _)| f));
+    }
+
+    /// Marks the nodes that can reach an output (reverse search over
+    /// enabled links).
+    fn mark_needed(&mut self, nodes: &[NodeGene]) {
+        let needed = &mut self.needed;
+        needed.clear();
+        needed.resize(nodes.len(), false);
+        self.stack.clear();
+        for (k, n) in nodes.iter().enumerate() {
+            if n.kind == NodeKind::Output {
+                needed[k] = true;
+                self.stack.push(k as u32);
+            }
+        }
+        while let Some(n) = self.stack.pop() {
+            for &e in self.incoming.of(n as usize) {
+                let from = self.enabled[e as usize].0;
+                if !needed[from as usize] {
+                    needed[from as usize] = true;
+                    self.stack.push(from);
+                }
+            }
+        }
+    }
+
+    /// Kahn's algorithm over needed non-input nodes (members), smallest id
+    /// first, into `order`. Returns whether a cycle had to be broken.
+    fn order_members(&mut self, nodes: &[NodeGene]) -> bool {
+        let nn = nodes.len();
+        let enabled = &self.enabled;
+        let needed = &self.needed;
+        let member = &mut self.member;
+        member.clear();
+        member.extend((0..nn).map(|k| needed[k] && nodes[k].kind != NodeKind::Input));
+        let indegree = &mut self.indegree;
+        indegree.clear();
+        indegree.resize(nn, 0);
+        for &(f, t, _) in enabled {
+            if member[f as usize] && member[t as usize] {
+                indegree[t as usize] += 1;
+            }
+        }
+        let ready = &mut self.ready;
+        ready.clear();
+        ready.extend(
+            (0..nn)
+                .filter(|&k| member[k] && indegree[k] == 0)
+                .map(|k| Reverse(k as u32)),
+        );
+        let done = &mut self.done;
+        done.clear();
+        done.resize(nn, false);
+        let order = &mut self.order;
+        order.clear();
+        let mut cyclic = false;
+        // The smallest member not yet done only ever moves up.
+        let mut smallest_left = 0usize;
+        loop {
+            let next = match ready.pop() {
+                Some(Reverse(n)) => n as usize,
+                // A cycle: take the smallest remaining node; its back-links are dropped.
+                None => {
+                    while smallest_left < nn && (done[smallest_left] || !member[smallest_left]) {
+                        smallest_left += 1;
+                    }
+                    if smallest_left == nn {
+                        break;
+                    }
+                    cyclic = true;
+                    smallest_left
+                }
+            };
+            done[next] = true;
+            order.push(next as u32);
+            for &e in self.outgoing.of(next) {
+                let to = enabled[e as usize].1 as usize;
+                if done[to] || !member[to] {
+                    continue;
+                }
+                indegree[to] -= 1;
+                if indegree[to] == 0 {
+                    ready.push(Reverse(to as u32));
+                }
+            }
+        }
+        cyclic
+    }
+
+    /// Slots: inputs by id, then computed nodes in evaluation order.
+    /// Returns the number of inputs.
+    fn assign_slots(&mut self, nodes: &[NodeGene]) -> usize {
+        let slot = &mut self.slot;
+        slot.clear();
+        slot.resize(nodes.len(), u32::MAX);
+        let mut num_inputs = 0usize;
+        for k in (0..nodes.len()).filter(|&k| nodes[k].kind == NodeKind::Input) {
+            slot[k] = num_inputs as u32;
+            num_inputs += 1;
+        }
+        for (k, &n) in self.order.iter().enumerate() {
+            slot[n as usize] = (num_inputs + k) as u32;
+        }
+        num_inputs
+    }
 }
 
 thread_local! {

@@ -351,10 +351,28 @@ impl Population {
             .fitness
             .take()
             .unwrap_or_else(|| vec![0.0; self.genomes.len()]);
-        let generation = self.generation;
         let champion = argmax(&fitness).unwrap_or(0);
+        self.update_species_records(&fitness, champion);
+        let champ_species = self
+            .species
+            .iter()
+            .position(|s| s.members.contains(&champion));
+        let alloc = self.allocate(&fitness, champ_species);
+        let next = self.reproduce(&fitness, &alloc, champ_species);
 
-        // Species records and stagnation.
+        // Speciate the new generation against representatives of the old one.
+        let old = std::mem::take(&mut self.genomes);
+        self.speciate(&next, &old);
+        self.genomes = next;
+        self.generation += 1;
+        self.adjust_threshold();
+    }
+
+    /// Species records and stagnation: updates each species' best fitness,
+    /// then drops the species stagnant for `stagnation_limit` generations
+    /// (never the champion's).
+    fn update_species_records(&mut self, fitness: &[f64], champion: usize) {
+        let generation = self.generation;
         for s in &mut self.species {
             let best = s
                 .members
@@ -369,7 +387,11 @@ impl Population {
         let limit = self.params.stagnation_limit;
         self.species
             .retain(|s| s.members.contains(&champion) || s.stagnation(generation) < limit);
+    }
 
+    /// Offspring per species: explicit fitness sharing, then at least one
+    /// child for the champion's species (taken from the largest allocation).
+    fn allocate(&self, fitness: &[f64], champ_species: Option<usize>) -> Vec<usize> {
         // Explicit fitness sharing: a species' share is the sum of its members' f/|S|,
         // i.e. its mean fitness. Negative fitness is shifted so that the lowest is 0.
         let min = fitness.iter().copied().fold(0.0, f64::min);
@@ -380,12 +402,7 @@ impl Population {
                 s.members.iter().map(|&m| fitness[m] - min).sum::<f64>() / s.members.len() as f64
             })
             .collect();
-        let size = self.params.population_size;
-        let mut alloc = allocate_offspring(&shares, size);
-        let champ_species = self
-            .species
-            .iter()
-            .position(|s| s.members.contains(&champion));
+        let mut alloc = allocate_offspring(&shares, self.params.population_size);
         if let Some(c) = champ_species
             && alloc[c] == 0
             && let Some(donor) = (0..alloc.len()).max_by_key(|&i| (alloc[i], usize::MAX - i))
@@ -393,9 +410,19 @@ impl Population {
             alloc[donor] -= 1;
             alloc[c] += 1;
         }
+        alloc
+    }
 
-        // Reproduction, species by species.
-        let mut next: Vec<Genome> = Vec::with_capacity(size);
+    /// Reproduction, species by species: each species' elites, then
+    /// `alloc[si]` children in all bred from its best members.
+    fn reproduce(
+        &mut self,
+        fitness: &[f64],
+        alloc: &[usize],
+        champ_species: Option<usize>,
+    ) -> Vec<Genome> {
+        let mut next: Vec<Genome> = Vec::with_capacity(self.params.population_size);
+        // Each species' members, best first.
         let pools: Vec<Vec<usize>> = self
             .species
             .iter()
@@ -411,15 +438,7 @@ impl Population {
                 continue;
             }
             let len = sorted.len();
-            let mut elites = if len >= self.params.elitism_min_species_size {
-                (self.params.elitism_fraction * len as f64).ceil() as usize
-            } else {
-                0
-            };
-            if Some(si) == champ_species {
-                elites = elites.max(1);
-            }
-            let elites = elites.min(n_off);
+            let elites = self.elites(len, Some(si) == champ_species).min(n_off);
             for &m in &sorted[..elites] {
                 next.push(self.genomes[m].clone());
             }
@@ -427,16 +446,26 @@ impl Population {
                 ((self.params.survival_threshold * len as f64).ceil() as usize).clamp(1, len);
             let pool = &sorted[..keep];
             for _ in elites..n_off {
-                let child = self.offspring(pool, si, &pools, &fitness);
+                let child = self.offspring(pool, si, &pools, fitness);
                 next.push(child);
             }
         }
+        next
+    }
 
-        // Speciate the new generation against representatives of the old one.
-        let old = std::mem::take(&mut self.genomes);
-        self.speciate(&next, &old);
-        self.genomes = next;
-        self.generation += 1;
+    /// How many of a species of `len` members are copied unchanged (before
+    /// capping at its offspring count): at least one for the champion's.
+    fn elites(&self, len: usize, has_champion: bool) -> usize {
+        let elites = if len >= self.params.elitism_min_species_size {
+            (self.params.elitism_fraction * len as f64).ceil() as usize
+        } else {
+            0
+        };
+        if has_champion { elites.max(1) } else { elites }
+    }
+
+    /// Moves the compatibility threshold towards `target_species`, if set.
+    fn adjust_threshold(&mut self) {
         if let Some(target) = self.params.target_species {
             let n = self.species.len();
             if n < target {
@@ -692,101 +721,16 @@ impl TryFrom<RawPopulation> for Population {
     type Error = NeatError;
 
     fn try_from(raw: RawPopulation) -> Result<Population, NeatError> {
-        use PopulationError as E;
         raw.params.validate()?;
         raw.spec.validate()?;
         let spec = &raw.spec;
-        if raw.genomes.is_empty() {
-            return Err(E::Empty.into());
-        }
-        let genomes = raw
-            .genomes
-            .into_iter()
-            .enumerate()
-            .map(|(i, g)| checked_genome(GenomeAt::Member(i), g, spec))
-            .collect::<Result<Vec<Genome>, NeatError>>()?;
-        let n = genomes.len();
-        if let Some(fitness) = &raw.fitness {
-            if fitness.len() != n {
-                return Err(E::FitnessCount {
-                    given: fitness.len(),
-                    genomes: n,
-                }
-                .into());
-            }
-            if let Some(i) = fitness.iter().position(|f| !f.is_finite()) {
-                return Err(E::NonFiniteFitness(format!("genome {i}")).into());
-            }
-        }
-
-        // Species: unique ids, members that partition the genomes.
-        let mut ids = BTreeSet::new();
-        let mut listed = vec![0usize; n];
-        let mut species = Vec::with_capacity(raw.species.len());
-        for s in raw.species {
-            if !ids.insert(s.id) {
-                return Err(E::DuplicateSpecies(s.id).into());
-            }
-            if s.members.is_empty() {
-                return Err(E::EmptySpecies(s.id).into());
-            }
-            for &member in &s.members {
-                let count = listed.get_mut(member).ok_or(E::MissingMember {
-                    species: s.id,
-                    member,
-                    genomes: n,
-                })?;
-                *count += 1;
-            }
-            if s.best_fitness.is_some_and(|f| !f.is_finite()) {
-                return Err(E::NonFiniteFitness(format!("species {}", s.id)).into());
-            }
-            species.push(Species {
-                id: s.id,
-                representative: checked_genome(
-                    GenomeAt::Representative(s.id),
-                    s.representative,
-                    spec,
-                )?,
-                members: s.members,
-                created: s.created,
-                best_fitness: s.best_fitness,
-                last_improved: s.last_improved,
-            });
-        }
-        if let Some(member) = listed.iter().position(|&c| c != 1) {
-            return Err(E::Membership {
-                member,
-                count: listed[member],
-            }
-            .into());
-        }
-
-        let best_ever = match raw.best_ever {
-            None => None,
-            Some(b) => {
-                if !b.fitness.is_finite() {
-                    return Err(E::NonFiniteFitness("the best-ever genome".into()).into());
-                }
-                if b.generation > raw.generation {
-                    return Err(E::FutureGeneration {
-                        what: "the best-ever record",
-                        generation: b.generation,
-                        current: raw.generation,
-                    }
-                    .into());
-                }
-                Some(BestEver {
-                    genome: checked_genome(GenomeAt::BestEver, b.genome, spec)?,
-                    fitness: b.fitness,
-                    generation: b.generation,
-                })
-            }
-        };
+        let genomes = checked_genomes(raw.genomes, spec)?;
+        check_fitness(raw.fitness.as_deref(), genomes.len())?;
+        let species = checked_species(raw.species, genomes.len(), spec)?;
+        let best_ever = checked_best_ever(raw.best_ever, raw.generation, spec)?;
         if !(raw.threshold.is_finite() && raw.threshold >= 0.0) {
-            return Err(E::Threshold(raw.threshold).into());
+            return Err(PopulationError::Threshold(raw.threshold).into());
         }
-
         let every_genome = genomes
             .iter()
             .enumerate()
@@ -798,17 +742,7 @@ impl TryFrom<RawPopulation> for Population {
             )
             .chain(best_ever.iter().map(|b| (GenomeAt::BestEver, &b.genome)));
         check_history(&raw.tracker, spec, every_genome)?;
-        if let Some(&used) = ids.last()
-            && used >= raw.next_species_id
-        {
-            return Err(E::Counter {
-                counter: "next_species_id",
-                value: raw.next_species_id,
-                what: "species id",
-                used,
-            }
-            .into());
-        }
+        check_species_counter(&species, raw.next_species_id)?;
 
         Ok(Population {
             params: raw.params,
@@ -825,6 +759,124 @@ impl TryFrom<RawPopulation> for Population {
             best_ever,
         })
     }
+}
+
+/// The members: at least one, each checked against `spec`.
+fn checked_genomes(raw: Vec<RawGenome>, spec: &GenomeSpec) -> Result<Vec<Genome>, NeatError> {
+    if raw.is_empty() {
+        return Err(PopulationError::Empty.into());
+    }
+    raw.into_iter()
+        .enumerate()
+        .map(|(i, g)| checked_genome(GenomeAt::Member(i), g, spec))
+        .collect()
+}
+
+/// Fitness values, if recorded: one per genome, all finite.
+fn check_fitness(fitness: Option<&[f64]>, genomes: usize) -> Result<(), PopulationError> {
+    if let Some(fitness) = fitness {
+        if fitness.len() != genomes {
+            return Err(PopulationError::FitnessCount {
+                given: fitness.len(),
+                genomes,
+            });
+        }
+        if let Some(i) = fitness.iter().position(|f| !f.is_finite()) {
+            return Err(PopulationError::NonFiniteFitness(format!("genome {i}")));
+        }
+    }
+    Ok(())
+}
+
+/// Species: unique ids, members that partition the `n` genomes, finite
+/// records, representatives checked against `spec`.
+fn checked_species(
+    raw: Vec<RawSpecies>,
+    n: usize,
+    spec: &GenomeSpec,
+) -> Result<Vec<Species>, NeatError> {
+    use PopulationError as E;
+    let mut ids = BTreeSet::new();
+    let mut listed = vec![0usize; n];
+    let mut species = Vec::with_capacity(raw.len());
+    for s in raw {
+        if !ids.insert(s.id) {
+            return Err(E::DuplicateSpecies(s.id).into());
+        }
+        if s.members.is_empty() {
+            return Err(E::EmptySpecies(s.id).into());
+        }
+        for &member in &s.members {
+            let count = listed.get_mut(member).ok_or(E::MissingMember {
+                species: s.id,
+                member,
+                genomes: n,
+            })?;
+            *count += 1;
+        }
+        if s.best_fitness.is_some_and(|f| !f.is_finite()) {
+            return Err(E::NonFiniteFitness(format!("species {}", s.id)).into());
+        }
+        species.push(Species {
+            id: s.id,
+            representative: checked_genome(GenomeAt::Representative(s.id), s.representative, spec)?,
+            members: s.members,
+            created: s.created,
+            best_fitness: s.best_fitness,
+            last_improved: s.last_improved,
+        });
+    }
+    if let Some(member) = listed.iter().position(|&c| c != 1) {
+        return Err(E::Membership {
+            member,
+            count: listed[member],
+        }
+        .into());
+    }
+    Ok(species)
+}
+
+/// The best-ever record, if any: finite fitness, not from a generation
+/// after `current`, its genome checked against `spec`.
+fn checked_best_ever(
+    raw: Option<RawBestEver>,
+    current: u32,
+    spec: &GenomeSpec,
+) -> Result<Option<BestEver>, NeatError> {
+    let Some(b) = raw else {
+        return Ok(None);
+    };
+    if !b.fitness.is_finite() {
+        return Err(PopulationError::NonFiniteFitness("the best-ever genome".into()).into());
+    }
+    if b.generation > current {
+        return Err(PopulationError::FutureGeneration {
+            what: "the best-ever record",
+            generation: b.generation,
+            current,
+        }
+        .into());
+    }
+    Ok(Some(BestEver {
+        genome: checked_genome(GenomeAt::BestEver, b.genome, spec)?,
+        fitness: b.fitness,
+        generation: b.generation,
+    }))
+}
+
+/// The species counter is above every species id in use.
+fn check_species_counter(species: &[Species], next_species_id: u32) -> Result<(), PopulationError> {
+    if let Some(used) = species.iter().map(|s| s.id).max()
+        && used >= next_species_id
+    {
+        return Err(PopulationError::Counter {
+            counter: "next_species_id",
+            value: next_species_id,
+            what: "species id",
+            used,
+        });
+    }
+    Ok(())
 }
 
 /// Index of the first maximum.

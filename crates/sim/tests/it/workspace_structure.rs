@@ -21,7 +21,7 @@ const NOT_YET_CHECKED: &[&str] = &[];
 
 /// Crates whose over-long functions are not split yet: printed, not failed on.
 /// Remove a crate once it is clean (the test says when).
-const LONG_FUNCTIONS_NOT_YET_CHECKED: &[&str] = &["neat"];
+const LONG_FUNCTIONS_NOT_YET_CHECKED: &[&str] = &[];
 
 /// The longest a function may be, from its `fn` line to its closing brace.
 const MAX_FN_LINES: usize = 80;
