@@ -665,10 +665,10 @@ fn join_mpi_job(
             |(_, maps, _)| vivae_lab::maps::fingerprint_text(maps),
         );
         let setup = prepared
-            .map(|(config, _, experiment)| Setup {
+            .map(|(config, _, training)| Setup {
                 config,
                 scenario_text: &fingerprint,
-                experiment,
+                task: training,
                 threads,
             })
             .map_err(|e| one_line(&format!("{e:#}")));

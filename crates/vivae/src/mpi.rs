@@ -29,7 +29,6 @@ use vivae_neat::driver::{Evaluation, Evaluator, EvaluatorError, Task};
 use vivae_neat::{EvalContext, Genome};
 
 use vivae_lab::config::{Config, RunConfig};
-use vivae_lab::training::Training;
 
 /// Message tags. Rank 0 → worker: GO, WORK, STOP; worker → rank 0: HELLO, RESULT, FAILED.
 const TAG_HELLO: i32 = 1;
@@ -196,8 +195,8 @@ pub struct Setup<'a> {
     pub config: &'a Config,
     /// The scenario's text.
     pub scenario_text: &'a str,
-    /// The experiment built from both.
-    pub experiment: &'a Training,
+    /// The task built from both (a run's `Training`, or any other task).
+    pub task: &'a dyn Task,
     /// Evaluation threads for this rank (0 = one per core).
     pub threads: usize,
 }
@@ -242,7 +241,7 @@ pub fn start(setup: Result<Setup<'_>, String>, quiet: bool) -> Result<Started, M
         let (_, tag) = wait_from_root(&world);
         return match (tag, setup) {
             (TAG_GO, Ok(setup)) => {
-                serve(&world, setup.experiment, setup.threads)?;
+                serve(&world, setup.task, setup.threads)?;
                 Ok(Started::WorkerDone)
             }
             (TAG_STOP, _) => Ok(Started::WorkerDone),
@@ -399,7 +398,7 @@ fn wait_from_root(world: &SimpleCommunicator) -> (Vec<u8>, i32) {
 
 /// Evaluates `genome` in `ctx`, turning a panic into a message.
 fn evaluate_caught(
-    task: &Training,
+    task: &dyn Task,
     genome: &Genome,
     ctx: &EvalContext,
 ) -> Result<Evaluation, String> {
@@ -412,7 +411,7 @@ fn evaluate_caught(
 }
 
 /// A worker's life: evaluate what rank 0 sends until it says stop.
-fn serve(world: &SimpleCommunicator, task: &Training, threads: usize) -> Result<(), MpiError> {
+fn serve(world: &SimpleCommunicator, task: &dyn Task, threads: usize) -> Result<(), MpiError> {
     let rank = world.rank();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
@@ -466,19 +465,19 @@ fn serve(world: &SimpleCommunicator, task: &Training, threads: usize) -> Result<
     })
 }
 
-/// Evaluates generations across the ranks of an MPI job (rank 0's side).
-pub struct MpiEvaluator {
-    task: Training,
+/// Evaluates generations of any task across the ranks of an MPI job (rank 0's side).
+pub struct MpiEvaluator<T> {
+    task: T,
     pool: Arc<rayon::ThreadPool>,
     workers: Vec<WorkerRank>,
     /// When the last `evaluate` returned.
     returned: Option<Instant>,
 }
 
-impl MpiEvaluator {
+impl<T: Task> MpiEvaluator<T> {
     /// The evaluator for rank 0 of a job whose workers passed the handshake;
     /// `None` without MPI, in a job of one rank, or on a worker.
-    pub fn for_leader(task: Training, pool: Arc<rayon::ThreadPool>) -> Option<MpiEvaluator> {
+    pub fn for_leader(task: T, pool: Arc<rayon::ThreadPool>) -> Option<MpiEvaluator<T>> {
         let workers = state(|s| {
             s.as_ref()
                 .filter(|s| s.rank == 0 && !s.stopped && !s.workers.is_empty())
@@ -493,7 +492,7 @@ impl MpiEvaluator {
     }
 }
 
-impl Drop for MpiEvaluator {
+impl<T> Drop for MpiEvaluator<T> {
     /// Reports the run's traffic (before rank 0 goes on to draw the figures).
     fn drop(&mut self) {
         let summary = state(|s| {
@@ -516,7 +515,7 @@ struct Tally {
     by_rank0: u64,
 }
 
-impl Evaluator for MpiEvaluator {
+impl<T: Task> Evaluator for MpiEvaluator<T> {
     fn evaluate(
         &mut self,
         genomes: &[Genome],
