@@ -38,7 +38,7 @@ use crate::training::Training;
 pub use crate::rundir::{
     Champion, GenerationBest, GenerationRecord, files, latest_checkpoint, load_genome_source,
     population_from_checkpoint, population_from_checkpoint_text, read_best_genomes, read_champion,
-    read_generations_csv, read_population_csv,
+    read_population_csv,
 };
 
 /// Generations whose best individual gets a trajectory figure (besides the champion).

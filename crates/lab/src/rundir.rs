@@ -177,19 +177,19 @@ impl GenerationRecord {
     /// The record's row of `generations.csv`.
     pub fn generations_row(&self) -> String {
         let r = self;
-        format!(
-            "{},{},{},{},{},{},{},{},{},{}\n",
-            r.generation,
-            r.best,
-            r.mean,
-            r.median,
-            r.worst,
-            r.species,
-            r.mean_nodes,
-            r.mean_links,
-            r.best_links,
-            r.possible_links
-        )
+        GenerationRow {
+            generation: r.generation,
+            best: r.best,
+            mean: r.mean,
+            median: r.median,
+            worst: r.worst,
+            species: r.species,
+            mean_cppn_nodes: r.mean_nodes,
+            mean_cppn_links: r.mean_links,
+            best_substrate_links: r.best_links,
+            possible_substrate_links: r.possible_links,
+        }
+        .to_csv()
     }
 
     /// The record's row of `timing.csv`.
@@ -569,27 +569,151 @@ pub fn read_population_csv(path: &Path) -> Result<Vec<Vec<f64>>> {
     Ok(out)
 }
 
-/// Reads `generations.csv` back as (generation, best, mean) rows.
-pub fn read_generations_csv(path: &Path) -> Result<Vec<(u32, f64, f64)>> {
-    let text = fs::read_to_string(path).map_err(Error::io("read", path))?;
-    text.lines()
-        .enumerate()
-        .skip(1)
-        .map(|(i, line)| {
-            let v: Vec<&str> = line.split(',').collect();
-            let parse = || -> Option<(u32, f64, f64)> {
-                Some((
-                    v.first()?.parse().ok()?,
-                    v.get(1)?.parse().ok()?,
-                    v.get(2)?.parse().ok()?,
-                ))
-            };
-            parse().ok_or_else(|| Error::RunFile {
-                path: path.to_path_buf(),
-                reason: format!("line {}: malformed row", i + 1),
-            })
+/// One row of `generations.csv`, as written and as read back.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GenerationRow {
+    /// Generation, 1-based.
+    pub generation: u32,
+    /// Best fitness.
+    pub best: f64,
+    /// Mean fitness.
+    pub mean: f64,
+    /// Median fitness.
+    pub median: f64,
+    /// Worst fitness.
+    pub worst: f64,
+    /// Species.
+    pub species: usize,
+    /// Mean CPPN nodes.
+    pub mean_cppn_nodes: f64,
+    /// Mean enabled CPPN links.
+    pub mean_cppn_links: f64,
+    /// Links the generation's best CPPN expresses in the substrate.
+    pub best_substrate_links: usize,
+    /// Links the substrate could have.
+    pub possible_substrate_links: usize,
+}
+
+impl GenerationRow {
+    /// The row as a line of `generations.csv`.
+    pub fn to_csv(&self) -> String {
+        let r = self;
+        format!(
+            "{},{},{},{},{},{},{},{},{},{}\n",
+            r.generation,
+            r.best,
+            r.mean,
+            r.median,
+            r.worst,
+            r.species,
+            r.mean_cppn_nodes,
+            r.mean_cppn_links,
+            r.best_substrate_links,
+            r.possible_substrate_links
+        )
+    }
+
+    /// The row of fields `f` (the header's order); `None` when one is missing or not a number.
+    fn parse(f: &[&str]) -> Option<GenerationRow> {
+        let x = |k: usize| f.get(k).and_then(|s| s.parse::<f64>().ok());
+        let n = |k: usize| f.get(k).and_then(|s| s.parse::<usize>().ok());
+        Some(GenerationRow {
+            generation: f.first()?.parse().ok()?,
+            best: x(1)?,
+            mean: x(2)?,
+            median: x(3)?,
+            worst: x(4)?,
+            species: n(5)?,
+            mean_cppn_nodes: x(6)?,
+            mean_cppn_links: x(7)?,
+            best_substrate_links: n(8)?,
+            possible_substrate_links: n(9)?,
         })
-        .collect()
+    }
+}
+
+/// One row of `timing.csv`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TimingRow {
+    /// Generation, 1-based.
+    pub generation: u32,
+    /// Wall time of the generation.
+    pub seconds: f64,
+    /// Simulated robot-steps per second of wall time.
+    pub robot_steps_per_second: f64,
+}
+
+impl TimingRow {
+    /// The row of fields `f`; `None` when one is missing or not a number.
+    fn parse(f: &[&str]) -> Option<TimingRow> {
+        Some(TimingRow {
+            generation: f.first()?.parse().ok()?,
+            seconds: f.get(1)?.parse().ok()?,
+            robot_steps_per_second: f.get(2)?.parse().ok()?,
+        })
+    }
+}
+
+/// Reads `generations.csv`: complete lines only (a running evolution may be
+/// writing the last one), generations numbered 1, 2, … in order, every
+/// number finite.
+pub fn read_generations(path: &Path) -> Result<Vec<GenerationRow>> {
+    read_rows(path, GenerationRow::parse, |r| {
+        (
+            r.generation,
+            [r.best, r.mean, r.median, r.worst]
+                .into_iter()
+                .all(f64::is_finite),
+        )
+    })
+}
+
+/// Reads `timing.csv`, as [`read_generations`] does; seconds may not be negative.
+pub fn read_timing(path: &Path) -> Result<Vec<TimingRow>> {
+    read_rows(path, TimingRow::parse, |r| {
+        (r.generation, r.seconds.is_finite() && r.seconds >= 0.0)
+    })
+}
+
+/// The rows of a run's CSV file at `path`, each parsed by `parse` and
+/// checked by `check` (its generation, and whether its numbers are valid).
+fn read_rows<T>(
+    path: &Path,
+    parse: impl Fn(&[&str]) -> Option<T>,
+    check: impl Fn(&T) -> (u32, bool),
+) -> Result<Vec<T>> {
+    let text = read_text(path)?;
+    let bad = |line: usize, reason: String| Error::Checkpoint {
+        path: path.to_path_buf(),
+        reason: format!("line {line}: {reason}"),
+    };
+    let complete = text.rfind('\n').map_or("", |end| &text[..=end]);
+    let mut lines = complete.lines();
+    if !lines.next().is_some_and(|h| h.starts_with("generation,")) {
+        return Err(Error::Checkpoint {
+            path: path.to_path_buf(),
+            reason: "not a vivae run file (no `generation,...` header line)".into(),
+        });
+    }
+    let mut out = Vec::new();
+    for (i, line) in lines.enumerate() {
+        let number = i + 2;
+        let fields: Vec<&str> = line.split(',').collect();
+        let row = parse(&fields).ok_or_else(|| bad(number, format!("malformed row {line:?}")))?;
+        let (generation, valid) = check(&row);
+        if generation as usize != out.len() + 1 {
+            let want = out.len() + 1;
+            return Err(bad(
+                number,
+                format!("generation {generation} where {want} was expected"),
+            ));
+        }
+        if !valid {
+            return Err(bad(number, format!("a number out of range in {line:?}")));
+        }
+        out.push(row);
+    }
+    Ok(out)
 }
 
 /// Removes temporary files a killed process left behind (`.NAME.tmp-PID`).

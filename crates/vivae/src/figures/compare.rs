@@ -21,8 +21,8 @@ use vivae_neat::stats;
 use super::{FAMILY, Figure, FigureError, draw_err, register_font, svg_to_png};
 use vivae_lab::config::Config;
 use vivae_lab::error::{Error, Result};
-use vivae_lab::evolve::files;
-use vivae_lab::io::{bad_input, read_config, read_text, write_atomic};
+use vivae_lab::io::{bad_input, read_config, write_atomic};
+use vivae_lab::rundir::{self, files};
 
 /// Generations at which the table reports the median best fitness.
 pub const AT_GENERATIONS: [u32; 5] = [10, 50, 100, 200, 400];
@@ -180,60 +180,6 @@ impl RunData {
     }
 }
 
-/// Reads `column` (0-based) of a run CSV whose first column numbers the rows
-/// 1, 2, …; a last line without its newline (still being written) is ignored.
-fn read_column(path: &Path, column: usize, what: &str) -> Result<Vec<f64>> {
-    let text = read_text(path)?;
-    let bad = |line: usize, reason: String| Error::Checkpoint {
-        path: path.to_path_buf(),
-        reason: format!("line {line}: {reason}"),
-    };
-    let complete = match text.rfind('\n') {
-        Some(end) => &text[..=end],
-        None => "",
-    };
-    let mut lines = complete.lines();
-    match lines.next() {
-        Some(header) if header.starts_with("generation,") => {}
-        _ => {
-            return Err(Error::Checkpoint {
-                path: path.to_path_buf(),
-                reason: "not a vivae run file (no `generation,...` header line)".into(),
-            });
-        }
-    }
-    let mut out = Vec::new();
-    for (i, line) in lines.enumerate() {
-        let number = i + 2;
-        let fields: Vec<&str> = line.split(',').collect();
-        let generation: usize = fields[0].parse().map_err(|_| {
-            bad(
-                number,
-                format!("generation {:?} is not a number", fields[0]),
-            )
-        })?;
-        if generation != out.len() + 1 {
-            return Err(bad(
-                number,
-                format!(
-                    "generation {generation} where {} was expected",
-                    out.len() + 1
-                ),
-            ));
-        }
-        let field = fields
-            .get(column)
-            .ok_or_else(|| bad(number, format!("no {what} column")))?;
-        let value: f64 = field
-            .parse()
-            .ok()
-            .filter(|v: &f64| v.is_finite())
-            .ok_or_else(|| bad(number, format!("{what} {field:?} is not a finite number")))?;
-        out.push(value);
-    }
-    Ok(out)
-}
-
 /// Reads a run directory's `generations.csv` and `timing.csv`.
 pub fn read_run(dir: &Path) -> Result<RunData> {
     if !dir.is_dir() {
@@ -248,14 +194,14 @@ pub fn read_run(dir: &Path) -> Result<RunData> {
     }
     let generations = dir.join(files::GENERATIONS);
     let timing = dir.join(files::TIMING);
-    let best = read_column(&generations, 1, "best fitness")?;
-    let seconds = read_column(&timing, 1, "seconds")?;
-    if let Some((i, s)) = seconds.iter().enumerate().find(|(_, s)| **s < 0.0) {
-        return Err(Error::Checkpoint {
-            path: timing,
-            reason: format!("line {}: negative seconds {s}", i + 2),
-        });
-    }
+    let best = rundir::read_generations(&generations)?
+        .iter()
+        .map(|r| r.best)
+        .collect();
+    let seconds = rundir::read_timing(&timing)?
+        .iter()
+        .map(|r| r.seconds)
+        .collect();
     let run = RunData {
         dir: dir.to_path_buf(),
         best,
