@@ -1,6 +1,6 @@
 //! The viewer page and report.html in a real headless Chromium (WebDriver).
 //!
-//! Skipped, with a loud note, where chromium or chromedriver is not installed;
+//! Skipped, with a one-line SKIPPED note, where chromium or chromedriver is not installed;
 //! `.ci/run` installs both so CI always runs these. Screenshots are left in
 //! `target/browser-screenshots/` to look at.
 

@@ -3,7 +3,7 @@
 //!
 //! Chromium and chromedriver come from Debian (`apt-get install chromium
 //! chromium-driver`, which `.ci/run` does). Where they are missing the browser
-//! tests print a loud note and pass without running: see [`Browser::start`].
+//! tests print a one-line SKIPPED note and pass without running: see [`Browser::start`].
 #![allow(dead_code)]
 
 use std::io::{Read, Write};
@@ -166,8 +166,8 @@ pub struct Browser {
 }
 
 impl Browser {
-    /// Starts chromedriver and a fresh headless Chromium; `None` (with a loud
-    /// note on stderr) where either is not installed. Extra Chromium flags in `extra`.
+    /// Starts chromedriver and a fresh headless Chromium; `None` (with a one-line
+    /// SKIPPED note on stderr) where either is not installed. Extra Chromium flags in `extra`.
     pub fn start(extra: &[&str]) -> Option<Browser> {
         let chromium = ["chromium", "chromium-browser", "google-chrome"]
             .iter()
@@ -179,9 +179,8 @@ impl Browser {
                 std::env::var("CI").as_deref() != Ok("true"),
                 "CI=true but chromium or chromedriver is missing (.ci/run installs them)"
             );
-            eprintln!(
-                "\n*** SKIPPED: browser test needs chromium and chromedriver \
-                 (apt-get install chromium chromium-driver); .ci/run installs them ***\n"
+            crate::common::skipped(
+                "browser test needs chromium and chromedriver (apt-get install chromium chromium-driver); .ci/run installs them",
             );
             return None;
         };
