@@ -1,0 +1,192 @@
+//! Helpers shared by the command-line integration tests.
+#![allow(dead_code)]
+
+pub mod browser;
+
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// The `vivae` binary under test.
+pub fn vivae() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_vivae"))
+}
+
+/// A fresh, empty scratch directory for one test.
+pub fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("vivae-test-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// A small but complete experiment config: quick to run, still the real pipeline.
+pub fn small_config(generations: u32) -> String {
+    format!(
+        "[experiment]\nseed = 7\ngenerations = {generations}\nsteps = 150\n\n[neat]\npopulation_size = 24\n"
+    )
+}
+
+/// Writes `small_config(generations)` to `dir/c.toml` and returns its path.
+pub fn write_small_config(dir: &Path, generations: u32) -> PathBuf {
+    let path = dir.join("c.toml");
+    std::fs::write(&path, small_config(generations)).unwrap();
+    path
+}
+
+/// `vivae evolve -q [extra…] --config CONFIG --out OUT`, which must succeed; returns stdout.
+pub fn evolve(config: &Path, out: &Path, extra: &[&str]) -> String {
+    ok(vivae()
+        .args(["evolve", "-q"])
+        .args(extra)
+        .arg("--config")
+        .arg(config)
+        .arg("--out")
+        .arg(out))
+}
+
+/// Runs a command to completion; panics with its stderr if it could not start.
+pub fn run(cmd: &mut Command) -> Output {
+    cmd.output().expect("vivae runs")
+}
+
+/// Asserts success and returns stdout.
+pub fn ok(cmd: &mut Command) -> String {
+    let out = run(cmd);
+    assert!(
+        out.status.success(),
+        "command failed ({:?}): {}",
+        out.status,
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).unwrap()
+}
+
+/// Reads a file of a run directory.
+pub fn read(dir: &Path, name: &str) -> Vec<u8> {
+    std::fs::read(dir.join(name)).unwrap_or_else(|e| panic!("{}/{name}: {e}", dir.display()))
+}
+
+/// The files that must be bit-identical between two runs of the same config.
+pub const DETERMINISTIC_FILES: [&str; 3] = ["generations.csv", "population.csv", "champion.json"];
+
+/// Asserts the deterministic outputs of two run directories are identical.
+pub fn assert_same_results(a: &Path, b: &Path) {
+    for name in DETERMINISTIC_FILES {
+        assert!(
+            read(a, name) == read(b, name),
+            "{name} differs between {} and {}",
+            a.display(),
+            b.display()
+        );
+    }
+}
+
+/// `vivae evolve -q --generations 12 --seed 2 --out OUT`: the short run the
+/// determinism tests compare.
+pub fn short_run_command(out: &Path) -> Command {
+    let mut cmd = vivae();
+    cmd.args([
+        "evolve",
+        "-q",
+        "--generations",
+        "12",
+        "--seed",
+        "2",
+        "--out",
+    ])
+    .arg(out);
+    cmd
+}
+
+/// The ViVAE scenario corpus, `../shared/vivae-scenarios` beside the clone
+/// (a clone from the web lacks it). `None` when it is absent: the caller
+/// returns, and the test counts as passed after a printed SKIPPED note, unless
+/// `VIVAE_REQUIRE_SHARED=1` (as `.ci/run` sets), which makes the absence a failure.
+pub fn shared_scenarios() -> Option<PathBuf> {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/vivae-scenarios");
+    let required = std::env::var("VIVAE_REQUIRE_SHARED").is_ok_and(|v| v == "1");
+    corpus_at(&dir, required)
+}
+
+/// `Some(dir)` if it is a directory; else fails when `required`, or prints a
+/// note (straight to stderr, past the test harness's capture) and gives `None`.
+pub fn corpus_at(dir: &Path, required: bool) -> Option<PathBuf> {
+    if dir.is_dir() {
+        return Some(dir.to_path_buf());
+    }
+    assert!(
+        !required,
+        "the scenario corpus {} is absent, and VIVAE_REQUIRE_SHARED=1 requires it: put ../shared/vivae-scenarios beside the clone",
+        dir.display()
+    );
+    skipped(&format!(
+        "../shared/vivae-scenarios is absent (a clone from the web); CI requires it (looked for {})",
+        dir.display()
+    ));
+    None
+}
+
+/// Prints `SKIPPED: {why}` as one line straight to stderr, past the test
+/// harness's capture, so that a test that returns early is seen to skip.
+/// The test's name (libtest names each test's thread after it) ends the line.
+pub fn skipped(why: &str) {
+    let thread = std::thread::current();
+    let test = thread.name().unwrap_or("?");
+    let _ = writeln!(std::io::stderr(), "SKIPPED: {why} [{test}]");
+}
+
+/// Waits until `path` exists; panics after `secs` seconds, so that a run that
+/// died early fails the test instead of hanging it.
+pub fn wait_for_file(path: &Path, secs: u64) {
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(secs);
+    while !path.exists() {
+        assert!(
+            std::time::Instant::now() < deadline,
+            "{} did not appear within {secs} s",
+            path.display()
+        );
+        std::thread::sleep(std::time::Duration::from_millis(2));
+    }
+}
+
+/// Starts `vivae evolve -q --threads 1 --config CONFIG --out RUN_DIR`, sends
+/// `signal` (e.g. `"-INT"`) once generation `generation`'s checkpoint exists,
+/// and returns what the process did (its stderr captured).
+pub fn evolve_until_signalled(
+    config: &Path,
+    run_dir: &Path,
+    generation: u32,
+    signal: &str,
+) -> Output {
+    let child = vivae()
+        .args(["evolve", "-q", "--threads", "1", "--config"])
+        .arg(config)
+        .arg("--out")
+        .arg(run_dir)
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    wait_for_file(
+        &run_dir.join(format!("checkpoints/gen-{generation:06}.ckpt")),
+        300,
+    );
+    let status = Command::new("kill")
+        .args([signal, &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    child.wait_with_output().unwrap()
+}
+
+/// FNV-1a 64 of `bytes`, continuing from the hash `h`.
+pub fn fnv1a_from(h: u64, bytes: &[u8]) -> u64 {
+    bytes
+        .iter()
+        .fold(h, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3))
+}
+
+/// FNV-1a 64 of `bytes`: the checkpoint checksum.
+pub fn fnv1a(bytes: &[u8]) -> u64 {
+    fnv1a_from(0xcbf2_9ce4_8422_2325, bytes)
+}

@@ -1,0 +1,45 @@
+//! The vivae program's integration tests, in one binary (one link of the
+//! whole program instead of one per file). Each module is one former test
+//! file, named for the behaviour it checks; `common` holds the helpers (and
+//! `common::browser`, the headless-Chromium driver). The MPI tests are the
+//! separate `mpi` binary (`tests/mpi/`, built only with `--features mpi`).
+//!
+//! Run one file's tests with a filter: `cargo test --release -p vivae --test it
+//! short_run_matches_pinned_hash`.
+
+mod bad_inputs_exit_2_with_one_line;
+mod best_genomes_are_recorded_every_generation_and_resume_identically;
+mod cli_end_to_end;
+mod common;
+mod compare_summarises_runs_by_group;
+mod corrupt_checkpoint_is_refused;
+mod evaluation_is_thread_count_independent;
+mod finished_run_and_retrain_neurons_only;
+mod forged_checkpoint_is_refused_before_anything_changes;
+mod inconsistent_checkpoint_population_is_refused;
+mod interrupt_checkpoints_and_exits_130;
+mod killed_run_resumes_bit_identical;
+mod lateral_free_controller_resamples_exactly;
+mod missing_corpus_skips_unless_required;
+mod multi_map_evolution_is_reproducible;
+mod multi_map_fitness_is_the_mean_over_maps;
+mod multi_resolution_evolution_is_reproducible;
+mod network_figure_stays_small_at_camera_resolution;
+mod non_regular_input_files_are_refused;
+mod output_path_mistakes_exit_2_with_one_line;
+mod replay_from_champion_file_matches_run_dir;
+mod report_html_is_self_contained;
+mod resume_matches_uninterrupted_run;
+mod resume_removes_stale_temporaries;
+mod robots_flag_fits_a_one_robot_scenario;
+mod runs_too_big_to_start_are_refused;
+mod same_bits_at_every_simd_level;
+mod same_bits_on_older_cpu_code_paths;
+mod second_writer_of_a_run_is_refused;
+mod shipped_scenarios_run_by_name;
+mod short_run_matches_pinned_hash;
+mod sigterm_checkpoints_and_exits_130;
+mod viewer_and_report_in_a_real_browser;
+mod viewer_follows_a_running_evolution;
+mod viewer_serves_only_its_own_files;
+mod workspace_structure;
