@@ -15,7 +15,7 @@ use vivae_neat::NeatParams;
 use vivae_neat::hyperneat::HyperParams;
 use vivae_sim::{DistanceSensors, PhysicsParams, SurfaceSensors};
 
-use crate::substrate::{CoordMode, PolarGrid};
+use crate::polar::{CoordMode, PolarGrid};
 
 /// Most simulation steps per evaluation (`experiment.steps`, `replay --steps`).
 pub const MAX_STEPS: u32 = 1_000_000;

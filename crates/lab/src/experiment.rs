@@ -13,7 +13,7 @@ use crate::config::Config;
 use crate::fitness::{AverageSpeed, Fitness};
 use crate::normalize::SourceScale;
 use crate::rollout::Rollout;
-use crate::sensors::{SensorSheet, read_sheets, sheets_with_surface};
+use crate::sensors::{SensorSheet, read_sheets, sensor_sheets};
 use crate::substrate::{PolarGrid, SubstrateSpec, WheelNeurons, cppn_outputs, layout_of};
 use crate::task::DrivingTask;
 
@@ -108,10 +108,11 @@ impl Experiment {
         let wheels = spec
             .wheels()
             .map_err(|e| ExperimentError::Config(format!("substrate: {e}")))?;
-        // The layout comes from the sensors the robots really carry, so a
-        // sensor's input nodes sit where it looks.
+        // The layout comes from the sensors the robots really carry (the
+        // registry's sheets for this config), so a sensor's input nodes sit
+        // where it looks.
         let surface_grid = Arc::new(surface.grid());
-        let sensors = sheets_with_surface(Arc::clone(&surface_grid), distance_layout.as_ref());
+        let sensors = sensor_sheets(config);
         let layout = layout_of(&sensors, &spec.neuron_nodes(), spec.coords);
         let cppn_outputs = cppn_outputs(&sensors);
         let scale = SourceScale::new(&config.substrate, &sensors, &spec.neuron_nodes());

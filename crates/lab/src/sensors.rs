@@ -1,17 +1,71 @@
 //! The sensors a run's robots carry, each with its input sheet on the substrate.
 //!
-//! This file is the one place that maps the config's sensor sections to
-//! simulator sensors: adding a sensor type means a new file in
-//! `vivae_sim::sensors`, its config section, and one entry in
-//! [`sensor_sheets`]. The substrate, the experiment and the figures then
-//! handle it with no further edits: its input nodes come from the sensor's
-//! own places ([`SensorSheet::nodes`]).
+//! [`SENSORS`] is the registry: the one table of the sensor kinds a config
+//! can build. A new sensor is a file in `vivae_sim::sensors` implementing
+//! `vivae_sim::Sensor`, its config section, and one [`SensorKind`] entry here
+//! (how to build it from the config, its CPPN output, its reference length
+//! and its label). [`sensor_sheets`], `SubstrateSpec::sheets`, the
+//! experiment and the figures then handle it with no further edits: its
+//! input nodes come from the sensor's own places ([`SensorSheet::nodes`]),
+//! and the figures draw any list of sheets by name and label.
 
 use std::sync::Arc;
 
-use vivae_sim::{DistanceSensors, Sensor, SurfaceGrid, SurfaceSensors, World};
+use vivae_sim::{DistanceSensors, Sensor, SurfaceSensors, World};
 
+use crate::config::Config;
 use crate::polar::{DISTANCE_OUTPUT, PolarNode, SURFACE_OUTPUT};
+
+/// One sensor kind the config can build: an entry of [`SENSORS`].
+#[derive(Debug, Clone, Copy)]
+pub struct SensorKind {
+    /// Short name, the `Sensor::name` of what it builds (e.g. `"surface"`).
+    pub name: &'static str,
+    /// What its readings are called in figures, plural (e.g. `"distance rays"`).
+    pub label: &'static str,
+    /// The CPPN output that paints its sheet's links to the neurons.
+    pub cppn_output: usize,
+    /// Readings in its reference layout (see [`SensorSheet::reference_len`]).
+    pub reference_len: fn() -> usize,
+    /// The compiled sensor the config asks for, `None` when it is switched off.
+    pub build: fn(&Config) -> Option<Arc<dyn Sensor>>,
+}
+
+impl SensorKind {
+    /// This kind's sheet for `config`, `None` when the config switches it off.
+    pub fn sheet(&self, config: &Config) -> Option<SensorSheet> {
+        (self.build)(config).map(|sensor| SensorSheet {
+            sensor,
+            cppn_output: self.cppn_output,
+            reference_len: (self.reference_len)(),
+            label: self.label,
+        })
+    }
+}
+
+/// The registry: every sensor kind the config can build, in controller-input
+/// order (the surface sensors first: they are always there).
+pub static SENSORS: [SensorKind; 2] = [
+    SensorKind {
+        name: "surface",
+        label: "surface sensors",
+        cppn_output: SURFACE_OUTPUT,
+        // The paper's 3×5.
+        reference_len: || SurfaceSensors::default().len(),
+        build: |c| Some(Arc::new(c.surface_sensors.grid())),
+    },
+    SensorKind {
+        name: "distance",
+        label: "distance rays",
+        cppn_output: DISTANCE_OUTPUT,
+        reference_len: || DistanceSensors::default().rays,
+        build: |c| {
+            c.distance_sensors
+                .layout()
+                .map(|d| Arc::new(d.grid()) as Arc<dyn Sensor>)
+        },
+    },
+];
 
 /// One sensor and the input sheet that stands for it on the substrate.
 #[derive(Debug, Clone)]
@@ -24,9 +78,17 @@ pub struct SensorSheet {
     /// surface sensors): `substrate.normalize` scales the sheet's weights by
     /// `reference_len / len`.
     pub reference_len: usize,
+    /// What its readings are called in figures, plural: `"surface sensors"`,
+    /// `"distance rays"`.
+    pub label: &'static str,
 }
 
 impl SensorSheet {
+    /// The sensor's short name (`Sensor::name`), e.g. `"distance"`.
+    pub fn name(&self) -> &'static str {
+        self.sensor.name()
+    }
+
     /// Number of readings (= input nodes of the sheet).
     pub fn len(&self) -> usize {
         self.sensor.len()
@@ -66,34 +128,10 @@ pub fn read_sheets(sheets: &[SensorSheet], world: &World, robot: usize, inputs: 
     }
 }
 
-/// The input sheets, in controller-input order, for surface sensors and
-/// optional distance sensors.
-pub fn sensor_sheets(
-    surface: &SurfaceSensors,
-    distance: Option<&DistanceSensors>,
-) -> Vec<SensorSheet> {
-    sheets_with_surface(Arc::new(surface.grid()), distance)
-}
-
-/// As [`sensor_sheets`], with the surface sensors already compiled (so a
-/// caller that also draws them shares the one grid).
-pub fn sheets_with_surface(
-    surface: Arc<SurfaceGrid>,
-    distance: Option<&DistanceSensors>,
-) -> Vec<SensorSheet> {
-    let mut sheets = vec![SensorSheet {
-        sensor: surface,
-        cppn_output: SURFACE_OUTPUT,
-        reference_len: SurfaceSensors::default().len(),
-    }];
-    if let Some(d) = distance {
-        sheets.push(SensorSheet {
-            sensor: Arc::new(d.grid()),
-            cppn_output: DISTANCE_OUTPUT,
-            reference_len: DistanceSensors::default().rays,
-        });
-    }
-    sheets
+/// The input sheets `config` asks for, in controller-input order: every
+/// kind of the registry [`SENSORS`] the config switches on.
+pub fn sensor_sheets(config: &Config) -> Vec<SensorSheet> {
+    SENSORS.iter().filter_map(|k| k.sheet(config)).collect()
 }
 
 #[cfg(test)]
@@ -102,27 +140,29 @@ mod tests {
 
     #[test]
     fn surface_sheet_nodes_match_the_polar_grid() {
-        let sheets = sensor_sheets(
-            &SurfaceSensors {
-                rings: 4,
-                angles: 7,
-                ..SurfaceSensors::default()
-            },
-            None,
-        );
+        let mut config = Config::default();
+        config.surface_sensors.rings = 4;
+        config.surface_sensors.angles = 7;
+        let sheets = sensor_sheets(&config);
         assert_eq!(sheets.len(), 1);
+        assert_eq!(
+            (sheets[0].name(), sheets[0].label),
+            ("surface", "surface sensors")
+        );
         let grid = crate::substrate::PolarGrid::new(4, 7).unwrap();
         assert_eq!(sheets[0].nodes(), grid.nodes(180.0));
     }
 
     #[test]
     fn distance_rays_sit_on_the_outer_ring() {
-        let rays = DistanceSensors {
-            rays: 6,
-            ..DistanceSensors::default()
-        };
-        let sheets = sensor_sheets(&SurfaceSensors::default(), Some(&rays));
+        let mut config = Config::default();
+        config.distance_sensors.rays = 6;
+        let sheets = sensor_sheets(&config);
         assert_eq!(sheets.len(), 2);
+        assert_eq!(
+            (sheets[1].name(), sheets[1].label),
+            ("distance", "distance rays")
+        );
         assert_eq!(sheets[1].cppn_output, DISTANCE_OUTPUT);
         let nodes = sheets[1].nodes();
         assert_eq!(nodes.len(), 6);
@@ -131,5 +171,16 @@ mod tests {
             nodes,
             crate::substrate::PolarGrid::new(1, 6).unwrap().nodes(180.0)
         );
+    }
+
+    #[test]
+    fn every_kind_builds_the_sensor_it_names() {
+        let mut config = Config::default();
+        config.distance_sensors.rays = 3;
+        for kind in &SENSORS {
+            let sheet = kind.sheet(&config).unwrap();
+            assert_eq!(sheet.name(), kind.name);
+            assert_eq!(sheet.cppn_output, kind.cppn_output);
+        }
     }
 }

@@ -30,11 +30,10 @@
 //! ring; the same rule gives 2 rings → ρ = 1/2, 4 rings → ρ = 3/4,
 //! 6 rings → ρ = 4/6. (Distances to 2/3 never tie.)
 
+use crate::config::Config;
+use crate::sensors::{SensorSheet, sensor_sheets};
 use serde::{Deserialize, Serialize};
 use vivae_neat::hyperneat::{InputSheet, SubstrateLayout};
-use vivae_sim::{DistanceSensors, SurfaceSensors};
-
-use crate::sensors::{SensorSheet, sensor_sheets};
 
 // The sheets' geometry has its own module, which the sensors use too.
 pub use crate::polar::{
@@ -110,21 +109,17 @@ impl SubstrateSpec {
         }
     }
 
-    /// The sensor sheets this spec describes (surface, then distance if any),
-    /// with default ranges: the ranges do not move the substrate's nodes.
+    /// The sensor sheets this spec describes (surface, then distance if
+    /// any), built by the registry `sensors::SENSORS` from a default config
+    /// with this spec's sheets: the ranges do not move the substrate's nodes.
     pub fn sheets(&self) -> Vec<SensorSheet> {
-        let surface = SurfaceSensors {
-            rings: self.sensors.rings,
-            angles: self.sensors.angles,
-            fov: self.fov,
-            ..SurfaceSensors::default()
-        };
-        let distance = self.distance_rays.map(|rays| DistanceSensors {
-            rays,
-            fov: self.fov,
-            ..DistanceSensors::default()
-        });
-        sensor_sheets(&surface, distance.as_ref())
+        let mut config = Config::default();
+        config.surface_sensors.rings = self.sensors.rings;
+        config.surface_sensors.angles = self.sensors.angles;
+        config.surface_sensors.fov = self.fov;
+        config.distance_sensors.rays = self.distance_rays.unwrap_or(0);
+        config.distance_sensors.fov = self.fov;
+        sensor_sheets(&config)
     }
 
     /// Number of CPPN outputs this substrate needs: 3, or 4 with distance sensors.
@@ -132,17 +127,9 @@ impl SubstrateSpec {
         cppn_outputs(&self.sheets())
     }
 
-    /// Surface sensor nodes in controller-input order.
+    /// Surface sensor nodes (the first sheet's) in controller-input order.
     pub fn sensor_nodes(&self) -> Vec<PolarNode> {
         self.sheets()[0].nodes()
-    }
-
-    /// Distance sensor nodes (one ring at ρ = 1), empty without distance sensors.
-    pub fn distance_nodes(&self) -> Vec<PolarNode> {
-        self.sheets()
-            .get(1)
-            .map(SensorSheet::nodes)
-            .unwrap_or_default()
     }
 
     /// Neuron nodes in controller-output order.
@@ -442,7 +429,7 @@ mod tests {
             ..vivae_sim::DistanceSensors::default()
         };
         let angles = rays.angles();
-        let nodes = spec.distance_nodes();
+        let nodes = spec.sheets()[1].nodes();
         assert_eq!(angles.len(), nodes.len());
         for (a, n) in angles.iter().zip(&nodes) {
             assert!((a - n.phi).abs() < 1e-12);

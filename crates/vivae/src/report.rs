@@ -100,7 +100,12 @@ pub fn finish_run(run: &Run) -> Result<RunSummary> {
         champion.fitness,
         run.config().hyperneat.amplitude,
     );
-    let network = figures::network::render(experiment.substrate_spec(), &controller, &options)?;
+    let network = figures::network::render_sheets(
+        experiment.substrate_spec(),
+        &figures::network::FigureSheet::all(experiment.sensors()),
+        &controller,
+        &options,
+    )?;
     drop(controller);
     write_figure(&dir, "network", &network.svg, &network.png)?;
     // The report shows the same episodes and network: reuse them rather than run them again.

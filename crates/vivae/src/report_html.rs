@@ -238,8 +238,9 @@ pub fn build_reusing(dir: &Path, reuse: &Reuse<'_>) -> vivae_lab::Result<String>
         .map_err(vivae_lab::Error::from)?;
     let network_svg = match &reuse.network_svg {
         Some(svg) => svg.clone(),
-        None => network::figure_svg(
+        None => network::figure_svg_sheets(
             experiment.substrate_spec(),
+            &network::FigureSheet::all(experiment.sensors()),
             &experiment.controller(&champion.genome)?,
             &network_options(
                 champion.generation,

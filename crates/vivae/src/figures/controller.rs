@@ -7,7 +7,8 @@ use plotters::prelude::*;
 use vivae_neat::hyperneat::SubstrateController;
 
 use super::FigureError;
-use vivae_lab::substrate::{PolarNode, SubstrateSpec, WheelNeurons};
+use vivae_lab::sensors::SensorSheet;
+use vivae_lab::substrate::{PolarGrid, PolarNode, SubstrateSpec, WheelNeurons};
 
 /// Wheel neurons' colour.
 pub(super) const WHEEL: RGBColor = RGBColor(214, 39, 40);
@@ -42,40 +43,79 @@ impl Default for NetworkOptions {
     }
 }
 
+/// One input sheet as the controller figures draw it: the first sheet is the
+/// inner panel, every further one a band outside it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FigureSheet {
+    /// Short name of its sensor (`Sensor::name`), e.g. `"distance"`.
+    pub name: &'static str,
+    /// What its readings are called, plural: `"surface sensors"`, `"distance rays"`.
+    pub label: &'static str,
+    /// Its nodes in controller-input order.
+    pub nodes: Vec<PolarNode>,
+}
+
+impl FigureSheet {
+    /// The figure's view of `sheet`.
+    pub fn of(sheet: &SensorSheet) -> FigureSheet {
+        FigureSheet {
+            name: sheet.name(),
+            label: sheet.label,
+            nodes: sheet.nodes(),
+        }
+    }
+
+    /// The figure's view of every sheet, in controller-input order.
+    pub fn all(sheets: &[SensorSheet]) -> Vec<FigureSheet> {
+        sheets.iter().map(FigureSheet::of).collect()
+    }
+
+    /// Rings and angles of the grid its nodes fill.
+    pub fn grid(&self) -> PolarGrid {
+        PolarGrid {
+            rings: self.nodes.iter().map(|n| n.ring + 1).max().unwrap_or(1),
+            angles: self
+                .nodes
+                .iter()
+                .map(|n| n.angle_index + 1)
+                .max()
+                .unwrap_or(1),
+        }
+    }
+}
+
 /// The sheets' nodes and wheel neurons, once `spec`, `controller` and `opts` are checked.
 pub(super) struct Checked {
-    pub sensors: Vec<PolarNode>,
-    pub distance: Vec<PolarNode>,
+    /// The input sheets, at least one.
+    pub inputs: Vec<FigureSheet>,
     pub neurons: Vec<PolarNode>,
     pub wheels: WheelNeurons,
 }
 
-/// Checks that `controller` was decoded on `spec` and that `opts` are usable.
+/// Checks that `controller` was decoded on the input `sheets` and `spec`'s
+/// neuron sheet, and that `opts` are usable.
 pub(super) fn check(
     spec: &SubstrateSpec,
+    sheets: &[FigureSheet],
     controller: &SubstrateController,
     opts: &NetworkOptions,
 ) -> Result<Checked, FigureError> {
     spec.validate()
         .map_err(|e| FigureError::Invalid(e.to_string()))?;
-    let sensors = spec.sensor_nodes();
-    let distance = spec.distance_nodes();
     let neurons = spec.neuron_nodes();
     let wheels = spec
         .wheels()
         .map_err(|e| FigureError::Invalid(e.to_string()))?;
-    let mut expected_sheets = vec![sensors.len()];
-    if !distance.is_empty() {
-        expected_sheets.push(distance.len());
-    }
-    if controller.sheet_sizes() != expected_sheets.as_slice()
+    let expected_sheets: Vec<usize> = sheets.iter().map(|s| s.nodes.len()).collect();
+    if sheets.is_empty()
+        || controller.sheet_sizes() != expected_sheets.as_slice()
         || controller.num_neurons() != neurons.len()
     {
         return Err(FigureError::Invalid(format!(
-            "controller with input sheets {:?} and {} neurons does not match substrate {} → {}",
+            "controller with input sheets {:?} and {} neurons does not match substrate {:?} → {}",
             controller.sheet_sizes(),
             controller.num_neurons(),
-            spec.sensors,
+            expected_sheets,
             spec.neurons
         )));
     }
@@ -92,11 +132,34 @@ pub(super) fn check(
         )));
     }
     Ok(Checked {
-        sensors,
-        distance,
+        inputs: sheets.to_vec(),
         neurons,
         wheels,
     })
+}
+
+impl Checked {
+    /// The first input sheet, drawn as the inner panel.
+    pub fn first(&self) -> &FigureSheet {
+        &self.inputs[0]
+    }
+
+    /// The sheets drawn as bands outside the first, with their band number (1, 2, …).
+    pub fn bands(&self) -> impl Iterator<Item = (usize, &FigureSheet)> {
+        self.inputs.iter().enumerate().skip(1)
+    }
+
+    /// Number of input nodes over all sheets.
+    pub fn num_inputs(&self) -> usize {
+        self.inputs.iter().map(|s| s.nodes.len()).sum()
+    }
+
+    /// `" + 7 distance rays"` for every sheet after the first.
+    pub fn bands_caption(&self) -> String {
+        self.bands()
+            .map(|(_, s)| format!(" + {} {}", s.nodes.len(), s.label))
+            .collect()
+    }
 }
 
 /// Rounds a pixel position for plotters.

@@ -8,7 +8,8 @@
 //!   angle (columns, left to right): its incoming weights over the sensor
 //!   sheet, in the sheet's polar layout seen from above (ahead is up, the robot
 //!   at the centre; ring `k` of `R` is the band from radius `k/R` to `(k+1)/R`,
-//!   each wedge one sensor), distance rays as a band outside it; the dot at the
+//!   each wedge one sensor), every further input sheet (e.g. distance rays)
+//!   as a band outside it, one wedge per node; the dot at the
 //!   centre is the neuron's bias; wheel neurons are outlined red;
 //! * the recurrent weights as a neuron × neuron matrix;
 //! * the biases as a row, aligned with the matrix columns.
@@ -31,7 +32,7 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 use tiny_skia::{Pixmap, PixmapPaint, PremultipliedColorU8, Transform};
 use vivae_neat::hyperneat::SubstrateController;
 
-use super::controller::{Checked, GUIDE, NetworkOptions, WHEEL, blend, check, px};
+use super::controller::{Checked, FigureSheet, GUIDE, NetworkOptions, WHEEL, blend, check, px};
 use super::{
     FAMILY, Figure, FigureError, NEGATIVE, PNG_SCALE, POSITIVE, base64, draw_err, draw_svg_over,
     encode_png_fast, register_font,
@@ -40,8 +41,26 @@ use vivae_lab::substrate::{PolarNode, SubstrateSpec};
 
 /// The receptive-field figure is this much larger than the link figure (more to show).
 const ENLARGE: f64 = 1.6;
-/// Inner and outer radius (sheet radius = 1) of the distance rays' band.
-const DISTANCE_BAND: (f64, f64) = (1.06, 1.22);
+/// Inner and outer radius (sheet radius = 1) of the first band outside the
+/// panel: the second input sheet's (e.g. the distance rays').
+const BAND: (f64, f64) = (1.06, 1.22);
+/// How much further out each further band is.
+const BAND_STEP: f64 = 0.22;
+
+/// Inner and outer radius of input sheet `band`'s band (1 = the second sheet).
+fn band_radii(band: usize) -> (f64, f64) {
+    let shift = BAND_STEP * (band - 1) as f64;
+    (BAND.0 + shift, BAND.1 + shift)
+}
+
+/// Outer radius of a panel with `sheets` input sheets (1 = no band).
+fn outer_radius(sheets: usize) -> f64 {
+    if sheets > 1 {
+        band_radii(sheets - 1).1
+    } else {
+        1.0
+    }
+}
 /// Marks a pixel outside every sensor's wedge.
 const OUTSIDE: u32 = u32::MAX;
 
@@ -62,6 +81,7 @@ struct Drawn {
 /// Renders the receptive-field figure as SVG and PNG.
 pub(crate) fn render(
     spec: &SubstrateSpec,
+    sheets: &[FigureSheet],
     controller: &SubstrateController,
     opts: &NetworkOptions,
 ) -> Result<Figure, FigureError> {
@@ -69,7 +89,7 @@ pub(crate) fn render(
         overlay,
         heats,
         size: (w, h),
-    } = draw(spec, controller, opts)?;
+    } = draw(spec, sheets, controller, opts)?;
     let scale = f64::from(PNG_SCALE);
     let too_big = || FigureError::Png(format!("figure of {w}x{h} units is too large"));
     let mut base =
@@ -94,10 +114,11 @@ pub(crate) fn render(
 /// Renders the receptive-field figure as an SVG document (heat maps embedded as PNG).
 pub(crate) fn render_svg(
     spec: &SubstrateSpec,
+    sheets: &[FigureSheet],
     controller: &SubstrateController,
     opts: &NetworkOptions,
 ) -> Result<String, FigureError> {
-    let d = draw(spec, controller, opts)?;
+    let d = draw(spec, sheets, controller, opts)?;
     with_images(d.overlay, &d.heats, d.size)
 }
 
@@ -194,25 +215,62 @@ struct Stencil {
     input: Vec<u32>,
 }
 
-impl Stencil {
-    fn new(radius: f64, half: f64, sensors: &[PolarNode], distance: &[PolarNode]) -> Stencil {
-        let rings = sensors.iter().map(|n| n.ring + 1).max().unwrap_or(1);
-        let angles = sensors.iter().map(|n| n.angle_index + 1).max().unwrap_or(1);
+/// Which input of one sheet feeds a point of a panel: the sheet's nodes by
+/// ring (radial slices of `r0..r1`) and wedge (angle).
+struct Placement {
+    /// Radial extent in sheet radii: `0..1` for the panel, a band outside it.
+    r0: f64,
+    r1: f64,
+    rings: usize,
+    angles: usize,
+    /// Input index (over all sheets) by `ring * angles + angle_index`.
+    by_place: Vec<u32>,
+    bounds: Vec<f64>,
+}
+
+impl Placement {
+    fn new(nodes: &[PolarNode], first_input: usize, (r0, r1): (f64, f64), half: f64) -> Self {
+        let rings = nodes.iter().map(|n| n.ring + 1).max().unwrap_or(1);
+        let angles = nodes.iter().map(|n| n.angle_index + 1).max().unwrap_or(1);
         // Input index by (ring, angle): the sheet need not list them in grid order.
         let mut by_place = vec![OUTSIDE; rings * angles];
         let mut phis = vec![0.0; angles];
-        for (i, n) in sensors.iter().enumerate() {
-            by_place[n.ring * angles + n.angle_index] = i as u32;
+        for (i, n) in nodes.iter().enumerate() {
+            by_place[n.ring * angles + n.angle_index] = (first_input + i) as u32;
             phis[n.angle_index] = n.phi;
         }
-        let bounds = wedge_bounds(&phis, half);
-        let distance_phis: Vec<f64> = distance.iter().map(|n| n.phi).collect();
-        let distance_bounds = wedge_bounds(&distance_phis, half);
-        let outer = if distance.is_empty() {
-            1.0
-        } else {
-            DISTANCE_BAND.1
-        };
+        Placement {
+            r0,
+            r1,
+            rings,
+            angles,
+            by_place,
+            bounds: wedge_bounds(&phis, half),
+        }
+    }
+
+    /// The input at radius `rho` (in `r0..r1`) and angle `phi`.
+    fn input(&self, rho: f64, phi: f64) -> u32 {
+        let ring = (((rho - self.r0) / (self.r1 - self.r0) * self.rings as f64) as usize)
+            .min(self.rings - 1);
+        wedge(&self.bounds, phi).map_or(OUTSIDE, |a| self.by_place[ring * self.angles + a])
+    }
+}
+
+impl Stencil {
+    fn new(radius: f64, half: f64, sheets: &[FigureSheet]) -> Stencil {
+        let mut first_input = 0;
+        let placements: Vec<Placement> = sheets
+            .iter()
+            .enumerate()
+            .map(|(k, sheet)| {
+                let radii = if k == 0 { (0.0, 1.0) } else { band_radii(k) };
+                let p = Placement::new(&sheet.nodes, first_input, radii, half);
+                first_input += sheet.nodes.len();
+                p
+            })
+            .collect();
+        let outer = outer_radius(sheets.len());
         let side = outer * half.min(FRAC_PI_2).sin().max(0.05);
         let below = if half > FRAC_PI_2 { -half.cos() } else { 0.0 };
         let x0 = -(side * radius).ceil() as i32 - 1;
@@ -226,14 +284,10 @@ impl Stencil {
                 let rho = dx.hypot(dy) / radius;
                 // Angle from straight ahead (up), positive to the right.
                 let phi = dx.atan2(-dy);
-                let index = if rho < 1.0 {
-                    let ring = ((rho * rings as f64) as usize).min(rings - 1);
-                    wedge(&bounds, phi).map_or(OUTSIDE, |a| by_place[ring * angles + a])
-                } else if (DISTANCE_BAND.0..DISTANCE_BAND.1).contains(&rho) {
-                    wedge(&distance_bounds, phi).map_or(OUTSIDE, |a| (sensors.len() + a) as u32)
-                } else {
-                    OUTSIDE
-                };
+                let index = placements
+                    .iter()
+                    .find(|p| rho < p.r1 && (p.r0 == 0.0 || rho >= p.r0))
+                    .map_or(OUTSIDE, |p| p.input(rho, phi));
                 input.push(index);
             }
         }
@@ -261,7 +315,7 @@ struct Layout {
 }
 
 impl Layout {
-    fn new(opts: &NetworkOptions, rows: usize, cols: usize, half: f64, distance: bool) -> Layout {
+    fn new(opts: &NetworkOptions, rows: usize, cols: usize, half: f64, outer: f64) -> Layout {
         let (w, h) = (
             (f64::from(opts.width) * ENLARGE).round(),
             (f64::from(opts.height) * ENLARGE).round(),
@@ -269,7 +323,6 @@ impl Layout {
         let (left, top) = (w * 0.07, 130.0);
         let (right, bottom) = (w * 0.63, h - 150.0);
         let (cw, ch) = ((right - left) / cols as f64, (bottom - top) / rows as f64);
-        let outer = if distance { DISTANCE_BAND.1 } else { 1.0 };
         let fan_w = 2.0 * outer * half.min(FRAC_PI_2).sin().max(0.05);
         let fan_h = outer * (1.0 + if half > FRAC_PI_2 { -half.cos() } else { 0.0 });
         let radius = (cw * 0.9 / fan_w).min(ch * 0.86 / fan_h);
@@ -287,9 +340,8 @@ impl Layout {
 
     /// Centre of the panel at `row`, `col`, rounded to whole PNG pixels so
     /// every panel shares one [`Stencil`].
-    fn centre(&self, row: usize, col: usize, half: f64, distance: bool) -> (f64, f64) {
+    fn centre(&self, row: usize, col: usize, half: f64, outer: f64) -> (f64, f64) {
         let (left, top, cw, ch) = self.grid;
-        let outer = if distance { DISTANCE_BAND.1 } else { 1.0 };
         let fan_h = outer * (1.0 + if half > FRAC_PI_2 { -half.cos() } else { 0.0 });
         let cx = left + cw * (col as f64 + 0.5);
         let cy = top + ch * row as f64 + (ch - fan_h * self.radius) / 2.0 + outer * self.radius;
@@ -344,7 +396,8 @@ struct Fields<'a> {
     cols: usize,
     /// Half the sensors' field of view, in radians.
     half: f64,
-    has_distance: bool,
+    /// Outer radius of a panel, its bands included (in sheet radii).
+    outer: f64,
     /// Largest |weight| of each block: sensor → neuron, recurrent, bias.
     input_scale: f64,
     recurrent_scale: f64,
@@ -354,16 +407,17 @@ struct Fields<'a> {
 impl<'a> Fields<'a> {
     fn new(
         spec: &'a SubstrateSpec,
+        sheets: &[FigureSheet],
         controller: &'a SubstrateController,
         opts: &'a NetworkOptions,
     ) -> Result<Fields<'a>, FigureError> {
-        let nodes = check(spec, controller, opts)?;
+        let nodes = check(spec, sheets, controller, opts)?;
         let n = nodes.neurons.len();
-        let inputs = nodes.sensors.len() + nodes.distance.len();
+        let inputs = nodes.num_inputs();
         let (rows, cols) = (spec.neurons.rings, spec.neurons.angles);
         let half = spec.fov.to_radians() / 2.0;
-        let has_distance = !nodes.distance.is_empty();
-        let layout = Layout::new(opts, rows, cols, half, has_distance);
+        let outer = outer_radius(nodes.inputs.len());
+        let layout = Layout::new(opts, rows, cols, half, outer);
         // Colour scales, one per block.
         let input_scale = max_abs(
             (0..inputs)
@@ -385,7 +439,7 @@ impl<'a> Fields<'a> {
             rows,
             cols,
             half,
-            has_distance,
+            outer,
             input_scale,
             recurrent_scale,
             bias_scale,
@@ -399,17 +453,15 @@ impl<'a> Fields<'a> {
             self.rows - 1 - node.ring,
             node.angle_index,
             self.half,
-            self.has_distance,
+            self.outer,
         )
     }
 
     /// The panels' heat maps: one raster over the whole grid.
     fn panels_heat(&self) -> Result<Heat, FigureError> {
-        let Checked {
-            sensors, distance, ..
-        } = &self.nodes;
         let scale = f64::from(PNG_SCALE);
-        let stencil = Stencil::new(self.layout.radius * scale, self.half, sensors, distance);
+        let inputs = &self.nodes.inputs;
+        let stencil = Stencil::new(self.layout.radius * scale, self.half, inputs);
         let (left, top, cw, ch) = self.layout.grid;
         let grid_x = (left * scale).floor() as i32;
         let grid_y = (top * scale).floor() as i32;
@@ -418,7 +470,7 @@ impl<'a> Fields<'a> {
             (ch * self.rows as f64 * scale).ceil() as u32 + 2,
         )
         .ok_or_else(too_big)?;
-        let mut colours = vec![pixel(WHITE); sensors.len() + distance.len()];
+        let mut colours = vec![pixel(WHITE); self.nodes.num_inputs()];
         for t in 0..self.nodes.neurons.len() {
             for (i, c) in colours.iter_mut().enumerate() {
                 *c = pixel(diverging(
@@ -512,15 +564,12 @@ impl<'a> Fields<'a> {
         text(
             root,
             &format!(
-                "{} expressed of {} possible links, drawn as receptive fields: surface sensors {}{} → neurons {}",
+                "{} expressed of {} possible links, drawn as receptive fields: {} {}{} → neurons {}",
                 self.controller.expressed_links(),
                 self.controller.possible_links(),
-                self.spec.sensors,
-                if self.has_distance {
-                    format!(" + {} distance rays", self.nodes.distance.len())
-                } else {
-                    String::new()
-                },
+                self.nodes.first().label,
+                self.nodes.first().grid(),
+                self.nodes.bands_caption(),
                 self.spec.neurons
             ),
             (w / 2.0, 42.0),
@@ -546,7 +595,7 @@ impl<'a> Fields<'a> {
             if node.angle_index % every == 0 || node.angle_index + 1 == cols {
                 let (cx, _) = self
                     .layout
-                    .centre(0, node.angle_index, self.half, self.has_distance);
+                    .centre(0, node.angle_index, self.half, self.outer);
                 text(
                     root,
                     &format!("{:+.0}°", node.phi.to_degrees()),
@@ -759,11 +808,20 @@ impl<'a> Fields<'a> {
             "Each panel is one neuron: its weight from every sensor, drawn where the sensor looks (ahead is up, robot at the centre;".to_string(),
             "each wedge one sensor). The dot is the neuron's bias. Red outline, L/R: wheel neurons. White: no link (or 0).".to_string(),
         ];
-        if self.has_distance {
-            lines.push(
-                "The outer band of each panel holds the distance rays' weights (same colour scale)."
-                    .to_string(),
-            );
+        let bands: Vec<String> = self
+            .nodes
+            .bands()
+            .map(|(_, s)| possessive(s.label))
+            .collect();
+        match bands.as_slice() {
+            [] => {}
+            [one] => lines.push(format!(
+                "The outer band of each panel holds the {one} weights (same colour scale)."
+            )),
+            more => lines.push(format!(
+                "The outer bands of each panel hold, from the inside out, the {} weights (same colour scale).",
+                more.join(", ")
+            )),
         }
         for (k, line) in lines.iter().enumerate() {
             text(
@@ -775,6 +833,15 @@ impl<'a> Fields<'a> {
             )?;
         }
         Ok(())
+    }
+}
+
+/// `label`'s possessive: "distance rays'", "speedometer's".
+fn possessive(label: &str) -> String {
+    if label.ends_with('s') {
+        format!("{label}'")
+    } else {
+        format!("{label}'s")
     }
 }
 
@@ -809,11 +876,12 @@ fn stamp(
 /// Draws the figure: the vector overlay (labels, outlines; no background) and the heat maps.
 fn draw(
     spec: &SubstrateSpec,
+    sheets: &[FigureSheet],
     controller: &SubstrateController,
     opts: &NetworkOptions,
 ) -> Result<Drawn, FigureError> {
     register_font()?;
-    let fields = Fields::new(spec, controller, opts)?;
+    let fields = Fields::new(spec, sheets, controller, opts)?;
     let mut heats = vec![fields.panels_heat()?];
     heats.extend(fields.matrix_heats()?);
     Ok(Drawn {
@@ -895,10 +963,11 @@ mod tests {
             distance_rays: Some(7),
             ..SubstrateSpec::default()
         };
-        let (sensors, distance) = (spec.sensor_nodes(), spec.distance_nodes());
+        let sheets = FigureSheet::all(&spec.sheets());
+        let (sensors, distance) = (&sheets[0].nodes, &sheets[1].nodes);
         let half = spec.fov.to_radians() / 2.0;
         // A panel as large as the 9×9 figure draws it (radius ≈ 90 pixels).
-        let stencil = Stencil::new(90.0, half, &sensors, &distance);
+        let stencil = Stencil::new(90.0, half, &sheets);
         let mut seen = vec![0usize; sensors.len() + distance.len()];
         for &i in stencil.input.iter().filter(|&&i| i != OUTSIDE) {
             seen[i as usize] += 1;
@@ -920,6 +989,46 @@ mod tests {
         };
         let outer_left = (31 * 96) as u32;
         assert!(column_of(outer_left) < 0 && column_of(outer_left + 95) > 0);
+    }
+
+    #[test]
+    fn every_further_sheet_is_a_band_of_its_own() {
+        let spec = SubstrateSpec {
+            distance_rays: Some(5),
+            ..SubstrateSpec::default()
+        };
+        let mut sheets = FigureSheet::all(&spec.sheets());
+        let ahead = PolarNode {
+            ring: 0,
+            angle_index: 0,
+            rho: 1.0,
+            phi: 0.0,
+        };
+        sheets.push(FigureSheet {
+            name: "speed",
+            label: "speedometer",
+            nodes: vec![ahead],
+        });
+        let radius = 90.0;
+        let stencil = Stencil::new(radius, FRAC_PI_2, &sheets);
+        let inputs = 15 + 5 + 1;
+        let mut seen = vec![0usize; inputs];
+        for &i in stencil.input.iter().filter(|&&i| i != OUTSIDE) {
+            seen[i as usize] += 1;
+        }
+        assert!(seen.iter().all(|&n| n > 0), "{seen:?}");
+        // The speedometer fills the third band, the whole half ring.
+        let (r0, r1) = band_radii(2);
+        assert!(r0 > band_radii(1).1);
+        let row = |input: u32| {
+            let at = stencil.input.iter().position(|&i| i == input).unwrap();
+            at as i32 / stencil.width as i32 + stencil.y0
+        };
+        let top = -f64::from(row(20));
+        assert!(top > r0 * radius - 2.0 && top <= r1 * radius + 1.0, "{top}");
+        assert_eq!(outer_radius(sheets.len()), r1);
+        assert_eq!(possessive("distance rays"), "distance rays'");
+        assert_eq!(possessive("speedometer"), "speedometer's");
     }
 
     #[test]

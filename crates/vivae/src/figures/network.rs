@@ -14,13 +14,21 @@ use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 use vivae_neat::hyperneat::{LinkSource, SubstrateController};
 
-pub use super::controller::NetworkOptions;
 use super::controller::{Checked, GUIDE, WHEEL, blend, check, px};
+pub use super::controller::{FigureSheet, NetworkOptions};
 use super::{FAMILY, Figure, FigureError, NEGATIVE, POSITIVE, draw_err, register_font, svg_to_png};
 use vivae_lab::substrate::{PolarNode, SubstrateSpec};
 
-/// Display radius (fraction of the sheet radius) of the distance-sensor ring.
-const DISTANCE_RING: f64 = 1.13;
+/// Display radius (fraction of the sheet radius) of the first ring of nodes
+/// outside the inner panel (the second input sheet's, e.g. distance rays).
+const BAND_RING: f64 = 1.13;
+/// How much further out each further sheet's ring is.
+const BAND_STEP: f64 = 0.13;
+
+/// Display radius of the nodes of input sheet `band` (1 = the second sheet).
+fn band_ring(band: usize) -> f64 {
+    BAND_RING + BAND_STEP * (band - 1) as f64
+}
 
 /// Renders the controller decoded on `spec` as SVG and PNG: a line per link
 /// up to `opts.max_links` expressed links, receptive fields above.
@@ -29,10 +37,22 @@ pub fn render(
     controller: &SubstrateController,
     opts: &NetworkOptions,
 ) -> Result<Figure, FigureError> {
+    render_sheets(spec, &FigureSheet::all(&spec.sheets()), controller, opts)
+}
+
+/// As [`render`], for the controller decoded on the input `sheets` (any
+/// number, e.g. an experiment's `sensors()`) and `spec`'s neuron sheet: the
+/// first sheet is drawn as the inner panel, every further one outside it.
+pub fn render_sheets(
+    spec: &SubstrateSpec,
+    sheets: &[FigureSheet],
+    controller: &SubstrateController,
+    opts: &NetworkOptions,
+) -> Result<Figure, FigureError> {
     if draws_fields(controller, opts) {
-        return super::fields::render(spec, controller, opts);
+        return super::fields::render(spec, sheets, controller, opts);
     }
-    let svg = render_svg(spec, controller, opts)?;
+    let svg = render_svg(spec, sheets, controller, opts)?;
     let png = svg_to_png(&svg)?;
     Ok(Figure { svg, png })
 }
@@ -43,10 +63,20 @@ pub fn figure_svg(
     controller: &SubstrateController,
     opts: &NetworkOptions,
 ) -> Result<String, FigureError> {
+    figure_svg_sheets(spec, &FigureSheet::all(&spec.sheets()), controller, opts)
+}
+
+/// The SVG of [`render_sheets`]'s figure (either form), without drawing the PNG.
+pub fn figure_svg_sheets(
+    spec: &SubstrateSpec,
+    sheets: &[FigureSheet],
+    controller: &SubstrateController,
+    opts: &NetworkOptions,
+) -> Result<String, FigureError> {
     if draws_fields(controller, opts) {
-        super::fields::render_svg(spec, controller, opts)
+        super::fields::render_svg(spec, sheets, controller, opts)
     } else {
-        render_svg(spec, controller, opts)
+        render_svg(spec, sheets, controller, opts)
     }
 }
 
@@ -113,10 +143,11 @@ struct Scene<'a> {
 impl<'a> Scene<'a> {
     fn new(
         spec: &'a SubstrateSpec,
+        sheets: &[FigureSheet],
         controller: &'a SubstrateController,
         opts: &'a NetworkOptions,
     ) -> Result<Scene<'a>, FigureError> {
-        let nodes = check(spec, controller, opts)?;
+        let nodes = check(spec, sheets, controller, opts)?;
         let (w, h) = (f64::from(opts.width), f64::from(opts.height));
         // The two sheets stacked in perspective, input sheet below the neuron
         // sheet, so input→neuron links run between the layers instead of along
@@ -177,10 +208,7 @@ impl<'a> Scene<'a> {
     /// Every expressed link, weakest first so strong links stay visible on top.
     fn draw_links(&self, root: &Root<'_>) -> Result<(), FigureError> {
         let Checked {
-            sensors,
-            distance,
-            neurons,
-            ..
+            inputs, neurons, ..
         } = &self.nodes;
         let (inputs_panel, neuron_panel) = (&self.inputs_panel, &self.neuron_panel);
         let neuron_r = self.neuron_r;
@@ -193,10 +221,11 @@ impl<'a> Scene<'a> {
             let to = neuron_panel.node(&neurons[link.target]);
             match link.source {
                 LinkSource::Input { sheet, index } => {
+                    let node = &inputs[sheet].nodes[index];
                     let from = if sheet == 0 {
-                        inputs_panel.node(&sensors[index])
+                        inputs_panel.node(node)
                     } else {
-                        inputs_panel.at(DISTANCE_RING, distance[index].phi)
+                        inputs_panel.at(band_ring(sheet), node.phi)
                     };
                     root.draw(&PathElement::new(vec![px(from), px(to)], style))
                         .map_err(draw_err)?;
@@ -220,16 +249,14 @@ impl<'a> Scene<'a> {
         Ok(())
     }
 
-    /// The nodes, on top of the links: sensors grey, distance rays dark
-    /// squares, neurons filled by their bias, wheel neurons red.
+    /// The nodes, on top of the links: the first sheet's grey, further
+    /// sheets' (e.g. distance rays) dark squares, neurons filled by their
+    /// bias, wheel neurons red.
     fn draw_nodes(&self, root: &Root<'_>) -> Result<(), FigureError> {
         let Checked {
-            sensors,
-            distance,
-            neurons,
-            wheels,
+            neurons, wheels, ..
         } = &self.nodes;
-        for n in sensors {
+        for n in &self.nodes.first().nodes {
             root.draw(&Circle::new(
                 px(self.inputs_panel.node(n)),
                 6,
@@ -237,13 +264,15 @@ impl<'a> Scene<'a> {
             ))
             .map_err(draw_err)?;
         }
-        for n in distance {
-            let (x, y) = self.inputs_panel.at(DISTANCE_RING, n.phi);
-            root.draw(&Rectangle::new(
-                [px((x - 5.0, y - 5.0)), px((x + 5.0, y + 5.0))],
-                RGBColor(90, 90, 90).filled(),
-            ))
-            .map_err(draw_err)?;
+        for (band, sheet) in self.nodes.bands() {
+            for n in &sheet.nodes {
+                let (x, y) = self.inputs_panel.at(band_ring(band), n.phi);
+                root.draw(&Rectangle::new(
+                    [px((x - 5.0, y - 5.0)), px((x + 5.0, y + 5.0))],
+                    RGBColor(90, 90, 90).filled(),
+                ))
+                .map_err(draw_err)?;
+            }
         }
         let neuron_r = self.neuron_r;
         for (i, n) in neurons.iter().enumerate() {
@@ -295,10 +324,10 @@ impl<'a> Scene<'a> {
     fn draw_captions(&self, root: &Root<'_>) -> Result<(), FigureError> {
         let font = (FAMILY, 17).into_font();
         let left_top = Pos::new(HPos::Left, VPos::Center);
-        let distance = &self.nodes.distance;
-        let mut input_caption = vec!["surface sensors".to_string(), self.spec.sensors.to_string()];
-        if !distance.is_empty() {
-            input_caption.push(format!("+ {} distance rays", distance.len()));
+        let first = self.nodes.first();
+        let mut input_caption = vec![first.label.to_string(), first.grid().to_string()];
+        for (_, sheet) in self.nodes.bands() {
+            input_caption.push(format!("+ {} {}", sheet.nodes.len(), sheet.label));
         }
         for (panel, lines) in [
             (&self.inputs_panel, input_caption),
@@ -324,18 +353,20 @@ impl<'a> Scene<'a> {
 /// Renders the figure with a line per link (at any size) as an SVG document.
 pub fn render_svg(
     spec: &SubstrateSpec,
+    sheets: &[FigureSheet],
     controller: &SubstrateController,
     opts: &NetworkOptions,
 ) -> Result<String, FigureError> {
     register_font()?;
-    let scene = Scene::new(spec, controller, opts)?;
+    let scene = Scene::new(spec, sheets, controller, opts)?;
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (opts.width, opts.height)).into_drawing_area();
         root.fill(&WHITE).map_err(draw_err)?;
         scene.draw_titles(&root)?;
         // Guides: ring arcs and baseline of each sheet.
-        draw_guides(&root, &scene.inputs_panel, spec.sensors.rings, spec.fov)?;
+        let rings = scene.nodes.first().grid().rings;
+        draw_guides(&root, &scene.inputs_panel, rings, spec.fov)?;
         draw_guides(
             &root,
             &scene.neuron_panel,
@@ -347,14 +378,8 @@ pub fn render_svg(
         scene.draw_wheel_labels(&root)?;
         scene.draw_captions(&root)?;
         let small = (FAMILY, 15).into_font();
-        let with_distance = !scene.nodes.distance.is_empty();
-        draw_legend(
-            &root,
-            (scene.w, scene.h),
-            with_distance,
-            small,
-            opts.weight_scale,
-        )?;
+        let bands: Vec<&str> = scene.nodes.bands().map(|(_, s)| s.name).collect();
+        draw_legend(&root, (scene.w, scene.h), &bands, small, opts.weight_scale)?;
         root.present().map_err(draw_err)?;
     }
     Ok(svg)
@@ -444,20 +469,21 @@ fn draw_curved_arrow(
 fn draw_legend(
     root: &Root<'_>,
     (w, h): (f64, f64),
-    with_distance: bool,
+    bands: &[&str],
     font: FontDesc<'_>,
     scale: f64,
 ) -> Result<(), FigureError> {
     let y = h - 26.0;
-    draw_legend_items(root, (w, y), with_distance, &font)?;
+    draw_legend_items(root, (w, y), bands, &font)?;
     draw_bias_legend(root, (w, y - 28.0), &font, scale)
 }
 
-/// The legend's bottom row, at height `y`: link colours, wheel neurons, sensors.
+/// The legend's bottom row, at height `y`: link colours, wheel neurons,
+/// sensors (with the names of the sheets drawn as `bands`, if any).
 fn draw_legend_items(
     root: &Root<'_>,
     (w, y): (f64, f64),
-    with_distance: bool,
+    bands: &[&str],
     font: &FontDesc<'_>,
 ) -> Result<(), FigureError> {
     let left = Pos::new(HPos::Left, VPos::Center);
@@ -501,12 +527,12 @@ fn draw_legend_items(
             ))
             .map_err(draw_err)
         },
-        if with_distance {
-            "sensor (■ distance)"
+        &if bands.is_empty() {
+            "sensor".to_string()
         } else {
-            "sensor"
+            format!("sensor (■ {})", bands.join(", "))
         },
-        if with_distance { 210.0 } else { 110.0 },
+        if bands.is_empty() { 110.0 } else { 210.0 },
     )?;
     Ok(())
 }
@@ -608,6 +634,10 @@ mod tests {
         fn reset(&mut self) {}
     }
 
+    fn sheets(spec: &SubstrateSpec) -> Vec<FigureSheet> {
+        FigureSheet::all(&spec.sheets())
+    }
+
     fn controller(spec: &SubstrateSpec) -> SubstrateController {
         let layout = spec.layout().unwrap();
         decode(
@@ -659,7 +689,7 @@ mod tests {
             ..SubstrateSpec::default()
         };
         let c = controller(&spec);
-        let svg = render_svg(&spec, &c, &NetworkOptions::default()).unwrap();
+        let svg = render_svg(&spec, &sheets(&spec), &c, &NetworkOptions::default()).unwrap();
         for label in [">\n3x6\n<", "+ 7 distance rays", ">\n9x9\n<"] {
             assert!(svg.contains(label), "missing {label:?}");
         }
@@ -679,7 +709,104 @@ mod tests {
             neurons: PolarGrid::new(9, 9).unwrap(),
             ..SubstrateSpec::default()
         };
-        let e = render_svg(&spec, &controller(&other), &NetworkOptions::default()).unwrap_err();
+        let e = render_svg(
+            &spec,
+            &sheets(&spec),
+            &controller(&other),
+            &NetworkOptions::default(),
+        )
+        .unwrap_err();
+        assert!(matches!(e, FigureError::Invalid(_)), "{e}");
+    }
+
+    /// A one-reading sensor (the robot's speed), as docs/architecture.md's
+    /// "A new sensor" adds one.
+    #[derive(Debug)]
+    struct Speedometer([vivae_sim::SensorPlace; 1]);
+
+    impl vivae_sim::Sensor for Speedometer {
+        fn name(&self) -> &'static str {
+            "speed"
+        }
+        fn rings(&self) -> usize {
+            1
+        }
+        fn places(&self) -> &[vivae_sim::SensorPlace] {
+            &self.0
+        }
+        fn read(&self, world: &vivae_sim::World, robot: usize, out: &mut [f64]) {
+            out[0] = world.robots()[robot].speed / world.params().v_max;
+        }
+    }
+
+    #[test]
+    fn network_figure_draws_an_extra_sheet() {
+        use std::sync::Arc;
+        use vivae_lab::config::Config;
+        use vivae_lab::sensors::{SensorSheet, sensor_sheets};
+        use vivae_lab::substrate::{cppn_outputs, layout_of};
+        use vivae_neat::hyperneat::decode_genome;
+        use vivae_neat::{GenomeSpec, NeatParams, Population};
+
+        let place = vivae_sim::SensorPlace {
+            ring: 0,
+            angle_index: 0,
+            distance: 0.0,
+            angle: 0.0,
+        };
+        let mut sheets = sensor_sheets(&Config::default());
+        sheets.push(SensorSheet {
+            sensor: Arc::new(Speedometer([place])),
+            cppn_output: 4,
+            reference_len: 1,
+            label: "speedometer",
+        });
+        let spec = SubstrateSpec::default();
+        let layout = layout_of(&sheets, &spec.neuron_nodes(), spec.coords);
+        let cppn = GenomeSpec {
+            outputs: cppn_outputs(&sheets),
+            ..GenomeSpec::cppn()
+        };
+        assert_eq!(cppn.outputs, 5);
+        let population = Population::new(NeatParams::default(), cppn, 7).unwrap();
+        let genome = &population.genomes()[0];
+        let c = decode_genome(genome, &layout, &HyperParams::default()).unwrap();
+        assert_eq!(c.sheet_sizes(), &[15, 1]);
+        let figure_sheets = FigureSheet::all(&sheets);
+        assert_eq!(figure_sheets[1].name, "speed");
+
+        // A line per link: the extra sheet's caption and its one node, a dark square.
+        let opts = NetworkOptions::default();
+        assert!(!draws_fields(&c, &opts));
+        let fig = render_sheets(&spec, &figure_sheets, &c, &opts).unwrap();
+        for label in [
+            ">\nsurface sensors\n<",
+            ">\n+ 1 speedometer\n<",
+            "sensor (■ speed)",
+        ] {
+            assert!(fig.svg.contains(label), "missing {label:?}");
+        }
+        assert_eq!(fig.svg.matches("fill=\"#5A5A5A\"").count(), 1);
+        assert_eq!(png_size(&fig.png), (2000, 1440));
+        assert!(distinct_colours(&fig.png) > 20);
+
+        // Receptive fields: the extra sheet is a band of each panel.
+        let opts = NetworkOptions {
+            max_links: 0,
+            ..NetworkOptions::default()
+        };
+        let fig = render_sheets(&spec, &figure_sheets, &c, &opts).unwrap();
+        for label in [
+            "surface sensors 3x5 + 1 speedometer → neurons 3x3",
+            "holds the speedometer&apos;s weights",
+        ] {
+            assert!(fig.svg.contains(label), "missing {label:?}");
+        }
+        assert_eq!(png_size(&fig.png), (3200, 2304));
+        assert!(distinct_colours(&fig.png) > 20);
+
+        // Without the extra sheet, the controller does not fit.
+        let e = render_sheets(&spec, &figure_sheets[..1], &c, &opts).unwrap_err();
         assert!(matches!(e, FigureError::Invalid(_)), "{e}");
     }
 
