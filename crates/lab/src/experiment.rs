@@ -230,13 +230,10 @@ impl Experiment {
         self.run_world(controller, record).0
     }
 
-    /// The start of an episode of this experiment driven by `controller`.
+    /// The controller side of an episode of this experiment driven by
+    /// `controller` (the world starts as [`Experiment::world`]).
     pub fn rollout(&self, controller: &SubstrateController) -> Rollout {
-        self.rollout_in(self.world.clone(), controller)
-    }
-
-    fn rollout_in(&self, world: World, controller: &SubstrateController) -> Rollout {
-        Rollout::new(world, self.sensors.clone(), self.wheels, controller)
+        Rollout::new(self.robots(), self.sensors.clone(), self.wheels, controller)
     }
 
     /// Runs one episode and also returns the final world (for drawing).
@@ -248,22 +245,19 @@ impl Experiment {
         }
         let mut meter = self.fitness.meter(&world);
         let observe = self.fitness.observes_steps();
-        let mut rollout = self.rollout_in(world, controller);
+        let mut rollout = self.rollout(controller);
         let mut on_road = 0u64;
-        let mut behaviour =
-            record.then(|| BehaviourMeter::new(rollout.world(), self.steps as usize));
+        let mut behaviour = record.then(|| BehaviourMeter::new(&world, self.steps as usize));
         for _ in 0..self.steps {
-            rollout.step(controller, None);
-            let world = rollout.world();
+            rollout.step(&mut world, controller, None);
             if observe {
-                meter.observe(world);
+                meter.observe(&world);
             }
             if let Some(b) = &mut behaviour {
                 on_road += (0..n).filter(|&i| world.on_road(i)).count() as u64;
-                b.observe(world);
+                b.observe(&world);
             }
         }
-        let world = rollout.into_world();
         let robot_steps = (n as f64) * f64::from(self.steps);
         let episode = Episode {
             fitness: meter.score(&world, robot_steps),

@@ -9,14 +9,15 @@ use vivae_sim::World;
 use crate::sensors::{SensorSheet, read_sheets};
 use crate::substrate::WheelNeurons;
 
-/// An episode in progress: the world, and every robot's neuron states.
+/// The controller side of an episode in progress: every robot's neuron
+/// states and the buffers between sensors, controller and wheels. The world
+/// is the caller's, handed to [`Rollout::step`].
 ///
 /// The robots share the controller's weights: one batched update per step
 /// reads each weight once for all robots, and gives each robot exactly the
 /// bits its own copy of the controller would. Stepping never allocates.
 #[derive(Debug, Clone)]
 pub struct Rollout {
-    world: World,
     sensors: Vec<SensorSheet>,
     wheels: WheelNeurons,
     states: BatchState,
@@ -27,16 +28,16 @@ pub struct Rollout {
 }
 
 impl Rollout {
-    /// An episode from `world`, its robots carrying `sensors` (in
+    /// The start of an episode of `robots` robots carrying `sensors` (in
     /// controller-input order) and driven by `controller` through `wheels`
     /// (see [`Experiment::rollout`](crate::experiment::Experiment::rollout)).
     pub fn new(
-        world: World,
+        robots: usize,
         sensors: Vec<SensorSheet>,
         wheels: WheelNeurons,
         controller: &SubstrateController,
     ) -> Rollout {
-        let n = world.robots().len();
+        let n = robots;
         Rollout {
             sensors,
             wheels,
@@ -45,18 +46,22 @@ impl Rollout {
             outputs: vec![0.0; n * controller.num_outputs()],
             controls: vec![[0.0; 2]; n],
             steps: 0,
-            world,
         }
     }
 
     /// One step: every robot reads its sensors, the controller updates, the
     /// wheel neurons drive, the world moves. `manual` replaces one robot's
     /// wheel commands (its controller still updates, so letting go resumes it).
-    pub fn step(&mut self, controller: &SubstrateController, manual: Option<(usize, [f64; 2])>) {
+    pub fn step(
+        &mut self,
+        world: &mut World,
+        controller: &SubstrateController,
+        manual: Option<(usize, [f64; 2])>,
+    ) {
         let (ni, nn) = (controller.num_inputs(), controller.num_outputs());
         if ni > 0 {
             for (i, inputs) in self.inputs.chunks_exact_mut(ni).enumerate() {
-                read_sheets(&self.sensors, &self.world, i, inputs);
+                read_sheets(&self.sensors, world, i, inputs);
             }
         }
         controller.activate_batch(&mut self.states, &self.inputs, &mut self.outputs);
@@ -69,18 +74,16 @@ impl Rollout {
         {
             *c = wheels;
         }
-        self.world.step(&self.controls);
+        world.step(&self.controls);
         self.steps += 1;
     }
 
-    /// The world now.
-    pub fn world(&self) -> &World {
-        &self.world
-    }
-
-    /// The world, to hand back at the end of the episode.
-    pub fn into_world(self) -> World {
-        self.world
+    /// Back to the start: every neuron state and output zero (the world is the caller's to reset).
+    pub fn reset(&mut self, controller: &SubstrateController) {
+        self.states = controller.batch_state(self.controls.len());
+        self.outputs.fill(0.0);
+        self.controls.fill([0.0; 2]);
+        self.steps = 0;
     }
 
     /// Robot `robot`'s neuron activations after the last step.

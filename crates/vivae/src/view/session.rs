@@ -10,7 +10,6 @@ use std::fmt::Write as _;
 
 use serde::Deserialize;
 use serde_json::{Value, json};
-use vivae_neat::Network;
 use vivae_neat::hyperneat::SubstrateController;
 use vivae_sim::{DVec2, Scenario, Sensor, World};
 
@@ -19,6 +18,7 @@ use crate::report_html::SceneData;
 use vivae_lab::config::Config;
 use vivae_lab::experiment::Experiment;
 use vivae_lab::io::one_line;
+use vivae_lab::rollout::Rollout;
 use vivae_lab::substrate::PolarGrid;
 
 /// Simulation steps per second at speed 1 ("real time").
@@ -121,13 +121,11 @@ pub(crate) struct Sim {
     choice: Choice,
     /// Label of the genome driving, for the page.
     driver: String,
-    controllers: Vec<SubstrateController>,
+    /// The chosen genome's controller and the robots' side of the episode.
+    driving: Option<(SubstrateController, Rollout)>,
     manual: Option<usize>,
     keys: Keys,
     selected: usize,
-    inputs: Vec<f64>,
-    /// Per robot, its controller's last outputs (neuron activations).
-    outputs: Vec<Vec<f64>>,
     controls: Vec<[f64; 2]>,
     surface: Vec<f64>,
     /// Running or paused.
@@ -171,12 +169,10 @@ impl Sim {
             experiment,
             choice: Choice::None,
             driver: "nobody (drive a robot with the arrow keys)".into(),
-            controllers: Vec::new(),
+            driving: None,
             manual: None,
             keys: Keys::default(),
             selected: 0,
-            inputs: Vec::new(),
-            outputs: Vec::new(),
             controls: Vec::new(),
             surface: Vec::new(),
             playing: true,
@@ -195,7 +191,7 @@ impl Sim {
         Ok(sim)
     }
 
-    /// Rebuilds the per-robot controllers for the current choice and substrate.
+    /// Rebuilds the controller and the robots' rollout for the current choice and substrate.
     fn set_choice(&mut self, choice: Choice, snap: &RunSnapshot) -> Result<(), String> {
         let found = match choice {
             Choice::None => None,
@@ -226,10 +222,9 @@ impl Sim {
                     .ok_or_else(|| format!("generation {g} has no recorded best genome"))?,
             ),
         };
-        let n = self.world.robots().len();
         match found {
             None => {
-                self.controllers.clear();
+                self.driving = None;
                 self.driver = "nobody (drive a robot with the arrow keys)".into();
             }
             Some((genome, label)) => {
@@ -237,13 +232,8 @@ impl Sim {
                 let controller =
                     tokio::task::block_in_place(|| self.experiment.controller(&genome))
                         .map_err(|e| format!("the genome's {e}"))?;
-                self.controllers = (0..n)
-                    .map(|_| {
-                        let mut c = controller.clone();
-                        c.reset();
-                        c
-                    })
-                    .collect();
+                let rollout = self.experiment.rollout(&controller);
+                self.driving = Some((controller, rollout));
                 self.driver = label;
             }
         }
@@ -255,10 +245,6 @@ impl Sim {
 
     fn resize_buffers(&mut self) {
         let n = self.world.robots().len();
-        let inputs = self.controllers.first().map_or(0, |c| c.num_inputs());
-        let outputs = self.controllers.first().map_or(0, |c| c.num_outputs());
-        self.inputs = vec![0.0; inputs.max(self.experiment.surface_grid().len())];
-        self.outputs = vec![vec![0.0; outputs]; n];
         self.controls = vec![[0.0; 2]; n];
         self.surface = vec![0.0; self.experiment.surface_grid().len()];
         self.selected = self.selected.min(n.saturating_sub(1));
@@ -267,22 +253,27 @@ impl Sim {
         }
     }
 
-    /// One simulation step: every controller (or the keyboard) moves its robot.
+    /// One simulation step: every controller (or the keyboard) moves its robot,
+    /// through the same rollout loop evolution and replay use.
     fn step_once(&mut self) {
-        let wheels = self.experiment.wheels();
-        for i in 0..self.world.robots().len() {
-            if self.manual == Some(i) {
-                self.controls[i] = self.keys.controls();
-            } else if let Some(c) = self.controllers.get_mut(i) {
-                self.experiment
-                    .read_inputs(&self.world, i, &mut self.inputs);
-                c.activate(&self.inputs, &mut self.outputs[i]);
-                self.controls[i] = [self.outputs[i][wheels.left], self.outputs[i][wheels.right]];
-            } else {
-                self.controls[i] = [0.0, 0.0];
+        let manual = self.manual.map(|m| (m, self.keys.controls()));
+        match &mut self.driving {
+            Some((controller, rollout)) => {
+                rollout.step(&mut self.world, controller, manual);
+                for (i, c) in self.controls.iter_mut().enumerate() {
+                    *c = rollout.controls(i);
+                }
+            }
+            None => {
+                self.controls.fill([0.0, 0.0]);
+                if let Some((m, wheels)) = manual
+                    && let Some(c) = self.controls.get_mut(m)
+                {
+                    *c = wheels;
+                }
+                self.world.step(&self.controls);
             }
         }
-        self.world.step(&self.controls);
         self.steps += 1;
         self.dirty = true;
     }
@@ -305,11 +296,8 @@ impl Sim {
     /// Puts every robot back at its start and clears the controllers' state.
     fn reset(&mut self) {
         self.world = self.experiment.world().clone();
-        for c in &mut self.controllers {
-            c.reset();
-        }
-        for o in &mut self.outputs {
-            o.fill(0.0);
+        if let Some((controller, rollout)) = &mut self.driving {
+            rollout.reset(controller);
         }
         self.steps = 0;
         self.carry = 0.0;
@@ -568,8 +556,8 @@ impl Sim {
                 );
             }
             s.push_str(r#"],"neurons":["#);
-            if let Some(o) = self.outputs.get(i) {
-                for (k, v) in o.iter().enumerate() {
+            if let Some((_, rollout)) = &self.driving {
+                for (k, v) in rollout.outputs(i).iter().enumerate() {
                     let _ = write!(s, "{}{:.4}", if k > 0 { "," } else { "" }, v);
                 }
             }
