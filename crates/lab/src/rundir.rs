@@ -2,7 +2,8 @@
 //! of them. A run directory holds `config.toml`, `scenario.svg` (or
 //! `scenarios/` for a multi-map run), `generations.csv`, `population.csv`,
 //! `timing.csv`, `best-genomes.jsonl`, `champion.json`, `checkpoints/` and,
-//! at the end, `figures/` and `report.html`. CSV files are appended once per
+//! at the end, `figures/` and `report.html` (then `figures/drawn-generations.txt`,
+//! the record that they are complete). CSV files are appended once per
 //! generation; a checkpoint records their lengths, so resuming truncates
 //! whatever a crash left after the last checkpoint and the finished files
 //! are byte-identical to an uninterrupted run's. Other modules and the
@@ -47,6 +48,9 @@ pub mod files {
     pub const BEST_GENOMES: &str = "best-genomes.jsonl";
     /// The self-contained HTML report of the run.
     pub const REPORT: &str = "report.html";
+    /// In `figures/`: how many generations the figures and `report.html`
+    /// show, written last once they are all drawn ([`super::mark_drawn`]).
+    pub const DRAWN: &str = "drawn-generations.txt";
 }
 
 pub(crate) const GENERATIONS_HEADER: &str = "generation,best,mean,median,worst,species,mean_cppn_nodes,mean_cppn_links,best_substrate_links,possible_substrate_links\n";
@@ -714,6 +718,34 @@ fn read_rows<T>(
         out.push(row);
     }
     Ok(out)
+}
+
+/// Forgets that `dir`'s figures and report are drawn: called before they are
+/// redrawn, so that a crash while drawing leaves them marked as stale.
+pub fn unmark_drawn(dir: &Path) -> Result<()> {
+    let path = dir.join(files::FIGURES).join(files::DRAWN);
+    match fs::remove_file(&path) {
+        Err(e) if e.kind() != std::io::ErrorKind::NotFound => Err(Error::Io {
+            action: "remove",
+            path,
+            error: e,
+        }),
+        _ => Ok(()),
+    }
+}
+
+/// Records (atomically, after everything else) that `dir`'s figures and
+/// `report.html` show its first `generations` generations.
+pub fn mark_drawn(dir: &Path, generations: u32) -> Result<()> {
+    let path = dir.join(files::FIGURES).join(files::DRAWN);
+    write_atomic(&path, format!("{generations}\n").as_bytes())
+}
+
+/// How many generations `dir`'s figures and report show, if their drawing
+/// finished; `None` when it did not (or predates the record): redraw them.
+pub fn drawn_generations(dir: &Path) -> Option<u32> {
+    let text = read_text(&dir.join(files::FIGURES).join(files::DRAWN)).ok()?;
+    text.strip_suffix('\n')?.parse().ok()
 }
 
 /// Removes temporary files a killed process left behind (`.NAME.tmp-PID`).

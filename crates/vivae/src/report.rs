@@ -65,10 +65,14 @@ pub fn trajectory_figure(
     Ok(episode)
 }
 
-/// Writes every figure of a finished run into `RUN/figures/`.
+/// Writes every figure of a finished run into `RUN/figures/`, and `report.html`;
+/// then, last, records how many generations they show
+/// ([`vivae_lab::rundir::mark_drawn`]), so that a crash before the end leaves
+/// them marked stale and `vivae resume` redraws them.
 pub fn finish_run(run: &Run) -> Result<RunSummary> {
     let dir = run.dir().join(files::FIGURES);
     vivae_lab::io::create_dirs(&dir)?;
+    vivae_lab::rundir::unmark_drawn(run.dir())?;
     let experiment = run.experiment();
     let mut episodes = Vec::new();
     for (generation, _, genome) in run.figure_genomes() {
@@ -110,6 +114,7 @@ pub fn finish_run(run: &Run) -> Result<RunSummary> {
     };
     reuse.episodes.push((&champion.genome, &episode));
     crate::report_html::write_reusing(run.dir(), &reuse)?;
+    vivae_lab::rundir::mark_drawn(run.dir(), run.done())?;
 
     // On several maps the champion's fitness is the mean over maps: its time on road too.
     let training = run.training();

@@ -30,6 +30,7 @@ mod output_path_mistakes_exit_2_with_one_line;
 mod replay_from_champion_file_matches_run_dir;
 mod report_html_is_self_contained;
 mod resume_matches_uninterrupted_run;
+mod resume_redraws_a_stale_report;
 mod resume_removes_stale_temporaries;
 mod robots_flag_fits_a_one_robot_scenario;
 mod runs_too_big_to_start_are_refused;
