@@ -672,10 +672,19 @@ pub fn read_generations(path: &Path) -> Result<Vec<GenerationRow>> {
     })
 }
 
-/// Reads `timing.csv`, as [`read_generations`] does; seconds may not be negative.
+/// The most wall-clock seconds `timing.csv` may add up to: 1e9 s, about 32
+/// years. A larger sum is no real run's, and would blow up the axes drawn
+/// from it (`vivae compare` would hang).
+pub const MAX_RUN_SECONDS: f64 = 1e9;
+
+/// Reads `timing.csv`, as [`read_generations`] does; seconds may not be
+/// negative, and their sum up to each line not above [`MAX_RUN_SECONDS`].
 pub fn read_timing(path: &Path) -> Result<Vec<TimingRow>> {
+    let total = std::cell::Cell::new(0.0);
     read_rows(path, TimingRow::parse, |r| {
-        (r.generation, r.seconds.is_finite() && r.seconds >= 0.0)
+        total.set(total.get() + r.seconds);
+        let valid = r.seconds.is_finite() && r.seconds >= 0.0 && total.get() <= MAX_RUN_SECONDS;
+        (r.generation, valid)
     })
 }
 

@@ -11,6 +11,7 @@ mod bad_inputs_exit_2_with_one_line;
 mod best_genomes_are_recorded_every_generation_and_resume_identically;
 mod cli_end_to_end;
 mod common;
+mod compare_refuses_an_impossible_wall_time;
 mod compare_summarises_runs_by_group;
 mod corrupt_checkpoint_is_refused;
 mod evaluation_is_thread_count_independent;
