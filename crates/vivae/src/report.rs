@@ -213,12 +213,24 @@ pub fn scenario_text(s: &ScenarioSummary, marks: &[String]) -> String {
     out
 }
 
-/// Draws a scenario (with sensors of `sensors` on every robot) as SVG or PNG by `out`'s extension.
+/// Draws a scenario (with sensors of `sensors` on every robot) as SVG or PNG
+/// by `out`'s extension. `sensors` is held to the limit an evolving run's
+/// sensor sheet has ([`vivae_lab::config::MAX_SENSORS`]).
 pub fn render_scenario(
     scenario: &Scenario,
     sensors: Option<PolarGrid>,
     out: &Path,
 ) -> Result<Vec<u8>> {
+    if let Some(g) = sensors {
+        let count = g.rings.saturating_mul(g.angles);
+        let max = vivae_lab::config::MAX_SENSORS;
+        if count > max {
+            return Err(bad_input(format!(
+                "--sensors {}x{} = {count} sensors: must be at most {max}",
+                g.rings, g.angles
+            )));
+        }
+    }
     let world = World::new(scenario, &Default::default()).map_err(|e| bad_input(e.to_string()))?;
     let options = DrawOptions {
         surface_sensors: sensors.map(|g| SurfaceSensors {

@@ -37,6 +37,7 @@ mod robots_flag_fits_a_one_robot_scenario;
 mod runs_too_big_to_start_are_refused;
 mod same_bits_at_every_simd_level;
 mod same_bits_on_older_cpu_code_paths;
+mod scenario_render_bounds_its_sensors;
 mod second_writer_of_a_run_is_refused;
 mod shipped_scenarios_run_by_name;
 mod short_run_matches_pinned_hash;
