@@ -80,7 +80,8 @@ pub fn run(args: ViewArgs) -> vivae_lab::Result<ExitCode> {
         }
     };
     let local = listener.local_addr().map_err(io("listen on"))?;
-    if !args.host.is_loopback() {
+    // An IPv4-mapped loopback address (::ffff:127.0.0.1) is loopback too.
+    if !args.host.to_canonical().is_loopback() {
         eprintln!(
             "warning: listening on {} — anyone who can reach this machine on the network can watch this run",
             args.host

@@ -44,6 +44,7 @@ mod short_run_matches_pinned_hash;
 mod sigterm_checkpoints_and_exits_130;
 mod viewer_and_report_in_a_real_browser;
 mod viewer_follows_a_running_evolution;
+mod viewer_on_mapped_loopback_does_not_warn;
 mod viewer_refuses_foreign_host_names;
 mod viewer_serves_only_its_own_files;
 mod workspace_structure;
