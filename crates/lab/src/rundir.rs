@@ -548,14 +548,28 @@ pub(crate) fn prune_checkpoints(dir: &Path, keep: usize) -> Result<()> {
 }
 
 /// Reads `population.csv` back: per generation, the fitnesses best first.
+/// Refused (bad input naming the file, and the line): no header line, a
+/// malformed row, a fitness that is not a finite number, no row at all.
 pub fn read_population_csv(path: &Path) -> Result<Vec<Vec<f64>>> {
+    // Not `read_text`: a long run's population.csv may pass its size limit.
     let text = fs::read_to_string(path).map_err(Error::io("read", path))?;
-    let malformed = |line: usize, what: &dyn std::fmt::Display| Error::RunFile {
+    let refused = |reason: String| Error::RunFile {
         path: path.to_path_buf(),
-        reason: format!("line {}: {what}", line + 1),
+        reason,
     };
+    let malformed =
+        |line: usize, what: &dyn std::fmt::Display| refused(format!("line {}: {what}", line + 1));
+    let mut lines = text.lines().enumerate();
+    if !lines
+        .next()
+        .is_some_and(|(_, h)| h.starts_with("generation,"))
+    {
+        return Err(refused(
+            "not a vivae run file (no `generation,rank,fitness` header line)".into(),
+        ));
+    }
     let mut out: Vec<Vec<f64>> = Vec::new();
-    for (i, line) in text.lines().enumerate().skip(1) {
+    for (i, line) in lines {
         let mut parts = line.split(',');
         let (Some(g), Some(_), Some(f)) = (parts.next(), parts.next(), parts.next()) else {
             return Err(malformed(i, &"expected generation,rank,fitness"));
@@ -565,10 +579,16 @@ pub fn read_population_csv(path: &Path) -> Result<Vec<Vec<f64>>> {
         if g == 0 {
             return Err(malformed(i, &"generation 0"));
         }
+        if !f.is_finite() {
+            return Err(malformed(i, &format!("fitness {f} is not a finite number")));
+        }
         if out.len() < g {
             out.resize(g, Vec::new());
         }
         out[g - 1].push(f);
+    }
+    if out.is_empty() {
+        return Err(refused("no generation recorded".into()));
     }
     Ok(out)
 }
