@@ -62,7 +62,7 @@ impl HostPolicy {
                 && (self.bound.is_unspecified() || ip.to_canonical() == self.bound);
         }
         let name = normal_name(name);
-        self.names.iter().any(|n| *n == name)
+        self.names.contains(&name)
     }
 }
 
