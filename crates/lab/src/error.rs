@@ -129,6 +129,7 @@ impl Error {
                 | Error::Experiment(_)
                 | Error::Checkpoint { .. }
                 | Error::Genome { .. }
+                | Error::RunFile { .. }
                 | Error::Invalid(_)
                 | Error::Simd(_)
         ) || self.is_path_mistake()

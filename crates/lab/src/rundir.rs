@@ -2,7 +2,8 @@
 //! of them. A run directory holds `config.toml`, `scenario.svg` (or
 //! `scenarios/` for a multi-map run), `generations.csv`, `population.csv`,
 //! `timing.csv`, `best-genomes.jsonl`, `champion.json`, `checkpoints/` and,
-//! at the end, `figures/` and `report.html`. CSV files are appended once per
+//! at the end, `figures/` and `report.html` (then `figures/drawn-generations.txt`,
+//! the record that they are complete). CSV files are appended once per
 //! generation; a checkpoint records their lengths, so resuming truncates
 //! whatever a crash left after the last checkpoint and the finished files
 //! are byte-identical to an uninterrupted run's. Other modules and the
@@ -47,6 +48,9 @@ pub mod files {
     pub const BEST_GENOMES: &str = "best-genomes.jsonl";
     /// The self-contained HTML report of the run.
     pub const REPORT: &str = "report.html";
+    /// In `figures/`: how many generations the figures and `report.html`
+    /// show, written last once they are all drawn ([`super::mark_drawn`]).
+    pub const DRAWN: &str = "drawn-generations.txt";
 }
 
 pub(crate) const GENERATIONS_HEADER: &str = "generation,best,mean,median,worst,species,mean_cppn_nodes,mean_cppn_links,best_substrate_links,possible_substrate_links\n";
@@ -544,14 +548,28 @@ pub(crate) fn prune_checkpoints(dir: &Path, keep: usize) -> Result<()> {
 }
 
 /// Reads `population.csv` back: per generation, the fitnesses best first.
+/// Refused (bad input naming the file, and the line): no header line, a
+/// malformed row, a fitness that is not a finite number, no row at all.
 pub fn read_population_csv(path: &Path) -> Result<Vec<Vec<f64>>> {
+    // Not `read_text`: a long run's population.csv may pass its size limit.
     let text = fs::read_to_string(path).map_err(Error::io("read", path))?;
-    let malformed = |line: usize, what: &dyn std::fmt::Display| Error::RunFile {
+    let refused = |reason: String| Error::RunFile {
         path: path.to_path_buf(),
-        reason: format!("line {}: {what}", line + 1),
+        reason,
     };
+    let malformed =
+        |line: usize, what: &dyn std::fmt::Display| refused(format!("line {}: {what}", line + 1));
+    let mut lines = text.lines().enumerate();
+    if !lines
+        .next()
+        .is_some_and(|(_, h)| h.starts_with("generation,"))
+    {
+        return Err(refused(
+            "not a vivae run file (no `generation,rank,fitness` header line)".into(),
+        ));
+    }
     let mut out: Vec<Vec<f64>> = Vec::new();
-    for (i, line) in text.lines().enumerate().skip(1) {
+    for (i, line) in lines {
         let mut parts = line.split(',');
         let (Some(g), Some(_), Some(f)) = (parts.next(), parts.next(), parts.next()) else {
             return Err(malformed(i, &"expected generation,rank,fitness"));
@@ -561,10 +579,16 @@ pub fn read_population_csv(path: &Path) -> Result<Vec<Vec<f64>>> {
         if g == 0 {
             return Err(malformed(i, &"generation 0"));
         }
+        if !f.is_finite() {
+            return Err(malformed(i, &format!("fitness {f} is not a finite number")));
+        }
         if out.len() < g {
             out.resize(g, Vec::new());
         }
         out[g - 1].push(f);
+    }
+    if out.is_empty() {
+        return Err(refused("no generation recorded".into()));
     }
     Ok(out)
 }
@@ -668,10 +692,19 @@ pub fn read_generations(path: &Path) -> Result<Vec<GenerationRow>> {
     })
 }
 
-/// Reads `timing.csv`, as [`read_generations`] does; seconds may not be negative.
+/// The most wall-clock seconds `timing.csv` may add up to: 1e9 s, about 32
+/// years. A larger sum is no real run's, and would blow up the axes drawn
+/// from it (`vivae compare` would hang).
+pub const MAX_RUN_SECONDS: f64 = 1e9;
+
+/// Reads `timing.csv`, as [`read_generations`] does; seconds may not be
+/// negative, and their sum up to each line not above [`MAX_RUN_SECONDS`].
 pub fn read_timing(path: &Path) -> Result<Vec<TimingRow>> {
+    let total = std::cell::Cell::new(0.0);
     read_rows(path, TimingRow::parse, |r| {
-        (r.generation, r.seconds.is_finite() && r.seconds >= 0.0)
+        total.set(total.get() + r.seconds);
+        let valid = r.seconds.is_finite() && r.seconds >= 0.0 && total.get() <= MAX_RUN_SECONDS;
+        (r.generation, valid)
     })
 }
 
@@ -714,6 +747,34 @@ fn read_rows<T>(
         out.push(row);
     }
     Ok(out)
+}
+
+/// Forgets that `dir`'s figures and report are drawn: called before they are
+/// redrawn, so that a crash while drawing leaves them marked as stale.
+pub fn unmark_drawn(dir: &Path) -> Result<()> {
+    let path = dir.join(files::FIGURES).join(files::DRAWN);
+    match fs::remove_file(&path) {
+        Err(e) if e.kind() != std::io::ErrorKind::NotFound => Err(Error::Io {
+            action: "remove",
+            path,
+            error: e,
+        }),
+        _ => Ok(()),
+    }
+}
+
+/// Records (atomically, after everything else) that `dir`'s figures and
+/// `report.html` show its first `generations` generations.
+pub fn mark_drawn(dir: &Path, generations: u32) -> Result<()> {
+    let path = dir.join(files::FIGURES).join(files::DRAWN);
+    write_atomic(&path, format!("{generations}\n").as_bytes())
+}
+
+/// How many generations `dir`'s figures and report show, if their drawing
+/// finished; `None` when it did not (or predates the record): redraw them.
+pub fn drawn_generations(dir: &Path) -> Option<u32> {
+    let text = read_text(&dir.join(files::FIGURES).join(files::DRAWN)).ok()?;
+    text.strip_suffix('\n')?.parse().ok()
 }
 
 /// Removes temporary files a killed process left behind (`.NAME.tmp-PID`).

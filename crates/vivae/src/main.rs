@@ -471,10 +471,12 @@ fn cmd_resume(args: ResumeArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
         eprintln!(
             "{dir} is already finished ({total} of {total} generations); to extend it: vivae resume {dir} --generations N (N > {total})"
         );
-        // A run that stopped while drawing gets its figures now.
-        if !run.dir().join(files::FIGURES).join("network.png").exists() {
+        // A run that stopped before its figures and report showed every
+        // generation (killed while drawing them) gets them now.
+        if vivae_lab::rundir::drawn_generations(run.dir()) != Some(run.done()) {
             report::finish_run(&run).context("writing figures")?;
             eprintln!("figures: {}", run.dir().join(files::FIGURES).display());
+            eprintln!("report: {}", run.dir().join(files::REPORT).display());
         }
         return Ok(ExitCode::SUCCESS);
     }

@@ -65,10 +65,14 @@ pub fn trajectory_figure(
     Ok(episode)
 }
 
-/// Writes every figure of a finished run into `RUN/figures/`.
+/// Writes every figure of a finished run into `RUN/figures/`, and `report.html`;
+/// then, last, records how many generations they show
+/// ([`vivae_lab::rundir::mark_drawn`]), so that a crash before the end leaves
+/// them marked stale and `vivae resume` redraws them.
 pub fn finish_run(run: &Run) -> Result<RunSummary> {
     let dir = run.dir().join(files::FIGURES);
     vivae_lab::io::create_dirs(&dir)?;
+    vivae_lab::rundir::unmark_drawn(run.dir())?;
     let experiment = run.experiment();
     let mut episodes = Vec::new();
     for (generation, _, genome) in run.figure_genomes() {
@@ -115,6 +119,7 @@ pub fn finish_run(run: &Run) -> Result<RunSummary> {
     };
     reuse.episodes.push((&champion.genome, &episode));
     crate::report_html::write_reusing(run.dir(), &reuse)?;
+    vivae_lab::rundir::mark_drawn(run.dir(), run.done())?;
 
     // On several maps the champion's fitness is the mean over maps: its time on road too.
     let training = run.training();
@@ -213,12 +218,24 @@ pub fn scenario_text(s: &ScenarioSummary, marks: &[String]) -> String {
     out
 }
 
-/// Draws a scenario (with sensors of `sensors` on every robot) as SVG or PNG by `out`'s extension.
+/// Draws a scenario (with sensors of `sensors` on every robot) as SVG or PNG
+/// by `out`'s extension. `sensors` is held to the limit an evolving run's
+/// sensor sheet has ([`vivae_lab::config::MAX_SENSORS`]).
 pub fn render_scenario(
     scenario: &Scenario,
     sensors: Option<PolarGrid>,
     out: &Path,
 ) -> Result<Vec<u8>> {
+    if let Some(g) = sensors {
+        let count = g.rings.saturating_mul(g.angles);
+        let max = vivae_lab::config::MAX_SENSORS;
+        if count > max {
+            return Err(bad_input(format!(
+                "--sensors {}x{} = {count} sensors: must be at most {max}",
+                g.rings, g.angles
+            )));
+        }
+    }
     let world = World::new(scenario, &Default::default()).map_err(|e| bad_input(e.to_string()))?;
     let options = DrawOptions {
         surface_sensors: sensors.map(|g| SurfaceSensors {

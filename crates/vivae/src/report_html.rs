@@ -158,33 +158,24 @@ fn episode(
     })
 }
 
+/// The rows of `generations.csv` (complete lines only: a running evolution
+/// may be writing the last); a malformed row or a fitness that is not a finite
+/// number is refused naming the file and the line.
 pub(crate) fn read_generation_rows(path: &Path) -> vivae_lab::Result<Vec<GenerationRow>> {
-    let text = read_text(path)?;
-    text.lines()
-        .enumerate()
-        .skip(1)
-        .filter(|(_, l)| !l.is_empty())
-        .map(|(i, line)| {
-            let v: Vec<&str> = line.split(',').collect();
-            let f = |k: usize| v.get(k).and_then(|s| s.parse::<f64>().ok());
-            let row = || -> Option<GenerationRow> {
-                Some(GenerationRow {
-                    generation: v.first()?.parse().ok()?,
-                    best: f(1)?,
-                    mean: f(2)?,
-                    median: f(3)?,
-                    worst: f(4)?,
-                    species: v.get(5)?.parse().ok()?,
-                    cppn_nodes: f(6)?,
-                    cppn_links: f(7)?,
-                    substrate_links: v.get(8)?.parse().ok()?,
-                })
-            };
-            row().ok_or_else(|| {
-                bad_input(format!("{}: line {}: malformed row", path.display(), i + 1))
-            })
+    Ok(vivae_lab::rundir::read_generations(path)?
+        .into_iter()
+        .map(|r| GenerationRow {
+            generation: r.generation,
+            best: r.best,
+            mean: r.mean,
+            median: r.median,
+            worst: r.worst,
+            species: r.species,
+            cppn_nodes: r.mean_cppn_nodes,
+            cppn_links: r.mean_cppn_links,
+            substrate_links: r.best_substrate_links,
         })
-        .collect()
+        .collect())
 }
 
 /// Embeds JSON in a `<script>` block: `</` cannot close it early.
@@ -215,7 +206,14 @@ pub fn build_reusing(dir: &Path, reuse: &Reuse<'_>) -> vivae_lab::Result<String>
         .map_err(|e| bad_input(format!("{}: {e}", dir.display())))?;
     let champion = read_champion(&dir.join(files::CHAMPION))?;
     let best = evolve::read_best_genomes(&dir.join(files::BEST_GENOMES))?;
-    let generations = read_generation_rows(&dir.join(files::GENERATIONS))?;
+    let generations_csv = dir.join(files::GENERATIONS);
+    let generations = read_generation_rows(&generations_csv)?;
+    if generations.is_empty() {
+        return Err(vivae_lab::Error::RunFile {
+            path: generations_csv,
+            reason: "no generation recorded".into(),
+        });
+    }
     let fitness = evolve::read_population_csv(&dir.join(files::POPULATION))?;
 
     let mut episodes = vec![episode(

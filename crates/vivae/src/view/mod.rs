@@ -6,6 +6,7 @@
 //! the binary. The server answers only its own assets, a fixed list of the
 //! given run's files and the WebSocket; every other path is a 404.
 
+mod hosts;
 mod server;
 mod session;
 mod source;
@@ -35,6 +36,11 @@ pub struct ViewArgs {
     /// Extra scenarios to offer: every `.svg` file in this folder.
     #[arg(long, value_name = "DIR")]
     pub scenarios: Option<PathBuf>,
+    /// Another Host name to answer (repeatable), e.g. this machine's name on
+    /// the network; besides it only the listening address and `localhost` are
+    /// answered (a defence against DNS rebinding).
+    #[arg(long, value_name = "NAME")]
+    pub allow_host: Vec<String>,
     /// Most pages simulated at once; more are refused until one closes.
     #[arg(long, default_value_t = 8, value_name = "N")]
     pub max_viewers: usize,
@@ -45,6 +51,7 @@ pub fn run(args: ViewArgs) -> vivae_lab::Result<ExitCode> {
     if args.max_viewers == 0 {
         return Err(bad_input("--max-viewers 0: must be at least 1"));
     }
+    let hosts = hosts::HostPolicy::new(args.host, &args.allow_host)?;
     let source = Source::load(args.source.as_deref(), args.scenarios.as_deref())?;
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .worker_threads(2)
@@ -73,7 +80,8 @@ pub fn run(args: ViewArgs) -> vivae_lab::Result<ExitCode> {
         }
     };
     let local = listener.local_addr().map_err(io("listen on"))?;
-    if !args.host.is_loopback() {
+    // An IPv4-mapped loopback address (::ffff:127.0.0.1) is loopback too.
+    if !args.host.to_canonical().is_loopback() {
         eprintln!(
             "warning: listening on {} — anyone who can reach this machine on the network can watch this run",
             args.host
@@ -89,7 +97,7 @@ pub fn run(args: ViewArgs) -> vivae_lab::Result<ExitCode> {
     use std::io::Write as _;
     let _ = std::io::stdout().flush();
     runtime
-        .block_on(server::serve(listener, source, args.max_viewers))
+        .block_on(server::serve(listener, source, args.max_viewers, hosts))
         .map_err(io("serve on"))?;
     Ok(ExitCode::SUCCESS)
 }

@@ -12,6 +12,7 @@ use axum::response::{IntoResponse, Response};
 use axum::routing::get;
 use tokio::sync::watch;
 
+use super::hosts::HostPolicy;
 use super::session::Sim;
 use super::source::{SharedSnapshot, Source};
 use crate::report_html::{PLOTS_JS, SCENE_JS, STYLE_CSS};
@@ -46,6 +47,7 @@ struct App {
     snapshot: watch::Receiver<SharedSnapshot>,
     viewers: Arc<AtomicUsize>,
     max_viewers: usize,
+    hosts: Arc<HostPolicy>,
 }
 
 /// Frees a viewer slot when its page's session ends (however it ends).
@@ -62,6 +64,7 @@ pub(super) async fn serve(
     listener: tokio::net::TcpListener,
     source: Source,
     max_viewers: usize,
+    hosts: HostPolicy,
 ) -> std::io::Result<()> {
     let source = Arc::new(source);
     let (tx, rx) = watch::channel(Arc::new(source.snapshot()));
@@ -87,6 +90,7 @@ pub(super) async fn serve(
         snapshot: rx,
         viewers: Arc::new(AtomicUsize::new(0)),
         max_viewers,
+        hosts: Arc::new(hosts),
     };
     let router = Router::new()
         .route("/", get(index))
@@ -94,9 +98,35 @@ pub(super) async fn serve(
         .route("/run/{name}", get(run_file))
         .route("/ws", get(ws))
         .fallback(not_found)
+        .layer(axum::middleware::from_fn_with_state(
+            app.clone(),
+            known_host,
+        ))
         .with_state(app);
     axum::serve(listener, router).await?;
     Ok(())
+}
+
+/// Answers only requests addressed to a Host name this server accepts (see
+/// [`HostPolicy`]): a DNS-rebinding page, which names its own site, is refused
+/// on every path, the WebSocket upgrade included.
+async fn known_host(
+    State(app): State<App>,
+    request: axum::extract::Request,
+    next: axum::middleware::Next,
+) -> Response {
+    let host = request
+        .headers()
+        .get(header::HOST)
+        .and_then(|h| h.to_str().ok());
+    if !app.hosts.allows(host) {
+        return (
+            StatusCode::FORBIDDEN,
+            "unknown Host name (vivae view --allow-host NAME accepts another)\n",
+        )
+            .into_response();
+    }
+    next.run(request).await
 }
 
 async fn not_found() -> Response {
