@@ -3,7 +3,7 @@
 //! (straight ahead points into the page), every expressed link drawn
 //! with width and opacity growing with |weight| (blue positive, orange
 //! negative), recurrent links as arrows curving inside the neuron sheet,
-//! self-loops as small loops, wheel neurons red.
+//! self-loops as small loops, wheel neurons ringed red.
 //!
 //! Above [`NetworkOptions::max_links`] expressed links (a few hundred) lines
 //! stop being readable and cost time and bytes per link, so [`render`] draws
@@ -251,7 +251,7 @@ impl<'a> Scene<'a> {
 
     /// The nodes, on top of the links: the first sheet's grey, further
     /// sheets' (e.g. distance rays) dark squares, neurons filled by their
-    /// bias, wheel neurons red.
+    /// bias, wheel neurons too but ringed red.
     fn draw_nodes(&self, root: &Root<'_>) -> Result<(), FigureError> {
         let Checked {
             neurons, wheels, ..
@@ -277,19 +277,22 @@ impl<'a> Scene<'a> {
         let neuron_r = self.neuron_r;
         for (i, n) in neurons.iter().enumerate() {
             let c = px(self.neuron_panel.node(n));
-            let is_wheel = i == wheels.left || i == wheels.right;
-            let fill = if is_wheel {
-                WHEEL.filled()
-            } else {
-                let b = self.controller.biases()[i];
-                let m = (b.abs() / self.opts.weight_scale).clamp(0.0, 1.0);
-                let base = if b >= 0.0 { POSITIVE } else { NEGATIVE };
-                blend(base, m * 0.8).filled()
-            };
-            root.draw(&Circle::new(c, neuron_r as i32, fill))
-                .map_err(draw_err)?;
+            let b = self.controller.biases()[i];
+            let m = (b.abs() / self.opts.weight_scale).clamp(0.0, 1.0);
+            let base = if b >= 0.0 { POSITIVE } else { NEGATIVE };
+            root.draw(&Circle::new(
+                c,
+                neuron_r as i32,
+                blend(base, m * 0.8).filled(),
+            ))
+            .map_err(draw_err)?;
             root.draw(&Circle::new(c, neuron_r as i32, BLACK.stroke_width(1)))
                 .map_err(draw_err)?;
+            if i == wheels.left || i == wheels.right {
+                // The fill stays the bias: a wheel neuron is marked by a red ring.
+                root.draw(&Circle::new(c, neuron_r as i32 + 4, WHEEL_RING))
+                    .map_err(draw_err)?;
+            }
         }
         Ok(())
     }
@@ -464,6 +467,13 @@ fn draw_curved_arrow(
     Ok(())
 }
 
+/// The ring that marks a wheel neuron (its fill is its bias, like any neuron's).
+const WHEEL_RING: ShapeStyle = ShapeStyle {
+    color: RGBAColor(214, 39, 40, 1.0),
+    filled: false,
+    stroke_width: 4,
+};
+
 /// Legend along the bottom edge: what lines and nodes mean, and above it
 /// self-loops and the bias colour scale.
 fn draw_legend(
@@ -512,8 +522,10 @@ fn draw_legend_items(
     item(&line(NEGATIVE), "negative weight", 175.0)?;
     item(
         &|x| {
-            root.draw(&Circle::new(px((x + 12.0, y)), 8, WHEEL.filled()))
-                .map_err(draw_err)
+            let c = px((x + 12.0, y));
+            root.draw(&Circle::new(c, 7, BLACK.stroke_width(1)))
+                .map_err(draw_err)?;
+            root.draw(&Circle::new(c, 11, WHEEL_RING)).map_err(draw_err)
         },
         "wheel neuron",
         150.0,
@@ -676,8 +688,17 @@ mod tests {
         ] {
             assert!(fig.svg.contains(label), "missing {label:?}");
         }
-        // Wheel neurons are filled red.
-        assert!(fig.svg.matches("fill=\"#D62728\"").count() >= 3);
+        // Wheel neurons are filled by their bias like any neuron, and ringed red.
+        let circles: Vec<&str> = fig.svg.split("<circle").skip(1).collect();
+        let red_fill = circles.iter().filter(|c| {
+            let tag = &c[..c.find('>').unwrap()];
+            tag.contains("fill=\"#D62728\"") && !tag.contains("fill-opacity=\"0")
+        });
+        assert_eq!(red_fill.count(), 0);
+        let red_rings = circles
+            .iter()
+            .filter(|c| c[..c.find('>').unwrap()].contains("stroke=\"#D62728\""));
+        assert!(red_rings.count() >= 3);
     }
 
     #[test]
