@@ -443,7 +443,7 @@ fn cmd_evolve(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
     let threads = config.run.threads;
     let force = args.new_run.force;
     let run = Run::create_on_maps(&dir, config, experiment, first, &maps, init, force)?;
-    drive(run, &source, threads, quiet, interrupted)
+    drive(run, "evolve", &source, threads, quiet, interrupted)
 }
 
 fn cmd_resume(args: ResumeArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode> {
@@ -494,7 +494,7 @@ fn cmd_resume(args: ResumeArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
     };
     // The pool runs on the threads given now, if any, not the recorded ones.
     let threads = args.threads.threads.unwrap_or(run.config().run.threads);
-    drive(run, &source, threads, quiet, interrupted)
+    drive(run, "resume", &source, threads, quiet, interrupted)
 }
 
 fn cmd_retrain(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode> {
@@ -547,12 +547,13 @@ fn cmd_retrain(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Resu
         Some(population),
         args.new_run.force,
     )?;
-    drive(run, &source, threads, quiet, interrupted)
+    drive(run, "retrain", &source, threads, quiet, interrupted)
 }
 
-/// What a run is about to do, for a person reading the terminal; `threads`
-/// is the evaluation pool's size as asked for (0 = one per core).
-fn header(run: &Run, scenario: &str, threads: usize) -> String {
+/// What a run is about to do, for a person reading the terminal, under the
+/// name of the `command` that runs it; `threads` is the evaluation pool's
+/// size as asked for (0 = one per core).
+fn header(run: &Run, command: &str, scenario: &str, threads: usize) -> String {
     let c = run.config();
     let s = &c.surface_sensors;
     let n = c.substrate.neurons;
@@ -591,7 +592,7 @@ fn header(run: &Run, scenario: &str, threads: usize) -> String {
         )
     };
     format!(
-        "vivae evolve: {scenario}\n\
+        "vivae {command}: {scenario}\n\
          \x20 robots {}, {} steps per evaluation, population {}, {} generations{start}\n\
          \x20 substrate: {}x{} surface sensors{distance}, {}x{} neurons; threads {threads}, seed {}{training}{maps}\n\
          \x20 output: {}\n\
@@ -609,36 +610,72 @@ fn header(run: &Run, scenario: &str, threads: usize) -> String {
     )
 }
 
-/// The closing summary: rounded figures and the run directory's main files.
-fn closing(run: &Run, summary: &report::RunSummary, wall: f64, steps_per_s: f64) -> String {
+/// The closing summary: rounded figures and the run directory's main files;
+/// `started_after` is the generation this invocation started after (0 for a new run).
+fn closing(
+    run: &Run,
+    summary: &report::RunSummary,
+    started_after: u32,
+    wall: f64,
+    steps_per_s: f64,
+) -> String {
     let dir = run.dir().display();
     let mut figures: Vec<String> = run
         .figure_genomes()
         .map(|(g, _, _)| format!("trajectories-gen{g:03}.png"))
         .collect();
+    figures.push("trajectories-champion.png".into());
     figures.extend(
-        [
-            "trajectories-champion.png",
-            "convergence.png",
-            "network.png",
-        ]
-        .map(String::from),
+        summary
+            .per_map
+            .iter()
+            .map(|(label, _)| format!("{}.png", report::champion_map_figure(label))),
     );
+    figures.extend(["convergence.png", "network.png"].map(String::from));
+    let plural = |n: u32| if n == 1 { "" } else { "s" };
+    let (done, ran) = (run.done(), run.done() - started_after);
+    let done = match started_after {
+        0 => format!("{done} generation{}", plural(done)),
+        s => format!(
+            "{ran} generation{} (generations {}–{done}; {done} in all)",
+            plural(ran),
+            s + 1
+        ),
+    };
+    let per_map = match per_map_field(summary) {
+        None => String::new(),
+        Some(p) => format!("\n  on each training map: {}", p.replace(',', ", ")),
+    };
     format!(
-        "done: {} generations in {wall:.1} s ({:.2} M robot-steps/s)\n\
-         champion: fitness {:.3} px/step (generation {}), {:.1}% of robot-steps on road\n\
+        "done: {done} in {wall:.1} s ({:.2} M robot-steps/s)\n\
+         champion: fitness {:.3} px/step (generation {}), {:.1}% of robot-steps on road{per_map}\n\
          run directory: {dir}/\n\
+         \x20 report.html     every figure on one page: open {dir}/{}\n\
          \x20 config.toml     the resolved config: vivae evolve --config {dir}/config.toml repeats the run\n\
          \x20 champion.json   the best genome and its config: vivae replay {dir}/champion.json\n\
          \x20 generations.csv, population.csv, timing.csv, checkpoints/\n\
-         \x20 figures/        {} (and .svg)",
-        run.done(),
+         \x20 figures/        {} (and .svg)\n\
+         watch them drive: vivae view {dir}",
         steps_per_s / 1e6,
         summary.champion_fitness,
         summary.champion_generation,
         100.0 * summary.champion_on_road,
+        files::REPORT,
         figures.join(", "),
     )
+}
+
+/// The champion's fitness on each training map, `roads:3.1,oval:2.8` (3
+/// decimals), or none on one map.
+fn per_map_field(summary: &report::RunSummary) -> Option<String> {
+    (!summary.per_map.is_empty()).then(|| {
+        summary
+            .per_map
+            .iter()
+            .map(|(label, f)| format!("{label}:{f:.3}"))
+            .collect::<Vec<_>>()
+            .join(",")
+    })
 }
 
 /// Whether an MPI launcher started this process (never without the `mpi` feature).
@@ -706,6 +743,7 @@ fn run_generations(
 /// Runs evolution with progress output, then writes the figures.
 fn drive(
     mut run: Run,
+    command: &str,
     scenario: &str,
     threads: usize,
     quiet: bool,
@@ -713,8 +751,9 @@ fn drive(
 ) -> anyhow::Result<ExitCode> {
     install_ctrlc(interrupted);
     if !quiet {
-        eprintln!("{}", header(&run, scenario, threads));
+        eprintln!("{}", header(&run, command, scenario, threads));
     }
+    let started_after = run.done();
     let start = Instant::now();
     let total = run.config().experiment.generations;
     let bar = (!quiet && std::io::stderr().is_terminal()).then(|| progress_bar(total, run.done()));
@@ -759,12 +798,19 @@ fn drive(
     if !quiet {
         eprintln!(
             "{}",
-            closing(&run, &summary, wall, robot_steps / busy.max(1e-9))
+            closing(
+                &run,
+                &summary,
+                started_after,
+                wall,
+                robot_steps / busy.max(1e-9)
+            )
         );
     }
     // The machine-readable summary, for scripts.
+    let per_map = per_map_field(&summary).map_or_else(String::new, |p| format!(" per_map={p}"));
     println!(
-        "evolve: generations={} best={} champion_generation={} on_road={:.4} wall_s={:.1} robot_steps_per_s={:.0} out={dir}",
+        "evolve: generations={} best={} champion_generation={} on_road={:.4}{per_map} wall_s={:.1} robot_steps_per_s={:.0} out={dir}",
         run.done(),
         summary.champion_fitness,
         summary.champion_generation,
@@ -840,7 +886,7 @@ fn cmd_replay(args: ReplayArgs) -> anyhow::Result<ExitCode> {
     }
     let out = args.out.clone().unwrap_or_else(|| base.join("replay"));
     vivae_lab::io::create_dirs(&out)?;
-    let name = vivae_lab::io::scenario_name(path.as_deref());
+    let name = report::replay_scenario_name(path.as_deref(), &scenario.text);
     let replay = report::replay(&experiment, &config, &champion, &name, &out)?;
     println!(
         "fitness={} on_road={:.4} {}",
@@ -875,6 +921,7 @@ fn cmd_scenario(command: ScenarioCommand) -> anyhow::Result<ExitCode> {
             let loaded = load_scenario(file.as_deref())?;
             let bytes = report::render_scenario(&loaded.scenario, sensors, &out)?;
             write_atomic(&out, &bytes)?;
+            eprintln!("figure: {}", out.display());
         }
     }
     Ok(ExitCode::SUCCESS)

@@ -25,6 +25,9 @@ pub struct RunSummary {
     pub champion_generation: u32,
     /// Its fraction of robot-steps on road.
     pub champion_on_road: f64,
+    /// On several training maps, each map's label and the champion's fitness
+    /// on it (their mean is `champion_fitness`); empty on one map.
+    pub per_map: Vec<(String, f64)>,
 }
 
 /// Writes a figure as `NAME.svg` and `NAME.png` in `dir`.
@@ -93,6 +96,7 @@ pub fn finish_run(run: &Run) -> Result<RunSummary> {
         &dir,
         "trajectories-champion",
     )?;
+    let per_map = per_map_figures(run, &champion.genome, &dir)?;
 
     let fitness = evolve::read_population_csv(&run.dir().join(files::POPULATION))?;
     let convergence = figures::convergence::render(&fitness, &ConvergenceOptions::default())?;
@@ -122,23 +126,50 @@ pub fn finish_run(run: &Run) -> Result<RunSummary> {
     vivae_lab::rundir::mark_drawn(run.dir(), run.done())?;
 
     // On several maps the champion's fitness is the mean over maps: its time on road too.
-    let training = run.training();
-    let champion_on_road = if training.map_labels().next().is_none() {
+    let champion_on_road = if per_map.is_empty() {
         episode.on_road.unwrap_or_default()
     } else {
-        vivae_lab::maps::mean(
-            &training
-                .episodes(&champion.genome)?
-                .iter()
-                .map(|e| e.on_road.unwrap_or_default())
-                .collect::<Vec<_>>(),
-        )
+        vivae_lab::maps::mean(&per_map.iter().map(|(_, _, r)| *r).collect::<Vec<_>>())
     };
     Ok(RunSummary {
         champion_fitness: champion.fitness,
         champion_generation: champion.generation,
         champion_on_road,
+        per_map: per_map.into_iter().map(|(l, f, _)| (l, f)).collect(),
     })
+}
+
+/// On several training maps, the champion's trajectories on each, drawn as
+/// `trajectories-champion-<map>` in `dir`; returns each map's (label,
+/// fitness, fraction on road). None on one map.
+fn per_map_figures(run: &Run, champion: &Genome, dir: &Path) -> Result<Vec<(String, f64, f64)>> {
+    let training = run.training();
+    training
+        .map_labels()
+        .zip(training.map_experiments())
+        .map(|(label, experiment)| {
+            let episode = trajectory_figure(
+                experiment,
+                champion,
+                &format!("Champion on training map {label}"),
+                dir,
+                &champion_map_figure(label),
+            )?;
+            Ok((
+                label.to_string(),
+                episode.fitness,
+                episode.on_road.unwrap_or_default(),
+            ))
+        })
+        .collect()
+}
+
+/// The name (no extension) of the champion's figure on training map `label`.
+pub fn champion_map_figure(label: &str) -> String {
+    format!(
+        "trajectories-champion-{}",
+        vivae_lab::io::safe_file_stem(label)
+    )
 }
 
 /// A replay's result.
@@ -155,7 +186,9 @@ pub struct Replay {
 }
 
 /// Runs a champion on `experiment` (on scenario `scenario`) and draws its
-/// trajectories into `out` as `replay-<scenario>-s<RxA>-n<RxA>`.
+/// trajectories into `out` as `replay-<scenario>-s<RxA>-n<RxA>`, followed by
+/// the substrate's wiring where it is not the paper's ([`wiring_suffix`]), so
+/// that replays with other wiring flags do not overwrite each other.
 pub fn replay(
     experiment: &Experiment,
     config: &Config,
@@ -167,8 +200,12 @@ pub fn replay(
     let n = config.substrate.neurons;
     let safe = vivae_lab::io::safe_file_stem(scenario);
     let name = format!(
-        "replay-{safe}-s{}x{}-n{}x{}",
-        s.rings, s.angles, n.rings, n.angles
+        "replay-{safe}-s{}x{}-n{}x{}{}",
+        s.rings,
+        s.angles,
+        n.rings,
+        n.angles,
+        wiring_suffix(config)
     );
     // Short enough that the fitness appended to it fits an 800 px figure.
     let title = format!(
@@ -184,6 +221,49 @@ pub fn replay(
         ))?,
         figure: out.join(format!("{name}.png")),
     })
+}
+
+/// The substrate settings of `config` that differ from the default (the
+/// paper's), as a file-name suffix: `-recurrence-self-normalize-by-area`;
+/// empty for the paper's wiring.
+pub fn wiring_suffix(config: &Config) -> String {
+    let ours = &config.substrate;
+    let paper = Config::default().substrate;
+    let word = |v: serde_json::Value| v.as_str().map_or_else(|| v.to_string(), str::to_string);
+    let mut suffix = String::new();
+    if ours.normalize != paper.normalize {
+        suffix += &format!("-normalize-{}", ours.normalize);
+    }
+    if ours.normalize_by != paper.normalize_by {
+        suffix += &format!(
+            "-normalize-by-{}",
+            word(serde_json::json!(ours.normalize_by))
+        );
+    }
+    if ours.normalize_self_loops != paper.normalize_self_loops {
+        suffix += &format!("-normalize-self-loops-{}", ours.normalize_self_loops);
+    }
+    if ours.recurrence != paper.recurrence {
+        suffix += &format!("-recurrence-{}", word(serde_json::json!(ours.recurrence)));
+    }
+    suffix
+}
+
+/// The name a replay gives the scenario at `path` (whose SVG is `text`): a
+/// run's copy (`scenario.svg`) is named for the file it was copied from, as
+/// its SVG records it (Inkscape's `sodipodi:docname`), else for its file stem.
+pub fn replay_scenario_name(path: Option<&Path>, text: &str) -> String {
+    let copy = path.and_then(Path::file_name) == Some(std::ffi::OsStr::new(files::SCENARIO));
+    let recorded = || {
+        let start = text.find("sodipodi:docname=\"")? + "sodipodi:docname=\"".len();
+        let end = text[start..].find('"')?;
+        let stem = Path::new(&text[start..start + end]).file_stem()?;
+        Some(stem.to_string_lossy().into_owned()).filter(|s| !s.is_empty())
+    };
+    match copy.then(recorded).flatten() {
+        Some(name) => name,
+        None => vivae_lab::io::scenario_name(path),
+    }
 }
 
 /// A plain-text scenario summary; `marks` are the position marks' names.
@@ -277,5 +357,24 @@ mod tests {
         assert!(text.starts_with("arena: 793.7 x 600.0 px\n"), "{text}");
         assert!(text.contains("mark names: start\n"), "{text}");
         assert!(text.contains("  robot1: x "), "{text}");
+    }
+
+    #[test]
+    fn replay_names_a_runs_copy_for_its_original_and_marks_its_wiring() {
+        let svg = r#"<svg sodipodi:docname="oval.svg"></svg>"#;
+        let copy = Path::new("run/scenario.svg");
+        assert_eq!(replay_scenario_name(Some(copy), svg), "oval");
+        assert_eq!(replay_scenario_name(Some(copy), "<svg/>"), "scenario");
+        let other = Path::new("maps/town.svg");
+        assert_eq!(replay_scenario_name(Some(other), svg), "town");
+        assert_eq!(replay_scenario_name(None, svg), "roads");
+
+        let mut config = Config::default();
+        assert_eq!(wiring_suffix(&config), "");
+        config.substrate.recurrence = vivae_lab::config::Recurrence::SelfLoops;
+        config.substrate.normalize_by = vivae_lab::config::NormalizeBy::Area;
+        assert_eq!(wiring_suffix(&config), "-normalize-by-area-recurrence-self");
+        config.substrate.normalize_self_loops = false;
+        assert!(wiring_suffix(&config).contains("-normalize-self-loops-false"));
     }
 }

@@ -882,16 +882,6 @@ pub fn run(args: &CompareArgs) -> Result<String> {
             )));
         }
     };
-    // Both outputs' folders are checked first, so that one is not written without the other.
-    for path in std::iter::once(&args.out).chain(&args.csv) {
-        let parent = path.parent().filter(|p| !p.as_os_str().is_empty());
-        if parent.is_some_and(|p| !p.is_dir()) {
-            return Err(bad_input(format!(
-                "{}: its folder does not exist",
-                path.display()
-            )));
-        }
-    }
     let groups = load_groups(&args.runs, &args.label)?;
     let summaries: Vec<Summary> = groups.iter().map(summarise).collect();
     let opts = CompareOptions {
@@ -903,6 +893,13 @@ pub fn run(args: &CompareArgs) -> Result<String> {
     } else {
         render(&groups, &opts)?.png
     };
+    // Both outputs' folders are made first (as `evolve` and `replay` make
+    // theirs), so that one is not written without the other.
+    for path in std::iter::once(&args.out).chain(&args.csv) {
+        if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
+            vivae_lab::io::create_dirs_for(parent, path)?;
+        }
+    }
     if let Some(path) = &args.csv {
         write_atomic(path, csv(&summaries).as_bytes())?;
     }

@@ -98,11 +98,7 @@ fn evolve_replay_retrain_workflow() {
             "{key}={value}"
         );
     }
-    assert!(
-        run_dir
-            .join("replay/replay-scenario-s3x5-n3x3.png")
-            .exists()
-    );
+    assert!(run_dir.join("replay/replay-roads-s3x5-n3x3.png").exists());
 
     // Re-sampled substrates run without re-training.
     let line =
@@ -111,11 +107,7 @@ fn evolve_replay_retrain_workflow() {
             .arg(&run_dir)
             .args(["--neurons", "9x9", "--sensors", "3x6"]));
     assert!(line.starts_with("fitness="), "{line}");
-    assert!(
-        run_dir
-            .join("replay/replay-scenario-s3x6-n9x9.png")
-            .exists()
-    );
+    assert!(run_dir.join("replay/replay-roads-s3x6-n9x9.png").exists());
 
     // Retrain continues the final population on the new substrate.
     let retrained = dir.join("retrained");

@@ -207,10 +207,21 @@ fn missing_or_corrupt_run_files_exit_2_naming_the_file() {
         "--label x=zzz*: matches none",
     );
     refused(&[a(&good), a(&good)], &out, "given twice");
+    // A missing folder is made (as evolve and replay make theirs); a file in the way is refused.
+    let made = dir.join("made/for/it");
+    ok(vivae()
+        .arg("compare")
+        .arg(&good)
+        .arg("--csv")
+        .arg(made.join("t.csv"))
+        .arg("-o")
+        .arg(made.join("c.png")));
+    assert!(made.join("t.csv").is_file() && made.join("c.png").is_file());
+    std::fs::write(dir.join("a-file"), b"").unwrap();
     refused(
-        &[a(&good), a("--csv"), a(dir.join("no/such/t.csv"))],
+        &[a(&good), a("--csv"), a(dir.join("a-file/t.csv"))],
         &out,
-        "no/such/t.csv: its folder does not exist",
+        "a-file is a file, not a folder",
     );
     let txt = dir.join("out.txt");
     refused(&[a(&good)], &txt, "must be a .png or .svg");

@@ -16,6 +16,7 @@ mod compare_summarises_runs_by_group;
 mod corrupt_checkpoint_is_refused;
 mod evaluation_is_thread_count_independent;
 mod finished_run_and_retrain_neurons_only;
+mod first_hour_output_says_what_to_do_next;
 mod forged_checkpoint_is_refused_before_anything_changes;
 mod inconsistent_checkpoint_population_is_refused;
 mod interrupt_checkpoints_and_exits_130;

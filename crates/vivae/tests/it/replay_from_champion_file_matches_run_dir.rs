@@ -73,15 +73,7 @@ fn replay_of_champion_file_equals_replay_of_run_dir() {
         .arg(run_dir.join("champion.json"))
         .args(["--neurons", "3x3"]));
     assert_ne!(from_file, resampled);
-    assert!(
-        run_dir
-            .join("replay/replay-scenario-s3x6-n2x4.png")
-            .exists()
-    );
-    assert!(
-        run_dir
-            .join("replay/replay-scenario-s3x6-n3x3.png")
-            .exists()
-    );
+    assert!(run_dir.join("replay/replay-roads-s3x6-n2x4.png").exists());
+    assert!(run_dir.join("replay/replay-roads-s3x6-n3x3.png").exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }
