@@ -2,7 +2,8 @@
 // Shared by the viewer and report.html; plain browser JavaScript, no library.
 "use strict";
 var VivaePlots = (function () {
-  var W = 640, H = 260, L = 52, R = 12, T = 12, B = 34;
+  // T leaves room above the plot for the series legend, so that it never covers a curve.
+  var W = 640, H = 260, L = 52, R = 12, T = 26, B = 34;
 
   function esc(s) {
     return String(s).replace(/[&<>"]/g, function (ch) {
@@ -65,8 +66,8 @@ var VivaePlots = (function () {
         if (isFinite(ser.values[i])) { pts.push(a.sx(xs[i]).toFixed(1) + "," + a.sy(ser.values[i]).toFixed(1)); }
       }
       s += "<polyline fill='none' stroke='" + ser.color + "' stroke-width='1.6' points='" + pts.join(" ") + "'/>";
-      s += "<rect x='" + (L + 10 + k * 90) + "' y='" + (T + 6) + "' width='10' height='10' fill='" + ser.color + "'/>";
-      s += "<text x='" + (L + 24 + k * 90) + "' y='" + (T + 15) + "' font-size='11'>" + esc(ser.name) + "</text>";
+      s += "<rect class='legend' x='" + (L + k * 90) + "' y='" + (T - 17) + "' width='10' height='10' fill='" + ser.color + "'/>";
+      s += "<text class='legend' x='" + (L + 14 + k * 90) + "' y='" + (T - 8) + "' font-size='11'>" + esc(ser.name) + "</text>";
     });
     return wrap(s);
   }
@@ -105,6 +106,10 @@ var VivaePlots = (function () {
     return wrap(s);
   }
 
+  // Decimals of each table column: fitnesses 4, mean CPPN sizes 2, counts none;
+  // every cell of a column alike (8.0000, not 8 beside 8.0600).
+  var DECIMALS = { best: 4, mean: 4, median: 4, worst: 4, cppn_nodes: 2, cppn_links: 2 };
+
   // The per-generation table from generations.csv rows.
   function table(rows) {
     var cols = ["generation", "best", "mean", "median", "worst", "species", "cppn_nodes", "cppn_links", "substrate_links"];
@@ -113,7 +118,8 @@ var VivaePlots = (function () {
     rows.forEach(function (r) {
       h += "<tr>" + cols.map(function (c) {
         var v = r[c];
-        return "<td>" + (typeof v === "number" && !Number.isInteger(v) ? v.toFixed(4) : esc(v)) + "</td>";
+        var d = DECIMALS[c];
+        return "<td>" + (typeof v === "number" && d !== undefined ? v.toFixed(d) : esc(v)) + "</td>";
       }).join("") + "</tr>";
     });
     return h + "</tbody></table>";

@@ -11,9 +11,10 @@
   $("scenario").innerHTML = data.scene.svg;
 
   var gens = data.generations.map(function (r) { return r.generation; });
+  // The colours of convergence.png's curves, so that the page and the figure agree.
   $("curves").innerHTML = VivaePlots.lines(gens, [
-    { name: "best", color: "#d62728", values: data.generations.map(function (r) { return r.best; }) },
-    { name: "mean", color: "#1f77b4", values: data.generations.map(function (r) { return r.mean; }) }
+    { name: "best", color: data.curve_colours[0], values: data.generations.map(function (r) { return r.best; }) },
+    { name: "mean", color: data.curve_colours[1], values: data.generations.map(function (r) { return r.mean; }) }
   ], "generation", "fitness (px/step)");
   $("species").innerHTML = VivaePlots.stacked(data.species, 1);
   $("table").innerHTML = VivaePlots.table(data.generations);

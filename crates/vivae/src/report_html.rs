@@ -66,6 +66,8 @@ struct ReportData {
     species: Vec<Vec<(u32, usize)>>,
     convergence_svg: String,
     network_svg: String,
+    /// Colours of the best and mean curves, as `convergence.png` draws them.
+    curve_colours: [String; 2],
 }
 
 /// A scenario as the pages draw it: the static picture and the robot size.
@@ -263,6 +265,7 @@ pub fn build_reusing(dir: &Path, reuse: &Reuse<'_>) -> vivae_lab::Result<String>
         species: best.into_iter().map(|b| b.species).collect(),
         convergence_svg,
         network_svg,
+        curve_colours: [convergence::best_colour(), convergence::MEAN_COLOUR].map(convergence::hex),
     };
     let json =
         script_safe(
@@ -314,6 +317,18 @@ mod tests {
             assert!(!stripped.contains("http://") && !stripped.contains("https://"));
             assert!(!stripped.contains("@import") && !stripped.contains("url("));
         }
+    }
+
+    #[test]
+    fn the_pages_curves_have_the_convergence_figures_colours() {
+        let data = r##"{"curve_colours":["#45347e","#e66101"]}"##;
+        let colours = [convergence::best_colour(), convergence::MEAN_COLOUR].map(convergence::hex);
+        assert_eq!(
+            serde_json::json!({ "curve_colours": colours }).to_string(),
+            data
+        );
+        assert!(REPORT_JS.contains("data.curve_colours[0]"));
+        assert!(REPORT_JS.contains("data.curve_colours[1]"));
     }
 
     #[test]

@@ -285,6 +285,19 @@ fn draw_colour_bar(area: &Area<'_>, data: &Sorted) -> Result<(), FigureError> {
     Ok(())
 }
 
+/// The colour of the best-fitness curve (report.html's plot uses it too).
+pub(crate) fn best_colour() -> RGBColor {
+    viridis(0.15)
+}
+
+/// The colour of the mean-fitness curve (report.html's plot uses it too).
+pub(crate) const MEAN_COLOUR: RGBColor = RGBColor(230, 97, 1);
+
+/// `#rrggbb` of `c`, for web pages.
+pub(crate) fn hex(c: RGBColor) -> String {
+    format!("#{:02x}{:02x}{:02x}", c.0, c.1, c.2)
+}
+
 /// The best and mean curves, on the same generation axis as the heat map.
 fn draw_curves(area: &Area<'_>, data: &Sorted) -> Result<(), FigureError> {
     let best_hi = data
@@ -327,11 +340,9 @@ fn draw_curves(area: &Area<'_>, data: &Sorted) -> Result<(), FigureError> {
             .filter_map(|(gi, s)| s.as_ref().map(|s| (data.g0 + gi as f64, f(s))))
             .collect::<Vec<_>>()
     };
-    let best_colour = viridis(0.15);
-    let mean_colour = RGBColor(230, 97, 1);
     for (label, colour, values) in [
-        ("best", best_colour, points(|s| s.best)),
-        ("mean", mean_colour, points(|s| s.mean)),
+        ("best", best_colour(), points(|s| s.best)),
+        ("mean", MEAN_COLOUR, points(|s| s.mean)),
     ] {
         curves
             .draw_series(LineSeries::new(values, colour.stroke_width(2)))
