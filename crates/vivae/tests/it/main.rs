@@ -44,6 +44,7 @@ mod second_writer_of_a_run_is_refused;
 mod shipped_scenarios_run_by_name;
 mod short_run_matches_pinned_hash;
 mod sigterm_checkpoints_and_exits_130;
+mod special_run_files_are_refused_not_waited_on;
 mod viewer_and_report_in_a_real_browser;
 mod viewer_follows_a_running_evolution;
 mod viewer_on_mapped_loopback_does_not_warn;
