@@ -18,6 +18,7 @@ mod corrupt_checkpoint_is_refused;
 mod evaluation_is_thread_count_independent;
 mod finished_run_and_retrain_neurons_only;
 mod forged_checkpoint_is_refused_before_anything_changes;
+mod idle_viewer_pages_free_their_slots;
 mod inconsistent_checkpoint_population_is_refused;
 mod interrupt_checkpoints_and_exits_130;
 mod killed_run_resumes_bit_identical;
