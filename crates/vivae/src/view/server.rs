@@ -1,5 +1,6 @@
 //! The HTTP side of `vivae view`: routes, the WebSocket, the run watcher.
 
+use std::path::Path;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
@@ -43,6 +44,8 @@ const MAX_MESSAGE: usize = 16 * 1024;
 /// Pages silent this long (no message, not even the answer to a ping, which
 /// browsers send by themselves) are dropped and their viewer slot freed.
 pub(super) const IDLE_TIMEOUT: Duration = Duration::from_secs(120);
+/// Size of the pieces a run file is sent in (memory per request stays this).
+const CHUNK: usize = 64 * 1024;
 
 #[derive(Clone)]
 struct App {
@@ -173,10 +176,42 @@ async fn run_file(State(app): State<App>, UrlPath(name): UrlPath<String>) -> Res
     let Some((file, content_type)) = RUN_FILES.iter().find(|(n, _)| *n == name) else {
         return not_found().await;
     };
-    match tokio::fs::read(dir.join(file)).await {
-        Ok(bytes) => text(content_type, bytes),
-        Err(_) => not_found().await,
+    let (dir, path) = (dir.to_path_buf(), dir.join(file));
+    match tokio::task::spawn_blocking(move || open_run_file(&dir, &path)).await {
+        Ok(Ok((file, len))) => text(content_type, file_body(file, len)),
+        _ => not_found().await,
     }
+}
+
+/// Opens a run file to be served: it must be a regular file inside the run
+/// directory once symlinks are followed (a link to `/etc/passwd`, a FIFO or
+/// `/dev/zero` is refused, without waiting on it).
+fn open_run_file(dir: &Path, path: &Path) -> std::io::Result<(std::fs::File, u64)> {
+    let real = std::fs::canonicalize(path)?;
+    if !real.starts_with(std::fs::canonicalize(dir)?) {
+        return Err(std::io::ErrorKind::PermissionDenied.into());
+    }
+    let (file, meta) = vivae_lab::io::open_regular(&real)?;
+    Ok((file, meta.len()))
+}
+
+/// The first `len` bytes of `file`, read and sent a chunk at a time.
+fn file_body(file: std::fs::File, len: u64) -> axum::body::Body {
+    use tokio::io::AsyncReadExt;
+    let reader = tokio::fs::File::from_std(file).take(len);
+    let chunks = futures_util::stream::unfold(Some(reader), |reader| async move {
+        let mut reader = reader?;
+        let mut buf = vec![0u8; CHUNK];
+        match reader.read(&mut buf).await {
+            Ok(0) => None,
+            Ok(n) => {
+                buf.truncate(n);
+                Some((Ok(buf), Some(reader)))
+            }
+            Err(e) => Some((Err(e), None)),
+        }
+    });
+    axum::body::Body::from_stream(chunks)
 }
 
 /// A browser page may open the WebSocket only from this server's own page:
