@@ -76,55 +76,80 @@ pub fn read_text(path: &Path) -> Result<String> {
         path: path.to_path_buf(),
         reason,
     };
-    // Checked before opening: opening a FIFO for reading blocks until a writer appears.
-    let meta = fs::metadata(path).map_err(|e| unreadable(io_reason(&e)))?;
-    check_regular(&meta).map_err(unreadable)?;
-    let file = fs::File::open(path).map_err(|e| unreadable(io_reason(&e)))?;
-    // Checked again on the open file, in case the path was swapped in between.
-    let meta = file.metadata().map_err(|e| unreadable(io_reason(&e)))?;
-    check_regular(&meta).map_err(unreadable)?;
-    let mut bytes = Vec::with_capacity(meta.len() as usize);
-    // A file growing while it is read still stops at the limit.
-    std::io::Read::read_to_end(
-        &mut std::io::Read::take(file, MAX_INPUT_BYTES + 1),
-        &mut bytes,
-    )
-    .map_err(|e| unreadable(io_reason(&e)))?;
-    if bytes.len() as u64 > MAX_INPUT_BYTES {
-        return Err(unreadable(too_big()));
-    }
+    let bytes = read_regular(path, MAX_INPUT_BYTES).map_err(|e| unreadable(io_reason(&e)))?;
     String::from_utf8(bytes).map_err(|_| unreadable("not UTF-8 text".into()))
 }
 
-fn too_big() -> String {
-    format!(
-        "larger than the input size limit of {} MiB",
-        MAX_INPUT_BYTES >> 20
-    )
+/// `open(2)`'s `O_NONBLOCK`: opening a FIFO with it returns at once instead
+/// of waiting for a writer (the file is then refused as not regular).
+const O_NONBLOCK: i32 = libc::O_NONBLOCK;
+
+/// Opens `path` (following symlinks) for reading if it is a regular file.
+///
+/// Opened without blocking, then checked on the open file: a FIFO, a device
+/// or a socket, even one swapped in after a check, is refused without
+/// waiting, with an error whose message says what it is.
+pub fn open_regular(path: &Path) -> std::io::Result<(fs::File, fs::Metadata)> {
+    use std::os::unix::fs::OpenOptionsExt;
+    let file = fs::OpenOptions::new()
+        .read(true)
+        .custom_flags(O_NONBLOCK)
+        .open(path)?;
+    let meta = file.metadata()?;
+    check_kind(&meta)
+        .map_err(|what| std::io::Error::new(std::io::ErrorKind::InvalidInput, what))?;
+    Ok((file, meta))
 }
 
-/// Refuses anything but a regular file of at most [`MAX_INPUT_BYTES`].
-fn check_regular(meta: &fs::Metadata) -> std::result::Result<(), String> {
+/// Reads the whole of the regular file `path`, refusing one over `max` bytes
+/// (also one that grows past it while read); see [`open_regular`].
+pub fn read_regular(path: &Path, max: u64) -> std::io::Result<Vec<u8>> {
+    let (file, meta) = open_regular(path)?;
+    let over = || std::io::Error::new(std::io::ErrorKind::InvalidData, too_big_for(max));
+    if meta.len() > max {
+        return Err(over());
+    }
+    let mut bytes = Vec::with_capacity(meta.len() as usize);
+    std::io::Read::read_to_end(&mut std::io::Read::take(file, max + 1), &mut bytes)?;
+    if bytes.len() as u64 > max {
+        return Err(over());
+    }
+    Ok(bytes)
+}
+
+/// [`read_regular`] as UTF-8 text.
+pub fn read_regular_text(path: &Path, max: u64) -> std::io::Result<String> {
+    String::from_utf8(read_regular(path, max)?)
+        .map_err(|_| std::io::Error::new(std::io::ErrorKind::InvalidData, "not UTF-8 text"))
+}
+
+fn too_big_for(max: u64) -> String {
+    if max >= 1 << 20 {
+        format!("larger than the input size limit of {} MiB", max >> 20)
+    } else {
+        format!("larger than the input size limit of {max} bytes")
+    }
+}
+
+/// Refuses anything but a regular file, saying what it is instead.
+fn check_kind(meta: &fs::Metadata) -> std::result::Result<(), String> {
     let ft = meta.file_type();
-    if !ft.is_file() {
-        use std::os::unix::fs::FileTypeExt;
-        let what = if ft.is_dir() {
-            "is a directory"
-        } else if ft.is_fifo() {
-            "is a FIFO (named pipe), not a regular file"
-        } else if ft.is_char_device() || ft.is_block_device() {
-            "is a device, not a regular file"
-        } else if ft.is_socket() {
-            "is a socket, not a regular file"
-        } else {
-            "is not a regular file"
-        };
-        return Err(what.into());
+    if ft.is_file() {
+        return Ok(());
     }
-    if meta.len() > MAX_INPUT_BYTES {
-        return Err(too_big());
-    }
-    Ok(())
+    use std::os::unix::fs::FileTypeExt;
+    let what = if ft.is_dir() {
+        "is a directory"
+    } else if ft.is_fifo() {
+        "is a FIFO (named pipe), not a regular file"
+    } else if ft.is_char_device() || ft.is_block_device() {
+        "is a device, not a regular file"
+    } else if ft.is_socket() {
+        "is a socket, not a regular file"
+    } else {
+        "is not a regular file"
+    };
+    Err(what.into())
 }
 
 /// Reads and validates a config file; relative paths in it (scenario, initial

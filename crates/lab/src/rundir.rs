@@ -242,9 +242,19 @@ pub(crate) struct BestLine {
     pub(crate) same_as: Option<u32>,
 }
 
+/// Largest run file read whole (`best-genomes.jsonl`, `population.csv`),
+/// in bytes: these grow with the run, past [`crate::io::MAX_INPUT_BYTES`].
+pub const MAX_RUN_FILE_BYTES: u64 = 1 << 30;
+
+/// Reads a run file that grows with the run: a regular file only (a FIFO
+/// put in its place is refused at once, not waited on), of bounded size.
+fn read_run_file(path: &Path) -> std::io::Result<String> {
+    crate::io::read_regular_text(path, MAX_RUN_FILE_BYTES)
+}
+
 /// Reads `best-genomes.jsonl`; a missing file is an empty history (older runs).
 pub fn read_best_genomes(path: &Path) -> Result<Vec<GenerationBest>> {
-    let text = match fs::read_to_string(path) {
+    let text = match read_run_file(path) {
         Ok(t) => t,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Vec::new()),
         Err(e) => {
@@ -289,7 +299,7 @@ pub fn read_best_genomes(path: &Path) -> Result<Vec<GenerationBest>> {
 
 /// Keeps the first `lines` lines of a file (creating it empty if missing).
 pub(crate) fn truncate_lines(path: &Path, lines: u32) -> Result<()> {
-    let text = match fs::read_to_string(path) {
+    let text = match read_run_file(path) {
         Ok(t) => t,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => String::new(),
         Err(e) => {
@@ -513,6 +523,8 @@ pub(crate) fn truncate(path: &Path, len: u64) -> Result<()> {
         path: path.to_path_buf(),
         reason,
     };
+    // Checked first: opening a FIFO for writing blocks until a reader appears.
+    crate::io::open_regular(path).map_err(|e| damaged(crate::io::io_reason(&e)))?;
     let f = fs::OpenOptions::new()
         .write(true)
         .open(path)
@@ -552,7 +564,7 @@ pub(crate) fn prune_checkpoints(dir: &Path, keep: usize) -> Result<()> {
 /// malformed row, a fitness that is not a finite number, no row at all.
 pub fn read_population_csv(path: &Path) -> Result<Vec<Vec<f64>>> {
     // Not `read_text`: a long run's population.csv may pass its size limit.
-    let text = fs::read_to_string(path).map_err(Error::io("read", path))?;
+    let text = read_run_file(path).map_err(Error::io("read", path))?;
     let refused = |reason: String| Error::RunFile {
         path: path.to_path_buf(),
         reason,
@@ -989,8 +1001,9 @@ pub(crate) fn csv_prefix(
         path: path.to_path_buf(),
         reason: crate::io::io_reason(&e),
     };
-    let mut f = fs::File::open(path).map_err(unreadable)?;
-    let actual = f.metadata().map_err(unreadable)?.len();
+    // Not a plain open: a FIFO in the file's place would block it forever.
+    let (mut f, meta) = crate::io::open_regular(path).map_err(unreadable)?;
+    let actual = meta.len();
     if actual < len || len > crate::io::MAX_INPUT_BYTES && !tail_only {
         return Ok(None);
     }

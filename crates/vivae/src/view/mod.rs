@@ -44,6 +44,10 @@ pub struct ViewArgs {
     /// Most pages simulated at once; more are refused until one closes.
     #[arg(long, default_value_t = 8, value_name = "N")]
     pub max_viewers: usize,
+    /// Seconds a page may stay silent before it is dropped and its slot freed
+    /// (hidden: for tests; browsers answer the server's pings by themselves).
+    #[arg(long, hide = true, default_value_t = server::IDLE_TIMEOUT.as_secs_f64(), value_name = "SECS")]
+    pub idle_timeout: f64,
 }
 
 /// Runs `vivae view` until interrupted.
@@ -51,6 +55,10 @@ pub fn run(args: ViewArgs) -> vivae_lab::Result<ExitCode> {
     if args.max_viewers == 0 {
         return Err(bad_input("--max-viewers 0: must be at least 1"));
     }
+    if !(args.idle_timeout.is_finite() && (0.1..=86_400.0).contains(&args.idle_timeout)) {
+        return Err(bad_input("--idle-timeout: must be 0.1 to 86400 seconds"));
+    }
+    let idle = std::time::Duration::from_secs_f64(args.idle_timeout);
     let hosts = hosts::HostPolicy::new(args.host, &args.allow_host)?;
     let source = Source::load(args.source.as_deref(), args.scenarios.as_deref())?;
     let runtime = tokio::runtime::Builder::new_multi_thread()
@@ -97,7 +105,13 @@ pub fn run(args: ViewArgs) -> vivae_lab::Result<ExitCode> {
     use std::io::Write as _;
     let _ = std::io::stdout().flush();
     runtime
-        .block_on(server::serve(listener, source, args.max_viewers, hosts))
+        .block_on(server::serve(
+            listener,
+            source,
+            args.max_viewers,
+            hosts,
+            idle,
+        ))
         .map_err(io("serve on"))?;
     Ok(ExitCode::SUCCESS)
 }

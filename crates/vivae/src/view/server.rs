@@ -1,5 +1,6 @@
 //! The HTTP side of `vivae view`: routes, the WebSocket, the run watcher.
 
+use std::path::Path;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
@@ -40,6 +41,11 @@ const POLL: Duration = Duration::from_millis(700);
 const FRAME: Duration = Duration::from_millis(16);
 /// Largest message a page may send.
 const MAX_MESSAGE: usize = 16 * 1024;
+/// Pages silent this long (no message, not even the answer to a ping, which
+/// browsers send by themselves) are dropped and their viewer slot freed.
+pub(super) const IDLE_TIMEOUT: Duration = Duration::from_secs(120);
+/// Size of the pieces a run file is sent in (memory per request stays this).
+const CHUNK: usize = 64 * 1024;
 
 #[derive(Clone)]
 struct App {
@@ -48,6 +54,8 @@ struct App {
     viewers: Arc<AtomicUsize>,
     max_viewers: usize,
     hosts: Arc<HostPolicy>,
+    /// See [`IDLE_TIMEOUT`].
+    idle: Duration,
 }
 
 /// Frees a viewer slot when its page's session ends (however it ends).
@@ -65,6 +73,7 @@ pub(super) async fn serve(
     source: Source,
     max_viewers: usize,
     hosts: HostPolicy,
+    idle: Duration,
 ) -> std::io::Result<()> {
     let source = Arc::new(source);
     let (tx, rx) = watch::channel(Arc::new(source.snapshot()));
@@ -91,6 +100,7 @@ pub(super) async fn serve(
         viewers: Arc::new(AtomicUsize::new(0)),
         max_viewers,
         hosts: Arc::new(hosts),
+        idle,
     };
     let router = Router::new()
         .route("/", get(index))
@@ -166,10 +176,42 @@ async fn run_file(State(app): State<App>, UrlPath(name): UrlPath<String>) -> Res
     let Some((file, content_type)) = RUN_FILES.iter().find(|(n, _)| *n == name) else {
         return not_found().await;
     };
-    match tokio::fs::read(dir.join(file)).await {
-        Ok(bytes) => text(content_type, bytes),
-        Err(_) => not_found().await,
+    let (dir, path) = (dir.to_path_buf(), dir.join(file));
+    match tokio::task::spawn_blocking(move || open_run_file(&dir, &path)).await {
+        Ok(Ok((file, len))) => text(content_type, file_body(file, len)),
+        _ => not_found().await,
     }
+}
+
+/// Opens a run file to be served: it must be a regular file inside the run
+/// directory once symlinks are followed (a link to `/etc/passwd`, a FIFO or
+/// `/dev/zero` is refused, without waiting on it).
+fn open_run_file(dir: &Path, path: &Path) -> std::io::Result<(std::fs::File, u64)> {
+    let real = std::fs::canonicalize(path)?;
+    if !real.starts_with(std::fs::canonicalize(dir)?) {
+        return Err(std::io::ErrorKind::PermissionDenied.into());
+    }
+    let (file, meta) = vivae_lab::io::open_regular(&real)?;
+    Ok((file, meta.len()))
+}
+
+/// The first `len` bytes of `file`, read and sent a chunk at a time.
+fn file_body(file: std::fs::File, len: u64) -> axum::body::Body {
+    use tokio::io::AsyncReadExt;
+    let reader = tokio::fs::File::from_std(file).take(len);
+    let chunks = futures_util::stream::unfold(Some(reader), |reader| async move {
+        let mut reader = reader?;
+        let mut buf = vec![0u8; CHUNK];
+        match reader.read(&mut buf).await {
+            Ok(0) => None,
+            Ok(n) => {
+                buf.truncate(n);
+                Some((Ok(buf), Some(reader)))
+            }
+            Err(e) => Some((Err(e), None)),
+        }
+    });
+    axum::body::Body::from_stream(chunks)
 }
 
 /// A browser page may open the WebSocket only from this server's own page:
@@ -212,17 +254,26 @@ fn error_msg(message: &str) -> String {
     serde_json::json!({"type": "error", "message": message}).to_string()
 }
 
-/// One page's session: runs its simulation until the page goes away.
-async fn session(mut socket: WebSocket, mut app: App) {
+/// Sends `text`, giving up (`false`) if the page has not taken it within
+/// `idle`: a page that stops reading must not hold its slot either.
+async fn send_within(socket: &mut WebSocket, message: Message, idle: Duration) -> bool {
+    matches!(
+        tokio::time::timeout(idle, socket.send(message)).await,
+        Ok(Ok(()))
+    )
+}
+
+/// Starts a page's session: its simulation, and the `info` and `progress`
+/// messages; `None` if the page is gone (or was told why there is none).
+async fn open_session(socket: &mut WebSocket, app: &mut App) -> Option<(Sim, SharedSnapshot)> {
     let snap = app.snapshot.borrow_and_update().clone();
-    let mut sim = match tokio::task::block_in_place(|| Sim::new(&app.source, &snap)) {
+    let sim = match tokio::task::block_in_place(|| Sim::new(&app.source, &snap)) {
         Ok(sim) => sim,
         Err(e) => {
-            let _ = socket.send(Message::Text(error_msg(&e).into())).await;
-            return;
+            send_within(socket, Message::Text(error_msg(&e).into()), app.idle).await;
+            return None;
         }
     };
-    let mut snap = snap;
     let info = serde_json::json!({
         "type": "info",
         "source": app.source.describe(),
@@ -230,35 +281,41 @@ async fn session(mut socket: WebSocket, mut app: App) {
         "scenarios": app.source.scenarios.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>(),
         "real_time_steps": super::session::REAL_TIME_STEPS,
     });
-    if socket
-        .send(Message::Text(info.to_string().into()))
-        .await
-        .is_err()
-    {
-        return;
-    }
     let progress = serde_json::to_string(&snap.progress()).unwrap_or_default();
-    if socket.send(Message::Text(progress.into())).await.is_err() {
-        return;
+    for m in [info.to_string(), progress] {
+        if !send_within(socket, Message::Text(m.into()), app.idle).await {
+            return None;
+        }
     }
+    Some((sim, snap))
+}
+
+/// One page's session: runs its simulation until the page goes away, or
+/// has been silent for [`App::idle`] (it is pinged meanwhile; a browser
+/// answers pings by itself, so an open page is never silent).
+async fn session(mut socket: WebSocket, mut app: App) {
+    let Some((mut sim, mut snap)) = open_session(&mut socket, &mut app).await else {
+        return;
+    };
     let mut tick = tokio::time::interval(FRAME);
     tick.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Skip);
+    let mut ping = tokio::time::interval(app.idle / 4);
+    let mut heard = tokio::time::Instant::now();
     let mut last = Instant::now();
     let mut watching = true;
     loop {
-        let mut out: Vec<String> = Vec::new();
+        let mut out: Vec<Message> = Vec::new();
         tokio::select! {
             msg = socket.recv() => match msg {
                 // A closed tab ends its simulation here.
                 None | Some(Err(_)) | Some(Ok(Message::Close(_))) => break,
-                Some(Ok(Message::Text(t))) => {
-                    if let Err(e) = sim.handle(t.as_str(), &app.source, &snap) {
-                        out.push(error_msg(&e));
-                    }
+                Some(Ok(m)) => {
+                    heard = tokio::time::Instant::now();
+                    out.extend(page_message(m, &mut sim, &app, &snap));
                 }
-                Some(Ok(Message::Binary(_))) => out.push(error_msg("binary messages are not understood")),
-                Some(Ok(_)) => {}
             },
+            _ = tokio::time::sleep_until(heard + app.idle) => break,
+            _ = ping.tick() => out.push(Message::Ping(Default::default())),
             _ = tick.tick() => {
                 let now = Instant::now();
                 // A stalled page does not make the simulation jump ahead.
@@ -271,21 +328,33 @@ async fn session(mut socket: WebSocket, mut app: App) {
                     watching = false;
                 } else {
                     snap = app.snapshot.borrow_and_update().clone();
-                    out.push(serde_json::to_string(&snap.progress()).unwrap_or_default());
+                    let p = serde_json::to_string(&snap.progress()).unwrap_or_default();
+                    out.push(Message::Text(p.into()));
                 }
             }
         }
         if sim.scene_dirty {
             sim.scene_dirty = false;
-            out.push(sim.scene_msg(&app.source));
+            out.push(Message::Text(sim.scene_msg(&app.source).into()));
         }
         if sim.dirty {
-            out.push(sim.frame_msg());
+            out.push(Message::Text(sim.frame_msg().into()));
         }
         for m in out {
-            if socket.send(Message::Text(m.into())).await.is_err() {
+            if !send_within(&mut socket, m, app.idle).await {
                 return;
             }
         }
     }
+}
+
+/// Obeys one message from the page; what to answer (an error, if any).
+fn page_message(m: Message, sim: &mut Sim, app: &App, snap: &SharedSnapshot) -> Option<Message> {
+    let error = match m {
+        Message::Text(t) => sim.handle(t.as_str(), &app.source, snap).err(),
+        Message::Binary(_) => Some("binary messages are not understood".into()),
+        // Pongs (and pings) only show that the page is there.
+        _ => None,
+    };
+    error.map(|e| Message::Text(error_msg(&e).into()))
 }

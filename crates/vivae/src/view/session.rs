@@ -29,6 +29,15 @@ const MAX_STEPS_PER_FRAME: u32 = 400;
 const MAX_SENSORS: usize = 64 * 128;
 /// Most neurons a page may ask for (decoding grows with sensors × neurons).
 const MAX_NEURONS: usize = 400;
+/// Most steps one `step` message may ask for, at any resolution.
+const MAX_STEPS_PER_MESSAGE: u32 = 10_000;
+/// Work one page message may cost, in robot-steps × controller size (see
+/// [`Sim::step_cost`]): about a second of one core. A step's cost grows with
+/// the resolution, so at the highest one a message gets a few dozen steps,
+/// not thousands (which took minutes and went on after the page closed).
+const WORK_PER_MESSAGE: u64 = 600_000_000;
+/// Work one frame of playing may cost (a frame is due every 16 ms).
+const WORK_PER_FRAME: u64 = WORK_PER_MESSAGE / 8;
 
 /// A message from the page.
 #[derive(Debug, Deserialize)]
@@ -284,7 +293,9 @@ impl Sim {
             return;
         }
         self.carry += self.speed * REAL_TIME_STEPS * seconds;
-        let n = (self.carry.floor() as u32).min(MAX_STEPS_PER_FRAME);
+        let n = (self.carry.floor() as u32)
+            .min(MAX_STEPS_PER_FRAME)
+            .min(self.steps_within(WORK_PER_FRAME));
         self.carry = (self.carry - f64::from(n)).min(1.0);
         tokio::task::block_in_place(|| {
             for _ in 0..n {
@@ -419,10 +430,40 @@ impl Sim {
         }
     }
 
-    /// Pauses and advances `n` steps (1 to 10000).
+    /// The work of one simulation step, in the units of [`WORK_PER_MESSAGE`]:
+    /// per robot, sensing every surface sensor and running the controller
+    /// (each neuron reads every sensor and neuron).
+    fn step_cost(&self) -> u64 {
+        let spec = self.experiment.substrate_spec();
+        let sensors = (spec.sensors.rings as u64).saturating_mul(spec.sensors.angles as u64);
+        let neurons = (spec.neurons.rings as u64).saturating_mul(spec.neurons.angles as u64);
+        let robots = self.world.robots().len().max(1) as u64;
+        let per_robot = sensors.saturating_add(
+            neurons.saturating_mul(sensors.saturating_add(neurons).saturating_add(2)),
+        );
+        robots.saturating_mul(per_robot.max(1))
+    }
+
+    /// Most steps (at least 1) whose work fits in `budget` at the current resolution.
+    fn steps_within(&self, budget: u64) -> u32 {
+        let n = (budget / self.step_cost()).clamp(1, u64::from(MAX_STEPS_PER_MESSAGE));
+        n as u32
+    }
+
+    /// Pauses and advances `n` steps: 1 to 10000, and no more than about a
+    /// second of work at the current resolution.
     fn step_paused(&mut self, n: u32) -> Result<(), String> {
-        if n == 0 || n > 10_000 {
-            return Err(format!("step {n}: must be 1 to 10000"));
+        if n == 0 || n > MAX_STEPS_PER_MESSAGE {
+            return Err(format!("step {n}: must be 1 to {MAX_STEPS_PER_MESSAGE}"));
+        }
+        let most = self.steps_within(WORK_PER_MESSAGE);
+        if n > most {
+            let spec = self.experiment.substrate_spec();
+            return Err(format!(
+                "step {n}: at most {most} steps per message at this resolution \
+                 (sensors {}x{}, neurons {}x{}); send several messages",
+                spec.sensors.rings, spec.sensors.angles, spec.neurons.rings, spec.neurons.angles
+            ));
         }
         self.playing = false;
         tokio::task::block_in_place(|| {

@@ -7,6 +7,7 @@
 //! Run one file's tests with a filter: `cargo test --release -p vivae --test it
 //! short_run_matches_pinned_hash`.
 
+mod a_viewer_step_message_is_bounded_by_its_cost;
 mod bad_inputs_exit_2_with_one_line;
 mod best_genomes_are_recorded_every_generation_and_resume_identically;
 mod cli_end_to_end;
@@ -18,6 +19,7 @@ mod evaluation_is_thread_count_independent;
 mod finished_run_and_retrain_neurons_only;
 mod first_hour_output_says_what_to_do_next;
 mod forged_checkpoint_is_refused_before_anything_changes;
+mod idle_viewer_pages_free_their_slots;
 mod inconsistent_checkpoint_population_is_refused;
 mod interrupt_checkpoints_and_exits_130;
 mod killed_run_resumes_bit_identical;
@@ -46,9 +48,11 @@ mod second_writer_of_a_run_is_refused;
 mod shipped_scenarios_run_by_name;
 mod short_run_matches_pinned_hash;
 mod sigterm_checkpoints_and_exits_130;
+mod special_run_files_are_refused_not_waited_on;
 mod viewer_and_report_in_a_real_browser;
 mod viewer_follows_a_running_evolution;
 mod viewer_on_mapped_loopback_does_not_warn;
 mod viewer_refuses_foreign_host_names;
+mod viewer_refuses_run_file_links_and_special_files;
 mod viewer_serves_only_its_own_files;
 mod workspace_structure;
