@@ -285,6 +285,13 @@ pub fn scenario_text(s: &ScenarioSummary, marks: &[String]) -> String {
         let _ = writeln!(out, "mark names: {}", marks.join(", "));
     }
     let _ = writeln!(out, "robots: {}", s.robots.len());
+    if s.robots.is_empty() {
+        // Said up front: evolve and replay refuse such a map later.
+        let _ = writeln!(
+            out,
+            "warning: no robots: this scenario can be drawn (scenario render) but not evolved on or replayed; draw robots (see docs/scenario-format.md)"
+        );
+    }
     for r in &s.robots {
         let _ = writeln!(
             out,
@@ -347,6 +354,19 @@ pub fn render_scenario(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_scenario_without_robots_is_said_up_front() {
+        let scenario = vivae_lab::io::load_scenario(None).unwrap().scenario;
+        let mut summary = scenario.summary();
+        assert!(!scenario_text(&summary, &[]).contains("no robots"));
+        summary.robots.clear();
+        let text = scenario_text(&summary, &[]);
+        assert!(
+            text.contains("robots: 0\nwarning: no robots: this scenario can be drawn"),
+            "{text}"
+        );
+    }
 
     #[test]
     fn scenario_text_rounds_and_names_robots_and_marks() {
