@@ -169,29 +169,45 @@ fn bad_sources_are_one_line_and_exit_2() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-#[test]
-fn listening_beyond_loopback_warns_that_the_network_can_watch() {
-    use std::io::{BufRead, BufReader};
-    // Listening on all interfaces; the test itself talks only to 127.0.0.1.
+/// Starts `vivae view --host HOST --port 0`, reads its URL line, stops it:
+/// (the URL line, everything it said on stderr before serving).
+fn said_on_start(host: &str) -> (String, String) {
+    use std::io::{BufRead, BufReader, Read};
     let mut child = vivae()
-        .args(["view", "--host", "0.0.0.0", "--port", "0"])
+        .args(["view", "--host", host, "--port", "0"])
         .stdout(std::process::Stdio::piped())
         .stderr(std::process::Stdio::piped())
         .spawn()
-        .unwrap();
-    let mut line = String::new();
-    BufReader::new(child.stderr.take().unwrap())
-        .read_line(&mut line)
         .unwrap();
     let mut url = String::new();
     BufReader::new(child.stdout.take().unwrap())
         .read_line(&mut url)
         .unwrap();
+    // Everything said before serving is said by now: stop it, read stderr.
     let _ = child.kill();
     let _ = child.wait();
-    assert!(line.starts_with("warning:"), "{line}");
-    assert!(line.contains("anyone"), "{line}");
+    let mut err = String::new();
+    let _ = child.stderr.take().unwrap().read_to_string(&mut err);
+    (url, err)
+}
+
+#[test]
+fn listening_beyond_loopback_warns_that_the_network_can_watch() {
+    // Listening on all interfaces; the test itself talks only to 127.0.0.1.
+    let (url, err) = said_on_start("0.0.0.0");
+    assert!(err.starts_with("warning:"), "{err}");
+    assert!(err.contains("anyone"), "{err}");
     assert!(url.starts_with("vivae view: http://127.0.0.1:"), "{url}");
+}
+
+/// `::ffff:127.0.0.1` (IPv4 loopback written as an IPv4-mapped IPv6
+/// address) is loopback: no warning that the network can watch (issue 24).
+#[test]
+fn a_mapped_loopback_address_gets_no_network_warning() {
+    let (url, err) = said_on_start("::ffff:127.0.0.1");
+    assert!(url.starts_with("vivae view: http://"), "{url} {err}");
+    assert!(!err.contains("warning"), "{err}");
+    assert!(!err.contains("anyone"), "{err}");
 }
 
 #[test]
