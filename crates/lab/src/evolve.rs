@@ -26,20 +26,13 @@ use crate::experiment::Experiment;
 use crate::io::{bad_input, fnv1a, write_atomic};
 use crate::maps::{TrainingMap, is_multi_map};
 use crate::rundir::{
-    BestLine, Checkpoint, GENERATIONS_HEADER, POPULATION_HEADER, Progress, RunLock, TIMING_HEADER,
-    append, check_config_unchanged, check_csv_prefixes, check_out_dir, copy_maps,
-    decode_checkpoint, fill_new_run, load_run, population_rows, remove_abandoned_builds,
-    remove_stale_temporaries, truncate, truncate_lines, write_checkpoint,
+    BestLine, Champion, Checkpoint, GENERATIONS_HEADER, GenerationRecord, POPULATION_HEADER,
+    Progress, RunLock, TIMING_HEADER, append, check_config_unchanged, check_csv_prefixes,
+    check_out_dir, copy_maps, decode_checkpoint, files, fill_new_run, latest_checkpoint, load_run,
+    population_rows, read_best_genomes, remove_abandoned_builds, remove_stale_temporaries,
+    truncate, truncate_lines, write_checkpoint,
 };
 use crate::training::Training;
-
-// The run directory's formats are `rundir`'s; these names stay reachable here
-// for code written against this module.
-pub use crate::rundir::{
-    Champion, GenerationBest, GenerationRecord, files, latest_checkpoint, load_genome_source,
-    population_from_checkpoint, population_from_checkpoint_text, read_best_genomes, read_champion,
-    read_population_csv,
-};
 
 /// Generations whose best individual gets a trajectory figure (besides the champion).
 pub const FIGURE_GENERATIONS: [u32; 2] = [1, 10];

@@ -15,7 +15,7 @@ use vivae_neat::{EvalContext, Genome, GenomeSpec};
 
 use crate::config::{Aggregate, Config};
 use crate::error::Result;
-use crate::experiment::{Episode, Experiment, ExperimentError};
+use crate::experiment::{Experiment, ExperimentError};
 use crate::maps::{TrainingMap, is_multi_map};
 use crate::resolutions::at_resolutions;
 use crate::task::{Combined, DrivingTask};
@@ -116,21 +116,6 @@ impl Training {
     /// Robot-steps one evaluation simulates, over every map and resolution.
     pub fn robot_steps(&self) -> u64 {
         self.task.robot_steps()
-    }
-
-    /// Recorded episodes of `genome` on every training map (the primary one
-    /// alone for a single map), each at the run's own resolution.
-    pub fn episodes(&self, genome: &Genome) -> std::result::Result<Vec<Episode>, ExperimentError> {
-        let one = [&self.primary];
-        let experiments: Vec<&Experiment> = if self.maps.is_empty() {
-            one.to_vec()
-        } else {
-            self.map_experiments().collect()
-        };
-        experiments
-            .into_iter()
-            .map(|e| Ok(e.run(&e.controller(genome)?, true)))
-            .collect()
     }
 
     /// The training maps for a person: `roads.svg (shipped): 5 robots, …`.

@@ -25,7 +25,7 @@ fn camera() -> (Experiment, SubstrateController) {
         env!("CARGO_MANIFEST_DIR"),
         "/tests/data/paper-champion.json"
     );
-    let champion = vivae_lab::evolve::read_champion(std::path::Path::new(path)).unwrap();
+    let champion = vivae_lab::rundir::read_champion(std::path::Path::new(path)).unwrap();
     let mut config = Config::default();
     config.surface_sensors.rings = 32;
     config.surface_sensors.angles = 96;
@@ -59,7 +59,7 @@ fn decode_32x96_to_9x9(bencher: divan::Bencher) {
         env!("CARGO_MANIFEST_DIR"),
         "/tests/data/paper-champion.json"
     );
-    let champion = vivae_lab::evolve::read_champion(std::path::Path::new(path)).unwrap();
+    let champion = vivae_lab::rundir::read_champion(std::path::Path::new(path)).unwrap();
     let (experiment, _) = camera();
     bencher.bench(|| experiment.controller(&champion.genome).unwrap());
 }

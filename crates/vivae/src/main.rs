@@ -13,10 +13,11 @@ use anyhow::Context as _;
 use clap::{Args, Parser, Subcommand};
 use vivae::report;
 use vivae_lab::config::Config;
-use vivae_lab::evolve::{self, GenerationRecord, Outcome, Run, files};
+use vivae_lab::evolve::{Outcome, Run};
 use vivae_lab::experiment::Experiment;
 use vivae_lab::io::{bad_input, load_scenario, one_line, read_config, write_atomic};
 use vivae_lab::maps::TrainingMap;
+use vivae_lab::rundir::{self, GenerationRecord, files};
 use vivae_lab::substrate::PolarGrid;
 use vivae_lab::training::Training;
 
@@ -409,7 +410,7 @@ fn cmd_evolve(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
             None
         } else {
             let path = Path::new(&config.experiment.init_population);
-            Some(evolve::population_from_checkpoint(path)?.1)
+            Some(rundir::population_from_checkpoint(path)?.1)
         };
         Ok((maps, experiment, init))
     };
@@ -451,8 +452,8 @@ fn cmd_resume(args: ResumeArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
     if launched_by_mpi() {
         // Every rank reads the run (rank 0 writes to it only after the handshake).
         let prepared = (|| -> anyhow::Result<_> {
-            let checkpoint = evolve::latest_checkpoint(&args.run_dir)?;
-            let (config, _) = evolve::population_from_checkpoint(&checkpoint)?;
+            let checkpoint = rundir::latest_checkpoint(&args.run_dir)?;
+            let (config, _) = rundir::population_from_checkpoint(&checkpoint)?;
             let maps = vivae_lab::rundir::load_run(&args.run_dir, &config, None)?;
             let experiment = vivae_lab::training::Training::new(&config, &maps)?;
             Ok((config, maps, experiment))
@@ -498,8 +499,8 @@ fn cmd_resume(args: ResumeArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
 }
 
 fn cmd_retrain(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode> {
-    let checkpoint = evolve::latest_checkpoint(&args.run_dir)?;
-    let (mut config, population) = evolve::population_from_checkpoint(&checkpoint)?;
+    let checkpoint = rundir::latest_checkpoint(&args.run_dir)?;
+    let (mut config, population) = rundir::population_from_checkpoint(&checkpoint)?;
     if vivae_lab::maps::is_multi_map(&config) {
         // A multi-map run retrains on the copies of its maps.
         for s in &mut config.experiment.scenarios {
@@ -833,7 +834,7 @@ fn progress_bar(total: u32, done: u32) -> indicatif::ProgressBar {
 }
 
 fn cmd_replay(args: ReplayArgs) -> anyhow::Result<ExitCode> {
-    let (champion, mut config, base) = vivae_lab::evolve::load_genome_source(&args.source)?;
+    let (champion, mut config, base) = vivae_lab::rundir::load_genome_source(&args.source)?;
     // A multi-map run replays on its first training map unless told otherwise.
     if args.scenario.is_none() && vivae_lab::maps::is_multi_map(&config) {
         let maps = std::mem::take(&mut config.experiment.scenarios);

@@ -11,9 +11,10 @@ use crate::figures;
 use crate::figures::convergence::ConvergenceOptions;
 use vivae_lab::config::Config;
 use vivae_lab::error::{Error, Result};
-use vivae_lab::evolve::{self, Champion, Run, files};
+use vivae_lab::evolve::Run;
 use vivae_lab::experiment::{Episode, Experiment};
 use vivae_lab::io::{bad_input, write_atomic};
+use vivae_lab::rundir::{self, Champion, files};
 use vivae_lab::substrate::PolarGrid;
 
 /// What the end of a run reports.
@@ -98,7 +99,7 @@ pub fn finish_run(run: &Run) -> Result<RunSummary> {
     )?;
     let per_map = per_map_figures(run, &champion.genome, &dir)?;
 
-    let fitness = evolve::read_population_csv(&run.dir().join(files::POPULATION))?;
+    let fitness = rundir::read_population_csv(&run.dir().join(files::POPULATION))?;
     let convergence = figures::convergence::render(&fitness, &ConvergenceOptions::default())?;
     write_figure(&dir, "convergence", &convergence.svg, &convergence.png)?;
 

@@ -14,10 +14,9 @@ use vivae_sim::{Scenario, World};
 
 use crate::figures::convergence::{self, ConvergenceOptions};
 use crate::figures::network::{self, NetworkOptions};
-use vivae_lab::evolve::read_champion;
-use vivae_lab::evolve::{self, files};
 use vivae_lab::experiment::{Episode, Experiment};
 use vivae_lab::io::{bad_input, load_scenario, read_config, read_text, write_atomic};
+use vivae_lab::rundir::{self, files, read_champion};
 
 /// The page template; `/*VIVAE-DATA*/`, `/*VIVAE-CSS*/` and `/*VIVAE-JS*/` are filled in.
 const TEMPLATE: &str = include_str!("../assets/report.html");
@@ -207,7 +206,7 @@ pub fn build_reusing(dir: &Path, reuse: &Reuse<'_>) -> vivae_lab::Result<String>
     let experiment = Experiment::new(&config, &scenario.scenario)
         .map_err(|e| bad_input(format!("{}: {e}", dir.display())))?;
     let champion = read_champion(&dir.join(files::CHAMPION))?;
-    let best = evolve::read_best_genomes(&dir.join(files::BEST_GENOMES))?;
+    let best = rundir::read_best_genomes(&dir.join(files::BEST_GENOMES))?;
     let generations_csv = dir.join(files::GENERATIONS);
     let generations = read_generation_rows(&generations_csv)?;
     if generations.is_empty() {
@@ -216,7 +215,7 @@ pub fn build_reusing(dir: &Path, reuse: &Reuse<'_>) -> vivae_lab::Result<String>
             reason: "no generation recorded".into(),
         });
     }
-    let fitness = evolve::read_population_csv(&dir.join(files::POPULATION))?;
+    let fitness = rundir::read_population_csv(&dir.join(files::POPULATION))?;
 
     let mut episodes = vec![episode(
         &experiment,
@@ -224,7 +223,7 @@ pub fn build_reusing(dir: &Path, reuse: &Reuse<'_>) -> vivae_lab::Result<String>
         format!("Champion (generation {})", champion.generation),
         reuse,
     )?];
-    for g in evolve::FIGURE_GENERATIONS {
+    for g in vivae_lab::evolve::FIGURE_GENERATIONS {
         if let Some(b) = best.iter().find(|b| b.generation == g) {
             episodes.push(episode(
                 &experiment,

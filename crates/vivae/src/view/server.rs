@@ -17,7 +17,7 @@ use super::hosts::HostPolicy;
 use super::session::Sim;
 use super::source::{SharedSnapshot, Source};
 use crate::report_html::{PLOTS_JS, SCENE_JS, STYLE_CSS};
-use vivae_lab::evolve::files;
+use vivae_lab::rundir::files;
 
 /// The viewer page.
 const INDEX_HTML: &str = include_str!("../../assets/view.html");

@@ -9,9 +9,8 @@ use serde::Serialize;
 
 use crate::report_html::{GenerationRow, read_generation_rows};
 use vivae_lab::config::Config;
-use vivae_lab::evolve::read_champion;
-use vivae_lab::evolve::{self, Champion, GenerationBest, files};
 use vivae_lab::io::{DEFAULT_SCENARIO, DEFAULT_SCENARIO_NAME, bad_input, read_config, read_text};
+use vivae_lab::rundir::{self, Champion, GenerationBest, files, read_champion};
 
 /// Most extra scenarios offered from `--scenarios`.
 const MAX_SCENARIOS: usize = 200;
@@ -108,7 +107,7 @@ impl Source {
         } else {
             // The champion's own recorded config rebuilds its controller
             // (substrate, sensors, physics), as `vivae replay` does.
-            let (champion, config, _) = vivae_lab::evolve::load_genome_source(p)?;
+            let (champion, config, _) = vivae_lab::rundir::load_genome_source(p)?;
             Ok(Source {
                 kind: SourceKind::Genome(p.to_path_buf()),
                 config,
@@ -159,7 +158,7 @@ impl Source {
             // A run being written may be read half-way; the next poll sees the rest.
             snap.champion = read_champion(&dir.join(files::CHAMPION)).ok();
             snap.best =
-                evolve::read_best_genomes(&dir.join(files::BEST_GENOMES)).unwrap_or_default();
+                rundir::read_best_genomes(&dir.join(files::BEST_GENOMES)).unwrap_or_default();
             snap.generations =
                 read_generation_rows(&dir.join(files::GENERATIONS)).unwrap_or_default();
             snap.total = Some(self.config.experiment.generations);

@@ -19,7 +19,7 @@ use vivae_lab::substrate::PolarGrid;
 /// The paper's champion decoded on `sensors` → `neurons`, and its figure.
 fn figure(sensors: (usize, usize), neurons: (usize, usize)) -> (usize, vivae::figures::Figure) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/paper-champion.json");
-    let champion = vivae_lab::evolve::read_champion(&path).unwrap();
+    let champion = vivae_lab::rundir::read_champion(&path).unwrap();
     let mut config = Config::default();
     config.surface_sensors.rings = sensors.0;
     config.surface_sensors.angles = sensors.1;

@@ -4,7 +4,6 @@
 //! read until memory runs out; so is a file over the size limit.
 
 use crate::common::*;
-use std::path::Path;
 use std::process::Command;
 
 fn assert_refused(cmd: &mut Command, name: &str, what: &str) {
@@ -14,11 +13,6 @@ fn assert_refused(cmd: &mut Command, name: &str, what: &str) {
     assert!(!stderr.contains("panicked"), "{what}: {stderr}");
     assert_eq!(stderr.trim().lines().count(), 1, "{what}: {stderr}");
     assert!(stderr.contains(name), "{what}: {stderr}");
-}
-
-fn mkfifo(path: &Path) {
-    let status = Command::new("mkfifo").arg(path).status().unwrap();
-    assert!(status.success(), "mkfifo {}", path.display());
 }
 
 #[test]

@@ -14,11 +14,7 @@ fn a_fifo_as_best_genomes_makes_report_exit_2_naming_it() {
     common::evolve(&config, &run, &[]);
     let best = run.join("best-genomes.jsonl");
     std::fs::remove_file(&best).unwrap();
-    let made = std::process::Command::new("mkfifo")
-        .arg(&best)
-        .status()
-        .unwrap();
-    assert!(made.success());
+    common::mkfifo(&best);
     let mut child = vivae()
         .arg("report")
         .arg(&run)

@@ -45,6 +45,12 @@ pub fn evolve(config: &Path, out: &Path, extra: &[&str]) -> String {
         .arg(out))
 }
 
+/// Makes a FIFO at `path` (a special file that blocks a reader until a writer comes).
+pub fn mkfifo(path: &Path) {
+    let status = Command::new("mkfifo").arg(path).status().unwrap();
+    assert!(status.success(), "mkfifo {}", path.display());
+}
+
 /// Runs a command to completion; panics with its stderr if it could not start.
 pub fn run(cmd: &mut Command) -> Output {
     cmd.output().expect("vivae runs")
