@@ -1,0 +1,373 @@
+//! The simulator stepped for the Python environments: N worlds of one
+//! scenario, robots driven by wheel commands from numpy arrays, their
+//! sensors written to numpy arrays, the worlds stepped in Rust threads.
+
+use numpy::ndarray::Array3;
+use numpy::{
+    IntoPyArray, PyArray3, PyReadonlyArray3, PyReadwriteArray1, PyReadwriteArray2,
+    PyReadwriteArray3, PyUntypedArrayMethods,
+};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use rayon::prelude::*;
+use vivae_lab::experiment::Experiment;
+use vivae_lab::sensors::read_sheets;
+use vivae_sim::World;
+
+use crate::errors;
+use crate::settings;
+
+/// One world and its robots' buffers.
+#[derive(Clone)]
+struct Slot {
+    world: World,
+    controls: Vec<[f64; 2]>,
+    readings: Vec<f64>,
+    /// Odometers after the last step (a step's reward is their increase).
+    odometers: Vec<f64>,
+    /// Steps since the last reset.
+    steps: u32,
+    /// Whether the episode ended in the last step (autoreset: the next step resets).
+    done: bool,
+}
+
+/// The shapes every call checks its arrays against.
+#[derive(Clone, Copy)]
+struct Shape {
+    robots: usize,
+    obs: usize,
+    limit: u32,
+}
+
+impl Slot {
+    fn reset(&mut self, start: &World) {
+        self.world.clone_from(start);
+        self.odometers.fill(0.0);
+        self.steps = 0;
+        self.done = false;
+    }
+
+    fn observe(&mut self, exp: &Experiment, obs: &mut [f32]) {
+        let n = self.readings.len();
+        for (i, out) in obs.chunks_exact_mut(n.max(1)).enumerate().take(self.odometers.len()) {
+            read_sheets(exp.sensors(), &self.world, i, &mut self.readings);
+            for (o, r) in out.iter_mut().zip(&self.readings) {
+                *o = *r as f32;
+            }
+        }
+    }
+
+    /// One step of this world: wheels from `actions`, rewards = distance driven.
+    #[allow(clippy::too_many_arguments)]
+    fn step(
+        &mut self,
+        exp: &Experiment,
+        start: &World,
+        shape: Shape,
+        autoreset: bool,
+        actions: &[f32],
+        obs: &mut [f32],
+        rewards: &mut [f64],
+        truncated: &mut bool,
+    ) {
+        if autoreset && self.done {
+            self.reset(start);
+            rewards.fill(0.0);
+            *truncated = false;
+            self.observe(exp, obs);
+            return;
+        }
+        for (c, a) in self.controls.iter_mut().zip(actions.chunks_exact(2)) {
+            *c = [f64::from(a[0]), f64::from(a[1])];
+        }
+        self.world.step(&self.controls);
+        for ((r, odo), robot) in rewards.iter_mut().zip(&mut self.odometers).zip(self.world.robots()) {
+            *r = robot.odometer - *odo;
+            *odo = robot.odometer;
+        }
+        self.steps += 1;
+        self.done = self.steps >= shape.limit;
+        *truncated = self.done;
+        self.observe(exp, obs);
+    }
+}
+
+/// N copies of one driving world, stepped together (the engine behind
+/// `vivae.DriveEnv`, `vivae.DriveVectorEnv` and `vivae.DriveParallelEnv`).
+#[pyclass(module = "vivae._vivae")]
+pub struct DriveCore {
+    experiment: Experiment,
+    slots: Vec<Slot>,
+    shape: Shape,
+    pool: rayon::ThreadPool,
+    sensors: vivae_sim::SurfaceSensors,
+    distance: Option<vivae_sim::DistanceSensors>,
+}
+
+impl DriveCore {
+    fn check<T>(&self, what: &str, got: &[usize], want: &[usize], ok: T) -> PyResult<T> {
+        if got == want {
+            Ok(ok)
+        } else {
+            Err(PyValueError::new_err(format!(
+                "{what} has shape {got:?}, expected {want:?}"
+            )))
+        }
+    }
+
+    fn n(&self) -> usize {
+        self.slots.len()
+    }
+}
+
+#[pymethods]
+impl DriveCore {
+    /// `num_worlds` copies of the world `config` + `overrides` describe (as
+    /// `vivae evolve` would build it); `threads` steps them (0 = one per core).
+    #[new]
+    #[pyo3(signature = (num_worlds, config=None, threads=0, **overrides))]
+    fn new(
+        num_worlds: usize,
+        config: Option<std::path::PathBuf>,
+        threads: usize,
+        overrides: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<DriveCore> {
+        if num_worlds == 0 {
+            return Err(PyValueError::new_err("num_worlds = 0: need at least one world"));
+        }
+        let config = settings::build(config.as_deref(), overrides)?;
+        let path = settings::scenario_path(&config);
+        let loaded = vivae_lab::io::load_scenario(path.as_deref()).map_err(errors::lab)?;
+        let experiment = Experiment::new(&config, &loaded.scenario)
+            .map_err(|e| errors::lab(vivae_lab::Error::from(e)))?;
+        let robots = experiment.robots();
+        let obs: usize = experiment.sensors().iter().map(|s| s.len()).sum();
+        let slot = Slot {
+            world: experiment.world().clone(),
+            controls: vec![[0.0; 2]; robots],
+            readings: vec![0.0; obs],
+            odometers: vec![0.0; robots],
+            steps: 0,
+            done: false,
+        };
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads.min(num_worlds))
+            .build()
+            .map_err(|e| errors::value(format!("starting worker threads: {e}")))?;
+        Ok(DriveCore {
+            shape: Shape {
+                robots,
+                obs,
+                limit: experiment.steps(),
+            },
+            slots: vec![slot; num_worlds],
+            experiment,
+            pool,
+            sensors: config.surface_sensors.clone(),
+            distance: config.distance_sensors.layout(),
+        })
+    }
+
+    /// Number of worlds.
+    #[getter]
+    fn num_worlds(&self) -> usize {
+        self.n()
+    }
+
+    /// Robots per world.
+    #[getter]
+    fn robots(&self) -> usize {
+        self.shape.robots
+    }
+
+    /// Readings per robot: the surface sensors, then the distance rays.
+    #[getter]
+    fn obs_size(&self) -> usize {
+        self.shape.obs
+    }
+
+    /// Steps per episode (`experiment.steps`).
+    #[getter]
+    fn max_steps(&self) -> u32 {
+        self.shape.limit
+    }
+
+    /// Worker threads stepping the worlds.
+    #[getter]
+    fn threads(&self) -> usize {
+        self.pool.current_num_threads()
+    }
+
+    /// Puts the worlds where `mask` is true (all when `None`) back at the
+    /// start and writes every world's readings to `obs` (num_worlds × robots × obs_size).
+    #[pyo3(signature = (obs, mask=None))]
+    fn reset(
+        &mut self,
+        mut obs: PyReadwriteArray3<'_, f32>,
+        mask: Option<Vec<bool>>,
+    ) -> PyResult<()> {
+        let (n, s) = (self.n(), self.shape);
+        let o = self.check("obs", obs.shape(), &[n, s.robots, s.obs], ())?;
+        let _ = o;
+        if let Some(m) = &mask
+            && m.len() != n
+        {
+            return Err(PyValueError::new_err(format!(
+                "mask has {} entries, expected {n}",
+                m.len()
+            )));
+        }
+        let obs = obs.as_slice_mut().map_err(errors::value)?;
+        let (exp, start) = (&self.experiment, self.experiment.world());
+        for (k, (slot, o)) in self
+            .slots
+            .iter_mut()
+            .zip(obs.chunks_exact_mut(s.robots * s.obs))
+            .enumerate()
+        {
+            if mask.as_ref().is_none_or(|m| m[k]) {
+                slot.reset(start);
+            }
+            slot.observe(exp, o);
+        }
+        Ok(())
+    }
+
+    /// One step of every world: `actions` (num_worlds × robots × 2, wheel
+    /// commands in [-1, 1]; NaN counts as 0) in; readings, rewards (px driven
+    /// this step) and whether the step limit was reached out. With
+    /// `autoreset`, a world whose episode ended in the previous call is
+    /// reset instead (its reward 0). The GIL is released meanwhile.
+    #[pyo3(signature = (actions, obs, rewards, truncated, autoreset=true))]
+    fn step(
+        &mut self,
+        py: Python<'_>,
+        actions: PyReadonlyArray3<'_, f32>,
+        mut obs: PyReadwriteArray3<'_, f32>,
+        mut rewards: PyReadwriteArray2<'_, f64>,
+        mut truncated: PyReadwriteArray1<'_, bool>,
+        autoreset: bool,
+    ) -> PyResult<()> {
+        let (n, s) = (self.n(), self.shape);
+        self.check("actions", actions.shape(), &[n, s.robots, 2], ())?;
+        self.check("obs", obs.shape(), &[n, s.robots, s.obs], ())?;
+        self.check("rewards", rewards.shape(), &[n, s.robots], ())?;
+        self.check("truncated", truncated.shape(), &[n], ())?;
+        let actions = actions.as_slice().map_err(errors::value)?;
+        let obs = obs.as_slice_mut().map_err(errors::value)?;
+        let rewards = rewards.as_slice_mut().map_err(errors::value)?;
+        let truncated = truncated.as_slice_mut().map_err(errors::value)?;
+        let (exp, slots, pool) = (&self.experiment, &mut self.slots, &self.pool);
+        let start = exp.world();
+        let one = |(((slot, a), o), (r, t)): (((&mut Slot, &[f32]), &mut [f32]), (&mut [f64], &mut bool))| {
+            slot.step(exp, start, s, autoreset, a, o, r, t)
+        };
+        py.detach(|| {
+            let (ra, ro) = (s.robots * 2, s.robots * s.obs.max(1));
+            if pool.current_num_threads() <= 1 || n == 1 {
+                slots
+                    .iter_mut()
+                    .zip(actions.chunks_exact(ra))
+                    .zip(obs.chunks_mut(ro))
+                    .zip(rewards.chunks_exact_mut(s.robots).zip(truncated.iter_mut()))
+                    .for_each(one);
+            } else {
+                // One contiguous run of worlds per thread: the work per world is small.
+                let per = n.div_ceil(pool.current_num_threads());
+                pool.install(|| {
+                    slots
+                        .par_iter_mut()
+                        .zip(actions.par_chunks_exact(ra))
+                        .zip(obs.par_chunks_mut(ro))
+                        .zip(rewards.par_chunks_exact_mut(s.robots).zip(truncated.par_iter_mut()))
+                        .with_min_len(per)
+                        .for_each(one);
+                });
+            }
+        });
+        Ok(())
+    }
+
+    /// Steps since world `index` was last reset.
+    fn elapsed(&self, index: usize) -> PyResult<u32> {
+        self.slots
+            .get(index)
+            .map(|s| s.steps)
+            .ok_or_else(|| PyValueError::new_err(format!("no world {index}")))
+    }
+
+    /// Each robot's distance driven since world `index` was reset, px.
+    fn odometers(&self, index: usize) -> PyResult<Vec<f64>> {
+        self.slots
+            .get(index)
+            .map(|s| s.odometers.clone())
+            .ok_or_else(|| PyValueError::new_err(format!("no world {index}")))
+    }
+
+    /// World `index` as an RGB image (height × width × 3, uint8), robots
+    /// with their sensors, `scale` pixels per px.
+    #[pyo3(signature = (index=0, scale=1.0))]
+    fn render<'py>(&self, py: Python<'py>, index: usize, scale: f64) -> PyResult<Bound<'py, PyArray3<u8>>> {
+        let slot = self
+            .slots
+            .get(index)
+            .ok_or_else(|| PyValueError::new_err(format!("no world {index}")))?;
+        let opts = vivae_sim::DrawOptions {
+            trajectories: false,
+            surface_sensors: Some(self.sensors.clone()),
+            distance_sensors: self.distance.clone(),
+            scale,
+            legend: false,
+            title: None,
+        };
+        let world = &slot.world;
+        let image = py.detach(|| -> Result<Array3<u8>, String> {
+            let png = vivae_sim::render_png(world, &opts).map_err(|e| e.to_string())?;
+            let pixmap = tiny_skia::Pixmap::decode_png(&png).map_err(|e| e.to_string())?;
+            let (w, h) = (pixmap.width() as usize, pixmap.height() as usize);
+            // Drawn on white, so every pixel is opaque: premultiplied RGBA is plain RGBA.
+            let rgb: Vec<u8> = pixmap
+                .data()
+                .chunks_exact(4)
+                .flat_map(|p| [p[0], p[1], p[2]])
+                .collect();
+            Array3::from_shape_vec((h, w, 3), rgb).map_err(|e| e.to_string())
+        });
+        Ok(image.map_err(|e| errors::value(format!("rendering the world: {e}")))?.into_pyarray(py))
+    }
+
+    /// Steps the worlds `steps` times with uniformly random wheel commands
+    /// drawn in Rust (seeded): the native baseline the benchmarks compare
+    /// the Python vector env with. Returns robot-steps done.
+    #[pyo3(signature = (steps, seed=0))]
+    fn run_random(&mut self, py: Python<'_>, steps: u32, seed: u64) -> u64 {
+        use rand::{RngExt, SeedableRng};
+        let (n, s) = (self.n(), self.shape);
+        let mut rng = rand_pcg::Pcg64::seed_from_u64(seed);
+        let mut actions = vec![0f32; n * s.robots * 2];
+        let mut obs = vec![0f32; n * s.robots * s.obs];
+        let mut rewards = vec![0f64; n * s.robots];
+        let mut truncated = vec![false; n];
+        let (exp, slots, pool) = (&self.experiment, &mut self.slots, &self.pool);
+        let start = exp.world();
+        py.detach(|| {
+            let per = n.div_ceil(pool.current_num_threads());
+            for _ in 0..steps {
+                for a in &mut actions {
+                    *a = rng.random_range(-1.0f32..=1.0);
+                }
+                pool.install(|| {
+                    slots
+                        .par_iter_mut()
+                        .zip(actions.par_chunks_exact(s.robots * 2))
+                        .zip(obs.par_chunks_mut(s.robots * s.obs.max(1)))
+                        .zip(rewards.par_chunks_exact_mut(s.robots).zip(truncated.par_iter_mut()))
+                        .with_min_len(per)
+                        .for_each(|(((slot, a), o), (r, t))| slot.step(exp, start, s, true, a, o, r, t));
+                });
+            }
+        });
+        u64::from(steps) * (n * s.robots) as u64
+    }
+}

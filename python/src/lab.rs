@@ -1,0 +1,426 @@
+//! The driving experiment from Python: evaluating and decoding genomes,
+//! whole runs written as `vivae evolve` writes them, replays.
+
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Mutex;
+
+use numpy::ndarray::{Array1, Array2};
+use numpy::{IntoPyArray, PyArray2, PyReadonlyArray2, PyUntypedArrayMethods};
+use pyo3::exceptions::{PyKeyboardInterrupt, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use rayon::prelude::*;
+use vivae_lab::config::Config;
+use vivae_lab::evolve::{Outcome, Run};
+use vivae_lab::experiment::Experiment;
+use vivae_lab::rundir::{self, GenerationRecord};
+use vivae_lab::substrate::WheelNeurons;
+use vivae_lab::training::Training;
+use vivae_neat::{EvalContext, Network as _};
+use vivae_neat::hyperneat::{BatchState, SubstrateController};
+
+use crate::errors;
+use crate::evo::{Genome, Population, merge_params};
+use crate::settings;
+
+/// The training maps and task of `config`, as `vivae evolve` sets them up.
+fn training(config: &Config) -> vivae_lab::Result<(Vec<vivae_lab::maps::TrainingMap>, Training)> {
+    let maps = vivae_lab::maps::load(config)?;
+    let training = Training::new(config, &maps)?;
+    Ok((maps, training))
+}
+
+/// The driving task of a config: genomes (CPPNs) evaluated, decoded onto
+/// the substrate and turned into controllers, as in `vivae evolve`.
+#[pyclass(module = "vivae._vivae", frozen)]
+pub struct DriveTask {
+    config: Config,
+    training: Training,
+    pool: rayon::ThreadPool,
+}
+
+impl DriveTask {
+    fn experiment(&self) -> &Experiment {
+        self.training.primary()
+    }
+
+    fn controller_of(&self, genome: &Genome) -> PyResult<SubstrateController> {
+        self.experiment()
+            .controller(&genome.inner)
+            .map_err(|e| errors::value(format!("the genome's {e}")))
+    }
+}
+
+#[pymethods]
+impl DriveTask {
+    /// The task `config` (a TOML file, default the paper's) with `overrides`
+    /// (the CLI's flags by name: `scenario`, `sensors="3x5"`, `steps`, …).
+    #[new]
+    #[pyo3(signature = (config=None, **overrides))]
+    fn new(config: Option<PathBuf>, overrides: Option<&Bound<'_, PyDict>>) -> PyResult<DriveTask> {
+        let config = settings::build(config.as_deref(), overrides)?;
+        let (_, training) = training(&config).map_err(errors::lab)?;
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(config.run.threads)
+            .build()
+            .map_err(|e| errors::value(format!("starting worker threads: {e}")))?;
+        Ok(DriveTask {
+            config,
+            training,
+            pool,
+        })
+    }
+
+    /// The resolved config as TOML (what `config.toml` of a run holds).
+    fn config_toml(&self) -> String {
+        self.config.to_toml()
+    }
+
+    /// (inputs, outputs) of the CPPNs this task evolves.
+    #[getter]
+    fn cppn_shape(&self) -> (usize, usize) {
+        let s = self.experiment().cppn_spec();
+        (s.inputs, s.outputs)
+    }
+
+    /// Robots per episode.
+    #[getter]
+    fn robots(&self) -> usize {
+        self.experiment().robots()
+    }
+
+    /// Steps per episode.
+    #[getter]
+    fn steps(&self) -> u32 {
+        self.experiment().steps()
+    }
+
+    /// A generation-0 population of CPPNs with the config's NEAT parameters
+    /// (`params` overrides them by name); `seed` defaults to the config's:
+    /// the population `vivae evolve` starts from.
+    #[pyo3(signature = (seed=None, size=None, params=None))]
+    fn population(
+        &self,
+        seed: Option<u64>,
+        size: Option<usize>,
+        params: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<Population> {
+        let mut params = merge_params(self.config.neat.clone(), params)?;
+        if let Some(n) = size {
+            params.population_size = n;
+        }
+        let spec = self.training.task().cppn_spec();
+        let seed = seed.unwrap_or(self.config.experiment.seed);
+        let inner = vivae_neat::Population::new(params, spec, seed).map_err(errors::value)?;
+        Ok(Population { inner })
+    }
+
+    /// The fitness of each genome (an episode on every training map and
+    /// resolution, as in a run), evaluated in Rust threads without the GIL.
+    fn evaluate(&self, py: Python<'_>, genomes: Vec<PyRef<'_, Genome>>) -> PyResult<Vec<f64>> {
+        let want = self.training.task().cppn_spec();
+        for g in &genomes {
+            if g.inner.num_inputs() != want.inputs || g.inner.num_outputs() != want.outputs {
+                return Err(PyValueError::new_err(format!(
+                    "a CPPN with {} inputs and {} outputs; this task needs {} and {}",
+                    g.inner.num_inputs(),
+                    g.inner.num_outputs(),
+                    want.inputs,
+                    want.outputs
+                )));
+            }
+        }
+        let genomes: Vec<&vivae_neat::Genome> = genomes.iter().map(|g| &g.inner).collect();
+        let task = self.training.task();
+        Ok(py.detach(|| {
+            self.pool.install(|| {
+                genomes
+                    .par_iter()
+                    .enumerate()
+                    .map(|(index, g)| {
+                        let ctx = EvalContext {
+                            generation: 0,
+                            index,
+                            seed: vivae_neat::eval_seed(self.config.experiment.seed, 0, index),
+                        };
+                        task.evaluate(g, &ctx).fitness
+                    })
+                    .collect()
+            })
+        }))
+    }
+
+    /// The substrate `genome` paints, as numpy arrays: `input_weights`
+    /// (neurons × inputs), `recurrent_weights` (neurons × neurons, target
+    /// by source), `biases` (neurons) and the wheel neurons' indices.
+    fn decode<'py>(&self, py: Python<'py>, genome: &Genome) -> PyResult<Bound<'py, PyDict>> {
+        let c = self.controller_of(genome)?;
+        let (ni, n) = (c.num_inputs(), c.num_neurons());
+        let inputs = Array2::from_shape_fn((n, ni), |(t, i)| c.input_weight(i, t));
+        let recurrent = Array2::from_shape_fn((n, n), |(t, s)| c.recurrent_weight(s, t));
+        let d = PyDict::new(py);
+        d.set_item("input_weights", inputs.into_pyarray(py))?;
+        d.set_item("recurrent_weights", recurrent.into_pyarray(py))?;
+        d.set_item("biases", Array1::from(c.biases().to_vec()).into_pyarray(py))?;
+        let w = self.experiment().wheels();
+        d.set_item("wheels", (w.left, w.right))?;
+        d.set_item("sheet_sizes", c.sheet_sizes().to_vec())?;
+        Ok(d)
+    }
+
+    /// A controller for `robots` robots driven by `genome`'s substrate.
+    #[pyo3(signature = (genome, robots=1))]
+    fn controller(&self, genome: &Genome, robots: usize) -> PyResult<Controller> {
+        let c = self.controller_of(genome)?;
+        Ok(Controller {
+            state: c.batch_state(robots),
+            inputs: vec![0.0; robots * c.num_inputs()],
+            outputs: vec![0.0; robots * c.num_neurons()],
+            wheels: self.experiment().wheels(),
+            robots,
+            controller: c,
+        })
+    }
+
+    /// `genome`'s episode with every measure: fitness, time on road and the
+    /// behaviour measures (collisions, turns, loops, side of the road).
+    fn episode<'py>(&self, py: Python<'py>, genome: &Genome) -> PyResult<Bound<'py, PyDict>> {
+        let c = self.controller_of(genome)?;
+        let exp = self.experiment();
+        let episode = py.detach(|| exp.run(&c, true));
+        episode_dict(py, &episode)
+    }
+}
+
+fn episode_dict<'py>(
+    py: Python<'py>,
+    e: &vivae_lab::experiment::Episode,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("fitness", e.fitness)?;
+    d.set_item("on_road", e.on_road)?;
+    if let Some(b) = &e.behaviour {
+        d.set_item("collisions", b.collisions)?;
+        d.set_item("left_turns", b.left_turns)?;
+        d.set_item("right_turns", b.right_turns)?;
+        d.set_item("loops", b.loops)?;
+        d.set_item("side", b.side)?;
+    }
+    Ok(d)
+}
+
+/// A decoded substrate driving robots from their readings (the evolved
+/// controller, outside the simulator's own rollout).
+#[pyclass(module = "vivae._vivae")]
+pub struct Controller {
+    controller: SubstrateController,
+    state: BatchState,
+    inputs: Vec<f64>,
+    outputs: Vec<f64>,
+    wheels: WheelNeurons,
+    robots: usize,
+}
+
+#[pymethods]
+impl Controller {
+    /// One update from `obs` (robots × readings): the wheel commands (robots × 2).
+    fn act<'py>(
+        &mut self,
+        py: Python<'py>,
+        obs: PyReadonlyArray2<'_, f64>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let ni = self.controller.num_inputs();
+        if obs.shape() != [self.robots, ni] {
+            return Err(PyValueError::new_err(format!(
+                "obs has shape {:?}, expected [{}, {ni}]",
+                obs.shape(),
+                self.robots
+            )));
+        }
+        for (dst, src) in self.inputs.iter_mut().zip(obs.as_array().iter()) {
+            *dst = *src;
+        }
+        self.controller
+            .activate_batch(&mut self.state, &self.inputs, &mut self.outputs);
+        let n = self.controller.num_neurons();
+        let w = self.wheels;
+        let out = Array2::from_shape_fn((self.robots, 2), |(r, k)| {
+            self.outputs[r * n + if k == 0 { w.left } else { w.right }]
+        });
+        Ok(out.into_pyarray(py))
+    }
+
+    /// Back to the start: every neuron state zero.
+    fn reset(&mut self) {
+        self.state.reset();
+    }
+}
+
+/// Evolves as `vivae evolve` does and writes the same run directory (all
+/// but `figures/`, `report.html` and the wall times of `timing.csv`).
+#[pyfunction]
+#[pyo3(signature = (out=None, config=None, force=false, on_generation=None, **overrides))]
+pub fn evolve<'py>(
+    py: Python<'py>,
+    out: Option<PathBuf>,
+    config: Option<PathBuf>,
+    force: bool,
+    on_generation: Option<Py<PyAny>>,
+    overrides: Option<&Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let config = settings::build(config.as_deref(), overrides)?;
+    let setup = || -> vivae_lab::Result<_> {
+        let (maps, training) = training(&config)?;
+        let init = if config.experiment.init_population.is_empty() {
+            None
+        } else {
+            let path = Path::new(&config.experiment.init_population);
+            Some(rundir::population_from_checkpoint(path)?.1)
+        };
+        Ok((maps, training, init))
+    };
+    let (maps, training, init) = setup().map_err(errors::lab)?;
+    let dir = out.unwrap_or_else(vivae_lab::io::default_run_dir);
+    let first = maps[0].loaded.text.clone();
+    let mut run = py
+        .detach(|| Run::create_on_maps(&dir, config, training, &first, &maps, init, force))
+        .map_err(errors::lab)?;
+    let stop = AtomicBool::new(false);
+    let failure: Mutex<Option<PyErr>> = Mutex::new(None);
+    let started = std::time::Instant::now();
+    let outcome = py.detach(|| {
+        run.run(&stop, |r: &GenerationRecord| {
+            Python::attach(|py| {
+                let result = match &on_generation {
+                    Some(cb) => record_dict(py, r).and_then(|d| cb.call1(py, (d,)).map(|_| ())),
+                    None => Ok(()),
+                };
+                let result = result.and_then(|()| py.check_signals());
+                if let Err(e) = result {
+                    *failure.lock().unwrap_or_else(|p| p.into_inner()) = Some(e);
+                    stop.store(true, Ordering::SeqCst);
+                }
+            });
+        })
+    });
+    let outcome = outcome.map_err(errors::lab)?;
+    let wall = started.elapsed().as_secs_f64();
+    if let Some(e) = failure.into_inner().unwrap_or_else(|p| p.into_inner()) {
+        if e.is_instance_of::<PyKeyboardInterrupt>(py) {
+            return Err(PyKeyboardInterrupt::new_err(format!(
+                "interrupted after generation {}; checkpoint written. Resume with: vivae resume {}",
+                run.done(),
+                run.dir().display()
+            )));
+        }
+        return Err(e);
+    }
+    let d = PyDict::new(py);
+    d.set_item("out", run.dir().to_path_buf())?;
+    d.set_item("generations", run.done())?;
+    d.set_item("finished", outcome == Outcome::Finished)?;
+    d.set_item("wall_s", wall)?;
+    if let Some(c) = run.champion() {
+        d.set_item("best", c.fitness)?;
+        d.set_item("champion_generation", c.generation)?;
+        d.set_item(
+            "champion",
+            Genome {
+                inner: c.genome,
+                recurrent: false,
+            },
+        )?;
+    }
+    Ok(d)
+}
+
+fn record_dict<'py>(py: Python<'py>, r: &GenerationRecord) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("generation", r.generation)?;
+    d.set_item("total", r.total)?;
+    d.set_item("best", r.best)?;
+    d.set_item("mean", r.mean)?;
+    d.set_item("median", r.median)?;
+    d.set_item("worst", r.worst)?;
+    d.set_item("species", r.species)?;
+    d.set_item("best_ever", r.best_ever)?;
+    d.set_item("seconds", r.seconds)?;
+    d.set_item("robot_steps_per_second", r.robot_steps_per_second)?;
+    Ok(d)
+}
+
+/// Replays a champion (a run directory or a `champion.json`) as `vivae
+/// replay` does, without the figure: its fitness, time on road and behaviour measures.
+#[pyfunction]
+#[pyo3(signature = (source, **overrides))]
+pub fn replay<'py>(
+    py: Python<'py>,
+    source: PathBuf,
+    overrides: Option<&Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let (champion, mut config, _) = rundir::load_genome_source(&source).map_err(errors::lab)?;
+    let other_scenario = overrides.is_some_and(|o| o.contains("scenario").unwrap_or(false));
+    // A multi-map run replays on its first training map unless told otherwise.
+    if !other_scenario && vivae_lab::maps::is_multi_map(&config) {
+        let maps = std::mem::take(&mut config.experiment.scenarios);
+        config.experiment.scenario = maps[0].clone();
+    }
+    let extra = PyDict::new(py);
+    // Another scenario has its own robot starts: all of them, unless told.
+    if other_scenario {
+        extra.set_item("robots", 0)?;
+    }
+    if let Some(o) = overrides {
+        extra.update(o.as_mapping())?;
+    }
+    let config = settings::build_from(config, Some(&extra))?;
+    let path = settings::scenario_path(&config);
+    if let Some(p) = path.as_deref().filter(|p| !other_scenario && !p.exists()) {
+        return Err(errors::lab(vivae_lab::io::bad_input(format!(
+            "{}: the champion's scenario {} is not there; name one with scenario=",
+            source.display(),
+            p.display()
+        ))));
+    }
+    let scenario = vivae_lab::io::load_scenario(path.as_deref()).map_err(errors::lab)?;
+    let experiment = Experiment::new(&config, &scenario.scenario)
+        .map_err(|e| errors::lab(vivae_lab::Error::from(e)))?;
+    let controller = experiment.controller(&champion.genome).map_err(|e| {
+        errors::lab(vivae_lab::Error::Genome {
+            path: source.clone(),
+            reason: format!("the genome's {e}"),
+        })
+    })?;
+    let episode = py.detach(|| experiment.run(&controller, true));
+    episode_dict(py, &episode)
+}
+
+/// A champion file's (or run directory's) genome.
+#[pyfunction]
+pub fn load_genome(source: PathBuf) -> PyResult<(Genome, f64, u32)> {
+    let (c, _, _) = rundir::load_genome_source(&source).map_err(errors::lab)?;
+    Ok((
+        Genome {
+            inner: c.genome,
+            recurrent: false,
+        },
+        c.fitness,
+        c.generation,
+    ))
+}
+
+/// The shipped scenarios: (name, description).
+#[pyfunction]
+pub fn scenarios() -> Vec<(String, String)> {
+    vivae_lab::shipped::SHIPPED
+        .iter()
+        .map(|s| (s.name.to_string(), s.what.to_string()))
+        .collect()
+}
+
+/// The default config, commented (`vivae config default`).
+#[pyfunction]
+pub fn default_config() -> String {
+    Config::default_commented()
+}

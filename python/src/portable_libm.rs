@@ -1,0 +1,90 @@
+//! The module's C math symbols, routed to the portable `libm` crate (as the
+//! `vivae` program's `portable_libm.rs`, whose copy this is).
+//!
+//! The SVG stack scenarios load with (usvg, tiny-skia, kurbo) calls `sin`,
+//! `atan2`, `sinf`, … through the platform's libm, whose FMA or non-FMA code
+//! glibc picks per CPU: a scenario's geometry could differ in a last bit
+//! from the CLI's, and so would every run on it. The program overrides the
+//! symbols by ELF interposition; an extension module cannot (the
+//! interpreter's libm comes first), so build.rs links this one with
+//! `-Bsymbolic-functions`: every call inside the module binds to these
+//! definitions, and other modules of the process are untouched (Python
+//! loads extensions with RTLD_LOCAL). `math_is_portable` checks the effect.
+
+#![allow(unsafe_code)]
+
+macro_rules! unary {
+    ($($name:ident: $t:ty),* $(,)?) => {$(
+        #[doc = concat!("`", stringify!($name), "` from the portable `libm` crate.")]
+        #[unsafe(no_mangle)]
+        pub extern "C" fn $name(x: $t) -> $t {
+            libm::$name(x)
+        }
+    )*};
+}
+
+macro_rules! binary {
+    ($($name:ident: $t:ty),* $(,)?) => {$(
+        #[doc = concat!("`", stringify!($name), "` from the portable `libm` crate.")]
+        #[unsafe(no_mangle)]
+        pub extern "C" fn $name(x: $t, y: $t) -> $t {
+            libm::$name(x, y)
+        }
+    )*};
+}
+
+unary!(
+    sin: f64, cos: f64, tan: f64, asin: f64, acos: f64, atan: f64,
+    exp: f64, exp2: f64, log: f64, log2: f64, log10: f64, cbrt: f64,
+    sinh: f64, cosh: f64, tanh: f64,
+    sinf: f32, cosf: f32, tanf: f32, asinf: f32, acosf: f32, atanf: f32,
+    expf: f32, exp2f: f32, logf: f32, log2f: f32, log10f: f32, cbrtf: f32,
+);
+binary!(atan2: f64, pow: f64, hypot: f64, atan2f: f32, powf: f32, hypotf: f32);
+
+/// `sincos` from the portable `libm` crate.
+///
+/// # Safety
+/// `s` and `c` must be valid for writes, as `<math.h>` requires of callers.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sincos(x: f64, s: *mut f64, c: *mut f64) {
+    let (sin, cos) = libm::sincos(x);
+    // SAFETY: the C contract of sincos: both pointers are valid for writes.
+    unsafe {
+        s.write(sin);
+        c.write(cos);
+    }
+}
+
+/// `sincosf` from the portable `libm` crate.
+///
+/// # Safety
+/// `s` and `c` must be valid for writes, as `<math.h>` requires of callers.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sincosf(x: f32, s: *mut f32, c: *mut f32) {
+    let (sin, cos) = libm::sincosf(x);
+    // SAFETY: the C contract of sincosf: both pointers are valid for writes.
+    unsafe {
+        s.write(sin);
+        c.write(cos);
+    }
+}
+
+/// Whether std's math (what the SVG stack calls) gives the portable `libm`
+/// crate's bits inside this module, over a sweep of arguments.
+#[pyo3::pyfunction]
+pub fn math_is_portable() -> bool {
+    let mut x = -20.0f64;
+    while x < 20.0 {
+        let y = std::hint::black_box(x);
+        let same = y.sin().to_bits() == libm::sin(y).to_bits()
+            && y.atan2(0.3).to_bits() == libm::atan2(y, 0.3).to_bits()
+            && y.exp().to_bits() == libm::exp(y).to_bits()
+            && (y as f32).cos().to_bits() == libm::cosf(y as f32).to_bits();
+        if !same {
+            return false;
+        }
+        x += 0.173;
+    }
+    true
+}

@@ -1,0 +1,195 @@
+"""NEAT ask/tell, HyperNEAT decoding, runs written as the CLI writes them, replays."""
+
+from __future__ import annotations
+
+import filecmp
+import json
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import vivae
+
+XOR = [((0.0, 0.0), 0.0), ((0.0, 1.0), 1.0), ((1.0, 0.0), 1.0), ((1.0, 1.0), 0.0)]
+
+
+def xor_fitness(genome: vivae.Genome) -> float:
+    net = genome.network()
+    error = sum(abs(net.activate([a, b, 1.0])[0] - want) for (a, b), want in XOR)
+    return (4.0 - error) ** 2
+
+
+def evolve_xor(seed: int, generations: int = 300):
+    pop = vivae.Population(3, 1, seed=seed)
+    for _ in range(generations):
+        fitnesses = [xor_fitness(g) for g in pop.ask()]
+        pop.tell(fitnesses)
+        if max(fitnesses) >= 15.0:
+            break
+    return pop
+
+
+def test_xor_is_solved_by_ask_tell_with_a_python_fitness():
+    pop = evolve_xor(seed=1)
+    genome, fitness, _ = pop.best_ever
+    assert fitness >= 15.0
+    net = genome.network()
+    for (a, b), want in XOR:
+        assert abs(net.activate([a, b, 1.0])[0] - want) < 0.5
+
+
+def test_ask_tell_runs_repeat_bit_for_bit_and_restore_from_json():
+    a, b = evolve_xor(seed=4, generations=20), evolve_xor(seed=4, generations=20)
+    assert a.to_json() == b.to_json()
+    restored = vivae.Population.from_json(a.to_json())
+    for pop in (a, restored):
+        pop.tell([xor_fitness(g) for g in pop.ask()])
+    assert restored.to_json() == a.to_json()
+
+
+def test_tell_with_the_wrong_count_is_a_value_error():
+    pop = vivae.Population(3, 1, size=20)
+    assert len(pop.ask()) == 20
+    with pytest.raises(ValueError, match="19"):
+        pop.tell([0.0] * 19)
+    with pytest.raises(ValueError):
+        pop.tell([0.0] * 20, behaviours=[[1.0]] * 3)
+    pop.tell([1.0] * 20, behaviours=[[1.0, 2.0]] * 20)
+    assert pop.stats()["best_fitness"] == 1.0
+
+
+def test_network_refuses_the_wrong_number_of_inputs():
+    genome = vivae.Population(3, 1, size=5).ask()[0]
+    with pytest.raises(ValueError, match="inputs"):
+        genome.network().activate([1.0])
+
+
+def test_unknown_neat_params_are_value_errors():
+    with pytest.raises(ValueError, match="nonsense"):
+        vivae.Population(3, 1, params={"nonsense": 1})
+
+
+def test_genome_json_round_trips_and_a_malformed_one_is_a_value_error():
+    genome = vivae.Population(3, 1, size=5).ask()[0]
+    again = vivae.Genome.from_json(genome.to_json())
+    assert again.to_json() == genome.to_json()
+    with pytest.raises(ValueError):
+        vivae.Genome.from_json('{"nodes": 3}')
+
+
+def test_hyperneat_decode_gives_numpy_weights_on_the_substrate():
+    task = vivae.DriveTask(sensors="3x5", neurons="3x3", steps=50)
+    pop = task.population(size=10)
+    assert task.cppn_shape == (5, 3)
+    genome = pop.ask()[0]
+    d = task.decode(genome)
+    assert d["input_weights"].shape == (9, 15)
+    assert d["recurrent_weights"].shape == (9, 9)
+    assert d["biases"].shape == (9,)
+    assert d["input_weights"].dtype == np.float64
+    left, right = d["wheels"]
+    assert 0 <= left < 9 and 0 <= right < 9 and left != right
+
+
+def test_drive_task_evaluates_genomes_as_a_run_does():
+    task = vivae.DriveTask(steps=60, population=12)
+    pop = task.population()
+    genomes = pop.ask()
+    fitness = task.evaluate(genomes)
+    assert len(fitness) == 12 and all(f >= 0 for f in fitness)
+    assert fitness == task.evaluate(genomes)
+    assert task.episode(genomes[0])["fitness"] == fitness[0]
+    pop.tell(fitness)
+    assert pop.best_ever[1] == max(fitness)
+
+
+def test_the_controller_drives_the_environment():
+    import gymnasium
+
+    task = vivae.DriveTask(robots=1, steps=30)
+    genome = task.population(size=5).ask()[0]
+    controller = task.controller(genome)
+    env = gymnasium.make("vivae/Drive-v0", steps=30)
+    obs, _ = env.reset(seed=0)
+    for _ in range(30):
+        wheels = controller.act(obs[None, :].astype(np.float64))
+        assert wheels.shape == (1, 2)
+        obs, *_ = env.step(wheels[0].astype(np.float32))
+    with pytest.raises(ValueError, match="shape"):
+        controller.act(np.zeros((2, 15)))
+
+
+SETTINGS = dict(generations=3, population=16, steps=80, seed=5, threads=2)
+FLAGS = ["--generations", "3", "--population", "16", "--steps", "80", "--seed", "5", "--threads", "2"]
+SAME = [
+    "config.toml",
+    "scenario.svg",
+    "generations.csv",
+    "population.csv",
+    "best-genomes.jsonl",
+    "champion.json",
+]
+
+
+def test_evolve_writes_the_same_run_directory_as_the_cli(tmp_path, cli):
+    ours = tmp_path / "py"
+    result = vivae.evolve(out=ours, progress=False, **SETTINGS)
+    theirs = tmp_path / "cli"
+    subprocess.run([cli, "evolve", "-q", "--out", str(theirs), *FLAGS], check=True, stdout=subprocess.DEVNULL)
+    for name in SAME:
+        assert (ours / name).read_bytes() == (theirs / name).read_bytes(), name
+    cps = sorted(p.name for p in (theirs / "checkpoints").iterdir())
+    assert cps == sorted(p.name for p in (ours / "checkpoints").iterdir())
+    for name in cps:
+        assert filecmp.cmp(ours / "checkpoints" / name, theirs / "checkpoints" / name, shallow=False), name
+    assert len((ours / "timing.csv").read_text().splitlines()) == 4
+    assert result["generations"] == 3 and result["finished"]
+    champion = json.loads((ours / "champion.json").read_text())
+    assert result["best"] == champion["fitness"]
+    # replay measures what the CLI's replay prints.
+    printed = subprocess.run([cli, "replay", str(theirs), "--out", str(tmp_path / "r")], check=True,
+                             capture_output=True, text=True).stdout
+    fields = dict(kv.split("=") for kv in printed.split())
+    measured = vivae.replay(ours)
+    assert repr(measured["fitness"]) == fields["fitness"] or measured["fitness"] == float(fields["fitness"])
+    assert f"{measured['on_road']:.4f}" == fields["on_road"]
+    assert f"{measured['collisions']:.3f}" == fields["collisions"]
+    assert str(measured["left_turns"]) == fields["left_turns"]
+
+
+def test_evolve_reports_each_generation_and_replay_returns_the_measures(tmp_path):
+    seen = []
+    result = vivae.evolve(out=tmp_path / "run", progress=True, on_generation=seen.append, **SETTINGS)
+    assert [r["generation"] for r in seen] == [1, 2, 3]
+    assert seen[-1]["best_ever"] == result["best"]
+    measures = vivae.replay(tmp_path / "run")
+    assert set(measures) >= {"fitness", "on_road", "collisions", "left_turns", "right_turns", "loops", "side"}
+    assert measures["fitness"] == result["best"]
+    genome, fitness, _ = vivae.load_genome(tmp_path / "run" / "champion.json")
+    assert fitness == result["best"]
+    assert genome.to_json() == result["champion"].to_json()
+
+
+def test_evolve_refuses_an_existing_run_and_bad_settings(tmp_path):
+    vivae.evolve(out=tmp_path / "run", progress=False, **SETTINGS)
+    with pytest.raises(ValueError, match="run"):
+        vivae.evolve(out=tmp_path / "run", progress=False, **SETTINGS)
+    with pytest.raises(ValueError, match="generations"):
+        vivae.evolve(out=tmp_path / "other", progress=False, generations=0)
+
+
+def test_a_callback_error_stops_the_run_with_a_checkpoint(tmp_path):
+    def fail(record):
+        raise RuntimeError("stop here")
+
+    with pytest.raises(RuntimeError, match="stop here"):
+        vivae.evolve(out=tmp_path / "run", progress=False, on_generation=fail, **SETTINGS)
+    assert (tmp_path / "run" / "checkpoints").is_dir()
+    assert len((tmp_path / "run" / "population.csv").read_text().splitlines()) == 1 + 16
+
+
+def test_replay_of_a_missing_source_is_an_os_error(tmp_path):
+    with pytest.raises(OSError, match="nothing.json"):
+        vivae.replay(tmp_path / "nothing.json")

@@ -1,0 +1,64 @@
+"""vivae: robots that learn to drive, from Python.
+
+The ViVAE simulator as Gymnasium and PettingZoo environments, NEAT and
+HyperNEAT driven ask/tell, and whole runs written byte for byte as the
+``vivae`` command-line program writes them. Everything heavy runs in Rust
+with the GIL released.
+
+>>> import gymnasium, vivae
+>>> env = gymnasium.make("vivae/Drive-v0", sensors="3x5")
+>>> obs, info = env.reset(seed=0)
+"""
+
+from __future__ import annotations
+
+import gymnasium
+
+from vivae._vivae import (
+    OVERRIDES,
+    Controller,
+    DriveTask,
+    Genome,
+    Network,
+    Population,
+    default_config,
+    load_genome,
+    scenarios,
+)
+from vivae.envs import DriveEnv, DriveVectorEnv
+from vivae.run import evolve, replay
+
+__all__ = [
+    "OVERRIDES",
+    "Controller",
+    "DriveEnv",
+    "DriveParallelEnv",
+    "DriveTask",
+    "DriveVectorEnv",
+    "Genome",
+    "Network",
+    "Population",
+    "default_config",
+    "evolve",
+    "load_genome",
+    "replay",
+    "scenarios",
+]
+
+__version__ = "0.1.0"
+
+if "vivae/Drive-v0" not in gymnasium.registry:
+    gymnasium.register(
+        id="vivae/Drive-v0",
+        entry_point="vivae.envs:DriveEnv",
+        vector_entry_point="vivae.envs:DriveVectorEnv",
+    )
+
+
+def __getattr__(name: str):
+    # PettingZoo is optional: imported only when its environment is asked for.
+    if name == "DriveParallelEnv":
+        from vivae.parallel import DriveParallelEnv
+
+        return DriveParallelEnv
+    raise AttributeError(f"module 'vivae' has no attribute {name!r}")

@@ -1,0 +1,16 @@
+from vivae._vivae import (
+    OVERRIDES as OVERRIDES,
+    Controller as Controller,
+    DriveTask as DriveTask,
+    Genome as Genome,
+    Network as Network,
+    Population as Population,
+    default_config as default_config,
+    load_genome as load_genome,
+    scenarios as scenarios,
+)
+from vivae.envs import DriveEnv as DriveEnv, DriveVectorEnv as DriveVectorEnv
+from vivae.parallel import DriveParallelEnv as DriveParallelEnv
+from vivae.run import evolve as evolve, replay as replay
+
+__version__: str

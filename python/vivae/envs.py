@@ -1,0 +1,178 @@
+"""Gymnasium environments: one robot (`DriveEnv`), N worlds at once (`DriveVectorEnv`)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import gymnasium
+import numpy as np
+from gymnasium import spaces
+from gymnasium.vector.utils import batch_space
+
+from vivae._vivae import DriveCore
+
+
+def _core(num_worlds: int, robots: int, scenario, sensors, config, threads, overrides):
+    settings = dict(overrides)
+    if scenario is not None:
+        settings["scenario"] = scenario
+    if sensors is not None:
+        settings["sensors"] = sensors
+    settings["robots"] = robots
+    return DriveCore(num_worlds, config=config, threads=threads, **settings)
+
+
+def _action(action: Any, shape: tuple[int, ...]) -> np.ndarray:
+    """`action` as float32 of `shape`; anything else is a ValueError naming both shapes."""
+    a = np.asarray(action, dtype=np.float32)
+    if a.shape != shape:
+        raise ValueError(f"action has shape {a.shape}, expected {shape}")
+    return a
+
+
+class DriveEnv(gymnasium.Env):
+    """One robot driving on a ViVAE scenario.
+
+    Observation: the robot's surface sensors (then its distance rays, with
+    ``distance_rays=N``), each reading in [0, 1], float32. Action: the two
+    wheel commands (left, right) in [-1, 1]. Reward: the distance driven in
+    the step, px (an episode's rewards sum to the robot's odometer; their
+    mean is the paper's fitness, average speed). ``truncated`` at the step
+    limit (``steps=``, the paper's 1000); never ``terminated``.
+
+    The simulator has no randomness: every reset puts the robot at the
+    scenario's start, whatever the seed (the seed seeds ``np_random`` and
+    the action space only).
+
+    Args:
+        scenario: a scenario SVG file, or the name of a shipped one
+            (``vivae.scenarios()``); default the paper's road scenario.
+        sensors: the surface-sensor grid as ``"RINGSxANGLES"`` (paper: ``"3x5"``).
+        render_mode: ``"rgb_array"`` or None.
+        config: a vivae config TOML file the settings start from.
+        render_scale: pixels per px of the arena in rendered images.
+        **overrides: further settings by the CLI's flag names
+            (``steps``, ``distance_rays``, …; ``vivae.OVERRIDES``).
+    """
+
+    metadata = {"render_modes": ["rgb_array"], "render_fps": 30}
+
+    def __init__(
+        self,
+        scenario: str | None = None,
+        sensors: str | None = "3x5",
+        render_mode: str | None = None,
+        config: str | None = None,
+        render_scale: float = 0.5,
+        **overrides: Any,
+    ) -> None:
+        if render_mode is not None and render_mode not in self.metadata["render_modes"]:
+            raise ValueError(f"render_mode {render_mode!r}: expected 'rgb_array' or None")
+        self._core = _core(1, 1, scenario, sensors, config, 1, overrides)
+        n = self._core.obs_size
+        self.observation_space = spaces.Box(0.0, 1.0, shape=(n,), dtype=np.float32)
+        self.action_space = spaces.Box(-1.0, 1.0, shape=(2,), dtype=np.float32)
+        self.render_mode = render_mode
+        self.render_scale = render_scale
+        self.max_steps = self._core.max_steps
+        self._obs = np.zeros((1, 1, n), dtype=np.float32)
+        self._act = np.zeros((1, 1, 2), dtype=np.float32)
+        self._rew = np.zeros((1, 1), dtype=np.float64)
+        self._trunc = np.zeros(1, dtype=bool)
+
+    def reset(self, *, seed: int | None = None, options: dict | None = None):
+        super().reset(seed=seed)
+        self._core.reset(self._obs)
+        return self._obs[0, 0].copy(), {"step": 0}
+
+    def step(self, action):
+        self._act[0, 0] = _action(action, (2,))
+        self._core.step(self._act, self._obs, self._rew, self._trunc, autoreset=False)
+        info = {"step": self._core.elapsed(0), "odometer": self._core.odometers(0)[0]}
+        return self._obs[0, 0].copy(), float(self._rew[0, 0]), False, bool(self._trunc[0]), info
+
+    def render(self):
+        if self.render_mode == "rgb_array":
+            return self._core.render(0, self.render_scale)
+        return None
+
+
+class DriveVectorEnv(gymnasium.vector.VectorEnv):
+    """``num_envs`` worlds of one robot each, stepped together in Rust threads.
+
+    The same environment as :class:`DriveEnv`, batched: observations
+    (num_envs × readings, float32), rewards, terminations and truncations
+    are numpy arrays, and one ``step`` call simulates every world in Rust
+    (no Python object per robot per step). Episodes reset automatically in
+    the step after they end (Gymnasium's next-step autoreset).
+
+    Args:
+        num_envs: number of worlds.
+        threads: worker threads stepping them (0 = one per core).
+        copy: return copies of the observation buffer (else the buffer itself,
+            overwritten by the next call).
+        The rest as :class:`DriveEnv`.
+    """
+
+    metadata = {
+        "render_modes": ["rgb_array"],
+        "render_fps": 30,
+        "autoreset_mode": gymnasium.vector.AutoresetMode.NEXT_STEP,
+    }
+
+    def __init__(
+        self,
+        num_envs: int = 1,
+        scenario: str | None = None,
+        sensors: str | None = "3x5",
+        render_mode: str | None = None,
+        config: str | None = None,
+        threads: int = 0,
+        copy: bool = True,
+        render_scale: float = 0.5,
+        **overrides: Any,
+    ) -> None:
+        self._core = _core(num_envs, 1, scenario, sensors, config, threads, overrides)
+        n = self._core.obs_size
+        self.num_envs = num_envs
+        self.single_observation_space = spaces.Box(0.0, 1.0, shape=(n,), dtype=np.float32)
+        self.single_action_space = spaces.Box(-1.0, 1.0, shape=(2,), dtype=np.float32)
+        self.observation_space = batch_space(self.single_observation_space, num_envs)
+        self.action_space = batch_space(self.single_action_space, num_envs)
+        self.render_mode = render_mode
+        self.render_scale = render_scale
+        self.copy = copy
+        self.max_steps = self._core.max_steps
+        self._obs = np.zeros((num_envs, 1, n), dtype=np.float32)
+        self._rew = np.zeros((num_envs, 1), dtype=np.float64)
+        self._trunc = np.zeros(num_envs, dtype=bool)
+        self._term = np.zeros(num_envs, dtype=bool)
+
+    def reset(self, *, seed: int | list[int] | None = None, options: dict | None = None):
+        if seed is not None:
+            first = seed if isinstance(seed, int) else seed[0]
+            self._np_random, self._np_random_seed = gymnasium.utils.seeding.np_random(first)
+            self.action_space.seed(first)
+        mask = None if options is None else options.get("reset_mask")
+        self._core.reset(self._obs, None if mask is None else [bool(m) for m in mask])
+        obs = self._obs[:, 0]
+        return (obs.copy() if self.copy else obs), {}
+
+    def step(self, actions):
+        a = _action(actions, (self.num_envs, 2)).reshape(self.num_envs, 1, 2)
+        self._core.step(a, self._obs, self._rew, self._trunc)
+        obs = self._obs[:, 0]
+        rew = self._rew[:, 0]
+        if self.copy:
+            obs, rew = obs.copy(), rew.copy()
+        return obs, rew, self._term.copy(), self._trunc.copy(), {}
+
+    def render(self):
+        if self.render_mode == "rgb_array":
+            return tuple(self._core.render(i, self.render_scale) for i in range(self.num_envs))
+        return None
+
+    @property
+    def threads(self) -> int:
+        """Worker threads stepping the worlds."""
+        return self._core.threads

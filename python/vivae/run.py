@@ -1,0 +1,131 @@
+"""Whole runs from Python: `evolve` writes a run as `vivae evolve` does; `replay` measures a champion."""
+
+from __future__ import annotations
+
+import os
+import sys
+from typing import Any, Callable
+
+from vivae import _vivae
+
+
+class _TextBar:
+    """A progress bar on stderr for when tqdm is not installed: redrawn in a
+    terminal, one line per generation elsewhere (as the CLI prints)."""
+
+    def __init__(self, total: int) -> None:
+        self.total = total
+        self.tty = sys.stderr.isatty()
+
+    def update(self, r: dict) -> None:
+        text = f"best {r['best']:.4f} mean {r['mean']:.4f} species {r['species']}"
+        if self.tty:
+            done = int(30 * r["generation"] / max(r["total"], 1))
+            bar = "=" * done + " " * (30 - done)
+            sys.stderr.write(f"\rgen {r['generation']}/{r['total']} [{bar}] {text}")
+        else:
+            sys.stderr.write(f"gen {r['generation']}/{r['total']} {text} best-ever {r['best_ever']:.4f}\n")
+        sys.stderr.flush()
+
+    def close(self) -> None:
+        if self.tty:
+            sys.stderr.write("\n")
+
+
+class _TqdmBar:
+    def __init__(self, total: int) -> None:
+        from tqdm.auto import tqdm
+
+        self.bar = tqdm(total=total, unit="gen", desc="evolve")
+
+    def update(self, r: dict) -> None:
+        self.bar.total = r["total"]
+        self.bar.n = r["generation"]
+        self.bar.set_postfix(best=f"{r['best']:.4f}", mean=f"{r['mean']:.4f}", species=r["species"])
+
+    def close(self) -> None:
+        self.bar.close()
+
+
+def _bar(total: int):
+    try:
+        return _TqdmBar(total)
+    except ImportError:
+        return _TextBar(total)
+
+
+def evolve(
+    config: str | os.PathLike | None = None,
+    out: str | os.PathLike | None = None,
+    *,
+    force: bool = False,
+    progress: bool = True,
+    on_generation: Callable[[dict], Any] | None = None,
+    **overrides: Any,
+) -> dict:
+    """Runs the driving experiment and writes its run directory.
+
+    The same run as ``vivae evolve [--config CONFIG] --out OUT [flags]``:
+    with the same settings, ``config.toml``, ``scenario.svg``,
+    ``generations.csv``, ``population.csv``, ``best-genomes.jsonl``,
+    ``champion.json`` and ``checkpoints/`` are byte for byte the CLI's
+    (``timing.csv`` holds wall times; the figures and ``report.html`` are
+    drawn by ``vivae report OUT``). ``vivae resume OUT`` continues it.
+
+    Args:
+        config: a config TOML file (default: the paper's settings).
+        out: the new run directory (default ``runs/<timestamp>``).
+        force: overwrite an existing run directory.
+        progress: show a progress bar (tqdm's, in a terminal or a
+            notebook, when tqdm is installed; else a plain one on stderr).
+        on_generation: called with each generation's record (a dict:
+            generation, total, best, mean, median, worst, species,
+            best_ever, seconds, robot_steps_per_second).
+        **overrides: settings by the CLI's flag names: ``scenario`` (a path,
+            a shipped name, or a list for several maps), ``generations``,
+            ``population``, ``seed``, ``sensors="3x5"``, ``neurons="3x3"``,
+            ``steps``, ``robots``, ``threads``, … (``vivae.OVERRIDES``).
+
+    Returns:
+        A dict: ``out``, ``generations``, ``finished``, ``best``,
+        ``champion_generation``, ``champion`` (a Genome), ``wall_s``.
+
+    Raises:
+        ValueError: bad settings, config, scenario (the CLI's one-line message).
+        OSError: a file that cannot be read or written.
+        KeyboardInterrupt: interrupted; the run stops after the current
+            generation with a checkpoint (``vivae resume OUT``).
+    """
+    bar = None
+    if progress:
+        total = overrides.get("generations")
+        bar = _bar(total if isinstance(total, int) else 0)
+
+    def each(record: dict) -> None:
+        if bar is not None:
+            bar.update(record)
+        if on_generation is not None:
+            on_generation(record)
+
+    try:
+        return _vivae.evolve(out=out, config=config, force=force, on_generation=each, **overrides)
+    finally:
+        if bar is not None:
+            bar.close()
+
+
+def replay(source: str | os.PathLike, **overrides: Any) -> dict:
+    """Replays a champion as ``vivae replay SOURCE`` does, without the figure.
+
+    Args:
+        source: a run directory or a ``champion.json``.
+        **overrides: ``scenario``, ``steps``, ``robots``, ``sensors``,
+            ``neurons``, … as :func:`evolve` (another scenario drives all of
+            its robots unless ``robots`` says otherwise).
+
+    Returns:
+        The episode's measures: ``fitness`` (px/step), ``on_road`` (fraction),
+        ``collisions`` (per 1,000 robot-steps), ``left_turns``,
+        ``right_turns``, ``loops`` and ``side`` (None off roads).
+    """
+    return _vivae.replay(source, **overrides)
