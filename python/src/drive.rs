@@ -50,7 +50,11 @@ impl Slot {
 
     fn observe(&mut self, exp: &Experiment, obs: &mut [f32]) {
         let n = self.readings.len();
-        for (i, out) in obs.chunks_exact_mut(n.max(1)).enumerate().take(self.odometers.len()) {
+        for (i, out) in obs
+            .chunks_exact_mut(n.max(1))
+            .enumerate()
+            .take(self.odometers.len())
+        {
             read_sheets(exp.sensors(), &self.world, i, &mut self.readings);
             for (o, r) in out.iter_mut().zip(&self.readings) {
                 *o = *r as f32;
@@ -82,7 +86,11 @@ impl Slot {
             *c = [f64::from(a[0]), f64::from(a[1])];
         }
         self.world.step(&self.controls);
-        for ((r, odo), robot) in rewards.iter_mut().zip(&mut self.odometers).zip(self.world.robots()) {
+        for ((r, odo), robot) in rewards
+            .iter_mut()
+            .zip(&mut self.odometers)
+            .zip(self.world.robots())
+        {
             *r = robot.odometer - *odo;
             *odo = robot.odometer;
         }
@@ -134,7 +142,9 @@ impl DriveCore {
         overrides: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<DriveCore> {
         if num_worlds == 0 {
-            return Err(PyValueError::new_err("num_worlds = 0: need at least one world"));
+            return Err(PyValueError::new_err(
+                "num_worlds = 0: need at least one world",
+            ));
         }
         let config = settings::build(config.as_deref(), overrides)?;
         let path = settings::scenario_path(&config);
@@ -260,9 +270,10 @@ impl DriveCore {
         let truncated = truncated.as_slice_mut().map_err(errors::value)?;
         let (exp, slots, pool) = (&self.experiment, &mut self.slots, &self.pool);
         let start = exp.world();
-        let one = |(((slot, a), o), (r, t)): (((&mut Slot, &[f32]), &mut [f32]), (&mut [f64], &mut bool))| {
-            slot.step(exp, start, s, autoreset, a, o, r, t)
-        };
+        let one = |(((slot, a), o), (r, t)): (
+            ((&mut Slot, &[f32]), &mut [f32]),
+            (&mut [f64], &mut bool),
+        )| { slot.step(exp, start, s, autoreset, a, o, r, t) };
         py.detach(|| {
             let (ra, ro) = (s.robots * 2, s.robots * s.obs.max(1));
             if pool.current_num_threads() <= 1 || n == 1 {
@@ -280,7 +291,11 @@ impl DriveCore {
                         .par_iter_mut()
                         .zip(actions.par_chunks_exact(ra))
                         .zip(obs.par_chunks_mut(ro))
-                        .zip(rewards.par_chunks_exact_mut(s.robots).zip(truncated.par_iter_mut()))
+                        .zip(
+                            rewards
+                                .par_chunks_exact_mut(s.robots)
+                                .zip(truncated.par_iter_mut()),
+                        )
                         .with_min_len(per)
                         .for_each(one);
                 });
@@ -308,7 +323,12 @@ impl DriveCore {
     /// World `index` as an RGB image (height × width × 3, uint8), robots
     /// with their sensors, `scale` pixels per px.
     #[pyo3(signature = (index=0, scale=1.0))]
-    fn render<'py>(&self, py: Python<'py>, index: usize, scale: f64) -> PyResult<Bound<'py, PyArray3<u8>>> {
+    fn render<'py>(
+        &self,
+        py: Python<'py>,
+        index: usize,
+        scale: f64,
+    ) -> PyResult<Bound<'py, PyArray3<u8>>> {
         let slot = self
             .slots
             .get(index)
@@ -334,7 +354,9 @@ impl DriveCore {
                 .collect();
             Array3::from_shape_vec((h, w, 3), rgb).map_err(|e| e.to_string())
         });
-        Ok(image.map_err(|e| errors::value(format!("rendering the world: {e}")))?.into_pyarray(py))
+        Ok(image
+            .map_err(|e| errors::value(format!("rendering the world: {e}")))?
+            .into_pyarray(py))
     }
 
     /// Steps the worlds `steps` times with uniformly random wheel commands
@@ -362,9 +384,15 @@ impl DriveCore {
                         .par_iter_mut()
                         .zip(actions.par_chunks_exact(s.robots * 2))
                         .zip(obs.par_chunks_mut(s.robots * s.obs.max(1)))
-                        .zip(rewards.par_chunks_exact_mut(s.robots).zip(truncated.par_iter_mut()))
+                        .zip(
+                            rewards
+                                .par_chunks_exact_mut(s.robots)
+                                .zip(truncated.par_iter_mut()),
+                        )
                         .with_min_len(per)
-                        .for_each(|(((slot, a), o), (r, t))| slot.step(exp, start, s, true, a, o, r, t));
+                        .for_each(|(((slot, a), o), (r, t))| {
+                            slot.step(exp, start, s, true, a, o, r, t)
+                        });
                 });
             }
         });

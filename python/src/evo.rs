@@ -38,8 +38,8 @@ impl Genome {
     #[staticmethod]
     #[pyo3(signature = (text, recurrent=false))]
     fn from_json(text: &str, recurrent: bool) -> PyResult<Genome> {
-        let inner: vivae_neat::Genome = serde_json::from_str(text)
-            .map_err(|e| errors::value(format!("genome JSON: {e}")))?;
+        let inner: vivae_neat::Genome =
+            serde_json::from_str(text).map_err(|e| errors::value(format!("genome JSON: {e}")))?;
         Ok(Genome { inner, recurrent })
     }
 

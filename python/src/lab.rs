@@ -2,8 +2,8 @@
 //! whole runs written as `vivae evolve` writes them, replays.
 
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Mutex;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use numpy::ndarray::{Array1, Array2};
 use numpy::{IntoPyArray, PyArray2, PyReadonlyArray2, PyUntypedArrayMethods};
@@ -17,8 +17,8 @@ use vivae_lab::experiment::Experiment;
 use vivae_lab::rundir::{self, GenerationRecord};
 use vivae_lab::substrate::WheelNeurons;
 use vivae_lab::training::Training;
-use vivae_neat::{EvalContext, Network as _};
 use vivae_neat::hyperneat::{BatchState, SubstrateController};
+use vivae_neat::{EvalContext, Network as _};
 
 use crate::errors;
 use crate::evo::{Genome, Population, merge_params};

@@ -62,7 +62,8 @@ fn grids(key: &str, v: &Bound<'_, PyAny>) -> PyResult<Vec<PolarGrid>> {
 
 fn parsed<T: std::str::FromStr<Err = String>>(key: &str, v: &Bound<'_, PyAny>) -> PyResult<T> {
     let s: String = v.extract()?;
-    s.parse::<T>().map_err(|e| errors::value(format!("{key}: {e}")))
+    s.parse::<T>()
+        .map_err(|e| errors::value(format!("{key}: {e}")))
 }
 
 /// A path given as `str` or `os.PathLike`.
@@ -112,14 +113,15 @@ fn apply(c: &mut Config, o: &Bound<'_, PyDict>) -> PyResult<()> {
 /// `scenario=`: one map (a path or a shipped name) or a list of maps, as
 /// one or several `--scenario` flags.
 fn set_scenarios(c: &mut Config, v: &Bound<'_, PyAny>) -> PyResult<()> {
-    let maps: Vec<String> = if v.is_instance_of::<PyList>() || v.is_instance_of::<pyo3::types::PyTuple>() {
-        let items: Vec<Bound<'_, PyAny>> = v.extract()?;
-        items.iter().map(path_text).collect::<PyResult<_>>()?
-    } else if v.is_instance_of::<PyString>() {
-        vec![v.extract()?]
-    } else {
-        vec![path_text(v)?]
-    };
+    let maps: Vec<String> =
+        if v.is_instance_of::<PyList>() || v.is_instance_of::<pyo3::types::PyTuple>() {
+            let items: Vec<Bound<'_, PyAny>> = v.extract()?;
+            items.iter().map(path_text).collect::<PyResult<_>>()?
+        } else if v.is_instance_of::<PyString>() {
+            vec![v.extract()?]
+        } else {
+            vec![path_text(v)?]
+        };
     match maps.as_slice() {
         [] => {}
         [one] => {

@@ -24,7 +24,7 @@ def _core(num_worlds: int, robots: int, scenario, sensors, config, threads, over
 
 def _action(action: Any, shape: tuple[int, ...]) -> np.ndarray:
     """`action` as float32 of `shape`; anything else is a ValueError naming both shapes."""
-    a = np.asarray(action, dtype=np.float32)
+    a = np.ascontiguousarray(action, dtype=np.float32)
     if a.shape != shape:
         raise ValueError(f"action has shape {a.shape}, expected {shape}")
     return a
