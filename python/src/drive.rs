@@ -51,7 +51,7 @@ impl Slot {
     fn observe(&mut self, exp: &Experiment, obs: &mut [f32]) {
         let n = self.readings.len();
         for (i, out) in obs
-            .chunks_exact_mut(n.max(1))
+            .chunks_exact_mut(n)
             .enumerate()
             .take(self.odometers.len())
         {
@@ -63,24 +63,18 @@ impl Slot {
     }
 
     /// One step of this world: wheels from `actions`, rewards = distance driven.
-    #[allow(clippy::too_many_arguments)]
     fn step(
         &mut self,
-        exp: &Experiment,
-        start: &World,
-        shape: Shape,
-        autoreset: bool,
+        ctx: &Ctx<'_>,
         actions: &[f32],
         obs: &mut [f32],
         rewards: &mut [f64],
-        truncated: &mut bool,
-    ) {
-        if autoreset && self.done {
-            self.reset(start);
+    ) -> bool {
+        if ctx.autoreset && self.done {
+            self.reset(ctx.experiment.world());
             rewards.fill(0.0);
-            *truncated = false;
-            self.observe(exp, obs);
-            return;
+            self.observe(ctx.experiment, obs);
+            return false;
         }
         for (c, a) in self.controls.iter_mut().zip(actions.chunks_exact(2)) {
             *c = [f64::from(a[0]), f64::from(a[1])];
@@ -95,10 +89,57 @@ impl Slot {
             *odo = robot.odometer;
         }
         self.steps += 1;
-        self.done = self.steps >= shape.limit;
-        *truncated = self.done;
-        self.observe(exp, obs);
+        self.done = self.steps >= ctx.shape.limit;
+        self.observe(ctx.experiment, obs);
+        self.done
     }
+}
+
+/// What every world's step reads.
+struct Ctx<'a> {
+    experiment: &'a Experiment,
+    shape: Shape,
+    autoreset: bool,
+}
+
+/// The arrays of one call, every world's part one after another.
+struct Buffers<'a> {
+    actions: &'a [f32],
+    obs: &'a mut [f32],
+    rewards: &'a mut [f64],
+    truncated: &'a mut [bool],
+}
+
+/// Steps every world once, on `pool`: one contiguous run of worlds per
+/// thread (a world's step is too little work to share out finer).
+fn step_all(pool: &rayon::ThreadPool, ctx: &Ctx<'_>, slots: &mut [Slot], b: Buffers<'_>) {
+    let s = ctx.shape;
+    let (ra, ro) = (s.robots * 2, s.robots * s.obs);
+    let threads = pool.current_num_threads();
+    if threads <= 1 || slots.len() == 1 {
+        let worlds = slots.iter_mut().zip(b.actions.chunks_exact(ra));
+        let outputs = b
+            .obs
+            .chunks_exact_mut(ro)
+            .zip(b.rewards.chunks_exact_mut(s.robots));
+        for (((slot, a), (o, r)), t) in worlds.zip(outputs).zip(b.truncated.iter_mut()) {
+            *t = slot.step(ctx, a, o, r);
+        }
+        return;
+    }
+    let per = slots.len().div_ceil(threads);
+    pool.install(|| {
+        let worlds = slots.par_iter_mut().zip(b.actions.par_chunks_exact(ra));
+        let outputs = b
+            .obs
+            .par_chunks_exact_mut(ro)
+            .zip(b.rewards.par_chunks_exact_mut(s.robots));
+        worlds
+            .zip(outputs)
+            .zip(b.truncated.par_iter_mut())
+            .with_min_len(per)
+            .for_each(|(((slot, a), (o, r)), t)| *t = slot.step(ctx, a, o, r));
+    });
 }
 
 /// N copies of one driving world, stepped together (the engine behind
@@ -114,9 +155,9 @@ pub struct DriveCore {
 }
 
 impl DriveCore {
-    fn check<T>(&self, what: &str, got: &[usize], want: &[usize], ok: T) -> PyResult<T> {
+    fn check(&self, what: &str, got: &[usize], want: &[usize]) -> PyResult<()> {
         if got == want {
-            Ok(ok)
+            Ok(())
         } else {
             Err(PyValueError::new_err(format!(
                 "{what} has shape {got:?}, expected {want:?}"
@@ -218,8 +259,7 @@ impl DriveCore {
         mask: Option<Vec<bool>>,
     ) -> PyResult<()> {
         let (n, s) = (self.n(), self.shape);
-        let o = self.check("obs", obs.shape(), &[n, s.robots, s.obs], ())?;
-        let _ = o;
+        self.check("obs", obs.shape(), &[n, s.robots, s.obs])?;
         if let Some(m) = &mask
             && m.len() != n
         {
@@ -260,47 +300,27 @@ impl DriveCore {
         autoreset: bool,
     ) -> PyResult<()> {
         let (n, s) = (self.n(), self.shape);
-        self.check("actions", actions.shape(), &[n, s.robots, 2], ())?;
-        self.check("obs", obs.shape(), &[n, s.robots, s.obs], ())?;
-        self.check("rewards", rewards.shape(), &[n, s.robots], ())?;
-        self.check("truncated", truncated.shape(), &[n], ())?;
+        self.check("actions", actions.shape(), &[n, s.robots, 2])?;
+        self.check("obs", obs.shape(), &[n, s.robots, s.obs])?;
+        self.check("rewards", rewards.shape(), &[n, s.robots])?;
+        self.check("truncated", truncated.shape(), &[n])?;
         let actions = actions.as_slice().map_err(errors::value)?;
         let obs = obs.as_slice_mut().map_err(errors::value)?;
         let rewards = rewards.as_slice_mut().map_err(errors::value)?;
         let truncated = truncated.as_slice_mut().map_err(errors::value)?;
-        let (exp, slots, pool) = (&self.experiment, &mut self.slots, &self.pool);
-        let start = exp.world();
-        let one = |(((slot, a), o), (r, t)): (
-            ((&mut Slot, &[f32]), &mut [f32]),
-            (&mut [f64], &mut bool),
-        )| { slot.step(exp, start, s, autoreset, a, o, r, t) };
-        py.detach(|| {
-            let (ra, ro) = (s.robots * 2, s.robots * s.obs.max(1));
-            if pool.current_num_threads() <= 1 || n == 1 {
-                slots
-                    .iter_mut()
-                    .zip(actions.chunks_exact(ra))
-                    .zip(obs.chunks_mut(ro))
-                    .zip(rewards.chunks_exact_mut(s.robots).zip(truncated.iter_mut()))
-                    .for_each(one);
-            } else {
-                // One contiguous run of worlds per thread: the work per world is small.
-                let per = n.div_ceil(pool.current_num_threads());
-                pool.install(|| {
-                    slots
-                        .par_iter_mut()
-                        .zip(actions.par_chunks_exact(ra))
-                        .zip(obs.par_chunks_mut(ro))
-                        .zip(
-                            rewards
-                                .par_chunks_exact_mut(s.robots)
-                                .zip(truncated.par_iter_mut()),
-                        )
-                        .with_min_len(per)
-                        .for_each(one);
-                });
-            }
-        });
+        let ctx = Ctx {
+            experiment: &self.experiment,
+            shape: s,
+            autoreset,
+        };
+        let buffers = Buffers {
+            actions,
+            obs,
+            rewards,
+            truncated,
+        };
+        let (slots, pool) = (&mut self.slots, &self.pool);
+        py.detach(|| step_all(pool, &ctx, slots, buffers));
         Ok(())
     }
 
@@ -371,29 +391,24 @@ impl DriveCore {
         let mut obs = vec![0f32; n * s.robots * s.obs];
         let mut rewards = vec![0f64; n * s.robots];
         let mut truncated = vec![false; n];
-        let (exp, slots, pool) = (&self.experiment, &mut self.slots, &self.pool);
-        let start = exp.world();
+        let ctx = Ctx {
+            experiment: &self.experiment,
+            shape: s,
+            autoreset: true,
+        };
+        let (slots, pool) = (&mut self.slots, &self.pool);
         py.detach(|| {
-            let per = n.div_ceil(pool.current_num_threads());
             for _ in 0..steps {
                 for a in &mut actions {
                     *a = rng.random_range(-1.0f32..=1.0);
                 }
-                pool.install(|| {
-                    slots
-                        .par_iter_mut()
-                        .zip(actions.par_chunks_exact(s.robots * 2))
-                        .zip(obs.par_chunks_mut(s.robots * s.obs.max(1)))
-                        .zip(
-                            rewards
-                                .par_chunks_exact_mut(s.robots)
-                                .zip(truncated.par_iter_mut()),
-                        )
-                        .with_min_len(per)
-                        .for_each(|(((slot, a), o), (r, t))| {
-                            slot.step(exp, start, s, true, a, o, r, t)
-                        });
-                });
+                let buffers = Buffers {
+                    actions: &actions,
+                    obs: &mut obs,
+                    rewards: &mut rewards,
+                    truncated: &mut truncated,
+                };
+                step_all(pool, &ctx, slots, buffers);
             }
         });
         u64::from(steps) * (n * s.robots) as u64
