@@ -203,3 +203,14 @@ def test_a_callback_error_stops_the_run_with_a_checkpoint(tmp_path):
 def test_replay_of_a_missing_source_is_an_os_error(tmp_path):
     with pytest.raises(OSError, match="nothing.json"):
         vivae.replay(tmp_path / "nothing.json")
+
+
+def test_an_interrupt_stops_the_run_after_the_generation_with_a_checkpoint(tmp_path):
+    def interrupt(record):
+        if record["generation"] == 2:
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt, match="vivae resume"):
+        vivae.evolve(out=tmp_path / "run", progress=False, on_generation=interrupt, **SETTINGS)
+    checkpoints = sorted(p.name for p in (tmp_path / "run" / "checkpoints").iterdir())
+    assert checkpoints[-1] == "gen-000002.ckpt"
