@@ -3,7 +3,7 @@
     python python/examples/paper_experiment.py [OUT] [GENERATIONS]
 
 With no GENERATIONS, the paper's 400 (hours on two cores); try 10 first.
-Then: `vivae report OUT` draws the figures, `vivae resume OUT` extends it.
+Then `vivae resume OUT` draws the figures and report.html (`--generations N` extends the run).
 """
 
 import sys

@@ -69,8 +69,9 @@ def evolve(
     with the same settings, ``config.toml``, ``scenario.svg``,
     ``generations.csv``, ``population.csv``, ``best-genomes.jsonl``,
     ``champion.json`` and ``checkpoints/`` are byte for byte the CLI's
-    (``timing.csv`` holds wall times; the figures and ``report.html`` are
-    drawn by ``vivae report OUT``). ``vivae resume OUT`` continues it.
+    (``timing.csv`` holds wall times). The figures and ``report.html`` are
+    the program's: ``vivae resume OUT`` draws them on a finished run, and
+    ``vivae resume OUT --generations N`` extends it.
 
     Args:
         config: a config TOML file (default: the paper's settings).
