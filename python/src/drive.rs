@@ -18,6 +18,9 @@ use vivae_sim::World;
 use crate::errors;
 use crate::settings;
 
+/// Most worlds one core steps (a bound on what a typo can allocate).
+const MAX_WORLDS: usize = 1 << 16;
+
 /// One world and its robots' buffers.
 #[derive(Clone)]
 struct Slot {
@@ -182,10 +185,10 @@ impl DriveCore {
         threads: usize,
         overrides: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<DriveCore> {
-        if num_worlds == 0 {
-            return Err(PyValueError::new_err(
-                "num_worlds = 0: need at least one world",
-            ));
+        if num_worlds == 0 || num_worlds > MAX_WORLDS {
+            return Err(PyValueError::new_err(format!(
+                "num_worlds = {num_worlds}: expected 1 to {MAX_WORLDS}"
+            )));
         }
         let config = settings::build(config.as_deref(), overrides)?;
         let path = settings::scenario_path(&config);

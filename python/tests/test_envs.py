@@ -174,3 +174,10 @@ def test_parallel_env_robots_drive_as_in_one_world():
         obs, rewards, terms, truncs, _ = env.step({a: np.array([1.0, 0.8], np.float32) for a in env.agents})
     assert all(truncs.values()) and env.agents == []
     assert all(r >= 0 for r in rewards.values())
+
+
+def test_absurd_world_counts_are_refused_before_anything_is_allocated():
+    with pytest.raises(ValueError, match="num_worlds"):
+        vivae.DriveVectorEnv(num_envs=10**9)
+    with pytest.raises(ValueError, match="num_worlds"):
+        vivae.DriveVectorEnv(num_envs=0)
