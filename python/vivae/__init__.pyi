@@ -14,3 +14,19 @@ from vivae.parallel import DriveParallelEnv as DriveParallelEnv
 from vivae.run import evolve as evolve, replay as replay
 
 __version__: str
+__all__ = [
+    "OVERRIDES",
+    "Controller",
+    "DriveEnv",
+    "DriveParallelEnv",
+    "DriveTask",
+    "DriveVectorEnv",
+    "Genome",
+    "Network",
+    "Population",
+    "default_config",
+    "evolve",
+    "load_genome",
+    "replay",
+    "scenarios",
+]

@@ -1,21 +1,38 @@
 """Type stubs of the native module `vivae._vivae`."""
 
 import os
-from typing import Any, Callable, Optional, Sequence, Union
+from typing import Any, Callable, Optional, Sequence, Union, final
 
 import numpy as np
 import numpy.typing as npt
 
 _Path = Union[str, os.PathLike]
 
+__all__ = [
+    "Controller",
+    "DriveCore",
+    "DriveTask",
+    "Genome",
+    "Network",
+    "OVERRIDES",
+    "Population",
+    "default_config",
+    "evolve",
+    "load_genome",
+    "math_is_portable",
+    "replay",
+    "scenarios",
+]
+
 OVERRIDES: list[str]
 
+@final
 class DriveCore:
     """N copies of one driving world, stepped together."""
 
-    def __init__(
-        self, num_worlds: int, config: Optional[_Path] = None, threads: int = 0, **overrides: Any
-    ) -> None: ...
+    def __new__(
+        cls, num_worlds: int, config: Optional[_Path] = None, threads: int = 0, **overrides: Any
+    ) -> DriveCore: ...
     @property
     def num_worlds(self) -> int: ...
     @property
@@ -40,6 +57,7 @@ class DriveCore:
     def render(self, index: int = 0, scale: float = 1.0) -> npt.NDArray[np.uint8]: ...
     def run_random(self, steps: int, seed: int = 0) -> int: ...
 
+@final
 class Network:
     """A genome's network (feed-forward, or recurrent with state between calls)."""
 
@@ -50,6 +68,7 @@ class Network:
     @property
     def num_outputs(self) -> int: ...
 
+@final
 class Genome:
     """A genome: a NEAT network's genes (for HyperNEAT, a CPPN)."""
 
@@ -66,11 +85,12 @@ class Genome:
     @property
     def num_links(self) -> int: ...
 
+@final
 class Population:
     """A NEAT population driven ask/tell."""
 
-    def __init__(
-        self,
+    def __new__(
+        cls,
         inputs: int,
         outputs: int,
         *,
@@ -79,7 +99,7 @@ class Population:
         preset: str = "plain",
         recurrent: bool = False,
         params: Optional[dict[str, Any]] = None,
-    ) -> None: ...
+    ) -> Population: ...
     def ask(self) -> list[Genome]: ...
     def tell(
         self, fitnesses: Sequence[float], behaviours: Optional[Sequence[Sequence[float]]] = None
@@ -95,16 +115,18 @@ class Population:
     @staticmethod
     def from_json(text: str) -> Population: ...
 
+@final
 class Controller:
     """A decoded substrate driving robots from their readings."""
 
     def act(self, obs: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]: ...
     def reset(self) -> None: ...
 
+@final
 class DriveTask:
     """The driving task of a config: CPPNs evaluated, decoded, turned into controllers."""
 
-    def __init__(self, config: Optional[_Path] = None, **overrides: Any) -> None: ...
+    def __new__(cls, config: Optional[_Path] = None, **overrides: Any) -> DriveTask: ...
     def config_toml(self) -> str: ...
     @property
     def cppn_shape(self) -> tuple[int, int]: ...
@@ -131,3 +153,4 @@ def replay(source: _Path, **overrides: Any) -> dict[str, Any]: ...
 def load_genome(source: _Path) -> tuple[Genome, float, int]: ...
 def scenarios() -> list[tuple[str, str]]: ...
 def default_config() -> str: ...
+def math_is_portable() -> bool: ...

@@ -2,12 +2,11 @@
 
 from __future__ import annotations
 
-import functools
 from typing import Any
 
 import numpy as np
 from gymnasium import spaces
-from pettingzoo import ParallelEnv
+from pettingzoo import ParallelEnv  # type: ignore[import-untyped]
 
 from vivae.envs import _action, _core
 
@@ -54,12 +53,12 @@ class DriveParallelEnv(ParallelEnv):
         self._rew = np.zeros((1, r), dtype=np.float64)
         self._trunc = np.zeros(1, dtype=bool)
 
-    @functools.lru_cache(maxsize=None)
     def observation_space(self, agent: str) -> spaces.Box:
+        """Every agent's observation space (the same object each call)."""
         return self._obs_space
 
-    @functools.lru_cache(maxsize=None)
     def action_space(self, agent: str) -> spaces.Box:
+        """Every agent's action space (the same object each call)."""
         return self._act_space
 
     def _observations(self) -> dict[str, np.ndarray]:
@@ -86,7 +85,7 @@ class DriveParallelEnv(ParallelEnv):
         done = bool(self._trunc[0])
         terminations = {a: False for a in live}
         truncations = {a: done for a in live}
-        infos = {a: {} for a in live}
+        infos: dict[str, dict] = {a: {} for a in live}
         if done:
             self.agents = []
         return obs, rewards, terminations, truncations, infos

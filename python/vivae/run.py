@@ -34,7 +34,7 @@ class _TextBar:
 
 class _TqdmBar:
     def __init__(self, total: int) -> None:
-        from tqdm.auto import tqdm
+        from tqdm.auto import tqdm  # type: ignore[import-untyped]
 
         self.bar = tqdm(total=total, unit="gen", desc="evolve")
 
