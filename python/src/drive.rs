@@ -4,8 +4,8 @@
 
 use numpy::ndarray::Array3;
 use numpy::{
-    IntoPyArray, PyArray3, PyReadonlyArray3, PyReadwriteArray1, PyReadwriteArray2,
-    PyReadwriteArray3, PyUntypedArrayMethods,
+    IntoPyArray, PyArray1, PyArray2, PyArray3, PyArrayMethods, PyReadwriteArray3,
+    PyUntypedArrayMethods,
 };
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -111,6 +111,62 @@ struct Buffers<'a> {
     obs: &'a mut [f32],
     rewards: &'a mut [f64],
     truncated: &'a mut [bool],
+}
+
+/// A numpy array's data, checked for [`DriveCore::step`].
+struct Raw<T> {
+    ptr: *mut T,
+    len: usize,
+}
+
+impl<T: numpy::Element> Raw<T> {
+    /// `a`'s data if `a` has `shape`, is C-contiguous and, when `write`, writeable.
+    fn of<D: numpy::ndarray::Dimension>(
+        a: &Bound<'_, numpy::PyArray<T, D>>,
+        what: &str,
+        shape: &[usize],
+        write: bool,
+    ) -> PyResult<Raw<T>> {
+        if a.shape() != shape {
+            return Err(PyValueError::new_err(format!(
+                "{what} has shape {:?}, expected {shape:?}",
+                a.shape()
+            )));
+        }
+        // SAFETY: `a` is a live numpy array: its object fields may be read.
+        let flags =
+            unsafe { (*numpy::npyffi::objects::_PyArray_GET_ITEM_DATA(a.as_array_ptr())).flags };
+        if !a.is_c_contiguous() || (write && flags & numpy::npyffi::NPY_ARRAY_WRITEABLE == 0) {
+            return Err(PyValueError::new_err(format!(
+                "{what} must be a C-contiguous{} array",
+                if write { ", writeable" } else { "" }
+            )));
+        }
+        Ok(Raw {
+            ptr: a.data(),
+            len: a.len(),
+        })
+    }
+
+    /// The byte range the data spans.
+    fn bytes(&self) -> (usize, usize) {
+        let start = self.ptr as usize;
+        (start, start + self.len * std::mem::size_of::<T>())
+    }
+}
+
+/// An error when two of the byte `ranges` overlap.
+fn disjoint(ranges: &[(usize, usize)]) -> PyResult<()> {
+    for (i, a) in ranges.iter().enumerate() {
+        for b in &ranges[i + 1..] {
+            if a.0 < b.1 && b.0 < a.1 {
+                return Err(PyValueError::new_err(
+                    "actions, obs, rewards and truncated must not share memory",
+                ));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Steps every world once, on `pool`: one contiguous run of worlds per
@@ -296,31 +352,35 @@ impl DriveCore {
     fn step(
         &mut self,
         py: Python<'_>,
-        actions: PyReadonlyArray3<'_, f32>,
-        mut obs: PyReadwriteArray3<'_, f32>,
-        mut rewards: PyReadwriteArray2<'_, f64>,
-        mut truncated: PyReadwriteArray1<'_, bool>,
+        actions: &Bound<'_, PyArray3<f32>>,
+        obs: &Bound<'_, PyArray3<f32>>,
+        rewards: &Bound<'_, PyArray2<f64>>,
+        truncated: &Bound<'_, PyArray1<bool>>,
         autoreset: bool,
     ) -> PyResult<()> {
         let (n, s) = (self.n(), self.shape);
-        self.check("actions", actions.shape(), &[n, s.robots, 2])?;
-        self.check("obs", obs.shape(), &[n, s.robots, s.obs])?;
-        self.check("rewards", rewards.shape(), &[n, s.robots])?;
-        self.check("truncated", truncated.shape(), &[n])?;
-        let actions = actions.as_slice().map_err(errors::value)?;
-        let obs = obs.as_slice_mut().map_err(errors::value)?;
-        let rewards = rewards.as_slice_mut().map_err(errors::value)?;
-        let truncated = truncated.as_slice_mut().map_err(errors::value)?;
+        let a = Raw::of(actions, "actions", &[n, s.robots, 2], false)?;
+        let o = Raw::of(obs, "obs", &[n, s.robots, s.obs], true)?;
+        let r = Raw::of(rewards, "rewards", &[n, s.robots], true)?;
+        let t = Raw::of(truncated, "truncated", &[n], true)?;
+        disjoint(&[a.bytes(), o.bytes(), r.bytes(), t.bytes()])?;
+        // SAFETY: each array is C-contiguous with exactly these elements (and
+        // writeable where written), and no two share a byte, so these are the
+        // only references to their data while the call lasts. (Rust's
+        // borrows are what numpy's borrow tracking would guard; it is not
+        // used because it costs more per call than stepping a small world.)
+        let buffers = unsafe {
+            Buffers {
+                actions: std::slice::from_raw_parts(a.ptr, a.len),
+                obs: std::slice::from_raw_parts_mut(o.ptr, o.len),
+                rewards: std::slice::from_raw_parts_mut(r.ptr, r.len),
+                truncated: std::slice::from_raw_parts_mut(t.ptr, t.len),
+            }
+        };
         let ctx = Ctx {
             experiment: &self.experiment,
             shape: s,
             autoreset,
-        };
-        let buffers = Buffers {
-            actions,
-            obs,
-            rewards,
-            truncated,
         };
         let (slots, pool) = (&mut self.slots, &self.pool);
         py.detach(|| step_all(pool, &ctx, slots, buffers));

@@ -181,3 +181,25 @@ def test_absurd_world_counts_are_refused_before_anything_is_allocated():
         vivae.DriveVectorEnv(num_envs=10**9)
     with pytest.raises(ValueError, match="num_worlds"):
         vivae.DriveVectorEnv(num_envs=0)
+
+
+def test_the_core_refuses_read_only_overlapping_and_strided_buffers():
+    from vivae._vivae import DriveCore
+
+    core = DriveCore(2, robots=1)
+    obs = np.zeros((2, 1, 15), np.float32)
+    rew, trunc = np.zeros((2, 1)), np.zeros(2, bool)
+    act = np.zeros((2, 1, 2), np.float32)
+    core.step(act, obs, rew, trunc)
+    frozen = obs.copy()
+    frozen.flags.writeable = False
+    with pytest.raises(ValueError, match="writeable"):
+        core.step(act, frozen, rew, trunc)
+    shared = np.zeros(2 * 15 + 10, np.float32)
+    with pytest.raises(ValueError, match="share memory"):
+        core.step(shared[:4].reshape(2, 1, 2), shared[:30].reshape(2, 1, 15), rew, trunc)
+    strided = np.zeros((2, 1, 4), np.float32)[:, :, ::2]
+    with pytest.raises(ValueError, match="contiguous"):
+        core.step(strided, obs, rew, trunc)
+    with pytest.raises(TypeError):
+        core.step(act.astype(np.float64), obs, rew, trunc)
