@@ -1,7 +1,7 @@
 """Vector env throughput: robot-steps/s of `vivae.DriveVectorEnv` driven from
 Python with random actions, against the same worlds stepped by a Rust loop.
 
-    python python/benchmarks/vector_env.py [--envs 64] [--steps 5000] [--repeats 3]
+    python python/benchmarks/vector_env.py [--envs 64] [--steps 3000] [--repeats 7] [--threads 0]
 
 Both sides step the same 64 one-robot worlds (3x5 sensors, the road
 scenario) with the same threads; the Rust side draws its random wheel
@@ -13,6 +13,7 @@ truncations back as numpy arrays.
 from __future__ import annotations
 
 import argparse
+import statistics
 import time
 
 import numpy as np
@@ -52,19 +53,22 @@ def rust_loop(envs: int, steps: int, threads: int) -> float:
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--envs", type=int, default=64)
-    p.add_argument("--steps", type=int, default=5000)
-    p.add_argument("--repeats", type=int, default=3)
+    p.add_argument("--steps", type=int, default=3000)
+    p.add_argument("--repeats", type=int, default=7)
     p.add_argument("--threads", type=int, default=0, help="0 = one per core")
     a = p.parse_args()
     rows = {"rust": rust_loop, "python": python_loop, "python+rng": python_loop_fresh_actions}
-    best = {}
-    for name, f in rows.items():
-        runs = [f(a.envs, a.steps, a.threads) for _ in range(a.repeats)]
-        best[name] = max(runs)
-        print(f"{name:>11}: {best[name]:>12,.0f} robot-steps/s (best of {a.repeats}: "
-              + ", ".join(f"{r:,.0f}" for r in runs) + ")")
-    print(f"python / rust: {100 * best['python'] / best['rust']:.0f}%  "
-          f"(with numpy drawing the actions each step: {100 * best['python+rng'] / best['rust']:.0f}%)")
+    runs: dict[str, list[float]] = {name: [] for name in rows}
+    # Interleaved, so that every repeat measures the three under the same load.
+    for _ in range(a.repeats):
+        for name, f in rows.items():
+            runs[name].append(f(a.envs, a.steps, a.threads))
+    for name, r in runs.items():
+        print(f"{name:>11}: best {max(r):>12,.0f} robot-steps/s, median {statistics.median(r):>12,.0f}")
+    for name in ["python", "python+rng"]:
+        ratios = [p / r for p, r in zip(runs[name], runs["rust"])]
+        print(f"{name} / rust: median {100 * statistics.median(ratios):.0f}% over {a.repeats} interleaved repeats, "
+              f"best/best {100 * max(runs[name]) / max(runs['rust']):.0f}%")
 
 
 if __name__ == "__main__":
