@@ -18,7 +18,7 @@ use vivae_sim::World;
 use crate::errors;
 use crate::settings;
 
-/// Most worlds one core steps (a bound on what a typo can allocate).
+/// Most worlds one `DriveCore` steps (a bound on what a typo can allocate).
 const MAX_WORLDS: usize = 1 << 16;
 
 /// One world and its robots' buffers.
@@ -120,7 +120,7 @@ struct Raw<T> {
 }
 
 impl<T: numpy::Element> Raw<T> {
-    /// `a`'s data if `a` has `shape`, is C-contiguous and, when `write`, writeable.
+    /// `a`'s data if `a` has `shape`, is C-contiguous and aligned and, when `write`, writeable.
     fn of<D: numpy::ndarray::Dimension>(
         a: &Bound<'_, numpy::PyArray<T, D>>,
         what: &str,
@@ -136,9 +136,11 @@ impl<T: numpy::Element> Raw<T> {
         // SAFETY: `a` is a live numpy array: its object fields may be read.
         let flags =
             unsafe { (*numpy::npyffi::objects::_PyArray_GET_ITEM_DATA(a.as_array_ptr())).flags };
-        if !a.is_c_contiguous() || (write && flags & numpy::npyffi::NPY_ARRAY_WRITEABLE == 0) {
+        let aligned = flags & numpy::npyffi::NPY_ARRAY_ALIGNED != 0;
+        let writeable = flags & numpy::npyffi::NPY_ARRAY_WRITEABLE != 0;
+        if !a.is_c_contiguous() || !aligned || (write && !writeable) {
             return Err(PyValueError::new_err(format!(
-                "{what} must be a C-contiguous{} array",
+                "{what} must be a C-contiguous, aligned{} array",
                 if write { ", writeable" } else { "" }
             )));
         }

@@ -183,7 +183,7 @@ def test_absurd_world_counts_are_refused_before_anything_is_allocated():
         vivae.DriveVectorEnv(num_envs=0)
 
 
-def test_the_core_refuses_read_only_overlapping_and_strided_buffers():
+def test_the_core_refuses_read_only_overlapping_strided_and_misaligned_buffers():
     from vivae._vivae import DriveCore
 
     core = DriveCore(2, robots=1)
@@ -201,5 +201,9 @@ def test_the_core_refuses_read_only_overlapping_and_strided_buffers():
     strided = np.zeros((2, 1, 4), np.float32)[:, :, ::2]
     with pytest.raises(ValueError, match="contiguous"):
         core.step(strided, obs, rew, trunc)
+    misaligned = np.frombuffer(bytearray(4 * 30 + 1), dtype=np.uint8)[1:].view(np.float32).reshape(2, 1, 15)
+    assert not misaligned.flags.aligned
+    with pytest.raises(ValueError, match="aligned"):
+        core.step(act, misaligned, rew, trunc)
     with pytest.raises(TypeError):
         core.step(act.astype(np.float64), obs, rew, trunc)
