@@ -71,6 +71,7 @@ pub mod recurrent;
 pub mod simd;
 pub mod species;
 pub mod stats;
+pub mod strategies;
 
 pub use activation::{Activation, bipolar_sigmoid};
 pub use crossover::crossover;
@@ -85,3 +86,4 @@ pub use params::NeatParams;
 pub use population::{BestEver, GenerationStats, Population, allocate_offspring};
 pub use recurrent::RecurrentNetwork;
 pub use species::Species;
+pub use strategies::{MapElites, NoveltySearch, Nsga2};
