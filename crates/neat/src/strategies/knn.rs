@@ -50,8 +50,12 @@ impl TryFrom<RawTree> for KdTree {
     type Error = String;
 
     fn try_from(raw: RawTree) -> Result<KdTree, String> {
-        if raw.dims == 0 || raw.points.len() % raw.dims != 0 {
-            return Err(format!("{} coordinates are not points of {}", raw.points.len(), raw.dims));
+        if raw.dims == 0 || !raw.points.len().is_multiple_of(raw.dims) {
+            return Err(format!(
+                "{} coordinates are not points of {}",
+                raw.points.len(),
+                raw.dims
+            ));
         }
         if raw.points.iter().any(|x| !x.is_finite()) {
             return Err("a point has a non-finite coordinate".into());
@@ -67,7 +71,10 @@ impl KdTree {
     /// A tree over `points`, `dims` coordinates each, laid end to end
     /// (`points.len()` must be a multiple of `dims`; `dims` ≥ 1).
     pub fn new(dims: usize, points: Vec<f64>) -> KdTree {
-        assert!(dims > 0 && points.len() % dims == 0, "points of {dims} coordinates");
+        assert!(
+            dims > 0 && points.len().is_multiple_of(dims),
+            "points of {dims} coordinates"
+        );
         let mut tree = KdTree {
             dims,
             order: (0..points.len() / dims).collect(),
@@ -81,7 +88,11 @@ impl KdTree {
     pub fn reset(&mut self, points: impl IntoIterator<Item = f64>) {
         self.points.clear();
         self.points.extend(points);
-        assert!(self.points.len() % self.dims == 0, "points of {} coordinates", self.dims);
+        assert!(
+            self.points.len().is_multiple_of(self.dims),
+            "points of {} coordinates",
+            self.dims
+        );
         self.order.clear();
         self.order.extend(0..self.points.len() / self.dims);
         self.rebuild();
@@ -183,7 +194,14 @@ impl KdTree {
         best.map(|(_, i)| i)
     }
 
-    fn search_1(&self, q: &[f64], lo: usize, hi: usize, depth: usize, best: &mut Option<(f64, usize)>) {
+    fn search_1(
+        &self,
+        q: &[f64],
+        lo: usize,
+        hi: usize,
+        depth: usize,
+        best: &mut Option<(f64, usize)>,
+    ) {
         let mut offer = |d2: f64, i: usize| {
             if best.is_none_or(|(b, j)| d2 < b || (d2 == b && i < j)) {
                 *best = Some((d2, i));
@@ -305,16 +323,23 @@ mod tests {
         tree.nearest_k(&[7.0], Some(3), &mut best);
         assert_eq!(best.mean_distance(), (7.0 + 6.0 + 4.0) / 3.0);
         assert_eq!(tree.nearest(&[2.1]), Some(2));
-        assert_eq!(tree.nearest(&[2.0]), Some(1), "a tie goes to the lower index");
+        assert_eq!(
+            tree.nearest(&[2.0]),
+            Some(1),
+            "a tie goes to the lower index"
+        );
     }
 
     fn points(dims: usize) -> impl Strategy<Value = Vec<f64>> {
         // Coarse values make ties and duplicates common.
-        prop::collection::vec((-20i32..20).prop_map(|v| f64::from(v) * 0.25), dims..dims * 60)
-            .prop_map(move |mut v| {
-                v.truncate(v.len() / dims * dims);
-                v
-            })
+        prop::collection::vec(
+            (-20i32..20).prop_map(|v| f64::from(v) * 0.25),
+            dims..dims * 60,
+        )
+        .prop_map(move |mut v| {
+            v.truncate(v.len() / dims * dims);
+            v
+        })
     }
 
     proptest! {
@@ -327,7 +352,7 @@ mod tests {
             let tree = KdTree::new(dims, pts.clone());
             let mut best = Nearest::new(k);
             let n = pts.len() / dims;
-            for i in (0..n).filter(|i| (*i as u64 ^ seed) % 3 == 0 || n < 30) {
+            for i in (0..n).filter(|i| (*i as u64 ^ seed).is_multiple_of(3) || n < 30) {
                 tree.nearest_k(&pts[i * dims..(i + 1) * dims], Some(i), &mut best);
                 let expect = brute_force_sparseness(dims, &pts, i, k);
                 prop_assert_eq!(best.mean_distance().to_bits(), expect.to_bits());

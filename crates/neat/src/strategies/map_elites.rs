@@ -44,9 +44,17 @@ impl Cells {
     pub fn grid(lower: Vec<f64>, upper: Vec<f64>, bins: Vec<usize>) -> Result<Cells, NeatError> {
         check_bounds(&lower, &upper)?;
         if bins.len() != lower.len() || bins.contains(&0) {
-            return Err(invalid("bins", format!("{bins:?}"), "one count ≥ 1 per dimension"));
+            return Err(invalid(
+                "bins",
+                format!("{bins:?}"),
+                "one count ≥ 1 per dimension",
+            ));
         }
-        if bins.iter().try_fold(1usize, |n, &b| n.checked_mul(b)).is_none() {
+        if bins
+            .iter()
+            .try_fold(1usize, |n, &b| n.checked_mul(b))
+            .is_none()
+        {
             return Err(invalid("bins", format!("{bins:?}"), "too many cells"));
         }
         Ok(Cells::Grid { lower, upper, bins })
@@ -161,7 +169,11 @@ fn check_bounds(lower: &[f64], upper: &[f64]) -> Result<(), NeatError> {
         Ok(())
     } else {
         let value = format!("{lower:?}..{upper:?}");
-        Err(invalid("bounds", value, "finite, lower < upper, ≥ 1 dimension"))
+        Err(invalid(
+            "bounds",
+            value,
+            "finite, lower < upper, ≥ 1 dimension",
+        ))
     }
 }
 
@@ -263,11 +275,22 @@ impl TryFrom<State> for MapElites {
             e.fitness.is_finite() && e.behaviour.len() == dims && e.generation <= s.generation
         };
         if !s.archive.iter().flatten().all(elite_ok) {
-            return Err(invalid("archive", "an elite", "inconsistent with the cells"));
+            return Err(invalid(
+                "archive",
+                "an elite",
+                "inconsistent with the cells",
+            ));
         }
-        if s.batch.is_empty() || s.told.as_ref().is_some_and(|t| t.fitness.len() != s.batch.len())
+        if s.batch.is_empty()
+            || s.told
+                .as_ref()
+                .is_some_and(|t| t.fitness.len() != s.batch.len())
         {
-            return Err(invalid("batch", s.batch.len(), "empty or not matching its fitness"));
+            return Err(invalid(
+                "batch",
+                s.batch.len(),
+                "empty or not matching its fitness",
+            ));
         }
         if s.told.is_none() && s.generation > 0 && s.archive.iter().all(Option::is_none) {
             return Err(invalid("archive", 0, "empty after generation 0"));
@@ -393,7 +416,10 @@ impl Strategy for MapElites {
             let reason = "the behaviour must have as many coordinates as the cells";
             return Err(invalid("behaviour", e.behaviour.len(), reason));
         }
-        let fitness: Vec<f64> = evaluations.iter().map(|e| finite_or_zero(e.fitness)).collect();
+        let fitness: Vec<f64> = evaluations
+            .iter()
+            .map(|e| finite_or_zero(e.fitness))
+            .collect();
         let mut inserted = 0;
         for ((genome, e), &f) in s.batch.iter().zip(evaluations).zip(&fitness) {
             let behaviour: Vec<f64> = e.behaviour.iter().map(|&x| finite_or_zero(x)).collect();
@@ -456,16 +482,28 @@ impl Strategy for MapElites {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use proptest::prelude::*;
+    use proptest::prelude::{prop, prop_assert_eq, proptest};
 
     #[test]
     fn grid_cells_are_row_major_and_clamped() {
         let cells = Cells::grid(vec![0.0, -1.0], vec![10.0, 1.0], vec![5, 2]).unwrap();
         assert_eq!(cells.len(), 10);
         assert_eq!(cells.cell_of(&[0.0, -1.0]), 0);
-        assert_eq!(cells.cell_of(&[3.9, 0.5]), 1 * 2 + 1);
-        assert_eq!(cells.cell_of(&[10.0, 1.0]), 9, "the upper bound is in the last cell");
-        assert_eq!(cells.cell_of(&[-5.0, 7.0]), 1, "outside: the nearest edge cell");
+        assert_eq!(
+            cells.cell_of(&[3.9, 0.5]),
+            2 + 1,
+            "row 1 of 2 cells, column 1"
+        );
+        assert_eq!(
+            cells.cell_of(&[10.0, 1.0]),
+            9,
+            "the upper bound is in the last cell"
+        );
+        assert_eq!(
+            cells.cell_of(&[-5.0, 7.0]),
+            1,
+            "outside: the nearest edge cell"
+        );
         assert_eq!(cells.cell_of(&[f64::NAN, f64::INFINITY]), 1);
         assert!(Cells::grid(vec![0.0], vec![0.0], vec![3]).is_err());
         assert!(Cells::grid(vec![0.0], vec![1.0], vec![0]).is_err());
@@ -482,7 +520,10 @@ mod tests {
         // over 2000 samples each one's region holds some of them.
         for i in 0..16 {
             let c = tree.point(i);
-            assert!((0.0..=1.0).contains(&c[0]) && (0.0..=2.0).contains(&c[1]), "{c:?}");
+            assert!(
+                (0.0..=1.0).contains(&c[0]) && (0.0..=2.0).contains(&c[1]),
+                "{c:?}"
+            );
             assert_eq!(a.cell_of(c), i, "a centroid is in its own cell");
         }
         let other = Cells::cvt(&[0.0, 0.0], &[1.0, 2.0], 16, 2000, 10, 6).unwrap();
@@ -520,5 +561,46 @@ mod tests {
                 prop_assert_eq!(kept, best.map(f64::from).zip(first));
             }
         }
+    }
+
+    #[test]
+    fn checkpoints_that_contradict_themselves_are_refused() {
+        let cells = Cells::cvt(&[0.0, -1.0], &[1.0, 1.0], 5, 50, 3, 2).unwrap();
+        let (params, spec) = (NeatParams::plain_neat(), GenomeSpec::plain(2, 1));
+        let mut me = MapElites::new(params, spec, MapElitesParams::default(), cells, 3).unwrap();
+        let n = me.ask().genomes.len();
+        let told = |i: usize| Evaluation {
+            behaviour: vec![i as f64 * 0.01, 0.0],
+            ..Evaluation::fitness(i as f64)
+        };
+        me.tell(&(0..n).map(told).collect::<Vec<_>>()).unwrap();
+        let reread = |edit: &dyn Fn(&mut State)| {
+            let mut state = me.0.clone();
+            edit(&mut state);
+            serde_json::from_str::<MapElites>(&serde_json::to_string(&state).unwrap())
+        };
+        assert_eq!(reread(&|_| ()).unwrap(), me);
+        assert!(
+            reread(&|s| {
+                s.archive.pop();
+            })
+            .is_err(),
+            "fewer entries than cells"
+        );
+        let other_dimension = |s: &mut State| {
+            let elite = s.archive.iter_mut().flatten().next().unwrap();
+            elite.behaviour.push(1.0);
+        };
+        assert!(reread(&other_dimension).is_err());
+        assert!(reread(&|s| s.batch.clear()).is_err(), "an empty batch");
+        assert!(reread(&|s| s.map.batch_size = 0).is_err());
+        // A CVT's centroids are checked when read, too.
+        let mut json: String = serde_json::to_string(&me).unwrap();
+        let at = json.find("\"points\":[").unwrap() + "\"points\":[".len();
+        json.insert_str(at, "0.5,");
+        assert!(
+            serde_json::from_str::<MapElites>(&json).is_err(),
+            "a stray coordinate"
+        );
     }
 }

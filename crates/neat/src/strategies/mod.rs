@@ -82,7 +82,11 @@ pub(crate) fn check_count(given: usize, genomes: usize) -> Result<(), NeatError>
 }
 
 /// A setting (or a restored state's field) out of its range.
-pub(crate) fn invalid(field: &'static str, value: impl ToString, reason: &'static str) -> NeatError {
+pub(crate) fn invalid(
+    field: &'static str,
+    value: impl ToString,
+    reason: &'static str,
+) -> NeatError {
     NeatError::InvalidParam {
         field,
         value: value.to_string(),

@@ -73,13 +73,25 @@ impl NoveltyParams {
             return Err(invalid("threshold", value, "must be finite and > 0"));
         }
         if !(self.lower_factor > 0.0 && self.lower_factor <= 1.0) {
-            return Err(invalid("lower_factor", self.lower_factor, "must be in (0, 1]"));
+            return Err(invalid(
+                "lower_factor",
+                self.lower_factor,
+                "must be in (0, 1]",
+            ));
         }
         if !(self.raise_factor >= 1.0 && self.raise_factor.is_finite()) {
-            return Err(invalid("raise_factor", self.raise_factor, "must be finite and ≥ 1"));
+            return Err(invalid(
+                "raise_factor",
+                self.raise_factor,
+                "must be finite and ≥ 1",
+            ));
         }
         if !(0.0..=1.0).contains(&self.fitness_weight) {
-            return Err(invalid("fitness_weight", self.fitness_weight, "must be in [0, 1]"));
+            return Err(invalid(
+                "fitness_weight",
+                self.fitness_weight,
+                "must be in [0, 1]",
+            ));
         }
         Ok(())
     }
@@ -121,7 +133,8 @@ impl TryFrom<State> for NoveltySearch {
     fn try_from(s: State) -> Result<Self, NeatError> {
         s.novelty.validate()?;
         let n = s.population.genomes().len();
-        if (s.dims == 0 && !s.archive.is_empty()) || (s.dims > 0 && s.archive.len() % s.dims != 0)
+        if (s.dims == 0 && !s.archive.is_empty())
+            || (s.dims > 0 && !s.archive.len().is_multiple_of(s.dims))
         {
             return Err(invalid("archive", s.archive.len(), "not whole behaviours"));
         }
@@ -131,11 +144,16 @@ impl TryFrom<State> for NoveltySearch {
         if let Some(t) = &s.told
             && (t.fitness.len() != n || t.novelty.len() != n || !s.population.is_evaluated())
         {
-            return Err(invalid("told", t.fitness.len(), "does not match the population"));
+            return Err(invalid(
+                "told",
+                t.fitness.len(),
+                "does not match the population",
+            ));
         }
-        if s.best.as_ref().is_some_and(|b| {
-            !b.fitness.is_finite() || b.generation > s.population.generation()
-        }) {
+        if s.best
+            .as_ref()
+            .is_some_and(|b| !b.fitness.is_finite() || b.generation > s.population.generation())
+        {
             return Err(invalid("best", "record", "non-finite or from the future"));
         }
         Ok(NoveltySearch(s))
@@ -266,7 +284,10 @@ fn selection_scores(novelty: &[f64], fitness: &[f64], w: f64) -> Vec<f64> {
             .collect()
     };
     let (n, f) = (normalised(novelty), normalised(fitness));
-    n.iter().zip(&f).map(|(n, f)| (1.0 - w) * n + w * f).collect()
+    n.iter()
+        .zip(&f)
+        .map(|(n, f)| (1.0 - w) * n + w * f)
+        .collect()
 }
 
 impl Strategy for NoveltySearch {
@@ -279,7 +300,10 @@ impl Strategy for NoveltySearch {
     fn tell(&mut self, evaluations: &[Evaluation]) -> Result<(), NeatError> {
         check_count(evaluations.len(), self.0.population.genomes().len())?;
         let behaviours = self.behaviours(evaluations)?;
-        let fitness: Vec<f64> = evaluations.iter().map(|e| finite_or_zero(e.fitness)).collect();
+        let fitness: Vec<f64> = evaluations
+            .iter()
+            .map(|e| finite_or_zero(e.fitness))
+            .collect();
         let novelty = self.sparseness(&behaviours);
         let added = self.archive_novel(&behaviours, &novelty);
         let scores = selection_scores(&novelty, &fitness, self.0.novelty.fitness_weight);
@@ -366,7 +390,11 @@ mod tests {
         let far = (2329f64.sqrt() + 2196f64.sqrt()) / 2.0;
         assert_eq!(ns.novelty(), [3.5, 4.0, 4.5, far]);
         assert_eq!(ns.archive().count(), 4, "all above ρ_min = 2");
-        assert_eq!(ns.champion().map(|(_, f)| f), Some(3.0), "fitness, not novelty");
+        assert_eq!(
+            ns.champion().map(|(_, f)| f),
+            Some(3.0),
+            "fitness, not novelty"
+        );
         assert_eq!(ns.population().fitnesses(), ns.novelty());
 
         // Next generation: the archive takes part; duplicates of archived
@@ -416,7 +444,39 @@ mod tests {
         evaluations[2].behaviour.push(1.0);
         assert!(matches!(
             ns.tell(&evaluations),
-            Err(NeatError::InvalidParam { field: "behaviour", .. })
+            Err(NeatError::InvalidParam {
+                field: "behaviour",
+                ..
+            })
         ));
+    }
+
+    /// `state` edited by `edit`, written and read back as a strategy.
+    fn reread(
+        state: &State,
+        edit: impl Fn(&mut State),
+    ) -> Result<NoveltySearch, serde_json::Error> {
+        let mut state = state.clone();
+        edit(&mut state);
+        serde_json::from_str(&serde_json::to_string(&state).unwrap())
+    }
+
+    #[test]
+    fn checkpoints_that_contradict_themselves_are_refused() {
+        let mut ns = search(NoveltyParams::default());
+        ns.ask();
+        ns.tell(&told(&[[0.0, 1.0]; 4], &[0.0; 4])).unwrap();
+        let state = &ns.0;
+        assert_eq!(reread(state, |_| ()).unwrap(), ns);
+        assert!(
+            reread(state, |s| s.archive.push(0.5)).is_err(),
+            "half a behaviour"
+        );
+        assert!(reread(state, |s| s.threshold = 0.0).is_err());
+        assert!(reread(state, |s| s.novelty.k = 0).is_err());
+        let fewer = |s: &mut State| {
+            s.told.as_mut().unwrap().novelty.pop();
+        };
+        assert!(reread(state, fewer).is_err(), "novelty for fewer genomes");
     }
 }

@@ -134,7 +134,11 @@ impl TryFrom<State> for Nsga2 {
         s.nsga.validate()?;
         let m = s.nsga.objectives.len();
         let ok = |o: &[f64]| o.len() == m && o.iter().all(|v| v.is_finite());
-        if !s.parents.iter().all(|p| ok(&p.objectives) && p.fitness.is_finite()) {
+        if !s
+            .parents
+            .iter()
+            .all(|p| ok(&p.objectives) && p.fitness.is_finite())
+        {
             return Err(invalid("parents", "a parent", "objectives not matching"));
         }
         if let Some(t) = &s.told
@@ -145,7 +149,11 @@ impl TryFrom<State> for Nsga2 {
             return Err(invalid("told", t.fitness.len(), "does not match the batch"));
         }
         if s.batch.is_empty() || s.parents.len() > s.nsga.population_size {
-            return Err(invalid("batch", s.batch.len(), "empty, or too many parents"));
+            return Err(invalid(
+                "batch",
+                s.batch.len(),
+                "empty, or too many parents",
+            ));
         }
         Ok(Nsga2(s))
     }
@@ -212,7 +220,12 @@ impl Nsga2 {
             .into_iter()
             .map(|i| {
                 let (g, o, f) = pool[i];
-                let raw = s.nsga.objectives.iter().zip(o).map(|(obj, &v)| sense(obj, v));
+                let raw = s
+                    .nsga
+                    .objectives
+                    .iter()
+                    .zip(o)
+                    .map(|(obj, &v)| sense(obj, v));
                 (g, raw.collect(), f)
             })
             .collect()
@@ -223,11 +236,12 @@ impl Nsga2 {
     fn select(&mut self, told: Told) -> (Vec<usize>, Vec<f64>) {
         let s = &mut self.0;
         let children = s.batch.drain(..).zip(told.objectives).zip(told.fitness);
-        s.parents.extend(children.map(|((genome, objectives), fitness)| Member {
-            genome,
-            objectives,
-            fitness,
-        }));
+        s.parents
+            .extend(children.map(|((genome, objectives), fitness)| Member {
+                genome,
+                objectives,
+                fitness,
+            }));
         let objectives: Vec<&[f64]> = s.parents.iter().map(|p| &p.objectives[..]).collect();
         let n = s.nsga.population_size;
         let mut crowd = vec![0.0; objectives.len()];
@@ -310,6 +324,8 @@ pub fn crowding_distances(front: &[usize], objectives: &[&[f64]], out: &mut [f64
         return;
     };
     let mut sorted = front.to_vec();
+    // `m` picks an objective within each member's row; clippy reads it as a row index.
+    #[allow(clippy::needless_range_loop)]
     for m in 0..objectives[first].len() {
         let v = |i: usize| objectives[i][m];
         sorted.sort_by(|&a, &b| v(a).total_cmp(&v(b)).then(a.cmp(&b)));
@@ -340,7 +356,10 @@ impl Strategy for Nsga2 {
             let reason = "an objective names a metric the evaluation does not have";
             objectives.push(o.ok_or_else(|| invalid("objectives", e.metrics.len(), reason))?);
         }
-        let fitness: Vec<f64> = evaluations.iter().map(|e| finite_or_zero(e.fitness)).collect();
+        let fitness: Vec<f64> = evaluations
+            .iter()
+            .map(|e| finite_or_zero(e.fitness))
+            .collect();
         record_best(&mut s.best, &s.batch, &fitness, s.generation);
         s.told = Some(Told {
             objectives,
@@ -364,8 +383,12 @@ impl Strategy for Nsga2 {
         let parents = &s.parents;
         // Binary tournament on the crowded comparison; a tie goes to the first drawn.
         let tournament = |rng: &mut Pcg64| {
-            let (a, b) = (rng.random_range(0..parents.len()), rng.random_range(0..parents.len()));
-            let a_wins = ranks[a] < ranks[b] || (ranks[a] == ranks[b] && crowding[a] >= crowding[b]);
+            let (a, b) = (
+                rng.random_range(0..parents.len()),
+                rng.random_range(0..parents.len()),
+            );
+            let a_wins =
+                ranks[a] < ranks[b] || (ranks[a] == ranks[b] && crowding[a] >= crowding[b]);
             if a_wins { a } else { b }
         };
         for _ in 0..s.nsga.population_size {
@@ -402,13 +425,19 @@ impl Strategy for Nsga2 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use proptest::prelude::*;
+    use proptest::prelude::{prop, prop_assert, prop_assert_eq, proptest};
     use proptest::strategy::Strategy as _;
 
     #[test]
     fn hand_computed_fronts_and_crowding() {
         // Maximising both: A, B, C trade off; C and B dominate D; D dominates E.
-        let pts: [&[f64]; 5] = [&[1.0, 5.0], &[2.0, 4.0], &[3.0, 3.0], &[2.0, 2.0], &[1.0, 1.0]];
+        let pts: [&[f64]; 5] = [
+            &[1.0, 5.0],
+            &[2.0, 4.0],
+            &[3.0, 3.0],
+            &[2.0, 2.0],
+            &[1.0, 1.0],
+        ];
         let fronts = non_dominated_fronts(&pts);
         assert_eq!(fronts, [vec![0, 1, 2], vec![3], vec![4]]);
         let mut crowd = [0.0; 5];
@@ -416,7 +445,11 @@ mod tests {
         // B: (3 − 1)/2 on the first objective + (5 − 3)/2 on the second.
         assert_eq!(crowd[..3], [f64::INFINITY, 2.0, f64::INFINITY]);
         let dup: [&[f64]; 2] = [&[1.0, 1.0], &[1.0, 1.0]];
-        assert_eq!(non_dominated_fronts(&dup), [vec![0, 1]], "equals do not dominate");
+        assert_eq!(
+            non_dominated_fronts(&dup),
+            [vec![0, 1]],
+            "equals do not dominate"
+        );
     }
 
     #[test]
@@ -429,7 +462,11 @@ mod tests {
         let of = |measure, maximise| Objective { measure, maximise }.of(&e);
         assert_eq!(of(Measure::Fitness, true), Some(2.0));
         assert_eq!(of(Measure::Metric(0), false), Some(-5.0));
-        assert_eq!(of(Measure::Metric(1), true), Some(f64::MIN), "non-finite is the worst");
+        assert_eq!(
+            of(Measure::Metric(1), true),
+            Some(f64::MIN),
+            "non-finite is the worst"
+        );
         assert_eq!(of(Measure::Metric(2), true), None);
     }
 
@@ -438,13 +475,27 @@ mod tests {
         let spec = GenomeSpec::plain(2, 1);
         let nsga = Nsga2Params {
             population_size: 4,
-            objectives: vec![Objective { measure: Measure::Fitness, maximise: true }; 2],
+            objectives: vec![
+                Objective {
+                    measure: Measure::Fitness,
+                    maximise: true
+                };
+                2
+            ],
             crossover_probability: 0.5,
         };
         let mut es = Nsga2::new(NeatParams::plain_neat(), spec, nsga, 9).unwrap();
         // Generation 0 told by hand: four genomes, fronts {0, 1, 3} and {2}.
-        let objectives = vec![vec![0.0, 4.0], vec![2.0, 2.0], vec![1.0, 1.0], vec![4.0, 0.0]];
-        let told = Told { objectives, fitness: vec![0.0; 4] };
+        let objectives = vec![
+            vec![0.0, 4.0],
+            vec![2.0, 2.0],
+            vec![1.0, 1.0],
+            vec![4.0, 0.0],
+        ];
+        let told = Told {
+            objectives,
+            fitness: vec![0.0; 4],
+        };
         let genomes = es.0.batch.clone();
         let (ranks, crowding) = es.select(told);
         assert_eq!(ranks, [0, 0, 0, 1]);
@@ -454,14 +505,25 @@ mod tests {
 
         // Now 8 compete for 4: front 0 has five members and loses its most crowded.
         es.0.batch = genomes;
-        let objectives = vec![vec![1.0, 3.0], vec![3.5, 0.5], vec![0.0, 0.0], vec![0.0, 0.0]];
-        let (ranks, crowding) = es.select(Told { objectives, fitness: vec![0.0; 4] });
+        let objectives = vec![
+            vec![1.0, 3.0],
+            vec![3.5, 0.5],
+            vec![0.0, 0.0],
+            vec![0.0, 0.0],
+        ];
+        let (ranks, crowding) = es.select(Told {
+            objectives,
+            fitness: vec![0.0; 4],
+        });
         // Pool: parents (0,4) (2,2) (4,0) (1,1), children (1,3) (3.5,0.5) (0,0) (0,0).
         // Front 0 = (0,4) (2,2) (4,0) (1,3) (3.5,0.5); crowding ∞, 1.25, ∞, 1, 1.
         assert_eq!(ranks, [0; 4]);
         assert_eq!(crowding, [f64::INFINITY, f64::INFINITY, 1.25, 1.0]);
         let kept: Vec<&[f64]> = es.0.parents.iter().map(|p| &p.objectives[..]).collect();
-        assert_eq!(kept, [&[0.0, 4.0][..], &[4.0, 0.0], &[2.0, 2.0], &[1.0, 3.0]]);
+        assert_eq!(
+            kept,
+            [&[0.0, 4.0][..], &[4.0, 0.0], &[2.0, 2.0], &[1.0, 3.0]]
+        );
     }
 
     fn points() -> impl proptest::strategy::Strategy<Value = Vec<Vec<f64>>> {
@@ -503,8 +565,8 @@ mod tests {
             let mut out = vec![-1.0; pts.len()];
             for front in non_dominated_fronts(&objectives) {
                 crowding_distances(&front, &objectives, &mut out);
-                for m in 0..3 {
-                    let value = |i: usize| objectives[i][m];
+                for m in [0, 1, 2] {
+                    let value = |i: usize| pts[i][m];
                     let max = front.iter().map(|&i| value(i)).fold(f64::MIN, f64::max);
                     let min = front.iter().map(|&i| value(i)).fold(f64::MAX, f64::min);
                     for extreme in [min, max] {
@@ -517,5 +579,50 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn checkpoints_that_contradict_themselves_are_refused() {
+        let nsga = Nsga2Params {
+            population_size: 6,
+            objectives: vec![
+                Objective {
+                    measure: Measure::Metric(0),
+                    maximise: false
+                };
+                2
+            ],
+            crossover_probability: 0.5,
+        };
+        let spec = GenomeSpec::plain(2, 1);
+        let mut es = Nsga2::new(NeatParams::plain_neat(), spec, nsga, 4).unwrap();
+        for _ in 0..2 {
+            let n = es.ask().genomes.len();
+            let told = |i: usize| Evaluation {
+                metrics: vec![i as f64],
+                ..Evaluation::fitness(1.0)
+            };
+            es.tell(&(0..n).map(told).collect::<Vec<_>>()).unwrap();
+        }
+        let reread = |edit: &dyn Fn(&mut State)| {
+            let mut state = es.0.clone();
+            edit(&mut state);
+            serde_json::from_str::<Nsga2>(&serde_json::to_string(&state).unwrap())
+        };
+        assert_eq!(reread(&|_| ()).unwrap(), es);
+        assert!(
+            reread(&|s| {
+                s.parents[0].objectives.pop();
+            })
+            .is_err()
+        );
+        let fewer = |s: &mut State| drop(s.told.as_mut().unwrap().objectives.pop());
+        assert!(reread(&fewer).is_err(), "objectives for fewer children");
+        assert!(reread(&|s| s.nsga.objectives.clear()).is_err());
+        let crowded = |s: &mut State| s.parents.extend(s.parents.clone());
+        assert!(
+            reread(&crowded).is_err(),
+            "more parents than the population size"
+        );
     }
 }
