@@ -278,9 +278,50 @@ pub fn dominates(a: &[f64], b: &[f64]) -> bool {
     better
 }
 
-/// Deb's fast non-dominated sort: the fronts, best first, each in index
-/// order; front 0 is dominated by none, front k+1 only by members of fronts ≤ k.
+/// The non-dominated fronts, best first, each in index order: front 0 is
+/// dominated by none, front k + 1 only by members of fronts ≤ k.
+///
+/// The same fronts as Deb's fast non-dominated sort
+/// ([`fast_non_dominated_sort`]), found without comparing every pair: the
+/// efficient non-dominated sort with binary search (ENS-BS, Zhang et al.
+/// 2015). Sorted lexicographically best first, a member can only be
+/// dominated by members before it; each joins the first front none of whose
+/// members dominates it, and since being dominated by some member of front k
+/// holds for every k below a member's front and none from it on, that front
+/// is found by bisection.
 pub fn non_dominated_fronts(objectives: &[&[f64]]) -> Vec<Vec<usize>> {
+    let mut order: Vec<usize> = (0..objectives.len()).collect();
+    order.sort_by(|&a, &b| {
+        let lexicographic = objectives[b].iter().zip(objectives[a]);
+        // partial_cmp, so that −0 and 0 tie as they do for dominance.
+        let by_value = lexicographic.fold(std::cmp::Ordering::Equal, |o, (x, y)| {
+            o.then(x.partial_cmp(y).unwrap_or_else(|| x.total_cmp(y)))
+        });
+        by_value.then(a.cmp(&b))
+    });
+    let mut fronts: Vec<Vec<usize>> = Vec::new();
+    for p in order {
+        // Later members are likelier dominators: check a front from its end.
+        let dominated_in = |f: &Vec<usize>| {
+            f.iter()
+                .rev()
+                .any(|&q| dominates(objectives[q], objectives[p]))
+        };
+        let k = fronts.partition_point(dominated_in);
+        match fronts.get_mut(k) {
+            Some(front) => front.push(p),
+            None => fronts.push(vec![p]),
+        }
+    }
+    for front in &mut fronts {
+        front.sort_unstable();
+    }
+    fronts
+}
+
+/// Deb's fast non-dominated sort (O(M·N²), every pair compared): the
+/// reference [`non_dominated_fronts`] is checked against.
+pub fn fast_non_dominated_sort(objectives: &[&[f64]]) -> Vec<Vec<usize>> {
     let n = objectives.len();
     let mut dominated: Vec<Vec<usize>> = vec![Vec::new(); n];
     let mut count = vec![0usize; n];
@@ -527,7 +568,9 @@ mod tests {
     }
 
     fn points() -> impl proptest::strategy::Strategy<Value = Vec<Vec<f64>>> {
-        let point = prop::collection::vec((0i32..5).prop_map(f64::from), 3);
+        // Few distinct values (−0 among them) make ties and duplicates common.
+        let value = (0i32..6).prop_map(|v| if v == 5 { -0.0 } else { f64::from(v) });
+        let point = prop::collection::vec(value, 3);
         prop::collection::vec(point, 0..40)
     }
 
@@ -557,6 +600,12 @@ mod tests {
                     prop_assert!(by_previous, "front {} member not dominated by front {}", rank[i], rank[i] - 1);
                 }
             }
+        }
+
+        #[test]
+        fn bisected_fronts_equal_debs_fast_non_dominated_sort(pts in points()) {
+            let objectives: Vec<&[f64]> = pts.iter().map(|p| &p[..]).collect();
+            prop_assert_eq!(non_dominated_fronts(&objectives), fast_non_dominated_sort(&objectives));
         }
 
         #[test]
