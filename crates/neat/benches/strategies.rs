@@ -72,32 +72,53 @@ fn novelty_tell(bencher: Bencher, dims: usize) {
         .bench_local_refs(|ns| ns.tell(black_box(&told)).unwrap());
 }
 
-/// The sparseness of 1,000 points against `archive` others, by the k-d tree
-/// (built each time, as every generation does).
+/// The sparseness (k = 15) of the last 1,000 of `all` (points of `dims`
+/// coordinates) against all the others, by the k-d tree built each time,
+/// as every generation does.
+fn kd_tree_sparseness(all: &[f64], dims: usize) -> f64 {
+    let tree = KdTree::new(dims, all.to_vec());
+    let mut nearest = Nearest::new(15);
+    (tree.len() - POPULATION..tree.len())
+        .map(|i| {
+            tree.nearest_k(tree.point(i), Some(i), &mut nearest);
+            nearest.mean_distance()
+        })
+        .sum()
+}
+
+/// The same by brute force.
+fn brute_force(all: &[f64], dims: usize) -> f64 {
+    let n = all.len() / dims;
+    (n - POPULATION..n)
+        .map(|i| brute_force_sparseness(dims, all, i, 15))
+        .sum()
+}
+
+/// Sparseness of 1,000 end positions against `archive` others by the k-d tree.
 #[divan::bench(args = [1_000, 10_000, 40_000])]
 fn sparseness_kd_tree(bencher: Bencher, archive: usize) {
     let all = points(archive + POPULATION, 2, 5);
-    bencher.bench_local(|| {
-        let tree = KdTree::new(2, black_box(&all).clone());
-        let mut nearest = Nearest::new(15);
-        let mut sum = 0.0;
-        for i in archive..archive + POPULATION {
-            tree.nearest_k(tree.point(i), Some(i), &mut nearest);
-            sum += nearest.mean_distance();
-        }
-        sum
-    });
+    bencher.bench_local(|| kd_tree_sparseness(black_box(&all), 2));
 }
 
 /// The same by brute force: grows linearly with the archive.
 #[divan::bench(args = [1_000, 10_000, 40_000])]
 fn sparseness_brute_force(bencher: Bencher, archive: usize) {
     let all = points(archive + POPULATION, 2, 5);
-    bencher.bench_local(|| {
-        (archive..archive + POPULATION)
-            .map(|i| brute_force_sparseness(2, black_box(&all), i, 15))
-            .sum::<f64>()
-    });
+    bencher.bench_local(|| brute_force(black_box(&all), 2));
+}
+
+/// Sparseness of 1,000 behaviours of 8 uniform coordinates (the k-d tree's
+/// worst case) against 10,000, by the tree and by brute force.
+#[divan::bench(args = ["kd_tree", "brute_force"])]
+fn sparseness_8d(bencher: Bencher, how: &str) {
+    let all = points(ARCHIVE + POPULATION, 8, 5);
+    let f = if how == "kd_tree" {
+        kd_tree_sparseness
+    } else {
+        brute_force
+    };
+    bencher.bench_local(|| f(black_box(&all), 8));
 }
 
 /// A MAP-Elites archive of 10,000 cells, filled (generation 0 and 9 more
