@@ -292,8 +292,10 @@ impl TryFrom<State> for MapElites {
                 "empty or not matching its fitness",
             ));
         }
-        if s.told.is_none() && s.generation > 0 && s.archive.iter().all(Option::is_none) {
-            return Err(invalid("archive", 0, "empty after generation 0"));
+        // Telling a batch always fills a cell: breeding needs one.
+        let told = s.told.is_some() || s.generation > 0;
+        if told && s.archive.iter().all(Option::is_none) {
+            return Err(invalid("archive", 0, "empty after a batch was told"));
         }
         Ok(MapElites(s))
     }
@@ -593,6 +595,7 @@ mod tests {
         };
         assert!(reread(&other_dimension).is_err());
         assert!(reread(&|s| s.batch.clear()).is_err(), "an empty batch");
+        assert!(reread(&|s| s.archive.fill(None)).is_err(), "told, yet no elite");
         assert!(reread(&|s| s.map.batch_size = 0).is_err());
         // A CVT's centroids are checked when read, too.
         let mut json: String = serde_json::to_string(&me).unwrap();
