@@ -12,7 +12,8 @@
 //! population is one [`driver::Strategy`], the ask/tell seam behind the
 //! driver: any other search over genomes (see [`driver::strategy`] for a
 //! (1+1) evolution strategy) runs, is observed and is checkpointed the same
-//! way. XOR, the classic NEAT benchmark, in full:
+//! way; [`strategies`] has novelty search, MAP-Elites and NSGA-II, all
+//! breeding with NEAT's operators. XOR, the classic NEAT benchmark, in full:
 //!
 //! ```
 //! use vivae_neat::driver::{Evolution, NoCheckpoints, ParallelEvaluator, StopCriteria, StopReason};
@@ -71,6 +72,7 @@ pub mod recurrent;
 pub mod simd;
 pub mod species;
 pub mod stats;
+pub mod strategies;
 
 pub use activation::{Activation, bipolar_sigmoid};
 pub use crossover::crossover;
@@ -85,3 +87,4 @@ pub use params::NeatParams;
 pub use population::{BestEver, GenerationStats, Population, allocate_offspring};
 pub use recurrent::RecurrentNetwork;
 pub use species::Species;
+pub use strategies::{MapElites, NoveltySearch, Nsga2};

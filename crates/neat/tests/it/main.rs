@@ -12,4 +12,5 @@ mod offspring_count_equals_population_size;
 mod parallel_evaluation_matches_serial;
 mod same_seed_gives_identical_population;
 mod short_xor_run_solves;
+mod strategies_search_what_they_are_built_for;
 mod valid_genomes_round_trip_through_json;

@@ -1,0 +1,118 @@
+//! Search strategies beyond NEAT's fitness-driven population, each a
+//! [`Strategy`](crate::driver::Strategy) on the same driver, all breeding
+//! with NEAT's crossover, mutation and innovation history:
+//!
+//! * [`NoveltySearch`] (Lehman & Stanley 2011): NEAT's speciated
+//!   reproduction selecting on behavioural novelty (optionally mixed with
+//!   fitness), with an archive under an adaptive threshold.
+//! * [`MapElites`] (Mouret & Clune 2015): the best genome per cell of a grid
+//!   or CVT partition of the behaviour space.
+//! * [`Nsga2`] (Deb et al. 2002): several objectives, chosen among an
+//!   evaluation's fitness and metrics, by non-dominated sorting and crowding.
+//!
+//! Each is its own checkpoint: serialised and restored it continues
+//! bit-identically, and restoring checks what it reads.
+
+pub mod knn;
+pub mod map_elites;
+pub mod novelty;
+pub mod nsga2;
+
+pub use map_elites::{Cells, Elite, MapElites, MapElitesParams, MapElitesStats};
+pub use novelty::{NoveltyParams, NoveltySearch};
+pub use nsga2::{Measure, Nsga2, Nsga2Params, Objective};
+
+use rand::{Rng, RngExt};
+
+use crate::crossover::crossover;
+use crate::error::NeatError;
+use crate::genome::{Genome, GenomeSpec};
+use crate::innovation::InnovationTracker;
+use crate::mutation::mutate;
+use crate::params::NeatParams;
+use crate::population::BestEver;
+
+/// What NEAT's breeding needs besides the parents: shared by the strategies.
+pub(crate) struct Breeding<'a, R: Rng + ?Sized> {
+    pub spec: &'a GenomeSpec,
+    pub params: &'a NeatParams,
+    pub tracker: &'a mut InnovationTracker,
+    pub rng: &'a mut R,
+}
+
+impl<R: Rng + ?Sized> Breeding<'_, R> {
+    /// A child of `a` (crossed with `b` if given, the fitter parent giving
+    /// the disjoint genes), then mutated as NEAT does: a crossover child
+    /// skips mutation with `mate_only_probability`.
+    pub fn child(&mut self, a: (&Genome, f64), b: Option<(&Genome, f64)>) -> Genome {
+        let mut child = match b {
+            Some(b) => {
+                let c = crossover(a.0, a.1, b.0, b.1, self.params, self.rng);
+                if self.rng.random_bool(self.params.mate_only_probability) {
+                    return c;
+                }
+                c
+            }
+            None => a.0.clone(),
+        };
+        mutate(&mut child, self.spec, self.params, self.tracker, self.rng);
+        child
+    }
+
+    /// `n` minimal genomes (NEAT's generation 0).
+    pub fn minimal(&mut self, n: usize) -> Vec<Genome> {
+        (0..n)
+            .map(|_| Genome::minimal(self.spec, self.params, self.tracker, self.rng))
+            .collect()
+    }
+}
+
+/// Non-finite fitness counts as 0, as everywhere in the driver.
+pub(crate) fn finite_or_zero(f: f64) -> f64 {
+    if f.is_finite() { f } else { 0.0 }
+}
+
+/// One evaluation per genome, or [`NeatError::FitnessCount`].
+pub(crate) fn check_count(given: usize, genomes: usize) -> Result<(), NeatError> {
+    if given == genomes {
+        Ok(())
+    } else {
+        Err(NeatError::FitnessCount { given, genomes })
+    }
+}
+
+/// A setting (or a restored state's field) out of its range.
+pub(crate) fn invalid(
+    field: &'static str,
+    value: impl ToString,
+    reason: &'static str,
+) -> NeatError {
+    NeatError::InvalidParam {
+        field,
+        value: value.to_string(),
+        reason,
+    }
+}
+
+/// Index of the first maximum.
+pub(crate) fn argmax(xs: &[f64]) -> Option<usize> {
+    (0..xs.len()).reduce(|a, b| if xs[b] > xs[a] { b } else { a })
+}
+
+/// Replaces `best` with the batch's first fittest genome when it beats it.
+pub(crate) fn record_best(
+    best: &mut Option<BestEver>,
+    genomes: &[Genome],
+    fitness: &[f64],
+    generation: u32,
+) {
+    if let Some(i) = argmax(fitness)
+        && best.as_ref().is_none_or(|b| fitness[i] > b.fitness)
+    {
+        *best = Some(BestEver {
+            genome: genomes[i].clone(),
+            fitness: fitness[i],
+            generation,
+        });
+    }
+}

@@ -1,0 +1,677 @@
+//! NSGA-II (Deb, Pratap, Agarwal & Meyarivan 2002) over NEAT genomes.
+//!
+//! Each generation, the parents P and their children Q (evaluated) are
+//! sorted into non-dominated fronts (the paper's fast non-dominated sort);
+//! the next parents are the best fronts in full and, from the front that no
+//! longer fits, the members of largest crowding distance. Children are bred
+//! from parents picked by binary tournaments on the crowded comparison
+//! (lower rank, then larger crowding distance) with NEAT's crossover
+//! ([`Nsga2Params::crossover_probability`]) and mutation. Generation 0 is a
+//! batch of minimal genomes, which become the first parents.
+//!
+//! The objectives are read from each [`Evaluation`]: its fitness or one of
+//! its metrics, each maximised or minimised ([`Objective`]). The fitness the
+//! task reports stays what the driver sees (champion, best ever, target).
+
+use rand::{RngExt, SeedableRng};
+use rand_pcg::Pcg64;
+use serde::{Deserialize, Serialize};
+
+use super::{Breeding, argmax, check_count, finite_or_zero, invalid, record_best};
+use crate::driver::{Batch, Evaluation, Strategy};
+use crate::error::NeatError;
+use crate::genome::{Genome, GenomeSpec};
+use crate::innovation::InnovationTracker;
+use crate::params::NeatParams;
+use crate::population::{BestEver, GenerationStats};
+
+/// Which measurement of an [`Evaluation`] an objective is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Measure {
+    /// [`Evaluation::fitness`].
+    Fitness,
+    /// `Evaluation::metrics[i]`.
+    Metric(usize),
+}
+
+/// One objective: a measurement and its direction.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Objective {
+    /// What is measured.
+    pub measure: Measure,
+    /// Larger is better (else smaller is).
+    pub maximise: bool,
+}
+
+impl Objective {
+    /// The value to maximise for this objective: the measurement, negated
+    /// when minimised; a missing metric is `None`, a non-finite one the worst.
+    fn of(&self, e: &Evaluation) -> Option<f64> {
+        let v = match self.measure {
+            Measure::Fitness => e.fitness,
+            Measure::Metric(i) => *e.metrics.get(i)?,
+        };
+        let v = if self.maximise { v } else { -v };
+        Some(if v.is_finite() { v } else { f64::MIN })
+    }
+}
+
+/// NSGA-II's own settings.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Nsga2Params {
+    /// Parents N, and children per generation.
+    pub population_size: usize,
+    /// The objectives (at least one).
+    pub objectives: Vec<Objective>,
+    /// Probability that a child is a crossover of two tournament winners
+    /// rather than a mutant of one.
+    pub crossover_probability: f64,
+}
+
+impl Nsga2Params {
+    /// Checks every setting's range.
+    pub fn validate(&self) -> Result<(), NeatError> {
+        if self.population_size == 0 {
+            return Err(invalid("population_size", 0, "must be at least 1"));
+        }
+        if self.objectives.is_empty() {
+            return Err(invalid("objectives", 0, "need at least one objective"));
+        }
+        if !(0.0..=1.0).contains(&self.crossover_probability) {
+            let value = self.crossover_probability;
+            return Err(invalid("crossover_probability", value, "must be in [0, 1]"));
+        }
+        Ok(())
+    }
+}
+
+/// A parent: its genome and what it scored.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+struct Member {
+    genome: Genome,
+    /// One value per objective, to maximise.
+    objectives: Vec<f64>,
+    fitness: f64,
+}
+
+/// The batch just told: its objectives (to maximise) and fitness.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+struct Told {
+    objectives: Vec<Vec<f64>>,
+    fitness: Vec<f64>,
+}
+
+/// The serialised state of [`Nsga2`].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct State {
+    spec: GenomeSpec,
+    params: NeatParams,
+    nsga: Nsga2Params,
+    seed: u64,
+    generation: u32,
+    rng: Pcg64,
+    tracker: InnovationTracker,
+    parents: Vec<Member>,
+    batch: Vec<Genome>,
+    told: Option<Told>,
+    best: Option<BestEver>,
+}
+
+/// NSGA-II over NEAT genomes (see the module docs).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "State")]
+pub struct Nsga2(State);
+
+impl TryFrom<State> for Nsga2 {
+    type Error = NeatError;
+
+    fn try_from(s: State) -> Result<Self, NeatError> {
+        s.params.validate()?;
+        s.spec.validate()?;
+        s.nsga.validate()?;
+        let m = s.nsga.objectives.len();
+        let ok = |o: &[f64]| o.len() == m && o.iter().all(|v| v.is_finite());
+        if !s
+            .parents
+            .iter()
+            .all(|p| ok(&p.objectives) && p.fitness.is_finite())
+        {
+            return Err(invalid("parents", "a parent", "objectives not matching"));
+        }
+        if let Some(t) = &s.told
+            && (t.fitness.len() != s.batch.len()
+                || t.objectives.len() != s.batch.len()
+                || !t.objectives.iter().all(|o| ok(o)))
+        {
+            return Err(invalid("told", t.fitness.len(), "does not match the batch"));
+        }
+        if s.batch.is_empty() || s.parents.len() > s.nsga.population_size {
+            return Err(invalid(
+                "batch",
+                s.batch.len(),
+                "empty, or too many parents",
+            ));
+        }
+        Ok(Nsga2(s))
+    }
+}
+
+impl Nsga2 {
+    /// Generation 0: `nsga.population_size` minimal genomes drawn from a
+    /// `Pcg64` seeded with `seed` (also the run seed of every evaluation).
+    pub fn new(
+        params: NeatParams,
+        spec: GenomeSpec,
+        nsga: Nsga2Params,
+        seed: u64,
+    ) -> Result<Nsga2, NeatError> {
+        params.validate()?;
+        spec.validate()?;
+        nsga.validate()?;
+        let mut rng = Pcg64::seed_from_u64(seed);
+        let mut tracker = InnovationTracker::new((spec.inputs + spec.outputs) as u32);
+        let batch = Breeding {
+            spec: &spec,
+            params: &params,
+            tracker: &mut tracker,
+            rng: &mut rng,
+        }
+        .minimal(nsga.population_size);
+        Ok(Nsga2(State {
+            spec,
+            params,
+            nsga,
+            seed,
+            generation: 0,
+            rng,
+            tracker,
+            parents: Vec::new(),
+            batch,
+            told: None,
+            best: None,
+        }))
+    }
+
+    /// The settings.
+    pub fn params(&self) -> &Nsga2Params {
+        &self.0.nsga
+    }
+
+    /// The non-dominated members of the parents and the batch just told:
+    /// each genome with its objective values as the task measured them and
+    /// its fitness, in order (parents first).
+    pub fn pareto_front(&self) -> Vec<(&Genome, Vec<f64>, f64)> {
+        let s = &self.0;
+        let mut pool: Vec<(&Genome, &[f64], f64)> = (s.parents.iter())
+            .map(|p| (&p.genome, &p.objectives[..], p.fitness))
+            .collect();
+        if let Some(t) = &s.told {
+            let told = s.batch.iter().zip(&t.objectives).zip(&t.fitness);
+            pool.extend(told.map(|((g, o), &f)| (g, &o[..], f)));
+        }
+        let objectives: Vec<&[f64]> = pool.iter().map(|p| p.1).collect();
+        let fronts = non_dominated_fronts(&objectives);
+        let first = fronts.into_iter().next().unwrap_or_default();
+        let sense = |o: &Objective, v: f64| if o.maximise { v } else { -v };
+        first
+            .into_iter()
+            .map(|i| {
+                let (g, o, f) = pool[i];
+                let raw = s
+                    .nsga
+                    .objectives
+                    .iter()
+                    .zip(o)
+                    .map(|(obj, &v)| sense(obj, v));
+                (g, raw.collect(), f)
+            })
+            .collect()
+    }
+
+    /// Environmental selection on parents ∪ the batch told: the next
+    /// parents, with their ranks and crowding distances.
+    fn select(&mut self, told: Told) -> (Vec<usize>, Vec<f64>) {
+        let s = &mut self.0;
+        let children = s.batch.drain(..).zip(told.objectives).zip(told.fitness);
+        s.parents
+            .extend(children.map(|((genome, objectives), fitness)| Member {
+                genome,
+                objectives,
+                fitness,
+            }));
+        let objectives: Vec<&[f64]> = s.parents.iter().map(|p| &p.objectives[..]).collect();
+        let n = s.nsga.population_size;
+        let mut crowd = vec![0.0; objectives.len()];
+        let (mut keep, mut ranks) = (Vec::with_capacity(n), Vec::with_capacity(n));
+        for (rank, front) in non_dominated_fronts(&objectives).into_iter().enumerate() {
+            if keep.len() == n {
+                break;
+            }
+            crowding_distances(&front, &objectives, &mut crowd);
+            let mut front = front;
+            if keep.len() + front.len() > n {
+                front.sort_by(|&a, &b| crowd[b].total_cmp(&crowd[a]).then(a.cmp(&b)));
+                front.truncate(n - keep.len());
+            }
+            ranks.extend(std::iter::repeat_n(rank, front.len()));
+            keep.extend(front);
+        }
+        let crowding = keep.iter().map(|&i| crowd[i]).collect();
+        let mut pool: Vec<Option<Member>> = s.parents.drain(..).map(Some).collect();
+        s.parents = keep.iter().filter_map(|&i| pool[i].take()).collect();
+        (ranks, crowding)
+    }
+}
+
+/// Whether `a` dominates `b` (all objectives maximised): no worse in any, better in one.
+pub fn dominates(a: &[f64], b: &[f64]) -> bool {
+    let mut better = false;
+    for (x, y) in a.iter().zip(b) {
+        if x < y {
+            return false;
+        }
+        better |= x > y;
+    }
+    better
+}
+
+/// The non-dominated fronts, best first, each in index order: front 0 is
+/// dominated by none, front k + 1 only by members of fronts ≤ k.
+///
+/// The same fronts as Deb's fast non-dominated sort
+/// ([`fast_non_dominated_sort`]), found without comparing every pair: the
+/// efficient non-dominated sort with binary search (ENS-BS, Zhang et al.
+/// 2015). Sorted lexicographically best first, a member can only be
+/// dominated by members before it; each joins the first front none of whose
+/// members dominates it, and since being dominated by some member of front k
+/// holds for every k below a member's front and none from it on, that front
+/// is found by bisection.
+pub fn non_dominated_fronts(objectives: &[&[f64]]) -> Vec<Vec<usize>> {
+    let mut order: Vec<usize> = (0..objectives.len()).collect();
+    order.sort_by(|&a, &b| {
+        let lexicographic = objectives[b].iter().zip(objectives[a]);
+        // partial_cmp, so that −0 and 0 tie as they do for dominance.
+        let by_value = lexicographic.fold(std::cmp::Ordering::Equal, |o, (x, y)| {
+            o.then(x.partial_cmp(y).unwrap_or_else(|| x.total_cmp(y)))
+        });
+        by_value.then(a.cmp(&b))
+    });
+    let mut fronts: Vec<Vec<usize>> = Vec::new();
+    for p in order {
+        // Later members are likelier dominators: check a front from its end.
+        let dominated_in = |f: &Vec<usize>| {
+            f.iter()
+                .rev()
+                .any(|&q| dominates(objectives[q], objectives[p]))
+        };
+        let k = fronts.partition_point(dominated_in);
+        match fronts.get_mut(k) {
+            Some(front) => front.push(p),
+            None => fronts.push(vec![p]),
+        }
+    }
+    for front in &mut fronts {
+        front.sort_unstable();
+    }
+    fronts
+}
+
+/// Deb's fast non-dominated sort (O(M·N²), every pair compared): the
+/// reference [`non_dominated_fronts`] is checked against.
+pub fn fast_non_dominated_sort(objectives: &[&[f64]]) -> Vec<Vec<usize>> {
+    let n = objectives.len();
+    let mut dominated: Vec<Vec<usize>> = vec![Vec::new(); n];
+    let mut count = vec![0usize; n];
+    for p in 0..n {
+        for q in p + 1..n {
+            if dominates(objectives[p], objectives[q]) {
+                dominated[p].push(q);
+                count[q] += 1;
+            } else if dominates(objectives[q], objectives[p]) {
+                dominated[q].push(p);
+                count[p] += 1;
+            }
+        }
+    }
+    let mut fronts = Vec::new();
+    let mut front: Vec<usize> = (0..n).filter(|&p| count[p] == 0).collect();
+    while !front.is_empty() {
+        let mut next = Vec::new();
+        for &p in &front {
+            for &q in &dominated[p] {
+                count[q] -= 1;
+                if count[q] == 0 {
+                    next.push(q);
+                }
+            }
+        }
+        next.sort_unstable();
+        fronts.push(std::mem::replace(&mut front, next));
+    }
+    fronts
+}
+
+/// Deb's crowding distance of each member of `front`, written to
+/// `out[i]`: per objective, the extremes get ∞ and the others the gap
+/// between their neighbours over the front's range, summed.
+pub fn crowding_distances(front: &[usize], objectives: &[&[f64]], out: &mut [f64]) {
+    for &i in front {
+        out[i] = 0.0;
+    }
+    let Some(&first) = front.first() else {
+        return;
+    };
+    let mut sorted = front.to_vec();
+    // `m` picks an objective within each member's row; clippy reads it as a row index.
+    #[allow(clippy::needless_range_loop)]
+    for m in 0..objectives[first].len() {
+        let v = |i: usize| objectives[i][m];
+        sorted.sort_by(|&a, &b| v(a).total_cmp(&v(b)).then(a.cmp(&b)));
+        let (lo, hi) = (sorted[0], sorted[sorted.len() - 1]);
+        out[lo] = f64::INFINITY;
+        out[hi] = f64::INFINITY;
+        let range = v(hi) - v(lo);
+        if range > 0.0 {
+            for k in 1..sorted.len().saturating_sub(1) {
+                out[sorted[k]] += (v(sorted[k + 1]) - v(sorted[k - 1])) / range;
+            }
+        }
+    }
+}
+
+impl Strategy for Nsga2 {
+    fn ask(&mut self) -> Batch<'_> {
+        self.prepare();
+        Batch::new(&self.0.batch, self.0.seed, self.0.generation)
+    }
+
+    fn tell(&mut self, evaluations: &[Evaluation]) -> Result<(), NeatError> {
+        let s = &mut self.0;
+        check_count(evaluations.len(), s.batch.len())?;
+        let mut objectives = Vec::with_capacity(evaluations.len());
+        for e in evaluations {
+            let o: Option<Vec<f64>> = s.nsga.objectives.iter().map(|o| o.of(e)).collect();
+            let reason = "an objective names a metric the evaluation does not have";
+            objectives.push(o.ok_or_else(|| invalid("objectives", e.metrics.len(), reason))?);
+        }
+        let fitness: Vec<f64> = evaluations
+            .iter()
+            .map(|e| finite_or_zero(e.fitness))
+            .collect();
+        record_best(&mut s.best, &s.batch, &fitness, s.generation);
+        s.told = Some(Told {
+            objectives,
+            fitness,
+        });
+        Ok(())
+    }
+
+    fn prepare(&mut self) {
+        let Some(told) = self.0.told.take() else {
+            return;
+        };
+        let (ranks, crowding) = self.select(told);
+        let s = &mut self.0;
+        let mut breeding = Breeding {
+            spec: &s.spec,
+            params: &s.params,
+            tracker: &mut s.tracker,
+            rng: &mut s.rng,
+        };
+        let parents = &s.parents;
+        // Binary tournament on the crowded comparison; a tie goes to the first drawn.
+        let tournament = |rng: &mut Pcg64| {
+            let (a, b) = (
+                rng.random_range(0..parents.len()),
+                rng.random_range(0..parents.len()),
+            );
+            let a_wins =
+                ranks[a] < ranks[b] || (ranks[a] == ranks[b] && crowding[a] >= crowding[b]);
+            if a_wins { a } else { b }
+        };
+        for _ in 0..s.nsga.population_size {
+            let a = tournament(&mut *breeding.rng);
+            let b = (breeding.rng.random_bool(s.nsga.crossover_probability))
+                .then(|| tournament(&mut *breeding.rng));
+            // The better ranked parent counts as the fitter in crossover.
+            let parent = |i: usize| (&parents[i].genome, -(ranks[i] as f64));
+            let child = breeding.child(parent(a), b.map(parent));
+            s.batch.push(child);
+        }
+        s.generation += 1;
+    }
+
+    fn generation(&self) -> u32 {
+        self.0.generation
+    }
+
+    fn champion(&self) -> Option<(&Genome, f64)> {
+        let f = &self.0.told.as_ref()?.fitness;
+        argmax(f).map(|i| (&self.0.batch[i], f[i]))
+    }
+
+    fn best_ever(&self) -> Option<&BestEver> {
+        self.0.best.as_ref()
+    }
+
+    fn stats(&self) -> GenerationStats {
+        let fitness = self.0.told.as_ref().map_or(&[][..], |t| &t.fitness);
+        GenerationStats::of_batch(self.0.generation, &self.0.batch, fitness)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::{prop, prop_assert, prop_assert_eq, proptest};
+    use proptest::strategy::Strategy as _;
+
+    #[test]
+    fn hand_computed_fronts_and_crowding() {
+        // Maximising both: A, B, C trade off; C and B dominate D; D dominates E.
+        let pts: [&[f64]; 5] = [
+            &[1.0, 5.0],
+            &[2.0, 4.0],
+            &[3.0, 3.0],
+            &[2.0, 2.0],
+            &[1.0, 1.0],
+        ];
+        let fronts = non_dominated_fronts(&pts);
+        assert_eq!(fronts, [vec![0, 1, 2], vec![3], vec![4]]);
+        let mut crowd = [0.0; 5];
+        crowding_distances(&fronts[0], &pts, &mut crowd);
+        // B: (3 − 1)/2 on the first objective + (5 − 3)/2 on the second.
+        assert_eq!(crowd[..3], [f64::INFINITY, 2.0, f64::INFINITY]);
+        let dup: [&[f64]; 2] = [&[1.0, 1.0], &[1.0, 1.0]];
+        assert_eq!(
+            non_dominated_fronts(&dup),
+            [vec![0, 1]],
+            "equals do not dominate"
+        );
+    }
+
+    #[test]
+    fn objectives_read_fitness_and_metrics_in_their_sense() {
+        let e = Evaluation {
+            fitness: 2.0,
+            metrics: vec![5.0, f64::NAN],
+            behaviour: vec![],
+        };
+        let of = |measure, maximise| Objective { measure, maximise }.of(&e);
+        assert_eq!(of(Measure::Fitness, true), Some(2.0));
+        assert_eq!(of(Measure::Metric(0), false), Some(-5.0));
+        assert_eq!(
+            of(Measure::Metric(1), true),
+            Some(f64::MIN),
+            "non-finite is the worst"
+        );
+        assert_eq!(of(Measure::Metric(2), true), None);
+    }
+
+    #[test]
+    fn selection_keeps_whole_fronts_then_the_least_crowded() {
+        let spec = GenomeSpec::plain(2, 1);
+        let nsga = Nsga2Params {
+            population_size: 4,
+            objectives: vec![
+                Objective {
+                    measure: Measure::Fitness,
+                    maximise: true
+                };
+                2
+            ],
+            crossover_probability: 0.5,
+        };
+        let mut es = Nsga2::new(NeatParams::plain_neat(), spec, nsga, 9).unwrap();
+        // Generation 0 told by hand: four genomes, fronts {0, 1, 3} and {2}.
+        let objectives = vec![
+            vec![0.0, 4.0],
+            vec![2.0, 2.0],
+            vec![1.0, 1.0],
+            vec![4.0, 0.0],
+        ];
+        let told = Told {
+            objectives,
+            fitness: vec![0.0; 4],
+        };
+        let genomes = es.0.batch.clone();
+        let (ranks, crowding) = es.select(told);
+        assert_eq!(ranks, [0, 0, 0, 1]);
+        assert_eq!(crowding, [f64::INFINITY, 2.0, f64::INFINITY, f64::INFINITY]);
+        let kept: Vec<&Genome> = es.0.parents.iter().map(|p| &p.genome).collect();
+        assert_eq!(kept, [&genomes[0], &genomes[1], &genomes[3], &genomes[2]]);
+
+        // Now 8 compete for 4: front 0 has five members and loses its most crowded.
+        es.0.batch = genomes;
+        let objectives = vec![
+            vec![1.0, 3.0],
+            vec![3.5, 0.5],
+            vec![0.0, 0.0],
+            vec![0.0, 0.0],
+        ];
+        let (ranks, crowding) = es.select(Told {
+            objectives,
+            fitness: vec![0.0; 4],
+        });
+        // Pool: parents (0,4) (2,2) (4,0) (1,1), children (1,3) (3.5,0.5) (0,0) (0,0).
+        // Front 0 = (0,4) (2,2) (4,0) (1,3) (3.5,0.5); crowding ∞, 1.25, ∞, 1, 1.
+        assert_eq!(ranks, [0; 4]);
+        assert_eq!(crowding, [f64::INFINITY, f64::INFINITY, 1.25, 1.0]);
+        let kept: Vec<&[f64]> = es.0.parents.iter().map(|p| &p.objectives[..]).collect();
+        assert_eq!(
+            kept,
+            [&[0.0, 4.0][..], &[4.0, 0.0], &[2.0, 2.0], &[1.0, 3.0]]
+        );
+    }
+
+    fn points() -> impl proptest::strategy::Strategy<Value = Vec<Vec<f64>>> {
+        // Few distinct values (−0 among them) make ties and duplicates common.
+        let value = (0i32..6).prop_map(|v| if v == 5 { -0.0 } else { f64::from(v) });
+        let point = prop::collection::vec(value, 3);
+        prop::collection::vec(point, 0..40)
+    }
+
+    proptest! {
+        #[test]
+        fn fronts_partition_and_each_is_dominated_only_by_earlier_ones(pts in points()) {
+            let objectives: Vec<&[f64]> = pts.iter().map(|p| &p[..]).collect();
+            let fronts = non_dominated_fronts(&objectives);
+            let mut rank = vec![usize::MAX; pts.len()];
+            for (r, front) in fronts.iter().enumerate() {
+                for &i in front {
+                    prop_assert_eq!(rank[i], usize::MAX, "in two fronts");
+                    rank[i] = r;
+                }
+            }
+            prop_assert!(rank.iter().all(|&r| r != usize::MAX), "not in any front");
+            for i in 0..pts.len() {
+                for j in 0..pts.len() {
+                    if dominates(objectives[i], objectives[j]) {
+                        prop_assert!(rank[i] < rank[j]);
+                    }
+                }
+                if rank[i] > 0 {
+                    let by_previous = fronts[rank[i] - 1]
+                        .iter()
+                        .any(|&j| dominates(objectives[j], objectives[i]));
+                    prop_assert!(by_previous, "front {} member not dominated by front {}", rank[i], rank[i] - 1);
+                }
+            }
+        }
+
+        #[test]
+        fn bisected_fronts_equal_debs_fast_non_dominated_sort(pts in points()) {
+            let objectives: Vec<&[f64]> = pts.iter().map(|p| &p[..]).collect();
+            prop_assert_eq!(non_dominated_fronts(&objectives), fast_non_dominated_sort(&objectives));
+        }
+
+        #[test]
+        fn crowding_gives_extremes_infinity_and_others_at_most_one_per_objective(pts in points()) {
+            let objectives: Vec<&[f64]> = pts.iter().map(|p| &p[..]).collect();
+            let mut out = vec![-1.0; pts.len()];
+            for front in non_dominated_fronts(&objectives) {
+                crowding_distances(&front, &objectives, &mut out);
+                for m in [0, 1, 2] {
+                    let value = |i: usize| pts[i][m];
+                    let max = front.iter().map(|&i| value(i)).fold(f64::MIN, f64::max);
+                    let min = front.iter().map(|&i| value(i)).fold(f64::MAX, f64::min);
+                    for extreme in [min, max] {
+                        let at = front.iter().filter(|&&i| value(i) == extreme);
+                        prop_assert!(at.clone().any(|&i| out[i].is_infinite()));
+                    }
+                }
+                for &i in &front {
+                    prop_assert!(out[i].is_infinite() || (0.0..=3.0).contains(&out[i]));
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn checkpoints_that_contradict_themselves_are_refused() {
+        let nsga = Nsga2Params {
+            population_size: 6,
+            objectives: vec![
+                Objective {
+                    measure: Measure::Metric(0),
+                    maximise: false
+                };
+                2
+            ],
+            crossover_probability: 0.5,
+        };
+        let spec = GenomeSpec::plain(2, 1);
+        let mut es = Nsga2::new(NeatParams::plain_neat(), spec, nsga, 4).unwrap();
+        for _ in 0..2 {
+            let n = es.ask().genomes.len();
+            let told = |i: usize| Evaluation {
+                metrics: vec![i as f64],
+                ..Evaluation::fitness(1.0)
+            };
+            es.tell(&(0..n).map(told).collect::<Vec<_>>()).unwrap();
+        }
+        let reread = |edit: &dyn Fn(&mut State)| {
+            let mut state = es.0.clone();
+            edit(&mut state);
+            serde_json::from_str::<Nsga2>(&serde_json::to_string(&state).unwrap())
+        };
+        assert_eq!(reread(&|_| ()).unwrap(), es);
+        assert!(
+            reread(&|s| {
+                s.parents[0].objectives.pop();
+            })
+            .is_err()
+        );
+        let fewer = |s: &mut State| drop(s.told.as_mut().unwrap().objectives.pop());
+        assert!(reread(&fewer).is_err(), "objectives for fewer children");
+        assert!(reread(&|s| s.nsga.objectives.clear()).is_err());
+        let crowded = |s: &mut State| s.parents.extend(s.parents.clone());
+        assert!(
+            reread(&crowded).is_err(),
+            "more parents than the population size"
+        );
+    }
+}
