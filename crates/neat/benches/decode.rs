@@ -7,11 +7,16 @@
 //!   the HyperNEAT paper's largest), target ≤ 1 s on one core; with
 //!   `decode_genome` (batched) and, for comparison, generic `decode`.
 //! * `decode_paper`: the paper's 3×5 → 3×3 substrate (done once per genome).
+//! * `es_decode_paper` / `es_decode_paper_reference`: ES-HyperNEAT at the
+//!   paper's settings (`EsParams::default()`: initial and maximum depth 3,
+//!   iteration level 1) from 15 inputs to 9 outputs, the batched decode and
+//!   the one-query-at-a-time reference (done once per genome).
 //! * `controller_step_paper`: one update of the 3×5 → 3×3 controller (done
 //!   ~200 M times in the default run: 100 genomes × 400 generations × 5 robots
 //!   × 1000 steps).
 
 use divan::Bencher;
+use vivae_neat::hyperneat::es::{EsLayout, EsParams, decode_es, decode_es_genome};
 use vivae_neat::hyperneat::{
     HyperParams, InputSheet, SubstrateController, SubstrateLayout, decode, decode_genome,
 };
@@ -157,6 +162,37 @@ fn decode_paper(bencher: Bencher) {
     let layout = layout((3, 5), (3, 3));
     let g = genome();
     bencher.bench_local(|| decode_genome(&g, &layout, &HyperParams::default()).unwrap());
+}
+
+/// The ES-HyperNEAT substrate of the benchmarks: as many inputs as the
+/// paper's 3×5 sensor sheet along the bottom edge, as many outputs as its
+/// 3×3 neuron sheet along the top.
+fn es_layout() -> EsLayout {
+    let row = |n: usize, y: f64| -> Vec<[f64; 2]> {
+        (0..n)
+            .map(|i| [-1.0 + 2.0 * i as f64 / (n - 1) as f64, y])
+            .collect()
+    };
+    EsLayout {
+        inputs: row(15, -1.0),
+        outputs: row(9, 1.0),
+        weight_output: 0,
+        bias_output: Some(1),
+        leo_output: None,
+    }
+}
+
+#[divan::bench]
+fn es_decode_paper(bencher: Bencher) {
+    let (g, layout) = (genome(), es_layout());
+    bencher.bench_local(|| decode_es_genome(&g, &layout, &EsParams::default()).unwrap());
+}
+
+#[divan::bench]
+fn es_decode_paper_reference(bencher: Bencher) {
+    let layout = es_layout();
+    let mut net = cppn();
+    bencher.bench_local(|| decode_es(&mut net, &layout, &EsParams::default()).unwrap());
 }
 
 /// One CPPN query (the unit of decoding cost).

@@ -23,8 +23,12 @@ mod batch;
 mod controller;
 mod decode;
 mod error;
+pub mod es;
+mod layered;
 mod layout;
+mod leo;
 mod params;
+mod sparse;
 #[cfg(test)]
 mod test_util;
 
@@ -32,5 +36,8 @@ pub use batch::BatchCppn;
 pub use controller::{BatchState, Link, LinkSource, SubstrateController};
 pub use decode::{decode, decode_genome};
 pub use error::HyperError;
+pub use layered::{LayeredLayout, decode_layered};
 pub use layout::{CPPN_INPUTS, InputSheet, SubstrateLayout};
+pub use leo::{express_link, leo_seeded_genome};
 pub use params::HyperParams;
+pub use sparse::{SparseLink, SparseNetwork};

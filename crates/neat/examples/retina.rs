@@ -1,0 +1,273 @@
+//! The left & right retina problem (Verbancsics & Stanley 2011; Risi &
+//! Stanley 2012), a benchmark for modular networks.
+//!
+//! `cargo run --release -p vivae-neat --example retina -- --mode leo --runs 20 --seed 1`
+//!
+//! A 4×2 retina: the left 2×2 half and the right 2×2 half each show one of
+//! 16 patterns, 8 of which are "objects" (the sets below, as in the
+//! `gymnasium-retinatask` package). Output 0 says whether the left half shows
+//! an object, output 1 the right half, on all 256 images. Fitness
+//! `1000/(1 + E²)`, E the summed |output − label| over both outputs and all
+//! images (outputs mapped from (−1, 1) to (0, 1)); solved when every output
+//! is on the right side of 0.5. Evaluations are counted up to and including
+//! the first solving genome. Besides the summary, the line gives the mean
+//! over runs of the best share of right answers and of the hidden nodes of
+//! the substrate network that first reached it.
+//!
+//! Our substrate is two-dimensional (the CPPN sees `(x1, y1, x2, y2)`), so the
+//! retina is laid out along a line: the left half's four pixels at x < 0,
+//! the right half's at x > 0, all at y = −1; outputs at (∓0.5, 1).
+//! `--mode`:
+//! * `hyperneat`: plain HyperNEAT, layers 8 → 8 → 4 → 2 at y = −1, −⅓, ⅓, 1,
+//!   weight threshold 0.2;
+//! * `leo`: the same with a link expression output (LEO), no seed;
+//! * `leo-seed`: LEO with the Gaussian locality seed along x;
+//! * `es`: ES-HyperNEAT (paper defaults) from the 8 inputs to the 2 outputs;
+//! * `es-leo`: ES-HyperNEAT with LEO and the locality seed.
+
+mod common;
+use common::{RunResult, override_param, summarize};
+
+use rand::SeedableRng;
+use vivae_neat::hyperneat::es::{EsLayout, EsParams, decode_es_genome};
+use vivae_neat::hyperneat::{
+    HyperParams, LayeredLayout, SparseNetwork, decode_layered, leo_seeded_genome,
+};
+use vivae_neat::innovation::InnovationTracker;
+use vivae_neat::{FeedForwardNetwork, Genome, GenomeSpec, NeatParams, Network, Population};
+
+/// Left-half objects (pixels as bits 3..0: top-left, top-right, bottom-left, bottom-right).
+const LEFT_OBJECTS: [u8; 8] = [
+    0b1000, 0b0100, 0b1100, 0b1111, 0b1011, 0b0111, 0b1110, 0b1101,
+];
+/// Right-half objects, same bit order.
+const RIGHT_OBJECTS: [u8; 8] = [
+    0b1011, 0b0111, 0b1110, 0b1101, 0b0010, 0b0001, 0b0011, 0b1111,
+];
+
+#[derive(Clone, Copy, PartialEq)]
+enum Mode {
+    HyperNeat,
+    Leo,
+    LeoSeed,
+    Es,
+    EsLeo,
+}
+
+impl Mode {
+    fn parse(s: &str) -> Mode {
+        match s {
+            "hyperneat" => Mode::HyperNeat,
+            "leo" => Mode::Leo,
+            "leo-seed" => Mode::LeoSeed,
+            "es" => Mode::Es,
+            "es-leo" => Mode::EsLeo,
+            other => panic!("unknown mode {other} (hyperneat, leo, leo-seed, es, es-leo)"),
+        }
+    }
+    fn name(self) -> &'static str {
+        match self {
+            Mode::HyperNeat => "retina-hyperneat",
+            Mode::Leo => "retina-leo",
+            Mode::LeoSeed => "retina-leo-seed",
+            Mode::Es => "retina-es",
+            Mode::EsLeo => "retina-es-leo",
+        }
+    }
+    fn leo(self) -> bool {
+        matches!(self, Mode::Leo | Mode::LeoSeed | Mode::EsLeo)
+    }
+    fn seeded(self) -> bool {
+        matches!(self, Mode::LeoSeed | Mode::EsLeo)
+    }
+}
+
+/// The 256 images as inputs (left half first along x) and their labels.
+fn images() -> Vec<([f64; 8], [bool; 2])> {
+    (0..=255u8)
+        .map(|image| {
+            let (left, right) = (image >> 4, image & 0xf);
+            let mut x = [0.0; 8];
+            for bit in 0..4 {
+                x[3 - bit] = f64::from((left >> bit) & 1);
+                x[7 - bit] = f64::from((right >> bit) & 1);
+            }
+            (
+                x,
+                [LEFT_OBJECTS.contains(&left), RIGHT_OBJECTS.contains(&right)],
+            )
+        })
+        .collect()
+}
+
+/// Input positions: eight along y = −1, the left half at x < 0.
+fn input_row() -> Vec<[f64; 2]> {
+    (0..8)
+        .map(|i| [-1.0 + 2.0 * f64::from(i) / 7.0, -1.0])
+        .collect()
+}
+
+const OUTPUTS: [[f64; 2]; 2] = [[-0.5, 1.0], [0.5, 1.0]];
+
+/// Builds the substrate network of `g` for `mode`.
+fn network(g: &Genome, mode: Mode, es: &EsParams) -> SparseNetwork {
+    let leo_output = mode.leo().then_some(2);
+    if matches!(mode, Mode::Es | Mode::EsLeo) {
+        let layout = EsLayout {
+            inputs: input_row(),
+            outputs: OUTPUTS.to_vec(),
+            weight_output: 0,
+            bias_output: Some(1),
+            leo_output,
+        };
+        return decode_es_genome(g, &layout, es).expect("valid ES layout");
+    }
+    let row = |n: usize, y: f64| -> Vec<[f64; 2]> {
+        (0..n)
+            .map(|i| [-1.0 + 2.0 * i as f64 / (n - 1) as f64, y])
+            .collect()
+    };
+    let layout = LayeredLayout {
+        layers: vec![
+            input_row(),
+            row(8, -1.0 / 3.0),
+            row(4, 1.0 / 3.0),
+            OUTPUTS.to_vec(),
+        ],
+        weight_output: 0,
+        bias_output: Some(1),
+        leo_output,
+    };
+    let mut cppn = FeedForwardNetwork::from_genome(g);
+    decode_layered(&mut cppn, &layout, &HyperParams::default()).expect("valid layered layout")
+}
+
+/// Fitness `1000/(1 + E²)` and how many of the 512 answers are right.
+fn evaluate(net: &mut SparseNetwork, images: &[([f64; 8], [bool; 2])]) -> (f64, usize) {
+    let mut error = 0.0;
+    let mut right = 0;
+    let mut out = [0.0; 2];
+    for (x, labels) in images {
+        net.reset();
+        net.activate(x, &mut out);
+        for (&y, &label) in out.iter().zip(labels) {
+            let a = (y + 1.0) / 2.0;
+            error += (a - f64::from(u8::from(label))).abs();
+            right += usize::from((a > 0.5) == label);
+        }
+    }
+    (1000.0 / (1.0 + error * error), right)
+}
+
+/// The generation-0 population: minimal CPPNs, or LEO-seeded ones.
+fn initial_population(params: &NeatParams, mode: Mode, seed: u64) -> Population {
+    let spec = GenomeSpec {
+        outputs: if mode.leo() { 3 } else { 2 },
+        ..GenomeSpec::cppn()
+    };
+    if !mode.seeded() {
+        return Population::new(params.clone(), spec, seed).expect("valid parameters");
+    }
+    let mut rng = rand_pcg::Pcg64::seed_from_u64(seed ^ 0x5eed);
+    let mut tracker = InnovationTracker::new((spec.inputs + spec.outputs) as u32);
+    let genomes = (0..params.population_size)
+        .map(|_| leo_seeded_genome(&spec, params, &mut tracker, &mut rng, 2))
+        .collect();
+    Population::from_genomes(params.clone(), spec, genomes, seed).expect("valid seeded genomes")
+}
+
+/// What a run leaves besides the summary: the best number of right answers
+/// (of 512) and the hidden nodes of the substrate that first gave it.
+struct Extra {
+    best_right: usize,
+    substrate_hidden: usize,
+}
+
+/// One run: evaluations to the first solver, its CPPN's hidden nodes, and [`Extra`].
+fn run(params: &NeatParams, mode: Mode, es: &EsParams, seed: u64, gens: u32) -> (RunResult, Extra) {
+    let images = images();
+    let mut pop = initial_population(params, mode, seed);
+    let (mut best_right, mut best_hidden) = (0, 0);
+    for _ in 0..gens {
+        let mut fitness = Vec::with_capacity(pop.genomes().len());
+        let mut first = None;
+        for (i, g) in pop.genomes().iter().enumerate() {
+            let mut net = network(g, mode, es);
+            let (f, right) = evaluate(&mut net, &images);
+            fitness.push(f);
+            if right > best_right {
+                (best_right, best_hidden) = (right, net.num_hidden());
+            }
+            if right == 512 && first.is_none() {
+                first = Some(i);
+            }
+        }
+        pop.set_fitnesses(fitness).expect("one fitness per genome");
+        if let Some(i) = first {
+            let evals = pop.generation() as usize * pop.params().population_size + i + 1;
+            let hidden = pop.genomes()[i].num_hidden();
+            let extra = Extra {
+                best_right,
+                substrate_hidden: best_hidden,
+            };
+            return (
+                RunResult {
+                    evals: Some(evals),
+                    hidden,
+                },
+                extra,
+            );
+        }
+        pop.next_generation();
+    }
+    let extra = Extra {
+        best_right,
+        substrate_hidden: best_hidden,
+    };
+    (
+        RunResult {
+            evals: None,
+            hidden: 0,
+        },
+        extra,
+    )
+}
+
+fn main() {
+    let (mut runs, mut seed, mut gens) = (20usize, 1u64, 500u32);
+    let mut mode = Mode::HyperNeat;
+    let mut params = NeatParams::paper_cppn();
+    let es = EsParams::default();
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let mut it = args.iter();
+    while let Some(a) = it.next() {
+        let mut value = |name: &str| -> u64 {
+            it.next()
+                .and_then(|v| v.parse().ok())
+                .unwrap_or_else(|| panic!("{name} needs a number"))
+        };
+        match a.as_str() {
+            "--runs" => runs = value("--runs") as usize,
+            "--seed" => seed = value("--seed"),
+            "--max-generations" => gens = value("--max-generations") as u32,
+            "--mode" => mode = Mode::parse(it.next().expect("--mode needs a name")),
+            "--set" => params = override_param(&params, it.next().expect("--set field=value")),
+            other => panic!(
+                "unknown argument {other} (use --mode M --runs N --seed S --max-generations G --set field=value)"
+            ),
+        }
+    }
+    let (mut substrate_hidden, mut best_right) = (Vec::new(), Vec::new());
+    let line = summarize(mode.name(), runs, seed, |seed| {
+        let (result, extra) = run(&params, mode, &es, seed, gens);
+        substrate_hidden.push(extra.substrate_hidden as f64);
+        best_right.push(extra.best_right as f64 / 512.0);
+        result
+    });
+    let mean = |v: &[f64]| vivae_neat::stats::mean(v).unwrap_or(0.0);
+    println!(
+        "{line} mean_best_accuracy={:.3} mean_substrate_hidden={:.1}",
+        mean(&best_right),
+        mean(&substrate_hidden)
+    );
+}
