@@ -12,6 +12,8 @@ mod drive;
 mod errors;
 mod evo;
 mod lab;
+// The program's portable C math symbols, shared rather than copied.
+#[path = "../../crates/vivae/src/portable_libm.rs"]
 mod portable_libm;
 mod settings;
 
@@ -28,7 +30,14 @@ fn _vivae(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(lab::load_genome, m)?)?;
     m.add_function(wrap_pyfunction!(lab::scenarios, m)?)?;
     m.add_function(wrap_pyfunction!(lab::default_config, m)?)?;
-    m.add_function(wrap_pyfunction!(portable_libm::math_is_portable, m)?)?;
+    m.add_function(wrap_pyfunction!(math_is_portable, m)?)?;
     m.add("OVERRIDES", settings::OVERRIDES.to_vec())?;
     Ok(())
+}
+
+/// Whether std's math (what the SVG stack calls) gives the portable `libm`
+/// crate's bits inside this module, over a sweep of arguments.
+#[pyfunction]
+fn math_is_portable() -> bool {
+    portable_libm::std_math_is_portable()
 }

@@ -1,4 +1,5 @@
-//! The program's C math symbols, routed to the portable `libm` crate.
+//! The C math symbols, routed to the portable `libm` crate: the `vivae`
+//! program's, and the Python module's (python/src/lib.rs includes this file).
 //!
 //! Our own code calls portable functions (`vivae_neat::math`, `libm`)
 //! directly, but the SVG stack we load scenarios with (usvg, tiny-skia,
@@ -12,7 +13,9 @@
 //! makes every caller in the process — ours and the dependencies' — use the
 //! same portable code. glibc's internal calls use private aliases and are
 //! unaffected. Each function has exactly the C signature of `<math.h>`.
-//! `same_bits_on_older_cpu_code_paths` tests the effect.
+//! `same_bits_on_older_cpu_code_paths` tests the effect. A shared object
+//! (the Python module) gets the same precedence only when linked with
+//! `-Bsymbolic-functions` (python/build.rs).
 
 #![allow(unsafe_code)]
 
@@ -73,19 +76,32 @@ pub unsafe extern "C" fn sincosf(x: f32, s: *mut f32, c: *mut f32) {
     }
 }
 
+/// Whether std's math (what the SVG stack calls) gives the portable `libm`
+/// crate's bits in this binary, over a sweep of arguments.
+// The program calls it only from its tests; the Python module exports it.
+#[allow(dead_code)]
+pub fn std_math_is_portable() -> bool {
+    // std's f64::sin compiles to a call of the C symbol `sin`, which this
+    // binary defines; the two must agree to the bit.
+    let mut x = -20.0f64;
+    while x < 20.0 {
+        let y = std::hint::black_box(x);
+        let same = y.sin().to_bits() == libm::sin(y).to_bits()
+            && y.atan2(0.3).to_bits() == libm::atan2(y, 0.3).to_bits()
+            && y.exp().to_bits() == libm::exp(y).to_bits()
+            && (y as f32).cos().to_bits() == libm::cosf(y as f32).to_bits();
+        if !same {
+            return false;
+        }
+        x += 0.173;
+    }
+    true
+}
+
 #[cfg(test)]
 mod tests {
     #[test]
     fn std_math_resolves_to_the_portable_functions() {
-        // std's f64::sin compiles to a call of the C symbol `sin`, which this
-        // executable defines; the two must agree to the bit.
-        let mut x = -20.0f64;
-        while x < 20.0 {
-            let y = std::hint::black_box(x);
-            assert_eq!(y.sin().to_bits(), libm::sin(y).to_bits());
-            assert_eq!(y.atan2(0.3).to_bits(), libm::atan2(y, 0.3).to_bits());
-            assert_eq!((y as f32).cos().to_bits(), libm::cosf(y as f32).to_bits());
-            x += 0.173;
-        }
+        assert!(super::std_math_is_portable());
     }
 }
