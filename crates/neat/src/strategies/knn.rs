@@ -247,7 +247,8 @@ impl Nearest {
     pub fn new(k: usize) -> Nearest {
         Nearest {
             k,
-            d2: Vec::with_capacity(k),
+            // Grows as needed beyond this: a huge k allocates only what is found.
+            d2: Vec::with_capacity(k.min(1024)),
         }
     }
 

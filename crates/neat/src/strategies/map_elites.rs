@@ -20,6 +20,11 @@ use crate::innovation::InnovationTracker;
 use crate::params::NeatParams;
 use crate::population::{BestEver, GenerationStats};
 
+/// Most cells an archive may have (each holds an optional genome).
+pub const MAX_CELLS: usize = 1_000_000;
+/// Most samples a CVT may be built from.
+pub const MAX_SAMPLES: usize = 10_000_000;
+
 /// How the behaviour space is cut into cells.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -50,12 +55,13 @@ impl Cells {
                 "one count ≥ 1 per dimension",
             ));
         }
-        if bins
-            .iter()
-            .try_fold(1usize, |n, &b| n.checked_mul(b))
-            .is_none()
-        {
-            return Err(invalid("bins", format!("{bins:?}"), "too many cells"));
+        let cells = bins.iter().try_fold(1usize, |n, &b| n.checked_mul(b));
+        if cells.is_none_or(|n| n > MAX_CELLS) {
+            return Err(invalid(
+                "bins",
+                format!("{bins:?}"),
+                "more than 1,000,000 cells",
+            ));
         }
         Ok(Cells::Grid { lower, upper, bins })
     }
@@ -74,9 +80,10 @@ impl Cells {
         seed: u64,
     ) -> Result<Cells, NeatError> {
         check_bounds(lower, upper)?;
-        if cells == 0 || samples < cells {
+        if cells == 0 || samples < cells || cells > MAX_CELLS || samples > MAX_SAMPLES {
             let value = format!("{cells} cells from {samples} samples");
-            return Err(invalid("cells", value, "need 1 ≤ cells ≤ samples"));
+            let reason = "need 1 ≤ cells ≤ samples, at most 1,000,000 cells and 10,000,000 samples";
+            return Err(invalid("cells", value, reason));
         }
         let dims = lower.len();
         let mut rng = Pcg64::seed_from_u64(seed);
@@ -509,6 +516,9 @@ mod tests {
         assert_eq!(cells.cell_of(&[f64::NAN, f64::INFINITY]), 1);
         assert!(Cells::grid(vec![0.0], vec![0.0], vec![3]).is_err());
         assert!(Cells::grid(vec![0.0], vec![1.0], vec![0]).is_err());
+        let huge = Cells::grid(vec![0.0; 2], vec![1.0; 2], vec![1_000_000, 1_000_000]);
+        assert!(huge.is_err(), "refused, not allocated");
+        assert!(Cells::cvt(&[0.0], &[1.0], 10, usize::MAX, 1, 0).is_err());
     }
 
     #[test]
@@ -595,7 +605,10 @@ mod tests {
         };
         assert!(reread(&other_dimension).is_err());
         assert!(reread(&|s| s.batch.clear()).is_err(), "an empty batch");
-        assert!(reread(&|s| s.archive.fill(None)).is_err(), "told, yet no elite");
+        assert!(
+            reread(&|s| s.archive.fill(None)).is_err(),
+            "told, yet no elite"
+        );
         assert!(reread(&|s| s.map.batch_size = 0).is_err());
         // A CVT's centroids are checked when read, too.
         let mut json: String = serde_json::to_string(&me).unwrap();
