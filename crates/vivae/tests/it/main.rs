@@ -51,6 +51,7 @@ mod sigterm_checkpoints_and_exits_130;
 mod special_run_files_are_refused_not_waited_on;
 mod viewer_and_report_in_a_real_browser;
 mod viewer_follows_a_running_evolution;
+mod viewer_keeps_fast_trails_and_says_what_drives;
 mod viewer_refuses_foreign_host_names;
 mod viewer_refuses_run_file_links_and_special_files;
 mod viewer_serves_only_its_own_files;
