@@ -244,6 +244,51 @@ pub(crate) fn network_options(generation: u32, fitness: f64, amplitude: f64) -> 
     }
 }
 
+/// The report's episodes: the champion's (on each training map, for several),
+/// then the best of the figure generations on the first map; with the maps'
+/// scenes and names (none on one map).
+fn all_episodes(
+    dir: &Path,
+    config: &vivae_lab::config::Config,
+    experiment: &Experiment,
+    champion: &rundir::Champion,
+    best: &[rundir::GenerationBest],
+    reuse: &Reuse<'_>,
+) -> vivae_lab::Result<(Vec<EpisodeData>, Vec<SceneData>, Vec<String>)> {
+    let recorded = |genome: &Genome| {
+        reuse
+            .episodes
+            .iter()
+            .find(|(g, _)| *g == genome)
+            .map(|(_, e)| *e)
+    };
+    let (mut episodes, scenes, maps) = map_episodes(dir, config, champion, reuse)?;
+    let on_first = if maps.is_empty() {
+        String::new()
+    } else {
+        format!(" on {}", maps[0])
+    };
+    if maps.is_empty() {
+        episodes.push(episode(
+            experiment,
+            &champion.genome,
+            (format!("Champion (generation {})", champion.generation), 0),
+            recorded(&champion.genome),
+        )?);
+    }
+    for g in vivae_lab::evolve::FIGURE_GENERATIONS {
+        if let Some(b) = best.iter().find(|b| b.generation == g) {
+            episodes.push(episode(
+                experiment,
+                &b.genome,
+                (format!("Best of generation {g}{on_first}"), 0),
+                recorded(&b.genome),
+            )?);
+        }
+    }
+    Ok((episodes, scenes, maps))
+}
+
 /// [`build`], reusing what the end of a run computed already.
 pub fn build_reusing(dir: &Path, reuse: &Reuse<'_>) -> vivae_lab::Result<String> {
     let config = read_config(&dir.join(files::CONFIG))?;
@@ -263,37 +308,8 @@ pub fn build_reusing(dir: &Path, reuse: &Reuse<'_>) -> vivae_lab::Result<String>
     }
     let fitness = rundir::read_population_csv(&dir.join(files::POPULATION))?;
 
-    let recorded = |genome: &Genome| {
-        reuse
-            .episodes
-            .iter()
-            .find(|(g, _)| *g == genome)
-            .map(|(_, e)| *e)
-    };
-    let (mut episodes, scenes, maps) = map_episodes(dir, &config, &champion, reuse)?;
-    let on_first = if maps.is_empty() {
-        String::new()
-    } else {
-        format!(" on {}", maps[0])
-    };
-    if maps.is_empty() {
-        episodes.push(episode(
-            &experiment,
-            &champion.genome,
-            (format!("Champion (generation {})", champion.generation), 0),
-            recorded(&champion.genome),
-        )?);
-    }
-    for g in vivae_lab::evolve::FIGURE_GENERATIONS {
-        if let Some(b) = best.iter().find(|b| b.generation == g) {
-            episodes.push(episode(
-                &experiment,
-                &b.genome,
-                (format!("Best of generation {g}{on_first}"), 0),
-                recorded(&b.genome),
-            )?);
-        }
-    }
+    let (episodes, scenes, maps) =
+        all_episodes(dir, &config, &experiment, &champion, &best, reuse)?;
     let convergence_svg = convergence::render_svg(&fitness, &ConvergenceOptions::default())
         .map_err(vivae_lab::Error::from)?;
     let network_svg = match &reuse.network_svg {

@@ -778,6 +778,43 @@ mod tests {
     }
 
     #[test]
+    fn a_frame_carries_the_positions_since_the_last_one() {
+        with_sim(|sim, source, snap| {
+            sim.frame_msg();
+            sim.handle(r#"{"type":"drive","robot":0}"#, source, snap)
+                .unwrap();
+            sim.handle(
+                r#"{"type":"keys","up":true,"down":false,"left":false,"right":false}"#,
+                source,
+                snap,
+            )
+            .unwrap();
+            let path = |sim: &mut Sim| -> Vec<f64> {
+                let frame: serde_json::Value = serde_json::from_str(&sim.frame_msg()).unwrap();
+                serde_json::from_value(frame["robots"][0]["p"].clone()).unwrap()
+            };
+            sim.handle(r#"{"type":"step","n":10}"#, source, snap)
+                .unwrap();
+            // Nine positions before the one the frame ends on, in order.
+            let p = path(sim);
+            assert_eq!(p.len(), 18, "{p:?}");
+            let x = sim.world.robots()[0].pos.x;
+            assert!(p.chunks(2).all(|q| q[0] < x), "{p:?} then {x}");
+            assert!(p.windows(4).step_by(2).all(|w| w[0] < w[2]), "{p:?}");
+            // Many steps: at most TRACE_POINTS of them, the last close to the end.
+            sim.handle(r#"{"type":"step","n":200}"#, source, snap)
+                .unwrap();
+            let p = path(sim);
+            assert!(
+                p.len() <= 2 * TRACE_POINTS && p.len() >= TRACE_POINTS,
+                "{}",
+                p.len()
+            );
+            assert_eq!(path(sim), Vec::<f64>::new());
+        });
+    }
+
+    #[test]
     fn keyboard_driving_moves_the_robot_forward() {
         with_sim(|sim, source, snap| {
             let start = sim.world.robots()[0].pos;
