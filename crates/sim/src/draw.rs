@@ -7,6 +7,7 @@ use std::sync::{Arc, OnceLock};
 use glam::DVec2;
 
 use crate::geometry::{FillRule, fmt_num};
+use crate::scenario::SurfaceKind;
 use crate::sensors::{DistanceSensors, Sensor, SurfaceSensors};
 pub use crate::style::robot_color;
 use crate::style::{surface_color, xml_escape};
@@ -15,8 +16,11 @@ use crate::world::World;
 /// DejaVu Sans (see `assets/LICENSE-DejaVu.txt`), the font of every drawing.
 pub static FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
 
-/// Height of the title band in px.
-const TITLE_BAND: f64 = 28.0;
+/// Height of one line of the title band in px.
+const TITLE_LINE: f64 = 20.0;
+/// Width of a title glyph in px: DejaVu Sans at 16 px is at most about this
+/// wide on average (a title is wrapped to fit the picture's width).
+const TITLE_GLYPH: f64 = 9.6;
 /// Height of one line of the legend band in px.
 const LEGEND_LINE: f64 = 20.0;
 /// Fill of fixed obstacles: a slate grey no robot colour resembles.
@@ -164,6 +168,11 @@ fn legend_items(world: &World, opts: &DrawOptions) -> Vec<LegendItem> {
     if !sc.pucks.is_empty() {
         items.push(LegendItem::new(disc(PUCK_FILL, "#000000"), "puck"));
     }
+    for kind in [SurfaceKind::Sand, SurfaceKind::Water] {
+        if sc.background() == kind || sc.surfaces().iter().any(|s| s.kind == kind) {
+            items.push(LegendItem::new(block(surface_color(kind)), kind.name()));
+        }
+    }
     if !sc.marks.is_empty() {
         items.push(LegendItem::new(
             r##"<rect x="-5" y="-5" width="10" height="10" fill="none" stroke="#ff00ff" stroke-width="1.5"/>"##.to_string(),
@@ -188,26 +197,60 @@ fn legend_layout(items: &[LegendItem], width: f64) -> (Vec<(f64, usize)>, usize)
     (places, if items.is_empty() { 0 } else { line + 1 })
 }
 
+/// `title` in lines of at most `width` px: words kept whole, but a word
+/// wider than a line alone (a long path) cut where the line ends.
+fn wrap_title(title: &str, width: f64) -> Vec<String> {
+    let most = ((width - 16.0) / TITLE_GLYPH).floor().max(8.0) as usize;
+    let mut pieces: Vec<String> = Vec::new();
+    for word in title.split(' ') {
+        let chars: Vec<char> = word.chars().collect();
+        pieces.extend(chars.chunks(most).map(|c| c.iter().collect::<String>()));
+        if chars.is_empty() {
+            pieces.push(String::new());
+        }
+    }
+    let mut lines: Vec<String> = Vec::new();
+    let mut line = String::new();
+    for piece in pieces {
+        let fits = line.chars().count() + 1 + piece.chars().count() <= most;
+        if !line.is_empty() && !fits {
+            lines.push(std::mem::take(&mut line));
+        }
+        if !line.is_empty() {
+            line.push(' ');
+        }
+        line.push_str(&piece);
+    }
+    lines.push(line);
+    lines
+}
+
 /// The world as an SVG picture (not a loadable scenario: see [`World::to_svg`]).
+///
+/// A picture is at least as wide as its widest legend entry (the arena is
+/// centred in it), its title wraps to that width, and nothing of the
+/// scenario outside the arena is drawn.
 pub fn render_svg(world: &World, opts: &DrawOptions) -> String {
     let sc = world.scenario();
-    let band = if opts.title.is_some() {
-        TITLE_BAND
-    } else {
-        0.0
-    };
     let items = if opts.legend {
         legend_items(world, opts)
     } else {
         Vec::new()
     };
-    let (places, lines) = legend_layout(&items, sc.width());
+    let widest = items.iter().map(|i| i.width() + 16.0).fold(0.0, f64::max);
+    let w = sc.width().max(widest);
+    let title = opts.title.as_deref().map(|t| wrap_title(t, w));
+    let band = title
+        .as_ref()
+        .map_or(0.0, |t| TITLE_LINE * t.len() as f64 + 8.0);
+    let (places, lines) = legend_layout(&items, w);
     let legend_band = if lines > 0 {
         LEGEND_LINE * lines as f64 + 6.0
     } else {
         0.0
     };
-    let (w, h) = (sc.width(), sc.height() + band + legend_band);
+    let h = sc.height() + band + legend_band;
+    let left = (w - sc.width()) / 2.0;
     let mut s = String::new();
     let _ = writeln!(
         s,
@@ -217,15 +260,33 @@ pub fn render_svg(world: &World, opts: &DrawOptions) -> String {
         fmt_num(w),
         fmt_num(h)
     );
-    if let Some(t) = &opts.title {
+    if let Some(lines) = &title {
         let _ = writeln!(
             s,
-            r##"<rect x="0" y="0" width="{}" height="{band}" fill="#ffffff"/><text x="8" y="20" font-family="DejaVu Sans" font-size="16" fill="#000000">{}</text>"##,
-            fmt_num(w),
-            xml_escape(t)
+            r##"<rect x="0" y="0" width="{}" height="{band}" fill="#ffffff"/>"##,
+            fmt_num(w)
         );
+        for (k, line) in lines.iter().enumerate() {
+            let _ = writeln!(
+                s,
+                r##"<text x="8" y="{}" font-family="DejaVu Sans" font-size="16" fill="#000000">{}</text>"##,
+                fmt_num(20.0 + TITLE_LINE * k as f64),
+                xml_escape(line)
+            );
+        }
     }
-    let _ = writeln!(s, r##"<g transform="translate(0 {band})">"##);
+    // Shapes a scenario has outside its arena stay out of the title and legend.
+    let _ = writeln!(
+        s,
+        r##"<defs><clipPath id="vivae-arena"><rect x="0" y="0" width="{}" height="{}"/></clipPath></defs>"##,
+        fmt_num(sc.width()),
+        fmt_num(sc.height())
+    );
+    let _ = writeln!(
+        s,
+        r##"<g transform="translate({} {band})"><g clip-path="url(#vivae-arena)">"##,
+        fmt_num(left)
+    );
     draw_arena(&mut s, world);
     if opts.trajectories
         && let Some(trajs) = world.trajectories()
@@ -240,7 +301,7 @@ pub fn render_svg(world: &World, opts: &DrawOptions) -> String {
         draw_surface_dots(&mut s, world, layout, r);
     }
     draw_robots(&mut s, world, r);
-    s.push_str("</g>\n");
+    s.push_str("</g></g>\n");
     if lines > 0 {
         let top = band + sc.height();
         draw_legend(&mut s, &items, &places, (top, w, legend_band));
@@ -547,5 +608,71 @@ mod pixel_cap_tests {
             (199..=201).contains(&w) && (99..=101).contains(&h),
             "{w} x {h}"
         );
+    }
+}
+
+#[cfg(test)]
+mod small_map_tests {
+    use super::*;
+    use crate::{LoadOptions, Scenario};
+
+    /// A 200×120 arena with a sand patch, a water patch, a road poking far
+    /// outside it (above, where the title goes) and one robot.
+    fn small_world() -> World {
+        let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" xmlns:inkscape="http://www.inkscape.org/namespaces/inkscape" width="200" height="120">
+<rect inkscape:label="Grass" x="0" y="0" width="200" height="120"/>
+<rect inkscape:label="Sand" x="10" y="10" width="40" height="30"/>
+<rect inkscape:label="Water" x="60" y="10" width="40" height="30"/>
+<rect inkscape:label="Road" x="120" y="-400" width="30" height="800"/>
+<rect inkscape:label="vivae.robots.FRNNControlledRobot" x="94" y="74" width="12" height="12"/>
+</svg>"#;
+        let sc = Scenario::from_svg(svg, "small.svg", &LoadOptions::default()).unwrap();
+        World::new(&sc, &Default::default()).unwrap()
+    }
+
+    #[test]
+    fn a_small_map_keeps_its_title_and_legend_whole_and_its_shapes_inside() {
+        let title = "Champion on training map small — fitness 2.345 px/step, 100.0% on road";
+        let opts = DrawOptions {
+            title: Some(title.into()),
+            ..DrawOptions::default()
+        };
+        let world = small_world();
+        let svg = render_svg(&world, &opts);
+        let items = legend_items(&world, &opts);
+        let widest = items.iter().map(LegendItem::width).fold(0.0, f64::max);
+        let width: f64 = svg
+            .split("width=\"")
+            .nth(1)
+            .and_then(|w| w.split('"').next())
+            .and_then(|w| w.parse().ok())
+            .unwrap();
+        assert!(width >= widest + 16.0, "{width} < {widest} + 16");
+        // Every word of the title is there, on lines that fit the picture.
+        let lines = wrap_title(title, width);
+        assert!(lines.len() > 1, "{lines:?}");
+        assert_eq!(lines.join(" "), title);
+        // A path longer than a line is cut, not lost.
+        let path = "/a/very/long/folder/name/that/goes/on/and/on/scenario2.svg";
+        let cut = wrap_title(path, 200.0);
+        assert!(cut.len() > 1, "{cut:?}");
+        assert_eq!(cut.concat(), path);
+        assert!(
+            cut.iter()
+                .all(|l| 8.0 + TITLE_GLYPH * l.chars().count() as f64 <= 200.0)
+        );
+        for l in &lines {
+            assert!(8.0 + TITLE_GLYPH * l.chars().count() as f64 <= width, "{l}");
+            assert!(svg.contains(&format!(">{}</text>", xml_escape(l))), "{l}");
+        }
+        // Sand and water have legend entries; the road is clipped to the arena.
+        let names: Vec<&str> = items.iter().map(|i| i.text.as_str()).collect();
+        assert!(
+            names.contains(&"sand") && names.contains(&"water"),
+            "{names:?}"
+        );
+        assert!(svg.contains(r#"<g clip-path="url(#vivae-arena)">"#));
+        let png = render_png(&world, &opts).unwrap();
+        assert!(png.len() > 100);
     }
 }

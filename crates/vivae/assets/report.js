@@ -8,7 +8,11 @@
   $("config").textContent = data.config;
   $("convergence").innerHTML = data.convergence_svg;
   $("network").innerHTML = data.network_svg;
-  $("scenario").innerHTML = data.scene.svg;
+  $("scenario").innerHTML = data.scenes[0].svg;
+  if (data.maps.length) {
+    $("scenarioheading").textContent = "Scenario (training map 1, " + data.maps[0] + ")";
+    $("fitnessnote").textContent = "(a genome's fitness: the mean over the " + data.maps.length + " training maps)";
+  }
 
   var gens = data.generations.map(function (r) { return r.generation; });
   // The colours of convergence.png's curves, so that the page and the figure agree.
@@ -55,10 +59,15 @@
     state.frames += 1;
   }
 
+  var shownScene = -1;
   function choose(k) {
     state.episode = k;
     state.t = 0;
     var ep = data.episodes[k];
+    if (ep.scene !== shownScene) {
+      shownScene = ep.scene;
+      scene.setScene(data.scenes[ep.scene], render);
+    }
     $("slider").max = steps();
     $("epinfo").textContent = ep.label + ": fitness " + ep.fitness.toFixed(3) + " px/step, " +
       (100 * ep.on_road).toFixed(1) + "% of robot-steps on road";
@@ -86,7 +95,41 @@
     }
     window.requestAnimationFrame(tick);
   }
-  scene.setScene(data.scene, function () {
+  // On several training maps: one panel per map, the champion's whole episode on it.
+  function mapPanels() {
+    var means = 0;
+    data.maps.forEach(function (name, k) {
+      var ep = data.episodes[k], sc = data.scenes[ep.scene];
+      means += ep.fitness;
+      var panel = document.createElement("div");
+      panel.className = "mappanel";
+      panel.id = "map-" + k;
+      var title = document.createElement("h3");
+      title.textContent = name + " (map " + (k + 1) + " of " + data.maps.length + ")";
+      var canvas = document.createElement("canvas");
+      var info = document.createElement("div");
+      info.className = "muted";
+      info.textContent = "fitness " + ep.fitness.toFixed(3) + " px/step, " + (100 * ep.on_road).toFixed(1) +
+        "% on road; click to animate";
+      panel.appendChild(title);
+      panel.appendChild(canvas);
+      panel.appendChild(info);
+      panel.onclick = function () { choose(k); $("drive").scrollIntoView(); };
+      $("mappanels").appendChild(panel);
+      var s = new VivaeScene.Scene(canvas);
+      s.setScene(sc, function () {
+        var last = ep.paths.map(function (p) { return { x: p[p.length - 2], y: p[p.length - 1], h: 0 }; });
+        s.draw(last, ep.paths, {});
+      });
+    });
+    $("mapnote").textContent = "Its fitness, " + (means / data.maps.length).toFixed(3) +
+      " px/step, is the mean of these " + data.maps.length + " maps' (files figures/trajectories-champion-<map>.png).";
+    $("mapsection").style.display = "";
+  }
+  if (data.maps.length) { mapPanels(); }
+
+  shownScene = 0;
+  scene.setScene(data.scenes[0], function () {
     if (data.episodes.length) { choose(0); }
     // "#t=STEP" opens the animation at that step.
     var at = /t=(\d+)/.exec(location.hash);

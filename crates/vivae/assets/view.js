@@ -4,10 +4,13 @@
   var $ = function (id) { return document.getElementById(id); };
   var scene = new VivaeScene.Scene($("scene"));
   // Tests and the curious read this: frames drawn, frame rate, last step, errors.
-  var stats = { frames: 0, fps: 0, step: 0, neurons: 0, sensors: 0, errors: [], connected: false };
+  var stats = { frames: 0, fps: 0, step: 0, neurons: 0, sensors: 0, errors: [], connected: false, trails: [] };
   window.vivaeView = stats;
+  // Robot i's trail as drawn, [x0, y0, x1, y1, …].
+  stats.trail = function (i) { return (trails[i] || []).slice(); };
   var sceneInfo = null, frame = null, fresh = false;
-  var trails = [], lastStep = -1;
+  // Per robot, its trail [x0, y0, x1, y1, …] and the jump count it started at.
+  var trails = [], trailJumps = [], lastStep = -1;
   var progress = null, knownChampion = null, progressSeen = 0;
   var dragging = -1, dragMoved = false;
   var keys = { up: false, down: false, left: false, right: false };
@@ -15,6 +18,12 @@
   var proto = location.protocol === "https:" ? "wss://" : "ws://";
   var ws = new WebSocket(proto + location.host + "/ws");
   function send(msg) { if (ws.readyState === 1) { ws.send(JSON.stringify(msg)); } }
+  // A user's action: an error shown for an earlier one is over (the server
+  // answers in order, so an error for this one arrives after this).
+  function act(msg) {
+    if (stats.connected && $("status").className.indexOf("error") >= 0) { status("connected"); }
+    send(msg);
+  }
 
   function status(text, isError) {
     $("status").textContent = text;
@@ -30,24 +39,38 @@
     else if (m.type === "scene") { onScene(m); }
     else if (m.type === "frame") { onFrame(m); }
     else if (m.type === "progress") { onProgress(m); }
-    else if (m.type === "error") { stats.errors.push(m.message); status("server: " + m.message, true); }
+    else if (m.type === "error") { onError(m); }
   };
+
+  // Shows the error and puts the page's choices back to what the server runs.
+  function onError(m) {
+    stats.errors.push(m.message);
+    status("server: " + m.message, true);
+    if (sceneInfo) { $("scenario").value = sceneInfo.scenario_index; }
+    if (frame) { $("controller").value = frame.choice; }
+  }
 
   function onInfo(m) {
     $("source").textContent = m.source;
     var sel = $("scenario");
     sel.innerHTML = "";
+    var unusable = m.unusable || [];
     m.scenarios.forEach(function (name, i) {
       var o = document.createElement("option");
       o.value = i;
-      o.textContent = name;
+      o.textContent = unusable[i] ? name + " \u2014 cannot be driven: " + unusable[i] : name;
+      o.disabled = !!unusable[i];
       sel.appendChild(o);
     });
+    var n = unusable.filter(function (u) { return u; }).length;
+    $("scenarionote").textContent = n ? n + " of " + m.scenarios.length +
+      " scenarios cannot be driven (no robots, or not a scenario): listed greyed out" : "";
   }
 
   function onScene(m) {
     sceneInfo = m;
     trails = [];
+    trailJumps = [];
     lastStep = -1;
     $("scenario").value = m.scenario_index;
     $("sensors").value = m.sensors;
@@ -70,42 +93,71 @@
   }
 
   function onFrame(m) {
-    if (m.step < lastStep) { trails = []; }
+    if (m.step < lastStep) { trails = []; trailJumps = []; }
+    m.robots.forEach(function (r, i) {
+      // A robot put somewhere by hand starts its trail afresh; a fast one
+      // (many steps a frame) keeps it, however far it went.
+      if (trailJumps[i] !== r.j) { trails[i] = []; trailJumps[i] = r.j; }
+    });
     if ($("trails").checked && m.step !== lastStep) {
       m.robots.forEach(function (r, i) {
         var t = trails[i] || (trails[i] = []);
-        var n = t.length;
-        // A jump (a drag) starts the trail afresh.
-        if (n >= 2 && Math.abs(t[n - 2] - r.x) + Math.abs(t[n - 1] - r.y) > 40) { t.length = 0; }
+        // Where it went since the last frame, then where it is.
+        if (r.p) { for (var k = 0; k + 1 < r.p.length; k += 2) { t.push(r.p[k], r.p[k + 1]); } }
         t.push(r.x, r.y);
         if (t.length > 40000) { t.splice(0, t.length - 40000); }
       });
     }
+    stats.trails = trails.map(function (t) { return t ? t.length / 2 : 0; });
     lastStep = m.step;
-    frame = m;
     fresh = true;
     stats.step = m.step;
     $("play").textContent = m.playing ? "Pause" : "Play";
-    $("driver").textContent = "controller: " + m.driver;
+    var byHand = m.manual !== null && m.manual === m.selected;
+    $("driver").textContent = byHand
+      ? "driven by you with the arrow keys" + (m.choice === "none" ? "" : " (the other robots: " + m.driver + ")")
+      : "controller: " + m.driver + (m.manual !== null ? "; robot " + (m.manual + 1) + " driven by you" : "");
+    $("driver").className = byHand ? "manual" : "muted";
     if (String(m.selected) !== $("robot").value) { $("robot").value = m.selected; }
+    var generationChanged = !frame || frame.generation !== m.generation || frame.choice !== m.choice;
+    frame = m;
+    if (generationChanged && progress) { controllerOptions(progress); }
     if (document.activeElement !== $("controller") && $("controller").value !== m.choice) {
       $("controller").value = m.choice;
     }
-    $("drive").checked = m.manual !== null && m.manual === m.selected;
+    $("drive").checked = byHand;
+  }
+
+  // The champion this page's robots drive: its generation (from the server), or null.
+  function drivingChampion() {
+    return frame && frame.choice === "champion" ? frame.generation : null;
+  }
+
+  // The controller list. "champion" names the champion that drives here, which
+  // stays the one loaded until "watch it" loads a newer one.
+  function controllerOptions(m) {
+    var sel = $("controller"), keep = frame ? frame.choice : sel.value;
+    sel.innerHTML = "";
+    var add = function (v, t) { var o = document.createElement("option"); o.value = v; o.textContent = t; sel.appendChild(o); };
+    add("none", "none (keyboard only)");
+    var driving = drivingChampion();
+    if (driving !== null && (!m.champion || driving !== m.champion[0])) {
+      add("champion", "champion of generation " + driving + " (driving; newest: generation " +
+        (m.champion ? m.champion[0] : "?") + ")");
+    } else if (m.champion) {
+      add("champion", "champion (generation " + m.champion[0] + ", fitness " + m.champion[1].toFixed(3) + ")");
+    }
+    for (var i = m.genomes.length - 1; i >= 0; i--) { add(String(m.genomes[i]), "best of generation " + m.genomes[i]); }
+    if (keep && Array.prototype.some.call(sel.options, function (o) { return o.value === keep; })) { sel.value = keep; }
+    else if (m.champion) { sel.value = "champion"; }
   }
 
   function onProgress(m) {
     progress = m;
-    var sel = $("controller"), keep = sel.value;
-    sel.innerHTML = "";
-    var add = function (v, t) { var o = document.createElement("option"); o.value = v; o.textContent = t; sel.appendChild(o); };
-    add("none", "none (keyboard only)");
-    if (m.champion) { add("champion", "champion (gen " + m.champion[0] + ", " + m.champion[1].toFixed(3) + ")"); }
-    for (var i = m.genomes.length - 1; i >= 0; i--) { add(String(m.genomes[i]), "best of generation " + m.genomes[i]); }
-    if (keep && Array.prototype.some.call(sel.options, function (o) { return o.value === keep; })) { sel.value = keep; }
-    else if (m.champion) { sel.value = "champion"; }
+    controllerOptions(m);
     var gens = m.generations.map(function (r) { return r.generation; });
-    $("gencount").textContent = m.generations.length ? ("generation " + gens[gens.length - 1] + (m.total ? " of " + m.total : "")) : "";
+    $("gencount").textContent = m.generations.length ? ("generation " + gens[gens.length - 1] + (m.total ? " of " + m.total : "") +
+      (m.champion ? "; champion from generation " + m.champion[0] : "")) : "";
     $("curves").innerHTML = VivaePlots.lines(gens, [
       { name: "best", color: "#d62728", values: m.generations.map(function (r) { return r.best; }) },
       { name: "mean", color: "#1f77b4", values: m.generations.map(function (r) { return r.mean; }) }
@@ -115,7 +167,9 @@
     progressSeen += 1;
     if (firstChampion || (m.champion && knownChampion &&
         (m.champion[0] !== knownChampion[0] || m.champion[1] !== knownChampion[1]))) {
-      $("newchamptext").textContent = "New champion: generation " + m.champion[0] + ", fitness " + m.champion[1].toFixed(3);
+      var driving = drivingChampion();
+      $("newchamptext").textContent = "New champion: generation " + m.champion[0] + ", fitness " + m.champion[1].toFixed(3) +
+        (driving !== null ? " (the champion of generation " + driving + " drives now)" : "");
       $("newchamp").style.display = "";
     }
     knownChampion = m.champion;
@@ -201,17 +255,17 @@
   }
   window.requestAnimationFrame(loop);
 
-  $("play").onclick = function () { send({ type: frame && frame.playing ? "pause" : "play" }); };
-  $("step").onclick = function () { send({ type: "step", n: 1 }); };
-  $("reset").onclick = function () { trails = []; send({ type: "reset" }); };
-  $("speed").onchange = function () { send({ type: "speed", value: parseFloat($("speed").value) }); };
+  $("play").onclick = function () { act({ type: frame && frame.playing ? "pause" : "play" }); };
+  $("step").onclick = function () { act({ type: "step", n: 1 }); };
+  $("reset").onclick = function () { trails = []; act({ type: "reset" }); };
+  $("speed").onchange = function () { act({ type: "speed", value: parseFloat($("speed").value) }); };
   $("controller").onchange = function () {
     var v = $("controller").value;
-    send({ type: "controller", which: v === "none" || v === "champion" ? v : parseInt(v, 10) });
+    act({ type: "controller", which: v === "none" || v === "champion" ? v : parseInt(v, 10) });
     trails = [];
   };
-  $("scenario").onchange = function () { send({ type: "scenario", index: parseInt($("scenario").value, 10) }); };
-  $("apply").onclick = function () { send({ type: "resolution", sensors: $("sensors").value.trim(), neurons: $("neurons").value.trim() }); };
+  $("scenario").onchange = function () { act({ type: "scenario", index: parseInt($("scenario").value, 10) }); };
+  $("apply").onclick = function () { act({ type: "resolution", sensors: $("sensors").value.trim(), neurons: $("neurons").value.trim() }); };
   Array.prototype.forEach.call(document.querySelectorAll(".preset"), function (b) {
     b.onclick = function () {
       $("sensors").value = b.getAttribute("data-s");
@@ -221,22 +275,22 @@
   });
   $("cleartrails").onclick = function () { trails = []; fresh = true; };
   $("trails").onchange = function () { fresh = true; };
-  $("robot").onchange = function () { send({ type: "select", robot: parseInt($("robot").value, 10) }); };
+  $("robot").onchange = function () { act({ type: "select", robot: parseInt($("robot").value, 10) }); };
   $("drive").onchange = function () {
-    send({ type: "drive", robot: $("drive").checked ? parseInt($("robot").value, 10) || 0 : null });
+    act({ type: "drive", robot: $("drive").checked ? parseInt($("robot").value, 10) || 0 : null });
     $("scene").focus();
   };
   $("watchnew").onclick = function () {
     $("newchamp").style.display = "none";
-    $("controller").value = "champion";
-    $("controller").onchange();
+    act({ type: "controller", which: "champion" });
+    trails = [];
   };
 
   var canvas = $("scene");
   canvas.addEventListener("mousedown", function (ev) {
     if (!frame) { return; }
     var i = scene.robotAt(frame.robots, scene.toWorld(ev));
-    if (i >= 0) { dragging = i; dragMoved = false; send({ type: "select", robot: i }); ev.preventDefault(); }
+    if (i >= 0) { dragging = i; dragMoved = false; act({ type: "select", robot: i }); ev.preventDefault(); }
   });
   window.addEventListener("mousemove", function (ev) {
     if (dragging < 0) { return; }
@@ -249,10 +303,21 @@
   window.addEventListener("mouseup", function () { dragging = -1; });
 
   var keyNames = { ArrowUp: "up", ArrowDown: "down", ArrowLeft: "left", ArrowRight: "right" };
+  // Controls that use the arrow keys themselves keep them.
+  function keepsArrows(el) {
+    return !!el && (el.tagName === "SELECT" || el.tagName === "TEXTAREA" ||
+      (el.tagName === "INPUT" && el.type !== "checkbox" && el.type !== "button"));
+  }
   function onKey(ev, down) {
     var k = keyNames[ev.key];
-    if (!k || !$("drive").checked) { return; }
+    if (!k || keepsArrows(document.activeElement)) { return; }
     ev.preventDefault();
+    // An arrow key takes the selected robot over ("drive it myself").
+    if (down && !$("drive").checked && frame) {
+      $("drive").checked = true;
+      keys = { up: false, down: false, left: false, right: false };
+      act({ type: "drive", robot: frame.selected });
+    }
     if (keys[k] !== down) { keys[k] = down; send({ type: "keys", up: keys.up, down: keys.down, left: keys.left, right: keys.right }); }
   }
   window.addEventListener("keydown", function (ev) { onKey(ev, true); });

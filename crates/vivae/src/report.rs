@@ -97,7 +97,7 @@ pub fn finish_run(run: &Run) -> Result<RunSummary> {
         &dir,
         "trajectories-champion",
     )?;
-    let per_map = per_map_figures(run, &champion.genome, &dir)?;
+    let map_episodes = per_map_figures(run, &champion.genome, &dir)?;
 
     let fitness = rundir::read_population_csv(&run.dir().join(files::POPULATION))?;
     let convergence = figures::convergence::render(&fitness, &ConvergenceOptions::default())?;
@@ -121,29 +121,39 @@ pub fn finish_run(run: &Run) -> Result<RunSummary> {
     let mut reuse = crate::report_html::Reuse {
         episodes: episodes.iter().map(|(g, e)| (*g, e)).collect(),
         network_svg: Some(network.svg),
+        map_episodes: map_episodes.iter().map(|(_, e)| e).collect(),
     };
     reuse.episodes.push((&champion.genome, &episode));
     crate::report_html::write_reusing(run.dir(), &reuse)?;
     vivae_lab::rundir::mark_drawn(run.dir(), run.done())?;
 
     // On several maps the champion's fitness is the mean over maps: its time on road too.
-    let champion_on_road = if per_map.is_empty() {
-        episode.on_road.unwrap_or_default()
+    let on_road = |e: &Episode| e.on_road.unwrap_or_default();
+    let champion_on_road = if map_episodes.is_empty() {
+        on_road(&episode)
     } else {
-        vivae_lab::maps::mean(&per_map.iter().map(|(_, _, r)| *r).collect::<Vec<_>>())
+        vivae_lab::maps::mean(
+            &map_episodes
+                .iter()
+                .map(|(_, e)| on_road(e))
+                .collect::<Vec<_>>(),
+        )
     };
     Ok(RunSummary {
         champion_fitness: champion.fitness,
         champion_generation: champion.generation,
         champion_on_road,
-        per_map: per_map.into_iter().map(|(l, f, _)| (l, f)).collect(),
+        per_map: map_episodes
+            .into_iter()
+            .map(|(l, e)| (l, e.fitness))
+            .collect(),
     })
 }
 
 /// On several training maps, the champion's trajectories on each, drawn as
-/// `trajectories-champion-<map>` in `dir`; returns each map's (label,
-/// fitness, fraction on road). None on one map.
-fn per_map_figures(run: &Run, champion: &Genome, dir: &Path) -> Result<Vec<(String, f64, f64)>> {
+/// `trajectories-champion-<map>` in `dir`; returns each map's label and
+/// recorded episode. None on one map.
+fn per_map_figures(run: &Run, champion: &Genome, dir: &Path) -> Result<Vec<(String, Episode)>> {
     let training = run.training();
     training
         .map_labels()
@@ -156,11 +166,7 @@ fn per_map_figures(run: &Run, champion: &Genome, dir: &Path) -> Result<Vec<(Stri
                 dir,
                 &champion_map_figure(label),
             )?;
-            Ok((
-                label.to_string(),
-                episode.fitness,
-                episode.on_road.unwrap_or_default(),
-            ))
+            Ok((label.to_string(), episode))
         })
         .collect()
 }

@@ -33,6 +33,8 @@ const REPORT_JS: &str = include_str!("../assets/report.js");
 #[derive(Debug, Serialize)]
 struct EpisodeData {
     label: String,
+    /// Index of its map in [`ReportData::scenes`].
+    scene: usize,
     fitness: f64,
     on_road: f64,
     /// Per robot, `[x0, y0, x1, y1, …]` rounded to 0.01 px.
@@ -58,7 +60,11 @@ pub(crate) struct GenerationRow {
 struct ReportData {
     title: String,
     config: String,
-    scene: SceneData,
+    /// The maps episodes run on: the run's scenario, or each training map.
+    scenes: Vec<SceneData>,
+    /// On several training maps, each map's name (else empty); the champion's
+    /// episode on map `k` is `episodes[k]`.
+    maps: Vec<String>,
     episodes: Vec<EpisodeData>,
     generations: Vec<GenerationRow>,
     /// Per generation, `[species id, members]`.
@@ -124,21 +130,22 @@ pub struct Reuse<'a> {
     pub episodes: Vec<(&'a Genome, &'a Episode)>,
     /// The champion's network figure, drawn with the report's own options.
     pub network_svg: Option<String>,
+    /// On several training maps, the champion's episode on each, in map order.
+    pub map_episodes: Vec<&'a Episode>,
 }
 
+/// The episode of `genome` on `experiment` (map `scene`), taken from
+/// `recorded` when it holds it with trajectories, else run now.
 fn episode(
     experiment: &Experiment,
     genome: &Genome,
-    label: String,
-    reuse: &Reuse<'_>,
+    (label, scene): (String, usize),
+    recorded: Option<&Episode>,
 ) -> vivae_lab::Result<EpisodeData> {
-    let recorded = reuse
-        .episodes
-        .iter()
-        .find(|(g, e)| *g == genome && e.trajectories.is_some() && e.on_road.is_some());
+    let recorded = recorded.filter(|e| e.trajectories.is_some() && e.on_road.is_some());
     let ran;
     let run = match recorded {
-        Some((_, e)) => *e,
+        Some(e) => e,
         None => {
             ran = experiment.run(&experiment.controller(genome)?, true);
             &ran
@@ -153,6 +160,7 @@ fn episode(
         .collect();
     Ok(EpisodeData {
         label,
+        scene,
         fitness: run.fitness,
         on_road: run.on_road.unwrap_or_default(),
         paths,
@@ -179,6 +187,44 @@ pub(crate) fn read_generation_rows(path: &Path) -> vivae_lab::Result<Vec<Generat
         .collect())
 }
 
+/// On several training maps, the champion's episode on each (labelled with
+/// the map), each map's scene and the maps' names; nothing on one map.
+fn map_episodes(
+    dir: &Path,
+    config: &vivae_lab::config::Config,
+    champion: &rundir::Champion,
+    reuse: &Reuse<'_>,
+) -> vivae_lab::Result<(Vec<EpisodeData>, Vec<SceneData>, Vec<String>)> {
+    if !vivae_lab::maps::is_multi_map(config) {
+        return Ok(Default::default());
+    }
+    let loaded = rundir::load_run(dir, config, None)?;
+    let training = vivae_lab::training::Training::new(config, &loaded)?;
+    let (mut episodes, mut scenes, mut maps) = (Vec::new(), Vec::new(), Vec::new());
+    let count = loaded.len();
+    for (k, ((label, experiment), map)) in training
+        .map_labels()
+        .zip(training.map_experiments())
+        .zip(&loaded)
+        .enumerate()
+    {
+        let name = format!(
+            "Champion (generation {}) on {label}, map {} of {count}",
+            champion.generation,
+            k + 1
+        );
+        episodes.push(episode(
+            experiment,
+            &champion.genome,
+            (name, k),
+            reuse.map_episodes.get(k).copied(),
+        )?);
+        scenes.push(SceneData::new(&map.loaded.scenario, experiment.world()));
+        maps.push(label.to_string());
+    }
+    Ok((episodes, scenes, maps))
+}
+
 /// Embeds JSON in a `<script>` block: `</` cannot close it early.
 fn script_safe(json: &str) -> String {
     json.replace("</", "<\\/")
@@ -196,6 +242,51 @@ pub(crate) fn network_options(generation: u32, fitness: f64, amplitude: f64) -> 
         weight_scale: amplitude,
         ..NetworkOptions::default()
     }
+}
+
+/// The report's episodes: the champion's (on each training map, for several),
+/// then the best of the figure generations on the first map; with the maps'
+/// scenes and names (none on one map).
+fn all_episodes(
+    dir: &Path,
+    config: &vivae_lab::config::Config,
+    experiment: &Experiment,
+    champion: &rundir::Champion,
+    best: &[rundir::GenerationBest],
+    reuse: &Reuse<'_>,
+) -> vivae_lab::Result<(Vec<EpisodeData>, Vec<SceneData>, Vec<String>)> {
+    let recorded = |genome: &Genome| {
+        reuse
+            .episodes
+            .iter()
+            .find(|(g, _)| *g == genome)
+            .map(|(_, e)| *e)
+    };
+    let (mut episodes, scenes, maps) = map_episodes(dir, config, champion, reuse)?;
+    let on_first = if maps.is_empty() {
+        String::new()
+    } else {
+        format!(" on {}", maps[0])
+    };
+    if maps.is_empty() {
+        episodes.push(episode(
+            experiment,
+            &champion.genome,
+            (format!("Champion (generation {})", champion.generation), 0),
+            recorded(&champion.genome),
+        )?);
+    }
+    for g in vivae_lab::evolve::FIGURE_GENERATIONS {
+        if let Some(b) = best.iter().find(|b| b.generation == g) {
+            episodes.push(episode(
+                experiment,
+                &b.genome,
+                (format!("Best of generation {g}{on_first}"), 0),
+                recorded(&b.genome),
+            )?);
+        }
+    }
+    Ok((episodes, scenes, maps))
 }
 
 /// [`build`], reusing what the end of a run computed already.
@@ -217,22 +308,8 @@ pub fn build_reusing(dir: &Path, reuse: &Reuse<'_>) -> vivae_lab::Result<String>
     }
     let fitness = rundir::read_population_csv(&dir.join(files::POPULATION))?;
 
-    let mut episodes = vec![episode(
-        &experiment,
-        &champion.genome,
-        format!("Champion (generation {})", champion.generation),
-        reuse,
-    )?];
-    for g in vivae_lab::evolve::FIGURE_GENERATIONS {
-        if let Some(b) = best.iter().find(|b| b.generation == g) {
-            episodes.push(episode(
-                &experiment,
-                &b.genome,
-                format!("Best of generation {g}"),
-                reuse,
-            )?);
-        }
-    }
+    let (episodes, scenes, maps) =
+        all_episodes(dir, &config, &experiment, &champion, &best, reuse)?;
     let convergence_svg = convergence::render_svg(&fitness, &ConvergenceOptions::default())
         .map_err(vivae_lab::Error::from)?;
     let network_svg = match &reuse.network_svg {
@@ -258,7 +335,12 @@ pub fn build_reusing(dir: &Path, reuse: &Reuse<'_>) -> vivae_lab::Result<String>
     let data = ReportData {
         title,
         config: config_text,
-        scene: SceneData::new(&scenario.scenario, experiment.world()),
+        scenes: if scenes.is_empty() {
+            vec![SceneData::new(&scenario.scenario, experiment.world())]
+        } else {
+            scenes
+        },
+        maps,
         episodes,
         generations,
         species: best.into_iter().map(|b| b.species).collect(),

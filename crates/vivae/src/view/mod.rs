@@ -102,6 +102,9 @@ pub fn run(args: ViewArgs) -> vivae_lab::Result<ExitCode> {
     };
     println!("vivae view: http://{shown}/");
     eprintln!("{} (Ctrl-C stops the server)", source.describe());
+    if let Some(note) = source.unusable_note() {
+        eprintln!("{note}");
+    }
     use std::io::Write as _;
     let _ = std::io::stdout().flush();
     runtime

@@ -279,6 +279,7 @@ async fn open_session(socket: &mut WebSocket, app: &mut App) -> Option<(Sim, Sha
         "source": app.source.describe(),
         "run": app.source.run_dir().is_some(),
         "scenarios": app.source.scenarios.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>(),
+        "unusable": app.source.unusable,
         "real_time_steps": super::session::REAL_TIME_STEPS,
     });
     let progress = serde_json::to_string(&snap.progress()).unwrap_or_default();

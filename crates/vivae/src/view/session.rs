@@ -29,6 +29,8 @@ const MAX_STEPS_PER_FRAME: u32 = 400;
 const MAX_SENSORS: usize = 64 * 128;
 /// Most neurons a page may ask for (decoding grows with sensors × neurons).
 const MAX_NEURONS: usize = 400;
+/// Most in-between positions per robot a frame carries for the page's trails.
+const TRACE_POINTS: usize = 24;
 /// Most steps one `step` message may ask for, at any resolution.
 const MAX_STEPS_PER_MESSAGE: u32 = 10_000;
 /// Work one page message may cost, in robot-steps × controller size (see
@@ -130,11 +132,21 @@ pub(crate) struct Sim {
     choice: Choice,
     /// Label of the genome driving, for the page.
     driver: String,
+    /// Generation of the genome driving (`None`: nobody drives); a followed
+    /// run's newer champion does not change it until the page asks.
+    driving_generation: Option<u32>,
     /// The chosen genome's controller and the robots' side of the episode.
     driving: Option<(SubstrateController, Rollout)>,
     manual: Option<usize>,
     keys: Keys,
     selected: usize,
+    /// Per robot, how often it was put somewhere by hand (dragged): the page
+    /// starts its trail afresh when this changes, however far it moved.
+    jumps: Vec<u32>,
+    /// Per robot, its positions after each step since the last frame: the
+    /// page draws trails through them, so that a fast robot's trail follows
+    /// the road, not a chord across the grass.
+    trace: Vec<Vec<DVec2>>,
     controls: Vec<[f64; 2]>,
     surface: Vec<f64>,
     /// Running or paused.
@@ -178,10 +190,13 @@ impl Sim {
             experiment,
             choice: Choice::None,
             driver: "nobody (drive a robot with the arrow keys)".into(),
+            driving_generation: None,
             driving: None,
             manual: None,
             keys: Keys::default(),
             selected: 0,
+            jumps: Vec::new(),
+            trace: Vec::new(),
             controls: Vec::new(),
             surface: Vec::new(),
             playing: true,
@@ -214,6 +229,7 @@ impl Sim {
                                 "champion (generation {}, fitness {:.3})",
                                 c.generation, c.fitness
                             ),
+                            c.generation,
                         )
                     })
                     .ok_or("there is no champion yet")?,
@@ -226,6 +242,7 @@ impl Sim {
                         (
                             b.genome.clone(),
                             format!("best of generation {g} (fitness {:.3})", b.fitness),
+                            g,
                         )
                     })
                     .ok_or_else(|| format!("generation {g} has no recorded best genome"))?,
@@ -234,15 +251,17 @@ impl Sim {
         match found {
             None => {
                 self.driving = None;
+                self.driving_generation = None;
                 self.driver = "nobody (drive a robot with the arrow keys)".into();
             }
-            Some((genome, label)) => {
+            Some((genome, label, generation)) => {
                 // Decoding a large substrate takes a while: not on the async workers' time.
                 let controller =
                     tokio::task::block_in_place(|| self.experiment.controller(&genome))
                         .map_err(|e| format!("the genome's {e}"))?;
                 let rollout = self.experiment.rollout(&controller);
                 self.driving = Some((controller, rollout));
+                self.driving_generation = Some(generation);
                 self.driver = label;
             }
         }
@@ -255,6 +274,9 @@ impl Sim {
     fn resize_buffers(&mut self) {
         let n = self.world.robots().len();
         self.controls = vec![[0.0; 2]; n];
+        self.jumps.resize(n, 0);
+        self.trace.resize_with(n, Vec::new);
+        self.trace.iter_mut().for_each(Vec::clear);
         self.surface = vec![0.0; self.experiment.surface_grid().len()];
         self.selected = self.selected.min(n.saturating_sub(1));
         if self.manual.is_some_and(|m| m >= n) {
@@ -283,6 +305,9 @@ impl Sim {
                 self.world.step(&self.controls);
             }
         }
+        for (t, r) in self.trace.iter_mut().zip(self.world.robots()) {
+            t.push(r.pos);
+        }
         self.steps += 1;
         self.dirty = true;
     }
@@ -307,6 +332,7 @@ impl Sim {
     /// Puts every robot back at its start and clears the controllers' state.
     fn reset(&mut self) {
         self.world = self.experiment.world().clone();
+        self.trace.iter_mut().for_each(Vec::clear);
         if let Some((controller, rollout)) = &mut self.driving {
             rollout.reset(controller);
         }
@@ -329,6 +355,9 @@ impl Sim {
             .scenarios
             .get(index)
             .ok_or_else(|| format!("no scenario {index}"))?;
+        if let Some(Some(why)) = source.unusable.get(index) {
+            return Err(format!("scenario {name} cannot be driven: {why}"));
+        }
         let scenario = parse_scenario(name, text)?;
         let experiment = experiment_for(&mut config, &scenario)?;
         let old = (
@@ -521,6 +550,12 @@ impl Sim {
             return Err("drag: heading must be a number".into());
         }
         self.world.set_pose(robot, DVec2::new(x, y), heading);
+        if let Some(j) = self.jumps.get_mut(robot) {
+            *j = j.wrapping_add(1);
+        }
+        if let Some(t) = self.trace.get_mut(robot) {
+            t.clear();
+        }
         self.selected = robot;
         self.dirty = true;
         Ok(())
@@ -555,13 +590,15 @@ impl Sim {
         let mut s = String::with_capacity(256 + 24 * self.surface.len());
         let _ = write!(
             s,
-            r#"{{"type":"frame","step":{},"choice":{},"playing":{},"speed":{},"selected":{},"manual":{},"driver":{},"robots":["#,
+            r#"{{"type":"frame","step":{},"choice":{},"generation":{},"playing":{},"speed":{},"selected":{},"manual":{},"driver":{},"robots":["#,
             self.steps,
             match self.choice {
                 Choice::None => "\"none\"".to_string(),
                 Choice::Champion => "\"champion\"".to_string(),
                 Choice::Generation(g) => format!("\"{g}\""),
             },
+            self.driving_generation
+                .map_or("null".to_string(), |g| g.to_string()),
             self.playing,
             self.speed,
             self.selected,
@@ -571,14 +608,25 @@ impl Sim {
         for (i, r) in self.world.robots().iter().enumerate() {
             let _ = write!(
                 s,
-                r#"{}{{"x":{:.2},"y":{:.2},"h":{:.4},"v":{:.3},"odo":{:.1}}}"#,
+                r#"{}{{"x":{:.2},"y":{:.2},"h":{:.4},"v":{:.3},"odo":{:.1},"j":{},"p":["#,
                 if i > 0 { "," } else { "" },
                 r.pos.x,
                 r.pos.y,
                 r.heading,
                 r.speed,
-                r.odometer
+                r.odometer,
+                self.jumps.get(i).copied().unwrap_or(0)
             );
+            if let Some(t) = self.trace.get_mut(i) {
+                // Evenly spaced positions before the last (which is `x`, `y`).
+                let before = t.len().saturating_sub(1);
+                let every = before.div_ceil(TRACE_POINTS).max(1);
+                for (k, p) in t[..before].iter().rev().step_by(every).rev().enumerate() {
+                    let _ = write!(s, "{}{:.1},{:.1}", if k > 0 { "," } else { "" }, p.x, p.y);
+                }
+                t.clear();
+            }
+            s.push_str("]}");
         }
         s.push(']');
         if let Some(i) = (self.selected < self.world.robots().len()).then_some(self.selected) {
@@ -698,6 +746,75 @@ mod tests {
     }
 
     #[test]
+    fn a_scenario_without_robots_is_refused_with_its_reason_and_changes_nothing() {
+        let mut source = Source::load(None, None).unwrap();
+        let bare: String = vivae_sim::ROADS_SVG
+            .lines()
+            .filter(|l| !l.contains("ControlledRobot"))
+            .collect::<Vec<_>>()
+            .join("\n");
+        source.scenarios.push(("bare.svg".into(), bare));
+        source.unusable = source
+            .scenarios
+            .iter()
+            .map(|(n, t)| super::super::source::unusable(n, t))
+            .collect();
+        assert_eq!(source.unusable, [None, Some("no robots".to_string())]);
+        assert!(source.unusable_note().unwrap().contains("bare.svg"));
+        let snap = source.snapshot();
+        let rt = tokio::runtime::Builder::new_multi_thread()
+            .worker_threads(1)
+            .build()
+            .unwrap();
+        rt.block_on(async {
+            let mut sim = Sim::new(&source, &snap).unwrap();
+            let scene = sim.scene_msg(&source);
+            let err = sim
+                .handle(r#"{"type":"scenario","index":1}"#, &source, &snap)
+                .unwrap_err();
+            assert_eq!(err, "scenario bare.svg cannot be driven: no robots");
+            assert_eq!(sim.scene_msg(&source), scene);
+        });
+    }
+
+    #[test]
+    fn a_frame_carries_the_positions_since_the_last_one() {
+        with_sim(|sim, source, snap| {
+            sim.frame_msg();
+            sim.handle(r#"{"type":"drive","robot":0}"#, source, snap)
+                .unwrap();
+            sim.handle(
+                r#"{"type":"keys","up":true,"down":false,"left":false,"right":false}"#,
+                source,
+                snap,
+            )
+            .unwrap();
+            let path = |sim: &mut Sim| -> Vec<f64> {
+                let frame: serde_json::Value = serde_json::from_str(&sim.frame_msg()).unwrap();
+                serde_json::from_value(frame["robots"][0]["p"].clone()).unwrap()
+            };
+            sim.handle(r#"{"type":"step","n":10}"#, source, snap)
+                .unwrap();
+            // Nine positions before the one the frame ends on, in order.
+            let p = path(sim);
+            assert_eq!(p.len(), 18, "{p:?}");
+            let x = sim.world.robots()[0].pos.x;
+            assert!(p.chunks(2).all(|q| q[0] < x), "{p:?} then {x}");
+            assert!(p.windows(4).step_by(2).all(|w| w[0] < w[2]), "{p:?}");
+            // Many steps: at most TRACE_POINTS of them, the last close to the end.
+            sim.handle(r#"{"type":"step","n":200}"#, source, snap)
+                .unwrap();
+            let p = path(sim);
+            assert!(
+                p.len() <= 2 * TRACE_POINTS && p.len() >= TRACE_POINTS,
+                "{}",
+                p.len()
+            );
+            assert_eq!(path(sim), Vec::<f64>::new());
+        });
+    }
+
+    #[test]
     fn keyboard_driving_moves_the_robot_forward() {
         with_sim(|sim, source, snap| {
             let start = sim.world.robots()[0].pos;
@@ -735,7 +852,13 @@ mod tests {
             let r = &sim.world.robots()[2];
             assert_eq!((r.pos.x, r.pos.y), (100.5, 200.25));
             assert_eq!(sim.selected, 2);
-            assert!(sim.frame_msg().contains(r#""selected":2"#));
+            // The page starts robot 3's trail afresh: its jump count changed, no other's.
+            let frame: serde_json::Value = serde_json::from_str(&sim.frame_msg()).unwrap();
+            assert_eq!(frame["selected"], 2);
+            let jumps: Vec<u64> = (0..5)
+                .map(|i| frame["robots"][i]["j"].as_u64().unwrap())
+                .collect();
+            assert_eq!(jumps, [0, 0, 1, 0, 0]);
             sim.handle(r#"{"type":"scenario","index":0}"#, source, snap)
                 .unwrap();
             assert!(sim.scene_msg(source).contains(r#""scenario_index":0"#));

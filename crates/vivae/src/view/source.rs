@@ -39,6 +39,9 @@ pub struct Source {
     pub config: Config,
     /// Offered scenarios as (name, SVG text); the first is the source's own.
     pub scenarios: Vec<(String, String)>,
+    /// Per offered scenario, why it cannot be driven (no robots, not a
+    /// scenario), or `None`: the page lists these greyed out with the reason.
+    pub unusable: Vec<Option<String>>,
     /// The genome given as a file, if any.
     pub genome: Option<Champion>,
 }
@@ -55,6 +58,7 @@ impl Source {
                 kind: SourceKind::Default,
                 config: Config::default(),
                 scenarios: vec![default.clone()],
+                unusable: Vec::new(),
                 genome: None,
             },
             Some(p) if p.is_dir() => Source::from_run_dir(p)?,
@@ -69,7 +73,31 @@ impl Source {
         if let Some(dir) = extra {
             source.scenarios.extend(scenario_folder(dir)?);
         }
+        source.unusable = source
+            .scenarios
+            .iter()
+            .map(|(name, text)| unusable(name, text))
+            .collect();
         Ok(source)
+    }
+
+    /// A note for the terminal when some offered scenarios cannot be driven.
+    pub fn unusable_note(&self) -> Option<String> {
+        let names: Vec<&str> = self
+            .scenarios
+            .iter()
+            .zip(&self.unusable)
+            .filter(|(_, u)| u.is_some())
+            .map(|((n, _), _)| n.as_str())
+            .collect();
+        (!names.is_empty()).then(|| {
+            format!(
+                "note: {} of {} scenarios cannot be driven (no robots, or not a scenario) and are listed greyed out: {}",
+                names.len(),
+                self.scenarios.len(),
+                names.join(", ")
+            )
+        })
     }
 
     /// A run directory: its config and scenario.
@@ -81,6 +109,7 @@ impl Source {
             kind: SourceKind::Run(p.to_path_buf()),
             config,
             scenarios: vec![(format!("{} (the run's)", files::SCENARIO), scenario)],
+            unusable: Vec::new(),
             genome: None,
         })
     }
@@ -102,6 +131,7 @@ impl Source {
                 kind: SourceKind::Scenario(p.to_path_buf()),
                 config: Config::default(),
                 scenarios: vec![(file_name(p), text)],
+                unusable: Vec::new(),
                 genome: None,
             })
         } else {
@@ -112,20 +142,26 @@ impl Source {
                 kind: SourceKind::Genome(p.to_path_buf()),
                 config,
                 scenarios: vec![default.clone()],
+                unusable: Vec::new(),
                 genome: Some(champion),
             })
         }
     }
 
-    /// A multi-map run also offers its other training maps (the first is scenario.svg).
+    /// A multi-map run offers each of its training maps, named as such (the
+    /// first is the run's `scenario.svg`).
     fn add_training_maps(&mut self) -> vivae_lab::Result<()> {
-        for (k, map) in self.config.experiment.scenarios.iter().enumerate().skip(1) {
-            let text = read_text(Path::new(map))?;
+        let maps = &self.config.experiment.scenarios;
+        for (k, map) in maps.iter().enumerate() {
             let name = Path::new(map)
                 .file_name()
                 .map_or_else(|| map.clone(), |n| n.to_string_lossy().into_owned());
-            self.scenarios
-                .push((format!("{name} (training map {})", k + 1), text));
+            let label = format!("{name} (training map {} of {})", k + 1, maps.len());
+            if k == 0 {
+                self.scenarios[0].0 = label;
+            } else {
+                self.scenarios.push((label, read_text(Path::new(map))?));
+            }
         }
         Ok(())
     }
@@ -182,6 +218,16 @@ impl Source {
                     .unwrap_or((0, None))
             })
             .collect()
+    }
+}
+
+/// Why scenario `name` cannot be driven in the viewer, if it cannot.
+pub(super) fn unusable(name: &str, text: &str) -> Option<String> {
+    let reason = |e: &dyn std::fmt::Display| vivae_lab::io::one_line(&e.to_string());
+    match vivae_sim::Scenario::from_svg(text, name, &vivae_sim::LoadOptions::default()) {
+        Ok(s) if s.robots.is_empty() => Some("no robots".into()),
+        Ok(_) => None,
+        Err(e) => Some(reason(&e)),
     }
 }
 

@@ -6,20 +6,8 @@
 
 use std::path::PathBuf;
 
-use crate::common::browser::{Browser, Viewer};
-use crate::common::{evolve, scratch, write_small_config};
-
-fn shots() -> PathBuf {
-    PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("browser-screenshots")
-}
-
-fn small_run(name: &str, generations: u32) -> PathBuf {
-    let dir = scratch(name);
-    let config = write_small_config(&dir, generations);
-    let out = dir.join("run");
-    evolve(&config, &out, &[]);
-    out
-}
+use crate::common::browser::{Browser, Viewer, shots};
+use crate::common::small_run;
 
 /// Robot positions the page last drew.
 const ROBOTS: &str = "return JSON.stringify(window.vivaeView && window.vivaeView.robots);";
@@ -210,17 +198,7 @@ fn arrow_keys_drive_a_robot_and_dragging_moves_one() {
         "return document.getElementById('drive').checked && window.vivaeView.step > 0;",
         "driving mode",
     );
-    let key = |kind: &str| {
-        b.call(
-            "POST",
-            &b.at("/actions"),
-            Some(
-                serde_json::json!({"actions": [{"type": "key", "id": "kb", "actions": [
-                    {"type": kind, "value": "\u{E013}"}
-                ]}]}),
-            ),
-        );
-    };
+    let key = |kind: &str| b.key(kind, "\u{E013}");
     key("keyDown");
     let step = b.eval("return window.vivaeView.step;").as_u64().unwrap();
     b.wait_for(
@@ -234,42 +212,7 @@ fn arrow_keys_drive_a_robot_and_dragging_moves_one() {
     let other = pos(1);
 
     // Drag robot 2 by the mouse to another place on the canvas.
-    let el = b.call(
-        "POST",
-        &b.at("/element"),
-        Some(serde_json::json!({"using": "css selector", "value": "#scene"})),
-    );
-    let id = el
-        .as_object()
-        .and_then(|o| o.values().next())
-        .and_then(|v| v.as_str())
-        .unwrap()
-        .to_string();
-    let geom = b.eval(
-        "var r = document.getElementById('scene').getBoundingClientRect();
-         var c = document.getElementById('scene');
-         return [r.width / c.width, r.height / c.height, r.width, r.height];",
-    );
-    let (sx, sy) = (geom[0].as_f64().unwrap(), geom[1].as_f64().unwrap());
-    let (w, h) = (geom[2].as_f64().unwrap(), geom[3].as_f64().unwrap());
-    // Pointer offsets are from the element's centre.
-    let at = |x: f64, y: f64| ((x * sx - w / 2.0).round(), (y * sy - h / 2.0).round());
-    let (x0, y0) = at(other.0, other.1);
-    let (x1, y1) = at(other.0 + 60.0, other.1 + 40.0);
-    let origin = serde_json::json!({"element-6066-11e4-a52e-4f735466cecf": id});
-    b.call(
-        "POST",
-        &b.at("/actions"),
-        Some(
-            serde_json::json!({"actions": [{"type": "pointer", "id": "mouse",
-                "parameters": {"pointerType": "mouse"}, "actions": [
-                {"type": "pointerMove", "origin": origin, "x": x0, "y": y0},
-                {"type": "pointerDown", "button": 0},
-                {"type": "pointerMove", "origin": origin, "x": x1, "y": y1, "duration": 200},
-                {"type": "pointerUp", "button": 0}
-            ]}]}),
-        ),
-    );
+    b.drag_on_scene(other, (other.0 + 60.0, other.1 + 40.0));
     b.wait_for(
         &format!(
             "var r = window.vivaeView.robots[1];

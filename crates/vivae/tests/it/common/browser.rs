@@ -354,6 +354,63 @@ impl Browser {
     }
 }
 
+impl Browser {
+    /// Presses (`keyDown`) or releases (`keyUp`) WebDriver key `key` (e.g.
+    /// `"\u{E013}"`, the up arrow) on whatever has the focus.
+    pub fn key(&self, kind: &str, key: &str) {
+        self.call(
+            "POST",
+            &self.at("/actions"),
+            Some(json!({"actions": [{"type": "key", "id": "kb", "actions": [
+                {"type": kind, "value": key}
+            ]}]})),
+        );
+    }
+
+    /// Drags with the mouse on the viewer's arena canvas from world point
+    /// `from` to world point `to` (arena px).
+    pub fn drag_on_scene(&self, from: (f64, f64), to: (f64, f64)) {
+        let el = self.call(
+            "POST",
+            &self.at("/element"),
+            Some(json!({"using": "css selector", "value": "#scene"})),
+        );
+        let id = el
+            .as_object()
+            .and_then(|o| o.values().next())
+            .and_then(|v| v.as_str())
+            .unwrap()
+            .to_string();
+        let geom = self.eval(
+            "var r = document.getElementById('scene').getBoundingClientRect();
+             var c = document.getElementById('scene');
+             return [r.width / c.width, r.height / c.height, r.width, r.height];",
+        );
+        let (sx, sy) = (geom[0].as_f64().unwrap(), geom[1].as_f64().unwrap());
+        let (w, h) = (geom[2].as_f64().unwrap(), geom[3].as_f64().unwrap());
+        // Pointer offsets are from the element's centre.
+        let at = |(x, y): (f64, f64)| ((x * sx - w / 2.0).round(), (y * sy - h / 2.0).round());
+        let ((x0, y0), (x1, y1)) = (at(from), at(to));
+        let origin = json!({"element-6066-11e4-a52e-4f735466cecf": id});
+        self.call(
+            "POST",
+            &self.at("/actions"),
+            Some(json!({"actions": [{"type": "pointer", "id": "mouse",
+                "parameters": {"pointerType": "mouse"}, "actions": [
+                {"type": "pointerMove", "origin": origin, "x": x0, "y": y0},
+                {"type": "pointerDown", "button": 0},
+                {"type": "pointerMove", "origin": origin, "x": x1, "y": y1, "duration": 200},
+                {"type": "pointerUp", "button": 0}
+            ]}]})),
+        );
+    }
+}
+
+/// Where browser tests leave their screenshots (to look at).
+pub fn shots() -> PathBuf {
+    PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("browser-screenshots")
+}
+
 impl Drop for Browser {
     fn drop(&mut self) {
         if !self.session.is_empty() {

@@ -45,6 +45,16 @@ pub fn evolve(config: &Path, out: &Path, extra: &[&str]) -> String {
         .arg(out))
 }
 
+/// A finished small run of `generations` (seed 7) in a fresh scratch
+/// directory `name`; returns the run directory (its parent is the scratch).
+pub fn small_run(name: &str, generations: u32) -> PathBuf {
+    let dir = scratch(name);
+    let config = write_small_config(&dir, generations);
+    let out = dir.join("run");
+    evolve(&config, &out, &[]);
+    out
+}
+
 /// Makes a FIFO at `path` (a special file that blocks a reader until a writer comes).
 pub fn mkfifo(path: &Path) {
     let status = Command::new("mkfifo").arg(path).status().unwrap();
