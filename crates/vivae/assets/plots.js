@@ -58,6 +58,8 @@ var VivaePlots = (function () {
     });
     if (!isFinite(lo)) { lo = 0; hi = 1; }
     if (lo > 0 && lo < (hi - lo)) { lo = 0; }
+    // Headroom, so that a flat best curve is not drawn on the frame's top edge.
+    hi += (hi - lo) * 0.05 || Math.max(Math.abs(hi) * 0.05, 0.05);
     var a = axes(xs[0], xs[xs.length - 1], lo, hi, xlabel, ylabel);
     var s = a.svg;
     series.forEach(function (ser, k) {
