@@ -10,50 +10,47 @@
 mod common;
 #[path = "common/xor_task.rs"]
 mod xor_task;
-use common::{RunResult, override_param, summarize};
+use common::{RunResult, apply_overrides, args_or_exit, fail, summarize};
 use xor_task::run_xor;
 
 use vivae_neat::NeatParams;
+
+const USAGE: &str = "\
+XOR with NEAT (Stanley & Miikkulainen 2002): many seeded runs, one summary line.
+
+Usage: cargo run --release -p vivae-neat --example xor -- [OPTIONS]
+
+Options:
+  --runs N              runs, with seeds S, S+1, ... (default 100)
+  --seed S              seed of the first run (default 1)
+  --max-generations G   generations before a run counts as unsolved (default 500)
+  --set FIELD=JSON      override one NeatParams field (repeatable), e.g. --set population_size=300
+  -h, --help            print this help
+
+Prints `xor: solved=S/N mean_evals=... median_evals=... mean_hidden=... mean_ms=...`
+on stdout and one line per run on stderr.
+";
 
 fn run(params: &NeatParams, seed: u64, max_generations: u32) -> RunResult {
     match run_xor(params, seed, max_generations) {
         Some((evals, hidden)) => RunResult {
             evals: Some(evals),
             hidden,
+            generalisation: None,
         },
-        None => RunResult {
-            evals: None,
-            hidden: 0,
-        },
+        None => RunResult::unsolved(),
     }
 }
 
 fn main() {
-    let mut runs = 100usize;
-    let mut seed = 1u64;
-    let mut max_generations = 500u32;
-    let mut params = NeatParams::plain_neat();
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let mut it = args.iter();
-    while let Some(a) = it.next() {
-        let mut value = |name: &str| -> u64 {
-            it.next()
-                .and_then(|v| v.parse().ok())
-                .unwrap_or_else(|| panic!("{name} needs a number"))
-        };
-        match a.as_str() {
-            "--runs" => runs = value("--runs") as usize,
-            "--seed" => seed = value("--seed"),
-            "--max-generations" => max_generations = value("--max-generations") as u32,
-            "--set" => {
-                let kv = it.next().expect("--set needs field=json_value");
-                params = override_param(&params, kv);
-            }
-            other => panic!(
-                "unknown argument {other} (use --runs N --seed S --max-generations G --set field=value)"
-            ),
-        }
-    }
+    let Some(args) = args_or_exit("xor", USAGE, &[]) else {
+        return;
+    };
+    let params =
+        apply_overrides(NeatParams::plain_neat(), &args.sets).unwrap_or_else(|e| fail("xor", &e));
+    let runs = args.runs.unwrap_or(100);
+    let seed = args.seed.unwrap_or(1);
+    let max_generations = args.max_generations.unwrap_or(500);
     let line = summarize("xor", runs, seed, |seed| {
         run(&params, seed, max_generations)
     });

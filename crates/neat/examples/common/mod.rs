@@ -1,5 +1,7 @@
-//! What the benchmark examples share: one run's result, parameter overrides
-//! and the summary line over many runs.
+//! What the benchmark examples share: one run's result, parameter overrides,
+//! the command line and the summary line over many runs.
+
+pub mod cli;
 
 use std::time::Instant;
 
@@ -11,20 +13,68 @@ pub struct RunResult {
     pub evals: Option<usize>,
     /// Hidden nodes of the solving genome.
     pub hidden: usize,
+    /// Generalisation score of the solving genome, for tasks that have one.
+    pub generalisation: Option<usize>,
 }
 
-/// Applies `field=value` (value in JSON) to the parameters, for experiments.
-pub fn override_param(params: &NeatParams, kv: &str) -> NeatParams {
-    let (k, v) = kv.split_once('=').expect("--set needs field=json_value");
-    let mut json = serde_json::to_value(params).expect("params serialise");
-    json[k] = serde_json::from_str(v).expect("value must be JSON");
-    let p: NeatParams = serde_json::from_value(json).expect("known field");
-    p.validate().expect("valid value");
-    p
+impl RunResult {
+    /// A run that did not solve the task.
+    pub fn unsolved() -> RunResult {
+        RunResult {
+            evals: None,
+            hidden: 0,
+            generalisation: None,
+        }
+    }
+}
+
+/// Applies `field=value` (value in JSON) to the parameters, for experiments;
+/// the error is one line naming the override and what is wrong with it.
+pub fn override_param(params: &NeatParams, kv: &str) -> Result<NeatParams, String> {
+    let (k, v) = kv
+        .split_once('=')
+        .ok_or_else(|| format!("--set {kv}: expected field=json_value"))?;
+    let mut json = serde_json::to_value(params).map_err(|e| format!("--set {kv}: {e}"))?;
+    if json.get(k).is_none() {
+        return Err(format!("--set {kv}: unknown parameter `{k}`"));
+    }
+    json[k] = serde_json::from_str(v).map_err(|e| format!("--set {kv}: value is not JSON: {e}"))?;
+    let p: NeatParams = serde_json::from_value(json).map_err(|e| format!("--set {kv}: {e}"))?;
+    p.validate().map_err(|e| format!("--set {kv}: {e}"))?;
+    Ok(p)
+}
+
+/// Applies every `--set` override in order.
+pub fn apply_overrides(mut params: NeatParams, sets: &[String]) -> Result<NeatParams, String> {
+    for kv in sets {
+        params = override_param(&params, kv)?;
+    }
+    Ok(params)
+}
+
+/// Parses the command line, printing the usage for `--help` (returns `None`)
+/// and a one-line error with exit code 2 for anything it does not accept.
+pub fn args_or_exit(name: &str, usage: &str, switches: &[&str]) -> Option<cli::Args> {
+    let argv: Vec<String> = std::env::args().skip(1).collect();
+    match cli::parse(&argv, switches) {
+        Ok(cli::Parsed::Run(a)) => Some(a),
+        Ok(cli::Parsed::Help) => {
+            print!("{usage}");
+            None
+        }
+        Err(e) => fail(name, &e),
+    }
+}
+
+/// Prints `NAME: MESSAGE` on stderr and exits with code 2 (bad input).
+pub fn fail(name: &str, message: &str) -> ! {
+    eprintln!("{name}: {message}");
+    std::process::exit(2)
 }
 
 /// Runs `run(seed + r)` for `r` in `0..runs` and returns the summary line
-/// `NAME: solved=S/RUNS mean_evals=M median_evals=D mean_hidden=H mean_ms=T`.
+/// `NAME: solved=S/RUNS mean_evals=M median_evals=D mean_hidden=H mean_ms=T`,
+/// with ` mean_generalisation=G` before `mean_ms` when the task has a score.
 pub fn summarize(
     name: &str,
     runs: usize,
@@ -33,22 +83,36 @@ pub fn summarize(
 ) -> String {
     let mut evals = Vec::new();
     let mut hidden = 0usize;
+    let mut scores = Vec::new();
     let mut total_ms = 0.0;
     for r in 0..runs {
         let t = Instant::now();
-        let res = run(seed.wrapping_add(r as u64));
-        total_ms += t.elapsed().as_secs_f64() * 1e3;
+        let run_seed = seed.wrapping_add(r as u64);
+        let res = run(run_seed);
+        let ms = t.elapsed().as_secs_f64() * 1e3;
+        total_ms += ms;
+        // One line per run on stderr, for distributions and re-runs of single seeds.
+        eprintln!(
+            "{name} seed={run_seed} evals={} hidden={} generalisation={} ms={ms:.0}",
+            res.evals.map_or("unsolved".to_string(), |e| e.to_string()),
+            res.hidden,
+            res.generalisation
+                .map_or("-".to_string(), |g| g.to_string()),
+        );
         if let Some(e) = res.evals {
             evals.push(e);
             hidden += res.hidden;
+            scores.extend(res.generalisation.map(|g| g as f64));
         }
     }
     let solved = evals.len();
     let evals: Vec<f64> = evals.iter().map(|&e| e as f64).collect();
     let mean = stats::mean(&evals).unwrap_or(0.0);
     let median = stats::median(&evals).unwrap_or(0.0);
+    let generalisation =
+        stats::mean(&scores).map_or(String::new(), |g| format!(" mean_generalisation={g:.0}"));
     format!(
-        "{name}: solved={solved}/{runs} mean_evals={mean:.0} median_evals={median:.0} mean_hidden={:.2} mean_ms={:.1}",
+        "{name}: solved={solved}/{runs} mean_evals={mean:.0} median_evals={median:.0} mean_hidden={:.2}{generalisation} mean_ms={:.1}",
         hidden as f64 / solved.max(1) as f64,
         total_ms / runs.max(1) as f64
     )

@@ -7,6 +7,7 @@ mod checkpoint_roundtrip_continues_identically;
 mod driver_runs_any_strategy;
 mod driver_stops_for_the_reason_it_reports;
 mod es_hyperneat_batched_decode_matches_reference_on_evolved_cppns;
+mod examples_refuse_bad_arguments_in_one_line;
 mod genome_invariants_under_random_mutations;
 mod inconsistent_genomes_and_populations_are_refused;
 mod offspring_count_equals_population_size;
