@@ -9,13 +9,27 @@
 //! count. A run directory keeps a copy of every map under `scenarios/` with a
 //! manifest of their FNV-1a hashes; the checkpoint records the hashes too, and
 //! `resume` refuses a copy that changed.
+//!
+//! Each map's arena is bounded by the scenario loader (10⁸ px², a 100 MB
+//! surface raster); all maps together by [`MAX_MAPS_RASTER_BYTES`], checked
+//! before any map's raster is built.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
+use vivae_sim::{LoadOptions, Scenario};
+
 use crate::config::Config;
 use crate::error::Result;
-use crate::io::{LoadedScenario, load_scenario};
+use crate::io::{LoadedScenario, bad_input, load_scenario, read_text};
+
+/// Most bytes the surface rasters of all training maps may take together
+/// (one byte per 1 px cell): ten arenas at the loader's per-map limit.
+pub const MAX_MAPS_RASTER_BYTES: f64 = 1e9;
+
+/// Cell side of the quick load that sizes a map before its real load: a
+/// raster 4096 times smaller than the real one.
+const SIZING_CELL: f64 = 64.0;
 
 /// The map-weighted mean: the sum in map order over the number of maps (so
 /// that a test can repeat it bit for bit).
@@ -49,6 +63,7 @@ pub fn load(config: &Config) -> Result<Vec<TrainingMap>> {
             loaded,
         }]);
     }
+    check_total_size(&config.experiment.scenarios)?;
     config
         .experiment
         .scenarios
@@ -59,6 +74,78 @@ pub fn load(config: &Config) -> Result<Vec<TrainingMap>> {
                 label: crate::io::scenario_name(Some(path)),
                 loaded: load_scenario(Some(path))?,
             })
+        })
+        .collect()
+}
+
+/// The surface raster a scenario's arena takes, in bytes (1 px cells, one byte each).
+pub fn raster_estimate(scenario: &Scenario) -> f64 {
+    scenario.width().ceil() * scenario.height().ceil()
+}
+
+/// Refuses training maps `names` whose rasters would together take more than
+/// [`MAX_MAPS_RASTER_BYTES`], the message giving the estimate. Each map is
+/// sized by a load with coarse cells, so nothing large is built to refuse it.
+fn check_total_size(names: &[String]) -> Result<()> {
+    let sizing = LoadOptions {
+        cell_size: SIZING_CELL,
+        ..LoadOptions::default()
+    };
+    let mut total = 0.0;
+    let mut largest = (0.0, "");
+    for name in names {
+        let path = Path::new(name);
+        let scenario = if path.is_file() {
+            Scenario::from_svg(&read_text(path)?, name, &sizing)?
+        } else {
+            // A shipped scenario (small), or the error the real load gives.
+            load_scenario(Some(path))?.scenario
+        };
+        let bytes = raster_estimate(&scenario);
+        total += bytes;
+        if bytes > largest.0 {
+            largest = (bytes, name);
+        }
+    }
+    if total > MAX_MAPS_RASTER_BYTES {
+        return Err(bad_input(format!(
+            "experiment.scenarios: the {} training maps' surface rasters would take about {:.0} MB in all \
+             (the largest, {}, {:.0} MB), more than the limit of {:.0} MB: train on fewer or smaller maps",
+            names.len(),
+            total / 1e6,
+            largest.1,
+            largest.0 / 1e6,
+            MAX_MAPS_RASTER_BYTES / 1e6
+        )));
+    }
+    Ok(())
+}
+
+/// Pairs `(i, j)`, `i < j`, of training maps with the same text: such a map
+/// is trained on twice, and counts twice in the mean fitness. Each later
+/// copy is paired with the first.
+pub fn repeated(maps: &[TrainingMap]) -> Vec<(usize, usize)> {
+    let mut pairs = Vec::new();
+    for (j, m) in maps.iter().enumerate() {
+        if let Some(i) = (0..j).find(|&i| maps[i].loaded.text == m.loaded.text) {
+            pairs.push((i, j));
+        }
+    }
+    pairs
+}
+
+/// One warning line for each map of `maps` given more than once (none for a single map).
+pub fn repeat_warnings(maps: &[TrainingMap]) -> Vec<String> {
+    repeated(maps)
+        .into_iter()
+        .map(|(i, j)| {
+            format!(
+                "training maps {} ({}) and {} ({}) are the same map: it is trained on twice and counts twice in the mean fitness",
+                i + 1,
+                maps[i].loaded.scenario.source,
+                j + 1,
+                maps[j].loaded.scenario.source
+            )
         })
         .collect()
 }
@@ -172,6 +259,61 @@ mod tests {
         let m = manifest(&copy_names(&maps), &maps);
         assert_eq!(m.lines().count(), 4);
         assert!(m.contains("oval-2.svg "));
+    }
+
+    /// Writes `copies` files of one big arena (10001×9990 px, just under the
+    /// per-map limit) into a fresh folder; returns their paths.
+    fn big_arenas(name: &str, copies: usize) -> Vec<String> {
+        let dir = std::env::temp_dir().join(format!("vivae-maps-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" xmlns:inkscape="http://www.inkscape.org/namespaces/inkscape" width="10001" height="9990"><rect id="road1" x="0" y="80" width="400" height="40" inkscape:label="Road"/><rect id="r1" x="100" y="100" width="12" height="12" inkscape:label="Robot"/></svg>"#;
+        (0..copies)
+            .map(|k| {
+                let p = dir.join(format!("arena-{k}.svg"));
+                std::fs::write(&p, svg).unwrap();
+                p.to_string_lossy().into_owned()
+            })
+            .collect()
+    }
+
+    #[test]
+    fn many_big_maps_are_refused_with_their_total_before_any_raster_is_built() {
+        let names = big_arenas("total", 24);
+        let mut c = Config::default();
+        c.experiment.scenarios = names.clone();
+        let e = load(&c).unwrap_err();
+        let message = e.to_string();
+        assert!(e.is_bad_input(), "{e:?}");
+        assert!(!message.contains('\n'), "{message}");
+        // 24 × 10001 × 9990 bytes ≈ 2398 MB.
+        assert!(
+            message.contains("24 training maps") && message.contains("about 2398 MB"),
+            "{message}"
+        );
+        assert!(message.contains("limit of 1000 MB"), "{message}");
+        // Ten of them fit.
+        c.experiment.scenarios.truncate(10);
+        assert_eq!(
+            check_total_size(&c.experiment.scenarios).map_err(|e| e.to_string()),
+            Ok(())
+        );
+        let dir = Path::new(&names[0]).parent().unwrap().to_path_buf();
+        std::fs::remove_dir_all(dir).unwrap();
+    }
+
+    #[test]
+    fn a_map_given_twice_is_reported_once_per_extra_copy() {
+        let maps = load(&config(&["oval", "roads", "oval", "oval"])).unwrap();
+        assert_eq!(repeated(&maps), [(0, 2), (0, 3)]);
+        let warnings = repeat_warnings(&maps);
+        assert_eq!(warnings.len(), 2);
+        assert!(
+            warnings[0].starts_with("training maps 1 (oval.svg (shipped)) and 3 "),
+            "{}",
+            warnings[0]
+        );
+        assert!(repeat_warnings(&load(&config(&["oval", "roads"])).unwrap()).is_empty());
     }
 
     #[test]

@@ -265,9 +265,21 @@ pub fn read_best_genomes(path: &Path) -> Result<Vec<GenerationBest>> {
             )));
         }
     };
+    parse_best_genomes(&text, path, MAX_RUN_FILE_BYTES)
+}
+
+/// The lines of `best-genomes.jsonl` (read from `path`), their genomes
+/// taking at most `budget` bytes in memory.
+fn parse_best_genomes(text: &str, path: &Path, budget: u64) -> Result<Vec<GenerationBest>> {
     // A last line without its newline is still being written by a running evolution.
     let complete = text.rfind('\n').map_or("", |end| &text[..end]);
     let mut out: Vec<GenerationBest> = Vec::new();
+    // The last line of each generation, so that `same_as` is not a search
+    // of every line before it (quadratic: 600 000 lines took minutes).
+    let mut line_of: std::collections::HashMap<u32, usize> = std::collections::HashMap::new();
+    // Bytes of the genomes read so far: `same_as` copies a genome, so a
+    // small file could otherwise ask for gigabytes.
+    let mut genome_bytes = 0u64;
     for (i, line) in complete.lines().enumerate() {
         if line.trim().is_empty() {
             continue;
@@ -279,14 +291,20 @@ pub fn read_best_genomes(path: &Path) -> Result<Vec<GenerationBest>> {
                 g.check().map_err(|e| bad(e.to_string()))?;
                 g
             }
-            (None, Some(k)) => out
-                .iter()
-                .rev()
-                .find(|b| b.generation == k)
-                .map(|b| b.genome.clone())
+            (None, Some(k)) => line_of
+                .get(&k)
+                .map(|&j| out[j].genome.clone())
                 .ok_or_else(|| bad(format!("same_as {k}: no such earlier generation")))?,
             _ => return Err(bad("needs exactly one of genome and same_as".into())),
         };
+        genome_bytes += genome_size(&genome);
+        if genome_bytes > budget {
+            return Err(bad(format!(
+                "its genomes would take more than {} MiB in memory (same_as repeats too large a genome too often)",
+                budget >> 20
+            )));
+        }
+        line_of.insert(stored.generation, out.len());
         out.push(GenerationBest {
             generation: stored.generation,
             fitness: stored.fitness,
@@ -295,6 +313,13 @@ pub fn read_best_genomes(path: &Path) -> Result<Vec<GenerationBest>> {
         });
     }
     Ok(out)
+}
+
+/// Bytes `genome`'s genes take in memory.
+fn genome_size(genome: &Genome) -> u64 {
+    let nodes = std::mem::size_of_val(genome.nodes());
+    let links = std::mem::size_of_val(genome.links());
+    (nodes + links) as u64
 }
 
 /// Keeps the first `lines` lines of a file (creating it empty if missing).
@@ -561,7 +586,8 @@ pub(crate) fn prune_checkpoints(dir: &Path, keep: usize) -> Result<()> {
 
 /// Reads `population.csv` back: per generation, the fitnesses best first.
 /// Refused (bad input naming the file, and the line): no header line, a
-/// malformed row, a fitness that is not a finite number, no row at all.
+/// malformed row, generations out of order (1, 1, …, 2, 2, …), a fitness
+/// that is not a finite number, no row at all.
 pub fn read_population_csv(path: &Path) -> Result<Vec<Vec<f64>>> {
     // Not `read_text`: a long run's population.csv may pass its size limit.
     let text = read_run_file(path).map_err(Error::io("read", path))?;
@@ -588,14 +614,25 @@ pub fn read_population_csv(path: &Path) -> Result<Vec<Vec<f64>>> {
         };
         let g: usize = g.parse().map_err(|e| malformed(i, &e))?;
         let f: f64 = f.parse().map_err(|e| malformed(i, &e))?;
-        if g == 0 {
-            return Err(malformed(i, &"generation 0"));
+        // In order, as written: the generation under way or the next one.
+        // (A row may not skip ahead: generation 10⁹ would allocate 24 GB.)
+        let (same, next) = (g != 0 && g == out.len(), g == out.len() + 1);
+        if !(same || next) {
+            let want = if out.is_empty() {
+                "1".to_string()
+            } else {
+                format!("{} or {}", out.len(), out.len() + 1)
+            };
+            return Err(malformed(
+                i,
+                &format!("generation {g} where {want} was expected"),
+            ));
         }
         if !f.is_finite() {
             return Err(malformed(i, &format!("fitness {f} is not a finite number")));
         }
-        if out.len() < g {
-            out.resize(g, Vec::new());
+        if next {
+            out.push(Vec::new());
         }
         out[g - 1].push(f);
     }
@@ -1101,4 +1138,95 @@ pub fn load_run(dir: &Path, config: &Config, hashes: Option<&[u64]>) -> Result<V
         });
     }
     Ok(maps)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `text` written as a file of a fresh folder, read by `read`.
+    fn read_back<T>(name: &str, text: &str, read: impl Fn(&Path) -> Result<T>) -> Result<T> {
+        let dir = std::env::temp_dir().join(format!("vivae-rundir-{name}-{}", std::process::id()));
+        fs::create_dir_all(&dir).unwrap();
+        let path = dir.join(name);
+        fs::write(&path, text).unwrap();
+        let out = read(&path);
+        fs::remove_dir_all(&dir).unwrap();
+        out
+    }
+
+    #[test]
+    fn population_rows_out_of_order_are_refused_without_allocating_for_them() {
+        // Found while writing the `rundir_reader` fuzz target (and confirmed
+        // with it): this 40-byte file made `report` allocate 24 GB, one
+        // empty generation per number skipped.
+        let e = read_back(
+            files::POPULATION,
+            "generation,rank,fitness\n999999999,1,1\n",
+            read_population_csv,
+        )
+        .unwrap_err();
+        let message = e.to_string();
+        assert!(e.is_bad_input(), "{e:?}");
+        assert!(
+            message.contains("line 2: generation 999999999 where 1 was expected"),
+            "{message}"
+        );
+        for (text, line) in [
+            ("1,1,0.5\n3,1,0.5\n", 3),
+            ("1,1,0.5\n2,1,0.5\n1,2,0.1\n", 4),
+            ("18446744073709551615,1,1\n", 2),
+        ] {
+            let e = read_back(
+                files::POPULATION,
+                &format!("generation,rank,fitness\n{text}"),
+                read_population_csv,
+            )
+            .unwrap_err();
+            assert!(
+                e.to_string().contains(&format!("line {line}: generation")),
+                "{e}"
+            );
+        }
+        let ok = read_back(
+            files::POPULATION,
+            "generation,rank,fitness\n1,1,0.5\n1,2,0.25\n2,1,0.75\n",
+            read_population_csv,
+        )
+        .unwrap();
+        assert_eq!(ok, [vec![0.5, 0.25], vec![0.75]]);
+    }
+
+    #[test]
+    fn best_genome_references_are_looked_up_not_searched_and_bounded_in_memory() {
+        let genome: Genome = serde_json::from_str(
+            r#"{"nodes":[{"id":0,"kind":"input","activation":"linear"},{"id":1,"kind":"output","activation":"linear"}],"links":[{"innovation":0,"from":0,"to":1,"weight":0.5,"enabled":true}]}"#,
+        )
+        .unwrap();
+        let first =
+            serde_json::json!({"generation": 1, "fitness": 1.0, "species": [], "genome": genome});
+        let line =
+            |k: u32| format!("{{\"generation\":{k},\"fitness\":1,\"species\":[],\"same_as\":1}}\n");
+        // 200 000 lines that all name the first: read at once (it used to
+        // search every earlier line for each, 2·10¹⁰ steps).
+        let mut text = format!("{first}\n");
+        for k in 2..=200_000 {
+            text.push_str(&line(k));
+        }
+        let best = read_back(files::BEST_GENOMES, &text, read_best_genomes).unwrap();
+        assert_eq!(best.len(), 200_000);
+        assert_eq!(best[199_999].genome, genome);
+        // Past the memory bound (here 1 MiB), refused, naming the line.
+        let path = Path::new(files::BEST_GENOMES);
+        let fits = (1u64 << 20) / genome_size(&genome);
+        let e = parse_best_genomes(&text, path, 1 << 20).unwrap_err();
+        assert!(e.is_bad_input(), "{e:?}");
+        assert!(
+            e.to_string().contains(&format!(
+                "line {}: its genomes would take more than 1 MiB",
+                fits + 1
+            )),
+            "{e}"
+        );
+    }
 }

@@ -434,6 +434,7 @@ fn cmd_evolve(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
             }
         }
     }
+    warn_repeated_maps(&maps);
     let dir = args
         .new_run
         .out
@@ -532,6 +533,7 @@ fn cmd_retrain(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Resu
         return Ok(code);
     }
     let (maps, experiment) = prepared?;
+    warn_repeated_maps(&maps);
     let dir = args
         .new_run
         .out
@@ -549,6 +551,14 @@ fn cmd_retrain(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Resu
         args.new_run.force,
     )?;
     drive(run, "retrain", &source, threads, quiet, interrupted)
+}
+
+/// Warns (even with `-q`: the run's result is at stake) about a training
+/// map given more than once, which trains twice and counts double.
+fn warn_repeated_maps(maps: &[vivae_lab::maps::TrainingMap]) {
+    for w in vivae_lab::maps::repeat_warnings(maps) {
+        eprintln!("warning: {w}");
+    }
 }
 
 /// What a run is about to do, for a person reading the terminal, under the

@@ -6,6 +6,8 @@
 //! the binary. The server answers only its own assets, a fixed list of the
 //! given run's files and the WebSocket; every other path is a 404.
 
+#[doc(hidden)]
+pub mod fuzzing;
 mod hosts;
 mod server;
 mod session;

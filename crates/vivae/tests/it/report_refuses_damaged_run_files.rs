@@ -69,6 +69,13 @@ fn non_finite_fitness_missing_generations_and_empty_files_are_refused() {
             vec!["population.csv", "no generation recorded"],
         ),
         (&ppath, String::new(), vec!["population.csv"]),
+        // Found by fuzzing: a generation far ahead used to allocate a row
+        // for every generation skipped (24 GB for this one).
+        (
+            &ppath,
+            format!("{}999999999,1,1\n", header(&population)),
+            vec!["population.csv", "line 2", "generation 999999999"],
+        ),
     ];
     for (path, text, needles) in cases {
         std::fs::write(path, text).unwrap();
