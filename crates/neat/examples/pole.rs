@@ -332,7 +332,7 @@ fn run(params: &NeatParams, markov: bool, seed: u64, max_generations: u32) -> Ru
 }
 
 fn main() {
-    let Some(args) = args_or_exit("pole", USAGE, &["--markov"]) else {
+    let Some(args) = args_or_exit("pole", USAGE, &["--markov"], &[]) else {
         return;
     };
     let markov = args.switches.iter().any(|s| s == "--markov");

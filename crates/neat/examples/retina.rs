@@ -26,7 +26,7 @@
 //! * `es-leo`: ES-HyperNEAT with LEO and the locality seed.
 
 mod common;
-use common::{RunResult, override_param, summarize};
+use common::{RunResult, apply_overrides, args_or_exit, fail, summarize};
 
 use rand::SeedableRng;
 use vivae_neat::hyperneat::es::{EsLayout, EsParams, decode_es_genome};
@@ -55,14 +55,16 @@ enum Mode {
 }
 
 impl Mode {
-    fn parse(s: &str) -> Mode {
+    fn parse(s: &str) -> Result<Mode, String> {
         match s {
-            "hyperneat" => Mode::HyperNeat,
-            "leo" => Mode::Leo,
-            "leo-seed" => Mode::LeoSeed,
-            "es" => Mode::Es,
-            "es-leo" => Mode::EsLeo,
-            other => panic!("unknown mode {other} (hyperneat, leo, leo-seed, es, es-leo)"),
+            "hyperneat" => Ok(Mode::HyperNeat),
+            "leo" => Ok(Mode::Leo),
+            "leo-seed" => Ok(Mode::LeoSeed),
+            "es" => Ok(Mode::Es),
+            "es-leo" => Ok(Mode::EsLeo),
+            other => Err(format!(
+                "--mode {other}: expected hyperneat, leo, leo-seed, es or es-leo"
+            )),
         }
     }
     fn name(self) -> &'static str {
@@ -214,6 +216,7 @@ fn run(params: &NeatParams, mode: Mode, es: &EsParams, seed: u64, gens: u32) -> 
                 RunResult {
                     evals: Some(evals),
                     hidden,
+                    generalisation: None,
                 },
                 extra,
             );
@@ -224,39 +227,40 @@ fn run(params: &NeatParams, mode: Mode, es: &EsParams, seed: u64, gens: u32) -> 
         best_right,
         substrate_hidden: best_hidden,
     };
-    (
-        RunResult {
-            evals: None,
-            hidden: 0,
-        },
-        extra,
-    )
+    (RunResult::unsolved(), extra)
 }
 
+const USAGE: &str = "\
+The left & right retina problem with HyperNEAT, LEO and ES-HyperNEAT.
+
+Usage: cargo run --release -p vivae-neat --example retina -- [OPTIONS]
+
+Options:
+  --mode M              hyperneat (default), leo, leo-seed, es or es-leo
+  --runs N              runs, with seeds S, S+1, ... (default 20)
+  --seed S              seed of the first run (default 1)
+  --max-generations G   generations before a run counts as unsolved (default 500)
+  --set FIELD=JSON      override one NeatParams field (repeatable)
+  -h, --help            print this help
+
+Prints `retina-MODE: solved=S/N mean_evals=... mean_best_accuracy=... mean_substrate_hidden=...`
+on stdout and one line per run on stderr.
+";
+
 fn main() {
-    let (mut runs, mut seed, mut gens) = (20usize, 1u64, 500u32);
-    let mut mode = Mode::HyperNeat;
-    let mut params = NeatParams::paper_cppn();
+    let Some(args) = args_or_exit("retina", USAGE, &[], &["--mode"]) else {
+        return;
+    };
+    let mode = match args.options.last() {
+        Some((_, m)) => Mode::parse(m).unwrap_or_else(|e| fail("retina", &e)),
+        None => Mode::HyperNeat,
+    };
+    let params = apply_overrides(NeatParams::paper_cppn(), &args.sets)
+        .unwrap_or_else(|e| fail("retina", &e));
     let es = EsParams::default();
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let mut it = args.iter();
-    while let Some(a) = it.next() {
-        let mut value = |name: &str| -> u64 {
-            it.next()
-                .and_then(|v| v.parse().ok())
-                .unwrap_or_else(|| panic!("{name} needs a number"))
-        };
-        match a.as_str() {
-            "--runs" => runs = value("--runs") as usize,
-            "--seed" => seed = value("--seed"),
-            "--max-generations" => gens = value("--max-generations") as u32,
-            "--mode" => mode = Mode::parse(it.next().expect("--mode needs a name")),
-            "--set" => params = override_param(&params, it.next().expect("--set field=value")),
-            other => panic!(
-                "unknown argument {other} (use --mode M --runs N --seed S --max-generations G --set field=value)"
-            ),
-        }
-    }
+    let runs = args.runs.unwrap_or(20);
+    let seed = args.seed.unwrap_or(1);
+    let gens = args.max_generations.unwrap_or(500);
     let (mut substrate_hidden, mut best_right) = (Vec::new(), Vec::new());
     let line = summarize(mode.name(), runs, seed, |seed| {
         let (result, extra) = run(&params, mode, &es, seed, gens);

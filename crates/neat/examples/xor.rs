@@ -43,7 +43,7 @@ fn run(params: &NeatParams, seed: u64, max_generations: u32) -> RunResult {
 }
 
 fn main() {
-    let Some(args) = args_or_exit("xor", USAGE, &[]) else {
+    let Some(args) = args_or_exit("xor", USAGE, &[], &[]) else {
         return;
     };
     let params =

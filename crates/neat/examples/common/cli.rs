@@ -15,6 +15,8 @@ pub struct Args {
     pub sets: Vec<String>,
     /// The example's own switches that were given (e.g. `--markov`).
     pub switches: Vec<String>,
+    /// The example's own options with a value, as given (e.g. `--mode leo`).
+    pub options: Vec<(String, String)>,
 }
 
 /// The outcome of parsing: run with these arguments, or print the usage.
@@ -27,8 +29,9 @@ pub enum Parsed {
 }
 
 /// Parses `args` (without the program name); `switches` are the example's own
-/// flags that take no value. The error is one line naming the bad argument.
-pub fn parse(args: &[String], switches: &[&str]) -> Result<Parsed, String> {
+/// flags that take no value, `options` its own that take one value. The error
+/// is one line naming the bad argument.
+pub fn parse(args: &[String], switches: &[&str], options: &[&str]) -> Result<Parsed, String> {
     let mut out = Args::default();
     let mut it = args.iter();
     while let Some(a) = it.next() {
@@ -42,6 +45,10 @@ pub fn parse(args: &[String], switches: &[&str]) -> Result<Parsed, String> {
                 _ => return Err("--set needs field=json_value".to_string()),
             },
             s if switches.contains(&s) => out.switches.push(s.to_string()),
+            s if options.contains(&s) => match it.next() {
+                Some(v) => out.options.push((s.to_string(), v.clone())),
+                None => return Err(format!("{s} needs a value")),
+            },
             other => return Err(format!("unknown argument `{other}` (see --help)")),
         }
     }

@@ -19,6 +19,8 @@ pub struct RunResult {
 
 impl RunResult {
     /// A run that did not solve the task.
+    // Each example compiles its own copy of this module; boxes never needs it.
+    #[allow(dead_code)]
     pub fn unsolved() -> RunResult {
         RunResult {
             evals: None,
@@ -54,9 +56,15 @@ pub fn apply_overrides(mut params: NeatParams, sets: &[String]) -> Result<NeatPa
 
 /// Parses the command line, printing the usage for `--help` (returns `None`)
 /// and a one-line error with exit code 2 for anything it does not accept.
-pub fn args_or_exit(name: &str, usage: &str, switches: &[&str]) -> Option<cli::Args> {
+/// `switches` and `options` are the example's own flags without and with a value.
+pub fn args_or_exit(
+    name: &str,
+    usage: &str,
+    switches: &[&str],
+    options: &[&str],
+) -> Option<cli::Args> {
     let argv: Vec<String> = std::env::args().skip(1).collect();
-    match cli::parse(&argv, switches) {
+    match cli::parse(&argv, switches, options) {
         Ok(cli::Parsed::Run(a)) => Some(a),
         Ok(cli::Parsed::Help) => {
             print!("{usage}");

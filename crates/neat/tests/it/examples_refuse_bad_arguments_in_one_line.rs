@@ -5,7 +5,11 @@
 #[path = "../../examples/common/cli.rs"]
 mod cli;
 
-use cli::{Args, Parsed, parse};
+use cli::{Args, Parsed};
+
+fn parse(a: &[String], switches: &[&str]) -> Result<Parsed, String> {
+    cli::parse(a, switches, &[])
+}
 
 fn args(list: &[&str]) -> Vec<String> {
     list.iter().map(|s| s.to_string()).collect()
@@ -39,6 +43,7 @@ fn known_arguments_are_parsed() {
         max_generations: Some(9),
         sets: vec!["population_size=10".to_string()],
         switches: vec!["--markov".to_string()],
+        options: vec![],
     };
     assert_eq!(got, Ok(Parsed::Run(want)));
 }
@@ -64,4 +69,19 @@ fn bad_or_missing_values_are_one_line_errors() {
         let e = parse(&args(bad), &[]).unwrap_err();
         assert!(e.starts_with(bad[0]) && !e.contains('\n'), "{bad:?}: {e}");
     }
+}
+
+#[test]
+fn an_example_option_takes_its_value_and_needs_one() {
+    let got = cli::parse(&args(&["--mode", "leo", "--runs", "2"]), &[], &["--mode"]);
+    let want = Args {
+        runs: Some(2),
+        options: vec![("--mode".to_string(), "leo".to_string())],
+        ..Args::default()
+    };
+    assert_eq!(got, Ok(Parsed::Run(want)));
+    let e = cli::parse(&args(&["--mode"]), &[], &["--mode"]).unwrap_err();
+    assert!(e.starts_with("--mode") && !e.contains('\n'), "{e}");
+    // Another example's option is unknown here.
+    assert!(parse(&args(&["--mode", "leo"]), &[]).is_err());
 }
