@@ -777,18 +777,23 @@ mod tests {
         });
     }
 
+    /// Robot 0 taken over by hand, with the forward key held.
+    fn drive_forward(sim: &mut Sim, source: &Source, snap: &RunSnapshot) {
+        sim.handle(r#"{"type":"drive","robot":0}"#, source, snap)
+            .unwrap();
+        sim.handle(
+            r#"{"type":"keys","up":true,"down":false,"left":false,"right":false}"#,
+            source,
+            snap,
+        )
+        .unwrap();
+    }
+
     #[test]
     fn a_frame_carries_the_positions_since_the_last_one() {
         with_sim(|sim, source, snap| {
             sim.frame_msg();
-            sim.handle(r#"{"type":"drive","robot":0}"#, source, snap)
-                .unwrap();
-            sim.handle(
-                r#"{"type":"keys","up":true,"down":false,"left":false,"right":false}"#,
-                source,
-                snap,
-            )
-            .unwrap();
+            drive_forward(sim, source, snap);
             let path = |sim: &mut Sim| -> Vec<f64> {
                 let frame: serde_json::Value = serde_json::from_str(&sim.frame_msg()).unwrap();
                 serde_json::from_value(frame["robots"][0]["p"].clone()).unwrap()
@@ -818,14 +823,7 @@ mod tests {
     fn keyboard_driving_moves_the_robot_forward() {
         with_sim(|sim, source, snap| {
             let start = sim.world.robots()[0].pos;
-            sim.handle(r#"{"type":"drive","robot":0}"#, source, snap)
-                .unwrap();
-            sim.handle(
-                r#"{"type":"keys","up":true,"down":false,"left":false,"right":false}"#,
-                source,
-                snap,
-            )
-            .unwrap();
+            drive_forward(sim, source, snap);
             sim.handle(r#"{"type":"step","n":40}"#, source, snap)
                 .unwrap();
             let r = &sim.world.robots()[0];
