@@ -6,6 +6,7 @@ mod checkpoint_of_any_strategy_resumes_identically;
 mod checkpoint_roundtrip_continues_identically;
 mod driver_runs_any_strategy;
 mod driver_stops_for_the_reason_it_reports;
+mod efficacy_tasks_score_perfect_solutions_at_their_maximum;
 mod es_hyperneat_batched_decode_matches_reference_on_evolved_cppns;
 mod examples_refuse_bad_arguments_in_one_line;
 mod genome_invariants_under_random_mutations;

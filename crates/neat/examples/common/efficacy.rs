@@ -1,0 +1,124 @@
+//! Efficacy sampling as SharpNEAT's EfficacySampler does it: runs of a fixed
+//! wall-clock length, reporting the distribution of the best fitness reached
+//! and of the evaluations done per run, and evaluations per second.
+
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Instant;
+
+use vivae_neat::driver::{
+    Evolution, GenerationReport, HookError, NoCheckpoints, Observer, ParallelEvaluator,
+    StopCriteria, Task,
+};
+use vivae_neat::{GenomeSpec, NeatParams, Population, stats};
+
+use crate::common::{apply_overrides, cli, fail};
+
+/// Best fitness and evaluations of one run; raises `stop` once `seconds` have passed.
+struct Clock<'a> {
+    start: Instant,
+    seconds: f64,
+    stop: &'a AtomicBool,
+    best: f64,
+    evals: usize,
+}
+
+impl Observer for Clock<'_> {
+    fn on_generation(&mut self, report: &GenerationReport<'_>) -> Result<(), HookError> {
+        self.evals += report.evaluations.len();
+        for e in report.evaluations {
+            self.best = self.best.max(e.fitness);
+        }
+        if self.start.elapsed().as_secs_f64() >= self.seconds {
+            self.stop.store(true, Ordering::SeqCst);
+        }
+        Ok(())
+    }
+}
+
+/// Splits `--seconds T` off the command line (the shared parser does not know it).
+fn seconds_and_rest(name: &str, argv: Vec<String>) -> (f64, Vec<String>) {
+    let mut seconds = 60.0;
+    let mut rest = Vec::new();
+    let mut it = argv.into_iter();
+    while let Some(a) = it.next() {
+        if a == "--seconds" {
+            let v = it.next().unwrap_or_default();
+            seconds = match v.parse::<f64>() {
+                Ok(s) if s.is_finite() && s > 0.0 => s,
+                _ => fail(
+                    name,
+                    &format!("--seconds needs a positive number, got `{v}`"),
+                ),
+            };
+        } else {
+            rest.push(a);
+        }
+    }
+    (seconds, rest)
+}
+
+/// Runs `--runs N` (default 5) runs of `--seconds T` (default 60) each on one
+/// thread, seeds S, S+1, ..., stopping early at `target`; prints one line per
+/// run on stderr and returns the summary line (`None` after `--help`).
+pub fn sample<T: Task + Clone>(
+    name: &str,
+    usage: &str,
+    params: NeatParams,
+    spec: &GenomeSpec,
+    target: f64,
+    task: T,
+) -> Option<String> {
+    let (seconds, argv) = seconds_and_rest(name, std::env::args().skip(1).collect());
+    let args = match cli::parse(&argv, &[]) {
+        Ok(cli::Parsed::Run(a)) => a,
+        Ok(cli::Parsed::Help) => {
+            print!("{usage}");
+            return None;
+        }
+        Err(e) => fail(name, &e),
+    };
+    let params = apply_overrides(params, &args.sets).unwrap_or_else(|e| fail(name, &e));
+    let (runs, seed) = (args.runs.unwrap_or(5), args.seed.unwrap_or(1));
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build();
+    let pool = pool.unwrap_or_else(|e| fail(name, &format!("thread pool: {e}")));
+    let (mut bests, mut evals, mut secs) = (Vec::new(), Vec::new(), 0.0);
+    for r in 0..runs as u64 {
+        let pop = Population::new(params.clone(), spec.clone(), seed + r)
+            .unwrap_or_else(|e| fail(name, &e.to_string()));
+        let stop = AtomicBool::new(false);
+        let criteria = StopCriteria {
+            generations: args.max_generations,
+            target_fitness: Some(target),
+            ..StopCriteria::default()
+        }
+        .or_interrupt(&stop);
+        let mut clock = Clock {
+            start: Instant::now(),
+            seconds,
+            stop: &stop,
+            best: 0.0,
+            evals: 0,
+        };
+        let mut evolution = Evolution::new(pop, ParallelEvaluator::with_pool(task.clone(), &pool));
+        let reason = evolution.run(&criteria, &mut clock, &mut NoCheckpoints);
+        let reason = reason.unwrap_or_else(|e| fail(name, &e.to_string()));
+        let s = clock.start.elapsed().as_secs_f64();
+        eprintln!(
+            "{name} seed={} best={} evals={} s={s:.1} stop={reason:?}",
+            seed + r,
+            clock.best,
+            clock.evals
+        );
+        bests.push(clock.best);
+        evals.push(clock.evals as f64);
+        secs += s;
+    }
+    let min = bests.iter().copied().fold(f64::INFINITY, f64::min);
+    let max = bests.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let median = stats::median(&bests).unwrap_or(0.0);
+    Some(format!(
+        "{name}: runs={runs} best_fitness(min/median/max)={min:.2}/{median:.2}/{max:.2} evals_per_run(median)={:.0} evals_per_s={:.0}",
+        stats::median(&evals).unwrap_or(0.0),
+        evals.iter().sum::<f64>() / secs.max(1e-9)
+    ))
+}

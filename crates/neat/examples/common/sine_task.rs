@@ -1,0 +1,89 @@
+//! SharpNEAT 4's generative sinewave (`GenerativeFnRegressionEvaluationScheme`
+//! with `generative-sinewave.config.json`): a recurrent network whose only
+//! input is a bias of 1 is activated 3 times to warm up, then 80 times; the
+//! k-th output `y` gives `(y - 0.5) * scale + mid`, compared with sin(x_k) for
+//! 80 points x_k evenly over [0, 25.13274123] (8π). Fitness is
+//! `20 / (0.1 * mse(y) + 0.9 * mse(gradient) + 0.02)`, so a perfect network
+//! scores 1,000; gradients are central differences (one-sided at the ends).
+
+use vivae_neat::{Network, math};
+
+/// Samples of the function.
+pub const SINE_SAMPLES: usize = 80;
+const X_MAX: f64 = 25.132_741_23;
+const GRADIENT_WEIGHT: f64 = 0.9;
+
+/// The targets, their gradients, and the probe's `mid` and `scale`.
+pub struct Sine {
+    y: [f64; SINE_SAMPLES],
+    dy: [f64; SINE_SAMPLES],
+    /// Middle of the target's range.
+    pub mid: f64,
+    /// The target's range over 0.8 (the logistic function's useful range).
+    pub scale: f64,
+}
+
+fn x(k: usize) -> f64 {
+    X_MAX / (SINE_SAMPLES - 1) as f64 * k as f64
+}
+
+fn gradients(y: &[f64; SINE_SAMPLES], dy: &mut [f64; SINE_SAMPLES]) {
+    let n = SINE_SAMPLES - 1;
+    dy[0] = (y[1] - y[0]) / (x(1) - x(0));
+    for k in 1..n {
+        dy[k] = (y[k + 1] - y[k - 1]) / (x(k + 1) - x(k - 1));
+    }
+    dy[n] = (y[n] - y[n - 1]) / (x(n) - x(n - 1));
+}
+
+impl Default for Sine {
+    fn default() -> Sine {
+        Sine::new()
+    }
+}
+
+impl Sine {
+    /// sin over [0, 8π], with portable sine (same bits on every machine).
+    pub fn new() -> Sine {
+        let mut y = [0.0; SINE_SAMPLES];
+        for (k, v) in y.iter_mut().enumerate() {
+            *v = math::sin(x(k));
+        }
+        let mut dy = [0.0; SINE_SAMPLES];
+        gradients(&y, &mut dy);
+        let (lo, hi) = y
+            .iter()
+            .fold((f64::MAX, f64::MIN), |(a, b), &v| (a.min(v), b.max(v)));
+        Sine {
+            y,
+            dy,
+            mid: (lo + hi) / 2.0,
+            scale: (hi - lo) / 0.8,
+        }
+    }
+
+    /// The fitness of `net` (1 input, 1 output), in (0, 1000]; 0 when not finite.
+    pub fn fitness(&self, net: &mut impl Network) -> f64 {
+        let mut got = [0.0; SINE_SAMPLES];
+        let mut out = [0.0];
+        net.reset();
+        for _ in 0..3 {
+            net.activate(&[1.0], &mut out);
+        }
+        for g in got.iter_mut() {
+            net.activate(&[1.0], &mut out);
+            *g = (out[0] - 0.5) * self.scale + self.mid;
+        }
+        if got.iter().any(|v| !v.is_finite()) {
+            return 0.0;
+        }
+        let mut dgot = [0.0; SINE_SAMPLES];
+        gradients(&got, &mut dgot);
+        let mse = |a: &[f64], b: &[f64]| {
+            a.iter().zip(b).map(|(p, q)| (p - q) * (p - q)).sum::<f64>() / SINE_SAMPLES as f64
+        };
+        let e =
+            (1.0 - GRADIENT_WEIGHT) * mse(&got, &self.y) + GRADIENT_WEIGHT * mse(&dgot, &self.dy);
+        20.0 / (e + 0.02)
+    }
+}

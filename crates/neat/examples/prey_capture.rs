@@ -1,0 +1,58 @@
+//! SharpNEAT's prey capture, sampled as its EfficacySampler does: runs of a
+//! fixed wall-clock length, the best fitness each reaches.
+//!
+//! `cargo run --release -p vivae-neat --example prey_capture -- --runs 5 --seconds 60`
+//!
+//! 100 seeded trials per evaluation on a 24×24 grid (see
+//! `common/prey_task.rs`); fitness is the prey caught. Population 225 as
+//! SharpNEAT's `prey-capture.config.json`; the rest is our
+//! `NeatParams::plain_neat` with recurrent links allowed and sigmoid nodes
+//! (SharpNEAT uses LeakyReLU and its own operators). The trials' seed comes
+//! from the evaluation context, so a run is reproducible.
+
+// Only the command line and overrides of the shared runner are used here.
+#[allow(dead_code)]
+mod common;
+#[path = "common/efficacy.rs"]
+mod efficacy;
+#[path = "common/prey_task.rs"]
+mod prey_task;
+
+use prey_task::SHARPNEAT_PREY;
+use vivae_neat::{EvalContext, Genome, GenomeSpec, NeatParams, RecurrentNetwork};
+
+const USAGE: &str = "\
+SharpNEAT's prey capture: fixed-length runs, one summary line.
+
+Usage: cargo run --release -p vivae-neat --example prey_capture -- [OPTIONS]
+
+Options:
+  --seconds T           wall-clock length of each run (default 60)
+  --runs N              runs, with seeds S, S+1, ... (default 5)
+  --seed S              seed of the first run (default 1)
+  --max-generations G   also stop a run after G generations
+  --set FIELD=JSON      override one NeatParams field (repeatable)
+  -h, --help            print this help
+
+Prints `prey_capture: runs=N best_fitness(min/median/max)=... evals_per_run(median)=...
+evals_per_s=...` on stdout (one thread) and one line per run on stderr.
+";
+
+fn main() {
+    let params = NeatParams {
+        population_size: 225,
+        ..NeatParams::plain_neat()
+    };
+    let world = SHARPNEAT_PREY;
+    let task = |g: &Genome, ctx: &EvalContext| {
+        world.fitness(&mut RecurrentNetwork::from_genome(g), ctx.seed)
+    };
+    let spec = GenomeSpec {
+        allow_recurrent: true,
+        ..GenomeSpec::plain(14, 4)
+    };
+    let target = world.trials as f64;
+    if let Some(line) = efficacy::sample("prey_capture", USAGE, params, &spec, target, task) {
+        println!("{line}");
+    }
+}

@@ -1,0 +1,54 @@
+//! SharpNEAT's generative sinewave, sampled as its EfficacySampler does: runs
+//! of a fixed wall-clock length, the best fitness each reaches.
+//!
+//! `cargo run --release -p vivae-neat --example sinewave -- --runs 5 --seconds 60`
+//!
+//! A recurrent network with only a bias input must draw sin over [0, 8π],
+//! one sample per activation (see `common/sine_task.rs`; at most 1,000).
+//! Population 600 as SharpNEAT's `generative-sinewave.config.json`; the rest
+//! is our `NeatParams::plain_neat` with recurrent links allowed and sigmoid
+//! nodes (SharpNEAT uses LeakyReLU and its own operators).
+
+// Only the command line and overrides of the shared runner are used here.
+#[allow(dead_code)]
+mod common;
+#[path = "common/efficacy.rs"]
+mod efficacy;
+#[path = "common/sine_task.rs"]
+mod sine_task;
+
+use sine_task::Sine;
+use vivae_neat::{EvalContext, Genome, GenomeSpec, NeatParams, RecurrentNetwork};
+
+const USAGE: &str = "\
+SharpNEAT's generative sinewave: fixed-length runs, one summary line.
+
+Usage: cargo run --release -p vivae-neat --example sinewave -- [OPTIONS]
+
+Options:
+  --seconds T           wall-clock length of each run (default 60)
+  --runs N              runs, with seeds S, S+1, ... (default 5)
+  --seed S              seed of the first run (default 1)
+  --max-generations G   also stop a run after G generations
+  --set FIELD=JSON      override one NeatParams field (repeatable)
+  -h, --help            print this help
+
+Prints `sinewave: runs=N best_fitness(min/median/max)=... evals_per_run(median)=...
+evals_per_s=...` on stdout (one thread) and one line per run on stderr.
+";
+
+fn main() {
+    let params = NeatParams {
+        population_size: 600,
+        ..NeatParams::plain_neat()
+    };
+    let sine = Sine::new();
+    let task = |g: &Genome, _: &EvalContext| sine.fitness(&mut RecurrentNetwork::from_genome(g));
+    let spec = GenomeSpec {
+        allow_recurrent: true,
+        ..GenomeSpec::plain(1, 1)
+    };
+    if let Some(line) = efficacy::sample("sinewave", USAGE, params, &spec, 1000.0, task) {
+        println!("{line}");
+    }
+}

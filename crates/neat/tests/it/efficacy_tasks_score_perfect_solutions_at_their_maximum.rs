@@ -1,0 +1,110 @@
+//! The efficacy examples' task scorers (`examples/common/*_task.rs`): a
+//! hand-written perfect solution reaches each task's known maximum, and a
+//! wrong one scores less.
+
+#[path = "../../examples/common/mux_task.rs"]
+mod mux_task;
+#[path = "../../examples/common/prey_task.rs"]
+mod prey_task;
+#[path = "../../examples/common/sine_task.rs"]
+mod sine_task;
+
+use vivae_neat::{Network, math};
+
+/// A network given by a function of its inputs and a step counter.
+struct Scripted<F> {
+    inputs: usize,
+    outputs: usize,
+    step: usize,
+    f: F,
+}
+
+impl<F: FnMut(&[f64], usize, &mut [f64])> Network for Scripted<F> {
+    fn num_inputs(&self) -> usize {
+        self.inputs
+    }
+    fn num_outputs(&self) -> usize {
+        self.outputs
+    }
+    fn activate(&mut self, inputs: &[f64], outputs: &mut [f64]) {
+        (self.f)(inputs, self.step, outputs);
+        self.step += 1;
+    }
+    fn reset(&mut self) {
+        self.step = 0;
+    }
+}
+
+fn scripted<F>(inputs: usize, outputs: usize, f: F) -> Scripted<F> {
+    Scripted {
+        inputs,
+        outputs,
+        step: 0,
+        f,
+    }
+}
+
+#[test]
+fn multiplexer_gives_2048_to_the_multiplexer_and_less_to_a_guess() {
+    let mut perfect = scripted(12, 1, |x: &[f64], _, y: &mut [f64]| {
+        let address = (x[1] + 2.0 * x[2] + 4.0 * x[3]) as usize;
+        y[0] = x[4 + address];
+    });
+    assert_eq!(mux_task::mux_fitness(&mut perfect), 2048.0);
+    let mut half = scripted(12, 1, |_: &[f64], _, y: &mut [f64]| y[0] = 0.5);
+    assert_eq!(mux_task::mux_fitness(&mut half), 2048.0 * 0.75);
+    // Wrong on exactly the cases whose address is 0: 256 cases lose 1 each.
+    let mut one_wrong = scripted(12, 1, |x: &[f64], _, y: &mut [f64]| {
+        let address = (x[1] + 2.0 * x[2] + 4.0 * x[3]) as usize;
+        y[0] = if address == 0 {
+            1.0 - x[4]
+        } else {
+            x[4 + address]
+        };
+    });
+    assert_eq!(mux_task::mux_fitness(&mut one_wrong), 2048.0 - 256.0);
+}
+
+#[test]
+fn sinewave_gives_1000_to_the_sine_and_less_to_a_flat_line() {
+    let sine = sine_task::Sine::new();
+    let (mid, scale) = (sine.mid, sine.scale);
+    let mut perfect = scripted(1, 1, move |_: &[f64], step: usize, y: &mut [f64]| {
+        let k = step.saturating_sub(3);
+        let x = 25.132_741_23 / 79.0 * k as f64;
+        y[0] = (math::sin(x) - mid) / scale + 0.5;
+    });
+    let best = sine.fitness(&mut perfect);
+    assert!((best - 1000.0).abs() < 1e-6, "perfect sine scored {best}");
+    let mut flat = scripted(1, 1, |_: &[f64], _, y: &mut [f64]| y[0] = 0.5);
+    assert!(sine.fitness(&mut flat) < 100.0);
+    let mut runaway = scripted(1, 1, |_: &[f64], _, y: &mut [f64]| y[0] = f64::INFINITY);
+    assert_eq!(sine.fitness(&mut runaway), 0.0);
+}
+
+/// Moves towards the sector the prey is sensed in (north first on diagonals).
+fn chase(x: &[f64], _: usize, y: &mut [f64]) {
+    y.fill(0.0);
+    // Sectors 1..=8 are NE, N, NW, W, SW, S, SE, E; outputs are N, E, S, W.
+    const MOVE: [usize; 8] = [0, 0, 3, 3, 2, 2, 1, 1];
+    if let Some(s) = (1..9).find(|&s| x[s] == 1.0) {
+        y[MOVE[s - 1]] = 1.0;
+    }
+}
+
+#[test]
+fn prey_capture_catches_a_still_prey_every_trial_only_when_chasing() {
+    let still = prey_task::Prey {
+        speed: 0.0,
+        ..prey_task::SHARPNEAT_PREY
+    };
+    assert_eq!(still.fitness(&mut scripted(14, 4, chase), 7), 100.0);
+    let idle = |_: &[f64], _, y: &mut [f64]| y.fill(0.0);
+    assert_eq!(still.fitness(&mut scripted(14, 4, idle), 7), 0.0);
+    let tied = |_: &[f64], _, y: &mut [f64]| y.fill(1.0);
+    assert_eq!(still.fitness(&mut scripted(14, 4, tied), 7), 0.0);
+    let moving = prey_task::SHARPNEAT_PREY;
+    let caught = moving.fitness(&mut scripted(14, 4, chase), 7);
+    assert!(caught > 0.0 && caught <= 100.0, "caught {caught}");
+    assert_eq!(caught, moving.fitness(&mut scripted(14, 4, chase), 7));
+}
