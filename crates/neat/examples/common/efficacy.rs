@@ -35,26 +35,18 @@ impl Observer for Clock<'_> {
     }
 }
 
-/// Splits `--seconds T` off the command line (the shared parser does not know it).
-fn seconds_and_rest(name: &str, argv: Vec<String>) -> (f64, Vec<String>) {
-    let mut seconds = 60.0;
-    let mut rest = Vec::new();
-    let mut it = argv.into_iter();
-    while let Some(a) = it.next() {
-        if a == "--seconds" {
-            let v = it.next().unwrap_or_default();
-            seconds = match v.parse::<f64>() {
-                Ok(s) if s.is_finite() && s > 0.0 => s,
-                _ => fail(
-                    name,
-                    &format!("--seconds needs a positive number, got `{v}`"),
-                ),
-            };
-        } else {
-            rest.push(a);
-        }
+/// `--seconds T` (default 60): a positive number of seconds per run.
+fn seconds(name: &str, args: &cli::Args) -> f64 {
+    match args.options.iter().rev().find(|(k, _)| k == "--seconds") {
+        None => 60.0,
+        Some((_, v)) => match v.parse::<f64>() {
+            Ok(s) if s.is_finite() && s > 0.0 => s,
+            _ => fail(
+                name,
+                &format!("--seconds needs a positive number, got `{v}`"),
+            ),
+        },
     }
-    (seconds, rest)
 }
 
 /// Runs `--runs N` (default 5) runs of `--seconds T` (default 60) each on one
@@ -68,8 +60,8 @@ pub fn sample<T: Task + Clone>(
     target: f64,
     task: T,
 ) -> Option<String> {
-    let (seconds, argv) = seconds_and_rest(name, std::env::args().skip(1).collect());
-    let args = match cli::parse(&argv, &[]) {
+    let argv: Vec<String> = std::env::args().skip(1).collect();
+    let args = match cli::parse(&argv, &[], &["--seconds"]) {
         Ok(cli::Parsed::Run(a)) => a,
         Ok(cli::Parsed::Help) => {
             print!("{usage}");
@@ -77,6 +69,7 @@ pub fn sample<T: Task + Clone>(
         }
         Err(e) => fail(name, &e),
     };
+    let seconds = seconds(name, &args);
     let params = apply_overrides(params, &args.sets).unwrap_or_else(|e| fail(name, &e));
     let (runs, seed) = (args.runs.unwrap_or(5), args.seed.unwrap_or(1));
     let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build();
