@@ -183,6 +183,55 @@ impl DriveTask {
         })
     }
 
+    /// Writes `genome` as a `champion.json` (the CLI's format, with this
+    /// task's config) that `vivae replay FILE` and `vivae.replay` run; a
+    /// shipped scenario is copied beside it (`<stem>-<name>.svg`).
+    #[pyo3(signature = (genome, path, fitness, generation=1))]
+    fn save_champion(
+        &self,
+        genome: &Genome,
+        path: PathBuf,
+        fitness: f64,
+        generation: u32,
+    ) -> PyResult<()> {
+        self.controller_of(genome)?;
+        let mut config = rundir::Champion::recorded_config(&self.config);
+        // The file may go anywhere: a scenario file it names is named absolutely.
+        let absolute = |name: &mut String| {
+            if let Ok(p) = std::fs::canonicalize(name.as_str())
+                && p.is_file()
+            {
+                *name = p.to_string_lossy().into_owned();
+            }
+        };
+        let scenario = &mut config.experiment.scenario;
+        if let Some(shipped) =
+            vivae_lab::shipped::find(scenario).filter(|_| !Path::new(scenario.as_str()).exists())
+        {
+            // A shipped scenario's name would be read as a file beside the
+            // champion: its copy goes there instead.
+            let stem = path
+                .file_stem()
+                .map_or_else(|| "champion".into(), |s| s.to_string_lossy());
+            let name = format!("{stem}-{}.svg", shipped.name);
+            let copy = path.parent().unwrap_or(Path::new("")).join(&name);
+            vivae_lab::io::write_atomic(&copy, shipped.svg.as_bytes()).map_err(errors::lab)?;
+            *scenario = name;
+        } else if !scenario.is_empty() {
+            absolute(scenario);
+        }
+        config.experiment.scenarios.iter_mut().for_each(absolute);
+        let champion = rundir::Champion {
+            format: "vivae-champion".into(),
+            generation,
+            fitness,
+            config: Some(config),
+            genome: genome.inner.clone(),
+        };
+        let text = serde_json::to_string_pretty(&champion).map_err(errors::value)? + "\n";
+        vivae_lab::io::write_atomic(&path, text.as_bytes()).map_err(errors::lab)
+    }
+
     /// `genome`'s episode with every measure: fitness, time on road and the
     /// behaviour measures (collisions, turns, loops, side of the road).
     fn episode<'py>(&self, py: Python<'py>, genome: &Genome) -> PyResult<Bound<'py, PyDict>> {

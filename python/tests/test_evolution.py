@@ -214,3 +214,18 @@ def test_an_interrupt_stops_the_run_after_the_generation_with_a_checkpoint(tmp_p
         vivae.evolve(out=tmp_path / "run", progress=False, on_generation=interrupt, **SETTINGS)
     checkpoints = sorted(p.name for p in (tmp_path / "run" / "checkpoints").iterdir())
     assert checkpoints[-1] == "gen-000002.ckpt"
+
+
+def test_a_genome_evolved_by_ask_tell_saves_as_a_champion_the_cli_replays(tmp_path, cli):
+    task = vivae.DriveTask(scenario="oval", steps=120, population=12)
+    pop = task.population()
+    genomes = pop.ask()
+    pop.tell(task.evaluate(genomes))
+    genome, fitness, _ = pop.best_ever
+    path = tmp_path / "elsewhere" / "champion.json"
+    path.parent.mkdir()
+    task.save_champion(genome, path, fitness)
+    assert vivae.replay(path)["fitness"] == fitness == task.episode(genome)["fitness"]
+    printed = subprocess.run([cli, "replay", str(path), "--out", str(tmp_path / "r")], check=True,
+                             capture_output=True, text=True, cwd=tmp_path).stdout
+    assert float(dict(kv.split("=") for kv in printed.split())["fitness"]) == fitness
