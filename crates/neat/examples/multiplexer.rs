@@ -19,22 +19,7 @@ mod mux_task;
 use mux_task::{MUX_CASES, mux_fitness};
 use vivae_neat::{EvalContext, FeedForwardNetwork, Genome, GenomeSpec, NeatParams};
 
-const USAGE: &str = "\
-The binary 11-multiplexer (SharpNEAT's fitness): fixed-length runs, one summary line.
-
-Usage: cargo run --release -p vivae-neat --example multiplexer -- [OPTIONS]
-
-Options:
-  --seconds T           wall-clock length of each run (default 60)
-  --runs N              runs, with seeds S, S+1, ... (default 5)
-  --seed S              seed of the first run (default 1)
-  --max-generations G   also stop a run after G generations
-  --set FIELD=JSON      override one NeatParams field (repeatable)
-  -h, --help            print this help
-
-Prints `multiplexer: runs=N best_fitness(min/median/max)=... evals_per_run(median)=...
-evals_per_s=...` on stdout (one thread) and one line per run on stderr.
-";
+const TITLE: &str = "The binary 11-multiplexer (SharpNEAT's fitness)";
 
 fn main() {
     let params = NeatParams {
@@ -44,7 +29,7 @@ fn main() {
     let task = |g: &Genome, _: &EvalContext| mux_fitness(&mut FeedForwardNetwork::from_genome(g));
     let target = MUX_CASES as f64;
     let spec = GenomeSpec::plain(12, 1);
-    if let Some(line) = efficacy::sample("multiplexer", USAGE, params, &spec, target, task) {
+    if let Some(line) = efficacy::sample("multiplexer", TITLE, params, &spec, target, task) {
         println!("{line}");
     }
 }

@@ -21,22 +21,7 @@ mod prey_task;
 use prey_task::SHARPNEAT_PREY;
 use vivae_neat::{EvalContext, Genome, GenomeSpec, NeatParams, RecurrentNetwork};
 
-const USAGE: &str = "\
-SharpNEAT's prey capture: fixed-length runs, one summary line.
-
-Usage: cargo run --release -p vivae-neat --example prey_capture -- [OPTIONS]
-
-Options:
-  --seconds T           wall-clock length of each run (default 60)
-  --runs N              runs, with seeds S, S+1, ... (default 5)
-  --seed S              seed of the first run (default 1)
-  --max-generations G   also stop a run after G generations
-  --set FIELD=JSON      override one NeatParams field (repeatable)
-  -h, --help            print this help
-
-Prints `prey_capture: runs=N best_fitness(min/median/max)=... evals_per_run(median)=...
-evals_per_s=...` on stdout (one thread) and one line per run on stderr.
-";
+const TITLE: &str = "SharpNEAT's prey capture";
 
 fn main() {
     let params = NeatParams {
@@ -52,7 +37,7 @@ fn main() {
         ..GenomeSpec::plain(14, 4)
     };
     let target = world.trials as f64;
-    if let Some(line) = efficacy::sample("prey_capture", USAGE, params, &spec, target, task) {
+    if let Some(line) = efficacy::sample("prey_capture", TITLE, params, &spec, target, task) {
         println!("{line}");
     }
 }

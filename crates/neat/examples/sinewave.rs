@@ -20,22 +20,7 @@ mod sine_task;
 use sine_task::Sine;
 use vivae_neat::{EvalContext, Genome, GenomeSpec, NeatParams, RecurrentNetwork};
 
-const USAGE: &str = "\
-SharpNEAT's generative sinewave: fixed-length runs, one summary line.
-
-Usage: cargo run --release -p vivae-neat --example sinewave -- [OPTIONS]
-
-Options:
-  --seconds T           wall-clock length of each run (default 60)
-  --runs N              runs, with seeds S, S+1, ... (default 5)
-  --seed S              seed of the first run (default 1)
-  --max-generations G   also stop a run after G generations
-  --set FIELD=JSON      override one NeatParams field (repeatable)
-  -h, --help            print this help
-
-Prints `sinewave: runs=N best_fitness(min/median/max)=... evals_per_run(median)=...
-evals_per_s=...` on stdout (one thread) and one line per run on stderr.
-";
+const TITLE: &str = "SharpNEAT's generative sinewave";
 
 fn main() {
     let params = NeatParams {
@@ -48,7 +33,7 @@ fn main() {
         allow_recurrent: true,
         ..GenomeSpec::plain(1, 1)
     };
-    if let Some(line) = efficacy::sample("sinewave", USAGE, params, &spec, 1000.0, task) {
+    if let Some(line) = efficacy::sample("sinewave", TITLE, params, &spec, 1000.0, task) {
         println!("{line}");
     }
 }

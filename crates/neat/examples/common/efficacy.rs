@@ -49,12 +49,33 @@ fn seconds(name: &str, args: &cli::Args) -> f64 {
     }
 }
 
+/// The `--help` text of the efficacy example `name`, headed by `title`.
+fn usage(name: &str, title: &str) -> String {
+    format!(
+        "{title}: fixed-length runs, one summary line.
+
+Usage: cargo run --release -p vivae-neat --example {name} -- [OPTIONS]
+
+Options:
+  --seconds T           wall-clock length of each run (default 60)
+  --runs N              runs, with seeds S, S+1, ... (default 5)
+  --seed S              seed of the first run (default 1)
+  --max-generations G   also stop a run after G generations
+  --set FIELD=JSON      override one NeatParams field (repeatable)
+  -h, --help            print this help
+
+Prints `{name}: runs=N best_fitness(min/median/max)=... evals_per_run(median)=...
+evals_per_s=...` on stdout (one thread) and one line per run on stderr.
+"
+    )
+}
+
 /// Runs `--runs N` (default 5) runs of `--seconds T` (default 60) each on one
 /// thread, seeds S, S+1, ..., stopping early at `target`; prints one line per
 /// run on stderr and returns the summary line (`None` after `--help`).
 pub fn sample<T: Task + Clone>(
     name: &str,
-    usage: &str,
+    title: &str,
     params: NeatParams,
     spec: &GenomeSpec,
     target: f64,
@@ -64,7 +85,7 @@ pub fn sample<T: Task + Clone>(
     let args = match cli::parse(&argv, &[], &["--seconds"]) {
         Ok(cli::Parsed::Run(a)) => a,
         Ok(cli::Parsed::Help) => {
-            print!("{usage}");
+            print!("{}", usage(name, title));
             return None;
         }
         Err(e) => fail(name, &e),
