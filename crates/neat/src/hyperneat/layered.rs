@@ -4,7 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::error::HyperError;
-use super::layout::CPPN_INPUTS;
+use super::layout::{CPPN_INPUTS, check_link_outputs};
 use super::leo::express_link;
 use super::params::HyperParams;
 use super::sparse::{SparseLink, SparseNetwork};
@@ -38,20 +38,12 @@ impl LayeredLayout {
                 "need two or more non-empty layers",
             ));
         }
-        let roles = [
-            ("link weights", Some(self.weight_output)),
-            ("biases", self.bias_output),
-            ("link expression (LEO)", self.leo_output),
-        ];
-        for (role, output) in roles {
-            if let Some(output) = output.filter(|&o| o >= cppn_outputs) {
-                return Err(HyperError::CppnOutput {
-                    role,
-                    output,
-                    available: cppn_outputs,
-                });
-            }
-        }
+        check_link_outputs(
+            self.weight_output,
+            self.bias_output,
+            self.leo_output,
+            cppn_outputs,
+        )?;
         for (index, c) in self.layers.iter().flatten().enumerate() {
             if !(c[0].is_finite() && c[1].is_finite()) {
                 return Err(HyperError::BadCoordinate {

@@ -49,17 +49,7 @@ impl SubstrateLayout {
         if self.neurons.is_empty() {
             return Err(HyperError::NoNeurons);
         }
-        let out = |role, output| {
-            if output < cppn_outputs {
-                Ok(())
-            } else {
-                Err(HyperError::CppnOutput {
-                    role,
-                    output,
-                    available: cppn_outputs,
-                })
-            }
-        };
+        let out = |role, output| check_cppn_output(role, output, cppn_outputs);
         out("the neuron bias", self.bias_output)?;
         out("neuron -> neuron weights", self.recurrent_output)?;
         for sheet in &self.inputs {
@@ -83,4 +73,39 @@ impl SubstrateLayout {
         }
         Ok(())
     }
+}
+
+/// `output` must be one of the CPPN's `available` outputs; `role` names its use.
+pub(crate) fn check_cppn_output(
+    role: &'static str,
+    output: usize,
+    available: usize,
+) -> Result<(), HyperError> {
+    if output < available {
+        Ok(())
+    } else {
+        Err(HyperError::CppnOutput {
+            role,
+            output,
+            available,
+        })
+    }
+}
+
+/// The link-weight, optional bias and optional LEO outputs of a layout whose
+/// links are queried one by one, each checked against the CPPN's outputs.
+pub(crate) fn check_link_outputs(
+    weight: usize,
+    bias: Option<usize>,
+    leo: Option<usize>,
+    available: usize,
+) -> Result<(), HyperError> {
+    check_cppn_output("link weights", weight, available)?;
+    if let Some(b) = bias {
+        check_cppn_output("biases", b, available)?;
+    }
+    if let Some(l) = leo {
+        check_cppn_output("link expression (LEO)", l, available)?;
+    }
+    Ok(())
 }

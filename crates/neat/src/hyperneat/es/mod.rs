@@ -36,7 +36,7 @@ pub use params::{EsParams, MAX_DEPTH, MAX_ITERATION_LEVEL};
 
 use super::batch::BatchCppn;
 use super::error::HyperError;
-use super::layout::CPPN_INPUTS;
+use super::layout::{CPPN_INPUTS, check_link_outputs};
 use super::sparse::SparseNetwork;
 use crate::feedforward::FeedForwardNetwork;
 use crate::genome::Genome;
@@ -70,20 +70,12 @@ impl EsLayout {
         if self.outputs.is_empty() {
             return Err(HyperError::NoNeurons);
         }
-        let roles = [
-            ("link weights", Some(self.weight_output)),
-            ("biases", self.bias_output),
-            ("link expression (LEO)", self.leo_output),
-        ];
-        for (role, output) in roles {
-            if let Some(output) = output.filter(|&o| o >= cppn_outputs) {
-                return Err(HyperError::CppnOutput {
-                    role,
-                    output,
-                    available: cppn_outputs,
-                });
-            }
-        }
+        check_link_outputs(
+            self.weight_output,
+            self.bias_output,
+            self.leo_output,
+            cppn_outputs,
+        )?;
         let nodes = self.inputs.iter().map(|c| ("input", c));
         let nodes = nodes.chain(self.outputs.iter().map(|c| ("output", c)));
         let mut seen = std::collections::BTreeSet::new();
