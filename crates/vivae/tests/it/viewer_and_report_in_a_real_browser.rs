@@ -93,7 +93,8 @@ fn report_html_animates_from_file_with_networking_off() {
     let shot1 = b.save_screenshot(&shots().join("report-1.png"));
     b.wait_for(
         &format!(
-            "return window.vivaeReport.t > {} || window.vivaeReport.t < {};",
+            // Past the wrap-around to step 0 too, so that the slider is read mid-episode.
+            "return (window.vivaeReport.t > {} || window.vivaeReport.t < {}) && document.getElementById('slider').value !== '0';",
             t1 + 20,
             t1
         ),
