@@ -141,11 +141,21 @@ pub struct Population {
 
 /// `base` with the keys of the Python dict `params` replaced (checked by serde: an unknown key is an error).
 pub fn merge_params(base: NeatParams, params: Option<&Bound<'_, PyDict>>) -> PyResult<NeatParams> {
-    let Some(params) = params else {
+    merged(base, params, "params")
+}
+
+/// `base` with the keys of the Python dict `given` replaced, checked by
+/// serde (an unknown key is a `ValueError` naming `what`).
+pub fn merged<T: serde::Serialize + serde::de::DeserializeOwned>(
+    base: T,
+    given: Option<&Bound<'_, PyDict>>,
+    what: &str,
+) -> PyResult<T> {
+    let Some(given) = given else {
         return Ok(base);
     };
-    let json = params.py().import("json")?;
-    let text: String = json.call_method1("dumps", (params,))?.extract()?;
+    let json = given.py().import("json")?;
+    let text: String = json.call_method1("dumps", (given,))?.extract()?;
     let given: serde_json::Value = serde_json::from_str(&text).map_err(errors::value)?;
     let mut value = serde_json::to_value(&base).map_err(errors::value)?;
     if let (Some(v), Some(g)) = (value.as_object_mut(), given.as_object()) {
@@ -153,7 +163,7 @@ pub fn merge_params(base: NeatParams, params: Option<&Bound<'_, PyDict>>) -> PyR
             v.insert(k.clone(), x.clone());
         }
     }
-    serde_json::from_value(value).map_err(|e| errors::value(format!("params: {e}")))
+    serde_json::from_value(value).map_err(|e| errors::value(format!("{what}: {e}")))
 }
 
 #[pymethods]
@@ -174,30 +184,7 @@ impl Population {
         recurrent: bool,
         params: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Population> {
-        let (base, spec) = match preset {
-            "plain" => (NeatParams::plain_neat(), GenomeSpec::plain(inputs, outputs)),
-            "cppn" => (
-                NeatParams::paper_cppn(),
-                GenomeSpec {
-                    inputs,
-                    outputs,
-                    ..GenomeSpec::cppn()
-                },
-            ),
-            other => {
-                return Err(PyValueError::new_err(format!(
-                    "preset {other:?}: expected \"plain\" or \"cppn\""
-                )));
-            }
-        };
-        let mut params = merge_params(base, params)?;
-        if let Some(n) = size {
-            params.population_size = n;
-        }
-        let spec = GenomeSpec {
-            allow_recurrent: recurrent,
-            ..spec
-        };
+        let (params, spec) = neat_setup(inputs, outputs, preset, recurrent, params, size)?;
         let inner = vivae_neat::Population::new(params, spec, seed).map_err(errors::value)?;
         Ok(Population { inner })
     }
@@ -205,14 +192,7 @@ impl Population {
     /// The genomes to evaluate next (breeding the next generation if the last one was told).
     fn ask(&mut self) -> Vec<Genome> {
         let recurrent = self.inner.spec().allow_recurrent;
-        Strategy::ask(&mut self.inner)
-            .genomes
-            .iter()
-            .map(|g| Genome {
-                inner: g.clone(),
-                recurrent,
-            })
-            .collect()
+        ask(&mut self.inner, recurrent)
     }
 
     /// Tells the fitness of every genome last asked, in order (non-finite
@@ -220,23 +200,7 @@ impl Population {
     /// and kept with the evaluations (NEAT selects on fitness alone).
     #[pyo3(signature = (fitnesses, behaviours=None))]
     fn tell(&mut self, fitnesses: Vec<f64>, behaviours: Option<Vec<Vec<f64>>>) -> PyResult<()> {
-        let n = fitnesses.len();
-        let behaviours = behaviours.unwrap_or_else(|| vec![Vec::new(); n]);
-        if behaviours.len() != n {
-            return Err(PyValueError::new_err(format!(
-                "{} behaviours for {n} fitnesses",
-                behaviours.len()
-            )));
-        }
-        let told: Vec<Evaluation> = fitnesses
-            .into_iter()
-            .zip(behaviours)
-            .map(|(fitness, behaviour)| Evaluation {
-                fitness,
-                behaviour,
-                ..Evaluation::default()
-            })
-            .collect();
+        let told = evaluations(fitnesses, behaviours, None)?;
         Strategy::tell(&mut self.inner, &told).map_err(errors::value)
     }
 
@@ -255,23 +219,12 @@ impl Population {
     /// (genome, fitness, generation) of the best genome told so far, or None.
     #[getter]
     fn best_ever(&self) -> Option<(Genome, f64, u32)> {
-        let recurrent = self.inner.spec().allow_recurrent;
-        self.inner.best_ever().map(|b| {
-            (
-                Genome {
-                    inner: b.genome.clone(),
-                    recurrent,
-                },
-                b.fitness,
-                b.generation,
-            )
-        })
+        best_ever(&self.inner, self.inner.spec().allow_recurrent)
     }
 
     /// Statistics of the current generation as a dict.
     fn stats<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let text = serde_json::to_string(&self.inner.stats()).map_err(errors::value)?;
-        py.import("json")?.call_method1("loads", (text,))
+        to_python(py, &self.inner.stats())
     }
 
     /// The whole state as JSON (restoring it continues bit for bit).
@@ -295,4 +248,102 @@ impl Population {
             self.inner.species().len()
         )
     }
+}
+
+/// NEAT parameters and genome shape of a `preset` (`"plain"` or `"cppn"`)
+/// with `inputs` and `outputs`, `params` overriding by name and `size` the
+/// population size: what every ask/tell class starts from.
+pub fn neat_setup(
+    inputs: usize,
+    outputs: usize,
+    preset: &str,
+    recurrent: bool,
+    params: Option<&Bound<'_, PyDict>>,
+    size: Option<usize>,
+) -> PyResult<(NeatParams, GenomeSpec)> {
+    let (base, spec) = match preset {
+        "plain" => (NeatParams::plain_neat(), GenomeSpec::plain(inputs, outputs)),
+        "cppn" => (
+            NeatParams::paper_cppn(),
+            GenomeSpec {
+                inputs,
+                outputs,
+                ..GenomeSpec::cppn()
+            },
+        ),
+        other => {
+            return Err(PyValueError::new_err(format!(
+                "preset {other:?}: expected \"plain\" or \"cppn\""
+            )));
+        }
+    };
+    let mut params = merge_params(base, params)?;
+    if let Some(n) = size {
+        params.population_size = n;
+    }
+    let spec = GenomeSpec {
+        allow_recurrent: recurrent,
+        ..spec
+    };
+    Ok((params, spec))
+}
+
+/// The genomes `strategy` asks to have evaluated, as Python genomes.
+pub fn ask(strategy: &mut impl Strategy, recurrent: bool) -> Vec<Genome> {
+    (strategy.ask().genomes.iter())
+        .map(|g| Genome {
+            inner: g.clone(),
+            recurrent,
+        })
+        .collect()
+}
+
+/// One evaluation per fitness, with its behaviour and metrics when given
+/// (each list, when given, must have one entry per fitness).
+pub fn evaluations(
+    fitnesses: Vec<f64>,
+    behaviours: Option<Vec<Vec<f64>>>,
+    metrics: Option<Vec<Vec<f64>>>,
+) -> PyResult<Vec<Evaluation>> {
+    let n = fitnesses.len();
+    let per_genome = |given: Option<Vec<Vec<f64>>>, what: &str| match given {
+        Some(v) if v.len() != n => Err(PyValueError::new_err(format!(
+            "{} {what} for {n} fitnesses",
+            v.len()
+        ))),
+        Some(v) => Ok(v),
+        None => Ok(vec![Vec::new(); n]),
+    };
+    let behaviours = per_genome(behaviours, "behaviours")?;
+    let metrics = per_genome(metrics, "metrics")?;
+    Ok(fitnesses
+        .into_iter()
+        .zip(behaviours)
+        .zip(metrics)
+        .map(|((fitness, behaviour), metrics)| Evaluation {
+            fitness,
+            metrics,
+            behaviour,
+        })
+        .collect())
+}
+
+/// (genome, fitness, generation) of the best genome `strategy` was told of.
+pub fn best_ever(strategy: &impl Strategy, recurrent: bool) -> Option<(Genome, f64, u32)> {
+    strategy.best_ever().map(|b| {
+        let genome = Genome {
+            inner: b.genome.clone(),
+            recurrent,
+        };
+        (genome, b.fitness, b.generation)
+    })
+}
+
+/// `value` as the Python object its JSON reads as (dicts, lists, numbers).
+pub fn to_python<'py>(
+    py: Python<'py>,
+    value: &impl serde::Serialize,
+) -> PyResult<Bound<'py, PyAny>> {
+    let text = serde_json::to_string(value).map_err(errors::value)?;
+    py.import("json")?.call_method1("loads", (text,))
 }

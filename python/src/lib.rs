@@ -16,6 +16,7 @@ mod lab;
 #[path = "../../crates/vivae/src/portable_libm.rs"]
 mod portable_libm;
 mod settings;
+mod strategies;
 
 #[pymodule]
 fn _vivae(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -23,6 +24,9 @@ fn _vivae(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<evo::Genome>()?;
     m.add_class::<evo::Network>()?;
     m.add_class::<evo::Population>()?;
+    m.add_class::<strategies::NoveltySearch>()?;
+    m.add_class::<strategies::MapElites>()?;
+    m.add_class::<strategies::Nsga2>()?;
     m.add_class::<lab::DriveTask>()?;
     m.add_class::<lab::Controller>()?;
     m.add_function(wrap_pyfunction!(lab::evolve, m)?)?;

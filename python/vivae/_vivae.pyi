@@ -15,6 +15,9 @@ __all__ = [
     "Genome",
     "Network",
     "OVERRIDES",
+    "MapElites",
+    "NoveltySearch",
+    "Nsga2",
     "Population",
     "default_config",
     "evolve",
@@ -114,6 +117,98 @@ class Population:
     def to_json(self) -> str: ...
     @staticmethod
     def from_json(text: str) -> Population: ...
+
+_Objective = tuple[Union[str, int], str]
+
+class _AskTell:
+    def ask(self) -> list[Genome]: ...
+    def tell(
+        self,
+        fitnesses: Sequence[float],
+        behaviours: Optional[Sequence[Sequence[float]]] = None,
+        metrics: Optional[Sequence[Sequence[float]]] = None,
+    ) -> None: ...
+    @property
+    def generation(self) -> int: ...
+    @property
+    def best_ever(self) -> Optional[tuple[Genome, float, int]]: ...
+    def stats(self) -> dict[str, Any]: ...
+    def to_json(self) -> str: ...
+
+@final
+class NoveltySearch(_AskTell):
+    """Novelty search over a NEAT population (Lehman & Stanley 2011)."""
+
+    def __new__(
+        cls,
+        inputs: int,
+        outputs: int,
+        *,
+        seed: int = 1,
+        size: Optional[int] = None,
+        preset: str = "plain",
+        recurrent: bool = False,
+        params: Optional[dict[str, Any]] = None,
+        novelty: Optional[dict[str, Any]] = None,
+    ) -> NoveltySearch: ...
+    @staticmethod
+    def from_json(text: str) -> NoveltySearch: ...
+    @property
+    def archive(self) -> list[list[float]]: ...
+    @property
+    def threshold(self) -> float: ...
+    @property
+    def novelty(self) -> list[float]: ...
+
+@final
+class MapElites(_AskTell):
+    """MAP-Elites over NEAT genomes (Mouret & Clune 2015), on a grid or a CVT."""
+
+    def __new__(
+        cls,
+        inputs: int,
+        outputs: int,
+        *,
+        lower: Sequence[float],
+        upper: Sequence[float],
+        bins: Optional[Sequence[int]] = None,
+        cvt_cells: Optional[int] = None,
+        cvt_samples: int = 100000,
+        cvt_iterations: int = 10,
+        seed: int = 1,
+        preset: str = "plain",
+        recurrent: bool = False,
+        params: Optional[dict[str, Any]] = None,
+        map: Optional[dict[str, Any]] = None,
+    ) -> MapElites: ...
+    @staticmethod
+    def from_json(text: str) -> MapElites: ...
+    @property
+    def cells(self) -> int: ...
+    def cell_of(self, behaviour: Sequence[float]) -> int: ...
+    def elites(self) -> list[dict[str, Any]]: ...
+    def archive_stats(self) -> dict[str, Any]: ...
+
+@final
+class Nsga2(_AskTell):
+    """NSGA-II (Deb et al. 2002) over NEAT genomes, on fitness and metrics."""
+
+    def __new__(
+        cls,
+        inputs: int,
+        outputs: int,
+        *,
+        objectives: Sequence[_Objective],
+        size: int = 100,
+        crossover_probability: float = 0.5,
+        seed: int = 1,
+        preset: str = "plain",
+        recurrent: bool = False,
+        params: Optional[dict[str, Any]] = None,
+    ) -> Nsga2: ...
+    @staticmethod
+    def from_json(text: str) -> Nsga2: ...
+    def pareto_front(self) -> list[tuple[Genome, list[float], float]]: ...
 
 @final
 class Controller:
