@@ -3,7 +3,6 @@
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use vivae_neat::driver::{Evaluation, Strategy};
 use vivae_neat::{FeedForwardNetwork, GenomeSpec, NeatParams, RecurrentNetwork};
 
 use crate::errors;
@@ -137,6 +136,16 @@ impl Network {
 #[pyclass(module = "vivae._vivae")]
 pub struct Population {
     pub inner: vivae_neat::Population,
+    /// Whether its genomes may have cycles.
+    pub recurrent: bool,
+}
+
+impl Population {
+    /// `inner` for Python.
+    pub fn of(inner: vivae_neat::Population) -> Population {
+        let recurrent = inner.spec().allow_recurrent;
+        Population { inner, recurrent }
+    }
 }
 
 /// `base` with the keys of the Python dict `params` replaced (checked by serde: an unknown key is an error).
@@ -166,8 +175,7 @@ pub fn merged<T: serde::Serialize + serde::de::DeserializeOwned>(
     serde_json::from_value(value).map_err(|e| errors::value(format!("{what}: {e}")))
 }
 
-#[pymethods]
-impl Population {
+ask_tell!(Population, "Population", "population", &["spec"], {
     /// A generation-0 population of minimal genomes with `inputs` (include
     /// a constant bias input if you want one) and `outputs`. `preset`:
     /// `"plain"` (Stanley's settings, sigmoid networks, for direct
@@ -186,28 +194,7 @@ impl Population {
     ) -> PyResult<Population> {
         let (params, spec) = neat_setup(inputs, outputs, preset, recurrent, params, size)?;
         let inner = vivae_neat::Population::new(params, spec, seed).map_err(errors::value)?;
-        Ok(Population { inner })
-    }
-
-    /// The genomes to evaluate next (breeding the next generation if the last one was told).
-    fn ask(&mut self) -> Vec<Genome> {
-        let recurrent = self.inner.spec().allow_recurrent;
-        ask(&mut self.inner, recurrent)
-    }
-
-    /// Tells the fitness of every genome last asked, in order (non-finite
-    /// counts as 0); `behaviours`, one descriptor per genome, are checked
-    /// and kept with the evaluations (NEAT selects on fitness alone).
-    #[pyo3(signature = (fitnesses, behaviours=None))]
-    fn tell(&mut self, fitnesses: Vec<f64>, behaviours: Option<Vec<Vec<f64>>>) -> PyResult<()> {
-        let told = evaluations(fitnesses, behaviours, None)?;
-        Strategy::tell(&mut self.inner, &told).map_err(errors::value)
-    }
-
-    /// The generation of the genomes last asked.
-    #[getter]
-    fn generation(&self) -> u32 {
-        self.inner.generation()
+        Ok(Population::of(inner))
     }
 
     /// Number of genomes per generation.
@@ -215,40 +202,7 @@ impl Population {
     fn size(&self) -> usize {
         self.inner.genomes().len()
     }
-
-    /// (genome, fitness, generation) of the best genome told so far, or None.
-    #[getter]
-    fn best_ever(&self) -> Option<(Genome, f64, u32)> {
-        best_ever(&self.inner, self.inner.spec().allow_recurrent)
-    }
-
-    /// Statistics of the current generation as a dict.
-    fn stats<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        to_python(py, &self.inner.stats())
-    }
-
-    /// The whole state as JSON (restoring it continues bit for bit).
-    fn to_json(&self) -> PyResult<String> {
-        self.inner.to_json().map_err(errors::value)
-    }
-
-    /// A population from [`Population::to_json`]'s JSON (validated).
-    #[staticmethod]
-    fn from_json(text: &str) -> PyResult<Population> {
-        vivae_neat::Population::from_json(text)
-            .map(|inner| Population { inner })
-            .map_err(errors::value)
-    }
-
-    fn __repr__(&self) -> String {
-        format!(
-            "Population(size={}, generation={}, species={})",
-            self.inner.genomes().len(),
-            self.inner.generation(),
-            self.inner.species().len()
-        )
-    }
-}
+});
 
 /// NEAT parameters and genome shape of a `preset` (`"plain"` or `"cppn"`)
 /// with `inputs` and `outputs`, `params` overriding by name and `size` the
@@ -286,64 +240,4 @@ pub fn neat_setup(
         ..spec
     };
     Ok((params, spec))
-}
-
-/// The genomes `strategy` asks to have evaluated, as Python genomes.
-pub fn ask(strategy: &mut impl Strategy, recurrent: bool) -> Vec<Genome> {
-    (strategy.ask().genomes.iter())
-        .map(|g| Genome {
-            inner: g.clone(),
-            recurrent,
-        })
-        .collect()
-}
-
-/// One evaluation per fitness, with its behaviour and metrics when given
-/// (each list, when given, must have one entry per fitness).
-pub fn evaluations(
-    fitnesses: Vec<f64>,
-    behaviours: Option<Vec<Vec<f64>>>,
-    metrics: Option<Vec<Vec<f64>>>,
-) -> PyResult<Vec<Evaluation>> {
-    let n = fitnesses.len();
-    let per_genome = |given: Option<Vec<Vec<f64>>>, what: &str| match given {
-        Some(v) if v.len() != n => Err(PyValueError::new_err(format!(
-            "{} {what} for {n} fitnesses",
-            v.len()
-        ))),
-        Some(v) => Ok(v),
-        None => Ok(vec![Vec::new(); n]),
-    };
-    let behaviours = per_genome(behaviours, "behaviours")?;
-    let metrics = per_genome(metrics, "metrics")?;
-    Ok(fitnesses
-        .into_iter()
-        .zip(behaviours)
-        .zip(metrics)
-        .map(|((fitness, behaviour), metrics)| Evaluation {
-            fitness,
-            metrics,
-            behaviour,
-        })
-        .collect())
-}
-
-/// (genome, fitness, generation) of the best genome `strategy` was told of.
-pub fn best_ever(strategy: &impl Strategy, recurrent: bool) -> Option<(Genome, f64, u32)> {
-    strategy.best_ever().map(|b| {
-        let genome = Genome {
-            inner: b.genome.clone(),
-            recurrent,
-        };
-        (genome, b.fitness, b.generation)
-    })
-}
-
-/// `value` as the Python object its JSON reads as (dicts, lists, numbers).
-pub fn to_python<'py>(
-    py: Python<'py>,
-    value: &impl serde::Serialize,
-) -> PyResult<Bound<'py, PyAny>> {
-    let text = serde_json::to_string(value).map_err(errors::value)?;
-    py.import("json")?.call_method1("loads", (text,))
 }

@@ -113,7 +113,7 @@ impl DriveTask {
         let spec = self.training.task().cppn_spec();
         let seed = seed.unwrap_or(self.config.experiment.seed);
         let inner = vivae_neat::Population::new(params, spec, seed).map_err(errors::value)?;
-        Ok(Population { inner })
+        Ok(Population::of(inner))
     }
 
     /// The fitness of each genome (an episode on every training map and

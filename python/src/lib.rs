@@ -8,6 +8,8 @@
 
 use pyo3::prelude::*;
 
+#[macro_use]
+mod asktell;
 mod drive;
 mod errors;
 mod evo;

@@ -4,81 +4,11 @@
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use serde::de::DeserializeOwned;
-use vivae_neat::driver::Strategy;
 use vivae_neat::strategies::{self as st, Cells, Measure, Objective};
 
+use crate::asktell::to_python;
 use crate::errors;
-use crate::evo::{Genome, best_ever, evaluations, merged, neat_setup, to_python};
-
-/// Whether the genome shape in a strategy's JSON allows recurrent links.
-fn recurrent_in(json: &str, path: &[&str]) -> PyResult<bool> {
-    let value: serde_json::Value = serde_json::from_str(json).map_err(errors::value)?;
-    let spec = path.iter().fold(&value, |v, k| &v[*k]);
-    Ok(spec["allow_recurrent"].as_bool().unwrap_or(false))
-}
-
-/// A strategy restored from JSON, validated as it is read.
-fn restore<T: DeserializeOwned>(text: &str, what: &str) -> PyResult<T> {
-    serde_json::from_str(text).map_err(|e| errors::value(format!("{what} JSON: {e}")))
-}
-
-/// A strategy class's methods: its own (`$own`) and the ask/tell methods
-/// every strategy class shares, over its `inner` strategy (one `#[pymethods]`
-/// block per class, as pyo3 wants).
-macro_rules! ask_tell {
-    ($class:ident, $name:literal, { $($own:tt)* }) => {
-        #[pymethods]
-        impl $class {
-            $($own)*
-
-            /// The genomes to evaluate next (breeding the next batch if the last one was told).
-            fn ask(&mut self) -> Vec<Genome> {
-                crate::evo::ask(&mut self.inner, self.recurrent)
-            }
-
-            /// Tells the evaluation of every genome last asked, in order: its
-            /// fitness (non-finite counts as 0) and, one list per genome,
-            /// its behaviour descriptor and its metrics.
-            #[pyo3(signature = (fitnesses, behaviours=None, metrics=None))]
-            fn tell(
-                &mut self,
-                fitnesses: Vec<f64>,
-                behaviours: Option<Vec<Vec<f64>>>,
-                metrics: Option<Vec<Vec<f64>>>,
-            ) -> PyResult<()> {
-                let told = evaluations(fitnesses, behaviours, metrics)?;
-                Strategy::tell(&mut self.inner, &told).map_err(errors::value)
-            }
-
-            /// The generation of the genomes last asked.
-            #[getter]
-            fn generation(&self) -> u32 {
-                self.inner.generation()
-            }
-
-            /// (genome, fitness, generation) of the best genome told so far, or None.
-            #[getter]
-            fn best_ever(&self) -> Option<(Genome, f64, u32)> {
-                best_ever(&self.inner, self.recurrent)
-            }
-
-            /// Statistics of the current batch as a dict.
-            fn stats<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-                to_python(py, &self.inner.stats())
-            }
-
-            /// The whole state as JSON (restoring it continues bit for bit).
-            fn to_json(&self) -> PyResult<String> {
-                serde_json::to_string(&self.inner).map_err(errors::value)
-            }
-
-            fn __repr__(&self) -> String {
-                format!("{}(generation={})", $name, self.inner.generation())
-            }
-        }
-    };
-}
+use crate::evo::{Genome, merged, neat_setup};
 
 /// Novelty search over a NEAT population (Lehman & Stanley 2011).
 #[pyclass(module = "vivae._vivae")]
@@ -87,57 +17,56 @@ pub struct NoveltySearch {
     recurrent: bool,
 }
 
-ask_tell!(NoveltySearch, "NoveltySearch", {
-    /// A novelty search breeding a NEAT population made as `Population`
-    /// makes it; `novelty` overrides its settings by name (`k`,
-    /// `threshold`, `threshold_floor`, `lower_after`, `lower_factor`,
-    /// `raise_above`, `raise_factor`, `fitness_weight`).
-    #[new]
-    #[pyo3(signature = (inputs, outputs, *, seed=1, size=None, preset="plain", recurrent=false, params=None, novelty=None))]
-    #[allow(clippy::too_many_arguments)]
-    fn new(
-        inputs: usize,
-        outputs: usize,
-        seed: u64,
-        size: Option<usize>,
-        preset: &str,
-        recurrent: bool,
-        params: Option<&Bound<'_, PyDict>>,
-        novelty: Option<&Bound<'_, PyDict>>,
-    ) -> PyResult<NoveltySearch> {
-        let (params, spec) = neat_setup(inputs, outputs, preset, recurrent, params, size)?;
-        let population = vivae_neat::Population::new(params, spec, seed).map_err(errors::value)?;
-        let novelty = merged(st::NoveltyParams::default(), novelty, "novelty")?;
-        let inner = st::NoveltySearch::new(population, novelty).map_err(errors::value)?;
-        Ok(NoveltySearch { inner, recurrent })
-    }
+ask_tell!(
+    NoveltySearch,
+    "NoveltySearch",
+    "novelty search",
+    &["population", "spec"],
+    {
+        /// A novelty search breeding a NEAT population made as `Population`
+        /// makes it; `novelty` overrides its settings by name (`k`,
+        /// `threshold`, `threshold_floor`, `lower_after`, `lower_factor`,
+        /// `raise_above`, `raise_factor`, `fitness_weight`).
+        #[new]
+        #[pyo3(signature = (inputs, outputs, *, seed=1, size=None, preset="plain", recurrent=false, params=None, novelty=None))]
+        #[allow(clippy::too_many_arguments)]
+        fn new(
+            inputs: usize,
+            outputs: usize,
+            seed: u64,
+            size: Option<usize>,
+            preset: &str,
+            recurrent: bool,
+            params: Option<&Bound<'_, PyDict>>,
+            novelty: Option<&Bound<'_, PyDict>>,
+        ) -> PyResult<NoveltySearch> {
+            let (params, spec) = neat_setup(inputs, outputs, preset, recurrent, params, size)?;
+            let population =
+                vivae_neat::Population::new(params, spec, seed).map_err(errors::value)?;
+            let novelty = merged(st::NoveltyParams::default(), novelty, "novelty")?;
+            let inner = st::NoveltySearch::new(population, novelty).map_err(errors::value)?;
+            Ok(NoveltySearch { inner, recurrent })
+        }
 
-    /// A novelty search from `to_json`'s JSON (validated).
-    #[staticmethod]
-    fn from_json(text: &str) -> PyResult<NoveltySearch> {
-        let recurrent = recurrent_in(text, &["population", "spec"])?;
-        let inner = restore(text, "novelty search")?;
-        Ok(NoveltySearch { inner, recurrent })
-    }
+        /// The archived behaviours, oldest first.
+        #[getter]
+        fn archive(&self) -> Vec<Vec<f64>> {
+            self.inner.archive().map(<[f64]>::to_vec).collect()
+        }
 
-    /// The archived behaviours, oldest first.
-    #[getter]
-    fn archive(&self) -> Vec<Vec<f64>> {
-        self.inner.archive().map(<[f64]>::to_vec).collect()
-    }
+        /// The archive threshold ρ_min now.
+        #[getter]
+        fn threshold(&self) -> f64 {
+            self.inner.threshold()
+        }
 
-    /// The archive threshold ρ_min now.
-    #[getter]
-    fn threshold(&self) -> f64 {
-        self.inner.threshold()
+        /// The novelty of each genome of the batch just told (empty before `tell`).
+        #[getter]
+        fn novelty(&self) -> Vec<f64> {
+            self.inner.novelty().to_vec()
+        }
     }
-
-    /// The novelty of each genome of the batch just told (empty before `tell`).
-    #[getter]
-    fn novelty(&self) -> Vec<f64> {
-        self.inner.novelty().to_vec()
-    }
-});
+);
 
 /// MAP-Elites over NEAT genomes (Mouret & Clune 2015), on a grid or a CVT.
 #[pyclass(module = "vivae._vivae")]
@@ -146,7 +75,7 @@ pub struct MapElites {
     recurrent: bool,
 }
 
-ask_tell!(MapElites, "MapElites", {
+ask_tell!(MapElites, "MapElites", "MAP-Elites", &["spec"], {
     /// An empty archive over the behaviour box `lower`..`upper`, cut into a
     /// grid of `bins` per dimension, or, with `cvt_cells`, into that many
     /// CVT cells (`cvt_samples` points, `cvt_iterations` of Lloyd's
@@ -179,14 +108,6 @@ ask_tell!(MapElites, "MapElites", {
         let (params, spec) = neat_setup(inputs, outputs, preset, recurrent, params, None)?;
         let map = merged(st::MapElitesParams::default(), map, "map")?;
         let inner = st::MapElites::new(params, spec, map, cells, seed).map_err(errors::value)?;
-        Ok(MapElites { inner, recurrent })
-    }
-
-    /// A MAP-Elites archive from `to_json`'s JSON (validated).
-    #[staticmethod]
-    fn from_json(text: &str) -> PyResult<MapElites> {
-        let recurrent = recurrent_in(text, &["spec"])?;
-        let inner = restore(text, "MAP-Elites")?;
         Ok(MapElites { inner, recurrent })
     }
 
@@ -263,7 +184,7 @@ fn objective(measure: &Bound<'_, PyAny>, direction: &str) -> PyResult<Objective>
     Ok(Objective { measure, maximise })
 }
 
-ask_tell!(Nsga2, "Nsga2", {
+ask_tell!(Nsga2, "Nsga2", "NSGA-II", &["spec"], {
     /// NSGA-II with `size` parents (and children per generation) over
     /// `objectives`, each (`"fitness"` or a metric's index, `"max"` or
     /// `"min"`), e.g. `[("fitness", "max"), (0, "min")]`.
@@ -291,14 +212,6 @@ ask_tell!(Nsga2, "Nsga2", {
         };
         let (params, spec) = neat_setup(inputs, outputs, preset, recurrent, params, None)?;
         let inner = st::Nsga2::new(params, spec, nsga, seed).map_err(errors::value)?;
-        Ok(Nsga2 { inner, recurrent })
-    }
-
-    /// An NSGA-II state from `to_json`'s JSON (validated).
-    #[staticmethod]
-    fn from_json(text: &str) -> PyResult<Nsga2> {
-        let recurrent = recurrent_in(text, &["spec"])?;
-        let inner = restore(text, "NSGA-II")?;
         Ok(Nsga2 { inner, recurrent })
     }
 

@@ -88,36 +88,6 @@ class Genome:
     @property
     def num_links(self) -> int: ...
 
-@final
-class Population:
-    """A NEAT population driven ask/tell."""
-
-    def __new__(
-        cls,
-        inputs: int,
-        outputs: int,
-        *,
-        seed: int = 1,
-        size: Optional[int] = None,
-        preset: str = "plain",
-        recurrent: bool = False,
-        params: Optional[dict[str, Any]] = None,
-    ) -> Population: ...
-    def ask(self) -> list[Genome]: ...
-    def tell(
-        self, fitnesses: Sequence[float], behaviours: Optional[Sequence[Sequence[float]]] = None
-    ) -> None: ...
-    @property
-    def generation(self) -> int: ...
-    @property
-    def size(self) -> int: ...
-    @property
-    def best_ever(self) -> Optional[tuple[Genome, float, int]]: ...
-    def stats(self) -> dict[str, Any]: ...
-    def to_json(self) -> str: ...
-    @staticmethod
-    def from_json(text: str) -> Population: ...
-
 _Objective = tuple[Union[str, int], str]
 
 class _AskTell:
@@ -134,6 +104,26 @@ class _AskTell:
     def best_ever(self) -> Optional[tuple[Genome, float, int]]: ...
     def stats(self) -> dict[str, Any]: ...
     def to_json(self) -> str: ...
+
+@final
+class Population(_AskTell):
+    """A NEAT population driven ask/tell."""
+
+    def __new__(
+        cls,
+        inputs: int,
+        outputs: int,
+        *,
+        seed: int = 1,
+        size: Optional[int] = None,
+        preset: str = "plain",
+        recurrent: bool = False,
+        params: Optional[dict[str, Any]] = None,
+    ) -> Population: ...
+    @staticmethod
+    def from_json(text: str) -> Population: ...
+    @property
+    def size(self) -> int: ...
 
 @final
 class NoveltySearch(_AskTell):
