@@ -370,6 +370,26 @@ mod tests {
             ..NeatParams::default()
         };
         assert!(p.validate().is_err());
+
+        let p = NeatParams {
+            population_stagnation_limit: Some(0),
+            ..NeatParams::default()
+        };
+        let e = p.validate().unwrap_err().to_string();
+        assert!(e.contains("population_stagnation_limit"), "{e}");
+    }
+
+    #[test]
+    fn unset_population_stagnation_limit_is_not_written() {
+        // Configs and checkpoints written before the option existed keep their bytes.
+        let json = serde_json::to_string(&NeatParams::default()).unwrap();
+        assert!(!json.contains("population_stagnation_limit"), "{json}");
+        let p = NeatParams {
+            population_stagnation_limit: Some(20),
+            ..NeatParams::default()
+        };
+        let back: NeatParams = serde_json::from_str(&serde_json::to_string(&p).unwrap()).unwrap();
+        assert_eq!(back, p);
     }
 
     #[test]

@@ -1070,9 +1070,13 @@ mod tests {
             let copies = pop.genomes().iter().filter(|g| *g == champion).count();
             assert_eq!(copies, 20, "champion {k}");
         }
-        // The refocus survives a checkpoint.
-        let back = Population::from_json(&pop.to_json().unwrap()).unwrap();
-        assert_eq!(back, pop);
+        // The refocus survives a checkpoint; one dated after the current generation is refused.
+        let json = pop.to_json().unwrap();
+        assert_eq!(Population::from_json(&json).unwrap(), pop);
+        let future = json.replace("\"refocused\":2", "\"refocused\":99");
+        assert_ne!(future, json);
+        let e = Population::from_json(&future).unwrap_err().to_string();
+        assert!(e.contains("refocused") && e.contains("99"), "{e}");
     }
 
     #[test]
