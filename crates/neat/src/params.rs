@@ -107,6 +107,13 @@ pub struct NeatParams {
     ///
     /// Unit: generations. Paper: 15 (Stanley).
     pub stagnation_limit: u32,
+    /// When set and the population's best fitness has not risen for this many
+    /// generations, only the two best species reproduce, half the population
+    /// each, as mutated copies of their champions (Stanley's "delta coding").
+    ///
+    /// Unit: generations. Example: 20 (Stanley's `dropoff_age` + 5).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub population_stagnation_limit: Option<u32>,
 }
 
 impl Default for NeatParams {
@@ -142,6 +149,7 @@ impl Default for NeatParams {
             elitism_fraction: 0.05,
             elitism_min_species_size: 5,
             stagnation_limit: 15,
+            population_stagnation_limit: None,
         }
     }
 }
@@ -299,6 +307,13 @@ impl NeatParams {
         if self.stagnation_limit == 0 {
             return Err(invalid("stagnation_limit", 0, "must be at least 1"));
         }
+        if self.population_stagnation_limit == Some(0) {
+            return Err(invalid(
+                "population_stagnation_limit",
+                0,
+                "must be at least 1 when set",
+            ));
+        }
         Ok(())
     }
 }
@@ -355,6 +370,26 @@ mod tests {
             ..NeatParams::default()
         };
         assert!(p.validate().is_err());
+
+        let p = NeatParams {
+            population_stagnation_limit: Some(0),
+            ..NeatParams::default()
+        };
+        let e = p.validate().unwrap_err().to_string();
+        assert!(e.contains("population_stagnation_limit"), "{e}");
+    }
+
+    #[test]
+    fn unset_population_stagnation_limit_is_not_written() {
+        // Configs and checkpoints written before the option existed keep their bytes.
+        let json = serde_json::to_string(&NeatParams::default()).unwrap();
+        assert!(!json.contains("population_stagnation_limit"), "{json}");
+        let p = NeatParams {
+            population_stagnation_limit: Some(20),
+            ..NeatParams::default()
+        };
+        let back: NeatParams = serde_json::from_str(&serde_json::to_string(&p).unwrap()).unwrap();
+        assert_eq!(back, p);
     }
 
     #[test]

@@ -93,6 +93,10 @@ pub struct Population {
     next_species_id: u32,
     threshold: f64,
     best_ever: Option<BestEver>,
+    /// Generation of the last refocus on the two best species
+    /// (`population_stagnation_limit`); absent from the JSON when there was none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    refocused: Option<u32>,
 }
 
 impl Population {
@@ -173,6 +177,7 @@ impl Population {
             next_species_id: 0,
             threshold,
             best_ever: None,
+            refocused: None,
         };
         let genomes = std::mem::take(&mut pop.genomes);
         pop.speciate(&genomes, &[]);
@@ -352,13 +357,19 @@ impl Population {
             .take()
             .unwrap_or_else(|| vec![0.0; self.genomes.len()]);
         let champion = argmax(&fitness).unwrap_or(0);
+        let refocus = self.refocus_due();
         self.update_species_records(&fitness, champion);
         let champ_species = self
             .species
             .iter()
             .position(|s| s.members.contains(&champion));
-        let alloc = self.allocate(&fitness, champ_species);
-        let next = self.reproduce(&fitness, &alloc, champ_species);
+        let alloc = if refocus {
+            self.refocused = Some(self.generation);
+            self.refocus_allocation(&fitness)
+        } else {
+            self.allocate(&fitness, champ_species)
+        };
+        let next = self.reproduce(&fitness, &alloc, champ_species, refocus);
 
         // Speciate the new generation against representatives of the old one.
         let old = std::mem::take(&mut self.genomes);
@@ -389,6 +400,51 @@ impl Population {
             .retain(|s| s.members.contains(&champion) || s.stagnation(generation) < limit);
     }
 
+    /// Whether the population's best fitness has not risen for
+    /// `population_stagnation_limit` generations (counted from the last
+    /// refocus, if later).
+    fn refocus_due(&self) -> bool {
+        let (Some(limit), Some(best)) = (self.params.population_stagnation_limit, &self.best_ever)
+        else {
+            return false;
+        };
+        let since = best.generation.max(self.refocused.unwrap_or(0));
+        self.generation.saturating_sub(since) >= limit
+    }
+
+    /// Stanley's delta coding: the two species with the best members get half
+    /// the population each (the best one all of it when it is alone), every
+    /// other species none; the two count as improved now, so that species
+    /// stagnation does not remove them next.
+    fn refocus_allocation(&mut self, fitness: &[f64]) -> Vec<usize> {
+        let best = |s: &Species| {
+            s.members
+                .iter()
+                .map(|&m| fitness[m])
+                .fold(f64::NEG_INFINITY, f64::max)
+        };
+        let mut order: Vec<usize> = (0..self.species.len()).collect();
+        order.sort_by(|&a, &b| {
+            best(&self.species[b])
+                .total_cmp(&best(&self.species[a]))
+                .then(a.cmp(&b))
+        });
+        let mut alloc = vec![0; self.species.len()];
+        let total = self.params.population_size;
+        match order[..] {
+            [] => {}
+            [only] => alloc[only] = total,
+            [first, second, ..] => {
+                alloc[first] = total / 2;
+                alloc[second] = total - total / 2;
+            }
+        }
+        for &k in order.iter().take(2) {
+            self.species[k].last_improved = self.generation;
+        }
+        alloc
+    }
+
     /// Offspring per species: explicit fitness sharing, then at least one
     /// child for the champion's species (taken from the largest allocation).
     fn allocate(&self, fitness: &[f64], champ_species: Option<usize>) -> Vec<usize> {
@@ -414,12 +470,14 @@ impl Population {
     }
 
     /// Reproduction, species by species: each species' elites, then
-    /// `alloc[si]` children in all bred from its best members.
+    /// `alloc[si]` children in all bred from its best members (when
+    /// `refocus`: one copy of its champion, then mutated copies of it).
     fn reproduce(
         &mut self,
         fitness: &[f64],
         alloc: &[usize],
         champ_species: Option<usize>,
+        refocus: bool,
     ) -> Vec<Genome> {
         let mut next: Vec<Genome> = Vec::with_capacity(self.params.population_size);
         // Each species' members, best first.
@@ -438,9 +496,27 @@ impl Population {
                 continue;
             }
             let len = sorted.len();
-            let elites = self.elites(len, Some(si) == champ_species).min(n_off);
+            let elites = if refocus {
+                1
+            } else {
+                self.elites(len, Some(si) == champ_species).min(n_off)
+            };
             for &m in &sorted[..elites] {
                 next.push(self.genomes[m].clone());
+            }
+            if refocus {
+                for _ in elites..n_off {
+                    let mut child = self.genomes[sorted[0]].clone();
+                    mutate(
+                        &mut child,
+                        &self.spec,
+                        &self.params,
+                        &mut self.tracker,
+                        &mut self.rng,
+                    );
+                    next.push(child);
+                }
+                continue;
             }
             let keep =
                 ((self.params.survival_threshold * len as f64).ceil() as usize).clamp(1, len);
@@ -593,6 +669,8 @@ struct RawPopulation {
     next_species_id: u32,
     threshold: f64,
     best_ever: Option<RawBestEver>,
+    #[serde(default)]
+    refocused: Option<u32>,
 }
 
 /// A [`Species`] as read, its representative not yet checked.
@@ -731,6 +809,14 @@ impl TryFrom<RawPopulation> for Population {
         if !(raw.threshold.is_finite() && raw.threshold >= 0.0) {
             return Err(PopulationError::Threshold(raw.threshold).into());
         }
+        if let Some(generation) = raw.refocused.filter(|&g| g > raw.generation) {
+            return Err(PopulationError::FutureGeneration {
+                what: "refocused",
+                generation,
+                current: raw.generation,
+            }
+            .into());
+        }
         let every_genome = genomes
             .iter()
             .enumerate()
@@ -757,6 +843,7 @@ impl TryFrom<RawPopulation> for Population {
             next_species_id: raw.next_species_id,
             threshold: raw.threshold,
             best_ever,
+            refocused: raw.refocused,
         })
     }
 }
@@ -945,6 +1032,63 @@ mod tests {
         assert_eq!(allocate_offspring(&[0.0, 0.0], 5), vec![3, 2]);
         assert_eq!(allocate_offspring(&[3.0, 1.0], 8), vec![6, 2]);
         assert_eq!(allocate_offspring(&[], 8), Vec::<usize>::new());
+    }
+
+    /// Parameters under which a mutated copy is an exact copy.
+    fn frozen(limit: Option<u32>) -> NeatParams {
+        NeatParams {
+            population_size: 40,
+            compatibility_threshold: 0.5,
+            add_node_probability: 0.0,
+            add_link_probability: 0.0,
+            weight_mutation_probability: 0.0,
+            toggle_enable_probability: 0.0,
+            activation_mutation_probability: 0.0,
+            population_stagnation_limit: limit,
+            ..NeatParams::plain_neat()
+        }
+    }
+
+    #[test]
+    fn population_stagnation_refocuses_on_two_champions() {
+        let mut pop = Population::new(frozen(Some(2)), GenomeSpec::plain(3, 1), 7).unwrap();
+        // Constant fitness: the best never rises after generation 0.
+        for _ in 0..2 {
+            pop.evaluate(|_, _| 1.0);
+            assert!(pop.species().len() >= 2, "the test needs two species");
+            pop.next_generation();
+        }
+        assert_eq!(pop.refocused, None);
+        pop.evaluate(|_, _| 1.0);
+        let champions: Vec<Genome> = pop.species()[..2]
+            .iter()
+            .map(|s| pop.genomes()[s.members[0]].clone())
+            .collect();
+        pop.next_generation();
+        assert_eq!(pop.refocused, Some(2));
+        for (k, champion) in champions.iter().enumerate() {
+            let copies = pop.genomes().iter().filter(|g| *g == champion).count();
+            assert_eq!(copies, 20, "champion {k}");
+        }
+        // The refocus survives a checkpoint; one dated after the current generation is refused.
+        let json = pop.to_json().unwrap();
+        assert_eq!(Population::from_json(&json).unwrap(), pop);
+        let future = json.replace("\"refocused\":2", "\"refocused\":99");
+        assert_ne!(future, json);
+        let e = Population::from_json(&future).unwrap_err().to_string();
+        assert!(e.contains("refocused") && e.contains("99"), "{e}");
+    }
+
+    #[test]
+    fn without_population_stagnation_limit_nothing_is_refocused_or_written() {
+        let mut pop = Population::new(frozen(None), GenomeSpec::plain(3, 1), 7).unwrap();
+        for _ in 0..30 {
+            pop.evaluate(|_, _| 1.0);
+            pop.next_generation();
+        }
+        assert_eq!(pop.refocused, None);
+        let json = pop.to_json().unwrap();
+        assert!(!json.contains("refocused") && !json.contains("population_stagnation_limit"));
     }
 
     #[test]

@@ -20,11 +20,17 @@ struct Clock<'a> {
     stop: &'a AtomicBool,
     best: f64,
     evals: usize,
+    /// Sums over evaluated genomes of their enabled links and hidden nodes.
+    links: f64,
+    hidden: f64,
 }
 
 impl Observer for Clock<'_> {
     fn on_generation(&mut self, report: &GenerationReport<'_>) -> Result<(), HookError> {
-        self.evals += report.evaluations.len();
+        let n = report.evaluations.len();
+        self.evals += n;
+        self.links += report.stats.mean_links * n as f64;
+        self.hidden += report.stats.mean_hidden * n as f64;
         for e in report.evaluations {
             self.best = self.best.max(e.fitness);
         }
@@ -112,16 +118,20 @@ pub fn sample<T: Task + Clone>(
             stop: &stop,
             best: 0.0,
             evals: 0,
+            links: 0.0,
+            hidden: 0.0,
         };
         let mut evolution = Evolution::new(pop, ParallelEvaluator::with_pool(task.clone(), &pool));
         let reason = evolution.run(&criteria, &mut clock, &mut NoCheckpoints);
         let reason = reason.unwrap_or_else(|e| fail(name, &e.to_string()));
         let s = clock.start.elapsed().as_secs_f64();
         eprintln!(
-            "{name} seed={} best={} evals={} s={s:.1} stop={reason:?}",
+            "{name} seed={} best={} evals={} s={s:.1} stop={reason:?} mean_links={:.1} mean_hidden={:.1}",
             seed + r,
             clock.best,
-            clock.evals
+            clock.evals,
+            clock.links / clock.evals.max(1) as f64,
+            clock.hidden / clock.evals.max(1) as f64,
         );
         bests.push(clock.best);
         evals.push(clock.evals as f64);

@@ -37,11 +37,17 @@ pub fn override_param(params: &NeatParams, kv: &str) -> Result<NeatParams, Strin
         .split_once('=')
         .ok_or_else(|| format!("--set {kv}: expected field=json_value"))?;
     let mut json = serde_json::to_value(params).map_err(|e| format!("--set {kv}: {e}"))?;
-    if json.get(k).is_none() {
-        return Err(format!("--set {kv}: unknown parameter `{k}`"));
-    }
+    // Unset options are left out of the JSON, so a missing key may still be a
+    // field: deserialising (which refuses unknown fields) decides.
+    let known = json.get(k).is_some();
     json[k] = serde_json::from_str(v).map_err(|e| format!("--set {kv}: value is not JSON: {e}"))?;
-    let p: NeatParams = serde_json::from_value(json).map_err(|e| format!("--set {kv}: {e}"))?;
+    let p: NeatParams = serde_json::from_value(json).map_err(|e| {
+        if !known && e.to_string().starts_with("unknown field") {
+            format!("--set {kv}: unknown parameter `{k}`")
+        } else {
+            format!("--set {kv}: {e}")
+        }
+    })?;
     p.validate().map_err(|e| format!("--set {kv}: {e}"))?;
     Ok(p)
 }

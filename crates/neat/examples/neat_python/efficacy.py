@@ -106,18 +106,23 @@ def main():
     bests, evals, secs = [], [], 0.0
     for r in range(runs):
         random.seed(1 + r)
-        state = {"n": 0, "best": 0.0}
+        state = {"n": 0, "best": 0.0, "links": 0, "hidden": 0}
         def eval_genomes(genomes, config):
             for _, g in genomes:
                 g.fitness = fit(make(g, config))
                 state["n"] += 1
                 state["best"] = max(state["best"], g.fitness)
+                # Network size, to compare work per evaluation with vivae-neat's.
+                state["links"] += sum(1 for c in g.connections.values() if c.enabled)
+                state["hidden"] += len(g.nodes) - nout
         p = neat.Population(cfg)
         start = time.time()
         while time.time() - start < seconds and state["best"] < top:
             p.run(eval_genomes, 1)
         s = time.time() - start
-        print(f"{name} seed={1 + r} best={state['best']} evals={state['n']} s={s:.1f}", file=sys.stderr)
+        n = max(state["n"], 1)
+        print(f"{name} seed={1 + r} best={state['best']} evals={state['n']} s={s:.1f} "
+              f"mean_links={state['links'] / n:.1f} mean_hidden={state['hidden'] / n:.1f}", file=sys.stderr)
         bests.append(state["best"]); evals.append(state["n"]); secs += s
     print(f"neat-python {name}: runs={runs} best_fitness(min/median/max)={min(bests):.2f}/"
           f"{statistics.median(bests):.2f}/{max(bests):.2f} evals_per_run(median)="
