@@ -360,7 +360,10 @@ fn main() {
     let markov = args.switches.iter().any(|s| s == "--markov");
     let small = args.switches.iter().any(|s| s == "--small");
     if markov && small {
-        fail("pole", "--small is a setting of the task without velocities; drop --markov");
+        fail(
+            "pole",
+            "--small is a setting of the task without velocities; drop --markov",
+        );
     }
     let base = if small {
         small_params()
@@ -370,15 +373,13 @@ fn main() {
     let params = apply_overrides(base, &args.sets).unwrap_or_else(|e| fail("pole", &e));
     let runs = args.runs.unwrap_or(50);
     let seed = args.seed.unwrap_or(1);
-    let max_generations = args
-        .max_generations
-        .unwrap_or(if markov {
-            200
-        } else if small {
-            1000
-        } else {
-            150
-        });
+    let max_generations = args.max_generations.unwrap_or(if markov {
+        200
+    } else if small {
+        1000
+    } else {
+        150
+    });
     let name = if markov {
         "pole-markov"
     } else {
