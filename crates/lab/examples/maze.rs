@@ -86,7 +86,13 @@ fn solve<S: Strategy>(strategy: S, task: MazeTask, max_evals: usize) -> Option<u
 }
 
 /// One run of `strategy` with `seed`.
-fn run(strategy: &str, maze: Maze, params: &NeatParams, seed: u64, max_evals: usize) -> Option<usize> {
+fn run(
+    strategy: &str,
+    maze: Maze,
+    params: &NeatParams,
+    seed: u64,
+    max_evals: usize,
+) -> Option<usize> {
     let task = MazeTask::shipped(maze).unwrap_or_else(|e| fail(&e.to_string()));
     let pop = || {
         Population::new(params.clone(), MazeTask::spec(), seed)

@@ -273,7 +273,11 @@ impl Task for MazeTask {
         let out = self.run_genome(genome);
         Evaluation {
             fitness: out.fitness(),
-            metrics: vec![f64::from(u8::from(out.solved)), out.distance, out.steps as f64],
+            metrics: vec![
+                f64::from(u8::from(out.solved)),
+                out.distance,
+                out.steps as f64,
+            ],
             behaviour: vec![out.end.x, out.end.y],
         }
     }
@@ -302,7 +306,10 @@ mod tests {
         assert_eq!(out.end, task.start());
         assert!(!out.solved);
         assert_eq!(out.steps, STEPS);
-        assert_eq!(out.fitness(), FITNESS_BIAS - task.start().distance(task.goal()));
+        assert_eq!(
+            out.fitness(),
+            FITNESS_BIAS - task.start().distance(task.goal())
+        );
     }
 
     #[test]

@@ -17,7 +17,11 @@ fn shipped_mazes_load_with_start_and_goal_where_the_paper_puts_them() {
         let sc = maze.scenario().unwrap();
         assert!(sc.warnings.is_empty(), "{:?}", sc.warnings);
         assert_eq!((sc.width(), sc.height()), (w, h));
-        assert_eq!(sc.fixed_obstacles.len(), 11, "4 boundary walls + 7 inner walls");
+        assert_eq!(
+            sc.fixed_obstacles.len(),
+            11,
+            "4 boundary walls + 7 inner walls"
+        );
         assert_eq!(sc.robots.len(), 1);
         let r = &sc.robots[0];
         assert!((r.pos - DVec2::from(start)).length() < 1e-9, "{:?}", r.pos);
@@ -25,20 +29,22 @@ fn shipped_mazes_load_with_start_and_goal_where_the_paper_puts_them() {
         assert!((r.heading - FRAC_PI_2).abs() < 1e-6, "{}", r.heading);
         let task = MazeTask::new(&sc).unwrap();
         assert!((task.goal() - DVec2::from(goal)).length() < 1e-9);
-        assert!((task.goal_radius() - 5.0).abs() < 1e-6, "the paper's 5 units");
+        assert!(
+            (task.goal_radius() - 5.0).abs() < 1e-6,
+            "the paper's 5 units"
+        );
     }
 }
 
 /// Steers toward the goal slice of the radar and ignores the walls: the
 /// greedy controller a deceptive maze is built to trap.
 fn greedy(inputs: &[f64], out: &mut [f64]) {
-    let [left, ahead, right, _behind] = [inputs[6], inputs[7], inputs[8], inputs[9]];
+    // Slices: left, ahead, right, behind; behind turns right like right does.
+    let (left, ahead) = (inputs[6], inputs[7]);
     let (turn, forward) = if ahead == 1.0 {
         (0.5, 1.0)
     } else if left == 1.0 {
         (0.0, 0.0)
-    } else if right == 1.0 {
-        (1.0, 0.0)
     } else {
         (1.0, 0.0)
     };
@@ -74,7 +80,10 @@ fn greedy_goal_seeking_solves_the_open_maze_but_not_the_hard_one() {
     assert!(!trapped.solved, "{trapped:?}");
     assert_eq!(trapped.steps, STEPS);
     // Deception: the greedy robot ends closer to the goal than it started.
-    assert!(trapped.distance < hard.start().distance(hard.goal()), "{trapped:?}");
+    assert!(
+        trapped.distance < hard.start().distance(hard.goal()),
+        "{trapped:?}"
+    );
 }
 
 #[test]
@@ -86,7 +95,10 @@ fn a_robot_driving_straight_on_slides_along_slanted_walls_and_stops_at_straight_
     // then the east boundary x = 200 stops it: its rim 8 px and half the
     // 1 px stroke short, below the wall (87, 91)–(200, 146).
     assert!((out.end.x - (200.0 - 8.5)).abs() < 1e-6, "{out:?}");
-    assert!(out.end.y < 184.0 - 8.0 && out.end.y > 146.0 + 8.0, "{out:?}");
+    assert!(
+        out.end.y < 184.0 - 8.0 && out.end.y > 146.0 + 8.0,
+        "{out:?}"
+    );
     assert!(!out.solved && out.steps == STEPS);
     assert_eq!(wheels(0.5, 1.0), [1.0, 1.0]);
 }

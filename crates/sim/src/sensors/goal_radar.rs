@@ -149,8 +149,8 @@ mod tests {
         assert_eq!(radar.slice_of(-PI), 3);
         assert_eq!(radar.slice_of(PI), 3);
         assert_eq!(radar.slice_of(-3.0 * PI / 4.0 + 1e-9), 0);
-        for j in 0..4 {
-            assert_eq!(radar.slice_of(angles[j]), j);
+        for (j, &a) in angles.iter().enumerate() {
+            assert_eq!(radar.slice_of(a), j);
         }
     }
 
