@@ -102,3 +102,30 @@ fn a_robot_driving_straight_on_slides_along_slanted_walls_and_stops_at_straight_
     assert!(!out.solved && out.steps == STEPS);
     assert_eq!(wheels(0.5, 1.0), [1.0, 1.0]);
 }
+
+#[test]
+fn novelty_search_on_the_maze_gives_the_same_bits_twice() {
+    use vivae_neat::driver::{Evolution, NoCheckpoints, ParallelEvaluator, StopCriteria};
+    use vivae_neat::strategies::NoveltyParams;
+    use vivae_neat::{NeatParams, NoveltySearch, Population};
+    let run = || {
+        let params = NeatParams {
+            population_size: 20,
+            ..NeatParams::plain_neat()
+        };
+        let pop = Population::new(params, MazeTask::spec(), 5).unwrap();
+        let novelty = NoveltyParams {
+            threshold: 6.0,
+            ..NoveltyParams::default()
+        };
+        let ns = NoveltySearch::new(pop, novelty).unwrap();
+        let task = MazeTask::shipped(Maze::Medium).unwrap();
+        let mut evolution = Evolution::new(ns, ParallelEvaluator::new(task));
+        let stop = StopCriteria::generations(3);
+        evolution.run(&stop, &mut (), &mut NoCheckpoints).unwrap();
+        serde_json::to_string(evolution.strategy()).unwrap()
+    };
+    let first = run();
+    assert!(first.contains("archive"));
+    assert_eq!(first, run());
+}
