@@ -36,6 +36,7 @@ pub mod experiment;
 pub mod fitness;
 pub mod io;
 pub mod maps;
+pub mod maze;
 pub mod normalize;
 pub mod polar;
 pub mod resolutions;

@@ -39,7 +39,8 @@ pub use scenario::{
     ScenarioSummary, Surface, SurfaceKind,
 };
 pub use sensors::{
-    DistanceGrid, DistanceSensors, Sensor, SensorPlace, SurfaceGrid, SurfaceSensors, spread,
+    DistanceGrid, DistanceSensors, GoalRadar, Sensor, SensorPlace, SurfaceGrid, SurfaceSensors,
+    spread,
 };
 pub use world::{MovableState, PuckState, Robot, SurfaceHere, World, wrap_angle};
 

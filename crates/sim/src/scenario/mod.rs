@@ -231,6 +231,11 @@ impl Scenario {
         load::Loader::load(text, source, opts)
     }
 
+    /// The position mark whose id is `id` (e.g. a maze's `goal`), if any.
+    pub fn mark(&self, id: &str) -> Option<&Mark> {
+        self.marks.iter().find(|m| m.id == id)
+    }
+
     /// Errors with [`ScenarioError::NoRobots`] if the scenario has no robot.
     pub fn require_robots(&self) -> Result<&Self, ScenarioError> {
         if self.robots.is_empty() {

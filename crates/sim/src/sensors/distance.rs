@@ -52,17 +52,25 @@ impl DistanceSensors {
 
     /// The compiled sensor the world reads.
     pub fn grid(&self) -> DistanceGrid {
-        let angles = self.angles();
+        DistanceGrid::at_angles(&self.angles(), self.range)
+    }
+}
+
+impl DistanceGrid {
+    /// Rays at any `angles` (radians from straight ahead, negative = left, in
+    /// reading order) reaching `range` px beyond the robot's rim: e.g. the
+    /// maze robot's six rangefinders, one of them looking back.
+    pub fn at_angles(angles: &[f64], range: f64) -> DistanceGrid {
         DistanceGrid {
             dirs: angles.iter().map(|&a| local(1.0, a)).collect(),
-            range: self.range,
+            range,
             places: angles
                 .iter()
                 .enumerate()
                 .map(|(angle_index, &angle)| SensorPlace {
                     ring: 0,
                     angle_index,
-                    distance: self.range,
+                    distance: range,
                     angle,
                 })
                 .collect(),

@@ -5,6 +5,7 @@
 //! here plus one line in the `pub use` list below.
 
 mod distance;
+mod goal_radar;
 mod surface;
 
 use std::fmt;
@@ -14,6 +15,7 @@ use glam::DVec2;
 use crate::world::World;
 
 pub use distance::{DistanceGrid, DistanceSensors};
+pub use goal_radar::GoalRadar;
 pub use surface::{SurfaceGrid, SurfaceSensors};
 
 /// A sensor every robot carries: a fixed number of readings, each from a

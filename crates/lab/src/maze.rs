@@ -1,0 +1,363 @@
+//! The maze navigation benchmark of Lehman & Stanley 2011 ("Abandoning
+//! objectives: evolution through the search for novelty alone",
+//! Evolutionary Computation 19(2)): a plain-NEAT network drives the paper's
+//! robot through the medium or the hard maze for 400 steps.
+//!
+//! The mazes are shipped scenarios (`scenarios/medium-maze.svg`,
+//! `scenarios/hard-maze.svg`): walls are fixed obstacles, the start is the
+//! one robot and the goal is the position mark with id `goal`, its radius
+//! the distance within which the maze counts as solved. The robot has the
+//! paper's six rangefinders (reach 100 from its centre, one looking back)
+//! and four pie-slice goal radar sensors ([`GoalRadar`]); its two outputs,
+//! turn and forward, drive our differential robot (see [`wheels`]).
+//!
+//! Fitness is the paper's `b_f − d_g` (a bias minus the end distance to the
+//! goal), the behaviour is the end position, and the metrics say whether
+//! the goal was reached, the end distance and the steps taken. An episode
+//! ends early when the robot reaches the goal, as in Lehman's simulator.
+
+use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
+
+use vivae_neat::driver::{Evaluation, Task};
+use vivae_neat::{EvalContext, Genome, GenomeSpec, Network, RecurrentNetwork};
+use vivae_sim::{
+    DVec2, DistanceGrid, GoalRadar, LoadOptions, ParamError, PhysicsParams, Scenario,
+    ScenarioError, Sensor, World,
+};
+
+/// The medium maze (`scenarios/medium-maze.svg`).
+pub const MEDIUM_MAZE_SVG: &str = include_str!("../../../scenarios/medium-maze.svg");
+/// The hard maze (`scenarios/hard-maze.svg`).
+pub const HARD_MAZE_SVG: &str = include_str!("../../../scenarios/hard-maze.svg");
+
+/// Steps of one evaluation (the paper's 400).
+pub const STEPS: u32 = 400;
+/// The bias `b_f` of the fitness `b_f − d_g`: above any distance in either maze.
+pub const FITNESS_BIAS: f64 = 300.0;
+/// Id of the position mark that is the goal.
+pub const GOAL_MARK: &str = "goal";
+/// Rangefinder reach from the robot's centre, px (the paper's 100).
+pub const RANGE: f64 = 100.0;
+/// Network inputs: 6 rangefinders, 4 radar slices, a bias of 1.
+pub const INPUTS: usize = 11;
+/// Network outputs: turn, forward.
+pub const OUTPUTS: usize = 2;
+/// Names of [`Evaluation::metrics`], in order.
+pub const METRICS: [&str; 3] = ["solved", "distance", "steps"];
+
+/// Why a scenario is not a maze.
+#[derive(Debug, thiserror::Error)]
+pub enum MazeError {
+    /// The SVG did not load.
+    #[error(transparent)]
+    Scenario(#[from] ScenarioError),
+    /// A maze has exactly one robot.
+    #[error("{source_name}: a maze needs exactly one robot, found {count}")]
+    Robots {
+        /// The scenario file.
+        source_name: String,
+        /// Robots found.
+        count: usize,
+    },
+    /// No position mark with id `goal`.
+    #[error("{source_name}: no position mark with id \"goal\" (the maze's goal)")]
+    NoGoal {
+        /// The scenario file.
+        source_name: String,
+    },
+    /// A sensor or physics setting out of range (e.g. a goal mark of no size).
+    #[error(transparent)]
+    Param(#[from] ParamError),
+}
+
+/// One of the two shipped mazes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Maze {
+    /// The medium maze.
+    Medium,
+    /// The hard (deceptive) maze.
+    Hard,
+}
+
+impl Maze {
+    /// `"medium"` or `"hard"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Maze::Medium => "medium",
+            Maze::Hard => "hard",
+        }
+    }
+
+    /// The maze's SVG text.
+    pub fn svg(self) -> &'static str {
+        match self {
+            Maze::Medium => MEDIUM_MAZE_SVG,
+            Maze::Hard => HARD_MAZE_SVG,
+        }
+    }
+
+    /// The maze named `name` (`medium` or `hard`).
+    pub fn from_name(name: &str) -> Option<Maze> {
+        [Maze::Medium, Maze::Hard]
+            .into_iter()
+            .find(|m| m.name() == name)
+    }
+
+    /// The loaded scenario.
+    pub fn scenario(self) -> Result<Scenario, ScenarioError> {
+        let source = format!("{}-maze.svg", self.name());
+        Scenario::from_svg(self.svg(), &source, &LoadOptions::default())
+    }
+}
+
+/// The wheel commands `[L, R]` for the network's outputs `turn` and
+/// `forward` in [0, 1]: with `v = 2·forward − 1` and `w = 2·turn − 1`,
+/// `L = v + w` and `R = v − w` (the world clips each to [−1, 1]).
+///
+/// Why: our robot accelerates by `a_max·(L+R)/2 = a_max·v` and turns by
+/// `omega_max·(L−R)/2 = omega_max·w` (less at speed), so with `a_max = 0.5`
+/// the forward output changes the speed by `forward − 0.5` per step, as in
+/// Lehman's simulator, and `turn > 0.5` turns right (clockwise on screen),
+/// as there.
+#[inline]
+pub fn wheels(turn: f64, forward: f64) -> [f64; 2] {
+    let v = 2.0 * forward - 1.0;
+    let w = 2.0 * turn - 1.0;
+    [v + w, v - w]
+}
+
+/// How one episode ended.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Outcome {
+    /// Where the robot ended.
+    pub end: DVec2,
+    /// Its distance to the goal there, px.
+    pub distance: f64,
+    /// Whether it came within the goal radius.
+    pub solved: bool,
+    /// Steps taken (fewer than [`STEPS`] when it reached the goal early).
+    pub steps: u32,
+}
+
+impl Outcome {
+    /// The paper's fitness `b_f − d_g`, never below 0.
+    pub fn fitness(&self) -> f64 {
+        (FITNESS_BIAS - self.distance).max(0.0)
+    }
+}
+
+/// The maze task: a scenario's walls, robot and goal with the paper's robot.
+#[derive(Debug, Clone)]
+pub struct MazeTask {
+    world: World,
+    rays: DistanceGrid,
+    radar: GoalRadar,
+    goal_radius: f64,
+    steps: u32,
+}
+
+impl MazeTask {
+    /// The paper's robot in our physics: radius 8, top speed 3 px/step,
+    /// ±0.5 px/step² from the forward output, no friction drag (Lehman's
+    /// robot keeps its speed), turning up to 0.1 rad/step at standstill.
+    pub fn physics() -> PhysicsParams {
+        PhysicsParams {
+            robot_radius: 8.0,
+            v_max: 3.0,
+            a_max: 0.5,
+            omega_max: 0.1,
+            k: 0.0,
+            ..PhysicsParams::default()
+        }
+    }
+
+    /// The rangefinders' angles, radians from ahead (negative = left): the
+    /// paper's −90°, −45°, 0°, 45°, 90° and 180° (behind).
+    pub fn rangefinder_angles() -> [f64; 6] {
+        [-FRAC_PI_2, -FRAC_PI_4, 0.0, FRAC_PI_4, FRAC_PI_2, PI]
+    }
+
+    /// The maze in `scenario`: one robot, a `goal` mark.
+    pub fn new(scenario: &Scenario) -> Result<MazeTask, MazeError> {
+        let source_name = scenario.source.clone();
+        if scenario.robots.len() != 1 {
+            let count = scenario.robots.len();
+            return Err(MazeError::Robots { source_name, count });
+        }
+        let goal = scenario
+            .mark(GOAL_MARK)
+            .ok_or(MazeError::NoGoal { source_name })?;
+        let physics = MazeTask::physics();
+        let rim = RANGE - physics.robot_radius;
+        Ok(MazeTask {
+            world: World::new(scenario, &physics)?,
+            rays: DistanceGrid::at_angles(&MazeTask::rangefinder_angles(), rim),
+            radar: GoalRadar::paper(goal.pos)?,
+            goal_radius: goal.size.x.max(goal.size.y) / 2.0,
+            steps: STEPS,
+        })
+    }
+
+    /// One of the shipped mazes.
+    pub fn shipped(maze: Maze) -> Result<MazeTask, MazeError> {
+        MazeTask::new(&maze.scenario()?)
+    }
+
+    /// The genome layout: [`INPUTS`] inputs, [`OUTPUTS`] sigmoid outputs,
+    /// recurrent links allowed (as in Lehman's NEAT).
+    pub fn spec() -> GenomeSpec {
+        GenomeSpec {
+            allow_recurrent: true,
+            ..GenomeSpec::plain(INPUTS, OUTPUTS)
+        }
+    }
+
+    /// Where the goal is.
+    pub fn goal(&self) -> DVec2 {
+        self.radar.goal()
+    }
+
+    /// Within this distance of the goal the maze is solved, px.
+    pub fn goal_radius(&self) -> f64 {
+        self.goal_radius
+    }
+
+    /// Where the robot starts.
+    pub fn start(&self) -> DVec2 {
+        self.world.robots()[0].pos
+    }
+
+    /// The world at the start (e.g. to draw the maze).
+    pub fn world(&self) -> &World {
+        &self.world
+    }
+
+    /// Runs one episode: `controller(inputs, outputs)` is asked each step
+    /// (inputs: 6 rangefinders `1 − d/reach` from the rim, 4 radar slices
+    /// left/ahead/right/behind, a bias of 1; outputs: turn, forward in
+    /// [0, 1]). Allocation-free after the world's copy.
+    pub fn run(&self, mut controller: impl FnMut(&[f64], &mut [f64])) -> Outcome {
+        let mut world = self.world.clone();
+        let (goal, r2) = (self.goal(), self.goal_radius * self.goal_radius);
+        let mut inputs = [0.0; INPUTS];
+        inputs[INPUTS - 1] = 1.0;
+        let mut outputs = [0.0; OUTPUTS];
+        let mut steps = 0;
+        while steps < self.steps && world.robots()[0].pos.distance_squared(goal) > r2 {
+            let (rays, rest) = inputs.split_at_mut(self.rays.len());
+            self.rays.read(&world, 0, rays);
+            self.radar.read(&world, 0, rest);
+            controller(&inputs, &mut outputs);
+            world.step(&[wheels(outputs[0], outputs[1])]);
+            steps += 1;
+        }
+        let end = world.robots()[0].pos;
+        let d2 = end.distance_squared(goal);
+        Outcome {
+            end,
+            distance: d2.sqrt(),
+            solved: d2 <= r2,
+            steps,
+        }
+    }
+
+    /// An episode driven by `genome`'s network.
+    pub fn run_genome(&self, genome: &Genome) -> Outcome {
+        let mut net = RecurrentNetwork::from_genome(genome);
+        self.run(|i, o| net.activate(i, o))
+    }
+}
+
+impl Task for MazeTask {
+    fn evaluate(&self, genome: &Genome, _ctx: &EvalContext) -> Evaluation {
+        let out = self.run_genome(genome);
+        Evaluation {
+            fitness: out.fitness(),
+            metrics: vec![
+                f64::from(u8::from(out.solved)),
+                out.distance,
+                out.steps as f64,
+            ],
+            behaviour: vec![out.end.x, out.end.y],
+        }
+    }
+
+    fn metric_names(&self) -> &[&str] {
+        &METRICS
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn wheels_map_forward_and_turn_onto_the_differential_drive() {
+        assert_eq!(wheels(0.5, 1.0), [1.0, 1.0]);
+        assert_eq!(wheels(0.5, 0.5), [0.0, 0.0]);
+        assert_eq!(wheels(1.0, 0.5), [1.0, -1.0], "turn > 0.5 turns right");
+        assert_eq!(wheels(0.0, 0.5), [-1.0, 1.0]);
+    }
+
+    #[test]
+    fn standing_still_ends_where_it_started_unsolved() {
+        let task = MazeTask::shipped(Maze::Hard).unwrap();
+        let out = task.run(|_, o| o.copy_from_slice(&[0.5, 0.5]));
+        assert_eq!(out.end, task.start());
+        assert!(!out.solved);
+        assert_eq!(out.steps, STEPS);
+        assert_eq!(
+            out.fitness(),
+            FITNESS_BIAS - task.start().distance(task.goal())
+        );
+    }
+
+    #[test]
+    fn inputs_are_rays_radar_and_bias() {
+        let task = MazeTask::shipped(Maze::Hard).unwrap();
+        let mut first = None;
+        task.run(|i, o| {
+            first.get_or_insert_with(|| i.to_vec());
+            o.fill(0.5);
+        });
+        let i = first.unwrap();
+        assert_eq!(i.len(), INPUTS);
+        assert_eq!(i[10], 1.0, "bias");
+        // Facing +x at (36, 184) with the goal at (31, 20): the goal is to the left.
+        assert_eq!(&i[6..10], &[1.0, 0.0, 0.0, 0.0]);
+        // The bottom wall (y = 200) is 16 px to the right: 8 px from the rim.
+        assert!((i[4] - (1.0 - 7.5 / 92.0)).abs() < 0.02, "{}", i[4]);
+        assert!(i.iter().all(|v| (0.0..=1.0).contains(v)));
+    }
+
+    #[test]
+    fn evaluation_reports_end_position_and_metrics() {
+        let task = MazeTask::shipped(Maze::Medium).unwrap();
+        let spec = MazeTask::spec();
+        let params = vivae_neat::NeatParams::plain_neat();
+        let pop = vivae_neat::Population::new(params, spec, 3).unwrap();
+        let ctx = EvalContext {
+            generation: 0,
+            index: 0,
+            seed: 0,
+        };
+        let e = task.evaluate(&pop.genomes()[0], &ctx);
+        assert_eq!(e.behaviour.len(), 2);
+        assert_eq!(e.metrics.len(), METRICS.len());
+        let out = task.run_genome(&pop.genomes()[0]);
+        assert_eq!(e.behaviour, [out.end.x, out.end.y]);
+        assert_eq!(e.fitness, out.fitness());
+        assert_eq!(task.evaluate(&pop.genomes()[0], &ctx), e, "deterministic");
+    }
+
+    #[test]
+    fn a_scenario_without_goal_or_with_two_robots_is_refused() {
+        let no_goal = HARD_MAZE_SVG.replace("id=\"goal\"", "id=\"exit\"");
+        let sc = Scenario::from_svg(&no_goal, "m.svg", &LoadOptions::default()).unwrap();
+        let err = MazeTask::new(&sc).unwrap_err().to_string();
+        assert!(err.contains("m.svg") && err.contains("goal"), "{err}");
+        let sc = Scenario::from_svg(vivae_sim::ROADS_SVG, "roads.svg", &LoadOptions::default());
+        let err = MazeTask::new(&sc.unwrap()).unwrap_err().to_string();
+        assert!(err.contains("exactly one robot"), "{err}");
+    }
+}
