@@ -45,7 +45,7 @@ impl SensorKind {
 
 /// The registry: every sensor kind the config can build, in controller-input
 /// order (the surface sensors first: they are always there).
-pub static SENSORS: [SensorKind; 3] = [
+pub static SENSORS: [SensorKind; 2] = [
     SensorKind {
         name: "surface",
         label: "surface sensors",
@@ -64,19 +64,6 @@ pub static SENSORS: [SensorKind; 3] = [
                 .layout()
                 .map(|d| Arc::new(d.grid()) as Arc<dyn Sensor>)
         },
-    },
-    SensorKind {
-        name: "goal_radar",
-        label: "goal radar slices",
-        // Never painted yet: no driving config switches it on.
-        cppn_output: DISTANCE_OUTPUT,
-        // The maze robot's four pie slices (Lehman & Stanley 2011).
-        reference_len: || 4,
-        // The radar points at a scenario's goal mark, which the config does
-        // not name: the maze task ([`crate::maze::MazeTask`]) builds it from its
-        // scenario, and a driving config leaves it off, so that no existing
-        // run changes.
-        build: |_| None,
     },
 ];
 
@@ -190,9 +177,7 @@ mod tests {
     fn every_kind_builds_the_sensor_it_names() {
         let mut config = Config::default();
         config.distance_sensors.rays = 3;
-        // The goal radar is built by the maze task, never from a config.
-        assert!(SENSORS[2].sheet(&config).is_none());
-        for kind in &SENSORS[..2] {
+        for kind in &SENSORS {
             let sheet = kind.sheet(&config).unwrap();
             assert_eq!(sheet.name(), kind.name);
             assert_eq!(sheet.cppn_output, kind.cppn_output);
