@@ -30,6 +30,7 @@
 
 pub mod behaviour;
 pub mod config;
+pub mod descriptors;
 pub mod error;
 pub mod evolve;
 pub mod experiment;
@@ -44,6 +45,7 @@ pub mod rundir;
 pub mod sensors;
 pub mod shipped;
 pub mod simd;
+pub mod strategy_config;
 pub mod substrate;
 pub mod task;
 pub mod training;
