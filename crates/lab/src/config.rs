@@ -377,7 +377,7 @@ pub struct ConfigError {
 }
 
 impl ConfigError {
-    pub(crate) fn new(message: impl Into<String>) -> Self {
+    fn new(message: impl Into<String>) -> Self {
         ConfigError {
             message: message.into(),
         }
@@ -409,7 +409,8 @@ impl Config {
         self.validate_experiment()?;
         self.validate_parameters()?;
         self.validate_sizes()?;
-        crate::strategy_config::validate(self)?;
+        crate::strategy_config::validate(&self.strategy, !self.experiment.scenarios.is_empty())
+            .map_err(ConfigError::new)?;
         self.validate_run()
     }
 

@@ -28,57 +28,16 @@
 //! coordinate: the descriptor keeps its dimensions and units (concatenating
 //! would multiply a grid's cells by the number of parts).
 
-use schemars::JsonSchema;
-use serde::{Deserialize, Serialize};
 use vivae_neat::driver::Evaluation;
 use vivae_neat::hyperneat::SubstrateController;
+use vivae_sim::World;
 
 use crate::behaviour::BehaviourMeter;
-use crate::experiment::Experiment;
+use crate::fitness::Fitness;
+use crate::rollout::Rollout;
+use crate::strategy_config::{StrategyConfig, StrategyKind as K};
 
-/// Names of the metrics an evaluation carries when measured, in order.
-pub const METRICS: [&str; 2] = ["contacts", "on_road"];
-
-/// Which behaviour descriptor an episode reports (see the module docs).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
-#[serde(rename_all = "kebab-case")]
-pub enum BehaviourKind {
-    /// The robots' mean end position over the arena's size.
-    #[default]
-    EndPosition,
-    /// Every robot's end position over the arena's size, concatenated.
-    EndPositions,
-    /// Mean signed side of the road and mean speed over `v_max`.
-    SideSpeed,
-}
-
-impl BehaviourKind {
-    /// Coordinates of the descriptor for `robots` robots.
-    pub fn dims(self, robots: usize) -> usize {
-        match self {
-            BehaviourKind::EndPositions => 2 * robots,
-            BehaviourKind::EndPosition | BehaviourKind::SideSpeed => 2,
-        }
-    }
-
-    /// The box every descriptor lies in: (lower, upper) per coordinate.
-    pub fn bounds(self, robots: usize) -> (Vec<f64>, Vec<f64>) {
-        let n = self.dims(robots);
-        match self {
-            BehaviourKind::SideSpeed => (vec![-1.0, 0.0], vec![1.0, 1.0]),
-            _ => (vec![0.0; n], vec![1.0; n]),
-        }
-    }
-
-    /// The name as configs write it.
-    pub fn name(self) -> &'static str {
-        match self {
-            BehaviourKind::EndPosition => "end-position",
-            BehaviourKind::EndPositions => "end-positions",
-            BehaviourKind::SideSpeed => "side-speed",
-        }
-    }
-}
+pub use crate::strategy_config::{BehaviourKind, METRICS};
 
 /// What an episode measures besides its fitness.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -90,11 +49,9 @@ pub struct Measures {
 }
 
 impl Measures {
-    /// What the run of `config` needs: nothing for NEAT (the plain episode),
-    /// a behaviour for novelty search and MAP-Elites, metrics for NSGA-II.
-    pub fn of(config: &crate::config::Config) -> Option<Measures> {
-        use crate::strategy_config::StrategyKind as K;
-        let s = &config.strategy;
+    /// What a run with strategy `s` needs: nothing for NEAT (the plain
+    /// episode), a behaviour for novelty search and MAP-Elites, metrics for NSGA-II.
+    pub fn of(s: &StrategyConfig) -> Option<Measures> {
         let m = match s.kind {
             K::Neat => return None,
             K::Novelty | K::MapElites => Measures {
@@ -110,20 +67,30 @@ impl Measures {
     }
 }
 
-/// One episode of `experiment` driven by `controller`, measuring `measures`
-/// besides the fitness (which is the plain episode's, bit for bit).
+/// An episode of `steps` steps from `start`, scored by `fitness`.
+pub struct EpisodeSetup<'a> {
+    /// The world at the start of the episode.
+    pub start: &'a World,
+    /// Simulation steps.
+    pub steps: u32,
+    /// The episode's fitness function.
+    pub fitness: &'a dyn Fitness,
+}
+
+/// The episode `setup` driven by `controller` through `rollout`, measuring
+/// `measures` besides the fitness (which is the plain episode's, bit for bit).
 pub fn measured_episode(
-    experiment: &Experiment,
+    setup: EpisodeSetup<'_>,
+    mut rollout: Rollout,
     controller: &SubstrateController,
     measures: Measures,
 ) -> Evaluation {
-    let steps = experiment.steps();
-    let n = experiment.robots();
-    let mut world = experiment.world().clone();
-    let fitness = experiment.fitness_function();
+    let steps = setup.steps;
+    let mut world = setup.start.clone();
+    let n = world.robots().len();
+    let fitness = setup.fitness;
     let mut meter = fitness.meter(&world);
     let observe = fitness.observes_steps();
-    let mut rollout = experiment.rollout(controller);
     let side = measures.behaviour == Some(BehaviourKind::SideSpeed);
     let mut behaviour = (measures.metrics || side)
         .then(|| BehaviourMeter::new(&world, steps as usize).measuring_side(side));
@@ -199,6 +166,7 @@ pub fn mean_of(parts: &[&[f64]]) -> Vec<f64> {
 mod tests {
     use super::*;
     use crate::config::Config;
+    use crate::experiment::Experiment;
     use crate::io::load_scenario;
     use crate::strategy_config::StrategyKind;
     use vivae_neat::Population;
@@ -255,7 +223,12 @@ mod tests {
         let pop = Population::new(config.neat.clone(), e.cppn_spec(), 9).unwrap();
         for g in pop.genomes().iter().take(4) {
             let c = e.controller(g).unwrap();
-            let m = measured_episode(&e, &c, Measures::of(&config).unwrap());
+            let m = measured_episode(
+                e.setup(),
+                e.rollout(&c),
+                &c,
+                Measures::of(&config.strategy).unwrap(),
+            );
             let recorded = e.run(&c, true);
             assert_eq!(m.metrics[0], recorded.behaviour.unwrap().collisions);
             assert_eq!(m.metrics[1], recorded.on_road.unwrap());
@@ -272,7 +245,7 @@ mod tests {
                 behaviour: Some(kind),
                 metrics: false,
             };
-            measured_episode(&e, &c, m).behaviour
+            measured_episode(e.setup(), e.rollout(&c), &c, m).behaviour
         };
         let (mean, all) = (
             each(BehaviourKind::EndPosition),

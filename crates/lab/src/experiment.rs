@@ -10,7 +10,7 @@ use vivae_sim::{DVec2, Scenario, SurfaceGrid, World};
 
 use crate::behaviour::{Behaviour, BehaviourMeter};
 use crate::config::Config;
-use crate::descriptors::{METRICS, Measures, measured_episode};
+use crate::descriptors::{EpisodeSetup, METRICS, Measures, measured_episode};
 use crate::fitness::{AverageSpeed, Fitness};
 use crate::normalize::SourceScale;
 use crate::rollout::Rollout;
@@ -131,7 +131,7 @@ impl Experiment {
             steps: config.experiment.steps,
             cppn_outputs,
             fitness: Arc::new(AverageSpeed),
-            measures: Measures::of(config),
+            measures: Measures::of(&config.strategy),
         })
     }
 
@@ -240,6 +240,15 @@ impl Experiment {
         Rollout::new(self.robots(), self.sensors.clone(), self.wheels, controller)
     }
 
+    /// The start, length and fitness of this experiment's episodes.
+    pub fn setup(&self) -> EpisodeSetup<'_> {
+        EpisodeSetup {
+            start: &self.world,
+            steps: self.steps,
+            fitness: &*self.fitness,
+        }
+    }
+
     /// Runs one episode and also returns the final world (for drawing).
     pub fn run_world(&self, controller: &SubstrateController, record: bool) -> (Episode, World) {
         let n = self.robots();
@@ -282,7 +291,7 @@ impl Task for Experiment {
             return Evaluation::fitness(self.fitness(genome));
         };
         match self.controller(genome) {
-            Ok(c) => measured_episode(self, &c, measures),
+            Ok(c) => measured_episode(self.setup(), self.rollout(&c), &c, measures),
             Err(_) => crate::descriptors::unfit(measures, self.robots()),
         }
     }

@@ -7,8 +7,75 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use vivae_neat::strategies::{Measure, NoveltyParams, Objective};
 
-use crate::config::ConfigError;
-use crate::descriptors::{BehaviourKind, METRICS};
+/// Names of the metrics an evaluation carries when measured, in order.
+pub const METRICS: [&str; 2] = ["contacts", "on_road"];
+
+/// Which behaviour descriptor an episode reports (see [`crate::descriptors`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "kebab-case")]
+pub enum BehaviourKind {
+    /// The robots' mean end position over the arena's size.
+    #[default]
+    EndPosition,
+    /// Every robot's end position over the arena's size, concatenated.
+    EndPositions,
+    /// Mean signed side of the road and mean speed over `v_max`.
+    SideSpeed,
+}
+
+impl BehaviourKind {
+    /// Coordinates of the descriptor for `robots` robots.
+    pub fn dims(self, robots: usize) -> usize {
+        match self {
+            BehaviourKind::EndPositions => 2 * robots,
+            BehaviourKind::EndPosition | BehaviourKind::SideSpeed => 2,
+        }
+    }
+
+    /// The box every descriptor lies in: (lower, upper) per coordinate.
+    pub fn bounds(self, robots: usize) -> (Vec<f64>, Vec<f64>) {
+        let n = self.dims(robots);
+        match self {
+            BehaviourKind::SideSpeed => (vec![-1.0, 0.0], vec![1.0, 1.0]),
+            _ => (vec![0.0; n], vec![1.0; n]),
+        }
+    }
+
+    /// Column names of the descriptor's `dims` coordinates.
+    pub fn coordinate_names(self, dims: usize) -> Vec<String> {
+        match self {
+            BehaviourKind::EndPosition => vec!["x".into(), "y".into()],
+            BehaviourKind::SideSpeed => vec!["side".into(), "speed".into()],
+            BehaviourKind::EndPositions => (0..dims)
+                .map(|i| format!("{}{}", ["x", "y"][i % 2], i / 2))
+                .collect(),
+        }
+    }
+
+    /// The name as configs write it.
+    pub fn name(self) -> &'static str {
+        match self {
+            BehaviourKind::EndPosition => "end-position",
+            BehaviourKind::EndPositions => "end-positions",
+            BehaviourKind::SideSpeed => "side-speed",
+        }
+    }
+}
+
+impl std::str::FromStr for BehaviourKind {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        [
+            BehaviourKind::EndPosition,
+            BehaviourKind::EndPositions,
+            BehaviourKind::SideSpeed,
+        ]
+        .into_iter()
+        .find(|k| k.name() == s)
+        .ok_or_else(|| format!("'{s}': expected end-position, end-positions or side-speed"))
+    }
+}
 
 /// Which search algorithm a run uses.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
@@ -26,6 +93,17 @@ pub enum StrategyKind {
 }
 
 impl StrategyKind {
+    /// The columns this strategy adds to `generations.csv` (after NEAT's),
+    /// with their leading comma; none for NEAT.
+    pub fn extra_columns(self) -> &'static str {
+        match self {
+            StrategyKind::Neat => "",
+            StrategyKind::Novelty => ",archive_size,novelty_threshold",
+            StrategyKind::MapElites => ",filled_cells,coverage,qd_score,archive_best",
+            StrategyKind::Nsga2 => ",front_size",
+        }
+    }
+
     /// The name as configs and the command line write it.
     pub fn name(self) -> &'static str {
         match self {
@@ -242,14 +320,12 @@ pub fn objective(name: &str) -> Option<Objective> {
     Some(Objective { measure, maximise })
 }
 
-/// Checks the `[strategy]` section of `config` (sizes that depend on the
-/// robots are checked when the run starts).
-pub fn validate(config: &crate::config::Config) -> Result<(), ConfigError> {
-    let s = &config.strategy;
+/// Checks the `[strategy]` section `s` of a config that trains on several
+/// maps if `multi_map` (sizes that depend on the robots are checked when
+/// the run starts); the error names the key.
+pub fn validate(s: &StrategyConfig, multi_map: bool) -> Result<(), String> {
     let bad = |key: &str, value: &dyn std::fmt::Debug, why: &str| {
-        Err(ConfigError::new(format!(
-            "strategy.{key} = {value:?}: {why}"
-        )))
+        Err(format!("strategy.{key} = {value:?}: {why}"))
     };
     if let Err(vivae_neat::NeatError::InvalidParam {
         field,
@@ -260,10 +336,7 @@ pub fn validate(config: &crate::config::Config) -> Result<(), ConfigError> {
         return bad(&format!("novelty.{field}"), &value, reason);
     }
     let searches_behaviour = matches!(s.kind, StrategyKind::Novelty | StrategyKind::MapElites);
-    if searches_behaviour
-        && s.behaviour == BehaviourKind::EndPositions
-        && !config.experiment.scenarios.is_empty()
-    {
+    if searches_behaviour && s.behaviour == BehaviourKind::EndPositions && multi_map {
         return bad(
             "behaviour",
             &s.behaviour.name(),
@@ -331,12 +404,11 @@ mod tests {
 
     #[test]
     fn bad_settings_name_their_key() {
-        let validate = |s: &StrategyConfig| {
-            validate(&crate::config::Config {
-                strategy: s.clone(),
-                ..Default::default()
-            })
-        };
+        let validate =
+            |s: &StrategyConfig| validate(s, false).map_err(|message| Message { message });
+        struct Message {
+            message: String,
+        }
         let mut s = StrategyConfig::default();
         s.nsga2.objectives = vec!["speed".into()];
         let e = validate(&s).unwrap_err().message;
