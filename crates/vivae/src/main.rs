@@ -620,10 +620,11 @@ fn header(run: &Run, command: &str, scenario: &str, threads: usize) -> String {
             t.aggregate()
         )
     };
+    let strategy = strategy_line(c);
     format!(
         "vivae {command}: {scenario}\n\
          \x20 robots {}, {} steps per evaluation, population {}, {} generations{start}\n\
-         \x20 substrate: {}x{} surface sensors{distance}, {}x{} neurons; threads {threads}, seed {}{training}{maps}\n\
+         \x20 substrate: {}x{} surface sensors{distance}, {}x{} neurons; threads {threads}, seed {}{training}{maps}{strategy}\n\
          \x20 output: {}\n\
          \x20 fitness = average speed in px/step over all robots and steps (full throttle on road tends to 5)",
         run.experiment().robots(),
@@ -637,6 +638,24 @@ fn header(run: &Run, command: &str, scenario: &str, threads: usize) -> String {
         c.experiment.seed,
         run.dir().display(),
     )
+}
+
+/// The header's line on the search strategy (none for NEAT, the paper's).
+fn strategy_line(c: &Config) -> String {
+    use vivae_lab::strategy_config::StrategyKind as K;
+    let s = &c.strategy;
+    match s.kind {
+        K::Neat => String::new(),
+        K::Novelty | K::MapElites => format!(
+            "\n  strategy: {}, behaviour {}",
+            s.kind.name(),
+            s.behaviour.name()
+        ),
+        K::Nsga2 => format!(
+            "\n  strategy: nsga2, objectives {}",
+            s.nsga2.objectives.join(", ")
+        ),
+    }
 }
 
 /// The closing summary: rounded figures and the run directory's main files;
@@ -661,6 +680,9 @@ fn closing(
             .map(|(label, _)| format!("{}.png", report::champion_map_figure(label))),
     );
     figures.extend(["convergence.png", "network.png"].map(String::from));
+    if run.dir().join(files::FIGURES).join("archive.png").exists() {
+        figures.push("archive.png".into());
+    }
     let plural = |n: u32| if n == 1 { "" } else { "s" };
     let (done, ran) = (run.done(), run.done() - started_after);
     let done = match started_after {
