@@ -163,9 +163,8 @@ impl StrategyConfig {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct NoveltyConfig {
-    /// Nearest neighbours (population and archive) whose mean distance is a behaviour's novelty.
-    ///
-    /// Paper: 15.
+    /// Nearest neighbours (population and archive) whose mean distance is a
+    /// behaviour's novelty (Lehman & Stanley 2011: 15).
     pub k: usize,
     /// Initial archive threshold ρ_min: a behaviour more novel than this is archived.
     ///
@@ -175,26 +174,16 @@ pub struct NoveltyConfig {
     ///
     /// Unit: behaviour units.
     pub threshold_floor: f64,
-    /// Generations without an archive addition before ρ_min is lowered.
-    ///
-    /// Paper: 10.
+    /// Generations without an archive addition before ρ_min is lowered (Lehman & Stanley: 10).
     pub lower_after: u32,
-    /// Factor lowering ρ_min.
-    ///
-    /// Paper: 0.95.
+    /// Factor lowering ρ_min (Lehman & Stanley: 0.95).
     pub lower_factor: f64,
-    /// More additions than this in one generation raise ρ_min.
-    ///
-    /// Paper: 4.
+    /// More additions than this in one generation raise ρ_min (Lehman & Stanley: 4).
     pub raise_above: usize,
-    /// Factor raising ρ_min.
-    ///
-    /// Paper: 1.2.
+    /// Factor raising ρ_min (Lehman & Stanley: 1.2).
     pub raise_factor: f64,
     /// Weight w of fitness in the selection score (1 − w)·novelty + w·fitness
     /// (both min–max normalised per generation); 0 = pure novelty search.
-    ///
-    /// Paper: 0.
     pub fitness_weight: f64,
 }
 
@@ -253,7 +242,7 @@ pub struct MapElitesConfig {
     pub cvt_cells: usize,
     /// Uniform samples the CVT is computed from (Lloyd's algorithm).
     pub cvt_samples: usize,
-    /// Lloyd iterations of the CVT.
+    /// Iterations of Lloyd's algorithm computing the CVT.
     pub cvt_iterations: usize,
     /// Probability that a child is the crossover of two elites rather than a mutant of one.
     pub crossover_probability: f64,
