@@ -28,6 +28,8 @@ pub const OVERRIDES: &[&str] = &[
     "train_neurons",
     "train_sensors",
     "train_aggregate",
+    "strategy",
+    "behaviour",
 ];
 
 /// `config` (a TOML file) or the paper's default, with `overrides` applied and validated.
@@ -99,6 +101,8 @@ fn apply(c: &mut Config, o: &Bound<'_, PyDict>) -> PyResult<()> {
             "train_neurons" => c.substrate.train_neurons = grids(&key, &v)?,
             "train_sensors" => c.substrate.train_sensors = grids(&key, &v)?,
             "train_aggregate" => c.substrate.train_aggregate = parsed(&key, &v)?,
+            "strategy" => c.strategy.kind = parsed(&key, &v)?,
+            "behaviour" => c.strategy.behaviour = parsed(&key, &v)?,
             other => {
                 return Err(errors::value(format!(
                     "unknown setting {other:?}; expected one of {}",

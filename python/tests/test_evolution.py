@@ -169,6 +169,20 @@ def test_evolve_writes_the_same_run_directory_as_the_cli(tmp_path, cli):
     assert str(measured["left_turns"]) == fields["left_turns"]
 
 
+@pytest.mark.parametrize("strategy, own", [("novelty", None), ("map-elites", "archive.jsonl"), ("nsga2", "front.jsonl")])
+def test_evolve_with_a_strategy_writes_what_the_cli_writes(tmp_path, cli, strategy, own):
+    ours = tmp_path / "py"
+    vivae.evolve(out=ours, progress=False, strategy=strategy, behaviour="side-speed", **SETTINGS)
+    theirs = tmp_path / "cli"
+    flags = ["--strategy", strategy, "--behaviour", "side-speed", *FLAGS]
+    subprocess.run([cli, "evolve", "-q", "--out", str(theirs), *flags], check=True, stdout=subprocess.DEVNULL)
+    for name in SAME + ([own] if own else []):
+        assert (ours / name).read_bytes() == (theirs / name).read_bytes(), name
+    assert f'kind = "{strategy}"' in (ours / "config.toml").read_text()
+    with pytest.raises(ValueError, match="strategy"):
+        vivae.evolve(out=tmp_path / "bad", progress=False, strategy="cma-es", **SETTINGS)
+
+
 def test_evolve_reports_each_generation_and_replay_returns_the_measures(tmp_path):
     seen = []
     result = vivae.evolve(out=tmp_path / "run", progress=True, on_generation=seen.append, **SETTINGS)

@@ -78,6 +78,8 @@ pub struct BehaviourMeter {
     robot_steps: u64,
     side_sum: f64,
     side_steps: u64,
+    /// Whether the side of the road is probed (the costliest measure).
+    side: bool,
 }
 
 impl BehaviourMeter {
@@ -101,7 +103,15 @@ impl BehaviourMeter {
             robot_steps: 0,
             side_sum: 0.0,
             side_steps: 0,
+            side: true,
         }
+    }
+
+    /// This meter probing the side of the road (the default) or not (then
+    /// [`Behaviour::side`] is `None`).
+    pub fn measuring_side(mut self, side: bool) -> Self {
+        self.side = side;
+        self
     }
 
     /// Takes the measures of `world` after one step.
@@ -132,7 +142,11 @@ impl BehaviourMeter {
                     self.contacts_begun += 1;
                 }
             }
-            if let Some(s) = side_offset(world, robot.pos, robot.right()) {
+            if let Some(s) = self
+                .side
+                .then(|| side_offset(world, robot.pos, robot.right()))
+                .flatten()
+            {
                 self.side_sum += s;
                 self.side_steps += 1;
             }

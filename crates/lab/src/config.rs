@@ -16,6 +16,7 @@ use vivae_neat::hyperneat::HyperParams;
 use vivae_sim::{DistanceSensors, PhysicsParams, SurfaceSensors};
 
 use crate::polar::{CoordMode, PolarGrid};
+use crate::strategy_config::StrategyConfig;
 
 /// Most simulation steps per evaluation (`experiment.steps`, `replay --steps`).
 pub const MAX_STEPS: u32 = 1_000_000;
@@ -48,6 +49,9 @@ pub struct Config {
     pub neat: NeatParams,
     /// Threads and checkpoints: how a run is executed, not what it computes.
     pub run: RunConfig,
+    /// The search strategy (NEAT by default) and its settings.
+    #[serde(default, skip_serializing_if = "StrategyConfig::is_default")]
+    pub strategy: StrategyConfig,
 }
 
 /// What is run.
@@ -405,6 +409,8 @@ impl Config {
         self.validate_experiment()?;
         self.validate_parameters()?;
         self.validate_sizes()?;
+        crate::strategy_config::validate(&self.strategy, !self.experiment.scenarios.is_empty())
+            .map_err(ConfigError::new)?;
         self.validate_run()
     }
 
@@ -718,8 +724,13 @@ pub struct SectionDoc {
 pub fn reference() -> Vec<SectionDoc> {
     let schema = schemars::schema_for!(Config);
     let root = schema.as_value();
-    let defaults = toml::Value::try_from(Config::default()).expect("the default config is TOML");
-    let defaults = defaults.as_table().expect("the config is a table");
+    let mut defaults =
+        toml::Value::try_from(Config::default()).expect("the default config is TOML");
+    let defaults = defaults.as_table_mut().expect("the config is a table");
+    // A default config is written without its `[strategy]` section (so that
+    // NEAT runs' files stay as they were); it is documented all the same.
+    let strategy = toml::Value::try_from(StrategyConfig::default()).expect("TOML");
+    defaults.insert("strategy".into(), strategy);
     let mut out = Vec::new();
     for (name, value) in defaults {
         let property = property(root, root, name);
@@ -1008,7 +1019,12 @@ mod tests {
 
     #[test]
     fn every_key_and_section_is_documented_and_every_doc_is_a_key() {
-        let value = toml::Value::try_from(Config::default()).unwrap();
+        let mut value = toml::Value::try_from(Config::default()).unwrap();
+        let strategy = toml::Value::try_from(StrategyConfig::default()).unwrap();
+        value
+            .as_table_mut()
+            .unwrap()
+            .insert("strategy".into(), strategy);
         let defaults = flatten(&value);
         let sections = reference();
         let docs: Vec<&KeyDoc> = sections.iter().flat_map(|s| &s.keys).collect();

@@ -14,6 +14,9 @@ use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
+use crate::search::Search;
+use crate::strategy_files::{extra_fields, write_outputs};
+use vivae_neat::driver::Strategy;
 use vivae_neat::driver::{
     CheckpointState, Checkpointer, DriverError, Evaluator, Evolution, GenerationReport, HookError,
     Observer, ParallelEvaluator, StopCriteria, StopReason,
@@ -26,9 +29,9 @@ use crate::experiment::Experiment;
 use crate::io::{bad_input, fnv1a, write_atomic};
 use crate::maps::{TrainingMap, is_multi_map};
 use crate::rundir::{
-    BestLine, Champion, Checkpoint, GENERATIONS_HEADER, GenerationRecord, POPULATION_HEADER,
-    Progress, RunLock, TIMING_HEADER, append, check_config_unchanged, check_csv_prefixes,
-    check_out_dir, copy_maps, decode_checkpoint, files, fill_new_run, latest_checkpoint, load_run,
+    BestLine, Champion, Checkpoint, GenerationRecord, POPULATION_HEADER, Progress, RunLock,
+    TIMING_HEADER, append, check_config_unchanged, check_csv_prefixes, check_out_dir, copy_maps,
+    decode_checkpoint, files, fill_new_run, generations_header, latest_checkpoint, load_run,
     population_rows, read_best_genomes, remove_abandoned_builds, remove_stale_temporaries,
     truncate, truncate_lines, write_checkpoint,
 };
@@ -53,7 +56,7 @@ pub struct Run {
     _lock: RunLock,
     config: Config,
     training: Training,
-    population: Population,
+    search: Search,
     progress: Progress,
     pool: Arc<rayon::ThreadPool>,
 }
@@ -90,7 +93,13 @@ impl Run {
         force: bool,
     ) -> Result<Run> {
         let maps = if is_multi_map(&config) { maps } else { &[] };
-        let population = initial_population(&config, &training, init)?;
+        let primary = training.primary();
+        let search = Search::new(
+            &config,
+            primary.cppn_spec(),
+            primary.robots(),
+            init.as_ref(),
+        )?;
         // The run is built in a temporary sibling and renamed into place once its
         // first checkpoint exists: a kill or an error before that leaves no
         // directory that could neither be resumed nor re-run without --force.
@@ -103,10 +112,11 @@ impl Run {
                     .map(|m| fnv1a(m.loaded.text.as_bytes()))
                     .collect()
             }),
-            ..Progress::start(population.generation())
+            generations_len: generations_header(search.kind()).len() as u64,
+            ..Progress::start(search.generation())
         };
         let filled = copy_maps(&tmp, &mut config, maps)
-            .and_then(|()| fill_new_run(&tmp, &mut config, scenario_text, &population, &progress));
+            .and_then(|()| fill_new_run(&tmp, &mut config, scenario_text, &search, &progress));
         let placed = filled.and_then(|()| {
             if old_lock.is_some() {
                 fs::remove_dir_all(dir).map_err(Error::io("clear", dir))?;
@@ -124,7 +134,7 @@ impl Run {
             pool: thread_pool(config.run.threads)?,
             config,
             training,
-            population,
+            search,
             progress,
         })
     }
@@ -151,7 +161,7 @@ impl Run {
         let scenario = crate::io::load_scenario(Some(&dir.join(files::SCENARIO)))?;
         let training = Training::new(&cp.config, &maps)?;
         // Everything is validated before anything in the directory changes.
-        validate_progress(&path, &cp, training.primary())?;
+        let search = validate_progress(&path, &cp, training.primary())?;
         if let Some(h) = cp.progress.scenario_fnv
             && h != fnv1a(scenario.text.as_bytes())
         {
@@ -182,7 +192,7 @@ impl Run {
             pool: thread_pool(threads.unwrap_or(cp.config.run.threads))?,
             config: cp.config,
             training,
-            population: cp.population,
+            search,
             progress: cp.progress,
         })
     }
@@ -212,9 +222,14 @@ impl Run {
         self.progress.done
     }
 
-    /// The population (ready for the next generation).
-    pub fn population(&self) -> &Population {
-        &self.population
+    /// The search strategy (ready for the next generation).
+    pub fn search(&self) -> &Search {
+        &self.search
+    }
+
+    /// The NEAT population (ready for the next generation) of a NEAT or novelty run.
+    pub fn population(&self) -> Option<&Population> {
+        self.search.population()
     }
 
     /// Evolves until the configured number of generations or until `stop` is set
@@ -243,8 +258,7 @@ impl Run {
         on_generation: impl FnMut(&GenerationRecord),
     ) -> Result<Outcome> {
         let total = self.config.experiment.generations;
-        let mut evolution =
-            Evolution::resume(self.population.clone(), evaluator, self.progress.done);
+        let mut evolution = Evolution::resume(self.search.clone(), evaluator, self.progress.done);
         let mut recorder = Recorder {
             dir: &self.dir,
             config: &self.config,
@@ -259,7 +273,7 @@ impl Run {
         };
         let criteria = StopCriteria::generations(total).or_interrupt(stop);
         let result = evolution.run_with(&criteria, &mut recorder);
-        self.population = evolution.into_population();
+        self.search = evolution.into_strategy();
         match result.map_err(driver_error)? {
             StopReason::Interrupted => Ok(Outcome::Interrupted),
             _ => Ok(Outcome::Finished),
@@ -276,33 +290,8 @@ impl Run {
 
     /// The champion (best ever) with its run-relative generation.
     pub fn champion(&self) -> Option<Champion> {
-        champion(&self.population, &self.progress, &self.config)
+        champion(&self.search, &self.progress, &self.config)
     }
-}
-
-/// The population a new run starts from: `init`'s genomes, or a fresh one.
-fn initial_population(
-    config: &Config,
-    training: &Training,
-    init: Option<Population>,
-) -> Result<Population> {
-    Ok(match init {
-        // Only the genomes carry over: fitness, species and the champion were
-        // measured on another substrate and mean nothing here.
-        Some(p) => Population::from_genomes(
-            config.neat.clone(),
-            training.primary().cppn_spec(),
-            p.genomes().to_vec(),
-            config.experiment.seed,
-        )
-        .map_err(|e| bad_input(format!("initial population: {e}")))?,
-        None => Population::new(
-            config.neat.clone(),
-            training.primary().cppn_spec(),
-            config.experiment.seed,
-        )
-        .map_err(|e| bad_input(format!("neat: {e}")))?,
-    })
 }
 
 /// A fresh, locked temporary sibling of `dir` to build a new run in (the
@@ -333,8 +322,8 @@ fn temporary_sibling(dir: &Path) -> Result<(PathBuf, RunLock)> {
 }
 
 /// The champion (best ever) of `population` with its run-relative generation.
-fn champion(population: &Population, progress: &Progress, config: &Config) -> Option<Champion> {
-    population.best_ever().map(|best| Champion {
+fn champion(search: &Search, progress: &Progress, config: &Config) -> Option<Champion> {
+    search.best_ever().map(|best| Champion {
         format: "vivae-champion".into(),
         generation: best.generation - progress.start_generation + 1,
         fitness: best.fitness,
@@ -371,28 +360,28 @@ struct Recorder<'a, F> {
 
 impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
     /// Appends one generation's rows and rewrites the champion.
-    fn record(&mut self, report: &GenerationReport<'_>) -> Result<()> {
+    fn record(&mut self, report: &GenerationReport<'_, Search>) -> Result<()> {
         let seconds = self.started.elapsed().as_secs_f64();
-        let population = report.strategy;
+        let search = report.strategy;
         let generation = report.generation;
-        let sorted = stats::sorted_descending(&population.fitnesses());
-        let (best_genome, best) = population
+        let fitnesses = search.fitnesses(report.evaluations);
+        let sorted = stats::sorted_descending(&fitnesses);
+        let (best_genome, best) = search
             .champion()
             .map(|(g, f)| (g.clone(), f))
             .expect("an evaluated population has a champion");
-        let record = self.measure(report, &sorted, (&best_genome, best), seconds)?;
-        self.append_best_line(population, generation, best, best_genome)?;
+        let record = self.measure(report, &fitnesses, &sorted, (&best_genome, best), seconds)?;
+        self.append_best_line(search, generation, best, best_genome)?;
         let p = &mut *self.progress;
-        p.generations_len = append(
-            &self.dir.join(files::GENERATIONS),
-            &record.generations_row(),
-        )?;
+        let row = record.generations_row();
+        let row = format!("{}{}\n", row.trim_end_matches('\n'), extra_fields(search));
+        p.generations_len = append(&self.dir.join(files::GENERATIONS), &row)?;
         p.population_len = append(
             &self.dir.join(files::POPULATION),
             &population_rows(generation, &sorted),
         )?;
         p.timing_len = append(&self.dir.join(files::TIMING), &record.timing_row())?;
-        if let Some(champion) = champion(population, self.progress, self.config) {
+        if let Some(champion) = champion(search, self.progress, self.config) {
             let text = serde_json::to_string_pretty(&champion).map_err(|e| Error::Serialize {
                 what: "champion",
                 reason: e.to_string(),
@@ -408,16 +397,17 @@ impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
     /// the best genome's substrate, and the time it took.
     fn measure(
         &self,
-        report: &GenerationReport<'_>,
+        report: &GenerationReport<'_, Search>,
+        fitnesses: &[f64],
         sorted: &[f64],
         (best_genome, best): (&Genome, f64),
         seconds: f64,
     ) -> Result<GenerationRecord> {
-        let population = report.strategy;
+        let search = report.strategy;
         let stats = report.stats;
         let controller = self.training.primary().controller(best_genome)?;
         let n = sorted.len();
-        let (mean, median) = stats::mean(&population.fitnesses())
+        let (mean, median) = stats::mean(fitnesses)
             .zip(stats::median_of_sorted(sorted))
             .expect("an evaluated population has fitnesses");
         let robot_steps = n as f64 * self.training.robot_steps() as f64;
@@ -435,7 +425,7 @@ impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
             possible_links: controller.possible_links(),
             seconds,
             robot_steps_per_second: robot_steps / seconds.max(1e-9),
-            best_ever: population.best_ever().map_or(best, |b| b.fitness),
+            best_ever: search.best_ever().map_or(best, |b| b.fitness),
         })
     }
 
@@ -443,7 +433,7 @@ impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
     /// to the previous line's is stored as a reference to it).
     fn append_best_line(
         &mut self,
-        population: &Population,
+        search: &Search,
         generation: u32,
         best: f64,
         best_genome: Genome,
@@ -456,11 +446,7 @@ impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
         let line = BestLine {
             generation,
             fitness: best,
-            species: population
-                .species()
-                .iter()
-                .map(|s| (s.id, s.members.len()))
-                .collect(),
+            species: search.species(),
             genome: same_as.is_none().then(|| best_genome.clone()),
             same_as,
         };
@@ -482,14 +468,14 @@ impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
     }
 }
 
-impl<F: FnMut(&GenerationRecord)> Observer for Recorder<'_, F> {
-    fn on_generation(&mut self, report: &GenerationReport<'_>) -> Result<(), HookError> {
+impl<F: FnMut(&GenerationRecord)> Observer<Search> for Recorder<'_, F> {
+    fn on_generation(&mut self, report: &GenerationReport<'_, Search>) -> Result<(), HookError> {
         self.record(report).map_err(Into::into)
     }
 }
 
-impl<F> Checkpointer for Recorder<'_, F> {
-    fn after_generation(&mut self, state: &CheckpointState<'_>) -> Result<(), HookError> {
+impl<F> Checkpointer<Search> for Recorder<'_, F> {
+    fn after_generation(&mut self, state: &CheckpointState<'_, Search>) -> Result<(), HookError> {
         // A stopping run (finished or interrupted) always leaves a checkpoint.
         if state.stopping.is_some()
             || state
@@ -497,6 +483,7 @@ impl<F> Checkpointer for Recorder<'_, F> {
                 .is_multiple_of(self.config.run.checkpoint_interval)
         {
             write_checkpoint(self.dir, self.config, self.progress, state.strategy)?;
+            write_outputs(self.dir, self.config, state.strategy)?;
         }
         self.started = Instant::now();
         Ok(())
@@ -513,8 +500,9 @@ fn thread_pool(threads: usize) -> Result<Arc<rayon::ThreadPool>> {
 
 /// Checks a decoded checkpoint against itself and the run's experiment: the
 /// genomes fit the substrate (a wrong CPPN would fail in every later
-/// generation) and the recorded file lengths are possible.
-fn validate_progress(path: &Path, cp: &Checkpoint, experiment: &Experiment) -> Result<()> {
+/// generation), the recorded file lengths are possible and the strategy is
+/// the config's; returns the search it holds.
+fn validate_progress(path: &Path, cp: &Checkpoint, experiment: &Experiment) -> Result<Search> {
     let bad = |reason: String| Error::Checkpoint {
         path: path.to_path_buf(),
         reason,
@@ -526,8 +514,17 @@ fn validate_progress(path: &Path, cp: &Checkpoint, experiment: &Experiment) -> R
             p.done, cp.config.experiment.generations
         )));
     }
+    let search = cp.search().map_err(|why| bad(why.into()))?;
+    if search.kind() != cp.config.strategy.kind {
+        return Err(bad(format!(
+            "holds a {} search, its config says strategy.kind = {}",
+            search.kind().name(),
+            cp.config.strategy.kind.name()
+        )));
+    }
+    let generations = generations_header(search.kind());
     for (name, len, header) in [
-        (files::GENERATIONS, p.generations_len, GENERATIONS_HEADER),
+        (files::GENERATIONS, p.generations_len, generations.as_str()),
         (files::POPULATION, p.population_len, POPULATION_HEADER),
         (files::TIMING, p.timing_len, TIMING_HEADER),
     ] {
@@ -537,12 +534,11 @@ fn validate_progress(path: &Path, cp: &Checkpoint, experiment: &Experiment) -> R
             )));
         }
     }
-    if cp.population.genomes().is_empty() {
+    let batch = search.batch();
+    if batch.is_empty() {
         return Err(bad("the population has no genomes".into()));
     }
-    let genomes = cp
-        .population
-        .genomes()
+    let genomes = batch
         .iter()
         .chain(p.figure_genomes.iter().map(|(_, _, g)| g));
     for g in genomes {
@@ -550,5 +546,5 @@ fn validate_progress(path: &Path, cp: &Checkpoint, experiment: &Experiment) -> R
             .controller(g)
             .map_err(|e| bad(format!("a genome does not fit the run: {e}")))?;
     }
-    Ok(())
+    Ok(search)
 }

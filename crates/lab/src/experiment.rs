@@ -10,6 +10,7 @@ use vivae_sim::{DVec2, Scenario, SurfaceGrid, World};
 
 use crate::behaviour::{Behaviour, BehaviourMeter};
 use crate::config::Config;
+use crate::descriptors::{EpisodeSetup, METRICS, Measures, measured_episode};
 use crate::fitness::{AverageSpeed, Fitness};
 use crate::normalize::SourceScale;
 use crate::rollout::Rollout;
@@ -37,6 +38,8 @@ pub struct Experiment {
     cppn_outputs: usize,
     /// What an episode scores.
     fitness: Arc<dyn Fitness>,
+    /// What an evaluation measures besides fitness (`None`: fitness only).
+    measures: Option<Measures>,
 }
 
 /// The outcome of one episode.
@@ -128,6 +131,7 @@ impl Experiment {
             steps: config.experiment.steps,
             cppn_outputs,
             fitness: Arc::new(AverageSpeed),
+            measures: Measures::of(&config.strategy),
         })
     }
 
@@ -236,6 +240,15 @@ impl Experiment {
         Rollout::new(self.robots(), self.sensors.clone(), self.wheels, controller)
     }
 
+    /// The start, length and fitness of this experiment's episodes.
+    pub fn setup(&self) -> EpisodeSetup<'_> {
+        EpisodeSetup {
+            start: &self.world,
+            steps: self.steps,
+            fitness: &*self.fitness,
+        }
+    }
+
     /// Runs one episode and also returns the final world (for drawing).
     pub fn run_world(&self, controller: &SubstrateController, record: bool) -> (Episode, World) {
         let n = self.robots();
@@ -270,10 +283,24 @@ impl Experiment {
 }
 
 /// The driving experiment as a NEAT task: a genome's fitness is its
-/// controller's episode score (deterministic: the episode has no randomness).
+/// controller's episode score (deterministic: the episode has no randomness),
+/// with the behaviour and metrics the run's strategy needs ([`crate::descriptors`]).
 impl Task for Experiment {
     fn evaluate(&self, genome: &Genome, _ctx: &EvalContext) -> Evaluation {
-        Evaluation::fitness(self.fitness(genome))
+        let Some(measures) = self.measures else {
+            return Evaluation::fitness(self.fitness(genome));
+        };
+        match self.controller(genome) {
+            Ok(c) => measured_episode(self.setup(), self.rollout(&c), &c, measures),
+            Err(_) => crate::descriptors::unfit(measures, self.robots()),
+        }
+    }
+
+    fn metric_names(&self) -> &[&str] {
+        match self.measures {
+            Some(m) if m.metrics => &METRICS,
+            _ => &[],
+        }
     }
 }
 

@@ -30,6 +30,7 @@
 
 pub mod behaviour;
 pub mod config;
+pub mod descriptors;
 pub mod error;
 pub mod evolve;
 pub mod experiment;
@@ -42,9 +43,12 @@ pub mod polar;
 pub mod resolutions;
 pub mod rollout;
 pub mod rundir;
+pub mod search;
 pub mod sensors;
 pub mod shipped;
 pub mod simd;
+pub mod strategy_config;
+pub mod strategy_files;
 pub mod substrate;
 pub mod task;
 pub mod training;

@@ -17,6 +17,8 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 use vivae_neat::{Genome, Population};
 
+use crate::search::Search;
+
 use crate::config::Config;
 use crate::error::{Error, Result};
 use crate::io::{
@@ -48,12 +50,27 @@ pub mod files {
     pub const BEST_GENOMES: &str = "best-genomes.jsonl";
     /// The self-contained HTML report of the run.
     pub const REPORT: &str = "report.html";
+    /// MAP-Elites runs: every elite's cell, behaviour, fitness and generation.
+    pub const ARCHIVE: &str = "archive.csv";
+    /// MAP-Elites runs: every elite with its genome, one JSON line each.
+    pub const ARCHIVE_GENOMES: &str = "archive.jsonl";
+    /// NSGA-II runs: the Pareto front's objectives and fitness.
+    pub const FRONT: &str = "front.csv";
+    /// NSGA-II runs: the Pareto front with its genomes, one JSON line each.
+    pub const FRONT_GENOMES: &str = "front.jsonl";
     /// In `figures/`: how many generations the figures and `report.html`
     /// show, written last once they are all drawn ([`super::mark_drawn`]).
     pub const DRAWN: &str = "drawn-generations.txt";
 }
 
 pub(crate) const GENERATIONS_HEADER: &str = "generation,best,mean,median,worst,species,mean_cppn_nodes,mean_cppn_links,best_substrate_links,possible_substrate_links\n";
+
+/// The header of `generations.csv` for a run of strategy `kind`: NEAT's
+/// columns, then the strategy's own.
+pub(crate) fn generations_header(kind: crate::strategy_config::StrategyKind) -> String {
+    let base = GENERATIONS_HEADER.trim_end_matches('\n');
+    format!("{base}{}\n", kind.extra_columns())
+}
 
 pub(crate) const POPULATION_HEADER: &str = "generation,rank,fitness\n";
 
@@ -419,8 +436,55 @@ pub(crate) fn check_config_unchanged(
 pub(crate) struct Checkpoint {
     pub(crate) config: Config,
     pub(crate) progress: Progress,
-    /// The population ready to evaluate generation `done + 1`.
-    pub(crate) population: Population,
+    /// A NEAT run's population ready to evaluate generation `done + 1`
+    /// (stored exactly as before other strategies existed).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub(crate) population: Option<Population>,
+    /// Any other strategy's state, ready to evaluate generation `done + 1`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub(crate) search: Option<Search>,
+}
+
+impl Checkpoint {
+    /// The checkpoint of `search` (a NEAT population goes to `population`).
+    pub(crate) fn new(config: &Config, progress: &Progress, search: &Search) -> Checkpoint {
+        let (population, search) = match search {
+            Search::Neat(p) => (Some(p.clone()), None),
+            other => (None, Some(other.clone())),
+        };
+        Checkpoint {
+            config: config.clone(),
+            progress: progress.clone(),
+            population,
+            search,
+        }
+    }
+
+    /// The stored search, or why there is none.
+    pub(crate) fn search(&self) -> std::result::Result<Search, &'static str> {
+        match (&self.population, &self.search) {
+            (Some(p), None) => Ok(Search::Neat(p.clone())),
+            (None, Some(Search::Neat(_))) => Err("a NEAT population stored as `search`"),
+            (None, Some(s)) => Ok(s.clone()),
+            (None, None) => Err("neither a population nor a search strategy"),
+            (Some(_), Some(_)) => Err("both a population and a search strategy"),
+        }
+    }
+
+    /// The NEAT population inside (a NEAT or novelty run's), for `retrain`.
+    fn into_population(self, path: &Path) -> Result<(Config, Population)> {
+        let population = match self.search() {
+            Ok(Search::Neat(p)) => Some(p),
+            Ok(Search::Novelty(n)) => Some(n.population().clone()),
+            _ => None,
+        };
+        population
+            .map(|p| (self.config, p))
+            .ok_or_else(|| Error::Checkpoint {
+                path: path.to_path_buf(),
+                reason: "holds no NEAT population (a map-elites or nsga2 run)".into(),
+            })
+    }
 }
 
 pub(crate) const CHECKPOINT_MAGIC: &str = "vivae-checkpoint v1";
@@ -469,15 +533,13 @@ pub(crate) fn decode_checkpoint_text(text: &str, path: &Path) -> Result<Checkpoi
 
 /// Reads the population stored in a checkpoint file (for `retrain` and `init_population`).
 pub fn population_from_checkpoint(path: &Path) -> Result<(Config, Population)> {
-    let cp = decode_checkpoint(path)?;
-    Ok((cp.config, cp.population))
+    decode_checkpoint(path)?.into_population(path)
 }
 
 /// Reads the config and population of checkpoint `text` (read from `path`,
 /// which errors name); the entry point of the checkpoint fuzz target.
 pub fn population_from_checkpoint_text(text: &str, path: &Path) -> Result<(Config, Population)> {
-    let cp = decode_checkpoint_text(text, path)?;
-    Ok((cp.config, cp.population))
+    decode_checkpoint_text(text, path)?.into_population(path)
 }
 
 /// Path of the newest checkpoint in a run directory.
@@ -504,13 +566,9 @@ pub(crate) fn write_checkpoint(
     dir: &Path,
     config: &Config,
     progress: &Progress,
-    population: &Population,
+    search: &Search,
 ) -> Result<()> {
-    let cp = Checkpoint {
-        config: config.clone(),
-        progress: progress.clone(),
-        population: population.clone(),
-    };
+    let cp = Checkpoint::new(config, progress, search);
     let dir = dir.join(files::CHECKPOINTS);
     let path = dir.join(format!("gen-{:06}.ckpt", progress.done));
     write_atomic(&path, encode_checkpoint(&cp)?.as_bytes())?;
@@ -930,7 +988,7 @@ pub(crate) fn fill_new_run(
     dir: &Path,
     config: &mut Config,
     scenario_text: &str,
-    population: &Population,
+    search: &Search,
     progress: &Progress,
 ) -> Result<()> {
     let checkpoints = dir.join(files::CHECKPOINTS);
@@ -938,11 +996,7 @@ pub(crate) fn fill_new_run(
     write_atomic(&dir.join(files::SCENARIO), scenario_text.as_bytes())?;
     if !config.experiment.init_population.is_empty() {
         // Keep the starting population beside the config that names it.
-        let init_cp = Checkpoint {
-            config: config.clone(),
-            progress: progress.clone(),
-            population: population.clone(),
-        };
+        let init_cp = Checkpoint::new(config, progress, search);
         write_atomic(
             &dir.join(files::INIT_POPULATION),
             encode_checkpoint(&init_cp)?.as_bytes(),
@@ -953,15 +1007,16 @@ pub(crate) fn fill_new_run(
         config.experiment.scenario = files::SCENARIO.into();
     }
     write_atomic(&dir.join(files::CONFIG), config.to_toml().as_bytes())?;
+    let generations = generations_header(search.kind());
     for (name, header) in [
-        (files::GENERATIONS, GENERATIONS_HEADER),
+        (files::GENERATIONS, generations.as_str()),
         (files::POPULATION, POPULATION_HEADER),
         (files::TIMING, TIMING_HEADER),
         (files::BEST_GENOMES, ""),
     ] {
         write_atomic(&dir.join(name), header.as_bytes())?;
     }
-    write_checkpoint(dir, config, progress, population)
+    write_checkpoint(dir, config, progress, search)
 }
 
 /// Copies the training maps of a multi-map run into `dir/scenarios/` with

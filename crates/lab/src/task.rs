@@ -38,6 +38,7 @@ use vivae_neat::driver::{Evaluation, Task};
 use vivae_neat::{EvalContext, Genome, GenomeSpec};
 
 use crate::config::Aggregate;
+use crate::descriptors::mean_of;
 
 /// A task of the driving experiment: a NEAT [`Task`] over CPPN genomes that
 /// also says how much it simulates.
@@ -86,9 +87,26 @@ impl Combined {
     }
 }
 
+/// The parts' fitnesses combine by the aggregate; their behaviours and
+/// metrics (when measured) by the mean, coordinate by coordinate
+/// ([`crate::descriptors`]).
 impl Task for Combined {
     fn evaluate(&self, genome: &Genome, ctx: &EvalContext) -> Evaluation {
-        Evaluation::fitness(self.aggregate.combine(&self.fitnesses(genome, ctx)))
+        let parts: Vec<Evaluation> = (self.parts.iter())
+            .map(|(_, t)| t.evaluate(genome, ctx))
+            .collect();
+        let fitnesses: Vec<f64> = parts.iter().map(|e| e.fitness).collect();
+        let behaviours: Vec<&[f64]> = parts.iter().map(|e| &e.behaviour[..]).collect();
+        let metrics: Vec<&[f64]> = parts.iter().map(|e| &e.metrics[..]).collect();
+        Evaluation {
+            fitness: self.aggregate.combine(&fitnesses),
+            metrics: mean_of(&metrics),
+            behaviour: mean_of(&behaviours),
+        }
+    }
+
+    fn metric_names(&self) -> &[&str] {
+        self.parts.first().map_or(&[], |(_, t)| t.metric_names())
     }
 }
 

@@ -154,6 +154,10 @@ impl Task for Training {
     fn evaluate(&self, genome: &Genome, ctx: &EvalContext) -> Evaluation {
         self.task.evaluate(genome, ctx)
     }
+
+    fn metric_names(&self) -> &[&str] {
+        self.task.metric_names()
+    }
 }
 
 impl DrivingTask for Training {

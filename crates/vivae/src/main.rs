@@ -155,6 +155,12 @@ struct Overrides {
     train_aggregate: Option<vivae_lab::config::Aggregate>,
     #[command(flatten)]
     wiring: Wiring,
+    /// Search strategy (strategy.kind; default neat, the paper's).
+    #[arg(long, value_name = "neat|novelty|map-elites|nsga2")]
+    strategy: Option<vivae_lab::strategy_config::StrategyKind>,
+    /// Behaviour descriptor of novelty and map-elites (strategy.behaviour).
+    #[arg(long, value_name = "end-position|end-positions|side-speed")]
+    behaviour: Option<vivae_lab::descriptors::BehaviourKind>,
 }
 
 #[derive(Args, Debug)]
@@ -199,6 +205,12 @@ struct ReplayArgs {
     /// the run's scenario, all of them on another scenario).
     #[arg(long, value_name = "N")]
     robots: Option<usize>,
+    /// Replay the elite of this cell of a map-elites run's archive (archive.csv).
+    #[arg(long, value_name = "CELL", conflicts_with = "front")]
+    elite: Option<usize>,
+    /// Replay this member of an nsga2 run's Pareto front (front.csv; 0 = the fittest).
+    #[arg(long, value_name = "N")]
+    front: Option<usize>,
     /// Folder for the trajectory figure (default: replay/ beside the source).
     #[arg(short, long, value_name = "DIR")]
     out: Option<PathBuf>,
@@ -374,6 +386,12 @@ fn apply_overrides(config: &mut Config, o: &Overrides) -> anyhow::Result<()> {
     }
     if let Some(r) = o.wiring.recurrence {
         config.substrate.recurrence = r;
+    }
+    if let Some(k) = o.strategy {
+        config.strategy.kind = k;
+    }
+    if let Some(b) = o.behaviour {
+        config.strategy.behaviour = b;
     }
     config
         .validate()
@@ -602,10 +620,11 @@ fn header(run: &Run, command: &str, scenario: &str, threads: usize) -> String {
             t.aggregate()
         )
     };
+    let strategy = strategy_line(c);
     format!(
         "vivae {command}: {scenario}\n\
          \x20 robots {}, {} steps per evaluation, population {}, {} generations{start}\n\
-         \x20 substrate: {}x{} surface sensors{distance}, {}x{} neurons; threads {threads}, seed {}{training}{maps}\n\
+         \x20 substrate: {}x{} surface sensors{distance}, {}x{} neurons; threads {threads}, seed {}{training}{maps}{strategy}\n\
          \x20 output: {}\n\
          \x20 fitness = average speed in px/step over all robots and steps (full throttle on road tends to 5)",
         run.experiment().robots(),
@@ -619,6 +638,24 @@ fn header(run: &Run, command: &str, scenario: &str, threads: usize) -> String {
         c.experiment.seed,
         run.dir().display(),
     )
+}
+
+/// The header's line on the search strategy (none for NEAT, the paper's).
+fn strategy_line(c: &Config) -> String {
+    use vivae_lab::strategy_config::StrategyKind as K;
+    let s = &c.strategy;
+    match s.kind {
+        K::Neat => String::new(),
+        K::Novelty | K::MapElites => format!(
+            "\n  strategy: {}, behaviour {}",
+            s.kind.name(),
+            s.behaviour.name()
+        ),
+        K::Nsga2 => format!(
+            "\n  strategy: nsga2, objectives {}",
+            s.nsga2.objectives.join(", ")
+        ),
+    }
 }
 
 /// The closing summary: rounded figures and the run directory's main files;
@@ -643,6 +680,9 @@ fn closing(
             .map(|(label, _)| format!("{}.png", report::champion_map_figure(label))),
     );
     figures.extend(["convergence.png", "network.png"].map(String::from));
+    if run.dir().join(files::FIGURES).join("archive.png").exists() {
+        figures.push("archive.png".into());
+    }
     let plural = |n: u32| if n == 1 { "" } else { "s" };
     let (done, ran) = (run.done(), run.done() - started_after);
     let done = match started_after {
@@ -821,11 +861,12 @@ fn drive(
     // The machine-readable summary, for scripts.
     let per_map = per_map_field(&summary).map_or_else(String::new, |p| format!(" per_map={p}"));
     println!(
-        "evolve: generations={} best={} champion_generation={} on_road={:.4}{per_map} wall_s={:.1} robot_steps_per_s={:.0} out={dir}",
+        "evolve: generations={} best={} champion_generation={} on_road={:.4}{per_map}{} wall_s={:.1} robot_steps_per_s={:.0} out={dir}",
         run.done(),
         summary.champion_fitness,
         summary.champion_generation,
         summary.champion_on_road,
+        vivae_lab::strategy_files::summary_fields(run.search()),
         wall,
         robot_steps / busy.max(1e-9),
     );
@@ -843,8 +884,19 @@ fn progress_bar(total: u32, done: u32) -> indicatif::ProgressBar {
     bar
 }
 
+/// The archive or front member `replay` was asked for, if any.
+fn replay_member(args: &ReplayArgs) -> Option<vivae_lab::strategy_files::Member> {
+    use vivae_lab::strategy_files::Member;
+    (args.elite.map(Member::Elite)).or(args.front.map(Member::Front))
+}
+
 fn cmd_replay(args: ReplayArgs) -> anyhow::Result<ExitCode> {
-    let (champion, mut config, base) = vivae_lab::rundir::load_genome_source(&args.source)?;
+    let (mut champion, mut config, base) = vivae_lab::rundir::load_genome_source(&args.source)?;
+    if let Some(member) = replay_member(&args) {
+        use vivae_lab::strategy_files::read_member;
+        (champion.genome, champion.fitness, champion.generation) =
+            read_member(&args.source, member)?;
+    }
     // A multi-map run replays on its first training map unless told otherwise.
     if args.scenario.is_none() && vivae_lab::maps::is_multi_map(&config) {
         let maps = std::mem::take(&mut config.experiment.scenarios);

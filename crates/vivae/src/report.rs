@@ -102,6 +102,7 @@ pub fn finish_run(run: &Run) -> Result<RunSummary> {
     let fitness = rundir::read_population_csv(&run.dir().join(files::POPULATION))?;
     let convergence = figures::convergence::render(&fitness, &ConvergenceOptions::default())?;
     write_figure(&dir, "convergence", &convergence.svg, &convergence.png)?;
+    archive_figure(run, &dir)?;
 
     let controller = experiment.controller(&champion.genome)?;
     let options = crate::report_html::network_options(
@@ -148,6 +149,39 @@ pub fn finish_run(run: &Run) -> Result<RunSummary> {
             .map(|(l, e)| (l, e.fitness))
             .collect(),
     })
+}
+
+/// A map-elites run on a 2-D grid: its archive as a heat map, `archive.png`/`.svg`.
+fn archive_figure(run: &Run, dir: &Path) -> Result<()> {
+    use vivae_neat::strategies::Cells;
+    let vivae_lab::search::Search::MapElites(m) = run.search() else {
+        return Ok(());
+    };
+    let Cells::Grid { lower, upper, bins } = m.cells() else {
+        return Ok(());
+    };
+    let ([l0, l1], [u0, u1], [b0, b1]) = (&lower[..], &upper[..], &bins[..]) else {
+        return Ok(());
+    };
+    let behaviour = run.config().strategy.behaviour;
+    let names = behaviour.coordinate_names(2);
+    let s = m.archive_stats();
+    let grid = figures::archive::ArchiveGrid {
+        title: format!(
+            "MAP-Elites archive ({}): {} of {} cells, QD-score {:.1}",
+            behaviour.name(),
+            s.filled,
+            b0 * b1,
+            s.qd_score
+        ),
+        axes: [names[0].clone(), names[1].clone()],
+        lower: [*l0, *l1],
+        upper: [*u0, *u1],
+        bins: [*b0, *b1],
+        elites: m.elites().map(|(c, e)| (c, e.fitness)).collect(),
+    };
+    let figure = figures::archive::render(&grid)?;
+    write_figure(dir, "archive", &figure.svg, &figure.png)
 }
 
 /// On several training maps, the champion's trajectories on each, drawn as

@@ -8,6 +8,8 @@
 //! (except [`compare::run`], the `vivae compare` command, which reads run
 //! directories and writes its figure and table itself).
 
+/// The MAP-Elites archive heat map.
+pub mod archive;
 pub mod compare;
 mod controller;
 pub mod convergence;

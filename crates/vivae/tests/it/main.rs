@@ -17,6 +17,7 @@ mod compare_refuses_an_impossible_wall_time;
 mod compare_summarises_runs_by_group;
 mod corrupt_checkpoint_is_refused;
 mod evaluation_is_thread_count_independent;
+mod every_strategy_resumes_bit_identical;
 mod finished_run_and_retrain_neurons_only;
 mod first_hour_output_says_what_to_do_next;
 mod forged_checkpoint_is_refused_before_anything_changes;

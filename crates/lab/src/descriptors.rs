@@ -1,0 +1,266 @@
+//! Behaviour descriptors and metrics of a driving episode: what novelty
+//! search, MAP-Elites and NSGA-II need of an evaluation besides its fitness.
+//!
+//! They are measured only when the run's strategy uses them
+//! ([`Measures::of`]): a NEAT run's episodes are the plain ones, bit for bit
+//! and at the same cost.
+//!
+//! * **`end-position`** — the robots' mean end position, each coordinate
+//!   divided by the arena's size: 2 numbers in [0, 1]. The mean keeps the
+//!   descriptor 2-D whatever the number of robots (a grid of 10 × 10 cells
+//!   covers it; per-robot positions would need 10⁵ cells for five robots),
+//!   at the price of not telling which robot went where.
+//! * **`end-positions`** — every robot's end position, normalised the same
+//!   way, concatenated in robot order: 2 × robots numbers, for novelty
+//!   search (a k-d tree copes with 10 dimensions, a grid does not).
+//! * **`side-speed`** — the mean signed side of the road (in half-widths,
+//!   −1 left edge … +1 right edge, as [`crate::behaviour`] measures it; 0
+//!   when no robot-step was on a road with both edges in reach) and the
+//!   mean speed as a share of `physics.v_max`: 2 numbers in [−1, 1] × [0, 1],
+//!   the repertoire of "keep left / keep right, slow / fast".
+//!
+//! Metrics ([`METRICS`], in this order): `contacts`, contacts begun per 1,000
+//! robot-steps (robot–robot and robot–obstacle, as `replay` counts
+//! collisions), and `on_road`, the share of robot-steps ending on a road.
+//!
+//! Over several maps or resolutions ([`crate::task::Combined`]) a genome's
+//! behaviour and metrics are the means over the parts, coordinate by
+//! coordinate: the descriptor keeps its dimensions and units (concatenating
+//! would multiply a grid's cells by the number of parts).
+
+use vivae_neat::driver::Evaluation;
+use vivae_neat::hyperneat::SubstrateController;
+use vivae_sim::World;
+
+use crate::behaviour::BehaviourMeter;
+use crate::fitness::Fitness;
+use crate::rollout::Rollout;
+use crate::strategy_config::{StrategyConfig, StrategyKind as K};
+
+pub use crate::strategy_config::{BehaviourKind, METRICS};
+
+/// What an episode measures besides its fitness.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Measures {
+    /// The behaviour descriptor, if the strategy needs one.
+    pub behaviour: Option<BehaviourKind>,
+    /// Whether the [`METRICS`] are measured.
+    pub metrics: bool,
+}
+
+impl Measures {
+    /// What a run with strategy `s` needs: nothing for NEAT (the plain
+    /// episode), a behaviour for novelty search and MAP-Elites, metrics for NSGA-II.
+    pub fn of(s: &StrategyConfig) -> Option<Measures> {
+        let m = match s.kind {
+            K::Neat => return None,
+            K::Novelty | K::MapElites => Measures {
+                behaviour: Some(s.behaviour),
+                metrics: false,
+            },
+            K::Nsga2 => Measures {
+                behaviour: None,
+                metrics: true,
+            },
+        };
+        Some(m)
+    }
+}
+
+/// An episode of `steps` steps from `start`, scored by `fitness`.
+pub struct EpisodeSetup<'a> {
+    /// The world at the start of the episode.
+    pub start: &'a World,
+    /// Simulation steps.
+    pub steps: u32,
+    /// The episode's fitness function.
+    pub fitness: &'a dyn Fitness,
+}
+
+/// The episode `setup` driven by `controller` through `rollout`, measuring
+/// `measures` besides the fitness (which is the plain episode's, bit for bit).
+pub fn measured_episode(
+    setup: EpisodeSetup<'_>,
+    mut rollout: Rollout,
+    controller: &SubstrateController,
+    measures: Measures,
+) -> Evaluation {
+    let steps = setup.steps;
+    let mut world = setup.start.clone();
+    let n = world.robots().len();
+    let fitness = setup.fitness;
+    let mut meter = fitness.meter(&world);
+    let observe = fitness.observes_steps();
+    let side = measures.behaviour == Some(BehaviourKind::SideSpeed);
+    let mut behaviour = (measures.metrics || side)
+        .then(|| BehaviourMeter::new(&world, steps as usize).measuring_side(side));
+    let mut on_road = 0u64;
+    for _ in 0..steps {
+        rollout.step(&mut world, controller, None);
+        if observe {
+            meter.observe(&world);
+        }
+        if let Some(b) = &mut behaviour {
+            b.observe(&world);
+        }
+        if measures.metrics {
+            on_road += (0..n).filter(|&i| world.on_road(i)).count() as u64;
+        }
+    }
+    let robot_steps = (n as f64) * f64::from(steps);
+    let measured = behaviour.map(|b| b.finish());
+    let metrics = match (&measured, measures.metrics) {
+        (Some(b), true) => vec![b.collisions, on_road as f64 / robot_steps],
+        _ => Vec::new(),
+    };
+    let (w, h) = (world.scenario().width(), world.scenario().height());
+    let ends = || world.robots().iter().map(|r| [r.pos.x / w, r.pos.y / h]);
+    let behaviour = match measures.behaviour {
+        None => Vec::new(),
+        Some(BehaviourKind::EndPosition) => {
+            let sum = ends().fold([0.0, 0.0], |s, p| [s[0] + p[0], s[1] + p[1]]);
+            vec![sum[0] / n as f64, sum[1] / n as f64]
+        }
+        Some(BehaviourKind::EndPositions) => ends().flatten().collect(),
+        Some(BehaviourKind::SideSpeed) => {
+            let odometer: f64 = world.robots().iter().map(|r| r.odometer).sum();
+            let speed = odometer / robot_steps / world.params().v_max;
+            let side = measured.and_then(|b| b.side).unwrap_or(0.0);
+            vec![side, speed]
+        }
+    };
+    Evaluation {
+        fitness: meter.score(&world, robot_steps),
+        metrics,
+        behaviour,
+    }
+}
+
+/// The evaluation of a genome that does not fit the substrate (evolution
+/// never makes one): fitness 0, every measure 0.
+pub fn unfit(measures: Measures, robots: usize) -> Evaluation {
+    Evaluation {
+        fitness: 0.0,
+        metrics: vec![0.0; if measures.metrics { METRICS.len() } else { 0 }],
+        behaviour: vec![0.0; measures.behaviour.map_or(0, |b| b.dims(robots))],
+    }
+}
+
+/// The mean of `parts`' vectors, coordinate by coordinate; when their
+/// lengths differ, the first part's (a run's parts share their robots, so
+/// this does not happen in a valid run).
+pub fn mean_of(parts: &[&[f64]]) -> Vec<f64> {
+    let Some(first) = parts.first() else {
+        return Vec::new();
+    };
+    if parts.iter().any(|p| p.len() != first.len()) {
+        return first.to_vec();
+    }
+    let k = parts.len() as f64;
+    (0..first.len())
+        .map(|i| parts.iter().map(|p| p[i]).sum::<f64>() / k)
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::Config;
+    use crate::experiment::Experiment;
+    use crate::io::load_scenario;
+    use crate::strategy_config::StrategyKind;
+    use vivae_neat::Population;
+    use vivae_neat::driver::Task;
+
+    fn experiment(kind: StrategyKind, behaviour: BehaviourKind) -> (Config, Experiment) {
+        let mut config = Config::default();
+        config.experiment.steps = 150;
+        config.strategy.kind = kind;
+        config.strategy.behaviour = behaviour;
+        let e = Experiment::new(&config, &load_scenario(None).unwrap().scenario).unwrap();
+        (config, e)
+    }
+
+    #[test]
+    fn measuring_keeps_the_fitness_bit_for_bit() {
+        let (config, plain) = experiment(StrategyKind::Neat, BehaviourKind::EndPosition);
+        let pop = Population::new(config.neat.clone(), plain.cppn_spec(), 5).unwrap();
+        let ctx = vivae_neat::EvalContext {
+            generation: 0,
+            index: 0,
+            seed: 0,
+        };
+        for (kind, behaviour) in [
+            (StrategyKind::MapElites, BehaviourKind::SideSpeed),
+            (StrategyKind::Novelty, BehaviourKind::EndPositions),
+            (StrategyKind::Nsga2, BehaviourKind::EndPosition),
+        ] {
+            let (_, measured) = experiment(kind, behaviour);
+            for g in pop.genomes().iter().take(4) {
+                let a = plain.evaluate(g, &ctx);
+                let b = measured.evaluate(g, &ctx);
+                assert!(a.behaviour.is_empty() && a.metrics.is_empty());
+                assert_eq!(a.fitness.to_bits(), b.fitness.to_bits());
+                let (lower, upper) = behaviour.bounds(measured.robots());
+                if kind == StrategyKind::Nsga2 {
+                    assert!(b.behaviour.is_empty());
+                    assert_eq!(b.metrics.len(), METRICS.len());
+                    assert!(b.metrics[0] >= 0.0 && (0.0..=1.0).contains(&b.metrics[1]));
+                } else {
+                    assert!(b.metrics.is_empty());
+                    assert_eq!(b.behaviour.len(), behaviour.dims(measured.robots()));
+                    for ((x, lo), hi) in b.behaviour.iter().zip(&lower).zip(&upper) {
+                        assert!((lo..=hi).contains(&x), "{behaviour:?}: {x} outside");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn metrics_agree_with_the_recorded_episode() {
+        let (config, e) = experiment(StrategyKind::Nsga2, BehaviourKind::EndPosition);
+        let pop = Population::new(config.neat.clone(), e.cppn_spec(), 9).unwrap();
+        for g in pop.genomes().iter().take(4) {
+            let c = e.controller(g).unwrap();
+            let m = measured_episode(
+                e.setup(),
+                e.rollout(&c),
+                &c,
+                Measures::of(&config.strategy).unwrap(),
+            );
+            let recorded = e.run(&c, true);
+            assert_eq!(m.metrics[0], recorded.behaviour.unwrap().collisions);
+            assert_eq!(m.metrics[1], recorded.on_road.unwrap());
+        }
+    }
+
+    #[test]
+    fn end_position_is_the_mean_of_end_positions() {
+        let (config, e) = experiment(StrategyKind::Novelty, BehaviourKind::EndPosition);
+        let pop = Population::new(config.neat.clone(), e.cppn_spec(), 2).unwrap();
+        let c = e.controller(&pop.genomes()[0]).unwrap();
+        let each = |kind| {
+            let m = Measures {
+                behaviour: Some(kind),
+                metrics: false,
+            };
+            measured_episode(e.setup(), e.rollout(&c), &c, m).behaviour
+        };
+        let (mean, all) = (
+            each(BehaviourKind::EndPosition),
+            each(BehaviourKind::EndPositions),
+        );
+        let n = e.robots() as f64;
+        let x: f64 = all.iter().step_by(2).sum::<f64>() / n;
+        let y: f64 = all.iter().skip(1).step_by(2).sum::<f64>() / n;
+        assert!((mean[0] - x).abs() < 1e-12 && (mean[1] - y).abs() < 1e-12);
+    }
+
+    #[test]
+    fn mean_of_parts_is_per_coordinate() {
+        assert_eq!(mean_of(&[&[1.0, 2.0], &[3.0, 6.0]]), vec![2.0, 4.0]);
+        assert!(mean_of(&[]).is_empty());
+        assert!(mean_of(&[&[], &[]]).is_empty());
+    }
+}

@@ -1,0 +1,213 @@
+//! The search a run holds: one [`Search`] value, whichever strategy the
+//! config's `[strategy]` section names, that the driver runs and the
+//! checkpoint stores. It is a [`Strategy`] by delegation to the one inside.
+
+use serde::{Deserialize, Serialize};
+use vivae_neat::driver::{Batch, Evaluation, Strategy};
+use vivae_neat::strategies::{
+    Cells, MapElites, MapElitesParams, NoveltySearch, Nsga2, Nsga2Params,
+};
+use vivae_neat::{BestEver, GenerationStats, Genome, GenomeSpec, NeatError, Population};
+
+use crate::config::Config;
+use crate::error::Result;
+use crate::io::bad_input;
+use crate::strategy_config::{CellsKind, StrategyKind, objective};
+
+/// A run's search strategy.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum Search {
+    /// NEAT's population (the paper's).
+    Neat(Population),
+    /// Novelty search over a NEAT population.
+    Novelty(NoveltySearch),
+    /// MAP-Elites.
+    MapElites(MapElites),
+    /// NSGA-II.
+    Nsga2(Nsga2),
+}
+
+/// Calls `$f` on the strategy inside `$search`, whichever it is.
+macro_rules! each {
+    ($search:expr, $s:ident => $f:expr) => {
+        match $search {
+            Search::Neat($s) => $f,
+            Search::Novelty($s) => $f,
+            Search::MapElites($s) => $f,
+            Search::Nsga2($s) => $f,
+        }
+    };
+}
+
+impl Search {
+    /// Generation 0 of the strategy of `config` over CPPNs of shape `spec`
+    /// for `robots` robots, seeded with `experiment.seed`; NEAT and novelty
+    /// search may start from `init`'s genomes instead.
+    pub fn new(
+        config: &Config,
+        spec: GenomeSpec,
+        robots: usize,
+        init: Option<&Population>,
+    ) -> Result<Search> {
+        let (neat, seed) = (config.neat.clone(), config.experiment.seed);
+        let s = &config.strategy;
+        let population = || match init {
+            // Only the genomes carry over: fitness, species and the champion were
+            // measured on another substrate and mean nothing here.
+            Some(p) => {
+                Population::from_genomes(neat.clone(), spec.clone(), p.genomes().to_vec(), seed)
+                    .map_err(|e| bad_input(format!("initial population: {e}")))
+            }
+            None => Population::new(neat.clone(), spec.clone(), seed)
+                .map_err(|e| bad_input(format!("neat: {e}"))),
+        };
+        if init.is_some() && matches!(s.kind, StrategyKind::MapElites | StrategyKind::Nsga2) {
+            return Err(bad_input(format!(
+                "experiment.init_population: a {} run starts from minimal genomes (only neat and novelty runs start from a population)",
+                s.kind.name()
+            )));
+        }
+        let refused = |e: NeatError| bad_input(format!("strategy.{}: {e}", s.kind.name()));
+        Ok(match s.kind {
+            StrategyKind::Neat => Search::Neat(population()?),
+            StrategyKind::Novelty => Search::Novelty(
+                NoveltySearch::new(population()?, s.novelty.params()).map_err(refused)?,
+            ),
+            StrategyKind::MapElites => {
+                let map = MapElitesParams {
+                    batch_size: neat.population_size,
+                    crossover_probability: s.map_elites.crossover_probability,
+                    qd_offset: s.map_elites.qd_offset,
+                };
+                let cells = cells(config, robots)?;
+                Search::MapElites(MapElites::new(neat, spec, map, cells, seed).map_err(refused)?)
+            }
+            StrategyKind::Nsga2 => {
+                let nsga = Nsga2Params {
+                    population_size: neat.population_size,
+                    objectives: s
+                        .nsga2
+                        .objectives
+                        .iter()
+                        .filter_map(|o| objective(o))
+                        .collect(),
+                    crossover_probability: s.nsga2.crossover_probability,
+                };
+                Search::Nsga2(Nsga2::new(neat, spec, nsga, seed).map_err(refused)?)
+            }
+        })
+    }
+
+    /// Which strategy this is.
+    pub fn kind(&self) -> StrategyKind {
+        match self {
+            Search::Neat(_) => StrategyKind::Neat,
+            Search::Novelty(_) => StrategyKind::Novelty,
+            Search::MapElites(_) => StrategyKind::MapElites,
+            Search::Nsga2(_) => StrategyKind::Nsga2,
+        }
+    }
+
+    /// The NEAT population, for NEAT and novelty search.
+    pub fn population(&self) -> Option<&Population> {
+        match self {
+            Search::Neat(p) => Some(p),
+            Search::Novelty(n) => Some(n.population()),
+            _ => None,
+        }
+    }
+
+    /// The genomes of the batch to evaluate next.
+    pub fn batch(&self) -> Vec<Genome> {
+        match self {
+            Search::Neat(p) => p.genomes().to_vec(),
+            Search::Novelty(n) => n.population().genomes().to_vec(),
+            other => other.clone().ask().genomes.to_vec(),
+        }
+    }
+
+    /// The batch's task fitnesses once told, in batch order (NEAT's as its
+    /// population holds them; novelty search's population holds novelty).
+    pub fn fitnesses(&self, evaluations: &[Evaluation]) -> Vec<f64> {
+        match self {
+            Search::Neat(p) => p.fitnesses(),
+            _ => evaluations
+                .iter()
+                .map(|e| {
+                    if e.fitness.is_finite() {
+                        e.fitness
+                    } else {
+                        0.0
+                    }
+                })
+                .collect(),
+        }
+    }
+
+    /// `[species id, members]` of each species (none without species).
+    pub fn species(&self) -> Vec<(u32, usize)> {
+        self.population().map_or_else(Vec::new, |p| {
+            p.species()
+                .iter()
+                .map(|s| (s.id, s.members.len()))
+                .collect()
+        })
+    }
+}
+
+/// The MAP-Elites cells of `config` for a descriptor of `robots` robots.
+fn cells(config: &Config, robots: usize) -> Result<Cells> {
+    let s = &config.strategy;
+    let m = &s.map_elites;
+    let dims = s.behaviour.dims(robots);
+    let (lower, upper) = s.behaviour.bounds(robots);
+    let bins = m.bins_for(dims);
+    let refused = |e: NeatError| bad_input(format!("strategy.map_elites: {e}"));
+    match m.cells {
+        CellsKind::Grid if bins.len() != dims => Err(bad_input(format!(
+            "strategy.map_elites.bins = {:?}: behaviour {} has {dims} dimensions; give one count per dimension or one for all",
+            m.bins,
+            s.behaviour.name()
+        ))),
+        CellsKind::Grid => Cells::grid(lower, upper, bins).map_err(refused),
+        CellsKind::Cvt => Cells::cvt(
+            &lower,
+            &upper,
+            m.cvt_cells,
+            m.cvt_samples,
+            m.cvt_iterations,
+            config.experiment.seed,
+        )
+        .map_err(refused),
+    }
+}
+
+impl Strategy for Search {
+    fn ask(&mut self) -> Batch<'_> {
+        each!(self, s => s.ask())
+    }
+
+    fn tell(&mut self, evaluations: &[Evaluation]) -> std::result::Result<(), NeatError> {
+        each!(self, s => s.tell(evaluations))
+    }
+
+    fn prepare(&mut self) {
+        each!(self, s => s.prepare())
+    }
+
+    fn generation(&self) -> u32 {
+        each!(self, s => Strategy::generation(s))
+    }
+
+    fn champion(&self) -> Option<(&Genome, f64)> {
+        each!(self, s => Strategy::champion(s))
+    }
+
+    fn best_ever(&self) -> Option<&BestEver> {
+        each!(self, s => Strategy::best_ever(s))
+    }
+
+    fn stats(&self) -> GenerationStats {
+        each!(self, s => Strategy::stats(s))
+    }
+}

@@ -1,0 +1,434 @@
+//! The `[strategy]` section of a config: which search runs (NEAT, novelty
+//! search, MAP-Elites or NSGA-II) and each one's settings. Every strategy
+//! breeds with NEAT's operators and `[neat]` parameters, and evaluates
+//! `neat.population_size` genomes per generation.
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+use vivae_neat::strategies::{Measure, NoveltyParams, Objective};
+
+/// Names of the metrics an evaluation carries when measured, in order.
+pub const METRICS: [&str; 2] = ["contacts", "on_road"];
+
+/// Which behaviour descriptor an episode reports (see [`crate::descriptors`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "kebab-case")]
+pub enum BehaviourKind {
+    /// The robots' mean end position over the arena's size.
+    #[default]
+    EndPosition,
+    /// Every robot's end position over the arena's size, concatenated.
+    EndPositions,
+    /// Mean signed side of the road and mean speed over `v_max`.
+    SideSpeed,
+}
+
+impl BehaviourKind {
+    /// Coordinates of the descriptor for `robots` robots.
+    pub fn dims(self, robots: usize) -> usize {
+        match self {
+            BehaviourKind::EndPositions => 2 * robots,
+            BehaviourKind::EndPosition | BehaviourKind::SideSpeed => 2,
+        }
+    }
+
+    /// The box every descriptor lies in: (lower, upper) per coordinate.
+    pub fn bounds(self, robots: usize) -> (Vec<f64>, Vec<f64>) {
+        let n = self.dims(robots);
+        match self {
+            BehaviourKind::SideSpeed => (vec![-1.0, 0.0], vec![1.0, 1.0]),
+            _ => (vec![0.0; n], vec![1.0; n]),
+        }
+    }
+
+    /// Column names of the descriptor's `dims` coordinates.
+    pub fn coordinate_names(self, dims: usize) -> Vec<String> {
+        match self {
+            BehaviourKind::EndPosition => vec!["x".into(), "y".into()],
+            BehaviourKind::SideSpeed => vec!["side".into(), "speed".into()],
+            BehaviourKind::EndPositions => (0..dims)
+                .map(|i| format!("{}{}", ["x", "y"][i % 2], i / 2))
+                .collect(),
+        }
+    }
+
+    /// The name as configs write it.
+    pub fn name(self) -> &'static str {
+        match self {
+            BehaviourKind::EndPosition => "end-position",
+            BehaviourKind::EndPositions => "end-positions",
+            BehaviourKind::SideSpeed => "side-speed",
+        }
+    }
+}
+
+impl std::str::FromStr for BehaviourKind {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        [
+            BehaviourKind::EndPosition,
+            BehaviourKind::EndPositions,
+            BehaviourKind::SideSpeed,
+        ]
+        .into_iter()
+        .find(|k| k.name() == s)
+        .ok_or_else(|| format!("'{s}': expected end-position, end-positions or side-speed"))
+    }
+}
+
+/// Which search algorithm a run uses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "kebab-case")]
+pub enum StrategyKind {
+    /// NEAT's speciated population selecting on fitness (the paper's).
+    #[default]
+    Neat,
+    /// Novelty search (Lehman & Stanley 2011).
+    Novelty,
+    /// MAP-Elites (Mouret & Clune 2015).
+    MapElites,
+    /// NSGA-II (Deb et al. 2002).
+    Nsga2,
+}
+
+impl StrategyKind {
+    /// The columns this strategy adds to `generations.csv` (after NEAT's),
+    /// with their leading comma; none for NEAT.
+    pub fn extra_columns(self) -> &'static str {
+        match self {
+            StrategyKind::Neat => "",
+            StrategyKind::Novelty => ",archive_size,novelty_threshold",
+            StrategyKind::MapElites => ",filled_cells,coverage,qd_score,archive_best",
+            StrategyKind::Nsga2 => ",front_size",
+        }
+    }
+
+    /// The name as configs and the command line write it.
+    pub fn name(self) -> &'static str {
+        match self {
+            StrategyKind::Neat => "neat",
+            StrategyKind::Novelty => "novelty",
+            StrategyKind::MapElites => "map-elites",
+            StrategyKind::Nsga2 => "nsga2",
+        }
+    }
+}
+
+impl std::str::FromStr for StrategyKind {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        [
+            StrategyKind::Neat,
+            StrategyKind::Novelty,
+            StrategyKind::MapElites,
+            StrategyKind::Nsga2,
+        ]
+        .into_iter()
+        .find(|k| k.name() == s)
+        .ok_or_else(|| format!("'{s}': expected neat, novelty, map-elites or nsga2"))
+    }
+}
+
+/// The search strategy and its settings.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct StrategyConfig {
+    /// Search algorithm: neat, novelty, map-elites or nsga2.
+    ///
+    /// Paper: neat.
+    pub kind: StrategyKind,
+    /// Behaviour descriptor for novelty and map-elites: end-position (mean
+    /// end position over the arena's size), end-positions (each robot's,
+    /// concatenated) or side-speed (mean side of the road, mean speed over v_max).
+    pub behaviour: BehaviourKind,
+    /// Novelty search.
+    pub novelty: NoveltyConfig,
+    /// MAP-Elites.
+    pub map_elites: MapElitesConfig,
+    /// NSGA-II.
+    pub nsga2: Nsga2Config,
+}
+
+impl StrategyConfig {
+    /// Whether this is the default (NEAT, every setting at its default): a
+    /// config that is written without its `[strategy]` section.
+    pub fn is_default(&self) -> bool {
+        *self == StrategyConfig::default()
+    }
+}
+
+/// Novelty search's settings.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct NoveltyConfig {
+    /// Nearest neighbours (population and archive) whose mean distance is a
+    /// behaviour's novelty (Lehman & Stanley 2011: 15).
+    pub k: usize,
+    /// Initial archive threshold ρ_min: a behaviour more novel than this is archived.
+    ///
+    /// Unit: behaviour units (end positions: arena sizes).
+    pub threshold: f64,
+    /// ρ_min is never lowered below this.
+    ///
+    /// Unit: behaviour units.
+    pub threshold_floor: f64,
+    /// Generations without an archive addition before ρ_min is lowered (Lehman & Stanley: 10).
+    pub lower_after: u32,
+    /// Factor lowering ρ_min (Lehman & Stanley: 0.95).
+    pub lower_factor: f64,
+    /// More additions than this in one generation raise ρ_min (Lehman & Stanley: 4).
+    pub raise_above: usize,
+    /// Factor raising ρ_min (Lehman & Stanley: 1.2).
+    pub raise_factor: f64,
+    /// Weight w of fitness in the selection score (1 − w)·novelty + w·fitness
+    /// (both min–max normalised per generation); 0 = pure novelty search.
+    pub fitness_weight: f64,
+}
+
+impl Default for NoveltyConfig {
+    fn default() -> Self {
+        NoveltyConfig {
+            k: 15,
+            threshold: 0.05,
+            threshold_floor: 0.005,
+            lower_after: 10,
+            lower_factor: 0.95,
+            raise_above: 4,
+            raise_factor: 1.2,
+            fitness_weight: 0.0,
+        }
+    }
+}
+
+impl NoveltyConfig {
+    /// The library's parameters.
+    pub fn params(&self) -> NoveltyParams {
+        NoveltyParams {
+            k: self.k,
+            threshold: self.threshold,
+            threshold_floor: self.threshold_floor,
+            lower_after: self.lower_after,
+            lower_factor: self.lower_factor,
+            raise_above: self.raise_above,
+            raise_factor: self.raise_factor,
+            fitness_weight: self.fitness_weight,
+        }
+    }
+}
+
+/// How MAP-Elites cuts the behaviour space into cells.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum CellsKind {
+    /// A regular grid of `bins` cells per dimension.
+    #[default]
+    Grid,
+    /// A centroidal Voronoi tessellation of `cvt_cells` cells.
+    Cvt,
+}
+
+/// MAP-Elites' settings.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct MapElitesConfig {
+    /// Cells: grid (regular, over the descriptor's box) or cvt (a centroidal
+    /// Voronoi tessellation, for many dimensions).
+    pub cells: CellsKind,
+    /// Grid cells per behaviour dimension, one count per dimension or one for all.
+    pub bins: Vec<usize>,
+    /// CVT cells.
+    pub cvt_cells: usize,
+    /// Uniform samples the CVT is computed from (Lloyd's algorithm).
+    pub cvt_samples: usize,
+    /// Iterations of Lloyd's algorithm computing the CVT.
+    pub cvt_iterations: usize,
+    /// Probability that a child is the crossover of two elites rather than a mutant of one.
+    pub crossover_probability: f64,
+    /// Subtracted from every elite's fitness in the QD-score (Σ (fitness − offset)).
+    ///
+    /// Unit: fitness units.
+    pub qd_offset: f64,
+}
+
+impl Default for MapElitesConfig {
+    fn default() -> Self {
+        MapElitesConfig {
+            cells: CellsKind::Grid,
+            bins: vec![10],
+            cvt_cells: 100,
+            cvt_samples: 10_000,
+            cvt_iterations: 20,
+            crossover_probability: 0.1,
+            qd_offset: 0.0,
+        }
+    }
+}
+
+impl MapElitesConfig {
+    /// Bins per dimension for a descriptor of `dims` coordinates.
+    pub fn bins_for(&self, dims: usize) -> Vec<usize> {
+        match self.bins.as_slice() {
+            [one] => vec![*one; dims],
+            many => many.to_vec(),
+        }
+    }
+}
+
+/// NSGA-II's settings.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct Nsga2Config {
+    /// Objectives: fitness or a metric (contacts, on_road), maximised, or
+    /// minimised when written with a leading minus (-contacts).
+    pub objectives: Vec<String>,
+    /// Probability that a child is the crossover of two tournament winners rather than a mutant.
+    pub crossover_probability: f64,
+}
+
+impl Default for Nsga2Config {
+    fn default() -> Self {
+        Nsga2Config {
+            objectives: vec!["fitness".into(), "-contacts".into()],
+            crossover_probability: 0.5,
+        }
+    }
+}
+
+/// The objective `name` (`fitness`, `contacts`, `on_road`, optionally with a leading `-`).
+pub fn objective(name: &str) -> Option<Objective> {
+    let (maximise, what) = match name.strip_prefix('-') {
+        Some(rest) => (false, rest),
+        None => (true, name),
+    };
+    let measure = match what {
+        "fitness" => Measure::Fitness,
+        other => Measure::Metric(METRICS.iter().position(|m| *m == other)?),
+    };
+    Some(Objective { measure, maximise })
+}
+
+/// Checks the `[strategy]` section `s` of a config that trains on several
+/// maps if `multi_map` (sizes that depend on the robots are checked when
+/// the run starts); the error names the key.
+pub fn validate(s: &StrategyConfig, multi_map: bool) -> Result<(), String> {
+    let bad = |key: &str, value: &dyn std::fmt::Debug, why: &str| {
+        Err(format!("strategy.{key} = {value:?}: {why}"))
+    };
+    if let Err(vivae_neat::NeatError::InvalidParam {
+        field,
+        value,
+        reason,
+    }) = s.novelty.params().validate()
+    {
+        return bad(&format!("novelty.{field}"), &value, reason);
+    }
+    let searches_behaviour = matches!(s.kind, StrategyKind::Novelty | StrategyKind::MapElites);
+    if searches_behaviour && s.behaviour == BehaviourKind::EndPositions && multi_map {
+        return bad(
+            "behaviour",
+            &s.behaviour.name(),
+            "one map only (maps have their own robots): use end-position on several maps",
+        );
+    }
+    let m = &s.map_elites;
+    if m.bins.is_empty() || m.bins.contains(&0) {
+        return bad(
+            "map_elites.bins",
+            &m.bins,
+            "one count ≥ 1 per dimension, or one for all",
+        );
+    }
+    if m.cvt_cells == 0 || m.cvt_samples < m.cvt_cells {
+        return bad(
+            "map_elites.cvt_cells",
+            &m.cvt_cells,
+            "need 1 ≤ cvt_cells ≤ cvt_samples",
+        );
+    }
+    if !(0.0..=1.0).contains(&m.crossover_probability) {
+        return bad(
+            "map_elites.crossover_probability",
+            &m.crossover_probability,
+            "must be in [0, 1]",
+        );
+    }
+    if !m.qd_offset.is_finite() {
+        return bad("map_elites.qd_offset", &m.qd_offset, "must be finite");
+    }
+    let n = &s.nsga2;
+    if n.objectives.is_empty() {
+        return bad("nsga2.objectives", &n.objectives, "at least one objective");
+    }
+    if let Some(o) = n.objectives.iter().find(|o| objective(o).is_none()) {
+        return bad(
+            "nsga2.objectives",
+            o,
+            "expected fitness, contacts or on_road, each optionally with a leading -",
+        );
+    }
+    if !(0.0..=1.0).contains(&n.crossover_probability) {
+        return bad(
+            "nsga2.crossover_probability",
+            &n.crossover_probability,
+            "must be in [0, 1]",
+        );
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn objectives_parse_with_their_direction() {
+        let o = objective("-contacts").unwrap();
+        assert_eq!((o.measure, o.maximise), (Measure::Metric(0), false));
+        assert_eq!(objective("fitness").unwrap().measure, Measure::Fitness);
+        assert_eq!(objective("on_road").unwrap().measure, Measure::Metric(1));
+        assert!(objective("speed").is_none() && objective("--fitness").is_none());
+    }
+
+    #[test]
+    fn bad_settings_name_their_key() {
+        let validate =
+            |s: &StrategyConfig| validate(s, false).map_err(|message| Message { message });
+        struct Message {
+            message: String,
+        }
+        let mut s = StrategyConfig::default();
+        s.nsga2.objectives = vec!["speed".into()];
+        let e = validate(&s).unwrap_err().message;
+        assert!(
+            e.starts_with("strategy.nsga2.objectives = \"speed\""),
+            "{e}"
+        );
+        let mut s = StrategyConfig::default();
+        s.novelty.k = 0;
+        assert!(
+            validate(&s)
+                .unwrap_err()
+                .message
+                .starts_with("strategy.novelty.k")
+        );
+        s = StrategyConfig::default();
+        s.map_elites.bins = vec![4, 0];
+        assert!(
+            validate(&s)
+                .unwrap_err()
+                .message
+                .contains("map_elites.bins")
+        );
+        assert!(validate(&StrategyConfig::default()).is_ok());
+    }
+
+    #[test]
+    fn names_round_trip() {
+        for k in ["neat", "novelty", "map-elites", "nsga2"] {
+            assert_eq!(k.parse::<StrategyKind>().unwrap().name(), k);
+        }
+        assert!("nsga".parse::<StrategyKind>().is_err());
+    }
+}

@@ -1,0 +1,224 @@
+//! The run-directory files of the strategies beyond NEAT: their columns of
+//! `generations.csv`, MAP-Elites' archive (`archive.csv`, `archive.jsonl`)
+//! and NSGA-II's Pareto front (`front.csv`, `front.jsonl`), written
+//! atomically with each checkpoint, and read back to replay one member.
+//!
+//! A NEAT run has none of them: its files are as they always were.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use serde::{Deserialize, Serialize};
+use vivae_neat::Genome;
+
+use crate::config::Config;
+use crate::error::{Error, Result};
+use crate::io::write_atomic;
+use crate::rundir::files;
+use crate::search::Search;
+
+/// The values of [`crate::strategy_config::StrategyKind::extra_columns`] for the generation just told, with their leading commas.
+pub fn extra_fields(search: &Search) -> String {
+    match search {
+        Search::Neat(_) => String::new(),
+        Search::Novelty(n) => format!(",{},{}", n.archive().len(), n.threshold()),
+        Search::MapElites(m) => {
+            let s = m.archive_stats();
+            let best = s.best.map_or_else(String::new, |b| b.to_string());
+            format!(",{},{},{},{best}", s.filled, s.coverage, s.qd_score)
+        }
+        Search::Nsga2(n) => format!(",{}", n.pareto_front().len()),
+    }
+}
+
+/// `key=value` fields of the summary line for the strategy's state, each
+/// with a leading space: `strategy=…`, then the archive's or the front's size.
+pub fn summary_fields(search: &Search) -> String {
+    let name = search.kind().name();
+    match search {
+        Search::Neat(_) => format!(" strategy={name}"),
+        Search::Novelty(n) => format!(" strategy={name} archive_size={}", n.archive().len()),
+        Search::MapElites(m) => {
+            let s = m.archive_stats();
+            format!(
+                " strategy={name} filled_cells={} coverage={:.4} qd_score={:.3}",
+                s.filled, s.coverage, s.qd_score
+            )
+        }
+        Search::Nsga2(n) => format!(" strategy={name} front_size={}", n.pareto_front().len()),
+    }
+}
+
+/// One elite of a MAP-Elites archive, as a line of `archive.jsonl`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ArchiveLine {
+    /// The cell's index.
+    pub cell: usize,
+    /// The elite's fitness.
+    pub fitness: f64,
+    /// Generation (1-based, of this run) in which it was evaluated.
+    pub generation: u32,
+    /// Its behaviour descriptor.
+    pub behaviour: Vec<f64>,
+    /// Its CPPN genome.
+    pub genome: Genome,
+}
+
+/// One member of an NSGA-II Pareto front, as a line of `front.jsonl`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FrontLine {
+    /// Its index in the front (fittest first).
+    pub member: usize,
+    /// Its fitness.
+    pub fitness: f64,
+    /// Its value of each objective, as measured (in `strategy.nsga2.objectives` order).
+    pub objectives: Vec<f64>,
+    /// Its CPPN genome.
+    pub genome: Genome,
+}
+
+/// Writes the strategy's own files of `search` into the run directory `dir`.
+pub fn write_outputs(dir: &Path, config: &Config, search: &Search) -> Result<()> {
+    match search {
+        Search::MapElites(m) => {
+            let lines: Vec<ArchiveLine> = (m.elites())
+                .map(|(cell, e)| ArchiveLine {
+                    cell,
+                    fitness: e.fitness,
+                    generation: e.generation + 1,
+                    behaviour: e.behaviour.clone(),
+                    genome: e.genome.clone(),
+                })
+                .collect();
+            let dims = m.cells().dims();
+            let names = config.strategy.behaviour.coordinate_names(dims);
+            let mut csv = format!("cell,{},fitness,generation\n", names.join(","));
+            for l in &lines {
+                let b: Vec<String> = l.behaviour.iter().map(f64::to_string).collect();
+                let _ = writeln!(
+                    csv,
+                    "{},{},{},{}",
+                    l.cell,
+                    b.join(","),
+                    l.fitness,
+                    l.generation
+                );
+            }
+            write_atomic(&dir.join(files::ARCHIVE), csv.as_bytes())?;
+            write_atomic(&dir.join(files::ARCHIVE_GENOMES), jsonl(&lines)?.as_bytes())
+        }
+        Search::Nsga2(n) => {
+            let mut front = n.pareto_front();
+            front.sort_by(|a, b| b.2.total_cmp(&a.2));
+            let lines: Vec<FrontLine> = (front.into_iter().enumerate())
+                .map(|(member, (g, objectives, fitness))| FrontLine {
+                    member,
+                    fitness,
+                    objectives,
+                    genome: g.clone(),
+                })
+                .collect();
+            let names =
+                config
+                    .strategy
+                    .nsga2
+                    .objectives
+                    .iter()
+                    .map(|o| match o.strip_prefix('-') {
+                        Some(min) => format!("min_{min}"),
+                        None => format!("max_{o}"),
+                    });
+            let mut csv = format!("member,fitness,{}\n", names.collect::<Vec<_>>().join(","));
+            for l in &lines {
+                let o: Vec<String> = l.objectives.iter().map(f64::to_string).collect();
+                let _ = writeln!(csv, "{},{},{}", l.member, l.fitness, o.join(","));
+            }
+            write_atomic(&dir.join(files::FRONT), csv.as_bytes())?;
+            write_atomic(&dir.join(files::FRONT_GENOMES), jsonl(&lines)?.as_bytes())
+        }
+        Search::Neat(_) | Search::Novelty(_) => Ok(()),
+    }
+}
+
+/// `lines` as JSON lines.
+fn jsonl<T: Serialize>(lines: &[T]) -> Result<String> {
+    let mut out = String::new();
+    for l in lines {
+        let text = serde_json::to_string(l).map_err(|e| Error::Serialize {
+            what: "an archive line",
+            reason: e.to_string(),
+        })?;
+        out.push_str(&text);
+        out.push('\n');
+    }
+    Ok(out)
+}
+
+/// A member of a run's archive or front to replay.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Member {
+    /// The elite of this cell of a MAP-Elites archive.
+    Elite(usize),
+    /// This member of an NSGA-II Pareto front (0 = the fittest).
+    Front(usize),
+}
+
+/// The genome, fitness and (1-based) generation of `member` of the run in `dir`.
+pub fn read_member(dir: &Path, member: Member) -> Result<(Genome, f64, u32)> {
+    let (name, wanted) = match member {
+        Member::Elite(c) => (files::ARCHIVE_GENOMES, c),
+        Member::Front(m) => (files::FRONT_GENOMES, m),
+    };
+    let path = dir.join(name);
+    let text = crate::io::read_regular_text(&path, crate::rundir::MAX_RUN_FILE_BYTES).map_err(
+        |e| match e.kind() {
+            std::io::ErrorKind::NotFound => crate::io::bad_input(format!(
+                "{}: no such file (only a {} run has one)",
+                path.display(),
+                match member {
+                    Member::Elite(_) => "map-elites",
+                    Member::Front(_) => "nsga2",
+                }
+            )),
+            _ => Error::io("read", &path)(e),
+        },
+    )?;
+    let bad = |line: usize, why: String| Error::RunFile {
+        path: path.clone(),
+        reason: format!("line {}: {why}", line + 1),
+    };
+    let mut known = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        let (key, genome, fitness, generation) = match member {
+            Member::Elite(_) => {
+                let l: ArchiveLine =
+                    serde_json::from_str(line).map_err(|e| bad(i, e.to_string()))?;
+                (l.cell, l.genome, l.fitness, l.generation)
+            }
+            Member::Front(_) => {
+                let l: FrontLine = serde_json::from_str(line).map_err(|e| bad(i, e.to_string()))?;
+                (l.member, l.genome, l.fitness, 0)
+            }
+        };
+        if key == wanted {
+            genome.check().map_err(|e| bad(i, e.to_string()))?;
+            return Ok((genome, fitness, generation));
+        }
+        known.push(key);
+    }
+    let listed = match known.len() {
+        0 => "it is empty".to_string(),
+        n if n <= 12 => format!("it has {known:?}"),
+        n => format!("it has {n}, from {} to {}", known[0], known[n - 1]),
+    };
+    Err(crate::io::bad_input(format!(
+        "{}: no {} {wanted} ({listed})",
+        path.display(),
+        match member {
+            Member::Elite(_) => "elite in cell",
+            Member::Front(_) => "front member",
+        }
+    )))
+}

@@ -1,0 +1,83 @@
+//! A run of every search strategy (novelty, map-elites, nsga2), stopped
+//! after some generations and resumed, ends with a run directory
+//! byte-identical to an uninterrupted run's, including the strategy's own
+//! files (archive, front) and its checkpoints; only wall-clock traces may
+//! differ: `timing.csv`, its length as checkpoints record it, and
+//! `report.html` (which shows the timing and the directory's name).
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use crate::common::*;
+
+/// A checkpoint without its checksum line and with `timing_len` blanked.
+fn without_timing(checkpoint: &[u8]) -> Vec<u8> {
+    let text = String::from_utf8(checkpoint.to_vec()).unwrap();
+    let body = text.split_once('\n').unwrap().1;
+    let (before, after) = body.split_once("\"timing_len\":").unwrap();
+    let rest = after.trim_start_matches(|c: char| c.is_ascii_digit());
+    format!("{before}\"timing_len\":_{rest}").into_bytes()
+}
+
+/// Every file under `dir` (relative path → bytes; checkpoints
+/// [`without_timing`]), but `timing.csv` and `report.html`.
+fn files_of(dir: &Path) -> BTreeMap<String, Vec<u8>> {
+    fn walk(root: &Path, dir: &Path, out: &mut BTreeMap<String, Vec<u8>>) {
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            let name = path.strip_prefix(root).unwrap().display().to_string();
+            if path.is_dir() {
+                walk(root, &path, out);
+            } else if name.ends_with(".ckpt") {
+                out.insert(name, without_timing(&std::fs::read(&path).unwrap()));
+            } else if name != "timing.csv" && name != "report.html" {
+                out.insert(name, std::fs::read(&path).unwrap());
+            }
+        }
+    }
+    let mut out = BTreeMap::new();
+    walk(dir, dir, &mut out);
+    out
+}
+
+#[test]
+fn interrupted_and_resumed_runs_of_every_strategy_match_uninterrupted_ones() {
+    let dir = scratch("strategies-resume");
+    let config = write_small_config(&dir, 5);
+    for (strategy, own) in [
+        ("novelty", None),
+        ("map-elites", Some("archive.jsonl")),
+        ("nsga2", Some("front.jsonl")),
+    ] {
+        let full = dir.join(format!("{strategy}-full"));
+        let summary = evolve(&config, &full, &["--strategy", strategy]);
+        assert!(
+            summary.contains(&format!(" strategy={strategy}")),
+            "{summary}"
+        );
+        let short = dir.join(format!("{strategy}-short"));
+        evolve(
+            &config,
+            &short,
+            &["--strategy", strategy, "--generations", "2"],
+        );
+        ok(vivae()
+            .args(["resume", "-q", "--generations", "5"])
+            .arg(&short));
+        let (a, b) = (files_of(&full), files_of(&short));
+        assert_eq!(
+            a.keys().collect::<Vec<_>>(),
+            b.keys().collect::<Vec<_>>(),
+            "{strategy}: other files"
+        );
+        for (name, bytes) in &a {
+            assert!(*bytes == b[name], "{strategy}: {name} differs after resume");
+        }
+        if let Some(own) = own {
+            assert!(a.contains_key(own), "{strategy}: no {own}");
+        }
+        let header = String::from_utf8(read(&full, "generations.csv")).unwrap();
+        assert!(header.lines().count() == 6, "{strategy}: {header}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
