@@ -15,6 +15,7 @@ use vivae_neat::NeatParams;
 use vivae_neat::hyperneat::HyperParams;
 use vivae_sim::{DistanceSensors, PhysicsParams, SurfaceSensors};
 
+use crate::es_config::{EsConfig, SubstrateKind};
 use crate::polar::{CoordMode, PolarGrid};
 
 /// Most simulation steps per evaluation (`experiment.steps`, `replay --steps`).
@@ -163,6 +164,17 @@ pub struct SubstrateConfig {
     /// Example: "min".
     #[serde(default, skip_serializing_if = "Aggregate::is_mean")]
     pub train_aggregate: Aggregate,
+    /// Which substrate the CPPN is decoded into: `polar` (the dense neuron
+    /// sheet, the paper's) or `es-hyperneat` (hidden neurons placed by the
+    /// CPPN between the sensors and the two wheel neurons; keys in
+    /// `[substrate.es]`; docs/guide.md, "Substrates: when to use which").
+    ///
+    /// Example: "es-hyperneat".
+    #[serde(default, skip_serializing_if = "SubstrateKind::is_polar")]
+    pub kind: SubstrateKind,
+    /// ES-HyperNEAT parameters, used with `kind = "es-hyperneat"`.
+    #[serde(default, skip_serializing_if = "EsConfig::is_default")]
+    pub es: EsConfig,
 }
 
 /// Which share of a re-sampled sheet's drive each of its nodes carries.
@@ -295,6 +307,8 @@ impl Default for SubstrateConfig {
             train_neurons: Vec::new(),
             train_sensors: Vec::new(),
             train_aggregate: Aggregate::Mean,
+            kind: SubstrateKind::Polar,
+            es: EsConfig::default(),
         }
     }
 }
@@ -474,7 +488,7 @@ impl Config {
                 ConfigError::new(format!("distance_sensors.{}", param_message(&err)))
             })?;
         }
-        Ok(())
+        self.substrate.es.validate().map_err(ConfigError::new)
     }
 
     /// Checks the sizes of the run's substrates at every training resolution.
@@ -718,7 +732,7 @@ pub struct SectionDoc {
 pub fn reference() -> Vec<SectionDoc> {
     let schema = schemars::schema_for!(Config);
     let root = schema.as_value();
-    let defaults = toml::Value::try_from(Config::default()).expect("the default config is TOML");
+    let defaults = documented_defaults();
     let defaults = defaults.as_table().expect("the config is a table");
     let mut out = Vec::new();
     for (name, value) in defaults {
@@ -727,6 +741,21 @@ pub fn reference() -> Vec<SectionDoc> {
         document_section(root, property, name, table, &mut out);
     }
     out
+}
+
+/// The default config as the reference documents it: keys a default config
+/// does not write (`substrate.kind`, `[substrate.es]`: written only when
+/// set, so that existing runs' files stay the same) with their defaults all the same.
+fn documented_defaults() -> toml::Value {
+    let mut defaults =
+        toml::Value::try_from(Config::default()).expect("the default config is TOML");
+    if let Some(sub) = defaults.get_mut("substrate").and_then(|s| s.as_table_mut()) {
+        let kind = toml::Value::try_from(SubstrateKind::default()).expect("a kind is TOML");
+        let es = toml::Value::try_from(EsConfig::default()).expect("ES keys are TOML");
+        sub.insert("kind".into(), kind);
+        sub.insert("es".into(), es);
+    }
+    defaults
 }
 
 /// Documentation of the key `key` (dotted), if there is such a key.
@@ -1008,8 +1037,7 @@ mod tests {
 
     #[test]
     fn every_key_and_section_is_documented_and_every_doc_is_a_key() {
-        let value = toml::Value::try_from(Config::default()).unwrap();
-        let defaults = flatten(&value);
+        let defaults = flatten(&documented_defaults());
         let sections = reference();
         let docs: Vec<&KeyDoc> = sections.iter().flat_map(|s| &s.keys).collect();
         for s in &sections {
