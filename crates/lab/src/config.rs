@@ -15,6 +15,7 @@ use vivae_neat::NeatParams;
 use vivae_neat::hyperneat::HyperParams;
 use vivae_sim::{DistanceSensors, PhysicsParams, SurfaceSensors};
 
+use crate::es_config::{EsConfig, SubstrateKind};
 use crate::polar::{CoordMode, PolarGrid};
 use crate::strategy_config::StrategyConfig;
 
@@ -167,6 +168,17 @@ pub struct SubstrateConfig {
     /// Example: "min".
     #[serde(default, skip_serializing_if = "Aggregate::is_mean")]
     pub train_aggregate: Aggregate,
+    /// Which substrate the CPPN is decoded into: `polar` (the dense neuron
+    /// sheet, the paper's) or `es-hyperneat` (hidden neurons placed by the
+    /// CPPN between the sensors and the two wheel neurons; keys in
+    /// `[substrate.es]`; docs/guide.md, "Substrates: when to use which").
+    ///
+    /// Example: "es-hyperneat".
+    #[serde(default, skip_serializing_if = "SubstrateKind::is_polar")]
+    pub kind: SubstrateKind,
+    /// ES-HyperNEAT parameters, used with `kind = "es-hyperneat"`.
+    #[serde(default, skip_serializing_if = "EsConfig::is_default")]
+    pub es: EsConfig,
 }
 
 /// Which share of a re-sampled sheet's drive each of its nodes carries.
@@ -299,6 +311,8 @@ impl Default for SubstrateConfig {
             train_neurons: Vec::new(),
             train_sensors: Vec::new(),
             train_aggregate: Aggregate::Mean,
+            kind: SubstrateKind::Polar,
+            es: EsConfig::default(),
         }
     }
 }
@@ -480,7 +494,7 @@ impl Config {
                 ConfigError::new(format!("distance_sensors.{}", param_message(&err)))
             })?;
         }
-        Ok(())
+        self.substrate.es.validate().map_err(ConfigError::new)
     }
 
     /// Checks the sizes of the run's substrates at every training resolution.
@@ -724,13 +738,8 @@ pub struct SectionDoc {
 pub fn reference() -> Vec<SectionDoc> {
     let schema = schemars::schema_for!(Config);
     let root = schema.as_value();
-    let mut defaults =
-        toml::Value::try_from(Config::default()).expect("the default config is TOML");
-    let defaults = defaults.as_table_mut().expect("the config is a table");
-    // A default config is written without its `[strategy]` section (so that
-    // NEAT runs' files stay as they were); it is documented all the same.
-    let strategy = toml::Value::try_from(StrategyConfig::default()).expect("TOML");
-    defaults.insert("strategy".into(), strategy);
+    let defaults = documented_defaults();
+    let defaults = defaults.as_table().expect("the config is a table");
     let mut out = Vec::new();
     for (name, value) in defaults {
         let property = property(root, root, name);
@@ -738,6 +747,27 @@ pub fn reference() -> Vec<SectionDoc> {
         document_section(root, property, name, table, &mut out);
     }
     out
+}
+
+/// The default config as the reference documents it: keys a default config
+/// does not write (`substrate.kind`, `[substrate.es]`, `[strategy]`: written only when
+/// set, so that existing runs' files stay the same) with their defaults all the same.
+fn documented_defaults() -> toml::Value {
+    let mut defaults =
+        toml::Value::try_from(Config::default()).expect("the default config is TOML");
+    if let Some(sub) = defaults.get_mut("substrate").and_then(|s| s.as_table_mut()) {
+        let kind = toml::Value::try_from(SubstrateKind::default()).expect("a kind is TOML");
+        let es = toml::Value::try_from(EsConfig::default()).expect("ES keys are TOML");
+        sub.insert("kind".into(), kind);
+        sub.insert("es".into(), es);
+    }
+    // A default config is written without its `[strategy]` section (so that
+    // NEAT runs' files stay as they were); it is documented all the same.
+    if let Some(table) = defaults.as_table_mut() {
+        let strategy = toml::Value::try_from(StrategyConfig::default()).expect("TOML");
+        table.insert("strategy".into(), strategy);
+    }
+    defaults
 }
 
 /// Documentation of the key `key` (dotted), if there is such a key.
@@ -1019,13 +1049,7 @@ mod tests {
 
     #[test]
     fn every_key_and_section_is_documented_and_every_doc_is_a_key() {
-        let mut value = toml::Value::try_from(Config::default()).unwrap();
-        let strategy = toml::Value::try_from(StrategyConfig::default()).unwrap();
-        value
-            .as_table_mut()
-            .unwrap()
-            .insert("strategy".into(), strategy);
-        let defaults = flatten(&value);
+        let defaults = flatten(&documented_defaults());
         let sections = reference();
         let docs: Vec<&KeyDoc> = sections.iter().flat_map(|s| &s.keys).collect();
         for s in &sections {

@@ -29,12 +29,11 @@
 //! would multiply a grid's cells by the number of parts).
 
 use vivae_neat::driver::Evaluation;
-use vivae_neat::hyperneat::SubstrateController;
 use vivae_sim::World;
 
 use crate::behaviour::BehaviourMeter;
 use crate::fitness::Fitness;
-use crate::rollout::Rollout;
+use crate::rollout::{Drive, Rollout};
 use crate::strategy_config::{StrategyConfig, StrategyKind as K};
 
 pub use crate::strategy_config::{BehaviourKind, METRICS};
@@ -82,7 +81,7 @@ pub struct EpisodeSetup<'a> {
 pub fn measured_episode(
     setup: EpisodeSetup<'_>,
     mut rollout: Rollout,
-    controller: &SubstrateController,
+    controller: &(impl Drive + ?Sized),
     measures: Measures,
 ) -> Evaluation {
     let steps = setup.steps;

@@ -405,7 +405,7 @@ impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
     ) -> Result<GenerationRecord> {
         let search = report.strategy;
         let stats = report.stats;
-        let controller = self.training.primary().controller(best_genome)?;
+        let controller = self.training.primary().robot_controller(best_genome)?;
         let n = sorted.len();
         let (mean, median) = stats::mean(fitnesses)
             .zip(stats::median_of_sorted(sorted))
@@ -543,7 +543,7 @@ fn validate_progress(path: &Path, cp: &Checkpoint, experiment: &Experiment) -> R
         .chain(p.figure_genomes.iter().map(|(_, _, g)| g));
     for g in genomes {
         experiment
-            .controller(g)
+            .robot_controller(g)
             .map_err(|e| bad(format!("a genome does not fit the run: {e}")))?;
     }
     Ok(search)

@@ -11,9 +11,10 @@ use vivae_sim::{DVec2, Scenario, SurfaceGrid, World};
 use crate::behaviour::{Behaviour, BehaviourMeter};
 use crate::config::Config;
 use crate::descriptors::{EpisodeSetup, METRICS, Measures, measured_episode};
+use crate::es_controller::{EsSetup, RobotController, SubstrateKind};
 use crate::fitness::{AverageSpeed, Fitness};
 use crate::normalize::SourceScale;
-use crate::rollout::Rollout;
+use crate::rollout::{Drive, Rollout};
 use crate::sensors::{SensorSheet, read_sheets, sensor_sheets};
 use crate::substrate::{PolarGrid, SubstrateSpec, WheelNeurons, cppn_outputs, layout_of};
 use crate::task::DrivingTask;
@@ -32,6 +33,8 @@ pub struct Experiment {
     layout: SubstrateLayout,
     wheels: WheelNeurons,
     hyper: HyperParams,
+    /// The ES-HyperNEAT substrate, when `substrate.kind = "es-hyperneat"`.
+    es: Option<EsSetup>,
     /// Factor per source node (`substrate.normalize` and its rules).
     scale: SourceScale,
     steps: u32,
@@ -119,6 +122,13 @@ impl Experiment {
         let layout = layout_of(&sensors, &spec.neuron_nodes(), spec.coords);
         let cppn_outputs = cppn_outputs(&sensors);
         let scale = SourceScale::new(&config.substrate, &sensors, &spec.neuron_nodes());
+        let es = match config.substrate.kind {
+            SubstrateKind::Polar => None,
+            SubstrateKind::EsHyperneat => Some(
+                crate::es_controller::es_setup(config, &sensors, scale.factors())
+                    .map_err(ExperimentError::Config)?,
+            ),
+        };
         Ok(Experiment {
             world,
             sensors,
@@ -127,6 +137,7 @@ impl Experiment {
             layout,
             wheels,
             hyper: config.hyperneat,
+            es,
             scale,
             steps: config.experiment.steps,
             cppn_outputs,
@@ -201,9 +212,27 @@ impl Experiment {
         self.world.robots().len()
     }
 
-    /// Decodes `genome` (a CPPN) into the controller for this substrate; an
-    /// error if its CPPN has the wrong number of inputs or outputs.
-    pub fn controller(&self, genome: &Genome) -> Result<SubstrateController, ExperimentError> {
+    /// The ES-HyperNEAT substrate, when the experiment decodes into one.
+    pub fn es_setup(&self) -> Option<&EsSetup> {
+        self.es.as_ref()
+    }
+
+    /// Decodes `genome` into this experiment's controller, dense or ES.
+    pub fn robot_controller(&self, genome: &Genome) -> Result<RobotController, ExperimentError> {
+        match &self.es {
+            None => self.controller(genome).map(RobotController::Polar),
+            Some(es) => {
+                self.check_genome(genome)?;
+                let c = es
+                    .decode(genome)
+                    .map_err(|e| ExperimentError::Genome(e.to_string()))?;
+                Ok(RobotController::Es(c))
+            }
+        }
+    }
+
+    /// An error if `genome`'s CPPN has the wrong number of inputs or outputs.
+    fn check_genome(&self, genome: &Genome) -> Result<(), ExperimentError> {
         let want = self.cppn_spec();
         let (inputs, outputs) = (genome.num_inputs(), genome.num_outputs());
         if inputs != want.inputs || outputs != want.outputs {
@@ -212,6 +241,19 @@ impl Experiment {
                 want.inputs, want.outputs
             )));
         }
+        Ok(())
+    }
+
+    /// Decodes `genome` (a CPPN) into the dense polar controller; an error if
+    /// its CPPN has the wrong number of inputs or outputs, or if the
+    /// experiment's substrate is ES-HyperNEAT (see [`Experiment::robot_controller`]).
+    pub fn controller(&self, genome: &Genome) -> Result<SubstrateController, ExperimentError> {
+        if self.es.is_some() {
+            return Err(ExperimentError::Config(
+                "substrate.kind = \"es-hyperneat\" has no dense polar sheet".into(),
+            ));
+        }
+        self.check_genome(genome)?;
         let mut controller = decode_genome(genome, &self.layout, &self.hyper)
             .map_err(|e| ExperimentError::Genome(e.to_string()))?;
         self.scale.apply(&mut controller);
@@ -221,7 +263,7 @@ impl Experiment {
     /// The fitness of `genome`'s controller (average speed by default); 0 for
     /// a genome that does not fit the substrate (evolution never makes one).
     pub fn fitness(&self, genome: &Genome) -> f64 {
-        match self.controller(genome) {
+        match self.robot_controller(genome) {
             Ok(c) => self.run(&c, false).fitness,
             Err(_) => 0.0,
         }
@@ -230,13 +272,13 @@ impl Experiment {
     /// Runs one episode, every robot driven by `controller` (each with its own
     /// neuron states); `record` also keeps the trajectories and measures the
     /// time on road.
-    pub fn run(&self, controller: &SubstrateController, record: bool) -> Episode {
+    pub fn run(&self, controller: &(impl Drive + ?Sized), record: bool) -> Episode {
         self.run_world(controller, record).0
     }
 
     /// The controller side of an episode of this experiment driven by
     /// `controller` (the world starts as [`Experiment::world`]).
-    pub fn rollout(&self, controller: &SubstrateController) -> Rollout {
+    pub fn rollout(&self, controller: &(impl Drive + ?Sized)) -> Rollout {
         Rollout::new(self.robots(), self.sensors.clone(), self.wheels, controller)
     }
 
@@ -250,7 +292,7 @@ impl Experiment {
     }
 
     /// Runs one episode and also returns the final world (for drawing).
-    pub fn run_world(&self, controller: &SubstrateController, record: bool) -> (Episode, World) {
+    pub fn run_world(&self, controller: &(impl Drive + ?Sized), record: bool) -> (Episode, World) {
         let n = self.robots();
         let mut world = self.world.clone();
         if record {
@@ -290,7 +332,7 @@ impl Task for Experiment {
         let Some(measures) = self.measures else {
             return Evaluation::fitness(self.fitness(genome));
         };
-        match self.controller(genome) {
+        match self.robot_controller(genome) {
             Ok(c) => measured_episode(self.setup(), self.rollout(&c), &c, measures),
             Err(_) => crate::descriptors::unfit(measures, self.robots()),
         }
@@ -342,6 +384,30 @@ mod tests {
             assert_eq!(t.len(), exp.robots());
             assert!(t.iter().all(|p| p.len() == exp.steps() as usize + 1));
         }
+    }
+
+    #[test]
+    fn a_strategy_measures_es_hyperneat_controllers_too() {
+        let mut config = Config::default();
+        config.experiment.steps = 100;
+        config.substrate.kind = SubstrateKind::EsHyperneat;
+        config.strategy.kind = crate::strategy_config::StrategyKind::Nsga2;
+        let exp = paper_experiment(&config);
+        let pop = Population::new(config.neat.clone(), exp.cppn_spec(), 5).unwrap();
+        let ctx = EvalContext {
+            generation: 0,
+            index: 0,
+            seed: 0,
+        };
+        let mut moved = 0;
+        for g in pop.genomes().iter().take(10) {
+            let e = exp.evaluate(g, &ctx);
+            // The measured episode is the plain one: same fitness, plus metrics.
+            assert_eq!(e.fitness, exp.fitness(g));
+            assert_eq!(e.metrics.len(), exp.metric_names().len());
+            moved += usize::from(e.fitness > 0.0);
+        }
+        assert!(moved > 0, "no ES controller drove: were they decoded?");
     }
 
     #[test]

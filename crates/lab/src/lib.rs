@@ -32,6 +32,8 @@ pub mod behaviour;
 pub mod config;
 pub mod descriptors;
 pub mod error;
+pub mod es_config;
+pub mod es_controller;
 pub mod evolve;
 pub mod experiment;
 pub mod fitness;

@@ -9,6 +9,61 @@ use vivae_sim::World;
 use crate::sensors::{SensorSheet, read_sheets};
 use crate::substrate::WheelNeurons;
 
+/// A controller that drives every robot of an episode with one set of
+/// weights and one state per robot: the dense polar sheet
+/// ([`SubstrateController`]) or an ES network
+/// ([`EsController`](crate::es_controller::EsController)).
+pub trait Drive {
+    /// Inputs per robot.
+    fn num_inputs(&self) -> usize;
+    /// Outputs per robot.
+    fn num_outputs(&self) -> usize;
+    /// Zero states for `robots` robots.
+    fn robot_states(&self, robots: usize) -> RobotStates;
+    /// One update of every robot: `inputs` and `outputs` hold the robots one
+    /// after the other. Allocation-free.
+    fn step_robots(&self, states: &mut RobotStates, inputs: &[f64], outputs: &mut [f64]);
+    /// Which outputs drive the wheels when they are not the substrate's wheel neurons.
+    fn wheel_outputs(&self) -> Option<WheelNeurons> {
+        None
+    }
+}
+
+/// Every robot's neuron states, of the kind of controller that made them.
+#[derive(Debug, Clone)]
+pub enum RobotStates {
+    /// The dense sheet's batched state.
+    Polar(BatchState),
+    /// An ES network's node values and scratch, robot after robot.
+    Es {
+        /// Node values.
+        values: Vec<f64>,
+        /// Scratch of the synchronous update.
+        next: Vec<f64>,
+    },
+}
+
+impl Drive for SubstrateController {
+    fn num_inputs(&self) -> usize {
+        Network::num_inputs(self)
+    }
+
+    fn num_outputs(&self) -> usize {
+        Network::num_outputs(self)
+    }
+
+    fn robot_states(&self, robots: usize) -> RobotStates {
+        RobotStates::Polar(self.batch_state(robots))
+    }
+
+    fn step_robots(&self, states: &mut RobotStates, inputs: &[f64], outputs: &mut [f64]) {
+        let RobotStates::Polar(states) = states else {
+            panic!("a polar controller steps polar states (Rollout::new built them)");
+        };
+        self.activate_batch(states, inputs, outputs);
+    }
+}
+
 /// The controller side of an episode in progress: every robot's neuron
 /// states and the buffers between sensors, controller and wheels. The world
 /// is the caller's, handed to [`Rollout::step`].
@@ -20,7 +75,7 @@ use crate::substrate::WheelNeurons;
 pub struct Rollout {
     sensors: Vec<SensorSheet>,
     wheels: WheelNeurons,
-    states: BatchState,
+    states: RobotStates,
     inputs: Vec<f64>,
     outputs: Vec<f64>,
     controls: Vec<[f64; 2]>,
@@ -35,13 +90,13 @@ impl Rollout {
         robots: usize,
         sensors: Vec<SensorSheet>,
         wheels: WheelNeurons,
-        controller: &SubstrateController,
+        controller: &(impl Drive + ?Sized),
     ) -> Rollout {
         let n = robots;
         Rollout {
             sensors,
-            wheels,
-            states: controller.batch_state(n),
+            wheels: controller.wheel_outputs().unwrap_or(wheels),
+            states: controller.robot_states(n),
             inputs: vec![0.0; n * controller.num_inputs()],
             outputs: vec![0.0; n * controller.num_outputs()],
             controls: vec![[0.0; 2]; n],
@@ -55,7 +110,7 @@ impl Rollout {
     pub fn step(
         &mut self,
         world: &mut World,
-        controller: &SubstrateController,
+        controller: &(impl Drive + ?Sized),
         manual: Option<(usize, [f64; 2])>,
     ) {
         let (ni, nn) = (controller.num_inputs(), controller.num_outputs());
@@ -64,7 +119,7 @@ impl Rollout {
                 read_sheets(&self.sensors, world, i, inputs);
             }
         }
-        controller.activate_batch(&mut self.states, &self.inputs, &mut self.outputs);
+        controller.step_robots(&mut self.states, &self.inputs, &mut self.outputs);
         let wheels = self.wheels;
         for (c, out) in self.controls.iter_mut().zip(self.outputs.chunks_exact(nn)) {
             *c = [out[wheels.left], out[wheels.right]];
@@ -79,8 +134,8 @@ impl Rollout {
     }
 
     /// Back to the start: every neuron state and output zero (the world is the caller's to reset).
-    pub fn reset(&mut self, controller: &SubstrateController) {
-        self.states = controller.batch_state(self.controls.len());
+    pub fn reset(&mut self, controller: &(impl Drive + ?Sized)) {
+        self.states = controller.robot_states(self.controls.len());
         self.outputs.fill(0.0);
         self.controls.fill([0.0; 2]);
         self.steps = 0;

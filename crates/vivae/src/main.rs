@@ -153,6 +153,10 @@ struct Overrides {
     /// How the training resolutions' fitnesses combine: mean (default) or min.
     #[arg(long, value_name = "mean|min")]
     train_aggregate: Option<vivae_lab::config::Aggregate>,
+    /// Substrate kind: polar (the dense neuron sheet, the paper's) or
+    /// es-hyperneat (hidden neurons placed by the CPPN; keys in [substrate.es]).
+    #[arg(long, value_name = "polar|es-hyperneat")]
+    substrate: Option<vivae_lab::es_controller::SubstrateKind>,
     #[command(flatten)]
     wiring: Wiring,
     /// Search strategy (strategy.kind; default neat, the paper's).
@@ -377,6 +381,9 @@ fn apply_overrides(config: &mut Config, o: &Overrides) -> anyhow::Result<()> {
     }
     if let Some(a) = o.train_aggregate {
         config.substrate.train_aggregate = a;
+    }
+    if let Some(k) = o.substrate {
+        config.substrate.kind = k;
     }
     if let Some(b) = o.wiring.normalize_by {
         config.substrate.normalize_by = b;
@@ -935,7 +942,7 @@ fn cmd_replay(args: ReplayArgs) -> anyhow::Result<ExitCode> {
         Experiment::new(&config, &scenario.scenario).map_err(vivae_lab::Error::from)?;
     // Checked before anything is written: a genome that does not fit is bad input.
     experiment
-        .controller(&champion.genome)
+        .robot_controller(&champion.genome)
         .map_err(|e| vivae_lab::Error::Genome {
             path: args.source.clone(),
             reason: format!("the genome's {e}"),

@@ -45,7 +45,7 @@ pub fn trajectory_figure(
     dir: &Path,
     name: &str,
 ) -> Result<Episode> {
-    let controller = experiment.controller(genome)?;
+    let controller = experiment.robot_controller(genome)?;
     let (episode, world) = experiment.run_world(&controller, true);
     let on_road = episode
         .on_road
@@ -104,18 +104,13 @@ pub fn finish_run(run: &Run) -> Result<RunSummary> {
     write_figure(&dir, "convergence", &convergence.svg, &convergence.png)?;
     archive_figure(run, &dir)?;
 
-    let controller = experiment.controller(&champion.genome)?;
+    let controller = experiment.robot_controller(&champion.genome)?;
     let options = crate::report_html::network_options(
         champion.generation,
         champion.fitness,
         run.config().hyperneat.amplitude,
     );
-    let network = figures::network::render_sheets(
-        experiment.substrate_spec(),
-        &figures::network::FigureSheet::all(experiment.sensors()),
-        &controller,
-        &options,
-    )?;
+    let network = figures::network::render_robot(experiment, &controller, &options)?;
     drop(controller);
     write_figure(&dir, "network", &network.svg, &network.png)?;
     // The report shows the same episodes and network: reuse them rather than run them again.

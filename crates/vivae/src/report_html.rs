@@ -147,7 +147,7 @@ fn episode(
     let run = match recorded {
         Some(e) => e,
         None => {
-            ran = experiment.run(&experiment.controller(genome)?, true);
+            ran = experiment.run(&experiment.robot_controller(genome)?, true);
             &ran
         }
     };
@@ -314,10 +314,9 @@ pub fn build_reusing(dir: &Path, reuse: &Reuse<'_>) -> vivae_lab::Result<String>
         .map_err(vivae_lab::Error::from)?;
     let network_svg = match &reuse.network_svg {
         Some(svg) => svg.clone(),
-        None => network::figure_svg_sheets(
-            experiment.substrate_spec(),
-            &network::FigureSheet::all(experiment.sensors()),
-            &experiment.controller(&champion.genome)?,
+        None => network::figure_svg_robot(
+            &experiment,
+            &experiment.robot_controller(&champion.genome)?,
             &network_options(
                 champion.generation,
                 champion.fitness,

@@ -131,6 +131,40 @@ impl SparseNetwork {
         self.recurrent
     }
 
+    /// Number of nodes (inputs, outputs, hidden): the length of a state for [`SparseNetwork::activate_in`].
+    pub fn num_nodes(&self) -> usize {
+        self.num_inputs + self.num_outputs + self.hidden.len()
+    }
+
+    /// One activation as [`Network::activate`] does it, but on the node
+    /// states `values` and scratch `next` (each [`SparseNetwork::num_nodes`]
+    /// long, zero at the start) instead of the network's own: one network's
+    /// weights can then drive many robots, each with its own state.
+    pub fn activate_in(
+        &self,
+        values: &mut [f64],
+        next: &mut [f64],
+        inputs: &[f64],
+        outputs: &mut [f64],
+    ) {
+        assert_eq!(inputs.len(), self.num_inputs, "one value per input");
+        assert_eq!(outputs.len(), self.num_outputs, "one value per output");
+        assert_eq!(values.len(), self.num_nodes(), "one state per node");
+        assert_eq!(next.len(), self.num_nodes(), "one scratch value per node");
+        values[..self.num_inputs].copy_from_slice(inputs);
+        if self.recurrent {
+            for &node in &self.order {
+                next[node] = bipolar_sigmoid(self.net_input(node, values));
+            }
+            values[self.num_inputs..].copy_from_slice(&next[self.num_inputs..]);
+        } else {
+            for &node in &self.order {
+                values[node] = bipolar_sigmoid(self.net_input(node, values));
+            }
+        }
+        outputs.copy_from_slice(&values[self.num_inputs..self.num_inputs + self.num_outputs]);
+    }
+
     /// Sum of `bias + Σ w·x` into node `node`, the inputs of the links read from `values`.
     #[inline]
     fn net_input(&self, node: usize, values: &[f64]) -> f64 {
@@ -177,24 +211,11 @@ impl Network for SparseNetwork {
     }
 
     fn activate(&mut self, inputs: &[f64], outputs: &mut [f64]) {
-        assert_eq!(inputs.len(), self.num_inputs, "one value per input");
-        assert_eq!(outputs.len(), self.num_outputs, "one value per output");
         let mut values = std::mem::take(&mut self.values);
-        values[..self.num_inputs].copy_from_slice(inputs);
-        if self.recurrent {
-            let mut next = std::mem::take(&mut self.next);
-            for &node in &self.order {
-                next[node] = bipolar_sigmoid(self.net_input(node, &values));
-            }
-            values[self.num_inputs..].copy_from_slice(&next[self.num_inputs..]);
-            self.next = next;
-        } else {
-            for &node in &self.order {
-                values[node] = bipolar_sigmoid(self.net_input(node, &values));
-            }
-        }
-        outputs.copy_from_slice(&values[self.num_inputs..self.num_inputs + self.num_outputs]);
+        let mut next = std::mem::take(&mut self.next);
+        self.activate_in(&mut values, &mut next, inputs, outputs);
         self.values = values;
+        self.next = next;
     }
 
     fn reset(&mut self) {

@@ -10,12 +10,12 @@ use std::fmt::Write as _;
 
 use serde::Deserialize;
 use serde_json::{Value, json};
-use vivae_neat::hyperneat::SubstrateController;
 use vivae_sim::{DVec2, Scenario, Sensor, World};
 
 use super::source::{RunSnapshot, Source};
 use crate::report_html::SceneData;
 use vivae_lab::config::Config;
+use vivae_lab::es_controller::RobotController;
 use vivae_lab::experiment::Experiment;
 use vivae_lab::io::one_line;
 use vivae_lab::rollout::Rollout;
@@ -136,7 +136,7 @@ pub(crate) struct Sim {
     /// run's newer champion does not change it until the page asks.
     driving_generation: Option<u32>,
     /// The chosen genome's controller and the robots' side of the episode.
-    driving: Option<(SubstrateController, Rollout)>,
+    driving: Option<(RobotController, Rollout)>,
     manual: Option<usize>,
     keys: Keys,
     selected: usize,
@@ -257,7 +257,7 @@ impl Sim {
             Some((genome, label, generation)) => {
                 // Decoding a large substrate takes a while: not on the async workers' time.
                 let controller =
-                    tokio::task::block_in_place(|| self.experiment.controller(&genome))
+                    tokio::task::block_in_place(|| self.experiment.robot_controller(&genome))
                         .map_err(|e| format!("the genome's {e}"))?;
                 let rollout = self.experiment.rollout(&controller);
                 self.driving = Some((controller, rollout));
@@ -645,7 +645,8 @@ impl Sim {
                 );
             }
             s.push_str(r#"],"neurons":["#);
-            if let Some((_, rollout)) = &self.driving {
+            // The page draws the dense sheet's neurons; an ES network has none there.
+            if let Some((RobotController::Polar(_), rollout)) = &self.driving {
                 for (k, v) in rollout.outputs(i).iter().enumerate() {
                     let _ = write!(s, "{}{:.4}", if k > 0 { "," } else { "" }, v);
                 }

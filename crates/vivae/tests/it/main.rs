@@ -16,6 +16,8 @@ mod common;
 mod compare_refuses_an_impossible_wall_time;
 mod compare_summarises_runs_by_group;
 mod corrupt_checkpoint_is_refused;
+mod es_hyperneat_runs_resume_identically_and_refuse_bad_keys;
+mod es_network_figure_draws_hidden_neurons_where_they_are;
 mod evaluation_is_thread_count_independent;
 mod every_strategy_resumes_bit_identical;
 mod finished_run_and_retrain_neurons_only;

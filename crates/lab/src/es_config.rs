@@ -1,0 +1,127 @@
+//! The substrate kind and the ES-HyperNEAT keys of a run's config
+//! (`substrate.kind`, `[substrate.es]`); what they build is
+//! [`crate::es_controller`].
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+use vivae_neat::hyperneat::es::EsParams;
+use vivae_neat::hyperneat::{HyperError, HyperParams};
+
+/// Which substrate a run's CPPNs are decoded into.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "kebab-case")]
+pub enum SubstrateKind {
+    /// The dense polar neuron sheet (the paper's).
+    #[default]
+    Polar,
+    /// ES-HyperNEAT: hidden neurons placed by the CPPN between sensors and wheels.
+    EsHyperneat,
+}
+
+impl SubstrateKind {
+    /// Whether this is the default, [`SubstrateKind::Polar`].
+    pub fn is_polar(&self) -> bool {
+        *self == SubstrateKind::Polar
+    }
+}
+
+impl std::str::FromStr for SubstrateKind {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<SubstrateKind, String> {
+        match s {
+            "polar" => Ok(SubstrateKind::Polar),
+            "es-hyperneat" => Ok(SubstrateKind::EsHyperneat),
+            other => Err(format!("'{other}': expected polar or es-hyperneat")),
+        }
+    }
+}
+
+/// ES-HyperNEAT parameters of a run (`[substrate.es]`); the weight
+/// expression (threshold, amplitude) is `[hyperneat]`'s.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct EsConfig {
+    /// Quadtree levels every square is divided to around each explored node
+    /// (3: an 8×8 grid, the paper's initial resolution).
+    ///
+    /// Paper: 3 (Risi & Stanley 2012, as PUREPLES and MultiNEAT read it).
+    pub initial_depth: u32,
+    /// Deepest quadtree level a square with varying weights is divided to (at most 10).
+    ///
+    /// Paper: 3.
+    pub max_depth: u32,
+    /// A square is divided further (up to `max_depth`) when the variance of its
+    /// four children's CPPN weights exceeds this.
+    ///
+    /// Paper: 0.03.
+    pub division_threshold: f64,
+    /// Pruning descends into a square whose leaves' weight variance exceeds this.
+    ///
+    /// Paper: 0.03.
+    pub variance_threshold: f64,
+    /// A point becomes a hidden neuron (and expresses a link) when its weight
+    /// differs from its neighbours' on both sides, along x or y, by more than this.
+    ///
+    /// Paper: 0.3.
+    pub band_threshold: f64,
+    /// Rounds of discovery outward from the hidden neurons just found (at most 16).
+    ///
+    /// Paper: 1.
+    pub iteration_level: u32,
+    /// Whether links may run in any direction (a recurrent controller, like the
+    /// dense sheet, the default); `false` keeps only links going forward
+    /// (source y < target y), a feed-forward net as in the paper's tasks.
+    ///
+    /// Example: false.
+    pub recurrent: bool,
+}
+
+impl Default for EsConfig {
+    fn default() -> Self {
+        let p = EsParams::default();
+        EsConfig {
+            initial_depth: p.initial_depth,
+            max_depth: p.max_depth,
+            division_threshold: p.division_threshold,
+            variance_threshold: p.variance_threshold,
+            band_threshold: p.band_threshold,
+            iteration_level: p.iteration_level,
+            recurrent: true,
+        }
+    }
+}
+
+impl EsConfig {
+    /// Whether every key has its default (the section is then not written).
+    pub fn is_default(&self) -> bool {
+        *self == EsConfig::default()
+    }
+
+    /// The library's parameters, weights expressed by `expression`.
+    pub fn params(&self, expression: HyperParams) -> EsParams {
+        EsParams {
+            initial_depth: self.initial_depth,
+            max_depth: self.max_depth,
+            division_threshold: self.division_threshold,
+            variance_threshold: self.variance_threshold,
+            band_threshold: self.band_threshold,
+            iteration_level: self.iteration_level,
+            recurrent: self.recurrent,
+            expression,
+        }
+    }
+
+    /// Checks every key; the message names it (`substrate.es.KEY = V: why`).
+    pub fn validate(&self) -> Result<(), String> {
+        match self.params(HyperParams::default()).validate() {
+            Ok(()) => Ok(()),
+            Err(HyperError::InvalidParam {
+                field,
+                value,
+                reason,
+            }) => Err(format!("substrate.es.{field} = {value}: {reason}")),
+            Err(other) => Err(format!("substrate.es: {other}")),
+        }
+    }
+}

@@ -1,0 +1,88 @@
+//! `--substrate es-hyperneat` evolves ES-HyperNEAT controllers through the
+//! whole pipeline, a resumed run ends with exactly the files of one that went
+//! straight through, and bad `[substrate.es]` keys are refused in one line.
+
+use crate::common::*;
+
+#[test]
+fn es_hyperneat_run_evolves_and_resumes_identically() {
+    let dir = scratch("es-resume");
+    let config = write_small_config(&dir, 4);
+    let es = ["--substrate", "es-hyperneat"];
+    let full = dir.join("full");
+    evolve(&config, &full, &es);
+    let text = String::from_utf8(read(&full, "config.toml")).unwrap();
+    assert!(text.contains("kind = \"es-hyperneat\""), "{text}");
+    let generations = String::from_utf8(read(&full, "generations.csv")).unwrap();
+    let bests: Vec<f64> = generations
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').nth(1).unwrap().parse().unwrap())
+        .collect();
+    assert_eq!(bests.len(), 4);
+    assert!(bests[3] > 0.0, "no ES controller moved: {generations}");
+
+    let short = dir.join("short");
+    evolve(
+        &config,
+        &short,
+        &["--substrate", "es-hyperneat", "--generations", "2"],
+    );
+    ok(vivae()
+        .args(["resume", "-q", "--generations", "4"])
+        .arg(&short));
+    assert_same_results(&full, &short);
+
+    // The run's champion replays to the fitness it was recorded with.
+    let line = ok(vivae().arg("replay").arg(&full));
+    assert!(line.starts_with("fitness="), "{line}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn bad_es_keys_are_refused_in_one_line() {
+    let dir = scratch("es-bad-keys");
+    for (extra, needle) in [
+        (
+            "[substrate.es]\nmax_depth = 11\n",
+            "substrate.es.max_depth = 11",
+        ),
+        (
+            "[substrate.es]\ninitial_depth = 4\n",
+            "substrate.es.initial_depth = 4",
+        ),
+        (
+            "[substrate.es]\nband_threshold = -0.1\n",
+            "substrate.es.band_threshold",
+        ),
+        (
+            "[substrate.es]\niteration_level = 17\n",
+            "substrate.es.iteration_level",
+        ),
+        ("[substrate.es]\ndepth = 3\n", "depth"),
+        ("[substrate]\nkind = \"es\"\n", "es-hyperneat"),
+        (
+            "[substrate]\nkind = \"es-hyperneat\"\nrecurrence = \"self\"\n",
+            "substrate.recurrence",
+        ),
+        (
+            "[substrate]\nkind = \"es-hyperneat\"\n[distance_sensors]\nrays = 5\n",
+            "distance_sensors.rays",
+        ),
+    ] {
+        let path = dir.join("bad.toml");
+        std::fs::write(&path, format!("{}{extra}", small_config(1))).unwrap();
+        let out = run(vivae()
+            .args(["evolve", "-q", "--config"])
+            .arg(&path)
+            .arg("--out")
+            .arg(dir.join("run")));
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{extra}: {err}");
+        assert_eq!(err.trim().lines().count(), 1, "{extra}: {err}");
+        assert!(err.contains(needle), "{extra}: {err}");
+    }
+    let out = run(vivae().args(["evolve", "-q", "--substrate", "dense"]));
+    assert_eq!(out.status.code(), Some(2));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
