@@ -12,6 +12,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rayon::prelude::*;
 use vivae_lab::config::Config;
+use vivae_lab::es_controller::RobotController;
 use vivae_lab::evolve::{Outcome, Run};
 use vivae_lab::experiment::Experiment;
 use vivae_lab::rundir::{self, GenerationRecord};
@@ -48,6 +49,13 @@ impl DriveTask {
     fn controller_of(&self, genome: &Genome) -> PyResult<SubstrateController> {
         self.experiment()
             .controller(&genome.inner)
+            .map_err(|e| errors::value(format!("the genome's {e}")))
+    }
+
+    /// The controller of either substrate kind (dense sheet or ES-HyperNEAT).
+    fn robot_controller_of(&self, genome: &Genome) -> PyResult<RobotController> {
+        self.experiment()
+            .robot_controller(&genome.inner)
             .map_err(|e| errors::value(format!("the genome's {e}")))
     }
 }
@@ -194,7 +202,7 @@ impl DriveTask {
         fitness: f64,
         generation: u32,
     ) -> PyResult<()> {
-        self.controller_of(genome)?;
+        self.robot_controller_of(genome)?;
         let mut config = rundir::Champion::recorded_config(&self.config);
         // The file may go anywhere: a scenario file it names is named absolutely.
         let absolute = |name: &mut String| {
@@ -235,7 +243,7 @@ impl DriveTask {
     /// `genome`'s episode with every measure: fitness, time on road and the
     /// behaviour measures (collisions, turns, loops, side of the road).
     fn episode<'py>(&self, py: Python<'py>, genome: &Genome) -> PyResult<Bound<'py, PyDict>> {
-        let c = self.controller_of(genome)?;
+        let c = self.robot_controller_of(genome)?;
         let exp = self.experiment();
         let episode = py.detach(|| exp.run(&c, true));
         episode_dict(py, &episode)
@@ -435,7 +443,7 @@ pub fn replay<'py>(
     let scenario = vivae_lab::io::load_scenario(path.as_deref()).map_err(errors::lab)?;
     let experiment = Experiment::new(&config, &scenario.scenario)
         .map_err(|e| errors::lab(vivae_lab::Error::from(e)))?;
-    let controller = experiment.controller(&champion.genome).map_err(|e| {
+    let controller = experiment.robot_controller(&champion.genome).map_err(|e| {
         errors::lab(vivae_lab::Error::Genome {
             path: source.clone(),
             reason: format!("the genome's {e}"),

@@ -28,6 +28,7 @@ pub const OVERRIDES: &[&str] = &[
     "train_neurons",
     "train_sensors",
     "train_aggregate",
+    "substrate",
     "strategy",
     "behaviour",
 ];
@@ -101,6 +102,7 @@ fn apply(c: &mut Config, o: &Bound<'_, PyDict>) -> PyResult<()> {
             "train_neurons" => c.substrate.train_neurons = grids(&key, &v)?,
             "train_sensors" => c.substrate.train_sensors = grids(&key, &v)?,
             "train_aggregate" => c.substrate.train_aggregate = parsed(&key, &v)?,
+            "substrate" => c.substrate.kind = parsed(&key, &v)?,
             "strategy" => c.strategy.kind = parsed(&key, &v)?,
             "behaviour" => c.strategy.behaviour = parsed(&key, &v)?,
             other => {

@@ -183,6 +183,19 @@ def test_evolve_with_a_strategy_writes_what_the_cli_writes(tmp_path, cli, strate
         vivae.evolve(out=tmp_path / "bad", progress=False, strategy="cma-es", **SETTINGS)
 
 
+def test_es_hyperneat_tasks_evaluate_and_replay_as_runs_do(tmp_path):
+    task = vivae.DriveTask(steps=60, population=12, substrate="es-hyperneat")
+    genomes = task.population().ask()
+    fitness = task.evaluate(genomes)
+    assert any(f > 0 for f in fitness)
+    # Episodes drive the ES network too; the dense sheet's arrays do not exist.
+    assert [task.episode(g)["fitness"] for g in genomes] == fitness
+    with pytest.raises(ValueError, match="es-hyperneat"):
+        task.decode(genomes[0])
+    result = vivae.evolve(out=tmp_path / "es", progress=False, substrate="es-hyperneat", **SETTINGS)
+    assert vivae.replay(tmp_path / "es")["fitness"] == result["best"]
+
+
 def test_evolve_reports_each_generation_and_replay_returns_the_measures(tmp_path):
     seen = []
     result = vivae.evolve(out=tmp_path / "run", progress=True, on_generation=seen.append, **SETTINGS)
