@@ -109,9 +109,10 @@ pub struct NeatParams {
     pub stagnation_limit: u32,
     /// When set and the population's best fitness has not risen for this many
     /// generations, only the two best species reproduce, half the population
-    /// each, as mutated copies of their champions (Stanley's "delta coding").
+    /// each, as mutated copies of their champions (Stanley's "delta coding";
+    /// his code uses `dropoff_age` + 5).
     ///
-    /// Unit: generations. Example: 20 (Stanley's `dropoff_age` + 5).
+    /// Unit: generations. Example: 20.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub population_stagnation_limit: Option<u32>,
 }
