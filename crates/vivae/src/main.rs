@@ -899,7 +899,8 @@ fn replay_member(args: &ReplayArgs) -> Option<vivae_lab::strategy_files::Member>
 
 fn cmd_replay(args: ReplayArgs) -> anyhow::Result<ExitCode> {
     let (mut champion, mut config, base) = vivae_lab::rundir::load_genome_source(&args.source)?;
-    if let Some(member) = replay_member(&args) {
+    let member = replay_member(&args);
+    if let Some(member) = member {
         use vivae_lab::strategy_files::read_member;
         (champion.genome, champion.fitness, champion.generation) =
             read_member(&args.source, member)?;
@@ -957,7 +958,7 @@ fn cmd_replay(args: ReplayArgs) -> anyhow::Result<ExitCode> {
     let out = args.out.clone().unwrap_or_else(|| base.join("replay"));
     vivae_lab::io::create_dirs(&out)?;
     let name = report::replay_scenario_name(path.as_deref(), &scenario.text);
-    let replay = report::replay(&experiment, &config, &champion, &name, &out)?;
+    let replay = report::replay(&experiment, &config, &champion, &name, &out, member)?;
     println!(
         "fitness={} on_road={:.4} {}",
         replay.fitness,

@@ -15,6 +15,7 @@ use vivae_lab::evolve::Run;
 use vivae_lab::experiment::{Episode, Experiment};
 use vivae_lab::io::{bad_input, write_atomic};
 use vivae_lab::rundir::{self, Champion, files};
+use vivae_lab::strategy_files::Member;
 use vivae_lab::substrate::PolarGrid;
 
 /// What the end of a run reports.
@@ -231,12 +232,19 @@ pub fn replay(
     champion: &Champion,
     scenario: &str,
     out: &Path,
+    member: Option<Member>,
 ) -> Result<Replay> {
     let s = &config.surface_sensors;
     let n = config.substrate.neurons;
     let safe = vivae_lab::io::safe_file_stem(scenario);
+    // An archive or front member gets its own file and says what it is.
+    let (who, tag) = match member {
+        None => ("Champion".to_string(), String::new()),
+        Some(Member::Elite(cell)) => (format!("Elite of cell {cell}"), format!("-elite{cell}")),
+        Some(Member::Front(i)) => (format!("Front member {i}"), format!("-front{i}")),
+    };
     let name = format!(
-        "replay-{safe}-s{}x{}-n{}x{}{}",
+        "replay-{safe}-s{}x{}-n{}x{}{}{tag}",
         s.rings,
         s.angles,
         n.rings,
@@ -245,7 +253,7 @@ pub fn replay(
     );
     // Short enough that the fitness appended to it fits an 800 px figure.
     let title = format!(
-        "Champion (gen {}) on {scenario}, s{}x{} n{}x{}",
+        "{who} (gen {}) on {scenario}, s{}x{} n{}x{}",
         champion.generation, s.rings, s.angles, n.rings, n.angles
     );
     let episode = trajectory_figure(experiment, &champion.genome, &title, out, &name)?;
