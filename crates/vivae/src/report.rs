@@ -252,9 +252,14 @@ pub fn replay(
         wiring_suffix(config)
     );
     // Short enough that the fitness appended to it fits an 800 px figure.
+    // A front member's generation is not recorded (its line says 0).
+    let generation = match member {
+        Some(Member::Front(_)) => String::new(),
+        _ => format!(" (gen {})", champion.generation),
+    };
     let title = format!(
-        "{who} (gen {}) on {scenario}, s{}x{} n{}x{}",
-        champion.generation, s.rings, s.angles, n.rings, n.angles
+        "{who}{generation} on {scenario}, s{}x{} n{}x{}",
+        s.rings, s.angles, n.rings, n.angles
     );
     let episode = trajectory_figure(experiment, &champion.genome, &title, out, &name)?;
     Ok(Replay {
