@@ -131,16 +131,7 @@ impl Search {
     pub fn fitnesses(&self, evaluations: &[Evaluation]) -> Vec<f64> {
         match self {
             Search::Neat(p) => p.fitnesses(),
-            _ => evaluations
-                .iter()
-                .map(|e| {
-                    if e.fitness.is_finite() {
-                        e.fitness
-                    } else {
-                        0.0
-                    }
-                })
-                .collect(),
+            _ => evaluations.iter().map(Evaluation::finite_fitness).collect(),
         }
     }
 

@@ -23,6 +23,7 @@ pub use observer::{
 };
 pub use stop::{StopCriteria, StopReason};
 pub use strategy::{Batch, Strategy};
+pub(crate) use task::finite_or_zero;
 pub use task::{Evaluation, Evaluator, EvaluatorError, ParallelEvaluator, Task};
 
 use crate::error::NeatError;

@@ -43,7 +43,7 @@
 //!     fn tell(&mut self, told: &[Evaluation]) -> Result<(), NeatError> {
 //!         let given = told.len();
 //!         let [e] = told else { return Err(NeatError::FitnessCount { given, genomes: 1 }) };
-//!         let f = if e.fitness.is_finite() { e.fitness } else { 0.0 };
+//!         let f = e.finite_fitness();
 //!         if self.best.as_ref().is_none_or(|b| f > b.fitness) {
 //!             let genome = self.child[0].clone();
 //!             self.best = Some(BestEver { genome, fitness: f, generation: self.generation });

@@ -25,6 +25,17 @@ impl Evaluation {
             ..Evaluation::default()
         }
     }
+
+    /// The fitness a strategy selects on: non-finite counts as 0.
+    pub fn finite_fitness(&self) -> f64 {
+        finite_or_zero(self.fitness)
+    }
+}
+
+/// `x`, or 0 when it is not finite: how the driver reads a non-finite
+/// fitness or behaviour coordinate.
+pub(crate) fn finite_or_zero(x: f64) -> f64 {
+    if x.is_finite() { x } else { 0.0 }
 }
 
 /// A problem genomes are evaluated on.

@@ -12,8 +12,8 @@ use rand_pcg::Pcg64;
 use serde::{Deserialize, Serialize};
 
 use super::knn::KdTree;
-use super::{Breeding, argmax, check_count, finite_or_zero, invalid, record_best};
-use crate::driver::{Batch, Evaluation, Strategy};
+use super::{Breeding, argmax, check_count, invalid, record_best};
+use crate::driver::{Batch, Evaluation, Strategy, finite_or_zero};
 use crate::error::NeatError;
 use crate::genome::{Genome, GenomeSpec};
 use crate::innovation::InnovationTracker;
@@ -425,10 +425,7 @@ impl Strategy for MapElites {
             let reason = "the behaviour must have as many coordinates as the cells";
             return Err(invalid("behaviour", e.behaviour.len(), reason));
         }
-        let fitness: Vec<f64> = evaluations
-            .iter()
-            .map(|e| finite_or_zero(e.fitness))
-            .collect();
+        let fitness: Vec<f64> = evaluations.iter().map(Evaluation::finite_fitness).collect();
         let mut inserted = 0;
         for ((genome, e), &f) in s.batch.iter().zip(evaluations).zip(&fitness) {
             let behaviour: Vec<f64> = e.behaviour.iter().map(|&x| finite_or_zero(x)).collect();

@@ -67,11 +67,6 @@ impl<R: Rng + ?Sized> Breeding<'_, R> {
     }
 }
 
-/// Non-finite fitness counts as 0, as everywhere in the driver.
-pub(crate) fn finite_or_zero(f: f64) -> f64 {
-    if f.is_finite() { f } else { 0.0 }
-}
-
 /// One evaluation per genome, or [`NeatError::FitnessCount`].
 pub(crate) fn check_count(given: usize, genomes: usize) -> Result<(), NeatError> {
     if given == genomes {

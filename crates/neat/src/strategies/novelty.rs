@@ -16,8 +16,8 @@
 use serde::{Deserialize, Serialize};
 
 use super::knn::{KdTree, Nearest};
-use super::{check_count, finite_or_zero, invalid, record_best};
-use crate::driver::{Batch, Evaluation, Strategy};
+use super::{check_count, invalid, record_best};
+use crate::driver::{Batch, Evaluation, Strategy, finite_or_zero};
 use crate::error::NeatError;
 use crate::genome::Genome;
 use crate::population::{BestEver, GenerationStats, Population};
@@ -300,10 +300,7 @@ impl Strategy for NoveltySearch {
     fn tell(&mut self, evaluations: &[Evaluation]) -> Result<(), NeatError> {
         check_count(evaluations.len(), self.0.population.genomes().len())?;
         let behaviours = self.behaviours(evaluations)?;
-        let fitness: Vec<f64> = evaluations
-            .iter()
-            .map(|e| finite_or_zero(e.fitness))
-            .collect();
+        let fitness: Vec<f64> = evaluations.iter().map(Evaluation::finite_fitness).collect();
         let novelty = self.sparseness(&behaviours);
         let added = self.archive_novel(&behaviours, &novelty);
         let scores = selection_scores(&novelty, &fitness, self.0.novelty.fitness_weight);

@@ -17,7 +17,7 @@ use rand::{RngExt, SeedableRng};
 use rand_pcg::Pcg64;
 use serde::{Deserialize, Serialize};
 
-use super::{Breeding, argmax, check_count, finite_or_zero, invalid, record_best};
+use super::{Breeding, argmax, check_count, invalid, record_best};
 use crate::driver::{Batch, Evaluation, Strategy};
 use crate::error::NeatError;
 use crate::genome::{Genome, GenomeSpec};
@@ -397,10 +397,7 @@ impl Strategy for Nsga2 {
             let reason = "an objective names a metric the evaluation does not have";
             objectives.push(o.ok_or_else(|| invalid("objectives", e.metrics.len(), reason))?);
         }
-        let fitness: Vec<f64> = evaluations
-            .iter()
-            .map(|e| finite_or_zero(e.fitness))
-            .collect();
+        let fitness: Vec<f64> = evaluations.iter().map(Evaluation::finite_fitness).collect();
         record_best(&mut s.best, &s.batch, &fitness, s.generation);
         s.told = Some(Told {
             objectives,
