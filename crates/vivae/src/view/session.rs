@@ -683,15 +683,19 @@ mod tests {
     /// Runs `f` on a fresh simulation of the default source, inside a Tokio
     /// runtime (decoding uses `block_in_place`).
     fn with_sim(f: impl FnOnce(&mut Sim, &Source, &RunSnapshot)) {
-        let source = Source::load(None, None).unwrap();
+        with_sim_of(&Source::load(None, None).unwrap(), f);
+    }
+
+    /// [`with_sim`] on `source`.
+    fn with_sim_of(source: &Source, f: impl FnOnce(&mut Sim, &Source, &RunSnapshot)) {
         let snap = source.snapshot();
         let rt = tokio::runtime::Builder::new_multi_thread()
             .worker_threads(1)
             .build()
             .unwrap();
         rt.block_on(async {
-            let mut sim = Sim::new(&source, &snap).unwrap();
-            f(&mut sim, &source, &snap);
+            let mut sim = Sim::new(source, &snap).unwrap();
+            f(&mut sim, source, &snap);
         });
     }
 
@@ -762,19 +766,13 @@ mod tests {
             .collect();
         assert_eq!(source.unusable, [None, Some("no robots".to_string())]);
         assert!(source.unusable_note().unwrap().contains("bare.svg"));
-        let snap = source.snapshot();
-        let rt = tokio::runtime::Builder::new_multi_thread()
-            .worker_threads(1)
-            .build()
-            .unwrap();
-        rt.block_on(async {
-            let mut sim = Sim::new(&source, &snap).unwrap();
-            let scene = sim.scene_msg(&source);
+        with_sim_of(&source, |sim, source, snap| {
+            let scene = sim.scene_msg(source);
             let err = sim
-                .handle(r#"{"type":"scenario","index":1}"#, &source, &snap)
+                .handle(r#"{"type":"scenario","index":1}"#, source, snap)
                 .unwrap_err();
             assert_eq!(err, "scenario bare.svg cannot be driven: no robots");
-            assert_eq!(sim.scene_msg(&source), scene);
+            assert_eq!(sim.scene_msg(source), scene);
         });
     }
 
