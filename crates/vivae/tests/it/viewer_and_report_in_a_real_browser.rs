@@ -94,7 +94,9 @@ fn report_html_animates_from_file_with_networking_off() {
     b.wait_for(
         &format!(
             // Past the wrap-around to step 0 too, so that the slider is read mid-episode.
-            "return (window.vivaeReport.t > {} || window.vivaeReport.t < {}) && document.getElementById('slider').value !== '0';",
+            // The slider value is kept as seen: the episode loops, so a later read may be 0 again.
+            "window.seenSlider = document.getElementById('slider').value;
+             return (window.vivaeReport.t > {} || window.vivaeReport.t < {}) && window.seenSlider !== '0';",
             t1 + 20,
             t1
         ),
@@ -102,7 +104,7 @@ fn report_html_animates_from_file_with_networking_off() {
     );
     let shot2 = b.save_screenshot(&shots().join("report-2.png"));
     assert_ne!(shot1, shot2, "the animation did not change the picture");
-    let slider = b.eval("return document.getElementById('slider').value;");
+    let slider = b.eval("return window.seenSlider;");
     assert_ne!(slider, "0");
     // Three episodes: champion, generation 1 and generation 10.
     assert_eq!(
