@@ -55,6 +55,8 @@ Options:
   --restart-after G     without velocities: start a fresh population (seed
                         S ^ k << 32 for attempt k) after G generations without a
                         solution; every attempt's evaluations count
+  --start-angle D       without velocities: the long pole starts at D degrees
+                        (default 4.5, Gruau's; Gomez et al. 2008 use 4.0)
   --max-generations G   generations (of all attempts) before a run counts as unsolved
                         (default 200 with --markov, 1000 with --small, else 150)
   --set FIELD=JSON      override one NeatParams field (repeatable), e.g. --set population_size=500
@@ -166,9 +168,10 @@ fn balance(net: &mut dyn Network, markov: bool, start: State, max_steps: u32) ->
     (max_steps, last.iter().sum())
 }
 
-fn start_state(markov: bool) -> State {
-    // Stanley: long pole at 0.07 rad (Markov); Gruau: 4.5° (non-Markov).
-    let theta = if markov { 0.07 } else { 4.5f64.to_radians() };
+/// The start state: the long pole at `degrees` (without velocities; Gruau's 4.5°
+/// by default) or at Stanley's 0.07 rad (Markov), all else 0.
+fn start_state(markov: bool, degrees: f64) -> State {
+    let theta = if markov { 0.07 } else { degrees.to_radians() };
     [0.0, 0.0, theta, 0.0, 0.0, 0.0]
 }
 
@@ -180,13 +183,13 @@ fn network(g: &Genome, markov: bool) -> Box<dyn Network> {
     }
 }
 
-fn fitness(g: &Genome, markov: bool) -> f64 {
+fn fitness(g: &Genome, markov: bool, start: State) -> f64 {
     let mut net = network(g, markov);
     if markov {
-        balance(net.as_mut(), true, start_state(true), SUCCESS_STEPS).0 as f64
+        balance(net.as_mut(), true, start, SUCCESS_STEPS).0 as f64
     } else {
         // Gruau et al. (1996): 0.1·t/1000 + 0.9·f2, f2 = 0.75 / wiggle if t ≥ 100.
-        let (t, wiggle) = balance(net.as_mut(), false, start_state(false), 1000);
+        let (t, wiggle) = balance(net.as_mut(), false, start, 1000);
         let f1 = t as f64 / 1000.0;
         let f2 = if t < 100 {
             0.0
@@ -318,11 +321,10 @@ impl ChampionRotation {
     }
 }
 
-/// The generalisation score of `g` if it balances 100,000 steps from the start state.
-fn long_run_then_generalisation(g: &Genome) -> Option<usize> {
+/// The generalisation score of `g` if it balances 100,000 steps from `start`.
+fn long_run_then_generalisation(g: &Genome, start: State) -> Option<usize> {
     let mut net = RecurrentNetwork::from_genome(g);
-    (balance(&mut net, false, start_state(false), SUCCESS_STEPS).0 == SUCCESS_STEPS)
-        .then(|| generalisation(g))
+    (balance(&mut net, false, start, SUCCESS_STEPS).0 == SUCCESS_STEPS).then(|| generalisation(g))
 }
 
 /// When a run without velocities counts as solved.
@@ -353,18 +355,19 @@ fn solution(
     pop: &Population,
     criterion: Criterion,
     rotation: &mut ChampionRotation,
+    start: State,
 ) -> Option<(usize, usize)> {
     match criterion {
         Criterion::Stanley => {
             let i = rotation.pick(pop)?;
-            let score = long_run_then_generalisation(&pop.genomes()[i])?;
+            let score = long_run_then_generalisation(&pop.genomes()[i], start)?;
             (score >= 200).then_some((i, score))
         }
         Criterion::Gomez => {
             let f = pop.fitnesses();
             // The best genome, lowest index among ties.
             let i = (0..f.len()).max_by(|&a, &b| f[a].total_cmp(&f[b]).then(b.cmp(&a)))?;
-            long_run_then_generalisation(&pop.genomes()[i]).map(|score| (i, score))
+            long_run_then_generalisation(&pop.genomes()[i], start).map(|score| (i, score))
         }
     }
 }
@@ -378,6 +381,8 @@ struct Setup {
     restart_after: Option<u32>,
     /// Generations of all attempts together before the run counts as unsolved.
     max_generations: u32,
+    /// The state every trial but the generalisation starts begins from.
+    start: State,
 }
 
 /// One population evolved for at most `generations`: the result if solved, else
@@ -389,7 +394,7 @@ fn attempt(setup: &Setup, seed: u64, generations: u32) -> Result<RunResult, usiz
     let mut rotation = ChampionRotation::default();
     let mut spent = 0;
     for _ in 0..generations {
-        pop.evaluate(|g, _| fitness(g, markov));
+        pop.evaluate(|g, _| fitness(g, markov, setup.start));
         let done = spent;
         spent += pop.genomes().len();
         if markov {
@@ -401,7 +406,8 @@ fn attempt(setup: &Setup, seed: u64, generations: u32) -> Result<RunResult, usiz
                     generalisation: None,
                 });
             }
-        } else if let Some((i, score)) = solution(&pop, setup.criterion, &mut rotation) {
+        } else if let Some((i, score)) = solution(&pop, setup.criterion, &mut rotation, setup.start)
+        {
             return Ok(RunResult {
                 evals: Some(spent),
                 hidden: pop.genomes()[i].num_hidden(),
@@ -466,10 +472,15 @@ fn setup(args: &common::cli::Args) -> Setup {
             "--restart-after needs a whole number > 0, got `{v}`"
         )),
     });
-    if markov && (small || criterion != Criterion::Stanley || restart_after.is_some()) {
+    let degrees = option(args, "--start-angle", None, |v| match v.parse::<f64>() {
+        Ok(d) if (0.0..36.0).contains(&d) => Ok(Some(d)),
+        _ => Err(format!("--start-angle needs degrees in [0, 36), got `{v}`")),
+    });
+    let own = small || criterion != Criterion::Stanley || restart_after.is_some();
+    if markov && (own || degrees.is_some()) {
         fail(
             "pole",
-            "--small, --criterion and --restart-after are settings of the task without velocities; drop --markov",
+            "--small, --criterion, --restart-after and --start-angle are settings of the task without velocities; drop --markov",
         );
     }
     let base = if small {
@@ -491,11 +502,12 @@ fn setup(args: &common::cli::Args) -> Setup {
         criterion,
         restart_after,
         max_generations,
+        start: start_state(markov, degrees.unwrap_or(4.5)),
     }
 }
 
 fn main() {
-    let options = ["--criterion", "--restart-after"];
+    let options = ["--criterion", "--restart-after", "--start-angle"];
     let Some(args) = args_or_exit("pole", USAGE, &["--markov", "--small"], &options) else {
         return;
     };
