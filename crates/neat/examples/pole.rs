@@ -18,6 +18,11 @@
 //!
 //! Evaluations are counted up to and including the solving genome (non-Markov: the
 //! whole generation in which it was found, as Stanley counted).
+//!
+//! For Gomez et al. (2008)'s damping-fitness comparison, `--criterion gomez` tests
+//! the generation's best genome for 100,000 steps only, `--start-angle 4.0` starts
+//! the long pole at their 4.0°, and `--restart-after G` restarts a population stuck
+//! for G generations, counting every attempt's evaluations.
 
 mod common;
 use common::{RunResult, apply_overrides, args_or_exit, fail, summarize};
