@@ -111,7 +111,8 @@ def main():
         g = cfg.genome_config
         g.conn_add_prob = g.conn_delete_prob = g.node_add_prob = g.node_delete_prob = 0.0
     elif sys.argv[4:]:
-        sys.exit(f"efficacy.py: unknown argument {sys.argv[4]!r} (only `fixed`)")
+        print(f"efficacy.py: unknown argument {sys.argv[4]!r} (only `fixed`)", file=sys.stderr)
+        sys.exit(2)
     make = neat.nn.FeedForwardNetwork.create if ff else neat.nn.RecurrentNetwork.create
     bests, evals, secs = [], [], 0.0
     for r in range(runs):
