@@ -1,6 +1,11 @@
 """neat-python 2.0 on the efficacy tasks of examples/{multiplexer,sinewave,prey_capture}.rs.
 
-python efficacy.py TASK SECONDS RUNS   (TASK: multiplexer | sinewave | prey_capture)
+python efficacy.py TASK SECONDS RUNS [fixed]   (TASK: multiplexer | sinewave | prey_capture)
+
+`fixed` turns off every structural mutation (add/delete node and connection), so
+every network keeps the full input-to-output start topology: the like-for-like
+speed measurement, run beside the Rust examples with
+`--set add_node_probability=0 --set add_link_probability=0`.
 
 Same task definitions as the Rust examples' common/*_task.rs (SharpNEAT's), same
 population sizes, fixed wall-clock runs on one process; prints the same summary line.
@@ -102,6 +107,12 @@ def main():
     cfg.genome_config.input_keys = [-i - 1 for i in range(nin)]
     cfg.genome_config.output_keys = list(range(nout))
     cfg.genome_config.feed_forward = ff
+    if sys.argv[4:] == ["fixed"]:
+        g = cfg.genome_config
+        g.conn_add_prob = g.conn_delete_prob = g.node_add_prob = g.node_delete_prob = 0.0
+    elif sys.argv[4:]:
+        print(f"efficacy.py: unknown argument {sys.argv[4]!r} (only `fixed`)", file=sys.stderr)
+        sys.exit(2)
     make = neat.nn.FeedForwardNetwork.create if ff else neat.nn.RecurrentNetwork.create
     bests, evals, secs = [], [], 0.0
     for r in range(runs):
