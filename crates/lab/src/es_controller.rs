@@ -355,9 +355,14 @@ mod tests {
                     expected.push(want);
                 }
                 rollout.step(&mut world, &controller, None);
+                let ni = es.network().num_inputs();
                 for (robot, e) in expected.iter().enumerate() {
                     assert_eq!(rollout.outputs(robot), e);
                     assert_eq!(rollout.controls(robot), *e);
+                    // What the viewer draws: every node, the wheels after the inputs.
+                    let values = rollout.node_values(robot).unwrap();
+                    assert_eq!(values.len(), es.network().num_nodes());
+                    assert_eq!(&values[ni..ni + 2], e);
                 }
             }
         }
@@ -373,7 +378,9 @@ mod tests {
             .unwrap()
             .genomes()[0]
             .clone();
-        assert!(polar.robot_controller(g).unwrap().as_polar().is_some());
+        let dense = polar.robot_controller(g).unwrap();
+        assert!(dense.as_polar().is_some());
+        assert!(polar.rollout(&dense).node_values(0).is_none());
         assert!(es.robot_controller(g).unwrap().as_es().is_some());
         assert!(
             es.controller(g).is_err(),

@@ -147,6 +147,19 @@ impl Rollout {
         &self.outputs[robot * nn..][..nn]
     }
 
+    /// Robot `robot`'s every node value after the last step (inputs, the two
+    /// wheel neurons, then the hidden neurons) when an ES network drives;
+    /// `None` for the dense sheet, whose neurons are [`Rollout::outputs`].
+    pub fn node_values(&self, robot: usize) -> Option<&[f64]> {
+        match &self.states {
+            RobotStates::Es { values, .. } => {
+                let n = values.len() / self.controls.len().max(1);
+                values.get(robot * n..(robot + 1) * n)
+            }
+            RobotStates::Polar(_) => None,
+        }
+    }
+
     /// Robot `robot`'s wheel commands in the last step.
     pub fn controls(&self, robot: usize) -> [f64; 2] {
         self.controls[robot]

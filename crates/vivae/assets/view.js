@@ -75,10 +75,20 @@
     $("scenario").value = m.scenario_index;
     $("sensors").value = m.sensors;
     $("neurons").value = m.neurons;
-    stats.neurons = m.neuron_nodes.length;
+    var net = m.network;
+    stats.neurons = net ? net.nodes.length : m.neuron_nodes.length;
     stats.sensors = m.sensor_nodes.length;
+    stats.hidden = net ? net.hidden : 0;
     $("sensorcount").textContent = m.sensors + " = " + m.sensor_nodes.length + " surface sensors";
-    $("neuroncount").textContent = m.neurons + " = " + m.neuron_nodes.length + " neurons";
+    $("neuroncount").textContent = net
+      ? "ES-HyperNEAT: " + net.hidden + " hidden neurons found, " + net.links + " links"
+      : m.neurons + " = " + m.neuron_nodes.length + " neurons";
+    // The ES plane is a square (neurons may sit behind the robot), the dense sheet a half-disc.
+    $("neuronpanel").height = net ? 280 : 150;
+    $("neuronlegend").lastChild.textContent = net
+      ? " blue \u22121 \u2026 white 0 \u2026 red +1; the ES plane from above (ahead up): grey dots are the sensors, " +
+        "L and R the wheel neurons, the others the hidden neurons where the CPPN put them"
+      : " blue \u22121 \u2026 white 0 \u2026 red +1; L and R are the wheel neurons";
     var rs = $("robot"), keep = rs.value;
     rs.innerHTML = "";
     for (var i = 0; i < m.robots; i++) {
@@ -208,16 +218,60 @@
     });
   }
 
+  // An ES network in its plane [-1, 1]² (x right, y ahead): sensors grey, the
+  // wheel (L, R) and hidden neurons coloured by their activations `values`
+  // (wheels first, as the scene's `network.nodes`).
+  function esPanel(canvas, net, values) {
+    var c = canvas.getContext("2d"), w = canvas.width, h = canvas.height;
+    var half = Math.min(w, h) / 2 - 10, cx = w / 2, cy = h / 2;
+    var at = function (p) { return { x: cx + p[0] * half, y: cy - p[1] * half }; };
+    c.clearRect(0, 0, w, h);
+    c.strokeStyle = "#ccc";
+    c.strokeRect(cx - half, cy - half, 2 * half, 2 * half);
+    c.beginPath();
+    c.moveTo(cx - half, cy); c.lineTo(cx + half, cy);
+    c.moveTo(cx, cy - half); c.lineTo(cx, cy + half);
+    c.stroke();
+    c.fillStyle = "#888";
+    var s = Math.max(0.8, Math.min(2.5, 12 / Math.sqrt(Math.max(net.sensors.length, 1))));
+    net.sensors.forEach(function (p) { var q = at(p); c.fillRect(q.x - s, q.y - s, 2 * s, 2 * s); });
+    var dot = Math.max(2.5, Math.min(6, 0.8 * half / Math.sqrt(Math.max(net.nodes.length, 1))));
+    var dots = net.nodes.map(function (p, i) {
+      var q = at(p);
+      return { x: q.x, y: q.y, v: values && i < values.length ? values[i] : 0 };
+    });
+    VivaeScene.drawDots(c, dots.slice(2), dot, activationColor);
+    VivaeScene.drawDots(c, dots.slice(0, 2), dot + 1.5, activationColor);
+    c.strokeStyle = "#d62728";
+    c.lineWidth = 1.5;
+    c.fillStyle = "#d62728";
+    c.font = "bold 11px sans-serif";
+    dots.slice(0, 2).forEach(function (p, k) {
+      c.beginPath();
+      c.arc(p.x, p.y, dot + 4, 0, 2 * Math.PI);
+      c.stroke();
+      c.fillText(k === 0 ? "L" : "R", p.x - 3, p.y + dot + 15);
+    });
+    c.lineWidth = 1;
+    stats.hiddenDrawn = dots.length - 2;
+  }
+
   function drawPanels() {
     if (!sceneInfo || !frame) { return; }
     var readings = [];
     if (frame.sensors) { for (var k = 2; k < frame.sensors.length; k += 3) { readings.push(frame.sensors[k]); } }
     polarPanel($("sensorpanel"), sceneInfo.sensor_nodes, readings, VivaeScene.readingColor);
-    var marks = {};
-    marks[sceneInfo.wheels[0]] = "L";
-    marks[sceneInfo.wheels[1]] = "R";
-    polarPanel($("neuronpanel"), sceneInfo.neuron_nodes, frame.neurons && frame.neurons.length ? frame.neurons : null,
-      activationColor, marks);
+    var activity = frame.neurons && frame.neurons.length ? frame.neurons : null;
+    stats.activations = activity ? activity.length : 0;
+    if (sceneInfo.network) {
+      esPanel($("neuronpanel"), sceneInfo.network, activity);
+    } else {
+      var marks = {};
+      marks[sceneInfo.wheels[0]] = "L";
+      marks[sceneInfo.wheels[1]] = "R";
+      polarPanel($("neuronpanel"), sceneInfo.neuron_nodes, activity, activationColor, marks);
+      stats.hiddenDrawn = 0;
+    }
     var r = frame.robots[frame.selected];
     if (r) {
       $("robotinfo").textContent = "position " + r.x.toFixed(1) + ", " + r.y.toFixed(1) +

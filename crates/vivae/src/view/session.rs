@@ -18,7 +18,7 @@ use vivae_lab::config::Config;
 use vivae_lab::es_controller::RobotController;
 use vivae_lab::experiment::Experiment;
 use vivae_lab::io::one_line;
-use vivae_lab::rollout::Rollout;
+use vivae_lab::rollout::{Drive, Rollout};
 use vivae_lab::substrate::PolarGrid;
 
 /// Simulation steps per second at speed 1 ("real time").
@@ -250,6 +250,7 @@ impl Sim {
         };
         match found {
             None => {
+                self.scene_dirty |= self.drives_es();
                 self.driving = None;
                 self.driving_generation = None;
                 self.driver = "nobody (drive a robot with the arrow keys)".into();
@@ -260,6 +261,9 @@ impl Sim {
                     tokio::task::block_in_place(|| self.experiment.robot_controller(&genome))
                         .map_err(|e| format!("the genome's {e}"))?;
                 let rollout = self.experiment.rollout(&controller);
+                // An ES network's neurons are where its CPPN put them: the
+                // page gets their places in the scene, once per controller.
+                self.scene_dirty |= controller.as_es().is_some() || self.drives_es();
                 self.driving = Some((controller, rollout));
                 self.driving_generation = Some(generation);
                 self.driver = label;
@@ -269,6 +273,37 @@ impl Sim {
         self.resize_buffers();
         self.dirty = true;
         Ok(())
+    }
+
+    /// Whether an ES network drives (its neurons are not the dense sheet's).
+    fn drives_es(&self) -> bool {
+        matches!(&self.driving, Some((RobotController::Es(_), _)))
+    }
+
+    /// The scene's `network`: for an ES network, the sensors' and then the
+    /// wheel and hidden neurons' places in the CPPN plane `[−1, 1]²` (x right,
+    /// y ahead), in the order of the frames' `neurons`; `null` otherwise.
+    fn network_json(&self) -> Value {
+        let (Some((RobotController::Es(es), _)), Some(setup)) =
+            (&self.driving, self.experiment.es_setup())
+        else {
+            return Value::Null;
+        };
+        let net = es.network();
+        let nodes: Vec<[f64; 2]> = setup
+            .layout
+            .outputs
+            .iter()
+            .chain(net.hidden())
+            .copied()
+            .collect();
+        json!({
+            "kind": "es-hyperneat",
+            "sensors": setup.layout.inputs,
+            "nodes": nodes,
+            "hidden": es.hidden_neurons(),
+            "links": es.expressed_links(),
+        })
     }
 
     fn resize_buffers(&mut self) {
@@ -579,6 +614,7 @@ impl Sim {
             "neuron_nodes": polar(spec.neuron_nodes()),
             "wheels": [wheels.left, wheels.right],
             "robots": self.world.robots().len(),
+            "network": self.network_json(),
         })
         .to_string()
     }
@@ -645,11 +681,17 @@ impl Sim {
                 );
             }
             s.push_str(r#"],"neurons":["#);
-            // The page draws the dense sheet's neurons; an ES network has none there.
-            if let Some((RobotController::Polar(_), rollout)) = &self.driving {
-                for (k, v) in rollout.outputs(i).iter().enumerate() {
-                    let _ = write!(s, "{}{:.4}", if k > 0 { "," } else { "" }, v);
-                }
+            // The dense sheet's neurons; an ES network's wheel then hidden
+            // neurons, in the order of the scene's `network.nodes`.
+            let neurons = match &self.driving {
+                Some((RobotController::Polar(_), rollout)) => Some(rollout.outputs(i)),
+                Some((RobotController::Es(es), rollout)) => rollout
+                    .node_values(i)
+                    .and_then(|v| v.get(Drive::num_inputs(es)..)),
+                None => None,
+            };
+            for (k, v) in neurons.unwrap_or_default().iter().enumerate() {
+                let _ = write!(s, "{}{:.4}", if k > 0 { "," } else { "" }, v);
             }
             let c = self.controls.get(i).copied().unwrap_or_default();
             let _ = write!(s, r#"],"wheels":[{:.4},{:.4}]"#, c[0], c[1]);
@@ -696,6 +738,58 @@ mod tests {
         rt.block_on(async {
             let mut sim = Sim::new(source, &snap).unwrap();
             f(&mut sim, source, &snap);
+        });
+    }
+
+    /// The paper's champion (tests/data) as a genome file recording an ES-HyperNEAT config.
+    fn es_champion_source() -> Source {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+        let text = std::fs::read_to_string(root.join("tests/data/paper-champion.json")).unwrap();
+        let mut champion: Value = serde_json::from_str(&text).unwrap();
+        let mut config = Config::default();
+        config.substrate.kind = vivae_lab::es_controller::SubstrateKind::EsHyperneat;
+        champion["config"] = serde_json::to_value(&config).unwrap();
+        let dir = std::env::temp_dir().join(format!("vivae-view-es-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("es-champion.json");
+        std::fs::write(&path, champion.to_string()).unwrap();
+        let source = Source::load(Some(&path), None).unwrap();
+        let _ = std::fs::remove_dir_all(&dir);
+        source
+    }
+
+    #[test]
+    fn an_es_network_is_sent_where_its_neurons_are_and_how_active() {
+        with_sim_of(&es_champion_source(), |sim, source, snap| {
+            let es = sim.driving.as_ref().unwrap().0.as_es().unwrap().clone();
+            let hidden = es.hidden_neurons();
+            assert!(hidden > 0);
+            let scene: Value = serde_json::from_str(&sim.scene_msg(source)).unwrap();
+            let net = &scene["network"];
+            assert_eq!(net["hidden"], hidden);
+            assert_eq!(net["links"], es.expressed_links());
+            assert_eq!(net["sensors"].as_array().unwrap().len(), 15);
+            let nodes: Vec<[f64; 2]> = serde_json::from_value(net["nodes"].clone()).unwrap();
+            assert_eq!(nodes.len(), 2 + hidden);
+            assert_eq!(&nodes[2..], es.network().hidden());
+            sim.handle(r#"{"type":"step","n":20}"#, source, snap)
+                .unwrap();
+            let frame: Value = serde_json::from_str(&sim.frame_msg()).unwrap();
+            let values: Vec<f64> = serde_json::from_value(frame["neurons"].clone()).unwrap();
+            assert_eq!(values.len(), 2 + hidden);
+            assert!(values.iter().all(|v| v.abs() <= 1.0), "{values:?}");
+            assert!(values[2..].iter().any(|&v| v != 0.0), "{values:?}");
+            // The places go out again when the controller changes, not every frame.
+            sim.scene_dirty = false;
+            sim.handle(r#"{"type":"step","n":1}"#, source, snap)
+                .unwrap();
+            assert!(!sim.scene_dirty);
+            sim.handle(r#"{"type":"controller","which":"none"}"#, source, snap)
+                .unwrap();
+            assert!(sim.scene_dirty);
+            assert!(sim.scene_msg(source).contains(r#""network":null"#));
+            let frame: Value = serde_json::from_str(&sim.frame_msg()).unwrap();
+            assert_eq!(frame["neurons"], serde_json::json!([]));
         });
     }
 
