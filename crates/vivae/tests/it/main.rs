@@ -56,6 +56,7 @@ mod short_run_matches_pinned_hash;
 mod sigterm_checkpoints_and_exits_130;
 mod special_run_files_are_refused_not_waited_on;
 mod viewer_and_report_in_a_real_browser;
+mod viewer_drives_any_elite_or_front_member;
 mod viewer_follows_a_running_evolution;
 mod viewer_keeps_fast_trails_and_says_what_drives;
 mod viewer_refuses_foreign_host_names;
