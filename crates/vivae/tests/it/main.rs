@@ -38,6 +38,7 @@ mod non_regular_input_files_are_refused;
 mod output_path_mistakes_exit_2_with_one_line;
 mod replay_from_champion_file_matches_run_dir;
 mod replay_of_an_elite_or_front_member;
+mod report_draws_the_archive_and_the_front;
 mod report_html_is_self_contained;
 mod report_plots_keep_the_legend_off_the_curves;
 mod report_refuses_damaged_run_files;
