@@ -319,13 +319,16 @@ fn strategy_data(
     Ok(Some(data))
 }
 
+/// One generation's values of a strategy's columns (`None` where empty).
+type Row = Vec<Option<f64>>;
+
 /// The columns strategy `kind` adds to `generations.csv` at `path`, and
 /// their values on each complete line (a running evolution may be writing
 /// the last); an empty field is `None`.
 fn strategy_columns(
     path: &Path,
     kind: vivae_lab::strategy_config::StrategyKind,
-) -> vivae_lab::Result<(Vec<String>, Vec<Vec<Option<f64>>>)> {
+) -> vivae_lab::Result<(Vec<String>, Vec<Row>)> {
     let names: Vec<String> = (kind.extra_columns().split(',').skip(1))
         .map(String::from)
         .collect();

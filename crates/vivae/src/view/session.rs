@@ -647,13 +647,16 @@ impl Sim {
     }
 }
 
+/// A chosen genome, its label for the page and its generation (if recorded).
+type Chosen<'a> = (&'a vivae_neat::Genome, String, Option<u32>);
+
 /// The genome `choice` names in `snap`, with its label for the page and its
 /// generation (if recorded); `None` for nobody; `Err` if the run has no such genome.
 fn chosen_genome<'a>(
     choice: Choice,
     snap: &'a RunSnapshot,
     config: &Config,
-) -> Result<Option<(&'a vivae_neat::Genome, String, Option<u32>)>, String> {
+) -> Result<Option<Chosen<'a>>, String> {
     let two = |v: &f64| format!("{v:.2}");
     Ok(Some(match choice {
         Choice::None => return Ok(None),
