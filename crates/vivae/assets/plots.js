@@ -39,7 +39,8 @@ var VivaePlots = (function () {
       s += "<line x1='" + L + "' x2='" + (W - R) + "' y1='" + sy(v) + "' y2='" + sy(v) + "' stroke='#eee'/>";
       s += "<text x='" + (L - 4) + "' y='" + (sy(v) + 4) + "' font-size='11' text-anchor='end'>" + fmt(v) + "</text>";
     });
-    niceTicks(x0, x1, 8).forEach(function (v) {
+    // Generations are whole: a short run's axis has no 1.5.
+    niceTicks(x0, x1, 8).filter(function (v) { return xlabel !== "generation" || Math.abs(v - Math.round(v)) < 1e-9; }).forEach(function (v) {
       s += "<text x='" + sx(v) + "' y='" + (H - B + 14) + "' font-size='11' text-anchor='middle'>" + fmt(v) + "</text>";
     });
     s += "<text x='" + ((L + W - R) / 2) + "' y='" + (H - 4) + "' font-size='12' text-anchor='middle'>" + esc(xlabel) + "</text>";
