@@ -60,6 +60,31 @@ fn a_strategy_runs_report_carries_its_archive_or_front_and_rebuilds_the_same() {
 }
 
 #[test]
+fn three_objectives_draw_no_front_figure_and_the_report_keeps_all_three() {
+    let dir = scratch("report-three-objectives");
+    let config = dir.join("c.toml");
+    std::fs::write(
+        &config,
+        format!(
+            "{}\n[strategy]\nkind = \"nsga2\"\n\n[strategy.nsga2]\nobjectives = [\"fitness\", \"-contacts\", \"on_road\"]\n",
+            crate::common::small_config(2)
+        ),
+    )
+    .unwrap();
+    let run = dir.join("run");
+    evolve(&config, &run, &[]);
+    assert!(run.join("front.csv").is_file());
+    assert!(!run.join("figures/front.png").exists());
+    let html = String::from_utf8(read(&run, "report.html")).unwrap();
+    assert!(
+        html.contains(r#""objectives":["fitness (px/step), maximised","contacts per 1,000 robot-steps, minimised","share of robot-steps on road, maximised"]"#),
+        "{}",
+        &html[html.find("\"strategy\"").unwrap()..][..400]
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
 fn the_heat_map_and_the_front_are_on_the_page_with_networking_off() {
     let Some(b) = Browser::start(&[
         "--proxy-server=127.0.0.1:9",
