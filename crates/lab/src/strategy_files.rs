@@ -156,6 +156,45 @@ fn jsonl<T: Serialize>(lines: &[T]) -> Result<String> {
     Ok(out)
 }
 
+/// Every elite of the MAP-Elites archive of the run in `dir`
+/// (`archive.jsonl`, cell order), genomes checked; `None` when the run has
+/// no archive (not a map-elites run, or before its first checkpoint).
+pub fn read_archive(dir: &Path) -> Result<Option<Vec<ArchiveLine>>> {
+    read_lines(&dir.join(files::ARCHIVE_GENOMES), |l: &ArchiveLine| {
+        &l.genome
+    })
+}
+
+/// Every member of the NSGA-II Pareto front of the run in `dir`
+/// (`front.jsonl`, fittest first), genomes checked; `None` when the run
+/// has no front.
+pub fn read_front(dir: &Path) -> Result<Option<Vec<FrontLine>>> {
+    read_lines(&dir.join(files::FRONT_GENOMES), |l: &FrontLine| &l.genome)
+}
+
+/// The JSON lines of `path`, each genome (`genome_of`) checked; `None` if there is no such file.
+fn read_lines<T: serde::de::DeserializeOwned>(
+    path: &Path,
+    genome_of: impl Fn(&T) -> &Genome,
+) -> Result<Option<Vec<T>>> {
+    let text = match crate::io::read_regular_text(path, crate::rundir::MAX_RUN_FILE_BYTES) {
+        Ok(text) => text,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+        Err(e) => return Err(Error::io("read", path)(e)),
+    };
+    let bad = |line: usize, why: String| Error::RunFile {
+        path: path.to_path_buf(),
+        reason: format!("line {}: {why}", line + 1),
+    };
+    let mut lines = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        let l: T = serde_json::from_str(line).map_err(|e| bad(i, e.to_string()))?;
+        genome_of(&l).check().map_err(|e| bad(i, e.to_string()))?;
+        lines.push(l);
+    }
+    Ok(Some(lines))
+}
+
 /// A member of a run's archive or front to replay.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Member {

@@ -3,7 +3,7 @@
 "use strict";
 var VivaePlots = (function () {
   // T leaves room above the plot for the series legend, so that it never covers a curve.
-  var W = 640, H = 260, L = 52, R = 12, T = 26, B = 34;
+  var W = 640, H = 260, L = 52, R = 12, T = 26, B = 34, WIDE = W, HIGH = H;
 
   function esc(s) {
     return String(s).replace(/[&<>"]/g, function (ch) {
@@ -17,7 +17,8 @@ var VivaePlots = (function () {
     var err = (hi - lo) / n / step;
     if (err >= 5) { step *= 5; } else if (err >= 2) { step *= 2; }
     var out = [];
-    for (var v = Math.ceil(lo / step) * step; v <= hi + 1e-9 * step; v += step) { out.push(v); }
+    // Whole multiples of the step: 0 is 0, not the sum of steps' rounding errors (-5.6e-17).
+    for (var k = Math.ceil(lo / step); k * step <= hi + 1e-9 * step; k++) { out.push(k * step); }
     return out;
   }
 
@@ -27,7 +28,9 @@ var VivaePlots = (function () {
     return String(Math.round(v * 1000) / 1000);
   }
 
-  function axes(x0, x1, y0, y1, xlabel, ylabel) {
+  // size: optional [width, height] of the plot (default W × H).
+  function axes(x0, x1, y0, y1, xlabel, ylabel, size) {
+    var W = size ? size[0] : WIDE, H = size ? size[1] : HIGH;
     var sx = function (x) { return L + (x - x0) / ((x1 - x0) || 1) * (W - L - R); };
     var sy = function (y) { return H - B - (y - y0) / ((y1 - y0) || 1) * (H - T - B); };
     var s = "<rect x='" + L + "' y='" + T + "' width='" + (W - L - R) + "' height='" + (H - T - B) +
@@ -36,7 +39,8 @@ var VivaePlots = (function () {
       s += "<line x1='" + L + "' x2='" + (W - R) + "' y1='" + sy(v) + "' y2='" + sy(v) + "' stroke='#eee'/>";
       s += "<text x='" + (L - 4) + "' y='" + (sy(v) + 4) + "' font-size='11' text-anchor='end'>" + fmt(v) + "</text>";
     });
-    niceTicks(x0, x1, 8).forEach(function (v) {
+    // Generations are whole: a short run's axis has no 1.5.
+    niceTicks(x0, x1, 8).filter(function (v) { return xlabel !== "generation" || Math.abs(v - Math.round(v)) < 1e-9; }).forEach(function (v) {
       s += "<text x='" + sx(v) + "' y='" + (H - B + 14) + "' font-size='11' text-anchor='middle'>" + fmt(v) + "</text>";
     });
     s += "<text x='" + ((L + W - R) / 2) + "' y='" + (H - 4) + "' font-size='12' text-anchor='middle'>" + esc(xlabel) + "</text>";
@@ -45,8 +49,100 @@ var VivaePlots = (function () {
     return { svg: s, sx: sx, sy: sy };
   }
 
-  function wrap(inner) {
-    return "<svg xmlns='http://www.w3.org/2000/svg' viewBox='0 0 " + W + " " + H + "' font-family='sans-serif'>" + inner + "</svg>";
+  function wrap(inner, size) {
+    return "<svg xmlns='http://www.w3.org/2000/svg' viewBox='0 0 " + (size ? size[0] : W) + " " + (size ? size[1] : H) +
+      "' font-family='sans-serif'>" + inner + "</svg>";
+  }
+
+  // Matplotlib's viridis at t in [0, 1] (eleven samples, as the figures' colour scale).
+  var VIRIDIS = [[68, 1, 84], [72, 36, 117], [65, 68, 135], [53, 95, 141], [42, 120, 142], [33, 145, 140],
+    [34, 168, 132], [68, 191, 112], [122, 209, 81], [189, 223, 38], [253, 231, 37]];
+  function viridis(t) {
+    t = isFinite(t) ? Math.max(0, Math.min(1, t)) : 0;
+    var x = t * 10, k = Math.min(9, Math.floor(x)), f = x - k, a = VIRIDIS[k], b = VIRIDIS[k + 1];
+    return "rgb(" + [0, 1, 2].map(function (c) { return Math.round(a[c] + f * (b[c] - a[c])); }).join(",") + ")";
+  }
+
+  // "name value, …" of a member's coordinates.
+  function named(names, values) {
+    return values.map(function (v, i) { return (names[i] || "#" + i) + " " + fmt(v); }).join(", ");
+  }
+
+  // A MAP-Elites archive on a 2-D grid as a heat map: one square per cell
+  // coloured by its elite's fitness (viridis), empty cells grey; each
+  // square's tooltip names the elite. grid: {lower, upper, bins}; elites:
+  // [[cell, fitness, generation, behaviour]]; names: the two coordinates'.
+  function heatmap(grid, elites, names) {
+    var size = [640, 480];
+    var a = axes(grid.lower[0], grid.upper[0], grid.lower[1], grid.upper[1], names[0], names[1], size);
+    var lo = Infinity, hi = -Infinity;
+    elites.forEach(function (e) { if (isFinite(e[1])) { lo = Math.min(lo, e[1]); hi = Math.max(hi, e[1]); } });
+    if (!(hi - lo > 1e-12)) { lo -= 0.5; hi += 0.5; }
+    var byCell = {};
+    elites.forEach(function (e) { byCell[e[0]] = e; });
+    var w = [0, 1].map(function (d) { return (grid.upper[d] - grid.lower[d]) / grid.bins[d]; });
+    var s = a.svg;
+    for (var c = 0; c < grid.bins[0] * grid.bins[1]; c++) {
+      var i = Math.floor(c / grid.bins[1]), j = c % grid.bins[1], e = byCell[c];
+      var x0 = a.sx(grid.lower[0] + i * w[0]), x1 = a.sx(grid.lower[0] + (i + 1) * w[0]);
+      var y0 = a.sy(grid.lower[1] + (j + 1) * w[1]), y1 = a.sy(grid.lower[1] + j * w[1]);
+      var tip = e ? "cell " + c + ": fitness " + e[1].toFixed(3) + ", generation " + e[2] + " (" + named(names, e[3]) +
+        "); drive it: vivae view RUN --elite " + c : "cell " + c + ": empty";
+      s += "<rect class='cell" + (e ? " elite" : "") + "' data-cell='" + c + "' x='" + x0.toFixed(1) + "' y='" + y0.toFixed(1) +
+        "' width='" + (x1 - x0).toFixed(1) + "' height='" + (y1 - y0).toFixed(1) + "' fill='" +
+        (e ? viridis((e[1] - lo) / (hi - lo)) : "#ebebeb") + "' stroke='#fff' stroke-width='0.5'><title>" + esc(tip) +
+        "</title></rect>";
+    }
+    // The colour scale, in the legend's place above the plot.
+    var bar = 160, x = size[0] - R - bar - 44;
+    for (var k = 0; k < 32; k++) {
+      s += "<rect x='" + (x + k * bar / 32).toFixed(1) + "' y='" + (T - 17) + "' width='" + (bar / 32 + 0.3).toFixed(1) +
+        "' height='10' fill='" + viridis(k / 31) + "'/>";
+    }
+    s += "<text x='" + (x - 4) + "' y='" + (T - 8) + "' font-size='11' text-anchor='end'>fitness " + fmt(lo) + "</text>";
+    s += "<text x='" + (x + bar + 4) + "' y='" + (T - 8) + "' font-size='11'>" + fmt(hi) + "</text>";
+    s += "<text x='" + L + "' y='" + (T - 8) + "' font-size='11'>" + elites.length + " of " + grid.bins[0] * grid.bins[1] +
+      " cells filled</text>";
+    return wrap(s, size);
+  }
+
+  // An NSGA-II front over its first two objectives: members as points joined
+  // in order of the first, numbered as front.csv (equal points share a label).
+  // front: [[member, fitness, objectives]]; names: the objectives' axis names.
+  function front(members, names) {
+    var size = [640, 420];
+    if (!members.length) { return wrap("<text x='20' y='40'>no front recorded</text>", size); }
+    var range = function (d) {
+      var lo = Infinity, hi = -Infinity;
+      members.forEach(function (m) { var v = m[2][d]; if (isFinite(v) && Math.abs(v) < 1e300) { lo = Math.min(lo, v); hi = Math.max(hi, v); } });
+      var pad = hi - lo > 1e-12 ? 0.06 * (hi - lo) : 0.5;
+      return [lo - pad, hi + pad];
+    };
+    var rx = range(0), ry = range(1);
+    var a = axes(rx[0], rx[1], ry[0], ry[1], names[0], names[1], size), s = a.svg;
+    var points = [];
+    members.forEach(function (m) {
+      var p = points.filter(function (q) { return q.x === m[2][0] && q.y === m[2][1]; })[0];
+      if (p) { p.members.push(m[0]); } else { points.push({ x: m[2][0], y: m[2][1], members: [m[0]], m: m }); }
+    });
+    points = points.filter(function (p) { return isFinite(a.sx(p.x)) && isFinite(a.sy(p.y)) && Math.abs(p.x) < 1e300 && Math.abs(p.y) < 1e300; });
+    var sorted = points.slice().sort(function (p, q) { return p.x - q.x || p.y - q.y; });
+    s += "<polyline fill='none' stroke='#e66101' stroke-width='2' points='" +
+      sorted.map(function (p) { return a.sx(p.x).toFixed(1) + "," + a.sy(p.y).toFixed(1); }).join(" ") + "'/>";
+    points.forEach(function (p) {
+      var ms = p.members, label = ms.length === 1 ? String(ms[0]) :
+        (ms[ms.length - 1] - ms[0] + 1 === ms.length ? ms[0] + "\u2013" + ms[ms.length - 1] : ms[0] + ", \u2026");
+      var tip = "front member" + (ms.length > 1 ? "s " : " ") + label + ": fitness " + p.m[1].toFixed(3) + " (" +
+        named(names, p.m[2]) + "); drive it: vivae view RUN --front " + ms[0];
+      s += "<circle class='member' cx='" + a.sx(p.x).toFixed(1) + "' cy='" + a.sy(p.y).toFixed(1) +
+        "' r='6' fill='#e66101' stroke='#fff'><title>" + esc(tip) + "</title></circle>";
+      if (points.length <= 16) {
+        s += "<text x='" + (a.sx(p.x) + 8).toFixed(1) + "' y='" + (a.sy(p.y) - 8).toFixed(1) + "' font-size='12'>" + esc(label) + "</text>";
+      }
+    });
+    s += "<text x='" + L + "' y='" + (T - 8) + "' font-size='11'>" + members.length + " members" +
+      (points.length < members.length ? " at " + points.length + " points" : "") + "</text>";
+    return wrap(s, size);
   }
 
   // series: [{name, color, values}] over xs (same length); returns SVG markup.
@@ -127,5 +223,5 @@ var VivaePlots = (function () {
     return h + "</tbody></table>";
   }
 
-  return { lines: lines, stacked: stacked, table: table, esc: esc };
+  return { lines: lines, stacked: stacked, table: table, esc: esc, heatmap: heatmap, front: front, named: named };
 })();

@@ -23,6 +23,58 @@
   $("species").innerHTML = VivaePlots.stacked(data.species, 1);
   $("table").innerHTML = VivaePlots.table(data.generations);
 
+  // A strategy beyond NEAT: its archive as a heat map, or its Pareto front,
+  // a table of the members to drive (vivae view RUN --elite / --front) and
+  // its own columns of generations.csv.
+  function strategySection(st) {
+    var P = VivaePlots, rows = "", head;
+    $("strategysection").style.display = "";
+    if (st.kind === "map-elites") {
+      var cells = st.grid ? st.grid.bins[0] * st.grid.bins[1] : null;
+      $("strategyheading").textContent = "MAP-Elites archive: " + st.elites.length + " elites" +
+        (cells ? " in " + cells + " cells" : "");
+      $("strategynote").textContent = (st.grid_note ? st.grid_note + ". " : "Fitness in colour; hover a cell for its elite. ") +
+        "Drive any elite: vivae view " + data.title + " --elite CELL (or vivae replay … --elite CELL).";
+      if (st.grid) { $("strategyplot").innerHTML = P.heatmap(st.grid, st.elites, st.behaviour_names); }
+      var best = st.elites.slice().sort(function (a, b) { return b[1] - a[1] || a[0] - b[0]; });
+      head = ["cell"].concat(st.behaviour_names, ["fitness", "generation"]);
+      best.slice(0, 200).forEach(function (e) {
+        rows += "<tr><td>" + e[0] + "</td>" + e[3].map(function (v) { return "<td>" + v.toFixed(3) + "</td>"; }).join("") +
+          "<td>" + e[1].toFixed(4) + "</td><td>" + e[2] + "</td></tr>";
+      });
+    } else if (st.kind === "nsga2") {
+      $("strategyheading").textContent = "NSGA-II Pareto front: " + st.front.length + " members";
+      $("strategynote").textContent = "The last generation's first front, numbered as front.csv (0 = the fittest)" +
+        (st.objectives.length > 2 ? "; the first 2 of " + st.objectives.length + " objectives are drawn" : "") +
+        ". figures/front.png adds the whole population. Drive any member: vivae view " + data.title + " --front N.";
+      if (st.objectives.length >= 2) { $("strategyplot").innerHTML = P.front(st.front, st.objectives); }
+      head = ["member", "fitness"].concat(st.objectives);
+      st.front.forEach(function (f) {
+        rows += "<tr><td>" + f[0] + "</td><td>" + f[1].toFixed(4) + "</td>" +
+          f[2].map(function (v) { return "<td>" + P.esc(v.toFixed(3)) + "</td>"; }).join("") + "</tr>";
+      });
+    } else {
+      $("strategyheading").textContent = "Novelty search";
+      $("strategynote").textContent = "The archive of novel behaviours and its admission threshold, per generation.";
+    }
+    if (head) {
+      $("strategytable").innerHTML = "<table><thead><tr>" + head.map(function (h) { return "<th>" + P.esc(h) + "</th>"; }).join("") +
+        "</tr></thead><tbody>" + rows + "</tbody></table>";
+    }
+    var gens = data.generations.map(function (r) { return r.generation; }).slice(0, st.values.length);
+    st.columns.forEach(function (name, k) {
+      if (name === "filled_cells" || name === "archive_best") { return; }
+      var div = document.createElement("div");
+      div.className = "col plot";
+      div.style.maxWidth = "640px";
+      div.id = "strategy-" + name;
+      div.innerHTML = P.lines(gens, [{ name: name.replace("_", " "), color: data.curve_colours[0],
+        values: st.values.map(function (r) { return r[k] === null ? NaN : r[k]; }) }], "generation", name.replace("_", " "));
+      $("strategycurves").appendChild(div);
+    });
+  }
+  if (data.strategy) { strategySection(data.strategy); }
+
   var scene = new VivaeScene.Scene($("scene"));
   var state = { episode: 0, t: 0, playing: true, frames: 0 };
   // Tests read this to see the animation advance.

@@ -11,7 +11,7 @@
   var sceneInfo = null, frame = null, fresh = false;
   // Per robot, its trail [x0, y0, x1, y1, …] and the jump count it started at.
   var trails = [], trailJumps = [], lastStep = -1;
-  var progress = null, knownChampion = null, progressSeen = 0;
+  var progress = null, knownChampion = null, progressSeen = 0, info = null;
   var dragging = -1, dragMoved = false;
   var keys = { up: false, down: false, left: false, right: false };
 
@@ -51,6 +51,7 @@
   }
 
   function onInfo(m) {
+    info = m;
     $("source").textContent = m.source;
     var sel = $("scenario");
     sel.innerHTML = "";
@@ -158,8 +159,45 @@
       add("champion", "champion (generation " + m.champion[0] + ", fitness " + m.champion[1].toFixed(3) + ")");
     }
     for (var i = m.genomes.length - 1; i >= 0; i--) { add(String(m.genomes[i]), "best of generation " + m.genomes[i]); }
+    memberOptions(sel, m);
     if (keep && Array.prototype.some.call(sel.options, function (o) { return o.value === keep; })) { sel.value = keep; }
     else if (m.champion) { sel.value = "champion"; }
+  }
+
+  // "name value, …" of a member's behaviour or objectives.
+  function named(names, values) {
+    return values.map(function (v, i) { return (names[i] || "#" + i) + " " + v.toFixed(2); }).join(", ");
+  }
+
+  // A map-elites run's elites (fittest first) and an nsga2 run's front, as
+  // groups of the controller list: values "elite:CELL" and "front:N".
+  function memberOptions(sel, m) {
+    var group = function (label, items, value, text) {
+      if (!items || !items.length) { return; }
+      var g = document.createElement("optgroup");
+      g.label = label;
+      items.forEach(function (it) {
+        var o = document.createElement("option");
+        o.value = value(it);
+        o.textContent = text(it);
+        g.appendChild(o);
+      });
+      sel.appendChild(g);
+    };
+    var names = info || {};
+    var elites = (m.elites || []).slice().sort(function (a, b) { return b.fitness - a.fitness || a.cell - b.cell; });
+    group("MAP-Elites archive: " + elites.length + " elites, fittest first", elites,
+      function (e) { return "elite:" + e.cell; },
+      function (e) {
+        return "elite of cell " + e.cell + ": fitness " + e.fitness.toFixed(3) + " (" +
+          named(names.behaviour_names || [], e.behaviour) + ")";
+      });
+    group("Pareto front: " + (m.front || []).length + " members", m.front,
+      function (f) { return "front:" + f.member; },
+      function (f) {
+        return "front member " + f.member + ": fitness " + f.fitness.toFixed(3) + " (" +
+          named(names.objective_names || [], f.objectives) + ")";
+      });
   }
 
   function onProgress(m) {
@@ -314,8 +352,10 @@
   $("reset").onclick = function () { trails = []; act({ type: "reset" }); };
   $("speed").onchange = function () { act({ type: "speed", value: parseFloat($("speed").value) }); };
   $("controller").onchange = function () {
-    var v = $("controller").value;
-    act({ type: "controller", which: v === "none" || v === "champion" ? v : parseInt(v, 10) });
+    var v = $("controller").value, member = /^(elite|front):(\d+)$/.exec(v), which;
+    if (member) { which = {}; which[member[1]] = parseInt(member[2], 10); }
+    else { which = v === "none" || v === "champion" ? v : parseInt(v, 10); }
+    act({ type: "controller", which: which });
     trails = [];
   };
   $("scenario").onchange = function () { act({ type: "scenario", index: parseInt($("scenario").value, 10) }); };

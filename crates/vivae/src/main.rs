@@ -687,8 +687,10 @@ fn closing(
             .map(|(label, _)| format!("{}.png", report::champion_map_figure(label))),
     );
     figures.extend(["convergence.png", "network.png"].map(String::from));
-    if run.dir().join(files::FIGURES).join("archive.png").exists() {
-        figures.push("archive.png".into());
+    for name in ["archive.png", "front.png"] {
+        if run.dir().join(files::FIGURES).join(name).exists() {
+            figures.push(name.into());
+        }
     }
     let plural = |n: u32| if n == 1 { "" } else { "s" };
     let (done, ran) = (run.done(), run.done() - started_after);

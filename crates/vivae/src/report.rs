@@ -104,6 +104,7 @@ pub fn finish_run(run: &Run) -> Result<RunSummary> {
     let convergence = figures::convergence::render(&fitness, &ConvergenceOptions::default())?;
     write_figure(&dir, "convergence", &convergence.svg, &convergence.png)?;
     archive_figure(run, &dir)?;
+    front_figure(run, &dir)?;
 
     let controller = experiment.robot_controller(&champion.genome)?;
     let options = crate::report_html::network_options(
@@ -178,6 +179,38 @@ fn archive_figure(run: &Run, dir: &Path) -> Result<()> {
     };
     let figure = figures::archive::render(&grid)?;
     write_figure(dir, "archive", &figure.svg, &figure.png)
+}
+
+/// An nsga2 run over two objectives: the last generation's objectives and
+/// its Pareto front, `front.png`/`.svg` (with more objectives no 2-D picture
+/// shows the front: `front.csv` has them all).
+fn front_figure(run: &Run, dir: &Path) -> Result<()> {
+    let vivae_lab::search::Search::Nsga2(n) = run.search() else {
+        return Ok(());
+    };
+    let names = &run.config().strategy.nsga2.objectives;
+    let [a, b] = &names[..] else {
+        return Ok(());
+    };
+    let two = |o: &[f64]| [o[0], o[1]];
+    let front: Vec<[f64; 2]> = {
+        let mut members = n.pareto_front();
+        // Numbered as front.csv numbers them: fittest first.
+        members.sort_by(|a, b| b.2.total_cmp(&a.2));
+        members.iter().map(|m| two(&m.1)).collect()
+    };
+    let plot = figures::front::FrontPlot {
+        title: format!(
+            "NSGA-II, generation {}: Pareto front of {} members (numbered as in front.csv)",
+            run.done(),
+            front.len()
+        ),
+        axes: [a, b].map(|o| figures::front::objective_axis(o)),
+        population: n.scored_objectives().iter().map(|o| two(o)).collect(),
+        front,
+    };
+    let figure = figures::front::render(&plot)?;
+    write_figure(dir, "front", &figure.svg, &figure.png)
 }
 
 /// On several training maps, the champion's trajectories on each, drawn as

@@ -73,6 +73,39 @@ struct ReportData {
     network_svg: String,
     /// Colours of the best and mean curves, as `convergence.png` draws them.
     curve_colours: [String; 2],
+    /// What a strategy beyond NEAT adds (none for NEAT).
+    strategy: Option<StrategyData>,
+}
+
+/// What a novelty, map-elites or nsga2 run adds to the report.
+#[derive(Debug, Default, Serialize)]
+struct StrategyData {
+    /// The strategy's name (`map-elites`, `nsga2`, `novelty`).
+    kind: &'static str,
+    /// A map-elites archive on a 2-D grid, drawn as a heat map.
+    grid: Option<GridData>,
+    /// Why a map-elites archive is not drawn as a heat map, if it is not.
+    grid_note: String,
+    /// Names of the behaviour coordinates.
+    behaviour_names: Vec<String>,
+    /// The archive's elites: `[cell, fitness, generation, behaviour]`.
+    elites: Vec<(usize, f64, u32, Vec<f64>)>,
+    /// An nsga2 run's objectives, as axis names.
+    objectives: Vec<String>,
+    /// Its Pareto front: `[member, fitness, objectives]`, fittest first.
+    front: Vec<(usize, f64, Vec<f64>)>,
+    /// The strategy's own columns of `generations.csv`.
+    columns: Vec<String>,
+    /// Per generation, its values of those columns (`null` where empty).
+    values: Vec<Vec<Option<f64>>>,
+}
+
+/// A 2-D grid of MAP-Elites cells (cell = x bin × `bins[1]` + y bin).
+#[derive(Debug, Serialize)]
+struct GridData {
+    lower: [f64; 2],
+    upper: [f64; 2],
+    bins: [usize; 2],
 }
 
 /// A scenario as the pages draw it: the static picture and the robot size.
@@ -225,6 +258,97 @@ fn map_episodes(
     Ok((episodes, scenes, maps))
 }
 
+/// The strategy's part of the report of the run in `dir` (none for NEAT):
+/// its archive or front as saved with the last checkpoint, and its columns
+/// of `generations.csv`.
+fn strategy_data(
+    dir: &Path,
+    config: &vivae_lab::config::Config,
+    experiment: &Experiment,
+) -> vivae_lab::Result<Option<StrategyData>> {
+    use vivae_lab::strategy_config::{CellsKind, StrategyKind as K};
+    use vivae_lab::strategy_files::{read_archive, read_front};
+    let s = &config.strategy;
+    let mut data = StrategyData {
+        kind: s.kind.name(),
+        ..StrategyData::default()
+    };
+    match s.kind {
+        K::Neat => return Ok(None),
+        K::Novelty => {}
+        K::MapElites => {
+            let elites = read_archive(dir)?.unwrap_or_default();
+            let dims = s.behaviour.dims(experiment.robots());
+            data.behaviour_names = s.behaviour.coordinate_names(dims);
+            let (lower, upper) = s.behaviour.bounds(experiment.robots());
+            let bins = s.map_elites.bins_for(dims);
+            match (s.map_elites.cells, &lower[..], &upper[..], &bins[..]) {
+                (CellsKind::Grid, &[l0, l1], &[u0, u1], &[b0, b1]) => {
+                    data.grid = Some(GridData {
+                        lower: [l0, l1],
+                        upper: [u0, u1],
+                        bins: [b0, b1],
+                    });
+                }
+                (CellsKind::Cvt, ..) => {
+                    data.grid_note = format!(
+                        "CVT cells ({} of them) are not a grid: no heat map; the elites are listed below",
+                        s.map_elites.cvt_cells
+                    );
+                }
+                _ => {
+                    data.grid_note = format!(
+                        "a {dims}-dimensional grid is not drawn as a heat map (only 2 dimensions are); the elites are listed below"
+                    );
+                }
+            }
+            data.elites = (elites.into_iter())
+                .map(|e| (e.cell, e.fitness, e.generation, e.behaviour))
+                .collect();
+        }
+        K::Nsga2 => {
+            data.objectives = (s.nsga2.objectives.iter())
+                .map(|o| crate::figures::front::objective_axis(o))
+                .collect();
+            data.front = (read_front(dir)?.unwrap_or_default().into_iter())
+                .map(|f| (f.member, f.fitness, f.objectives))
+                .collect();
+        }
+    }
+    (data.columns, data.values) = strategy_columns(&dir.join(files::GENERATIONS), s.kind)?;
+    Ok(Some(data))
+}
+
+/// One generation's values of a strategy's columns (`None` where empty).
+type Row = Vec<Option<f64>>;
+
+/// The columns strategy `kind` adds to `generations.csv` at `path`, and
+/// their values on each complete line (a running evolution may be writing
+/// the last); an empty field is `None`.
+fn strategy_columns(
+    path: &Path,
+    kind: vivae_lab::strategy_config::StrategyKind,
+) -> vivae_lab::Result<(Vec<String>, Vec<Row>)> {
+    let names: Vec<String> = (kind.extra_columns().split(',').skip(1))
+        .map(String::from)
+        .collect();
+    let text = read_text(path)?;
+    let complete = text.rsplit_once('\n').map_or("", |(done, _)| done);
+    let mut values = Vec::new();
+    for (i, line) in complete.lines().enumerate().skip(1) {
+        let fields: Vec<&str> = line.split(',').collect();
+        let Some(ours) = fields.len().checked_sub(names.len()).map(|k| &fields[k..]) else {
+            return Err(vivae_lab::Error::RunFile {
+                path: path.to_path_buf(),
+                reason: format!("line {}: fewer fields than the strategy's columns", i + 1),
+            });
+        };
+        let number = |f: &&str| f.parse::<f64>().ok().filter(|v| v.is_finite());
+        values.push(ours.iter().map(number).collect());
+    }
+    Ok((names, values))
+}
+
 /// Embeds JSON in a `<script>` block: `</` cannot close it early.
 fn script_safe(json: &str) -> String {
     json.replace("</", "<\\/")
@@ -346,6 +470,7 @@ pub fn build_reusing(dir: &Path, reuse: &Reuse<'_>) -> vivae_lab::Result<String>
         convergence_svg,
         network_svg,
         curve_colours: [convergence::best_colour(), convergence::MEAN_COLOUR].map(convergence::hex),
+        strategy: strategy_data(dir, &config, &experiment)?,
     };
     let json =
         script_safe(

@@ -231,6 +231,24 @@ impl Nsga2 {
             .collect()
     }
 
+    /// The objective values, as the task measured them, of every member of
+    /// the parents and the batch just told (the pool [`Nsga2::pareto_front`]
+    /// picks from), parents first.
+    pub fn scored_objectives(&self) -> Vec<Vec<f64>> {
+        let s = &self.0;
+        let told = s.told.iter().flat_map(|t| &t.objectives);
+        let measured = |o: &Vec<f64>| -> Vec<f64> {
+            let senses = s.nsga.objectives.iter().zip(o);
+            senses
+                .map(|(obj, &v)| if obj.maximise { v } else { -v })
+                .collect()
+        };
+        (s.parents.iter().map(|p| &p.objectives))
+            .chain(told)
+            .map(measured)
+            .collect()
+    }
+
     /// Environmental selection on parents ∪ the batch told: the next
     /// parents, with their ranks and crowding distances.
     fn select(&mut self, told: Told) -> (Vec<usize>, Vec<f64>) {

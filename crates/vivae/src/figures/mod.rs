@@ -14,6 +14,8 @@ pub mod compare;
 mod controller;
 pub mod convergence;
 mod fields;
+/// NSGA-II's Pareto front over two objectives.
+pub mod front;
 pub mod network;
 
 use std::sync::OnceLock;

@@ -20,6 +20,7 @@ use std::process::ExitCode;
 use clap::Args;
 
 use source::Source;
+use vivae_lab::strategy_files::Member;
 
 use vivae_lab::io::bad_input;
 
@@ -29,6 +30,14 @@ pub struct ViewArgs {
     /// A run directory (follows it while it runs), a champion genome JSON, or a
     /// scenario SVG (drive by keyboard). Default: the embedded road scenario.
     pub source: Option<PathBuf>,
+    /// Drive the elite of this cell of a map-elites run's archive (archive.csv)
+    /// when a page opens; the page's controller list offers every elite.
+    #[arg(long, value_name = "CELL", conflicts_with = "front")]
+    pub elite: Option<usize>,
+    /// Drive this member of an nsga2 run's Pareto front (front.csv; 0 = the
+    /// fittest) when a page opens; the page's list offers every member.
+    #[arg(long, value_name = "N")]
+    pub front: Option<usize>,
     /// Port to listen on (0 = any free port).
     #[arg(long, default_value_t = 7878, value_name = "N")]
     pub port: u16,
@@ -62,7 +71,11 @@ pub fn run(args: ViewArgs) -> vivae_lab::Result<ExitCode> {
     }
     let idle = std::time::Duration::from_secs_f64(args.idle_timeout);
     let hosts = hosts::HostPolicy::new(args.host, &args.allow_host)?;
-    let source = Source::load(args.source.as_deref(), args.scenarios.as_deref())?;
+    let mut source = Source::load(args.source.as_deref(), args.scenarios.as_deref())?;
+    let member = (args.elite.map(Member::Elite)).or(args.front.map(Member::Front));
+    if let Some(member) = member {
+        source.start_with(member)?;
+    }
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .worker_threads(2)
         .enable_all()

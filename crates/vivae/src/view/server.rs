@@ -281,6 +281,8 @@ async fn open_session(socket: &mut WebSocket, app: &mut App) -> Option<(Sim, Sha
         "scenarios": app.source.scenarios.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>(),
         "unusable": app.source.unusable,
         "real_time_steps": super::session::REAL_TIME_STEPS,
+        "behaviour_names": app.source.behaviour_names(&snap),
+        "objective_names": app.source.objective_names(),
     });
     let progress = serde_json::to_string(&snap.progress()).unwrap_or_default();
     for m in [info.to_string(), progress] {

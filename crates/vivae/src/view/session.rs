@@ -19,6 +19,7 @@ use vivae_lab::es_controller::RobotController;
 use vivae_lab::experiment::Experiment;
 use vivae_lab::io::one_line;
 use vivae_lab::rollout::{Drive, Rollout};
+use vivae_lab::strategy_files::Member;
 use vivae_lab::substrate::PolarGrid;
 
 /// Simulation steps per second at speed 1 ("real time").
@@ -95,6 +96,24 @@ enum Choice {
     Champion,
     /// The best genome of one generation.
     Generation(u32),
+    /// The elite of this cell of a map-elites run's archive.
+    Elite(usize),
+    /// This member of an nsga2 run's Pareto front (0 = the fittest).
+    Front(usize),
+}
+
+impl Choice {
+    /// What a page's controller list calls it: `none`, `champion`, a
+    /// generation, `elite:CELL` or `front:N`.
+    fn page_value(self) -> String {
+        match self {
+            Choice::None => "none".into(),
+            Choice::Champion => "champion".into(),
+            Choice::Generation(g) => g.to_string(),
+            Choice::Elite(c) => format!("elite:{c}"),
+            Choice::Front(n) => format!("front:{n}"),
+        }
+    }
 }
 
 /// Arrow keys held down.
@@ -132,8 +151,9 @@ pub(crate) struct Sim {
     choice: Choice,
     /// Label of the genome driving, for the page.
     driver: String,
-    /// Generation of the genome driving (`None`: nobody drives); a followed
-    /// run's newer champion does not change it until the page asks.
+    /// Generation of the genome driving (`None`: nobody drives, or a front
+    /// member, whose generation is not recorded); a followed run's newer
+    /// champion does not change it until the page asks.
     driving_generation: Option<u32>,
     /// The chosen genome's controller and the robots' side of the episode.
     driving: Option<(RobotController, Rollout)>,
@@ -206,10 +226,11 @@ impl Sim {
             dirty: true,
             scene_dirty: true,
         };
-        let choice = if snap.champion.is_some() {
-            Choice::Champion
-        } else {
-            Choice::None
+        let choice = match source.start {
+            Some(Member::Elite(cell)) => Choice::Elite(cell),
+            Some(Member::Front(n)) => Choice::Front(n),
+            None if snap.champion.is_some() => Choice::Champion,
+            None => Choice::None,
         };
         sim.set_choice(choice, snap)?;
         Ok(sim)
@@ -217,37 +238,7 @@ impl Sim {
 
     /// Rebuilds the controller and the robots' rollout for the current choice and substrate.
     fn set_choice(&mut self, choice: Choice, snap: &RunSnapshot) -> Result<(), String> {
-        let found = match choice {
-            Choice::None => None,
-            Choice::Champion => Some(
-                snap.champion
-                    .as_ref()
-                    .map(|c| {
-                        (
-                            c.genome.clone(),
-                            format!(
-                                "champion (generation {}, fitness {:.3})",
-                                c.generation, c.fitness
-                            ),
-                            c.generation,
-                        )
-                    })
-                    .ok_or("there is no champion yet")?,
-            ),
-            Choice::Generation(g) => Some(
-                snap.best
-                    .iter()
-                    .find(|b| b.generation == g)
-                    .map(|b| {
-                        (
-                            b.genome.clone(),
-                            format!("best of generation {g} (fitness {:.3})", b.fitness),
-                            g,
-                        )
-                    })
-                    .ok_or_else(|| format!("generation {g} has no recorded best genome"))?,
-            ),
-        };
+        let found = chosen_genome(choice, snap, &self.config)?;
         match found {
             None => {
                 self.scene_dirty |= self.drives_es();
@@ -258,14 +249,14 @@ impl Sim {
             Some((genome, label, generation)) => {
                 // Decoding a large substrate takes a while: not on the async workers' time.
                 let controller =
-                    tokio::task::block_in_place(|| self.experiment.robot_controller(&genome))
+                    tokio::task::block_in_place(|| self.experiment.robot_controller(genome))
                         .map_err(|e| format!("the genome's {e}"))?;
                 let rollout = self.experiment.rollout(&controller);
                 // An ES network's neurons are where its CPPN put them: the
                 // page gets their places in the scene, once per controller.
                 self.scene_dirty |= controller.as_es().is_some() || self.drives_es();
                 self.driving = Some((controller, rollout));
-                self.driving_generation = Some(generation);
+                self.driving_generation = generation;
                 self.driver = label;
             }
         }
@@ -628,11 +619,7 @@ impl Sim {
             s,
             r#"{{"type":"frame","step":{},"choice":{},"generation":{},"playing":{},"speed":{},"selected":{},"manual":{},"driver":{},"robots":["#,
             self.steps,
-            match self.choice {
-                Choice::None => "\"none\"".to_string(),
-                Choice::Champion => "\"champion\"".to_string(),
-                Choice::Generation(g) => format!("\"{g}\""),
-            },
+            serde_json::to_string(&self.choice.page_value()).unwrap_or_default(),
             self.driving_generation
                 .map_or("null".to_string(), |g| g.to_string()),
             self.playing,
@@ -702,19 +689,123 @@ impl Sim {
     }
 }
 
-/// The controller a `controller` message chooses: `"champion"`, `"none"` or a generation.
+/// A chosen genome, its label for the page and its generation (if recorded).
+type Chosen<'a> = (&'a vivae_neat::Genome, String, Option<u32>);
+
+/// The genome `choice` names in `snap`, with its label for the page and its
+/// generation (if recorded); `None` for nobody; `Err` if the run has no such genome.
+fn chosen_genome<'a>(
+    choice: Choice,
+    snap: &'a RunSnapshot,
+    config: &Config,
+) -> Result<Option<Chosen<'a>>, String> {
+    let two = |v: &f64| format!("{v:.2}");
+    Ok(Some(match choice {
+        Choice::None => return Ok(None),
+        Choice::Champion => snap
+            .champion
+            .as_ref()
+            .map(|c| {
+                let label = format!(
+                    "champion (generation {}, fitness {:.3})",
+                    c.generation, c.fitness
+                );
+                (&c.genome, label, Some(c.generation))
+            })
+            .ok_or("there is no champion yet")?,
+        Choice::Generation(g) => snap
+            .best
+            .iter()
+            .find(|b| b.generation == g)
+            .map(|b| {
+                let label = format!("best of generation {g} (fitness {:.3})", b.fitness);
+                (&b.genome, label, Some(g))
+            })
+            .ok_or_else(|| format!("generation {g} has no recorded best genome"))?,
+        Choice::Elite(cell) => {
+            let e = (snap.elites.iter().find(|e| e.cell == cell))
+                .ok_or_else(|| missing("elite in cell", cell, snap.elites.len(), "elites"))?;
+            let names = config
+                .strategy
+                .behaviour
+                .coordinate_names(e.behaviour.len());
+            let label = format!(
+                "elite of cell {cell} (generation {}, fitness {:.3}; {})",
+                e.generation,
+                e.fitness,
+                named(&names, e.behaviour.iter().map(two))
+            );
+            (&e.genome, label, Some(e.generation))
+        }
+        Choice::Front(n) => {
+            let f = (snap.front.iter().find(|f| f.member == n))
+                .ok_or_else(|| missing("front member", n, snap.front.len(), "members"))?;
+            let names: Vec<String> = (config.strategy.nsga2.objectives.iter())
+                .map(|o| o.trim_start_matches('-').to_string())
+                .collect();
+            let label = format!(
+                "front member {n} (fitness {:.3}; {})",
+                f.fitness,
+                named(&names, f.objectives.iter().map(two))
+            );
+            (&f.genome, label, None)
+        }
+    }))
+}
+
+/// Why `what` `index` is not there, where the run holds `held` `things`.
+fn missing(what: &str, index: usize, held: usize, things: &str) -> String {
+    match held {
+        0 => format!(
+            "no {what} {index}: this run has none (only a map-elites run has an archive, an nsga2 run a front)"
+        ),
+        n => format!("no {what} {index} (the run has {n} {things})"),
+    }
+}
+
+/// `name value, …` for each name and value.
+fn named(names: &[String], values: impl Iterator<Item = String>) -> String {
+    let pairs = names.iter().zip(values).map(|(n, v)| format!("{n} {v}"));
+    pairs.collect::<Vec<_>>().join(", ")
+}
+
+/// The controller a `controller` message chooses: `"champion"`, `"none"`, a
+/// generation, `{"elite": CELL}` or `{"front": N}`.
 fn parse_choice(which: &Value) -> Result<Choice, String> {
+    let index = |v: &Value| v.as_u64().and_then(|i| u32::try_from(i).ok());
     match which {
         Value::String(s) if s == "champion" => Ok(Choice::Champion),
         Value::String(s) if s == "none" => Ok(Choice::None),
-        Value::Number(n) => Ok(Choice::Generation(
-            n.as_u64()
-                .and_then(|g| u32::try_from(g).ok())
-                .ok_or_else(|| format!("controller {n}: not a generation"))?,
-        )),
+        Value::Number(n) => {
+            Ok(Choice::Generation(index(which).ok_or_else(|| {
+                format!("controller {n}: not a generation")
+            })?))
+        }
+        Value::Object(o) if o.len() == 1 => {
+            let (key, v) = o.iter().next().expect("one entry");
+            let quoted = truncated(&which.to_string());
+            let i = index(v)
+                .ok_or_else(|| format!("controller {quoted}: not a cell or member number"))?;
+            match key.as_str() {
+                "elite" => Ok(Choice::Elite(i as usize)),
+                "front" => Ok(Choice::Front(i as usize)),
+                _ => Err(format!(
+                    "controller {quoted}: expected {{\"elite\": CELL}} or {{\"front\": N}}"
+                )),
+            }
+        }
         other => Err(format!(
-            "controller {other}: expected \"champion\", \"none\" or a generation"
+            "controller {}: expected \"champion\", \"none\", a generation, {{\"elite\": CELL}} or {{\"front\": N}}",
+            one_line(&truncated(&other.to_string()))
         )),
+    }
+}
+
+/// `text`, cut to 80 characters (an error quoting a hostile message stays short).
+fn truncated(text: &str) -> String {
+    match text.char_indices().nth(80) {
+        Some((at, _)) => format!("{}…", &text[..at]),
+        None => text.to_string(),
     }
 }
 
@@ -837,6 +928,18 @@ mod tests {
                 r#"{"type":"controller","which":"champion"}"#,
                 r#"{"type":"controller","which":-3}"#,
                 r#"{"type":"controller","which":7}"#,
+                r#"{"type":"controller","which":{"elite":0}}"#,
+                r#"{"type":"controller","which":{"front":0}}"#,
+                r#"{"type":"controller","which":{}}"#,
+                r#"{"type":"controller","which":[1]}"#,
+                r#"{"type":"controller","which":{"elite":-1}}"#,
+                r#"{"type":"controller","which":{"elite":1.5}}"#,
+                r#"{"type":"controller","which":{"elite":"3"}}"#,
+                r#"{"type":"controller","which":{"elite":1e30}}"#,
+                r#"{"type":"controller","which":{"elite":18446744073709551615}}"#,
+                r#"{"type":"controller","which":{"elite":1,"front":2}}"#,
+                r#"{"type":"controller","which":{"champion":1}}"#,
+                r#"{"type":"controller","which":"elite:3"}"#,
             ] {
                 assert!(sim.handle(bad, source, snap).is_err(), "accepted {bad:?}");
             }
@@ -867,6 +970,120 @@ mod tests {
                 .unwrap_err();
             assert_eq!(err, "scenario bare.svg cannot be driven: no robots");
             assert_eq!(sim.scene_msg(source), scene);
+        });
+    }
+
+    /// The default source with a made-up archive (cells 3 and 8) and front
+    /// (members 0 and 1) of a first generation's genomes.
+    fn source_with_members() -> (Source, RunSnapshot) {
+        use vivae_lab::strategy_files::{ArchiveLine, FrontLine};
+        let source = Source::load(None, None).unwrap();
+        let scenario = vivae_lab::io::load_scenario(None).unwrap().scenario;
+        let spec = Experiment::new(&source.config, &scenario)
+            .unwrap()
+            .cppn_spec();
+        let population = vivae_neat::Population::new(source.config.neat.clone(), spec, 3).unwrap();
+        let g = |i: usize| population.genomes()[i].clone();
+        let mut snap = source.snapshot();
+        snap.elites = [(3, 1.25, 2), (8, 2.5, 4)]
+            .into_iter()
+            .enumerate()
+            .map(|(i, (cell, fitness, generation))| ArchiveLine {
+                cell,
+                fitness,
+                generation,
+                behaviour: vec![0.125 * i as f64, 0.5],
+                genome: g(i),
+            })
+            .collect();
+        snap.front = (0..2)
+            .map(|member| FrontLine {
+                member,
+                fitness: 3.0 - member as f64,
+                objectives: vec![3.0 - member as f64, 0.25 * member as f64],
+                genome: g(2 + member),
+            })
+            .collect();
+        (source, snap)
+    }
+
+    #[test]
+    fn an_elite_or_a_front_member_drives_when_chosen_and_the_frame_says_which() {
+        let (source, snap) = source_with_members();
+        let rt = tokio::runtime::Builder::new_multi_thread()
+            .worker_threads(1)
+            .build()
+            .unwrap();
+        rt.block_on(async {
+            let mut sim = Sim::new(&source, &snap).unwrap();
+            let frame =
+                |sim: &mut Sim| -> Value { serde_json::from_str(&sim.frame_msg()).unwrap() };
+            assert_eq!(frame(&mut sim)["choice"], "none");
+            sim.handle(
+                r#"{"type":"controller","which":{"elite":8}}"#,
+                &source,
+                &snap,
+            )
+            .unwrap();
+            let f = frame(&mut sim);
+            assert_eq!(f["choice"], "elite:8");
+            assert_eq!(f["generation"], 4);
+            assert_eq!(
+                f["driver"],
+                "elite of cell 8 (generation 4, fitness 2.500; x 0.12, y 0.50)"
+            );
+            sim.handle(
+                r#"{"type":"controller","which":{"front":1}}"#,
+                &source,
+                &snap,
+            )
+            .unwrap();
+            let f = frame(&mut sim);
+            assert_eq!(f["choice"], "front:1");
+            assert_eq!(
+                f["generation"],
+                Value::Null,
+                "a front member's generation is not recorded"
+            );
+            assert_eq!(
+                f["driver"],
+                "front member 1 (fitness 2.000; fitness 2.00, contacts 0.25)"
+            );
+            // Cells and members that are not there are refused, naming what there is.
+            let before = sim.frame_msg();
+            let err = sim
+                .handle(
+                    r#"{"type":"controller","which":{"elite":4}}"#,
+                    &source,
+                    &snap,
+                )
+                .unwrap_err();
+            assert_eq!(err, "no elite in cell 4 (the run has 2 elites)");
+            let err = sim
+                .handle(
+                    r#"{"type":"controller","which":{"front":2}}"#,
+                    &source,
+                    &snap,
+                )
+                .unwrap_err();
+            assert_eq!(err, "no front member 2 (the run has 2 members)");
+            assert_eq!(sim.frame_msg(), before);
+            // The choice survives a re-sampled substrate.
+            sim.handle(
+                r#"{"type":"resolution","sensors":"9x9","neurons":"9x9"}"#,
+                &source,
+                &snap,
+            )
+            .unwrap();
+            assert_eq!(frame(&mut sim)["choice"], "front:1");
+        });
+        // `--elite 3` starts a page on that elite.
+        let mut started = source.clone();
+        started.start = Some(Member::Elite(3));
+        rt.block_on(async {
+            let mut sim = Sim::new(&started, &snap).unwrap();
+            let f: Value = serde_json::from_str(&sim.frame_msg()).unwrap();
+            assert_eq!(f["choice"], "elite:3");
         });
     }
 

@@ -11,6 +11,7 @@ use crate::report_html::{GenerationRow, read_generation_rows};
 use vivae_lab::config::Config;
 use vivae_lab::io::{DEFAULT_SCENARIO, DEFAULT_SCENARIO_NAME, bad_input, read_config, read_text};
 use vivae_lab::rundir::{self, Champion, GenerationBest, files, read_champion};
+use vivae_lab::strategy_files::{self, ArchiveLine, FrontLine, Member};
 
 /// Most extra scenarios offered from `--scenarios`.
 const MAX_SCENARIOS: usize = 200;
@@ -44,6 +45,9 @@ pub struct Source {
     pub unusable: Vec<Option<String>>,
     /// The genome given as a file, if any.
     pub genome: Option<Champion>,
+    /// The archive or front member that drives when a page opens
+    /// (`--elite`, `--front`), instead of the champion.
+    pub start: Option<Member>,
 }
 
 impl Source {
@@ -60,6 +64,7 @@ impl Source {
                 scenarios: vec![default.clone()],
                 unusable: Vec::new(),
                 genome: None,
+                start: None,
             },
             Some(p) if p.is_dir() => Source::from_run_dir(p)?,
             Some(p) => Source::from_file(p, &default)?,
@@ -111,6 +116,7 @@ impl Source {
             scenarios: vec![(format!("{} (the run's)", files::SCENARIO), scenario)],
             unusable: Vec::new(),
             genome: None,
+            start: None,
         })
     }
 
@@ -133,6 +139,7 @@ impl Source {
                 scenarios: vec![(file_name(p), text)],
                 unusable: Vec::new(),
                 genome: None,
+                start: None,
             })
         } else {
             // The champion's own recorded config rebuilds its controller
@@ -144,6 +151,7 @@ impl Source {
                 scenarios: vec![default.clone()],
                 unusable: Vec::new(),
                 genome: Some(champion),
+                start: None,
             })
         }
     }
@@ -164,6 +172,37 @@ impl Source {
             }
         }
         Ok(())
+    }
+
+    /// Makes `member` (of the run's archive or front) drive when a page
+    /// opens; refused, naming the file, unless the run has it.
+    pub fn start_with(&mut self, member: Member) -> vivae_lab::Result<()> {
+        let flag = match member {
+            Member::Elite(c) => format!("--elite {c}"),
+            Member::Front(n) => format!("--front {n}"),
+        };
+        let Some(dir) = self.run_dir() else {
+            return Err(bad_input(format!(
+                "{flag}: needs a run directory ({})",
+                self.describe()
+            )));
+        };
+        strategy_files::read_member(dir, member)?;
+        self.start = Some(member);
+        Ok(())
+    }
+
+    /// Names of the behaviour coordinates of the archive's elites in `snap`.
+    pub fn behaviour_names(&self, snap: &RunSnapshot) -> Vec<String> {
+        let dims = snap.elites.first().map_or(0, |e| e.behaviour.len());
+        self.config.strategy.behaviour.coordinate_names(dims)
+    }
+
+    /// Names of an nsga2 run's objectives (a minimised one without its `-`).
+    pub fn objective_names(&self) -> Vec<String> {
+        (self.config.strategy.nsga2.objectives.iter())
+            .map(|o| o.trim_start_matches('-').to_string())
+            .collect()
     }
 
     /// One line saying what is shown.
@@ -201,6 +240,14 @@ impl Source {
             if let Ok(c) = read_config(&dir.join(files::CONFIG)) {
                 snap.total = Some(c.experiment.generations);
             }
+            snap.elites = strategy_files::read_archive(dir)
+                .ok()
+                .flatten()
+                .unwrap_or_default();
+            snap.front = strategy_files::read_front(dir)
+                .ok()
+                .flatten()
+                .unwrap_or_default();
         }
         snap
     }
@@ -210,14 +257,20 @@ impl Source {
         let Some(dir) = self.run_dir() else {
             return Vec::new();
         };
-        [files::GENERATIONS, files::BEST_GENOMES, files::CHAMPION]
-            .iter()
-            .map(|n| {
-                std::fs::metadata(dir.join(n))
-                    .map(|m| (m.len(), m.modified().ok()))
-                    .unwrap_or((0, None))
-            })
-            .collect()
+        [
+            files::GENERATIONS,
+            files::BEST_GENOMES,
+            files::CHAMPION,
+            files::ARCHIVE_GENOMES,
+            files::FRONT_GENOMES,
+        ]
+        .iter()
+        .map(|n| {
+            std::fs::metadata(dir.join(n))
+                .map(|m| (m.len(), m.modified().ok()))
+                .unwrap_or((0, None))
+        })
+        .collect()
     }
 }
 
@@ -273,6 +326,34 @@ pub struct RunSnapshot {
     pub generations: Vec<GenerationRow>,
     /// Generations the run will have.
     pub total: Option<u32>,
+    /// A map-elites run's archive, cell by cell.
+    pub elites: Vec<ArchiveLine>,
+    /// An nsga2 run's Pareto front, fittest first.
+    pub front: Vec<FrontLine>,
+}
+
+/// An archive's elite as a page lists it (no genome).
+#[derive(Debug, Serialize)]
+pub struct EliteMsg<'a> {
+    /// Its cell.
+    pub cell: usize,
+    /// Its fitness.
+    pub fitness: f64,
+    /// Generation it was evaluated in.
+    pub generation: u32,
+    /// Its behaviour descriptor.
+    pub behaviour: &'a [f64],
+}
+
+/// A front member as a page lists it (no genome).
+#[derive(Debug, Serialize)]
+pub struct FrontMsg<'a> {
+    /// Its index in the front (0 = the fittest).
+    pub member: usize,
+    /// Its fitness.
+    pub fitness: f64,
+    /// Its objectives as measured.
+    pub objectives: &'a [f64],
 }
 
 /// What a page is told about the run's history (no genomes).
@@ -291,6 +372,10 @@ pub struct ProgressMsg<'a> {
     pub champion: Option<(u32, f64)>,
     /// Generations the run will have.
     pub total: Option<u32>,
+    /// The archive's elites (map-elites runs).
+    pub elites: Vec<EliteMsg<'a>>,
+    /// The Pareto front (nsga2 runs).
+    pub front: Vec<FrontMsg<'a>>,
 }
 
 impl RunSnapshot {
@@ -303,6 +388,21 @@ impl RunSnapshot {
             genomes: self.best.iter().map(|b| b.generation).collect(),
             champion: self.champion.as_ref().map(|c| (c.generation, c.fitness)),
             total: self.total,
+            elites: (self.elites.iter())
+                .map(|e| EliteMsg {
+                    cell: e.cell,
+                    fitness: e.fitness,
+                    generation: e.generation,
+                    behaviour: &e.behaviour,
+                })
+                .collect(),
+            front: (self.front.iter())
+                .map(|f| FrontMsg {
+                    member: f.member,
+                    fitness: f.fitness,
+                    objectives: &f.objectives,
+                })
+                .collect(),
         }
     }
 }
