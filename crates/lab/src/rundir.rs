@@ -1174,7 +1174,12 @@ pub fn load_run(dir: &Path, config: &Config, hashes: Option<&[u64]>) -> Result<V
     }
     let mut maps = Vec::with_capacity(names.len());
     for (i, name) in names.iter().enumerate() {
-        let path = dir.join(name);
+        // A run's maps are its own copies, `scenarios/FILE`. The config may
+        // name them as written (relative to the run) or as `read_config`
+        // resolved them (relative to the working directory, or absolute):
+        // the file name finds the copy either way, and nothing outside it.
+        let file = Path::new(name).file_name().unwrap_or_default();
+        let path = dir.join(MAPS_DIR).join(file);
         let text = crate::io::read_text(&path)?;
         if let Some(h) = hashes
             && h[i] != fnv1a(text.as_bytes())

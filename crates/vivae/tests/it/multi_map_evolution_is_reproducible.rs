@@ -141,3 +141,29 @@ fn a_missing_training_map_is_refused_before_anything_is_written() {
     assert!(!dir.join("run").exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn a_run_named_by_a_relative_path_writes_its_report_and_resumes() {
+    // The config's map names resolve against the run folder; with a relative
+    // `--out` they once resolved twice (`run/run/scenarios/...`), so evolve,
+    // report and resume all failed at the figures.
+    let dir = scratch("multi-map-relative");
+    write_small_config(&dir, 1);
+    let in_dir = |args: &[&str]| ok(vivae().current_dir(&dir).args(args));
+    let out = in_dir(
+        &[
+            &["evolve", "-q", "--config", "c.toml", "--out", "run"][..],
+            &MAPS,
+        ]
+        .concat(),
+    );
+    assert!(out.contains("per_map="), "{out}");
+    assert!(dir.join("run/report.html").is_file());
+    std::fs::remove_file(dir.join("run/report.html")).unwrap();
+    in_dir(&["report", "run"]);
+    assert!(dir.join("run/report.html").is_file());
+    in_dir(&["resume", "-q", "run", "--generations", "2"]);
+    let rows = std::fs::read_to_string(dir.join("run/generations.csv")).unwrap();
+    assert_eq!(rows.lines().count(), 3, "{rows}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
