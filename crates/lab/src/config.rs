@@ -90,6 +90,51 @@ pub struct ExperimentConfig {
     ///
     /// Unit: path.
     pub init_population: String,
+    /// What genomes are evaluated on: `driving` (HyperNEAT substrates driving
+    /// on roads, the paper's) or `maze` (Lehman & Stanley's maze with a plain
+    /// NEAT network; docs/guide.md, "The maze from the command line"). Unset = driving.
+    ///
+    /// Example: "maze".
+    #[serde(default, skip_serializing_if = "TaskKind::is_driving")]
+    pub task: TaskKind,
+}
+
+/// Which task a run evolves controllers for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum TaskKind {
+    /// Robots driving on roads (HyperNEAT-decoded substrates).
+    #[default]
+    Driving,
+    /// The maze benchmark of Lehman & Stanley 2011 (plain NEAT networks).
+    Maze,
+}
+
+impl TaskKind {
+    /// Whether this is the default, [`TaskKind::Driving`].
+    pub fn is_driving(&self) -> bool {
+        *self == TaskKind::Driving
+    }
+
+    /// The name as configs and the command line write it.
+    pub fn name(self) -> &'static str {
+        match self {
+            TaskKind::Driving => "driving",
+            TaskKind::Maze => "maze",
+        }
+    }
+}
+
+impl std::str::FromStr for TaskKind {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "driving" => Ok(TaskKind::Driving),
+            "maze" => Ok(TaskKind::Maze),
+            other => Err(format!("'{other}': expected driving or maze")),
+        }
+    }
 }
 
 impl Default for ExperimentConfig {
@@ -102,6 +147,7 @@ impl Default for ExperimentConfig {
             steps: 1000,
             robots: 5,
             init_population: String::new(),
+            task: TaskKind::Driving,
         }
     }
 }
@@ -423,9 +469,24 @@ impl Config {
         self.validate_experiment()?;
         self.validate_parameters()?;
         self.validate_sizes()?;
-        crate::strategy_config::validate(&self.strategy, !self.experiment.scenarios.is_empty())
-            .map_err(ConfigError::new)?;
+        crate::strategy_config::validate(
+            &self.strategy,
+            !self.experiment.scenarios.is_empty(),
+            self.metric_names(),
+        )
+        .map_err(ConfigError::new)?;
+        if self.experiment.task == TaskKind::Maze {
+            crate::maze_run::validate(self).map_err(ConfigError::new)?;
+        }
         self.validate_run()
+    }
+
+    /// Names of the metrics the config's task measures (NSGA-II's objectives besides fitness).
+    pub fn metric_names(&self) -> &'static [&'static str] {
+        match self.experiment.task {
+            TaskKind::Driving => &crate::strategy_config::METRICS,
+            TaskKind::Maze => &crate::maze::METRICS,
+        }
     }
 
     /// Checks the `experiment` section.
