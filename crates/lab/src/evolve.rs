@@ -96,7 +96,7 @@ impl Run {
         force: bool,
     ) -> Result<Run> {
         let maps = if is_multi_map(&config) { maps } else { &[] };
-        let task = RunTask::Driving(training);
+        let task = RunTask::Driving(Box::new(training));
         Run::create_task(dir, config, task, scenario_text, maps, init, force)
     }
 
@@ -109,7 +109,7 @@ impl Run {
         scenario_text: &str,
         force: bool,
     ) -> Result<Run> {
-        let task = RunTask::Maze(maze);
+        let task = RunTask::Maze(Box::new(maze));
         Run::create_task(dir, config, task, scenario_text, &[], None, force)
     }
 

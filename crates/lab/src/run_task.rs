@@ -14,22 +14,23 @@ use crate::training::Training;
 /// A run's task.
 #[derive(Debug, Clone)]
 pub enum RunTask {
-    /// Robots driving on roads.
-    Driving(Training),
-    /// The maze benchmark.
-    Maze(MazeTask),
+    /// Robots driving on roads (boxed: a training is large).
+    Driving(Box<Training>),
+    /// The maze benchmark (boxed too: both are large).
+    Maze(Box<MazeTask>),
 }
 
 impl RunTask {
     /// The task of `config` on `maps` (from [`crate::maps::load`]; a maze run has one).
     pub fn new(config: &Config, maps: &[TrainingMap]) -> Result<RunTask> {
         match config.experiment.task {
-            TaskKind::Driving => Ok(RunTask::Driving(Training::new(config, maps)?)),
+            TaskKind::Driving => Ok(RunTask::Driving(Box::new(Training::new(config, maps)?))),
             TaskKind::Maze => {
                 let map = maps
                     .first()
                     .ok_or_else(|| crate::io::bad_input("no maze"))?;
-                crate::maze_run::task(config, &map.loaded.scenario).map(RunTask::Maze)
+                crate::maze_run::task(config, &map.loaded.scenario)
+                    .map(|m| RunTask::Maze(Box::new(m)))
             }
         }
     }
@@ -83,7 +84,7 @@ impl RunTask {
     /// The driving experiment's training, if this is the driving task.
     pub fn training(&self) -> Option<&Training> {
         match self {
-            RunTask::Driving(t) => Some(t),
+            RunTask::Driving(t) => Some(t.as_ref()),
             RunTask::Maze(_) => None,
         }
     }
@@ -92,7 +93,7 @@ impl RunTask {
     pub fn maze(&self) -> Option<&MazeTask> {
         match self {
             RunTask::Driving(_) => None,
-            RunTask::Maze(m) => Some(m),
+            RunTask::Maze(m) => Some(m.as_ref()),
         }
     }
 }

@@ -1118,7 +1118,7 @@ fn replay_maze(
     apply_overrides(&mut config, &overrides)?;
     let scenario = load_scenario(scenario_path(&config).as_deref())?;
     let maze = vivae_lab::maze_run::task(&config, &scenario.scenario)?;
-    RunTask::Maze(maze.clone())
+    RunTask::Maze(Box::new(maze.clone()))
         .check_genome(&champion.genome)
         .map_err(|reason| vivae_lab::Error::Genome {
             path: args.source.clone(),
