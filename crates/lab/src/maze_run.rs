@@ -13,11 +13,10 @@ use vivae_neat::NeatParams;
 use vivae_neat::driver::Evaluation;
 use vivae_sim::Scenario;
 
-use crate::config::{Config, DistanceConfig, SubstrateConfig, TaskKind};
+use crate::config::{Config, TaskKind};
 use crate::error::Result;
 use crate::io::bad_input;
 use crate::maze::{MazeTask, STEPS};
-use crate::strategy_config::BehaviourKind;
 
 /// Individuals per generation (the paper's population, the example's).
 pub const POPULATION: usize = 250;
@@ -56,77 +55,6 @@ pub fn maze_config() -> Config {
 pub fn cell_bins(task: &MazeTask) -> Vec<usize> {
     let (_, upper) = task.arena_bounds();
     upper.iter().map(|u| (u / CELL).ceil() as usize).collect()
-}
-
-/// Refuses the keys a maze run cannot honour; the message names the key.
-pub fn validate(c: &Config) -> std::result::Result<(), String> {
-    let e = &c.experiment;
-    let s = &c.substrate;
-    let refuse = |key: &str, why: &str| Err(format!("{key}: {why} (experiment.task = \"maze\")"));
-    if !e.scenarios.is_empty() {
-        return refuse(
-            "experiment.scenarios",
-            "a maze run has one maze: name it with experiment.scenario",
-        );
-    }
-    if e.scenario.is_empty() {
-        return refuse(
-            "experiment.scenario",
-            "name the maze: hard-maze, medium-maze or an SVG file with one robot and a `goal` mark",
-        );
-    }
-    if e.robots != 1 {
-        return refuse(
-            &format!("experiment.robots = {}", e.robots),
-            "a maze has one robot: use 1",
-        );
-    }
-    if !e.init_population.is_empty() {
-        return refuse(
-            "experiment.init_population",
-            "a maze run starts from minimal networks (retrain re-samples a substrate, which a maze network has not)",
-        );
-    }
-    if !s.train_neurons.is_empty() || !s.train_sensors.is_empty() {
-        return refuse(
-            "substrate.train_neurons/train_sensors",
-            "a maze network has no substrate to train at several resolutions",
-        );
-    }
-    if !s.kind.is_polar() {
-        return refuse(
-            "substrate.kind",
-            "a maze network is evolved directly, not decoded into an ES-HyperNEAT substrate",
-        );
-    }
-    if c.strategy.behaviour != BehaviourKind::EndPosition {
-        return refuse(
-            &format!("strategy.behaviour = {}", c.strategy.behaviour.name()),
-            "a maze's behaviour is the robot's end position in px: leave it at end-position",
-        );
-    }
-    let unused = [
-        ("substrate", *s == SubstrateConfig::default()),
-        (
-            "surface_sensors",
-            c.surface_sensors == vivae_sim::SurfaceSensors::default(),
-        ),
-        (
-            "distance_sensors",
-            c.distance_sensors == DistanceConfig::default(),
-        ),
-        (
-            "hyperneat",
-            c.hyperneat == vivae_neat::hyperneat::HyperParams::default(),
-        ),
-    ];
-    match unused.iter().find(|(_, default)| !default) {
-        Some((section, _)) => refuse(
-            &format!("[{section}]"),
-            "a maze robot has the paper's 6 rangefinders and 4 radar slices and a plain network: leave this section at its defaults",
-        ),
-        None => Ok(()),
-    }
 }
 
 /// The maze task of a maze run's `config` on `scenario`; bad input (naming
@@ -199,6 +127,7 @@ impl MazeProgress {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::strategy_config::BehaviourKind;
 
     fn eval(solved: bool, distance: f64) -> Evaluation {
         Evaluation {
