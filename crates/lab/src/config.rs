@@ -447,7 +447,11 @@ impl ConfigError {
 impl Config {
     /// Parses TOML text; errors are one line naming the line, key and reason.
     pub fn from_toml(text: &str) -> Result<Config, ConfigError> {
-        let config: Config = toml::from_str(text).map_err(|e| describe_toml_error(text, &e))?;
+        let mut config: Config = toml::from_str(text).map_err(|e| describe_toml_error(text, &e))?;
+        if config.experiment.task == TaskKind::Maze {
+            // A maze config's unset keys are the maze's defaults, not driving's.
+            config = over_maze_defaults(text)?;
+        }
         config.validate().map_err(|e| {
             // A bad value is reported at the line that sets it, as parse errors are.
             let key = e.message.split(" = ").next().unwrap_or_default();
@@ -462,6 +466,32 @@ impl Config {
     /// The config as TOML (every key, no comments).
     pub fn to_toml(&self) -> String {
         toml::to_string(self).expect("config serialises to TOML")
+    }
+
+    /// The config of a maze run with the example's settings: the hard maze,
+    /// 400 steps, the paper's robot, plain NEAT with a population of 250,
+    /// novelty search's ρ_min = 6 px, NSGA-II on fitness alone.
+    pub fn maze() -> Config {
+        let mut c = Config::default();
+        c.experiment.task = TaskKind::Maze;
+        c.experiment.scenario = "hard-maze".into();
+        c.experiment.steps = crate::maze::STEPS;
+        c.experiment.robots = 1;
+        // 50,000 evaluations.
+        c.experiment.generations = 200;
+        c.physics = crate::maze::MazeTask::physics();
+        c.neat = NeatParams {
+            population_size: 250,
+            ..NeatParams::plain_neat()
+        };
+        let novelty = vivae_neat::strategies::NoveltyParams::default();
+        // ρ_min in px (Lehman's maze code, via goNEAT_NS): the behaviour is in px.
+        c.strategy.novelty.threshold = 6.0;
+        c.strategy.novelty.threshold_floor = novelty.threshold_floor;
+        c.strategy.nsga2.objectives = vec!["fitness".into()];
+        // 10 px cells over the hard maze (205 × 205); `vivae evolve --task maze` fits them to its maze.
+        c.strategy.map_elites.bins = vec![21];
+        c
     }
 
     /// Checks every value; the error names the key and the reason.
@@ -1072,6 +1102,35 @@ fn validate_maze(c: &Config) -> Result<(), String> {
         ),
         None => Ok(()),
     }
+}
+
+/// The config of TOML `text` (which parses) with its unset keys taken from [`Config::maze`].
+fn over_maze_defaults(text: &str) -> Result<Config, ConfigError> {
+    fn merge(base: &mut toml::Value, over: toml::Value) {
+        match (base, over) {
+            (toml::Value::Table(b), toml::Value::Table(o)) => {
+                for (k, v) in o {
+                    match b.get_mut(&k) {
+                        Some(slot) => merge(slot, v),
+                        None => {
+                            b.insert(k, v);
+                        }
+                    }
+                }
+            }
+            (slot, v) => *slot = v,
+        }
+    }
+    let bad = |e: &dyn std::fmt::Display| ConfigError::new(one_line(&e.to_string()));
+    let mut base = toml::Value::try_from(Config::maze()).map_err(|e| bad(&e))?;
+    let over: toml::Value = toml::from_str(text).map_err(|e| bad(&e))?;
+    merge(&mut base, over);
+    base.try_into().map_err(|e: toml::de::Error| bad(&e))
+}
+
+/// `text` on one line.
+fn one_line(text: &str) -> String {
+    text.trim().replace('\n', " ")
 }
 
 /// Turns a toml parse error into one line: `line L: key K: reason`.

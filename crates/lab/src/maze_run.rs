@@ -9,47 +9,16 @@
 //! counts the evaluations up to and including that genome.
 
 use serde::{Deserialize, Serialize};
-use vivae_neat::NeatParams;
 use vivae_neat::driver::Evaluation;
 use vivae_sim::Scenario;
 
-use crate::config::{Config, TaskKind};
+use crate::config::Config;
 use crate::error::Result;
 use crate::io::bad_input;
-use crate::maze::{MazeTask, STEPS};
+use crate::maze::MazeTask;
 
-/// Individuals per generation (the paper's population, the example's).
-pub const POPULATION: usize = 250;
-/// Novelty search's initial archive threshold ρ_min, px (the example's: Lehman's maze code).
-pub const NOVELTY_THRESHOLD: f64 = 6.0;
 /// Side of MAP-Elites' grid cells over the maze, px (the example's).
 pub const CELL: f64 = 10.0;
-/// Generations of a maze run by default: 50,000 evaluations.
-pub const GENERATIONS: u32 = 200;
-/// The maze a maze run uses unless told otherwise.
-pub const DEFAULT_MAZE: &str = "hard-maze";
-
-/// The config of a maze run with the example's settings: the hard maze,
-/// 400 steps, the paper's robot, plain NEAT with a population of 250,
-/// novelty search's ρ_min = 6 px, NSGA-II on fitness alone.
-pub fn maze_config() -> Config {
-    let mut c = Config::default();
-    c.experiment.task = TaskKind::Maze;
-    c.experiment.scenario = DEFAULT_MAZE.into();
-    c.experiment.steps = STEPS;
-    c.experiment.robots = 1;
-    c.experiment.generations = GENERATIONS;
-    c.physics = MazeTask::physics();
-    c.neat = NeatParams {
-        population_size: POPULATION,
-        ..NeatParams::plain_neat()
-    };
-    let novelty = vivae_neat::strategies::NoveltyParams::default();
-    c.strategy.novelty.threshold = NOVELTY_THRESHOLD;
-    c.strategy.novelty.threshold_floor = novelty.threshold_floor;
-    c.strategy.nsga2.objectives = vec!["fitness".into()];
-    c
-}
 
 /// MAP-Elites bins of [`CELL`]-px cells over `task`'s arena (the example's grid).
 pub fn cell_bins(task: &MazeTask) -> Vec<usize> {
@@ -153,10 +122,10 @@ mod tests {
 
     #[test]
     fn the_maze_defaults_validate_and_bad_combinations_are_refused() {
-        let c = maze_config();
+        let c = Config::maze();
         c.validate().unwrap();
         let refused = |edit: &dyn Fn(&mut Config), key: &str| {
-            let mut c = maze_config();
+            let mut c = Config::maze();
             edit(&mut c);
             let e = c.validate().unwrap_err().message;
             assert!(
@@ -183,13 +152,29 @@ mod tests {
             &|c| c.strategy.behaviour = BehaviourKind::SideSpeed,
             "strategy.behaviour",
         );
-        refused(
-            &|c| c.strategy.nsga2.objectives = vec!["-contacts".into()],
-            "strategy.nsga2.objectives",
-        );
-        let mut c = maze_config();
+        let mut c = Config::maze();
+        c.strategy.kind = crate::strategy_config::StrategyKind::Nsga2;
+        c.strategy.nsga2.objectives = vec!["-contacts".into()];
+        let e = c.validate().unwrap_err().message;
+        assert!(e.contains("fitness or solved or distance or steps"), "{e}");
         c.strategy.nsga2.objectives = vec!["fitness".into(), "-steps".into()];
         c.validate().unwrap();
+        // A file that only says `task = "maze"` is the maze's defaults.
+        let file = Config::from_toml("[experiment]\ntask = \"maze\"\nseed = 9\n").unwrap();
+        assert_eq!(
+            file,
+            Config {
+                experiment: crate::config::ExperimentConfig {
+                    seed: 9,
+                    ..Config::maze().experiment
+                },
+                ..Config::maze()
+            }
+        );
+        assert_eq!(
+            Config::from_toml(&Config::maze().to_toml()).unwrap(),
+            Config::maze()
+        );
     }
 
     #[test]

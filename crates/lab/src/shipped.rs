@@ -76,7 +76,7 @@ mod tests {
     #[test]
     fn every_shipped_scenario_loads_without_warnings_and_fits_the_default_experiment() {
         let config = crate::config::Config::default();
-        let maze = crate::maze_run::maze_config();
+        let maze = crate::config::Config::maze();
         for s in SHIPPED {
             let scenario = Scenario::from_svg(s.svg, s.name, &LoadOptions::default())
                 .unwrap_or_else(|e| panic!("{}: {e}", s.name));

@@ -437,7 +437,7 @@ fn cmd_evolve(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
     let task = args.overrides.task;
     let mut config = match &args.config {
         Some(p) => read_config(p)?,
-        None if task == Some(TaskKind::Maze) => vivae_lab::maze_run::maze_config(),
+        None if task == Some(TaskKind::Maze) => Config::maze(),
         None => Config::default(),
     };
     if let Some(t) = task.filter(|t| args.config.is_some() && *t != config.experiment.task) {
