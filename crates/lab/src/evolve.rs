@@ -123,6 +123,18 @@ impl Run {
         init: Option<Population>,
         force: bool,
     ) -> Result<Run> {
+        let maze_config = config.experiment.task == crate::config::TaskKind::Maze;
+        if maze_config != task.maze().is_some() || (maze_config && init.is_some()) {
+            return Err(bad_input(format!(
+                "experiment.task = {}: the run was given another task{}",
+                config.experiment.task.name(),
+                if init.is_some() {
+                    " or a starting population"
+                } else {
+                    ""
+                }
+            )));
+        }
         let bounds = task.behaviour_bounds(&config);
         let search = Search::new(&config, task.genome_spec(), bounds, init.as_ref())?;
         // The run is built in a temporary sibling and renamed into place once its

@@ -442,7 +442,7 @@ fn cmd_evolve(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
     };
     if let Some(t) = task.filter(|t| args.config.is_some() && *t != config.experiment.task) {
         return Err(bad_input(format!(
-            "--task {}: the config file's experiment.task is {}: set it in the file (a maze run's other keys differ too: see docs/guide.md, \"The maze from the command line\")",
+            "--task {}: the config file's experiment.task is {}: set `task = \"{0}\"` under [experiment] in the file instead",
             t.name(),
             config.experiment.task.name()
         ))
