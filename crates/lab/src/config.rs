@@ -90,6 +90,51 @@ pub struct ExperimentConfig {
     ///
     /// Unit: path.
     pub init_population: String,
+    /// What genomes are evaluated on: `driving` (HyperNEAT substrates driving
+    /// on roads, the paper's) or `maze` (Lehman & Stanley's maze with a plain
+    /// NEAT network; docs/guide.md, "The maze from the command line"). Unset = driving.
+    ///
+    /// Example: "maze".
+    #[serde(default, skip_serializing_if = "TaskKind::is_driving")]
+    pub task: TaskKind,
+}
+
+/// Which task a run evolves controllers for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum TaskKind {
+    /// Robots driving on roads (HyperNEAT-decoded substrates).
+    #[default]
+    Driving,
+    /// The maze benchmark of Lehman & Stanley 2011 (plain NEAT networks).
+    Maze,
+}
+
+impl TaskKind {
+    /// Whether this is the default, [`TaskKind::Driving`].
+    pub fn is_driving(&self) -> bool {
+        *self == TaskKind::Driving
+    }
+
+    /// The name as configs and the command line write it.
+    pub fn name(self) -> &'static str {
+        match self {
+            TaskKind::Driving => "driving",
+            TaskKind::Maze => "maze",
+        }
+    }
+}
+
+impl std::str::FromStr for TaskKind {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "driving" => Ok(TaskKind::Driving),
+            "maze" => Ok(TaskKind::Maze),
+            other => Err(format!("'{other}': expected driving or maze")),
+        }
+    }
 }
 
 impl Default for ExperimentConfig {
@@ -102,6 +147,7 @@ impl Default for ExperimentConfig {
             steps: 1000,
             robots: 5,
             init_population: String::new(),
+            task: TaskKind::Driving,
         }
     }
 }
@@ -401,7 +447,11 @@ impl ConfigError {
 impl Config {
     /// Parses TOML text; errors are one line naming the line, key and reason.
     pub fn from_toml(text: &str) -> Result<Config, ConfigError> {
-        let config: Config = toml::from_str(text).map_err(|e| describe_toml_error(text, &e))?;
+        let mut config: Config = toml::from_str(text).map_err(|e| describe_toml_error(text, &e))?;
+        if config.experiment.task == TaskKind::Maze {
+            // A maze config's unset keys are the maze's defaults, not driving's.
+            config = over_maze_defaults(text)?;
+        }
         config.validate().map_err(|e| {
             // A bad value is reported at the line that sets it, as parse errors are.
             let key = e.message.split(" = ").next().unwrap_or_default();
@@ -418,14 +468,55 @@ impl Config {
         toml::to_string(self).expect("config serialises to TOML")
     }
 
+    /// The config of a maze run with the example's settings: the hard maze,
+    /// 400 steps, the paper's robot, plain NEAT with a population of 250,
+    /// novelty search's ρ_min = 6 px, NSGA-II on fitness alone.
+    pub fn maze() -> Config {
+        let mut c = Config::default();
+        c.experiment.task = TaskKind::Maze;
+        c.experiment.scenario = "hard-maze".into();
+        c.experiment.steps = crate::maze::STEPS;
+        c.experiment.robots = 1;
+        // 50,000 evaluations.
+        c.experiment.generations = 200;
+        c.physics = crate::maze::MazeTask::physics();
+        c.neat = NeatParams {
+            population_size: 250,
+            ..NeatParams::plain_neat()
+        };
+        let novelty = vivae_neat::strategies::NoveltyParams::default();
+        // ρ_min in px (Lehman's maze code, via goNEAT_NS): the behaviour is in px.
+        c.strategy.novelty.threshold = 6.0;
+        c.strategy.novelty.threshold_floor = novelty.threshold_floor;
+        c.strategy.nsga2.objectives = vec!["fitness".into()];
+        // 10 px cells over the hard maze (205 × 205); `vivae evolve --task maze` fits them to its maze.
+        c.strategy.map_elites.bins = vec![21];
+        c
+    }
+
     /// Checks every value; the error names the key and the reason.
     pub fn validate(&self) -> Result<(), ConfigError> {
         self.validate_experiment()?;
         self.validate_parameters()?;
         self.validate_sizes()?;
-        crate::strategy_config::validate(&self.strategy, !self.experiment.scenarios.is_empty())
-            .map_err(ConfigError::new)?;
+        crate::strategy_config::validate(
+            &self.strategy,
+            !self.experiment.scenarios.is_empty(),
+            self.metric_names(),
+        )
+        .map_err(ConfigError::new)?;
+        if self.experiment.task == TaskKind::Maze {
+            validate_maze(self).map_err(ConfigError::new)?;
+        }
         self.validate_run()
+    }
+
+    /// Names of the metrics the config's task measures (NSGA-II's objectives besides fitness).
+    pub fn metric_names(&self) -> &'static [&'static str] {
+        match self.experiment.task {
+            TaskKind::Driving => &crate::strategy_config::METRICS,
+            TaskKind::Maze => &crate::maze::METRICS,
+        }
     }
 
     /// Checks the `experiment` section.
@@ -939,6 +1030,107 @@ fn sentence_fragment(text: &str) -> String {
             .collect(),
         _ => text.to_string(),
     }
+}
+
+/// With `experiment.task = "maze"`: refuses the keys a maze run cannot
+/// honour; the message names the key.
+fn validate_maze(c: &Config) -> Result<(), String> {
+    let e = &c.experiment;
+    let s = &c.substrate;
+    let refuse = |key: &str, why: &str| Err(format!("{key}: {why} (experiment.task = \"maze\")"));
+    if !e.scenarios.is_empty() {
+        return refuse(
+            "experiment.scenarios",
+            "a maze run has one maze: name it with experiment.scenario",
+        );
+    }
+    if e.scenario.is_empty() {
+        return refuse(
+            "experiment.scenario",
+            "name the maze: hard-maze, medium-maze or an SVG file with one robot and a `goal` mark",
+        );
+    }
+    if e.robots != 1 {
+        return refuse(
+            &format!("experiment.robots = {}", e.robots),
+            "a maze has one robot: use 1",
+        );
+    }
+    if !e.init_population.is_empty() {
+        return refuse(
+            "experiment.init_population",
+            "a maze run starts from minimal networks (retrain re-samples a substrate, which a maze network has not)",
+        );
+    }
+    if !s.train_neurons.is_empty() || !s.train_sensors.is_empty() {
+        return refuse(
+            "substrate.train_neurons/train_sensors",
+            "a maze network has no substrate to train at several resolutions",
+        );
+    }
+    if !s.kind.is_polar() {
+        return refuse(
+            "substrate.kind",
+            "a maze network is evolved directly, not decoded into an ES-HyperNEAT substrate",
+        );
+    }
+    if c.strategy.behaviour != crate::strategy_config::BehaviourKind::EndPosition {
+        return refuse(
+            &format!("strategy.behaviour = {}", c.strategy.behaviour.name()),
+            "a maze's behaviour is the robot's end position in px: leave it at end-position",
+        );
+    }
+    let unused = [
+        ("substrate", *s == SubstrateConfig::default()),
+        (
+            "surface_sensors",
+            c.surface_sensors == vivae_sim::SurfaceSensors::default(),
+        ),
+        (
+            "distance_sensors",
+            c.distance_sensors == DistanceConfig::default(),
+        ),
+        (
+            "hyperneat",
+            c.hyperneat == vivae_neat::hyperneat::HyperParams::default(),
+        ),
+    ];
+    match unused.iter().find(|(_, default)| !default) {
+        Some((section, _)) => refuse(
+            &format!("[{section}]"),
+            "a maze robot has the paper's 6 rangefinders and 4 radar slices and a plain network: leave this section at its defaults",
+        ),
+        None => Ok(()),
+    }
+}
+
+/// The config of TOML `text` (which parses) with its unset keys taken from [`Config::maze`].
+fn over_maze_defaults(text: &str) -> Result<Config, ConfigError> {
+    fn merge(base: &mut toml::Value, over: toml::Value) {
+        match (base, over) {
+            (toml::Value::Table(b), toml::Value::Table(o)) => {
+                for (k, v) in o {
+                    match b.get_mut(&k) {
+                        Some(slot) => merge(slot, v),
+                        None => {
+                            b.insert(k, v);
+                        }
+                    }
+                }
+            }
+            (slot, v) => *slot = v,
+        }
+    }
+    let bad = |e: &dyn std::fmt::Display| ConfigError::new(one_line(&e.to_string()));
+    let mut base = toml::Value::try_from(Config::maze()).map_err(|e| bad(&e))?;
+    let over: toml::Value = toml::from_str(text).map_err(|e| bad(&e))?;
+    merge(&mut base, over);
+    base.try_into().map_err(|e: toml::de::Error| bad(&e))
+}
+
+/// `text` on one line.
+fn one_line(text: &str) -> String {
+    text.trim().replace('\n', " ")
 }
 
 /// Turns a toml parse error into one line: `line L: key K: reason`.

@@ -11,16 +11,16 @@
 use std::fs;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::sync::atomic::AtomicBool;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 use crate::search::Search;
 use crate::strategy_files::{extra_fields, write_outputs};
-use vivae_neat::driver::Strategy;
 use vivae_neat::driver::{
     CheckpointState, Checkpointer, DriverError, Evaluator, Evolution, GenerationReport, HookError,
     Observer, ParallelEvaluator, StopCriteria, StopReason,
 };
+use vivae_neat::driver::{Evaluation, Strategy};
 use vivae_neat::{Genome, Population, stats};
 
 use crate::config::Config;
@@ -28,6 +28,9 @@ use crate::error::{Error, Result};
 use crate::experiment::Experiment;
 use crate::io::{bad_input, fnv1a, write_atomic};
 use crate::maps::{TrainingMap, is_multi_map};
+use crate::maze::MazeTask;
+use crate::maze_run::MazeProgress;
+use crate::run_task::RunTask;
 use crate::rundir::{
     BestLine, Champion, Checkpoint, GenerationRecord, POPULATION_HEADER, Progress, RunLock,
     TIMING_HEADER, append, check_config_unchanged, check_csv_prefixes, check_out_dir, copy_maps,
@@ -55,7 +58,7 @@ pub struct Run {
     /// Held while the run exists: one writer per run directory.
     _lock: RunLock,
     config: Config,
-    training: Training,
+    task: RunTask,
     search: Search,
     progress: Progress,
     pool: Arc<rayon::ThreadPool>,
@@ -85,7 +88,7 @@ impl Run {
     /// `experiment.scenarios` is rewritten to name the copies.
     pub fn create_on_maps(
         dir: &Path,
-        mut config: Config,
+        config: Config,
         training: Training,
         scenario_text: &str,
         maps: &[TrainingMap],
@@ -93,13 +96,47 @@ impl Run {
         force: bool,
     ) -> Result<Run> {
         let maps = if is_multi_map(&config) { maps } else { &[] };
-        let primary = training.primary();
-        let search = Search::new(
-            &config,
-            primary.cppn_spec(),
-            primary.robots(),
-            init.as_ref(),
-        )?;
+        let task = RunTask::Driving(Box::new(training));
+        Run::create_task(dir, config, task, scenario_text, maps, init, force)
+    }
+
+    /// [`Run::create`] for a maze run (`experiment.task = "maze"`) on `maze`,
+    /// the maze of `scenario_text`.
+    pub fn create_maze(
+        dir: &Path,
+        config: Config,
+        maze: MazeTask,
+        scenario_text: &str,
+        force: bool,
+    ) -> Result<Run> {
+        let task = RunTask::Maze(Box::new(maze));
+        Run::create_task(dir, config, task, scenario_text, &[], None, force)
+    }
+
+    /// [`Run::create_on_maps`] for either task (a maze run has no `maps` nor `init`).
+    pub fn create_task(
+        dir: &Path,
+        mut config: Config,
+        task: RunTask,
+        scenario_text: &str,
+        maps: &[TrainingMap],
+        init: Option<Population>,
+        force: bool,
+    ) -> Result<Run> {
+        let maze_config = config.experiment.task == crate::config::TaskKind::Maze;
+        if maze_config != task.maze().is_some() || (maze_config && init.is_some()) {
+            return Err(bad_input(format!(
+                "experiment.task = {}: the run was given another task{}",
+                config.experiment.task.name(),
+                if init.is_some() {
+                    " or a starting population"
+                } else {
+                    ""
+                }
+            )));
+        }
+        let bounds = task.behaviour_bounds(&config);
+        let search = Search::new(&config, task.genome_spec(), bounds, init.as_ref())?;
         // The run is built in a temporary sibling and renamed into place once its
         // first checkpoint exists: a kill or an error before that leaves no
         // directory that could neither be resumed nor re-run without --force.
@@ -112,7 +149,8 @@ impl Run {
                     .map(|m| fnv1a(m.loaded.text.as_bytes()))
                     .collect()
             }),
-            generations_len: generations_header(search.kind()).len() as u64,
+            generations_len: generations_header(&config).len() as u64,
+            maze: task.maze().map(|_| MazeProgress::default()),
             ..Progress::start(search.generation())
         };
         let filled = copy_maps(&tmp, &mut config, maps)
@@ -133,7 +171,7 @@ impl Run {
             _lock: lock,
             pool: thread_pool(config.run.threads)?,
             config,
-            training,
+            task,
             search,
             progress,
         })
@@ -159,9 +197,9 @@ impl Run {
         }
         let maps = load_run(dir, &cp.config, cp.progress.maps_fnv.as_deref())?;
         let scenario = crate::io::load_scenario(Some(&dir.join(files::SCENARIO)))?;
-        let training = Training::new(&cp.config, &maps)?;
+        let task = RunTask::new(&cp.config, &maps)?;
         // Everything is validated before anything in the directory changes.
-        let search = validate_progress(&path, &cp, training.primary())?;
+        let search = validate_progress(&path, &cp, &task)?;
         if let Some(h) = cp.progress.scenario_fnv
             && h != fnv1a(scenario.text.as_bytes())
         {
@@ -191,7 +229,7 @@ impl Run {
             // A thread count given at resume changes speed, not results: not recorded.
             pool: thread_pool(threads.unwrap_or(cp.config.run.threads))?,
             config: cp.config,
-            training,
+            task,
             search,
             progress: cp.progress,
         })
@@ -207,14 +245,33 @@ impl Run {
         &self.config
     }
 
-    /// The experiment reported, drawn and replayed (the first map at the run's own resolution).
-    pub fn experiment(&self) -> &Experiment {
-        self.training.primary()
+    /// The experiment reported, drawn and replayed (the first map at the
+    /// run's own resolution); none for a maze run.
+    pub fn experiment(&self) -> Option<&Experiment> {
+        self.task.training().map(Training::primary)
     }
 
-    /// What genomes are evaluated on: every training map and resolution.
-    pub fn training(&self) -> &Training {
-        &self.training
+    /// What a driving run's genomes are evaluated on: every training map and
+    /// resolution; none for a maze run.
+    pub fn training(&self) -> Option<&Training> {
+        self.task.training()
+    }
+
+    /// What the run's genomes are evaluated on, whichever the task.
+    pub fn task(&self) -> &RunTask {
+        &self.task
+    }
+
+    /// A maze run's evaluations and when it was solved; none for a driving run.
+    pub fn maze_progress(&self) -> Option<&MazeProgress> {
+        self.progress.maze.as_ref()
+    }
+
+    /// Whether the run has nothing left to do: every generation done, or
+    /// (a maze run) the maze solved.
+    pub fn finished(&self) -> bool {
+        self.done() >= self.config.experiment.generations
+            || self.maze_progress().is_some_and(|m| m.solved_at.is_some())
     }
 
     /// Generations done so far.
@@ -240,7 +297,7 @@ impl Run {
         on_generation: impl FnMut(&GenerationRecord),
     ) -> Result<Outcome> {
         let pool = Arc::clone(&self.pool);
-        let evaluator = ParallelEvaluator::with_pool(self.training.clone(), &pool);
+        let evaluator = ParallelEvaluator::with_pool(self.task.clone(), &pool);
         self.run_on(evaluator, stop, on_generation)
     }
 
@@ -258,24 +315,36 @@ impl Run {
         on_generation: impl FnMut(&GenerationRecord),
     ) -> Result<Outcome> {
         let total = self.config.experiment.generations;
+        if self.finished() {
+            return Ok(Outcome::Finished);
+        }
         let mut evolution = Evolution::resume(self.search.clone(), evaluator, self.progress.done);
+        // A maze run also stops once solved: the recorder raises `halt` then,
+        // or when `stop` is set.
+        let halt = AtomicBool::new(false);
         let mut recorder = Recorder {
             dir: &self.dir,
             config: &self.config,
-            training: &self.training,
+            task: &self.task,
             progress: &mut self.progress,
             total,
             started: Instant::now(),
             last_best: read_best_genomes(&self.dir.join(files::BEST_GENOMES))?
                 .pop()
                 .map(|b| (b.generation, b.genome)),
+            halt: (stop, &halt),
             on_generation,
         };
-        let criteria = StopCriteria::generations(total).or_interrupt(stop);
+        let flag = if self.task.maze().is_some() {
+            &halt
+        } else {
+            stop
+        };
+        let criteria = StopCriteria::generations(total).or_interrupt(flag);
         let result = evolution.run_with(&criteria, &mut recorder);
         self.search = evolution.into_strategy();
         match result.map_err(driver_error)? {
-            StopReason::Interrupted => Ok(Outcome::Interrupted),
+            StopReason::Interrupted if stop.load(Ordering::SeqCst) => Ok(Outcome::Interrupted),
             _ => Ok(Outcome::Finished),
         }
     }
@@ -348,13 +417,16 @@ fn driver_error(e: DriverError) -> Error {
 struct Recorder<'a, F> {
     dir: &'a Path,
     config: &'a Config,
-    training: &'a Training,
+    task: &'a RunTask,
     progress: &'a mut Progress,
     total: u32,
     /// When the generation under way started.
     started: Instant,
     /// The last line written to `best-genomes.jsonl`: (generation, genome).
     last_best: Option<(u32, Genome)>,
+    /// The user's stop flag, and the flag that stops a maze run (raised by
+    /// either the user's or the maze being solved).
+    halt: (&'a AtomicBool, &'a AtomicBool),
     on_generation: F,
 }
 
@@ -372,9 +444,14 @@ impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
             .expect("an evaluated population has a champion");
         let record = self.measure(report, &fitnesses, &sorted, (&best_genome, best), seconds)?;
         self.append_best_line(search, generation, best, best_genome)?;
+        let maze = self.tell_maze(generation, report.evaluations);
         let p = &mut *self.progress;
         let row = record.generations_row();
-        let row = format!("{}{}\n", row.trim_end_matches('\n'), extra_fields(search));
+        let row = format!(
+            "{}{}{maze}\n",
+            row.trim_end_matches('\n'),
+            extra_fields(search)
+        );
         p.generations_len = append(&self.dir.join(files::GENERATIONS), &row)?;
         p.population_len = append(
             &self.dir.join(files::POPULATION),
@@ -405,12 +482,25 @@ impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
     ) -> Result<GenerationRecord> {
         let search = report.strategy;
         let stats = report.stats;
-        let controller = self.training.primary().robot_controller(best_genome)?;
+        let (best_links, possible_links) = match self.task {
+            RunTask::Driving(t) => {
+                let controller = t.primary().robot_controller(best_genome)?;
+                (controller.expressed_links(), controller.possible_links())
+            }
+            // A maze network is the genome: its enabled links of all its link genes.
+            RunTask::Maze(_) => (best_genome.num_enabled_links(), best_genome.links().len()),
+        };
         let n = sorted.len();
         let (mean, median) = stats::mean(fitnesses)
             .zip(stats::median_of_sorted(sorted))
             .expect("an evaluated population has fitnesses");
-        let robot_steps = n as f64 * self.training.robot_steps() as f64;
+        let robot_steps = match self.task {
+            RunTask::Driving(t) => n as f64 * t.robot_steps() as f64,
+            // A maze episode ends early at the goal: the steps it took.
+            RunTask::Maze(_) => (report.evaluations.iter())
+                .map(|e| e.metrics.get(2).copied().unwrap_or_default())
+                .sum(),
+        };
         Ok(GenerationRecord {
             generation: report.generation,
             total: self.total,
@@ -421,12 +511,27 @@ impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
             species: stats.species,
             mean_nodes: stats.mean_nodes,
             mean_links: stats.mean_links,
-            best_links: controller.expressed_links(),
-            possible_links: controller.possible_links(),
+            best_links,
+            possible_links,
             seconds,
             robot_steps_per_second: robot_steps / seconds.max(1e-9),
             best_ever: search.best_ever().map_or(best, |b| b.fitness),
         })
+    }
+
+    /// A maze run's own fields of `generations.csv` for `generation` (none
+    /// for a driving run); raises the halt flag once the maze is solved or
+    /// the user asked to stop.
+    fn tell_maze(&mut self, generation: u32, evaluations: &[Evaluation]) -> String {
+        let Some(maze) = self.progress.maze.as_mut() else {
+            return String::new();
+        };
+        let measured = maze.tell(generation, evaluations);
+        let (stop, halt) = self.halt;
+        if maze.solved_at.is_some() || stop.load(Ordering::SeqCst) {
+            halt.store(true, Ordering::SeqCst);
+        }
+        maze.fields(&measured)
     }
 
     /// Appends the generation's line to `best-genomes.jsonl` (a genome equal
@@ -502,7 +607,7 @@ fn thread_pool(threads: usize) -> Result<Arc<rayon::ThreadPool>> {
 /// genomes fit the substrate (a wrong CPPN would fail in every later
 /// generation), the recorded file lengths are possible and the strategy is
 /// the config's; returns the search it holds.
-fn validate_progress(path: &Path, cp: &Checkpoint, experiment: &Experiment) -> Result<Search> {
+fn validate_progress(path: &Path, cp: &Checkpoint, task: &RunTask) -> Result<Search> {
     let bad = |reason: String| Error::Checkpoint {
         path: path.to_path_buf(),
         reason,
@@ -522,7 +627,13 @@ fn validate_progress(path: &Path, cp: &Checkpoint, experiment: &Experiment) -> R
             cp.config.strategy.kind.name()
         )));
     }
-    let generations = generations_header(search.kind());
+    if p.maze.is_some() != task.maze().is_some() {
+        return Err(bad(format!(
+            "its progress does not fit experiment.task = {}",
+            cp.config.experiment.task.name()
+        )));
+    }
+    let generations = generations_header(&cp.config);
     for (name, len, header) in [
         (files::GENERATIONS, p.generations_len, generations.as_str()),
         (files::POPULATION, p.population_len, POPULATION_HEADER),
@@ -542,8 +653,7 @@ fn validate_progress(path: &Path, cp: &Checkpoint, experiment: &Experiment) -> R
         .iter()
         .chain(p.figure_genomes.iter().map(|(_, _, g)| g));
     for g in genomes {
-        experiment
-            .robot_controller(g)
+        task.check_genome(g)
             .map_err(|e| bad(format!("a genome does not fit the run: {e}")))?;
     }
     Ok(search)

@@ -179,6 +179,16 @@ impl MazeTask {
 
     /// The maze in `scenario`: one robot, a `goal` mark.
     pub fn new(scenario: &Scenario) -> Result<MazeTask, MazeError> {
+        MazeTask::with_settings(scenario, &MazeTask::physics(), STEPS)
+    }
+
+    /// [`MazeTask::new`] with another robot (`physics`) or episode length
+    /// (`steps`): a maze run's `[physics]` and `experiment.steps`.
+    pub fn with_settings(
+        scenario: &Scenario,
+        physics: &PhysicsParams,
+        steps: u32,
+    ) -> Result<MazeTask, MazeError> {
         let source_name = scenario.source.clone();
         if scenario.robots.len() != 1 {
             let count = scenario.robots.len();
@@ -187,14 +197,13 @@ impl MazeTask {
         let goal = scenario
             .mark(GOAL_MARK)
             .ok_or(MazeError::NoGoal { source_name })?;
-        let physics = MazeTask::physics();
         let rim = RANGE - physics.robot_radius;
         Ok(MazeTask {
-            world: World::new(scenario, &physics)?,
+            world: World::new(scenario, physics)?,
             rays: DistanceGrid::at_angles(&MazeTask::rangefinder_angles(), rim),
             radar: GoalRadar::paper(goal.pos)?,
             goal_radius: goal.size.x.max(goal.size.y) / 2.0,
-            steps: STEPS,
+            steps,
         })
     }
 
@@ -220,6 +229,17 @@ impl MazeTask {
     /// Within this distance of the goal the maze is solved, px.
     pub fn goal_radius(&self) -> f64 {
         self.goal_radius
+    }
+
+    /// Steps of one episode (fewer when the robot reaches the goal).
+    pub fn steps(&self) -> u32 {
+        self.steps
+    }
+
+    /// The box every end position lies in: `([0, 0], [width, height])` of the arena.
+    pub fn arena_bounds(&self) -> (Vec<f64>, Vec<f64>) {
+        let sc = self.world.scenario();
+        (vec![0.0, 0.0], vec![sc.width(), sc.height()])
     }
 
     /// Where the robot starts.

@@ -67,9 +67,13 @@ pub(crate) const GENERATIONS_HEADER: &str = "generation,best,mean,median,worst,s
 
 /// The header of `generations.csv` for a run of strategy `kind`: NEAT's
 /// columns, then the strategy's own.
-pub(crate) fn generations_header(kind: crate::strategy_config::StrategyKind) -> String {
+pub(crate) fn generations_header(config: &Config) -> String {
     let base = GENERATIONS_HEADER.trim_end_matches('\n');
-    format!("{base}{}\n", kind.extra_columns())
+    let task = match config.experiment.task {
+        crate::config::TaskKind::Driving => "",
+        crate::config::TaskKind::Maze => crate::maze_run::COLUMNS,
+    };
+    format!("{base}{}{task}\n", config.strategy.kind.extra_columns())
 }
 
 pub(crate) const POPULATION_HEADER: &str = "generation,rank,fitness\n";
@@ -386,6 +390,9 @@ pub(crate) struct Progress {
     /// runs only): an edited copy is refused on resume.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub(crate) maps_fnv: Option<Vec<u64>>,
+    /// A maze run's evaluations and when it was solved (maze runs only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub(crate) maze: Option<crate::maze_run::MazeProgress>,
 }
 
 /// Refuses a run whose `config.toml` was edited since its newest checkpoint:
@@ -586,6 +593,7 @@ impl Progress {
             figure_genomes: Vec::new(),
             scenario_fnv: None,
             maps_fnv: None,
+            maze: None,
         }
     }
 }
@@ -1007,7 +1015,7 @@ pub(crate) fn fill_new_run(
         config.experiment.scenario = files::SCENARIO.into();
     }
     write_atomic(&dir.join(files::CONFIG), config.to_toml().as_bytes())?;
-    let generations = generations_header(search.kind());
+    let generations = generations_header(config);
     for (name, header) in [
         (files::GENERATIONS, generations.as_str()),
         (files::POPULATION, POPULATION_HEADER),

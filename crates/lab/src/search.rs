@@ -12,7 +12,7 @@ use vivae_neat::{BestEver, GenerationStats, Genome, GenomeSpec, NeatError, Popul
 use crate::config::Config;
 use crate::error::Result;
 use crate::io::bad_input;
-use crate::strategy_config::{CellsKind, StrategyKind, objective};
+use crate::strategy_config::{CellsKind, StrategyKind, objective_among};
 
 /// A run's search strategy.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -40,13 +40,14 @@ macro_rules! each {
 }
 
 impl Search {
-    /// Generation 0 of the strategy of `config` over CPPNs of shape `spec`
-    /// for `robots` robots, seeded with `experiment.seed`; NEAT and novelty
-    /// search may start from `init`'s genomes instead.
+    /// Generation 0 of the strategy of `config` over genomes of shape `spec`
+    /// whose behaviour descriptors lie in the box `bounds` (lower, upper),
+    /// seeded with `experiment.seed`; NEAT and novelty search may start from
+    /// `init`'s genomes instead.
     pub fn new(
         config: &Config,
         spec: GenomeSpec,
-        robots: usize,
+        bounds: (Vec<f64>, Vec<f64>),
         init: Option<&Population>,
     ) -> Result<Search> {
         let (neat, seed) = (config.neat.clone(), config.experiment.seed);
@@ -79,7 +80,7 @@ impl Search {
                     crossover_probability: s.map_elites.crossover_probability,
                     qd_offset: s.map_elites.qd_offset,
                 };
-                let cells = cells(config, robots)?;
+                let cells = cells(config, bounds)?;
                 Search::MapElites(MapElites::new(neat, spec, map, cells, seed).map_err(refused)?)
             }
             StrategyKind::Nsga2 => {
@@ -89,7 +90,7 @@ impl Search {
                         .nsga2
                         .objectives
                         .iter()
-                        .filter_map(|o| objective(o))
+                        .filter_map(|o| objective_among(o, config.metric_names()))
                         .collect(),
                     crossover_probability: s.nsga2.crossover_probability,
                 };
@@ -146,12 +147,11 @@ impl Search {
     }
 }
 
-/// The MAP-Elites cells of `config` for a descriptor of `robots` robots.
-fn cells(config: &Config, robots: usize) -> Result<Cells> {
+/// The MAP-Elites cells of `config` over the descriptor box `(lower, upper)`.
+fn cells(config: &Config, (lower, upper): (Vec<f64>, Vec<f64>)) -> Result<Cells> {
     let s = &config.strategy;
     let m = &s.map_elites;
-    let dims = s.behaviour.dims(robots);
-    let (lower, upper) = s.behaviour.bounds(robots);
+    let dims = lower.len();
     let bins = m.bins_for(dims);
     let refused = |e: NeatError| bad_input(format!("strategy.map_elites: {e}"));
     match m.cells {

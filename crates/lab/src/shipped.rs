@@ -12,8 +12,9 @@ pub struct Shipped {
     pub svg: &'static str,
 }
 
-/// Every shipped scenario; `roads` is the default.
-pub const SHIPPED: [Shipped; 6] = [
+/// Every shipped scenario; `roads` is the default. The mazes are for
+/// `experiment.task = "maze"` (one robot, a `goal` mark).
+pub const SHIPPED: [Shipped; 8] = [
     Shipped {
         name: "roads",
         what: "the default: a road loop with a crossroad, a spur and an S-curve (5 robots)",
@@ -44,7 +45,22 @@ pub const SHIPPED: [Shipped; 6] = [
         what: "a two-lane road loop driven both ways, with blocks and movable crates on the road (6 robots)",
         svg: include_str!("../../../scenarios/traffic.svg"),
     },
+    Shipped {
+        name: "medium-maze",
+        what: "Lehman & Stanley's medium maze, for --task maze (1 robot, a goal)",
+        svg: crate::maze::MEDIUM_MAZE_SVG,
+    },
+    Shipped {
+        name: "hard-maze",
+        what: "Lehman & Stanley's hard (deceptive) maze, for --task maze (1 robot, a goal)",
+        svg: crate::maze::HARD_MAZE_SVG,
+    },
 ];
+
+/// Whether shipped scenario `s` is a maze (for `experiment.task = "maze"`).
+pub fn is_maze(s: &Shipped) -> bool {
+    s.name.ends_with("-maze")
+}
 
 /// The shipped scenario called `name` (with or without `.svg`), if any.
 pub fn find(name: &str) -> Option<&'static Shipped> {
@@ -60,6 +76,7 @@ mod tests {
     #[test]
     fn every_shipped_scenario_loads_without_warnings_and_fits_the_default_experiment() {
         let config = crate::config::Config::default();
+        let maze = crate::config::Config::maze();
         for s in SHIPPED {
             let scenario = Scenario::from_svg(s.svg, s.name, &LoadOptions::default())
                 .unwrap_or_else(|e| panic!("{}: {e}", s.name));
@@ -69,6 +86,10 @@ mod tests {
                 s.name,
                 scenario.warnings
             );
+            if is_maze(&s) {
+                crate::maze_run::task(&maze, &scenario).unwrap_or_else(|e| panic!("{e}"));
+                continue;
+            }
             // The default experiment drives the first 5.
             assert!(scenario.robots.len() >= 5, "{}", s.name);
             for r in &scenario.robots {

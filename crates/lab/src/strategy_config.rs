@@ -298,21 +298,27 @@ impl Default for Nsga2Config {
 
 /// The objective `name` (`fitness`, `contacts`, `on_road`, optionally with a leading `-`).
 pub fn objective(name: &str) -> Option<Objective> {
+    objective_among(name, &METRICS)
+}
+
+/// The objective `name`: `fitness` or one of a task's `metrics`, optionally
+/// with a leading `-` (minimised).
+pub fn objective_among(name: &str, metrics: &[&str]) -> Option<Objective> {
     let (maximise, what) = match name.strip_prefix('-') {
         Some(rest) => (false, rest),
         None => (true, name),
     };
     let measure = match what {
         "fitness" => Measure::Fitness,
-        other => Measure::Metric(METRICS.iter().position(|m| *m == other)?),
+        other => Measure::Metric(metrics.iter().position(|m| *m == other)?),
     };
     Some(Objective { measure, maximise })
 }
 
 /// Checks the `[strategy]` section `s` of a config that trains on several
-/// maps if `multi_map` (sizes that depend on the robots are checked when
-/// the run starts); the error names the key.
-pub fn validate(s: &StrategyConfig, multi_map: bool) -> Result<(), String> {
+/// maps if `multi_map`, whose task measures `metrics` (sizes that depend on
+/// the robots are checked when the run starts); the error names the key.
+pub fn validate(s: &StrategyConfig, multi_map: bool, metrics: &[&str]) -> Result<(), String> {
     let bad = |key: &str, value: &dyn std::fmt::Debug, why: &str| {
         Err(format!("strategy.{key} = {value:?}: {why}"))
     };
@@ -361,12 +367,11 @@ pub fn validate(s: &StrategyConfig, multi_map: bool) -> Result<(), String> {
     if n.objectives.is_empty() {
         return bad("nsga2.objectives", &n.objectives, "at least one objective");
     }
-    if let Some(o) = n.objectives.iter().find(|o| objective(o).is_none()) {
-        return bad(
-            "nsga2.objectives",
-            o,
-            "expected fitness, contacts or on_road, each optionally with a leading -",
-        );
+    if let Some(o) = (n.objectives.iter()).find(|o| objective_among(o, metrics).is_none()) {
+        return Err(format!(
+            "strategy.nsga2.objectives = {o:?}: expected fitness or {}, each optionally with a leading -",
+            metrics.join(" or ")
+        ));
     }
     if !(0.0..=1.0).contains(&n.crossover_probability) {
         return bad(
@@ -393,8 +398,9 @@ mod tests {
 
     #[test]
     fn bad_settings_name_their_key() {
-        let validate =
-            |s: &StrategyConfig| validate(s, false).map_err(|message| Message { message });
+        let validate = |s: &StrategyConfig| {
+            validate(s, false, &METRICS).map_err(|message| Message { message })
+        };
         struct Message {
             message: String,
         }

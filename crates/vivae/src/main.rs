@@ -12,14 +12,15 @@ use std::time::Instant;
 use anyhow::Context as _;
 use clap::{Args, Parser, Subcommand};
 use vivae::report;
-use vivae_lab::config::Config;
+use vivae_lab::config::{Config, TaskKind};
 use vivae_lab::evolve::{Outcome, Run};
 use vivae_lab::experiment::Experiment;
 use vivae_lab::io::{bad_input, load_scenario, one_line, read_config, write_atomic};
 use vivae_lab::maps::TrainingMap;
+use vivae_lab::run_task::RunTask;
 use vivae_lab::rundir::{self, GenerationRecord, files};
 use vivae_lab::substrate::PolarGrid;
-use vivae_lab::training::Training;
+use vivae_neat::driver::Task;
 
 mod portable_libm;
 
@@ -165,6 +166,10 @@ struct Overrides {
     /// Behaviour descriptor of novelty and map-elites (strategy.behaviour).
     #[arg(long, value_name = "end-position|end-positions|side-speed")]
     behaviour: Option<vivae_lab::descriptors::BehaviourKind>,
+    /// Task (experiment.task): driving (default) or maze (Lehman & Stanley's
+    /// maze with a plain NEAT network; default scenario hard-maze).
+    #[arg(long, value_name = "driving|maze")]
+    task: Option<TaskKind>,
 }
 
 #[derive(Args, Debug)]
@@ -316,11 +321,17 @@ fn dispatch(cli: Cli, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode>
         Command::Replay(args) => cmd_replay(args),
         Command::Retrain(args) => cmd_retrain(args, interrupted),
         Command::Report { run_dir } => {
+            refuse_maze_run(&run_dir, "report")?;
             let path = vivae::report_html::write(&run_dir)?;
             eprintln!("report: {}", path.display());
             Ok(ExitCode::SUCCESS)
         }
-        Command::View(args) => Ok(vivae::view::run(args)?),
+        Command::View(args) => {
+            if let Some(source) = &args.source {
+                refuse_maze_run(source, "view")?;
+            }
+            Ok(vivae::view::run(args)?)
+        }
         Command::Compare(args) => {
             print!("{}", vivae::figures::compare::run(&args)?);
             eprintln!("figure: {}", args.out.display());
@@ -423,14 +434,25 @@ fn install_ctrlc(flag: &Arc<AtomicBool>) {
 }
 
 fn cmd_evolve(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode> {
+    let task = args.overrides.task;
     let mut config = match &args.config {
         Some(p) => read_config(p)?,
+        None if task == Some(TaskKind::Maze) => Config::maze(),
         None => Config::default(),
     };
+    if let Some(t) = task.filter(|t| args.config.is_some() && *t != config.experiment.task) {
+        return Err(bad_input(format!(
+            "--task {}: the config file's experiment.task is {}: set `task = \"{0}\"` under [experiment] in the file instead",
+            t.name(),
+            config.experiment.task.name()
+        ))
+        .into());
+    }
     apply_overrides(&mut config, &args.overrides)?;
+    let maze_defaults = task == Some(TaskKind::Maze) && args.config.is_none();
     let setup = || -> vivae_lab::Result<_> {
         let maps = vivae_lab::maps::load(&config)?;
-        let experiment = vivae_lab::training::Training::new(&config, &maps)?;
+        let experiment = RunTask::new(&config, &maps)?;
         let init = if config.experiment.init_population.is_empty() {
             None
         } else {
@@ -445,13 +467,15 @@ fn cmd_evolve(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
         None => setup().map_err(anyhow::Error::from),
     };
     let quiet = args.quiet.quiet;
-    let joining = prepared
-        .as_ref()
-        .map(|(m, e, _)| (&config, m.as_slice(), e));
+    let joining = (prepared.as_ref()).map(|(m, e, _)| (&config, m.as_slice(), e as &dyn Task));
     if let Some(code) = join_mpi_job(joining, config.run.threads, quiet)? {
         return Ok(code);
     }
     let (maps, experiment, init) = prepared?;
+    if let (RunTask::Maze(maze), true) = (&experiment, maze_defaults) {
+        // The example's MAP-Elites grid: 10 px cells over the maze.
+        config.strategy.map_elites.bins = vivae_lab::maze_run::cell_bins(maze);
+    }
     if !quiet {
         for m in &maps {
             for w in &m.loaded.scenario.warnings {
@@ -465,11 +489,19 @@ fn cmd_evolve(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
         .out
         .clone()
         .unwrap_or_else(vivae_lab::io::default_run_dir);
-    let source = experiment.describe(&maps);
+    let source = match &experiment {
+        RunTask::Driving(t) => t.describe(&maps),
+        RunTask::Maze(_) => maps[0].loaded.scenario.source.clone(),
+    };
     let first = &maps[0].loaded.text;
     let threads = config.run.threads;
     let force = args.new_run.force;
-    let run = Run::create_on_maps(&dir, config, experiment, first, &maps, init, force)?;
+    let maps = if vivae_lab::maps::is_multi_map(&config) {
+        &maps[..]
+    } else {
+        &[]
+    };
+    let run = Run::create_task(&dir, config, experiment, first, maps, init, force)?;
     drive(run, "evolve", &source, threads, quiet, interrupted)
 }
 
@@ -481,11 +513,11 @@ fn cmd_resume(args: ResumeArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
             let checkpoint = rundir::latest_checkpoint(&args.run_dir)?;
             let (config, _) = rundir::population_from_checkpoint(&checkpoint)?;
             let maps = vivae_lab::rundir::load_run(&args.run_dir, &config, None)?;
-            let experiment = vivae_lab::training::Training::new(&config, &maps)?;
+            let experiment = RunTask::new(&config, &maps)?;
             Ok((config, maps, experiment))
         })();
         let recorded = prepared.as_ref().map_or(0, |(c, _, _)| c.run.threads);
-        let joining = prepared.as_ref().map(|(c, m, e)| (c, m.as_slice(), e));
+        let joining = (prepared.as_ref()).map(|(c, m, e)| (c, m.as_slice(), e as &dyn Task));
         if let Some(code) = join_mpi_job(joining, args.threads.threads.unwrap_or(recorded), quiet)?
         {
             return Ok(code);
@@ -493,6 +525,13 @@ fn cmd_resume(args: ResumeArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
     }
     let run = Run::resume(&args.run_dir, args.generations, args.threads.threads)?;
     let total = run.config().experiment.generations;
+    if let Some(at) = run.maze_progress().and_then(|m| m.solved_at) {
+        eprintln!(
+            "{} is already finished: the maze was solved after {at} evaluations (a maze run stops when solved)",
+            run.dir().display()
+        );
+        return Ok(ExitCode::SUCCESS);
+    }
     if run.done() >= total {
         let dir = run.dir().display();
         eprintln!(
@@ -500,7 +539,9 @@ fn cmd_resume(args: ResumeArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
         );
         // A run that stopped before its figures and report showed every
         // generation (killed while drawing them) gets them now.
-        if vivae_lab::rundir::drawn_generations(run.dir()) != Some(run.done()) {
+        if run.experiment().is_some()
+            && vivae_lab::rundir::drawn_generations(run.dir()) != Some(run.done())
+        {
             report::finish_run(&run).context("writing figures")?;
             eprintln!("figures: {}", run.dir().join(files::FIGURES).display());
             eprintln!("report: {}", run.dir().join(files::REPORT).display());
@@ -527,6 +568,13 @@ fn cmd_resume(args: ResumeArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
 fn cmd_retrain(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode> {
     let checkpoint = rundir::latest_checkpoint(&args.run_dir)?;
     let (mut config, population) = rundir::population_from_checkpoint(&checkpoint)?;
+    if config.experiment.task == TaskKind::Maze {
+        return Err(bad_input(format!(
+            "{}: a maze run evolves plain networks, which have no substrate to re-sample: retrain is for driving runs",
+            args.run_dir.display()
+        ))
+        .into());
+    }
     if vivae_lab::maps::is_multi_map(&config) {
         // A multi-map run retrains on the copies of its maps.
         for s in &mut config.experiment.scenarios {
@@ -553,7 +601,7 @@ fn cmd_retrain(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Resu
         Ok((maps, experiment))
     })();
     let quiet = args.quiet.quiet;
-    let joining = prepared.as_ref().map(|(m, e)| (&config, m.as_slice(), e));
+    let joining = (prepared.as_ref()).map(|(m, e)| (&config, m.as_slice(), e as &dyn Task));
     if let Some(code) = join_mpi_job(joining, config.run.threads, quiet)? {
         return Ok(code);
     }
@@ -591,6 +639,9 @@ fn warn_repeated_maps(maps: &[vivae_lab::maps::TrainingMap]) {
 /// size as asked for (0 = one per core).
 fn header(run: &Run, command: &str, scenario: &str, threads: usize) -> String {
     let c = run.config();
+    let (Some(experiment), Some(t)) = (run.experiment(), run.training()) else {
+        return maze_header(run, command, scenario);
+    };
     let s = &c.surface_sensors;
     let n = c.substrate.neurons;
     let threads = match threads {
@@ -608,7 +659,6 @@ fn header(run: &Run, command: &str, scenario: &str, threads: usize) -> String {
         0 => String::new(),
         d => format!(" (resuming after generation {d})"),
     };
-    let t = run.training();
     let map_labels: Vec<&str> = t.map_labels().collect();
     let maps = if map_labels.is_empty() {
         String::new()
@@ -634,7 +684,7 @@ fn header(run: &Run, command: &str, scenario: &str, threads: usize) -> String {
          \x20 substrate: {}x{} surface sensors{distance}, {}x{} neurons; threads {threads}, seed {}{training}{maps}{strategy}\n\
          \x20 output: {}\n\
          \x20 fitness = average speed in px/step over all robots and steps (full throttle on road tends to 5)",
-        run.experiment().robots(),
+        experiment.robots(),
         c.experiment.steps,
         c.neat.population_size,
         c.experiment.generations,
@@ -643,6 +693,28 @@ fn header(run: &Run, command: &str, scenario: &str, threads: usize) -> String {
         n.rings,
         n.angles,
         c.experiment.seed,
+        run.dir().display(),
+    )
+}
+
+/// [`header`] for a maze run.
+fn maze_header(run: &Run, command: &str, scenario: &str) -> String {
+    let c = run.config();
+    let start = match run.done() {
+        0 => String::new(),
+        d => format!(" (resuming after generation {d})"),
+    };
+    format!(
+        "vivae {command}: the maze {scenario}\n\
+         \x20 a plain NEAT network (11 inputs, 2 outputs), {} steps per evaluation, population {}, \
+         at most {} generations{start}, seed {}{}\n\
+         \x20 output: {}\n\
+         \x20 fitness = 300 - the end distance to the goal in px; the run stops when a genome reaches the goal",
+        c.experiment.steps,
+        c.neat.population_size,
+        c.experiment.generations,
+        c.experiment.seed,
+        strategy_line(c),
         run.dir().display(),
     )
 }
@@ -752,7 +824,7 @@ fn launched_by_mpi() -> bool {
 /// evaluation threads it will use. `Some(code)` on a worker rank whose work is
 /// done, `None` where the run goes on (always, without MPI).
 fn join_mpi_job(
-    prepared: Result<(&Config, &[TrainingMap], &Training), &anyhow::Error>,
+    prepared: Result<(&Config, &[TrainingMap], &dyn Task), &anyhow::Error>,
     threads: usize,
     quiet: bool,
 ) -> anyhow::Result<Option<ExitCode>> {
@@ -792,9 +864,7 @@ fn run_generations(
     on_generation: impl FnMut(&GenerationRecord),
 ) -> vivae_lab::Result<Outcome> {
     #[cfg(feature = "mpi")]
-    if let Some(evaluator) =
-        vivae::mpi::MpiEvaluator::for_leader(run.training().clone(), run.pool())
-    {
+    if let Some(evaluator) = vivae::mpi::MpiEvaluator::for_leader(run.task().clone(), run.pool()) {
         return run.run_on(evaluator, interrupted, on_generation);
     }
     run.run(interrupted, on_generation)
@@ -841,11 +911,29 @@ fn drive(
     if let Some(b) = &bar {
         b.finish_and_clear();
     }
+    let rate = robot_steps / busy.max(1e-9);
+    conclude(&run, outcome, started_after, start, rate, quiet)
+}
+
+/// The end of [`drive`]: figures, the closing summary and the summary line
+/// (a maze run's by [`conclude_maze`]); `rate` is robot-steps per second.
+fn conclude(
+    run: &Run,
+    outcome: Outcome,
+    started_after: u32,
+    start: Instant,
+    rate: f64,
+    quiet: bool,
+) -> anyhow::Result<ExitCode> {
     let dir = run.dir().display().to_string();
+    if let Some(maze) = run.task().maze() {
+        let wall = start.elapsed().as_secs_f64();
+        return conclude_maze(run, maze, outcome, wall, rate, quiet);
+    }
     if outcome == Outcome::Interrupted {
         // The figures show the run so far; a resumed run redraws them at its end.
         if run.done() > 0 {
-            report::finish_run(&run).context("writing figures")?;
+            report::finish_run(run).context("writing figures")?;
         }
         eprintln!(
             "interrupted after generation {}; checkpoint written. Resume with: vivae resume {dir}",
@@ -853,19 +941,10 @@ fn drive(
         );
         return Ok(ExitCode::from(130));
     }
-    let summary = report::finish_run(&run).context("writing figures")?;
+    let summary = report::finish_run(run).context("writing figures")?;
     let wall = start.elapsed().as_secs_f64();
     if !quiet {
-        eprintln!(
-            "{}",
-            closing(
-                &run,
-                &summary,
-                started_after,
-                wall,
-                robot_steps / busy.max(1e-9)
-            )
-        );
+        eprintln!("{}", closing(run, &summary, started_after, wall, rate));
     }
     // The machine-readable summary, for scripts.
     let per_map = per_map_field(&summary).map_or_else(String::new, |p| format!(" per_map={p}"));
@@ -877,7 +956,57 @@ fn drive(
         summary.champion_on_road,
         vivae_lab::strategy_files::summary_fields(run.search()),
         wall,
-        robot_steps / busy.max(1e-9),
+        rate,
+    );
+    Ok(ExitCode::SUCCESS)
+}
+
+/// [`conclude`] for a maze run: no figures (see docs/guide.md, "The maze
+/// from the command line"); the summary line says whether and when it was solved.
+fn conclude_maze(
+    run: &Run,
+    maze: &vivae_lab::maze::MazeTask,
+    outcome: Outcome,
+    wall: f64,
+    rate: f64,
+    quiet: bool,
+) -> anyhow::Result<ExitCode> {
+    let dir = run.dir().display().to_string();
+    if outcome == Outcome::Interrupted {
+        eprintln!(
+            "interrupted after generation {}; checkpoint written. Resume with: vivae resume {dir}",
+            run.done()
+        );
+        return Ok(ExitCode::from(130));
+    }
+    let progress = run.maze_progress().copied().unwrap_or_default();
+    let champion = run.champion().ok_or(vivae_lab::Error::NoChampion)?;
+    let end = maze.run_genome(&champion.genome);
+    if !quiet {
+        let verdict = match (progress.solved_at, progress.solved_generation) {
+            (Some(n), Some(g)) => format!("solved after {n} evaluations (generation {g})"),
+            _ => format!("not solved in {} evaluations", progress.evaluations),
+        };
+        eprintln!(
+            "done: {} generations in {wall:.1} s; {verdict}\n\
+             champion: fitness {:.3} (generation {}), ends {:.1} px from the goal\n\
+             run directory: {dir}/ (config.toml, champion.json, generations.csv, checkpoints/)\n\
+             its end position: vivae replay {dir}",
+            run.done(),
+            champion.fitness,
+            champion.generation,
+            end.distance,
+        );
+    }
+    println!(
+        "evolve: generations={} best={} champion_generation={}{} best_distance={:.3} evaluations={}{} wall_s={wall:.1} robot_steps_per_s={rate:.0} out={dir}",
+        run.done(),
+        champion.fitness,
+        champion.generation,
+        progress.summary_fields(),
+        end.distance,
+        progress.evaluations,
+        vivae_lab::strategy_files::summary_fields(run.search()),
     );
     Ok(ExitCode::SUCCESS)
 }
@@ -906,6 +1035,9 @@ fn cmd_replay(args: ReplayArgs) -> anyhow::Result<ExitCode> {
         use vivae_lab::strategy_files::read_member;
         (champion.genome, champion.fitness, champion.generation) =
             read_member(&args.source, member)?;
+    }
+    if config.experiment.task == TaskKind::Maze {
+        return replay_maze(&args, &champion, config);
     }
     // A multi-map run replays on its first training map unless told otherwise.
     if args.scenario.is_none() && vivae_lab::maps::is_multi_map(&config) {
@@ -969,6 +1101,64 @@ fn cmd_replay(args: ReplayArgs) -> anyhow::Result<ExitCode> {
     );
     eprintln!("figure: {}", replay.figure.display());
     Ok(ExitCode::SUCCESS)
+}
+
+/// `vivae replay` of a maze run's genome: its episode's end, on stdout (no figure).
+fn replay_maze(
+    args: &ReplayArgs,
+    champion: &rundir::Champion,
+    mut config: Config,
+) -> anyhow::Result<ExitCode> {
+    let overrides = Overrides {
+        scenario: args.scenario.iter().cloned().collect(),
+        resolution: args.resolution,
+        steps: args.steps,
+        robots: args.robots,
+        wiring: args.wiring,
+        ..Overrides::default()
+    };
+    apply_overrides(&mut config, &overrides)?;
+    let scenario = load_scenario(scenario_path(&config).as_deref())?;
+    let maze = vivae_lab::maze_run::task(&config, &scenario.scenario)?;
+    RunTask::Maze(Box::new(maze.clone()))
+        .check_genome(&champion.genome)
+        .map_err(|reason| vivae_lab::Error::Genome {
+            path: args.source.clone(),
+            reason,
+        })?;
+    let end = maze.run_genome(&champion.genome);
+    println!(
+        "fitness={} solved={} distance={:.3} steps={} end_x={:.3} end_y={:.3}",
+        end.fitness(),
+        if end.solved { "yes" } else { "no" },
+        end.distance,
+        end.steps,
+        end.end.x,
+        end.end.y
+    );
+    eprintln!(
+        "maze {}: a maze replay prints the episode's end and draws no figure",
+        scenario.scenario.source
+    );
+    Ok(ExitCode::SUCCESS)
+}
+
+/// Refuses, in one line, `command` on a maze run (a run directory or a genome
+/// file recording a maze config): the command draws driving runs only.
+fn refuse_maze_run(path: &Path, command: &str) -> anyhow::Result<()> {
+    let config = if path.is_dir() {
+        read_config(&path.join(files::CONFIG)).ok()
+    } else {
+        rundir::read_champion(path).ok().and_then(|c| c.config)
+    };
+    match config {
+        Some(c) if c.experiment.task == TaskKind::Maze => Err(bad_input(format!(
+            "{}: a maze run: `vivae {command}` shows driving runs only; its curves are in generations.csv and `vivae replay` prints its champion's end",
+            path.display()
+        ))
+        .into()),
+        _ => Ok(()),
+    }
 }
 
 fn cmd_scenario(command: ScenarioCommand) -> anyhow::Result<ExitCode> {

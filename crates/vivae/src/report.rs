@@ -78,7 +78,8 @@ pub fn finish_run(run: &Run) -> Result<RunSummary> {
     let dir = run.dir().join(files::FIGURES);
     vivae_lab::io::create_dirs(&dir)?;
     vivae_lab::rundir::unmark_drawn(run.dir())?;
-    let experiment = run.experiment();
+    let experiment =
+        (run.experiment()).ok_or_else(|| bad_input("a maze run has no trajectory figures"))?;
     let mut episodes = Vec::new();
     for (generation, _, genome) in run.figure_genomes() {
         let episode = trajectory_figure(
@@ -217,7 +218,9 @@ fn front_figure(run: &Run, dir: &Path) -> Result<()> {
 /// `trajectories-champion-<map>` in `dir`; returns each map's label and
 /// recorded episode. None on one map.
 fn per_map_figures(run: &Run, champion: &Genome, dir: &Path) -> Result<Vec<(String, Episode)>> {
-    let training = run.training();
+    let Some(training) = run.training() else {
+        return Ok(Vec::new());
+    };
     training
         .map_labels()
         .zip(training.map_experiments())

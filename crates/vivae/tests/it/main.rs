@@ -29,6 +29,7 @@ mod interrupt_checkpoints_and_exits_130;
 mod killed_run_resumes_bit_identical;
 mod lateral_free_controller_resamples_exactly;
 mod library_has_no_program_dependencies;
+mod maze_runs_from_the_cli_and_resumes_identically;
 mod missing_corpus_skips_unless_required;
 mod multi_map_evolution_is_reproducible;
 mod multi_map_fitness_is_the_mean_over_maps;
