@@ -2,9 +2,13 @@
 
 python retina_multineat.py --mode MODE --runs N --seed S --max-generations G
 
-MODE: es (ES-HyperNEAT), es-leo (ES-HyperNEAT with MultiNEAT's `Leo`,
-`LeoSeed` and `GeometrySeed`), hyperneat (a fixed 8 -> 8 -> 4 -> 2 sheet),
-leo (the same sheet, links expressed by a second CPPN output).
+MODE: es (ES-HyperNEAT), es-leo (ES-HyperNEAT with MultiNEAT's `Leo`: a
+point is expressed only where the last CPPN output exceeds `LeoThreshold` 0;
+`LeoSeed` and `GeometrySeed` are set too, but MultiNEAT's genome constructor
+does not read them in its current source, so there is no locality seed),
+hyperneat (a fixed 8 -> 8 -> 4 -> 2 sheet, every queried link expressed),
+leo (the same sheet, a link expressed where the first CPPN output is > 0 and
+weighted by the second: MultiNEAT's two-output HyperNEAT, no seed).
 
 Same task as the Rust example: 256 images of a 4x2 retina (0/1 pixels), the
 same left and right object sets, outputs in (0, 1), E the summed
