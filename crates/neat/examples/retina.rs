@@ -23,7 +23,11 @@
 //! * `leo`: the same with a link expression output (LEO), no seed;
 //! * `leo-seed`: LEO with the Gaussian locality seed along x;
 //! * `es`: ES-HyperNEAT (paper defaults) from the 8 inputs to the 2 outputs;
-//! * `es-leo`: ES-HyperNEAT with LEO and the locality seed.
+//! * `es-leo`: ES-HyperNEAT with LEO and the locality seed;
+//! * `neat`: no substrate, a plain NEAT network on the 8 pixels and a bias
+//!   (direct encoding, `NeatParams::plain_neat` unless `--set` says
+//!   otherwise): a check that the task, fitness and success criterion are
+//!   solvable as defined here.
 
 mod common;
 use common::{RunResult, apply_overrides, args_or_exit, fail, summarize};
@@ -52,6 +56,7 @@ enum Mode {
     LeoSeed,
     Es,
     EsLeo,
+    Neat,
 }
 
 impl Mode {
@@ -62,8 +67,9 @@ impl Mode {
             "leo-seed" => Ok(Mode::LeoSeed),
             "es" => Ok(Mode::Es),
             "es-leo" => Ok(Mode::EsLeo),
+            "neat" => Ok(Mode::Neat),
             other => Err(format!(
-                "--mode {other}: expected hyperneat, leo, leo-seed, es or es-leo"
+                "--mode {other}: expected hyperneat, leo, leo-seed, es, es-leo or neat"
             )),
         }
     }
@@ -74,6 +80,7 @@ impl Mode {
             Mode::LeoSeed => "retina-leo-seed",
             Mode::Es => "retina-es",
             Mode::EsLeo => "retina-es-leo",
+            Mode::Neat => "retina-neat",
         }
     }
     fn leo(self) -> bool {
@@ -144,16 +151,39 @@ fn network(g: &Genome, mode: Mode, es: &EsParams) -> SparseNetwork {
     decode_layered(&mut cppn, &layout, &HyperParams::default()).expect("valid layered layout")
 }
 
-/// Fitness `1000/(1 + E²)` and how many of the 512 answers are right.
-fn evaluate(net: &mut SparseNetwork, images: &[([f64; 8], [bool; 2])]) -> (f64, usize) {
+/// Fitness `1000/(1 + E²)` and how many of the 512 answers are right; a
+/// substrate's outputs in (−1, 1) are mapped to (0, 1).
+fn evaluate_substrate(net: &mut SparseNetwork, images: &[([f64; 8], [bool; 2])]) -> (f64, usize) {
+    evaluate(net, images, |x| *x, |y| (y + 1.0) / 2.0)
+}
+
+/// The same for a plain NEAT network: the pixels and a bias of 1 in, its
+/// sigmoid outputs in (0, 1) as they are.
+fn evaluate_direct(net: &mut FeedForwardNetwork, images: &[([f64; 8], [bool; 2])]) -> (f64, usize) {
+    evaluate(
+        net,
+        images,
+        |x| [x[0], x[1], x[2], x[3], x[4], x[5], x[6], x[7], 1.0],
+        |y| y,
+    )
+}
+
+/// Fitness `1000/(1 + E²)` and how many of the 512 answers are right, with
+/// `input` building the network's inputs and `to_unit` mapping an output to (0, 1).
+fn evaluate<N: Network, const I: usize>(
+    net: &mut N,
+    images: &[([f64; 8], [bool; 2])],
+    input: impl Fn(&[f64; 8]) -> [f64; I],
+    to_unit: impl Fn(f64) -> f64,
+) -> (f64, usize) {
     let mut error = 0.0;
     let mut right = 0;
     let mut out = [0.0; 2];
     for (x, labels) in images {
         net.reset();
-        net.activate(x, &mut out);
+        net.activate(&input(x), &mut out);
         for (&y, &label) in out.iter().zip(labels) {
-            let a = (y + 1.0) / 2.0;
+            let a = to_unit(y);
             error += (a - f64::from(u8::from(label))).abs();
             right += usize::from((a > 0.5) == label);
         }
@@ -163,6 +193,10 @@ fn evaluate(net: &mut SparseNetwork, images: &[([f64; 8], [bool; 2])]) -> (f64, 
 
 /// The generation-0 population: minimal CPPNs, or LEO-seeded ones.
 fn initial_population(params: &NeatParams, mode: Mode, seed: u64) -> Population {
+    if mode == Mode::Neat {
+        return Population::new(params.clone(), GenomeSpec::plain(9, 2), seed)
+            .expect("valid parameters");
+    }
     let spec = GenomeSpec {
         outputs: if mode.leo() { 3 } else { 2 },
         ..GenomeSpec::cppn()
@@ -194,11 +228,18 @@ fn run(params: &NeatParams, mode: Mode, es: &EsParams, seed: u64, gens: u32) -> 
         let mut fitness = Vec::with_capacity(pop.genomes().len());
         let mut first = None;
         for (i, g) in pop.genomes().iter().enumerate() {
-            let mut net = network(g, mode, es);
-            let (f, right) = evaluate(&mut net, &images);
+            let (f, right, hidden) = if mode == Mode::Neat {
+                let mut net = FeedForwardNetwork::from_genome(g);
+                let (f, right) = evaluate_direct(&mut net, &images);
+                (f, right, g.num_hidden())
+            } else {
+                let mut net = network(g, mode, es);
+                let (f, right) = evaluate_substrate(&mut net, &images);
+                (f, right, net.num_hidden())
+            };
             fitness.push(f);
             if right > best_right {
-                (best_right, best_hidden) = (right, net.num_hidden());
+                (best_right, best_hidden) = (right, hidden);
             }
             if right == 512 && first.is_none() {
                 first = Some(i);
@@ -236,7 +277,7 @@ The left & right retina problem with HyperNEAT, LEO and ES-HyperNEAT.
 Usage: cargo run --release -p vivae-neat --example retina -- [OPTIONS]
 
 Options:
-  --mode M              hyperneat (default), leo, leo-seed, es or es-leo
+  --mode M              hyperneat (default), leo, leo-seed, es, es-leo or neat
   --runs N              runs, with seeds S, S+1, ... (default 20)
   --seed S              seed of the first run (default 1)
   --max-generations G   generations before a run counts as unsolved (default 500)
@@ -255,8 +296,12 @@ fn main() {
         Some((_, m)) => Mode::parse(m).unwrap_or_else(|e| fail("retina", &e)),
         None => Mode::HyperNeat,
     };
-    let params = apply_overrides(NeatParams::paper_cppn(), &args.sets)
-        .unwrap_or_else(|e| fail("retina", &e));
+    let base = if mode == Mode::Neat {
+        NeatParams::plain_neat()
+    } else {
+        NeatParams::paper_cppn()
+    };
+    let params = apply_overrides(base, &args.sets).unwrap_or_else(|e| fail("retina", &e));
     let es = EsParams::default();
     let runs = args.runs.unwrap_or(20);
     let seed = args.seed.unwrap_or(1);
