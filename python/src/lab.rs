@@ -15,6 +15,7 @@ use vivae_lab::config::Config;
 use vivae_lab::es_controller::RobotController;
 use vivae_lab::evolve::{Outcome, Run};
 use vivae_lab::experiment::Experiment;
+use vivae_lab::run_task::RunTask;
 use vivae_lab::rundir::{self, GenerationRecord};
 use vivae_lab::substrate::WheelNeurons;
 use vivae_lab::training::Training;
@@ -326,22 +327,33 @@ pub fn evolve<'py>(
     on_generation: Option<Py<PyAny>>,
     overrides: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let config = settings::build(config.as_deref(), overrides)?;
+    let maze_defaults = config.is_none();
+    let mut config = settings::build(config.as_deref(), overrides)?;
     let setup = || -> vivae_lab::Result<_> {
-        let (maps, training) = training(&config)?;
+        let maps = vivae_lab::maps::load(&config)?;
+        let task = RunTask::new(&config, &maps)?;
         let init = if config.experiment.init_population.is_empty() {
             None
         } else {
             let path = Path::new(&config.experiment.init_population);
             Some(rundir::population_from_checkpoint(path)?.1)
         };
-        Ok((maps, training, init))
+        Ok((maps, task, init))
     };
-    let (maps, training, init) = setup().map_err(errors::lab)?;
+    let (maps, task, init) = setup().map_err(errors::lab)?;
+    if let (RunTask::Maze(maze), true) = (&task, maze_defaults) {
+        // As `vivae evolve --task maze`: the example's 10 px MAP-Elites grid over the maze.
+        config.strategy.map_elites.bins = vivae_lab::maze_run::cell_bins(maze);
+    }
     let dir = out.unwrap_or_else(vivae_lab::io::default_run_dir);
     let first = maps[0].loaded.text.clone();
+    let maps = if vivae_lab::maps::is_multi_map(&config) {
+        maps
+    } else {
+        Vec::new()
+    };
     let mut run = py
-        .detach(|| Run::create_on_maps(&dir, config, training, &first, &maps, init, force))
+        .detach(|| Run::create_task(&dir, config, task, &first, &maps, init, force))
         .map_err(errors::lab)?;
     let stop = AtomicBool::new(false);
     let failure: Mutex<Option<PyErr>> = Mutex::new(None);
@@ -378,6 +390,12 @@ pub fn evolve<'py>(
     d.set_item("generations", run.done())?;
     d.set_item("finished", outcome == Outcome::Finished)?;
     d.set_item("wall_s", wall)?;
+    if let Some(m) = run.maze_progress() {
+        // A task with a goal: as the CLI's `solved=` and `evals_to_solve=`.
+        d.set_item("solved", m.solved_at.is_some())?;
+        d.set_item("evals_to_solve", m.solved_at)?;
+        d.set_item("evaluations", m.evaluations)?;
+    }
     if let Some(c) = run.champion() {
         d.set_item("best", c.fitness)?;
         d.set_item("champion_generation", c.generation)?;

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString};
-use vivae_lab::config::Config;
+use vivae_lab::config::{Config, TaskKind};
 use vivae_lab::substrate::PolarGrid;
 
 use crate::errors;
@@ -31,12 +31,31 @@ pub const OVERRIDES: &[&str] = &[
     "substrate",
     "strategy",
     "behaviour",
+    "task",
 ];
 
 /// `config` (a TOML file) or the paper's default, with `overrides` applied and validated.
 pub fn build(config: Option<&Path>, overrides: Option<&Bound<'_, PyDict>>) -> PyResult<Config> {
+    let task = match overrides.map(|o| o.get_item("task")).transpose()?.flatten() {
+        Some(v) if !v.is_none() => Some(parsed::<TaskKind>("task", &v)?),
+        _ => None,
+    };
     let c = match config {
-        Some(p) => vivae_lab::io::read_config(p).map_err(errors::lab)?,
+        Some(p) => {
+            let c = vivae_lab::io::read_config(p).map_err(errors::lab)?;
+            // As `--task` with `--config`: the file says which task it is.
+            if let Some(t) = task.filter(|t| *t != c.experiment.task) {
+                return Err(errors::value(format!(
+                    "task={:?}: the config file's experiment.task is {}: set `task = \"{}\"` under [experiment] in the file instead",
+                    t.name(),
+                    c.experiment.task.name(),
+                    t.name()
+                )));
+            }
+            c
+        }
+        // The maze's own defaults, as `vivae evolve --task maze` starts from.
+        None if task == Some(TaskKind::Maze) => Config::maze(),
         None => Config::default(),
     };
     build_from(c, overrides)
@@ -105,6 +124,7 @@ fn apply(c: &mut Config, o: &Bound<'_, PyDict>) -> PyResult<()> {
             "substrate" => c.substrate.kind = parsed(&key, &v)?,
             "strategy" => c.strategy.kind = parsed(&key, &v)?,
             "behaviour" => c.strategy.behaviour = parsed(&key, &v)?,
+            "task" => c.experiment.task = parsed(&key, &v)?,
             other => {
                 return Err(errors::value(format!(
                     "unknown setting {other:?}; expected one of {}",

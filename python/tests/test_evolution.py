@@ -183,6 +183,27 @@ def test_evolve_with_a_strategy_writes_what_the_cli_writes(tmp_path, cli, strate
         vivae.evolve(out=tmp_path / "bad", progress=False, strategy="cma-es", **SETTINGS)
 
 
+@pytest.mark.parametrize("strategy", ["neat", "novelty"])
+def test_evolve_runs_the_maze_as_the_cli_does(tmp_path, cli, strategy):
+    settings = dict(generations=3, population=20, seed=4, threads=1)
+    ours = tmp_path / "py"
+    result = vivae.evolve(out=ours, progress=False, task="maze", strategy=strategy, **settings)
+    theirs = tmp_path / "cli"
+    flags = ["--task", "maze", "--strategy", strategy, "--generations", "3", "--population", "20", "--seed", "4",
+             "--threads", "1"]
+    printed = subprocess.run([cli, "evolve", "-q", "--out", str(theirs), *flags], check=True,
+                             capture_output=True, text=True).stdout
+    for name in SAME:
+        assert (ours / name).read_bytes() == (theirs / name).read_bytes(), name
+    fields = dict(kv.split("=", 1) for kv in printed.split() if "=" in kv)
+    assert fields["solved"] == ("yes" if result["solved"] else "no")
+    assert fields["evals_to_solve"] == ("none" if result["evals_to_solve"] is None else str(result["evals_to_solve"]))
+    assert result["evaluations"] == int(fields["evaluations"])
+    # A config file says which task it is; the keyword may not contradict it.
+    with pytest.raises(ValueError, match="experiment.task"):
+        vivae.evolve(out=tmp_path / "bad", progress=False, config=ours / "config.toml", task="driving")
+
+
 def test_es_hyperneat_tasks_evaluate_and_replay_as_runs_do(tmp_path):
     task = vivae.DriveTask(steps=60, population=12, substrate="es-hyperneat")
     genomes = task.population().ask()

@@ -85,11 +85,15 @@ def evolve(
         **overrides: settings by the CLI's flag names: ``scenario`` (a path,
             a shipped name, or a list for several maps), ``generations``,
             ``population``, ``seed``, ``sensors="3x5"``, ``neurons="3x3"``,
-            ``steps``, ``robots``, ``threads``, … (``vivae.OVERRIDES``).
+            ``steps``, ``robots``, ``threads``, … (``vivae.OVERRIDES``);
+            ``task="maze"`` runs Lehman & Stanley's maze (default
+            ``hard-maze``) as ``vivae evolve --task maze`` does.
 
     Returns:
         A dict: ``out``, ``generations``, ``finished``, ``best``,
-        ``champion_generation``, ``champion`` (a Genome), ``wall_s``.
+        ``champion_generation``, ``champion`` (a Genome), ``wall_s``; a maze
+        run adds ``solved``, ``evals_to_solve`` (None unsolved) and
+        ``evaluations``, the summary line's fields.
 
     Raises:
         ValueError: bad settings, config, scenario (the CLI's one-line message).
