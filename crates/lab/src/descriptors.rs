@@ -18,6 +18,10 @@
 //!   when no robot-step was on a road with both edges in reach) and the
 //!   mean speed as a share of `physics.v_max`: 2 numbers in [−1, 1] × [0, 1],
 //!   the repertoire of "keep left / keep right, slow / fast".
+//! * **`trajectory`** — the robots' mean position, normalised as
+//!   `end-position`, after steps ⌈k·steps/5⌉ for k = 1…5 (the last is the
+//!   end position): 10 numbers in [0, 1], a sample of the path, which tells
+//!   a robot that went round a loop from one that stood at its end.
 //!
 //! Metrics ([`METRICS`], in this order): `contacts`, contacts begun per 1,000
 //! robot-steps (robot–robot and robot–obstacle, as `replay` counts
@@ -36,7 +40,7 @@ use crate::fitness::Fitness;
 use crate::rollout::{Drive, Rollout};
 use crate::strategy_config::{StrategyConfig, StrategyKind as K};
 
-pub use crate::strategy_config::{BehaviourKind, METRICS};
+pub use crate::strategy_config::{BehaviourKind, METRICS, TRAJECTORY_SAMPLES};
 
 /// What an episode measures besides its fitness.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -94,8 +98,13 @@ pub fn measured_episode(
     let mut behaviour = (measures.metrics || side)
         .then(|| BehaviourMeter::new(&world, steps as usize).measuring_side(side));
     let mut on_road = 0u64;
-    for _ in 0..steps {
+    let mut path = (measures.behaviour == Some(BehaviourKind::Trajectory))
+        .then(|| Vec::with_capacity(2 * TRAJECTORY_SAMPLES));
+    for t in 1..=steps {
         rollout.step(&mut world, controller, None);
+        if let Some(p) = &mut path {
+            sample_path(p, &world, t, steps);
+        }
         if observe {
             meter.observe(&world);
         }
@@ -121,6 +130,12 @@ pub fn measured_episode(
             vec![sum[0] / n as f64, sum[1] / n as f64]
         }
         Some(BehaviourKind::EndPositions) => ends().flatten().collect(),
+        Some(BehaviourKind::Trajectory) => {
+            let mut p = path.unwrap_or_default();
+            // No steps at all: every sample is where the robots stand.
+            sample_path(&mut p, &world, steps, steps);
+            p
+        }
         Some(BehaviourKind::SideSpeed) => {
             let odometer: f64 = world.robots().iter().map(|r| r.odometer).sum();
             let speed = odometer / robot_steps / world.params().v_max;
@@ -132,6 +147,23 @@ pub fn measured_episode(
         fitness: meter.score(&world, robot_steps),
         metrics,
         behaviour,
+    }
+}
+
+/// Appends to `path` the samples due by step `t` of `steps`: sample k
+/// (from 1) after step ⌈k·steps/K⌉, so several at once when steps < K.
+fn sample_path(path: &mut Vec<f64>, world: &World, t: u32, steps: u32) {
+    let k = TRAJECTORY_SAMPLES as u64;
+    while path.len() < 2 * TRAJECTORY_SAMPLES
+        && u64::from(t) * k >= (path.len() as u64 / 2 + 1) * u64::from(steps)
+    {
+        let (w, h) = (world.scenario().width(), world.scenario().height());
+        let n = world.robots().len().max(1) as f64;
+        let (x, y) = world
+            .robots()
+            .iter()
+            .fold((0.0, 0.0), |(x, y), r| (x + r.pos.x / w, y + r.pos.y / h));
+        path.extend([x / n, y / n]);
     }
 }
 
@@ -193,6 +225,7 @@ mod tests {
             (StrategyKind::MapElites, BehaviourKind::SideSpeed),
             (StrategyKind::Novelty, BehaviourKind::EndPositions),
             (StrategyKind::Nsga2, BehaviourKind::EndPosition),
+            (StrategyKind::Novelty, BehaviourKind::Trajectory),
         ] {
             let (_, measured) = experiment(kind, behaviour);
             for g in pop.genomes().iter().take(4) {
@@ -254,6 +287,51 @@ mod tests {
         let x: f64 = all.iter().step_by(2).sum::<f64>() / n;
         let y: f64 = all.iter().skip(1).step_by(2).sum::<f64>() / n;
         assert!((mean[0] - x).abs() < 1e-12 && (mean[1] - y).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_trajectory_samples_the_path_and_ends_at_the_end_position() {
+        let (config, e) = experiment(StrategyKind::Novelty, BehaviourKind::Trajectory);
+        let pop = Population::new(config.neat.clone(), e.cppn_spec(), 3).unwrap();
+        let m = |kind| Measures {
+            behaviour: Some(kind),
+            metrics: false,
+        };
+        let mut moved = false;
+        for g in pop.genomes().iter().take(6) {
+            let c = e.controller(g).unwrap();
+            let path = measured_episode(e.setup(), e.rollout(&c), &c, m(BehaviourKind::Trajectory));
+            let end = measured_episode(e.setup(), e.rollout(&c), &c, m(BehaviourKind::EndPosition));
+            assert_eq!(path.behaviour.len(), 2 * TRAJECTORY_SAMPLES);
+            assert_eq!(
+                path.behaviour[2 * TRAJECTORY_SAMPLES - 2..],
+                end.behaviour[..]
+            );
+            moved |= path.behaviour[..2] != path.behaviour[2..4];
+        }
+        assert!(moved, "no robot moved between the first two samples");
+    }
+
+    #[test]
+    fn a_trajectory_takes_its_samples_at_evenly_spaced_steps() {
+        // Sample k after step ⌈k·steps/5⌉: steps 2, 4, 6, 8, 10 of 10; all
+        // five after the only step of 1; with 3 steps, some steps take two.
+        let due = |steps: u32| -> Vec<u32> {
+            let mut path = Vec::new();
+            let world = crate::io::load_scenario(None).unwrap().scenario;
+            let world = World::new(&world, &vivae_sim::PhysicsParams::default()).unwrap();
+            let mut at = Vec::new();
+            for t in 1..=steps {
+                let before = path.len();
+                sample_path(&mut path, &world, t, steps);
+                at.extend(std::iter::repeat_n(t, (path.len() - before) / 2));
+            }
+            at
+        };
+        assert_eq!(due(10), vec![2, 4, 6, 8, 10]);
+        assert_eq!(due(1), vec![1; 5]);
+        assert_eq!(due(3), vec![1, 2, 2, 3, 3]);
+        assert_eq!(due(1000), vec![200, 400, 600, 800, 1000]);
     }
 
     #[test]

@@ -21,13 +21,21 @@ pub enum BehaviourKind {
     EndPositions,
     /// Mean signed side of the road and mean speed over `v_max`.
     SideSpeed,
+    /// The robots' mean position over the arena's size at
+    /// [`TRAJECTORY_SAMPLES`] evenly spaced times, the last at the end.
+    Trajectory,
 }
+
+/// Positions a `trajectory` behaviour samples: 5, so 10 coordinates (as
+/// Lehman & Stanley sampled their biped's path, a handful of points).
+pub const TRAJECTORY_SAMPLES: usize = 5;
 
 impl BehaviourKind {
     /// Coordinates of the descriptor for `robots` robots.
     pub fn dims(self, robots: usize) -> usize {
         match self {
             BehaviourKind::EndPositions => 2 * robots,
+            BehaviourKind::Trajectory => 2 * TRAJECTORY_SAMPLES,
             BehaviourKind::EndPosition | BehaviourKind::SideSpeed => 2,
         }
     }
@@ -49,6 +57,10 @@ impl BehaviourKind {
             BehaviourKind::EndPositions => (0..dims)
                 .map(|i| format!("{}{}", ["x", "y"][i % 2], i / 2))
                 .collect(),
+            // The sample's number from 1 (the end is the last).
+            BehaviourKind::Trajectory => (0..dims)
+                .map(|i| format!("{}{}", ["x", "y"][i % 2], i / 2 + 1))
+                .collect(),
         }
     }
 
@@ -58,6 +70,7 @@ impl BehaviourKind {
             BehaviourKind::EndPosition => "end-position",
             BehaviourKind::EndPositions => "end-positions",
             BehaviourKind::SideSpeed => "side-speed",
+            BehaviourKind::Trajectory => "trajectory",
         }
     }
 }
@@ -70,10 +83,13 @@ impl std::str::FromStr for BehaviourKind {
             BehaviourKind::EndPosition,
             BehaviourKind::EndPositions,
             BehaviourKind::SideSpeed,
+            BehaviourKind::Trajectory,
         ]
         .into_iter()
         .find(|k| k.name() == s)
-        .ok_or_else(|| format!("'{s}': expected end-position, end-positions or side-speed"))
+        .ok_or_else(|| {
+            format!("'{s}': expected end-position, end-positions, side-speed or trajectory")
+        })
     }
 }
 
@@ -141,7 +157,8 @@ pub struct StrategyConfig {
     pub kind: StrategyKind,
     /// Behaviour descriptor for novelty and map-elites: end-position (mean
     /// end position over the arena's size), end-positions (each robot's,
-    /// concatenated) or side-speed (mean side of the road, mean speed over v_max).
+    /// concatenated), side-speed (mean side of the road, mean speed over
+    /// v_max) or trajectory (mean position at 5 evenly spaced times).
     pub behaviour: BehaviourKind,
     /// Novelty search.
     pub novelty: NoveltyConfig,

@@ -164,7 +164,7 @@ struct Overrides {
     #[arg(long, value_name = "neat|novelty|map-elites|nsga2")]
     strategy: Option<vivae_lab::strategy_config::StrategyKind>,
     /// Behaviour descriptor of novelty and map-elites (strategy.behaviour).
-    #[arg(long, value_name = "end-position|end-positions|side-speed")]
+    #[arg(long, value_name = "end-position|end-positions|side-speed|trajectory")]
     behaviour: Option<vivae_lab::descriptors::BehaviourKind>,
     /// Task (experiment.task): driving (default) or maze (Lehman & Stanley's
     /// maze with a plain NEAT network; default scenario hard-maze).

@@ -44,22 +44,26 @@ fn files_of(dir: &Path) -> BTreeMap<String, Vec<u8>> {
 fn interrupted_and_resumed_runs_of_every_strategy_match_uninterrupted_ones() {
     let dir = scratch("strategies-resume");
     let config = write_small_config(&dir, 5);
-    for (strategy, own) in [
-        ("novelty", None),
-        ("map-elites", Some("archive.jsonl")),
-        ("nsga2", Some("front.jsonl")),
+    for (strategy, behaviour, own) in [
+        ("novelty", "end-position", None),
+        // A sampled path: 10 coordinates, through the k-d tree.
+        ("novelty", "trajectory", None),
+        ("map-elites", "end-position", Some("archive.jsonl")),
+        ("nsga2", "end-position", Some("front.jsonl")),
     ] {
-        let full = dir.join(format!("{strategy}-full"));
-        let summary = evolve(&config, &full, &["--strategy", strategy]);
+        let name = format!("{strategy}-{behaviour}");
+        let flags = ["--strategy", strategy, "--behaviour", behaviour];
+        let full = dir.join(format!("{name}-full"));
+        let summary = evolve(&config, &full, &flags);
         assert!(
             summary.contains(&format!(" strategy={strategy}")),
             "{summary}"
         );
-        let short = dir.join(format!("{strategy}-short"));
+        let short = dir.join(format!("{name}-short"));
         evolve(
             &config,
             &short,
-            &["--strategy", strategy, "--generations", "2"],
+            &[&flags[..], &["--generations", "2"]].concat(),
         );
         ok(vivae()
             .args(["resume", "-q", "--generations", "5"])
