@@ -39,6 +39,14 @@ pub fn try_http(
 ) -> std::io::Result<HttpResponse> {
     let broken =
         |what: &str| std::io::Error::new(std::io::ErrorKind::UnexpectedEof, what.to_string());
+    // A signal to the test process (other tests start and stop children)
+    // interrupts a blocking read, which `read` reports instead of retrying.
+    let read = |s: &mut TcpStream, buf: &mut [u8]| loop {
+        match s.read(buf) {
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
+            other => break other,
+        }
+    };
     let mut s = TcpStream::connect(("127.0.0.1", port))?;
     s.set_read_timeout(Some(PATIENCE))?;
     let body = body.unwrap_or("");
@@ -55,7 +63,7 @@ pub fn try_http(
         if let Some(p) = raw.windows(4).position(|w| w == b"\r\n\r\n") {
             break p;
         }
-        let n = s.read(&mut buf)?;
+        let n = read(&mut s, &mut buf)?;
         if n == 0 {
             return Err(broken("connection closed before the HTTP head ended"));
         }
@@ -82,7 +90,7 @@ pub fn try_http(
         if done {
             break;
         }
-        let n = s.read(&mut buf)?;
+        let n = read(&mut s, &mut buf)?;
         if n == 0 {
             break;
         }
@@ -447,7 +455,8 @@ impl Viewer {
         let mut out = child.stdout.take().unwrap();
         let mut line = Vec::new();
         let mut b = [0u8; 1];
-        while out.read(&mut b).unwrap_or(0) == 1 && b[0] != b'\n' {
+        // `read_exact` retries a read that a signal interrupted.
+        while out.read_exact(&mut b).is_ok() && b[0] != b'\n' {
             line.push(b[0]);
         }
         let line = String::from_utf8(line).unwrap();
