@@ -44,19 +44,14 @@ pub fn build(config: Option<&Path>, overrides: Option<&Bound<'_, PyDict>>) -> Py
         Some(p) => {
             let c = vivae_lab::io::read_config(p).map_err(errors::lab)?;
             // As `--task` with `--config`: the file says which task it is.
-            if let Some(t) = task.filter(|t| *t != c.experiment.task) {
-                return Err(errors::value(format!(
-                    "task={:?}: the config file's experiment.task is {}: set `task = \"{}\"` under [experiment] in the file instead",
-                    t.name(),
-                    c.experiment.task.name(),
-                    t.name()
-                )));
+            if let Some(why) = c.task_mismatch(task) {
+                let t = task.map_or("", TaskKind::name);
+                return Err(errors::value(format!("task={t:?}: {why}")));
             }
             c
         }
         // The maze's own defaults, as `vivae evolve --task maze` starts from.
-        None if task == Some(TaskKind::Maze) => Config::maze(),
-        None => Config::default(),
+        None => Config::for_task(task),
     };
     build_from(c, overrides)
 }

@@ -468,6 +468,26 @@ impl Config {
         toml::to_string(self).expect("config serialises to TOML")
     }
 
+    /// The config a run of `task` starts from without a config file: the
+    /// paper's for driving (and no task named), [`Config::maze`] for the maze.
+    pub fn for_task(task: Option<TaskKind>) -> Config {
+        match task {
+            Some(TaskKind::Maze) => Config::maze(),
+            _ => Config::default(),
+        }
+    }
+
+    /// Why a task named beside this config file does not fit it (`None` when
+    /// it does): the file's `experiment.task` decides.
+    pub fn task_mismatch(&self, task: Option<TaskKind>) -> Option<String> {
+        let t = task.filter(|t| *t != self.experiment.task)?;
+        Some(format!(
+            "the config file's experiment.task is {}: set `task = \"{}\"` under [experiment] in the file instead",
+            self.experiment.task.name(),
+            t.name()
+        ))
+    }
+
     /// The config of a maze run with the example's settings: the hard maze,
     /// 400 steps, the paper's robot, plain NEAT with a population of 250,
     /// novelty search's ρ_min = 6 px, NSGA-II on fitness alone.

@@ -125,10 +125,7 @@ pub fn measured_episode(
     let ends = || world.robots().iter().map(|r| [r.pos.x / w, r.pos.y / h]);
     let behaviour = match measures.behaviour {
         None => Vec::new(),
-        Some(BehaviourKind::EndPosition) => {
-            let sum = ends().fold([0.0, 0.0], |s, p| [s[0] + p[0], s[1] + p[1]]);
-            vec![sum[0] / n as f64, sum[1] / n as f64]
-        }
+        Some(BehaviourKind::EndPosition) => mean_position(&world).to_vec(),
         Some(BehaviourKind::EndPositions) => ends().flatten().collect(),
         Some(BehaviourKind::Trajectory) => {
             let mut p = path.unwrap_or_default();
@@ -157,14 +154,20 @@ fn sample_path(path: &mut Vec<f64>, world: &World, t: u32, steps: u32) {
     while path.len() < 2 * TRAJECTORY_SAMPLES
         && u64::from(t) * k >= (path.len() as u64 / 2 + 1) * u64::from(steps)
     {
-        let (w, h) = (world.scenario().width(), world.scenario().height());
-        let n = world.robots().len().max(1) as f64;
-        let (x, y) = world
-            .robots()
-            .iter()
-            .fold((0.0, 0.0), |(x, y), r| (x + r.pos.x / w, y + r.pos.y / h));
-        path.extend([x / n, y / n]);
+        path.extend(mean_position(world));
     }
+}
+
+/// The robots' mean position, each coordinate divided by the map's size
+/// (0 with no robots).
+fn mean_position(world: &World) -> [f64; 2] {
+    let (w, h) = (world.scenario().width(), world.scenario().height());
+    let n = world.robots().len().max(1) as f64;
+    let (x, y) = world
+        .robots()
+        .iter()
+        .fold((0.0, 0.0), |(x, y), r| (x + r.pos.x / w, y + r.pos.y / h));
+    [x / n, y / n]
 }
 
 /// The evaluation of a genome that does not fit the substrate (evolution

@@ -437,16 +437,15 @@ fn cmd_evolve(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
     let task = args.overrides.task;
     let mut config = match &args.config {
         Some(p) => read_config(p)?,
-        None if task == Some(TaskKind::Maze) => Config::maze(),
-        None => Config::default(),
+        None => Config::for_task(task),
     };
-    if let Some(t) = task.filter(|t| args.config.is_some() && *t != config.experiment.task) {
-        return Err(bad_input(format!(
-            "--task {}: the config file's experiment.task is {}: set `task = \"{0}\"` under [experiment] in the file instead",
-            t.name(),
-            config.experiment.task.name()
-        ))
-        .into());
+    if let Some(why) = args
+        .config
+        .as_ref()
+        .and_then(|_| config.task_mismatch(task))
+    {
+        let t = task.map_or("", TaskKind::name);
+        return Err(bad_input(format!("--task {t}: {why}")).into());
     }
     apply_overrides(&mut config, &args.overrides)?;
     let maze_defaults = task == Some(TaskKind::Maze) && args.config.is_none();

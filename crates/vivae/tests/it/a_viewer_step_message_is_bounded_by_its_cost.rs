@@ -32,12 +32,9 @@ async fn next_of(
 #[test]
 fn a_huge_step_at_high_resolution_gets_an_error_reply() {
     let v = Viewer::start(&[]);
-    let url = format!("ws://127.0.0.1:{}/ws", v.port);
     let rt = tokio::runtime::Runtime::new().unwrap();
     rt.block_on(async {
-        let (mut ws, _) = tokio_tungstenite::connect_async(url.as_str())
-            .await
-            .unwrap();
+        let mut ws = v.connect().await;
         next_of(&mut ws, &["frame"]).await;
         let high = r#"{"type":"resolution","sensors":"64x128","neurons":"20x20"}"#;
         ws.send(Message::Text(high.into())).await.unwrap();

@@ -14,7 +14,7 @@ fn silent_pages_lose_their_slots_after_the_idle_timeout() {
         "--idle-timeout".as_ref(),
         "1".as_ref(),
     ]);
-    let url = format!("ws://127.0.0.1:{}/ws", v.port);
+    let url = v.ws_url();
     let rt = tokio::runtime::Runtime::new().unwrap();
     rt.block_on(async {
         // Connected, then never read from nor written to.
@@ -56,7 +56,7 @@ fn refusal_status(e: tokio_tungstenite::tungstenite::Error) -> u16 {
 #[test]
 fn pages_beyond_the_limit_get_503_until_one_closes() {
     let v = Viewer::start(&[]);
-    let url = format!("ws://127.0.0.1:{}/ws", v.port);
+    let url = v.ws_url();
     let rt = tokio::runtime::Runtime::new().unwrap();
     rt.block_on(async {
         // The default limit: 8 pages at once.

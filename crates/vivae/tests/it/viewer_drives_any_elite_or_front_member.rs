@@ -72,12 +72,9 @@ fn view_starts_on_the_elite_or_front_member_asked_for_and_refuses_missing_ones()
     assert!(err.contains("--elite 0: needs a run directory"), "{err}");
 
     let v = Viewer::start(&[elites.as_os_str(), "--elite".as_ref(), cell.as_ref()]);
-    let url = format!("ws://127.0.0.1:{}/ws", v.port);
     let rt = tokio::runtime::Runtime::new().unwrap();
     rt.block_on(async {
-        let (mut ws, _) = tokio_tungstenite::connect_async(url.as_str())
-            .await
-            .unwrap();
+        let mut ws = v.connect().await;
         let (frame, errors) = next_frame(&mut ws).await;
         assert!(errors.is_empty(), "{errors:?}");
         assert_eq!(frame["choice"], format!("elite:{cell}"));
@@ -105,11 +102,8 @@ fn view_starts_on_the_elite_or_front_member_asked_for_and_refuses_missing_ones()
 
     let members = rows(&front, "front.csv");
     let v = Viewer::start(&[front.as_os_str(), "--front".as_ref(), "0".as_ref()]);
-    let url = format!("ws://127.0.0.1:{}/ws", v.port);
     rt.block_on(async {
-        let (mut ws, _) = tokio_tungstenite::connect_async(url.as_str())
-            .await
-            .unwrap();
+        let mut ws = v.connect().await;
         let (frame, _) = next_frame(&mut ws).await;
         assert_eq!(frame["choice"], "front:0");
         let fitness: f64 = members[0][1].parse().unwrap();

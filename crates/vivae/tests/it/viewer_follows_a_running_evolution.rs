@@ -13,12 +13,9 @@ fn progress_grows_as_generations_finish() {
     let run = dir.join("run");
     evolve(&config, &run, &[]);
     let v = Viewer::start(&[run.as_os_str()]);
-    let url = format!("ws://127.0.0.1:{}/ws", v.port);
     let rt = tokio::runtime::Runtime::new().unwrap();
     rt.block_on(async {
-        let (mut ws, _) = tokio_tungstenite::connect_async(url.as_str())
-            .await
-            .unwrap();
+        let mut ws = v.connect().await;
         let mut generations = 0;
         let mut genomes = Vec::new();
         // The run continues while the page watches.

@@ -83,12 +83,10 @@ async fn next_of(
 fn hostile_messages_get_an_error_reply_and_the_server_lives_on() {
     let run = small_run("view-hostile");
     let v = Viewer::start(&[run.as_os_str(), "--max-viewers".as_ref(), "1".as_ref()]);
-    let url = format!("ws://127.0.0.1:{}/ws", v.port);
+    let url = v.ws_url();
     let rt = tokio::runtime::Runtime::new().unwrap();
     rt.block_on(async {
-        let (mut ws, _) = tokio_tungstenite::connect_async(url.as_str())
-            .await
-            .unwrap();
+        let mut ws = v.connect().await;
         let frame = next_of(&mut ws, "frame").await;
         assert_eq!(frame["robots"].as_array().unwrap().len(), 5);
         // A second page is refused while the only slot is taken.
@@ -214,7 +212,7 @@ fn a_mapped_loopback_address_gets_no_network_warning() {
 fn another_site_cannot_open_the_websocket() {
     use tokio_tungstenite::tungstenite::client::IntoClientRequest;
     let v = Viewer::start(&[]);
-    let url = format!("ws://127.0.0.1:{}/ws", v.port);
+    let url = v.ws_url();
     let rt = tokio::runtime::Runtime::new().unwrap();
     rt.block_on(async {
         let mut foreign = url.as_str().into_client_request().unwrap();

@@ -474,6 +474,22 @@ impl Viewer {
             .unwrap();
         Viewer { child, url, port }
     }
+
+    /// The viewer's WebSocket address.
+    pub fn ws_url(&self) -> String {
+        format!("ws://127.0.0.1:{}/ws", self.port)
+    }
+
+    /// Opens a page's WebSocket to the viewer.
+    pub async fn connect(
+        &self,
+    ) -> tokio_tungstenite::WebSocketStream<tokio_tungstenite::MaybeTlsStream<tokio::net::TcpStream>>
+    {
+        tokio_tungstenite::connect_async(self.ws_url().as_str())
+            .await
+            .expect("the viewer accepts a WebSocket")
+            .0
+    }
 }
 
 impl Drop for Viewer {
