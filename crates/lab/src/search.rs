@@ -4,6 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 use vivae_neat::driver::{Batch, Evaluation, Strategy};
+use vivae_neat::hyperneat::{CPPN_INPUTS, leo_seeded_genomes};
 use vivae_neat::strategies::{
     Cells, MapElites, MapElitesParams, NoveltySearch, Nsga2, Nsga2Params,
 };
@@ -11,8 +12,32 @@ use vivae_neat::{BestEver, GenerationStats, Genome, GenomeSpec, NeatError, Popul
 
 use crate::config::Config;
 use crate::error::Result;
+use crate::es_config::ES_LEO_OUTPUT;
 use crate::io::bad_input;
 use crate::strategy_config::{CellsKind, StrategyKind, objective_among};
+
+/// The generator stream of LEO's seeded generation 0, apart from the
+/// population's own (which is seeded with the run seed itself).
+const LEO_SEED_STREAM: u64 = 0x1e05_eed0;
+
+/// Generation 0 of `substrate.es.leo_seed`: `neat.population_size` genomes
+/// of LEO's Gaussian locality seed along x feeding CPPN output
+/// [`ES_LEO_OUTPUT`], one innovation history for all, drawn from the run seed.
+pub fn leo_seeded(config: &Config, spec: &GenomeSpec) -> Result<Vec<Genome>> {
+    if spec.inputs != CPPN_INPUTS || spec.outputs <= ES_LEO_OUTPUT {
+        return Err(bad_input(format!(
+            "substrate.es.leo_seed = true: the seed needs a substrate CPPN ({CPPN_INPUTS} inputs, output {ES_LEO_OUTPUT}), not {} inputs and {} outputs",
+            spec.inputs, spec.outputs
+        )));
+    }
+    Ok(leo_seeded_genomes(
+        spec,
+        &config.neat,
+        config.neat.population_size,
+        config.experiment.seed ^ LEO_SEED_STREAM,
+        ES_LEO_OUTPUT,
+    ))
+}
 
 /// A run's search strategy.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -59,6 +84,13 @@ impl Search {
                 Population::from_genomes(neat.clone(), spec.clone(), p.genomes().to_vec(), seed)
                     .map_err(|e| bad_input(format!("initial population: {e}")))
             }
+            None if config.substrate.es.leo_seed => Population::from_genomes(
+                neat.clone(),
+                spec.clone(),
+                leo_seeded(config, &spec)?,
+                seed,
+            )
+            .map_err(|e| bad_input(format!("substrate.es.leo_seed: {e}"))),
             None => Population::new(neat.clone(), spec.clone(), seed)
                 .map_err(|e| bad_input(format!("neat: {e}"))),
         };
