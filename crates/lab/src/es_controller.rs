@@ -459,7 +459,9 @@ mod tests {
         assert_eq!(plain.es_setup().unwrap().layout.leo_output, None);
         assert_eq!(plain.cppn_spec(), exp.cppn_spec());
 
-        let genomes = crate::search::leo_seeded(&config, &exp.cppn_spec()).unwrap();
+        let genomes =
+            crate::search::leo_seeded(&exp.cppn_spec(), &config.neat, config.experiment.seed)
+                .unwrap();
         let hyper = config.hyperneat;
         let (mut links, mut below_threshold) = (0, 0);
         for g in genomes.iter().take(40) {
