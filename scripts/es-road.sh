@@ -10,6 +10,10 @@
 #   es         ES-HyperNEAT at the paper's 3x5 sensors  -> RUNS/es-seed-N
 #   es-multires ES-HyperNEAT trained at 3x5 and 3x6 sensors -> RUNS/esmr-seed-N
 #   dense      the paper's fixed 3x3 sheet               -> RUNS/dense-seed-N
+#   es-leo     ES-HyperNEAT with LEO and its locality seed -> RUNS/esleo-seed-N
+#              (config RUNS/es-leo.toml: [substrate.es] leo = true, leo_seed = true)
+#   es-leo-noseed ES-HyperNEAT with LEO, minimal CPPNs   -> RUNS/esleo-noseed-seed-N
+#              (config RUNS/es-leo-noseed.toml: [substrate.es] leo = true)
 #     replayed at 3x5, 3x6 and 32x96 sensors: fitness = share of the 3x5
 #     replay's (robot-steps on road)
 #   maps-es    ES-HyperNEAT on roads, oval and figure8 at once -> RUNS/maps-es-seed-N
@@ -22,7 +26,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release -q -p vivae
 vivae=${CARGO_TARGET_DIR:-target}/release/vivae
-kind=${1:?usage: scripts/es-road.sh es|es-multires|dense|maps-es|maps-dense [SEED ...]}
+kind=${1:?usage: scripts/es-road.sh es|es-multires|dense|es-leo|es-leo-noseed|maps-es|maps-dense [SEED ...]}
 shift
 seeds=("$@")
 [ ${#seeds[@]} -gt 0 ] || seeds=(1 2 3 4 5)
@@ -48,6 +52,14 @@ case $kind in
   es) flags=(--substrate es-hyperneat); name=es ;;
   es-multires) flags=(--substrate es-hyperneat --train-sensors 3x5,3x6); name=esmr ;;
   dense) flags=(); name=dense ;;
+  es-leo | es-leo-noseed)
+    mkdir -p "$runs"
+    leo_config=$runs/$kind.toml
+    seed_key=$([ "$kind" = es-leo ] && echo "leo_seed = true" || true)
+    printf '[substrate]\nkind = "es-hyperneat"\n\n[substrate.es]\nleo = true\n%s\n' "$seed_key" > "$leo_config"
+    flags=(--config "$leo_config")
+    name=${kind/es-leo/esleo}
+    ;;
   maps-es) flags=(--substrate es-hyperneat); name=maps-es ;;
   maps-dense) flags=(); name=maps-dense ;;
   *) echo "unknown kind $kind" >&2; exit 2 ;;

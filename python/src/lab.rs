@@ -121,7 +121,9 @@ impl DriveTask {
         }
         let spec = self.training.task().cppn_spec();
         let seed = seed.unwrap_or(self.config.experiment.seed);
-        let inner = vivae_neat::Population::new(params, spec, seed).map_err(errors::value)?;
+        // With `substrate.es.leo_seed`, LEO's seeded genomes, as a run starts.
+        let inner = vivae_lab::search::initial_population(&self.config, params, spec, seed)
+            .map_err(errors::lab)?;
         Ok(Population::of(inner))
     }
 

@@ -217,6 +217,29 @@ def test_es_hyperneat_tasks_evaluate_and_replay_as_runs_do(tmp_path):
     assert vivae.replay(tmp_path / "es")["fitness"] == result["best"]
 
 
+def test_es_leo_keys_of_a_config_file_seed_the_population_and_the_run(tmp_path):
+    config = tmp_path / "leo.toml"
+    config.write_text('[substrate]\nkind = "es-hyperneat"\n\n[substrate.es]\nleo = true\nleo_seed = true\n')
+    task = vivae.DriveTask(config=config, steps=60, population=12)
+    assert "leo = true" in task.config_toml() and "leo_seed = true" in task.config_toml()
+    # Generation 0 is LEO's locality seed: one Gaussian hidden node per CPPN.
+    genomes = task.population().ask()
+    assert [g.num_hidden for g in genomes] == [1] * 12
+    assert [g.to_json() for g in task.population().ask()] == [g.to_json() for g in genomes]
+    result = vivae.evolve(out=tmp_path / "leo", progress=False, config=config, **SETTINGS)
+    assert "leo_seed = true" in (tmp_path / "leo" / "config.toml").read_text()
+    assert vivae.replay(tmp_path / "leo")["fitness"] == result["best"]
+    # The keys apply to ES only, and the seed feeds LEO's output.
+    for text, needle in [
+        ("[substrate.es]\nleo = true\n", "substrate.es.leo"),
+        ('[substrate]\nkind = "es-hyperneat"\n[substrate.es]\nleo_seed = true\n', "substrate.es.leo_seed"),
+    ]:
+        bad = tmp_path / "bad.toml"
+        bad.write_text(text)
+        with pytest.raises(ValueError, match=needle):
+            vivae.DriveTask(config=bad)
+
+
 def test_evolve_reports_each_generation_and_replay_returns_the_measures(tmp_path):
     seen = []
     result = vivae.evolve(out=tmp_path / "run", progress=True, on_generation=seen.append, **SETTINGS)

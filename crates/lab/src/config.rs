@@ -605,7 +605,40 @@ impl Config {
                 ConfigError::new(format!("distance_sensors.{}", param_message(&err)))
             })?;
         }
-        self.substrate.es.validate().map_err(ConfigError::new)
+        self.substrate.es.validate().map_err(ConfigError::new)?;
+        self.validate_leo()
+    }
+
+    /// Checks `substrate.es.leo` and `leo_seed` against the substrate kind,
+    /// the strategy and `experiment.init_population`.
+    fn validate_leo(&self) -> Result<(), ConfigError> {
+        let es = &self.substrate.es;
+        let key = if es.leo_seed { "leo_seed" } else { "leo" };
+        if (es.leo || es.leo_seed) && self.substrate.kind.is_polar() {
+            return Err(ConfigError::new(format!(
+                "substrate.es.{key} = true applies to substrate.kind = \"es-hyperneat\" only (the dense sheet expresses links by the threshold)"
+            )));
+        }
+        if !es.leo_seed {
+            return Ok(());
+        }
+        let kind = self.strategy.kind;
+        if matches!(
+            kind,
+            crate::strategy_config::StrategyKind::MapElites
+                | crate::strategy_config::StrategyKind::Nsga2
+        ) {
+            return Err(ConfigError::new(format!(
+                "substrate.es.leo_seed = true: a {} run starts from minimal genomes (only neat and novelty runs start from the seed)",
+                kind.name()
+            )));
+        }
+        if !self.experiment.init_population.is_empty() {
+            return Err(ConfigError::new(
+                "substrate.es.leo_seed = true: experiment.init_population already gives generation 0, remove one of them",
+            ));
+        }
+        Ok(())
     }
 
     /// Checks the sizes of the run's substrates at every training resolution.
@@ -868,7 +901,12 @@ fn documented_defaults() -> toml::Value {
         toml::Value::try_from(Config::default()).expect("the default config is TOML");
     if let Some(sub) = defaults.get_mut("substrate").and_then(|s| s.as_table_mut()) {
         let kind = toml::Value::try_from(SubstrateKind::default()).expect("a kind is TOML");
-        let es = toml::Value::try_from(EsConfig::default()).expect("ES keys are TOML");
+        let mut es = toml::Value::try_from(EsConfig::default()).expect("ES keys are TOML");
+        // `leo` and `leo_seed` are written only when true; documented all the same.
+        if let Some(t) = es.as_table_mut() {
+            t.insert("leo".into(), toml::Value::Boolean(false));
+            t.insert("leo_seed".into(), toml::Value::Boolean(false));
+        }
         sub.insert("kind".into(), kind);
         sub.insert("es".into(), es);
     }

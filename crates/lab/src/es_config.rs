@@ -37,6 +37,10 @@ impl std::str::FromStr for SubstrateKind {
     }
 }
 
+/// The CPPN output that expresses ES links with `substrate.es.leo` (on the
+/// dense sheet it paints neuron → neuron weights; ES does not read it otherwise).
+pub const ES_LEO_OUTPUT: usize = crate::polar::RECURRENT_OUTPUT;
+
 /// ES-HyperNEAT parameters of a run (`[substrate.es]`); the weight
 /// expression (threshold, amplitude) is `[hyperneat]`'s.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
@@ -75,6 +79,29 @@ pub struct EsConfig {
     ///
     /// Example: false.
     pub recurrent: bool,
+    /// Whether a link exists by HyperNEAT-LEO (Verbancsics & Stanley 2011)
+    /// instead of the weight threshold: CPPN output 2 (on the dense sheet
+    /// the neuron → neuron weights, unused by ES) becomes the link
+    /// expression output, a link exists iff it is > 0, and its weight is
+    /// output 0 clamped to [−1, 1] times `hyperneat.amplitude`. The CPPN
+    /// keeps its outputs, so a run without it keeps its bits. Needs
+    /// `substrate.kind = "es-hyperneat"`.
+    ///
+    /// Example: true.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub leo: bool,
+    /// Whether generation 0 starts from LEO's Gaussian locality seed instead of
+    /// minimal CPPNs: a Gaussian hidden node of `Δx = x1 − x2` feeds output 2,
+    /// so at first only links between points less than about 0.53 apart along
+    /// the plane's x are expressed. With `substrate.coordinates = "cartesian"`
+    /// x is `ρ·sin φ`, the left–right offset (links stay on one side of the
+    /// robot); with `"polar"` x is `ρ`, the ring (links stay between nearby
+    /// rings). Needs `leo = true` and a NEAT or novelty run without
+    /// `experiment.init_population`.
+    ///
+    /// Example: true.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub leo_seed: bool,
 }
 
 impl Default for EsConfig {
@@ -88,6 +115,8 @@ impl Default for EsConfig {
             band_threshold: p.band_threshold,
             iteration_level: p.iteration_level,
             recurrent: true,
+            leo: false,
+            leo_seed: false,
         }
     }
 }
@@ -114,6 +143,12 @@ impl EsConfig {
 
     /// Checks every key; the message names it (`substrate.es.KEY = V: why`).
     pub fn validate(&self) -> Result<(), String> {
+        if self.leo_seed && !self.leo {
+            return Err(
+                "substrate.es.leo_seed = true: the locality seed feeds the LEO output, set substrate.es.leo = true"
+                    .into(),
+            );
+        }
         match self.params(HyperParams::default()).validate() {
             Ok(()) => Ok(()),
             Err(HyperError::InvalidParam {

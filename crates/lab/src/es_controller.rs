@@ -13,8 +13,11 @@
 //!
 //! The CPPN keeps the polar substrate's outputs: output 0 (surface sensors →
 //! neurons) paints every ES link, output 1 the biases; output 2 is unused, so
-//! one genome decodes as either kind. `substrate.normalize` scales the links
-//! leaving the sensors as it does on the dense sheet.
+//! one genome decodes as either kind. With `substrate.es.leo` output 2
+//! ([`ES_LEO_OUTPUT`]) becomes the link expression output (HyperNEAT-LEO): a
+//! link exists iff it is > 0, and the weight threshold no longer applies.
+//! `substrate.normalize` scales the links leaving the sensors as it does on
+//! the dense sheet.
 
 use vivae_neat::hyperneat::SubstrateController;
 use vivae_neat::hyperneat::es::{EsLayout, EsParams, decode_es_genome};
@@ -22,7 +25,7 @@ use vivae_neat::hyperneat::{HyperError, SparseLink, SparseNetwork};
 use vivae_neat::{Genome, Network};
 
 use crate::config::Config;
-pub use crate::es_config::{EsConfig, SubstrateKind};
+pub use crate::es_config::{ES_LEO_OUTPUT, EsConfig, SubstrateKind};
 use crate::polar::{BIAS_OUTPUT, CoordMode, PolarNode, SURFACE_OUTPUT, WHEEL_RADIUS, WheelNeurons};
 use crate::rollout::{Drive, RobotStates};
 use crate::sensors::SensorSheet;
@@ -55,12 +58,14 @@ pub struct EsSetup {
 
 impl EsSetup {
     /// The ES substrate over `sheets` (the surface sensors only) in `mode`,
-    /// inputs' links scaled by `input_scale`; an error says what does not fit.
+    /// inputs' links scaled by `input_scale`, links expressed by LEO (CPPN
+    /// output [`ES_LEO_OUTPUT`]) if `leo`; an error says what does not fit.
     pub fn new(
         sheets: &[SensorSheet],
         mode: CoordMode,
         params: EsParams,
         input_scale: Vec<f64>,
+        leo: bool,
     ) -> Result<EsSetup, String> {
         if sheets.iter().any(|s| s.cppn_output != SURFACE_OUTPUT) {
             return Err(
@@ -79,9 +84,9 @@ impl EsSetup {
             outputs: es_wheel_nodes().iter().map(|n| n.coords(mode)).collect(),
             weight_output: SURFACE_OUTPUT,
             bias_output: Some(BIAS_OUTPUT),
-            leo_output: None,
+            leo_output: leo.then_some(ES_LEO_OUTPUT),
         };
-        layout.check(BIAS_OUTPUT + 1).map_err(|e| {
+        layout.check(ES_LEO_OUTPUT + 1).map_err(|e| {
             format!(
                 "substrate.kind = \"es-hyperneat\": {e} (the wheel neurons sit at ∓{ES_WHEEL_ANGLE_DEG}° on ring 2/3, \
                  and a 360° sheet has two nodes at ±180°): narrow surface_sensors.fov"
@@ -134,6 +139,7 @@ pub fn es_setup(
         sub.coordinates,
         sub.es.params(config.hyperneat),
         factors[..inputs].to_vec(),
+        sub.es.leo,
     )
 }
 
@@ -433,6 +439,156 @@ mod tests {
                 assert_eq!(a.weight * f, b.weight);
             }
         }
+    }
+
+    fn leo_config() -> Config {
+        let mut config = es_config();
+        config.substrate.es.leo = true;
+        config.substrate.es.leo_seed = true;
+        config
+    }
+
+    #[test]
+    fn leo_expresses_only_links_whose_cppn_output_2_is_positive_and_drops_the_threshold() {
+        let config = leo_config();
+        let exp = experiment(&config);
+        let setup = exp.es_setup().unwrap();
+        assert_eq!(setup.layout.leo_output, Some(ES_LEO_OUTPUT));
+        // Without the key nothing changes: the weight threshold decides.
+        let plain = experiment(&es_config());
+        assert_eq!(plain.es_setup().unwrap().layout.leo_output, None);
+        assert_eq!(plain.cppn_spec(), exp.cppn_spec());
+
+        let genomes =
+            crate::search::leo_seeded(&exp.cppn_spec(), &config.neat, config.experiment.seed)
+                .unwrap();
+        let hyper = config.hyperneat;
+        let (mut links, mut below_threshold) = (0, 0);
+        for g in genomes.iter().take(40) {
+            let controller = exp.robot_controller(g).unwrap();
+            let net = controller.as_es().unwrap().network();
+            // The library's decode with the same layout gives the same links.
+            let raw = decode_es_genome(g, &setup.layout, &setup.params).unwrap();
+            assert_eq!(raw.links().len(), net.links().len());
+            let ni = setup.layout.inputs.len();
+            let pos = |i: usize| match i {
+                i if i < ni => setup.layout.inputs[i],
+                i if i < ni + 2 => setup.layout.outputs[i - ni],
+                i => net.hidden()[i - ni - 2],
+            };
+            let mut cppn = vivae_neat::feedforward::FeedForwardNetwork::from_genome(g);
+            let mut out = [0.0; 3];
+            for l in net.links() {
+                let ([x1, y1], [x2, y2]) = (pos(l.target), pos(l.source));
+                cppn.activate(&[x1, y1, x2, y2, 1.0], &mut out);
+                assert!(out[ES_LEO_OUTPUT] > 0.0, "link {l:?}: LEO output {out:?}");
+                let scale = setup.input_scale.get(l.source).copied().unwrap_or(1.0);
+                assert_eq!(
+                    l.weight,
+                    out[SURFACE_OUTPUT].clamp(-1.0, 1.0) * hyper.amplitude * scale
+                );
+                links += 1;
+                below_threshold += usize::from(out[SURFACE_OUTPUT].abs() <= hyper.threshold);
+            }
+        }
+        assert!(links > 0, "no seeded genome expressed a link");
+        assert!(
+            below_threshold > 0,
+            "LEO expressed no link the threshold would have dropped ({links} links)"
+        );
+    }
+
+    #[test]
+    fn leo_seed_starts_neat_and_novelty_from_seeded_genomes_drawn_from_the_run_seed() {
+        use crate::search::Search;
+        use vivae_neat::activation::Activation;
+        use vivae_neat::genome::NodeKind;
+        use vivae_neat::hyperneat::CPPN_INPUTS;
+        let config = leo_config();
+        let exp = experiment(&config);
+        let bounds = (vec![0.0], vec![1.0]);
+        let search = |c: &Config| Search::new(c, exp.cppn_spec(), bounds.clone(), None).unwrap();
+        let a = search(&config).batch();
+        assert_eq!(a, search(&config).batch(), "the seed is not deterministic");
+        assert_eq!(a.len(), config.neat.population_size);
+        for g in &a {
+            // One hidden node, the Gaussian of Δx, feeding the LEO output.
+            assert_eq!(g.num_hidden(), 1, "{g:?}");
+            let hidden = g
+                .nodes()
+                .iter()
+                .find(|n| n.kind == NodeKind::Hidden)
+                .unwrap();
+            assert_eq!(hidden.activation, Activation::Gaussian);
+            let leo_node = (CPPN_INPUTS + ES_LEO_OUTPUT) as u32;
+            assert!(
+                g.links()
+                    .iter()
+                    .any(|l| l.from == hidden.id && l.to == leo_node)
+            );
+        }
+        // Another run seed draws other weights; without the key the genomes are minimal.
+        let mut other = config.clone();
+        other.experiment.seed += 1;
+        assert_ne!(a, search(&other).batch());
+        let mut unseeded = config.clone();
+        unseeded.substrate.es.leo_seed = false;
+        assert!(
+            search(&unseeded)
+                .batch()
+                .iter()
+                .all(|g| g.num_hidden() == 0)
+        );
+        // Novelty search starts from the same genomes.
+        let mut novelty = config.clone();
+        novelty.strategy.kind = crate::strategy_config::StrategyKind::Novelty;
+        assert_eq!(search(&novelty).batch(), a);
+    }
+
+    #[test]
+    fn leo_keys_are_refused_where_they_do_not_apply_and_written_only_when_set() {
+        for (text, needle) in [
+            (
+                "[substrate.es]\nleo = true\n",
+                "substrate.es.leo = true applies to substrate.kind",
+            ),
+            (
+                "[substrate]\nkind = \"es-hyperneat\"\n[substrate.es]\nleo_seed = true\n",
+                "substrate.es.leo_seed = true",
+            ),
+            (
+                "[strategy]\nkind = \"nsga2\"\n[substrate]\nkind = \"es-hyperneat\"\n[substrate.es]\nleo = true\nleo_seed = true\n",
+                "a nsga2 run starts from minimal genomes",
+            ),
+            (
+                "[strategy]\nkind = \"map-elites\"\n[substrate]\nkind = \"es-hyperneat\"\n[substrate.es]\nleo = true\nleo_seed = true\n",
+                "a map-elites run starts from minimal genomes",
+            ),
+            (
+                "[experiment]\ninit_population = \"x.json\"\n[substrate]\nkind = \"es-hyperneat\"\n[substrate.es]\nleo = true\nleo_seed = true\n",
+                "experiment.init_population",
+            ),
+        ] {
+            let e = Config::from_toml(text)
+                .and_then(|c| c.validate().map(|_| c))
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains(needle), "{text}: {e}");
+            assert_eq!(e.lines().count(), 1, "{e}");
+        }
+        let text = toml::to_string(&leo_config()).unwrap();
+        assert!(
+            text.contains("leo = true") && text.contains("leo_seed = true"),
+            "{text}"
+        );
+        let mut other = es_config();
+        other.substrate.es.max_depth = 4;
+        let text = toml::to_string(&other).unwrap();
+        assert!(
+            text.contains("[substrate.es]") && !text.contains("leo"),
+            "{text}"
+        );
+        assert!(leo_config().validate().is_ok());
     }
 
     #[test]

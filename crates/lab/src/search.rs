@@ -4,15 +4,60 @@
 
 use serde::{Deserialize, Serialize};
 use vivae_neat::driver::{Batch, Evaluation, Strategy};
+use vivae_neat::hyperneat::{CPPN_INPUTS, leo_seeded_genomes};
 use vivae_neat::strategies::{
     Cells, MapElites, MapElitesParams, NoveltySearch, Nsga2, Nsga2Params,
 };
-use vivae_neat::{BestEver, GenerationStats, Genome, GenomeSpec, NeatError, Population};
+use vivae_neat::{
+    BestEver, GenerationStats, Genome, GenomeSpec, NeatError, NeatParams, Population,
+};
 
 use crate::config::Config;
 use crate::error::Result;
+use crate::es_config::ES_LEO_OUTPUT;
 use crate::io::bad_input;
 use crate::strategy_config::{CellsKind, StrategyKind, objective_among};
+
+/// The generator stream of LEO's seeded generation 0, apart from the
+/// population's own (which is seeded with the run seed itself).
+const LEO_SEED_STREAM: u64 = 0x1e05_eed0;
+
+/// Generation 0 of `substrate.es.leo_seed`: `params.population_size`
+/// genomes of LEO's Gaussian locality seed along x feeding CPPN output
+/// [`ES_LEO_OUTPUT`], one innovation history for all, drawn from the run
+/// seed `seed` (the population built from them takes `seed` itself).
+pub fn leo_seeded(spec: &GenomeSpec, params: &NeatParams, seed: u64) -> Result<Vec<Genome>> {
+    if spec.inputs != CPPN_INPUTS || spec.outputs <= ES_LEO_OUTPUT {
+        return Err(bad_input(format!(
+            "substrate.es.leo_seed = true: the seed needs a substrate CPPN ({CPPN_INPUTS} inputs, output {ES_LEO_OUTPUT}), not {} inputs and {} outputs",
+            spec.inputs, spec.outputs
+        )));
+    }
+    Ok(leo_seeded_genomes(
+        spec,
+        params,
+        params.population_size,
+        seed ^ LEO_SEED_STREAM,
+        ES_LEO_OUTPUT,
+    ))
+}
+
+/// Generation 0 of a NEAT population for `config`'s substrate: LEO's
+/// seeded genomes with `substrate.es.leo_seed`, minimal genomes otherwise.
+pub fn initial_population(
+    config: &Config,
+    params: NeatParams,
+    spec: GenomeSpec,
+    seed: u64,
+) -> Result<Population> {
+    if config.substrate.es.leo_seed {
+        let genomes = leo_seeded(&spec, &params, seed)?;
+        Population::from_genomes(params, spec, genomes, seed)
+            .map_err(|e| bad_input(format!("substrate.es.leo_seed: {e}")))
+    } else {
+        Population::new(params, spec, seed).map_err(|e| bad_input(format!("neat: {e}")))
+    }
+}
 
 /// A run's search strategy.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -59,8 +104,7 @@ impl Search {
                 Population::from_genomes(neat.clone(), spec.clone(), p.genomes().to_vec(), seed)
                     .map_err(|e| bad_input(format!("initial population: {e}")))
             }
-            None => Population::new(neat.clone(), spec.clone(), seed)
-                .map_err(|e| bad_input(format!("neat: {e}"))),
+            None => initial_population(config, neat.clone(), spec.clone(), seed),
         };
         if init.is_some() && matches!(s.kind, StrategyKind::MapElites | StrategyKind::Nsga2) {
             return Err(bad_input(format!(

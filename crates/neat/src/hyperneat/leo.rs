@@ -1,7 +1,7 @@
 //! HyperNEAT-LEO (Verbancsics & Stanley 2011): a link expression output
 //! decides which links exist, and a Gaussian locality seed to start from.
 
-use rand::Rng;
+use rand::{Rng, SeedableRng};
 
 use super::params::HyperParams;
 use crate::activation::Activation;
@@ -81,6 +81,24 @@ pub fn leo_seeded_genome<R: Rng + ?Sized>(
     Genome::from_parts(nodes, links).expect("the seed keeps every genome invariant")
 }
 
+/// `count` genomes of [`leo_seeded_genome`] over one innovation history,
+/// drawn from a `Pcg64` seeded with `seed`: the same arguments give the same
+/// genomes on every platform. Their link genes are numbered as
+/// [`Population::from_genomes`](crate::Population::from_genomes) requires.
+pub fn leo_seeded_genomes(
+    spec: &GenomeSpec,
+    params: &NeatParams,
+    count: usize,
+    seed: u64,
+    leo_output: usize,
+) -> Vec<Genome> {
+    let mut rng = rand_pcg::Pcg64::seed_from_u64(seed);
+    let mut tracker = InnovationTracker::new((spec.inputs + spec.outputs) as u32);
+    (0..count)
+        .map(|_| leo_seeded_genome(spec, params, &mut tracker, &mut rng, leo_output))
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -99,6 +117,20 @@ mod tests {
         assert_eq!(express_link(&p, 0.9, Some(f64::NAN)), None);
         assert_eq!(express_link(&p, 0.0, Some(1.0)), None);
         assert_eq!(express_link(&p, -7.0, Some(1.0)), Some(-3.0));
+    }
+
+    #[test]
+    fn seeded_genomes_are_drawn_from_the_seed_and_evolve_together() {
+        let spec = GenomeSpec {
+            outputs: 3,
+            ..GenomeSpec::cppn()
+        };
+        let params = NeatParams::default();
+        let a = leo_seeded_genomes(&spec, &params, 12, 5, 2);
+        assert_eq!(a, leo_seeded_genomes(&spec, &params, 12, 5, 2));
+        assert_ne!(a, leo_seeded_genomes(&spec, &params, 12, 6, 2));
+        assert!(a.iter().all(|g| g.num_hidden() == 1));
+        crate::Population::from_genomes(params, spec, a, 1).unwrap();
     }
 
     #[test]

@@ -38,6 +38,6 @@ pub use decode::{decode, decode_genome};
 pub use error::HyperError;
 pub use layered::{LayeredLayout, decode_layered};
 pub use layout::{CPPN_INPUTS, InputSheet, SubstrateLayout};
-pub use leo::{express_link, leo_seeded_genome};
+pub use leo::{express_link, leo_seeded_genome, leo_seeded_genomes};
 pub use params::HyperParams;
 pub use sparse::{SparseLink, SparseNetwork};

@@ -1,6 +1,7 @@
 //! `--substrate es-hyperneat` evolves ES-HyperNEAT controllers through the
 //! whole pipeline, a resumed run ends with exactly the files of one that went
 //! straight through, and bad `[substrate.es]` keys are refused in one line.
+//! The same holds with LEO and its locality seed (`substrate.es.leo`, `leo_seed`).
 
 use crate::common::*;
 
@@ -40,6 +41,46 @@ fn es_hyperneat_run_evolves_and_resumes_identically() {
 }
 
 #[test]
+fn es_leo_seeded_run_writes_its_keys_resumes_identically_and_replays() {
+    let dir = scratch("es-leo-resume");
+    let config = dir.join("leo.toml");
+    let keys =
+        "[substrate]\nkind = \"es-hyperneat\"\n\n[substrate.es]\nleo = true\nleo_seed = true\n";
+    std::fs::write(&config, format!("{}{keys}", small_config(4))).unwrap();
+    let full = dir.join("full");
+    evolve(&config, &full, &[]);
+    let text = String::from_utf8(read(&full, "config.toml")).unwrap();
+    assert!(
+        text.contains("leo = true") && text.contains("leo_seed = true"),
+        "{text}"
+    );
+    let short = dir.join("short");
+    evolve(&config, &short, &["--generations", "2"]);
+    ok(vivae()
+        .args(["resume", "-q", "--generations", "4"])
+        .arg(&short));
+    assert_same_results(&full, &short);
+
+    // The champion replays to its recorded fitness, and its network figure
+    // draws the ES neurons LEO kept.
+    let line = ok(vivae().arg("replay").arg(&full));
+    assert!(line.starts_with("fitness="), "{line}");
+    let svg = String::from_utf8(read(&full, "figures/network.svg")).unwrap();
+    assert!(svg.contains("hidden neurons found"), "{svg}");
+
+    // Without the keys the run's config has none of them.
+    let plain = dir.join("plain");
+    evolve(
+        &write_small_config(&dir, 1),
+        &plain,
+        &["--substrate", "es-hyperneat"],
+    );
+    let text = String::from_utf8(read(&plain, "config.toml")).unwrap();
+    assert!(!text.contains("leo"), "{text}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
 fn bad_es_keys_are_refused_in_one_line() {
     let dir = scratch("es-bad-keys");
     for (extra, needle) in [
@@ -60,6 +101,15 @@ fn bad_es_keys_are_refused_in_one_line() {
             "substrate.es.iteration_level",
         ),
         ("[substrate.es]\ndepth = 3\n", "depth"),
+        ("[substrate.es]\nleo = true\n", "substrate.es.leo = true"),
+        (
+            "[substrate]\nkind = \"es-hyperneat\"\n[substrate.es]\nleo_seed = true\n",
+            "substrate.es.leo_seed = true",
+        ),
+        (
+            "[strategy]\nkind = \"nsga2\"\n[substrate]\nkind = \"es-hyperneat\"\n[substrate.es]\nleo = true\nleo_seed = true\n",
+            "substrate.es.leo_seed",
+        ),
         ("[substrate]\nkind = \"es\"\n", "es-hyperneat"),
         (
             "[substrate]\nkind = \"es-hyperneat\"\nrecurrence = \"self\"\n",
