@@ -28,9 +28,19 @@
 //!   (direct encoding, `NeatParams::plain_neat` unless `--set` says
 //!   otherwise): a check that the task, fitness and success criterion are
 //!   solvable as defined here.
+//!
+//! Closer to the public reproduction AHNI (see docs/hyperneat-benchmarks.md):
+//! `--pixels pm3` gives off pixels −3 and on pixels +3 (default `01`: 0 and
+//! 1); `--amplitude A` sets the substrate's largest weight (default 3, AHNI
+//! 6); `--retina grid` lays the retina as a 4×2 grid (columns x = −1, −⅓, ⅓,
+//! 1, rows y = −1 and −⅔) and, for the layered modes, the layers as AHNI's
+//! 4×2 → 4×2 → 4×1 → 2 (hidden grid at y = −⅓ and 0, hidden row at y = ⅓).
 
 mod common;
+#[path = "common/retina_task.rs"]
+mod retina_task;
 use common::{RunResult, apply_overrides, args_or_exit, fail, summarize};
+use retina_task::{Pixels, Placement, images};
 
 use rand::SeedableRng;
 use vivae_neat::hyperneat::es::{EsLayout, EsParams, decode_es_genome};
@@ -39,15 +49,6 @@ use vivae_neat::hyperneat::{
 };
 use vivae_neat::innovation::InnovationTracker;
 use vivae_neat::{FeedForwardNetwork, Genome, GenomeSpec, NeatParams, Network, Population};
-
-/// Left-half objects (pixels as bits 3..0: top-left, top-right, bottom-left, bottom-right).
-const LEFT_OBJECTS: [u8; 8] = [
-    0b1000, 0b0100, 0b1100, 0b1111, 0b1011, 0b0111, 0b1110, 0b1101,
-];
-/// Right-half objects, same bit order.
-const RIGHT_OBJECTS: [u8; 8] = [
-    0b1011, 0b0111, 0b1110, 0b1101, 0b0010, 0b0001, 0b0011, 0b1111,
-];
 
 #[derive(Clone, Copy, PartialEq)]
 enum Mode {
@@ -91,64 +92,48 @@ impl Mode {
     }
 }
 
-/// The 256 images as inputs (left half first along x) and their labels.
-fn images() -> Vec<([f64; 8], [bool; 2])> {
-    (0..=255u8)
-        .map(|image| {
-            let (left, right) = (image >> 4, image & 0xf);
-            let mut x = [0.0; 8];
-            for bit in 0..4 {
-                x[3 - bit] = f64::from((left >> bit) & 1);
-                x[7 - bit] = f64::from((right >> bit) & 1);
-            }
-            (
-                x,
-                [LEFT_OBJECTS.contains(&left), RIGHT_OBJECTS.contains(&right)],
-            )
-        })
-        .collect()
-}
-
-/// Input positions: eight along y = −1, the left half at x < 0.
-fn input_row() -> Vec<[f64; 2]> {
-    (0..8)
-        .map(|i| [-1.0 + 2.0 * f64::from(i) / 7.0, -1.0])
-        .collect()
-}
-
 const OUTPUTS: [[f64; 2]; 2] = [[-0.5, 1.0], [0.5, 1.0]];
 
+/// The substrate: where the retina lies and the substrate's weight expression.
+struct Substrate {
+    placement: Placement,
+    hyper: HyperParams,
+    es: EsParams,
+}
+
 /// Builds the substrate network of `g` for `mode`.
-fn network(g: &Genome, mode: Mode, es: &EsParams) -> SparseNetwork {
+fn network(g: &Genome, mode: Mode, sub: &Substrate) -> SparseNetwork {
     let leo_output = mode.leo().then_some(2);
     if matches!(mode, Mode::Es | Mode::EsLeo) {
         let layout = EsLayout {
-            inputs: input_row(),
+            inputs: sub.placement.inputs(),
             outputs: OUTPUTS.to_vec(),
             weight_output: 0,
             bias_output: Some(1),
             leo_output,
         };
-        return decode_es_genome(g, &layout, es).expect("valid ES layout");
+        return decode_es_genome(g, &layout, &sub.es).expect("valid ES layout");
     }
     let row = |n: usize, y: f64| -> Vec<[f64; 2]> {
         (0..n)
             .map(|i| [-1.0 + 2.0 * i as f64 / (n - 1) as f64, y])
             .collect()
     };
-    let layout = LayeredLayout {
-        layers: vec![
-            input_row(),
-            row(8, -1.0 / 3.0),
+    let hidden = match sub.placement {
+        Placement::Line => vec![row(8, -1.0 / 3.0), row(4, 1.0 / 3.0)],
+        Placement::Grid => vec![
+            [row(4, 0.0), row(4, -1.0 / 3.0)].concat(),
             row(4, 1.0 / 3.0),
-            OUTPUTS.to_vec(),
         ],
+    };
+    let layout = LayeredLayout {
+        layers: [vec![sub.placement.inputs()], hidden, vec![OUTPUTS.to_vec()]].concat(),
         weight_output: 0,
         bias_output: Some(1),
         leo_output,
     };
     let mut cppn = FeedForwardNetwork::from_genome(g);
-    decode_layered(&mut cppn, &layout, &HyperParams::default()).expect("valid layered layout")
+    decode_layered(&mut cppn, &layout, &sub.hyper).expect("valid layered layout")
 }
 
 /// Fitness `1000/(1 + E²)` and how many of the 512 answers are right; a
@@ -220,8 +205,15 @@ struct Extra {
 }
 
 /// One run: evaluations to the first solver, its CPPN's hidden nodes, and [`Extra`].
-fn run(params: &NeatParams, mode: Mode, es: &EsParams, seed: u64, gens: u32) -> (RunResult, Extra) {
-    let images = images();
+fn run(
+    params: &NeatParams,
+    mode: Mode,
+    sub: &Substrate,
+    pixels: Pixels,
+    seed: u64,
+    gens: u32,
+) -> (RunResult, Extra) {
+    let images = images(pixels);
     let mut pop = initial_population(params, mode, seed);
     let (mut best_right, mut best_hidden) = (0, 0);
     for _ in 0..gens {
@@ -233,7 +225,7 @@ fn run(params: &NeatParams, mode: Mode, es: &EsParams, seed: u64, gens: u32) -> 
                 let (f, right) = evaluate_direct(&mut net, &images);
                 (f, right, g.num_hidden())
             } else {
-                let mut net = network(g, mode, es);
+                let mut net = network(g, mode, sub);
                 let (f, right) = evaluate_substrate(&mut net, &images);
                 (f, right, net.num_hidden())
             };
@@ -281,6 +273,10 @@ Options:
   --runs N              runs, with seeds S, S+1, ... (default 20)
   --seed S              seed of the first run (default 1)
   --max-generations G   generations before a run counts as unsolved (default 500)
+  --pixels P            01 (default: off 0, on 1) or pm3 (off -3, on +3, as AHNI)
+  --amplitude A         largest substrate weight (default 3; AHNI uses 6)
+  --retina R            line (default: 8 pixels along y = -1) or grid (4x2 grid,
+                        layers 4x2 -> 4x2 -> 4x1 -> 2 as AHNI)
   --set FIELD=JSON      override one NeatParams field (repeatable)
   -h, --help            print this help
 
@@ -289,26 +285,60 @@ on stdout and one line per run on stderr.
 ";
 
 fn main() {
-    let Some(args) = args_or_exit("retina", USAGE, &[], &["--mode"]) else {
+    let Some(args) = args_or_exit(
+        "retina",
+        USAGE,
+        &[],
+        &["--mode", "--pixels", "--amplitude", "--retina"],
+    ) else {
         return;
     };
-    let mode = match args.options.last() {
-        Some((_, m)) => Mode::parse(m).unwrap_or_else(|e| fail("retina", &e)),
-        None => Mode::HyperNeat,
+    let option = |name: &str| {
+        args.options
+            .iter()
+            .rev()
+            .find(|(k, _)| k == name)
+            .map(|(_, v)| v.as_str())
     };
+    let mode =
+        Mode::parse(option("--mode").unwrap_or("hyperneat")).unwrap_or_else(|e| fail("retina", &e));
+    let pixels =
+        Pixels::parse(option("--pixels").unwrap_or("01")).unwrap_or_else(|e| fail("retina", &e));
+    let placement = Placement::parse(option("--retina").unwrap_or("line"))
+        .unwrap_or_else(|e| fail("retina", &e));
+    let mut hyper = HyperParams::default();
+    if let Some(a) = option("--amplitude") {
+        hyper.amplitude = a
+            .parse()
+            .map_err(|_| format!("--amplitude needs a number, got `{a}`"))
+            .and_then(|amplitude| {
+                let h = HyperParams { amplitude, ..hyper };
+                h.validate()
+                    .map(|()| amplitude)
+                    .map_err(|e| format!("--amplitude {a}: {e}"))
+            })
+            .unwrap_or_else(|e| fail("retina", &e));
+    }
     let base = if mode == Mode::Neat {
         NeatParams::plain_neat()
     } else {
         NeatParams::paper_cppn()
     };
     let params = apply_overrides(base, &args.sets).unwrap_or_else(|e| fail("retina", &e));
-    let es = EsParams::default();
+    let sub = Substrate {
+        placement,
+        hyper,
+        es: EsParams {
+            expression: hyper,
+            ..EsParams::default()
+        },
+    };
     let runs = args.runs.unwrap_or(20);
     let seed = args.seed.unwrap_or(1);
     let gens = args.max_generations.unwrap_or(500);
     let (mut substrate_hidden, mut best_right) = (Vec::new(), Vec::new());
     let line = summarize(mode.name(), runs, seed, |seed| {
-        let (result, extra) = run(&params, mode, &es, seed, gens);
+        let (result, extra) = run(&params, mode, &sub, pixels, seed, gens);
         substrate_hidden.push(extra.substrate_hidden as f64);
         best_right.push(extra.best_right as f64 / 512.0);
         result

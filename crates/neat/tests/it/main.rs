@@ -13,6 +13,7 @@ mod genome_invariants_under_random_mutations;
 mod inconsistent_genomes_and_populations_are_refused;
 mod offspring_count_equals_population_size;
 mod parallel_evaluation_matches_serial;
+mod retina_images_follow_the_pixel_encoding_asked;
 mod same_seed_gives_identical_population;
 mod short_xor_run_solves;
 mod strategies_search_what_they_are_built_for;
