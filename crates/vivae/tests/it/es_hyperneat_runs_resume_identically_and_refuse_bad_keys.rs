@@ -3,15 +3,30 @@
 //! straight through, and bad `[substrate.es]` keys are refused in one line.
 //! The same holds with LEO and its locality seed (`substrate.es.leo`, `leo_seed`).
 
+use std::path::{Path, PathBuf};
+
 use crate::common::*;
+
+/// Evolves `config` (4 generations) with `flags` in `dir/full`, and for 2
+/// generations resumed to 4 in `dir/short`; both must end with the same
+/// files. Returns the straight run.
+fn evolve_and_resume_identically(dir: &Path, config: &Path, flags: &[&str]) -> PathBuf {
+    let full = dir.join("full");
+    evolve(config, &full, flags);
+    let short = dir.join("short");
+    evolve(config, &short, &[flags, &["--generations", "2"]].concat());
+    ok(vivae()
+        .args(["resume", "-q", "--generations", "4"])
+        .arg(&short));
+    assert_same_results(&full, &short);
+    full
+}
 
 #[test]
 fn es_hyperneat_run_evolves_and_resumes_identically() {
     let dir = scratch("es-resume");
     let config = write_small_config(&dir, 4);
-    let es = ["--substrate", "es-hyperneat"];
-    let full = dir.join("full");
-    evolve(&config, &full, &es);
+    let full = evolve_and_resume_identically(&dir, &config, &["--substrate", "es-hyperneat"]);
     let text = String::from_utf8(read(&full, "config.toml")).unwrap();
     assert!(text.contains("kind = \"es-hyperneat\""), "{text}");
     let generations = String::from_utf8(read(&full, "generations.csv")).unwrap();
@@ -22,17 +37,6 @@ fn es_hyperneat_run_evolves_and_resumes_identically() {
         .collect();
     assert_eq!(bests.len(), 4);
     assert!(bests[3] > 0.0, "no ES controller moved: {generations}");
-
-    let short = dir.join("short");
-    evolve(
-        &config,
-        &short,
-        &["--substrate", "es-hyperneat", "--generations", "2"],
-    );
-    ok(vivae()
-        .args(["resume", "-q", "--generations", "4"])
-        .arg(&short));
-    assert_same_results(&full, &short);
 
     // The run's champion replays to the fitness it was recorded with.
     let line = ok(vivae().arg("replay").arg(&full));
@@ -47,19 +51,12 @@ fn es_leo_seeded_run_writes_its_keys_resumes_identically_and_replays() {
     let keys =
         "[substrate]\nkind = \"es-hyperneat\"\n\n[substrate.es]\nleo = true\nleo_seed = true\n";
     std::fs::write(&config, format!("{}{keys}", small_config(4))).unwrap();
-    let full = dir.join("full");
-    evolve(&config, &full, &[]);
+    let full = evolve_and_resume_identically(&dir, &config, &[]);
     let text = String::from_utf8(read(&full, "config.toml")).unwrap();
     assert!(
         text.contains("leo = true") && text.contains("leo_seed = true"),
         "{text}"
     );
-    let short = dir.join("short");
-    evolve(&config, &short, &["--generations", "2"]);
-    ok(vivae()
-        .args(["resume", "-q", "--generations", "4"])
-        .arg(&short));
-    assert_same_results(&full, &short);
 
     // The champion replays to its recorded fitness, and its network figure
     // draws the ES neurons LEO kept.
