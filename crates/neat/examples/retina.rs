@@ -42,12 +42,10 @@ mod retina_task;
 use common::{RunResult, apply_overrides, args_or_exit, fail, summarize};
 use retina_task::{Pixels, Placement, images};
 
-use rand::SeedableRng;
 use vivae_neat::hyperneat::es::{EsLayout, EsParams, decode_es_genome};
 use vivae_neat::hyperneat::{
-    HyperParams, LayeredLayout, SparseNetwork, decode_layered, leo_seeded_genome,
+    HyperParams, LayeredLayout, SparseNetwork, decode_layered, leo_seeded_genomes,
 };
-use vivae_neat::innovation::InnovationTracker;
 use vivae_neat::{FeedForwardNetwork, Genome, GenomeSpec, NeatParams, Network, Population};
 
 #[derive(Clone, Copy, PartialEq)]
@@ -189,11 +187,7 @@ fn initial_population(params: &NeatParams, mode: Mode, seed: u64) -> Population 
     if !mode.seeded() {
         return Population::new(params.clone(), spec, seed).expect("valid parameters");
     }
-    let mut rng = rand_pcg::Pcg64::seed_from_u64(seed ^ 0x5eed);
-    let mut tracker = InnovationTracker::new((spec.inputs + spec.outputs) as u32);
-    let genomes = (0..params.population_size)
-        .map(|_| leo_seeded_genome(&spec, params, &mut tracker, &mut rng, 2))
-        .collect();
+    let genomes = leo_seeded_genomes(&spec, params, params.population_size, seed ^ 0x5eed, 2);
     Population::from_genomes(params.clone(), spec, genomes, seed).expect("valid seeded genomes")
 }
 
