@@ -464,11 +464,8 @@ fn option<T>(
     default: T,
     parse: impl Fn(&str) -> Result<T, String>,
 ) -> T {
-    args.options
-        .iter()
-        .rev()
-        .find(|(k, _)| k == key)
-        .map_or(Ok(default), |(_, v)| parse(v))
+    args.option(key)
+        .map_or(Ok(default), parse)
         .unwrap_or_else(|e| fail("pole", &e))
 }
 

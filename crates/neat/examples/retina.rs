@@ -287,21 +287,14 @@ fn main() {
     ) else {
         return;
     };
-    let option = |name: &str| {
-        args.options
-            .iter()
-            .rev()
-            .find(|(k, _)| k == name)
-            .map(|(_, v)| v.as_str())
-    };
-    let mode =
-        Mode::parse(option("--mode").unwrap_or("hyperneat")).unwrap_or_else(|e| fail("retina", &e));
-    let pixels =
-        Pixels::parse(option("--pixels").unwrap_or("01")).unwrap_or_else(|e| fail("retina", &e));
-    let placement = Placement::parse(option("--retina").unwrap_or("line"))
+    let mode = Mode::parse(args.option("--mode").unwrap_or("hyperneat"))
+        .unwrap_or_else(|e| fail("retina", &e));
+    let pixels = Pixels::parse(args.option("--pixels").unwrap_or("01"))
+        .unwrap_or_else(|e| fail("retina", &e));
+    let placement = Placement::parse(args.option("--retina").unwrap_or("line"))
         .unwrap_or_else(|e| fail("retina", &e));
     let mut hyper = HyperParams::default();
-    if let Some(a) = option("--amplitude") {
+    if let Some(a) = args.option("--amplitude") {
         hyper.amplitude = a
             .parse()
             .map_err(|_| format!("--amplitude needs a number, got `{a}`"))

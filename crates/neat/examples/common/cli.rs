@@ -19,6 +19,19 @@ pub struct Args {
     pub options: Vec<(String, String)>,
 }
 
+impl Args {
+    /// The value of the example's own option `key` given last, if any.
+    // Each example compiles its own copy of this module; most have no options.
+    #[allow(dead_code)]
+    pub fn option(&self, key: &str) -> Option<&str> {
+        self.options
+            .iter()
+            .rev()
+            .find(|(k, _)| k == key)
+            .map(|(_, v)| v.as_str())
+    }
+}
+
 /// The outcome of parsing: run with these arguments, or print the usage.
 #[derive(Debug, PartialEq)]
 pub enum Parsed {
