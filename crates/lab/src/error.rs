@@ -9,8 +9,8 @@ use std::path::PathBuf;
 use vivae_sim::ScenarioError;
 
 use crate::config::ConfigError;
-use crate::experiment::ExperimentError;
 use crate::simd::SimdError;
+use crate::tasks::driving::experiment::ExperimentError;
 
 /// Collapses a message onto one line.
 pub fn one_line(message: &str) -> String {

@@ -28,34 +28,26 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-pub mod behaviour;
 pub mod config;
-pub mod descriptors;
+pub mod controller;
 pub mod error;
-pub mod es_config;
-pub mod es_controller;
-pub mod evolve;
-pub mod experiment;
-pub mod fitness;
 pub mod io;
-pub mod maps;
-pub mod maze;
-pub mod maze_run;
-pub mod normalize;
-pub mod polar;
-pub mod resolutions;
-pub mod rollout;
-pub mod run_task;
+pub mod run;
 pub mod rundir;
 pub mod search;
-pub mod sensors;
 pub mod shipped;
 pub mod simd;
-pub mod strategy_config;
-pub mod strategy_files;
-pub mod substrate;
-pub mod task;
-pub mod training;
+pub mod tasks;
+
+// The paths of the flat layout, kept while the program and the Python binding move over.
+pub use config::{es as es_config, strategy as strategy_config};
+pub use controller::{es as es_controller, normalize, polar, sensors, substrate};
+pub use run as evolve;
+pub use search::files as strategy_files;
+pub use tasks as run_task;
+pub use tasks::driving::{behaviour, descriptors, experiment, fitness, resolutions, rollout};
+pub use tasks::driving::{combined as task, training};
+pub use tasks::{maps, maze, maze::run as maze_run};
 
 pub use error::{Error, Result};
 

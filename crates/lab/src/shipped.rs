@@ -48,12 +48,12 @@ pub const SHIPPED: [Shipped; 8] = [
     Shipped {
         name: "medium-maze",
         what: "Lehman & Stanley's medium maze, for --task maze (1 robot, a goal)",
-        svg: crate::maze::MEDIUM_MAZE_SVG,
+        svg: crate::tasks::maze::MEDIUM_MAZE_SVG,
     },
     Shipped {
         name: "hard-maze",
         what: "Lehman & Stanley's hard (deceptive) maze, for --task maze (1 robot, a goal)",
-        svg: crate::maze::HARD_MAZE_SVG,
+        svg: crate::tasks::maze::HARD_MAZE_SVG,
     },
 ];
 
@@ -87,7 +87,7 @@ mod tests {
                 scenario.warnings
             );
             if is_maze(&s) {
-                crate::maze_run::task(&maze, &scenario).unwrap_or_else(|e| panic!("{e}"));
+                crate::tasks::maze::run::task(&maze, &scenario).unwrap_or_else(|e| panic!("{e}"));
                 continue;
             }
             // The default experiment drives the first 5.
@@ -102,7 +102,7 @@ mod tests {
                     r.id
                 );
             }
-            crate::experiment::Experiment::new(&config, &scenario)
+            crate::tasks::driving::experiment::Experiment::new(&config, &scenario)
                 .unwrap_or_else(|e| panic!("{}: {e}", s.name));
         }
     }

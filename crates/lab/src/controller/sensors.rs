@@ -14,7 +14,7 @@ use std::sync::Arc;
 use vivae_sim::{DistanceSensors, Sensor, SurfaceSensors, World};
 
 use crate::config::Config;
-use crate::polar::{DISTANCE_OUTPUT, PolarNode, SURFACE_OUTPUT};
+use crate::controller::polar::{DISTANCE_OUTPUT, PolarNode, SURFACE_OUTPUT};
 
 /// One sensor kind the config can build: an entry of [`SENSORS`].
 #[derive(Debug, Clone, Copy)]
@@ -149,7 +149,7 @@ mod tests {
             (sheets[0].name(), sheets[0].label),
             ("surface", "surface sensors")
         );
-        let grid = crate::substrate::PolarGrid::new(4, 7).unwrap();
+        let grid = crate::controller::substrate::PolarGrid::new(4, 7).unwrap();
         assert_eq!(sheets[0].nodes(), grid.nodes(180.0));
     }
 
@@ -169,7 +169,9 @@ mod tests {
         assert!(nodes.iter().all(|n| n.rho == 1.0 && n.ring == 0));
         assert_eq!(
             nodes,
-            crate::substrate::PolarGrid::new(1, 6).unwrap().nodes(180.0)
+            crate::controller::substrate::PolarGrid::new(1, 6)
+                .unwrap()
+                .nodes(180.0)
         );
     }
 

@@ -24,7 +24,7 @@ use crate::error::{Error, Result};
 use crate::io::{
     bad_input, fnv1a, load_scenario, read_config, read_text, safe_file_stem, write_atomic,
 };
-use crate::maps::{TrainingMap, is_multi_map};
+use crate::tasks::maps::{TrainingMap, is_multi_map};
 
 /// File names inside a run directory.
 pub mod files {
@@ -71,7 +71,7 @@ pub(crate) fn generations_header(config: &Config) -> String {
     let base = GENERATIONS_HEADER.trim_end_matches('\n');
     let task = match config.experiment.task {
         crate::config::TaskKind::Driving => "",
-        crate::config::TaskKind::Maze => crate::maze_run::COLUMNS,
+        crate::config::TaskKind::Maze => crate::tasks::maze::run::COLUMNS,
     };
     format!("{base}{}{task}\n", config.strategy.kind.extra_columns())
 }
@@ -392,7 +392,7 @@ pub(crate) struct Progress {
     pub(crate) maps_fnv: Option<Vec<u64>>,
     /// A maze run's evaluations and when it was solved (maze runs only).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub(crate) maze: Option<crate::maze_run::MazeProgress>,
+    pub(crate) maze: Option<crate::tasks::maze::run::MazeProgress>,
 }
 
 /// Refuses a run whose `config.toml` was edited since its newest checkpoint:
@@ -1011,7 +1011,7 @@ pub(crate) fn fill_new_run(
         )?;
         config.experiment.init_population = files::INIT_POPULATION.into();
     }
-    if !crate::maps::is_multi_map(config) {
+    if !crate::tasks::maps::is_multi_map(config) {
         config.experiment.scenario = files::SCENARIO.into();
     }
     write_atomic(&dir.join(files::CONFIG), config.to_toml().as_bytes())?;

@@ -7,6 +7,9 @@
 //! reference` and the guide's table, so there is no second copy to drift. A
 //! test fails when a key lacks a doc comment or the guide's table is stale.
 
+pub mod es;
+pub mod strategy;
+
 use std::fmt::Write as _;
 
 use schemars::JsonSchema;
@@ -15,9 +18,9 @@ use vivae_neat::NeatParams;
 use vivae_neat::hyperneat::HyperParams;
 use vivae_sim::{DistanceSensors, PhysicsParams, SurfaceSensors};
 
-use crate::es_config::{EsConfig, SubstrateKind};
-use crate::polar::{CoordMode, PolarGrid};
-use crate::strategy_config::StrategyConfig;
+use crate::config::es::{EsConfig, SubstrateKind};
+use crate::config::strategy::StrategyConfig;
+use crate::controller::polar::{CoordMode, PolarGrid};
 
 /// Most simulation steps per evaluation (`experiment.steps`, `replay --steps`).
 pub const MAX_STEPS: u32 = 1_000_000;
@@ -495,11 +498,11 @@ impl Config {
         let mut c = Config::default();
         c.experiment.task = TaskKind::Maze;
         c.experiment.scenario = "hard-maze".into();
-        c.experiment.steps = crate::maze::STEPS;
+        c.experiment.steps = crate::tasks::maze::STEPS;
         c.experiment.robots = 1;
         // 50,000 evaluations.
         c.experiment.generations = 200;
-        c.physics = crate::maze::MazeTask::physics();
+        c.physics = crate::tasks::maze::MazeTask::physics();
         c.neat = NeatParams {
             population_size: 250,
             ..NeatParams::plain_neat()
@@ -519,7 +522,7 @@ impl Config {
         self.validate_experiment()?;
         self.validate_parameters()?;
         self.validate_sizes()?;
-        crate::strategy_config::validate(
+        crate::config::strategy::validate(
             &self.strategy,
             !self.experiment.scenarios.is_empty(),
             self.metric_names(),
@@ -534,8 +537,8 @@ impl Config {
     /// Names of the metrics the config's task measures (NSGA-II's objectives besides fitness).
     pub fn metric_names(&self) -> &'static [&'static str] {
         match self.experiment.task {
-            TaskKind::Driving => &crate::strategy_config::METRICS,
-            TaskKind::Maze => &crate::maze::METRICS,
+            TaskKind::Driving => &crate::config::strategy::METRICS,
+            TaskKind::Maze => &crate::tasks::maze::METRICS,
         }
     }
 
@@ -625,8 +628,8 @@ impl Config {
         let kind = self.strategy.kind;
         if matches!(
             kind,
-            crate::strategy_config::StrategyKind::MapElites
-                | crate::strategy_config::StrategyKind::Nsga2
+            crate::config::strategy::StrategyKind::MapElites
+                | crate::config::strategy::StrategyKind::Nsga2
         ) {
             return Err(ConfigError::new(format!(
                 "substrate.es.leo_seed = true: a {} run starts from minimal genomes (only neat and novelty runs start from the seed)",
@@ -1132,7 +1135,7 @@ fn validate_maze(c: &Config) -> Result<(), String> {
             "a maze network is evolved directly, not decoded into an ES-HyperNEAT substrate",
         );
     }
-    if c.strategy.behaviour != crate::strategy_config::BehaviourKind::EndPosition {
+    if c.strategy.behaviour != crate::config::strategy::BehaviourKind::EndPosition {
         return refuse(
             &format!("strategy.behaviour = {}", c.strategy.behaviour.name()),
             "a maze's behaviour is the robot's end position in px: leave it at end-position",

@@ -6,13 +6,13 @@ use vivae_neat::Network;
 use vivae_neat::hyperneat::{BatchState, SubstrateController};
 use vivae_sim::World;
 
-use crate::sensors::{SensorSheet, read_sheets};
-use crate::substrate::WheelNeurons;
+use crate::controller::sensors::{SensorSheet, read_sheets};
+use crate::controller::substrate::WheelNeurons;
 
 /// A controller that drives every robot of an episode with one set of
 /// weights and one state per robot: the dense polar sheet
 /// ([`SubstrateController`]) or an ES network
-/// ([`EsController`](crate::es_controller::EsController)).
+/// ([`EsController`](crate::controller::es::EsController)).
 pub trait Drive {
     /// Inputs per robot.
     fn num_inputs(&self) -> usize;
@@ -85,7 +85,7 @@ pub struct Rollout {
 impl Rollout {
     /// The start of an episode of `robots` robots carrying `sensors` (in
     /// controller-input order) and driven by `controller` through `wheels`
-    /// (see [`Experiment::rollout`](crate::experiment::Experiment::rollout)).
+    /// (see [`Experiment::rollout`](crate::tasks::driving::experiment::Experiment::rollout)).
     pub fn new(
         robots: usize,
         sensors: Vec<SensorSheet>,

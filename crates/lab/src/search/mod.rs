@@ -2,6 +2,8 @@
 //! config's `[strategy]` section names, that the driver runs and the
 //! checkpoint stores. It is a [`Strategy`] by delegation to the one inside.
 
+pub mod files;
+
 use serde::{Deserialize, Serialize};
 use vivae_neat::driver::{Batch, Evaluation, Strategy};
 use vivae_neat::hyperneat::{CPPN_INPUTS, leo_seeded_genomes};
@@ -13,10 +15,10 @@ use vivae_neat::{
 };
 
 use crate::config::Config;
+use crate::config::es::ES_LEO_OUTPUT;
+use crate::config::strategy::{CellsKind, StrategyKind, objective_among};
 use crate::error::Result;
-use crate::es_config::ES_LEO_OUTPUT;
 use crate::io::bad_input;
-use crate::strategy_config::{CellsKind, StrategyKind, objective_among};
 
 /// The generator stream of LEO's seeded generation 0, apart from the
 /// population's own (which is seeded with the run seed itself).

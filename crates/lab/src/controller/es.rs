@@ -2,7 +2,7 @@
 //! the CPPN decides where hidden neurons go in the polar plane and how many.
 //!
 //! The inputs are the robots' sensor nodes where they sit in the polar
-//! substrate plane ([`layout_of`](crate::substrate::layout_of)); the outputs
+//! substrate plane ([`layout_of`](crate::controller::substrate::layout_of)); the outputs
 //! are the two wheel neurons. Their place cannot be the dense sheet's
 //! `(∓2/3, 0)`: a 3-ring sensor sheet over 180° has a node exactly there, and
 //! in ES-HyperNEAT a node's position is its identity (one plane, one weight
@@ -25,10 +25,12 @@ use vivae_neat::hyperneat::{HyperError, SparseLink, SparseNetwork};
 use vivae_neat::{Genome, Network};
 
 use crate::config::Config;
-pub use crate::es_config::{ES_LEO_OUTPUT, EsConfig, SubstrateKind};
-use crate::polar::{BIAS_OUTPUT, CoordMode, PolarNode, SURFACE_OUTPUT, WHEEL_RADIUS, WheelNeurons};
-use crate::rollout::{Drive, RobotStates};
-use crate::sensors::SensorSheet;
+pub use crate::config::es::{ES_LEO_OUTPUT, EsConfig, SubstrateKind};
+use crate::controller::polar::{
+    BIAS_OUTPUT, CoordMode, PolarNode, SURFACE_OUTPUT, WHEEL_RADIUS, WheelNeurons,
+};
+use crate::controller::sensors::SensorSheet;
+use crate::tasks::driving::rollout::{Drive, RobotStates};
 
 /// Where the wheel neurons sit in the ES plane: on the wheel ring at ∓135°.
 pub const ES_WHEEL_ANGLE_DEG: f64 = 135.0;
@@ -110,7 +112,7 @@ impl EsSetup {
 }
 
 /// The ES substrate of `config` over its `sensors` (`factors`: the
-/// [`SourceScale`](crate::normalize::SourceScale) factor of each source,
+/// [`SourceScale`](crate::controller::normalize::SourceScale) factor of each source,
 /// inputs first); an error names the key that does not fit.
 pub fn es_setup(
     config: &Config,
@@ -321,8 +323,8 @@ impl Drive for RobotController {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::experiment::Experiment;
     use crate::io::load_scenario;
+    use crate::tasks::driving::experiment::Experiment;
     use vivae_neat::Population;
 
     fn es_config() -> Config {
@@ -541,7 +543,7 @@ mod tests {
         );
         // Novelty search starts from the same genomes.
         let mut novelty = config.clone();
-        novelty.strategy.kind = crate::strategy_config::StrategyKind::Novelty;
+        novelty.strategy.kind = crate::config::strategy::StrategyKind::Novelty;
         assert_eq!(search(&novelty).batch(), a);
     }
 

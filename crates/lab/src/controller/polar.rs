@@ -1,6 +1,6 @@
 //! The geometry of polar sheets: grids, nodes and their CPPN coordinates,
 //! the wheel neurons, and which CPPN output paints which sheet (the layout
-//! itself is described in [`crate::substrate`]).
+//! itself is described in [`crate::controller::substrate`]).
 
 use std::fmt;
 use std::str::FromStr;

@@ -165,10 +165,10 @@ pub fn fingerprint_text(maps: &[TrainingMap]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::experiment::Experiment;
     use crate::rundir::{copy_names, manifest};
-    use crate::task::DrivingTask;
-    use crate::training::Training;
+    use crate::tasks::driving::combined::DrivingTask;
+    use crate::tasks::driving::experiment::Experiment;
+    use crate::tasks::driving::training::Training;
     use vivae_neat::driver::Task;
     use vivae_neat::{EvalContext, Population};
 
@@ -214,11 +214,11 @@ mod tests {
     fn maps_compose_with_training_resolutions() {
         let mut c = config(&["roads", "oval"]);
         c.substrate.train_neurons = vec![
-            crate::substrate::PolarGrid {
+            crate::controller::substrate::PolarGrid {
                 rings: 3,
                 angles: 3,
             },
-            crate::substrate::PolarGrid {
+            crate::controller::substrate::PolarGrid {
                 rings: 5,
                 angles: 5,
             },
@@ -237,7 +237,7 @@ mod tests {
         let per_map: Vec<f64> = maps
             .iter()
             .map(|m| {
-                crate::resolutions::at_resolutions(&c, &m.loaded.scenario)
+                crate::tasks::driving::resolutions::at_resolutions(&c, &m.loaded.scenario)
                     .unwrap()
                     .unwrap()
                     .evaluate(g, &ctx)

@@ -15,7 +15,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 use crate::search::Search;
-use crate::strategy_files::{extra_fields, write_outputs};
+use crate::search::files::{extra_fields, write_outputs};
 use vivae_neat::driver::{
     CheckpointState, Checkpointer, DriverError, Evaluator, Evolution, GenerationReport, HookError,
     Observer, ParallelEvaluator, StopCriteria, StopReason,
@@ -25,12 +25,7 @@ use vivae_neat::{Genome, Population, stats};
 
 use crate::config::Config;
 use crate::error::{Error, Result};
-use crate::experiment::Experiment;
 use crate::io::{bad_input, fnv1a, write_atomic};
-use crate::maps::{TrainingMap, is_multi_map};
-use crate::maze::MazeTask;
-use crate::maze_run::MazeProgress;
-use crate::run_task::RunTask;
 use crate::rundir::{
     BestLine, Champion, Checkpoint, GenerationRecord, POPULATION_HEADER, Progress, RunLock,
     TIMING_HEADER, append, check_config_unchanged, check_csv_prefixes, check_out_dir, copy_maps,
@@ -38,7 +33,12 @@ use crate::rundir::{
     population_rows, read_best_genomes, remove_abandoned_builds, remove_stale_temporaries,
     truncate, truncate_lines, write_checkpoint,
 };
-use crate::training::Training;
+use crate::tasks::RunTask;
+use crate::tasks::driving::experiment::Experiment;
+use crate::tasks::driving::training::Training;
+use crate::tasks::maps::{TrainingMap, is_multi_map};
+use crate::tasks::maze::MazeTask;
+use crate::tasks::maze::run::MazeProgress;
 
 /// Generations whose best individual gets a trajectory figure (besides the champion).
 pub const FIGURE_GENERATIONS: [u32; 2] = [1, 10];
@@ -82,7 +82,7 @@ impl Run {
     }
 
     /// [`Run::create`] for a run on several training maps (`maps`, from
-    /// [`crate::maps::load`]; empty for a single-scenario run): `scenario_text`
+    /// [`crate::tasks::maps::load`]; empty for a single-scenario run): `scenario_text`
     /// (the first map's) goes to `scenario.svg` as ever, and every map is
     /// copied to `scenarios/` with a manifest of their hashes;
     /// `experiment.scenarios` is rewritten to name the copies.

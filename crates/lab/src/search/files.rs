@@ -17,7 +17,7 @@ use crate::io::write_atomic;
 use crate::rundir::files;
 use crate::search::Search;
 
-/// The values of [`crate::strategy_config::StrategyKind::extra_columns`] for the generation just told, with their leading commas.
+/// The values of [`crate::config::strategy::StrategyKind::extra_columns`] for the generation just told, with their leading commas.
 pub fn extra_fields(search: &Search) -> String {
     match search {
         Search::Neat(_) => String::new(),

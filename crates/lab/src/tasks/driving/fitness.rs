@@ -4,7 +4,7 @@
 //! at the world after every step and gives the score at the end. The paper's
 //! fitness, [`AverageSpeed`], is the default of every experiment; another one
 //! is a new file with a type implementing [`Fitness`], handed to
-//! [`Experiment::with_fitness`](crate::experiment::Experiment::with_fitness).
+//! [`Experiment::with_fitness`](crate::tasks::driving::experiment::Experiment::with_fitness).
 //!
 //! ```
 //! use std::sync::Arc;

@@ -2,14 +2,18 @@
 //! experiment ([`Training`]: CPPNs decoded into substrates) or the maze
 //! ([`MazeTask`]: plain networks).
 
+pub mod driving;
+pub mod maps;
+pub mod maze;
+
 use vivae_neat::driver::{Evaluation, Task};
 use vivae_neat::{EvalContext, Genome, GenomeSpec};
 
 use crate::config::{Config, TaskKind};
 use crate::error::Result;
-use crate::maps::TrainingMap;
-use crate::maze::MazeTask;
-use crate::training::Training;
+use crate::tasks::driving::training::Training;
+use crate::tasks::maps::TrainingMap;
+use crate::tasks::maze::MazeTask;
 
 /// A run's task.
 #[derive(Debug, Clone)]
@@ -21,7 +25,7 @@ pub enum RunTask {
 }
 
 impl RunTask {
-    /// The task of `config` on `maps` (from [`crate::maps::load`]; a maze run has one).
+    /// The task of `config` on `maps` (from [`crate::tasks::maps::load`]; a maze run has one).
     pub fn new(config: &Config, maps: &[TrainingMap]) -> Result<RunTask> {
         match config.experiment.task {
             TaskKind::Driving => Ok(RunTask::Driving(Box::new(Training::new(config, maps)?))),
@@ -29,7 +33,7 @@ impl RunTask {
                 let map = maps
                     .first()
                     .ok_or_else(|| crate::io::bad_input("no maze"))?;
-                crate::maze_run::task(config, &map.loaded.scenario)
+                crate::tasks::maze::run::task(config, &map.loaded.scenario)
                     .map(|m| RunTask::Maze(Box::new(m)))
             }
         }

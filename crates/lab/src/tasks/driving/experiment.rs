@@ -8,16 +8,18 @@ use vivae_neat::hyperneat::{HyperParams, SubstrateController, SubstrateLayout, d
 use vivae_neat::{EvalContext, Genome, GenomeSpec};
 use vivae_sim::{DVec2, Scenario, SurfaceGrid, World};
 
-use crate::behaviour::{Behaviour, BehaviourMeter};
 use crate::config::Config;
-use crate::descriptors::{EpisodeSetup, METRICS, Measures, measured_episode};
-use crate::es_controller::{EsSetup, RobotController, SubstrateKind};
-use crate::fitness::{AverageSpeed, Fitness};
-use crate::normalize::SourceScale;
-use crate::rollout::{Drive, Rollout};
-use crate::sensors::{SensorSheet, read_sheets, sensor_sheets};
-use crate::substrate::{PolarGrid, SubstrateSpec, WheelNeurons, cppn_outputs, layout_of};
-use crate::task::DrivingTask;
+use crate::controller::es::{EsSetup, RobotController, SubstrateKind};
+use crate::controller::normalize::SourceScale;
+use crate::controller::sensors::{SensorSheet, read_sheets, sensor_sheets};
+use crate::controller::substrate::{
+    PolarGrid, SubstrateSpec, WheelNeurons, cppn_outputs, layout_of,
+};
+use crate::tasks::driving::behaviour::{Behaviour, BehaviourMeter};
+use crate::tasks::driving::combined::DrivingTask;
+use crate::tasks::driving::descriptors::{EpisodeSetup, METRICS, Measures, measured_episode};
+use crate::tasks::driving::fitness::{AverageSpeed, Fitness};
+use crate::tasks::driving::rollout::{Drive, Rollout};
 
 /// Everything needed to evaluate genomes on one scenario with one config.
 ///
@@ -125,7 +127,7 @@ impl Experiment {
         let es = match config.substrate.kind {
             SubstrateKind::Polar => None,
             SubstrateKind::EsHyperneat => Some(
-                crate::es_controller::es_setup(config, &sensors, scale.factors())
+                crate::controller::es::es_setup(config, &sensors, scale.factors())
                     .map_err(ExperimentError::Config)?,
             ),
         };
@@ -326,7 +328,7 @@ impl Experiment {
 
 /// The driving experiment as a NEAT task: a genome's fitness is its
 /// controller's episode score (deterministic: the episode has no randomness),
-/// with the behaviour and metrics the run's strategy needs ([`crate::descriptors`]).
+/// with the behaviour and metrics the run's strategy needs ([`crate::tasks::driving::descriptors`]).
 impl Task for Experiment {
     fn evaluate(&self, genome: &Genome, _ctx: &EvalContext) -> Evaluation {
         let Some(measures) = self.measures else {
@@ -334,7 +336,7 @@ impl Task for Experiment {
         };
         match self.robot_controller(genome) {
             Ok(c) => measured_episode(self.setup(), self.rollout(&c), &c, measures),
-            Err(_) => crate::descriptors::unfit(measures, self.robots()),
+            Err(_) => crate::tasks::driving::descriptors::unfit(measures, self.robots()),
         }
     }
 
@@ -391,7 +393,7 @@ mod tests {
         let mut config = Config::default();
         config.experiment.steps = 100;
         config.substrate.kind = SubstrateKind::EsHyperneat;
-        config.strategy.kind = crate::strategy_config::StrategyKind::Nsga2;
+        config.strategy.kind = crate::config::strategy::StrategyKind::Nsga2;
         let exp = paper_experiment(&config);
         let pop = Population::new(config.neat.clone(), exp.cppn_spec(), 5).unwrap();
         let ctx = EvalContext {

@@ -15,7 +15,7 @@ use vivae_sim::Scenario;
 use crate::config::Config;
 use crate::error::Result;
 use crate::io::bad_input;
-use crate::maze::MazeTask;
+use crate::tasks::maze::MazeTask;
 
 /// Side of MAP-Elites' grid cells over the maze, px (the example's).
 pub const CELL: f64 = 10.0;
@@ -96,7 +96,7 @@ impl MazeProgress {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::strategy_config::BehaviourKind;
+    use crate::config::strategy::BehaviourKind;
 
     fn eval(solved: bool, distance: f64) -> Evaluation {
         Evaluation {
@@ -144,7 +144,7 @@ mod tests {
             "train_neurons",
         );
         refused(
-            &|c| c.substrate.kind = crate::es_config::SubstrateKind::EsHyperneat,
+            &|c| c.substrate.kind = crate::config::es::SubstrateKind::EsHyperneat,
             "substrate.kind",
         );
         refused(&|c| c.distance_sensors.rays = 5, "[distance_sensors]");
@@ -153,7 +153,7 @@ mod tests {
             "strategy.behaviour",
         );
         let mut c = Config::maze();
-        c.strategy.kind = crate::strategy_config::StrategyKind::Nsga2;
+        c.strategy.kind = crate::config::strategy::StrategyKind::Nsga2;
         c.strategy.nsga2.objectives = vec!["-contacts".into()];
         let e = c.validate().unwrap_err().message;
         assert!(e.contains("fitness or solved or distance or steps"), "{e}");
@@ -179,9 +179,9 @@ mod tests {
 
     #[test]
     fn map_elites_cells_are_ten_px_over_the_arena() {
-        let task = MazeTask::shipped(crate::maze::Maze::Medium).unwrap();
+        let task = MazeTask::shipped(crate::tasks::maze::Maze::Medium).unwrap();
         assert_eq!(cell_bins(&task), [30, 14]);
-        let task = MazeTask::shipped(crate::maze::Maze::Hard).unwrap();
+        let task = MazeTask::shipped(crate::tasks::maze::Maze::Hard).unwrap();
         assert_eq!(cell_bins(&task), [21, 21]);
     }
 }

@@ -1,7 +1,7 @@
 //! Tasks of the driving experiment, and how they combine.
 //!
 //! One episode (one map, one substrate resolution, one fitness function) is
-//! a task: [`Experiment`](crate::experiment::Experiment). [`Combined`] scores
+//! a task: [`Experiment`](crate::tasks::driving::experiment::Experiment). [`Combined`] scores
 //! several tasks as one ("the mean over maps", "the worst over
 //! resolutions"), and is itself a task, so combinations nest.
 //!
@@ -38,7 +38,7 @@ use vivae_neat::driver::{Evaluation, Task};
 use vivae_neat::{EvalContext, Genome, GenomeSpec};
 
 use crate::config::Aggregate;
-use crate::descriptors::mean_of;
+use crate::tasks::driving::descriptors::mean_of;
 
 /// A task of the driving experiment: a NEAT [`Task`] over CPPN genomes that
 /// also says how much it simulates.
@@ -89,7 +89,7 @@ impl Combined {
 
 /// The parts' fitnesses combine by the aggregate; their behaviours and
 /// metrics (when measured) by the mean, coordinate by coordinate
-/// ([`crate::descriptors`]).
+/// ([`crate::tasks::driving::descriptors`]).
 impl Task for Combined {
     fn evaluate(&self, genome: &Genome, ctx: &EvalContext) -> Evaluation {
         let parts: Vec<Evaluation> = (self.parts.iter())

@@ -4,7 +4,7 @@
 //!
 //! A single-map, single-resolution run trains on exactly its
 //! [`Experiment`]. With `substrate.train_neurons`/`train_sensors` a map's
-//! task is a [`Combined`] over resolutions ([`crate::resolutions`]); with
+//! task is a [`Combined`] over resolutions ([`crate::tasks::driving::resolutions`]); with
 //! `experiment.scenarios` the run's task is the mean over maps of each
 //! map's task, each map with its own robots.
 
@@ -15,10 +15,10 @@ use vivae_neat::{EvalContext, Genome, GenomeSpec};
 
 use crate::config::{Aggregate, Config};
 use crate::error::Result;
-use crate::experiment::{Experiment, ExperimentError};
-use crate::maps::{TrainingMap, is_multi_map};
-use crate::resolutions::at_resolutions;
-use crate::task::{Combined, DrivingTask};
+use crate::tasks::driving::combined::{Combined, DrivingTask};
+use crate::tasks::driving::experiment::{Experiment, ExperimentError};
+use crate::tasks::driving::resolutions::at_resolutions;
+use crate::tasks::maps::{TrainingMap, is_multi_map};
 
 /// The task a run evaluates genomes on, and the experiment it reports.
 #[derive(Debug, Clone)]
@@ -34,8 +34,8 @@ pub struct Training {
 }
 
 impl Training {
-    /// The training of `config` on `maps` (loaded by [`crate::maps::load`]
-    /// or [`crate::maps::load_run`]).
+    /// The training of `config` on `maps` (loaded by [`crate::tasks::maps::load`]
+    /// or [`crate::tasks::maps::load_run`]).
     pub fn new(config: &Config, maps: &[TrainingMap]) -> Result<Training> {
         let first = maps
             .first()

@@ -10,8 +10,8 @@
 use vivae_sim::Scenario;
 
 use crate::config::Config;
-use crate::experiment::{Experiment, ExperimentError};
-use crate::task::{Combined, DrivingTask};
+use crate::tasks::driving::combined::{Combined, DrivingTask};
+use crate::tasks::driving::experiment::{Experiment, ExperimentError};
 
 /// Label of a resolution, such as `s3x5-n9x9`.
 pub fn label(config: &Config) -> String {
@@ -45,8 +45,8 @@ pub fn at_resolutions(
 mod tests {
     use super::*;
     use crate::config::Aggregate;
+    use crate::controller::substrate::PolarGrid;
     use crate::io::load_scenario;
-    use crate::substrate::PolarGrid;
     use vivae_neat::driver::Task;
     use vivae_neat::{EvalContext, Population};
 

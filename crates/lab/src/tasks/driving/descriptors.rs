@@ -14,7 +14,7 @@
 //!   way, concatenated in robot order: 2 × robots numbers, for novelty
 //!   search (a k-d tree copes with 10 dimensions, a grid does not).
 //! * **`side-speed`** — the mean signed side of the road (in half-widths,
-//!   −1 left edge … +1 right edge, as [`crate::behaviour`] measures it; 0
+//!   −1 left edge … +1 right edge, as [`crate::tasks::driving::behaviour`] measures it; 0
 //!   when no robot-step was on a road with both edges in reach) and the
 //!   mean speed as a share of `physics.v_max`: 2 numbers in [−1, 1] × [0, 1],
 //!   the repertoire of "keep left / keep right, slow / fast".
@@ -27,7 +27,7 @@
 //! robot-steps (robot–robot and robot–obstacle, as `replay` counts
 //! collisions), and `on_road`, the share of robot-steps ending on a road.
 //!
-//! Over several maps or resolutions ([`crate::task::Combined`]) a genome's
+//! Over several maps or resolutions ([`crate::tasks::driving::combined::Combined`]) a genome's
 //! behaviour and metrics are the means over the parts, coordinate by
 //! coordinate: the descriptor keeps its dimensions and units (concatenating
 //! would multiply a grid's cells by the number of parts).
@@ -35,12 +35,12 @@
 use vivae_neat::driver::Evaluation;
 use vivae_sim::World;
 
-use crate::behaviour::BehaviourMeter;
-use crate::fitness::Fitness;
-use crate::rollout::{Drive, Rollout};
-use crate::strategy_config::{StrategyConfig, StrategyKind as K};
+use crate::config::strategy::{StrategyConfig, StrategyKind as K};
+use crate::tasks::driving::behaviour::BehaviourMeter;
+use crate::tasks::driving::fitness::Fitness;
+use crate::tasks::driving::rollout::{Drive, Rollout};
 
-pub use crate::strategy_config::{BehaviourKind, METRICS, TRAJECTORY_SAMPLES};
+pub use crate::config::strategy::{BehaviourKind, METRICS, TRAJECTORY_SAMPLES};
 
 /// What an episode measures besides its fitness.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -200,9 +200,9 @@ pub fn mean_of(parts: &[&[f64]]) -> Vec<f64> {
 mod tests {
     use super::*;
     use crate::config::Config;
-    use crate::experiment::Experiment;
+    use crate::config::strategy::StrategyKind;
     use crate::io::load_scenario;
-    use crate::strategy_config::StrategyKind;
+    use crate::tasks::driving::experiment::Experiment;
     use vivae_neat::Population;
     use vivae_neat::driver::Task;
 

@@ -16,6 +16,8 @@
 //! the goal was reached, the end distance and the steps taken. An episode
 //! ends early when the robot reaches the goal, as in Lehman's simulator.
 
+pub mod run;
+
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
 
 use vivae_neat::driver::{Evaluation, Task};
@@ -26,9 +28,9 @@ use vivae_sim::{
 };
 
 /// The medium maze (`scenarios/medium-maze.svg`).
-pub const MEDIUM_MAZE_SVG: &str = include_str!("../../../scenarios/medium-maze.svg");
+pub const MEDIUM_MAZE_SVG: &str = include_str!("../../../../../scenarios/medium-maze.svg");
 /// The hard maze (`scenarios/hard-maze.svg`).
-pub const HARD_MAZE_SVG: &str = include_str!("../../../scenarios/hard-maze.svg");
+pub const HARD_MAZE_SVG: &str = include_str!("../../../../../scenarios/hard-maze.svg");
 
 /// Steps of one evaluation (the paper's 400).
 pub const STEPS: u32 = 400;

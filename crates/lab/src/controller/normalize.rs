@@ -30,8 +30,8 @@
 use vivae_neat::hyperneat::SubstrateController;
 
 use crate::config::{NormalizeBy, Recurrence, SubstrateConfig};
-use crate::sensors::SensorSheet;
-use crate::substrate::PolarNode;
+use crate::controller::sensors::SensorSheet;
+use crate::controller::substrate::PolarNode;
 
 /// The paper's neuron count (3×3): the neuron sheet's reference size.
 pub const PAPER_NEURONS: usize = 9;
@@ -114,9 +114,9 @@ impl SourceScale {
 mod tests {
     use super::*;
     use crate::config::Config;
-    use crate::experiment::Experiment;
+    use crate::controller::substrate::PolarGrid;
     use crate::io::load_scenario;
-    use crate::substrate::PolarGrid;
+    use crate::tasks::driving::experiment::Experiment;
     use vivae_neat::Population;
 
     fn experiment(neurons: usize, by: NormalizeBy, self_loops: bool) -> Experiment {

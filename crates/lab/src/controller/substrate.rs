@@ -31,12 +31,12 @@
 //! 6 rings → ρ = 4/6. (Distances to 2/3 never tie.)
 
 use crate::config::Config;
-use crate::sensors::{SensorSheet, sensor_sheets};
+use crate::controller::sensors::{SensorSheet, sensor_sheets};
 use serde::{Deserialize, Serialize};
 use vivae_neat::hyperneat::{InputSheet, SubstrateLayout};
 
 // The sheets' geometry has its own module, which the sensors use too.
-pub use crate::polar::{
+pub use crate::controller::polar::{
     BIAS_OUTPUT, CoordMode, DISTANCE_OUTPUT, MAX_GRID_SIDE, PolarGrid, PolarNode, RECURRENT_OUTPUT,
     SURFACE_OUTPUT, SubstrateError, WHEEL_RADIUS, WheelNeurons,
 };

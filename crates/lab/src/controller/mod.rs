@@ -1,0 +1,9 @@
+//! The robot's controller: polar sheets, the sensors that feed them, the
+//! substrate decoded from a CPPN (fixed sheets or ES-HyperNEAT) and the
+//! weight normalisation applied to it.
+
+pub mod es;
+pub mod normalize;
+pub mod polar;
+pub mod sensors;
+pub mod substrate;
