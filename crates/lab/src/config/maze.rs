@@ -1,0 +1,127 @@
+//! The maze task's config: its defaults and the keys a maze run cannot honour.
+
+use super::*;
+
+impl Config {
+    /// The config of a maze run with the example's settings: the hard maze,
+    /// 400 steps, the paper's robot, plain NEAT with a population of 250,
+    /// novelty search's ρ_min = 6 px, NSGA-II on fitness alone.
+    pub fn maze() -> Config {
+        let mut c = Config::default();
+        c.experiment.task = TaskKind::Maze;
+        c.experiment.scenario = "hard-maze".into();
+        c.experiment.steps = crate::tasks::maze::STEPS;
+        c.experiment.robots = 1;
+        // 50,000 evaluations.
+        c.experiment.generations = 200;
+        c.physics = crate::tasks::maze::MazeTask::physics();
+        c.neat = NeatParams {
+            population_size: 250,
+            ..NeatParams::plain_neat()
+        };
+        let novelty = vivae_neat::strategies::NoveltyParams::default();
+        // ρ_min in px (Lehman's maze code, via goNEAT_NS): the behaviour is in px.
+        c.strategy.novelty.threshold = 6.0;
+        c.strategy.novelty.threshold_floor = novelty.threshold_floor;
+        c.strategy.nsga2.objectives = vec!["fitness".into()];
+        // 10 px cells over the hard maze (205 × 205); `vivae evolve --task maze` fits them to its maze.
+        c.strategy.map_elites.bins = vec![21];
+        c
+    }
+}
+
+/// With `experiment.task = "maze"`: refuses the keys a maze run cannot
+/// honour; the message names the key.
+pub(super) fn validate_maze(c: &Config) -> Result<(), String> {
+    let e = &c.experiment;
+    let s = &c.substrate;
+    let refuse = |key: &str, why: &str| Err(format!("{key}: {why} (experiment.task = \"maze\")"));
+    if !e.scenarios.is_empty() {
+        return refuse(
+            "experiment.scenarios",
+            "a maze run has one maze: name it with experiment.scenario",
+        );
+    }
+    if e.scenario.is_empty() {
+        return refuse(
+            "experiment.scenario",
+            "name the maze: hard-maze, medium-maze or an SVG file with one robot and a `goal` mark",
+        );
+    }
+    if e.robots != 1 {
+        return refuse(
+            &format!("experiment.robots = {}", e.robots),
+            "a maze has one robot: use 1",
+        );
+    }
+    if !e.init_population.is_empty() {
+        return refuse(
+            "experiment.init_population",
+            "a maze run starts from minimal networks (retrain re-samples a substrate, which a maze network has not)",
+        );
+    }
+    if !s.train_neurons.is_empty() || !s.train_sensors.is_empty() {
+        return refuse(
+            "substrate.train_neurons/train_sensors",
+            "a maze network has no substrate to train at several resolutions",
+        );
+    }
+    if !s.kind.is_polar() {
+        return refuse(
+            "substrate.kind",
+            "a maze network is evolved directly, not decoded into an ES-HyperNEAT substrate",
+        );
+    }
+    if c.strategy.behaviour != crate::config::strategy::BehaviourKind::EndPosition {
+        return refuse(
+            &format!("strategy.behaviour = {}", c.strategy.behaviour.name()),
+            "a maze's behaviour is the robot's end position in px: leave it at end-position",
+        );
+    }
+    let unused = [
+        ("substrate", *s == SubstrateConfig::default()),
+        (
+            "surface_sensors",
+            c.surface_sensors == vivae_sim::SurfaceSensors::default(),
+        ),
+        (
+            "distance_sensors",
+            c.distance_sensors == DistanceConfig::default(),
+        ),
+        (
+            "hyperneat",
+            c.hyperneat == vivae_neat::hyperneat::HyperParams::default(),
+        ),
+    ];
+    match unused.iter().find(|(_, default)| !default) {
+        Some((section, _)) => refuse(
+            &format!("[{section}]"),
+            "a maze robot has the paper's 6 rangefinders and 4 radar slices and a plain network: leave this section at its defaults",
+        ),
+        None => Ok(()),
+    }
+}
+
+/// The config of TOML `text` (which parses) with its unset keys taken from [`Config::maze`].
+pub(super) fn over_maze_defaults(text: &str) -> Result<Config, ConfigError> {
+    fn merge(base: &mut toml::Value, over: toml::Value) {
+        match (base, over) {
+            (toml::Value::Table(b), toml::Value::Table(o)) => {
+                for (k, v) in o {
+                    match b.get_mut(&k) {
+                        Some(slot) => merge(slot, v),
+                        None => {
+                            b.insert(k, v);
+                        }
+                    }
+                }
+            }
+            (slot, v) => *slot = v,
+        }
+    }
+    let bad = |e: &dyn std::fmt::Display| ConfigError::new(one_line(&e.to_string()));
+    let mut base = toml::Value::try_from(Config::maze()).map_err(|e| bad(&e))?;
+    let over: toml::Value = toml::from_str(text).map_err(|e| bad(&e))?;
+    merge(&mut base, over);
+    base.try_into().map_err(|e: toml::de::Error| bad(&e))
+}

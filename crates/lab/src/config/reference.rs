@@ -1,0 +1,332 @@
+//! The config reference, read from the doc comments of the fields the keys set:
+//! `vivae config default`, `vivae config reference` and the guide's table.
+
+use super::*;
+
+impl Config {
+    /// The default config as TOML with a comment on every section and key.
+    pub fn default_commented() -> String {
+        let mut out = String::from(
+            "# vivae configuration: every parameter of a run.\n\
+             # Keys left out take their defaults; command-line flags override the file.\n\
+             # Each comment gives: what the key is [unit]; its default; the paper's value where it has one.\n",
+        );
+        for section in reference() {
+            let _ = writeln!(out, "\n# {}", section.what);
+            let _ = writeln!(out, "[{}]", section.path);
+            for key in &section.keys {
+                let _ = writeln!(out, "# {}", key.comment());
+                let name = key.name();
+                match &key.default {
+                    Some(value) => {
+                        let _ = writeln!(out, "{name} = {value}");
+                    }
+                    // A key unset by default is shown commented out, with an example.
+                    None => {
+                        let _ = writeln!(out, "# {name} = {}", key.example);
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    /// A Markdown table of every key: name, default, unit, paper's value, meaning.
+    pub fn markdown_reference() -> String {
+        let mut out = String::from(
+            "| key | default | unit | paper | meaning |\n| --- | --- | --- | --- | --- |\n",
+        );
+        for key in reference().iter().flat_map(|s| &s.keys) {
+            let default = match &key.default {
+                Some(value) => format!("`{value}`"),
+                None => "unset".to_string(),
+            };
+            let _ = writeln!(
+                out,
+                "| `{}` | {} | {} | {} | {} |",
+                key.key,
+                markdown_cell(&default),
+                markdown_cell(&key.unit),
+                markdown_cell(&key.paper),
+                markdown_cell(&key.what)
+            );
+        }
+        out
+    }
+}
+
+/// A table cell's text: a `|` would end the cell, so it is escaped.
+pub(super) fn markdown_cell(text: &str) -> String {
+    text.replace('|', "\\|")
+}
+
+/// Documentation of one config key, read from the doc comment of the field it sets.
+///
+/// A field's doc comment is its meaning, optionally followed by a paragraph of
+/// notes: `Unit: px/step.`, `Paper: 100.` (the paper's value) and, for a key
+/// that is unset by default, `Example: 10.` (the value `vivae config default`
+/// shows commented out).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct KeyDoc {
+    /// Dotted key, e.g. `neat.population_size`.
+    pub key: String,
+    /// What the key is: the doc comment without its notes, lower-case first, no final period.
+    pub what: String,
+    /// Unit, empty when dimensionless.
+    pub unit: String,
+    /// The paper's value, empty when the paper gives none.
+    pub paper: String,
+    /// The default as TOML; `None` when the key is unset by default.
+    pub default: Option<String>,
+    /// A value to show for a key that is unset by default; empty otherwise.
+    pub example: String,
+}
+
+impl KeyDoc {
+    /// The key's name within its section.
+    pub fn name(&self) -> &str {
+        self.key.rsplit('.').next().unwrap_or(&self.key)
+    }
+
+    /// One line: what the key is [unit]; default: D; paper: P.
+    pub fn comment(&self) -> String {
+        let mut parts = vec![if self.unit.is_empty() {
+            self.what.clone()
+        } else {
+            format!("{} [{}]", self.what, self.unit)
+        }];
+        parts.push(format!(
+            "default: {}",
+            self.default.as_deref().unwrap_or("unset")
+        ));
+        if !self.paper.is_empty() {
+            parts.push(format!("paper: {}", self.paper));
+        }
+        parts.join("; ")
+    }
+}
+
+/// Documentation of one config section (a TOML table) and of its keys.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SectionDoc {
+    /// Dotted path of the table, e.g. `physics.friction`.
+    pub path: String,
+    /// What the section holds: the doc comment of the field that holds it.
+    pub what: String,
+    /// Its keys: those set by default in declaration order, then those unset by default.
+    pub keys: Vec<KeyDoc>,
+}
+
+/// Every section and key of the config, documented from the doc comments of
+/// the fields they set: the one source of `vivae config default`, `vivae
+/// config reference` and the guide's table.
+pub fn reference() -> Vec<SectionDoc> {
+    let schema = schemars::schema_for!(Config);
+    let root = schema.as_value();
+    let defaults = documented_defaults();
+    let defaults = defaults.as_table().expect("the config is a table");
+    let mut out = Vec::new();
+    for (name, value) in defaults {
+        let property = property(root, root, name);
+        let table = value.as_table().expect("every top-level key is a section");
+        document_section(root, property, name, table, &mut out);
+    }
+    out
+}
+
+/// The default config as the reference documents it: keys a default config
+/// does not write (`substrate.kind`, `[substrate.es]`, `[strategy]`: written only when
+/// set, so that existing runs' files stay the same) with their defaults all the same.
+pub(super) fn documented_defaults() -> toml::Value {
+    let mut defaults =
+        toml::Value::try_from(Config::default()).expect("the default config is TOML");
+    if let Some(sub) = defaults.get_mut("substrate").and_then(|s| s.as_table_mut()) {
+        let kind = toml::Value::try_from(SubstrateKind::default()).expect("a kind is TOML");
+        let mut es = toml::Value::try_from(EsConfig::default()).expect("ES keys are TOML");
+        // `leo` and `leo_seed` are written only when true; documented all the same.
+        if let Some(t) = es.as_table_mut() {
+            t.insert("leo".into(), toml::Value::Boolean(false));
+            t.insert("leo_seed".into(), toml::Value::Boolean(false));
+        }
+        sub.insert("kind".into(), kind);
+        sub.insert("es".into(), es);
+    }
+    // A default config is written without its `[strategy]` section (so that
+    // NEAT runs' files stay as they were); it is documented all the same.
+    if let Some(table) = defaults.as_table_mut() {
+        let strategy = toml::Value::try_from(StrategyConfig::default()).expect("TOML");
+        table.insert("strategy".into(), strategy);
+    }
+    defaults
+}
+
+/// Documentation of the key `key` (dotted), if there is such a key.
+pub fn key_doc(key: &str) -> Option<KeyDoc> {
+    reference()
+        .into_iter()
+        .flat_map(|s| s.keys)
+        .find(|k| k.key == key)
+}
+
+/// Documents the section at `path` whose schema is `schema` and whose defaults are `defaults`,
+/// then its sub-sections.
+pub(super) fn document_section(
+    root: &serde_json::Value,
+    schema: &serde_json::Value,
+    path: &str,
+    defaults: &toml::Table,
+    out: &mut Vec<SectionDoc>,
+) {
+    let what = ParsedDoc::new(&description(schema)).what;
+    let body = resolve(root, schema);
+    let mut keys = Vec::new();
+    let mut sections = Vec::new();
+    // The defaults list the keys in declaration order (serde serialises fields in order).
+    for (name, value) in defaults {
+        let field = property(root, body, name);
+        match value {
+            toml::Value::Table(table) => sections.push((name, field, table)),
+            value => keys.push(
+                ParsedDoc::new(&description(field))
+                    .key(format!("{path}.{name}"), Some(value.to_string())),
+            ),
+        }
+    }
+    // Keys the serialised default leaves out are `Option`s that are unset by default.
+    if let Some(properties) = body.get("properties").and_then(|p| p.as_object()) {
+        for (name, field) in properties {
+            if !defaults.contains_key(name) {
+                keys.push(ParsedDoc::new(&description(field)).key(format!("{path}.{name}"), None));
+            }
+        }
+    }
+    out.push(SectionDoc {
+        path: path.to_string(),
+        what,
+        keys,
+    });
+    for (name, field, table) in sections {
+        document_section(root, field, &format!("{path}.{name}"), table, out);
+    }
+}
+
+/// The schema of property `name` of the object schema `object`; `null` when absent.
+pub(super) fn property<'a>(
+    root: &'a serde_json::Value,
+    object: &'a serde_json::Value,
+    name: &str,
+) -> &'a serde_json::Value {
+    resolve(root, object)
+        .get("properties")
+        .and_then(|p| p.get(name))
+        .unwrap_or(&serde_json::Value::Null)
+}
+
+/// Follows `$ref` (directly or as the single entry of an `allOf`) into the root's definitions.
+pub(super) fn resolve<'a>(
+    root: &'a serde_json::Value,
+    schema: &'a serde_json::Value,
+) -> &'a serde_json::Value {
+    let reference = schema.get("$ref").or_else(|| {
+        schema
+            .get("allOf")
+            .and_then(|a| a.as_array())
+            .filter(|a| a.len() == 1)
+            .and_then(|a| a[0].get("$ref"))
+    });
+    match reference.and_then(|r| r.as_str()) {
+        Some(r) => r
+            .strip_prefix("#/")
+            .and_then(|pointer| root.pointer(&format!("/{pointer}")))
+            .map(|target| resolve(root, target))
+            .unwrap_or(schema),
+        None => schema,
+    }
+}
+
+/// A schema's doc text: its title (a doc comment's `#` heading) and description.
+pub(super) fn description(schema: &serde_json::Value) -> String {
+    ["title", "description"]
+        .iter()
+        .filter_map(|k| schema.get(*k).and_then(|v| v.as_str()))
+        .collect::<Vec<_>>()
+        .join("\n\n")
+}
+
+/// A doc comment split into its meaning and its notes.
+#[derive(Debug, Default, PartialEq)]
+pub(super) struct ParsedDoc {
+    pub(super) what: String,
+    pub(super) unit: String,
+    pub(super) paper: String,
+    pub(super) example: String,
+}
+
+/// The notes a doc comment may end with.
+const NOTES: [&str; 3] = ["Unit:", "Paper:", "Example:"];
+
+impl ParsedDoc {
+    pub(super) fn new(doc: &str) -> ParsedDoc {
+        let mut parsed = ParsedDoc::default();
+        let mut what = Vec::new();
+        for paragraph in doc.split("\n\n") {
+            let paragraph = paragraph.split_whitespace().collect::<Vec<_>>().join(" ");
+            if NOTES.iter().any(|n| paragraph.starts_with(n)) {
+                parsed.read_notes(&paragraph);
+            } else if !paragraph.is_empty() {
+                what.push(paragraph);
+            }
+        }
+        parsed.what = what.join(" ");
+        parsed
+    }
+
+    /// Reads `Unit: u. Paper: p. Example: e.` (any order, any subset).
+    fn read_notes(&mut self, text: &str) {
+        let mut starts: Vec<(usize, &str)> = NOTES
+            .iter()
+            .filter_map(|n| text.find(n).map(|at| (at, *n)))
+            .collect();
+        starts.sort();
+        for (i, &(at, note)) in starts.iter().enumerate() {
+            let end = starts.get(i + 1).map_or(text.len(), |&(next, _)| next);
+            let value = text[at + note.len()..end].trim();
+            let value = value.strip_suffix('.').unwrap_or(value).to_string();
+            match note {
+                "Unit:" => self.unit = value,
+                "Paper:" => self.paper = value,
+                _ => self.example = value,
+            }
+        }
+    }
+
+    fn key(self, key: String, default: Option<String>) -> KeyDoc {
+        KeyDoc {
+            key,
+            what: sentence_fragment(&self.what),
+            unit: self.unit,
+            paper: self.paper,
+            default,
+            example: self.example,
+        }
+    }
+}
+
+/// A doc sentence as a fragment for a one-line comment: first word lower-case
+/// (unless it is an acronym or symbol such as `CPPN`, `C1` or `C_ACT`), no final period.
+pub(super) fn sentence_fragment(text: &str) -> String {
+    let text = text.strip_suffix('.').unwrap_or(text);
+    let word = text
+        .split_whitespace()
+        .next()
+        .unwrap_or("")
+        .trim_end_matches([':', ',', ';']);
+    let mut chars = word.chars();
+    match chars.next() {
+        Some(first) if first.is_uppercase() && chars.all(|c| c.is_lowercase()) => first
+            .to_lowercase()
+            .chain(text[first.len_utf8()..].chars())
+            .collect(),
+        _ => text.to_string(),
+    }
+}

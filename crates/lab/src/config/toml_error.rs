@@ -1,0 +1,74 @@
+//! TOML parse errors as one line naming the line and the key.
+
+use super::*;
+
+/// `text` on one line.
+pub(super) fn one_line(text: &str) -> String {
+    text.trim().replace('\n', " ")
+}
+
+/// Turns a toml parse error into one line: `line L: key K: reason`.
+pub(super) fn describe_toml_error(text: &str, err: &toml::de::Error) -> ConfigError {
+    let reason = err.message().trim().replace('\n', " ");
+    let Some(span) = err.span() else {
+        return ConfigError::new(reason);
+    };
+    let line_no = text[..span.start.min(text.len())].matches('\n').count() + 1;
+    let key = key_at(text, span.start);
+    match key {
+        Some(key) => ConfigError::new(format!("line {line_no}: key {key}: {reason}")),
+        None => ConfigError::new(format!("line {line_no}: {reason}")),
+    }
+}
+
+/// The 1-based line that assigns dotted key `key` (`section.name`) in `text`, if any.
+pub(super) fn line_of_key(text: &str, key: &str) -> Option<usize> {
+    let (section, name) = key.rsplit_once('.')?;
+    let mut current = "";
+    for (i, line) in text.lines().enumerate() {
+        let trimmed = line.trim();
+        if let Some(header) = trimmed.strip_prefix('[') {
+            current = header.split(']').next().unwrap_or("").trim();
+        } else if current == section
+            && trimmed.split('=').next().map(str::trim) == Some(name)
+            && trimmed.contains('=')
+        {
+            return Some(i + 1);
+        }
+    }
+    None
+}
+
+/// The dotted key whose assignment contains byte offset `pos`, if any.
+pub(super) fn key_at(text: &str, pos: usize) -> Option<String> {
+    let mut section = String::new();
+    let mut offset = 0;
+    for line in text.split_inclusive('\n') {
+        let trimmed = line.trim();
+        let end = offset + line.len();
+        if let Some(header) = trimmed.strip_prefix('[') {
+            let name = header
+                .trim_start_matches('[')
+                .split(']')
+                .next()
+                .unwrap_or("")
+                .trim();
+            if pos >= offset && pos < end {
+                return Some(name.to_string());
+            }
+            section = name.to_string();
+        } else if pos >= offset
+            && pos < end
+            && let Some((key, _)) = trimmed.split_once('=')
+        {
+            let key = key.trim().trim_matches('"');
+            return Some(if section.is_empty() {
+                key.to_string()
+            } else {
+                format!("{section}.{key}")
+            });
+        }
+        offset = end;
+    }
+    (!section.is_empty()).then_some(section)
+}

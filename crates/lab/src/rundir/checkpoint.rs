@@ -1,0 +1,254 @@
+//! Checkpoints: what they hold, their codec, the newest one, pruning.
+
+use super::*;
+
+/// State saved in a checkpoint besides the population.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct Progress {
+    /// Generations of this run evaluated so far.
+    pub(crate) done: u32,
+    /// `population.generation()` when this run started.
+    pub(crate) start_generation: u32,
+    /// Byte lengths of the CSV files after generation `done`.
+    pub(crate) generations_len: u64,
+    pub(crate) population_len: u64,
+    pub(crate) timing_len: u64,
+    /// Best individual of each figure generation (generation, fitness, genome).
+    pub(crate) figure_genomes: Vec<(u32, f64, Genome)>,
+    /// FNV-1a hash of `scenario.svg`: a replaced scenario is refused on resume.
+    /// Absent in checkpoints written before it was recorded.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub(crate) scenario_fnv: Option<u64>,
+    /// FNV-1a hash of each training map's copy under `scenarios/` (multi-map
+    /// runs only): an edited copy is refused on resume.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub(crate) maps_fnv: Option<Vec<u64>>,
+    /// A maze run's evaluations and when it was solved (maze runs only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub(crate) maze: Option<crate::tasks::maze::run::MazeProgress>,
+}
+
+/// Refuses a run whose `config.toml` was edited since its newest checkpoint:
+/// a run continues with the config it started with (its checkpoint's), so an
+/// edit would otherwise be silently undone. Only `run.threads` (speed, not
+/// results) and `experiment.generations` (set by `resume --generations`, which
+/// rewrites `config.toml` before the next checkpoint records it) may differ;
+/// a missing `config.toml` is rewritten.
+pub(crate) fn check_config_unchanged(
+    dir: &Path,
+    checkpoint: &Path,
+    recorded: &Config,
+) -> Result<()> {
+    let path = dir.join(files::CONFIG);
+    let Ok(text) = crate::io::read_text(&path) else {
+        return Ok(());
+    };
+    let expected = recorded.to_toml();
+    if text == expected {
+        return Ok(());
+    }
+    if let Ok(mut on_disk) = Config::from_toml(&text) {
+        on_disk.run.threads = recorded.run.threads;
+        on_disk.experiment.generations = recorded.experiment.generations;
+        if on_disk == *recorded {
+            return Ok(());
+        }
+    }
+    let (line, differs) = text
+        .lines()
+        .zip(expected.lines().chain(std::iter::repeat("")))
+        .enumerate()
+        .find(|(_, (a, b))| a != b)
+        .map(|(i, (a, _))| (i + 1, a.trim().to_string()))
+        .unwrap_or((text.lines().count() + 1, "(end of file)".to_string()));
+    Err(Error::Checkpoint {
+        path,
+        reason: format!(
+            "differs from the run's newest checkpoint {} (line {line}: `{differs}`); a run resumes with the config it started with: undo the edit (extend a run with `resume --generations N`), or start a new run with `evolve --config`",
+            checkpoint.display()
+        ),
+    })
+}
+
+/// A checkpoint: everything needed to continue the run exactly.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct Checkpoint {
+    pub(crate) config: Config,
+    pub(crate) progress: Progress,
+    /// A NEAT run's population ready to evaluate generation `done + 1`
+    /// (stored exactly as before other strategies existed).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub(crate) population: Option<Population>,
+    /// Any other strategy's state, ready to evaluate generation `done + 1`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub(crate) search: Option<Search>,
+}
+
+impl Checkpoint {
+    /// The checkpoint of `search` (a NEAT population goes to `population`).
+    pub(crate) fn new(config: &Config, progress: &Progress, search: &Search) -> Checkpoint {
+        let (population, search) = match search {
+            Search::Neat(p) => (Some(p.clone()), None),
+            other => (None, Some(other.clone())),
+        };
+        Checkpoint {
+            config: config.clone(),
+            progress: progress.clone(),
+            population,
+            search,
+        }
+    }
+
+    /// The stored search, or why there is none.
+    pub(crate) fn search(&self) -> std::result::Result<Search, &'static str> {
+        match (&self.population, &self.search) {
+            (Some(p), None) => Ok(Search::Neat(p.clone())),
+            (None, Some(Search::Neat(_))) => Err("a NEAT population stored as `search`"),
+            (None, Some(s)) => Ok(s.clone()),
+            (None, None) => Err("neither a population nor a search strategy"),
+            (Some(_), Some(_)) => Err("both a population and a search strategy"),
+        }
+    }
+
+    /// The NEAT population inside (a NEAT or novelty run's), for `retrain`.
+    fn into_population(self, path: &Path) -> Result<(Config, Population)> {
+        let population = match self.search() {
+            Ok(Search::Neat(p)) => Some(p),
+            Ok(Search::Novelty(n)) => Some(n.population().clone()),
+            _ => None,
+        };
+        population
+            .map(|p| (self.config, p))
+            .ok_or_else(|| Error::Checkpoint {
+                path: path.to_path_buf(),
+                reason: "holds no NEAT population (a map-elites or nsga2 run)".into(),
+            })
+    }
+}
+
+pub(crate) const CHECKPOINT_MAGIC: &str = "vivae-checkpoint v1";
+
+pub(crate) fn encode_checkpoint(cp: &Checkpoint) -> Result<String> {
+    let body = serde_json::to_string(cp).map_err(|e| Error::Serialize {
+        what: "checkpoint",
+        reason: e.to_string(),
+    })?;
+    Ok(format!(
+        "{CHECKPOINT_MAGIC} {:016x}\n{body}",
+        fnv1a(body.as_bytes())
+    ))
+}
+
+pub(crate) fn decode_checkpoint(path: &Path) -> Result<Checkpoint> {
+    decode_checkpoint_text(&crate::io::read_text(path)?, path)
+}
+
+/// Decodes checkpoint `text`; errors name `path`.
+pub(crate) fn decode_checkpoint_text(text: &str, path: &Path) -> Result<Checkpoint> {
+    let bad = |why: &str| Error::Checkpoint {
+        path: path.to_path_buf(),
+        reason: why.to_string(),
+    };
+    let (header, body) = text
+        .split_once('\n')
+        .ok_or_else(|| bad("not a vivae checkpoint (no header line)"))?;
+    let checksum = header
+        .strip_prefix(CHECKPOINT_MAGIC)
+        .map(str::trim)
+        .ok_or_else(|| bad("not a vivae checkpoint (bad header)"))?;
+    let expected = u64::from_str_radix(checksum, 16)
+        .map_err(|_| bad("not a vivae checkpoint (bad checksum field)"))?;
+    if fnv1a(body.as_bytes()) != expected {
+        return Err(bad("corrupt or truncated checkpoint (checksum mismatch)"));
+    }
+    let cp: Checkpoint =
+        serde_json::from_str(body).map_err(|e| bad(&format!("unreadable checkpoint: {e}")))?;
+    // The population validated itself while being deserialised.
+    cp.config
+        .validate()
+        .map_err(|e| bad(&format!("checkpoint config: {e}")))?;
+    Ok(cp)
+}
+
+/// Reads the population stored in a checkpoint file (for `retrain` and `init_population`).
+pub fn population_from_checkpoint(path: &Path) -> Result<(Config, Population)> {
+    decode_checkpoint(path)?.into_population(path)
+}
+
+/// Reads the config and population of checkpoint `text` (read from `path`,
+/// which errors name); the entry point of the checkpoint fuzz target.
+pub fn population_from_checkpoint_text(text: &str, path: &Path) -> Result<(Config, Population)> {
+    decode_checkpoint_text(text, path)?.into_population(path)
+}
+
+/// Path of the newest checkpoint in a run directory.
+pub fn latest_checkpoint(run_dir: &Path) -> Result<PathBuf> {
+    let dir = run_dir.join(files::CHECKPOINTS);
+    let entries = fs::read_dir(&dir).map_err(|e| Error::Checkpoint {
+        path: run_dir.to_path_buf(),
+        reason: format!(
+            "not a vivae run directory ({}: {})",
+            files::CHECKPOINTS,
+            crate::io::io_reason(&e)
+        ),
+    })?;
+    checkpoint_names(entries)
+        .pop()
+        .map(|n| dir.join(n))
+        .ok_or_else(|| Error::Checkpoint {
+            path: dir.clone(),
+            reason: "no checkpoint to resume from".into(),
+        })
+}
+
+pub(crate) fn write_checkpoint(
+    dir: &Path,
+    config: &Config,
+    progress: &Progress,
+    search: &Search,
+) -> Result<()> {
+    let cp = Checkpoint::new(config, progress, search);
+    let dir = dir.join(files::CHECKPOINTS);
+    let path = dir.join(format!("gen-{:06}.ckpt", progress.done));
+    write_atomic(&path, encode_checkpoint(&cp)?.as_bytes())?;
+    prune_checkpoints(&dir, config.run.checkpoint_keep)
+}
+
+impl Progress {
+    pub(crate) fn start(start_generation: u32) -> Progress {
+        Progress {
+            done: 0,
+            start_generation,
+            generations_len: GENERATIONS_HEADER.len() as u64,
+            population_len: POPULATION_HEADER.len() as u64,
+            timing_len: TIMING_HEADER.len() as u64,
+            figure_genomes: Vec::new(),
+            scenario_fnv: None,
+            maps_fnv: None,
+            maze: None,
+        }
+    }
+}
+
+/// Checkpoint file names in a listing, oldest first (names sort by generation).
+pub(crate) fn checkpoint_names(entries: fs::ReadDir) -> Vec<String> {
+    let mut names: Vec<String> = entries
+        .filter_map(|e| e.ok())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with("gen-") && n.ends_with(".ckpt"))
+        .collect();
+    names.sort();
+    names
+}
+
+pub(crate) fn prune_checkpoints(dir: &Path, keep: usize) -> Result<()> {
+    let names = checkpoint_names(fs::read_dir(dir).map_err(Error::io("list", dir))?);
+    let excess = names.len().saturating_sub(keep);
+    for n in &names[..excess] {
+        let path = dir.join(n);
+        fs::remove_file(&path).map_err(Error::io("prune", path))?;
+    }
+    Ok(())
+}
