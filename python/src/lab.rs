@@ -15,7 +15,6 @@ use vivae_lab::config::Config;
 use vivae_lab::es_controller::RobotController;
 use vivae_lab::evolve::{Outcome, Run};
 use vivae_lab::experiment::Experiment;
-use vivae_lab::run_task::RunTask;
 use vivae_lab::rundir::{self, GenerationRecord};
 use vivae_lab::substrate::WheelNeurons;
 use vivae_lab::training::Training;
@@ -329,11 +328,11 @@ pub fn evolve<'py>(
     on_generation: Option<Py<PyAny>>,
     overrides: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let maze_defaults = config.is_none();
+    let task_defaults = config.is_none();
     let mut config = settings::build(config.as_deref(), overrides)?;
     let setup = || -> vivae_lab::Result<_> {
         let maps = vivae_lab::maps::load(&config)?;
-        let task = RunTask::new(&config, &maps)?;
+        let task = vivae_lab::tasks::build(&config, &maps)?;
         let init = if config.experiment.init_population.is_empty() {
             None
         } else {
@@ -343,9 +342,10 @@ pub fn evolve<'py>(
         Ok((maps, task, init))
     };
     let (maps, task, init) = setup().map_err(errors::lab)?;
-    if let (RunTask::Maze(maze), true) = (&task, maze_defaults) {
-        // As `vivae evolve --task maze`: the example's 10 px MAP-Elites grid over the maze.
-        config.strategy.map_elites.bins = vivae_lab::maze_run::cell_bins(maze);
+    if task_defaults {
+        // As `vivae evolve --task NAME`: settings the task fits to its scenario
+        // (the maze's 10 px MAP-Elites grid).
+        task.fit_defaults(&mut config);
     }
     let dir = out.unwrap_or_else(vivae_lab::io::default_run_dir);
     let first = maps[0].loaded.text.clone();
@@ -392,7 +392,7 @@ pub fn evolve<'py>(
     d.set_item("generations", run.done())?;
     d.set_item("finished", outcome == Outcome::Finished)?;
     d.set_item("wall_s", wall)?;
-    if let Some(m) = run.maze_progress() {
+    if let Some(m) = run.target_progress() {
         // A task with a goal: as the CLI's `solved=` and `evals_to_solve=`.
         d.set_item("solved", m.solved_at.is_some())?;
         d.set_item("evals_to_solve", m.solved_at)?;

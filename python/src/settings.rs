@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString};
-use vivae_lab::config::{Config, TaskKind};
+use vivae_lab::config::{Config, TaskName};
 use vivae_lab::substrate::PolarGrid;
 
 use crate::errors;
@@ -37,21 +37,26 @@ pub const OVERRIDES: &[&str] = &[
 /// `config` (a TOML file) or the paper's default, with `overrides` applied and validated.
 pub fn build(config: Option<&Path>, overrides: Option<&Bound<'_, PyDict>>) -> PyResult<Config> {
     let task = match overrides.map(|o| o.get_item("task")).transpose()?.flatten() {
-        Some(v) if !v.is_none() => Some(parsed::<TaskKind>("task", &v)?),
+        Some(v) if !v.is_none() => {
+            let t = parsed::<TaskName>("task", &v)?;
+            vivae_lab::tasks::entry(t.name()).map_err(|e| errors::value(format!("task: {e}")))?;
+            Some(t)
+        }
         _ => None,
     };
     let c = match config {
         Some(p) => {
-            let c = vivae_lab::io::read_config(p).map_err(errors::lab)?;
+            let c = vivae_lab::tasks::read_config(p).map_err(errors::lab)?;
             // As `--task` with `--config`: the file says which task it is.
-            if let Some(why) = c.task_mismatch(task) {
-                let t = task.map_or("", TaskKind::name);
+            if let Some(why) = c.task_mismatch(task.as_ref()) {
+                let t = task.as_ref().map_or("", TaskName::name);
                 return Err(errors::value(format!("task={t:?}: {why}")));
             }
             c
         }
         // The maze's own defaults, as `vivae evolve --task maze` starts from.
-        None => Config::for_task(task),
+        None => vivae_lab::tasks::default_config(task.as_ref())
+            .map_err(|why| errors::value(format!("task: {why}")))?,
     };
     build_from(c, overrides)
 }
@@ -61,8 +66,7 @@ pub fn build_from(mut c: Config, overrides: Option<&Bound<'_, PyDict>>) -> PyRes
     if let Some(o) = overrides {
         apply(&mut c, o)?;
     }
-    c.validate()
-        .map_err(|e| errors::value(format!("arguments: {e}")))?;
+    vivae_lab::tasks::check(&c).map_err(|e| errors::value(format!("arguments: {e}")))?;
     Ok(c)
 }
 
