@@ -152,29 +152,6 @@ fn check_kind(meta: &fs::Metadata) -> std::result::Result<(), String> {
     Err(what.into())
 }
 
-/// Reads and validates a config file; relative paths in it (scenario, initial
-/// population) become relative to the file's folder.
-pub fn read_config(path: &Path) -> Result<crate::config::Config> {
-    let text = read_text(path)?;
-    let mut config = crate::config::Config::from_toml(&text).map_err(|error| Error::Config {
-        path: path.to_path_buf(),
-        error,
-    })?;
-    let base = path.parent().unwrap_or(Path::new(""));
-    for p in [
-        &mut config.experiment.scenario,
-        &mut config.experiment.init_population,
-    ] {
-        if !p.is_empty() && Path::new(p.as_str()).is_relative() {
-            *p = base.join(&*p).to_string_lossy().into_owned();
-        }
-    }
-    for p in &mut config.experiment.scenarios {
-        *p = resolve_map(base, p);
-    }
-    Ok(config)
-}
-
 /// A training map named in a config file in folder `base`: a relative path is
 /// relative to `base`, but a bare shipped name (`oval`) with no such file
 /// there stays a shipped name.

@@ -12,14 +12,15 @@ use std::time::Instant;
 use anyhow::Context as _;
 use clap::{Args, Parser, Subcommand};
 use vivae::report;
-use vivae_lab::config::{Config, TaskKind};
+use vivae_lab::config::{Config, TaskName};
 use vivae_lab::evolve::{Outcome, Run};
 use vivae_lab::experiment::Experiment;
-use vivae_lab::io::{bad_input, load_scenario, one_line, read_config, write_atomic};
+use vivae_lab::io::{bad_input, load_scenario, one_line, write_atomic};
 use vivae_lab::maps::TrainingMap;
-use vivae_lab::run_task::RunTask;
 use vivae_lab::rundir::{self, GenerationRecord, files};
 use vivae_lab::substrate::PolarGrid;
+use vivae_lab::tasks::read_config;
+use vivae_lab::tasks::{Finished, HeaderContext};
 use vivae_neat::driver::Task;
 
 mod portable_libm;
@@ -168,8 +169,8 @@ struct Overrides {
     behaviour: Option<vivae_lab::descriptors::BehaviourKind>,
     /// Task (experiment.task): driving (default) or maze (Lehman & Stanley's
     /// maze with a plain NEAT network; default scenario hard-maze).
-    #[arg(long, value_name = "driving|maze")]
-    task: Option<TaskKind>,
+    #[arg(long, value_name = "driving|maze", value_parser = parse_task)]
+    task: Option<TaskName>,
 }
 
 #[derive(Args, Debug)]
@@ -321,14 +322,14 @@ fn dispatch(cli: Cli, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode>
         Command::Replay(args) => cmd_replay(args),
         Command::Retrain(args) => cmd_retrain(args, interrupted),
         Command::Report { run_dir } => {
-            refuse_maze_run(&run_dir, "report")?;
+            refuse_other_task(&run_dir, "report")?;
             let path = vivae::report_html::write(&run_dir)?;
             eprintln!("report: {}", path.display());
             Ok(ExitCode::SUCCESS)
         }
         Command::View(args) => {
             if let Some(source) = &args.source {
-                refuse_maze_run(source, "view")?;
+                refuse_other_task(source, "view")?;
             }
             Ok(vivae::view::run(args)?)
         }
@@ -411,9 +412,12 @@ fn apply_overrides(config: &mut Config, o: &Overrides) -> anyhow::Result<()> {
     if let Some(b) = o.behaviour {
         config.strategy.behaviour = b;
     }
-    config
-        .validate()
-        .map_err(|e| bad_input(format!("command line: {e}")).into())
+    vivae_lab::tasks::check(config).map_err(|e| bad_input(format!("command line: {e}")).into())
+}
+
+/// `--task NAME`: a registered task.
+fn parse_task(name: &str) -> Result<TaskName, String> {
+    vivae_lab::tasks::entry(name).map(|_| TaskName(name.to_string()))
 }
 
 fn scenario_path(config: &Config) -> Option<PathBuf> {
@@ -434,24 +438,24 @@ fn install_ctrlc(flag: &Arc<AtomicBool>) {
 }
 
 fn cmd_evolve(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode> {
-    let task = args.overrides.task;
+    let task = args.overrides.task.clone();
     let mut config = match &args.config {
         Some(p) => read_config(p)?,
-        None => Config::for_task(task),
+        None => vivae_lab::tasks::default_config(task.as_ref()).map_err(bad_input)?,
     };
     if let Some(why) = args
         .config
         .as_ref()
-        .and_then(|_| config.task_mismatch(task))
+        .and_then(|_| config.task_mismatch(task.as_ref()))
     {
-        let t = task.map_or("", TaskKind::name);
+        let t = task.as_ref().map_or("", TaskName::name);
         return Err(bad_input(format!("--task {t}: {why}")).into());
     }
     apply_overrides(&mut config, &args.overrides)?;
-    let maze_defaults = task == Some(TaskKind::Maze) && args.config.is_none();
+    let task_defaults = task.is_some() && args.config.is_none();
     let setup = || -> vivae_lab::Result<_> {
         let maps = vivae_lab::maps::load(&config)?;
-        let experiment = RunTask::new(&config, &maps)?;
+        let experiment = vivae_lab::tasks::build(&config, &maps)?;
         let init = if config.experiment.init_population.is_empty() {
             None
         } else {
@@ -471,9 +475,9 @@ fn cmd_evolve(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
         return Ok(code);
     }
     let (maps, experiment, init) = prepared?;
-    if let (RunTask::Maze(maze), true) = (&experiment, maze_defaults) {
-        // The example's MAP-Elites grid: 10 px cells over the maze.
-        config.strategy.map_elites.bins = vivae_lab::maze_run::cell_bins(maze);
+    if task_defaults {
+        // Settings the task fits to its scenario (the maze's MAP-Elites grid).
+        experiment.fit_defaults(&mut config);
     }
     if !quiet {
         for m in &maps {
@@ -488,10 +492,7 @@ fn cmd_evolve(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
         .out
         .clone()
         .unwrap_or_else(vivae_lab::io::default_run_dir);
-    let source = match &experiment {
-        RunTask::Driving(t) => t.describe(&maps),
-        RunTask::Maze(_) => maps[0].loaded.scenario.source.clone(),
-    };
+    let source = experiment.describe(&maps);
     let first = &maps[0].loaded.text;
     let threads = config.run.threads;
     let force = args.new_run.force;
@@ -512,7 +513,7 @@ fn cmd_resume(args: ResumeArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
             let checkpoint = rundir::latest_checkpoint(&args.run_dir)?;
             let (config, _) = rundir::population_from_checkpoint(&checkpoint)?;
             let maps = vivae_lab::rundir::load_run(&args.run_dir, &config, None)?;
-            let experiment = RunTask::new(&config, &maps)?;
+            let experiment = vivae_lab::tasks::build(&config, &maps)?;
             Ok((config, maps, experiment))
         })();
         let recorded = prepared.as_ref().map_or(0, |(c, _, _)| c.run.threads);
@@ -524,9 +525,10 @@ fn cmd_resume(args: ResumeArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
     }
     let run = Run::resume(&args.run_dir, args.generations, args.threads.threads)?;
     let total = run.config().experiment.generations;
-    if let Some(at) = run.maze_progress().and_then(|m| m.solved_at) {
+    if let Some(at) = run.target_progress().and_then(|m| m.solved_at) {
+        let task = run.config().experiment.task.name();
         eprintln!(
-            "{} is already finished: the maze was solved after {at} evaluations (a maze run stops when solved)",
+            "{} is already finished: the {task} was solved after {at} evaluations (a {task} run stops when solved)",
             run.dir().display()
         );
         return Ok(ExitCode::SUCCESS);
@@ -567,10 +569,11 @@ fn cmd_resume(args: ResumeArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result
 fn cmd_retrain(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode> {
     let checkpoint = rundir::latest_checkpoint(&args.run_dir)?;
     let (mut config, population) = rundir::population_from_checkpoint(&checkpoint)?;
-    if config.experiment.task == TaskKind::Maze {
+    if !config.experiment.task.is_driving() {
         return Err(bad_input(format!(
-            "{}: a maze run evolves plain networks, which have no substrate to re-sample: retrain is for driving runs",
-            args.run_dir.display()
+            "{}: a {} run evolves plain networks, which have no substrate to re-sample: retrain is for driving runs",
+            args.run_dir.display(),
+            config.experiment.task
         ))
         .into());
     }
@@ -638,11 +641,6 @@ fn warn_repeated_maps(maps: &[vivae_lab::maps::TrainingMap]) {
 /// size as asked for (0 = one per core).
 fn header(run: &Run, command: &str, scenario: &str, threads: usize) -> String {
     let c = run.config();
-    let (Some(experiment), Some(t)) = (run.experiment(), run.training()) else {
-        return maze_header(run, command, scenario);
-    };
-    let s = &c.surface_sensors;
-    let n = c.substrate.neurons;
     let threads = match threads {
         0 => format!(
             "{} (one per core)",
@@ -650,72 +648,19 @@ fn header(run: &Run, command: &str, scenario: &str, threads: usize) -> String {
         ),
         t => t.to_string(),
     };
-    let distance = match c.distance_sensors.rays {
-        0 => String::new(),
-        r => format!(" + {r} distance rays"),
-    };
     let start = match run.done() {
         0 => String::new(),
         d => format!(" (resuming after generation {d})"),
     };
-    let map_labels: Vec<&str> = t.map_labels().collect();
-    let maps = if map_labels.is_empty() {
-        String::new()
-    } else {
-        format!(
-            "\n  training maps: {} (fitness = mean over maps; robots, figures and replay: the first)",
-            map_labels.join(", ")
-        )
+    let ctx = HeaderContext {
+        command,
+        scenario,
+        start: &start,
+        threads: &threads,
+        strategy: &strategy_line(c),
+        output: &run.dir().display().to_string(),
     };
-    let training = if t.resolution_labels().is_empty() {
-        String::new()
-    } else {
-        format!(
-            "\n  training: every genome at {} ({:?} of their fitnesses)",
-            t.resolution_labels().join(", "),
-            t.aggregate()
-        )
-    };
-    let strategy = strategy_line(c);
-    format!(
-        "vivae {command}: {scenario}\n\
-         \x20 robots {}, {} steps per evaluation, population {}, {} generations{start}\n\
-         \x20 substrate: {}x{} surface sensors{distance}, {}x{} neurons; threads {threads}, seed {}{training}{maps}{strategy}\n\
-         \x20 output: {}\n\
-         \x20 fitness = average speed in px/step over all robots and steps (full throttle on road tends to 5)",
-        experiment.robots(),
-        c.experiment.steps,
-        c.neat.population_size,
-        c.experiment.generations,
-        s.rings,
-        s.angles,
-        n.rings,
-        n.angles,
-        c.experiment.seed,
-        run.dir().display(),
-    )
-}
-
-/// [`header`] for a maze run.
-fn maze_header(run: &Run, command: &str, scenario: &str) -> String {
-    let c = run.config();
-    let start = match run.done() {
-        0 => String::new(),
-        d => format!(" (resuming after generation {d})"),
-    };
-    format!(
-        "vivae {command}: the maze {scenario}\n\
-         \x20 a plain NEAT network (11 inputs, 2 outputs), {} steps per evaluation, population {}, \
-         at most {} generations{start}, seed {}{}\n\
-         \x20 output: {}\n\
-         \x20 fitness = 300 - the end distance to the goal in px; the run stops when a genome reaches the goal",
-        c.experiment.steps,
-        c.neat.population_size,
-        c.experiment.generations,
-        c.experiment.seed,
-        strategy_line(c),
-        run.dir().display(),
-    )
+    run.task().header(c, &ctx)
 }
 
 /// The header's line on the search strategy (none for NEAT, the paper's).
@@ -915,7 +860,7 @@ fn drive(
 }
 
 /// The end of [`drive`]: figures, the closing summary and the summary line
-/// (a maze run's by [`conclude_maze`]); `rate` is robot-steps per second.
+/// (a task without figures' by [`conclude_without_figures`]); `rate` is robot-steps per second.
 fn conclude(
     run: &Run,
     outcome: Outcome,
@@ -925,9 +870,9 @@ fn conclude(
     quiet: bool,
 ) -> anyhow::Result<ExitCode> {
     let dir = run.dir().display().to_string();
-    if let Some(maze) = run.task().maze() {
+    if run.task().driving().is_none() {
         let wall = start.elapsed().as_secs_f64();
-        return conclude_maze(run, maze, outcome, wall, rate, quiet);
+        return conclude_without_figures(run, outcome, wall, rate, quiet);
     }
     if outcome == Outcome::Interrupted {
         // The figures show the run so far; a resumed run redraws them at its end.
@@ -960,11 +905,10 @@ fn conclude(
     Ok(ExitCode::SUCCESS)
 }
 
-/// [`conclude`] for a maze run: no figures (see docs/guide.md, "The maze
-/// from the command line"); the summary line says whether and when it was solved.
-fn conclude_maze(
+/// [`conclude`] for a task that draws no figures (the maze: docs/guide.md,
+/// "The maze from the command line"): its own summary says how it went.
+fn conclude_without_figures(
     run: &Run,
-    maze: &vivae_lab::maze::MazeTask,
     outcome: Outcome,
     wall: f64,
     rate: f64,
@@ -978,35 +922,24 @@ fn conclude_maze(
         );
         return Ok(ExitCode::from(130));
     }
-    let progress = run.maze_progress().copied().unwrap_or_default();
     let champion = run.champion().ok_or(vivae_lab::Error::NoChampion)?;
-    let end = maze.run_genome(&champion.genome);
+    let finished = Finished {
+        champion: &champion.genome,
+        fitness: champion.fitness,
+        generation: champion.generation,
+        progress: run.target_progress().copied().unwrap_or_default(),
+        generations: run.done(),
+        wall,
+        rate,
+        dir: &dir,
+        strategy_fields: &vivae_lab::strategy_files::summary_fields(run.search()),
+    };
+    let (person, line) = (run.task().summary(&finished))
+        .ok_or_else(|| bad_input("the run's task has no summary"))?;
     if !quiet {
-        let verdict = match (progress.solved_at, progress.solved_generation) {
-            (Some(n), Some(g)) => format!("solved after {n} evaluations (generation {g})"),
-            _ => format!("not solved in {} evaluations", progress.evaluations),
-        };
-        eprintln!(
-            "done: {} generations in {wall:.1} s; {verdict}\n\
-             champion: fitness {:.3} (generation {}), ends {:.1} px from the goal\n\
-             run directory: {dir}/ (config.toml, champion.json, generations.csv, checkpoints/)\n\
-             its end position: vivae replay {dir}",
-            run.done(),
-            champion.fitness,
-            champion.generation,
-            end.distance,
-        );
+        eprintln!("{person}");
     }
-    println!(
-        "evolve: generations={} best={} champion_generation={}{} best_distance={:.3} evaluations={}{} wall_s={wall:.1} robot_steps_per_s={rate:.0} out={dir}",
-        run.done(),
-        champion.fitness,
-        champion.generation,
-        progress.summary_fields(),
-        end.distance,
-        progress.evaluations,
-        vivae_lab::strategy_files::summary_fields(run.search()),
-    );
+    println!("{line}");
     Ok(ExitCode::SUCCESS)
 }
 
@@ -1021,7 +954,6 @@ fn progress_bar(total: u32, done: u32) -> indicatif::ProgressBar {
     bar
 }
 
-/// The archive or front member `replay` was asked for, if any.
 fn replay_member(args: &ReplayArgs) -> Option<vivae_lab::strategy_files::Member> {
     use vivae_lab::strategy_files::Member;
     (args.elite.map(Member::Elite)).or(args.front.map(Member::Front))
@@ -1035,8 +967,8 @@ fn cmd_replay(args: ReplayArgs) -> anyhow::Result<ExitCode> {
         (champion.genome, champion.fitness, champion.generation) =
             read_member(&args.source, member)?;
     }
-    if config.experiment.task == TaskKind::Maze {
-        return replay_maze(&args, &champion, config);
+    if !config.experiment.task.is_driving() {
+        return replay_without_figures(&args, &champion, config);
     }
     // A multi-map run replays on its first training map unless told otherwise.
     if args.scenario.is_none() && vivae_lab::maps::is_multi_map(&config) {
@@ -1102,8 +1034,9 @@ fn cmd_replay(args: ReplayArgs) -> anyhow::Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// `vivae replay` of a maze run's genome: its episode's end, on stdout (no figure).
-fn replay_maze(
+/// `vivae replay` of a genome of a task that draws no figures (the maze):
+/// its episode's end, on stdout.
+fn replay_without_figures(
     args: &ReplayArgs,
     champion: &rundir::Champion,
     mut config: Config,
@@ -1117,43 +1050,34 @@ fn replay_maze(
         ..Overrides::default()
     };
     apply_overrides(&mut config, &overrides)?;
-    let scenario = load_scenario(scenario_path(&config).as_deref())?;
-    let maze = vivae_lab::maze_run::task(&config, &scenario.scenario)?;
-    RunTask::Maze(Box::new(maze.clone()))
-        .check_genome(&champion.genome)
+    let maps = vivae_lab::maps::load(&config)?;
+    let task = vivae_lab::tasks::build(&config, &maps)?;
+    task.check_genome(&champion.genome)
         .map_err(|reason| vivae_lab::Error::Genome {
             path: args.source.clone(),
             reason,
         })?;
-    let end = maze.run_genome(&champion.genome);
-    println!(
-        "fitness={} solved={} distance={:.3} steps={} end_x={:.3} end_y={:.3}",
-        end.fitness(),
-        if end.solved { "yes" } else { "no" },
-        end.distance,
-        end.steps,
-        end.end.x,
-        end.end.y
-    );
-    eprintln!(
-        "maze {}: a maze replay prints the episode's end and draws no figure",
-        scenario.scenario.source
-    );
+    let (line, note) = (task.replay_text(&champion.genome))
+        .ok_or_else(|| bad_input("the run's task has no replay"))?;
+    println!("{line}");
+    eprintln!("{note}");
     Ok(ExitCode::SUCCESS)
 }
 
-/// Refuses, in one line, `command` on a maze run (a run directory or a genome
-/// file recording a maze config): the command draws driving runs only.
-fn refuse_maze_run(path: &Path, command: &str) -> anyhow::Result<()> {
+/// Refuses, in one line, `command` on a run of a task other than driving (a
+/// run directory or a genome file recording its config): the command draws
+/// driving runs only.
+fn refuse_other_task(path: &Path, command: &str) -> anyhow::Result<()> {
     let config = if path.is_dir() {
         read_config(&path.join(files::CONFIG)).ok()
     } else {
         rundir::read_champion(path).ok().and_then(|c| c.config)
     };
     match config {
-        Some(c) if c.experiment.task == TaskKind::Maze => Err(bad_input(format!(
-            "{}: a maze run: `vivae {command}` shows driving runs only; its curves are in generations.csv and `vivae replay` prints its champion's end",
-            path.display()
+        Some(c) if !c.experiment.task.is_driving() => Err(bad_input(format!(
+            "{}: a {} run: `vivae {command}` shows driving runs only; its curves are in generations.csv and `vivae replay` prints its champion's end",
+            path.display(),
+            c.experiment.task
         ))
         .into()),
         _ => Ok(()),

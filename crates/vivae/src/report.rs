@@ -78,8 +78,10 @@ pub fn finish_run(run: &Run) -> Result<RunSummary> {
     let dir = run.dir().join(files::FIGURES);
     vivae_lab::io::create_dirs(&dir)?;
     vivae_lab::rundir::unmark_drawn(run.dir())?;
-    let experiment =
-        (run.experiment()).ok_or_else(|| bad_input("a maze run has no trajectory figures"))?;
+    let experiment = (run.experiment()).ok_or_else(|| {
+        let task = &run.config().experiment.task;
+        bad_input(format!("a {task} run has no trajectory figures"))
+    })?;
     let mut episodes = Vec::new();
     for (generation, _, genome) in run.figure_genomes() {
         let episode = trajectory_figure(

@@ -15,8 +15,9 @@ use vivae_sim::{Scenario, World};
 use crate::figures::convergence::{self, ConvergenceOptions};
 use crate::figures::network::{self, NetworkOptions};
 use vivae_lab::experiment::{Episode, Experiment};
-use vivae_lab::io::{bad_input, load_scenario, read_config, read_text, write_atomic};
+use vivae_lab::io::{bad_input, load_scenario, read_text, write_atomic};
 use vivae_lab::rundir::{self, files, read_champion};
+use vivae_lab::tasks::read_config;
 
 /// The page template; `/*VIVAE-DATA*/`, `/*VIVAE-CSS*/` and `/*VIVAE-JS*/` are filled in.
 const TEMPLATE: &str = include_str!("../assets/report.html");

@@ -7,7 +7,6 @@
 //! reference` and the guide's table, so there is no second copy to drift. A
 //! test fails when a key lacks a doc comment or the guide's table is stale.
 
-mod maze;
 mod reference;
 mod toml_error;
 mod validate;
@@ -15,9 +14,8 @@ mod validate;
 pub mod es;
 pub mod strategy;
 
-use maze::{over_maze_defaults, validate_maze};
 pub use reference::{KeyDoc, SectionDoc, key_doc, reference};
-use toml_error::{describe_toml_error, line_of_key, one_line};
+use toml_error::{describe_toml_error, line_of_key, over_defaults};
 
 use std::fmt::Write as _;
 
@@ -107,45 +105,48 @@ pub struct ExperimentConfig {
     /// NEAT network; docs/guide.md, "The maze from the command line"). Unset = driving.
     ///
     /// Example: "maze".
-    #[serde(default, skip_serializing_if = "TaskKind::is_driving")]
-    pub task: TaskKind,
+    #[serde(default, skip_serializing_if = "TaskName::is_driving")]
+    pub task: TaskName,
 }
 
-/// Which task a run evolves controllers for.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
-#[serde(rename_all = "snake_case")]
-pub enum TaskKind {
-    /// Robots driving on roads (HyperNEAT-decoded substrates).
-    #[default]
-    Driving,
-    /// The maze benchmark of Lehman & Stanley 2011 (plain NEAT networks).
-    Maze,
-}
+/// The name of the task a run evolves controllers for (`experiment.task`):
+/// one of the tasks registered in [`crate::tasks`], which checks it.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(transparent)]
+pub struct TaskName(pub String);
 
-impl TaskKind {
-    /// Whether this is the default, [`TaskKind::Driving`].
+impl TaskName {
+    /// The default task's name: robots driving on roads, the paper's.
+    pub const DRIVING: &'static str = "driving";
+
+    /// Whether this is the default task, [`TaskName::DRIVING`].
     pub fn is_driving(&self) -> bool {
-        *self == TaskKind::Driving
+        self.0 == Self::DRIVING
     }
 
     /// The name as configs and the command line write it.
-    pub fn name(self) -> &'static str {
-        match self {
-            TaskKind::Driving => "driving",
-            TaskKind::Maze => "maze",
-        }
+    pub fn name(&self) -> &str {
+        &self.0
     }
 }
 
-impl std::str::FromStr for TaskKind {
+impl Default for TaskName {
+    fn default() -> Self {
+        TaskName(Self::DRIVING.into())
+    }
+}
+
+impl std::fmt::Display for TaskName {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::str::FromStr for TaskName {
     type Err = String;
 
     fn from_str(s: &str) -> Result<Self, String> {
-        match s {
-            "driving" => Ok(TaskKind::Driving),
-            "maze" => Ok(TaskKind::Maze),
-            other => Err(format!("'{other}': expected driving or maze")),
-        }
+        Ok(TaskName(s.to_string()))
     }
 }
 
@@ -159,7 +160,7 @@ impl Default for ExperimentConfig {
             steps: 1000,
             robots: 5,
             init_population: String::new(),
-            task: TaskKind::Driving,
+            task: TaskName::default(),
         }
     }
 }
@@ -449,7 +450,18 @@ pub struct ConfigError {
 }
 
 impl ConfigError {
-    fn new(message: impl Into<String>) -> Self {
+    /// The error `e`, reported at the line of `text` that sets the key it
+    /// names, as parse errors are.
+    pub fn at_line_of_key(self, text: &str) -> ConfigError {
+        let key = self.message.split(" = ").next().unwrap_or_default();
+        match line_of_key(text, key) {
+            Some(line) => ConfigError::new(format!("line {line}: {}", self.message)),
+            None => self,
+        }
+    }
+
+    /// An error saying `message`.
+    pub fn new(message: impl Into<String>) -> Self {
         ConfigError {
             message: message.into(),
         }
@@ -458,20 +470,25 @@ impl ConfigError {
 
 impl Config {
     /// Parses TOML text; errors are one line naming the line, key and reason.
+    ///
+    /// Unset keys take the driving task's defaults and only the rules every
+    /// task shares are checked: [`crate::tasks::config_from_toml`] reads a
+    /// config with its task's defaults and rules.
     pub fn from_toml(text: &str) -> Result<Config, ConfigError> {
-        let mut config: Config = toml::from_str(text).map_err(|e| describe_toml_error(text, &e))?;
-        if config.experiment.task == TaskKind::Maze {
-            // A maze config's unset keys are the maze's defaults, not driving's.
-            config = over_maze_defaults(text)?;
-        }
-        config.validate().map_err(|e| {
-            // A bad value is reported at the line that sets it, as parse errors are.
-            let key = e.message.split(" = ").next().unwrap_or_default();
-            match line_of_key(text, key) {
-                Some(line) => ConfigError::new(format!("line {line}: {}", e.message)),
-                None => e,
+        Config::from_toml_over(text, None)
+    }
+
+    /// [`Config::from_toml`] with the keys `text` leaves unset taken from
+    /// `base` (a task's defaults) instead of [`Config::default`].
+    pub fn from_toml_over(text: &str, base: Option<&Config>) -> Result<Config, ConfigError> {
+        let config: Config = match base {
+            None => toml::from_str(text).map_err(|e| describe_toml_error(text, &e))?,
+            Some(base) => {
+                toml::from_str::<Config>(text).map_err(|e| describe_toml_error(text, &e))?;
+                over_defaults(text, base)?
             }
-        })?;
+        };
+        config.validate().map_err(|e| e.at_line_of_key(text))?;
         Ok(config)
     }
 
@@ -480,32 +497,15 @@ impl Config {
         toml::to_string(self).expect("config serialises to TOML")
     }
 
-    /// The config a run of `task` starts from without a config file: the
-    /// paper's for driving (and no task named), [`Config::maze`] for the maze.
-    pub fn for_task(task: Option<TaskKind>) -> Config {
-        match task {
-            Some(TaskKind::Maze) => Config::maze(),
-            _ => Config::default(),
-        }
-    }
-
     /// Why a task named beside this config file does not fit it (`None` when
     /// it does): the file's `experiment.task` decides.
-    pub fn task_mismatch(&self, task: Option<TaskKind>) -> Option<String> {
-        let t = task.filter(|t| *t != self.experiment.task)?;
+    pub fn task_mismatch(&self, task: Option<&TaskName>) -> Option<String> {
+        let t = task.filter(|t| **t != self.experiment.task)?;
         Some(format!(
             "the config file's experiment.task is {}: set `task = \"{}\"` under [experiment] in the file instead",
             self.experiment.task.name(),
             t.name()
         ))
-    }
-
-    /// Names of the metrics the config's task measures (NSGA-II's objectives besides fitness).
-    pub fn metric_names(&self) -> &'static [&'static str] {
-        match self.experiment.task {
-            TaskKind::Driving => &crate::config::strategy::METRICS,
-            TaskKind::Maze => &crate::tasks::maze::METRICS,
-        }
     }
 
     /// The configs of the resolutions every genome is evaluated at during

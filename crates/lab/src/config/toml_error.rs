@@ -72,3 +72,27 @@ pub(super) fn key_at(text: &str, pos: usize) -> Option<String> {
     }
     (!section.is_empty()).then_some(section)
 }
+
+/// The config of TOML `text` (which parses) with its unset keys taken from `base`.
+pub(super) fn over_defaults(text: &str, base: &Config) -> Result<Config, ConfigError> {
+    fn merge(base: &mut toml::Value, over: toml::Value) {
+        match (base, over) {
+            (toml::Value::Table(b), toml::Value::Table(o)) => {
+                for (k, v) in o {
+                    match b.get_mut(&k) {
+                        Some(slot) => merge(slot, v),
+                        None => {
+                            b.insert(k, v);
+                        }
+                    }
+                }
+            }
+            (slot, v) => *slot = v,
+        }
+    }
+    let bad = |e: &dyn std::fmt::Display| ConfigError::new(one_line(&e.to_string()));
+    let mut base = toml::Value::try_from(base).map_err(|e| bad(&e))?;
+    let over: toml::Value = toml::from_str(text).map_err(|e| bad(&e))?;
+    merge(&mut base, over);
+    base.try_into().map_err(|e: toml::de::Error| bad(&e))
+}

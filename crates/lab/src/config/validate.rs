@@ -3,20 +3,12 @@
 use super::*;
 
 impl Config {
-    /// Checks every value; the error names the key and the reason.
+    /// Checks every value the tasks share; the error names the key and the reason.
+    /// [`crate::tasks::check`] adds the rules of the config's task.
     pub fn validate(&self) -> Result<(), ConfigError> {
         self.validate_experiment()?;
         self.validate_parameters()?;
         self.validate_sizes()?;
-        crate::config::strategy::validate(
-            &self.strategy,
-            !self.experiment.scenarios.is_empty(),
-            self.metric_names(),
-        )
-        .map_err(ConfigError::new)?;
-        if self.experiment.task == TaskKind::Maze {
-            validate_maze(self).map_err(ConfigError::new)?;
-        }
         self.validate_run()
     }
 

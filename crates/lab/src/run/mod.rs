@@ -8,6 +8,8 @@
 //! uninterrupted run's. Wall-clock times live only in `timing.csv`, the one
 //! file that is allowed to differ between two runs of the same config.
 
+pub mod prepare;
+
 use std::fs;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -33,12 +35,10 @@ use crate::rundir::{
     population_rows, read_best_genomes, remove_abandoned_builds, remove_stale_temporaries,
     truncate, truncate_lines, write_checkpoint,
 };
-use crate::tasks::RunTask;
 use crate::tasks::driving::experiment::Experiment;
 use crate::tasks::driving::training::Training;
 use crate::tasks::maps::{TrainingMap, is_multi_map};
-use crate::tasks::maze::MazeTask;
-use crate::tasks::maze::run::MazeProgress;
+use crate::tasks::{RunTask, TargetProgress};
 
 /// Generations whose best individual gets a trajectory figure (besides the champion).
 pub const FIGURE_GENERATIONS: [u32; 2] = [1, 10];
@@ -58,7 +58,7 @@ pub struct Run {
     /// Held while the run exists: one writer per run directory.
     _lock: RunLock,
     config: Config,
-    task: RunTask,
+    task: Box<dyn RunTask>,
     search: Search,
     progress: Progress,
     pool: Arc<rayon::ThreadPool>,
@@ -96,35 +96,23 @@ impl Run {
         force: bool,
     ) -> Result<Run> {
         let maps = if is_multi_map(&config) { maps } else { &[] };
-        let task = RunTask::Driving(Box::new(training));
+        let task: Box<dyn RunTask> = Box::new(training);
         Run::create_task(dir, config, task, scenario_text, maps, init, force)
     }
 
-    /// [`Run::create`] for a maze run (`experiment.task = "maze"`) on `maze`,
-    /// the maze of `scenario_text`.
-    pub fn create_maze(
-        dir: &Path,
-        config: Config,
-        maze: MazeTask,
-        scenario_text: &str,
-        force: bool,
-    ) -> Result<Run> {
-        let task = RunTask::Maze(Box::new(maze));
-        Run::create_task(dir, config, task, scenario_text, &[], None, force)
-    }
-
-    /// [`Run::create_on_maps`] for either task (a maze run has no `maps` nor `init`).
+    /// [`Run::create_on_maps`] for any task (only driving starts from `init`).
     pub fn create_task(
         dir: &Path,
         mut config: Config,
-        task: RunTask,
+        task: Box<dyn RunTask>,
         scenario_text: &str,
         maps: &[TrainingMap],
         init: Option<Population>,
         force: bool,
     ) -> Result<Run> {
-        let maze_config = config.experiment.task == crate::config::TaskKind::Maze;
-        if maze_config != task.maze().is_some() || (maze_config && init.is_some()) {
+        crate::tasks::check(&config).map_err(|e| bad_input(format!("config: {e}")))?;
+        let driving = task.driving().is_some();
+        if task.entry().name != config.experiment.task.name() || (!driving && init.is_some()) {
             return Err(bad_input(format!(
                 "experiment.task = {}: the run was given another task{}",
                 config.experiment.task.name(),
@@ -150,7 +138,7 @@ impl Run {
                     .collect()
             }),
             generations_len: generations_header(&config).len() as u64,
-            maze: task.maze().map(|_| MazeProgress::default()),
+            target: task.has_target().then(TargetProgress::default),
             ..Progress::start(search.generation())
         };
         let filled = copy_maps(&tmp, &mut config, maps)
@@ -197,9 +185,9 @@ impl Run {
         }
         let maps = load_run(dir, &cp.config, cp.progress.maps_fnv.as_deref())?;
         let scenario = crate::io::load_scenario(Some(&dir.join(files::SCENARIO)))?;
-        let task = RunTask::new(&cp.config, &maps)?;
+        let task = crate::tasks::build(&cp.config, &maps)?;
         // Everything is validated before anything in the directory changes.
-        let search = validate_progress(&path, &cp, &task)?;
+        let search = validate_progress(&path, &cp, task.as_ref())?;
         if let Some(h) = cp.progress.scenario_fnv
             && h != fnv1a(scenario.text.as_bytes())
         {
@@ -246,32 +234,35 @@ impl Run {
     }
 
     /// The experiment reported, drawn and replayed (the first map at the
-    /// run's own resolution); none for a maze run.
+    /// run's own resolution); none for a task that is not driving.
     pub fn experiment(&self) -> Option<&Experiment> {
-        self.task.training().map(Training::primary)
+        self.task.driving().map(Training::primary)
     }
 
     /// What a driving run's genomes are evaluated on: every training map and
-    /// resolution; none for a maze run.
+    /// resolution; none for a task that is not driving.
     pub fn training(&self) -> Option<&Training> {
-        self.task.training()
+        self.task.driving()
     }
 
     /// What the run's genomes are evaluated on, whichever the task.
-    pub fn task(&self) -> &RunTask {
-        &self.task
+    pub fn task(&self) -> &dyn RunTask {
+        self.task.as_ref()
     }
 
-    /// A maze run's evaluations and when it was solved; none for a driving run.
-    pub fn maze_progress(&self) -> Option<&MazeProgress> {
-        self.progress.maze.as_ref()
+    /// The run's progress towards its task's target (evaluations, when
+    /// first reached); none for a task without one.
+    pub fn target_progress(&self) -> Option<&TargetProgress> {
+        self.progress.target.as_ref()
     }
 
     /// Whether the run has nothing left to do: every generation done, or
-    /// (a maze run) the maze solved.
+    /// its task's target reached.
     pub fn finished(&self) -> bool {
         self.done() >= self.config.experiment.generations
-            || self.maze_progress().is_some_and(|m| m.solved_at.is_some())
+            || self
+                .target_progress()
+                .is_some_and(|m| m.solved_at.is_some())
     }
 
     /// Generations done so far.
@@ -319,13 +310,13 @@ impl Run {
             return Ok(Outcome::Finished);
         }
         let mut evolution = Evolution::resume(self.search.clone(), evaluator, self.progress.done);
-        // A maze run also stops once solved: the recorder raises `halt` then,
+        // A run with a target also stops once it is reached: the recorder raises `halt` then,
         // or when `stop` is set.
         let halt = AtomicBool::new(false);
         let mut recorder = Recorder {
             dir: &self.dir,
             config: &self.config,
-            task: &self.task,
+            task: self.task.as_ref(),
             progress: &mut self.progress,
             total,
             started: Instant::now(),
@@ -335,11 +326,7 @@ impl Run {
             halt: (stop, &halt),
             on_generation,
         };
-        let flag = if self.task.maze().is_some() {
-            &halt
-        } else {
-            stop
-        };
+        let flag = if self.task.has_target() { &halt } else { stop };
         let criteria = StopCriteria::generations(total).or_interrupt(flag);
         let result = evolution.run_with(&criteria, &mut recorder);
         self.search = evolution.into_strategy();
@@ -417,15 +404,15 @@ fn driver_error(e: DriverError) -> Error {
 struct Recorder<'a, F> {
     dir: &'a Path,
     config: &'a Config,
-    task: &'a RunTask,
+    task: &'a dyn RunTask,
     progress: &'a mut Progress,
     total: u32,
     /// When the generation under way started.
     started: Instant,
     /// The last line written to `best-genomes.jsonl`: (generation, genome).
     last_best: Option<(u32, Genome)>,
-    /// The user's stop flag, and the flag that stops a maze run (raised by
-    /// either the user's or the maze being solved).
+    /// The user's stop flag, and the flag that stops a run with a target (raised by
+    /// either the user's or the target being reached).
     halt: (&'a AtomicBool, &'a AtomicBool),
     on_generation: F,
 }
@@ -444,11 +431,11 @@ impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
             .expect("an evaluated population has a champion");
         let record = self.measure(report, &fitnesses, &sorted, (&best_genome, best), seconds)?;
         self.append_best_line(search, generation, best, best_genome)?;
-        let maze = self.tell_maze(generation, report.evaluations);
+        let own = self.tell_task(generation, report.evaluations);
         let p = &mut *self.progress;
         let row = record.generations_row();
         let row = format!(
-            "{}{}{maze}\n",
+            "{}{}{own}\n",
             row.trim_end_matches('\n'),
             extra_fields(search)
         );
@@ -482,25 +469,12 @@ impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
     ) -> Result<GenerationRecord> {
         let search = report.strategy;
         let stats = report.stats;
-        let (best_links, possible_links) = match self.task {
-            RunTask::Driving(t) => {
-                let controller = t.primary().robot_controller(best_genome)?;
-                (controller.expressed_links(), controller.possible_links())
-            }
-            // A maze network is the genome: its enabled links of all its link genes.
-            RunTask::Maze(_) => (best_genome.num_enabled_links(), best_genome.links().len()),
-        };
+        let (best_links, possible_links) = self.task.links(best_genome)?;
         let n = sorted.len();
         let (mean, median) = stats::mean(fitnesses)
             .zip(stats::median_of_sorted(sorted))
             .expect("an evaluated population has fitnesses");
-        let robot_steps = match self.task {
-            RunTask::Driving(t) => n as f64 * t.robot_steps() as f64,
-            // A maze episode ends early at the goal: the steps it took.
-            RunTask::Maze(_) => (report.evaluations.iter())
-                .map(|e| e.metrics.get(2).copied().unwrap_or_default())
-                .sum(),
-        };
+        let robot_steps = self.task.robot_steps_of(report.evaluations);
         Ok(GenerationRecord {
             generation: report.generation,
             total: self.total,
@@ -519,19 +493,19 @@ impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
         })
     }
 
-    /// A maze run's own fields of `generations.csv` for `generation` (none
-    /// for a driving run); raises the halt flag once the maze is solved or
-    /// the user asked to stop.
-    fn tell_maze(&mut self, generation: u32, evaluations: &[Evaluation]) -> String {
-        let Some(maze) = self.progress.maze.as_mut() else {
+    /// The task's own fields of `generations.csv` for `generation` (none
+    /// for a task without a target); raises the halt flag once the target is
+    /// reached or the user asked to stop.
+    fn tell_task(&mut self, generation: u32, evaluations: &[Evaluation]) -> String {
+        let Some(target) = self.progress.target.as_mut() else {
             return String::new();
         };
-        let measured = maze.tell(generation, evaluations);
+        target.tell(self.task, generation, evaluations);
         let (stop, halt) = self.halt;
-        if maze.solved_at.is_some() || stop.load(Ordering::SeqCst) {
+        if target.solved_at.is_some() || stop.load(Ordering::SeqCst) {
             halt.store(true, Ordering::SeqCst);
         }
-        maze.fields(&measured)
+        self.task.generation_fields(target, evaluations)
     }
 
     /// Appends the generation's line to `best-genomes.jsonl` (a genome equal
@@ -607,7 +581,7 @@ fn thread_pool(threads: usize) -> Result<Arc<rayon::ThreadPool>> {
 /// genomes fit the substrate (a wrong CPPN would fail in every later
 /// generation), the recorded file lengths are possible and the strategy is
 /// the config's; returns the search it holds.
-fn validate_progress(path: &Path, cp: &Checkpoint, task: &RunTask) -> Result<Search> {
+fn validate_progress(path: &Path, cp: &Checkpoint, task: &dyn RunTask) -> Result<Search> {
     let bad = |reason: String| Error::Checkpoint {
         path: path.to_path_buf(),
         reason,
@@ -627,7 +601,7 @@ fn validate_progress(path: &Path, cp: &Checkpoint, task: &RunTask) -> Result<Sea
             cp.config.strategy.kind.name()
         )));
     }
-    if p.maze.is_some() != task.maze().is_some() {
+    if p.target.is_some() != task.has_target() {
         return Err(bad(format!(
             "its progress does not fit experiment.task = {}",
             cp.config.experiment.task.name()

@@ -38,7 +38,7 @@ impl Champion {
 pub fn load_genome_source(source: &Path) -> Result<(Champion, Config, PathBuf)> {
     if source.is_dir() {
         let champion = read_champion(&source.join(files::CHAMPION))?;
-        let config = read_config(&source.join(files::CONFIG))?;
+        let config = crate::tasks::read_config(&source.join(files::CONFIG))?;
         Ok((champion, config, source.to_path_buf()))
     } else {
         let champion = read_champion(source)?;
@@ -79,9 +79,7 @@ pub fn read_champion(path: &Path) -> Result<Champion> {
         )));
     }
     if let Some(config) = &champion.config {
-        config
-            .validate()
-            .map_err(|e| invalid(format!("its recorded config: {e}")))?;
+        crate::tasks::check(config).map_err(|e| invalid(format!("its recorded config: {e}")))?;
     }
     // The genome validated itself while being deserialised.
     Ok(champion)

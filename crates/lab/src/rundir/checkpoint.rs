@@ -24,9 +24,11 @@ pub(crate) struct Progress {
     /// runs only): an edited copy is refused on resume.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub(crate) maps_fnv: Option<Vec<u64>>,
-    /// A maze run's evaluations and when it was solved (maze runs only).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub(crate) maze: Option<crate::tasks::maze::run::MazeProgress>,
+    /// The run's progress towards its task's target (tasks with a target
+    /// only). Stored as `maze`, the key of the first task that had one, so
+    /// that checkpoints keep their bytes.
+    #[serde(default, rename = "maze", skip_serializing_if = "Option::is_none")]
+    pub(crate) target: Option<crate::tasks::TargetProgress>,
 }
 
 /// Refuses a run whose `config.toml` was edited since its newest checkpoint:
@@ -48,7 +50,7 @@ pub(crate) fn check_config_unchanged(
     if text == expected {
         return Ok(());
     }
-    if let Ok(mut on_disk) = Config::from_toml(&text) {
+    if let Ok(mut on_disk) = crate::tasks::config_from_toml(&text) {
         on_disk.run.threads = recorded.run.threads;
         on_disk.experiment.generations = recorded.experiment.generations;
         if on_disk == *recorded {
@@ -166,9 +168,7 @@ pub(crate) fn decode_checkpoint_text(text: &str, path: &Path) -> Result<Checkpoi
     let cp: Checkpoint =
         serde_json::from_str(body).map_err(|e| bad(&format!("unreadable checkpoint: {e}")))?;
     // The population validated itself while being deserialised.
-    cp.config
-        .validate()
-        .map_err(|e| bad(&format!("checkpoint config: {e}")))?;
+    crate::tasks::check(&cp.config).map_err(|e| bad(&format!("checkpoint config: {e}")))?;
     Ok(cp)
 }
 
@@ -227,7 +227,7 @@ impl Progress {
             figure_genomes: Vec::new(),
             scenario_fnv: None,
             maps_fnv: None,
-            maze: None,
+            target: None,
         }
     }
 }

@@ -21,9 +21,7 @@ use crate::search::Search;
 
 use crate::config::Config;
 use crate::error::{Error, Result};
-use crate::io::{
-    bad_input, fnv1a, load_scenario, read_config, read_text, safe_file_stem, write_atomic,
-};
+use crate::io::{bad_input, fnv1a, load_scenario, read_text, safe_file_stem, write_atomic};
 use crate::tasks::maps::{TrainingMap, is_multi_map};
 
 mod champion;

@@ -4,14 +4,12 @@ use super::*;
 
 pub(crate) const GENERATIONS_HEADER: &str = "generation,best,mean,median,worst,species,mean_cppn_nodes,mean_cppn_links,best_substrate_links,possible_substrate_links\n";
 
-/// The header of `generations.csv` for a run of strategy `kind`: NEAT's
-/// columns, then the strategy's own.
+/// The header of `generations.csv` for a run of `config`: NEAT's columns,
+/// then the strategy's own, then the task's.
 pub(crate) fn generations_header(config: &Config) -> String {
     let base = GENERATIONS_HEADER.trim_end_matches('\n');
-    let task = match config.experiment.task {
-        crate::config::TaskKind::Driving => "",
-        crate::config::TaskKind::Maze => crate::tasks::maze::run::COLUMNS,
-    };
+    let task =
+        crate::tasks::entry(config.experiment.task.name()).map_or("", |t| t.generation_columns);
     format!("{base}{}{task}\n", config.strategy.kind.extra_columns())
 }
 

@@ -136,7 +136,7 @@ impl Search {
                         .nsga2
                         .objectives
                         .iter()
-                        .filter_map(|o| objective_among(o, config.metric_names()))
+                        .filter_map(|o| objective_among(o, crate::tasks::metric_names(config)))
                         .collect(),
                     crossover_probability: s.nsga2.crossover_probability,
                 };

@@ -1,119 +1,292 @@
-//! What a run evaluates genomes on, by `experiment.task`: the driving
-//! experiment ([`Training`]: CPPNs decoded into substrates) or the maze
-//! ([`MazeTask`]: plain networks).
+//! What a run evolves genomes for: the task seam.
+//!
+//! A task is one folder here with one [`TaskEntry`] registered in [`TASKS`]:
+//! its name (`experiment.task`), its default config and the rules it adds to
+//! the shared ones, the metrics it measures, the columns it adds to
+//! `generations.csv`, and how to build it as a [`RunTask`] (the driving
+//! experiment: [`driving`]; Lehman & Stanley's maze: [`maze`]). Everything a
+//! run, its recorder, the program or the Python package needs to know about a
+//! task, it asks the [`RunTask`] or its entry; nothing outside a task's folder
+//! matches on which task it is.
 
 pub mod driving;
 pub mod maps;
 pub mod maze;
+mod target;
+
+use std::any::Any;
+use std::fmt;
+use std::path::Path;
 
 use vivae_neat::driver::{Evaluation, Task};
-use vivae_neat::{EvalContext, Genome, GenomeSpec};
+use vivae_neat::{Genome, GenomeSpec};
 
-use crate::config::{Config, TaskKind};
-use crate::error::Result;
-use crate::tasks::driving::training::Training;
+use crate::config::{Config, ConfigError, TaskName};
+use crate::error::{Error, Result};
+use crate::io::{read_text, resolve_map};
 use crate::tasks::maps::TrainingMap;
-use crate::tasks::maze::MazeTask;
 
-/// A run's task.
-#[derive(Debug, Clone)]
-pub enum RunTask {
-    /// Robots driving on roads (boxed: a training is large).
-    Driving(Box<Training>),
-    /// The maze benchmark (boxed too: both are large).
-    Maze(Box<MazeTask>),
+pub use target::TargetProgress;
+
+/// Every task a run can evolve for; `experiment.task` names one. A new task
+/// is a folder here and one line in this list.
+pub static TASKS: [&TaskEntry; 2] = [&driving::TASK, &maze::TASK];
+
+/// A task's registration: what a run needs to know of it before it is built.
+pub struct TaskEntry {
+    /// Its name in `experiment.task` and `--task`.
+    pub name: &'static str,
+    /// One line saying what it is, for help texts.
+    pub what: &'static str,
+    /// The config a run of it starts from without a config file; a config
+    /// file's unset keys are taken from it too.
+    pub default_config: fn() -> Config,
+    /// The rules the task adds to [`Config::validate`]'s (the message names the key).
+    pub validate: fn(&Config) -> std::result::Result<(), String>,
+    /// Names of the metrics its evaluations carry (NSGA-II's objectives besides fitness).
+    pub metric_names: &'static [&'static str],
+    /// The columns it adds to `generations.csv`, each with its leading comma.
+    pub generation_columns: &'static str,
+    /// Builds the task of `config` on `maps` (from [`maps::load`]).
+    pub build: fn(&Config, &[TrainingMap]) -> Result<Box<dyn RunTask>>,
 }
 
-impl RunTask {
-    /// The task of `config` on `maps` (from [`crate::tasks::maps::load`]; a maze run has one).
-    pub fn new(config: &Config, maps: &[TrainingMap]) -> Result<RunTask> {
-        match config.experiment.task {
-            TaskKind::Driving => Ok(RunTask::Driving(Box::new(Training::new(config, maps)?))),
-            TaskKind::Maze => {
-                let map = maps
-                    .first()
-                    .ok_or_else(|| crate::io::bad_input("no maze"))?;
-                crate::tasks::maze::run::task(config, &map.loaded.scenario)
-                    .map(|m| RunTask::Maze(Box::new(m)))
-            }
+impl fmt::Debug for TaskEntry {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("TaskEntry")
+            .field("name", &self.name)
+            .finish()
+    }
+}
+
+/// The registered task called `name`; the error lists the ones there are.
+pub fn entry(name: &str) -> std::result::Result<&'static TaskEntry, String> {
+    TASKS
+        .iter()
+        .copied()
+        .find(|t| t.name == name)
+        .ok_or_else(|| {
+            let names: Vec<_> = TASKS.iter().map(|t| t.name).collect();
+            format!("'{name}': expected {}", names.join(" or "))
+        })
+}
+
+/// The entry of `config`'s task (checked by [`check`]).
+pub fn entry_of(config: &Config) -> std::result::Result<&'static TaskEntry, ConfigError> {
+    entry(config.experiment.task.name())
+        .map_err(|why| ConfigError::new(format!("experiment.task = {why}")))
+}
+
+/// The config a run of `task` starts from without a config file (the
+/// paper's driving experiment when no task is named).
+pub fn default_config(task: Option<&TaskName>) -> std::result::Result<Config, String> {
+    match task {
+        Some(t) => entry(t.name()).map(|e| (e.default_config)()),
+        None => Ok(Config::default()),
+    }
+}
+
+/// Checks `config` by the shared rules and by its task's: the one validation
+/// of a config that a run starts from.
+pub fn check(config: &Config) -> std::result::Result<(), ConfigError> {
+    let task = entry_of(config)?;
+    config.validate()?;
+    crate::config::strategy::validate(
+        &config.strategy,
+        !config.experiment.scenarios.is_empty(),
+        task.metric_names,
+    )
+    .map_err(ConfigError::new)?;
+    (task.validate)(config).map_err(ConfigError::new)
+}
+
+/// Parses a config's TOML text: unset keys take the defaults of the task it
+/// names, and it is [`check`]ed; errors are one line naming the line and key.
+pub fn config_from_toml(text: &str) -> std::result::Result<Config, ConfigError> {
+    let named = Config::from_toml(text);
+    // The shared rules may refuse a value that the task's defaults would set
+    // differently: the task comes from the text whatever they say.
+    let task: TaskName = match &named {
+        Ok(c) => c.experiment.task.clone(),
+        Err(_) => task_of_text(text).unwrap_or_default(),
+    };
+    let entry =
+        entry(task.name()).map_err(|why| ConfigError::new(format!("experiment.task = {why}")))?;
+    let defaults = (entry.default_config)();
+    let config = if defaults == Config::default() {
+        named?
+    } else {
+        Config::from_toml_over(text, Some(&defaults))?
+    };
+    check(&config).map_err(|e| e.at_line_of_key(text))?;
+    Ok(config)
+}
+
+/// Reads a config file with its task's defaults and checks it; relative paths in it (scenario, initial
+/// population) become relative to the file's folder.
+pub fn read_config(path: &Path) -> Result<Config> {
+    let text = read_text(path)?;
+    let mut config = config_from_toml(&text).map_err(|error| Error::Config {
+        path: path.to_path_buf(),
+        error,
+    })?;
+    let base = path.parent().unwrap_or(Path::new(""));
+    for p in [
+        &mut config.experiment.scenario,
+        &mut config.experiment.init_population,
+    ] {
+        if !p.is_empty() && Path::new(p.as_str()).is_relative() {
+            *p = base.join(&*p).to_string_lossy().into_owned();
         }
     }
+    for p in &mut config.experiment.scenarios {
+        *p = resolve_map(base, p);
+    }
+    Ok(config)
+}
+
+/// `experiment.task` as `text` sets it, if it parses that far.
+fn task_of_text(text: &str) -> Option<TaskName> {
+    let value: toml::Value = toml::from_str(text).ok()?;
+    let task = value.get("experiment")?.get("task")?.as_str()?;
+    Some(TaskName(task.to_string()))
+}
+
+/// Metric names of `config`'s task (none for a task that is not registered).
+pub fn metric_names(config: &Config) -> &'static [&'static str] {
+    entry(config.experiment.task.name()).map_or(&[], |e| e.metric_names)
+}
+
+/// The task of `config` on `maps` (from [`maps::load`]).
+pub fn build(config: &Config, maps: &[TrainingMap]) -> Result<Box<dyn RunTask>> {
+    let task = entry(config.experiment.task.name()).map_err(crate::io::bad_input)?;
+    (task.build)(config, maps)
+}
+
+/// What the program tells a task for its [`RunTask::header`].
+#[derive(Debug, Clone, Copy)]
+pub struct HeaderContext<'a> {
+    /// The command running the run (`evolve`, `resume`, …).
+    pub command: &'a str,
+    /// What it trains on ([`RunTask::describe`]).
+    pub scenario: &'a str,
+    /// ` (resuming after generation N)`, or empty for a new run.
+    pub start: &'a str,
+    /// The evaluation threads, as a person reads them.
+    pub threads: &'a str,
+    /// The line on the search strategy (with its leading line break), or empty.
+    pub strategy: &'a str,
+    /// The run directory.
+    pub output: &'a str,
+}
+
+/// A finished run, for [`RunTask::summary`].
+#[derive(Debug, Clone, Copy)]
+pub struct Finished<'a> {
+    /// The champion genome.
+    pub champion: &'a Genome,
+    /// Its fitness.
+    pub fitness: f64,
+    /// The run-relative generation it was found in.
+    pub generation: u32,
+    /// Progress towards the task's target (default for a task without one).
+    pub progress: TargetProgress,
+    /// Generations done.
+    pub generations: u32,
+    /// Wall-clock seconds of this invocation.
+    pub wall: f64,
+    /// Robot-steps per second.
+    pub rate: f64,
+    /// The run directory.
+    pub dir: &'a str,
+    /// The strategy's summary fields (leading spaces included).
+    pub strategy_fields: &'a str,
+}
+
+/// A task as a run evaluates, records and reports it.
+pub trait RunTask: Task + fmt::Debug + Send + Sync {
+    /// Its registration.
+    fn entry(&self) -> &'static TaskEntry;
 
     /// The shape of the genomes the run evolves.
-    pub fn genome_spec(&self) -> GenomeSpec {
-        match self {
-            RunTask::Driving(t) => t.primary().cppn_spec(),
-            RunTask::Maze(_) => MazeTask::spec(),
-        }
-    }
+    fn genome_spec(&self) -> GenomeSpec;
 
     /// The box the behaviour descriptors of `config`'s strategy lie in
     /// (MAP-Elites' cells cover it).
-    pub fn behaviour_bounds(&self, config: &Config) -> (Vec<f64>, Vec<f64>) {
-        match self {
-            RunTask::Driving(t) => config.strategy.behaviour.bounds(t.primary().robots()),
-            RunTask::Maze(m) => m.arena_bounds(),
-        }
-    }
+    fn behaviour_bounds(&self, config: &Config) -> (Vec<f64>, Vec<f64>);
 
     /// Robot-steps one evaluation simulates at most.
-    pub fn robot_steps(&self) -> u64 {
-        match self {
-            RunTask::Driving(t) => t.robot_steps(),
-            RunTask::Maze(m) => u64::from(m.steps()),
-        }
+    fn robot_steps(&self) -> u64;
+
+    /// Robot-steps a generation's `evaluations` simulated (a task whose
+    /// episodes end early counts the steps they took).
+    fn robot_steps_of(&self, evaluations: &[Evaluation]) -> f64 {
+        evaluations.len() as f64 * self.robot_steps() as f64
     }
 
     /// Why `genome` does not fit the task, if it does not.
-    pub fn check_genome(&self, genome: &Genome) -> Result<(), String> {
-        match self {
-            RunTask::Driving(t) => {
-                (t.primary().robot_controller(genome).map(drop)).map_err(|e| e.to_string())
-            }
-            RunTask::Maze(_) => {
-                let want = MazeTask::spec();
-                let (inputs, outputs) = (genome.num_inputs(), genome.num_outputs());
-                if (inputs, outputs) == (want.inputs, want.outputs) {
-                    Ok(())
-                } else {
-                    Err(format!(
-                        "network has {inputs} inputs and {outputs} outputs, the maze needs {} and {}",
-                        want.inputs, want.outputs
-                    ))
-                }
-            }
-        }
+    fn check_genome(&self, genome: &Genome) -> std::result::Result<(), String>;
+
+    /// The links `genome`'s network expresses and could express
+    /// (`generations.csv`'s `best_substrate_links`, `possible_substrate_links`).
+    fn links(&self, genome: &Genome) -> Result<(usize, usize)>;
+
+    /// What the run trains on, for the run's header line.
+    fn describe(&self, maps: &[TrainingMap]) -> String;
+
+    /// Settings of a config left at the task's defaults that the task fits
+    /// to itself (the maze's MAP-Elites grid to its arena).
+    fn fit_defaults(&self, _config: &mut Config) {}
+
+    /// Whether a run stops once an evaluation reaches the task's target; its
+    /// progress towards it is then kept in the checkpoints.
+    fn has_target(&self) -> bool {
+        false
     }
 
-    /// The driving experiment's training, if this is the driving task.
-    pub fn training(&self) -> Option<&Training> {
-        match self {
-            RunTask::Driving(t) => Some(t.as_ref()),
-            RunTask::Maze(_) => None,
-        }
+    /// Whether `evaluation` reached the task's target.
+    fn reached_target(&self, _evaluation: &Evaluation) -> bool {
+        false
     }
 
-    /// The maze, if this is the maze task.
-    pub fn maze(&self) -> Option<&MazeTask> {
-        match self {
-            RunTask::Driving(_) => None,
-            RunTask::Maze(m) => Some(m.as_ref()),
-        }
+    /// The task's own fields of a `generations.csv` row (its
+    /// [`TaskEntry::generation_columns`]), with their leading commas.
+    fn generation_fields(&self, _progress: &TargetProgress, _evaluations: &[Evaluation]) -> String {
+        String::new()
     }
+
+    /// The lines that open a run in the terminal: what is evolved, on what,
+    /// how it is scored.
+    fn header(&self, config: &Config, ctx: &HeaderContext<'_>) -> String;
+
+    /// A finished run's closing text for a task that draws no figures: the
+    /// lines for a person and the machine-readable summary line; `None` for
+    /// the driving experiment, whose figures and report the program draws.
+    fn summary(&self, _finished: &Finished<'_>) -> Option<(String, String)> {
+        None
+    }
+
+    /// A replay of `genome` for a task that draws no figures: the episode's
+    /// end (for stdout) and a note (for stderr); `None` for driving.
+    fn replay_text(&self, _genome: &Genome) -> Option<(String, String)> {
+        None
+    }
+
+    /// The driving experiment, when the task is one: figures, replays and the
+    /// viewer show its robots.
+    fn driving(&self) -> Option<&driving::training::Training> {
+        None
+    }
+
+    /// The task as [`Any`], for code that knows a task's concrete type.
+    fn as_any(&self) -> &dyn Any;
+
+    /// A boxed copy (each evaluator holds its own).
+    fn clone_box(&self) -> Box<dyn RunTask>;
 }
 
-impl Task for RunTask {
-    fn evaluate(&self, genome: &Genome, ctx: &EvalContext) -> Evaluation {
-        match self {
-            RunTask::Driving(t) => t.evaluate(genome, ctx),
-            RunTask::Maze(m) => m.evaluate(genome, ctx),
-        }
-    }
-
-    fn metric_names(&self) -> &[&str] {
-        match self {
-            RunTask::Driving(t) => t.metric_names(),
-            RunTask::Maze(m) => m.metric_names(),
-        }
+impl Clone for Box<dyn RunTask> {
+    fn clone(&self) -> Self {
+        self.clone_box()
     }
 }

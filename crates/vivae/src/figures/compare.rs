@@ -21,8 +21,9 @@ use vivae_neat::stats;
 use super::{FAMILY, Figure, FigureError, draw_err, register_font, svg_to_png};
 use vivae_lab::config::Config;
 use vivae_lab::error::{Error, Result};
-use vivae_lab::io::{bad_input, read_config, write_atomic};
+use vivae_lab::io::{bad_input, write_atomic};
 use vivae_lab::rundir::{self, files};
+use vivae_lab::tasks::read_config;
 
 /// Generations at which the table reports the median best fitness.
 pub const AT_GENERATIONS: [u32; 5] = [10, 50, 100, 200, 400];

@@ -376,7 +376,7 @@ impl Sim {
         source: &Source,
         snap: &RunSnapshot,
     ) -> Result<(), String> {
-        config.validate().map_err(|e| one_line(&e.to_string()))?;
+        vivae_lab::tasks::check(&config).map_err(|e| one_line(&e.to_string()))?;
         let (name, text) = source
             .scenarios
             .get(index)

@@ -9,9 +9,10 @@ use serde::Serialize;
 
 use crate::report_html::{GenerationRow, read_generation_rows};
 use vivae_lab::config::Config;
-use vivae_lab::io::{DEFAULT_SCENARIO, DEFAULT_SCENARIO_NAME, bad_input, read_config, read_text};
+use vivae_lab::io::{DEFAULT_SCENARIO, DEFAULT_SCENARIO_NAME, bad_input, read_text};
 use vivae_lab::rundir::{self, Champion, GenerationBest, files, read_champion};
 use vivae_lab::strategy_files::{self, ArchiveLine, FrontLine, Member};
+use vivae_lab::tasks::read_config;
 
 /// Most extra scenarios offered from `--scenarios`.
 const MAX_SCENARIOS: usize = 200;

@@ -10,4 +10,7 @@ pub mod experiment;
 pub mod fitness;
 pub mod resolutions;
 pub mod rollout;
+pub mod run;
 pub mod training;
+
+pub use run::TASK;

@@ -1,6 +1,8 @@
 //! The maze task's config: its defaults and the keys a maze run cannot honour.
 
-use super::*;
+use vivae_neat::NeatParams;
+
+use crate::config::{Config, DistanceConfig, SubstrateConfig, TaskName};
 
 impl Config {
     /// The config of a maze run with the example's settings: the hard maze,
@@ -8,7 +10,7 @@ impl Config {
     /// novelty search's ρ_min = 6 px, NSGA-II on fitness alone.
     pub fn maze() -> Config {
         let mut c = Config::default();
-        c.experiment.task = TaskKind::Maze;
+        c.experiment.task = TaskName(super::NAME.into());
         c.experiment.scenario = "hard-maze".into();
         c.experiment.steps = crate::tasks::maze::STEPS;
         c.experiment.robots = 1;
@@ -32,7 +34,7 @@ impl Config {
 
 /// With `experiment.task = "maze"`: refuses the keys a maze run cannot
 /// honour; the message names the key.
-pub(super) fn validate_maze(c: &Config) -> Result<(), String> {
+pub(super) fn validate(c: &Config) -> Result<(), String> {
     let e = &c.experiment;
     let s = &c.substrate;
     let refuse = |key: &str, why: &str| Err(format!("{key}: {why} (experiment.task = \"maze\")"));
@@ -100,28 +102,4 @@ pub(super) fn validate_maze(c: &Config) -> Result<(), String> {
         ),
         None => Ok(()),
     }
-}
-
-/// The config of TOML `text` (which parses) with its unset keys taken from [`Config::maze`].
-pub(super) fn over_maze_defaults(text: &str) -> Result<Config, ConfigError> {
-    fn merge(base: &mut toml::Value, over: toml::Value) {
-        match (base, over) {
-            (toml::Value::Table(b), toml::Value::Table(o)) => {
-                for (k, v) in o {
-                    match b.get_mut(&k) {
-                        Some(slot) => merge(slot, v),
-                        None => {
-                            b.insert(k, v);
-                        }
-                    }
-                }
-            }
-            (slot, v) => *slot = v,
-        }
-    }
-    let bad = |e: &dyn std::fmt::Display| ConfigError::new(one_line(&e.to_string()));
-    let mut base = toml::Value::try_from(Config::maze()).map_err(|e| bad(&e))?;
-    let over: toml::Value = toml::from_str(text).map_err(|e| bad(&e))?;
-    merge(&mut base, over);
-    base.try_into().map_err(|e: toml::de::Error| bad(&e))
 }

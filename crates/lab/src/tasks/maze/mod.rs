@@ -16,7 +16,11 @@
 //! the goal was reached, the end distance and the steps taken. An episode
 //! ends early when the robot reaches the goal, as in Lehman's simulator.
 
+pub mod config;
+mod present;
 pub mod run;
+
+pub use run::TASK;
 
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
 
@@ -28,10 +32,25 @@ use vivae_sim::{
 };
 
 /// The medium maze (`scenarios/medium-maze.svg`).
-pub const MEDIUM_MAZE_SVG: &str = include_str!("../../../../../scenarios/medium-maze.svg");
+pub const MEDIUM_MAZE_SVG: &str = shipped_svg("medium-maze");
 /// The hard maze (`scenarios/hard-maze.svg`).
-pub const HARD_MAZE_SVG: &str = include_str!("../../../../../scenarios/hard-maze.svg");
+pub const HARD_MAZE_SVG: &str = shipped_svg("hard-maze");
 
+/// The SVG text of shipped scenario `name` (evaluated at compile time).
+const fn shipped_svg(name: &str) -> &'static str {
+    let mut i = 0;
+    while i < crate::shipped::SHIPPED.len() {
+        let s = &crate::shipped::SHIPPED[i];
+        if s.name.eq_ignore_ascii_case(name) {
+            return s.svg;
+        }
+        i += 1;
+    }
+    panic!("not a shipped scenario")
+}
+
+/// The task's name in `experiment.task` and `--task`.
+pub const NAME: &str = "maze";
 /// Steps of one evaluation (the paper's 400).
 pub const STEPS: u32 = 400;
 /// The bias `b_f` of the fitness `b_f − d_g`: above any distance in either maze.

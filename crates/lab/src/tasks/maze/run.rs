@@ -1,6 +1,6 @@
 //! The maze benchmark as a run of `vivae evolve` (`experiment.task = "maze"`):
-//! its default settings (those of `cargo run --example maze`), the config
-//! keys that do not fit it, and what a maze run records besides fitness.
+//! its registration, default settings (those of `cargo run --example maze`),
+//! and what a maze run records besides fitness.
 //!
 //! A maze run evolves plain NEAT networks ([`MazeTask::spec`]) on the one
 //! maze named by `experiment.scenario`, with the robot of `[physics]` for
@@ -8,14 +8,29 @@
 //! genome first reaches the goal, as the example does; `evals_to_solve`
 //! counts the evaluations up to and including that genome.
 
-use serde::{Deserialize, Serialize};
+use std::any::Any;
+
 use vivae_neat::driver::Evaluation;
+use vivae_neat::{Genome, GenomeSpec};
 use vivae_sim::Scenario;
 
 use crate::config::Config;
 use crate::error::Result;
 use crate::io::bad_input;
-use crate::tasks::maze::MazeTask;
+use crate::tasks::maps::TrainingMap;
+use crate::tasks::maze::{METRICS, MazeTask, NAME};
+use crate::tasks::{Finished, HeaderContext, RunTask, TargetProgress, TaskEntry};
+
+/// The maze task's registration.
+pub static TASK: TaskEntry = TaskEntry {
+    name: NAME,
+    what: "Lehman & Stanley's maze with a plain NEAT network",
+    default_config: Config::maze,
+    validate: crate::tasks::maze::config::validate,
+    metric_names: &METRICS,
+    generation_columns: COLUMNS,
+    build,
+};
 
 /// Side of MAP-Elites' grid cells over the maze, px (the example's).
 pub const CELL: f64 = 10.0;
@@ -33,17 +48,14 @@ pub fn task(config: &Config, scenario: &Scenario) -> Result<MazeTask> {
         .map_err(|e| bad_input(e.to_string()))
 }
 
-/// What a maze run has measured so far, kept in its checkpoints.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct MazeProgress {
-    /// Evaluations done so far.
-    pub evaluations: u64,
-    /// Evaluations up to and including the first genome that reached the goal.
-    pub solved_at: Option<u64>,
-    /// The run's generation (1-based) in which it did.
-    pub solved_generation: Option<u32>,
+/// The maze run of `config` on the first of `maps` (a maze run has one).
+fn build(config: &Config, maps: &[TrainingMap]) -> Result<Box<dyn RunTask>> {
+    let map = maps.first().ok_or_else(|| bad_input("no maze"))?;
+    Ok(Box::new(task(config, &map.loaded.scenario)?))
 }
+
+/// The columns a maze run adds to `generations.csv`, with their leading comma.
+pub const COLUMNS: &str = ",best_distance,solvers,evaluations";
 
 /// One generation of a maze run: the fields it adds to `generations.csv`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -54,42 +66,109 @@ pub struct MazeGeneration {
     pub solvers: usize,
 }
 
-/// The columns a maze run adds to `generations.csv`, with their leading comma.
-pub const COLUMNS: &str = ",best_distance,solvers,evaluations";
-
-impl MazeProgress {
-    /// Counts the `evaluations` of `generation` (as the example counts:
-    /// the first solver's evaluation is the `i + 1`-th of its batch).
-    pub fn tell(&mut self, generation: u32, evaluations: &[Evaluation]) -> MazeGeneration {
-        let solved = |e: &Evaluation| e.metrics.first() == Some(&1.0);
-        if self.solved_at.is_none()
-            && let Some(i) = evaluations.iter().position(solved)
-        {
-            self.solved_at = Some(self.evaluations + i as u64 + 1);
-            self.solved_generation = Some(generation);
-        }
-        self.evaluations += evaluations.len() as u64;
+impl MazeGeneration {
+    /// The generation of `evaluations`.
+    pub fn of(evaluations: &[Evaluation]) -> MazeGeneration {
         let distances = evaluations.iter().filter_map(|e| e.metrics.get(1));
         MazeGeneration {
             best_distance: distances.copied().fold(f64::INFINITY, f64::min),
             solvers: evaluations.iter().filter(|e| solved(e)).count(),
         }
     }
+}
 
-    /// The fields of [`COLUMNS`] for `generation`, with their leading commas.
-    pub fn fields(&self, generation: &MazeGeneration) -> String {
+/// Whether a maze evaluation reached the goal (its first metric).
+fn solved(e: &Evaluation) -> bool {
+    e.metrics.first() == Some(&1.0)
+}
+
+impl RunTask for MazeTask {
+    fn entry(&self) -> &'static TaskEntry {
+        &TASK
+    }
+
+    fn genome_spec(&self) -> GenomeSpec {
+        MazeTask::spec()
+    }
+
+    fn behaviour_bounds(&self, _config: &Config) -> (Vec<f64>, Vec<f64>) {
+        self.arena_bounds()
+    }
+
+    fn robot_steps(&self) -> u64 {
+        u64::from(self.steps())
+    }
+
+    /// A maze episode ends early at the goal: the steps it took.
+    fn robot_steps_of(&self, evaluations: &[Evaluation]) -> f64 {
+        (evaluations.iter())
+            .map(|e| e.metrics.get(2).copied().unwrap_or_default())
+            .sum()
+    }
+
+    fn check_genome(&self, genome: &Genome) -> std::result::Result<(), String> {
+        let want = MazeTask::spec();
+        let (inputs, outputs) = (genome.num_inputs(), genome.num_outputs());
+        if (inputs, outputs) == (want.inputs, want.outputs) {
+            Ok(())
+        } else {
+            Err(format!(
+                "network has {inputs} inputs and {outputs} outputs, the maze needs {} and {}",
+                want.inputs, want.outputs
+            ))
+        }
+    }
+
+    /// A maze network is the genome: its enabled links of all its link genes.
+    fn links(&self, genome: &Genome) -> Result<(usize, usize)> {
+        Ok((genome.num_enabled_links(), genome.links().len()))
+    }
+
+    fn describe(&self, maps: &[TrainingMap]) -> String {
+        maps.first()
+            .map(|m| m.loaded.scenario.source.clone())
+            .unwrap_or_default()
+    }
+
+    /// The grid of 10 px cells over this maze's arena.
+    fn fit_defaults(&self, config: &mut Config) {
+        config.strategy.map_elites.bins = cell_bins(self);
+    }
+
+    fn has_target(&self) -> bool {
+        true
+    }
+
+    fn reached_target(&self, evaluation: &Evaluation) -> bool {
+        solved(evaluation)
+    }
+
+    fn generation_fields(&self, progress: &TargetProgress, evaluations: &[Evaluation]) -> String {
+        let g = MazeGeneration::of(evaluations);
         format!(
             ",{},{},{}",
-            generation.best_distance, generation.solvers, self.evaluations
+            g.best_distance, g.solvers, progress.evaluations
         )
     }
 
-    /// `solved=yes|no evals_to_solve=N|none` for the summary line, with a leading space.
-    pub fn summary_fields(&self) -> String {
-        match self.solved_at {
-            Some(n) => format!(" solved=yes evals_to_solve={n}"),
-            None => " solved=no evals_to_solve=none".into(),
-        }
+    fn header(&self, config: &Config, ctx: &HeaderContext<'_>) -> String {
+        crate::tasks::maze::present::header(config, ctx)
+    }
+
+    fn summary(&self, finished: &Finished<'_>) -> Option<(String, String)> {
+        Some(crate::tasks::maze::present::summary(self, finished))
+    }
+
+    fn replay_text(&self, genome: &Genome) -> Option<(String, String)> {
+        Some(crate::tasks::maze::present::replay(self, genome))
+    }
+
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+
+    fn clone_box(&self) -> Box<dyn RunTask> {
+        Box::new(self.clone())
     }
 }
 
@@ -108,14 +187,20 @@ mod tests {
 
     #[test]
     fn evaluations_to_solve_count_up_to_the_first_solver() {
-        let mut p = MazeProgress::default();
-        let g = p.tell(1, &[eval(false, 50.0), eval(false, 40.0)]);
+        let task = MazeTask::shipped(crate::tasks::maze::Maze::Hard).unwrap();
+        let mut p = TargetProgress::default();
+        let told = [eval(false, 50.0), eval(false, 40.0)];
+        p.tell(&task, 1, &told);
+        let g = MazeGeneration::of(&told);
         assert_eq!((g.best_distance, g.solvers, p.solved_at), (40.0, 0, None));
         assert_eq!(p.summary_fields(), " solved=no evals_to_solve=none");
-        let g = p.tell(2, &[eval(false, 9.0), eval(true, 3.0), eval(true, 2.0)]);
+        let told = [eval(false, 9.0), eval(true, 3.0), eval(true, 2.0)];
+        p.tell(&task, 2, &told);
+        let g = MazeGeneration::of(&told);
         assert_eq!((g.best_distance, g.solvers), (2.0, 2));
+        assert_eq!(task.generation_fields(&p, &told), ",2,2,5");
         assert_eq!((p.solved_at, p.solved_generation), (Some(4), Some(2)));
-        p.tell(3, &[eval(true, 1.0)]);
+        p.tell(&task, 3, &[eval(true, 1.0)]);
         assert_eq!((p.solved_at, p.evaluations), (Some(4), 6));
         assert_eq!(p.summary_fields(), " solved=yes evals_to_solve=4");
     }
@@ -123,11 +208,11 @@ mod tests {
     #[test]
     fn the_maze_defaults_validate_and_bad_combinations_are_refused() {
         let c = Config::maze();
-        c.validate().unwrap();
+        crate::tasks::check(&c).unwrap();
         let refused = |edit: &dyn Fn(&mut Config), key: &str| {
             let mut c = Config::maze();
             edit(&mut c);
-            let e = c.validate().unwrap_err().message;
+            let e = crate::tasks::check(&c).unwrap_err().message;
             assert!(
                 e.contains(key) && e.contains("maze") && !e.contains('\n'),
                 "{e}"
@@ -155,12 +240,13 @@ mod tests {
         let mut c = Config::maze();
         c.strategy.kind = crate::config::strategy::StrategyKind::Nsga2;
         c.strategy.nsga2.objectives = vec!["-contacts".into()];
-        let e = c.validate().unwrap_err().message;
+        let e = crate::tasks::check(&c).unwrap_err().message;
         assert!(e.contains("fitness or solved or distance or steps"), "{e}");
         c.strategy.nsga2.objectives = vec!["fitness".into(), "-steps".into()];
-        c.validate().unwrap();
+        crate::tasks::check(&c).unwrap();
         // A file that only says `task = "maze"` is the maze's defaults.
-        let file = Config::from_toml("[experiment]\ntask = \"maze\"\nseed = 9\n").unwrap();
+        let file =
+            crate::tasks::config_from_toml("[experiment]\ntask = \"maze\"\nseed = 9\n").unwrap();
         assert_eq!(
             file,
             Config {
@@ -172,7 +258,7 @@ mod tests {
             }
         );
         assert_eq!(
-            Config::from_toml(&Config::maze().to_toml()).unwrap(),
+            crate::tasks::config_from_toml(&Config::maze().to_toml()).unwrap(),
             Config::maze()
         );
     }

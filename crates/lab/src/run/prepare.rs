@@ -1,0 +1,346 @@
+//! One preparation of a new run, shared by the command line and Python: a
+//! config file (or the task's defaults), the settings given beside it
+//! ([`Overrides`]: the CLI's flags and Python's keyword arguments, one name
+//! each), checked; then the run's maps, task and starting population.
+
+use std::path::Path;
+use std::str::FromStr;
+
+use vivae_neat::Population;
+
+use crate::config::es::SubstrateKind;
+use crate::config::strategy::{BehaviourKind, StrategyKind};
+use crate::config::{Aggregate, Config, NormalizeBy, Recurrence, TaskName};
+use crate::controller::polar::PolarGrid;
+use crate::error::Result;
+use crate::io::bad_input;
+use crate::rundir::population_from_checkpoint;
+use crate::tasks::maps::{self, TrainingMap};
+use crate::tasks::{self, RunTask};
+
+/// Settings given over a config: each is a config key under the name that
+/// the CLI's flag (`--train-neurons`) and Python's keyword (`train_neurons=`)
+/// both use. Unset ones leave the config as it is.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Overrides {
+    /// Scenario files or shipped names: one is a single-map run, several a
+    /// multi-map run (`experiment.scenario` / `experiment.scenarios`).
+    pub scenario: Vec<String>,
+    /// `experiment.generations`.
+    pub generations: Option<u32>,
+    /// `neat.population_size`.
+    pub population: Option<usize>,
+    /// `experiment.seed`.
+    pub seed: Option<u64>,
+    /// `surface_sensors.rings` × `angles`.
+    pub sensors: Option<PolarGrid>,
+    /// `substrate.neurons`.
+    pub neurons: Option<PolarGrid>,
+    /// `experiment.steps`.
+    pub steps: Option<u32>,
+    /// `experiment.robots` (0 = all of the scenario's).
+    pub robots: Option<usize>,
+    /// `run.threads` (0 = one per core).
+    pub threads: Option<usize>,
+    /// `distance_sensors.rays`.
+    pub distance_rays: Option<usize>,
+    /// `substrate.train_neurons`.
+    pub train_neurons: Option<Vec<PolarGrid>>,
+    /// `substrate.train_sensors`.
+    pub train_sensors: Option<Vec<PolarGrid>>,
+    /// `substrate.train_aggregate`.
+    pub train_aggregate: Option<Aggregate>,
+    /// `substrate.kind`.
+    pub substrate: Option<SubstrateKind>,
+    /// `substrate.normalize_by`.
+    pub normalize_by: Option<NormalizeBy>,
+    /// `substrate.normalize_self_loops`.
+    pub normalize_self_loops: Option<bool>,
+    /// `substrate.recurrence`.
+    pub recurrence: Option<Recurrence>,
+    /// `strategy.kind`.
+    pub strategy: Option<StrategyKind>,
+    /// `strategy.behaviour`.
+    pub behaviour: Option<BehaviourKind>,
+    /// `experiment.task` (a registered task).
+    pub task: Option<TaskName>,
+}
+
+impl Overrides {
+    /// Every override's name, in the order of the fields.
+    pub const KEYS: [&'static str; 20] = [
+        "scenario",
+        "generations",
+        "population",
+        "seed",
+        "sensors",
+        "neurons",
+        "steps",
+        "robots",
+        "threads",
+        "distance_rays",
+        "train_neurons",
+        "train_sensors",
+        "train_aggregate",
+        "substrate",
+        "normalize_by",
+        "normalize_self_loops",
+        "recurrence",
+        "strategy",
+        "behaviour",
+        "task",
+    ];
+
+    /// Sets override `key` from its text as a command line writes it (lists
+    /// comma-separated; `scenario` adds one map per call); the error names
+    /// the key, the value and what it takes.
+    pub fn set(&mut self, key: &str, text: &str) -> std::result::Result<(), String> {
+        let what = |e: String| format!("{key} = {text:?}: {e}");
+        match key {
+            "scenario" => self.scenario.push(text.to_string()),
+            "generations" => self.generations = Some(number(text).map_err(what)?),
+            "population" => self.population = Some(number(text).map_err(what)?),
+            "seed" => self.seed = Some(number(text).map_err(what)?),
+            "sensors" => self.sensors = Some(parse(text).map_err(what)?),
+            "neurons" => self.neurons = Some(parse(text).map_err(what)?),
+            "steps" => self.steps = Some(number(text).map_err(what)?),
+            "robots" => self.robots = Some(number(text).map_err(what)?),
+            "threads" => self.threads = Some(number(text).map_err(what)?),
+            "distance_rays" => self.distance_rays = Some(number(text).map_err(what)?),
+            "train_neurons" => self.train_neurons = Some(grids(text).map_err(what)?),
+            "train_sensors" => self.train_sensors = Some(grids(text).map_err(what)?),
+            "train_aggregate" => self.train_aggregate = Some(parse(text).map_err(what)?),
+            "substrate" => self.substrate = Some(parse(text).map_err(what)?),
+            "normalize_by" => self.normalize_by = Some(parse(text).map_err(what)?),
+            "normalize_self_loops" => {
+                self.normalize_self_loops = Some(boolean(text).map_err(what)?)
+            }
+            "recurrence" => self.recurrence = Some(parse(text).map_err(what)?),
+            "strategy" => self.strategy = Some(parse(text).map_err(what)?),
+            "behaviour" => self.behaviour = Some(parse(text).map_err(what)?),
+            "task" => {
+                tasks::entry(text).map_err(|e| format!("{key} = {e}"))?;
+                self.task = Some(TaskName(text.to_string()));
+            }
+            other => {
+                return Err(format!(
+                    "unknown setting {other:?}; expected one of {}",
+                    Self::KEYS.join(", ")
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Writes the overrides that are set into `config` (unchecked: see [`config`]).
+    pub fn apply(&self, c: &mut Config) {
+        // Given maps replace the config's: one is a single-map run, several a multi-map run.
+        match self.scenario.as_slice() {
+            [] => {}
+            [one] => {
+                c.experiment.scenario = one.clone();
+                c.experiment.scenarios.clear();
+            }
+            several => {
+                c.experiment.scenario.clear();
+                c.experiment.scenarios = several.to_vec();
+            }
+        }
+        let e = &mut c.experiment;
+        set(&mut e.generations, self.generations);
+        set(&mut e.seed, self.seed);
+        set(&mut e.steps, self.steps);
+        set(&mut e.robots, self.robots);
+        set(&mut e.task, self.task.clone());
+        set(&mut c.neat.population_size, self.population);
+        if let Some(g) = self.sensors {
+            (c.surface_sensors.rings, c.surface_sensors.angles) = (g.rings, g.angles);
+        }
+        set(&mut c.run.threads, self.threads);
+        set(&mut c.distance_sensors.rays, self.distance_rays);
+        let s = &mut c.substrate;
+        set(&mut s.neurons, self.neurons);
+        set(&mut s.train_neurons, self.train_neurons.clone());
+        set(&mut s.train_sensors, self.train_sensors.clone());
+        set(&mut s.train_aggregate, self.train_aggregate);
+        set(&mut s.kind, self.substrate);
+        set(&mut s.normalize_by, self.normalize_by);
+        set(&mut s.normalize_self_loops, self.normalize_self_loops);
+        set(&mut s.recurrence, self.recurrence);
+        set(&mut c.strategy.kind, self.strategy);
+        set(&mut c.strategy.behaviour, self.behaviour);
+    }
+}
+
+/// `*slot = value` when a value is given.
+fn set<T>(slot: &mut T, value: Option<T>) {
+    if let Some(v) = value {
+        *slot = v;
+    }
+}
+
+fn number<T: FromStr>(text: &str) -> std::result::Result<T, String> {
+    text.trim()
+        .parse()
+        .map_err(|_| "expected a whole number of the key's range".to_string())
+}
+
+fn boolean(text: &str) -> std::result::Result<bool, String> {
+    text.trim()
+        .parse()
+        .map_err(|_| "expected true or false".to_string())
+}
+
+fn parse<T: FromStr>(text: &str) -> std::result::Result<T, String>
+where
+    T::Err: std::fmt::Display,
+{
+    text.parse().map_err(|e: T::Err| e.to_string())
+}
+
+fn grids(text: &str) -> std::result::Result<Vec<PolarGrid>, String> {
+    text.split(',').map(parse).collect()
+}
+
+/// The config of a new run: `file` (its task named there), or the defaults
+/// of `overrides.task` (the paper's driving experiment when none is named),
+/// with `overrides` applied and every rule checked. A task named beside a
+/// file that names another is refused: the file says which task it is.
+pub fn config(file: Option<&Path>, overrides: &Overrides) -> Result<Config> {
+    let task = overrides.task.as_ref();
+    let mut config = match file {
+        Some(p) => {
+            let c = tasks::read_config(p)?;
+            if let Some(why) = c.task_mismatch(task) {
+                let t = task.map_or("", TaskName::name);
+                return Err(bad_input(format!("task {t}: {why}")));
+            }
+            c
+        }
+        None => tasks::default_config(task).map_err(bad_input)?,
+    };
+    overrides.apply(&mut config);
+    tasks::check(&config).map_err(|e| bad_input(format!("command line: {e}")))?;
+    Ok(config)
+}
+
+/// A new run, prepared: its config, maps, task and starting population.
+#[derive(Debug)]
+pub struct Prepared {
+    /// The resolved config.
+    pub config: Config,
+    /// The training maps as loaded (one for a single-map run).
+    pub maps: Vec<TrainingMap>,
+    /// What genomes are evaluated on.
+    pub task: Box<dyn RunTask>,
+    /// The population to start from (`experiment.init_population`), if any.
+    pub init: Option<Population>,
+}
+
+/// Loads what `config` names: its maps, its task, its starting population;
+/// with `task_defaults` (no config file: the task's own defaults), settings
+/// the task fits to its scenario ([`RunTask::fit_defaults`]) are fitted.
+pub fn prepare(mut config: Config, task_defaults: bool) -> Result<Prepared> {
+    let maps = maps::load(&config)?;
+    let task = tasks::build(&config, &maps)?;
+    let init = match config.experiment.init_population.as_str() {
+        "" => None,
+        path => Some(population_from_checkpoint(Path::new(path))?.1),
+    };
+    if task_defaults {
+        task.fit_defaults(&mut config);
+    }
+    Ok(Prepared {
+        config,
+        maps,
+        task,
+        init,
+    })
+}
+
+impl Prepared {
+    /// Creates the run in `dir` (see [`crate::run::Run::create_task`]).
+    pub fn create(self, dir: &Path, force: bool) -> Result<crate::run::Run> {
+        let Prepared {
+            config,
+            maps,
+            task,
+            init,
+        } = self;
+        let first = maps
+            .first()
+            .map(|m| m.loaded.text.clone())
+            .ok_or_else(|| bad_input("no scenario"))?;
+        let maps = if maps::is_multi_map(&config) {
+            maps
+        } else {
+            Vec::new()
+        };
+        crate::run::Run::create_task(dir, config, task, &first, &maps, init, force)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_key_can_be_set_from_text_and_unknown_keys_are_named() {
+        let mut o = Overrides::default();
+        for (key, text) in [
+            ("scenario", "oval"),
+            ("generations", "3"),
+            ("population", "10"),
+            ("seed", "9"),
+            ("sensors", "3x6"),
+            ("neurons", "5x5"),
+            ("steps", "50"),
+            ("robots", "2"),
+            ("threads", "1"),
+            ("distance_rays", "5"),
+            ("train_neurons", "3x3,5x5"),
+            ("train_sensors", "3x5"),
+            ("train_aggregate", "min"),
+            ("substrate", "polar"),
+            ("normalize_by", "area"),
+            ("normalize_self_loops", "false"),
+            ("recurrence", "self"),
+            ("strategy", "novelty"),
+            ("behaviour", "end-position"),
+            ("task", "driving"),
+        ] {
+            o.set(key, text).unwrap_or_else(|e| panic!("{key}: {e}"));
+        }
+        assert_eq!(Overrides::KEYS.len(), 20);
+        let mut c = Config::default();
+        o.apply(&mut c);
+        assert_eq!((c.experiment.generations, c.neat.population_size), (3, 10));
+        assert_eq!(c.substrate.train_neurons.len(), 2);
+        assert_eq!(c.experiment.scenario, "oval");
+        let e = o.set("popsize", "3").unwrap_err();
+        assert!(e.contains("popsize") && e.contains("population"), "{e}");
+        let e = o.set("steps", "-5").unwrap_err();
+        assert!(e.starts_with("steps = \"-5\""), "{e}");
+        let e = o.set("task", "chess").unwrap_err();
+        assert!(e.contains("chess") && e.contains("driving"), "{e}");
+    }
+
+    #[test]
+    fn a_named_task_starts_from_its_defaults_and_a_file_of_another_task_is_refused() {
+        let o = Overrides {
+            task: Some(TaskName(crate::tasks::maze::NAME.into())),
+            ..Overrides::default()
+        };
+        let c = config(None, &o).unwrap();
+        assert_eq!(c, Config::maze());
+        let dir = std::env::temp_dir().join(format!("vivae-prepare-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let file = dir.join("driving.toml");
+        std::fs::write(&file, "[experiment]\nseed = 4\n").unwrap();
+        let e = config(Some(&file), &o).unwrap_err().to_string();
+        assert!(e.contains("experiment.task is driving"), "{e}");
+        let c = config(Some(&file), &Overrides::default()).unwrap();
+        assert_eq!(c.experiment.seed, 4);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}

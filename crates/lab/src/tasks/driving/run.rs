@@ -1,0 +1,129 @@
+//! The driving experiment as a run's task (`experiment.task = "driving"`,
+//! the default): its registration and what a run asks of it.
+
+use std::any::Any;
+
+use vivae_neat::{Genome, GenomeSpec};
+
+use crate::config::{Config, TaskName};
+use crate::error::Result;
+use crate::tasks::driving::combined::DrivingTask;
+use crate::tasks::driving::training::Training;
+use crate::tasks::maps::TrainingMap;
+use crate::tasks::{HeaderContext, RunTask, TaskEntry};
+
+/// The driving task's registration.
+pub static TASK: TaskEntry = TaskEntry {
+    name: TaskName::DRIVING,
+    what: "robots driving on roads, HyperNEAT substrates decoded from CPPNs (the paper's)",
+    default_config: Config::default,
+    validate: |_| Ok(()),
+    metric_names: &crate::config::strategy::METRICS,
+    generation_columns: "",
+    build,
+};
+
+/// The training of `config` on `maps`.
+fn build(config: &Config, maps: &[TrainingMap]) -> Result<Box<dyn RunTask>> {
+    Ok(Box::new(Training::new(config, maps)?))
+}
+
+impl RunTask for Training {
+    fn entry(&self) -> &'static TaskEntry {
+        &TASK
+    }
+
+    fn genome_spec(&self) -> GenomeSpec {
+        self.primary().cppn_spec()
+    }
+
+    fn behaviour_bounds(&self, config: &Config) -> (Vec<f64>, Vec<f64>) {
+        config.strategy.behaviour.bounds(self.primary().robots())
+    }
+
+    fn robot_steps(&self) -> u64 {
+        DrivingTask::robot_steps(self)
+    }
+
+    fn check_genome(&self, genome: &Genome) -> std::result::Result<(), String> {
+        (self.primary().robot_controller(genome).map(drop)).map_err(|e| e.to_string())
+    }
+
+    fn links(&self, genome: &Genome) -> Result<(usize, usize)> {
+        let controller = self.primary().robot_controller(genome)?;
+        Ok((controller.expressed_links(), controller.possible_links()))
+    }
+
+    fn describe(&self, maps: &[TrainingMap]) -> String {
+        Training::describe(self, maps)
+    }
+
+    fn header(&self, config: &Config, ctx: &HeaderContext<'_>) -> String {
+        header(self, config, ctx)
+    }
+
+    fn driving(&self) -> Option<&Training> {
+        Some(self)
+    }
+
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+
+    fn clone_box(&self) -> Box<dyn RunTask> {
+        Box::new(self.clone())
+    }
+}
+
+/// The header of a driving run: robots, substrate, training maps and
+/// resolutions, and how fitness is measured.
+fn header(t: &Training, c: &Config, ctx: &HeaderContext<'_>) -> String {
+    let s = &c.surface_sensors;
+    let n = c.substrate.neurons;
+    let distance = match c.distance_sensors.rays {
+        0 => String::new(),
+        r => format!(" + {r} distance rays"),
+    };
+    let map_labels: Vec<&str> = t.map_labels().collect();
+    let maps = if map_labels.is_empty() {
+        String::new()
+    } else {
+        format!(
+            "\n  training maps: {} (fitness = mean over maps; robots, figures and replay: the first)",
+            map_labels.join(", ")
+        )
+    };
+    let training = if t.resolution_labels().is_empty() {
+        String::new()
+    } else {
+        format!(
+            "\n  training: every genome at {} ({:?} of their fitnesses)",
+            t.resolution_labels().join(", "),
+            t.aggregate()
+        )
+    };
+    let HeaderContext {
+        command,
+        scenario,
+        start,
+        threads,
+        strategy,
+        output,
+    } = *ctx;
+    format!(
+        "vivae {command}: {scenario}\n\
+         \x20 robots {}, {} steps per evaluation, population {}, {} generations{start}\n\
+         \x20 substrate: {}x{} surface sensors{distance}, {}x{} neurons; threads {threads}, seed {}{training}{maps}{strategy}\n\
+         \x20 output: {output}\n\
+         \x20 fitness = average speed in px/step over all robots and steps (full throttle on road tends to 5)",
+        t.primary().robots(),
+        c.experiment.steps,
+        c.neat.population_size,
+        c.experiment.generations,
+        s.rings,
+        s.angles,
+        n.rings,
+        n.angles,
+        c.experiment.seed,
+    )
+}
