@@ -665,20 +665,7 @@ fn header(run: &Run, command: &str, scenario: &str, threads: usize) -> String {
 
 /// The header's line on the search strategy (none for NEAT, the paper's).
 fn strategy_line(c: &Config) -> String {
-    use vivae_lab::strategy_config::StrategyKind as K;
-    let s = &c.strategy;
-    match s.kind {
-        K::Neat => String::new(),
-        K::Novelty | K::MapElites => format!(
-            "\n  strategy: {}, behaviour {}",
-            s.kind.name(),
-            s.behaviour.name()
-        ),
-        K::Nsga2 => format!(
-            "\n  strategy: nsga2, objectives {}",
-            s.nsga2.objectives.join(", ")
-        ),
-    }
+    (vivae_lab::search::entry(c.strategy.kind).header_line)(c)
 }
 
 /// The closing summary: rounded figures and the run directory's main files;

@@ -330,9 +330,12 @@ fn strategy_columns(
     path: &Path,
     kind: vivae_lab::strategy_config::StrategyKind,
 ) -> vivae_lab::Result<(Vec<String>, Vec<Row>)> {
-    let names: Vec<String> = (kind.extra_columns().split(',').skip(1))
-        .map(String::from)
-        .collect();
+    let names: Vec<String> = (vivae_lab::search::entry(kind)
+        .extra_columns
+        .split(',')
+        .skip(1))
+    .map(String::from)
+    .collect();
     let text = read_text(path)?;
     let complete = text.rsplit_once('\n').map_or("", |(done, _)| done);
     let mut values = Vec::new();

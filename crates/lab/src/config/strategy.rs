@@ -109,17 +109,6 @@ pub enum StrategyKind {
 }
 
 impl StrategyKind {
-    /// The columns this strategy adds to `generations.csv` (after NEAT's),
-    /// with their leading comma; none for NEAT.
-    pub fn extra_columns(self) -> &'static str {
-        match self {
-            StrategyKind::Neat => "",
-            StrategyKind::Novelty => ",archive_size,novelty_threshold",
-            StrategyKind::MapElites => ",filled_cells,coverage,qd_score,archive_best",
-            StrategyKind::Nsga2 => ",front_size",
-        }
-    }
-
     /// The name as configs and the command line write it.
     pub fn name(self) -> &'static str {
         match self {

@@ -10,7 +10,10 @@ pub(crate) fn generations_header(config: &Config) -> String {
     let base = GENERATIONS_HEADER.trim_end_matches('\n');
     let task =
         crate::tasks::entry(config.experiment.task.name()).map_or("", |t| t.generation_columns);
-    format!("{base}{}{task}\n", config.strategy.kind.extra_columns())
+    format!(
+        "{base}{}{task}\n",
+        crate::search::entry(config.strategy.kind).extra_columns
+    )
 }
 
 pub(crate) const POPULATION_HEADER: &str = "generation,rank,fitness\n";

@@ -1,11 +1,11 @@
-//! The run-directory files of the strategies beyond NEAT: their columns of
-//! `generations.csv`, MAP-Elites' archive (`archive.csv`, `archive.jsonl`)
-//! and NSGA-II's Pareto front (`front.csv`, `front.jsonl`), written
-//! atomically with each checkpoint, and read back to replay one member.
+//! The run-directory files of the strategies beyond NEAT: their fields of
+//! `generations.csv` and of the summary line, MAP-Elites' archive lines
+//! (`archive.jsonl`) and NSGA-II's Pareto front lines (`front.jsonl`), as
+//! each strategy's file writes them with each checkpoint, and read back to
+//! replay one member.
 //!
 //! A NEAT run has none of them: its files are as they always were.
 
-use std::fmt::Write as _;
 use std::path::Path;
 
 use serde::{Deserialize, Serialize};
@@ -13,40 +13,21 @@ use vivae_neat::Genome;
 
 use crate::config::Config;
 use crate::error::{Error, Result};
-use crate::io::write_atomic;
 use crate::rundir::files;
 use crate::search::Search;
 
-/// The values of [`crate::config::strategy::StrategyKind::extra_columns`] for the generation just told, with their leading commas.
+/// The values of the strategy's extra columns of `generations.csv` for the
+/// generation just told, with their leading commas.
 pub fn extra_fields(search: &Search) -> String {
-    match search {
-        Search::Neat(_) => String::new(),
-        Search::Novelty(n) => format!(",{},{}", n.archive().len(), n.threshold()),
-        Search::MapElites(m) => {
-            let s = m.archive_stats();
-            let best = s.best.map_or_else(String::new, |b| b.to_string());
-            format!(",{},{},{},{best}", s.filled, s.coverage, s.qd_score)
-        }
-        Search::Nsga2(n) => format!(",{}", n.pareto_front().len()),
-    }
+    search.strategy().extra_fields()
 }
 
 /// `key=value` fields of the summary line for the strategy's state, each
-/// with a leading space: `strategy=…`, then the archive's or the front's size.
+/// with a leading space: `strategy=…`, then the strategy's own (its archive's
+/// or front's size).
 pub fn summary_fields(search: &Search) -> String {
-    let name = search.kind().name();
-    match search {
-        Search::Neat(_) => format!(" strategy={name}"),
-        Search::Novelty(n) => format!(" strategy={name} archive_size={}", n.archive().len()),
-        Search::MapElites(m) => {
-            let s = m.archive_stats();
-            format!(
-                " strategy={name} filled_cells={} coverage={:.4} qd_score={:.3}",
-                s.filled, s.coverage, s.qd_score
-            )
-        }
-        Search::Nsga2(n) => format!(" strategy={name} front_size={}", n.pareto_front().len()),
-    }
+    let s = search.strategy();
+    format!(" strategy={}{}", s.entry().kind.name(), s.summary_fields())
 }
 
 /// One elite of a MAP-Elites archive, as a line of `archive.jsonl`.
@@ -81,69 +62,11 @@ pub struct FrontLine {
 
 /// Writes the strategy's own files of `search` into the run directory `dir`.
 pub fn write_outputs(dir: &Path, config: &Config, search: &Search) -> Result<()> {
-    match search {
-        Search::MapElites(m) => {
-            let lines: Vec<ArchiveLine> = (m.elites())
-                .map(|(cell, e)| ArchiveLine {
-                    cell,
-                    fitness: e.fitness,
-                    generation: e.generation + 1,
-                    behaviour: e.behaviour.clone(),
-                    genome: e.genome.clone(),
-                })
-                .collect();
-            let dims = m.cells().dims();
-            let names = config.strategy.behaviour.coordinate_names(dims);
-            let mut csv = format!("cell,{},fitness,generation\n", names.join(","));
-            for l in &lines {
-                let b: Vec<String> = l.behaviour.iter().map(f64::to_string).collect();
-                let _ = writeln!(
-                    csv,
-                    "{},{},{},{}",
-                    l.cell,
-                    b.join(","),
-                    l.fitness,
-                    l.generation
-                );
-            }
-            write_atomic(&dir.join(files::ARCHIVE), csv.as_bytes())?;
-            write_atomic(&dir.join(files::ARCHIVE_GENOMES), jsonl(&lines)?.as_bytes())
-        }
-        Search::Nsga2(n) => {
-            let mut front = n.pareto_front();
-            front.sort_by(|a, b| b.2.total_cmp(&a.2));
-            let lines: Vec<FrontLine> = (front.into_iter().enumerate())
-                .map(|(member, (g, objectives, fitness))| FrontLine {
-                    member,
-                    fitness,
-                    objectives,
-                    genome: g.clone(),
-                })
-                .collect();
-            let names =
-                config
-                    .strategy
-                    .nsga2
-                    .objectives
-                    .iter()
-                    .map(|o| match o.strip_prefix('-') {
-                        Some(min) => format!("min_{min}"),
-                        None => format!("max_{o}"),
-                    });
-            let mut csv = format!("member,fitness,{}\n", names.collect::<Vec<_>>().join(","));
-            for l in &lines {
-                let o: Vec<String> = l.objectives.iter().map(f64::to_string).collect();
-                let _ = writeln!(csv, "{},{},{}", l.member, l.fitness, o.join(","));
-            }
-            write_atomic(&dir.join(files::FRONT), csv.as_bytes())?;
-            write_atomic(&dir.join(files::FRONT_GENOMES), jsonl(&lines)?.as_bytes())
-        }
-        Search::Neat(_) | Search::Novelty(_) => Ok(()),
-    }
+    search.strategy().write_outputs(dir, config)
 }
 
 /// `lines` as JSON lines.
-fn jsonl<T: Serialize>(lines: &[T]) -> Result<String> {
+pub(crate) fn jsonl<T: Serialize>(lines: &[T]) -> Result<String> {
     let mut out = String::new();
     for l in lines {
         let text = serde_json::to_string(l).map_err(|e| Error::Serialize {

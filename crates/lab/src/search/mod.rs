@@ -1,22 +1,33 @@
 //! The search a run holds: one [`Search`] value, whichever strategy the
 //! config's `[strategy]` section names, that the driver runs and the
 //! checkpoint stores. It is a [`Strategy`] by delegation to the one inside.
+//!
+//! Each strategy is one file here: its [`StrategyEntry`] (registered in
+//! [`STRATEGIES`]: the columns it adds to `generations.csv`, how it is built
+//! from the config, its header line) and its [`RunStrategy`] (its fields of
+//! each row and of the summary line, the files it writes with each
+//! checkpoint). The enum [`Search`] is the checkpoint's format: a variant
+//! per strategy.
 
 pub mod files;
+mod map_elites;
+mod neat;
+mod novelty;
+mod nsga2;
+
+use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 use vivae_neat::driver::{Batch, Evaluation, Strategy};
 use vivae_neat::hyperneat::{CPPN_INPUTS, leo_seeded_genomes};
-use vivae_neat::strategies::{
-    Cells, MapElites, MapElitesParams, NoveltySearch, Nsga2, Nsga2Params,
-};
+use vivae_neat::strategies::{MapElites, NoveltySearch, Nsga2};
 use vivae_neat::{
     BestEver, GenerationStats, Genome, GenomeSpec, NeatError, NeatParams, Population,
 };
 
 use crate::config::Config;
 use crate::config::es::ES_LEO_OUTPUT;
-use crate::config::strategy::{CellsKind, StrategyKind, objective_among};
+use crate::config::strategy::StrategyKind;
 use crate::error::Result;
 use crate::io::bad_input;
 
@@ -74,6 +85,14 @@ pub enum Search {
     Nsga2(Nsga2),
 }
 
+/// Every strategy a run can search with; `strategy.kind` names one.
+pub static STRATEGIES: [&StrategyEntry; 4] = [
+    &neat::STRATEGY,
+    &novelty::STRATEGY,
+    &map_elites::STRATEGY,
+    &nsga2::STRATEGY,
+];
+
 /// Calls `$f` on the strategy inside `$search`, whichever it is.
 macro_rules! each {
     ($search:expr, $s:ident => $f:expr) => {
@@ -86,6 +105,110 @@ macro_rules! each {
     };
 }
 
+/// The box (lower, upper) the behaviour descriptors lie in.
+pub type Bounds = (Vec<f64>, Vec<f64>);
+
+/// A strategy's registration: what a run needs of it before it exists.
+pub struct StrategyEntry {
+    /// Its `strategy.kind`.
+    pub kind: StrategyKind,
+    /// The columns it adds to `generations.csv` (after NEAT's), each with its
+    /// leading comma.
+    pub extra_columns: &'static str,
+    /// Generation 0 of it for `config` over genomes of shape `spec` whose
+    /// behaviour descriptors lie in `bounds`, from `init`'s genomes if given.
+    pub build: fn(&Config, GenomeSpec, Bounds, Option<&Population>) -> Result<Search>,
+    /// The line the run's header says of it (with its leading line break), or empty.
+    pub header_line: fn(&Config) -> String,
+}
+
+impl std::fmt::Debug for StrategyEntry {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("StrategyEntry")
+            .field("kind", &self.kind)
+            .finish()
+    }
+}
+
+/// The registration of strategy `kind`.
+pub fn entry(kind: StrategyKind) -> &'static StrategyEntry {
+    (STRATEGIES.iter().copied())
+        .find(|e| e.kind == kind)
+        .expect("every strategy kind is registered")
+}
+
+/// What a run needs of its search strategy beside ask and tell.
+pub trait RunStrategy {
+    /// Its registration.
+    fn entry(&self) -> &'static StrategyEntry;
+
+    /// The NEAT population inside, for strategies that breed one.
+    fn population(&self) -> Option<&Population> {
+        None
+    }
+
+    /// The genomes of the batch to evaluate next.
+    fn batch(&self) -> Vec<Genome>;
+
+    /// The batch's task fitnesses once told, in batch order.
+    fn fitnesses(&self, evaluations: &[Evaluation]) -> Vec<f64> {
+        evaluations.iter().map(Evaluation::finite_fitness).collect()
+    }
+
+    /// Its values of [`StrategyEntry::extra_columns`] for the generation just
+    /// told, each with its leading comma.
+    fn extra_fields(&self) -> String {
+        String::new()
+    }
+
+    /// Its `key=value` fields of the summary line, each with a leading space.
+    fn summary_fields(&self) -> String {
+        String::new()
+    }
+
+    /// Writes its own files into the run directory `dir` (with each checkpoint).
+    fn write_outputs(&self, _dir: &Path, _config: &Config) -> Result<()> {
+        Ok(())
+    }
+}
+
+/// The header line of the strategies that search on a behaviour descriptor.
+pub(crate) fn behaviour_line(c: &Config) -> String {
+    let s = &c.strategy;
+    format!(
+        "\n  strategy: {}, behaviour {}",
+        s.kind.name(),
+        s.behaviour.name()
+    )
+}
+
+/// Generation 0 of a NEAT population for `config`: `init`'s genomes (only
+/// they carry over: fitness, species and the champion were measured on
+/// another substrate and mean nothing here), or [`initial_population`].
+pub(crate) fn starting_population(
+    config: &Config,
+    spec: GenomeSpec,
+    init: Option<&Population>,
+) -> Result<Population> {
+    let (neat, seed) = (config.neat.clone(), config.experiment.seed);
+    match init {
+        Some(p) => Population::from_genomes(neat, spec, p.genomes().to_vec(), seed)
+            .map_err(|e| bad_input(format!("initial population: {e}"))),
+        None => initial_population(config, neat, spec, seed),
+    }
+}
+
+/// Refuses a starting population for a strategy that starts from minimal genomes.
+pub(crate) fn refuse_init(config: &Config, init: Option<&Population>) -> Result<()> {
+    match init {
+        None => Ok(()),
+        Some(_) => Err(bad_input(format!(
+            "experiment.init_population: a {} run starts from minimal genomes (only neat and novelty runs start from a population)",
+            config.strategy.kind.name()
+        ))),
+    }
+}
+
 impl Search {
     /// Generation 0 of the strategy of `config` over genomes of shape `spec`
     /// whose behaviour descriptors lie in the box `bounds` (lower, upper),
@@ -94,92 +217,36 @@ impl Search {
     pub fn new(
         config: &Config,
         spec: GenomeSpec,
-        bounds: (Vec<f64>, Vec<f64>),
+        bounds: Bounds,
         init: Option<&Population>,
     ) -> Result<Search> {
-        let (neat, seed) = (config.neat.clone(), config.experiment.seed);
-        let s = &config.strategy;
-        let population = || match init {
-            // Only the genomes carry over: fitness, species and the champion were
-            // measured on another substrate and mean nothing here.
-            Some(p) => {
-                Population::from_genomes(neat.clone(), spec.clone(), p.genomes().to_vec(), seed)
-                    .map_err(|e| bad_input(format!("initial population: {e}")))
-            }
-            None => initial_population(config, neat.clone(), spec.clone(), seed),
-        };
-        if init.is_some() && matches!(s.kind, StrategyKind::MapElites | StrategyKind::Nsga2) {
-            return Err(bad_input(format!(
-                "experiment.init_population: a {} run starts from minimal genomes (only neat and novelty runs start from a population)",
-                s.kind.name()
-            )));
-        }
-        let refused = |e: NeatError| bad_input(format!("strategy.{}: {e}", s.kind.name()));
-        Ok(match s.kind {
-            StrategyKind::Neat => Search::Neat(population()?),
-            StrategyKind::Novelty => Search::Novelty(
-                NoveltySearch::new(population()?, s.novelty.params()).map_err(refused)?,
-            ),
-            StrategyKind::MapElites => {
-                let map = MapElitesParams {
-                    batch_size: neat.population_size,
-                    crossover_probability: s.map_elites.crossover_probability,
-                    qd_offset: s.map_elites.qd_offset,
-                };
-                let cells = cells(config, bounds)?;
-                Search::MapElites(MapElites::new(neat, spec, map, cells, seed).map_err(refused)?)
-            }
-            StrategyKind::Nsga2 => {
-                let nsga = Nsga2Params {
-                    population_size: neat.population_size,
-                    objectives: s
-                        .nsga2
-                        .objectives
-                        .iter()
-                        .filter_map(|o| objective_among(o, crate::tasks::metric_names(config)))
-                        .collect(),
-                    crossover_probability: s.nsga2.crossover_probability,
-                };
-                Search::Nsga2(Nsga2::new(neat, spec, nsga, seed).map_err(refused)?)
-            }
-        })
+        (entry(config.strategy.kind).build)(config, spec, bounds, init)
+    }
+
+    /// The strategy inside, as a run uses it.
+    pub fn strategy(&self) -> &dyn RunStrategy {
+        each!(self, s => s)
     }
 
     /// Which strategy this is.
     pub fn kind(&self) -> StrategyKind {
-        match self {
-            Search::Neat(_) => StrategyKind::Neat,
-            Search::Novelty(_) => StrategyKind::Novelty,
-            Search::MapElites(_) => StrategyKind::MapElites,
-            Search::Nsga2(_) => StrategyKind::Nsga2,
-        }
+        self.strategy().entry().kind
     }
 
     /// The NEAT population, for NEAT and novelty search.
     pub fn population(&self) -> Option<&Population> {
-        match self {
-            Search::Neat(p) => Some(p),
-            Search::Novelty(n) => Some(n.population()),
-            _ => None,
-        }
+        self.strategy().population()
     }
 
     /// The genomes of the batch to evaluate next.
     pub fn batch(&self) -> Vec<Genome> {
-        match self {
-            Search::Neat(p) => p.genomes().to_vec(),
-            Search::Novelty(n) => n.population().genomes().to_vec(),
-            other => other.clone().ask().genomes.to_vec(),
-        }
+        self.strategy().batch()
     }
 
     /// The batch's task fitnesses once told, in batch order (NEAT's as its
     /// population holds them; novelty search's population holds novelty).
     pub fn fitnesses(&self, evaluations: &[Evaluation]) -> Vec<f64> {
-        match self {
-            Search::Neat(p) => p.fitnesses(),
-            _ => evaluations.iter().map(Evaluation::finite_fitness).collect(),
-        }
+        self.strategy().fitnesses(evaluations)
     }
 
     /// `[species id, members]` of each species (none without species).
@@ -190,32 +257,6 @@ impl Search {
                 .map(|s| (s.id, s.members.len()))
                 .collect()
         })
-    }
-}
-
-/// The MAP-Elites cells of `config` over the descriptor box `(lower, upper)`.
-fn cells(config: &Config, (lower, upper): (Vec<f64>, Vec<f64>)) -> Result<Cells> {
-    let s = &config.strategy;
-    let m = &s.map_elites;
-    let dims = lower.len();
-    let bins = m.bins_for(dims);
-    let refused = |e: NeatError| bad_input(format!("strategy.map_elites: {e}"));
-    match m.cells {
-        CellsKind::Grid if bins.len() != dims => Err(bad_input(format!(
-            "strategy.map_elites.bins = {:?}: behaviour {} has {dims} dimensions; give one count per dimension or one for all",
-            m.bins,
-            s.behaviour.name()
-        ))),
-        CellsKind::Grid => Cells::grid(lower, upper, bins).map_err(refused),
-        CellsKind::Cvt => Cells::cvt(
-            &lower,
-            &upper,
-            m.cvt_cells,
-            m.cvt_samples,
-            m.cvt_iterations,
-            config.experiment.seed,
-        )
-        .map_err(refused),
     }
 }
 

@@ -1,0 +1,129 @@
+//! MAP-Elites (Mouret & Clune 2015): a grid or CVT archive of elites over the
+//! behaviour box. It adds the archive's fill, coverage, QD score and best to
+//! `generations.csv`, and writes the archive (`archive.csv`, `archive.jsonl`)
+//! with each checkpoint.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use vivae_neat::driver::Strategy;
+use vivae_neat::strategies::{Cells, MapElites, MapElitesParams};
+use vivae_neat::{Genome, GenomeSpec, NeatError, Population};
+
+use crate::config::Config;
+use crate::config::strategy::{CellsKind, StrategyKind};
+use crate::error::Result;
+use crate::io::{bad_input, write_atomic};
+use crate::rundir::files;
+use crate::search::files::{ArchiveLine, jsonl};
+use crate::search::{Bounds, RunStrategy, Search, StrategyEntry, behaviour_line, refuse_init};
+
+/// MAP-Elites' registration.
+pub static STRATEGY: StrategyEntry = StrategyEntry {
+    kind: StrategyKind::MapElites,
+    extra_columns: ",filled_cells,coverage,qd_score,archive_best",
+    build,
+    header_line: behaviour_line,
+};
+
+fn build(
+    config: &Config,
+    spec: GenomeSpec,
+    bounds: Bounds,
+    init: Option<&Population>,
+) -> Result<Search> {
+    refuse_init(config, init)?;
+    let neat = config.neat.clone();
+    let m = &config.strategy.map_elites;
+    let map = MapElitesParams {
+        batch_size: neat.population_size,
+        crossover_probability: m.crossover_probability,
+        qd_offset: m.qd_offset,
+    };
+    let cells = cells(config, bounds)?;
+    let refused = |e: NeatError| bad_input(format!("strategy.map-elites: {e}"));
+    let seed = config.experiment.seed;
+    Ok(Search::MapElites(
+        MapElites::new(neat, spec, map, cells, seed).map_err(refused)?,
+    ))
+}
+
+/// The MAP-Elites cells of `config` over the descriptor box `(lower, upper)`.
+fn cells(config: &Config, (lower, upper): Bounds) -> Result<Cells> {
+    let s = &config.strategy;
+    let m = &s.map_elites;
+    let dims = lower.len();
+    let bins = m.bins_for(dims);
+    let refused = |e: NeatError| bad_input(format!("strategy.map_elites: {e}"));
+    match m.cells {
+        CellsKind::Grid if bins.len() != dims => Err(bad_input(format!(
+            "strategy.map_elites.bins = {:?}: behaviour {} has {dims} dimensions; give one count per dimension or one for all",
+            m.bins,
+            s.behaviour.name()
+        ))),
+        CellsKind::Grid => Cells::grid(lower, upper, bins).map_err(refused),
+        CellsKind::Cvt => Cells::cvt(
+            &lower,
+            &upper,
+            m.cvt_cells,
+            m.cvt_samples,
+            m.cvt_iterations,
+            config.experiment.seed,
+        )
+        .map_err(refused),
+    }
+}
+
+impl RunStrategy for MapElites {
+    fn entry(&self) -> &'static StrategyEntry {
+        &STRATEGY
+    }
+
+    fn batch(&self) -> Vec<Genome> {
+        self.clone().ask().genomes.to_vec()
+    }
+
+    fn extra_fields(&self) -> String {
+        let s = self.archive_stats();
+        let best = s.best.map_or_else(String::new, |b| b.to_string());
+        format!(",{},{},{},{best}", s.filled, s.coverage, s.qd_score)
+    }
+
+    fn summary_fields(&self) -> String {
+        let s = self.archive_stats();
+        format!(
+            " filled_cells={} coverage={:.4} qd_score={:.3}",
+            s.filled, s.coverage, s.qd_score
+        )
+    }
+
+    /// The archive: `archive.csv` (cells, behaviour, fitness, generation)
+    /// and `archive.jsonl` (with genomes).
+    fn write_outputs(&self, dir: &Path, config: &Config) -> Result<()> {
+        let lines: Vec<ArchiveLine> = (self.elites())
+            .map(|(cell, e)| ArchiveLine {
+                cell,
+                fitness: e.fitness,
+                generation: e.generation + 1,
+                behaviour: e.behaviour.clone(),
+                genome: e.genome.clone(),
+            })
+            .collect();
+        let dims = self.cells().dims();
+        let names = config.strategy.behaviour.coordinate_names(dims);
+        let mut csv = format!("cell,{},fitness,generation\n", names.join(","));
+        for l in &lines {
+            let b: Vec<String> = l.behaviour.iter().map(f64::to_string).collect();
+            let _ = writeln!(
+                csv,
+                "{},{},{},{}",
+                l.cell,
+                b.join(","),
+                l.fitness,
+                l.generation
+            );
+        }
+        write_atomic(&dir.join(files::ARCHIVE), csv.as_bytes())?;
+        write_atomic(&dir.join(files::ARCHIVE_GENOMES), jsonl(&lines)?.as_bytes())
+    }
+}

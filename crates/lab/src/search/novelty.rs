@@ -1,0 +1,57 @@
+//! Novelty search (Lehman & Stanley 2011) over a NEAT population: it adds the
+//! archive's size and the novelty threshold to `generations.csv`.
+
+use vivae_neat::strategies::NoveltySearch;
+use vivae_neat::{Genome, GenomeSpec, NeatError, Population};
+
+use crate::config::Config;
+use crate::config::strategy::StrategyKind;
+use crate::error::Result;
+use crate::io::bad_input;
+use crate::search::{
+    Bounds, RunStrategy, Search, StrategyEntry, behaviour_line, starting_population,
+};
+
+/// Novelty search's registration.
+pub static STRATEGY: StrategyEntry = StrategyEntry {
+    kind: StrategyKind::Novelty,
+    extra_columns: ",archive_size,novelty_threshold",
+    build,
+    header_line: behaviour_line,
+};
+
+fn build(
+    config: &Config,
+    spec: GenomeSpec,
+    _: Bounds,
+    init: Option<&Population>,
+) -> Result<Search> {
+    let population = starting_population(config, spec, init)?;
+    let refused = |e: NeatError| bad_input(format!("strategy.novelty: {e}"));
+    let params = config.strategy.novelty.params();
+    Ok(Search::Novelty(
+        NoveltySearch::new(population, params).map_err(refused)?,
+    ))
+}
+
+impl RunStrategy for NoveltySearch {
+    fn entry(&self) -> &'static StrategyEntry {
+        &STRATEGY
+    }
+
+    fn population(&self) -> Option<&Population> {
+        Some(NoveltySearch::population(self))
+    }
+
+    fn batch(&self) -> Vec<Genome> {
+        NoveltySearch::population(self).genomes().to_vec()
+    }
+
+    fn extra_fields(&self) -> String {
+        format!(",{},{}", self.archive().len(), self.threshold())
+    }
+
+    fn summary_fields(&self) -> String {
+        format!(" archive_size={}", self.archive().len())
+    }
+}

@@ -1,0 +1,98 @@
+//! NSGA-II (Deb et al. 2002) over fitness and the task's metrics: it adds the
+//! Pareto front's size to `generations.csv` and writes the front
+//! (`front.csv`, `front.jsonl`) with each checkpoint.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use vivae_neat::driver::Strategy;
+use vivae_neat::strategies::{Nsga2, Nsga2Params};
+use vivae_neat::{Genome, GenomeSpec, NeatError, Population};
+
+use crate::config::Config;
+use crate::config::strategy::{StrategyKind, objective_among};
+use crate::error::Result;
+use crate::io::{bad_input, write_atomic};
+use crate::rundir::files;
+use crate::search::files::{FrontLine, jsonl};
+use crate::search::{Bounds, RunStrategy, Search, StrategyEntry, refuse_init};
+
+/// NSGA-II's registration.
+pub static STRATEGY: StrategyEntry = StrategyEntry {
+    kind: StrategyKind::Nsga2,
+    extra_columns: ",front_size",
+    build,
+    header_line: |c| {
+        format!(
+            "\n  strategy: nsga2, objectives {}",
+            c.strategy.nsga2.objectives.join(", ")
+        )
+    },
+};
+
+fn build(
+    config: &Config,
+    spec: GenomeSpec,
+    _: Bounds,
+    init: Option<&Population>,
+) -> Result<Search> {
+    refuse_init(config, init)?;
+    let neat = config.neat.clone();
+    let s = &config.strategy.nsga2;
+    let nsga = Nsga2Params {
+        population_size: neat.population_size,
+        objectives: (s.objectives.iter())
+            .filter_map(|o| objective_among(o, crate::tasks::metric_names(config)))
+            .collect(),
+        crossover_probability: s.crossover_probability,
+    };
+    let refused = |e: NeatError| bad_input(format!("strategy.nsga2: {e}"));
+    let seed = config.experiment.seed;
+    Ok(Search::Nsga2(
+        Nsga2::new(neat, spec, nsga, seed).map_err(refused)?,
+    ))
+}
+
+impl RunStrategy for Nsga2 {
+    fn entry(&self) -> &'static StrategyEntry {
+        &STRATEGY
+    }
+
+    fn batch(&self) -> Vec<Genome> {
+        self.clone().ask().genomes.to_vec()
+    }
+
+    fn extra_fields(&self) -> String {
+        format!(",{}", self.pareto_front().len())
+    }
+
+    fn summary_fields(&self) -> String {
+        format!(" front_size={}", self.pareto_front().len())
+    }
+
+    /// The Pareto front, fittest first: `front.csv` (objectives) and
+    /// `front.jsonl` (with genomes).
+    fn write_outputs(&self, dir: &Path, config: &Config) -> Result<()> {
+        let mut front = self.pareto_front();
+        front.sort_by(|a, b| b.2.total_cmp(&a.2));
+        let lines: Vec<FrontLine> = (front.into_iter().enumerate())
+            .map(|(member, (g, objectives, fitness))| FrontLine {
+                member,
+                fitness,
+                objectives,
+                genome: g.clone(),
+            })
+            .collect();
+        let names = (config.strategy.nsga2.objectives.iter()).map(|o| match o.strip_prefix('-') {
+            Some(min) => format!("min_{min}"),
+            None => format!("max_{o}"),
+        });
+        let mut csv = format!("member,fitness,{}\n", names.collect::<Vec<_>>().join(","));
+        for l in &lines {
+            let o: Vec<String> = l.objectives.iter().map(f64::to_string).collect();
+            let _ = writeln!(csv, "{},{},{}", l.member, l.fitness, o.join(","));
+        }
+        write_atomic(&dir.join(files::FRONT), csv.as_bytes())?;
+        write_atomic(&dir.join(files::FRONT_GENOMES), jsonl(&lines)?.as_bytes())
+    }
+}
