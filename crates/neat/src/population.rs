@@ -16,7 +16,7 @@ use crate::innovation::InnovationTracker;
 use crate::mutation::mutate;
 use crate::params::NeatParams;
 use crate::species::Species;
-use crate::stats;
+use crate::stats::{self, argmax};
 
 /// The best genome seen so far in the run (see [`Population::best_ever`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -27,6 +27,27 @@ pub struct BestEver {
     pub fitness: f64,
     /// The generation in which it was evaluated.
     pub generation: u32,
+}
+
+impl BestEver {
+    /// Replaces `best` with the batch's first fittest genome (generation
+    /// `generation`) when it beats it; `fitness` has one value per genome.
+    pub(crate) fn offer(
+        best: &mut Option<BestEver>,
+        genomes: &[Genome],
+        fitness: &[f64],
+        generation: u32,
+    ) {
+        if let Some(i) = argmax(fitness)
+            && best.as_ref().is_none_or(|b| fitness[i] > b.fitness)
+        {
+            *best = Some(BestEver {
+                genome: genomes[i].clone(),
+                fitness: fitness[i],
+                generation,
+            });
+        }
+    }
 }
 
 /// Summary statistics of the current generation.
@@ -295,18 +316,12 @@ impl Population {
                 *f = 0.0;
             }
         }
-        if let Some(i) = argmax(&fitness)
-            && self
-                .best_ever
-                .as_ref()
-                .is_none_or(|b| fitness[i] > b.fitness)
-        {
-            self.best_ever = Some(BestEver {
-                genome: self.genomes[i].clone(),
-                fitness: fitness[i],
-                generation: self.generation,
-            });
-        }
+        BestEver::offer(
+            &mut self.best_ever,
+            &self.genomes,
+            &fitness,
+            self.generation,
+        );
         self.fitness = Some(fitness);
     }
 
@@ -964,17 +979,6 @@ fn check_species_counter(species: &[Species], next_species_id: u32) -> Result<()
         });
     }
     Ok(())
-}
-
-/// Index of the first maximum.
-fn argmax(xs: &[f64]) -> Option<usize> {
-    let mut best: Option<usize> = None;
-    for (i, &x) in xs.iter().enumerate() {
-        if best.is_none_or(|b| x > xs[b]) {
-            best = Some(i);
-        }
-    }
-    best
 }
 
 /// Splits `total` offspring among species in proportion to `shares` (largest remainder,

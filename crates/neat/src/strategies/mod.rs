@@ -12,12 +12,35 @@
 //!
 //! Each is its own checkpoint: serialised and restored it continues
 //! bit-identically, and restoring checks what it reads.
+//!
+//! ## Layout (archives, breeding, told state), as pyribs separates them
+//!
+//! * `novelty.rs`, `map_elites.rs`, `nsga2.rs`: one file per strategy, its
+//!   settings, its serialised state (the checkpoint's fields, in order), and
+//!   how it breeds the next batch (ask/tell/prepare).
+//! * [`archive`]: what the strategies keep, apart from breeding, one file
+//!   each: MAP-Elites' cells ([`archive::grid`], [`archive::cvt`]) and
+//!   elites ([`archive::elites`]), NSGA-II's Pareto ranking
+//!   ([`archive::pareto`]), novelty search's archive and threshold
+//!   ([`archive::novelty`]) with its k-nearest-neighbour search ([`knn`]).
+//! * `told.rs`: the told-batch state all of them share (the batch, its
+//!   generation, what was told of it, the best ever), borrowed from each
+//!   strategy's own fields; it answers `champion`, `best_ever` and `stats`
+//!   and records a told batch the same way for all.
+//! * This file: NEAT's breeding (`Breeding`: crossover + mutation over one
+//!   innovation history) and the shared checks.
+//!
+//! The old paths still work: `strategies::knn`, and every archive type is
+//! also re-exported from its strategy's module (`map_elites::Cells`,
+//! `nsga2::non_dominated_fronts`, `novelty::NoveltyParams`, ...).
 
-pub mod knn;
+pub mod archive;
 pub mod map_elites;
 pub mod novelty;
 pub mod nsga2;
+mod told;
 
+pub use archive::knn;
 pub use map_elites::{Cells, Elite, MapElites, MapElitesParams, MapElitesStats};
 pub use novelty::{NoveltyParams, NoveltySearch};
 pub use nsga2::{Measure, Nsga2, Nsga2Params, Objective};
@@ -30,7 +53,6 @@ use crate::genome::{Genome, GenomeSpec};
 use crate::innovation::InnovationTracker;
 use crate::mutation::mutate;
 use crate::params::NeatParams;
-use crate::population::BestEver;
 
 /// What NEAT's breeding needs besides the parents: shared by the strategies.
 pub(crate) struct Breeding<'a, R: Rng + ?Sized> {
@@ -86,28 +108,5 @@ pub(crate) fn invalid(
         field,
         value: value.to_string(),
         reason,
-    }
-}
-
-/// Index of the first maximum.
-pub(crate) fn argmax(xs: &[f64]) -> Option<usize> {
-    (0..xs.len()).reduce(|a, b| if xs[b] > xs[a] { b } else { a })
-}
-
-/// Replaces `best` with the batch's first fittest genome when it beats it.
-pub(crate) fn record_best(
-    best: &mut Option<BestEver>,
-    genomes: &[Genome],
-    fitness: &[f64],
-    generation: u32,
-) {
-    if let Some(i) = argmax(fitness)
-        && best.as_ref().is_none_or(|b| fitness[i] > b.fitness)
-    {
-        *best = Some(BestEver {
-            genome: genomes[i].clone(),
-            fitness: fitness[i],
-            generation,
-        });
     }
 }
