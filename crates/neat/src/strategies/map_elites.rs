@@ -7,7 +7,7 @@
 //! crossover (with [`MapElitesParams::crossover_probability`]) and mutation
 //! over one innovation history; generation 0 is a batch of minimal genomes.
 
-use rand::{RngExt, SeedableRng};
+use rand::RngExt;
 use rand_pcg::Pcg64;
 use serde::{Deserialize, Serialize};
 
@@ -15,14 +15,14 @@ pub use super::archive::cvt::MAX_SAMPLES;
 pub use super::archive::elites::{Elite, MapElitesStats, insert};
 use super::archive::elites::{archive_stats, check_archive};
 pub use super::archive::grid::{Cells, MAX_CELLS};
-use super::told::{self, ToldBatch};
-use super::{Breeding, check_count, invalid};
+use super::told::{self, ToldBatch, told_batch_accessors};
+use super::{Breeding, check_count, first_batch, invalid};
 use crate::driver::{Batch, Evaluation, Strategy, finite_or_zero};
 use crate::error::NeatError;
 use crate::genome::{Genome, GenomeSpec};
 use crate::innovation::InnovationTracker;
 use crate::params::NeatParams;
-use crate::population::{BestEver, GenerationStats};
+use crate::population::BestEver;
 
 /// MAP-Elites' own settings.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -111,12 +111,7 @@ impl TryFrom<State> for MapElites {
 impl State {
     /// The batch, its generation, what was told of it and the best ever.
     fn told_batch(&self) -> ToldBatch<'_, Told> {
-        ToldBatch {
-            generation: self.generation,
-            genomes: &self.batch,
-            told: &self.told,
-            best: &self.best,
-        }
+        ToldBatch::new(self.generation, &self.batch, &self.told, &self.best)
     }
 }
 
@@ -149,15 +144,7 @@ impl MapElites {
         spec.validate()?;
         check_params(&map)?;
         cells.check()?;
-        let mut rng = Pcg64::seed_from_u64(seed);
-        let mut tracker = InnovationTracker::new((spec.inputs + spec.outputs) as u32);
-        let batch = Breeding {
-            spec: &spec,
-            params: &params,
-            tracker: &mut tracker,
-            rng: &mut rng,
-        }
-        .minimal(map.batch_size);
+        let (rng, tracker, batch) = first_batch(&spec, &params, seed, map.batch_size);
         Ok(MapElites(State {
             archive: vec![None; cells.len()],
             spec,
@@ -255,21 +242,7 @@ impl Strategy for MapElites {
         s.generation += 1;
     }
 
-    fn generation(&self) -> u32 {
-        self.0.generation
-    }
-
-    fn champion(&self) -> Option<(&Genome, f64)> {
-        self.0.told_batch().champion()
-    }
-
-    fn best_ever(&self) -> Option<&BestEver> {
-        self.0.told_batch().best_ever()
-    }
-
-    fn stats(&self) -> GenerationStats {
-        self.0.told_batch().stats()
-    }
+    told_batch_accessors!();
 }
 
 #[cfg(test)]

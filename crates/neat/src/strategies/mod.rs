@@ -45,7 +45,8 @@ pub use map_elites::{Cells, Elite, MapElites, MapElitesParams, MapElitesStats};
 pub use novelty::{NoveltyParams, NoveltySearch};
 pub use nsga2::{Measure, Nsga2, Nsga2Params, Objective};
 
-use rand::{Rng, RngExt};
+use rand::{Rng, RngExt, SeedableRng};
+use rand_pcg::Pcg64;
 
 use crate::crossover::crossover;
 use crate::error::NeatError;
@@ -87,6 +88,27 @@ impl<R: Rng + ?Sized> Breeding<'_, R> {
             .map(|_| Genome::minimal(self.spec, self.params, self.tracker, self.rng))
             .collect()
     }
+}
+
+/// Generation 0 of a strategy breeding its own batches: `n` minimal
+/// genomes drawn from a `Pcg64` seeded with `seed`, returned with that
+/// generator and the innovation history they started.
+pub(crate) fn first_batch(
+    spec: &GenomeSpec,
+    params: &NeatParams,
+    seed: u64,
+    n: usize,
+) -> (Pcg64, InnovationTracker, Vec<Genome>) {
+    let mut rng = Pcg64::seed_from_u64(seed);
+    let mut tracker = InnovationTracker::new((spec.inputs + spec.outputs) as u32);
+    let batch = Breeding {
+        spec,
+        params,
+        tracker: &mut tracker,
+        rng: &mut rng,
+    }
+    .minimal(n);
+    (rng, tracker, batch)
 }
 
 /// One evaluation per genome, or [`NeatError::FitnessCount`].

@@ -17,11 +17,10 @@ use serde::{Deserialize, Serialize};
 
 use super::archive::novelty::NoveltyArchive;
 pub use super::archive::novelty::NoveltyParams;
-use super::told::{self, ToldBatch};
+use super::told::{self, ToldBatch, told_batch_accessors};
 use super::{check_count, invalid};
 use crate::driver::{Batch, Evaluation, Strategy, finite_or_zero};
 use crate::error::NeatError;
-use crate::genome::Genome;
 use crate::population::{BestEver, GenerationStats, Population};
 
 /// What the generation just told measured.
@@ -92,12 +91,8 @@ impl State {
     /// The population's genomes, their generation, what was told of them
     /// and the best ever.
     fn told_batch(&self) -> ToldBatch<'_, Told> {
-        ToldBatch {
-            generation: self.population.generation(),
-            genomes: self.population.genomes(),
-            told: &self.told,
-            best: &self.best,
-        }
+        let p = &self.population;
+        ToldBatch::new(p.generation(), p.genomes(), &self.told, &self.best)
     }
 
     /// The archive, borrowed.
@@ -230,17 +225,7 @@ impl Strategy for NoveltySearch {
         }
     }
 
-    fn generation(&self) -> u32 {
-        self.0.population.generation()
-    }
-
-    fn champion(&self) -> Option<(&Genome, f64)> {
-        self.0.told_batch().champion()
-    }
-
-    fn best_ever(&self) -> Option<&BestEver> {
-        self.0.told_batch().best_ever()
-    }
+    told_batch_accessors!(without_stats);
 
     fn stats(&self) -> GenerationStats {
         let p = &self.0.population;

@@ -13,21 +13,21 @@
 //! its metrics, each maximised or minimised ([`Objective`]). The fitness the
 //! task reports stays what the driver sees (champion, best ever, target).
 
-use rand::{RngExt, SeedableRng};
+use rand::RngExt;
 use rand_pcg::Pcg64;
 use serde::{Deserialize, Serialize};
 
 pub use super::archive::pareto::{
     crowding_distances, dominates, fast_non_dominated_sort, non_dominated_fronts,
 };
-use super::told::{self, ToldBatch};
-use super::{Breeding, check_count, invalid};
+use super::told::{self, ToldBatch, told_batch_accessors};
+use super::{Breeding, check_count, first_batch, invalid};
 use crate::driver::{Batch, Evaluation, Strategy};
 use crate::error::NeatError;
 use crate::genome::{Genome, GenomeSpec};
 use crate::innovation::InnovationTracker;
 use crate::params::NeatParams;
-use crate::population::{BestEver, GenerationStats};
+use crate::population::BestEver;
 
 /// Which measurement of an [`Evaluation`] an objective is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -171,12 +171,7 @@ impl TryFrom<State> for Nsga2 {
 impl State {
     /// The batch, its generation, what was told of it and the best ever.
     fn told_batch(&self) -> ToldBatch<'_, Told> {
-        ToldBatch {
-            generation: self.generation,
-            genomes: &self.batch,
-            told: &self.told,
-            best: &self.best,
-        }
+        ToldBatch::new(self.generation, &self.batch, &self.told, &self.best)
     }
 }
 
@@ -192,15 +187,7 @@ impl Nsga2 {
         params.validate()?;
         spec.validate()?;
         nsga.validate()?;
-        let mut rng = Pcg64::seed_from_u64(seed);
-        let mut tracker = InnovationTracker::new((spec.inputs + spec.outputs) as u32);
-        let batch = Breeding {
-            spec: &spec,
-            params: &params,
-            tracker: &mut tracker,
-            rng: &mut rng,
-        }
-        .minimal(nsga.population_size);
+        let (rng, tracker, batch) = first_batch(&spec, &params, seed, nsga.population_size);
         Ok(Nsga2(State {
             spec,
             params,
@@ -364,21 +351,7 @@ impl Strategy for Nsga2 {
         s.generation += 1;
     }
 
-    fn generation(&self) -> u32 {
-        self.0.generation
-    }
-
-    fn champion(&self) -> Option<(&Genome, f64)> {
-        self.0.told_batch().champion()
-    }
-
-    fn best_ever(&self) -> Option<&BestEver> {
-        self.0.told_batch().best_ever()
-    }
-
-    fn stats(&self) -> GenerationStats {
-        self.0.told_batch().stats()
-    }
+    told_batch_accessors!();
 }
 
 #[cfg(test)]

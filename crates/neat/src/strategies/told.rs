@@ -37,6 +37,21 @@ pub(crate) struct ToldBatch<'a, T> {
 }
 
 impl<'a, T: Told> ToldBatch<'a, T> {
+    /// Borrows the four parts.
+    pub fn new(
+        generation: u32,
+        genomes: &'a [Genome],
+        told: &'a Option<T>,
+        best: &'a Option<BestEver>,
+    ) -> Self {
+        ToldBatch {
+            generation,
+            genomes,
+            told,
+            best,
+        }
+    }
+
     /// The batch's reported fitness (empty before `tell`).
     pub fn fitness(&self) -> &'a [f64] {
         self.told.as_ref().map_or(&[], |t| t.fitness())
@@ -93,3 +108,30 @@ pub(crate) fn record<T: Told>(
     BestEver::offer(best, genomes, told.fitness(), generation);
     *slot = Some(told);
 }
+
+/// The [`Strategy`](crate::driver::Strategy) accessors of a strategy
+/// `Self(State)` whose state has a `told_batch()`: `generation`, `champion`,
+/// `best_ever` and (unless called with `without_stats`) `stats`.
+macro_rules! told_batch_accessors {
+    () => {
+        $crate::strategies::told::told_batch_accessors!(without_stats);
+
+        fn stats(&self) -> $crate::population::GenerationStats {
+            self.0.told_batch().stats()
+        }
+    };
+    (without_stats) => {
+        fn generation(&self) -> u32 {
+            self.0.told_batch().generation
+        }
+
+        fn champion(&self) -> Option<(&$crate::genome::Genome, f64)> {
+            self.0.told_batch().champion()
+        }
+
+        fn best_ever(&self) -> Option<&$crate::population::BestEver> {
+            self.0.told_batch().best_ever()
+        }
+    };
+}
+pub(crate) use told_batch_accessors;
