@@ -1,9 +1,9 @@
 //! The population: evaluation, speciation, fitness sharing and reproduction.
 //!
 //! One file per job: this one holds the state and its accessors and records
-//! fitness; [`reproduce`] makes the next generation, [`speciate`] sorts
-//! genomes into species, [`restore`] reads a checkpoint back and checks it,
-//! [`record`] has what a run keeps of its genomes (best ever, statistics).
+//! fitness; `reproduce.rs` makes the next generation, `speciate.rs` sorts
+//! genomes into species, `restore.rs` reads a checkpoint back and checks it,
+//! `record.rs` has what a run keeps of its genomes (best ever, statistics).
 
 mod record;
 mod reproduce;

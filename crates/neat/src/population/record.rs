@@ -5,7 +5,7 @@ use serde::{Deserialize, Serialize};
 use crate::genome::Genome;
 use crate::stats::{self, argmax};
 
-/// The best genome seen so far in the run (see [`Population::best_ever`]).
+/// The best genome seen so far in the run (see [`Population::best_ever`](super::Population::best_ever)).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct BestEver {
     /// The genome.
