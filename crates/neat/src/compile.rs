@@ -351,6 +351,16 @@ impl Adjacency {
     }
 }
 
+/// Panics unless a network of `num_inputs` inputs and `num_outputs` outputs
+/// is given `inputs` values and room for `outputs` (the [`Network`] contract).
+///
+/// [`Network`]: crate::network::Network
+#[inline(always)]
+pub(crate) fn assert_io(inputs: usize, outputs: usize, num_inputs: usize, num_outputs: usize) {
+    assert_eq!(inputs, num_inputs, "wrong number of inputs");
+    assert_eq!(outputs, num_outputs, "wrong number of outputs");
+}
+
 /// Incoming links of node `k` in the compressed sparse layout every network
 /// of the crate uses (node k's links at `conn_start[k]..conn_start[k + 1]`):
 /// their source slots and weights.

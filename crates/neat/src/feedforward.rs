@@ -1,7 +1,7 @@
 //! The acyclic phenotype (the CPPN): flat arrays in topological order, one pass.
 
 use crate::activation::Activation;
-use crate::compile::{Plan, links_of, weighted_sum};
+use crate::compile::{Plan, assert_io, links_of, weighted_sum};
 use crate::genome::Genome;
 use crate::network::Network;
 
@@ -79,11 +79,11 @@ impl FeedForwardNetwork {
         outputs: &mut [[f64; L]],
         values: &mut Vec<[f64; L]>,
     ) {
-        assert_eq!(inputs.len(), self.num_inputs, "wrong number of inputs");
-        assert_eq!(
+        assert_io(
+            inputs.len(),
             outputs.len(),
+            self.num_inputs,
             self.output_slots.len(),
-            "wrong number of outputs"
         );
         let n_in = self.num_inputs;
         values.clear();
@@ -128,11 +128,11 @@ impl Network for FeedForwardNetwork {
 
     #[inline]
     fn activate(&mut self, inputs: &[f64], outputs: &mut [f64]) {
-        assert_eq!(inputs.len(), self.num_inputs, "wrong number of inputs");
-        assert_eq!(
+        assert_io(
+            inputs.len(),
             outputs.len(),
+            self.num_inputs,
             self.output_slots.len(),
-            "wrong number of outputs"
         );
         let n_in = self.num_inputs;
         self.values[..n_in].copy_from_slice(inputs);

@@ -3,7 +3,7 @@
 use std::collections::BTreeMap;
 
 use crate::activation::Activation;
-use crate::compile::{ids_of, links_of, weighted_sum};
+use crate::compile::{assert_io, ids_of, links_of, weighted_sum};
 use crate::genome::{Genome, NodeKind};
 use crate::network::Network;
 
@@ -75,11 +75,11 @@ impl Network for RecurrentNetwork {
     }
 
     fn activate(&mut self, inputs: &[f64], outputs: &mut [f64]) {
-        assert_eq!(inputs.len(), self.num_inputs, "wrong number of inputs");
-        assert_eq!(
+        assert_io(
+            inputs.len(),
             outputs.len(),
+            self.num_inputs,
             self.output_slots.len(),
-            "wrong number of outputs"
         );
         let n_in = self.num_inputs;
         self.state[..n_in].copy_from_slice(inputs);

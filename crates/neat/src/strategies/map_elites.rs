@@ -232,13 +232,13 @@ impl Strategy for MapElites {
             rng: &mut s.rng,
         };
         s.batch.clear();
-        for _ in 0..s.map.batch_size {
-            let a = occupied[breeding.rng.random_range(0..occupied.len())];
-            let b = (breeding.rng.random_bool(s.map.crossover_probability))
-                .then(|| occupied[breeding.rng.random_range(0..occupied.len())]);
-            let child = breeding.child((&a.genome, a.fitness), b.map(|b| (&b.genome, b.fitness)));
-            s.batch.push(child);
-        }
+        // Elites drawn uniformly.
+        let pick = |rng: &mut Pcg64| {
+            let e = occupied[rng.random_range(0..occupied.len())];
+            (&e.genome, e.fitness)
+        };
+        let (n, crossover) = (s.map.batch_size, s.map.crossover_probability);
+        breeding.children(n, crossover, &mut s.batch, pick);
         s.generation += 1;
     }
 

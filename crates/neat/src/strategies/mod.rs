@@ -82,6 +82,23 @@ impl<R: Rng + ?Sized> Breeding<'_, R> {
         child
     }
 
+    /// `n` children pushed to `batch`: each of a parent drawn by `pick`
+    /// (with the fitness crossover compares), crossed with a second one drawn
+    /// the same way with probability `crossover`.
+    pub fn children<'g>(
+        &mut self,
+        n: usize,
+        crossover: f64,
+        batch: &mut Vec<Genome>,
+        mut pick: impl FnMut(&mut R) -> (&'g Genome, f64),
+    ) {
+        for _ in 0..n {
+            let a = pick(self.rng);
+            let b = self.rng.random_bool(crossover).then(|| pick(self.rng));
+            batch.push(self.child(a, b));
+        }
+    }
+
     /// `n` minimal genomes (NEAT's generation 0).
     pub fn minimal(&mut self, n: usize) -> Vec<Genome> {
         (0..n)

@@ -339,15 +339,13 @@ impl Strategy for Nsga2 {
                 ranks[a] < ranks[b] || (ranks[a] == ranks[b] && crowding[a] >= crowding[b]);
             if a_wins { a } else { b }
         };
-        for _ in 0..s.nsga.population_size {
-            let a = tournament(&mut *breeding.rng);
-            let b = (breeding.rng.random_bool(s.nsga.crossover_probability))
-                .then(|| tournament(&mut *breeding.rng));
-            // The better ranked parent counts as the fitter in crossover.
-            let parent = |i: usize| (&parents[i].genome, -(ranks[i] as f64));
-            let child = breeding.child(parent(a), b.map(parent));
-            s.batch.push(child);
-        }
+        // The better ranked parent counts as the fitter in crossover.
+        let pick = |rng: &mut Pcg64| {
+            let i = tournament(rng);
+            (&parents[i].genome, -(ranks[i] as f64))
+        };
+        let (n, crossover) = (s.nsga.population_size, s.nsga.crossover_probability);
+        breeding.children(n, crossover, &mut s.batch, pick);
         s.generation += 1;
     }
 
