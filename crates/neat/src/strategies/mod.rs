@@ -24,11 +24,15 @@
 //!   ([`archive::pareto`]), novelty search's archive and threshold
 //!   ([`archive::novelty`]) with its k-nearest-neighbour search ([`knn`]).
 //! * `told.rs`: the told-batch state all of them share (the batch, its
-//!   generation, what was told of it, the best ever), borrowed from each
-//!   strategy's own fields; it answers `champion`, `best_ever` and `stats`
-//!   and records a told batch the same way for all.
-//! * This file: NEAT's breeding (`Breeding`: crossover + mutation over one
-//!   innovation history) and the shared checks.
+//!   generation, what was told of it, the best ever). Its parts stay fields
+//!   of each strategy's serialised state, so that every checkpoint keeps its
+//!   JSON (field names and order); `ToldBatch` borrows them, answers
+//!   `generation`, `champion`, `best_ever` and `stats`, checks them when a
+//!   checkpoint is read, and `told::record` records a told batch, the same
+//!   way for all.
+//! * This file: NEAT's breeding (`Breeding`: a child by crossover +
+//!   mutation over one innovation history, a batch of them from any parent
+//!   selection, generation 0 in `first_batch`) and the shared checks.
 //!
 //! The old paths still work: `strategies::knn`, and every archive type is
 //! also re-exported from its strategy's module (`map_elites::Cells`,
