@@ -115,8 +115,7 @@ impl Plan {
 
     /// Incoming links of computed node `k`: source slots and weights.
     pub fn links(&self, k: usize) -> (&[u32], &[f64]) {
-        let (s, e) = (self.conn_start[k] as usize, self.conn_start[k + 1] as usize);
-        (&self.conn_src[s..e], &self.conn_weight[s..e])
+        links_of(&self.conn_start, &self.conn_src, &self.conn_weight, k)
     }
 
     /// The computed nodes output `output` depends on (itself included), in evaluation order.
@@ -350,6 +349,41 @@ impl Adjacency {
     fn of(&self, k: usize) -> &[u32] {
         &self.list[self.start[k] as usize..self.start[k + 1] as usize]
     }
+}
+
+/// Panics unless a network of `num_inputs` inputs and `num_outputs` outputs
+/// is given `inputs` values and room for `outputs` (the [`Network`] contract).
+///
+/// [`Network`]: crate::network::Network
+#[inline(always)]
+pub(crate) fn assert_io(inputs: usize, outputs: usize, num_inputs: usize, num_outputs: usize) {
+    assert_eq!(inputs, num_inputs, "wrong number of inputs");
+    assert_eq!(outputs, num_outputs, "wrong number of outputs");
+}
+
+/// Incoming links of node `k` in the compressed sparse layout every network
+/// of the crate uses (node k's links at `conn_start[k]..conn_start[k + 1]`):
+/// their source slots and weights.
+#[inline(always)]
+pub(crate) fn links_of<'a>(
+    conn_start: &[u32],
+    conn_src: &'a [u32],
+    conn_weight: &'a [f64],
+    k: usize,
+) -> (&'a [u32], &'a [f64]) {
+    let (s, e) = (conn_start[k] as usize, conn_start[k + 1] as usize);
+    (&conn_src[s..e], &conn_weight[s..e])
+}
+
+/// Σ `weights[i] · values[sources[i]]`, added in link order from 0: the one
+/// sum order of the networks' activation, so that they give the same bits.
+#[inline(always)]
+pub(crate) fn weighted_sum(sources: &[u32], weights: &[f64], values: &[f64]) -> f64 {
+    let mut sum = 0.0;
+    for (&src, &w) in sources.iter().zip(weights) {
+        sum += values[src as usize] * w;
+    }
+    sum
 }
 
 /// Ids of the nodes of `kind`, ascending.

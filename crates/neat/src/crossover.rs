@@ -72,26 +72,13 @@ pub fn crossover<R: Rng + ?Sized>(
 mod tests {
     use super::*;
     use crate::activation::Activation;
-    use crate::genome::{LinkGene, NodeGene, NodeKind};
+    use crate::genome::{NodeGene, NodeKind};
+    use crate::test_genes::link;
     use rand::SeedableRng;
     use rand_pcg::Pcg64;
 
     fn node(id: u32, kind: NodeKind) -> NodeGene {
-        NodeGene {
-            id,
-            kind,
-            activation: Activation::Sigmoid,
-        }
-    }
-
-    fn link(innovation: u32, from: u32, to: u32, weight: f64) -> LinkGene {
-        LinkGene {
-            innovation,
-            from,
-            to,
-            weight,
-            enabled: true,
-        }
+        crate::test_genes::node(id, kind, Activation::Sigmoid)
     }
 
     #[test]

@@ -361,25 +361,8 @@ fn too_many_disjoint(ga: &[Gene], gb: &[Gene], limit: usize) -> bool {
 mod tests {
     use super::*;
     use crate::activation::Activation;
-    use crate::genome::{LinkGene, NodeGene, NodeKind};
-
-    fn node(id: u32, kind: NodeKind, activation: Activation) -> NodeGene {
-        NodeGene {
-            id,
-            kind,
-            activation,
-        }
-    }
-
-    fn link(innovation: u32, from: u32, to: u32, weight: f64) -> LinkGene {
-        LinkGene {
-            innovation,
-            from,
-            to,
-            weight,
-            enabled: true,
-        }
-    }
+    use crate::genome::NodeKind;
+    use crate::test_genes::{link, node};
 
     /// Hand-made pair: a has innovations {0,1,2,3,7}, b has {0,1,4,5}.
     /// Matching {0,1}; disjoint {2,3} ∪ {4,5} = 4; excess {7} = 1.

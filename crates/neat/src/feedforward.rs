@@ -1,7 +1,7 @@
 //! The acyclic phenotype (the CPPN): flat arrays in topological order, one pass.
 
 use crate::activation::Activation;
-use crate::compile::Plan;
+use crate::compile::{Plan, assert_io, links_of, weighted_sum};
 use crate::genome::Genome;
 use crate::network::Network;
 
@@ -79,19 +79,20 @@ impl FeedForwardNetwork {
         outputs: &mut [[f64; L]],
         values: &mut Vec<[f64; L]>,
     ) {
-        assert_eq!(inputs.len(), self.num_inputs, "wrong number of inputs");
-        assert_eq!(
+        assert_io(
+            inputs.len(),
             outputs.len(),
+            self.num_inputs,
             self.output_slots.len(),
-            "wrong number of outputs"
         );
         let n_in = self.num_inputs;
         values.clear();
         values.extend_from_slice(inputs);
         for (k, &act) in self.acts.iter().enumerate() {
-            let (s, e) = (self.conn_start[k] as usize, self.conn_start[k + 1] as usize);
+            let (sources, weights) =
+                links_of(&self.conn_start, &self.conn_src, &self.conn_weight, k);
             let mut sum = [0.0; L];
-            for (&src, &w) in self.conn_src[s..e].iter().zip(&self.conn_weight[s..e]) {
+            for (&src, &w) in sources.iter().zip(weights) {
                 let v = &values[src as usize];
                 for lane in 0..L {
                     sum[lane] += v[lane] * w;
@@ -127,21 +128,18 @@ impl Network for FeedForwardNetwork {
 
     #[inline]
     fn activate(&mut self, inputs: &[f64], outputs: &mut [f64]) {
-        assert_eq!(inputs.len(), self.num_inputs, "wrong number of inputs");
-        assert_eq!(
+        assert_io(
+            inputs.len(),
             outputs.len(),
+            self.num_inputs,
             self.output_slots.len(),
-            "wrong number of outputs"
         );
         let n_in = self.num_inputs;
         self.values[..n_in].copy_from_slice(inputs);
         for (k, &act) in self.acts.iter().enumerate() {
-            let (s, e) = (self.conn_start[k] as usize, self.conn_start[k + 1] as usize);
-            let mut sum = 0.0;
-            for (&src, &w) in self.conn_src[s..e].iter().zip(&self.conn_weight[s..e]) {
-                sum += self.values[src as usize] * w;
-            }
-            self.values[n_in + k] = act.apply(sum);
+            let (sources, weights) =
+                links_of(&self.conn_start, &self.conn_src, &self.conn_weight, k);
+            self.values[n_in + k] = act.apply(weighted_sum(sources, weights, &self.values));
         }
         for (o, &s) in outputs.iter_mut().zip(&self.output_slots) {
             *o = self.values[s as usize];
@@ -154,25 +152,8 @@ impl Network for FeedForwardNetwork {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::genome::{LinkGene, NodeGene, NodeKind};
-
-    fn node(id: u32, kind: NodeKind, activation: Activation) -> NodeGene {
-        NodeGene {
-            id,
-            kind,
-            activation,
-        }
-    }
-
-    fn link(innovation: u32, from: u32, to: u32, weight: f64, enabled: bool) -> LinkGene {
-        LinkGene {
-            innovation,
-            from,
-            to,
-            weight,
-            enabled,
-        }
-    }
+    use crate::genome::NodeKind;
+    use crate::test_genes::{link_if as link, node};
 
     #[test]
     fn computes_hand_made_network() {

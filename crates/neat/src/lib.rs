@@ -73,6 +73,8 @@ pub mod simd;
 pub mod species;
 pub mod stats;
 pub mod strategies;
+#[cfg(test)]
+mod test_genes;
 
 pub use activation::{Activation, bipolar_sigmoid};
 pub use crossover::crossover;

@@ -3,7 +3,7 @@
 use std::collections::BTreeMap;
 
 use crate::activation::Activation;
-use crate::compile::ids_of;
+use crate::compile::{assert_io, ids_of, links_of, weighted_sum};
 use crate::genome::{Genome, NodeKind};
 use crate::network::Network;
 
@@ -75,21 +75,18 @@ impl Network for RecurrentNetwork {
     }
 
     fn activate(&mut self, inputs: &[f64], outputs: &mut [f64]) {
-        assert_eq!(inputs.len(), self.num_inputs, "wrong number of inputs");
-        assert_eq!(
+        assert_io(
+            inputs.len(),
             outputs.len(),
+            self.num_inputs,
             self.output_slots.len(),
-            "wrong number of outputs"
         );
         let n_in = self.num_inputs;
         self.state[..n_in].copy_from_slice(inputs);
         for (k, &act) in self.acts.iter().enumerate() {
-            let (s, e) = (self.conn_start[k] as usize, self.conn_start[k + 1] as usize);
-            let mut sum = 0.0;
-            for (&src, &w) in self.conn_src[s..e].iter().zip(&self.conn_weight[s..e]) {
-                sum += self.state[src as usize] * w;
-            }
-            self.next[k] = act.apply(sum);
+            let (sources, weights) =
+                links_of(&self.conn_start, &self.conn_src, &self.conn_weight, k);
+            self.next[k] = act.apply(weighted_sum(sources, weights, &self.state));
         }
         self.state[n_in..].copy_from_slice(&self.next);
         for (o, &s) in outputs.iter_mut().zip(&self.output_slots) {

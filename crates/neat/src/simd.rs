@@ -8,78 +8,26 @@
 //! queries; no fused multiply-add is enabled), so they give the same bits; the
 //! level only changes speed. The active level starts as the best the CPU
 //! supports and can be lowered (e.g. to test that the bits really agree).
+//! The levels and the CPU detection are vivae-simd's, shared with vivae-sim.
 //!
 //! [`SubstrateController::activate_batch`]: crate::hyperneat::SubstrateController::activate_batch
 
-use std::sync::atomic::{AtomicU8, Ordering};
+use vivae_simd::LevelSetting;
+pub use vivae_simd::{SimdLevel, available, detected};
 
-/// A vector instruction level of the hot loops.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
-pub enum SimdLevel {
-    /// The baseline instruction set (SSE2 on x86_64).
-    Scalar,
-    /// AVX2 (256-bit vectors), without FMA.
-    Avx2,
-    /// AVX-512F (512-bit vectors), without FMA.
-    Avx512,
-}
-
-/// Marks "not chosen yet": the first [`level`] call picks [`detected`].
-const UNSET: u8 = u8::MAX;
-
-/// The active level (a `SimdLevel as u8`, or [`UNSET`]).
-static LEVEL: AtomicU8 = AtomicU8::new(UNSET);
-
-impl SimdLevel {
-    fn from_u8(v: u8) -> SimdLevel {
-        match v {
-            0 => SimdLevel::Scalar,
-            1 => SimdLevel::Avx2,
-            _ => SimdLevel::Avx512,
-        }
-    }
-}
-
-/// The best level this CPU supports.
-pub fn detected() -> SimdLevel {
-    #[cfg(target_arch = "x86_64")]
-    {
-        if std::arch::is_x86_feature_detected!("avx512f") {
-            return SimdLevel::Avx512;
-        }
-        if std::arch::is_x86_feature_detected!("avx2") {
-            return SimdLevel::Avx2;
-        }
-    }
-    SimdLevel::Scalar
-}
+/// This library's level (vivae-sim keeps its own).
+static LEVEL: LevelSetting = LevelSetting::new();
 
 /// The level the hot loops use now (initially [`detected`]).
+#[inline]
 pub fn level() -> SimdLevel {
-    match LEVEL.load(Ordering::Relaxed) {
-        UNSET => {
-            let l = detected();
-            LEVEL.store(l as u8, Ordering::Relaxed);
-            l
-        }
-        v => SimdLevel::from_u8(v),
-    }
+    LEVEL.get()
 }
 
 /// Makes `wanted` the active level for the whole process, clamped to what
 /// the CPU supports ([`detected`]); returns the level now active.
 pub fn set_level(wanted: SimdLevel) -> SimdLevel {
-    let l = wanted.min(detected());
-    LEVEL.store(l as u8, Ordering::Relaxed);
-    l
-}
-
-/// The levels this CPU can run, lowest first (for tests that compare them).
-pub fn available() -> Vec<SimdLevel> {
-    [SimdLevel::Scalar, SimdLevel::Avx2, SimdLevel::Avx512]
-        .into_iter()
-        .filter(|&l| l <= detected())
-        .collect()
+    LEVEL.set(wanted)
 }
 
 /// Vector operations of one instruction level, as used by the hot loops.

@@ -4,6 +4,12 @@
 //! figures, and the benchmark examples, so that the same samples give the
 //! same bits wherever they are summarised.
 
+/// Index of the first maximum; `None` for no values (a NaN is never a
+/// maximum after the first value).
+pub(crate) fn argmax(xs: &[f64]) -> Option<usize> {
+    (0..xs.len()).reduce(|a, b| if xs[b] > xs[a] { b } else { a })
+}
+
 /// Arithmetic mean (left-to-right sum over the length); `None` for no values.
 pub fn mean(xs: &[f64]) -> Option<f64> {
     (!xs.is_empty()).then(|| xs.iter().sum::<f64>() / xs.len() as f64)
@@ -35,6 +41,12 @@ pub fn sorted_descending(xs: &[f64]) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn argmax_first_of_ties() {
+        assert_eq!(argmax(&[1.0, 3.0, 3.0]), Some(1));
+        assert_eq!(argmax(&[]), None);
+    }
     use proptest::prelude::*;
 
     #[test]

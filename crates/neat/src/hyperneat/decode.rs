@@ -35,12 +35,7 @@ pub fn decode(
         bias[target] = params.weight_or_zero(out[layout.bias_output]);
     }
     // Source by source, so that each source's column is written contiguously.
-    let sources: Vec<([f64; 2], usize)> = layout
-        .inputs
-        .iter()
-        .flat_map(|s| s.coords.iter().map(move |&c| (c, s.cppn_output)))
-        .chain(layout.neurons.iter().map(|&c| (c, layout.recurrent_output)))
-        .collect();
+    let sources = layout.sources();
     debug_assert_eq!(sources.len(), num_inputs + n);
     Ok(SubstrateController::build(layout, &bias, |j, column| {
         let ([x2, y2], output) = sources[j];
@@ -76,12 +71,7 @@ pub fn decode_genome(
         *b = params.weight_or_zero(o);
     }
     // One batch per source: all targets, written to the source's column.
-    let sources: Vec<([f64; 2], usize)> = layout
-        .inputs
-        .iter()
-        .flat_map(|s| s.coords.iter().map(move |&c| (c, s.cppn_output)))
-        .chain(layout.neurons.iter().map(|&c| (c, layout.recurrent_output)))
-        .collect();
+    let sources = layout.sources();
     Ok(SubstrateController::build(layout, &bias, |j, column| {
         let (source, output) = sources[j];
         cppn.query_targets(output, &layout.neurons, source, column);

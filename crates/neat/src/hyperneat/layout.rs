@@ -35,6 +35,17 @@ impl SubstrateLayout {
         self.inputs.iter().map(|s| s.coords.len()).sum()
     }
 
+    /// Every source of links, in the controller's source order (the input
+    /// sheets' nodes, then the neurons), each with the CPPN output that
+    /// paints its links.
+    pub(crate) fn sources(&self) -> Vec<([f64; 2], usize)> {
+        let inputs = self.inputs.iter();
+        inputs
+            .flat_map(|s| s.coords.iter().map(move |&c| (c, s.cppn_output)))
+            .chain(self.neurons.iter().map(|&c| (c, self.recurrent_output)))
+            .collect()
+    }
+
     /// Number of CPPN queries a decode makes: one per possible link plus one per bias.
     pub fn num_queries(&self) -> usize {
         let n = self.neurons.len();

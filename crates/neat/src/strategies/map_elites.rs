@@ -7,182 +7,22 @@
 //! crossover (with [`MapElitesParams::crossover_probability`]) and mutation
 //! over one innovation history; generation 0 is a batch of minimal genomes.
 
-use rand::{RngExt, SeedableRng};
+use rand::RngExt;
 use rand_pcg::Pcg64;
 use serde::{Deserialize, Serialize};
 
-use super::knn::KdTree;
-use super::{Breeding, argmax, check_count, invalid, record_best};
+pub use super::archive::cvt::MAX_SAMPLES;
+pub use super::archive::elites::{Elite, MapElitesStats, insert};
+use super::archive::elites::{archive_stats, check_archive};
+pub use super::archive::grid::{Cells, MAX_CELLS};
+use super::told::{self, ToldBatch, told_batch_accessors};
+use super::{Breeding, check_count, first_batch, invalid};
 use crate::driver::{Batch, Evaluation, Strategy, finite_or_zero};
 use crate::error::NeatError;
 use crate::genome::{Genome, GenomeSpec};
 use crate::innovation::InnovationTracker;
 use crate::params::NeatParams;
-use crate::population::{BestEver, GenerationStats};
-
-/// Most cells an archive may have (each holds an optional genome).
-pub const MAX_CELLS: usize = 1_000_000;
-/// Most samples a CVT may be built from.
-pub const MAX_SAMPLES: usize = 10_000_000;
-
-/// How the behaviour space is cut into cells.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub enum Cells {
-    /// `bins[d]` equal cells from `lower[d]` to `upper[d]` along each
-    /// dimension d (the first most significant in the cell index); a
-    /// behaviour outside the bounds falls in the nearest edge cell.
-    Grid {
-        /// Lower bound per dimension.
-        lower: Vec<f64>,
-        /// Upper bound per dimension.
-        upper: Vec<f64>,
-        /// Cells per dimension.
-        bins: Vec<usize>,
-    },
-    /// A behaviour's cell is its nearest centroid (the lowest index on a tie).
-    Cvt(KdTree),
-}
-
-impl Cells {
-    /// A regular grid (see [`Cells::Grid`]); bounds finite with `lower < upper`.
-    pub fn grid(lower: Vec<f64>, upper: Vec<f64>, bins: Vec<usize>) -> Result<Cells, NeatError> {
-        check_bounds(&lower, &upper)?;
-        if bins.len() != lower.len() || bins.contains(&0) {
-            return Err(invalid(
-                "bins",
-                format!("{bins:?}"),
-                "one count ≥ 1 per dimension",
-            ));
-        }
-        let cells = bins.iter().try_fold(1usize, |n, &b| n.checked_mul(b));
-        if cells.is_none_or(|n| n > MAX_CELLS) {
-            return Err(invalid(
-                "bins",
-                format!("{bins:?}"),
-                "more than 1,000,000 cells",
-            ));
-        }
-        Ok(Cells::Grid { lower, upper, bins })
-    }
-
-    /// A CVT of `cells` centroids in the box `lower`..`upper`: `samples`
-    /// points drawn uniformly from a `Pcg64` seeded with `seed`, the first
-    /// `cells` of them as initial centroids, then `iterations` of Lloyd's
-    /// algorithm (each centroid moves to the mean of the samples nearest to
-    /// it; one with none stays). The same arguments give the same bits.
-    pub fn cvt(
-        lower: &[f64],
-        upper: &[f64],
-        cells: usize,
-        samples: usize,
-        iterations: usize,
-        seed: u64,
-    ) -> Result<Cells, NeatError> {
-        check_bounds(lower, upper)?;
-        if cells == 0 || samples < cells || cells > MAX_CELLS || samples > MAX_SAMPLES {
-            let value = format!("{cells} cells from {samples} samples");
-            let reason = "need 1 ≤ cells ≤ samples, at most 1,000,000 cells and 10,000,000 samples";
-            return Err(invalid("cells", value, reason));
-        }
-        let dims = lower.len();
-        let mut rng = Pcg64::seed_from_u64(seed);
-        let points: Vec<f64> = (0..samples * dims)
-            .map(|i| {
-                let d = i % dims;
-                lower[d] + (upper[d] - lower[d]) * rng.random::<f64>()
-            })
-            .collect();
-        let mut tree = KdTree::new(dims, points[..cells * dims].to_vec());
-        let (mut sums, mut counts) = (vec![0.0; cells * dims], vec![0usize; cells]);
-        for _ in 0..iterations {
-            sums.fill(0.0);
-            counts.fill(0);
-            for p in points.chunks_exact(dims) {
-                let c = tree.nearest(p).unwrap_or(0);
-                counts[c] += 1;
-                for (s, x) in sums[c * dims..(c + 1) * dims].iter_mut().zip(p) {
-                    *s += x;
-                }
-            }
-            let centroids = (0..cells * dims).map(|i| match counts[i / dims] {
-                0 => tree.point(i / dims)[i % dims],
-                n => sums[i] / n as f64,
-            });
-            let centroids: Vec<f64> = centroids.collect();
-            tree.reset(centroids);
-        }
-        Ok(Cells::Cvt(tree))
-    }
-
-    /// Number of cells.
-    pub fn len(&self) -> usize {
-        match self {
-            Cells::Grid { bins, .. } => bins.iter().product(),
-            Cells::Cvt(tree) => tree.len(),
-        }
-    }
-
-    /// Whether there are no cells (never, once built).
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
-
-    /// Coordinates of a behaviour.
-    pub fn dims(&self) -> usize {
-        match self {
-            Cells::Grid { bins, .. } => bins.len(),
-            Cells::Cvt(tree) => tree.dims(),
-        }
-    }
-
-    /// The cell of `behaviour` (of [`Cells::dims`] coordinates).
-    pub fn cell_of(&self, behaviour: &[f64]) -> usize {
-        match self {
-            Cells::Grid { lower, upper, bins } => {
-                let mut cell = 0;
-                for (d, &x) in behaviour.iter().enumerate() {
-                    let t = (x - lower[d]) / (upper[d] - lower[d]) * bins[d] as f64;
-                    // NaN goes to 0 with the cast; ±∞ to the edge cells.
-                    let i = (t.max(0.0) as usize).min(bins[d] - 1);
-                    cell = cell * bins[d] + i;
-                }
-                cell
-            }
-            Cells::Cvt(tree) => tree.nearest(behaviour).unwrap_or(0),
-        }
-    }
-
-    fn check(&self) -> Result<(), NeatError> {
-        match self {
-            Cells::Grid { lower, upper, bins } => {
-                Cells::grid(lower.clone(), upper.clone(), bins.clone()).map(|_| ())
-            }
-            Cells::Cvt(tree) if tree.is_empty() => Err(invalid("cells", 0, "no centroids")),
-            Cells::Cvt(_) => Ok(()),
-        }
-    }
-}
-
-/// Bounds of a behaviour box: as many lower as upper, finite, `lower < upper`.
-fn check_bounds(lower: &[f64], upper: &[f64]) -> Result<(), NeatError> {
-    let ok = !lower.is_empty()
-        && lower.len() == upper.len()
-        && lower
-            .iter()
-            .zip(upper)
-            .all(|(l, u)| l.is_finite() && u.is_finite() && l < u);
-    if ok {
-        Ok(())
-    } else {
-        let value = format!("{lower:?}..{upper:?}");
-        Err(invalid(
-            "bounds",
-            value,
-            "finite, lower < upper, ≥ 1 dimension",
-        ))
-    }
-}
+use crate::population::BestEver;
 
 /// MAP-Elites' own settings.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -209,38 +49,18 @@ impl Default for MapElitesParams {
     }
 }
 
-/// The best genome found for one cell.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Elite {
-    /// The genome.
-    pub genome: Genome,
-    /// Its fitness.
-    pub fitness: f64,
-    /// Its behaviour (non-finite coordinates as 0).
-    pub behaviour: Vec<f64>,
-    /// The generation in which it was evaluated.
-    pub generation: u32,
-}
-
-/// The archive at a glance (for `generations.csv`).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct MapElitesStats {
-    /// Cells holding an elite.
-    pub filled: usize,
-    /// Filled cells over all cells.
-    pub coverage: f64,
-    /// Σ (fitness − qd_offset) over the elites.
-    pub qd_score: f64,
-    /// Fitness of the best elite.
-    pub best: Option<f64>,
-}
-
 /// What the batch just told gave.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 struct Told {
     fitness: Vec<f64>,
     /// Elites the batch placed (new cells or better than the incumbent).
     inserted: usize,
+}
+
+impl told::Told for Told {
+    fn fitness(&self) -> &[f64] {
+        &self.fitness
+    }
 }
 
 /// The serialised state of [`MapElites`].
@@ -274,37 +94,24 @@ impl TryFrom<State> for MapElites {
         s.spec.validate()?;
         check_params(&s.map)?;
         s.cells.check()?;
-        if s.archive.len() != s.cells.len() {
-            return Err(invalid("archive", s.archive.len(), "one entry per cell"));
+        check_archive(&s.archive, &s.cells, s.generation)?;
+        if s.batch.is_empty() {
+            return Err(invalid("batch", 0, "empty or not matching its fitness"));
         }
-        let dims = s.cells.dims();
-        let elite_ok = |e: &Elite| {
-            e.fitness.is_finite() && e.behaviour.len() == dims && e.generation <= s.generation
-        };
-        if !s.archive.iter().flatten().all(elite_ok) {
-            return Err(invalid(
-                "archive",
-                "an elite",
-                "inconsistent with the cells",
-            ));
-        }
-        if s.batch.is_empty()
-            || s.told
-                .as_ref()
-                .is_some_and(|t| t.fitness.len() != s.batch.len())
-        {
-            return Err(invalid(
-                "batch",
-                s.batch.len(),
-                "empty or not matching its fitness",
-            ));
-        }
+        s.told_batch().check()?;
         // Telling a batch always fills a cell: breeding needs one.
         let told = s.told.is_some() || s.generation > 0;
         if told && s.archive.iter().all(Option::is_none) {
             return Err(invalid("archive", 0, "empty after a batch was told"));
         }
         Ok(MapElites(s))
+    }
+}
+
+impl State {
+    /// The batch, its generation, what was told of it and the best ever.
+    fn told_batch(&self) -> ToldBatch<'_, Told> {
+        ToldBatch::new(self.generation, &self.batch, &self.told, &self.best)
     }
 }
 
@@ -337,15 +144,7 @@ impl MapElites {
         spec.validate()?;
         check_params(&map)?;
         cells.check()?;
-        let mut rng = Pcg64::seed_from_u64(seed);
-        let mut tracker = InnovationTracker::new((spec.inputs + spec.outputs) as u32);
-        let batch = Breeding {
-            spec: &spec,
-            params: &params,
-            tracker: &mut tracker,
-            rng: &mut rng,
-        }
-        .minimal(map.batch_size);
+        let (rng, tracker, batch) = first_batch(&spec, &params, seed, map.batch_size);
         Ok(MapElites(State {
             archive: vec![None; cells.len()],
             spec,
@@ -384,30 +183,7 @@ impl MapElites {
 
     /// Coverage, QD-score and best fitness of the archive.
     pub fn archive_stats(&self) -> MapElitesStats {
-        let (mut filled, mut qd_score, mut best) = (0, 0.0, None::<f64>);
-        for (_, e) in self.elites() {
-            filled += 1;
-            qd_score += e.fitness - self.0.map.qd_offset;
-            best = Some(best.map_or(e.fitness, |b| b.max(e.fitness)));
-        }
-        MapElitesStats {
-            filled,
-            coverage: filled as f64 / self.0.archive.len() as f64,
-            qd_score,
-            best,
-        }
-    }
-}
-
-/// Places a genome in its cell if the cell is empty or it is strictly
-/// fitter than the cell's elite; says whether it did.
-pub fn insert(archive: &mut [Option<Elite>], cell: usize, candidate: Elite) -> bool {
-    let slot = &mut archive[cell];
-    if slot.as_ref().is_none_or(|e| candidate.fitness > e.fitness) {
-        *slot = Some(candidate);
-        true
-    } else {
-        false
+        archive_stats(&self.0.archive, self.0.map.qd_offset)
     }
 }
 
@@ -438,8 +214,8 @@ impl Strategy for MapElites {
             };
             inserted += usize::from(insert(&mut s.archive, cell, elite));
         }
-        record_best(&mut s.best, &s.batch, &fitness, s.generation);
-        s.told = Some(Told { fitness, inserted });
+        let told = Told { fitness, inserted };
+        told::record(&mut s.told, &mut s.best, &s.batch, s.generation, told);
         Ok(())
     }
 
@@ -456,121 +232,22 @@ impl Strategy for MapElites {
             rng: &mut s.rng,
         };
         s.batch.clear();
-        for _ in 0..s.map.batch_size {
-            let a = occupied[breeding.rng.random_range(0..occupied.len())];
-            let b = (breeding.rng.random_bool(s.map.crossover_probability))
-                .then(|| occupied[breeding.rng.random_range(0..occupied.len())]);
-            let child = breeding.child((&a.genome, a.fitness), b.map(|b| (&b.genome, b.fitness)));
-            s.batch.push(child);
-        }
+        // Elites drawn uniformly.
+        let pick = |rng: &mut Pcg64| {
+            let e = occupied[rng.random_range(0..occupied.len())];
+            (&e.genome, e.fitness)
+        };
+        let (n, crossover) = (s.map.batch_size, s.map.crossover_probability);
+        breeding.children(n, crossover, &mut s.batch, pick);
         s.generation += 1;
     }
 
-    fn generation(&self) -> u32 {
-        self.0.generation
-    }
-
-    fn champion(&self) -> Option<(&Genome, f64)> {
-        let f = &self.0.told.as_ref()?.fitness;
-        argmax(f).map(|i| (&self.0.batch[i], f[i]))
-    }
-
-    fn best_ever(&self) -> Option<&BestEver> {
-        self.0.best.as_ref()
-    }
-
-    fn stats(&self) -> GenerationStats {
-        let fitness = self.0.told.as_ref().map_or(&[][..], |t| &t.fitness);
-        GenerationStats::of_batch(self.0.generation, &self.0.batch, fitness)
-    }
+    told_batch_accessors!();
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use proptest::prelude::{prop, prop_assert_eq, proptest};
-
-    #[test]
-    fn grid_cells_are_row_major_and_clamped() {
-        let cells = Cells::grid(vec![0.0, -1.0], vec![10.0, 1.0], vec![5, 2]).unwrap();
-        assert_eq!(cells.len(), 10);
-        assert_eq!(cells.cell_of(&[0.0, -1.0]), 0);
-        assert_eq!(
-            cells.cell_of(&[3.9, 0.5]),
-            2 + 1,
-            "row 1 of 2 cells, column 1"
-        );
-        assert_eq!(
-            cells.cell_of(&[10.0, 1.0]),
-            9,
-            "the upper bound is in the last cell"
-        );
-        assert_eq!(
-            cells.cell_of(&[-5.0, 7.0]),
-            1,
-            "outside: the nearest edge cell"
-        );
-        assert_eq!(cells.cell_of(&[f64::NAN, f64::INFINITY]), 1);
-        assert!(Cells::grid(vec![0.0], vec![0.0], vec![3]).is_err());
-        assert!(Cells::grid(vec![0.0], vec![1.0], vec![0]).is_err());
-        let huge = Cells::grid(vec![0.0; 2], vec![1.0; 2], vec![1_000_000, 1_000_000]);
-        assert!(huge.is_err(), "refused, not allocated");
-        assert!(Cells::cvt(&[0.0], &[1.0], 10, usize::MAX, 1, 0).is_err());
-    }
-
-    #[test]
-    fn cvt_is_deterministic_and_its_centroids_spread_over_the_box() {
-        let make = || Cells::cvt(&[0.0, 0.0], &[1.0, 2.0], 16, 2000, 10, 5).unwrap();
-        let (a, b) = (make(), make());
-        assert_eq!(a, b);
-        let Cells::Cvt(tree) = &a else { unreachable!() };
-        assert_eq!(tree.len(), 16);
-        // Lloyd's centroids are means of samples in the box; with 16 cells
-        // over 2000 samples each one's region holds some of them.
-        for i in 0..16 {
-            let c = tree.point(i);
-            assert!(
-                (0.0..=1.0).contains(&c[0]) && (0.0..=2.0).contains(&c[1]),
-                "{c:?}"
-            );
-            assert_eq!(a.cell_of(c), i, "a centroid is in its own cell");
-        }
-        let other = Cells::cvt(&[0.0, 0.0], &[1.0, 2.0], 16, 2000, 10, 6).unwrap();
-        assert_ne!(a, other, "the seed matters");
-    }
-
-    fn elite(fitness: f64) -> Elite {
-        let spec = GenomeSpec::plain(1, 1);
-        let mut rng = Pcg64::seed_from_u64(0);
-        let mut tracker = InnovationTracker::new(2);
-        let genome = Genome::minimal(&spec, &NeatParams::plain_neat(), &mut tracker, &mut rng);
-        Elite {
-            genome,
-            fitness,
-            behaviour: vec![fitness],
-            generation: 0,
-        }
-    }
-
-    proptest! {
-        #[test]
-        fn insertion_keeps_the_first_best_per_cell(
-            offers in prop::collection::vec((0usize..6, -3i32..3), 0..60),
-        ) {
-            let mut archive = vec![None; 6];
-            // Each offer marked by its position (as its generation).
-            for (k, &(cell, f)) in offers.iter().enumerate() {
-                insert(&mut archive, cell, Elite { generation: k as u32, ..elite(f64::from(f)) });
-            }
-            for (cell, slot) in archive.iter().enumerate() {
-                let here = || offers.iter().enumerate().filter(|(_, o)| o.0 == cell);
-                let best = here().map(|(_, o)| o.1).max();
-                let first = here().find(|(_, o)| Some(o.1) == best).map(|(k, _)| k as u32);
-                let kept = slot.as_ref().map(|e| (e.fitness, e.generation));
-                prop_assert_eq!(kept, best.map(f64::from).zip(first));
-            }
-        }
-    }
 
     #[test]
     fn checkpoints_that_contradict_themselves_are_refused() {

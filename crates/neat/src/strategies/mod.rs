@@ -12,17 +12,45 @@
 //!
 //! Each is its own checkpoint: serialised and restored it continues
 //! bit-identically, and restoring checks what it reads.
+//!
+//! ## Layout (archives, breeding, told state), as pyribs separates them
+//!
+//! * `novelty.rs`, `map_elites.rs`, `nsga2.rs`: one file per strategy, its
+//!   settings, its serialised state (the checkpoint's fields, in order), and
+//!   how it breeds the next batch (ask/tell/prepare).
+//! * [`archive`]: what the strategies keep, apart from breeding, one file
+//!   each: MAP-Elites' cells ([`archive::grid`], [`archive::cvt`]) and
+//!   elites ([`archive::elites`]), NSGA-II's Pareto ranking
+//!   ([`archive::pareto`]), novelty search's archive and threshold
+//!   ([`archive::novelty`]) with its k-nearest-neighbour search ([`knn`]).
+//! * `told.rs`: the told-batch state all of them share (the batch, its
+//!   generation, what was told of it, the best ever). Its parts stay fields
+//!   of each strategy's serialised state, so that every checkpoint keeps its
+//!   JSON (field names and order); `ToldBatch` borrows them, answers
+//!   `generation`, `champion`, `best_ever` and `stats`, checks them when a
+//!   checkpoint is read, and `told::record` records a told batch, the same
+//!   way for all.
+//! * This file: NEAT's breeding (`Breeding`: a child by crossover +
+//!   mutation over one innovation history, a batch of them from any parent
+//!   selection, generation 0 in `first_batch`) and the shared checks.
+//!
+//! The old paths still work: `strategies::knn`, and every archive type is
+//! also re-exported from its strategy's module (`map_elites::Cells`,
+//! `nsga2::non_dominated_fronts`, `novelty::NoveltyParams`, ...).
 
-pub mod knn;
+pub mod archive;
 pub mod map_elites;
 pub mod novelty;
 pub mod nsga2;
+mod told;
 
+pub use archive::knn;
 pub use map_elites::{Cells, Elite, MapElites, MapElitesParams, MapElitesStats};
 pub use novelty::{NoveltyParams, NoveltySearch};
 pub use nsga2::{Measure, Nsga2, Nsga2Params, Objective};
 
-use rand::{Rng, RngExt};
+use rand::{Rng, RngExt, SeedableRng};
+use rand_pcg::Pcg64;
 
 use crate::crossover::crossover;
 use crate::error::NeatError;
@@ -30,7 +58,6 @@ use crate::genome::{Genome, GenomeSpec};
 use crate::innovation::InnovationTracker;
 use crate::mutation::mutate;
 use crate::params::NeatParams;
-use crate::population::BestEver;
 
 /// What NEAT's breeding needs besides the parents: shared by the strategies.
 pub(crate) struct Breeding<'a, R: Rng + ?Sized> {
@@ -59,12 +86,50 @@ impl<R: Rng + ?Sized> Breeding<'_, R> {
         child
     }
 
+    /// `n` children pushed to `batch`: each of a parent drawn by `pick`
+    /// (with the fitness crossover compares), crossed with a second one drawn
+    /// the same way with probability `crossover`.
+    pub fn children<'g>(
+        &mut self,
+        n: usize,
+        crossover: f64,
+        batch: &mut Vec<Genome>,
+        mut pick: impl FnMut(&mut R) -> (&'g Genome, f64),
+    ) {
+        for _ in 0..n {
+            let a = pick(self.rng);
+            let b = self.rng.random_bool(crossover).then(|| pick(self.rng));
+            batch.push(self.child(a, b));
+        }
+    }
+
     /// `n` minimal genomes (NEAT's generation 0).
     pub fn minimal(&mut self, n: usize) -> Vec<Genome> {
         (0..n)
             .map(|_| Genome::minimal(self.spec, self.params, self.tracker, self.rng))
             .collect()
     }
+}
+
+/// Generation 0 of a strategy breeding its own batches: `n` minimal
+/// genomes drawn from a `Pcg64` seeded with `seed`, returned with that
+/// generator and the innovation history they started.
+pub(crate) fn first_batch(
+    spec: &GenomeSpec,
+    params: &NeatParams,
+    seed: u64,
+    n: usize,
+) -> (Pcg64, InnovationTracker, Vec<Genome>) {
+    let mut rng = Pcg64::seed_from_u64(seed);
+    let mut tracker = InnovationTracker::new((spec.inputs + spec.outputs) as u32);
+    let batch = Breeding {
+        spec,
+        params,
+        tracker: &mut tracker,
+        rng: &mut rng,
+    }
+    .minimal(n);
+    (rng, tracker, batch)
 }
 
 /// One evaluation per genome, or [`NeatError::FitnessCount`].
@@ -86,28 +151,5 @@ pub(crate) fn invalid(
         field,
         value: value.to_string(),
         reason,
-    }
-}
-
-/// Index of the first maximum.
-pub(crate) fn argmax(xs: &[f64]) -> Option<usize> {
-    (0..xs.len()).reduce(|a, b| if xs[b] > xs[a] { b } else { a })
-}
-
-/// Replaces `best` with the batch's first fittest genome when it beats it.
-pub(crate) fn record_best(
-    best: &mut Option<BestEver>,
-    genomes: &[Genome],
-    fitness: &[f64],
-    generation: u32,
-) {
-    if let Some(i) = argmax(fitness)
-        && best.as_ref().is_none_or(|b| fitness[i] > b.fitness)
-    {
-        *best = Some(BestEver {
-            genome: genomes[i].clone(),
-            fitness: fitness[i],
-            generation,
-        });
     }
 }

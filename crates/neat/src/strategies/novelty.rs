@@ -15,87 +15,13 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::knn::{KdTree, Nearest};
-use super::{check_count, invalid, record_best};
+use super::archive::novelty::NoveltyArchive;
+pub use super::archive::novelty::NoveltyParams;
+use super::told::{self, ToldBatch, told_batch_accessors};
+use super::{check_count, invalid};
 use crate::driver::{Batch, Evaluation, Strategy, finite_or_zero};
 use crate::error::NeatError;
-use crate::genome::Genome;
 use crate::population::{BestEver, GenerationStats, Population};
-
-/// Novelty search's own settings (NEAT's are the population's).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct NoveltyParams {
-    /// Neighbours k in the sparseness (the paper: 15).
-    pub k: usize,
-    /// Initial archive threshold ρ_min, in behaviour-space units.
-    pub threshold: f64,
-    /// ρ_min is never lowered below this.
-    pub threshold_floor: f64,
-    /// Generations without an archive addition before ρ_min is lowered (10).
-    pub lower_after: u32,
-    /// Factor lowering ρ_min (0.95).
-    pub lower_factor: f64,
-    /// More additions than this in one generation raise ρ_min (4).
-    pub raise_above: usize,
-    /// Factor raising ρ_min (1.2).
-    pub raise_factor: f64,
-    /// Weight w of fitness in the selection score `(1 − w)·novelty + w·fitness`,
-    /// both min–max normalised over the generation; 0 is pure novelty search.
-    pub fitness_weight: f64,
-}
-
-impl Default for NoveltyParams {
-    /// The paper's rules, with ρ_min = 1 (set it to the scale of the behaviours).
-    fn default() -> Self {
-        NoveltyParams {
-            k: 15,
-            threshold: 1.0,
-            threshold_floor: 0.05,
-            lower_after: 10,
-            lower_factor: 0.95,
-            raise_above: 4,
-            raise_factor: 1.2,
-            fitness_weight: 0.0,
-        }
-    }
-}
-
-impl NoveltyParams {
-    /// Checks every setting's range.
-    pub fn validate(&self) -> Result<(), NeatError> {
-        let positive = |x: f64| x.is_finite() && x > 0.0;
-        if self.k == 0 {
-            return Err(invalid("k", self.k, "must be at least 1"));
-        }
-        if !positive(self.threshold) || !positive(self.threshold_floor) {
-            let value = format!("{} (floor {})", self.threshold, self.threshold_floor);
-            return Err(invalid("threshold", value, "must be finite and > 0"));
-        }
-        if !(self.lower_factor > 0.0 && self.lower_factor <= 1.0) {
-            return Err(invalid(
-                "lower_factor",
-                self.lower_factor,
-                "must be in (0, 1]",
-            ));
-        }
-        if !(self.raise_factor >= 1.0 && self.raise_factor.is_finite()) {
-            return Err(invalid(
-                "raise_factor",
-                self.raise_factor,
-                "must be finite and ≥ 1",
-            ));
-        }
-        if !(0.0..=1.0).contains(&self.fitness_weight) {
-            return Err(invalid(
-                "fitness_weight",
-                self.fitness_weight,
-                "must be in [0, 1]",
-            ));
-        }
-        Ok(())
-    }
-}
 
 /// What the generation just told measured.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -103,6 +29,12 @@ struct Told {
     fitness: Vec<f64>,
     novelty: Vec<f64>,
     added: usize,
+}
+
+impl told::Told for Told {
+    fn fitness(&self) -> &[f64] {
+        &self.fitness
+    }
 }
 
 /// The serialised state of a [`NoveltySearch`].
@@ -142,7 +74,7 @@ impl TryFrom<State> for NoveltySearch {
             return Err(invalid("threshold", s.threshold, "must be finite and > 0"));
         }
         if let Some(t) = &s.told
-            && (t.fitness.len() != n || t.novelty.len() != n || !s.population.is_evaluated())
+            && (t.novelty.len() != n || !s.population.is_evaluated())
         {
             return Err(invalid(
                 "told",
@@ -150,13 +82,28 @@ impl TryFrom<State> for NoveltySearch {
                 "does not match the population",
             ));
         }
-        if s.best
-            .as_ref()
-            .is_some_and(|b| !b.fitness.is_finite() || b.generation > s.population.generation())
-        {
-            return Err(invalid("best", "record", "non-finite or from the future"));
-        }
+        s.told_batch().check()?;
         Ok(NoveltySearch(s))
+    }
+}
+
+impl State {
+    /// The population's genomes, their generation, what was told of them
+    /// and the best ever.
+    fn told_batch(&self) -> ToldBatch<'_, Told> {
+        let p = &self.population;
+        ToldBatch::new(p.generation(), p.genomes(), &self.told, &self.best)
+    }
+
+    /// The archive, borrowed.
+    fn archive(&mut self) -> NoveltyArchive<'_> {
+        NoveltyArchive {
+            dims: self.dims,
+            points: &mut self.archive,
+            threshold: &mut self.threshold,
+            idle: &mut self.idle,
+            params: &self.novelty,
+        }
     }
 }
 
@@ -224,50 +171,6 @@ impl NoveltySearch {
         self.0.dims = dims;
         Ok(out)
     }
-
-    /// Novelty of each of the `behaviours` against the archive and each other.
-    fn sparseness(&self, behaviours: &[f64]) -> Vec<f64> {
-        let dims = self.0.dims;
-        let offset = self.0.archive.len() / dims;
-        let points = self.0.archive.iter().chain(behaviours).copied();
-        let tree = KdTree::new(dims, points.collect());
-        let mut nearest = Nearest::new(self.0.novelty.k);
-        (0..behaviours.len() / dims)
-            .map(|i| {
-                let q = &behaviours[i * dims..(i + 1) * dims];
-                tree.nearest_k(q, Some(offset + i), &mut nearest);
-                nearest.mean_distance()
-            })
-            .collect()
-    }
-
-    /// Archives the behaviours more novel than ρ_min, then adapts ρ_min;
-    /// returns how many entered.
-    fn archive_novel(&mut self, behaviours: &[f64], novelty: &[f64]) -> usize {
-        let dims = self.0.dims;
-        let s = &mut self.0;
-        let mut added = 0;
-        for (b, &n) in behaviours.chunks_exact(dims).zip(novelty) {
-            if n > s.threshold {
-                s.archive.extend_from_slice(b);
-                added += 1;
-            }
-        }
-        let p = &s.novelty;
-        if added == 0 {
-            s.idle += 1;
-            if s.idle >= p.lower_after {
-                s.threshold = (s.threshold * p.lower_factor).max(p.threshold_floor);
-                s.idle = 0;
-            }
-        } else {
-            s.idle = 0;
-        }
-        if added > p.raise_above {
-            s.threshold *= p.raise_factor;
-        }
-        added
-    }
 }
 
 /// `(1 − w)·novelty + w·fitness`, each min–max normalised; pure novelty when w = 0.
@@ -301,18 +204,18 @@ impl Strategy for NoveltySearch {
         check_count(evaluations.len(), self.0.population.genomes().len())?;
         let behaviours = self.behaviours(evaluations)?;
         let fitness: Vec<f64> = evaluations.iter().map(Evaluation::finite_fitness).collect();
-        let novelty = self.sparseness(&behaviours);
-        let added = self.archive_novel(&behaviours, &novelty);
-        let scores = selection_scores(&novelty, &fitness, self.0.novelty.fitness_weight);
         let s = &mut self.0;
+        let novelty = s.archive().sparseness(&behaviours);
+        let added = s.archive().add_novel(&behaviours, &novelty);
+        let scores = selection_scores(&novelty, &fitness, s.novelty.fitness_weight);
         s.population.set_fitnesses(scores)?;
-        let generation = s.population.generation();
-        record_best(&mut s.best, s.population.genomes(), &fitness, generation);
-        s.told = Some(Told {
+        let (generation, genomes) = (s.population.generation(), s.population.genomes());
+        let told = Told {
             fitness,
             novelty,
             added,
-        });
+        };
+        told::record(&mut s.told, &mut s.best, genomes, generation, told);
         Ok(())
     }
 
@@ -322,27 +225,14 @@ impl Strategy for NoveltySearch {
         }
     }
 
-    fn generation(&self) -> u32 {
-        self.0.population.generation()
-    }
-
-    fn champion(&self) -> Option<(&Genome, f64)> {
-        let f = &self.0.told.as_ref()?.fitness;
-        let i = super::argmax(f)?;
-        Some((&self.0.population.genomes()[i], f[i]))
-    }
-
-    fn best_ever(&self) -> Option<&BestEver> {
-        self.0.best.as_ref()
-    }
+    told_batch_accessors!(without_stats);
 
     fn stats(&self) -> GenerationStats {
         let p = &self.0.population;
-        let fitness = self.0.told.as_ref().map_or(&[][..], |t| &t.fitness);
         GenerationStats {
             species: p.species().len(),
             compatibility_threshold: p.compatibility_threshold(),
-            ..GenerationStats::of_batch(p.generation(), p.genomes(), fitness)
+            ..self.0.told_batch().stats()
         }
     }
 }

@@ -13,17 +13,21 @@
 //! its metrics, each maximised or minimised ([`Objective`]). The fitness the
 //! task reports stays what the driver sees (champion, best ever, target).
 
-use rand::{RngExt, SeedableRng};
+use rand::RngExt;
 use rand_pcg::Pcg64;
 use serde::{Deserialize, Serialize};
 
-use super::{Breeding, argmax, check_count, invalid, record_best};
+pub use super::archive::pareto::{
+    crowding_distances, dominates, fast_non_dominated_sort, non_dominated_fronts,
+};
+use super::told::{self, ToldBatch, told_batch_accessors};
+use super::{Breeding, check_count, first_batch, invalid};
 use crate::driver::{Batch, Evaluation, Strategy};
 use crate::error::NeatError;
 use crate::genome::{Genome, GenomeSpec};
 use crate::innovation::InnovationTracker;
 use crate::params::NeatParams;
-use crate::population::{BestEver, GenerationStats};
+use crate::population::BestEver;
 
 /// Which measurement of an [`Evaluation`] an objective is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -103,6 +107,12 @@ struct Told {
     fitness: Vec<f64>,
 }
 
+impl told::Told for Told {
+    fn fitness(&self) -> &[f64] {
+        &self.fitness
+    }
+}
+
 /// The serialised state of [`Nsga2`].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -142,9 +152,7 @@ impl TryFrom<State> for Nsga2 {
             return Err(invalid("parents", "a parent", "objectives not matching"));
         }
         if let Some(t) = &s.told
-            && (t.fitness.len() != s.batch.len()
-                || t.objectives.len() != s.batch.len()
-                || !t.objectives.iter().all(|o| ok(o)))
+            && (t.objectives.len() != s.batch.len() || !t.objectives.iter().all(|o| ok(o)))
         {
             return Err(invalid("told", t.fitness.len(), "does not match the batch"));
         }
@@ -155,7 +163,15 @@ impl TryFrom<State> for Nsga2 {
                 "empty, or too many parents",
             ));
         }
+        s.told_batch().check()?;
         Ok(Nsga2(s))
+    }
+}
+
+impl State {
+    /// The batch, its generation, what was told of it and the best ever.
+    fn told_batch(&self) -> ToldBatch<'_, Told> {
+        ToldBatch::new(self.generation, &self.batch, &self.told, &self.best)
     }
 }
 
@@ -171,15 +187,7 @@ impl Nsga2 {
         params.validate()?;
         spec.validate()?;
         nsga.validate()?;
-        let mut rng = Pcg64::seed_from_u64(seed);
-        let mut tracker = InnovationTracker::new((spec.inputs + spec.outputs) as u32);
-        let batch = Breeding {
-            spec: &spec,
-            params: &params,
-            tracker: &mut tracker,
-            rng: &mut rng,
-        }
-        .minimal(nsga.population_size);
+        let (rng, tracker, batch) = first_batch(&spec, &params, seed, nsga.population_size);
         Ok(Nsga2(State {
             spec,
             params,
@@ -284,122 +292,6 @@ impl Nsga2 {
     }
 }
 
-/// Whether `a` dominates `b` (all objectives maximised): no worse in any, better in one.
-pub fn dominates(a: &[f64], b: &[f64]) -> bool {
-    let mut better = false;
-    for (x, y) in a.iter().zip(b) {
-        if x < y {
-            return false;
-        }
-        better |= x > y;
-    }
-    better
-}
-
-/// The non-dominated fronts, best first, each in index order: front 0 is
-/// dominated by none, front k + 1 only by members of fronts ≤ k.
-///
-/// The same fronts as Deb's fast non-dominated sort
-/// ([`fast_non_dominated_sort`]), found without comparing every pair: the
-/// efficient non-dominated sort with binary search (ENS-BS, Zhang et al.
-/// 2015). Sorted lexicographically best first, a member can only be
-/// dominated by members before it; each joins the first front none of whose
-/// members dominates it, and since being dominated by some member of front k
-/// holds for every k below a member's front and none from it on, that front
-/// is found by bisection.
-pub fn non_dominated_fronts(objectives: &[&[f64]]) -> Vec<Vec<usize>> {
-    let mut order: Vec<usize> = (0..objectives.len()).collect();
-    order.sort_by(|&a, &b| {
-        let lexicographic = objectives[b].iter().zip(objectives[a]);
-        // partial_cmp, so that −0 and 0 tie as they do for dominance.
-        let by_value = lexicographic.fold(std::cmp::Ordering::Equal, |o, (x, y)| {
-            o.then(x.partial_cmp(y).unwrap_or_else(|| x.total_cmp(y)))
-        });
-        by_value.then(a.cmp(&b))
-    });
-    let mut fronts: Vec<Vec<usize>> = Vec::new();
-    for p in order {
-        // Later members are likelier dominators: check a front from its end.
-        let dominated_in = |f: &Vec<usize>| {
-            f.iter()
-                .rev()
-                .any(|&q| dominates(objectives[q], objectives[p]))
-        };
-        let k = fronts.partition_point(dominated_in);
-        match fronts.get_mut(k) {
-            Some(front) => front.push(p),
-            None => fronts.push(vec![p]),
-        }
-    }
-    for front in &mut fronts {
-        front.sort_unstable();
-    }
-    fronts
-}
-
-/// Deb's fast non-dominated sort (O(M·N²), every pair compared): the
-/// reference [`non_dominated_fronts`] is checked against.
-pub fn fast_non_dominated_sort(objectives: &[&[f64]]) -> Vec<Vec<usize>> {
-    let n = objectives.len();
-    let mut dominated: Vec<Vec<usize>> = vec![Vec::new(); n];
-    let mut count = vec![0usize; n];
-    for p in 0..n {
-        for q in p + 1..n {
-            if dominates(objectives[p], objectives[q]) {
-                dominated[p].push(q);
-                count[q] += 1;
-            } else if dominates(objectives[q], objectives[p]) {
-                dominated[q].push(p);
-                count[p] += 1;
-            }
-        }
-    }
-    let mut fronts = Vec::new();
-    let mut front: Vec<usize> = (0..n).filter(|&p| count[p] == 0).collect();
-    while !front.is_empty() {
-        let mut next = Vec::new();
-        for &p in &front {
-            for &q in &dominated[p] {
-                count[q] -= 1;
-                if count[q] == 0 {
-                    next.push(q);
-                }
-            }
-        }
-        next.sort_unstable();
-        fronts.push(std::mem::replace(&mut front, next));
-    }
-    fronts
-}
-
-/// Deb's crowding distance of each member of `front`, written to
-/// `out[i]`: per objective, the extremes get ∞ and the others the gap
-/// between their neighbours over the front's range, summed.
-pub fn crowding_distances(front: &[usize], objectives: &[&[f64]], out: &mut [f64]) {
-    for &i in front {
-        out[i] = 0.0;
-    }
-    let Some(&first) = front.first() else {
-        return;
-    };
-    let mut sorted = front.to_vec();
-    // `m` picks an objective within each member's row; clippy reads it as a row index.
-    #[allow(clippy::needless_range_loop)]
-    for m in 0..objectives[first].len() {
-        let v = |i: usize| objectives[i][m];
-        sorted.sort_by(|&a, &b| v(a).total_cmp(&v(b)).then(a.cmp(&b)));
-        let (lo, hi) = (sorted[0], sorted[sorted.len() - 1]);
-        out[lo] = f64::INFINITY;
-        out[hi] = f64::INFINITY;
-        let range = v(hi) - v(lo);
-        if range > 0.0 {
-            for k in 1..sorted.len().saturating_sub(1) {
-                out[sorted[k]] += (v(sorted[k + 1]) - v(sorted[k - 1])) / range;
-            }
-        }
-    }
-}
-
 impl Strategy for Nsga2 {
     fn ask(&mut self) -> Batch<'_> {
         self.prepare();
@@ -416,11 +308,11 @@ impl Strategy for Nsga2 {
             objectives.push(o.ok_or_else(|| invalid("objectives", e.metrics.len(), reason))?);
         }
         let fitness: Vec<f64> = evaluations.iter().map(Evaluation::finite_fitness).collect();
-        record_best(&mut s.best, &s.batch, &fitness, s.generation);
-        s.told = Some(Told {
+        let told = Told {
             objectives,
             fitness,
-        });
+        };
+        told::record(&mut s.told, &mut s.best, &s.batch, s.generation, told);
         Ok(())
     }
 
@@ -447,66 +339,22 @@ impl Strategy for Nsga2 {
                 ranks[a] < ranks[b] || (ranks[a] == ranks[b] && crowding[a] >= crowding[b]);
             if a_wins { a } else { b }
         };
-        for _ in 0..s.nsga.population_size {
-            let a = tournament(&mut *breeding.rng);
-            let b = (breeding.rng.random_bool(s.nsga.crossover_probability))
-                .then(|| tournament(&mut *breeding.rng));
-            // The better ranked parent counts as the fitter in crossover.
-            let parent = |i: usize| (&parents[i].genome, -(ranks[i] as f64));
-            let child = breeding.child(parent(a), b.map(parent));
-            s.batch.push(child);
-        }
+        // The better ranked parent counts as the fitter in crossover.
+        let pick = |rng: &mut Pcg64| {
+            let i = tournament(rng);
+            (&parents[i].genome, -(ranks[i] as f64))
+        };
+        let (n, crossover) = (s.nsga.population_size, s.nsga.crossover_probability);
+        breeding.children(n, crossover, &mut s.batch, pick);
         s.generation += 1;
     }
 
-    fn generation(&self) -> u32 {
-        self.0.generation
-    }
-
-    fn champion(&self) -> Option<(&Genome, f64)> {
-        let f = &self.0.told.as_ref()?.fitness;
-        argmax(f).map(|i| (&self.0.batch[i], f[i]))
-    }
-
-    fn best_ever(&self) -> Option<&BestEver> {
-        self.0.best.as_ref()
-    }
-
-    fn stats(&self) -> GenerationStats {
-        let fitness = self.0.told.as_ref().map_or(&[][..], |t| &t.fitness);
-        GenerationStats::of_batch(self.0.generation, &self.0.batch, fitness)
-    }
+    told_batch_accessors!();
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use proptest::prelude::{prop, prop_assert, prop_assert_eq, proptest};
-    use proptest::strategy::Strategy as _;
-
-    #[test]
-    fn hand_computed_fronts_and_crowding() {
-        // Maximising both: A, B, C trade off; C and B dominate D; D dominates E.
-        let pts: [&[f64]; 5] = [
-            &[1.0, 5.0],
-            &[2.0, 4.0],
-            &[3.0, 3.0],
-            &[2.0, 2.0],
-            &[1.0, 1.0],
-        ];
-        let fronts = non_dominated_fronts(&pts);
-        assert_eq!(fronts, [vec![0, 1, 2], vec![3], vec![4]]);
-        let mut crowd = [0.0; 5];
-        crowding_distances(&fronts[0], &pts, &mut crowd);
-        // B: (3 − 1)/2 on the first objective + (5 − 3)/2 on the second.
-        assert_eq!(crowd[..3], [f64::INFINITY, 2.0, f64::INFINITY]);
-        let dup: [&[f64]; 2] = [&[1.0, 1.0], &[1.0, 1.0]];
-        assert_eq!(
-            non_dominated_fronts(&dup),
-            [vec![0, 1]],
-            "equals do not dominate"
-        );
-    }
 
     #[test]
     fn objectives_read_fitness_and_metrics_in_their_sense() {
@@ -580,69 +428,6 @@ mod tests {
             kept,
             [&[0.0, 4.0][..], &[4.0, 0.0], &[2.0, 2.0], &[1.0, 3.0]]
         );
-    }
-
-    fn points() -> impl proptest::strategy::Strategy<Value = Vec<Vec<f64>>> {
-        // Few distinct values (−0 among them) make ties and duplicates common.
-        let value = (0i32..6).prop_map(|v| if v == 5 { -0.0 } else { f64::from(v) });
-        let point = prop::collection::vec(value, 3);
-        prop::collection::vec(point, 0..40)
-    }
-
-    proptest! {
-        #[test]
-        fn fronts_partition_and_each_is_dominated_only_by_earlier_ones(pts in points()) {
-            let objectives: Vec<&[f64]> = pts.iter().map(|p| &p[..]).collect();
-            let fronts = non_dominated_fronts(&objectives);
-            let mut rank = vec![usize::MAX; pts.len()];
-            for (r, front) in fronts.iter().enumerate() {
-                for &i in front {
-                    prop_assert_eq!(rank[i], usize::MAX, "in two fronts");
-                    rank[i] = r;
-                }
-            }
-            prop_assert!(rank.iter().all(|&r| r != usize::MAX), "not in any front");
-            for i in 0..pts.len() {
-                for j in 0..pts.len() {
-                    if dominates(objectives[i], objectives[j]) {
-                        prop_assert!(rank[i] < rank[j]);
-                    }
-                }
-                if rank[i] > 0 {
-                    let by_previous = fronts[rank[i] - 1]
-                        .iter()
-                        .any(|&j| dominates(objectives[j], objectives[i]));
-                    prop_assert!(by_previous, "front {} member not dominated by front {}", rank[i], rank[i] - 1);
-                }
-            }
-        }
-
-        #[test]
-        fn bisected_fronts_equal_debs_fast_non_dominated_sort(pts in points()) {
-            let objectives: Vec<&[f64]> = pts.iter().map(|p| &p[..]).collect();
-            prop_assert_eq!(non_dominated_fronts(&objectives), fast_non_dominated_sort(&objectives));
-        }
-
-        #[test]
-        fn crowding_gives_extremes_infinity_and_others_at_most_one_per_objective(pts in points()) {
-            let objectives: Vec<&[f64]> = pts.iter().map(|p| &p[..]).collect();
-            let mut out = vec![-1.0; pts.len()];
-            for front in non_dominated_fronts(&objectives) {
-                crowding_distances(&front, &objectives, &mut out);
-                for m in [0, 1, 2] {
-                    let value = |i: usize| pts[i][m];
-                    let max = front.iter().map(|&i| value(i)).fold(f64::MIN, f64::max);
-                    let min = front.iter().map(|&i| value(i)).fold(f64::MAX, f64::min);
-                    for extreme in [min, max] {
-                        let at = front.iter().filter(|&&i| value(i) == extreme);
-                        prop_assert!(at.clone().any(|&i| out[i].is_infinite()));
-                    }
-                }
-                for &i in &front {
-                    prop_assert!(out[i].is_infinite() || (0.0..=3.0).contains(&out[i]));
-                }
-            }
-        }
     }
 
     #[test]

@@ -2,6 +2,7 @@
 
 mod common;
 
+mod checkpoint_json_keeps_its_field_names_and_order;
 mod checkpoint_of_any_strategy_resumes_identically;
 mod checkpoint_roundtrip_continues_identically;
 mod driver_runs_any_strategy;

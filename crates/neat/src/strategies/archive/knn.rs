@@ -185,18 +185,16 @@ impl KdTree {
             }
             return;
         }
-        let mid = (lo + hi) / 2;
-        let node = self.order[mid];
+        let Split {
+            node,
+            axis: d,
+            diff,
+            near,
+            far,
+        } = self.split(q, lo, hi, depth);
         if Some(node) != exclude {
             self.offer_point(q, node, best);
         }
-        let d = depth % self.dims;
-        let diff = q[d] - self.points[node * self.dims + d];
-        let (near, far) = if diff < 0.0 {
-            ((lo, mid), (mid + 1, hi))
-        } else {
-            ((mid + 1, hi), (lo, mid))
-        };
         self.search_k(q, exclude, near.0, near.1, depth + 1, best);
         // Every point beyond the split is at least |diff| away on axis d, and
         // at least `off` away on the others (its cell's earlier splits), so
@@ -214,6 +212,26 @@ impl KdTree {
             self.search_k(q, exclude, far.0, far.1, depth + 1, best);
         }
         best.off[d] = saved;
+    }
+
+    /// How the subtree `order[lo..hi]` at `depth` splits, seen from `q`.
+    fn split(&self, q: &[f64], lo: usize, hi: usize, depth: usize) -> Split {
+        let mid = (lo + hi) / 2;
+        let node = self.order[mid];
+        let axis = depth % self.dims;
+        let diff = q[axis] - self.points[node * self.dims + axis];
+        let (near, far) = if diff < 0.0 {
+            ((lo, mid), (mid + 1, hi))
+        } else {
+            ((mid + 1, hi), (lo, mid))
+        };
+        Split {
+            node,
+            axis,
+            diff,
+            near,
+            far,
+        }
     }
 
     /// The point nearest to `q`, the lowest index among equally near ones.
@@ -242,21 +260,30 @@ impl KdTree {
             }
             return;
         }
-        let mid = (lo + hi) / 2;
-        let node = self.order[mid];
+        let Split {
+            node,
+            diff,
+            near,
+            far,
+            ..
+        } = self.split(q, lo, hi, depth);
         offer(self.distance2(q, node), node);
-        let d = depth % self.dims;
-        let diff = q[d] - self.points[node * self.dims + d];
-        let (near, far) = if diff < 0.0 {
-            ((lo, mid), (mid + 1, hi))
-        } else {
-            ((mid + 1, hi), (lo, mid))
-        };
         self.search_1(q, near.0, near.1, depth + 1, best);
         if best.is_none_or(|(b, _)| diff * diff <= b) {
             self.search_1(q, far.0, far.1, depth + 1, best);
         }
     }
+}
+
+/// A subtree's split: the point at its middle, the axis it splits on,
+/// the query's offset from that point on the axis, and the `(lo, hi)` ranges
+/// of the half on the query's side and of the other half.
+struct Split {
+    node: usize,
+    axis: usize,
+    diff: f64,
+    near: (usize, usize),
+    far: (usize, usize),
 }
 
 /// Squared Euclidean distance between two points of the same dimension.

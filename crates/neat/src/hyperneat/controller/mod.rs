@@ -1,12 +1,18 @@
 //! The decoded controller: a one-layer, fully recurrent network.
+//!
+//! This file holds the controller (its padded, panelled storage, its
+//! accessors and checkpoint form) and the batch state of several robots;
+//! [`step`] is the update itself, vectorised at every instruction level.
+
+mod step;
 
 use serde::{Deserialize, Serialize};
 
 use super::error::HyperError;
 use super::layout::SubstrateLayout;
-use crate::activation::bipolar_sigmoid;
 use crate::network::Network;
-use crate::simd::{self, Simd, SimdLevel};
+use crate::simd::{self, SimdLevel};
+use step::Kernel;
 
 /// The source end of a controller link.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -388,224 +394,6 @@ impl Network for SubstrateController {
     }
 }
 
-/// The read-only parts of a controller one step needs.
-struct Kernel<'a> {
-    /// Inputs per robot.
-    ni: usize,
-    /// Neurons.
-    n: usize,
-    /// Padded column length (a multiple of [`PAD`]).
-    stride: usize,
-    /// Padded biases.
-    bias: &'a [f64],
-    /// Padded, panelled weights (see [`SubstrateController::at`]).
-    weights: &'a [f64],
-}
-
-impl Kernel<'_> {
-    /// Updates `state` (robots × stride) from `inputs` (robots × ni), using `acc` as scratch.
-    fn step(
-        &self,
-        level: SimdLevel,
-        robots: usize,
-        inputs: &[f64],
-        state: &mut [f64],
-        acc: &mut [f64],
-    ) {
-        assert!(
-            inputs.len() == robots * self.ni
-                && state.len() == robots * self.stride
-                && acc.len() == state.len()
-                && self.bias.len() == self.stride
-                && self.weights.len() == (self.ni + self.n) * self.stride
-                && self.stride.is_multiple_of(PAD)
-        );
-        #[cfg(target_arch = "x86_64")]
-        {
-            use crate::simd::x86::{Avx2, Avx512};
-            if level >= SimdLevel::Avx512
-                && let Some(t) = Avx512::new()
-            {
-                // SAFETY: the token `t` exists only when this CPU supports AVX-512F.
-                return unsafe { step_avx512(t, self, robots, inputs, state, acc) };
-            }
-            if level >= SimdLevel::Avx2
-                && let Some(t) = Avx2::new()
-            {
-                // SAFETY: the token `t` exists only when this CPU supports AVX2.
-                return unsafe { step_avx2(t, self, robots, inputs, state, acc) };
-            }
-        }
-        step_body(crate::simd::Baseline, self, robots, inputs, state, acc);
-    }
-}
-
-/// The step compiled with AVX-512F (no FMA: the same bits as the baseline).
-///
-/// # Safety
-/// The CPU must support AVX-512F (the token proves it).
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx512f")]
-unsafe fn step_avx512(
-    t: crate::simd::x86::Avx512,
-    k: &Kernel,
-    robots: usize,
-    x: &[f64],
-    y: &mut [f64],
-    acc: &mut [f64],
-) {
-    step_body(t, k, robots, x, y, acc)
-}
-
-/// The step compiled with AVX2 (no FMA: the same bits as the baseline).
-///
-/// # Safety
-/// The CPU must support AVX2 (the token proves it).
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-unsafe fn step_avx2(
-    t: crate::simd::x86::Avx2,
-    k: &Kernel,
-    robots: usize,
-    x: &[f64],
-    y: &mut [f64],
-    acc: &mut [f64],
-) {
-    step_body(t, k, robots, x, y, acc)
-}
-
-/// One step of all robots: neuron groups of two vectors (one for the last
-/// vector of a column), robots in tiles of up to `S::MAX_TILE`.
-///
-/// Every neuron's sum is `bias`, then `+= w·x` for each input in order, then
-/// for each neuron in order — the update equation's order, whatever the
-/// vector width or the tiling, so every level gives the same bits.
-#[inline(always)]
-fn step_body<S: Simd>(s: S, k: &Kernel, robots: usize, x: &[f64], y: &mut [f64], acc: &mut [f64]) {
-    // Lanes past `live` hold only padding neurons: they are neither summed nor
-    // squashed (their state stays 0 and no neuron reads it), which spares a
-    // quarter of the work for 9 neurons on 4-lane vectors.
-    let live = k.n.next_multiple_of(S::LANES);
-    let mut r0 = 0;
-    while r0 < robots {
-        let rt = (robots - r0).min(S::MAX_TILE);
-        let m = k.ni + k.n;
-        for p0 in (0..k.stride).step_by(PANEL) {
-            let width = PANEL.min(k.stride - p0);
-            let panel = Panel {
-                p0,
-                width,
-                weights: &k.weights[p0 * m..][..m * width],
-            };
-            // p0 < n always (stride − n < PAD ≤ PANEL), so this is at least one vector.
-            let needed = width.min(live - p0);
-            let mut sub = 0;
-            while sub < needed {
-                if needed - sub >= 2 * S::LANES {
-                    tile_rt::<S, 2>(s, k, &panel, rt, r0, sub, x, y, acc);
-                    sub += 2 * S::LANES;
-                } else {
-                    tile_rt::<S, 1>(s, k, &panel, rt, r0, sub, x, y, acc);
-                    sub += S::LANES;
-                }
-            }
-        }
-        r0 += rt;
-    }
-    // σ over the live lanes of every robot (live padding lanes: σ(0) = 0).
-    for (y, a) in y.chunks_exact_mut(k.stride).zip(acc.chunks_exact(k.stride)) {
-        for (y, &a) in y[..live].iter_mut().zip(&a[..live]) {
-            *y = bipolar_sigmoid(a);
-        }
-    }
-}
-
-/// Dispatches a tile of `rt` robots to the kernel compiled for that count.
-#[inline(always)]
-#[allow(clippy::too_many_arguments)]
-fn tile_rt<S: Simd, const NB: usize>(
-    s: S,
-    k: &Kernel,
-    panel: &Panel,
-    rt: usize,
-    r0: usize,
-    sub: usize,
-    x: &[f64],
-    y: &[f64],
-    acc: &mut [f64],
-) {
-    macro_rules! tiles {
-        ($($n:literal),*) => {
-            match rt {
-                $($n => tile::<S, $n, NB>(s, k, panel, r0, sub, x, y, acc),)*
-                _ => unreachable!("robot tile of {rt}"),
-            }
-        };
-    }
-    tiles!(1, 2, 3, 4, 5, 6, 7, 8);
-}
-
-/// One panel of weights: neurons `p0..p0 + width`, every source.
-struct Panel<'a> {
-    /// First neuron.
-    p0: usize,
-    /// Neurons in the panel.
-    width: usize,
-    /// `(ni + n) × width` weights, source-major.
-    weights: &'a [f64],
-}
-
-/// Sums of the `NB` vectors of neurons from `panel.p0 + sub` of robots
-/// `r0..r0 + RT` into `acc`: the `RT × NB` sums stay in registers while the
-/// panel's columns stream by once.
-#[inline(always)]
-#[allow(clippy::too_many_arguments)]
-fn tile<S: Simd, const RT: usize, const NB: usize>(
-    s: S,
-    k: &Kernel,
-    panel: &Panel,
-    r0: usize,
-    sub: usize,
-    x: &[f64],
-    y: &[f64],
-    acc: &mut [f64],
-) {
-    let group = NB * S::LANES;
-    let i0 = panel.p0 + sub;
-    let load = |column: &[f64], from: usize| -> [S::V; NB] {
-        let column = &column[from..from + group];
-        std::array::from_fn(|b| s.load(&column[b * S::LANES..]))
-    };
-    let mut sum = [load(k.bias, i0); RT];
-    let xs: [&[f64]; RT] = std::array::from_fn(|r| &x[(r0 + r) * k.ni..][..k.ni]);
-    let ys: [&[f64]; RT] = std::array::from_fn(|r| &y[(r0 + r) * k.stride..][..k.n]);
-    let (w_in, w_rec) = panel.weights.split_at(k.ni * panel.width);
-    for (j, column) in w_in.chunks_exact(panel.width).enumerate() {
-        let w = load(column, sub);
-        for r in 0..RT {
-            let v = s.splat(xs[r][j]);
-            for b in 0..NB {
-                sum[r][b] = s.add(sum[r][b], s.mul(w[b], v));
-            }
-        }
-    }
-    for (j, column) in w_rec.chunks_exact(panel.width).enumerate() {
-        let w = load(column, sub);
-        for r in 0..RT {
-            let v = s.splat(ys[r][j]);
-            for b in 0..NB {
-                sum[r][b] = s.add(sum[r][b], s.mul(w[b], v));
-            }
-        }
-    }
-    for (r, sums) in sum.iter().enumerate() {
-        let out = &mut acc[(r0 + r) * k.stride + i0..][..group];
-        for (b, &v) in sums.iter().enumerate() {
-            s.store(v, &mut out[b * S::LANES..]);
-        }
-    }
-}
-
 impl SubstrateController {
     /// Assembles a decoded controller (sizes consistent with `layout`):
     /// `bias` per neuron, and `column(j, out)` writes the weights from source
@@ -641,6 +429,7 @@ impl SubstrateController {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::activation::bipolar_sigmoid;
     use crate::hyperneat::test_util::{FnCppn, close, known, layout};
     use crate::hyperneat::{HyperParams, InputSheet, decode};
 
