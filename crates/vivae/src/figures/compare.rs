@@ -12,7 +12,6 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
-use clap::Args;
 use plotters::coord::Shift;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
@@ -28,32 +27,6 @@ use vivae_lab::rundir::{self, files};
 pub const AT_GENERATIONS: [u32; 5] = [10, 50, 100, 200, 400];
 /// Wall-clock seconds at which the table reports the median best-so-far fitness.
 pub const AT_SECONDS: [f64; 3] = [30.0, 120.0, 600.0];
-
-/// Command-line options of `vivae compare`.
-#[derive(Args, Debug, Clone)]
-pub struct CompareArgs {
-    /// Run directories (several seeds per group; a run still evolving is read as far as it got).
-    #[arg(required = true, value_name = "RUN_DIR")]
-    pub runs: Vec<PathBuf>,
-    /// Group the runs whose path or folder name matches GLOB (`*`, `?`) as NAME,
-    /// e.g. --label 'camera=runs/cam16-s*'; repeatable, the first match wins.
-    /// Other runs are grouped by their substrate (e.g. 3x5→3x3).
-    #[arg(long, value_name = "NAME=GLOB")]
-    pub label: Vec<LabelRule>,
-    /// The figure: a .png or .svg file.
-    #[arg(short, long, value_name = "OUT")]
-    pub out: PathBuf,
-    /// Also write the table as CSV to this file.
-    #[arg(long, value_name = "FILE")]
-    pub csv: Option<PathBuf>,
-    /// Figure title.
-    #[arg(
-        long,
-        value_name = "TEXT",
-        default_value = "Best fitness per generation and per wall-clock second"
-    )]
-    pub title: String,
-}
 
 /// A `--label NAME=GLOB` rule: runs whose path matches `GLOB` form group `NAME`.
 #[derive(Debug, Clone, PartialEq)]
@@ -870,40 +843,44 @@ fn draw(groups: &[Group], opts: &CompareOptions) -> Result<String, FigureError> 
     Ok(svg)
 }
 
-/// Runs `vivae compare`: writes the figure (and CSV), returns the Markdown table.
-pub fn run(args: &CompareArgs) -> Result<String> {
-    let svg_out = match args.out.extension().and_then(|e| e.to_str()) {
+/// Runs `vivae compare` on the run directories `runs`, grouped by `rules`:
+/// writes the figure to `out` (.png or .svg) and the table as CSV to `csv`,
+/// and returns the table in Markdown.
+pub fn run(
+    runs: &[PathBuf],
+    rules: &[LabelRule],
+    out: &Path,
+    csv_out: Option<&Path>,
+    opts: &CompareOptions,
+) -> Result<String> {
+    let svg_out = match out.extension().and_then(|e| e.to_str()) {
         Some(e) if e.eq_ignore_ascii_case("svg") => true,
         Some(e) if e.eq_ignore_ascii_case("png") => false,
         _ => {
             return Err(bad_input(format!(
                 "{}: the figure must be a .png or .svg file",
-                args.out.display()
+                out.display()
             )));
         }
     };
-    let groups = load_groups(&args.runs, &args.label)?;
+    let groups = load_groups(runs, rules)?;
     let summaries: Vec<Summary> = groups.iter().map(summarise).collect();
-    let opts = CompareOptions {
-        title: args.title.clone(),
-        ..CompareOptions::default()
-    };
     let bytes = if svg_out {
-        draw(&groups, &opts)?.into_bytes()
+        draw(&groups, opts)?.into_bytes()
     } else {
-        render(&groups, &opts)?.png
+        render(&groups, opts)?.png
     };
     // Both outputs' folders are made first (as `evolve` and `replay` make
     // theirs), so that one is not written without the other.
-    for path in std::iter::once(&args.out).chain(&args.csv) {
+    for path in std::iter::once(out).chain(csv_out) {
         if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
             vivae_lab::io::create_dirs_for(parent, path)?;
         }
     }
-    if let Some(path) = &args.csv {
+    if let Some(path) = csv_out {
         write_atomic(path, csv(&summaries).as_bytes())?;
     }
-    write_atomic(&args.out, &bytes)?;
+    write_atomic(out, &bytes)?;
     Ok(markdown(&summaries))
 }
 

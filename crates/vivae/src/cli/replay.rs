@@ -1,0 +1,158 @@
+//! `vivae replay`: runs a genome (a run's champion, an elite or a front
+//! member, or a genome file) and draws its trajectories; a maze run's genome
+//! prints its episode's end instead.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::Args;
+use vivae::report;
+use vivae_lab::config::{Config, TaskKind};
+use vivae_lab::experiment::Experiment;
+use vivae_lab::io::{bad_input, load_scenario};
+use vivae_lab::run_task::RunTask;
+use vivae_lab::rundir;
+
+use super::args::{MemberChoice, Resolution, Wiring};
+use super::overrides::{Overrides, apply_overrides, scenario_path};
+
+/// Options of `vivae replay`.
+#[derive(Args, Debug)]
+pub struct ReplayArgs {
+    /// A run directory or a genome JSON file (champion.json).
+    pub source: PathBuf,
+    /// Scenario SVG file or shipped name (default: the run's).
+    #[arg(long, value_name = "FILE|NAME")]
+    pub scenario: Option<PathBuf>,
+    #[command(flatten)]
+    pub resolution: Resolution,
+    /// Simulation steps.
+    #[arg(long, value_name = "N")]
+    pub steps: Option<u32>,
+    /// Robots: the scenario's first N, 0 = all (default: the run's number on
+    /// the run's scenario, all of them on another scenario).
+    #[arg(long, value_name = "N")]
+    pub robots: Option<usize>,
+    #[command(flatten)]
+    pub member: MemberChoice,
+    /// Folder for the trajectory figure (default: replay/ beside the source).
+    #[arg(short, long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    #[command(flatten)]
+    pub wiring: Wiring,
+}
+
+impl ReplayArgs {
+    /// The config keys these options override; `robots` is the number of robots asked for.
+    fn overrides(&self, robots: Option<usize>) -> Overrides {
+        Overrides {
+            scenario: self.scenario.iter().cloned().collect(),
+            resolution: self.resolution,
+            steps: self.steps,
+            robots,
+            wiring: self.wiring,
+            ..Overrides::default()
+        }
+    }
+}
+
+/// Runs `vivae replay`.
+pub fn run(args: ReplayArgs) -> anyhow::Result<ExitCode> {
+    let (mut champion, mut config, base) = rundir::load_genome_source(&args.source)?;
+    let member = args.member.member();
+    if let Some(member) = member {
+        use vivae_lab::strategy_files::read_member;
+        (champion.genome, champion.fitness, champion.generation) =
+            read_member(&args.source, member)?;
+    }
+    if config.experiment.task == TaskKind::Maze {
+        return replay_maze(&args, &champion, config);
+    }
+    // A multi-map run replays on its first training map unless told otherwise.
+    if args.scenario.is_none() && vivae_lab::maps::is_multi_map(&config) {
+        let maps = std::mem::take(&mut config.experiment.scenarios);
+        eprintln!(
+            "replaying on the first training map, {} (of {}: {}); choose another with --scenario",
+            maps[0],
+            maps.len(),
+            maps.join(", ")
+        );
+        config.experiment.scenario = maps[0].clone();
+    }
+    // Another scenario has its own robot starts: all of them, unless told.
+    let robots = args.robots.or(args.scenario.as_ref().map(|_| 0));
+    apply_overrides(&mut config, &args.overrides(robots))?;
+    let path = scenario_path(&config);
+    if let Some(p) = path
+        .as_deref()
+        .filter(|p| args.scenario.is_none() && !p.exists())
+    {
+        return Err(bad_input(format!(
+            "{}: the champion's scenario {} is not there; name one with --scenario FILE",
+            args.source.display(),
+            p.display()
+        ))
+        .into());
+    }
+    let scenario = load_scenario(path.as_deref())?;
+    let experiment =
+        Experiment::new(&config, &scenario.scenario).map_err(vivae_lab::Error::from)?;
+    // Checked before anything is written: a genome that does not fit is bad input.
+    experiment
+        .robot_controller(&champion.genome)
+        .map_err(|e| vivae_lab::Error::Genome {
+            path: args.source.clone(),
+            reason: format!("the genome's {e}"),
+        })?;
+    // Said once the genome is known to fit, so that an error stays one line.
+    if champion.config.is_none() && !args.source.is_dir() {
+        eprintln!(
+            "warning: {} records no config (written by an older vivae): replaying with the default config and flags; replay its run directory instead if you have it",
+            args.source.display()
+        );
+    }
+    let out = args.out.clone().unwrap_or_else(|| base.join("replay"));
+    vivae_lab::io::create_dirs(&out)?;
+    let name = report::replay_scenario_name(path.as_deref(), &scenario.text);
+    let replay = report::replay(&experiment, &config, &champion, &name, &out, member)?;
+    println!(
+        "fitness={} on_road={:.4} {}",
+        replay.fitness,
+        replay.on_road,
+        replay.behaviour.fields()
+    );
+    eprintln!("figure: {}", replay.figure.display());
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `vivae replay` of a maze run's genome: its episode's end, on stdout (no figure).
+fn replay_maze(
+    args: &ReplayArgs,
+    champion: &rundir::Champion,
+    mut config: Config,
+) -> anyhow::Result<ExitCode> {
+    apply_overrides(&mut config, &args.overrides(args.robots))?;
+    let scenario = load_scenario(scenario_path(&config).as_deref())?;
+    let maze = vivae_lab::maze_run::task(&config, &scenario.scenario)?;
+    RunTask::Maze(Box::new(maze.clone()))
+        .check_genome(&champion.genome)
+        .map_err(|reason| vivae_lab::Error::Genome {
+            path: args.source.clone(),
+            reason,
+        })?;
+    let end = maze.run_genome(&champion.genome);
+    println!(
+        "fitness={} solved={} distance={:.3} steps={} end_x={:.3} end_y={:.3}",
+        end.fitness(),
+        if end.solved { "yes" } else { "no" },
+        end.distance,
+        end.steps,
+        end.end.x,
+        end.end.y
+    );
+    eprintln!(
+        "maze {}: a maze replay prints the episode's end and draws no figure",
+        scenario.scenario.source
+    );
+    Ok(ExitCode::SUCCESS)
+}
