@@ -9,7 +9,7 @@
 //! a Markdown table (stdout) and optionally a CSV file.
 
 //!
-//! [`runs`] reads and groups the runs, [`table`] makes the numbers, [`plot`]
+//! `runs` reads and groups the runs, `table` makes the numbers, `plot`
 //! draws the figure; [`run`] does all three for the command.
 
 mod plot;

@@ -9,8 +9,8 @@
 //! stop being readable and cost time and bytes per link, so [`render`] draws
 //! the receptive-field form of [`super::fields`] instead.
 //!
-//! [`polar`] draws the dense controller's sheets, [`es`] an ES-HyperNEAT
-//! controller, [`legend`] the legend both share; this file chooses the form
+//! `polar` draws the dense controller's sheets, `es` an ES-HyperNEAT
+//! controller, `legend` the legend both share; this file chooses the form
 //! and holds the strokes they share.
 
 mod es;
