@@ -47,6 +47,17 @@ pub struct Threads {
     pub threads: Option<usize>,
 }
 
+/// An episode's length and robots (`evolve`'s wording; `replay` rewords them).
+#[derive(Args, Debug, Default, Clone, Copy)]
+pub struct Episode {
+    /// Simulation steps per evaluation.
+    #[arg(long, value_name = "N")]
+    pub steps: Option<u32>,
+    /// Robots: the scenario's first N (0 = all of them; paper: 5).
+    #[arg(long, value_name = "N")]
+    pub robots: Option<usize>,
+}
+
 /// How many generations a run has or gets (`evolve`'s wording; `resume` and
 /// `retrain` reword it).
 #[derive(Args, Debug, Default, Clone, Copy)]

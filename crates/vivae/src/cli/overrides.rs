@@ -8,7 +8,7 @@ use vivae_lab::config::{Config, TaskKind};
 use vivae_lab::io::bad_input;
 use vivae_lab::substrate::PolarGrid;
 
-use super::args::{Generations, Resolution, Threads, Wiring};
+use super::args::{Episode, Generations, Resolution, Threads, Wiring};
 
 /// Options that override config keys.
 #[derive(Args, Debug, Default)]
@@ -28,12 +28,8 @@ pub struct Overrides {
     pub seed: Option<u64>,
     #[command(flatten)]
     pub resolution: Resolution,
-    /// Simulation steps per evaluation.
-    #[arg(long, value_name = "N")]
-    pub steps: Option<u32>,
-    /// Robots: the scenario's first N (0 = all of them; paper: 5).
-    #[arg(long, value_name = "N")]
-    pub robots: Option<usize>,
+    #[command(flatten)]
+    pub episode: Episode,
     #[command(flatten)]
     pub threads: Threads,
     /// Multi-resolution evolution: evaluate every genome at these neuron
@@ -95,8 +91,8 @@ pub fn apply_overrides(config: &mut Config, o: &Overrides) -> anyhow::Result<()>
         config.surface_sensors.angles = g.angles;
     }
     set(&mut config.substrate.neurons, o.resolution.neurons);
-    set(&mut config.experiment.steps, o.steps);
-    set(&mut config.experiment.robots, o.robots);
+    set(&mut config.experiment.steps, o.episode.steps);
+    set(&mut config.experiment.robots, o.episode.robots);
     set(&mut config.run.threads, o.threads.threads);
     set(&mut config.substrate.train_neurons, o.train_neurons.clone());
     set(&mut config.substrate.train_sensors, o.train_sensors.clone());

@@ -13,11 +13,16 @@ use vivae_lab::io::{bad_input, load_scenario};
 use vivae_lab::run_task::RunTask;
 use vivae_lab::rundir;
 
-use super::args::{MemberChoice, Resolution, Wiring};
+use super::args::{Episode, MemberChoice, Resolution, Wiring};
 use super::overrides::{Overrides, apply_overrides, scenario_path};
 
 /// Options of `vivae replay`.
 #[derive(Args, Debug)]
+#[command(mut_arg("steps", |a| a.help("Simulation steps")))]
+#[command(mut_arg("robots", |a| a.help(
+    "Robots: the scenario's first N, 0 = all (default: the run's number on \
+     the run's scenario, all of them on another scenario)"
+)))]
 pub struct ReplayArgs {
     /// A run directory or a genome JSON file (champion.json).
     pub source: PathBuf,
@@ -26,13 +31,8 @@ pub struct ReplayArgs {
     pub scenario: Option<PathBuf>,
     #[command(flatten)]
     pub resolution: Resolution,
-    /// Simulation steps.
-    #[arg(long, value_name = "N")]
-    pub steps: Option<u32>,
-    /// Robots: the scenario's first N, 0 = all (default: the run's number on
-    /// the run's scenario, all of them on another scenario).
-    #[arg(long, value_name = "N")]
-    pub robots: Option<usize>,
+    #[command(flatten)]
+    pub episode: Episode,
     #[command(flatten)]
     pub member: MemberChoice,
     /// Folder for the trajectory figure (default: replay/ beside the source).
@@ -48,8 +48,10 @@ impl ReplayArgs {
         Overrides {
             scenario: self.scenario.iter().cloned().collect(),
             resolution: self.resolution,
-            steps: self.steps,
-            robots,
+            episode: Episode {
+                steps: self.episode.steps,
+                robots,
+            },
             wiring: self.wiring,
             ..Overrides::default()
         }
@@ -80,7 +82,7 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<ExitCode> {
         config.experiment.scenario = maps[0].clone();
     }
     // Another scenario has its own robot starts: all of them, unless told.
-    let robots = args.robots.or(args.scenario.as_ref().map(|_| 0));
+    let robots = args.episode.robots.or(args.scenario.as_ref().map(|_| 0));
     apply_overrides(&mut config, &args.overrides(robots))?;
     let path = scenario_path(&config);
     if let Some(p) = path
@@ -131,7 +133,7 @@ fn replay_maze(
     champion: &rundir::Champion,
     mut config: Config,
 ) -> anyhow::Result<ExitCode> {
-    apply_overrides(&mut config, &args.overrides(args.robots))?;
+    apply_overrides(&mut config, &args.overrides(args.episode.robots))?;
     let scenario = load_scenario(scenario_path(&config).as_deref())?;
     let maze = vivae_lab::maze_run::task(&config, &scenario.scenario)?;
     RunTask::Maze(Box::new(maze.clone()))

@@ -746,13 +746,9 @@ mod tests {
             let mut sim = Sim::new(&source, &snap).unwrap();
             let frame =
                 |sim: &mut Sim| -> Value { serde_json::from_str(&sim.frame_msg()).unwrap() };
+            let send = |sim: &mut Sim, message: &str| sim.handle(message, &source, &snap);
             assert_eq!(frame(&mut sim)["choice"], "none");
-            sim.handle(
-                r#"{"type":"controller","which":{"elite":8}}"#,
-                &source,
-                &snap,
-            )
-            .unwrap();
+            send(&mut sim, r#"{"type":"controller","which":{"elite":8}}"#).unwrap();
             let f = frame(&mut sim);
             assert_eq!(f["choice"], "elite:8");
             assert_eq!(f["generation"], 4);
@@ -760,12 +756,7 @@ mod tests {
                 f["driver"],
                 "elite of cell 8 (generation 4, fitness 2.500; x 0.12, y 0.50)"
             );
-            sim.handle(
-                r#"{"type":"controller","which":{"front":1}}"#,
-                &source,
-                &snap,
-            )
-            .unwrap();
+            send(&mut sim, r#"{"type":"controller","which":{"front":1}}"#).unwrap();
             let f = frame(&mut sim);
             assert_eq!(f["choice"], "front:1");
             assert_eq!(
@@ -779,28 +770,15 @@ mod tests {
             );
             // Cells and members that are not there are refused, naming what there is.
             let before = sim.frame_msg();
-            let err = sim
-                .handle(
-                    r#"{"type":"controller","which":{"elite":4}}"#,
-                    &source,
-                    &snap,
-                )
-                .unwrap_err();
+            let err = send(&mut sim, r#"{"type":"controller","which":{"elite":4}}"#).unwrap_err();
             assert_eq!(err, "no elite in cell 4 (the run has 2 elites)");
-            let err = sim
-                .handle(
-                    r#"{"type":"controller","which":{"front":2}}"#,
-                    &source,
-                    &snap,
-                )
-                .unwrap_err();
+            let err = send(&mut sim, r#"{"type":"controller","which":{"front":2}}"#).unwrap_err();
             assert_eq!(err, "no front member 2 (the run has 2 members)");
             assert_eq!(sim.frame_msg(), before);
             // The choice survives a re-sampled substrate.
-            sim.handle(
+            send(
+                &mut sim,
                 r#"{"type":"resolution","sensors":"9x9","neurons":"9x9"}"#,
-                &source,
-                &snap,
             )
             .unwrap();
             assert_eq!(frame(&mut sim)["choice"], "front:1");
