@@ -55,7 +55,7 @@ pub fn run(args: ResumeArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<Ex
         args.generations.generations,
         args.threads.threads,
     )?;
-    if is_finished(&run)? {
+    if already_finished(&run)? {
         return Ok(ExitCode::SUCCESS);
     }
     let source = if vivae_lab::maps::is_multi_map(run.config()) {
@@ -77,7 +77,7 @@ pub fn run(args: ResumeArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<Ex
 
 /// Whether `run` has nothing left to do, said on the terminal (a solved maze,
 /// or every generation done; then any figures missing are drawn).
-fn is_finished(run: &Run) -> anyhow::Result<bool> {
+fn already_finished(run: &Run) -> anyhow::Result<bool> {
     let total = run.config().experiment.generations;
     if let Some(at) = run.maze_progress().and_then(|m| m.solved_at) {
         eprintln!(

@@ -42,7 +42,7 @@ pub struct RetrainArgs {
 pub fn run(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode> {
     let checkpoint = rundir::latest_checkpoint(&args.run_dir)?;
     let (mut config, population) = rundir::population_from_checkpoint(&checkpoint)?;
-    on_the_runs_maps(&mut config, &args.run_dir)?;
+    retrain_on_the_runs_maps(&mut config, &args.run_dir)?;
     config.experiment.init_population = checkpoint.to_string_lossy().into_owned();
     let overrides = Overrides {
         generations: args.generations,
@@ -80,7 +80,7 @@ pub fn run(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<E
 
 /// Points the config of the run in `run_dir` at that run's copies of its
 /// maps; refuses a maze run, which has no substrate to re-sample.
-fn on_the_runs_maps(config: &mut Config, run_dir: &std::path::Path) -> anyhow::Result<()> {
+fn retrain_on_the_runs_maps(config: &mut Config, run_dir: &std::path::Path) -> anyhow::Result<()> {
     if config.experiment.task == TaskKind::Maze {
         return Err(bad_input(format!(
             "{}: a maze run evolves plain networks, which have no substrate to re-sample: retrain is for driving runs",

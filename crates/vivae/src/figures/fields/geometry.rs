@@ -9,15 +9,15 @@ use crate::figures::PNG_SCALE;
 use crate::figures::controller::{FigureSheet, NetworkOptions};
 
 /// The receptive-field figure is this much larger than the link figure (more to show).
-pub(super) const ENLARGE: f64 = 1.6;
+const ENLARGE: f64 = 1.6;
 /// Inner and outer radius (sheet radius = 1) of the first band outside the
 /// panel: the second input sheet's (e.g. the distance rays').
-pub(super) const BAND: (f64, f64) = (1.06, 1.22);
+const BAND: (f64, f64) = (1.06, 1.22);
 /// How much further out each further band is.
-pub(super) const BAND_STEP: f64 = 0.22;
+const BAND_STEP: f64 = 0.22;
 
 /// Inner and outer radius of input sheet `band`'s band (1 = the second sheet).
-pub(super) fn band_radii(band: usize) -> (f64, f64) {
+fn band_radii(band: usize) -> (f64, f64) {
     let shift = BAND_STEP * (band - 1) as f64;
     (BAND.0 + shift, BAND.1 + shift)
 }
@@ -35,7 +35,7 @@ pub(super) const OUTSIDE: u32 = u32::MAX;
 
 /// Boundaries between the wedges of nodes at angles `phis` (ascending): midway
 /// between neighbours, half a spacing beyond the ends (`half_fov` for one node).
-pub(super) fn wedge_bounds(phis: &[f64], half_fov: f64) -> Vec<f64> {
+fn wedge_bounds(phis: &[f64], half_fov: f64) -> Vec<f64> {
     match phis {
         [] => Vec::new(),
         [only] => vec![only - half_fov, only + half_fov],
@@ -51,7 +51,7 @@ pub(super) fn wedge_bounds(phis: &[f64], half_fov: f64) -> Vec<f64> {
 }
 
 /// Index of the wedge holding angle `phi`.
-pub(super) fn wedge(bounds: &[f64], phi: f64) -> Option<usize> {
+fn wedge(bounds: &[f64], phi: f64) -> Option<usize> {
     if bounds.len() < 2 || !(phi >= bounds[0] && phi < bounds[bounds.len() - 1]) {
         return None;
     }
@@ -71,24 +71,19 @@ pub(super) struct Stencil {
 
 /// Which input of one sheet feeds a point of a panel: the sheet's nodes by
 /// ring (radial slices of `r0..r1`) and wedge (angle).
-pub(super) struct Placement {
+struct Placement {
     /// Radial extent in sheet radii: `0..1` for the panel, a band outside it.
-    pub(super) r0: f64,
-    pub(super) r1: f64,
-    pub(super) rings: usize,
-    pub(super) angles: usize,
+    r0: f64,
+    r1: f64,
+    rings: usize,
+    angles: usize,
     /// Input index (over all sheets) by `ring * angles + angle_index`.
-    pub(super) by_place: Vec<u32>,
-    pub(super) bounds: Vec<f64>,
+    by_place: Vec<u32>,
+    bounds: Vec<f64>,
 }
 
 impl Placement {
-    pub(super) fn new(
-        nodes: &[PolarNode],
-        first_input: usize,
-        (r0, r1): (f64, f64),
-        half: f64,
-    ) -> Self {
+    fn new(nodes: &[PolarNode], first_input: usize, (r0, r1): (f64, f64), half: f64) -> Self {
         let rings = nodes.iter().map(|n| n.ring + 1).max().unwrap_or(1);
         let angles = nodes.iter().map(|n| n.angle_index + 1).max().unwrap_or(1);
         // Input index by (ring, angle): the sheet need not list them in grid order.
@@ -109,7 +104,7 @@ impl Placement {
     }
 
     /// The input at radius `rho` (in `r0..r1`) and angle `phi`.
-    pub(super) fn input(&self, rho: f64, phi: f64) -> u32 {
+    fn input(&self, rho: f64, phi: f64) -> u32 {
         let ring = (((rho - self.r0) / (self.r1 - self.r0) * self.rings as f64) as usize)
             .min(self.rings - 1);
         wedge(&self.bounds, phi).map_or(OUTSIDE, |a| self.by_place[ring * self.angles + a])

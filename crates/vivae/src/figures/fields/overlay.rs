@@ -11,20 +11,20 @@ use crate::figures::controller::{GUIDE, WHEEL, px};
 use crate::figures::{FAMILY, FigureError, draw_err};
 
 /// The drawing area of the vector overlay.
-pub(super) type Root<'a> = DrawingArea<SVGBackend<'a>, Shift>;
+type Root<'a> = DrawingArea<SVGBackend<'a>, Shift>;
 
 /// The font of captions.
-pub(super) fn font() -> FontDesc<'static> {
+fn font() -> FontDesc<'static> {
     (FAMILY, 17).into_font()
 }
 
 /// The font of labels and notes.
-pub(super) fn small() -> FontDesc<'static> {
+fn small() -> FontDesc<'static> {
     (FAMILY, 14).into_font()
 }
 
 /// Draws `s` at `at` in font `f`, anchored at `pos`.
-pub(super) fn text(
+fn text(
     root: &Root<'_>,
     s: &str,
     at: (f64, f64),
@@ -59,7 +59,7 @@ impl<'a> Fields<'a> {
     }
 
     /// The title and the line under it.
-    pub(super) fn draw_titles(&self, root: &Root<'_>) -> Result<(), FigureError> {
+    fn draw_titles(&self, root: &Root<'_>) -> Result<(), FigureError> {
         let w = self.layout.w;
         let centre_top = Pos::new(HPos::Center, VPos::Top);
         let title_font = (FAMILY, 24).into_font().style(FontStyle::Bold);
@@ -88,7 +88,7 @@ impl<'a> Fields<'a> {
     }
 
     /// Column (angle) and row (ring) labels of the panel grid.
-    pub(super) fn draw_grid_labels(&self, root: &Root<'_>) -> Result<(), FigureError> {
+    fn draw_grid_labels(&self, root: &Root<'_>) -> Result<(), FigureError> {
         let (left, top, cw, ch) = self.layout.grid;
         let (rows, cols) = (self.rows, self.cols);
         let centre_bottom = Pos::new(HPos::Center, VPos::Bottom);
@@ -136,7 +136,7 @@ impl<'a> Fields<'a> {
     }
 
     /// Panel outlines, wheel neurons red (labelled L and R), bias dots.
-    pub(super) fn draw_panels(&self, root: &Root<'_>) -> Result<(), FigureError> {
+    fn draw_panels(&self, root: &Root<'_>) -> Result<(), FigureError> {
         let (r, half) = (self.layout.radius, self.half);
         let wheels = &self.nodes.wheels;
         let dot = (r * 0.1).clamp(1.5, 5.0);
@@ -191,7 +191,7 @@ impl<'a> Fields<'a> {
     }
 
     /// The recurrent matrix's captions, ring blocks and frame, and the bias row's frame.
-    pub(super) fn draw_matrix_frame(&self, root: &Root<'_>) -> Result<(), FigureError> {
+    fn draw_matrix_frame(&self, root: &Root<'_>) -> Result<(), FigureError> {
         let (mx, my, side) = self.layout.matrix;
         let (rows, cols) = (self.rows, self.cols);
         let centre_bottom = Pos::new(HPos::Center, VPos::Bottom);
@@ -241,7 +241,7 @@ impl<'a> Fields<'a> {
     }
 
     /// The wheel neurons' ticks and L/R labels along the matrix and the bias row.
-    pub(super) fn draw_wheel_ticks(&self, root: &Root<'_>) -> Result<(), FigureError> {
+    fn draw_wheel_ticks(&self, root: &Root<'_>) -> Result<(), FigureError> {
         let (mx, my, side) = self.layout.matrix;
         let (by, bh) = self.layout.bias;
         let per = side / self.nodes.neurons.len() as f64;
@@ -278,7 +278,7 @@ impl<'a> Fields<'a> {
     }
 
     /// The colour scales of the three blocks.
-    pub(super) fn draw_colour_bars(&self, root: &Root<'_>) -> Result<(), FigureError> {
+    fn draw_colour_bars(&self, root: &Root<'_>) -> Result<(), FigureError> {
         let (mx, _, side) = self.layout.matrix;
         let (by, bh) = self.layout.bias;
         let (left, top, cw, ch) = self.layout.grid;
@@ -311,7 +311,7 @@ impl<'a> Fields<'a> {
     }
 
     /// How to read the panels, along the bottom.
-    pub(super) fn draw_reading_guide(&self, root: &Root<'_>) -> Result<(), FigureError> {
+    fn draw_reading_guide(&self, root: &Root<'_>) -> Result<(), FigureError> {
         let (left, _, _, _) = self.layout.grid;
         let mut lines = vec![
             "Each panel is one neuron: its weight from every sensor, drawn where the sensor looks (ahead is up, robot at the centre;".to_string(),
@@ -355,7 +355,7 @@ pub(super) fn possessive(label: &str) -> String {
 }
 
 /// A horizontal colour bar from `−scale` through 0 to `+scale`, named `label`.
-pub(super) fn colour_bar(
+fn colour_bar(
     root: &DrawingArea<SVGBackend<'_>, Shift>,
     (x, y): (f64, f64),
     width: f64,
