@@ -220,54 +220,36 @@ where
     Ok(chart)
 }
 
-/// Every run's thin line in both panels.
-fn draw_run_lines(
+/// Every run's thin line, then every group's thick median line (labelled for
+/// the legend), in both panels: the runs first, so that no median line is
+/// hidden under one.
+fn draw_lines(
     groups: &[Group],
     per_gen: &mut GenerationChart<'_, '_>,
     per_second: &mut SecondsChart<'_, '_>,
 ) -> Result<(), FigureError> {
-    for (gi, g) in groups.iter().enumerate() {
-        let colour = COLOURS[gi % COLOURS.len()];
+    let coloured = || groups.iter().zip(COLOURS.iter().copied().cycle());
+    for (g, colour) in coloured() {
         for r in &g.runs {
+            let best = r.best[..r.generations()].iter().copied();
             per_gen
-                .draw_series(LineSeries::new(
-                    r.best[..r.generations()]
-                        .iter()
-                        .enumerate()
-                        .map(|(i, &b)| (i as f64 + 1.0, b)),
-                    thin(colour),
-                ))
+                .draw_series(LineSeries::new(by_generation(best), thin(colour)))
                 .map_err(draw_err)?;
             per_second
                 .draw_series(LineSeries::new(steps(r), thin(colour)))
                 .map_err(draw_err)?;
         }
     }
-    Ok(())
-}
-
-/// Every group's thick median line in both panels, labelled for the legend.
-fn draw_median_lines(
-    groups: &[Group],
-    per_gen: &mut GenerationChart<'_, '_>,
-    per_second: &mut SecondsChart<'_, '_>,
-) -> Result<(), FigureError> {
-    for (gi, g) in groups.iter().enumerate() {
-        let colour = COLOURS[gi % COLOURS.len()];
+    for (g, colour) in coloured() {
         let n = g.runs.len();
         let label = if n == 1 {
             format!("{} (1 run)", g.name)
         } else {
             format!("{} ({n} runs, median)", g.name)
         };
+        let median = by_generation(median_per_generation(g));
         per_gen
-            .draw_series(LineSeries::new(
-                median_per_generation(g)
-                    .into_iter()
-                    .enumerate()
-                    .map(|(i, b)| (i as f64 + 1.0, b)),
-                thick(colour),
-            ))
+            .draw_series(LineSeries::new(median, thick(colour)))
             .map_err(draw_err)?
             .label(label)
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], thick(colour)));
@@ -276,6 +258,14 @@ fn draw_median_lines(
             .map_err(draw_err)?;
     }
     Ok(())
+}
+
+/// Values of generations 1, 2, … as (generation, value) points.
+fn by_generation(values: impl IntoIterator<Item = f64>) -> impl Iterator<Item = (f64, f64)> {
+    values
+        .into_iter()
+        .enumerate()
+        .map(|(i, v)| (i as f64 + 1.0, v))
 }
 
 /// Draws the figure into an SVG string.
@@ -293,9 +283,7 @@ pub(super) fn draw(groups: &[Group], opts: &CompareOptions) -> Result<String, Fi
         let (left, right) = root.split_horizontally(opts.width / 2);
         let mut per_gen = generation_chart(&left, &ranges)?;
         let mut per_second = seconds_chart(&right, &ranges)?;
-        // Every run's thin line first, so that no median line is hidden under one.
-        draw_run_lines(groups, &mut per_gen, &mut per_second)?;
-        draw_median_lines(groups, &mut per_gen, &mut per_second)?;
+        draw_lines(groups, &mut per_gen, &mut per_second)?;
         draw_series_legend(&mut per_gen)?;
         root.present().map_err(draw_err)?;
     }
