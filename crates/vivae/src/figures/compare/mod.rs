@@ -33,7 +33,7 @@ pub use table::{
 };
 
 /// Runs `vivae compare` on the run directories `runs`, grouped by `rules`:
-/// writes the figure to `out` (.png or .svg) and the table as CSV to `csv`,
+/// writes the figure to `out` (.png or .svg) and the table as CSV to `csv_out`,
 /// and returns the table in Markdown.
 pub fn run(
     runs: &[PathBuf],
