@@ -202,25 +202,33 @@ fn grids(text: &str) -> std::result::Result<Vec<PolarGrid>, String> {
     text.split(',').map(parse).collect()
 }
 
-/// The config of a new run: `file` (its task named there), or the defaults
-/// of `overrides.task` (the paper's driving experiment when none is named),
-/// with `overrides` applied and every rule checked. A task named beside a
-/// file that names another is refused: the file says which task it is.
-pub fn config(file: Option<&Path>, overrides: &Overrides) -> Result<Config> {
-    let task = overrides.task.as_ref();
-    let mut config = match file {
+/// The config a new run starts from before its overrides: `file` (its task
+/// named there), or the defaults of `task` (the paper's driving experiment
+/// when none is named). A task named beside a file that names another is
+/// refused, the message starting with `option` (how the caller's user named
+/// the task: `--task`, `task=`): the file says which task it is.
+pub fn base_config(file: Option<&Path>, task: Option<&TaskName>, option: &str) -> Result<Config> {
+    match file {
         Some(p) => {
             let c = tasks::read_config(p)?;
-            if let Some(why) = c.task_mismatch(task) {
-                let t = task.map_or("", TaskName::name);
-                return Err(bad_input(format!("task {t}: {why}")));
+            match c.task_mismatch(task) {
+                Some(why) => {
+                    let t = task.map_or("", TaskName::name);
+                    Err(bad_input(format!("{option}{t}: {why}")))
+                }
+                None => Ok(c),
             }
-            c
         }
-        None => tasks::default_config(task).map_err(bad_input)?,
-    };
+        None => tasks::default_config(task).map_err(bad_input),
+    }
+}
+
+/// [`base_config`] with `overrides` applied, checked by every rule of its
+/// task; a refusal says `what` gave the overrides (`command line`, `arguments`).
+pub fn config(file: Option<&Path>, overrides: &Overrides, what: &str) -> Result<Config> {
+    let mut config = base_config(file, overrides.task.as_ref(), "task ")?;
     overrides.apply(&mut config);
-    tasks::check(&config).map_err(|e| bad_input(format!("command line: {e}")))?;
+    tasks::check(&config).map_err(|e| bad_input(format!("{what}: {e}")))?;
     Ok(config)
 }
 
@@ -331,15 +339,15 @@ mod tests {
             task: Some(TaskName(crate::tasks::maze::NAME.into())),
             ..Overrides::default()
         };
-        let c = config(None, &o).unwrap();
+        let c = config(None, &o, "test").unwrap();
         assert_eq!(c, Config::maze());
         let dir = std::env::temp_dir().join(format!("vivae-prepare-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let file = dir.join("driving.toml");
         std::fs::write(&file, "[experiment]\nseed = 4\n").unwrap();
-        let e = config(Some(&file), &o).unwrap_err().to_string();
+        let e = config(Some(&file), &o, "test").unwrap_err().to_string();
         assert!(e.contains("experiment.task is driving"), "{e}");
-        let c = config(Some(&file), &Overrides::default()).unwrap();
+        let c = config(Some(&file), &Overrides::default(), "test").unwrap();
         assert_eq!(c.experiment.seed, 4);
         std::fs::remove_dir_all(&dir).unwrap();
     }

@@ -5,7 +5,10 @@
 use plotters::prelude::*;
 use vivae_neat::stats;
 
-use super::{FAMILY, Figure, FigureError, draw_err, register_font, svg_to_png, viridis};
+use super::{
+    FAMILY, Figure, FigureError, axis_font, draw_err, draw_series_legend, label_font,
+    register_font, svg_to_png, viridis,
+};
 
 /// Number of colour levels of the heat map (cells of equal level are merged).
 const LEVELS: usize = 256;
@@ -155,16 +158,6 @@ impl Sorted {
 /// The colour of level `l`.
 fn colour_of_level(l: usize) -> RGBColor {
     viridis(l as f64 / (LEVELS - 1) as f64)
-}
-
-/// The font of axis descriptions.
-fn label_font() -> FontDesc<'static> {
-    (FAMILY, 18).into_font()
-}
-
-/// The font of axis labels and the legend.
-fn axis_font() -> FontDesc<'static> {
-    (FAMILY, 15).into_font()
 }
 
 /// A drawing area of the figure.
@@ -352,15 +345,7 @@ fn draw_curves(area: &Area<'_>, data: &Sorted) -> Result<(), FigureError> {
                 PathElement::new(vec![(x, y), (x + 22, y)], colour.stroke_width(2))
             });
     }
-    curves
-        .configure_series_labels()
-        .position(SeriesLabelPosition::LowerRight)
-        .background_style(WHITE.mix(0.9))
-        .border_style(RGBColor(180, 180, 180))
-        .label_font(axis_font())
-        .draw()
-        .map_err(draw_err)?;
-    Ok(())
+    draw_series_legend(&mut curves)
 }
 
 /// Puts the heat map into `svg` as one embedded PNG image over the pixel

@@ -20,6 +20,8 @@ pub mod network;
 
 use std::sync::OnceLock;
 
+use plotters::coord::CoordTranslate;
+use plotters::prelude::*;
 use plotters::style::{FontStyle, RGBColor};
 
 /// DejaVu Sans, the only font figures use (shipped by the simulator).
@@ -67,6 +69,30 @@ pub(crate) fn register_font() -> Result<(), FigureError> {
             .all(|style| plotters::style::register_font(FAMILY, style, FONT).is_ok())
     });
     if ok { Ok(()) } else { Err(FigureError::Font) }
+}
+
+/// The font of axis descriptions in the plots (convergence, compare).
+pub(crate) fn label_font() -> FontDesc<'static> {
+    (FAMILY, 18).into_font()
+}
+
+/// The font of axis labels and legends in the plots (convergence, compare).
+pub(crate) fn axis_font() -> FontDesc<'static> {
+    (FAMILY, 15).into_font()
+}
+
+/// Draws `chart`'s legend of its labelled series in the lower right corner, on a white box.
+pub(crate) fn draw_series_legend<'a, 'b: 'a, CT: CoordTranslate>(
+    chart: &mut ChartContext<'a, SVGBackend<'b>, CT>,
+) -> Result<(), FigureError> {
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::LowerRight)
+        .background_style(WHITE.mix(0.9))
+        .border_style(RGBColor(180, 180, 180))
+        .label_font(axis_font())
+        .draw()
+        .map_err(draw_err)
 }
 
 /// Maps any plotters error to a [`FigureError::Draw`].

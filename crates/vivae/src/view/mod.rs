@@ -13,67 +13,47 @@ mod server;
 mod session;
 mod source;
 
-use std::net::{IpAddr, Ipv4Addr, SocketAddr};
-use std::path::PathBuf;
-use std::process::ExitCode;
+pub use server::IDLE_TIMEOUT;
 
-use clap::Args;
+use std::net::{IpAddr, Ipv4Addr, SocketAddr};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Duration;
 
 use source::Source;
 use vivae_lab::strategy_files::Member;
 
 use vivae_lab::io::bad_input;
 
-/// Command-line options of `vivae view`.
-#[derive(Args, Debug, Clone)]
-pub struct ViewArgs {
-    /// A run directory (follows it while it runs), a champion genome JSON, or a
-    /// scenario SVG (drive by keyboard). Default: the embedded road scenario.
-    pub source: Option<PathBuf>,
-    /// Drive the elite of this cell of a map-elites run's archive (archive.csv)
-    /// when a page opens; the page's controller list offers every elite.
-    #[arg(long, value_name = "CELL", conflicts_with = "front")]
-    pub elite: Option<usize>,
-    /// Drive this member of an nsga2 run's Pareto front (front.csv; 0 = the
-    /// fittest) when a page opens; the page's list offers every member.
-    #[arg(long, value_name = "N")]
-    pub front: Option<usize>,
-    /// Port to listen on (0 = any free port).
-    #[arg(long, default_value_t = 7878, value_name = "N")]
-    pub port: u16,
-    /// Address to listen on; anything but a loopback address lets the network watch.
-    #[arg(long, default_value_t = IpAddr::V4(Ipv4Addr::LOCALHOST), value_name = "ADDR")]
-    pub host: IpAddr,
+/// How `vivae view` serves: where it listens, what a page starts with and
+/// offers, and how many pages it simulates at once.
+#[derive(Debug, Clone)]
+pub struct ViewOptions {
+    /// The archive or front member a new page drives (none: the champion);
+    /// the page's controller list offers every one.
+    pub member: Option<Member>,
+    /// Address and port to listen on (port 0: any free port); anything but a
+    /// loopback address lets the network watch.
+    pub addr: SocketAddr,
     /// Extra scenarios to offer: every `.svg` file in this folder.
-    #[arg(long, value_name = "DIR")]
     pub scenarios: Option<PathBuf>,
-    /// Another Host name to answer (repeatable), e.g. this machine's name on
-    /// the network; besides it only the listening address and `localhost` are
-    /// answered (a defence against DNS rebinding).
-    #[arg(long, value_name = "NAME")]
+    /// Other Host names to answer besides the listening address and
+    /// `localhost` (a defence against DNS rebinding).
     pub allow_host: Vec<String>,
-    /// Most pages simulated at once; more are refused until one closes.
-    #[arg(long, default_value_t = 8, value_name = "N")]
+    /// Most pages simulated at once (at least 1); more are refused until one closes.
     pub max_viewers: usize,
-    /// Seconds a page may stay silent before it is dropped and its slot freed
-    /// (hidden: for tests; browsers answer the server's pings by themselves).
-    #[arg(long, hide = true, default_value_t = server::IDLE_TIMEOUT.as_secs_f64(), value_name = "SECS")]
-    pub idle_timeout: f64,
+    /// How long a page may stay silent before it is dropped and its slot freed.
+    pub idle_timeout: Duration,
 }
 
-/// Runs `vivae view` until interrupted.
-pub fn run(args: ViewArgs) -> vivae_lab::Result<ExitCode> {
-    if args.max_viewers == 0 {
-        return Err(bad_input("--max-viewers 0: must be at least 1"));
-    }
-    if !(args.idle_timeout.is_finite() && (0.1..=86_400.0).contains(&args.idle_timeout)) {
-        return Err(bad_input("--idle-timeout: must be 0.1 to 86400 seconds"));
-    }
-    let idle = std::time::Duration::from_secs_f64(args.idle_timeout);
-    let hosts = hosts::HostPolicy::new(args.host, &args.allow_host)?;
-    let mut source = Source::load(args.source.as_deref(), args.scenarios.as_deref())?;
-    let member = (args.elite.map(Member::Elite)).or(args.front.map(Member::Front));
-    if let Some(member) = member {
+/// Runs `vivae view` on `source` (a run directory, which it follows while it
+/// runs, a genome JSON, a scenario SVG, or none: the embedded road scenario)
+/// until interrupted.
+pub fn run(source: Option<&Path>, options: &ViewOptions) -> vivae_lab::Result<ExitCode> {
+    let host = options.addr.ip();
+    let hosts = hosts::HostPolicy::new(host, &options.allow_host)?;
+    let mut source = Source::load(source, options.scenarios.as_deref())?;
+    if let Some(member) = options.member {
         source.start_with(member)?;
     }
     let runtime = tokio::runtime::Builder::new_multi_thread()
@@ -81,7 +61,7 @@ pub fn run(args: ViewArgs) -> vivae_lab::Result<ExitCode> {
         .enable_all()
         .build()
         .map_err(|e| vivae_lab::Error::Threads(e.to_string()))?;
-    let addr = SocketAddr::new(args.host, args.port);
+    let addr = options.addr;
     let listener = runtime
         .block_on(tokio::net::TcpListener::bind(addr))
         .map_err(|e| {
@@ -104,13 +84,12 @@ pub fn run(args: ViewArgs) -> vivae_lab::Result<ExitCode> {
     };
     let local = listener.local_addr().map_err(io("listen on"))?;
     // An IPv4-mapped loopback address (::ffff:127.0.0.1) is loopback too.
-    if !args.host.to_canonical().is_loopback() {
+    if !host.to_canonical().is_loopback() {
         eprintln!(
-            "warning: listening on {} — anyone who can reach this machine on the network can watch this run",
-            args.host
+            "warning: listening on {host} — anyone who can reach this machine on the network can watch this run"
         );
     }
-    let shown = if args.host.is_unspecified() {
+    let shown = if host.is_unspecified() {
         SocketAddr::new(IpAddr::V4(Ipv4Addr::LOCALHOST), local.port())
     } else {
         local
@@ -126,9 +105,9 @@ pub fn run(args: ViewArgs) -> vivae_lab::Result<ExitCode> {
         .block_on(server::serve(
             listener,
             source,
-            args.max_viewers,
+            options.max_viewers,
             hosts,
-            idle,
+            options.idle_timeout,
         ))
         .map_err(io("serve on"))?;
     Ok(ExitCode::SUCCESS)

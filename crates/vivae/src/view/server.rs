@@ -43,7 +43,7 @@ const FRAME: Duration = Duration::from_millis(16);
 const MAX_MESSAGE: usize = 16 * 1024;
 /// Pages silent this long (no message, not even the answer to a ping, which
 /// browsers send by themselves) are dropped and their viewer slot freed.
-pub(super) const IDLE_TIMEOUT: Duration = Duration::from_secs(120);
+pub const IDLE_TIMEOUT: Duration = Duration::from_secs(120);
 /// Size of the pieces a run file is sent in (memory per request stays this).
 const CHUNK: usize = 64 * 1024;
 

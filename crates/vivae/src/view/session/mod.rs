@@ -5,20 +5,25 @@
 //! nothing. Server → page: `info` (once), `scene` (arena, substrate), `frame`
 //! (robots and the selected robot's sensors and neurons), `progress` (the
 //! run's history, again whenever it grows) and `error`.
+//!
+//! This file holds the simulation ([`Sim`]) and its handling of messages;
+//! [`choice`] finds the genome a page chose to drive, [`frames`] writes the
+//! `scene` and `frame` messages.
 
-use std::fmt::Write as _;
+mod choice;
+mod frames;
 
 use serde::Deserialize;
-use serde_json::{Value, json};
+use serde_json::Value;
 use vivae_sim::{DVec2, Scenario, Sensor, World};
 
 use super::source::{RunSnapshot, Source};
-use crate::report_html::SceneData;
+use choice::{Choice, chosen_genome, parse_choice};
 use vivae_lab::config::Config;
 use vivae_lab::es_controller::RobotController;
 use vivae_lab::experiment::Experiment;
 use vivae_lab::io::one_line;
-use vivae_lab::rollout::{Drive, Rollout};
+use vivae_lab::rollout::Rollout;
 use vivae_lab::strategy_files::Member;
 use vivae_lab::substrate::PolarGrid;
 
@@ -30,8 +35,6 @@ const MAX_STEPS_PER_FRAME: u32 = 400;
 const MAX_SENSORS: usize = 64 * 128;
 /// Most neurons a page may ask for (decoding grows with sensors × neurons).
 const MAX_NEURONS: usize = 400;
-/// Most in-between positions per robot a frame carries for the page's trails.
-const TRACE_POINTS: usize = 24;
 /// Most steps one `step` message may ask for, at any resolution.
 const MAX_STEPS_PER_MESSAGE: u32 = 10_000;
 /// Work one page message may cost, in robot-steps × controller size (see
@@ -85,35 +88,6 @@ enum ClientMsg {
     Scenario {
         index: usize,
     },
-}
-
-/// Which genome drives the robots.
-#[derive(Debug, Clone, Copy, PartialEq)]
-enum Choice {
-    /// Nobody: robots stand still unless driven by hand.
-    None,
-    /// The best genome so far.
-    Champion,
-    /// The best genome of one generation.
-    Generation(u32),
-    /// The elite of this cell of a map-elites run's archive.
-    Elite(usize),
-    /// This member of an nsga2 run's Pareto front (0 = the fittest).
-    Front(usize),
-}
-
-impl Choice {
-    /// What a page's controller list calls it: `none`, `champion`, a
-    /// generation, `elite:CELL` or `front:N`.
-    fn page_value(self) -> String {
-        match self {
-            Choice::None => "none".into(),
-            Choice::Champion => "champion".into(),
-            Choice::Generation(g) => g.to_string(),
-            Choice::Elite(c) => format!("elite:{c}"),
-            Choice::Front(n) => format!("front:{n}"),
-        }
-    }
 }
 
 /// Arrow keys held down.
@@ -269,32 +243,6 @@ impl Sim {
     /// Whether an ES network drives (its neurons are not the dense sheet's).
     fn drives_es(&self) -> bool {
         matches!(&self.driving, Some((RobotController::Es(_), _)))
-    }
-
-    /// The scene's `network`: for an ES network, the sensors' and then the
-    /// wheel and hidden neurons' places in the CPPN plane `[−1, 1]²` (x right,
-    /// y ahead), in the order of the frames' `neurons`; `null` otherwise.
-    fn network_json(&self) -> Value {
-        let (Some((RobotController::Es(es), _)), Some(setup)) =
-            (&self.driving, self.experiment.es_setup())
-        else {
-            return Value::Null;
-        };
-        let net = es.network();
-        let nodes: Vec<[f64; 2]> = setup
-            .layout
-            .outputs
-            .iter()
-            .chain(net.hidden())
-            .copied()
-            .collect();
-        json!({
-            "kind": "es-hyperneat",
-            "sensors": setup.layout.inputs,
-            "nodes": nodes,
-            "hidden": es.hidden_neurons(),
-            "links": es.expressed_links(),
-        })
     }
 
     fn resize_buffers(&mut self) {
@@ -586,231 +534,11 @@ impl Sim {
         self.dirty = true;
         Ok(())
     }
-
-    /// The `scene` message: arena picture and substrate geometry.
-    pub fn scene_msg(&self, source: &Source) -> String {
-        let spec = self.experiment.substrate_spec();
-        let polar = |nodes: Vec<vivae_lab::substrate::PolarNode>| -> Vec<[f64; 2]> {
-            nodes.iter().map(|n| [n.rho, n.phi]).collect()
-        };
-        let wheels = self.experiment.wheels();
-        json!({
-            "type": "scene",
-            "scene": SceneData::new(self.world.scenario(), &self.world),
-            "scenario_index": self.scenario_index,
-            "scenario_name": source.scenarios[self.scenario_index].0,
-            "sensors": format!("{}x{}", spec.sensors.rings, spec.sensors.angles),
-            "neurons": format!("{}x{}", spec.neurons.rings, spec.neurons.angles),
-            "sensor_nodes": polar(spec.sensor_nodes()),
-            "neuron_nodes": polar(spec.neuron_nodes()),
-            "wheels": [wheels.left, wheels.right],
-            "robots": self.world.robots().len(),
-            "network": self.network_json(),
-        })
-        .to_string()
-    }
-
-    /// The `frame` message: every robot's pose and the selected robot's insides.
-    ///
-    /// Written by hand: it goes out up to 60 times a second per page.
-    pub fn frame_msg(&mut self) -> String {
-        let mut s = String::with_capacity(256 + 24 * self.surface.len());
-        let _ = write!(
-            s,
-            r#"{{"type":"frame","step":{},"choice":{},"generation":{},"playing":{},"speed":{},"selected":{},"manual":{},"driver":{},"robots":["#,
-            self.steps,
-            serde_json::to_string(&self.choice.page_value()).unwrap_or_default(),
-            self.driving_generation
-                .map_or("null".to_string(), |g| g.to_string()),
-            self.playing,
-            self.speed,
-            self.selected,
-            self.manual.map_or("null".to_string(), |m| m.to_string()),
-            serde_json::to_string(&self.driver).unwrap_or_default(),
-        );
-        for (i, r) in self.world.robots().iter().enumerate() {
-            let _ = write!(
-                s,
-                r#"{}{{"x":{:.2},"y":{:.2},"h":{:.4},"v":{:.3},"odo":{:.1},"j":{},"p":["#,
-                if i > 0 { "," } else { "" },
-                r.pos.x,
-                r.pos.y,
-                r.heading,
-                r.speed,
-                r.odometer,
-                self.jumps.get(i).copied().unwrap_or(0)
-            );
-            if let Some(t) = self.trace.get_mut(i) {
-                // Evenly spaced positions before the last (which is `x`, `y`).
-                let before = t.len().saturating_sub(1);
-                let every = before.div_ceil(TRACE_POINTS).max(1);
-                for (k, p) in t[..before].iter().rev().step_by(every).rev().enumerate() {
-                    let _ = write!(s, "{}{:.1},{:.1}", if k > 0 { "," } else { "" }, p.x, p.y);
-                }
-                t.clear();
-            }
-            s.push_str("]}");
-        }
-        s.push(']');
-        if let Some(i) = (self.selected < self.world.robots().len()).then_some(self.selected) {
-            let grid = self.experiment.surface_grid();
-            grid.read(&self.world, i, &mut self.surface);
-            let places = grid.positions(&self.world, i);
-            s.push_str(r#","sensors":["#);
-            for (k, (p, v)) in places.iter().zip(&self.surface).enumerate() {
-                let _ = write!(
-                    s,
-                    "{}{:.1},{:.1},{:.3}",
-                    if k > 0 { "," } else { "" },
-                    p.x,
-                    p.y,
-                    v
-                );
-            }
-            s.push_str(r#"],"neurons":["#);
-            // The dense sheet's neurons; an ES network's wheel then hidden
-            // neurons, in the order of the scene's `network.nodes`.
-            let neurons = match &self.driving {
-                Some((RobotController::Polar(_), rollout)) => Some(rollout.outputs(i)),
-                Some((RobotController::Es(es), rollout)) => rollout
-                    .node_values(i)
-                    .and_then(|v| v.get(Drive::num_inputs(es)..)),
-                None => None,
-            };
-            for (k, v) in neurons.unwrap_or_default().iter().enumerate() {
-                let _ = write!(s, "{}{:.4}", if k > 0 { "," } else { "" }, v);
-            }
-            let c = self.controls.get(i).copied().unwrap_or_default();
-            let _ = write!(s, r#"],"wheels":[{:.4},{:.4}]"#, c[0], c[1]);
-        }
-        s.push('}');
-        self.dirty = false;
-        s
-    }
-}
-
-/// A chosen genome, its label for the page and its generation (if recorded).
-type Chosen<'a> = (&'a vivae_neat::Genome, String, Option<u32>);
-
-/// The genome `choice` names in `snap`, with its label for the page and its
-/// generation (if recorded); `None` for nobody; `Err` if the run has no such genome.
-fn chosen_genome<'a>(
-    choice: Choice,
-    snap: &'a RunSnapshot,
-    config: &Config,
-) -> Result<Option<Chosen<'a>>, String> {
-    let two = |v: &f64| format!("{v:.2}");
-    Ok(Some(match choice {
-        Choice::None => return Ok(None),
-        Choice::Champion => snap
-            .champion
-            .as_ref()
-            .map(|c| {
-                let label = format!(
-                    "champion (generation {}, fitness {:.3})",
-                    c.generation, c.fitness
-                );
-                (&c.genome, label, Some(c.generation))
-            })
-            .ok_or("there is no champion yet")?,
-        Choice::Generation(g) => snap
-            .best
-            .iter()
-            .find(|b| b.generation == g)
-            .map(|b| {
-                let label = format!("best of generation {g} (fitness {:.3})", b.fitness);
-                (&b.genome, label, Some(g))
-            })
-            .ok_or_else(|| format!("generation {g} has no recorded best genome"))?,
-        Choice::Elite(cell) => {
-            let e = (snap.elites.iter().find(|e| e.cell == cell))
-                .ok_or_else(|| missing("elite in cell", cell, snap.elites.len(), "elites"))?;
-            let names = config
-                .strategy
-                .behaviour
-                .coordinate_names(e.behaviour.len());
-            let label = format!(
-                "elite of cell {cell} (generation {}, fitness {:.3}; {})",
-                e.generation,
-                e.fitness,
-                named(&names, e.behaviour.iter().map(two))
-            );
-            (&e.genome, label, Some(e.generation))
-        }
-        Choice::Front(n) => {
-            let f = (snap.front.iter().find(|f| f.member == n))
-                .ok_or_else(|| missing("front member", n, snap.front.len(), "members"))?;
-            let names: Vec<String> = (config.strategy.nsga2.objectives.iter())
-                .map(|o| o.trim_start_matches('-').to_string())
-                .collect();
-            let label = format!(
-                "front member {n} (fitness {:.3}; {})",
-                f.fitness,
-                named(&names, f.objectives.iter().map(two))
-            );
-            (&f.genome, label, None)
-        }
-    }))
-}
-
-/// Why `what` `index` is not there, where the run holds `held` `things`.
-fn missing(what: &str, index: usize, held: usize, things: &str) -> String {
-    match held {
-        0 => format!(
-            "no {what} {index}: this run has none (only a map-elites run has an archive, an nsga2 run a front)"
-        ),
-        n => format!("no {what} {index} (the run has {n} {things})"),
-    }
-}
-
-/// `name value, …` for each name and value.
-fn named(names: &[String], values: impl Iterator<Item = String>) -> String {
-    let pairs = names.iter().zip(values).map(|(n, v)| format!("{n} {v}"));
-    pairs.collect::<Vec<_>>().join(", ")
-}
-
-/// The controller a `controller` message chooses: `"champion"`, `"none"`, a
-/// generation, `{"elite": CELL}` or `{"front": N}`.
-fn parse_choice(which: &Value) -> Result<Choice, String> {
-    let index = |v: &Value| v.as_u64().and_then(|i| u32::try_from(i).ok());
-    match which {
-        Value::String(s) if s == "champion" => Ok(Choice::Champion),
-        Value::String(s) if s == "none" => Ok(Choice::None),
-        Value::Number(n) => {
-            Ok(Choice::Generation(index(which).ok_or_else(|| {
-                format!("controller {n}: not a generation")
-            })?))
-        }
-        Value::Object(o) if o.len() == 1 => {
-            let (key, v) = o.iter().next().expect("one entry");
-            let quoted = truncated(&which.to_string());
-            let i = index(v)
-                .ok_or_else(|| format!("controller {quoted}: not a cell or member number"))?;
-            match key.as_str() {
-                "elite" => Ok(Choice::Elite(i as usize)),
-                "front" => Ok(Choice::Front(i as usize)),
-                _ => Err(format!(
-                    "controller {quoted}: expected {{\"elite\": CELL}} or {{\"front\": N}}"
-                )),
-            }
-        }
-        other => Err(format!(
-            "controller {}: expected \"champion\", \"none\", a generation, {{\"elite\": CELL}} or {{\"front\": N}}",
-            one_line(&truncated(&other.to_string()))
-        )),
-    }
-}
-
-/// `text`, cut to 80 characters (an error quoting a hostile message stays short).
-fn truncated(text: &str) -> String {
-    match text.char_indices().nth(80) {
-        Some((at, _)) => format!("{}…", &text[..at]),
-        None => text.to_string(),
-    }
 }
 
 #[cfg(test)]
 mod tests {
+    use super::frames::TRACE_POINTS;
     use super::*;
 
     /// Runs `f` on a fresh simulation of the default source, inside a Tokio
@@ -1018,13 +746,9 @@ mod tests {
             let mut sim = Sim::new(&source, &snap).unwrap();
             let frame =
                 |sim: &mut Sim| -> Value { serde_json::from_str(&sim.frame_msg()).unwrap() };
+            let send = |sim: &mut Sim, message: &str| sim.handle(message, &source, &snap);
             assert_eq!(frame(&mut sim)["choice"], "none");
-            sim.handle(
-                r#"{"type":"controller","which":{"elite":8}}"#,
-                &source,
-                &snap,
-            )
-            .unwrap();
+            send(&mut sim, r#"{"type":"controller","which":{"elite":8}}"#).unwrap();
             let f = frame(&mut sim);
             assert_eq!(f["choice"], "elite:8");
             assert_eq!(f["generation"], 4);
@@ -1032,12 +756,7 @@ mod tests {
                 f["driver"],
                 "elite of cell 8 (generation 4, fitness 2.500; x 0.12, y 0.50)"
             );
-            sim.handle(
-                r#"{"type":"controller","which":{"front":1}}"#,
-                &source,
-                &snap,
-            )
-            .unwrap();
+            send(&mut sim, r#"{"type":"controller","which":{"front":1}}"#).unwrap();
             let f = frame(&mut sim);
             assert_eq!(f["choice"], "front:1");
             assert_eq!(
@@ -1051,28 +770,15 @@ mod tests {
             );
             // Cells and members that are not there are refused, naming what there is.
             let before = sim.frame_msg();
-            let err = sim
-                .handle(
-                    r#"{"type":"controller","which":{"elite":4}}"#,
-                    &source,
-                    &snap,
-                )
-                .unwrap_err();
+            let err = send(&mut sim, r#"{"type":"controller","which":{"elite":4}}"#).unwrap_err();
             assert_eq!(err, "no elite in cell 4 (the run has 2 elites)");
-            let err = sim
-                .handle(
-                    r#"{"type":"controller","which":{"front":2}}"#,
-                    &source,
-                    &snap,
-                )
-                .unwrap_err();
+            let err = send(&mut sim, r#"{"type":"controller","which":{"front":2}}"#).unwrap_err();
             assert_eq!(err, "no front member 2 (the run has 2 members)");
             assert_eq!(sim.frame_msg(), before);
             // The choice survives a re-sampled substrate.
-            sim.handle(
+            send(
+                &mut sim,
                 r#"{"type":"resolution","sensors":"9x9","neurons":"9x9"}"#,
-                &source,
-                &snap,
             )
             .unwrap();
             assert_eq!(frame(&mut sim)["choice"], "front:1");

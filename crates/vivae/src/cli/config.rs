@@ -1,0 +1,33 @@
+//! `vivae config`: the default config, the reference of its keys, or a
+//! config file checked and resolved.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::Subcommand;
+use vivae_lab::config::Config;
+use vivae_lab::tasks::read_config;
+
+/// The subcommands of `vivae config`.
+#[derive(Subcommand, Debug)]
+pub enum ConfigCommand {
+    /// The full default config, a comment on every key.
+    Default,
+    /// A Markdown table of every key (the guide's reference).
+    Reference,
+    /// Check a config file and print it fully resolved.
+    Check {
+        /// The config file.
+        file: PathBuf,
+    },
+}
+
+/// Runs `vivae config …`.
+pub fn run(command: ConfigCommand) -> anyhow::Result<ExitCode> {
+    match command {
+        ConfigCommand::Default => print!("{}", Config::default_commented()),
+        ConfigCommand::Reference => print!("{}", Config::markdown_reference()),
+        ConfigCommand::Check { file } => print!("{}", read_config(&file)?.to_toml()),
+    }
+    Ok(ExitCode::SUCCESS)
+}

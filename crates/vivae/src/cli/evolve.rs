@@ -1,0 +1,66 @@
+//! `vivae evolve`: a new run from a config file (or the defaults) and the
+//! options that override its keys.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::sync::Arc;
+use std::sync::atomic::AtomicBool;
+
+use anyhow::Context as _;
+use clap::Args;
+use vivae_lab::run::prepare::{base_config, prepare};
+use vivae_neat::driver::Task;
+
+use super::args::{NewRun, Quiet};
+use super::drive::drive;
+use super::mpi_job::join_mpi_job;
+use super::overrides::{Overrides, apply_overrides};
+use super::terminal::warn_repeated_maps;
+
+/// Options of `vivae evolve`.
+#[derive(Args, Debug)]
+pub struct EvolveArgs {
+    /// Config file (TOML); flags override its keys.
+    #[arg(long, value_name = "FILE")]
+    pub config: Option<PathBuf>,
+    #[command(flatten)]
+    pub overrides: Overrides,
+    #[command(flatten)]
+    pub new_run: NewRun,
+    #[command(flatten)]
+    pub quiet: Quiet,
+}
+
+/// Runs `vivae evolve`.
+pub fn run(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode> {
+    let task = args.overrides.task.as_ref();
+    let mut config = base_config(args.config.as_deref(), task, "--task ")?;
+    apply_overrides(&mut config, &args.overrides)?;
+    // Without a config file a named task starts from its own defaults,
+    // which it may fit to its scenario (the maze's MAP-Elites grid).
+    let task_defaults = task.is_some() && args.config.is_none();
+    let setup = || prepare(config.clone(), task_defaults);
+    // Problems with what a config file names are reported against that file too.
+    let prepared = match &args.config {
+        Some(path) => setup().with_context(|| path.display().to_string()),
+        None => setup().map_err(anyhow::Error::from),
+    };
+    let quiet = args.quiet.quiet;
+    let joining = (prepared.as_ref()).map(|p| (&p.config, p.maps.as_slice(), &p.task as &dyn Task));
+    if let Some(code) = join_mpi_job(joining, config.run.threads, quiet)? {
+        return Ok(code);
+    }
+    let prepared = prepared?;
+    if !quiet {
+        for m in &prepared.maps {
+            for w in &m.loaded.scenario.warnings {
+                eprintln!("warning: {w}");
+            }
+        }
+    }
+    warn_repeated_maps(&prepared.maps);
+    let source = prepared.task.describe(&prepared.maps);
+    let threads = prepared.config.run.threads;
+    let run = prepared.create(&args.new_run.dir(), args.new_run.force)?;
+    drive(run, "evolve", &source, threads, quiet, interrupted)
+}

@@ -1,0 +1,74 @@
+//! The evolving commands' side of an MPI job (the feature `mpi`; see
+//! `vivae::mpi` and docs/distributed.md): whether this process is one of its
+//! ranks, the start-up handshake, and spreading generations over the ranks.
+//! Without the feature each is a no-op, so the commands call them always.
+
+use std::process::ExitCode;
+use std::sync::atomic::AtomicBool;
+
+use vivae_lab::config::Config;
+use vivae_lab::evolve::{Outcome, Run};
+use vivae_lab::maps::TrainingMap;
+use vivae_lab::rundir::GenerationRecord;
+use vivae_neat::driver::Task;
+
+/// Whether an MPI launcher started this process (never without the `mpi` feature).
+pub fn launched_by_mpi() -> bool {
+    #[cfg(feature = "mpi")]
+    return vivae::mpi::launched_by_mpi();
+    #[cfg(not(feature = "mpi"))]
+    false
+}
+
+/// Under an MPI launcher, the start-up handshake of every rank (see
+/// `vivae::mpi`), for every command that evolves: each rank brings the run it
+/// prepared (config, training maps, experiment) or why it could not, and the
+/// evaluation threads it will use. `Some(code)` on a worker rank whose work is
+/// done, `None` where the run goes on (always, without MPI).
+pub fn join_mpi_job(
+    prepared: Result<(&Config, &[TrainingMap], &dyn Task), &anyhow::Error>,
+    threads: usize,
+    quiet: bool,
+) -> anyhow::Result<Option<ExitCode>> {
+    #[cfg(feature = "mpi")]
+    {
+        use vivae::mpi::{MpiError, Setup, Started, start};
+        use vivae_lab::io::{bad_input, one_line};
+        let fingerprint = prepared.as_ref().map_or_else(
+            |_| String::new(),
+            |(_, maps, _)| vivae_lab::maps::fingerprint_text(maps),
+        );
+        let setup = prepared
+            .map(|(config, _, training)| Setup {
+                config,
+                scenario_text: &fingerprint,
+                task: training,
+                threads,
+            })
+            .map_err(|e| one_line(&format!("{e:#}")));
+        match start(setup, quiet) {
+            Ok(Started::Lead) => Ok(None),
+            Ok(Started::WorkerDone) => Ok(Some(ExitCode::SUCCESS)),
+            Err(e @ MpiError::Refused(_)) => Err(bad_input(e.to_string()).into()),
+            Err(e) => Err(e.into()),
+        }
+    }
+    #[cfg(not(feature = "mpi"))]
+    {
+        let _ = (prepared, threads, quiet);
+        Ok(None)
+    }
+}
+
+/// Runs the generations of `run`; rank 0 of an MPI job spreads each one over the job's ranks.
+pub fn run_generations(
+    run: &mut Run,
+    interrupted: &AtomicBool,
+    on_generation: impl FnMut(&GenerationRecord),
+) -> vivae_lab::Result<Outcome> {
+    #[cfg(feature = "mpi")]
+    if let Some(evaluator) = vivae::mpi::MpiEvaluator::for_leader(run.task().clone(), run.pool()) {
+        return run.run_on(evaluator, interrupted, on_generation);
+    }
+    run.run(interrupted, on_generation)
+}

@@ -1,0 +1,133 @@
+//! The options that stand for config keys ([`Overrides`]): the flags of the
+//! library's one [`vivae_lab::run::prepare::Overrides`], which Python's
+//! keyword arguments set too, under the same names.
+
+use std::path::PathBuf;
+
+use clap::Args;
+use vivae_lab::config::{Config, TaskName};
+use vivae_lab::io::bad_input;
+use vivae_lab::substrate::PolarGrid;
+
+use super::args::{Episode, Generations, Resolution, Threads, Wiring};
+
+/// Options that override config keys.
+#[derive(Args, Debug, Default)]
+pub struct Overrides {
+    /// Scenario SVG file, or the name of a shipped one (`vivae scenario list`;
+    /// default: the embedded road scenario). Repeat it to train on several
+    /// maps at once (fitness = the mean over maps).
+    #[arg(long, value_name = "FILE|NAME")]
+    pub scenario: Vec<PathBuf>,
+    #[command(flatten)]
+    pub generations: Generations,
+    /// Population size.
+    #[arg(long, value_name = "N")]
+    pub population: Option<usize>,
+    /// Random seed.
+    #[arg(long, value_name = "N")]
+    pub seed: Option<u64>,
+    #[command(flatten)]
+    pub resolution: Resolution,
+    #[command(flatten)]
+    pub episode: Episode,
+    #[command(flatten)]
+    pub threads: Threads,
+    /// Multi-resolution evolution: evaluate every genome at these neuron
+    /// sheets (e.g. 3x3,5x5,9x9) and aggregate; --neurons stays the one reported.
+    #[arg(long, value_name = "RxA,...", value_delimiter = ',')]
+    pub train_neurons: Option<Vec<PolarGrid>>,
+    /// Multi-resolution evolution: evaluate every genome at these sensor sheets
+    /// (e.g. 3x5,3x6), with each of --train-neurons.
+    #[arg(long, value_name = "RxA,...", value_delimiter = ',')]
+    pub train_sensors: Option<Vec<PolarGrid>>,
+    /// How the training resolutions' fitnesses combine: mean (default) or min.
+    #[arg(long, value_name = "mean|min")]
+    pub train_aggregate: Option<vivae_lab::config::Aggregate>,
+    /// Substrate kind: polar (the dense neuron sheet, the paper's) or
+    /// es-hyperneat (hidden neurons placed by the CPPN; keys in [substrate.es]).
+    #[arg(long, value_name = "polar|es-hyperneat")]
+    pub substrate: Option<vivae_lab::es_controller::SubstrateKind>,
+    #[command(flatten)]
+    pub wiring: Wiring,
+    /// Search strategy (strategy.kind; default neat, the paper's).
+    #[arg(long, value_name = "neat|novelty|map-elites|nsga2")]
+    pub strategy: Option<vivae_lab::strategy_config::StrategyKind>,
+    /// Behaviour descriptor of novelty and map-elites (strategy.behaviour).
+    #[arg(long, value_name = "end-position|end-positions|side-speed|trajectory")]
+    pub behaviour: Option<vivae_lab::descriptors::BehaviourKind>,
+    /// Task (experiment.task): driving (default) or maze (Lehman & Stanley's
+    /// maze with a plain NEAT network; default scenario hard-maze).
+    #[arg(long, value_name = "driving|maze", value_parser = parse_task)]
+    pub task: Option<TaskName>,
+    /// Distance rays of the second input sheet (distance_sensors.rays; 0 = none).
+    #[arg(long, value_name = "N")]
+    pub distance_rays: Option<usize>,
+}
+
+/// `--task NAME`: a registered task.
+fn parse_task(name: &str) -> Result<TaskName, String> {
+    vivae_lab::tasks::entry(name).map(|_| TaskName(name.to_string()))
+}
+
+impl Overrides {
+    /// The library's overrides these flags give.
+    pub fn to_lab(&self) -> vivae_lab::run::prepare::Overrides {
+        vivae_lab::run::prepare::Overrides {
+            scenario: (self.scenario.iter())
+                .map(|p| p.to_string_lossy().into_owned())
+                .collect(),
+            generations: self.generations.generations,
+            population: self.population,
+            seed: self.seed,
+            sensors: self.resolution.sensors,
+            neurons: self.resolution.neurons,
+            steps: self.episode.steps,
+            robots: self.episode.robots,
+            threads: self.threads.threads,
+            distance_rays: self.distance_rays,
+            train_neurons: self.train_neurons.clone(),
+            train_sensors: self.train_sensors.clone(),
+            train_aggregate: self.train_aggregate,
+            substrate: self.substrate,
+            normalize_by: self.wiring.normalize_by,
+            normalize_self_loops: self.wiring.normalize_self_loops,
+            recurrence: self.wiring.recurrence,
+            strategy: self.strategy,
+            behaviour: self.behaviour,
+            task: self.task.clone(),
+        }
+    }
+}
+
+/// Sets each config key `o` gives, then checks the result by every rule of
+/// the config's task.
+pub fn apply_overrides(config: &mut Config, o: &Overrides) -> anyhow::Result<()> {
+    o.to_lab().apply(config);
+    vivae_lab::tasks::check(config).map_err(|e| bad_input(format!("command line: {e}")).into())
+}
+
+/// The config's single scenario file, if it names one (none: the embedded scenario or several maps).
+pub fn scenario_path(config: &Config) -> Option<PathBuf> {
+    (!config.experiment.scenario.is_empty()).then(|| PathBuf::from(&config.experiment.scenario))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::{Args as _, Command};
+
+    #[test]
+    fn the_flags_are_the_library_overrides_that_python_takes_too() {
+        let cmd = Overrides::augment_args(Command::new("vivae"));
+        let mut flags: Vec<String> = (cmd.get_arguments())
+            .map(|a| a.get_id().as_str().replace('-', "_"))
+            .collect();
+        flags.sort();
+        let mut keys: Vec<String> = (vivae_lab::run::prepare::Overrides::KEYS.iter())
+            .map(|k| k.to_string())
+            .collect();
+        keys.sort();
+        assert_eq!(flags, keys);
+    }
+}

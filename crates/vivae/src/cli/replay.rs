@@ -1,0 +1,149 @@
+//! `vivae replay`: runs a genome (a run's champion, an elite or a front
+//! member, or a genome file) and draws its trajectories; a maze run's genome
+//! prints its episode's end instead.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::Args;
+use vivae::report;
+use vivae_lab::config::Config;
+use vivae_lab::experiment::Experiment;
+use vivae_lab::io::{bad_input, load_scenario};
+use vivae_lab::rundir;
+
+use super::args::{Episode, MemberChoice, Resolution, Wiring};
+use super::overrides::{Overrides, apply_overrides, scenario_path};
+
+/// Options of `vivae replay`.
+#[derive(Args, Debug)]
+#[command(mut_arg("steps", |a| a.help("Simulation steps")))]
+#[command(mut_arg("robots", |a| a.help(
+    "Robots: the scenario's first N, 0 = all (default: the run's number on \
+     the run's scenario, all of them on another scenario)"
+)))]
+pub struct ReplayArgs {
+    /// A run directory or a genome JSON file (champion.json).
+    pub source: PathBuf,
+    /// Scenario SVG file or shipped name (default: the run's).
+    #[arg(long, value_name = "FILE|NAME")]
+    pub scenario: Option<PathBuf>,
+    #[command(flatten)]
+    pub resolution: Resolution,
+    #[command(flatten)]
+    pub episode: Episode,
+    #[command(flatten)]
+    pub member: MemberChoice,
+    /// Folder for the trajectory figure (default: replay/ beside the source).
+    #[arg(short, long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    #[command(flatten)]
+    pub wiring: Wiring,
+}
+
+impl ReplayArgs {
+    /// The config keys these options override; `robots` is the number of robots asked for.
+    fn overrides(&self, robots: Option<usize>) -> Overrides {
+        Overrides {
+            scenario: self.scenario.iter().cloned().collect(),
+            resolution: self.resolution,
+            episode: Episode {
+                steps: self.episode.steps,
+                robots,
+            },
+            wiring: self.wiring,
+            ..Overrides::default()
+        }
+    }
+}
+
+/// Runs `vivae replay`.
+pub fn run(args: ReplayArgs) -> anyhow::Result<ExitCode> {
+    let (mut champion, mut config, base) = rundir::load_genome_source(&args.source)?;
+    let member = args.member.member();
+    if let Some(member) = member {
+        use vivae_lab::strategy_files::read_member;
+        (champion.genome, champion.fitness, champion.generation) =
+            read_member(&args.source, member)?;
+    }
+    if !config.experiment.task.is_driving() {
+        return replay_without_figures(&args, &champion, config);
+    }
+    // A multi-map run replays on its first training map unless told otherwise.
+    if args.scenario.is_none() && vivae_lab::maps::is_multi_map(&config) {
+        let maps = std::mem::take(&mut config.experiment.scenarios);
+        eprintln!(
+            "replaying on the first training map, {} (of {}: {}); choose another with --scenario",
+            maps[0],
+            maps.len(),
+            maps.join(", ")
+        );
+        config.experiment.scenario = maps[0].clone();
+    }
+    // Another scenario has its own robot starts: all of them, unless told.
+    let robots = args.episode.robots.or(args.scenario.as_ref().map(|_| 0));
+    apply_overrides(&mut config, &args.overrides(robots))?;
+    let path = scenario_path(&config);
+    if let Some(p) = path
+        .as_deref()
+        .filter(|p| args.scenario.is_none() && !p.exists())
+    {
+        return Err(bad_input(format!(
+            "{}: the champion's scenario {} is not there; name one with --scenario FILE",
+            args.source.display(),
+            p.display()
+        ))
+        .into());
+    }
+    let scenario = load_scenario(path.as_deref())?;
+    let experiment =
+        Experiment::new(&config, &scenario.scenario).map_err(vivae_lab::Error::from)?;
+    // Checked before anything is written: a genome that does not fit is bad input.
+    experiment
+        .robot_controller(&champion.genome)
+        .map_err(|e| vivae_lab::Error::Genome {
+            path: args.source.clone(),
+            reason: format!("the genome's {e}"),
+        })?;
+    // Said once the genome is known to fit, so that an error stays one line.
+    if champion.config.is_none() && !args.source.is_dir() {
+        eprintln!(
+            "warning: {} records no config (written by an older vivae): replaying with the default config and flags; replay its run directory instead if you have it",
+            args.source.display()
+        );
+    }
+    let out = args.out.clone().unwrap_or_else(|| base.join("replay"));
+    vivae_lab::io::create_dirs(&out)?;
+    let name = report::replay_scenario_name(path.as_deref(), &scenario.text);
+    let replay = report::replay(&experiment, &config, &champion, &name, &out, member)?;
+    println!(
+        "fitness={} on_road={:.4} {}",
+        replay.fitness,
+        replay.on_road,
+        replay.behaviour.fields()
+    );
+    eprintln!("figure: {}", replay.figure.display());
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `vivae replay` of a genome of a task that draws no figures (the maze):
+/// its episode's end, on stdout.
+fn replay_without_figures(
+    args: &ReplayArgs,
+    champion: &rundir::Champion,
+    mut config: Config,
+) -> anyhow::Result<ExitCode> {
+    apply_overrides(&mut config, &args.overrides(args.episode.robots))?;
+    let maps = vivae_lab::maps::load(&config)?;
+    let task = vivae_lab::tasks::build(&config, &maps)?;
+    task.check_genome(&champion.genome)
+        .map_err(|reason| vivae_lab::Error::Genome {
+            path: args.source.clone(),
+            reason,
+        })?;
+    let (line, note) = (task.replay_text(&champion.genome))
+        .ok_or_else(|| bad_input("the run's task has no replay"))?;
+    println!("{line}");
+    eprintln!("{note}");
+    Ok(ExitCode::SUCCESS)
+}

@@ -1,0 +1,75 @@
+//! `vivae view`: serves a run, a genome or a scenario to the browser (see
+//! `vivae::view`).
+
+use std::net::{IpAddr, Ipv4Addr, SocketAddr};
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Duration;
+
+use clap::Args;
+use vivae::view::{IDLE_TIMEOUT, ViewOptions};
+use vivae_lab::io::bad_input;
+
+use super::args::MemberChoice;
+use super::report::refuse_other_task;
+
+/// Options of `vivae view`.
+#[derive(Args, Debug, Clone)]
+#[command(mut_arg("elite", |a| a.help(
+    "Drive the elite of this cell of a map-elites run's archive (archive.csv) \
+     when a page opens; the page's controller list offers every elite"
+)))]
+#[command(mut_arg("front", |a| a.help(
+    "Drive this member of an nsga2 run's Pareto front (front.csv; 0 = the \
+     fittest) when a page opens; the page's list offers every member"
+)))]
+pub struct ViewArgs {
+    /// A run directory (follows it while it runs), a champion genome JSON, or a
+    /// scenario SVG (drive by keyboard). Default: the embedded road scenario.
+    pub source: Option<PathBuf>,
+    #[command(flatten)]
+    pub member: MemberChoice,
+    /// Port to listen on (0 = any free port).
+    #[arg(long, default_value_t = 7878, value_name = "N")]
+    pub port: u16,
+    /// Address to listen on; anything but a loopback address lets the network watch.
+    #[arg(long, default_value_t = IpAddr::V4(Ipv4Addr::LOCALHOST), value_name = "ADDR")]
+    pub host: IpAddr,
+    /// Extra scenarios to offer: every `.svg` file in this folder.
+    #[arg(long, value_name = "DIR")]
+    pub scenarios: Option<PathBuf>,
+    /// Another Host name to answer (repeatable), e.g. this machine's name on
+    /// the network; besides it only the listening address and `localhost` are
+    /// answered (a defence against DNS rebinding).
+    #[arg(long, value_name = "NAME")]
+    pub allow_host: Vec<String>,
+    /// Most pages simulated at once; more are refused until one closes.
+    #[arg(long, default_value_t = 8, value_name = "N")]
+    pub max_viewers: usize,
+    /// Seconds a page may stay silent before it is dropped and its slot freed
+    /// (hidden: for tests; browsers answer the server's pings by themselves).
+    #[arg(long, hide = true, default_value_t = IDLE_TIMEOUT.as_secs_f64(), value_name = "SECS")]
+    pub idle_timeout: f64,
+}
+
+/// Runs `vivae view` until interrupted.
+pub fn run(args: ViewArgs) -> anyhow::Result<ExitCode> {
+    if let Some(source) = &args.source {
+        refuse_other_task(source, "view")?;
+    }
+    if args.max_viewers == 0 {
+        return Err(bad_input("--max-viewers 0: must be at least 1").into());
+    }
+    if !(args.idle_timeout.is_finite() && (0.1..=86_400.0).contains(&args.idle_timeout)) {
+        return Err(bad_input("--idle-timeout: must be 0.1 to 86400 seconds").into());
+    }
+    let options = ViewOptions {
+        member: args.member.member(),
+        addr: SocketAddr::new(args.host, args.port),
+        scenarios: args.scenarios,
+        allow_host: args.allow_host,
+        max_viewers: args.max_viewers,
+        idle_timeout: Duration::from_secs_f64(args.idle_timeout),
+    };
+    Ok(vivae::view::run(args.source.as_deref(), &options)?)
+}
