@@ -43,6 +43,7 @@ pub mod maze;
 pub mod maze_run;
 pub mod normalize;
 pub mod polar;
+pub mod replace;
 pub mod resolutions;
 pub mod rollout;
 pub mod run_task;
