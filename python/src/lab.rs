@@ -39,10 +39,23 @@ fn training(config: &Config) -> vivae_lab::Result<(Vec<vivae_lab::maps::Training
 pub struct DriveTask {
     config: Config,
     training: Training,
-    pool: rayon::ThreadPool,
+    pool: crate::pool::ForkSafePool,
 }
 
 impl DriveTask {
+    fn from_config(py: Python<'_>, config: Config) -> PyResult<DriveTask> {
+        let (maps, training) = training(&config).map_err(errors::lab)?;
+        for m in &maps {
+            errors::warn_scenario(py, &m.loaded.scenario)?;
+        }
+        let pool = crate::pool::ForkSafePool::new(config.run.threads)?;
+        Ok(DriveTask {
+            config,
+            training,
+            pool,
+        })
+    }
+
     fn experiment(&self) -> &Experiment {
         self.training.primary()
     }
@@ -67,18 +80,27 @@ impl DriveTask {
     /// (the CLI's flags by name: `scenario`, `sensors="3x5"`, `steps`, …).
     #[new]
     #[pyo3(signature = (config=None, **overrides))]
-    fn new(config: Option<PathBuf>, overrides: Option<&Bound<'_, PyDict>>) -> PyResult<DriveTask> {
+    fn new(
+        py: Python<'_>,
+        config: Option<PathBuf>,
+        overrides: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<DriveTask> {
         let config = settings::build(config.as_deref(), overrides)?;
-        let (_, training) = training(&config).map_err(errors::lab)?;
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(config.run.threads)
-            .build()
-            .map_err(|e| errors::value(format!("starting worker threads: {e}")))?;
-        Ok(DriveTask {
-            config,
-            training,
-            pool,
-        })
+        DriveTask::from_config(py, config)
+    }
+
+    /// A task from its resolved config's TOML ([`DriveTask::config_toml`]):
+    /// how a pickled task is rebuilt in another process.
+    #[staticmethod]
+    fn from_config_toml(py: Python<'_>, text: &str) -> PyResult<DriveTask> {
+        let config = Config::from_toml(text).map_err(|e| errors::value(format!("config: {e}")))?;
+        DriveTask::from_config(py, config)
+    }
+
+    /// Pickles by its resolved config (its scenario paths as resolved here).
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, (String,))> {
+        let text = slf.get().config.to_toml();
+        Ok((slf.get_type().getattr("from_config_toml")?, (text,)))
     }
 
     /// The resolved config as TOML (what `config.toml` of a run holds).
@@ -144,22 +166,32 @@ impl DriveTask {
         }
         let genomes: Vec<&vivae_neat::Genome> = genomes.iter().map(|g| &g.inner).collect();
         let task = self.training.task();
-        Ok(py.detach(|| {
-            self.pool.install(|| {
-                genomes
-                    .par_iter()
-                    .enumerate()
-                    .map(|(index, g)| {
-                        let ctx = EvalContext {
-                            generation: 0,
-                            index,
-                            seed: vivae_neat::eval_seed(self.config.experiment.seed, 0, index),
-                        };
-                        task.evaluate(g, &ctx).fitness
-                    })
-                    .collect()
-            })
-        }))
+        let pool = self.pool.get()?;
+        // In chunks of a few genomes per thread, so that Ctrl-C is noticed
+        // between them rather than only at the end (each genome keeps its index).
+        let chunk = 4 * pool.current_num_threads().max(1);
+        let mut fitnesses = Vec::with_capacity(genomes.len());
+        for (c, part) in genomes.chunks(chunk).enumerate() {
+            let done: Vec<f64> = py.detach(|| {
+                pool.install(|| {
+                    (part.par_iter().enumerate())
+                        .map(|(i, g)| {
+                            let index = c * chunk + i;
+                            let seed = vivae_neat::eval_seed(self.config.experiment.seed, 0, index);
+                            let ctx = EvalContext {
+                                generation: 0,
+                                index,
+                                seed,
+                            };
+                            task.evaluate(g, &ctx).fitness
+                        })
+                        .collect()
+                })
+            });
+            fitnesses.extend(done);
+            py.check_signals()?;
+        }
+        Ok(fitnesses)
     }
 
     /// The substrate `genome` paints, as numpy arrays: `input_weights`
@@ -284,12 +316,22 @@ pub struct Controller {
 
 #[pymethods]
 impl Controller {
-    /// One update from `obs` (robots × readings): the wheel commands (robots × 2).
+    /// One update from `obs` (robots × readings, any real dtype: the
+    /// environments' float32 included): the wheel commands (robots × 2).
     fn act<'py>(
         &mut self,
         py: Python<'py>,
-        obs: PyReadonlyArray2<'_, f64>,
+        obs: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let obs = real_array(py, obs, "obs")?;
+        let obs: PyReadonlyArray2<'_, f64> = obs.extract().map_err(|_| {
+            PyValueError::new_err(format!(
+                "obs has {} dimensions, expected 2 (robots × readings)",
+                obs.getattr("ndim")
+                    .and_then(|d| d.extract::<usize>())
+                    .unwrap_or(0)
+            ))
+        })?;
         let ni = self.controller.num_inputs();
         if obs.shape() != [self.robots, ni] {
             return Err(PyValueError::new_err(format!(
@@ -315,6 +357,25 @@ impl Controller {
     fn reset(&mut self) {
         self.state.reset();
     }
+}
+
+/// `value` as a float64 numpy array: ints and floats of any width; strings,
+/// objects, complex numbers and bools are a `TypeError` naming `what`.
+fn real_array<'py>(
+    py: Python<'py>,
+    value: &Bound<'py, PyAny>,
+    what: &str,
+) -> PyResult<Bound<'py, PyAny>> {
+    let np = py.import("numpy")?;
+    let given = np.call_method1("asarray", (value,))?;
+    let kind: String = given.getattr("dtype")?.getattr("kind")?.extract()?;
+    if !matches!(kind.as_str(), "i" | "u" | "f") {
+        let dtype = given.getattr("dtype")?.str()?;
+        return Err(pyo3::exceptions::PyTypeError::new_err(format!(
+            "{what}: expected real numbers (float or int), got dtype {dtype}"
+        )));
+    }
+    given.call_method1("astype", ("float64",))
 }
 
 /// Evolves as `vivae evolve` does and writes the same run directory (all
@@ -343,6 +404,9 @@ pub fn evolve<'py>(
         Ok((maps, task, init))
     };
     let (maps, task, init) = setup().map_err(errors::lab)?;
+    for m in &maps {
+        errors::warn_scenario(py, &m.loaded.scenario)?;
+    }
     if let (RunTask::Maze(maze), true) = (&task, maze_defaults) {
         // As `vivae evolve --task maze`: the example's 10 px MAP-Elites grid over the maze.
         config.strategy.map_elites.bins = vivae_lab::maze_run::cell_bins(maze);
@@ -354,9 +418,36 @@ pub fn evolve<'py>(
     } else {
         Vec::new()
     };
-    let mut run = py
+    let run = py
         .detach(|| Run::create_task(&dir, config, task, &first, &maps, init, force))
         .map_err(errors::lab)?;
+    drive(py, run, on_generation)
+}
+
+/// Continues the interrupted run in `out` (or extends a finished one to
+/// `generations`) as `vivae resume` does: the same files, byte for byte.
+#[pyfunction]
+#[pyo3(signature = (out, generations=None, threads=None, on_generation=None))]
+pub fn resume<'py>(
+    py: Python<'py>,
+    out: PathBuf,
+    generations: Option<u32>,
+    threads: Option<usize>,
+    on_generation: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let run = py
+        .detach(|| Run::resume(&out, generations, threads))
+        .map_err(errors::lab)?;
+    drive(py, run, on_generation)
+}
+
+/// Runs `run` to its end (or to Ctrl-C, or an exception of `on_generation`,
+/// each after a checkpoint) and sums it up as a dict.
+fn drive<'py>(
+    py: Python<'py>,
+    mut run: Run,
+    on_generation: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
     let stop = AtomicBool::new(false);
     let failure: Mutex<Option<PyErr>> = Mutex::new(None);
     let started = std::time::Instant::now();
@@ -380,9 +471,9 @@ pub fn evolve<'py>(
     if let Some(e) = failure.into_inner().unwrap_or_else(|p| p.into_inner()) {
         if e.is_instance_of::<PyKeyboardInterrupt>(py) {
             return Err(PyKeyboardInterrupt::new_err(format!(
-                "interrupted after generation {}; checkpoint written. Resume with: vivae resume {}",
+                "interrupted after generation {}; checkpoint written. Resume with: vivae.resume({:?})",
                 run.done(),
-                run.dir().display()
+                run.dir().display().to_string()
             )));
         }
         return Err(e);
@@ -401,13 +492,7 @@ pub fn evolve<'py>(
     if let Some(c) = run.champion() {
         d.set_item("best", c.fitness)?;
         d.set_item("champion_generation", c.generation)?;
-        d.set_item(
-            "champion",
-            Genome {
-                inner: c.genome,
-                recurrent: false,
-            },
-        )?;
+        d.set_item("champion", Genome::new(c.genome, false))?;
     }
     Ok(d)
 }
@@ -477,14 +562,7 @@ pub fn replay<'py>(
 #[pyfunction]
 pub fn load_genome(source: PathBuf) -> PyResult<(Genome, f64, u32)> {
     let (c, _, _) = rundir::load_genome_source(&source).map_err(errors::lab)?;
-    Ok((
-        Genome {
-            inner: c.genome,
-            recurrent: false,
-        },
-        c.fitness,
-        c.generation,
-    ))
+    Ok((Genome::new(c.genome, false), c.fitness, c.generation))
 }
 
 /// The shipped scenarios: (name, description).

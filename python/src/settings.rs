@@ -97,19 +97,19 @@ fn apply(c: &mut Config, o: &Bound<'_, PyDict>) -> PyResult<()> {
         }
         match key.as_str() {
             "scenario" => set_scenarios(c, &v)?,
-            "generations" => c.experiment.generations = v.extract()?,
-            "population" => c.neat.population_size = v.extract()?,
-            "seed" => c.experiment.seed = v.extract()?,
+            "generations" => c.experiment.generations = int(&key, &v)?,
+            "population" => c.neat.population_size = int(&key, &v)?,
+            "seed" => c.experiment.seed = int(&key, &v)?,
             "sensors" => {
                 let g = grid(&key, &v)?;
                 c.surface_sensors.rings = g.rings;
                 c.surface_sensors.angles = g.angles;
             }
             "neurons" => c.substrate.neurons = grid(&key, &v)?,
-            "steps" => c.experiment.steps = v.extract()?,
-            "robots" => c.experiment.robots = v.extract()?,
-            "threads" => c.run.threads = v.extract()?,
-            "distance_rays" => c.distance_sensors.rays = v.extract()?,
+            "steps" => c.experiment.steps = int(&key, &v)?,
+            "robots" => c.experiment.robots = int(&key, &v)?,
+            "threads" => c.run.threads = int(&key, &v)?,
+            "distance_rays" => c.distance_sensors.rays = int(&key, &v)?,
             "recurrence" => c.substrate.recurrence = parsed(&key, &v)?,
             "normalize_by" => c.substrate.normalize_by = parsed(&key, &v)?,
             "normalize_self_loops" => c.substrate.normalize_self_loops = v.extract()?,
@@ -130,6 +130,35 @@ fn apply(c: &mut Config, o: &Bound<'_, PyDict>) -> PyResult<()> {
     }
     Ok(())
 }
+
+/// The integer `key=v`: a `TypeError` for anything but an int (a bool
+/// included), a `ValueError` naming the allowed range for one out of range.
+pub fn int<T: TryFrom<i128> + Bounded>(key: &str, v: &Bound<'_, PyAny>) -> PyResult<T> {
+    if v.is_instance_of::<pyo3::types::PyBool>() || !v.is_instance_of::<pyo3::types::PyInt>() {
+        let ty = v.get_type().name()?;
+        return Err(pyo3::exceptions::PyTypeError::new_err(format!(
+            "{key}: expected an integer, got {ty}"
+        )));
+    }
+    let n: Option<i128> = v.extract().ok();
+    n.and_then(|n| T::try_from(n).ok()).ok_or_else(|| {
+        let (lo, hi) = T::RANGE;
+        errors::value(format!("{key}={v}: expected an integer from {lo} to {hi}"))
+    })
+}
+
+/// The range of an integer setting's type, for messages.
+pub trait Bounded {
+    /// The smallest and largest value.
+    const RANGE: (u128, u128);
+}
+
+macro_rules! bounded {
+    ($($t:ty),*) => {$(impl Bounded for $t {
+        const RANGE: (u128, u128) = (<$t>::MIN as u128, <$t>::MAX as u128);
+    })*};
+}
+bounded!(u32, u64, usize);
 
 /// `scenario=`: one map (a path or a shipped name) or a list of maps, as
 /// one or several `--scenario` flags.
