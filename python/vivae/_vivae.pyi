@@ -24,6 +24,7 @@ __all__ = [
     "load_genome",
     "math_is_portable",
     "replay",
+    "resume",
     "scenarios",
 ]
 
