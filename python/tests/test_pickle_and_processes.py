@@ -120,11 +120,27 @@ def test_multiprocessing_pools_evaluate_bit_for_bit(method):
         assert pool.map(evaluate_on, [(task, g) for g in genomes]) == task.evaluate(genomes)
 
 
+def drive_generations(evaluate, n=3):
+    """`n` generations of the driving task by ask/tell, each genome's fitness from `evaluate(task, genomes)`."""
+    task = vivae.DriveTask(scenario="oval", steps=60, population=8, threads=1)
+    pop = task.population()
+    history = []
+    for _ in range(n):
+        genomes = pop.ask()
+        scores = evaluate(task, genomes)
+        pop.tell(scores)
+        history.append(scores)
+    return history, pop.to_json()
+
+
 def test_a_process_pool_executor_evaluates_bit_for_bit():
     local = generations(lambda gs: [xor_fitness(g) for g in gs])
+    drive_local = drive_generations(lambda task, gs: task.evaluate(gs))
     ctx = multiprocessing.get_context("spawn")
     with concurrent.futures.ProcessPoolExecutor(2, mp_context=ctx) as ex:
         assert generations(lambda gs: list(ex.map(xor_of, gs))) == local
+        remote = drive_generations(lambda task, gs: list(ex.map(evaluate_on, [(task, g) for g in gs])))
+    assert remote == drive_local
 
 
 def test_a_local_ray_cluster_evaluates_bit_for_bit():
@@ -137,5 +153,9 @@ def test_a_local_ray_cluster_evaluates_bit_for_bit():
     try:
         remote = ray.remote(xor_of)
         assert generations(lambda gs: ray.get([remote.remote(g) for g in gs])) == local
+        # The driving task (the engine) in Ray workers: the task travels by its settings.
+        drive = ray.remote(evaluate_on)
+        drive_local = drive_generations(lambda task, gs: task.evaluate(gs))
+        assert drive_generations(lambda task, gs: ray.get([drive.remote((task, g)) for g in gs])) == drive_local
     finally:
         ray.shutdown()
