@@ -21,6 +21,13 @@ fn drive(mut s: impl Strategy) {
     let _ = s.tell(&told);
 }
 
+/// A state of strategy `S` read from `text` (as `from_json` reads it), driven once if it loads.
+fn drive_json<S: Strategy>(text: &str) {
+    if let Ok(s) = serde_json::from_str::<S>(text) {
+        drive(s);
+    }
+}
+
 fuzz_target!(|data: &[u8]| {
     let Some((&which, rest)) = data.split_first() else {
         return;
@@ -29,26 +36,10 @@ fuzz_target!(|data: &[u8]| {
         return;
     };
     match which % 6 {
-        0 => {
-            if let Ok(p) = serde_json::from_str::<vivae_neat::Population>(text) {
-                drive(p);
-            }
-        }
-        1 => {
-            if let Ok(s) = serde_json::from_str::<st::NoveltySearch>(text) {
-                drive(s);
-            }
-        }
-        2 => {
-            if let Ok(s) = serde_json::from_str::<st::MapElites>(text) {
-                drive(s);
-            }
-        }
-        3 => {
-            if let Ok(s) = serde_json::from_str::<st::Nsga2>(text) {
-                drive(s);
-            }
-        }
+        0 => drive_json::<vivae_neat::Population>(text),
+        1 => drive_json::<st::NoveltySearch>(text),
+        2 => drive_json::<st::MapElites>(text),
+        3 => drive_json::<st::Nsga2>(text),
         4 => {
             if let Ok(g) = serde_json::from_str::<vivae_neat::Genome>(text) {
                 let _ = vivae_neat::FeedForwardNetwork::from_genome(&g);
