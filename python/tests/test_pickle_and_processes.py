@@ -56,6 +56,16 @@ def test_environments_and_tasks_pickle_by_their_settings():
     assert copy.evaluate(genomes) == task.evaluate(genomes)
 
 
+def test_environments_made_by_gymnasium_pickle():
+    import gymnasium
+
+    env = pickle.loads(pickle.dumps(gymnasium.make("vivae/Drive-v0", scenario="oval", steps=20)))
+    obs, _ = env.reset(seed=0)
+    assert obs.shape == (15,)
+    vec = pickle.loads(pickle.dumps(gymnasium.make_vec("vivae/Drive-v0", num_envs=3, scenario="oval")))
+    assert vec.reset(seed=0)[0].shape == (3, 15)
+
+
 def test_the_parallel_env_pickles():
     pytest.importorskip("pettingzoo")
     env = pickle.loads(pickle.dumps(vivae.DriveParallelEnv(scenario="oval", steps=10)))
