@@ -29,6 +29,17 @@ def _core(num_worlds: int, robots: int, scenario, sensors, config, threads, over
     return DriveCore(num_worlds, config=config, threads=threads, **settings)
 
 
+def _count(name: str, value: Any, lowest: int) -> int:
+    """`value` as an int: a TypeError naming `name` for anything else, a
+    ValueError naming the range for a negative one (the core checks the
+    rest, with its own bounds)."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
+        raise TypeError(f"{name}: expected an integer, got {type(value).__name__}")
+    if value < 0:
+        raise ValueError(f"{name}={value}: expected an integer from {lowest} up")
+    return int(value)
+
+
 def _action(action: Any, shape: tuple[int, ...]) -> np.ndarray:
     """`action` as float32 of `shape`: real numbers only (a string, None, a
     complex number or a bool is a TypeError), a wrong shape a ValueError."""
@@ -195,6 +206,7 @@ class DriveVectorEnv(_PicklesBySettings, gymnasium.vector.VectorEnv):
         **overrides: Any,
     ) -> None:
         _render_mode(render_mode)
+        num_envs, threads = _count("num_envs", num_envs, 1), _count("threads", threads, 0)
         self._init_args = dict(
             num_envs=num_envs, scenario=scenario, sensors=sensors, render_mode=render_mode,
             config=config, threads=threads, copy=copy, render_scale=render_scale, **overrides,
