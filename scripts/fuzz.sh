@@ -9,7 +9,7 @@ cd "$(dirname "$0")/.."
 seconds="${1:-1800}"
 shift || true
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(scenario_loader config_parser genome_reader checkpoint_reader rundir_reader view_messages)
+[ ${#targets[@]} -gt 0 ] || targets=(scenario_loader config_parser genome_reader checkpoint_reader rundir_reader view_messages python_json)
 shared=../shared/vivae-scenarios
 
 # Seed corpora, rebuilt from the project's files (never committed).

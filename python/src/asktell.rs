@@ -33,6 +33,12 @@ macro_rules! ask_tell {
                 behaviours: Option<Vec<Vec<f64>>>,
                 metrics: Option<Vec<Vec<f64>>>,
             ) -> PyResult<()> {
+                if vivae_neat::driver::Strategy::champion(&self.inner).is_some() {
+                    // A second tell would replace the fitnesses but not `best_ever`.
+                    return Err(pyo3::exceptions::PyValueError::new_err(
+                        "tell: this batch was already told; ask() for the next one",
+                    ));
+                }
                 let told = $crate::asktell::evaluations(fitnesses, behaviours, metrics)?;
                 vivae_neat::driver::Strategy::tell(&mut self.inner, &told)
                     .map_err($crate::errors::value)
@@ -68,6 +74,14 @@ macro_rules! ask_tell {
                 Ok($class { inner, recurrent })
             }
 
+            /// Pickles by JSON: `from_json(to_json())` continues bit for bit.
+            fn __reduce__<'py>(
+                slf: &Bound<'py, Self>,
+            ) -> PyResult<(Bound<'py, PyAny>, (String,))> {
+                let json = serde_json::to_string(&slf.borrow().inner).map_err($crate::errors::value)?;
+                Ok((slf.get_type().getattr("from_json")?, (json,)))
+            }
+
             fn __repr__(&self) -> String {
                 format!(
                     "{}(generation={})",
@@ -82,10 +96,7 @@ macro_rules! ask_tell {
 /// The genomes `strategy` asks to have evaluated, as Python genomes.
 pub fn ask(strategy: &mut impl Strategy, recurrent: bool) -> Vec<Genome> {
     (strategy.ask().genomes.iter())
-        .map(|g| Genome {
-            inner: g.clone(),
-            recurrent,
-        })
+        .map(|g| Genome::new(g.clone(), recurrent))
         .collect()
 }
 
@@ -122,10 +133,7 @@ pub fn evaluations(
 /// (genome, fitness, generation) of the best genome `strategy` was told of.
 pub fn best_ever(strategy: &impl Strategy, recurrent: bool) -> Option<(Genome, f64, u32)> {
     strategy.best_ever().map(|b| {
-        let genome = Genome {
-            inner: b.genome.clone(),
-            recurrent,
-        };
+        let genome = Genome::new(b.genome.clone(), recurrent);
         (genome, b.fitness, b.generation)
     })
 }

@@ -210,7 +210,7 @@ pub struct DriveCore {
     experiment: Experiment,
     slots: Vec<Slot>,
     shape: Shape,
-    pool: rayon::ThreadPool,
+    pool: crate::pool::ForkSafePool,
     sensors: vivae_sim::SurfaceSensors,
     distance: Option<vivae_sim::DistanceSensors>,
 }
@@ -238,6 +238,7 @@ impl DriveCore {
     #[new]
     #[pyo3(signature = (num_worlds, config=None, threads=0, **overrides))]
     fn new(
+        py: Python<'_>,
         num_worlds: usize,
         config: Option<std::path::PathBuf>,
         threads: usize,
@@ -251,6 +252,7 @@ impl DriveCore {
         let config = settings::build(config.as_deref(), overrides)?;
         let path = settings::scenario_path(&config);
         let loaded = vivae_lab::io::load_scenario(path.as_deref()).map_err(errors::lab)?;
+        errors::warn_scenario(py, &loaded.scenario)?;
         let experiment = Experiment::new(&config, &loaded.scenario)
             .map_err(|e| errors::lab(vivae_lab::Error::from(e)))?;
         let robots = experiment.robots();
@@ -263,10 +265,7 @@ impl DriveCore {
             steps: 0,
             done: false,
         };
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads.min(num_worlds))
-            .build()
-            .map_err(|e| errors::value(format!("starting worker threads: {e}")))?;
+        let pool = crate::pool::ForkSafePool::new(threads.min(num_worlds))?;
         Ok(DriveCore {
             shape: Shape {
                 robots,
@@ -307,8 +306,8 @@ impl DriveCore {
 
     /// Worker threads stepping the worlds.
     #[getter]
-    fn threads(&self) -> usize {
-        self.pool.current_num_threads()
+    fn threads(&self) -> PyResult<usize> {
+        self.pool.threads()
     }
 
     /// Puts the worlds where `mask` is true (all when `None`) back at the
@@ -384,8 +383,9 @@ impl DriveCore {
             shape: s,
             autoreset,
         };
-        let (slots, pool) = (&mut self.slots, &self.pool);
-        py.detach(|| step_all(pool, &ctx, slots, buffers));
+        let pool = self.pool.get()?;
+        let slots = &mut self.slots;
+        py.detach(|| step_all(&pool, &ctx, slots, buffers));
         Ok(())
     }
 
@@ -448,7 +448,7 @@ impl DriveCore {
     /// drawn in Rust (seeded): the native baseline the benchmarks compare
     /// the Python vector env with. Returns robot-steps done.
     #[pyo3(signature = (steps, seed=0))]
-    fn run_random(&mut self, py: Python<'_>, steps: u32, seed: u64) -> u64 {
+    fn run_random(&mut self, py: Python<'_>, steps: u32, seed: u64) -> PyResult<u64> {
         use rand::{RngExt, SeedableRng};
         let (n, s) = (self.n(), self.shape);
         let mut rng = rand_pcg::Pcg64::seed_from_u64(seed);
@@ -461,7 +461,8 @@ impl DriveCore {
             shape: s,
             autoreset: true,
         };
-        let (slots, pool) = (&mut self.slots, &self.pool);
+        let pool = self.pool.get()?;
+        let slots = &mut self.slots;
         py.detach(|| {
             for _ in 0..steps {
                 for a in &mut actions {
@@ -473,9 +474,9 @@ impl DriveCore {
                     rewards: &mut rewards,
                     truncated: &mut truncated,
                 };
-                step_all(pool, &ctx, slots, buffers);
+                step_all(&pool, &ctx, slots, buffers);
             }
         });
-        u64::from(steps) * (n * s.robots) as u64
+        Ok(u64::from(steps) * (n * s.robots) as u64)
     }
 }

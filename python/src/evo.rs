@@ -16,8 +16,60 @@ pub struct Genome {
     pub recurrent: bool,
 }
 
+impl Genome {
+    /// `inner` for Python: recurrent when `recurrent` says so or when its
+    /// enabled links form a cycle (a cyclic genome activated as a
+    /// feed-forward network would silently compute something else).
+    pub fn new(inner: vivae_neat::Genome, recurrent: bool) -> Genome {
+        let recurrent = recurrent || has_cycle(&inner);
+        Genome { inner, recurrent }
+    }
+}
+
+/// Whether the enabled links of `genome` form a cycle (a self-loop included):
+/// Kahn's algorithm leaves a node unordered exactly when it lies on or after one.
+pub fn has_cycle(genome: &vivae_neat::Genome) -> bool {
+    let ids: std::collections::HashMap<u32, usize> = (genome.nodes().iter().enumerate())
+        .map(|(i, n)| (n.id, i))
+        .collect();
+    let mut indegree = vec![0usize; ids.len()];
+    let mut next: Vec<Vec<usize>> = vec![Vec::new(); ids.len()];
+    for l in genome.links().iter().filter(|l| l.enabled) {
+        let (Some(&a), Some(&b)) = (ids.get(&l.from), ids.get(&l.to)) else {
+            continue;
+        };
+        next[a].push(b);
+        indegree[b] += 1;
+    }
+    let mut ready: Vec<usize> = (0..ids.len()).filter(|&i| indegree[i] == 0).collect();
+    let mut ordered = 0;
+    while let Some(i) = ready.pop() {
+        ordered += 1;
+        for &j in &next[i] {
+            indegree[j] -= 1;
+            if indegree[j] == 0 {
+                ready.push(j);
+            }
+        }
+    }
+    ordered != ids.len()
+}
+
 #[pymethods]
 impl Genome {
+    /// Pickles by JSON: `Genome.from_json(to_json(), recurrent)`.
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, (String, bool))> {
+        let this = slf.get();
+        let json = serde_json::to_string(&this.inner).map_err(errors::value)?;
+        Ok((slf.get_type().getattr("from_json")?, (json, this.recurrent)))
+    }
+
+    /// Whether its network keeps state between activations (it may have cycles).
+    #[getter]
+    fn recurrent(&self) -> bool {
+        self.recurrent
+    }
+
     /// The genome's network, ready to activate.
     fn network(&self) -> Network {
         let net = if self.recurrent {
@@ -33,13 +85,15 @@ impl Genome {
         serde_json::to_string(&self.inner).map_err(errors::value)
     }
 
-    /// A genome from [`Genome::to_json`]'s JSON (checked: a malformed one is a `ValueError`).
+    /// A genome from [`Genome::to_json`]'s JSON (checked: a malformed one is a
+    /// `ValueError`); a genome whose links form a cycle is recurrent whatever
+    /// `recurrent` says.
     #[staticmethod]
     #[pyo3(signature = (text, recurrent=false))]
     fn from_json(text: &str, recurrent: bool) -> PyResult<Genome> {
         let inner: vivae_neat::Genome =
             serde_json::from_str(text).map_err(|e| errors::value(format!("genome JSON: {e}")))?;
-        Ok(Genome { inner, recurrent })
+        Ok(Genome::new(inner, recurrent))
     }
 
     /// Number of input nodes.
@@ -166,13 +220,28 @@ pub fn merged<T: serde::Serialize + serde::de::DeserializeOwned>(
     let json = given.py().import("json")?;
     let text: String = json.call_method1("dumps", (given,))?.extract()?;
     let given: serde_json::Value = serde_json::from_str(&text).map_err(errors::value)?;
-    let mut value = serde_json::to_value(&base).map_err(errors::value)?;
-    if let (Some(v), Some(g)) = (value.as_object_mut(), given.as_object()) {
-        for (k, x) in g {
-            v.insert(k.clone(), x.clone());
+    let base = serde_json::to_value(&base).map_err(errors::value)?;
+    let with = |keys: &mut dyn Iterator<Item = (&String, &serde_json::Value)>| {
+        let mut value = base.clone();
+        if let Some(v) = value.as_object_mut() {
+            for (k, x) in keys {
+                v.insert(k.clone(), x.clone());
+            }
         }
-    }
-    serde_json::from_value(value).map_err(|e| errors::value(format!("{what}: {e}")))
+        serde_json::from_value::<T>(value)
+    };
+    let Some(g) = given.as_object() else {
+        return Err(errors::value(format!("{what}: expected a dict")));
+    };
+    with(&mut g.iter()).map_err(|e| {
+        // serde names no field for a value of the wrong type: find the key.
+        let bad = g.iter().find_map(|(k, x)| {
+            with(&mut std::iter::once((k, x)))
+                .err()
+                .map(|e| format!("{what}[{k:?}] = {x}: {e}"))
+        });
+        errors::value(bad.unwrap_or_else(|| format!("{what}: {e}")))
+    })
 }
 
 ask_tell!(Population, "Population", "population", &["spec"], {
@@ -235,9 +304,32 @@ pub fn neat_setup(
     if let Some(n) = size {
         params.population_size = n;
     }
+    // The parameters' own bounds (population_size among them) are named first.
+    params.validate().map_err(errors::value)?;
+    check_sizes(inputs, outputs, params.population_size)?;
     let spec = GenomeSpec {
         allow_recurrent: recurrent,
         ..spec
     };
     Ok((params, spec))
+}
+
+/// Most genes (nodes and links of every minimal genome) a generation 0 may
+/// hold: checked before anything is allocated, so that a huge request is a
+/// `MemoryError` rather than an abort of the interpreter.
+pub const MAX_GENES: u128 = 50_000_000;
+
+/// Refuses `inputs`, `outputs` and a population `size` whose generation 0
+/// would not fit in [`MAX_GENES`] (a minimal genome links every input to every output).
+fn check_sizes(inputs: usize, outputs: usize, size: usize) -> PyResult<()> {
+    let (i, o, n) = (inputs as u128, outputs as u128, size as u128);
+    let genes = (i * o + i + o) * n;
+    if genes > MAX_GENES {
+        return Err(pyo3::exceptions::PyMemoryError::new_err(format!(
+            "inputs={inputs}, outputs={outputs}, size={size}: generation 0 would hold {genes} genes \
+             ((inputs × outputs + inputs + outputs) × size), more than the {MAX_GENES} allowed; \
+             use fewer inputs, outputs or genomes"
+        )));
+    }
+    Ok(())
 }

@@ -15,6 +15,7 @@ use vivae_lab::config::Config;
 use vivae_lab::es_controller::RobotController;
 use vivae_lab::evolve::{Outcome, Run};
 use vivae_lab::experiment::Experiment;
+use vivae_lab::run::prepare::prepare;
 use vivae_lab::rundir::{self, GenerationRecord};
 use vivae_lab::substrate::WheelNeurons;
 use vivae_lab::training::Training;
@@ -38,10 +39,23 @@ fn training(config: &Config) -> vivae_lab::Result<(Vec<vivae_lab::maps::Training
 pub struct DriveTask {
     config: Config,
     training: Training,
-    pool: rayon::ThreadPool,
+    pool: crate::pool::ForkSafePool,
 }
 
 impl DriveTask {
+    fn from_config(py: Python<'_>, config: Config) -> PyResult<DriveTask> {
+        let (maps, training) = training(&config).map_err(errors::lab)?;
+        for m in &maps {
+            errors::warn_scenario(py, &m.loaded.scenario)?;
+        }
+        let pool = crate::pool::ForkSafePool::new(config.run.threads)?;
+        Ok(DriveTask {
+            config,
+            training,
+            pool,
+        })
+    }
+
     fn experiment(&self) -> &Experiment {
         self.training.primary()
     }
@@ -66,18 +80,27 @@ impl DriveTask {
     /// (the CLI's flags by name: `scenario`, `sensors="3x5"`, `steps`, …).
     #[new]
     #[pyo3(signature = (config=None, **overrides))]
-    fn new(config: Option<PathBuf>, overrides: Option<&Bound<'_, PyDict>>) -> PyResult<DriveTask> {
+    fn new(
+        py: Python<'_>,
+        config: Option<PathBuf>,
+        overrides: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<DriveTask> {
         let config = settings::build(config.as_deref(), overrides)?;
-        let (_, training) = training(&config).map_err(errors::lab)?;
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(config.run.threads)
-            .build()
-            .map_err(|e| errors::value(format!("starting worker threads: {e}")))?;
-        Ok(DriveTask {
-            config,
-            training,
-            pool,
-        })
+        DriveTask::from_config(py, config)
+    }
+
+    /// A task from its resolved config's TOML ([`DriveTask::config_toml`]):
+    /// how a pickled task is rebuilt in another process.
+    #[staticmethod]
+    fn from_config_toml(py: Python<'_>, text: &str) -> PyResult<DriveTask> {
+        let config = Config::from_toml(text).map_err(|e| errors::value(format!("config: {e}")))?;
+        DriveTask::from_config(py, config)
+    }
+
+    /// Pickles by its resolved config (its scenario paths as resolved here).
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, (String,))> {
+        let text = slf.get().config.to_toml();
+        Ok((slf.get_type().getattr("from_config_toml")?, (text,)))
     }
 
     /// The resolved config as TOML (what `config.toml` of a run holds).
@@ -143,22 +166,32 @@ impl DriveTask {
         }
         let genomes: Vec<&vivae_neat::Genome> = genomes.iter().map(|g| &g.inner).collect();
         let task = self.training.task();
-        Ok(py.detach(|| {
-            self.pool.install(|| {
-                genomes
-                    .par_iter()
-                    .enumerate()
-                    .map(|(index, g)| {
-                        let ctx = EvalContext {
-                            generation: 0,
-                            index,
-                            seed: vivae_neat::eval_seed(self.config.experiment.seed, 0, index),
-                        };
-                        task.evaluate(g, &ctx).fitness
-                    })
-                    .collect()
-            })
-        }))
+        let pool = self.pool.get()?;
+        // In chunks of a few genomes per thread, so that Ctrl-C is noticed
+        // between them rather than only at the end (each genome keeps its index).
+        let chunk = 4 * pool.current_num_threads().max(1);
+        let mut fitnesses = Vec::with_capacity(genomes.len());
+        for (c, part) in genomes.chunks(chunk).enumerate() {
+            let done: Vec<f64> = py.detach(|| {
+                pool.install(|| {
+                    (part.par_iter().enumerate())
+                        .map(|(i, g)| {
+                            let index = c * chunk + i;
+                            let seed = vivae_neat::eval_seed(self.config.experiment.seed, 0, index);
+                            let ctx = EvalContext {
+                                generation: 0,
+                                index,
+                                seed,
+                            };
+                            task.evaluate(g, &ctx).fitness
+                        })
+                        .collect()
+                })
+            });
+            fitnesses.extend(done);
+            py.check_signals()?;
+        }
+        Ok(fitnesses)
     }
 
     /// The substrate `genome` paints, as numpy arrays: `input_weights`
@@ -283,12 +316,22 @@ pub struct Controller {
 
 #[pymethods]
 impl Controller {
-    /// One update from `obs` (robots × readings): the wheel commands (robots × 2).
+    /// One update from `obs` (robots × readings, any real dtype: the
+    /// environments' float32 included): the wheel commands (robots × 2).
     fn act<'py>(
         &mut self,
         py: Python<'py>,
-        obs: PyReadonlyArray2<'_, f64>,
+        obs: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let obs = real_array(py, obs, "obs")?;
+        let obs: PyReadonlyArray2<'_, f64> = obs.extract().map_err(|_| {
+            PyValueError::new_err(format!(
+                "obs has {} dimensions, expected 2 (robots × readings)",
+                obs.getattr("ndim")
+                    .and_then(|d| d.extract::<usize>())
+                    .unwrap_or(0)
+            ))
+        })?;
         let ni = self.controller.num_inputs();
         if obs.shape() != [self.robots, ni] {
             return Err(PyValueError::new_err(format!(
@@ -316,6 +359,25 @@ impl Controller {
     }
 }
 
+/// `value` as a float64 numpy array: ints and floats of any width; strings,
+/// objects, complex numbers and bools are a `TypeError` naming `what`.
+fn real_array<'py>(
+    py: Python<'py>,
+    value: &Bound<'py, PyAny>,
+    what: &str,
+) -> PyResult<Bound<'py, PyAny>> {
+    let np = py.import("numpy")?;
+    let given = np.call_method1("asarray", (value,))?;
+    let kind: String = given.getattr("dtype")?.getattr("kind")?.extract()?;
+    if !matches!(kind.as_str(), "i" | "u" | "f") {
+        let dtype = given.getattr("dtype")?.str()?;
+        return Err(pyo3::exceptions::PyTypeError::new_err(format!(
+            "{what}: expected real numbers (float or int), got dtype {dtype}"
+        )));
+    }
+    given.call_method1("astype", ("float64",))
+}
+
 /// Evolves as `vivae evolve` does and writes the same run directory (all
 /// but `figures/`, `report.html` and the wall times of `timing.csv`).
 #[pyfunction]
@@ -328,35 +390,45 @@ pub fn evolve<'py>(
     on_generation: Option<Py<PyAny>>,
     overrides: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    // Without a config file a named task starts from its own defaults,
+    // which it may fit to its scenario (the maze's MAP-Elites grid).
     let task_defaults = config.is_none();
-    let mut config = settings::build(config.as_deref(), overrides)?;
-    let setup = || -> vivae_lab::Result<_> {
-        let maps = vivae_lab::maps::load(&config)?;
-        let task = vivae_lab::tasks::build(&config, &maps)?;
-        let init = if config.experiment.init_population.is_empty() {
-            None
-        } else {
-            let path = Path::new(&config.experiment.init_population);
-            Some(rundir::population_from_checkpoint(path)?.1)
-        };
-        Ok((maps, task, init))
-    };
-    let (maps, task, init) = setup().map_err(errors::lab)?;
-    if task_defaults {
-        // As `vivae evolve --task NAME`: settings the task fits to its scenario
-        // (the maze's 10 px MAP-Elites grid).
-        task.fit_defaults(&mut config);
+    let config = settings::build(config.as_deref(), overrides)?;
+    let prepared = prepare(config, task_defaults).map_err(errors::lab)?;
+    for m in &prepared.maps {
+        errors::warn_scenario(py, &m.loaded.scenario)?;
     }
     let dir = out.unwrap_or_else(vivae_lab::io::default_run_dir);
-    let first = maps[0].loaded.text.clone();
-    let maps = if vivae_lab::maps::is_multi_map(&config) {
-        maps
-    } else {
-        Vec::new()
-    };
-    let mut run = py
-        .detach(|| Run::create_task(&dir, config, task, &first, &maps, init, force))
+    let run = py
+        .detach(|| prepared.create(&dir, force))
         .map_err(errors::lab)?;
+    drive(py, run, on_generation)
+}
+
+/// Continues the interrupted run in `out` (or extends a finished one to
+/// `generations`) as `vivae resume` does: the same files, byte for byte.
+#[pyfunction]
+#[pyo3(signature = (out, generations=None, threads=None, on_generation=None))]
+pub fn resume<'py>(
+    py: Python<'py>,
+    out: PathBuf,
+    generations: Option<u32>,
+    threads: Option<usize>,
+    on_generation: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let run = py
+        .detach(|| Run::resume(&out, generations, threads))
+        .map_err(errors::lab)?;
+    drive(py, run, on_generation)
+}
+
+/// Runs `run` to its end (or to Ctrl-C, or an exception of `on_generation`,
+/// each after a checkpoint) and sums it up as a dict.
+fn drive<'py>(
+    py: Python<'py>,
+    mut run: Run,
+    on_generation: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
     let stop = AtomicBool::new(false);
     let failure: Mutex<Option<PyErr>> = Mutex::new(None);
     let started = std::time::Instant::now();
@@ -380,9 +452,9 @@ pub fn evolve<'py>(
     if let Some(e) = failure.into_inner().unwrap_or_else(|p| p.into_inner()) {
         if e.is_instance_of::<PyKeyboardInterrupt>(py) {
             return Err(PyKeyboardInterrupt::new_err(format!(
-                "interrupted after generation {}; checkpoint written. Resume with: vivae resume {}",
+                "interrupted after generation {}; checkpoint written. Resume with: vivae.resume({:?})",
                 run.done(),
-                run.dir().display()
+                run.dir().display().to_string()
             )));
         }
         return Err(e);
@@ -401,13 +473,7 @@ pub fn evolve<'py>(
     if let Some(c) = run.champion() {
         d.set_item("best", c.fitness)?;
         d.set_item("champion_generation", c.generation)?;
-        d.set_item(
-            "champion",
-            Genome {
-                inner: c.genome,
-                recurrent: false,
-            },
-        )?;
+        d.set_item("champion", Genome::new(c.genome, false))?;
     }
     Ok(d)
 }
@@ -477,14 +543,7 @@ pub fn replay<'py>(
 #[pyfunction]
 pub fn load_genome(source: PathBuf) -> PyResult<(Genome, f64, u32)> {
     let (c, _, _) = rundir::load_genome_source(&source).map_err(errors::lab)?;
-    Ok((
-        Genome {
-            inner: c.genome,
-            recurrent: false,
-        },
-        c.fitness,
-        c.generation,
-    ))
+    Ok((Genome::new(c.genome, false), c.fitness, c.generation))
 }
 
 /// The shipped scenarios: (name, description).

@@ -14,6 +14,7 @@ mod drive;
 mod errors;
 mod evo;
 mod lab;
+mod pool;
 // The program's portable C math symbols, shared rather than copied.
 #[path = "../../crates/vivae/src/portable_libm.rs"]
 mod portable_libm;
@@ -33,6 +34,7 @@ fn _vivae(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<lab::Controller>()?;
     m.add_function(wrap_pyfunction!(lab::evolve, m)?)?;
     m.add_function(wrap_pyfunction!(lab::replay, m)?)?;
+    m.add_function(wrap_pyfunction!(lab::resume, m)?)?;
     m.add_function(wrap_pyfunction!(lab::load_genome, m)?)?;
     m.add_function(wrap_pyfunction!(lab::scenarios, m)?)?;
     m.add_function(wrap_pyfunction!(lab::default_config, m)?)?;

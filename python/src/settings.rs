@@ -5,66 +5,34 @@ use std::path::{Path, PathBuf};
 
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString};
-use vivae_lab::config::{Config, TaskName};
+use vivae_lab::config::Config;
+use vivae_lab::run::prepare::{Overrides, base_config};
 use vivae_lab::substrate::PolarGrid;
 
 use crate::errors;
 
-/// The keyword overrides every entry point accepts, as the CLI's flags.
-pub const OVERRIDES: &[&str] = &[
-    "scenario",
-    "generations",
-    "population",
-    "seed",
-    "sensors",
-    "neurons",
-    "steps",
-    "robots",
-    "threads",
-    "distance_rays",
-    "recurrence",
-    "normalize_by",
-    "normalize_self_loops",
-    "train_neurons",
-    "train_sensors",
-    "train_aggregate",
-    "substrate",
-    "strategy",
-    "behaviour",
-    "task",
-];
+/// The keyword overrides every entry point accepts: the library's
+/// [`Overrides`] keys, which are the CLI's flags too.
+pub const OVERRIDES: [&str; 20] = Overrides::KEYS;
 
-/// `config` (a TOML file) or the paper's default, with `overrides` applied and validated.
+/// `config` (a TOML file) or the named task's defaults (the paper's when
+/// none is named), with `overrides` applied and checked: the library's one
+/// preparation, as `vivae evolve` does it.
 pub fn build(config: Option<&Path>, overrides: Option<&Bound<'_, PyDict>>) -> PyResult<Config> {
-    let task = match overrides.map(|o| o.get_item("task")).transpose()?.flatten() {
-        Some(v) if !v.is_none() => {
-            let t = parsed::<TaskName>("task", &v)?;
-            vivae_lab::tasks::entry(t.name()).map_err(|e| errors::value(format!("task: {e}")))?;
-            Some(t)
-        }
-        _ => None,
+    let o = match overrides {
+        Some(d) => extract(d)?,
+        None => Overrides::default(),
     };
-    let c = match config {
-        Some(p) => {
-            let c = vivae_lab::tasks::read_config(p).map_err(errors::lab)?;
-            // As `--task` with `--config`: the file says which task it is.
-            if let Some(why) = c.task_mismatch(task.as_ref()) {
-                let t = task.as_ref().map_or("", TaskName::name);
-                return Err(errors::value(format!("task={t:?}: {why}")));
-            }
-            c
-        }
-        // The maze's own defaults, as `vivae evolve --task maze` starts from.
-        None => vivae_lab::tasks::default_config(task.as_ref())
-            .map_err(|why| errors::value(format!("task: {why}")))?,
-    };
-    build_from(c, overrides)
+    let mut c = base_config(config, o.task.as_ref(), "task=").map_err(errors::lab)?;
+    o.apply(&mut c);
+    vivae_lab::tasks::check(&c).map_err(|e| errors::value(format!("arguments: {e}")))?;
+    Ok(c)
 }
 
-/// `c` with `overrides` applied and validated.
+/// `c` with `overrides` applied and checked.
 pub fn build_from(mut c: Config, overrides: Option<&Bound<'_, PyDict>>) -> PyResult<Config> {
-    if let Some(o) = overrides {
-        apply(&mut c, o)?;
+    if let Some(d) = overrides {
+        extract(d)?.apply(&mut c);
     }
     vivae_lab::tasks::check(&c).map_err(|e| errors::value(format!("arguments: {e}")))?;
     Ok(c)
@@ -93,72 +61,96 @@ pub fn path_text(v: &Bound<'_, PyAny>) -> PyResult<String> {
     Ok(p.to_string_lossy().into_owned())
 }
 
-fn apply(c: &mut Config, o: &Bound<'_, PyDict>) -> PyResult<()> {
-    for (k, v) in o.iter() {
+/// The library's overrides of Python keyword arguments `d` (`None` values
+/// are unset), each value checked for its key's type and range.
+fn extract(d: &Bound<'_, PyDict>) -> PyResult<Overrides> {
+    let mut o = Overrides::default();
+    for (k, v) in d.iter() {
         let key: String = k.extract()?;
         if v.is_none() {
             continue;
         }
-        match key.as_str() {
-            "scenario" => set_scenarios(c, &v)?,
-            "generations" => c.experiment.generations = v.extract()?,
-            "population" => c.neat.population_size = v.extract()?,
-            "seed" => c.experiment.seed = v.extract()?,
-            "sensors" => {
-                let g = grid(&key, &v)?;
-                c.surface_sensors.rings = g.rings;
-                c.surface_sensors.angles = g.angles;
-            }
-            "neurons" => c.substrate.neurons = grid(&key, &v)?,
-            "steps" => c.experiment.steps = v.extract()?,
-            "robots" => c.experiment.robots = v.extract()?,
-            "threads" => c.run.threads = v.extract()?,
-            "distance_rays" => c.distance_sensors.rays = v.extract()?,
-            "recurrence" => c.substrate.recurrence = parsed(&key, &v)?,
-            "normalize_by" => c.substrate.normalize_by = parsed(&key, &v)?,
-            "normalize_self_loops" => c.substrate.normalize_self_loops = v.extract()?,
-            "train_neurons" => c.substrate.train_neurons = grids(&key, &v)?,
-            "train_sensors" => c.substrate.train_sensors = grids(&key, &v)?,
-            "train_aggregate" => c.substrate.train_aggregate = parsed(&key, &v)?,
-            "substrate" => c.substrate.kind = parsed(&key, &v)?,
-            "strategy" => c.strategy.kind = parsed(&key, &v)?,
-            "behaviour" => c.strategy.behaviour = parsed(&key, &v)?,
-            "task" => c.experiment.task = parsed(&key, &v)?,
-            other => {
-                return Err(errors::value(format!(
-                    "unknown setting {other:?}; expected one of {}",
-                    OVERRIDES.join(", ")
-                )));
-            }
+        set(&mut o, &key, &v)?;
+    }
+    Ok(o)
+}
+
+/// Sets override `key` of `o` to the Python value `v`.
+fn set(o: &mut Overrides, key: &str, v: &Bound<'_, PyAny>) -> PyResult<()> {
+    match key {
+        "scenario" => o.scenario = scenarios(v)?,
+        "generations" => o.generations = Some(int(key, v)?),
+        "population" => o.population = Some(int(key, v)?),
+        "seed" => o.seed = Some(int(key, v)?),
+        "sensors" => o.sensors = Some(grid(key, v)?),
+        "neurons" => o.neurons = Some(grid(key, v)?),
+        "steps" => o.steps = Some(int(key, v)?),
+        "robots" => o.robots = Some(int(key, v)?),
+        "threads" => o.threads = Some(int(key, v)?),
+        "distance_rays" => o.distance_rays = Some(int(key, v)?),
+        "recurrence" => o.recurrence = Some(parsed(key, v)?),
+        "normalize_by" => o.normalize_by = Some(parsed(key, v)?),
+        "normalize_self_loops" => o.normalize_self_loops = Some(v.extract()?),
+        "train_neurons" => o.train_neurons = Some(grids(key, v)?),
+        "train_sensors" => o.train_sensors = Some(grids(key, v)?),
+        "train_aggregate" => o.train_aggregate = Some(parsed(key, v)?),
+        "substrate" => o.substrate = Some(parsed(key, v)?),
+        "strategy" => o.strategy = Some(parsed(key, v)?),
+        "behaviour" => o.behaviour = Some(parsed(key, v)?),
+        "task" => {
+            let t: String = v.extract()?;
+            o.set(key, &t).map_err(errors::value)?;
+        }
+        other => {
+            return Err(errors::value(format!(
+                "unknown setting {other:?}; expected one of {}",
+                OVERRIDES.join(", ")
+            )));
         }
     }
     Ok(())
 }
 
+/// The integer `key=v`: a `TypeError` for anything but an int (a bool
+/// included), a `ValueError` naming the allowed range for one out of range.
+pub fn int<T: TryFrom<i128> + Bounded>(key: &str, v: &Bound<'_, PyAny>) -> PyResult<T> {
+    if v.is_instance_of::<pyo3::types::PyBool>() || !v.is_instance_of::<pyo3::types::PyInt>() {
+        let ty = v.get_type().name()?;
+        return Err(pyo3::exceptions::PyTypeError::new_err(format!(
+            "{key}: expected an integer, got {ty}"
+        )));
+    }
+    let n: Option<i128> = v.extract().ok();
+    n.and_then(|n| T::try_from(n).ok()).ok_or_else(|| {
+        let (lo, hi) = T::RANGE;
+        errors::value(format!("{key}={v}: expected an integer from {lo} to {hi}"))
+    })
+}
+
+/// The range of an integer setting's type, for messages.
+pub trait Bounded {
+    /// The smallest and largest value.
+    const RANGE: (u128, u128);
+}
+
+macro_rules! bounded {
+    ($($t:ty),*) => {$(impl Bounded for $t {
+        const RANGE: (u128, u128) = (<$t>::MIN as u128, <$t>::MAX as u128);
+    })*};
+}
+bounded!(u32, u64, usize);
+
 /// `scenario=`: one map (a path or a shipped name) or a list of maps, as
 /// one or several `--scenario` flags.
-fn set_scenarios(c: &mut Config, v: &Bound<'_, PyAny>) -> PyResult<()> {
-    let maps: Vec<String> =
-        if v.is_instance_of::<PyList>() || v.is_instance_of::<pyo3::types::PyTuple>() {
-            let items: Vec<Bound<'_, PyAny>> = v.extract()?;
-            items.iter().map(path_text).collect::<PyResult<_>>()?
-        } else if v.is_instance_of::<PyString>() {
-            vec![v.extract()?]
-        } else {
-            vec![path_text(v)?]
-        };
-    match maps.as_slice() {
-        [] => {}
-        [one] => {
-            c.experiment.scenario = one.clone();
-            c.experiment.scenarios.clear();
-        }
-        several => {
-            c.experiment.scenario.clear();
-            c.experiment.scenarios = several.to_vec();
-        }
+fn scenarios(v: &Bound<'_, PyAny>) -> PyResult<Vec<String>> {
+    if v.is_instance_of::<PyList>() || v.is_instance_of::<pyo3::types::PyTuple>() {
+        let items: Vec<Bound<'_, PyAny>> = v.extract()?;
+        items.iter().map(path_text).collect()
+    } else if v.is_instance_of::<PyString>() {
+        Ok(vec![v.extract()?])
+    } else {
+        Ok(vec![path_text(v)?])
     }
-    Ok(())
 }
 
 /// The config's single scenario path (`None` = the embedded default).

@@ -135,10 +135,7 @@ ask_tell!(MapElites, "MapElites", "MAP-Elites", &["spec"], {
             .map(|(cell, e)| {
                 let d = PyDict::new(py);
                 d.set_item("cell", cell)?;
-                let genome = Genome {
-                    inner: e.genome.clone(),
-                    recurrent: self.recurrent,
-                };
+                let genome = Genome::new(e.genome.clone(), self.recurrent);
                 d.set_item("genome", genome)?;
                 d.set_item("fitness", e.fitness)?;
                 d.set_item("behaviour", e.behaviour.clone())?;
@@ -220,10 +217,7 @@ ask_tell!(Nsga2, "Nsga2", "NSGA-II", &["spec"], {
     fn pareto_front(&self) -> Vec<(Genome, Vec<f64>, f64)> {
         (self.inner.pareto_front().into_iter())
             .map(|(g, objectives, fitness)| {
-                let genome = Genome {
-                    inner: g.clone(),
-                    recurrent: self.recurrent,
-                };
+                let genome = Genome::new(g.clone(), self.recurrent);
                 (genome, objectives, fitness)
             })
             .collect()

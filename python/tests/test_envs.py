@@ -70,11 +70,13 @@ def test_render_returns_the_arena_as_an_rgb_image():
     assert len(np.unique(image.reshape(-1, 3), axis=0)) > 3
 
 
-@pytest.mark.parametrize("action", [[1.0], [1.0, 0.0, 0.5], [[1.0, 1.0]], "fast"])
-def test_a_wrong_action_is_an_error_not_a_crash(action):
+@pytest.mark.parametrize("action, error", [([1.0], ValueError), ([1.0, 0.0, 0.5], ValueError),
+                                           ([[1.0, 1.0]], ValueError), ("fast", TypeError)])
+def test_a_wrong_action_is_an_error_not_a_crash(action, error):
+    # A wrong shape is a ValueError, a value that is not numbers a TypeError.
     env = make()
     env.reset(seed=0)
-    with pytest.raises(ValueError):
+    with pytest.raises(error):
         env.step(action)
     # The environment still works afterwards.
     obs, *_ = env.step([0.5, 0.5])

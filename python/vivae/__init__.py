@@ -29,7 +29,7 @@ from vivae._vivae import (
     scenarios,
 )
 from vivae.envs import DriveEnv, DriveVectorEnv
-from vivae.run import evolve, replay
+from vivae.run import evolve, replay, report, resume
 
 __all__ = [
     "OVERRIDES",
@@ -48,6 +48,8 @@ __all__ = [
     "evolve",
     "load_genome",
     "replay",
+    "report",
+    "resume",
     "scenarios",
 ]
 

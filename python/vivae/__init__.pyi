@@ -14,7 +14,7 @@ from vivae._vivae import (
 )
 from vivae.envs import DriveEnv as DriveEnv, DriveVectorEnv as DriveVectorEnv
 from vivae.parallel import DriveParallelEnv as DriveParallelEnv
-from vivae.run import evolve as evolve, replay as replay
+from vivae.run import evolve as evolve, replay as replay, report as report, resume as resume
 
 __version__: str
 __all__ = [
@@ -34,5 +34,7 @@ __all__ = [
     "evolve",
     "load_genome",
     "replay",
+    "report",
+    "resume",
     "scenarios",
 ]

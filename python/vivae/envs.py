@@ -15,6 +15,13 @@ from vivae._vivae import DriveCore
 def _core(num_worlds: int, robots: int, scenario, sensors, config, threads, overrides):
     settings = dict(overrides)
     if scenario is not None:
+        if isinstance(scenario, (list, tuple)):
+            # One world has one map: a list would silently drive the default one.
+            raise TypeError(
+                f"scenario: one scenario (a file or a shipped name) per environment, got a "
+                f"{type(scenario).__name__} of {len(scenario)}; several training maps are for "
+                "vivae.evolve and vivae.DriveTask (scenario=[...])"
+            )
         settings["scenario"] = scenario
     if sensors is not None:
         settings["sensors"] = sensors
@@ -22,15 +29,73 @@ def _core(num_worlds: int, robots: int, scenario, sensors, config, threads, over
     return DriveCore(num_worlds, config=config, threads=threads, **settings)
 
 
+def _count(name: str, value: Any, lowest: int) -> int:
+    """`value` as an int: a TypeError naming `name` for anything else, a
+    ValueError naming the range for a negative one (the core checks the
+    rest, with its own bounds)."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
+        raise TypeError(f"{name}: expected an integer, got {type(value).__name__}")
+    if value < 0:
+        raise ValueError(f"{name}={value}: expected an integer from {lowest} up")
+    return int(value)
+
+
 def _action(action: Any, shape: tuple[int, ...]) -> np.ndarray:
-    """`action` as float32 of `shape`; anything else is a ValueError naming both shapes."""
-    a = np.ascontiguousarray(action, dtype=np.float32)
+    """`action` as float32 of `shape`: real numbers only (a string, None, a
+    complex number or a bool is a TypeError), a wrong shape a ValueError."""
+    try:
+        given = np.asarray(action)
+    except (TypeError, ValueError) as e:
+        raise TypeError(f"action: expected real numbers of shape {shape}: {e}") from None
+    if given.dtype.kind not in "iuf":
+        raise TypeError(
+            f"action: expected real numbers (float or int) of shape {shape}, got dtype {given.dtype}"
+        )
+    a = np.ascontiguousarray(given, dtype=np.float32)
     if a.shape != shape:
         raise ValueError(f"action has shape {a.shape}, expected {shape}")
     return a
 
 
-class DriveEnv(gymnasium.Env):
+def _seed(seed: Any) -> int | None:
+    """`reset(seed=)` as a Python int: None, or a non-negative integer (numpy's included)."""
+    if seed is None:
+        return None
+    if isinstance(seed, (bool, np.bool_)) or not isinstance(seed, (int, np.integer)):
+        raise TypeError(f"seed: expected a non-negative integer or None, got {type(seed).__name__}")
+    if seed < 0:
+        raise ValueError(f"seed={seed}: expected a non-negative integer")
+    return int(seed)
+
+
+def _options(options: Any) -> dict:
+    """`reset(options=)`: a dict or None."""
+    if options is None:
+        return {}
+    if not isinstance(options, dict):
+        raise TypeError(f"options: expected a dict or None, got {type(options).__name__}")
+    return options
+
+
+def _render_mode(render_mode: Any) -> None:
+    if render_mode is not None and render_mode != "rgb_array":
+        raise ValueError(f"render_mode={render_mode!r}: expected 'rgb_array' or None")
+
+
+class _PicklesBySettings:
+    """Pickling by the arguments the object was made with: it is rebuilt,
+    fresh (as after ``__init__``), in the process that unpickles it."""
+
+    _init_args: dict[str, Any]
+
+    def __getstate__(self) -> dict[str, Any]:
+        return {"init_args": self._init_args}
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        self.__init__(**state["init_args"])  # type: ignore[misc]
+
+
+class DriveEnv(_PicklesBySettings, gymnasium.Env):
     """One robot driving on a ViVAE scenario.
 
     Observation: the robot's surface sensors (then its distance rays, with
@@ -42,7 +107,8 @@ class DriveEnv(gymnasium.Env):
 
     The simulator has no randomness: every reset puts the robot at the
     scenario's start, whatever the seed (the seed seeds ``np_random`` and
-    the action space only).
+    the action space only). Pickles by its arguments (unpickled fresh, as
+    after ``__init__``), so it crosses into ``multiprocessing`` and Ray workers.
 
     Args:
         scenario: a scenario SVG file, or the name of a shipped one
@@ -66,8 +132,11 @@ class DriveEnv(gymnasium.Env):
         render_scale: float = 0.5,
         **overrides: Any,
     ) -> None:
-        if render_mode is not None and render_mode not in self.metadata["render_modes"]:
-            raise ValueError(f"render_mode {render_mode!r}: expected 'rgb_array' or None")
+        _render_mode(render_mode)
+        self._init_args = dict(
+            scenario=scenario, sensors=sensors, render_mode=render_mode, config=config,
+            render_scale=render_scale, **overrides,
+        )
         self._core = _core(1, 1, scenario, sensors, config, 1, overrides)
         n = self._core.obs_size
         self.observation_space = spaces.Box(0.0, 1.0, shape=(n,), dtype=np.float32)
@@ -81,7 +150,11 @@ class DriveEnv(gymnasium.Env):
         self._trunc = np.zeros(1, dtype=bool)
 
     def reset(self, *, seed: int | None = None, options: dict | None = None):
+        seed = _seed(seed)
+        _options(options)
         super().reset(seed=seed)
+        if seed is not None:
+            self.action_space.seed(seed)
         self._core.reset(self._obs)
         return self._obs[0, 0].copy(), {"step": 0}
 
@@ -97,7 +170,7 @@ class DriveEnv(gymnasium.Env):
         return None
 
 
-class DriveVectorEnv(gymnasium.vector.VectorEnv):
+class DriveVectorEnv(_PicklesBySettings, gymnasium.vector.VectorEnv):
     """``num_envs`` worlds of one robot each, stepped together in Rust threads.
 
     The same environment as :class:`DriveEnv`, batched: observations
@@ -132,6 +205,12 @@ class DriveVectorEnv(gymnasium.vector.VectorEnv):
         render_scale: float = 0.5,
         **overrides: Any,
     ) -> None:
+        _render_mode(render_mode)
+        num_envs, threads = _count("num_envs", num_envs, 1), _count("threads", threads, 0)
+        self._init_args = dict(
+            num_envs=num_envs, scenario=scenario, sensors=sensors, render_mode=render_mode,
+            config=config, threads=threads, copy=copy, render_scale=render_scale, **overrides,
+        )
         self._core = _core(num_envs, 1, scenario, sensors, config, threads, overrides)
         n = self._core.obs_size
         self.num_envs = num_envs
@@ -149,11 +228,19 @@ class DriveVectorEnv(gymnasium.vector.VectorEnv):
         self._term = np.zeros(num_envs, dtype=bool)
 
     def reset(self, *, seed: int | list[int] | None = None, options: dict | None = None):
-        if seed is not None:
-            first = seed if isinstance(seed, int) else seed[0]
+        if isinstance(seed, (list, tuple)):
+            if len(seed) != self.num_envs:
+                raise ValueError(f"seed: a list of {len(seed)} seeds for {self.num_envs} environments")
+            seeds = [_seed(x) for x in seed]
+            first = seeds[0]
+        else:
+            first = _seed(seed)
+        if first is not None:
             self._np_random, self._np_random_seed = gymnasium.utils.seeding.np_random(first)
             self.action_space.seed(first)
-        mask = None if options is None else options.get("reset_mask")
+        mask = _options(options).get("reset_mask")
+        if mask is not None and len(mask) != self.num_envs:
+            raise ValueError(f"options['reset_mask']: {len(mask)} entries for {self.num_envs} environments")
         self._core.reset(self._obs, None if mask is None else [bool(m) for m in mask])
         obs = self._obs[:, 0]
         return (obs.copy() if self.copy else obs), {}

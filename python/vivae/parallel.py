@@ -8,10 +8,10 @@ import numpy as np
 from gymnasium import spaces
 from pettingzoo import ParallelEnv  # type: ignore[import-untyped]
 
-from vivae.envs import _action, _core
+from vivae.envs import _PicklesBySettings, _action, _core, _options, _render_mode, _seed
 
 
-class DriveParallelEnv(ParallelEnv):
+class DriveParallelEnv(_PicklesBySettings, ParallelEnv):
     """All robots of a scenario driving at once, one PettingZoo agent each.
 
     Agents are ``robot_0`` … ``robot_{n-1}`` in the scenario's order. Each
@@ -38,6 +38,11 @@ class DriveParallelEnv(ParallelEnv):
         render_scale: float = 0.5,
         **overrides: Any,
     ) -> None:
+        _render_mode(render_mode)
+        self._init_args = dict(
+            scenario=scenario, sensors=sensors, robots=robots, render_mode=render_mode,
+            config=config, render_scale=render_scale, **overrides,
+        )
         self._core = _core(1, robots, scenario, sensors, config, 1, overrides)
         n, r = self._core.obs_size, self._core.robots
         self.possible_agents = [f"robot_{i}" for i in range(r)]
@@ -65,6 +70,8 @@ class DriveParallelEnv(ParallelEnv):
         return {a: self._obs[0, self._index[a]].copy() for a in self.agents}
 
     def reset(self, seed: int | None = None, options: dict | None = None):
+        seed = _seed(seed)
+        _options(options)
         if seed is not None:
             for i, a in enumerate(self.possible_agents):
                 self._act_space.seed(seed + i)
@@ -73,6 +80,9 @@ class DriveParallelEnv(ParallelEnv):
         return self._observations(), {a: {} for a in self.agents}
 
     def step(self, actions: dict[str, Any]):
+        if not self.agents:
+            # Before reset or after the episode ended the world does not move.
+            raise RuntimeError("step: no live agents; call reset() first (the episode has ended or not begun)")
         self._act.fill(0.0)
         for agent, action in actions.items():
             if agent not in self._index:

@@ -70,13 +70,17 @@ def evolve(
     ``generations.csv``, ``population.csv``, ``best-genomes.jsonl``,
     ``champion.json`` and ``checkpoints/`` are byte for byte the CLI's
     (``timing.csv`` holds wall times). The figures and ``report.html`` are
-    the program's: ``vivae resume OUT`` draws them on a finished run, and
-    ``vivae resume OUT --generations N`` extends it.
+    the program's: :func:`report` draws them; :func:`resume` continues an
+    interrupted run or extends a finished one.
 
     Args:
         config: a config TOML file (default: the paper's settings).
         out: the new run directory (default ``runs/<timestamp>``).
-        force: overwrite an existing run directory.
+        force: replace the vivae run already at ``out``: the new run is
+            written beside it and swapped in, so a failure leaves the old one.
+            Any other non-empty folder (files vivae did not write), the
+            working directory, its parents and the home directory are
+            refused with a ValueError.
         progress: show a progress bar (tqdm's, in a terminal or a
             notebook, when tqdm is installed; else a plain one on stderr).
         on_generation: called with each generation's record (a dict:
@@ -99,12 +103,18 @@ def evolve(
         ValueError: bad settings, config, scenario (the CLI's one-line message).
         OSError: a file that cannot be read or written.
         KeyboardInterrupt: interrupted; the run stops after the current
-            generation with a checkpoint (``vivae resume OUT``).
+            generation with a checkpoint (``vivae.resume(OUT)`` continues it).
     """
-    bar = None
-    if progress:
-        total = overrides.get("generations")
-        bar = _bar(total if isinstance(total, int) else 0)
+    total = overrides.get("generations")
+    return _with_bar(
+        progress, total if isinstance(total, int) else 0, on_generation,
+        lambda each: _vivae.evolve(out=out, config=config, force=force, on_generation=each, **overrides),
+    )
+
+
+def _with_bar(progress: bool, total: int, on_generation, call) -> dict:
+    """`call(each)` with `each` updating a progress bar (when `progress`) and calling `on_generation`."""
+    bar = _bar(total) if progress else None
 
     def each(record: dict) -> None:
         if bar is not None:
@@ -113,10 +123,63 @@ def evolve(
             on_generation(record)
 
     try:
-        return _vivae.evolve(out=out, config=config, force=force, on_generation=each, **overrides)
+        return call(each)
     finally:
         if bar is not None:
             bar.close()
+
+
+def resume(
+    out: str | os.PathLike,
+    *,
+    generations: int | None = None,
+    threads: int | None = None,
+    progress: bool = True,
+    on_generation: Callable[[dict], Any] | None = None,
+) -> dict:
+    """Continues an interrupted run as ``vivae resume OUT [--generations N]`` does.
+
+    The finished files are byte for byte those of an uninterrupted run (at
+    any thread count); ``generations`` extends a finished run.
+
+    Returns:
+        The dict :func:`evolve` returns.
+
+    Raises:
+        ValueError: not a run, a damaged checkpoint, or ``generations`` below
+            the generations it already has.
+        OSError: a file that cannot be read or written.
+        KeyboardInterrupt: as in :func:`evolve`.
+    """
+    return _with_bar(
+        progress, generations or 0, on_generation,
+        lambda each: _vivae.resume(out, generations=generations, threads=threads, on_generation=each),
+    )
+
+
+def report(out: str | os.PathLike, *, program: str | os.PathLike | None = None) -> None:
+    """Draws a run's figures (``figures/``) and ``report.html`` with the ``vivae`` program.
+
+    The figures are drawn by the program (plotting is not in the Python
+    package's native module): ``program``, else ``$VIVAE_BIN``, else
+    ``vivae`` on PATH, runs ``vivae resume OUT``, which on a finished run
+    draws what is missing or stale and changes no result file.
+
+    Raises:
+        FileNotFoundError: no ``vivae`` program (``cargo install --path
+            crates/vivae`` installs it).
+        subprocess.CalledProcessError: the program failed (its message on stderr).
+    """
+    import shutil
+    import subprocess
+
+    exe = program or os.environ.get("VIVAE_BIN") or shutil.which("vivae")
+    if not exe or not os.path.exists(exe):
+        raise FileNotFoundError(
+            "report: the vivae program draws figures and report.html and is not installed "
+            "(cargo install --path crates/vivae, or set VIVAE_BIN)"
+        )
+    subprocess.run([os.fspath(exe), "resume", "-q", os.fspath(out)], check=True)
 
 
 def replay(source: str | os.PathLike, **overrides: Any) -> dict:

@@ -214,26 +214,6 @@ pub fn load_scenario(path: Option<&Path>) -> Result<LoadedScenario> {
     Ok(LoadedScenario { scenario, text })
 }
 
-/// Creates a fresh output directory; an existing one is refused unless `force`.
-pub fn create_out_dir(path: &Path, force: bool) -> Result<()> {
-    if path.exists() {
-        if !force {
-            return Err(bad_input(format!(
-                "{}: already exists (choose another --out, or pass --force to overwrite)",
-                path.display()
-            )));
-        }
-        if !path.is_dir() {
-            return Err(bad_input(format!(
-                "{}: exists and is not a directory",
-                path.display()
-            )));
-        }
-        fs::remove_dir_all(path).map_err(Error::io("clear", path))?;
-    }
-    create_dirs(path)
-}
-
 /// Creates `path` and its missing parents; a file in the way is the user's
 /// mistake and is named (the OS would only say "File exists").
 pub fn create_dirs(path: &Path) -> Result<()> {

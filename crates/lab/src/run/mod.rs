@@ -30,7 +30,7 @@ use crate::error::{Error, Result};
 use crate::io::{bad_input, fnv1a, write_atomic};
 use crate::rundir::{
     BestLine, Champion, Checkpoint, GenerationRecord, POPULATION_HEADER, Progress, RunLock,
-    TIMING_HEADER, append, check_config_unchanged, check_csv_prefixes, check_out_dir, copy_maps,
+    TIMING_HEADER, append, check_config_unchanged, check_csv_prefixes, copy_maps,
     decode_checkpoint, files, fill_new_run, generations_header, latest_checkpoint, load_run,
     population_rows, read_best_genomes, remove_abandoned_builds, remove_stale_temporaries,
     truncate, truncate_lines, write_checkpoint,
@@ -128,7 +128,7 @@ impl Run {
         // The run is built in a temporary sibling and renamed into place once its
         // first checkpoint exists: a kill or an error before that leaves no
         // directory that could neither be resumed nor re-run without --force.
-        let old_lock = check_out_dir(dir, force)?;
+        let old = crate::rundir::replace::check_target(dir, force)?;
         let (tmp, lock) = temporary_sibling(dir)?;
         let progress = Progress {
             scenario_fnv: Some(fnv1a(scenario_text.as_bytes())),
@@ -143,17 +143,11 @@ impl Run {
         };
         let filled = copy_maps(&tmp, &mut config, maps)
             .and_then(|()| fill_new_run(&tmp, &mut config, scenario_text, &search, &progress));
-        let placed = filled.and_then(|()| {
-            if old_lock.is_some() {
-                fs::remove_dir_all(dir).map_err(Error::io("clear", dir))?;
-            }
-            fs::rename(&tmp, dir).map_err(Error::io("create", dir))
-        });
+        let placed = filled.and_then(|()| crate::rundir::replace::swap_in(&tmp, dir, old));
         if let Err(e) = placed {
             let _ = fs::remove_dir_all(&tmp);
             return Err(e);
         }
-        drop(old_lock);
         Ok(Run {
             dir: dir.to_path_buf(),
             _lock: lock,

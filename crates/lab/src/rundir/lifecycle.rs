@@ -108,27 +108,6 @@ pub(crate) fn remove_abandoned_builds(parent: &Path, name: &str) {
     }
 }
 
-/// Refuses an existing `dir` unless `force`; with `force`, locks it so that a
-/// run still writing there is not deleted under its feet.
-pub(crate) fn check_out_dir(dir: &Path, force: bool) -> Result<Option<RunLock>> {
-    if !dir.exists() {
-        return Ok(None);
-    }
-    if !force {
-        return Err(bad_input(format!(
-            "{}: already exists (choose another --out, or pass --force to overwrite)",
-            dir.display()
-        )));
-    }
-    if !dir.is_dir() {
-        return Err(bad_input(format!(
-            "{}: exists and is not a directory",
-            dir.display()
-        )));
-    }
-    RunLock::acquire(dir).map(Some)
-}
-
 /// Writes a new run's files and its first checkpoint into `dir`.
 pub(crate) fn fill_new_run(
     dir: &Path,

@@ -28,6 +28,7 @@ mod champion;
 mod checkpoint;
 mod lifecycle;
 mod maps;
+pub mod replace;
 mod rows;
 
 pub use champion::*;

@@ -22,6 +22,7 @@ mod evaluation_is_thread_count_independent;
 mod every_strategy_resumes_bit_identical;
 mod finished_run_and_retrain_neurons_only;
 mod first_hour_output_says_what_to_do_next;
+mod force_replaces_only_a_run;
 mod forged_checkpoint_is_refused_before_anything_changes;
 mod idle_viewer_pages_free_their_slots;
 mod inconsistent_checkpoint_population_is_refused;

@@ -1,0 +1,64 @@
+"""Python users get the whole run: `vivae.resume` continues an interrupted
+run (or extends a finished one) to the files of an uninterrupted one, and
+`vivae.report` draws the figures and report.html with the program."""
+
+from __future__ import annotations
+
+import pytest
+
+import vivae
+
+SETTINGS = dict(scenario="oval", population=12, steps=60, seed=3, threads=2, progress=False)
+SAME = ["config.toml", "generations.csv", "population.csv", "best-genomes.jsonl", "champion.json"]
+
+
+def test_an_interrupted_run_resumes_to_the_uninterrupted_files(tmp_path):
+    whole = tmp_path / "whole"
+    vivae.evolve(out=whole, generations=4, **SETTINGS)
+
+    def interrupt(record):
+        if record["generation"] == 2:
+            raise KeyboardInterrupt
+
+    cut = tmp_path / "cut"
+    with pytest.raises(KeyboardInterrupt, match=r"vivae\.resume\("):
+        vivae.evolve(out=cut, generations=4, on_generation=interrupt, **SETTINGS)
+    result = vivae.resume(cut, threads=1, progress=False)
+    assert result["finished"] and result["generations"] == 4
+    for name in SAME:
+        assert (cut / name).read_bytes() == (whole / name).read_bytes(), name
+
+
+def test_a_finished_run_is_extended(tmp_path):
+    whole = tmp_path / "whole"
+    vivae.evolve(out=whole, generations=3, **SETTINGS)
+    short = tmp_path / "short"
+    vivae.evolve(out=short, generations=2, **SETTINGS)
+    vivae.resume(short, generations=3, progress=False)
+    for name in ["generations.csv", "population.csv", "best-genomes.jsonl", "champion.json"]:
+        assert (short / name).read_bytes() == (whole / name).read_bytes(), name
+    with pytest.raises(ValueError, match="already has 3 generations"):
+        vivae.resume(short, generations=2, progress=False)
+
+
+def test_resume_of_a_folder_that_is_not_a_run_is_an_error(tmp_path):
+    with pytest.raises((ValueError, OSError)):
+        vivae.resume(tmp_path, progress=False)
+
+
+def test_report_draws_the_figures_and_the_html_with_the_program(tmp_path, cli):
+    run = tmp_path / "run"
+    vivae.evolve(out=run, generations=2, **SETTINGS)
+    assert not (run / "report.html").exists()
+    before = (run / "generations.csv").read_bytes()
+    vivae.report(run, program=cli)
+    assert (run / "report.html").is_file()
+    assert (run / "figures" / "convergence.png").is_file()
+    assert (run / "generations.csv").read_bytes() == before
+
+
+def test_report_without_the_program_says_how_to_get_it(tmp_path, monkeypatch):
+    monkeypatch.delenv("VIVAE_BIN", raising=False)
+    monkeypatch.setenv("PATH", str(tmp_path))
+    with pytest.raises(FileNotFoundError, match="cargo install"):
+        vivae.report(tmp_path)
