@@ -32,6 +32,9 @@ pub use target::TargetProgress;
 /// is a folder here and one line in this list.
 pub static TASKS: [&TaskEntry; 2] = [&driving::TASK, &maze::TASK];
 
+/// How a task is built from a config and its maps.
+pub type BuildTask = fn(&Config, &[TrainingMap]) -> Result<Box<dyn RunTask>>;
+
 /// A task's registration: what a run needs to know of it before it is built.
 pub struct TaskEntry {
     /// Its name in `experiment.task` and `--task`.
@@ -48,7 +51,7 @@ pub struct TaskEntry {
     /// The columns it adds to `generations.csv`, each with its leading comma.
     pub generation_columns: &'static str,
     /// Builds the task of `config` on `maps` (from [`maps::load`]).
-    pub build: fn(&Config, &[TrainingMap]) -> Result<Box<dyn RunTask>>,
+    pub build: BuildTask,
 }
 
 impl fmt::Debug for TaskEntry {

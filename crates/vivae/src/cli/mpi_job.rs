@@ -67,7 +67,9 @@ pub fn run_generations(
     on_generation: impl FnMut(&GenerationRecord),
 ) -> vivae_lab::Result<Outcome> {
     #[cfg(feature = "mpi")]
-    if let Some(evaluator) = vivae::mpi::MpiEvaluator::for_leader(run.task().clone(), run.pool()) {
+    if let Some(evaluator) =
+        vivae::mpi::MpiEvaluator::for_leader(run.task().clone_box(), run.pool())
+    {
         return run.run_on(evaluator, interrupted, on_generation);
     }
     run.run(interrupted, on_generation)

@@ -115,7 +115,7 @@ pub fn scenario_path(config: &Config) -> Option<PathBuf> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use clap::{Args as _, Command};
+    use clap::Command;
 
     #[test]
     fn the_flags_are_the_library_overrides_that_python_takes_too() {
