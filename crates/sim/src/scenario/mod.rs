@@ -6,6 +6,7 @@
 mod error;
 mod ids;
 mod labels;
+mod limits;
 mod load;
 mod summary;
 
@@ -18,7 +19,7 @@ use crate::geometry::Shape;
 use crate::raster::SurfaceRaster;
 
 pub use error::ScenarioError;
-pub use load::LoadOptions;
+pub use limits::LoadOptions;
 pub use summary::{ArenaSummary, RobotSummary, ScenarioSummary, heading_degrees};
 
 /// Kind of ground surface (ViVAE's friction classes).

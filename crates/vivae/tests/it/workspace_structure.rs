@@ -1,5 +1,8 @@
-//! Structure rules for every crate of the workspace (`crates/*/src`):
-//! module imports form no cycles, and no function is longer than 80 lines.
+//! Structure rules for every crate of the workspace (`crates/*/src`) and the
+//! Python package's native crate (`python/src`): module imports form no
+//! cycles, no function is longer than 80 lines, no file is longer than 700
+//! lines before its tests; the experiment library has at most 12 top-level
+//! files and the program's `main.rs` at most 250 lines.
 //!
 //! Self-contained and std only: a small tokenizer drops comments and string
 //! and char literals, `#[cfg(test)]` items are cut out, and the rest is read
@@ -87,7 +90,55 @@ fn check_every_crate(
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
-/// `(crate directory name, its src directory)` for every `crates/*/src`, sorted.
+/// The longest a source file may be before its `#[cfg(test)]` module.
+const MAX_FILE_LINES: usize = 700;
+
+#[test]
+fn no_source_file_is_longer_than_700_lines_before_its_tests() {
+    check_every_crate(
+        "files longer than 700 lines before their tests",
+        &[],
+        "(none)",
+        |files| {
+            files
+                .iter()
+                .filter_map(|f| {
+                    let lines = f
+                        .text
+                        .lines()
+                        .position(|l| l.starts_with("#[cfg(test)]"))
+                        .unwrap_or_else(|| f.text.lines().count());
+                    (lines > MAX_FILE_LINES).then(|| format!("{}: {lines} lines", f.rel))
+                })
+                .collect()
+        },
+    );
+}
+
+#[test]
+fn the_library_and_the_program_keep_their_shape() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let lab = std::fs::read_dir(root.join("crates/lab/src")).expect("crates/lab/src");
+    let top: Vec<String> = lab
+        .filter_map(|e| e.ok())
+        .filter(|e| e.path().is_file())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .collect();
+    assert!(
+        top.len() <= 12,
+        "crates/lab/src has {} top-level files: {top:?}",
+        top.len()
+    );
+    let main = std::fs::read_to_string(root.join("crates/vivae/src/main.rs")).expect("main.rs");
+    let lines = main.lines().count();
+    assert!(
+        lines <= 250,
+        "crates/vivae/src/main.rs is {lines} lines: commands go in cli/"
+    );
+}
+
+/// `(crate directory name, its src directory)` for every `crates/*/src`, and
+/// `python` for the Python package's native crate, sorted.
 fn workspace_crates() -> Vec<(String, PathBuf)> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
     let mut out: Vec<(String, PathBuf)> = std::fs::read_dir(root.join("crates"))
@@ -101,6 +152,10 @@ fn workspace_crates() -> Vec<(String, PathBuf)> {
         })
         .filter(|(_, src)| src.is_dir())
         .collect();
+    let python = root.join("python/src");
+    if python.is_dir() {
+        out.push(("python".into(), python));
+    }
     out.sort();
     out
 }
