@@ -11,8 +11,8 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rayon::prelude::*;
-use vivae_lab::experiment::Experiment;
-use vivae_lab::sensors::read_sheets;
+use vivae_lab::controller::sensors::read_sheets;
+use vivae_lab::tasks::driving::experiment::Experiment;
 use vivae_sim::World;
 
 use crate::errors;

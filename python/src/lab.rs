@@ -12,13 +12,13 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rayon::prelude::*;
 use vivae_lab::config::Config;
-use vivae_lab::es_controller::RobotController;
-use vivae_lab::evolve::{Outcome, Run};
-use vivae_lab::experiment::Experiment;
+use vivae_lab::controller::es::RobotController;
+use vivae_lab::controller::substrate::WheelNeurons;
 use vivae_lab::run::prepare::prepare;
+use vivae_lab::run::{Outcome, Run};
 use vivae_lab::rundir::{self, GenerationRecord};
-use vivae_lab::substrate::WheelNeurons;
-use vivae_lab::training::Training;
+use vivae_lab::tasks::driving::experiment::Experiment;
+use vivae_lab::tasks::driving::training::Training;
 use vivae_neat::hyperneat::{BatchState, SubstrateController};
 use vivae_neat::{EvalContext, Network as _};
 
@@ -27,8 +27,10 @@ use crate::evo::{Genome, Population, merge_params};
 use crate::settings;
 
 /// The training maps and task of `config`, as `vivae evolve` sets them up.
-fn training(config: &Config) -> vivae_lab::Result<(Vec<vivae_lab::maps::TrainingMap>, Training)> {
-    let maps = vivae_lab::maps::load(config)?;
+fn training(
+    config: &Config,
+) -> vivae_lab::Result<(Vec<vivae_lab::tasks::maps::TrainingMap>, Training)> {
+    let maps = vivae_lab::tasks::maps::load(config)?;
     let training = Training::new(config, &maps)?;
     Ok((maps, training))
 }
@@ -287,7 +289,7 @@ impl DriveTask {
 
 fn episode_dict<'py>(
     py: Python<'py>,
-    e: &vivae_lab::experiment::Episode,
+    e: &vivae_lab::tasks::driving::experiment::Episode,
 ) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("fitness", e.fitness)?;
@@ -505,7 +507,7 @@ pub fn replay<'py>(
     let (champion, mut config, _) = rundir::load_genome_source(&source).map_err(errors::lab)?;
     let other_scenario = overrides.is_some_and(|o| o.contains("scenario").unwrap_or(false));
     // A multi-map run replays on its first training map unless told otherwise.
-    if !other_scenario && vivae_lab::maps::is_multi_map(&config) {
+    if !other_scenario && vivae_lab::tasks::maps::is_multi_map(&config) {
         let maps = std::mem::take(&mut config.experiment.scenarios);
         config.experiment.scenario = maps[0].clone();
     }

@@ -6,8 +6,8 @@ use std::path::{Path, PathBuf};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString};
 use vivae_lab::config::Config;
+use vivae_lab::controller::substrate::PolarGrid;
 use vivae_lab::run::prepare::{Overrides, base_config};
-use vivae_lab::substrate::PolarGrid;
 
 use crate::errors;
 

@@ -5,7 +5,7 @@
 //! and with a NEAT network deciding.
 
 use divan::{Bencher, black_box};
-use vivae_lab::maze::{Maze, MazeTask};
+use vivae_lab::tasks::maze::{Maze, MazeTask};
 use vivae_neat::{NeatParams, Population};
 
 fn main() {

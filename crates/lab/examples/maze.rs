@@ -10,7 +10,7 @@ mod cli;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
-use vivae_lab::maze::{Maze, MazeTask};
+use vivae_lab::tasks::maze::{Maze, MazeTask};
 use vivae_neat::driver::{
     Evolution, GenerationReport, HookError, NoCheckpoints, Observer, ParallelEvaluator,
     StopCriteria, Strategy,

@@ -1,20 +1,21 @@
 //! The vivae experiment library: HyperNEAT-controlled robots learning to drive in ViVAE.
 //!
 //! `vivae-neat` evolves CPPNs and decodes substrates, `vivae-sim` simulates the
-//! world; this crate joins them ([`experiment`]), drives evolution with
-//! checkpoints ([`evolve`]) and owns the config and run-directory formats
-//! ([`config`], [`io`]). It has no command line, plotting, web server or MPI
+//! world; this crate joins them in tasks ([`tasks`]: the driving experiment,
+//! the maze), decodes controllers ([`controller`]), drives evolution with a
+//! search strategy ([`search`]) and checkpoints ([`run`]), and owns the config
+//! and run-directory formats ([`config`], [`rundir`], [`io`]). It has no command line, plotting, web server or MPI
 //! in its dependency tree, so that other programs (the `vivae` program, the
 //! Python package) can bind it. Every fallible function returns the typed
 //! [`Error`], which says whether the user's input was at fault.
 //!
 //! The driving experiment as a library: evaluate a random CPPN on the
 //! embedded road scenario (docs/architecture.md shows how to add a task,
-//! a sensor or an observer).
+//! a sensor or an observer, and runs a task through [`run::prepare`]).
 //!
 //! ```
 //! use vivae_lab::config::Config;
-//! use vivae_lab::experiment::Experiment;
+//! use vivae_lab::tasks::driving::experiment::Experiment;
 //! use vivae_neat::Population;
 //! use vivae_sim::{LoadOptions, Scenario};
 //!
@@ -38,16 +39,6 @@ pub mod search;
 pub mod shipped;
 pub mod simd;
 pub mod tasks;
-
-// The paths of the flat layout, kept while the program and the Python binding move over.
-pub use config::{es as es_config, strategy as strategy_config};
-pub use controller::{es as es_controller, normalize, polar, sensors, substrate};
-pub use run as evolve;
-pub use search::files as strategy_files;
-pub use tasks as run_task;
-pub use tasks::driving::{behaviour, descriptors, experiment, fitness, resolutions, rollout};
-pub use tasks::driving::{combined as task, training};
-pub use tasks::{maps, maze, maze::run as maze_run};
 
 pub use error::{Error, Result};
 

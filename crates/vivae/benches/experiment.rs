@@ -7,8 +7,8 @@
 
 use divan::counter::ItemsCount;
 use vivae_lab::config::Config;
-use vivae_lab::experiment::Experiment;
 use vivae_lab::io::load_scenario;
+use vivae_lab::tasks::driving::experiment::Experiment;
 use vivae_neat::{Genome, NeatParams, Population};
 
 fn main() {
@@ -52,7 +52,7 @@ fn evaluation_3x5_to_3x3(bencher: divan::Bencher) {
 fn evaluation_3x6_to_9x9(bencher: divan::Bencher) {
     let mut config = Config::default();
     config.surface_sensors.angles = 6;
-    config.substrate.neurons = vivae_lab::substrate::PolarGrid {
+    config.substrate.neurons = vivae_lab::controller::substrate::PolarGrid {
         rings: 9,
         angles: 9,
     };
@@ -71,7 +71,7 @@ fn evaluation_32x96_to_9x9(bencher: divan::Bencher) {
     let mut config = Config::default();
     config.surface_sensors.rings = 32;
     config.surface_sensors.angles = 96;
-    config.substrate.neurons = vivae_lab::substrate::PolarGrid {
+    config.substrate.neurons = vivae_lab::controller::substrate::PolarGrid {
         rings: 9,
         angles: 9,
     };

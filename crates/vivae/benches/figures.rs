@@ -9,9 +9,9 @@
 use vivae::figures::convergence::{self, ConvergenceOptions};
 use vivae::figures::network::{self, NetworkOptions};
 use vivae_lab::config::Config;
-use vivae_lab::experiment::Experiment;
+use vivae_lab::controller::substrate::PolarGrid;
 use vivae_lab::io::load_scenario;
-use vivae_lab::substrate::PolarGrid;
+use vivae_lab::tasks::driving::experiment::Experiment;
 use vivae_neat::hyperneat::SubstrateController;
 use vivae_sim::draw::{self, DrawOptions};
 

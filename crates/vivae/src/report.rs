@@ -10,13 +10,13 @@ use vivae_sim::{Scenario, ScenarioSummary, SurfaceSensors, World};
 use crate::figures;
 use crate::figures::convergence::ConvergenceOptions;
 use vivae_lab::config::Config;
+use vivae_lab::controller::substrate::PolarGrid;
 use vivae_lab::error::{Error, Result};
-use vivae_lab::evolve::Run;
-use vivae_lab::experiment::{Episode, Experiment};
 use vivae_lab::io::{bad_input, write_atomic};
+use vivae_lab::run::Run;
 use vivae_lab::rundir::{self, Champion, files};
-use vivae_lab::strategy_files::Member;
-use vivae_lab::substrate::PolarGrid;
+use vivae_lab::search::files::Member;
+use vivae_lab::tasks::driving::experiment::{Episode, Experiment};
 
 /// What the end of a run reports.
 #[derive(Debug, Clone, PartialEq)]
@@ -133,7 +133,7 @@ pub fn finish_run(run: &Run) -> Result<RunSummary> {
     let champion_on_road = if map_episodes.is_empty() {
         on_road(&episode)
     } else {
-        vivae_lab::maps::mean(
+        vivae_lab::tasks::maps::mean(
             &map_episodes
                 .iter()
                 .map(|(_, e)| on_road(e))
@@ -255,7 +255,7 @@ pub struct Replay {
     /// Fraction of robot-steps on road.
     pub on_road: f64,
     /// Collisions, turns, loops and side of the road.
-    pub behaviour: vivae_lab::behaviour::Behaviour,
+    pub behaviour: vivae_lab::tasks::driving::behaviour::Behaviour,
     /// The trajectory figure (PNG).
     pub figure: PathBuf,
 }

@@ -14,9 +14,9 @@ use vivae_sim::{Scenario, World};
 
 use crate::figures::convergence::{self, ConvergenceOptions};
 use crate::figures::network::{self, NetworkOptions};
-use vivae_lab::experiment::{Episode, Experiment};
 use vivae_lab::io::{bad_input, load_scenario, read_text, write_atomic};
 use vivae_lab::rundir::{self, files, read_champion};
+use vivae_lab::tasks::driving::experiment::{Episode, Experiment};
 use vivae_lab::tasks::read_config;
 
 /// The page template; `/*VIVAE-DATA*/`, `/*VIVAE-CSS*/` and `/*VIVAE-JS*/` are filled in.
@@ -229,11 +229,11 @@ fn map_episodes(
     champion: &rundir::Champion,
     reuse: &Reuse<'_>,
 ) -> vivae_lab::Result<(Vec<EpisodeData>, Vec<SceneData>, Vec<String>)> {
-    if !vivae_lab::maps::is_multi_map(config) {
+    if !vivae_lab::tasks::maps::is_multi_map(config) {
         return Ok(Default::default());
     }
     let loaded = rundir::load_run(dir, config, None)?;
-    let training = vivae_lab::training::Training::new(config, &loaded)?;
+    let training = vivae_lab::tasks::driving::training::Training::new(config, &loaded)?;
     let (mut episodes, mut scenes, mut maps) = (Vec::new(), Vec::new(), Vec::new());
     let count = loaded.len();
     for (k, ((label, experiment), map)) in training
@@ -267,8 +267,8 @@ fn strategy_data(
     config: &vivae_lab::config::Config,
     experiment: &Experiment,
 ) -> vivae_lab::Result<Option<StrategyData>> {
-    use vivae_lab::strategy_config::{CellsKind, StrategyKind as K};
-    use vivae_lab::strategy_files::{read_archive, read_front};
+    use vivae_lab::config::strategy::{CellsKind, StrategyKind as K};
+    use vivae_lab::search::files::{read_archive, read_front};
     let s = &config.strategy;
     let mut data = StrategyData {
         kind: s.kind.name(),
@@ -328,7 +328,7 @@ type Row = Vec<Option<f64>>;
 /// the last); an empty field is `None`.
 fn strategy_columns(
     path: &Path,
-    kind: vivae_lab::strategy_config::StrategyKind,
+    kind: vivae_lab::config::strategy::StrategyKind,
 ) -> vivae_lab::Result<(Vec<String>, Vec<Row>)> {
     let names: Vec<String> = (vivae_lab::search::entry(kind)
         .extra_columns
@@ -404,7 +404,7 @@ fn all_episodes(
             recorded(&champion.genome),
         )?);
     }
-    for g in vivae_lab::evolve::FIGURE_GENERATIONS {
+    for g in vivae_lab::run::FIGURE_GENERATIONS {
         if let Some(b) = best.iter().find(|b| b.generation == g) {
             episodes.push(episode(
                 experiment,

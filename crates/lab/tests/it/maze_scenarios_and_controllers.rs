@@ -3,7 +3,7 @@
 
 use std::f64::consts::FRAC_PI_2;
 
-use vivae_lab::maze::{FITNESS_BIAS, HARD_MAZE_SVG, Maze, MazeTask, STEPS, wheels};
+use vivae_lab::tasks::maze::{FITNESS_BIAS, HARD_MAZE_SVG, Maze, MazeTask, STEPS, wheels};
 use vivae_sim::{DVec2, LoadOptions, Scenario};
 
 #[test]

@@ -6,8 +6,8 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use vivae_lab::strategy_files::Member;
-use vivae_lab::substrate::PolarGrid;
+use vivae_lab::controller::substrate::PolarGrid;
+use vivae_lab::search::files::Member;
 
 /// The substrate's resolution; a genome's CPPN is re-sampled onto any.
 #[derive(Args, Debug, Default, Clone, Copy)]

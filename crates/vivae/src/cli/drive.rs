@@ -10,8 +10,8 @@ use std::time::Instant;
 
 use anyhow::Context as _;
 use vivae::report;
-use vivae_lab::evolve::{Outcome, Run};
 use vivae_lab::io::bad_input;
+use vivae_lab::run::{Outcome, Run};
 use vivae_lab::rundir::GenerationRecord;
 use vivae_lab::tasks::Finished;
 
@@ -100,7 +100,7 @@ fn conclude(
         summary.champion_fitness,
         summary.champion_generation,
         summary.champion_on_road,
-        vivae_lab::strategy_files::summary_fields(run.search()),
+        vivae_lab::search::files::summary_fields(run.search()),
         wall,
         rate,
         run.dir().display(),
@@ -132,7 +132,7 @@ fn conclude_without_figures(
         wall,
         rate,
         dir: &dir,
-        strategy_fields: &vivae_lab::strategy_files::summary_fields(run.search()),
+        strategy_fields: &vivae_lab::search::files::summary_fields(run.search()),
     };
     let (person, line) = (run.task().summary(&finished))
         .ok_or_else(|| bad_input("the run's task has no summary"))?;

@@ -7,9 +7,9 @@ use std::process::ExitCode;
 use std::sync::atomic::AtomicBool;
 
 use vivae_lab::config::Config;
-use vivae_lab::evolve::{Outcome, Run};
-use vivae_lab::maps::TrainingMap;
+use vivae_lab::run::{Outcome, Run};
 use vivae_lab::rundir::GenerationRecord;
+use vivae_lab::tasks::maps::TrainingMap;
 use vivae_neat::driver::Task;
 
 /// Whether an MPI launcher started this process (never without the `mpi` feature).
@@ -36,7 +36,7 @@ pub fn join_mpi_job(
         use vivae_lab::io::{bad_input, one_line};
         let fingerprint = prepared.as_ref().map_or_else(
             |_| String::new(),
-            |(_, maps, _)| vivae_lab::maps::fingerprint_text(maps),
+            |(_, maps, _)| vivae_lab::tasks::maps::fingerprint_text(maps),
         );
         let setup = prepared
             .map(|(config, _, training)| Setup {

@@ -6,8 +6,8 @@ use std::path::PathBuf;
 
 use clap::Args;
 use vivae_lab::config::{Config, TaskName};
+use vivae_lab::controller::substrate::PolarGrid;
 use vivae_lab::io::bad_input;
-use vivae_lab::substrate::PolarGrid;
 
 use super::args::{Episode, Generations, Resolution, Threads, Wiring};
 
@@ -47,15 +47,15 @@ pub struct Overrides {
     /// Substrate kind: polar (the dense neuron sheet, the paper's) or
     /// es-hyperneat (hidden neurons placed by the CPPN; keys in [substrate.es]).
     #[arg(long, value_name = "polar|es-hyperneat")]
-    pub substrate: Option<vivae_lab::es_controller::SubstrateKind>,
+    pub substrate: Option<vivae_lab::controller::es::SubstrateKind>,
     #[command(flatten)]
     pub wiring: Wiring,
     /// Search strategy (strategy.kind; default neat, the paper's).
     #[arg(long, value_name = "neat|novelty|map-elites|nsga2")]
-    pub strategy: Option<vivae_lab::strategy_config::StrategyKind>,
+    pub strategy: Option<vivae_lab::config::strategy::StrategyKind>,
     /// Behaviour descriptor of novelty and map-elites (strategy.behaviour).
     #[arg(long, value_name = "end-position|end-positions|side-speed|trajectory")]
-    pub behaviour: Option<vivae_lab::descriptors::BehaviourKind>,
+    pub behaviour: Option<vivae_lab::tasks::driving::descriptors::BehaviourKind>,
     /// Task (experiment.task): driving (default) or maze (Lehman & Stanley's
     /// maze with a plain NEAT network; default scenario hard-maze).
     #[arg(long, value_name = "driving|maze", value_parser = parse_task)]

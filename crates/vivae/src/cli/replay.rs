@@ -8,9 +8,9 @@ use std::process::ExitCode;
 use clap::Args;
 use vivae::report;
 use vivae_lab::config::Config;
-use vivae_lab::experiment::Experiment;
 use vivae_lab::io::{bad_input, load_scenario};
 use vivae_lab::rundir;
+use vivae_lab::tasks::driving::experiment::Experiment;
 
 use super::args::{Episode, MemberChoice, Resolution, Wiring};
 use super::overrides::{Overrides, apply_overrides, scenario_path};
@@ -62,7 +62,7 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<ExitCode> {
     let (mut champion, mut config, base) = rundir::load_genome_source(&args.source)?;
     let member = args.member.member();
     if let Some(member) = member {
-        use vivae_lab::strategy_files::read_member;
+        use vivae_lab::search::files::read_member;
         (champion.genome, champion.fitness, champion.generation) =
             read_member(&args.source, member)?;
     }
@@ -70,7 +70,7 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<ExitCode> {
         return replay_without_figures(&args, &champion, config);
     }
     // A multi-map run replays on its first training map unless told otherwise.
-    if args.scenario.is_none() && vivae_lab::maps::is_multi_map(&config) {
+    if args.scenario.is_none() && vivae_lab::tasks::maps::is_multi_map(&config) {
         let maps = std::mem::take(&mut config.experiment.scenarios);
         eprintln!(
             "replaying on the first training map, {} (of {}: {}); choose another with --scenario",
@@ -134,7 +134,7 @@ fn replay_without_figures(
     mut config: Config,
 ) -> anyhow::Result<ExitCode> {
     apply_overrides(&mut config, &args.overrides(args.episode.robots))?;
-    let maps = vivae_lab::maps::load(&config)?;
+    let maps = vivae_lab::tasks::maps::load(&config)?;
     let task = vivae_lab::tasks::build(&config, &maps)?;
     task.check_genome(&champion.genome)
         .map_err(|reason| vivae_lab::Error::Genome {

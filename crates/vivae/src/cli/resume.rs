@@ -8,7 +8,7 @@ use std::sync::atomic::AtomicBool;
 use anyhow::Context as _;
 use clap::Args;
 use vivae::report;
-use vivae_lab::evolve::Run;
+use vivae_lab::run::Run;
 use vivae_lab::rundir::{self, files};
 use vivae_neat::driver::Task;
 
@@ -57,7 +57,7 @@ pub fn run(args: ResumeArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<Ex
     if already_finished(&run)? {
         return Ok(ExitCode::SUCCESS);
     }
-    let source = if vivae_lab::maps::is_multi_map(run.config()) {
+    let source = if vivae_lab::tasks::maps::is_multi_map(run.config()) {
         let dir = run.dir();
         run.config()
             .experiment

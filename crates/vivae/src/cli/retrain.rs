@@ -8,8 +8,8 @@ use std::sync::atomic::AtomicBool;
 
 use clap::Args;
 use vivae_lab::config::Config;
-use vivae_lab::evolve::Run;
 use vivae_lab::io::bad_input;
+use vivae_lab::run::Run;
 use vivae_lab::rundir::{self, files};
 use vivae_neat::driver::Task;
 
@@ -52,8 +52,8 @@ pub fn run(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<E
     };
     apply_overrides(&mut config, &overrides)?;
     let prepared = (|| -> anyhow::Result<_> {
-        let maps = vivae_lab::maps::load(&config)?;
-        let experiment = vivae_lab::training::Training::new(&config, &maps)?;
+        let maps = vivae_lab::tasks::maps::load(&config)?;
+        let experiment = vivae_lab::tasks::driving::training::Training::new(&config, &maps)?;
         Ok((maps, experiment))
     })();
     let quiet = args.quiet.quiet;
@@ -89,7 +89,7 @@ fn retrain_on_the_runs_maps(config: &mut Config, run_dir: &std::path::Path) -> a
         ))
         .into());
     }
-    if vivae_lab::maps::is_multi_map(config) {
+    if vivae_lab::tasks::maps::is_multi_map(config) {
         // A multi-map run retrains on the copies of its maps.
         for s in &mut config.experiment.scenarios {
             *s = run_dir.join(&*s).to_string_lossy().into_owned();

@@ -5,8 +5,8 @@ use std::process::ExitCode;
 
 use clap::Subcommand;
 use vivae::report;
+use vivae_lab::controller::substrate::PolarGrid;
 use vivae_lab::io::{load_scenario, write_atomic};
-use vivae_lab::substrate::PolarGrid;
 
 /// The subcommands of `vivae scenario`.
 #[derive(Subcommand, Debug)]

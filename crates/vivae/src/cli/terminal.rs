@@ -4,15 +4,15 @@
 
 use vivae::report::{self, RunSummary};
 use vivae_lab::config::Config;
-use vivae_lab::evolve::Run;
-use vivae_lab::maps::TrainingMap;
+use vivae_lab::run::Run;
 use vivae_lab::rundir::{GenerationRecord, files};
 use vivae_lab::tasks::HeaderContext;
+use vivae_lab::tasks::maps::TrainingMap;
 
 /// Warns (even with `-q`: the run's result is at stake) about a training
 /// map given more than once, which trains twice and counts double.
 pub fn warn_repeated_maps(maps: &[TrainingMap]) {
-    for w in vivae_lab::maps::repeat_warnings(maps) {
+    for w in vivae_lab::tasks::maps::repeat_warnings(maps) {
         eprintln!("warning: {w}");
     }
 }

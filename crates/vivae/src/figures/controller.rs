@@ -7,8 +7,8 @@ use plotters::prelude::*;
 use vivae_neat::hyperneat::SubstrateController;
 
 use super::FigureError;
-use vivae_lab::sensors::SensorSheet;
-use vivae_lab::substrate::{PolarGrid, PolarNode, SubstrateSpec, WheelNeurons};
+use vivae_lab::controller::sensors::SensorSheet;
+use vivae_lab::controller::substrate::{PolarGrid, PolarNode, SubstrateSpec, WheelNeurons};
 
 /// Wheel neurons' colour.
 pub(super) const WHEEL: RGBColor = RGBColor(214, 39, 40);

@@ -21,7 +21,7 @@ use std::process::ExitCode;
 use std::time::Duration;
 
 use source::Source;
-use vivae_lab::strategy_files::Member;
+use vivae_lab::search::files::Member;
 
 use vivae_lab::io::bad_input;
 

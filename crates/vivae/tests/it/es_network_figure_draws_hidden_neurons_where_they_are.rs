@@ -11,9 +11,9 @@ use std::path::Path;
 
 use vivae::figures::network::{self, NetworkOptions};
 use vivae_lab::config::Config;
-use vivae_lab::es_controller::SubstrateKind;
-use vivae_lab::experiment::Experiment;
+use vivae_lab::controller::es::SubstrateKind;
 use vivae_lab::io::load_scenario;
+use vivae_lab::tasks::driving::experiment::Experiment;
 
 /// The champion as an ES controller on `sensors`: (hidden neurons, links, SVG).
 fn figure(sensors: (usize, usize)) -> (usize, usize, String) {

@@ -7,7 +7,7 @@
 use std::path::Path;
 
 use crate::common::*;
-use vivae_lab::maze::{Maze, MazeTask};
+use vivae_lab::tasks::maze::{Maze, MazeTask};
 use vivae_neat::driver::{
     Evolution, GenerationReport, HookError, NoCheckpoints, Observer, ParallelEvaluator,
     StopCriteria, Strategy,
@@ -257,7 +257,7 @@ fn bad_maze_combinations_and_driving_only_commands_exit_2_with_one_line() {
     let no_goal = dir.join("no-goal.svg");
     std::fs::write(
         &no_goal,
-        vivae_lab::maze::HARD_MAZE_SVG.replace("id=\"goal\"", "id=\"exit\""),
+        vivae_lab::tasks::maze::HARD_MAZE_SVG.replace("id=\"goal\"", "id=\"exit\""),
     )
     .unwrap();
     refused(

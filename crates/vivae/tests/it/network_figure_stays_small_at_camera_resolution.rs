@@ -12,9 +12,9 @@ use std::path::Path;
 
 use vivae::figures::network::{self, NetworkOptions};
 use vivae_lab::config::Config;
-use vivae_lab::experiment::Experiment;
+use vivae_lab::controller::substrate::PolarGrid;
 use vivae_lab::io::load_scenario;
-use vivae_lab::substrate::PolarGrid;
+use vivae_lab::tasks::driving::experiment::Experiment;
 
 /// The paper's champion decoded on `sensors` → `neurons`, and its figure.
 fn figure(sensors: (usize, usize), neurons: (usize, usize)) -> (usize, vivae::figures::Figure) {

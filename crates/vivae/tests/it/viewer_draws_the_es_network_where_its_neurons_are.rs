@@ -10,9 +10,9 @@ use std::path::{Path, PathBuf};
 use crate::common::browser::{Browser, Viewer, shots};
 use crate::common::scratch;
 use vivae_lab::config::Config;
-use vivae_lab::es_controller::SubstrateKind;
-use vivae_lab::experiment::Experiment;
+use vivae_lab::controller::es::SubstrateKind;
 use vivae_lab::io::load_scenario;
+use vivae_lab::tasks::driving::experiment::Experiment;
 
 /// The paper's champion (tests/data) as a genome file that records an
 /// ES-HyperNEAT config, so that the viewer decodes it as ES.

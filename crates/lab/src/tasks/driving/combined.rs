@@ -7,8 +7,8 @@
 //!
 //! ```
 //! use vivae_lab::config::{Aggregate, Config};
-//! use vivae_lab::experiment::Experiment;
-//! use vivae_lab::task::{Combined, DrivingTask};
+//! use vivae_lab::tasks::driving::experiment::Experiment;
+//! use vivae_lab::tasks::driving::combined::{Combined, DrivingTask};
 //! use vivae_neat::{driver::Task, EvalContext, Population};
 //!
 //! let scenario = vivae_lab::io::load_scenario(None)?.scenario;

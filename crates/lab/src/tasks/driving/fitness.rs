@@ -8,7 +8,7 @@
 //!
 //! ```
 //! use std::sync::Arc;
-//! use vivae_lab::fitness::{Fitness, FitnessMeter};
+//! use vivae_lab::tasks::driving::fitness::{Fitness, FitnessMeter};
 //! use vivae_sim::World;
 //!
 //! /// Average speed, minus one px/step for each robot-step spent off the road.
@@ -34,7 +34,7 @@
 //!
 //! let config = vivae_lab::config::Config::default();
 //! let scenario = vivae_lab::io::load_scenario(None)?.scenario;
-//! let plain = vivae_lab::experiment::Experiment::new(&config, &scenario)?;
+//! let plain = vivae_lab::tasks::driving::experiment::Experiment::new(&config, &scenario)?;
 //! let strict = plain.clone().with_fitness(Arc::new(StayOnRoad));
 //! let population = vivae_neat::Population::new(config.neat.clone(), plain.cppn_spec(), 1)?;
 //! let genome = &population.genomes()[0];

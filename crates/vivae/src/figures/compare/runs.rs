@@ -183,7 +183,7 @@ pub fn substrate_label(config: &Config) -> String {
     let _ = write!(label, "→{}", config.substrate.neurons);
     let sub = &config.substrate;
     if !sub.train_neurons.is_empty() || !sub.train_sensors.is_empty() {
-        let list = |g: &[vivae_lab::substrate::PolarGrid]| {
+        let list = |g: &[vivae_lab::controller::substrate::PolarGrid]| {
             g.iter()
                 .map(ToString::to_string)
                 .collect::<Vec<_>>()

@@ -3,7 +3,7 @@
 
 use std::f64::consts::FRAC_PI_2;
 
-use vivae_lab::substrate::PolarNode;
+use vivae_lab::controller::substrate::PolarNode;
 
 use crate::figures::PNG_SCALE;
 use crate::figures::controller::{FigureSheet, NetworkOptions};
@@ -213,7 +213,7 @@ impl Layout {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use vivae_lab::substrate::SubstrateSpec;
+    use vivae_lab::controller::substrate::SubstrateSpec;
 
     #[test]
     fn wedges_split_halfway_between_nodes() {
@@ -230,7 +230,7 @@ mod tests {
 
     #[test]
     fn outer_sensors_and_distance_rays_get_their_own_pixels() {
-        use vivae_lab::substrate::PolarGrid;
+        use vivae_lab::controller::substrate::PolarGrid;
         let spec = SubstrateSpec {
             sensors: PolarGrid::new(32, 96).unwrap(),
             distance_rays: Some(7),

@@ -38,7 +38,7 @@ use super::{
     Figure, FigureError, NEGATIVE, PNG_SCALE, POSITIVE, base64, draw_svg_over, encode_png_fast,
     register_font,
 };
-use vivae_lab::substrate::SubstrateSpec;
+use vivae_lab::controller::substrate::SubstrateSpec;
 
 /// A raster heat map and where it lies, in pixels of the PNG.
 struct Heat {

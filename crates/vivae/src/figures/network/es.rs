@@ -3,7 +3,7 @@
 
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
-use vivae_lab::es_controller::{EsController, EsSetup};
+use vivae_lab::controller::es::{EsController, EsSetup};
 use vivae_neat::Network;
 
 use super::legend::draw_legend_items;

@@ -27,9 +27,9 @@ use vivae_neat::hyperneat::SubstrateController;
 use super::controller::px;
 pub use super::controller::{FigureSheet, NetworkOptions};
 use super::{Figure, FigureError, NEGATIVE, POSITIVE, draw_err, svg_to_png};
-use vivae_lab::es_controller::RobotController;
-use vivae_lab::experiment::Experiment;
-use vivae_lab::substrate::SubstrateSpec;
+use vivae_lab::controller::es::RobotController;
+use vivae_lab::controller::substrate::SubstrateSpec;
+use vivae_lab::tasks::driving::experiment::Experiment;
 
 /// Renders the controller decoded on `spec` as SVG and PNG: a line per link
 /// up to `opts.max_links` expressed links, receptive fields above.
@@ -200,7 +200,7 @@ pub fn figure_svg_robot(
 mod tests {
     use super::*;
     use crate::figures::test_util::{distinct_colours, png_size};
-    use vivae_lab::substrate::PolarGrid;
+    use vivae_lab::controller::substrate::PolarGrid;
     use vivae_neat::Network;
     use vivae_neat::hyperneat::LinkSource;
     use vivae_neat::hyperneat::{HyperParams, decode};
@@ -347,8 +347,8 @@ mod tests {
     fn network_figure_draws_an_extra_sheet() {
         use std::sync::Arc;
         use vivae_lab::config::Config;
-        use vivae_lab::sensors::{SensorSheet, sensor_sheets};
-        use vivae_lab::substrate::{cppn_outputs, layout_of};
+        use vivae_lab::controller::sensors::{SensorSheet, sensor_sheets};
+        use vivae_lab::controller::substrate::{cppn_outputs, layout_of};
         use vivae_neat::hyperneat::decode_genome;
         use vivae_neat::{GenomeSpec, NeatParams, Population};
 

@@ -3,7 +3,7 @@
 
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
-use vivae_lab::substrate::{PolarNode, SubstrateSpec};
+use vivae_lab::controller::substrate::{PolarNode, SubstrateSpec};
 use vivae_neat::hyperneat::{LinkSource, SubstrateController};
 
 use super::legend::draw_legend;

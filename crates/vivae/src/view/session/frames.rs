@@ -9,8 +9,8 @@ use serde_json::{Value, json};
 use super::Sim;
 use crate::report_html::SceneData;
 use crate::view::source::Source;
-use vivae_lab::es_controller::RobotController;
-use vivae_lab::rollout::Drive;
+use vivae_lab::controller::es::RobotController;
+use vivae_lab::tasks::driving::rollout::Drive;
 use vivae_sim::Sensor;
 
 /// Most in-between positions per robot a frame carries for the page's trails.
@@ -46,7 +46,7 @@ impl Sim {
     /// The `scene` message: arena picture and substrate geometry.
     pub fn scene_msg(&self, source: &Source) -> String {
         let spec = self.experiment.substrate_spec();
-        let polar = |nodes: Vec<vivae_lab::substrate::PolarNode>| -> Vec<[f64; 2]> {
+        let polar = |nodes: Vec<vivae_lab::controller::substrate::PolarNode>| -> Vec<[f64; 2]> {
             nodes.iter().map(|n| [n.rho, n.phi]).collect()
         };
         let wheels = self.experiment.wheels();

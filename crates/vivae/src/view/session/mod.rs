@@ -20,12 +20,12 @@ use vivae_sim::{DVec2, Scenario, Sensor, World};
 use super::source::{RunSnapshot, Source};
 use choice::{Choice, chosen_genome, parse_choice};
 use vivae_lab::config::Config;
-use vivae_lab::es_controller::RobotController;
-use vivae_lab::experiment::Experiment;
+use vivae_lab::controller::es::RobotController;
+use vivae_lab::controller::substrate::PolarGrid;
 use vivae_lab::io::one_line;
-use vivae_lab::rollout::Rollout;
-use vivae_lab::strategy_files::Member;
-use vivae_lab::substrate::PolarGrid;
+use vivae_lab::search::files::Member;
+use vivae_lab::tasks::driving::experiment::Experiment;
+use vivae_lab::tasks::driving::rollout::Rollout;
 
 /// Simulation steps per second at speed 1 ("real time").
 pub(crate) const REAL_TIME_STEPS: f64 = 30.0;
@@ -566,7 +566,7 @@ mod tests {
         let text = std::fs::read_to_string(root.join("tests/data/paper-champion.json")).unwrap();
         let mut champion: Value = serde_json::from_str(&text).unwrap();
         let mut config = Config::default();
-        config.substrate.kind = vivae_lab::es_controller::SubstrateKind::EsHyperneat;
+        config.substrate.kind = vivae_lab::controller::es::SubstrateKind::EsHyperneat;
         champion["config"] = serde_json::to_value(&config).unwrap();
         let dir = std::env::temp_dir().join(format!("vivae-view-es-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
@@ -704,7 +704,7 @@ mod tests {
     /// The default source with a made-up archive (cells 3 and 8) and front
     /// (members 0 and 1) of a first generation's genomes.
     fn source_with_members() -> (Source, RunSnapshot) {
-        use vivae_lab::strategy_files::{ArchiveLine, FrontLine};
+        use vivae_lab::search::files::{ArchiveLine, FrontLine};
         let source = Source::load(None, None).unwrap();
         let scenario = vivae_lab::io::load_scenario(None).unwrap().scenario;
         let spec = Experiment::new(&source.config, &scenario)
