@@ -106,8 +106,7 @@ pub fn finish_run(run: &Run) -> Result<RunSummary> {
     let fitness = rundir::read_population_csv(&run.dir().join(files::POPULATION))?;
     let convergence = figures::convergence::render(&fitness, &ConvergenceOptions::default())?;
     write_figure(&dir, "convergence", &convergence.svg, &convergence.png)?;
-    archive_figure(run, &dir)?;
-    front_figure(run, &dir)?;
+    strategy_figure(run, &dir)?;
 
     let controller = experiment.robot_controller(&champion.genome)?;
     let options = crate::report_html::network_options(
@@ -151,69 +150,50 @@ pub fn finish_run(run: &Run) -> Result<RunSummary> {
     })
 }
 
-/// A map-elites run on a 2-D grid: its archive as a heat map, `archive.png`/`.svg`.
-fn archive_figure(run: &Run, dir: &Path) -> Result<()> {
-    use vivae_neat::strategies::Cells;
-    let vivae_lab::search::Search::MapElites(m) = run.search() else {
-        return Ok(());
-    };
-    let Cells::Grid { lower, upper, bins } = m.cells() else {
-        return Ok(());
-    };
-    let ([l0, l1], [u0, u1], [b0, b1]) = (&lower[..], &upper[..], &bins[..]) else {
-        return Ok(());
-    };
-    let behaviour = run.config().strategy.behaviour;
-    let names = behaviour.coordinate_names(2);
-    let s = m.archive_stats();
-    let grid = figures::archive::ArchiveGrid {
-        title: format!(
-            "MAP-Elites archive ({}): {} of {} cells, QD-score {:.1}",
-            behaviour.name(),
-            s.filled,
-            b0 * b1,
-            s.qd_score
-        ),
-        axes: [names[0].clone(), names[1].clone()],
-        lower: [*l0, *l1],
-        upper: [*u0, *u1],
-        bins: [*b0, *b1],
-        elites: m.elites().map(|(c, e)| (c, e.fitness)).collect(),
-    };
-    let figure = figures::archive::render(&grid)?;
-    write_figure(dir, "archive", &figure.svg, &figure.png)
-}
-
-/// An nsga2 run over two objectives: the last generation's objectives and
-/// its Pareto front, `front.png`/`.svg` (with more objectives no 2-D picture
-/// shows the front: `front.csv` has them all).
-fn front_figure(run: &Run, dir: &Path) -> Result<()> {
-    let vivae_lab::search::Search::Nsga2(n) = run.search() else {
-        return Ok(());
-    };
-    let names = &run.config().strategy.nsga2.objectives;
-    let [a, b] = &names[..] else {
-        return Ok(());
-    };
-    let two = |o: &[f64]| [o[0], o[1]];
-    let front: Vec<[f64; 2]> = {
-        let mut members = n.pareto_front();
-        // Numbered as front.csv numbers them: fittest first.
-        members.sort_by(|a, b| b.2.total_cmp(&a.2));
-        members.iter().map(|m| two(&m.1)).collect()
-    };
-    let plot = figures::front::FrontPlot {
-        title: format!(
-            "NSGA-II, generation {}: Pareto front of {} members (numbered as in front.csv)",
-            run.done(),
-            front.len()
-        ),
-        axes: [a, b].map(|o| figures::front::objective_axis(o)),
-        population: n.scored_objectives().iter().map(|o| two(o)).collect(),
-        front,
-    };
-    let figure = figures::front::render(&plot)?;
-    write_figure(dir, "front", &figure.svg, &figure.png)
+/// The strategy's own end-of-run figure, if it has one: a grid archive as
+/// a heat map (`archive.png`/`.svg`), a two-objective Pareto front
+/// (`front.png`/`.svg`).
+fn strategy_figure(run: &Run, dir: &Path) -> Result<()> {
+    use vivae_lab::search::StrategyFigure as F;
+    let strategy = run.search().strategy();
+    match strategy.figure(run.config(), run.done()) {
+        None => Ok(()),
+        Some(F::Grid {
+            title,
+            axes,
+            lower,
+            upper,
+            bins,
+            elites,
+        }) => {
+            let grid = figures::archive::ArchiveGrid {
+                title,
+                axes,
+                lower,
+                upper,
+                bins,
+                elites,
+            };
+            let figure = figures::archive::render(&grid)?;
+            write_figure(dir, "archive", &figure.svg, &figure.png)
+        }
+        Some(F::Front {
+            title,
+            objectives,
+            population,
+            front,
+        }) => {
+            let axes = objectives.map(|o| figures::front::objective_axis(&o));
+            let plot = figures::front::FrontPlot {
+                title,
+                axes,
+                population,
+                front,
+            };
+            let figure = figures::front::render(&plot)?;
+            write_figure(dir, "front", &figure.svg, &figure.png)
+        }
+    }
 }
 
 /// On several training maps, the champion's trajectories on each, drawn as

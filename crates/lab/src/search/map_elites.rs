@@ -16,7 +16,9 @@ use crate::error::Result;
 use crate::io::{bad_input, write_atomic};
 use crate::rundir::files;
 use crate::search::files::{ArchiveLine, jsonl};
-use crate::search::{Bounds, RunStrategy, Search, StrategyEntry, behaviour_line, refuse_init};
+use crate::search::{
+    Bounds, RunStrategy, Search, StrategyEntry, StrategyFigure, behaviour_line, refuse_init,
+};
 
 /// MAP-Elites' registration.
 pub static STRATEGY: StrategyEntry = StrategyEntry {
@@ -95,6 +97,33 @@ impl RunStrategy for MapElites {
             " filled_cells={} coverage={:.4} qd_score={:.3}",
             s.filled, s.coverage, s.qd_score
         )
+    }
+
+    /// On a 2-D grid: the archive as a heat map.
+    fn figure(&self, config: &Config, _generation: u32) -> Option<StrategyFigure> {
+        let Cells::Grid { lower, upper, bins } = self.cells() else {
+            return None;
+        };
+        let ([l0, l1], [u0, u1], [b0, b1]) = (&lower[..], &upper[..], &bins[..]) else {
+            return None;
+        };
+        let behaviour = config.strategy.behaviour;
+        let names = behaviour.coordinate_names(2);
+        let s = self.archive_stats();
+        Some(StrategyFigure::Grid {
+            title: format!(
+                "MAP-Elites archive ({}): {} of {} cells, QD-score {:.1}",
+                behaviour.name(),
+                s.filled,
+                b0 * b1,
+                s.qd_score
+            ),
+            axes: [names[0].clone(), names[1].clone()],
+            lower: [*l0, *l1],
+            upper: [*u0, *u1],
+            bins: [*b0, *b1],
+            elites: self.elites().map(|(c, e)| (c, e.fitness)).collect(),
+        })
     }
 
     /// The archive: `archive.csv` (cells, behaviour, fitness, generation)

@@ -170,6 +170,43 @@ pub trait RunStrategy {
     fn write_outputs(&self, _dir: &Path, _config: &Config) -> Result<()> {
         Ok(())
     }
+
+    /// What its end-of-run figure shows after `generation`, if it has one
+    /// (the program draws it).
+    fn figure(&self, _config: &Config, _generation: u32) -> Option<StrategyFigure> {
+        None
+    }
+}
+
+/// A strategy's end-of-run figure, as data: the program draws each kind.
+#[derive(Debug, Clone, PartialEq)]
+pub enum StrategyFigure {
+    /// An archive on a 2-D grid of cells, as a heat map of its elites' fitness.
+    Grid {
+        /// The figure's title.
+        title: String,
+        /// Names of the two behaviour coordinates (x, then y).
+        axes: [String; 2],
+        /// Lower bound of each coordinate.
+        lower: [f64; 2],
+        /// Upper bound of each coordinate.
+        upper: [f64; 2],
+        /// Cells along each coordinate.
+        bins: [usize; 2],
+        /// `(cell, fitness)` of every elite; cell = x bin × `bins[1]` + y bin.
+        elites: Vec<(usize, f64)>,
+    },
+    /// A population scored on two objectives, and its Pareto front.
+    Front {
+        /// The figure's title.
+        title: String,
+        /// The two objectives as configs write them (`fitness`, `-contacts`).
+        objectives: [String; 2],
+        /// Every scored member's two objective values.
+        population: Vec<[f64; 2]>,
+        /// The front's members' values, fittest first (as `front.csv` numbers them).
+        front: Vec<[f64; 2]>,
+    },
 }
 
 /// The header line of the strategies that search on a behaviour descriptor.

@@ -15,7 +15,7 @@ use crate::error::Result;
 use crate::io::{bad_input, write_atomic};
 use crate::rundir::files;
 use crate::search::files::{FrontLine, jsonl};
-use crate::search::{Bounds, RunStrategy, Search, StrategyEntry, refuse_init};
+use crate::search::{Bounds, RunStrategy, Search, StrategyEntry, StrategyFigure, refuse_init};
 
 /// NSGA-II's registration.
 pub static STRATEGY: StrategyEntry = StrategyEntry {
@@ -68,6 +68,27 @@ impl RunStrategy for Nsga2 {
 
     fn summary_fields(&self) -> String {
         format!(" front_size={}", self.pareto_front().len())
+    }
+
+    /// Over two objectives: the last generation's objectives and its front
+    /// (with more, no 2-D picture shows the front: `front.csv` has them all).
+    fn figure(&self, config: &Config, generation: u32) -> Option<StrategyFigure> {
+        let [a, b] = &config.strategy.nsga2.objectives[..] else {
+            return None;
+        };
+        let two = |o: &[f64]| [o[0], o[1]];
+        let mut members = self.pareto_front();
+        members.sort_by(|a, b| b.2.total_cmp(&a.2));
+        let front: Vec<[f64; 2]> = members.iter().map(|m| two(&m.1)).collect();
+        Some(StrategyFigure::Front {
+            title: format!(
+                "NSGA-II, generation {generation}: Pareto front of {} members (numbered as in front.csv)",
+                front.len()
+            ),
+            objectives: [a.clone(), b.clone()],
+            population: self.scored_objectives().iter().map(|o| two(o)).collect(),
+            front,
+        })
     }
 
     /// The Pareto front, fittest first: `front.csv` (objectives) and
