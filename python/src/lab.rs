@@ -424,6 +424,29 @@ pub fn resume<'py>(
     drive(py, run, on_generation)
 }
 
+/// Draws the figures (`figures/`) and `report.html` of the finished or
+/// interrupted run in `out`, as the program does at a run's end (and
+/// `vivae resume` does for a run whose figures are missing or stale);
+/// changes no result file. Returns the report's path.
+#[pyfunction]
+pub fn report(py: Python<'_>, out: PathBuf) -> PyResult<PathBuf> {
+    py.detach(|| {
+        // Opened as `vivae resume` opens it (locked; truncated to its newest
+        // checkpoint, which a finished run's files already end at).
+        let run = Run::resume(&out, None, None)?;
+        if run.experiment().is_none() {
+            let task = &run.config().experiment.task;
+            return Err(vivae_lab::io::bad_input(format!(
+                "{}: a {task} run draws no figures; its curves are in generations.csv",
+                out.display()
+            )));
+        }
+        vivae::report::finish_run(&run)?;
+        Ok(run.dir().join(vivae_lab::rundir::files::REPORT))
+    })
+    .map_err(errors::lab)
+}
+
 /// Runs `run` to its end (or to Ctrl-C, or an exception of `on_generation`,
 /// each after a checkpoint) and sums it up as a dict.
 fn drive<'py>(
@@ -482,13 +505,14 @@ fn drive<'py>(
 
 fn record_dict<'py>(py: Python<'py>, r: &GenerationRecord) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
-    d.set_item("generation", r.generation)?;
+    let row = &r.row;
+    d.set_item("generation", row.generation)?;
     d.set_item("total", r.total)?;
-    d.set_item("best", r.best)?;
-    d.set_item("mean", r.mean)?;
-    d.set_item("median", r.median)?;
-    d.set_item("worst", r.worst)?;
-    d.set_item("species", r.species)?;
+    d.set_item("best", row.best)?;
+    d.set_item("mean", row.mean)?;
+    d.set_item("median", row.median)?;
+    d.set_item("worst", row.worst)?;
+    d.set_item("species", row.species)?;
     d.set_item("best_ever", r.best_ever)?;
     d.set_item("seconds", r.seconds)?;
     d.set_item("robot_steps_per_second", r.robot_steps_per_second)?;

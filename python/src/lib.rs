@@ -35,6 +35,7 @@ fn _vivae(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(lab::evolve, m)?)?;
     m.add_function(wrap_pyfunction!(lab::replay, m)?)?;
     m.add_function(wrap_pyfunction!(lab::resume, m)?)?;
+    m.add_function(wrap_pyfunction!(lab::report, m)?)?;
     m.add_function(wrap_pyfunction!(lab::load_genome, m)?)?;
     m.add_function(wrap_pyfunction!(lab::scenarios, m)?)?;
     m.add_function(wrap_pyfunction!(lab::default_config, m)?)?;

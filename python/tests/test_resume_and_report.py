@@ -1,6 +1,7 @@
 """Python users get the whole run: `vivae.resume` continues an interrupted
 run (or extends a finished one) to the files of an uninterrupted one, and
-`vivae.report` draws the figures and report.html with the program."""
+`vivae.report` draws the figures and report.html with the program's own code,
+built into the package (no separate program)."""
 
 from __future__ import annotations
 
@@ -46,19 +47,36 @@ def test_resume_of_a_folder_that_is_not_a_run_is_an_error(tmp_path):
         vivae.resume(tmp_path, progress=False)
 
 
-def test_report_draws_the_figures_and_the_html_with_the_program(tmp_path, cli):
+def test_report_draws_the_figures_and_the_html_without_the_program(tmp_path, monkeypatch):
+    # No `vivae` program anywhere: the package draws them itself.
+    monkeypatch.delenv("VIVAE_BIN", raising=False)
+    monkeypatch.setenv("PATH", str(tmp_path))
     run = tmp_path / "run"
     vivae.evolve(out=run, generations=2, **SETTINGS)
     assert not (run / "report.html").exists()
     before = (run / "generations.csv").read_bytes()
-    vivae.report(run, program=cli)
-    assert (run / "report.html").is_file()
+    path = vivae.report(run)
+    assert path == run / "report.html" and path.is_file()
     assert (run / "figures" / "convergence.png").is_file()
+    assert (run / "figures" / "trajectories-champion.png").is_file()
     assert (run / "generations.csv").read_bytes() == before
 
 
-def test_report_without_the_program_says_how_to_get_it(tmp_path, monkeypatch):
-    monkeypatch.delenv("VIVAE_BIN", raising=False)
-    monkeypatch.setenv("PATH", str(tmp_path))
-    with pytest.raises(FileNotFoundError, match="cargo install"):
+def test_report_draws_what_the_program_draws(tmp_path, cli):
+    import subprocess
+
+    ours, theirs = tmp_path / "ours", tmp_path / "theirs"
+    for run in (ours, theirs):
+        vivae.evolve(out=run, generations=2, **SETTINGS)
+    vivae.report(ours)
+    subprocess.run([cli, "resume", "-q", str(theirs)], check=True, capture_output=True)
+    names = sorted(p.name for p in (theirs / "figures").iterdir())
+    assert names == sorted(p.name for p in (ours / "figures").iterdir())
+    for name in names:
+        if name.endswith(".svg") or name.endswith(".txt"):
+            assert (ours / "figures" / name).read_bytes() == (theirs / "figures" / name).read_bytes(), name
+
+
+def test_report_of_a_folder_that_is_not_a_run_is_an_error(tmp_path):
+    with pytest.raises((ValueError, OSError)):
         vivae.report(tmp_path)

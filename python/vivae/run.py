@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+from pathlib import Path
 import sys
 from typing import Any, Callable
 
@@ -70,7 +71,7 @@ def evolve(
     ``generations.csv``, ``population.csv``, ``best-genomes.jsonl``,
     ``champion.json`` and ``checkpoints/`` are byte for byte the CLI's
     (``timing.csv`` holds wall times). The figures and ``report.html`` are
-    the program's: :func:`report` draws them; :func:`resume` continues an
+    drawn by :func:`report` (the program's code, built into this package); :func:`resume` continues an
     interrupted run or extends a finished one.
 
     Args:
@@ -157,29 +158,22 @@ def resume(
     )
 
 
-def report(out: str | os.PathLike, *, program: str | os.PathLike | None = None) -> None:
-    """Draws a run's figures (``figures/``) and ``report.html`` with the ``vivae`` program.
+def report(out: str | os.PathLike) -> Path:
+    """Draws a run's figures (``figures/``) and ``report.html``.
 
-    The figures are drawn by the program (plotting is not in the Python
-    package's native module): ``program``, else ``$VIVAE_BIN``, else
-    ``vivae`` on PATH, runs ``vivae resume OUT``, which on a finished run
-    draws what is missing or stale and changes no result file.
+    What the ``vivae`` program draws at the end of ``vivae evolve`` (and
+    ``vivae resume`` draws when they are missing or stale), by the same code
+    built into this package: no separate program is needed. Changes no
+    result file. A run of a task that draws no figures (the maze) is refused.
+
+    Returns:
+        The path of ``report.html``.
 
     Raises:
-        FileNotFoundError: no ``vivae`` program (``cargo install --path
-            crates/vivae`` installs it).
-        subprocess.CalledProcessError: the program failed (its message on stderr).
+        ValueError: ``out`` is not a run, or its task draws no figures.
+        OSError: a file could not be read or written.
     """
-    import shutil
-    import subprocess
-
-    exe = program or os.environ.get("VIVAE_BIN") or shutil.which("vivae")
-    if not exe or not os.path.exists(exe):
-        raise FileNotFoundError(
-            "report: the vivae program draws figures and report.html and is not installed "
-            "(cargo install --path crates/vivae, or set VIVAE_BIN)"
-        )
-    subprocess.run([os.fspath(exe), "resume", "-q", os.fspath(out)], check=True)
+    return Path(_vivae.report(out))
 
 
 def replay(source: str | os.PathLike, **overrides: Any) -> dict:

@@ -22,6 +22,7 @@ pub mod figures;
 pub mod mpi;
 pub mod report;
 pub mod report_html;
+#[cfg(feature = "viewer")]
 pub mod view;
 
 /// A figure that cannot be drawn is an output the program could not make.

@@ -15,6 +15,7 @@ use vivae_sim::{Scenario, World};
 use crate::figures::convergence::{self, ConvergenceOptions};
 use crate::figures::network::{self, NetworkOptions};
 use vivae_lab::io::{bad_input, load_scenario, read_text, write_atomic};
+use vivae_lab::rundir::GenerationRow;
 use vivae_lab::rundir::{self, files, read_champion};
 use vivae_lab::tasks::driving::experiment::{Episode, Experiment};
 use vivae_lab::tasks::read_config;
@@ -40,20 +41,6 @@ struct EpisodeData {
     on_road: f64,
     /// Per robot, `[x0, y0, x1, y1, …]` rounded to 0.01 px.
     paths: Vec<Vec<f64>>,
-}
-
-/// One row of `generations.csv` (what the pages show of it).
-#[derive(Debug, Clone, Serialize)]
-pub(crate) struct GenerationRow {
-    pub(crate) generation: u32,
-    pub(crate) best: f64,
-    pub(crate) mean: f64,
-    pub(crate) median: f64,
-    pub(crate) worst: f64,
-    pub(crate) species: usize,
-    pub(crate) cppn_nodes: f64,
-    pub(crate) cppn_links: f64,
-    pub(crate) substrate_links: usize,
 }
 
 /// Everything the report page shows.
@@ -205,20 +192,7 @@ fn episode(
 /// may be writing the last); a malformed row or a fitness that is not a finite
 /// number is refused naming the file and the line.
 pub(crate) fn read_generation_rows(path: &Path) -> vivae_lab::Result<Vec<GenerationRow>> {
-    Ok(vivae_lab::rundir::read_generations(path)?
-        .into_iter()
-        .map(|r| GenerationRow {
-            generation: r.generation,
-            best: r.best,
-            mean: r.mean,
-            median: r.median,
-            worst: r.worst,
-            species: r.species,
-            cppn_nodes: r.mean_cppn_nodes,
-            cppn_links: r.mean_cppn_links,
-            substrate_links: r.best_substrate_links,
-        })
-        .collect())
+    vivae_lab::rundir::read_generations(path)
 }
 
 /// On several training maps, the champion's episode on each (labelled with

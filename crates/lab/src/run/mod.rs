@@ -29,8 +29,8 @@ use crate::config::Config;
 use crate::error::{Error, Result};
 use crate::io::{bad_input, fnv1a, write_atomic};
 use crate::rundir::{
-    BestLine, Champion, Checkpoint, GenerationRecord, POPULATION_HEADER, Progress, RunLock,
-    TIMING_HEADER, append, check_config_unchanged, check_csv_prefixes, copy_maps,
+    BestLine, Champion, Checkpoint, GenerationRecord, GenerationRow, POPULATION_HEADER, Progress,
+    RunLock, TIMING_HEADER, append, check_config_unchanged, check_csv_prefixes, copy_maps,
     decode_checkpoint, files, fill_new_run, generations_header, latest_checkpoint, load_run,
     population_rows, read_best_genomes, remove_abandoned_builds, remove_stale_temporaries,
     truncate, truncate_lines, write_checkpoint,
@@ -469,18 +469,21 @@ impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
             .zip(stats::median_of_sorted(sorted))
             .expect("an evaluated population has fitnesses");
         let robot_steps = self.task.robot_steps_of(report.evaluations);
-        Ok(GenerationRecord {
+        let row = GenerationRow {
             generation: report.generation,
-            total: self.total,
             best,
             mean,
             median,
             worst: sorted[n - 1],
             species: stats.species,
-            mean_nodes: stats.mean_nodes,
-            mean_links: stats.mean_links,
-            best_links,
-            possible_links,
+            mean_cppn_nodes: stats.mean_nodes,
+            mean_cppn_links: stats.mean_links,
+            best_substrate_links: best_links,
+            possible_substrate_links: possible_links,
+        };
+        Ok(GenerationRecord {
+            row,
+            total: self.total,
             seconds,
             robot_steps_per_second: robot_steps / seconds.max(1e-9),
             best_ever: search.best_ever().map_or(best, |b| b.fitness),

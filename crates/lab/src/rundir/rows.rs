@@ -20,31 +20,15 @@ pub(crate) const POPULATION_HEADER: &str = "generation,rank,fitness\n";
 
 pub(crate) const TIMING_HEADER: &str = "generation,seconds,robot_steps_per_second\n";
 
-/// One generation's record (a row of `generations.csv`).
+/// One generation's record: its row of `generations.csv`, and what the
+/// terminal and `timing.csv` add to it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GenerationRecord {
-    /// Generation, 1-based.
-    pub generation: u32,
+    /// The generation's row of `generations.csv` (its generation, fitness
+    /// statistics, species, CPPN sizes and substrate links).
+    pub row: GenerationRow,
     /// Generations the run will have in all.
     pub total: u32,
-    /// Best fitness.
-    pub best: f64,
-    /// Mean fitness.
-    pub mean: f64,
-    /// Median fitness.
-    pub median: f64,
-    /// Worst fitness.
-    pub worst: f64,
-    /// Species.
-    pub species: usize,
-    /// Mean CPPN nodes.
-    pub mean_nodes: f64,
-    /// Mean enabled CPPN links.
-    pub mean_links: f64,
-    /// Links the generation's best CPPN expresses in the substrate.
-    pub best_links: usize,
-    /// Links the substrate could have.
-    pub possible_links: usize,
     /// Wall time of the generation.
     pub seconds: f64,
     /// Simulated robot-steps per second of wall time.
@@ -54,29 +38,21 @@ pub struct GenerationRecord {
 }
 
 impl GenerationRecord {
+    /// Generation, 1-based.
+    pub fn generation(&self) -> u32 {
+        self.row.generation
+    }
+
     /// The record's row of `generations.csv`.
     pub fn generations_row(&self) -> String {
-        let r = self;
-        GenerationRow {
-            generation: r.generation,
-            best: r.best,
-            mean: r.mean,
-            median: r.median,
-            worst: r.worst,
-            species: r.species,
-            mean_cppn_nodes: r.mean_nodes,
-            mean_cppn_links: r.mean_links,
-            best_substrate_links: r.best_links,
-            possible_substrate_links: r.possible_links,
-        }
-        .to_csv()
+        self.row.to_csv()
     }
 
     /// The record's row of `timing.csv`.
     pub fn timing_row(&self) -> String {
         format!(
             "{},{:.6},{:.0}\n",
-            self.generation, self.seconds, self.robot_steps_per_second
+            self.row.generation, self.seconds, self.robot_steps_per_second
         )
     }
 }
@@ -179,8 +155,9 @@ pub fn read_population_csv(path: &Path) -> Result<Vec<Vec<f64>>> {
     Ok(out)
 }
 
-/// One row of `generations.csv`, as written and as read back.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// One row of `generations.csv`: as the run writes it, as it is read back,
+/// and as the report and the viewer show it (their JSON names in `serde`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct GenerationRow {
     /// Generation, 1-based.
     pub generation: u32,
@@ -195,12 +172,16 @@ pub struct GenerationRow {
     /// Species.
     pub species: usize,
     /// Mean CPPN nodes.
+    #[serde(rename = "cppn_nodes")]
     pub mean_cppn_nodes: f64,
     /// Mean enabled CPPN links.
+    #[serde(rename = "cppn_links")]
     pub mean_cppn_links: f64,
     /// Links the generation's best CPPN expresses in the substrate.
+    #[serde(rename = "substrate_links")]
     pub best_substrate_links: usize,
     /// Links the substrate could have.
+    #[serde(skip)]
     pub possible_substrate_links: usize,
 }
 

@@ -70,15 +70,16 @@ pub fn progress_bar(total: u32, done: u32) -> indicatif::ProgressBar {
 pub fn show_generation(r: &GenerationRecord, bar: Option<&indicatif::ProgressBar>, quiet: bool) {
     match bar {
         Some(b) => {
-            b.set_position(u64::from(r.generation));
+            let row = &r.row;
+            b.set_position(u64::from(row.generation));
             b.set_message(format!(
                 "best {:.4} mean {:.4} species {}",
-                r.best, r.mean, r.species
+                row.best, row.mean, row.species
             ));
         }
         None if !quiet => eprintln!(
             "gen {}/{} best {:.4} mean {:.4} species {} best-ever {:.4}",
-            r.generation, r.total, r.best, r.mean, r.species, r.best_ever
+            r.row.generation, r.total, r.row.best, r.row.mean, r.row.species, r.best_ever
         ),
         None => {}
     }

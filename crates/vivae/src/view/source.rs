@@ -7,9 +7,10 @@ use std::time::SystemTime;
 
 use serde::Serialize;
 
-use crate::report_html::{GenerationRow, read_generation_rows};
+use crate::report_html::read_generation_rows;
 use vivae_lab::config::Config;
 use vivae_lab::io::{DEFAULT_SCENARIO, DEFAULT_SCENARIO_NAME, bad_input, read_text};
+use vivae_lab::rundir::GenerationRow;
 use vivae_lab::rundir::{self, Champion, GenerationBest, files, read_champion};
 use vivae_lab::search::files::{self as strategy_files, ArchiveLine, FrontLine, Member};
 use vivae_lab::tasks::read_config;
