@@ -91,9 +91,9 @@ pub(crate) struct Checkpoint {
 impl Checkpoint {
     /// The checkpoint of `search` (a NEAT population goes to `population`).
     pub(crate) fn new(config: &Config, progress: &Progress, search: &Search) -> Checkpoint {
-        let (population, search) = match search {
-            Search::Neat(p) => (Some(p.clone()), None),
-            other => (None, Some(other.clone())),
+        let (population, search) = match search.downcast_ref::<Population>() {
+            Some(p) => (Some(p.clone()), None),
+            None => (None, Some(search.clone())),
         };
         Checkpoint {
             config: config.clone(),
@@ -106,8 +106,10 @@ impl Checkpoint {
     /// The stored search, or why there is none.
     pub(crate) fn search(&self) -> std::result::Result<Search, &'static str> {
         match (&self.population, &self.search) {
-            (Some(p), None) => Ok(Search::Neat(p.clone())),
-            (None, Some(Search::Neat(_))) => Err("a NEAT population stored as `search`"),
+            (Some(p), None) => Ok(Search::of(p.clone())),
+            (None, Some(s)) if s.downcast_ref::<Population>().is_some() => {
+                Err("a NEAT population stored as `search`")
+            }
             (None, Some(s)) => Ok(s.clone()),
             (None, None) => Err("neither a population nor a search strategy"),
             (Some(_), Some(_)) => Err("both a population and a search strategy"),
@@ -116,11 +118,7 @@ impl Checkpoint {
 
     /// The NEAT population inside (a NEAT or novelty run's), for `retrain`.
     fn into_population(self, path: &Path) -> Result<(Config, Population)> {
-        let population = match self.search() {
-            Ok(Search::Neat(p)) => Some(p),
-            Ok(Search::Novelty(n)) => Some(n.population().clone()),
-            _ => None,
-        };
+        let population = (self.search().ok()).and_then(|s| s.population().cloned());
         population
             .map(|p| (self.config, p))
             .ok_or_else(|| Error::Checkpoint {

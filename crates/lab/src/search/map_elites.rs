@@ -23,6 +23,8 @@ use crate::search::{
 /// MAP-Elites' registration.
 pub static STRATEGY: StrategyEntry = StrategyEntry {
     kind: StrategyKind::MapElites,
+    variant: "MapElites",
+    from_state: |state| Ok(Search::of(serde_json::from_str::<MapElites>(state)?)),
     extra_columns: ",filled_cells,coverage,qd_score,archive_best",
     build,
     header_line: behaviour_line,
@@ -45,7 +47,7 @@ fn build(
     let cells = cells(config, bounds)?;
     let refused = |e: NeatError| bad_input(format!("strategy.map-elites: {e}"));
     let seed = config.experiment.seed;
-    Ok(Search::MapElites(
+    Ok(Search::of(
         MapElites::new(neat, spec, map, cells, seed).map_err(refused)?,
     ))
 }

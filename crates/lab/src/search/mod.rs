@@ -6,8 +6,10 @@
 //! [`STRATEGIES`]: the columns it adds to `generations.csv`, how it is built
 //! from the config, its header line) and its [`RunStrategy`] (its fields of
 //! each row and of the summary line, the files it writes with each
-//! checkpoint). The enum [`Search`] is the checkpoint's format: a variant
-//! per strategy.
+//! checkpoint, its figure). [`Search`] holds any of them as a trait object
+//! and stores it in a checkpoint as `{"Name": state}`, read back by the entry
+//! whose `variant` is `Name`: a new strategy is its file and its line in
+//! [`STRATEGIES`].
 
 pub mod files;
 mod map_elites;
@@ -15,12 +17,13 @@ mod neat;
 mod novelty;
 mod nsga2;
 
+use std::any::Any;
 use std::path::Path;
 
 use serde::{Deserialize, Serialize};
+use serde_json::value::RawValue;
 use vivae_neat::driver::{Batch, Evaluation, Strategy};
 use vivae_neat::hyperneat::{CPPN_INPUTS, leo_seeded_genomes};
-use vivae_neat::strategies::{MapElites, NoveltySearch, Nsga2};
 use vivae_neat::{
     BestEver, GenerationStats, Genome, GenomeSpec, NeatError, NeatParams, Population,
 };
@@ -72,18 +75,10 @@ pub fn initial_population(
     }
 }
 
-/// A run's search strategy.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub enum Search {
-    /// NEAT's population (the paper's).
-    Neat(Population),
-    /// Novelty search over a NEAT population.
-    Novelty(NoveltySearch),
-    /// MAP-Elites.
-    MapElites(MapElites),
-    /// NSGA-II.
-    Nsga2(Nsga2),
-}
+/// A run's search strategy: the one of [`STRATEGIES`] the config's
+/// `[strategy]` section names, held as a trait object. In a checkpoint it is
+/// `{"Name": state}` (its entry's `variant`), as when it was an enum.
+pub struct Search(Box<dyn DynStrategy>);
 
 /// Every strategy a run can search with; `strategy.kind` names one.
 pub static STRATEGIES: [&StrategyEntry; 4] = [
@@ -93,18 +88,6 @@ pub static STRATEGIES: [&StrategyEntry; 4] = [
     &nsga2::STRATEGY,
 ];
 
-/// Calls `$f` on the strategy inside `$search`, whichever it is.
-macro_rules! each {
-    ($search:expr, $s:ident => $f:expr) => {
-        match $search {
-            Search::Neat($s) => $f,
-            Search::Novelty($s) => $f,
-            Search::MapElites($s) => $f,
-            Search::Nsga2($s) => $f,
-        }
-    };
-}
-
 /// The box (lower, upper) the behaviour descriptors lie in.
 pub type Bounds = (Vec<f64>, Vec<f64>);
 
@@ -112,6 +95,10 @@ pub type Bounds = (Vec<f64>, Vec<f64>);
 pub struct StrategyEntry {
     /// Its `strategy.kind`.
     pub kind: StrategyKind,
+    /// Its name in a checkpoint's `search` field (`{"Name": state}`).
+    pub variant: &'static str,
+    /// The strategy of a checkpoint's state (its JSON text).
+    pub from_state: fn(&str) -> serde_json::Result<Search>,
     /// The columns it adds to `generations.csv` (after NEAT's), each with its
     /// leading comma.
     pub extra_columns: &'static str,
@@ -260,9 +247,19 @@ impl Search {
         (entry(config.strategy.kind).build)(config, spec, bounds, init)
     }
 
+    /// `strategy` as a run's search.
+    pub fn of<T: DynStrategy + 'static>(strategy: T) -> Search {
+        Search(Box::new(strategy))
+    }
+
     /// The strategy inside, as a run uses it.
-    pub fn strategy(&self) -> &dyn RunStrategy {
-        each!(self, s => s)
+    pub fn strategy(&self) -> &dyn DynStrategy {
+        self.0.as_ref()
+    }
+
+    /// The strategy inside as its own type, if it is a `T`.
+    pub fn downcast_ref<T: 'static>(&self) -> Option<&T> {
+        self.0.as_any().downcast_ref()
     }
 
     /// Which strategy this is.
@@ -297,32 +294,178 @@ impl Search {
     }
 }
 
+/// A strategy a run can hold: any [`Strategy`] that is also a
+/// [`RunStrategy`], behind a trait object (the blanket impl below).
+pub trait DynStrategy: RunStrategy + std::fmt::Debug + Send + Sync {
+    /// [`Strategy::ask`].
+    fn ask_dyn(&mut self) -> Batch<'_>;
+    /// [`Strategy::tell`].
+    fn tell_dyn(&mut self, evaluations: &[Evaluation]) -> std::result::Result<(), NeatError>;
+    /// [`Strategy::prepare`].
+    fn prepare_dyn(&mut self);
+    /// [`Strategy::generation`].
+    fn generation_dyn(&self) -> u32;
+    /// [`Strategy::champion`].
+    fn champion_dyn(&self) -> Option<(&Genome, f64)>;
+    /// [`Strategy::best_ever`].
+    fn best_ever_dyn(&self) -> Option<&BestEver>;
+    /// [`Strategy::stats`].
+    fn stats_dyn(&self) -> GenerationStats;
+    /// Its state as a checkpoint stores it.
+    fn state(&self) -> serde_json::Result<Box<RawValue>>;
+    /// A boxed copy.
+    fn clone_box(&self) -> Box<dyn DynStrategy>;
+    /// Itself as [`Any`], to compare and downcast.
+    fn as_any(&self) -> &dyn Any;
+    /// Whether `other` is the same strategy in the same state.
+    fn eq_dyn(&self, other: &dyn Any) -> bool;
+}
+
+impl<T> DynStrategy for T
+where
+    T: Strategy + RunStrategy + Clone + PartialEq + std::fmt::Debug + Send + Sync + 'static,
+{
+    fn ask_dyn(&mut self) -> Batch<'_> {
+        Strategy::ask(self)
+    }
+    fn tell_dyn(&mut self, evaluations: &[Evaluation]) -> std::result::Result<(), NeatError> {
+        Strategy::tell(self, evaluations)
+    }
+    fn prepare_dyn(&mut self) {
+        Strategy::prepare(self)
+    }
+    fn generation_dyn(&self) -> u32 {
+        Strategy::generation(self)
+    }
+    fn champion_dyn(&self) -> Option<(&Genome, f64)> {
+        Strategy::champion(self)
+    }
+    fn best_ever_dyn(&self) -> Option<&BestEver> {
+        Strategy::best_ever(self)
+    }
+    fn stats_dyn(&self) -> GenerationStats {
+        Strategy::stats(self)
+    }
+    fn state(&self) -> serde_json::Result<Box<RawValue>> {
+        serde_json::value::to_raw_value(self)
+    }
+    fn clone_box(&self) -> Box<dyn DynStrategy> {
+        Box::new(self.clone())
+    }
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+    fn eq_dyn(&self, other: &dyn Any) -> bool {
+        other.downcast_ref::<T>() == Some(self)
+    }
+}
+
+impl Clone for Search {
+    fn clone(&self) -> Self {
+        Search(self.0.clone_box())
+    }
+}
+
+impl PartialEq for Search {
+    fn eq(&self, other: &Self) -> bool {
+        self.0.eq_dyn(other.0.as_any())
+    }
+}
+
+impl std::fmt::Debug for Search {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_tuple("Search").field(&self.0).finish()
+    }
+}
+
+/// `{"Name": state}`: the bytes of the enum this type once was.
+impl Serialize for Search {
+    fn serialize<S: serde::Serializer>(
+        &self,
+        serializer: S,
+    ) -> std::result::Result<S::Ok, S::Error> {
+        let entry = self.0.entry();
+        let index = STRATEGIES
+            .iter()
+            .position(|e| e.kind == entry.kind)
+            .unwrap_or(0);
+        let state = self.0.state().map_err(serde::ser::Error::custom)?;
+        serializer.serialize_newtype_variant("Search", index as u32, entry.variant, &state)
+    }
+}
+
+impl<'de> Deserialize<'de> for Search {
+    fn deserialize<D: serde::Deserializer<'de>>(
+        deserializer: D,
+    ) -> std::result::Result<Search, D::Error> {
+        deserializer.deserialize_map(SearchVisitor)
+    }
+}
+
+/// Reads `{"Name": state}` by the registered strategy called `Name`.
+struct SearchVisitor;
+
+impl<'de> serde::de::Visitor<'de> for SearchVisitor {
+    type Value = Search;
+
+    fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("a search strategy, {\"Name\": state}")
+    }
+
+    fn visit_map<A: serde::de::MapAccess<'de>>(
+        self,
+        mut map: A,
+    ) -> std::result::Result<Search, A::Error> {
+        use serde::de::Error as _;
+        let name: String = map
+            .next_key()?
+            .ok_or_else(|| A::Error::custom("no strategy"))?;
+        let entry = (STRATEGIES.iter())
+            .find(|e| e.variant == name)
+            .ok_or_else(|| {
+                let names: Vec<_> = STRATEGIES.iter().map(|e| e.variant).collect();
+                A::Error::unknown_variant(&name, leak(names))
+            })?;
+        let state: Box<RawValue> = map.next_value()?;
+        if map.next_key::<String>()?.is_some() {
+            return Err(A::Error::custom("a search holds one strategy"));
+        }
+        (entry.from_state)(state.get()).map_err(A::Error::custom)
+    }
+}
+
+/// The variant names as serde's error wants them (a `'static` list, made once).
+fn leak(names: Vec<&'static str>) -> &'static [&'static str] {
+    static NAMES: std::sync::OnceLock<Vec<&'static str>> = std::sync::OnceLock::new();
+    NAMES.get_or_init(|| names)
+}
+
 impl Strategy for Search {
     fn ask(&mut self) -> Batch<'_> {
-        each!(self, s => s.ask())
+        self.0.ask_dyn()
     }
 
     fn tell(&mut self, evaluations: &[Evaluation]) -> std::result::Result<(), NeatError> {
-        each!(self, s => s.tell(evaluations))
+        self.0.tell_dyn(evaluations)
     }
 
     fn prepare(&mut self) {
-        each!(self, s => s.prepare())
+        self.0.prepare_dyn()
     }
 
     fn generation(&self) -> u32 {
-        each!(self, s => Strategy::generation(s))
+        self.0.generation_dyn()
     }
 
     fn champion(&self) -> Option<(&Genome, f64)> {
-        each!(self, s => Strategy::champion(s))
+        self.0.champion_dyn()
     }
 
     fn best_ever(&self) -> Option<&BestEver> {
-        each!(self, s => Strategy::best_ever(s))
+        self.0.best_ever_dyn()
     }
 
     fn stats(&self) -> GenerationStats {
-        each!(self, s => Strategy::stats(s))
+        self.0.stats_dyn()
     }
 }

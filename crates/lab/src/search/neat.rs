@@ -12,6 +12,8 @@ use crate::search::{Bounds, RunStrategy, Search, StrategyEntry, starting_populat
 /// NEAT's registration.
 pub static STRATEGY: StrategyEntry = StrategyEntry {
     kind: StrategyKind::Neat,
+    variant: "Neat",
+    from_state: |state| Ok(Search::of(serde_json::from_str::<Population>(state)?)),
     extra_columns: "",
     build,
     header_line: |_| String::new(),
@@ -23,7 +25,7 @@ fn build(
     _: Bounds,
     init: Option<&Population>,
 ) -> Result<Search> {
-    Ok(Search::Neat(starting_population(config, spec, init)?))
+    Ok(Search::of(starting_population(config, spec, init)?))
 }
 
 impl RunStrategy for Population {

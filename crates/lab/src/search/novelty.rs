@@ -15,6 +15,8 @@ use crate::search::{
 /// Novelty search's registration.
 pub static STRATEGY: StrategyEntry = StrategyEntry {
     kind: StrategyKind::Novelty,
+    variant: "Novelty",
+    from_state: |state| Ok(Search::of(serde_json::from_str::<NoveltySearch>(state)?)),
     extra_columns: ",archive_size,novelty_threshold",
     build,
     header_line: behaviour_line,
@@ -29,7 +31,7 @@ fn build(
     let population = starting_population(config, spec, init)?;
     let refused = |e: NeatError| bad_input(format!("strategy.novelty: {e}"));
     let params = config.strategy.novelty.params();
-    Ok(Search::Novelty(
+    Ok(Search::of(
         NoveltySearch::new(population, params).map_err(refused)?,
     ))
 }

@@ -20,6 +20,8 @@ use crate::search::{Bounds, RunStrategy, Search, StrategyEntry, StrategyFigure, 
 /// NSGA-II's registration.
 pub static STRATEGY: StrategyEntry = StrategyEntry {
     kind: StrategyKind::Nsga2,
+    variant: "Nsga2",
+    from_state: |state| Ok(Search::of(serde_json::from_str::<Nsga2>(state)?)),
     extra_columns: ",front_size",
     build,
     header_line: |c| {
@@ -48,7 +50,7 @@ fn build(
     };
     let refused = |e: NeatError| bad_input(format!("strategy.nsga2: {e}"));
     let seed = config.experiment.seed;
-    Ok(Search::Nsga2(
+    Ok(Search::of(
         Nsga2::new(neat, spec, nsga, seed).map_err(refused)?,
     ))
 }
