@@ -17,6 +17,7 @@ use crate::figures::network::{self, NetworkOptions};
 use vivae_lab::io::{bad_input, load_scenario, read_text, write_atomic};
 use vivae_lab::rundir::GenerationRow;
 use vivae_lab::rundir::{self, files, read_champion};
+use vivae_lab::search::StrategyReport;
 use vivae_lab::tasks::driving::experiment::{Episode, Experiment};
 use vivae_lab::tasks::read_config;
 
@@ -65,35 +66,16 @@ struct ReportData {
     strategy: Option<StrategyData>,
 }
 
-/// What a novelty, map-elites or nsga2 run adds to the report.
-#[derive(Debug, Default, Serialize)]
+/// What a novelty, map-elites or nsga2 run adds to the report: its part
+/// (from its own file in `vivae_lab::search`) and its columns of `generations.csv`.
+#[derive(Debug, Serialize)]
 struct StrategyData {
-    /// The strategy's name (`map-elites`, `nsga2`, `novelty`).
-    kind: &'static str,
-    /// A map-elites archive on a 2-D grid, drawn as a heat map.
-    grid: Option<GridData>,
-    /// Why a map-elites archive is not drawn as a heat map, if it is not.
-    grid_note: String,
-    /// Names of the behaviour coordinates.
-    behaviour_names: Vec<String>,
-    /// The archive's elites: `[cell, fitness, generation, behaviour]`.
-    elites: Vec<(usize, f64, u32, Vec<f64>)>,
-    /// An nsga2 run's objectives, as axis names.
-    objectives: Vec<String>,
-    /// Its Pareto front: `[member, fitness, objectives]`, fittest first.
-    front: Vec<(usize, f64, Vec<f64>)>,
+    #[serde(flatten)]
+    report: StrategyReport,
     /// The strategy's own columns of `generations.csv`.
     columns: Vec<String>,
     /// Per generation, its values of those columns (`null` where empty).
     values: Vec<Vec<Option<f64>>>,
-}
-
-/// A 2-D grid of MAP-Elites cells (cell = x bin × `bins[1]` + y bin).
-#[derive(Debug, Serialize)]
-struct GridData {
-    lower: [f64; 2],
-    upper: [f64; 2],
-    bins: [usize; 2],
 }
 
 /// A scenario as the pages draw it: the static picture and the robot size.
@@ -234,64 +216,27 @@ fn map_episodes(
 }
 
 /// The strategy's part of the report of the run in `dir` (none for NEAT):
-/// its archive or front as saved with the last checkpoint, and its columns
-/// of `generations.csv`.
+/// what its own file reads of the run directory, the objectives named as
+/// the figures name them, and its columns of `generations.csv`.
 fn strategy_data(
     dir: &Path,
     config: &vivae_lab::config::Config,
     experiment: &Experiment,
 ) -> vivae_lab::Result<Option<StrategyData>> {
-    use vivae_lab::config::strategy::{CellsKind, StrategyKind as K};
-    use vivae_lab::search::files::{read_archive, read_front};
-    let s = &config.strategy;
-    let mut data = StrategyData {
-        kind: s.kind.name(),
-        ..StrategyData::default()
+    let kind = config.strategy.kind;
+    let entry = vivae_lab::search::entry(kind);
+    let Some(mut report) = (entry.report)(dir, config, experiment.robots())? else {
+        return Ok(None);
     };
-    match s.kind {
-        K::Neat => return Ok(None),
-        K::Novelty => {}
-        K::MapElites => {
-            let elites = read_archive(dir)?.unwrap_or_default();
-            let dims = s.behaviour.dims(experiment.robots());
-            data.behaviour_names = s.behaviour.coordinate_names(dims);
-            let (lower, upper) = s.behaviour.bounds(experiment.robots());
-            let bins = s.map_elites.bins_for(dims);
-            match (s.map_elites.cells, &lower[..], &upper[..], &bins[..]) {
-                (CellsKind::Grid, &[l0, l1], &[u0, u1], &[b0, b1]) => {
-                    data.grid = Some(GridData {
-                        lower: [l0, l1],
-                        upper: [u0, u1],
-                        bins: [b0, b1],
-                    });
-                }
-                (CellsKind::Cvt, ..) => {
-                    data.grid_note = format!(
-                        "CVT cells ({} of them) are not a grid: no heat map; the elites are listed below",
-                        s.map_elites.cvt_cells
-                    );
-                }
-                _ => {
-                    data.grid_note = format!(
-                        "a {dims}-dimensional grid is not drawn as a heat map (only 2 dimensions are); the elites are listed below"
-                    );
-                }
-            }
-            data.elites = (elites.into_iter())
-                .map(|e| (e.cell, e.fitness, e.generation, e.behaviour))
-                .collect();
-        }
-        K::Nsga2 => {
-            data.objectives = (s.nsga2.objectives.iter())
-                .map(|o| crate::figures::front::objective_axis(o))
-                .collect();
-            data.front = (read_front(dir)?.unwrap_or_default().into_iter())
-                .map(|f| (f.member, f.fitness, f.objectives))
-                .collect();
-        }
-    }
-    (data.columns, data.values) = strategy_columns(&dir.join(files::GENERATIONS), s.kind)?;
-    Ok(Some(data))
+    report.objectives = (report.objectives.iter())
+        .map(|o| crate::figures::front::objective_axis(o))
+        .collect();
+    let (columns, values) = strategy_columns(&dir.join(files::GENERATIONS), kind)?;
+    Ok(Some(StrategyData {
+        report,
+        columns,
+        values,
+    }))
 }
 
 /// One generation's values of a strategy's columns (`None` where empty).

@@ -17,7 +17,8 @@ use crate::io::{bad_input, write_atomic};
 use crate::rundir::files;
 use crate::search::files::{ArchiveLine, jsonl};
 use crate::search::{
-    Bounds, RunStrategy, Search, StrategyEntry, StrategyFigure, behaviour_line, refuse_init,
+    Bounds, GridReport, RunStrategy, Search, StrategyEntry, StrategyFigure, StrategyReport,
+    behaviour_line, refuse_init,
 };
 
 /// MAP-Elites' registration.
@@ -28,7 +29,47 @@ pub static STRATEGY: StrategyEntry = StrategyEntry {
     extra_columns: ",filled_cells,coverage,qd_score,archive_best",
     build,
     header_line: behaviour_line,
+    report,
 };
+
+/// The archive as saved with the last checkpoint: its elites and, on a
+/// 2-D grid, the grid the report draws as a heat map.
+fn report(dir: &Path, config: &Config, robots: usize) -> Result<Option<StrategyReport>> {
+    let s = &config.strategy;
+    let elites = crate::search::files::read_archive(dir)?.unwrap_or_default();
+    let dims = s.behaviour.dims(robots);
+    let (lower, upper) = s.behaviour.bounds(robots);
+    let bins = s.map_elites.bins_for(dims);
+    let mut data = StrategyReport {
+        kind: s.kind.name(),
+        behaviour_names: s.behaviour.coordinate_names(dims),
+        ..StrategyReport::default()
+    };
+    match (s.map_elites.cells, &lower[..], &upper[..], &bins[..]) {
+        (CellsKind::Grid, &[l0, l1], &[u0, u1], &[b0, b1]) => {
+            data.grid = Some(GridReport {
+                lower: [l0, l1],
+                upper: [u0, u1],
+                bins: [b0, b1],
+            });
+        }
+        (CellsKind::Cvt, ..) => {
+            data.grid_note = format!(
+                "CVT cells ({} of them) are not a grid: no heat map; the elites are listed below",
+                s.map_elites.cvt_cells
+            );
+        }
+        _ => {
+            data.grid_note = format!(
+                "a {dims}-dimensional grid is not drawn as a heat map (only 2 dimensions are); the elites are listed below"
+            );
+        }
+    }
+    data.elites = (elites.into_iter())
+        .map(|e| (e.cell, e.fitness, e.generation, e.behaviour))
+        .collect();
+    Ok(Some(data))
+}
 
 fn build(
     config: &Config,

@@ -107,6 +107,52 @@ pub struct StrategyEntry {
     pub build: fn(&Config, GenomeSpec, Bounds, Option<&Population>) -> Result<Search>,
     /// The line the run's header says of it (with its leading line break), or empty.
     pub header_line: fn(&Config) -> String,
+    /// What the report of the run in a directory shows of it, read from the
+    /// files it wrote (`None`: nothing, as for NEAT); the task's robots given.
+    pub report: ReportOf,
+}
+
+/// How a strategy's part of a run's report is read from the run directory.
+pub type ReportOf = fn(&Path, &Config, usize) -> Result<Option<StrategyReport>>;
+
+/// A strategy's part of a run's report: its archive or front as saved with
+/// the last checkpoint (the program adds its columns of `generations.csv`).
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct StrategyReport {
+    /// The strategy's name (`map-elites`, `nsga2`, `novelty`).
+    pub kind: &'static str,
+    /// A map-elites archive on a 2-D grid, drawn as a heat map.
+    pub grid: Option<GridReport>,
+    /// Why a map-elites archive is not drawn as a heat map, if it is not.
+    pub grid_note: String,
+    /// Names of the behaviour coordinates.
+    pub behaviour_names: Vec<String>,
+    /// The archive's elites: `[cell, fitness, generation, behaviour]`.
+    pub elites: Vec<(usize, f64, u32, Vec<f64>)>,
+    /// An nsga2 run's objectives, as configs write them (the program names
+    /// their axes).
+    pub objectives: Vec<String>,
+    /// Its Pareto front: `[member, fitness, objectives]`, fittest first.
+    pub front: Vec<(usize, f64, Vec<f64>)>,
+}
+
+/// A 2-D grid of MAP-Elites cells (cell = x bin × `bins[1]` + y bin).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct GridReport {
+    /// Lower bound of each coordinate.
+    pub lower: [f64; 2],
+    /// Upper bound of each coordinate.
+    pub upper: [f64; 2],
+    /// Cells along each coordinate.
+    pub bins: [usize; 2],
+}
+
+/// A strategy's report with nothing of its own but its name (novelty search).
+pub(crate) fn named_report(_: &Path, config: &Config, _: usize) -> Result<Option<StrategyReport>> {
+    Ok(Some(StrategyReport {
+        kind: entry(config.strategy.kind).kind.name(),
+        ..StrategyReport::default()
+    }))
 }
 
 impl std::fmt::Debug for StrategyEntry {

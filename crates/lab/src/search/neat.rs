@@ -17,6 +17,7 @@ pub static STRATEGY: StrategyEntry = StrategyEntry {
     extra_columns: "",
     build,
     header_line: |_| String::new(),
+    report: |_, _, _| Ok(None),
 };
 
 fn build(

@@ -20,6 +20,7 @@ pub static STRATEGY: StrategyEntry = StrategyEntry {
     extra_columns: ",archive_size,novelty_threshold",
     build,
     header_line: behaviour_line,
+    report: crate::search::named_report,
 };
 
 fn build(

@@ -15,7 +15,9 @@ use crate::error::Result;
 use crate::io::{bad_input, write_atomic};
 use crate::rundir::files;
 use crate::search::files::{FrontLine, jsonl};
-use crate::search::{Bounds, RunStrategy, Search, StrategyEntry, StrategyFigure, refuse_init};
+use crate::search::{
+    Bounds, RunStrategy, Search, StrategyEntry, StrategyFigure, StrategyReport, refuse_init,
+};
 
 /// NSGA-II's registration.
 pub static STRATEGY: StrategyEntry = StrategyEntry {
@@ -30,7 +32,21 @@ pub static STRATEGY: StrategyEntry = StrategyEntry {
             c.strategy.nsga2.objectives.join(", ")
         )
     },
+    report,
 };
+
+/// The Pareto front as saved with the last checkpoint, and its objectives.
+fn report(dir: &Path, config: &Config, _robots: usize) -> Result<Option<StrategyReport>> {
+    let front = crate::search::files::read_front(dir)?.unwrap_or_default();
+    Ok(Some(StrategyReport {
+        kind: config.strategy.kind.name(),
+        objectives: config.strategy.nsga2.objectives.clone(),
+        front: (front.into_iter())
+            .map(|f| (f.member, f.fitness, f.objectives))
+            .collect(),
+        ..StrategyReport::default()
+    }))
+}
 
 fn build(
     config: &Config,
