@@ -23,17 +23,21 @@ pub fn build(config: Option<&Path>, overrides: Option<&Bound<'_, PyDict>>) -> Py
         Some(d) => extract(d)?,
         None => Overrides::default(),
     };
-    let mut c = base_config(config, o.task.as_ref(), "task=").map_err(errors::lab)?;
-    o.apply(&mut c);
-    vivae_lab::tasks::check(&c).map_err(|e| errors::value(format!("arguments: {e}")))?;
-    Ok(c)
+    let c = base_config(config, o.task.as_ref(), "task=").map_err(errors::lab)?;
+    applied(c, &o)
 }
 
 /// `c` with `overrides` applied and checked.
-pub fn build_from(mut c: Config, overrides: Option<&Bound<'_, PyDict>>) -> PyResult<Config> {
-    if let Some(d) = overrides {
-        extract(d)?.apply(&mut c);
+pub fn build_from(c: Config, overrides: Option<&Bound<'_, PyDict>>) -> PyResult<Config> {
+    match overrides {
+        Some(d) => applied(c, &extract(d)?),
+        None => applied(c, &Overrides::default()),
     }
+}
+
+/// `c` with `o` applied, checked by every rule of its task.
+fn applied(mut c: Config, o: &Overrides) -> PyResult<Config> {
+    o.apply(&mut c);
     vivae_lab::tasks::check(&c).map_err(|e| errors::value(format!("arguments: {e}")))?;
     Ok(c)
 }

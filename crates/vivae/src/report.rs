@@ -158,37 +158,16 @@ fn strategy_figure(run: &Run, dir: &Path) -> Result<()> {
     let strategy = run.search().strategy();
     match strategy.figure(run.config(), run.done()) {
         None => Ok(()),
-        Some(F::Grid {
-            title,
-            axes,
-            lower,
-            upper,
-            bins,
-            elites,
-        }) => {
-            let grid = figures::archive::ArchiveGrid {
-                title,
-                axes,
-                lower,
-                upper,
-                bins,
-                elites,
-            };
+        Some(F::Grid(grid)) => {
             let figure = figures::archive::render(&grid)?;
             write_figure(dir, "archive", &figure.svg, &figure.png)
         }
-        Some(F::Front {
-            title,
-            objectives,
-            population,
-            front,
-        }) => {
-            let axes = objectives.map(|o| figures::front::objective_axis(&o));
+        Some(F::Front(f)) => {
             let plot = figures::front::FrontPlot {
-                title,
-                axes,
-                population,
-                front,
+                axes: f.objectives.map(|o| figures::front::objective_axis(&o)),
+                title: f.title,
+                population: f.population,
+                front: f.front,
             };
             let figure = figures::front::render(&plot)?;
             write_figure(dir, "front", &figure.svg, &figure.png)

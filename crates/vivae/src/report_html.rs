@@ -170,13 +170,6 @@ fn episode(
     })
 }
 
-/// The rows of `generations.csv` (complete lines only: a running evolution
-/// may be writing the last); a malformed row or a fitness that is not a finite
-/// number is refused naming the file and the line.
-pub(crate) fn read_generation_rows(path: &Path) -> vivae_lab::Result<Vec<GenerationRow>> {
-    vivae_lab::rundir::read_generations(path)
-}
-
 /// On several training maps, the champion's episode on each (labelled with
 /// the map), each map's scene and the maps' names; nothing on one map.
 fn map_episodes(
@@ -346,7 +339,7 @@ pub fn build_reusing(dir: &Path, reuse: &Reuse<'_>) -> vivae_lab::Result<String>
     let champion = read_champion(&dir.join(files::CHAMPION))?;
     let best = rundir::read_best_genomes(&dir.join(files::BEST_GENOMES))?;
     let generations_csv = dir.join(files::GENERATIONS);
-    let generations = read_generation_rows(&generations_csv)?;
+    let generations = rundir::read_generations(&generations_csv)?;
     if generations.is_empty() {
         return Err(vivae_lab::Error::RunFile {
             path: generations_csv,

@@ -17,8 +17,8 @@ use crate::io::{bad_input, write_atomic};
 use crate::rundir::files;
 use crate::search::files::{ArchiveLine, jsonl};
 use crate::search::{
-    Bounds, GridReport, RunStrategy, Search, StrategyEntry, StrategyFigure, StrategyReport,
-    behaviour_line, refuse_init,
+    Bounds, GridFigure, GridReport, RunStrategy, Search, StrategyEntry, StrategyFigure,
+    StrategyReport, behaviour_line, refuse_init,
 };
 
 /// MAP-Elites' registration.
@@ -153,7 +153,7 @@ impl RunStrategy for MapElites {
         let behaviour = config.strategy.behaviour;
         let names = behaviour.coordinate_names(2);
         let s = self.archive_stats();
-        Some(StrategyFigure::Grid {
+        Some(StrategyFigure::Grid(GridFigure {
             title: format!(
                 "MAP-Elites archive ({}): {} of {} cells, QD-score {:.1}",
                 behaviour.name(),
@@ -166,7 +166,7 @@ impl RunStrategy for MapElites {
             upper: [*u0, *u1],
             bins: [*b0, *b1],
             elites: self.elites().map(|(c, e)| (c, e.fitness)).collect(),
-        })
+        }))
     }
 
     /// The archive: `archive.csv` (cells, behaviour, fitness, generation)

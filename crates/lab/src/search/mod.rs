@@ -150,7 +150,7 @@ pub struct GridReport {
 /// A strategy's report with nothing of its own but its name (novelty search).
 pub(crate) fn named_report(_: &Path, config: &Config, _: usize) -> Result<Option<StrategyReport>> {
     Ok(Some(StrategyReport {
-        kind: entry(config.strategy.kind).kind.name(),
+        kind: config.strategy.kind.name(),
         ..StrategyReport::default()
     }))
 }
@@ -215,31 +215,39 @@ pub trait RunStrategy {
 #[derive(Debug, Clone, PartialEq)]
 pub enum StrategyFigure {
     /// An archive on a 2-D grid of cells, as a heat map of its elites' fitness.
-    Grid {
-        /// The figure's title.
-        title: String,
-        /// Names of the two behaviour coordinates (x, then y).
-        axes: [String; 2],
-        /// Lower bound of each coordinate.
-        lower: [f64; 2],
-        /// Upper bound of each coordinate.
-        upper: [f64; 2],
-        /// Cells along each coordinate.
-        bins: [usize; 2],
-        /// `(cell, fitness)` of every elite; cell = x bin × `bins[1]` + y bin.
-        elites: Vec<(usize, f64)>,
-    },
+    Grid(GridFigure),
     /// A population scored on two objectives, and its Pareto front.
-    Front {
-        /// The figure's title.
-        title: String,
-        /// The two objectives as configs write them (`fitness`, `-contacts`).
-        objectives: [String; 2],
-        /// Every scored member's two objective values.
-        population: Vec<[f64; 2]>,
-        /// The front's members' values, fittest first (as `front.csv` numbers them).
-        front: Vec<[f64; 2]>,
-    },
+    Front(FrontFigure),
+}
+
+/// A 2-D grid archive to draw as a heat map.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GridFigure {
+    /// The figure's title.
+    pub title: String,
+    /// Names of the two behaviour coordinates (x, then y).
+    pub axes: [String; 2],
+    /// Lower bound of each coordinate.
+    pub lower: [f64; 2],
+    /// Upper bound of each coordinate.
+    pub upper: [f64; 2],
+    /// Cells along each coordinate.
+    pub bins: [usize; 2],
+    /// `(cell, fitness)` of every elite; cell = x bin × `bins[1]` + y bin.
+    pub elites: Vec<(usize, f64)>,
+}
+
+/// A population scored on two objectives and its Pareto front, to draw.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FrontFigure {
+    /// The figure's title.
+    pub title: String,
+    /// The two objectives as configs write them (`fitness`, `-contacts`).
+    pub objectives: [String; 2],
+    /// Every scored member's two objective values.
+    pub population: Vec<[f64; 2]>,
+    /// The front's members' values, fittest first (as `front.csv` numbers them).
+    pub front: Vec<[f64; 2]>,
 }
 
 /// The header line of the strategies that search on a behaviour descriptor.
@@ -468,10 +476,7 @@ impl<'de> serde::de::Visitor<'de> for SearchVisitor {
             .ok_or_else(|| A::Error::custom("no strategy"))?;
         let entry = (STRATEGIES.iter())
             .find(|e| e.variant == name)
-            .ok_or_else(|| {
-                let names: Vec<_> = STRATEGIES.iter().map(|e| e.variant).collect();
-                A::Error::unknown_variant(&name, leak(names))
-            })?;
+            .ok_or_else(|| A::Error::unknown_variant(&name, variant_names()))?;
         let state: Box<RawValue> = map.next_value()?;
         if map.next_key::<String>()?.is_some() {
             return Err(A::Error::custom("a search holds one strategy"));
@@ -480,10 +485,11 @@ impl<'de> serde::de::Visitor<'de> for SearchVisitor {
     }
 }
 
-/// The variant names as serde's error wants them (a `'static` list, made once).
-fn leak(names: Vec<&'static str>) -> &'static [&'static str] {
+/// The strategies' checkpoint names, as serde's error wants them (a
+/// `'static` list, made once from [`STRATEGIES`]).
+fn variant_names() -> &'static [&'static str] {
     static NAMES: std::sync::OnceLock<Vec<&'static str>> = std::sync::OnceLock::new();
-    NAMES.get_or_init(|| names)
+    NAMES.get_or_init(|| STRATEGIES.iter().map(|e| e.variant).collect())
 }
 
 impl Strategy for Search {

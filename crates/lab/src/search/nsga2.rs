@@ -16,7 +16,8 @@ use crate::io::{bad_input, write_atomic};
 use crate::rundir::files;
 use crate::search::files::{FrontLine, jsonl};
 use crate::search::{
-    Bounds, RunStrategy, Search, StrategyEntry, StrategyFigure, StrategyReport, refuse_init,
+    Bounds, FrontFigure, RunStrategy, Search, StrategyEntry, StrategyFigure, StrategyReport,
+    refuse_init,
 };
 
 /// NSGA-II's registration.
@@ -98,7 +99,7 @@ impl RunStrategy for Nsga2 {
         let mut members = self.pareto_front();
         members.sort_by(|a, b| b.2.total_cmp(&a.2));
         let front: Vec<[f64; 2]> = members.iter().map(|m| two(&m.1)).collect();
-        Some(StrategyFigure::Front {
+        Some(StrategyFigure::Front(FrontFigure {
             title: format!(
                 "NSGA-II, generation {generation}: Pareto front of {} members (numbered as in front.csv)",
                 front.len()
@@ -106,7 +107,7 @@ impl RunStrategy for Nsga2 {
             objectives: [a.clone(), b.clone()],
             population: self.scored_objectives().iter().map(|o| two(o)).collect(),
             front,
-        })
+        }))
     }
 
     /// The Pareto front, fittest first: `front.csv` (objectives) and

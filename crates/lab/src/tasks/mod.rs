@@ -39,8 +39,6 @@ pub type BuildTask = fn(&Config, &[TrainingMap]) -> Result<Box<dyn RunTask>>;
 pub struct TaskEntry {
     /// Its name in `experiment.task` and `--task`.
     pub name: &'static str,
-    /// One line saying what it is, for help texts.
-    pub what: &'static str,
     /// The config a run of it starts from without a config file; a config
     /// file's unset keys are taken from it too.
     pub default_config: fn() -> Config,

@@ -5,22 +5,8 @@ use plotters::prelude::*;
 
 use super::{FAMILY, Figure, FigureError, draw_err, register_font, svg_to_png, viridis};
 
-/// A 2-D grid archive to draw.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ArchiveGrid {
-    /// Figure title.
-    pub title: String,
-    /// Names of the two behaviour coordinates (x, then y).
-    pub axes: [String; 2],
-    /// Lower and upper bound of each coordinate.
-    pub lower: [f64; 2],
-    /// Upper bound of each coordinate.
-    pub upper: [f64; 2],
-    /// Cells along each coordinate.
-    pub bins: [usize; 2],
-    /// `(cell, fitness)` of every elite; cell = x bin × `bins[1]` + y bin.
-    pub elites: Vec<(usize, f64)>,
-}
+/// A 2-D grid archive to draw: what MAP-Elites' file in the library makes.
+pub use vivae_lab::search::GridFigure as ArchiveGrid;
 
 /// Colour of empty cells.
 const EMPTY: RGBColor = RGBColor(235, 235, 235);

@@ -7,7 +7,6 @@ use std::time::SystemTime;
 
 use serde::Serialize;
 
-use crate::report_html::read_generation_rows;
 use vivae_lab::config::Config;
 use vivae_lab::io::{DEFAULT_SCENARIO, DEFAULT_SCENARIO_NAME, bad_input, read_text};
 use vivae_lab::rundir::GenerationRow;
@@ -236,8 +235,8 @@ impl Source {
             snap.champion = read_champion(&dir.join(files::CHAMPION)).ok();
             snap.best =
                 rundir::read_best_genomes(&dir.join(files::BEST_GENOMES)).unwrap_or_default();
-            snap.generations =
-                read_generation_rows(&dir.join(files::GENERATIONS)).unwrap_or_default();
+            snap.generations = vivae_lab::rundir::read_generations(&dir.join(files::GENERATIONS))
+                .unwrap_or_default();
             snap.total = Some(self.config.experiment.generations);
             if let Ok(c) = read_config(&dir.join(files::CONFIG)) {
                 snap.total = Some(c.experiment.generations);

@@ -15,7 +15,6 @@ use crate::tasks::{HeaderContext, RunTask, TaskEntry};
 /// The driving task's registration.
 pub static TASK: TaskEntry = TaskEntry {
     name: TaskName::DRIVING,
-    what: "robots driving on roads, HyperNEAT substrates decoded from CPPNs (the paper's)",
     default_config: Config::default,
     validate: |_| Ok(()),
     metric_names: &crate::config::strategy::METRICS,

@@ -24,7 +24,6 @@ use crate::tasks::{Finished, HeaderContext, RunTask, TargetProgress, TaskEntry};
 /// The maze task's registration.
 pub static TASK: TaskEntry = TaskEntry {
     name: NAME,
-    what: "Lehman & Stanley's maze with a plain NEAT network",
     default_config: Config::maze,
     validate: crate::tasks::maze::config::validate,
     metric_names: &METRICS,
