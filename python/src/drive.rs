@@ -12,7 +12,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rayon::prelude::*;
 use vivae_lab::controller::sensors::read_sheets;
-use vivae_lab::tasks::driving::experiment::Experiment;
+use vivae_lab::tasks::driving::episode::Episode;
 use vivae_sim::World;
 
 use crate::errors;
@@ -51,7 +51,7 @@ impl Slot {
         self.done = false;
     }
 
-    fn observe(&mut self, exp: &Experiment, obs: &mut [f32]) {
+    fn observe(&mut self, exp: &Episode, obs: &mut [f32]) {
         let n = self.readings.len();
         for (i, out) in obs
             .chunks_exact_mut(n)
@@ -100,7 +100,7 @@ impl Slot {
 
 /// What every world's step reads.
 struct Ctx<'a> {
-    experiment: &'a Experiment,
+    experiment: &'a Episode,
     shape: Shape,
     autoreset: bool,
 }
@@ -207,7 +207,7 @@ fn step_all(pool: &rayon::ThreadPool, ctx: &Ctx<'_>, slots: &mut [Slot], b: Buff
 /// `vivae.DriveEnv`, `vivae.DriveVectorEnv` and `vivae.DriveParallelEnv`).
 #[pyclass(module = "vivae._vivae")]
 pub struct DriveCore {
-    experiment: Experiment,
+    experiment: Episode,
     slots: Vec<Slot>,
     shape: Shape,
     pool: crate::pool::ForkSafePool,
@@ -253,7 +253,7 @@ impl DriveCore {
         let path = settings::scenario_path(&config);
         let loaded = vivae_lab::io::load_scenario(path.as_deref()).map_err(errors::lab)?;
         errors::warn_scenario(py, &loaded.scenario)?;
-        let experiment = Experiment::new(&config, &loaded.scenario)
+        let experiment = Episode::new(&config, &loaded.scenario)
             .map_err(|e| errors::lab(vivae_lab::Error::from(e)))?;
         let robots = experiment.robots();
         let obs: usize = experiment.sensors().iter().map(|s| s.len()).sum();

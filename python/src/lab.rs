@@ -17,7 +17,7 @@ use vivae_lab::controller::substrate::WheelNeurons;
 use vivae_lab::run::prepare::prepare;
 use vivae_lab::run::{Outcome, Run};
 use vivae_lab::rundir::{self, GenerationRecord};
-use vivae_lab::tasks::driving::experiment::Experiment;
+use vivae_lab::tasks::driving::episode::Episode;
 use vivae_lab::tasks::driving::training::Training;
 use vivae_neat::hyperneat::{BatchState, SubstrateController};
 use vivae_neat::{EvalContext, Network as _};
@@ -58,7 +58,7 @@ impl DriveTask {
         })
     }
 
-    fn experiment(&self) -> &Experiment {
+    fn experiment(&self) -> &Episode {
         self.training.primary()
     }
 
@@ -289,7 +289,7 @@ impl DriveTask {
 
 fn episode_dict<'py>(
     py: Python<'py>,
-    e: &vivae_lab::tasks::driving::experiment::Episode,
+    e: &vivae_lab::tasks::driving::episode::EpisodeRecord,
 ) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("fitness", e.fitness)?;
@@ -553,7 +553,7 @@ pub fn replay<'py>(
         ))));
     }
     let scenario = vivae_lab::io::load_scenario(path.as_deref()).map_err(errors::lab)?;
-    let experiment = Experiment::new(&config, &scenario.scenario)
+    let experiment = Episode::new(&config, &scenario.scenario)
         .map_err(|e| errors::lab(vivae_lab::Error::from(e)))?;
     let controller = experiment.robot_controller(&champion.genome).map_err(|e| {
         errors::lab(vivae_lab::Error::Genome {

@@ -10,7 +10,7 @@ use vivae_sim::ScenarioError;
 
 use crate::config::ConfigError;
 use crate::simd::SimdError;
-use crate::tasks::driving::experiment::ExperimentError;
+use crate::tasks::driving::episode::EpisodeError;
 
 /// Collapses a message onto one line.
 pub fn one_line(message: &str) -> String {
@@ -47,7 +47,7 @@ pub enum Error {
     Scenario(ScenarioError),
     /// The configuration does not fit the scenario, or its parts do not fit together.
     #[error("{0}")]
-    Experiment(ExperimentError),
+    Episode(EpisodeError),
     /// A run directory or checkpoint is missing, damaged or not vivae's.
     #[error("{}: {reason}", path.display())]
     Checkpoint {
@@ -126,7 +126,7 @@ impl Error {
             Error::Read { .. }
                 | Error::Config { .. }
                 | Error::Scenario(_)
-                | Error::Experiment(_)
+                | Error::Episode(_)
                 | Error::Checkpoint { .. }
                 | Error::Genome { .. }
                 | Error::RunFile { .. }
@@ -174,9 +174,9 @@ impl From<ScenarioError> for Error {
     }
 }
 
-impl From<ExperimentError> for Error {
-    fn from(e: ExperimentError) -> Self {
-        Error::Experiment(e)
+impl From<EpisodeError> for Error {
+    fn from(e: EpisodeError) -> Self {
+        Error::Episode(e)
     }
 }
 
@@ -214,7 +214,7 @@ mod tests {
     #[test]
     fn messages_carry_their_reason_and_expose_no_source_chain() {
         use std::error::Error as _;
-        let e = Error::Experiment(ExperimentError::Config("substrate: bad".into()));
+        let e = Error::Episode(EpisodeError::Config("substrate: bad".into()));
         assert!(e.source().is_none());
         assert_eq!(e.to_string(), "substrate: bad");
         let io = Error::io("create", "d")(std::io::Error::other("denied"));

@@ -15,13 +15,13 @@
 //!
 //! ```
 //! use vivae_lab::config::Config;
-//! use vivae_lab::tasks::driving::experiment::Experiment;
+//! use vivae_lab::tasks::driving::episode::Episode;
 //! use vivae_neat::Population;
 //! use vivae_sim::{LoadOptions, Scenario};
 //!
 //! let config = Config::default(); // the paper's setup: 3×5 sensors, 3×3 neurons, 5 robots
 //! let scenario = Scenario::from_svg(vivae_sim::ROADS_SVG, "roads.svg", &LoadOptions::default())?;
-//! let experiment = Experiment::new(&config, &scenario)?;
+//! let experiment = Episode::new(&config, &scenario)?;
 //! let population = Population::new(config.neat.clone(), experiment.cppn_spec(), 1)?;
 //! let controller = experiment.controller(&population.genomes()[0])?;
 //! let episode = experiment.run(&controller, true);

@@ -106,7 +106,7 @@ mod tests {
                     r.id
                 );
             }
-            crate::tasks::driving::experiment::Experiment::new(&config, &scenario)
+            crate::tasks::driving::episode::Episode::new(&config, &scenario)
                 .unwrap_or_else(|e| panic!("{}: {e}", s.name));
         }
     }

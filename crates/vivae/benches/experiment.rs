@@ -8,7 +8,7 @@
 use divan::counter::ItemsCount;
 use vivae_lab::config::Config;
 use vivae_lab::io::load_scenario;
-use vivae_lab::tasks::driving::experiment::Experiment;
+use vivae_lab::tasks::driving::episode::Episode;
 use vivae_neat::{Genome, NeatParams, Population};
 
 fn main() {
@@ -16,7 +16,7 @@ fn main() {
 }
 
 /// An evolved-looking CPPN: a few generations of the real experiment's mutations.
-fn genome(experiment: &Experiment) -> Genome {
+fn genome(experiment: &Episode) -> Genome {
     let params = NeatParams {
         population_size: 20,
         ..NeatParams::default()
@@ -30,9 +30,9 @@ fn genome(experiment: &Experiment) -> Genome {
     pop.champion().unwrap().0.clone()
 }
 
-fn experiment(config: &Config) -> Experiment {
+fn experiment(config: &Config) -> Episode {
     let scenario = load_scenario(None).unwrap();
-    Experiment::new(config, &scenario.scenario).unwrap()
+    Episode::new(config, &scenario.scenario).unwrap()
 }
 
 /// One evaluation of the paper's experiment: decode + 5 robots × 1000 steps.

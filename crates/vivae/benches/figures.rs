@@ -11,7 +11,7 @@ use vivae::figures::network::{self, NetworkOptions};
 use vivae_lab::config::Config;
 use vivae_lab::controller::substrate::PolarGrid;
 use vivae_lab::io::load_scenario;
-use vivae_lab::tasks::driving::experiment::Experiment;
+use vivae_lab::tasks::driving::episode::Episode;
 use vivae_neat::hyperneat::SubstrateController;
 use vivae_sim::draw::{self, DrawOptions};
 
@@ -20,7 +20,7 @@ fn main() {
 }
 
 /// The camera-resolution experiment and its champion's controller.
-fn camera() -> (Experiment, SubstrateController) {
+fn camera() -> (Episode, SubstrateController) {
     let path = concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/tests/data/paper-champion.json"
@@ -31,7 +31,7 @@ fn camera() -> (Experiment, SubstrateController) {
     config.surface_sensors.angles = 96;
     config.substrate.neurons = PolarGrid::new(9, 9).unwrap();
     let scenario = load_scenario(None).unwrap();
-    let experiment = Experiment::new(&config, &scenario.scenario).unwrap();
+    let experiment = Episode::new(&config, &scenario.scenario).unwrap();
     let controller = experiment.controller(&champion.genome).unwrap();
     (experiment, controller)
 }

@@ -16,7 +16,7 @@ use vivae_lab::io::{bad_input, write_atomic};
 use vivae_lab::run::Run;
 use vivae_lab::rundir::{self, Champion, files};
 use vivae_lab::search::files::Member;
-use vivae_lab::tasks::driving::experiment::{Episode, Experiment};
+use vivae_lab::tasks::driving::episode::{Episode, EpisodeRecord};
 
 /// What the end of a run reports.
 #[derive(Debug, Clone, PartialEq)]
@@ -40,12 +40,12 @@ fn write_figure(dir: &Path, name: &str, svg: &str, png: &[u8]) -> Result<()> {
 
 /// Runs `genome` with trajectories recorded and draws them; returns the episode.
 pub fn trajectory_figure(
-    experiment: &Experiment,
+    experiment: &Episode,
     genome: &Genome,
     title: &str,
     dir: &Path,
     name: &str,
-) -> Result<Episode> {
+) -> Result<EpisodeRecord> {
     let controller = experiment.robot_controller(genome)?;
     let (episode, world) = experiment.run_world(&controller, true);
     let on_road = episode
@@ -128,7 +128,7 @@ pub fn finish_run(run: &Run) -> Result<RunSummary> {
     vivae_lab::rundir::mark_drawn(run.dir(), run.done())?;
 
     // On several maps the champion's fitness is the mean over maps: its time on road too.
-    let on_road = |e: &Episode| e.on_road.unwrap_or_default();
+    let on_road = |e: &EpisodeRecord| e.on_road.unwrap_or_default();
     let champion_on_road = if map_episodes.is_empty() {
         on_road(&episode)
     } else {
@@ -178,7 +178,11 @@ fn strategy_figure(run: &Run, dir: &Path) -> Result<()> {
 /// On several training maps, the champion's trajectories on each, drawn as
 /// `trajectories-champion-<map>` in `dir`; returns each map's label and
 /// recorded episode. None on one map.
-fn per_map_figures(run: &Run, champion: &Genome, dir: &Path) -> Result<Vec<(String, Episode)>> {
+fn per_map_figures(
+    run: &Run,
+    champion: &Genome,
+    dir: &Path,
+) -> Result<Vec<(String, EpisodeRecord)>> {
     let Some(training) = run.training() else {
         return Ok(Vec::new());
     };
@@ -224,7 +228,7 @@ pub struct Replay {
 /// the substrate's wiring where it is not the paper's ([`wiring_suffix`]), so
 /// that replays with other wiring flags do not overwrite each other.
 pub fn replay(
-    experiment: &Experiment,
+    experiment: &Episode,
     config: &Config,
     champion: &Champion,
     scenario: &str,

@@ -18,7 +18,7 @@ use vivae_lab::io::{bad_input, load_scenario, read_text, write_atomic};
 use vivae_lab::rundir::GenerationRow;
 use vivae_lab::rundir::{self, files, read_champion};
 use vivae_lab::search::StrategyReport;
-use vivae_lab::tasks::driving::experiment::{Episode, Experiment};
+use vivae_lab::tasks::driving::episode::{Episode, EpisodeRecord};
 use vivae_lab::tasks::read_config;
 
 /// The page template; `/*VIVAE-DATA*/`, `/*VIVAE-CSS*/` and `/*VIVAE-JS*/` are filled in.
@@ -130,20 +130,20 @@ fn round2(v: f64) -> f64 {
 #[derive(Debug, Default)]
 pub struct Reuse<'a> {
     /// Episodes recorded with trajectories, and the genome each one ran.
-    pub episodes: Vec<(&'a Genome, &'a Episode)>,
+    pub episodes: Vec<(&'a Genome, &'a EpisodeRecord)>,
     /// The champion's network figure, drawn with the report's own options.
     pub network_svg: Option<String>,
     /// On several training maps, the champion's episode on each, in map order.
-    pub map_episodes: Vec<&'a Episode>,
+    pub map_episodes: Vec<&'a EpisodeRecord>,
 }
 
 /// The episode of `genome` on `experiment` (map `scene`), taken from
 /// `recorded` when it holds it with trajectories, else run now.
 fn episode(
-    experiment: &Experiment,
+    experiment: &Episode,
     genome: &Genome,
     (label, scene): (String, usize),
-    recorded: Option<&Episode>,
+    recorded: Option<&EpisodeRecord>,
 ) -> vivae_lab::Result<EpisodeData> {
     let recorded = recorded.filter(|e| e.trajectories.is_some() && e.on_road.is_some());
     let ran;
@@ -214,7 +214,7 @@ fn map_episodes(
 fn strategy_data(
     dir: &Path,
     config: &vivae_lab::config::Config,
-    experiment: &Experiment,
+    experiment: &Episode,
 ) -> vivae_lab::Result<Option<StrategyData>> {
     let kind = config.strategy.kind;
     let entry = vivae_lab::search::entry(kind);
@@ -290,7 +290,7 @@ pub(crate) fn network_options(generation: u32, fitness: f64, amplitude: f64) -> 
 fn all_episodes(
     dir: &Path,
     config: &vivae_lab::config::Config,
-    experiment: &Experiment,
+    experiment: &Episode,
     champion: &rundir::Champion,
     best: &[rundir::GenerationBest],
     reuse: &Reuse<'_>,
@@ -334,7 +334,7 @@ pub fn build_reusing(dir: &Path, reuse: &Reuse<'_>) -> vivae_lab::Result<String>
     let config = read_config(&dir.join(files::CONFIG))?;
     let config_text = read_text(&dir.join(files::CONFIG))?;
     let scenario = load_scenario(Some(&dir.join(files::SCENARIO)))?;
-    let experiment = Experiment::new(&config, &scenario.scenario)
+    let experiment = Episode::new(&config, &scenario.scenario)
         .map_err(|e| bad_input(format!("{}: {e}", dir.display())))?;
     let champion = read_champion(&dir.join(files::CHAMPION))?;
     let best = rundir::read_best_genomes(&dir.join(files::BEST_GENOMES))?;

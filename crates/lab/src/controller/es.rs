@@ -324,7 +324,7 @@ impl Drive for RobotController {
 mod tests {
     use super::*;
     use crate::io::load_scenario;
-    use crate::tasks::driving::experiment::Experiment;
+    use crate::tasks::driving::episode::Episode;
     use vivae_neat::Population;
 
     fn es_config() -> Config {
@@ -334,8 +334,8 @@ mod tests {
         config
     }
 
-    fn experiment(config: &Config) -> Experiment {
-        Experiment::new(config, &load_scenario(None).unwrap().scenario).unwrap()
+    fn experiment(config: &Config) -> Episode {
+        Episode::new(config, &load_scenario(None).unwrap().scenario).unwrap()
     }
 
     #[test]
@@ -419,7 +419,7 @@ mod tests {
         let mut config = es_config();
         config.surface_sensors.angles = 7;
         config.surface_sensors.fov = 270.0;
-        let e = Experiment::new(&config, &load_scenario(None).unwrap().scenario).unwrap_err();
+        let e = Episode::new(&config, &load_scenario(None).unwrap().scenario).unwrap_err();
         assert!(e.to_string().contains("surface_sensors.fov"), "{e}");
     }
 

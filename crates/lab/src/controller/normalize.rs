@@ -116,18 +116,18 @@ mod tests {
     use crate::config::Config;
     use crate::controller::substrate::PolarGrid;
     use crate::io::load_scenario;
-    use crate::tasks::driving::experiment::Experiment;
+    use crate::tasks::driving::episode::Episode;
     use vivae_neat::Population;
 
-    fn experiment(neurons: usize, by: NormalizeBy, self_loops: bool) -> Experiment {
+    fn experiment(neurons: usize, by: NormalizeBy, self_loops: bool) -> Episode {
         let mut c = Config::default();
         c.substrate.neurons = PolarGrid::new(neurons, neurons).unwrap();
         c.substrate.normalize_by = by;
         c.substrate.normalize_self_loops = self_loops;
-        Experiment::new(&c, &load_scenario(None).unwrap().scenario).unwrap()
+        Episode::new(&c, &load_scenario(None).unwrap().scenario).unwrap()
     }
 
-    fn scale_of(e: &Experiment, c: &SubstrateConfig) -> SourceScale {
+    fn scale_of(e: &Episode, c: &SubstrateConfig) -> SourceScale {
         SourceScale::new(c, e.sensors(), &e.substrate_spec().neuron_nodes())
     }
 
@@ -156,7 +156,7 @@ mod tests {
             let mut c = Config::default();
             c.substrate.neurons = PolarGrid::new(9, 9).unwrap();
             c.substrate.normalize = false;
-            Experiment::new(&c, &load_scenario(None).unwrap().scenario).unwrap()
+            Episode::new(&c, &load_scenario(None).unwrap().scenario).unwrap()
         };
         let scaled = experiment(9, NormalizeBy::Count, true);
         let kept = experiment(9, NormalizeBy::Count, false);
@@ -196,7 +196,7 @@ mod tests {
         for (recurrence, keep_self) in [(Recurrence::SelfLoops, true), (Recurrence::None, false)] {
             let mut c = Config::default();
             c.substrate.recurrence = recurrence;
-            let cut = Experiment::new(&c, &load_scenario(None).unwrap().scenario)
+            let cut = Episode::new(&c, &load_scenario(None).unwrap().scenario)
                 .unwrap()
                 .controller(g)
                 .unwrap();

@@ -35,7 +35,7 @@ use crate::rundir::{
     population_rows, read_best_genomes, remove_abandoned_builds, remove_stale_temporaries,
     truncate, truncate_lines, write_checkpoint,
 };
-use crate::tasks::driving::experiment::Experiment;
+use crate::tasks::driving::episode::Episode;
 use crate::tasks::driving::training::Training;
 use crate::tasks::maps::{TrainingMap, is_multi_map};
 use crate::tasks::{RunTask, TargetProgress};
@@ -229,7 +229,7 @@ impl Run {
 
     /// The experiment reported, drawn and replayed (the first map at the
     /// run's own resolution); none for a task that is not driving.
-    pub fn experiment(&self) -> Option<&Experiment> {
+    pub fn experiment(&self) -> Option<&Episode> {
         self.task.driving().map(Training::primary)
     }
 

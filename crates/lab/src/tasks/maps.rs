@@ -167,7 +167,7 @@ mod tests {
     use super::*;
     use crate::rundir::{copy_names, manifest};
     use crate::tasks::driving::combined::DrivingTask;
-    use crate::tasks::driving::experiment::Experiment;
+    use crate::tasks::driving::episode::Episode;
     use crate::tasks::driving::training::Training;
     use vivae_neat::driver::Task;
     use vivae_neat::{EvalContext, Population};
@@ -196,7 +196,7 @@ mod tests {
                 .map(|m| {
                     let mut single = c.clone();
                     single.experiment.scenarios.clear();
-                    Experiment::new(&single, &m.loaded.scenario)
+                    Episode::new(&single, &m.loaded.scenario)
                         .unwrap()
                         .fitness(g)
                 })

@@ -49,7 +49,7 @@ pub struct Threads {
 
 /// An episode's length and robots (`evolve`'s wording; `replay` rewords them).
 #[derive(Args, Debug, Default, Clone, Copy)]
-pub struct Episode {
+pub struct EpisodeArgs {
     /// Simulation steps per evaluation.
     #[arg(long, value_name = "N")]
     pub steps: Option<u32>,

@@ -9,7 +9,7 @@ use vivae_lab::config::{Config, TaskName};
 use vivae_lab::controller::substrate::PolarGrid;
 use vivae_lab::io::bad_input;
 
-use super::args::{Episode, Generations, Resolution, Threads, Wiring};
+use super::args::{EpisodeArgs, Generations, Resolution, Threads, Wiring};
 
 /// Options that override config keys.
 #[derive(Args, Debug, Default)]
@@ -30,7 +30,7 @@ pub struct Overrides {
     #[command(flatten)]
     pub resolution: Resolution,
     #[command(flatten)]
-    pub episode: Episode,
+    pub episode: EpisodeArgs,
     #[command(flatten)]
     pub threads: Threads,
     /// Multi-resolution evolution: evaluate every genome at these neuron

@@ -10,9 +10,9 @@ use vivae::report;
 use vivae_lab::config::Config;
 use vivae_lab::io::{bad_input, load_scenario};
 use vivae_lab::rundir;
-use vivae_lab::tasks::driving::experiment::Experiment;
+use vivae_lab::tasks::driving::episode::Episode;
 
-use super::args::{Episode, MemberChoice, Resolution, Wiring};
+use super::args::{EpisodeArgs, MemberChoice, Resolution, Wiring};
 use super::overrides::{Overrides, apply_overrides, scenario_path};
 
 /// Options of `vivae replay`.
@@ -31,7 +31,7 @@ pub struct ReplayArgs {
     #[command(flatten)]
     pub resolution: Resolution,
     #[command(flatten)]
-    pub episode: Episode,
+    pub episode: EpisodeArgs,
     #[command(flatten)]
     pub member: MemberChoice,
     /// Folder for the trajectory figure (default: replay/ beside the source).
@@ -47,7 +47,7 @@ impl ReplayArgs {
         Overrides {
             scenario: self.scenario.iter().cloned().collect(),
             resolution: self.resolution,
-            episode: Episode {
+            episode: EpisodeArgs {
                 steps: self.episode.steps,
                 robots,
             },
@@ -96,8 +96,7 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<ExitCode> {
         .into());
     }
     let scenario = load_scenario(path.as_deref())?;
-    let experiment =
-        Experiment::new(&config, &scenario.scenario).map_err(vivae_lab::Error::from)?;
+    let experiment = Episode::new(&config, &scenario.scenario).map_err(vivae_lab::Error::from)?;
     // Checked before anything is written: a genome that does not fit is bad input.
     experiment
         .robot_controller(&champion.genome)

@@ -1,6 +1,6 @@
 //! `vivae view`: a local web server where robots drive live in the browser.
 //!
-//! The robots are simulated here, by the real [`Experiment`] controller and
+//! The robots are simulated here, by the real [`Episode`] controller and
 //! `vivae-sim` world, one simulation per open page, and streamed to the page
 //! over a WebSocket ([`session`]). The page is plain HTML/CSS/JS embedded in
 //! the binary. The server answers only its own assets, a fixed list of the

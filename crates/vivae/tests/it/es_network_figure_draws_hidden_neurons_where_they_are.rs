@@ -13,7 +13,7 @@ use vivae::figures::network::{self, NetworkOptions};
 use vivae_lab::config::Config;
 use vivae_lab::controller::es::SubstrateKind;
 use vivae_lab::io::load_scenario;
-use vivae_lab::tasks::driving::experiment::Experiment;
+use vivae_lab::tasks::driving::episode::Episode;
 
 /// The champion as an ES controller on `sensors`: (hidden neurons, links, SVG).
 fn figure(sensors: (usize, usize)) -> (usize, usize, String) {
@@ -24,7 +24,7 @@ fn figure(sensors: (usize, usize)) -> (usize, usize, String) {
     config.surface_sensors.rings = sensors.0;
     config.surface_sensors.angles = sensors.1;
     let scenario = load_scenario(None).unwrap();
-    let experiment = Experiment::new(&config, &scenario.scenario).unwrap();
+    let experiment = Episode::new(&config, &scenario.scenario).unwrap();
     let controller = experiment.robot_controller(&champion.genome).unwrap();
     let es = controller.as_es().unwrap();
     let options = NetworkOptions {

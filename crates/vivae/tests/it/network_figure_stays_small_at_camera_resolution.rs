@@ -14,7 +14,7 @@ use vivae::figures::network::{self, NetworkOptions};
 use vivae_lab::config::Config;
 use vivae_lab::controller::substrate::PolarGrid;
 use vivae_lab::io::load_scenario;
-use vivae_lab::tasks::driving::experiment::Experiment;
+use vivae_lab::tasks::driving::episode::Episode;
 
 /// The paper's champion decoded on `sensors` → `neurons`, and its figure.
 fn figure(sensors: (usize, usize), neurons: (usize, usize)) -> (usize, vivae::figures::Figure) {
@@ -25,7 +25,7 @@ fn figure(sensors: (usize, usize), neurons: (usize, usize)) -> (usize, vivae::fi
     config.surface_sensors.angles = sensors.1;
     config.substrate.neurons = PolarGrid::new(neurons.0, neurons.1).unwrap();
     let scenario = load_scenario(None).unwrap();
-    let experiment = Experiment::new(&config, &scenario.scenario).unwrap();
+    let experiment = Episode::new(&config, &scenario.scenario).unwrap();
     let controller = experiment.controller(&champion.genome).unwrap();
     let options = NetworkOptions {
         title: format!(

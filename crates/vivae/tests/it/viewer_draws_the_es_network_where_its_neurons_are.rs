@@ -12,7 +12,7 @@ use crate::common::scratch;
 use vivae_lab::config::Config;
 use vivae_lab::controller::es::SubstrateKind;
 use vivae_lab::io::load_scenario;
-use vivae_lab::tasks::driving::experiment::Experiment;
+use vivae_lab::tasks::driving::episode::Episode;
 
 /// The paper's champion (tests/data) as a genome file that records an
 /// ES-HyperNEAT config, so that the viewer decodes it as ES.
@@ -38,7 +38,7 @@ fn es_config(sensors: (usize, usize)) -> Config {
 fn hidden_neurons(champion: &Path, sensors: (usize, usize)) -> Vec<[f64; 2]> {
     let champion = vivae_lab::rundir::read_champion(champion).unwrap();
     let scenario = load_scenario(None).unwrap();
-    let experiment = Experiment::new(&es_config(sensors), &scenario.scenario).unwrap();
+    let experiment = Episode::new(&es_config(sensors), &scenario.scenario).unwrap();
     let controller = experiment.robot_controller(&champion.genome).unwrap();
     controller.as_es().unwrap().network().hidden().to_vec()
 }

@@ -1,13 +1,13 @@
 //! Tasks of the driving experiment, and how they combine.
 //!
 //! One episode (one map, one substrate resolution, one fitness function) is
-//! a task: [`Experiment`](crate::tasks::driving::experiment::Experiment). [`Combined`] scores
+//! a task: [`Episode`](crate::tasks::driving::episode::Episode). [`Combined`] scores
 //! several tasks as one ("the mean over maps", "the worst over
 //! resolutions"), and is itself a task, so combinations nest.
 //!
 //! ```
 //! use vivae_lab::config::{Aggregate, Config};
-//! use vivae_lab::tasks::driving::experiment::Experiment;
+//! use vivae_lab::tasks::driving::episode::Episode;
 //! use vivae_lab::tasks::driving::combined::{Combined, DrivingTask};
 //! use vivae_neat::{driver::Task, EvalContext, Population};
 //!
@@ -18,8 +18,8 @@
 //! long.experiment.steps = 300;
 //! let both = Combined::new(
 //!     vec![
-//!         ("100 steps".into(), Box::new(Experiment::new(&short, &scenario)?) as Box<dyn DrivingTask>),
-//!         ("300 steps".into(), Box::new(Experiment::new(&long, &scenario)?)),
+//!         ("100 steps".into(), Box::new(Episode::new(&short, &scenario)?) as Box<dyn DrivingTask>),
+//!         ("300 steps".into(), Box::new(Episode::new(&long, &scenario)?)),
 //!     ],
 //!     Aggregate::Min,
 //! );

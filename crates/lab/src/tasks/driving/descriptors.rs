@@ -202,16 +202,16 @@ mod tests {
     use crate::config::Config;
     use crate::config::strategy::StrategyKind;
     use crate::io::load_scenario;
-    use crate::tasks::driving::experiment::Experiment;
+    use crate::tasks::driving::episode::Episode;
     use vivae_neat::Population;
     use vivae_neat::driver::Task;
 
-    fn experiment(kind: StrategyKind, behaviour: BehaviourKind) -> (Config, Experiment) {
+    fn experiment(kind: StrategyKind, behaviour: BehaviourKind) -> (Config, Episode) {
         let mut config = Config::default();
         config.experiment.steps = 150;
         config.strategy.kind = kind;
         config.strategy.behaviour = behaviour;
-        let e = Experiment::new(&config, &load_scenario(None).unwrap().scenario).unwrap();
+        let e = Episode::new(&config, &load_scenario(None).unwrap().scenario).unwrap();
         (config, e)
     }
 

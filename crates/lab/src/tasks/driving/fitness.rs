@@ -4,7 +4,7 @@
 //! at the world after every step and gives the score at the end. The paper's
 //! fitness, [`AverageSpeed`], is the default of every experiment; another one
 //! is a new file with a type implementing [`Fitness`], handed to
-//! [`Experiment::with_fitness`](crate::tasks::driving::experiment::Experiment::with_fitness).
+//! [`Episode::with_fitness`](crate::tasks::driving::episode::Episode::with_fitness).
 //!
 //! ```
 //! use std::sync::Arc;
@@ -34,7 +34,7 @@
 //!
 //! let config = vivae_lab::config::Config::default();
 //! let scenario = vivae_lab::io::load_scenario(None)?.scenario;
-//! let plain = vivae_lab::tasks::driving::experiment::Experiment::new(&config, &scenario)?;
+//! let plain = vivae_lab::tasks::driving::episode::Episode::new(&config, &scenario)?;
 //! let strict = plain.clone().with_fitness(Arc::new(StayOnRoad));
 //! let population = vivae_neat::Population::new(config.neat.clone(), plain.cppn_spec(), 1)?;
 //! let genome = &population.genomes()[0];

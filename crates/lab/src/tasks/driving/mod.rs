@@ -1,12 +1,12 @@
 //! The driving task: robots on roads, scored by average speed. An
-//! [`experiment::Experiment`] is one episode setup (one map, one resolution,
+//! [`episode::Episode`] is one episode setup (one map, one resolution,
 //! one fitness); [`combined::Combined`] scores several as one;
 //! [`training::Training`] is what a run evaluates on (maps × resolutions).
 
 pub mod behaviour;
 pub mod combined;
 pub mod descriptors;
-pub mod experiment;
+pub mod episode;
 pub mod fitness;
 pub mod resolutions;
 pub mod rollout;

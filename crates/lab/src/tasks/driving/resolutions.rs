@@ -11,7 +11,7 @@ use vivae_sim::Scenario;
 
 use crate::config::Config;
 use crate::tasks::driving::combined::{Combined, DrivingTask};
-use crate::tasks::driving::experiment::{Experiment, ExperimentError};
+use crate::tasks::driving::episode::{Episode, EpisodeError};
 
 /// Label of a resolution, such as `s3x5-n9x9`.
 pub fn label(config: &Config) -> String {
@@ -26,7 +26,7 @@ pub fn label(config: &Config) -> String {
 pub fn at_resolutions(
     config: &Config,
     scenario: &Scenario,
-) -> Result<Option<Combined>, ExperimentError> {
+) -> Result<Option<Combined>, EpisodeError> {
     let configs = config.training_configs();
     if configs.is_empty() {
         return Ok(None);
@@ -34,8 +34,8 @@ pub fn at_resolutions(
     let mut parts: Vec<(String, Box<dyn DrivingTask>)> = Vec::with_capacity(configs.len());
     for c in &configs {
         let label = label(c);
-        let experiment = Experiment::new(c, scenario)
-            .map_err(|e| ExperimentError::Config(format!("training resolution {label}: {e}")))?;
+        let experiment = Episode::new(c, scenario)
+            .map_err(|e| EpisodeError::Config(format!("training resolution {label}: {e}")))?;
         parts.push((label, Box::new(experiment)));
     }
     Ok(Some(Combined::new(parts, config.substrate.train_aggregate)))
@@ -67,7 +67,7 @@ mod tests {
         config.experiment.steps = 120;
         config.substrate.train_neurons = vec![grid(3, 3), grid(5, 5)];
         config.substrate.train_sensors = vec![grid(3, 5), grid(3, 6)];
-        let experiment = Experiment::new(&config, &scenario).unwrap();
+        let experiment = Episode::new(&config, &scenario).unwrap();
         let training = at_resolutions(&config, &scenario)
             .unwrap()
             .expect("a training set");
@@ -91,7 +91,7 @@ mod tests {
             c.substrate.neurons = n;
             c.surface_sensors.rings = s.rings;
             c.surface_sensors.angles = s.angles;
-            let alone = Experiment::new(&c, &scenario).unwrap().fitness(genome);
+            let alone = Episode::new(&c, &scenario).unwrap().fitness(genome);
             assert_eq!(alone.to_bits(), single[i].to_bits(), "resolution {i}");
         }
         let mean = single.iter().sum::<f64>() / 4.0;

@@ -85,7 +85,7 @@ pub struct Rollout {
 impl Rollout {
     /// The start of an episode of `robots` robots carrying `sensors` (in
     /// controller-input order) and driven by `controller` through `wheels`
-    /// (see [`Experiment::rollout`](crate::tasks::driving::experiment::Experiment::rollout)).
+    /// (see [`Episode::rollout`](crate::tasks::driving::episode::Episode::rollout)).
     pub fn new(
         robots: usize,
         sensors: Vec<SensorSheet>,

@@ -3,7 +3,7 @@
 //! replays (the first map at the run's own resolution).
 //!
 //! A single-map, single-resolution run trains on exactly its
-//! [`Experiment`]. With `substrate.train_neurons`/`train_sensors` a map's
+//! [`Episode`]. With `substrate.train_neurons`/`train_sensors` a map's
 //! task is a [`Combined`] over resolutions ([`crate::tasks::driving::resolutions`]); with
 //! `experiment.scenarios` the run's task is the mean over maps of each
 //! map's task, each map with its own robots.
@@ -16,7 +16,7 @@ use vivae_neat::{EvalContext, Genome, GenomeSpec};
 use crate::config::{Aggregate, Config};
 use crate::error::Result;
 use crate::tasks::driving::combined::{Combined, DrivingTask};
-use crate::tasks::driving::experiment::{Experiment, ExperimentError};
+use crate::tasks::driving::episode::{Episode, EpisodeError};
 use crate::tasks::driving::resolutions::at_resolutions;
 use crate::tasks::maps::{TrainingMap, is_multi_map};
 
@@ -24,9 +24,9 @@ use crate::tasks::maps::{TrainingMap, is_multi_map};
 #[derive(Debug, Clone)]
 pub struct Training {
     /// The first map at the run's own resolution: reported, drawn, replayed.
-    primary: Experiment,
+    primary: Episode,
     /// With several maps: (label, experiment) of each at the run's own resolution.
-    maps: Vec<(String, Experiment)>,
+    maps: Vec<(String, Episode)>,
     /// With several resolutions: their labels, in evaluation order.
     resolutions: Vec<String>,
     aggregate: Aggregate,
@@ -49,8 +49,8 @@ impl Training {
         let mut resolutions = Vec::new();
         for m in maps {
             let (e, task, r) = map_task(config, m).map_err(|e| match e {
-                ExperimentError::Scenario(s) => ExperimentError::Scenario(s),
-                other => ExperimentError::Config(format!("training map {}: {other}", m.label)),
+                EpisodeError::Scenario(s) => EpisodeError::Scenario(s),
+                other => EpisodeError::Config(format!("training map {}: {other}", m.label)),
             })?;
             experiments.push((m.label.clone(), e));
             parts.push((m.label.clone(), task));
@@ -68,8 +68,8 @@ impl Training {
     }
 
     fn of(
-        primary: Experiment,
-        maps: Vec<(String, Experiment)>,
+        primary: Episode,
+        maps: Vec<(String, Episode)>,
         resolutions: Vec<String>,
         config: &Config,
         task: Box<dyn DrivingTask>,
@@ -84,7 +84,7 @@ impl Training {
     }
 
     /// The experiment reported, drawn and replayed: the first map at the run's own resolution.
-    pub fn primary(&self) -> &Experiment {
+    pub fn primary(&self) -> &Episode {
         &self.primary
     }
 
@@ -99,7 +99,7 @@ impl Training {
     }
 
     /// Each training map's experiment at the run's own resolution, when there are several maps.
-    pub fn map_experiments(&self) -> impl Iterator<Item = &Experiment> {
+    pub fn map_experiments(&self) -> impl Iterator<Item = &Episode> {
         self.maps.iter().map(|(_, e)| e)
     }
 
@@ -136,11 +136,11 @@ impl Training {
 
 /// A map's experiment at the run's own resolution, its training task, and
 /// the labels of its resolutions.
-type MapTask = (Experiment, Box<dyn DrivingTask>, Vec<String>);
+type MapTask = (Episode, Box<dyn DrivingTask>, Vec<String>);
 
 /// The [`MapTask`] of `map` under `config`.
-fn map_task(config: &Config, map: &TrainingMap) -> std::result::Result<MapTask, ExperimentError> {
-    let experiment = Experiment::new(config, &map.loaded.scenario)?;
+fn map_task(config: &Config, map: &TrainingMap) -> std::result::Result<MapTask, EpisodeError> {
+    let experiment = Episode::new(config, &map.loaded.scenario)?;
     Ok(match at_resolutions(config, &map.loaded.scenario)? {
         Some(combined) => {
             let labels = combined.labels().map(String::from).collect();

@@ -29,7 +29,7 @@ pub use super::controller::{FigureSheet, NetworkOptions};
 use super::{Figure, FigureError, NEGATIVE, POSITIVE, draw_err, svg_to_png};
 use vivae_lab::controller::es::RobotController;
 use vivae_lab::controller::substrate::SubstrateSpec;
-use vivae_lab::tasks::driving::experiment::Experiment;
+use vivae_lab::tasks::driving::episode::Episode;
 
 /// Renders the controller decoded on `spec` as SVG and PNG: a line per link
 /// up to `opts.max_links` expressed links, receptive fields above.
@@ -154,7 +154,7 @@ const WHEEL_RING: ShapeStyle = ShapeStyle {
 
 /// Renders `experiment`'s controller `controller`, dense or ES, as SVG and PNG.
 pub fn render_robot(
-    experiment: &Experiment,
+    experiment: &Episode,
     controller: &RobotController,
     opts: &NetworkOptions,
 ) -> Result<Figure, FigureError> {
@@ -178,7 +178,7 @@ pub fn render_robot(
 
 /// The SVG of [`render_robot`]'s figure, without drawing the PNG.
 pub fn figure_svg_robot(
-    experiment: &Experiment,
+    experiment: &Episode,
     controller: &RobotController,
     opts: &NetworkOptions,
 ) -> Result<String, FigureError> {

@@ -24,7 +24,7 @@ use vivae_lab::controller::es::RobotController;
 use vivae_lab::controller::substrate::PolarGrid;
 use vivae_lab::io::one_line;
 use vivae_lab::search::files::Member;
-use vivae_lab::tasks::driving::experiment::Experiment;
+use vivae_lab::tasks::driving::episode::Episode;
 use vivae_lab::tasks::driving::rollout::Rollout;
 
 /// Simulation steps per second at speed 1 ("real time").
@@ -120,7 +120,7 @@ impl Keys {
 pub(crate) struct Sim {
     config: Config,
     scenario_index: usize,
-    experiment: Experiment,
+    experiment: Episode,
     world: World,
     choice: Choice,
     /// Label of the genome driving, for the page.
@@ -157,11 +157,11 @@ pub(crate) struct Sim {
 
 /// Builds the experiment of `config` on `scenario`, using all its robots when
 /// the config asks for more than it has.
-fn experiment_for(config: &mut Config, scenario: &Scenario) -> Result<Experiment, String> {
+fn experiment_for(config: &mut Config, scenario: &Scenario) -> Result<Episode, String> {
     if scenario.robots.len() < config.experiment.robots {
         config.experiment.robots = 0;
     }
-    Experiment::new(config, scenario).map_err(|e| one_line(&e.to_string()))
+    Episode::new(config, scenario).map_err(|e| one_line(&e.to_string()))
 }
 
 fn parse_scenario(name: &str, text: &str) -> Result<Scenario, String> {
@@ -707,9 +707,7 @@ mod tests {
         use vivae_lab::search::files::{ArchiveLine, FrontLine};
         let source = Source::load(None, None).unwrap();
         let scenario = vivae_lab::io::load_scenario(None).unwrap().scenario;
-        let spec = Experiment::new(&source.config, &scenario)
-            .unwrap()
-            .cppn_spec();
+        let spec = Episode::new(&source.config, &scenario).unwrap().cppn_spec();
         let population = vivae_neat::Population::new(source.config.neat.clone(), spec, 3).unwrap();
         let g = |i: usize| population.genomes()[i].clone();
         let mut snap = source.snapshot();

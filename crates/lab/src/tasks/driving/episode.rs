@@ -25,7 +25,7 @@ use crate::tasks::driving::rollout::{Drive, Rollout};
 ///
 /// Built once per run; evaluation only reads it, so it is shared by all threads.
 #[derive(Debug, Clone)]
-pub struct Experiment {
+pub struct Episode {
     world: World,
     /// The robots' sensors, in controller-input order.
     sensors: Vec<SensorSheet>,
@@ -49,7 +49,7 @@ pub struct Experiment {
 
 /// The outcome of one episode.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Episode {
+pub struct EpisodeRecord {
     /// The experiment's fitness (by default average speed: Σ odometer /
     /// (robots × steps), px per step).
     pub fitness: f64,
@@ -64,7 +64,7 @@ pub struct Episode {
 
 /// Why an experiment cannot be set up.
 #[derive(Debug, thiserror::Error)]
-pub enum ExperimentError {
+pub enum EpisodeError {
     /// The scenario cannot host the experiment.
     #[error("{0}")]
     Scenario(String),
@@ -76,18 +76,18 @@ pub enum ExperimentError {
     Genome(String),
 }
 
-impl Experiment {
+impl Episode {
     /// Sets up the experiment of `config` on `scenario` (uses its first `robots` robots).
-    pub fn new(config: &Config, scenario: &Scenario) -> Result<Experiment, ExperimentError> {
+    pub fn new(config: &Config, scenario: &Scenario) -> Result<Episode, EpisodeError> {
         scenario
             .require_robots()
-            .map_err(|e| ExperimentError::Scenario(e.to_string()))?;
+            .map_err(|e| EpisodeError::Scenario(e.to_string()))?;
         let wanted = config.experiment.robots;
         let mut scenario = scenario.clone();
         if wanted > 0 {
             if scenario.robots.len() < wanted {
                 let have = scenario.robots.len();
-                return Err(ExperimentError::Scenario(format!(
+                return Err(EpisodeError::Scenario(format!(
                     "{}: has {have} robot{}, the config asks for experiment.robots = {wanted}; \
                      use --robots {have} (or --robots 0 for all of them), or draw more robots",
                     scenario.source,
@@ -97,7 +97,7 @@ impl Experiment {
             scenario.robots.truncate(wanted);
         }
         let world = World::new(&scenario, &config.physics)
-            .map_err(|e| ExperimentError::Config(format!("physics.{e}")))?;
+            .map_err(|e| EpisodeError::Config(format!("physics.{e}")))?;
         let distance_layout = config.distance_sensors.layout();
         let surface = &config.surface_sensors;
         let spec = SubstrateSpec {
@@ -112,10 +112,10 @@ impl Experiment {
             coords: config.substrate.coordinates,
         };
         spec.validate()
-            .map_err(|e| ExperimentError::Config(format!("substrate: {e}")))?;
+            .map_err(|e| EpisodeError::Config(format!("substrate: {e}")))?;
         let wheels = spec
             .wheels()
-            .map_err(|e| ExperimentError::Config(format!("substrate: {e}")))?;
+            .map_err(|e| EpisodeError::Config(format!("substrate: {e}")))?;
         // The layout comes from the sensors the robots really carry (the
         // registry's sheets for this config), so a sensor's input nodes sit
         // where it looks.
@@ -128,10 +128,10 @@ impl Experiment {
             SubstrateKind::Polar => None,
             SubstrateKind::EsHyperneat => Some(
                 crate::controller::es::es_setup(config, &sensors, scale.factors())
-                    .map_err(ExperimentError::Config)?,
+                    .map_err(EpisodeError::Config)?,
             ),
         };
-        Ok(Experiment {
+        Ok(Episode {
             world,
             sensors,
             surface: surface_grid,
@@ -149,7 +149,7 @@ impl Experiment {
     }
 
     /// This experiment scored by `fitness` instead of average speed.
-    pub fn with_fitness(mut self, fitness: Arc<dyn Fitness>) -> Experiment {
+    pub fn with_fitness(mut self, fitness: Arc<dyn Fitness>) -> Episode {
         self.fitness = fitness;
         self
     }
@@ -220,25 +220,25 @@ impl Experiment {
     }
 
     /// Decodes `genome` into this experiment's controller, dense or ES.
-    pub fn robot_controller(&self, genome: &Genome) -> Result<RobotController, ExperimentError> {
+    pub fn robot_controller(&self, genome: &Genome) -> Result<RobotController, EpisodeError> {
         match &self.es {
             None => self.controller(genome).map(RobotController::Polar),
             Some(es) => {
                 self.check_genome(genome)?;
                 let c = es
                     .decode(genome)
-                    .map_err(|e| ExperimentError::Genome(e.to_string()))?;
+                    .map_err(|e| EpisodeError::Genome(e.to_string()))?;
                 Ok(RobotController::Es(c))
             }
         }
     }
 
     /// An error if `genome`'s CPPN has the wrong number of inputs or outputs.
-    fn check_genome(&self, genome: &Genome) -> Result<(), ExperimentError> {
+    fn check_genome(&self, genome: &Genome) -> Result<(), EpisodeError> {
         let want = self.cppn_spec();
         let (inputs, outputs) = (genome.num_inputs(), genome.num_outputs());
         if inputs != want.inputs || outputs != want.outputs {
-            return Err(ExperimentError::Genome(format!(
+            return Err(EpisodeError::Genome(format!(
                 "CPPN has {inputs} inputs and {outputs} outputs, this substrate needs {} and {}",
                 want.inputs, want.outputs
             )));
@@ -248,16 +248,16 @@ impl Experiment {
 
     /// Decodes `genome` (a CPPN) into the dense polar controller; an error if
     /// its CPPN has the wrong number of inputs or outputs, or if the
-    /// experiment's substrate is ES-HyperNEAT (see [`Experiment::robot_controller`]).
-    pub fn controller(&self, genome: &Genome) -> Result<SubstrateController, ExperimentError> {
+    /// experiment's substrate is ES-HyperNEAT (see [`Episode::robot_controller`]).
+    pub fn controller(&self, genome: &Genome) -> Result<SubstrateController, EpisodeError> {
         if self.es.is_some() {
-            return Err(ExperimentError::Config(
+            return Err(EpisodeError::Config(
                 "substrate.kind = \"es-hyperneat\" has no dense polar sheet".into(),
             ));
         }
         self.check_genome(genome)?;
         let mut controller = decode_genome(genome, &self.layout, &self.hyper)
-            .map_err(|e| ExperimentError::Genome(e.to_string()))?;
+            .map_err(|e| EpisodeError::Genome(e.to_string()))?;
         self.scale.apply(&mut controller);
         Ok(controller)
     }
@@ -274,12 +274,12 @@ impl Experiment {
     /// Runs one episode, every robot driven by `controller` (each with its own
     /// neuron states); `record` also keeps the trajectories and measures the
     /// time on road.
-    pub fn run(&self, controller: &(impl Drive + ?Sized), record: bool) -> Episode {
+    pub fn run(&self, controller: &(impl Drive + ?Sized), record: bool) -> EpisodeRecord {
         self.run_world(controller, record).0
     }
 
     /// The controller side of an episode of this experiment driven by
-    /// `controller` (the world starts as [`Experiment::world`]).
+    /// `controller` (the world starts as [`Episode::world`]).
     pub fn rollout(&self, controller: &(impl Drive + ?Sized)) -> Rollout {
         Rollout::new(self.robots(), self.sensors.clone(), self.wheels, controller)
     }
@@ -294,7 +294,11 @@ impl Experiment {
     }
 
     /// Runs one episode and also returns the final world (for drawing).
-    pub fn run_world(&self, controller: &(impl Drive + ?Sized), record: bool) -> (Episode, World) {
+    pub fn run_world(
+        &self,
+        controller: &(impl Drive + ?Sized),
+        record: bool,
+    ) -> (EpisodeRecord, World) {
         let n = self.robots();
         let mut world = self.world.clone();
         if record {
@@ -316,7 +320,7 @@ impl Experiment {
             }
         }
         let robot_steps = (n as f64) * f64::from(self.steps);
-        let episode = Episode {
+        let episode = EpisodeRecord {
             fitness: meter.score(&world, robot_steps),
             on_road: record.then_some(on_road as f64 / robot_steps),
             trajectories: world.trajectories().map(|t| t.to_vec()),
@@ -329,7 +333,7 @@ impl Experiment {
 /// The driving experiment as a NEAT task: a genome's fitness is its
 /// controller's episode score (deterministic: the episode has no randomness),
 /// with the behaviour and metrics the run's strategy needs ([`crate::tasks::driving::descriptors`]).
-impl Task for Experiment {
+impl Task for Episode {
     fn evaluate(&self, genome: &Genome, _ctx: &EvalContext) -> Evaluation {
         let Some(measures) = self.measures else {
             return Evaluation::fitness(self.fitness(genome));
@@ -348,13 +352,13 @@ impl Task for Experiment {
     }
 }
 
-impl DrivingTask for Experiment {
+impl DrivingTask for Episode {
     fn robot_steps(&self) -> u64 {
         self.robots() as u64 * u64::from(self.steps)
     }
 
     fn cppn_spec(&self) -> GenomeSpec {
-        Experiment::cppn_spec(self)
+        Episode::cppn_spec(self)
     }
 }
 
@@ -364,8 +368,8 @@ mod tests {
     use crate::io::load_scenario;
     use vivae_neat::Population;
 
-    fn paper_experiment(config: &Config) -> Experiment {
-        Experiment::new(config, &load_scenario(None).unwrap().scenario).unwrap()
+    fn paper_experiment(config: &Config) -> Episode {
+        Episode::new(config, &load_scenario(None).unwrap().scenario).unwrap()
     }
 
     #[test]
