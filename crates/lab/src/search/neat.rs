@@ -5,15 +5,21 @@ use vivae_neat::driver::Evaluation;
 use vivae_neat::{Genome, GenomeSpec, Population};
 
 use crate::config::Config;
-use crate::config::strategy::StrategyKind;
 use crate::error::Result;
-use crate::search::{Bounds, RunStrategy, Search, StrategyEntry, starting_population};
+use crate::search::{
+    Bounds, Needs, RunStrategy, Search, StrategyEntry, starting_population, state_of,
+};
 
 /// NEAT's registration.
 pub static STRATEGY: StrategyEntry = StrategyEntry {
-    kind: StrategyKind::Neat,
+    kind: "neat",
+    needs: Needs {
+        behaviour: false,
+        metrics: false,
+    },
+    takes_population: true,
     variant: "Neat",
-    from_state: |state| Ok(Search::of(serde_json::from_str::<Population>(state)?)),
+    from_state: state_of::<Population>,
     extra_columns: "",
     build,
     header_line: |_| String::new(),

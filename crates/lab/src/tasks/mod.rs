@@ -92,12 +92,7 @@ pub fn default_config(task: Option<&TaskName>) -> std::result::Result<Config, St
 pub fn check(config: &Config) -> std::result::Result<(), ConfigError> {
     let task = entry_of(config)?;
     config.validate()?;
-    crate::config::strategy::validate(
-        &config.strategy,
-        !config.experiment.scenarios.is_empty(),
-        task.metric_names,
-    )
-    .map_err(ConfigError::new)?;
+    crate::search::check(config, task.metric_names).map_err(ConfigError::new)?;
     (task.validate)(config).map_err(ConfigError::new)
 }
 
@@ -236,7 +231,7 @@ pub trait RunTask: Task + fmt::Debug + Send + Sync {
     fn describe(&self, maps: &[TrainingMap]) -> String;
 
     /// Settings of a config left at the task's defaults that the task fits
-    /// to itself (the maze's MAP-Elites grid to its arena).
+    /// to itself (e.g. a MAP-Elites grid to its arena).
     fn fit_defaults(&self, _config: &mut Config) {}
 
     /// Whether a run stops once an evaluation reaches the task's target; its
