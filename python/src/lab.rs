@@ -393,7 +393,7 @@ pub fn evolve<'py>(
     overrides: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     // Without a config file a named task starts from its own defaults,
-    // which it may fit to its scenario (e.g. a MAP-Elites grid fitted to its arena).
+    // which it may fit to its scenario (e.g. a grid archive fitted to its arena).
     let task_defaults = config.is_none();
     let config = settings::build(config.as_deref(), overrides)?;
     let prepared = prepare(config, task_defaults).map_err(errors::lab)?;

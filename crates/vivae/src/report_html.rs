@@ -66,7 +66,7 @@ struct ReportData {
     strategy: Option<StrategyData>,
 }
 
-/// What a novelty, map-elites or nsga2 run adds to the report: its part
+/// What a strategy other than NEAT adds to the report: its part
 /// (from its own file in `vivae_lab::search`) and its columns of `generations.csv`.
 #[derive(Debug, Serialize)]
 struct StrategyData {

@@ -269,7 +269,7 @@ impl Run {
         &self.search
     }
 
-    /// The NEAT population (ready for the next generation) of a NEAT or novelty run.
+    /// The NEAT population (ready for the next generation) of a strategy that breeds one.
     pub fn population(&self) -> Option<&Population> {
         self.search.population()
     }

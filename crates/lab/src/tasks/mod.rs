@@ -44,7 +44,7 @@ pub struct TaskEntry {
     pub default_config: fn() -> Config,
     /// The rules the task adds to [`Config::validate`]'s (the message names the key).
     pub validate: fn(&Config) -> std::result::Result<(), String>,
-    /// Names of the metrics its evaluations carry (NSGA-II's objectives besides fitness).
+    /// Names of the metrics its evaluations carry (objectives a strategy may select on besides fitness).
     pub metric_names: &'static [&'static str],
     /// The columns it adds to `generations.csv`, each with its leading comma.
     pub generation_columns: &'static str,
@@ -208,7 +208,7 @@ pub trait RunTask: Task + fmt::Debug + Send + Sync {
     fn genome_spec(&self) -> GenomeSpec;
 
     /// The box the behaviour descriptors of `config`'s strategy lie in
-    /// (MAP-Elites' cells cover it).
+    /// (a grid archive's cells cover it).
     fn behaviour_bounds(&self, config: &Config) -> (Vec<f64>, Vec<f64>);
 
     /// Robot-steps one evaluation simulates at most.
@@ -231,7 +231,7 @@ pub trait RunTask: Task + fmt::Debug + Send + Sync {
     fn describe(&self, maps: &[TrainingMap]) -> String;
 
     /// Settings of a config left at the task's defaults that the task fits
-    /// to itself (e.g. a MAP-Elites grid to its arena).
+    /// to itself (e.g. a grid archive to its arena).
     fn fit_defaults(&self, _config: &mut Config) {}
 
     /// Whether a run stops once an evaluation reaches the task's target; its

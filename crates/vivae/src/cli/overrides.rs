@@ -53,7 +53,7 @@ pub struct Overrides {
     /// Search strategy (strategy.kind; default neat, the paper's).
     #[arg(long, value_name = "NAME", value_parser = strategy_names())]
     pub strategy: Option<vivae_lab::config::strategy::StrategyName>,
-    /// Behaviour descriptor of novelty and map-elites (strategy.behaviour).
+    /// Behaviour descriptor of the strategies that search on one (strategy.behaviour).
     #[arg(long, value_name = "end-position|end-positions|side-speed|trajectory")]
     pub behaviour: Option<vivae_lab::tasks::driving::descriptors::BehaviourKind>,
     /// Task (experiment.task; default driving, the paper's); docs/guide.md
