@@ -8,7 +8,7 @@ use std::path::Path;
 
 use vivae_neat::driver::Strategy;
 use vivae_neat::strategies::{Cells, MapElites, MapElitesParams};
-use vivae_neat::{Genome, GenomeSpec, NeatError, Population};
+use vivae_neat::{Genome, NeatError};
 
 use crate::config::Config;
 use crate::config::strategy::CellsKind;
@@ -17,8 +17,8 @@ use crate::io::{bad_input, write_atomic};
 use crate::rundir::files;
 use crate::search::files::{ArchiveLine, jsonl};
 use crate::search::{
-    Bounds, GridFigure, GridReport, Needs, RunStrategy, Search, StrategyEntry, StrategyFigure,
-    StrategyReport, behaviour_line, refuse_init, state_of,
+    Bounds, GridFigure, GridReport, Needs, RunStrategy, Search, Start, StrategyEntry,
+    StrategyFigure, StrategyReport, behaviour_line, state_of,
 };
 
 /// MAP-Elites' registration.
@@ -77,12 +77,13 @@ fn report(dir: &Path, config: &Config, robots: usize) -> Result<Option<StrategyR
 }
 
 fn build(
-    config: &Config,
-    spec: GenomeSpec,
-    bounds: Bounds,
-    init: Option<&Population>,
+    Start {
+        config,
+        spec,
+        bounds,
+        ..
+    }: Start<'_>,
 ) -> Result<Search> {
-    refuse_init(config, init)?;
     let neat = config.neat.clone();
     let m = &config.strategy.map_elites;
     let map = MapElitesParams {

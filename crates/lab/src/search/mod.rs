@@ -108,14 +108,26 @@ pub struct StrategyEntry {
     /// The columns it adds to `generations.csv` (after NEAT's), each with its
     /// leading comma.
     pub extra_columns: &'static str,
-    /// Generation 0 of it for `config` over genomes of shape `spec` whose
-    /// behaviour descriptors lie in `bounds`, from `init`'s genomes if given.
-    pub build: fn(&Config, GenomeSpec, Bounds, Option<&Population>) -> Result<Search>,
+    /// Its generation 0.
+    pub build: fn(Start<'_>) -> Result<Search>,
     /// The line the run's header says of it (with its leading line break), or empty.
     pub header_line: fn(&Config) -> String,
     /// What the report of the run in a directory shows of it, read from the
     /// files it wrote (`None`: nothing, as for NEAT); the task's robots given.
     pub report: ReportOf,
+}
+
+/// What a strategy's generation 0 is built from.
+pub struct Start<'a> {
+    /// The run's config.
+    pub config: &'a Config,
+    /// The shape of the genomes.
+    pub spec: GenomeSpec,
+    /// The box the behaviour descriptors lie in.
+    pub bounds: Bounds,
+    /// The genomes to start from, if given (only to an entry that
+    /// [`StrategyEntry::takes_population`]).
+    pub init: Option<&'a Population>,
 }
 
 /// What a strategy selects on beside fitness: the task measures it only then.
@@ -359,11 +371,10 @@ pub(crate) fn behaviour_line(c: &Config) -> String {
 /// Generation 0 of a NEAT population for `config`: `init`'s genomes (only
 /// they carry over: fitness, species and the champion were measured on
 /// another substrate and mean nothing here), or [`initial_population`].
-pub(crate) fn starting_population(
-    config: &Config,
-    spec: GenomeSpec,
-    init: Option<&Population>,
-) -> Result<Population> {
+pub(crate) fn starting_population(start: Start<'_>) -> Result<Population> {
+    let Start {
+        config, spec, init, ..
+    } = start;
     let (neat, seed) = (config.neat.clone(), config.experiment.seed);
     match init {
         Some(p) => Population::from_genomes(neat, spec, p.genomes().to_vec(), seed)
@@ -373,7 +384,7 @@ pub(crate) fn starting_population(
 }
 
 /// Refuses a starting population for a strategy that starts from minimal genomes.
-pub(crate) fn refuse_init(config: &Config, init: Option<&Population>) -> Result<()> {
+fn refuse_init(config: &Config, init: Option<&Population>) -> Result<()> {
     match init {
         None => Ok(()),
         Some(_) => Err(bad_input(format!(
@@ -395,7 +406,17 @@ impl Search {
         bounds: Bounds,
         init: Option<&Population>,
     ) -> Result<Search> {
-        (entry_of(config)?.build)(config, spec, bounds, init)
+        let entry = entry_of(config)?;
+        if !entry.takes_population {
+            refuse_init(config, init)?;
+        }
+        let init = init.filter(|_| entry.takes_population);
+        (entry.build)(Start {
+            config,
+            spec,
+            bounds,
+            init,
+        })
     }
 
     /// `strategy` as a run's search.

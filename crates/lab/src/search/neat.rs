@@ -2,12 +2,11 @@
 //! files are NEAT's own; it adds no columns and no files.
 
 use vivae_neat::driver::Evaluation;
-use vivae_neat::{Genome, GenomeSpec, Population};
+use vivae_neat::{Genome, Population};
 
-use crate::config::Config;
 use crate::error::Result;
 use crate::search::{
-    Bounds, Needs, RunStrategy, Search, StrategyEntry, starting_population, state_of,
+    Needs, RunStrategy, Search, Start, StrategyEntry, starting_population, state_of,
 };
 
 /// NEAT's registration.
@@ -26,13 +25,8 @@ pub static STRATEGY: StrategyEntry = StrategyEntry {
     report: |_, _, _| Ok(None),
 };
 
-fn build(
-    config: &Config,
-    spec: GenomeSpec,
-    _: Bounds,
-    init: Option<&Population>,
-) -> Result<Search> {
-    Ok(Search::of(starting_population(config, spec, init)?))
+fn build(start: Start<'_>) -> Result<Search> {
+    Ok(Search::of(starting_population(start)?))
 }
 
 impl RunStrategy for Population {

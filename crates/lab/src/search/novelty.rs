@@ -2,14 +2,12 @@
 //! archive's size and the novelty threshold to `generations.csv`.
 
 use vivae_neat::strategies::NoveltySearch;
-use vivae_neat::{Genome, GenomeSpec, NeatError, Population};
+use vivae_neat::{Genome, NeatError, Population};
 
-use crate::config::Config;
 use crate::error::Result;
 use crate::io::bad_input;
 use crate::search::{
-    Bounds, Needs, RunStrategy, Search, StrategyEntry, behaviour_line, starting_population,
-    state_of,
+    Needs, RunStrategy, Search, Start, StrategyEntry, behaviour_line, starting_population, state_of,
 };
 
 /// Novelty search's registration.
@@ -28,13 +26,9 @@ pub static STRATEGY: StrategyEntry = StrategyEntry {
     report: crate::search::named_report,
 };
 
-fn build(
-    config: &Config,
-    spec: GenomeSpec,
-    _: Bounds,
-    init: Option<&Population>,
-) -> Result<Search> {
-    let population = starting_population(config, spec, init)?;
+fn build(start: Start<'_>) -> Result<Search> {
+    let config = start.config;
+    let population = starting_population(start)?;
     let refused = |e: NeatError| bad_input(format!("strategy.novelty: {e}"));
     let params = config.strategy.novelty.clone();
     Ok(Search::of(

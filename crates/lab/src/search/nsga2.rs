@@ -7,7 +7,7 @@ use std::path::Path;
 
 use vivae_neat::driver::Strategy;
 use vivae_neat::strategies::{Nsga2, Nsga2Params};
-use vivae_neat::{Genome, GenomeSpec, NeatError, Population};
+use vivae_neat::{Genome, NeatError};
 
 use crate::config::Config;
 use crate::config::strategy::objective_among;
@@ -16,8 +16,8 @@ use crate::io::{bad_input, write_atomic};
 use crate::rundir::files;
 use crate::search::files::{FrontLine, jsonl};
 use crate::search::{
-    Bounds, FrontFigure, Needs, RunStrategy, Search, StrategyEntry, StrategyFigure, StrategyReport,
-    refuse_init, state_of,
+    FrontFigure, Needs, RunStrategy, Search, Start, StrategyEntry, StrategyFigure, StrategyReport,
+    state_of,
 };
 
 /// NSGA-II's registration.
@@ -54,13 +54,7 @@ fn report(dir: &Path, config: &Config, _robots: usize) -> Result<Option<Strategy
     }))
 }
 
-fn build(
-    config: &Config,
-    spec: GenomeSpec,
-    _: Bounds,
-    init: Option<&Population>,
-) -> Result<Search> {
-    refuse_init(config, init)?;
+fn build(Start { config, spec, .. }: Start<'_>) -> Result<Search> {
     let neat = config.neat.clone();
     let s = &config.strategy.nsga2;
     let nsga = Nsga2Params {
