@@ -32,6 +32,7 @@ mod style;
 pub mod world;
 
 pub use draw::{DrawError, DrawOptions, render_png, render_svg};
+pub use style::surface_color;
 pub use glam::DVec2;
 pub use physics::{FrictionTable, ParamError, PhysicsParams};
 pub use scenario::{
