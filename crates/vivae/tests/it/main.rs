@@ -20,6 +20,7 @@ mod es_hyperneat_runs_resume_identically_and_refuse_bad_keys;
 mod es_network_figure_draws_hidden_neurons_where_they_are;
 mod evaluation_is_thread_count_independent;
 mod every_strategy_resumes_bit_identical;
+mod export_runs_as_vivae_does;
 mod finished_run_and_retrain_neurons_only;
 mod first_hour_output_says_what_to_do_next;
 mod force_replaces_only_a_run;
