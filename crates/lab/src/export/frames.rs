@@ -12,8 +12,10 @@ use crate::tasks::driving::episode::Episode;
 use crate::tasks::driving::rollout::Drive;
 
 /// The ground of `world`'s scenario as an SVG picture, one pixel per
-/// scenario px: surfaces, marks and obstacles, no robots, title or legend.
-pub fn ground_svg(world: &World) -> Result<String> {
+/// scenario px: surfaces, marks and obstacles, no robots, title or legend;
+/// `crisp`: without anti-aliasing, so that a pixel has the colour of the
+/// surface under its centre, as the simulator's raster does.
+pub fn ground_svg(world: &World, crisp: bool) -> Result<String> {
     let mut scenario = world.scenario().clone();
     scenario.robots.clear();
     let ground = World::new(&scenario, world.params())
@@ -26,7 +28,15 @@ pub fn ground_svg(world: &World) -> Result<String> {
         scale: 1.0,
         legend: false,
     };
-    Ok(vivae_sim::render_svg(&ground, &opts))
+    let svg = vivae_sim::render_svg(&ground, &opts);
+    if !crisp {
+        return Ok(svg);
+    }
+    let (w, h) = (world.scenario().width(), world.scenario().height());
+    Ok(format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\">\
+         <g shape-rendering=\"crispEdges\">{svg}</g></svg>"
+    ))
 }
 
 /// A robot-centred frame of `ground` (from [`ground_svg`]): `size` × `size`
