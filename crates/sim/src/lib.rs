@@ -32,7 +32,6 @@ mod style;
 pub mod world;
 
 pub use draw::{DrawError, DrawOptions, render_png, render_svg};
-pub use style::surface_color;
 pub use glam::DVec2;
 pub use physics::{FrictionTable, ParamError, PhysicsParams};
 pub use scenario::{
@@ -43,6 +42,7 @@ pub use sensors::{
     DistanceGrid, DistanceSensors, GoalRadar, Sensor, SensorPlace, SurfaceGrid, SurfaceSensors,
     spread,
 };
+pub use style::surface_color;
 pub use world::{MovableState, PuckState, Robot, SurfaceHere, World, wrap_angle};
 
 /// The default scenario (`scenarios/roads.svg`): a road network with 5 robots.

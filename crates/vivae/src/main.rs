@@ -14,7 +14,9 @@ use vivae_lab::io::one_line;
 mod cli;
 mod portable_libm;
 
-use cli::{compare, config, drive_image, evolve, export, replay, report, resume, retrain, scenario, view};
+use cli::{
+    compare, config, drive_image, evolve, export, replay, report, resume, retrain, scenario, view,
+};
 
 /// HyperNEAT-controlled robots that learn to drive on roads (ViVAE).
 #[derive(Parser, Debug)]

@@ -27,7 +27,11 @@ fn lit(v: f64) -> String {
 pub fn header(e: &Exported) -> String {
     let net = &e.net;
     let mut h = String::new();
-    let _ = writeln!(h, "/* Written by vivae export: {}. */", clean(&e.description));
+    let _ = writeln!(
+        h,
+        "/* Written by vivae export: {}. */",
+        clean(&e.description)
+    );
     h.push_str("#ifndef VIVAE_CONTROLLER_H\n#define VIVAE_CONTROLLER_H\n\n");
     let _ = writeln!(h, "/* Substrate: {}. */", e.substrate);
     let _ = writeln!(h, "#define VIVAE_INPUTS {}", net.inputs);
@@ -68,17 +72,36 @@ fn clean(s: &str) -> String {
 pub fn source(e: &Exported, header_name: &str) -> String {
     let net = &e.net;
     let mut c = String::new();
-    let _ = writeln!(c, "/* Written by vivae export: {}. */", clean(&e.description));
+    let _ = writeln!(
+        c,
+        "/* Written by vivae export: {}. */",
+        clean(&e.description)
+    );
     let _ = writeln!(
         c,
         "/* Compile as C99 without FMA contraction (-ffp-contract=off) for vivae's bits. */"
     );
-    let _ = writeln!(c, "#include \"{header_name}\"\n#include <stdint.h>\n#include <string.h>\n");
+    let _ = writeln!(
+        c,
+        "#include \"{header_name}\"\n#include <stdint.h>\n#include <string.h>\n"
+    );
     c.push_str("#if defined(__clang__)\n#pragma STDC FP_CONTRACT OFF\n#endif\n\n");
     places(&mut c, e);
-    int_table(&mut c, "starts", &net.starts.iter().map(|&v| v as u64).collect::<Vec<_>>());
-    int_table(&mut c, "sources", &net.sources.iter().map(|&v| v as u64).collect::<Vec<_>>());
-    int_table(&mut c, "order", &net.order.iter().map(|&v| v as u64).collect::<Vec<_>>());
+    int_table(
+        &mut c,
+        "starts",
+        &net.starts.iter().map(|&v| v as u64).collect::<Vec<_>>(),
+    );
+    int_table(
+        &mut c,
+        "sources",
+        &net.sources.iter().map(|&v| v as u64).collect::<Vec<_>>(),
+    );
+    int_table(
+        &mut c,
+        "order",
+        &net.order.iter().map(|&v| v as u64).collect::<Vec<_>>(),
+    );
     real_table(&mut c, "bias", &net.bias);
     real_table(&mut c, "weights", &net.weights);
     c.push_str(&exp_function());

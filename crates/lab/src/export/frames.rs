@@ -42,7 +42,13 @@ pub fn ground_svg(world: &World, crisp: bool) -> Result<String> {
 /// A robot-centred frame of `ground` (from [`ground_svg`]): `size` × `size`
 /// pixels, `scale` pixels per scenario px, the robot at `pos` in the middle
 /// facing up; with the [`Camera`] that reads it (radius: half the frame).
-pub fn robot_view(ground: &str, pos: DVec2, heading: f64, size: u32, scale: f64) -> (String, Camera) {
+pub fn robot_view(
+    ground: &str,
+    pos: DVec2,
+    heading: f64,
+    size: u32,
+    scale: f64,
+) -> (String, Camera) {
     let c = f64::from(size) / 2.0;
     let svg = format!(
         "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{size}\" height=\"{size}\" viewBox=\"0 0 {size} {size}\">\

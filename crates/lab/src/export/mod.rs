@@ -111,7 +111,13 @@ impl StepNet {
         net
     }
 
-    fn empty(ni: usize, n: usize, bias: Vec<f64>, synchronous: bool, wheels: [usize; 2]) -> StepNet {
+    fn empty(
+        ni: usize,
+        n: usize,
+        bias: Vec<f64>,
+        synchronous: bool,
+        wheels: [usize; 2],
+    ) -> StepNet {
         StepNet {
             inputs: ni,
             nodes: n,
@@ -295,7 +301,9 @@ fn reading_of(name: &str) -> &'static str {
             "the surface under the place: 1 = the least friction (road) ... 0 = the most \
              (grass), (hi - friction)/(hi - lo) over the scenario's materials; 0 outside the arena"
         }
-        "distance" => "1 - (free length of the ray)/(range): 0 = nothing within range, 1 = touching",
+        "distance" => {
+            "1 - (free length of the ray)/(range): 0 = nothing within range, 1 = touching"
+        }
         _ => "the sensor's reading in [0, 1]",
     }
 }

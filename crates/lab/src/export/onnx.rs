@@ -41,7 +41,13 @@ impl Graph {
     }
 
     /// Node `op` of `inputs` into a fresh output (or `out`), with int attributes.
-    fn node(&mut self, op: &str, inputs: &[&str], out: Option<&str>, ints: &[(&str, i64)]) -> String {
+    fn node(
+        &mut self,
+        op: &str,
+        inputs: &[&str],
+        out: Option<&str>,
+        ints: &[(&str, i64)],
+    ) -> String {
         let out = out.map_or_else(|| self.fresh(&op.to_lowercase()), str::to_string);
         let mut n = Message::new();
         for i in inputs {
@@ -162,7 +168,13 @@ pub fn to_onnx(exported: &Exported) -> Vec<u8> {
     };
     let mut v = g.node("Concat", &["sensors", "state"], None, &[("axis", 1)]);
     let next = if net.synchronous {
-        update(&mut g, net, &v, &(0..n).collect::<Vec<_>>(), Some("next_state"))
+        update(
+            &mut g,
+            net,
+            &v,
+            &(0..n).collect::<Vec<_>>(),
+            Some("next_state"),
+        )
     } else {
         for nodes in levels(net) {
             let y = update(&mut g, net, &v, &nodes, None);

@@ -14,7 +14,11 @@ fn episode(config: &Config) -> Episode {
 
 /// Steps `net` through every recorded step of `genome`'s episode and
 /// returns how many genomes' wheels differed in any bit (0 expected).
-fn replays_bit_identically(config: &Config, genomes: usize, want: impl Fn(&StepNet) -> bool) -> usize {
+fn replays_bit_identically(
+    config: &Config,
+    genomes: usize,
+    want: impl Fn(&StepNet) -> bool,
+) -> usize {
     let exp = episode(config);
     let pop = Population::new(config.neat.clone(), exp.cppn_spec(), 3).unwrap();
     let mut checked = 0;
@@ -82,15 +86,30 @@ fn the_geometry_lists_every_input_where_the_simulator_reads_it() {
 fn formats_parse_by_name() {
     assert_eq!("onnx".parse::<Format>(), Ok(Format::Onnx));
     assert_eq!("c".parse::<Format>(), Ok(Format::C));
-    assert!("png".parse::<Format>().unwrap_err().contains("onnx, c or json"));
+    assert!(
+        "png"
+            .parse::<Format>()
+            .unwrap_err()
+            .contains("onnx, c or json")
+    );
 }
 
 /// A feed-forward net of three levels and a recurrent one, from their links.
 fn sparse(recurrent: bool) -> SparseNetwork {
     use vivae_neat::hyperneat::SparseLink;
-    let l = |source, target, weight| SparseLink { source, target, weight };
+    let l = |source, target, weight| SparseLink {
+        source,
+        target,
+        weight,
+    };
     // Inputs 0..3, wheels 3 and 4, hidden 5 and 6: 0,1 → 5 → 6 → wheels, 2 → 4.
-    let mut links = vec![l(0, 5, 1.3), l(1, 5, -0.7), l(5, 6, 2.1), l(6, 3, -1.9), l(6, 4, 0.4)];
+    let mut links = vec![
+        l(0, 5, 1.3),
+        l(1, 5, -0.7),
+        l(5, 6, 2.1),
+        l(6, 3, -1.9),
+        l(6, 4, 0.4),
+    ];
     links.extend([l(2, 4, 0.9), l(5, 3, 0.3)]);
     if recurrent {
         links.extend([l(3, 5, 0.8), l(6, 6, -0.5)]);
@@ -115,7 +134,11 @@ fn a_layered_or_recurrent_sparse_net_steps_as_vivae_does() {
             let x = [(t as f64 * 0.37).sin(), 0.5, -(t as f64) / 7.0];
             net.activate(&x, &mut want);
             let got = step.step(&x, &mut state, &mut scratch);
-            assert_eq!(got.map(f64::to_bits), want.map(f64::to_bits), "recurrent {recurrent}, step {t}");
+            assert_eq!(
+                got.map(f64::to_bits),
+                want.map(f64::to_bits),
+                "recurrent {recurrent}, step {t}"
+            );
         }
     }
 }

@@ -22,8 +22,12 @@ pub struct DriveImageArgs {
     /// A run directory or a genome JSON file (champion.json).
     pub source: PathBuf,
     /// PNG frames, in order (with --poses: the one top-down map).
-    #[arg(required = true, value_name = "PNG")]
+    #[arg(required_unless_present = "draw_map", value_name = "PNG")]
     pub frames: Vec<PathBuf>,
+    /// Only write the run's map as a top-down PNG for --poses (one pixel per
+    /// scenario px, no robots, no anti-aliasing), then stop.
+    #[arg(long, value_name = "PNG", conflicts_with_all = ["frames", "poses"])]
+    pub draw_map: Option<PathBuf>,
     /// A CSV of robot poses on the map (x,y,heading in scenario px and
     /// degrees clockwise from up; a header line is skipped): one frame each.
     #[arg(long, value_name = "CSV")]
@@ -35,7 +39,12 @@ pub struct DriveImageArgs {
     #[arg(long, value_name = "S", default_value_t = 1.0)]
     pub scale: f64,
     /// The robot's heading in each frame, degrees clockwise from the image's up.
-    #[arg(long, value_name = "DEG", default_value_t = 0.0, conflicts_with = "poses")]
+    #[arg(
+        long,
+        value_name = "DEG",
+        default_value_t = 0.0,
+        conflicts_with = "poses"
+    )]
     pub heading: f64,
     /// Pixels farther than this from the centre read 0 (an omnidirectional mirror's disc).
     #[arg(long, value_name = "PX")]
@@ -111,6 +120,14 @@ pub fn run(args: DriveImageArgs) -> anyhow::Result<ExitCode> {
         args.resolution.sensors,
         args.resolution.neurons,
     )?;
+    if let Some(path) = &args.draw_map {
+        let svg = vivae_lab::export::frames::ground_svg(chosen.episode.world(), true)?;
+        let png = vivae_sim::draw::svg_to_png(&svg, args.scale)
+            .map_err(|e| bad_input(format!("{}: {e}", path.display())))?;
+        vivae_lab::io::write_atomic(path, &png)?;
+        eprintln!("wrote {}", path.display());
+        return Ok(ExitCode::SUCCESS);
+    }
     let sensors = ImageSensors::new(&chosen.episode, None)?;
     let net: StepNet = Exported::new(&chosen.episode, &chosen.controller, "").net;
     let wheels = match &args.poses {
@@ -127,8 +144,16 @@ pub fn run(args: DriveImageArgs) -> anyhow::Result<ExitCode> {
             drive_frames(&net, &sensors, cameras)?
         }
         None => {
-            let frames: Vec<Image> = args.frames.iter().map(|f| read_png(f)).collect::<Result<_, _>>()?;
-            let centre = args.centre.as_deref().map(|c| pair(c, "--centre")).transpose()?;
+            let frames: Vec<Image> = args
+                .frames
+                .iter()
+                .map(|f| read_png(f))
+                .collect::<Result<_, _>>()?;
+            let centre = args
+                .centre
+                .as_deref()
+                .map(|c| pair(c, "--centre"))
+                .transpose()?;
             let cameras = frames.iter().map(|f| {
                 let centre = centre.unwrap_or([f.width as f64 / 2.0, f.height as f64 / 2.0]);
                 let c = Camera {

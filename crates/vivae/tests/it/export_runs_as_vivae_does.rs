@@ -19,7 +19,10 @@ fn guide_example() -> String {
     let guide =
         std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/guide.md"))
             .unwrap();
-    let start = guide.find("<!-- c-example -->\n```c\n").expect("the guide's C example") + 24;
+    let start = guide
+        .find("<!-- c-example -->\n```c\n")
+        .expect("the guide's C example")
+        + 24;
     let end = start + guide[start..].find("```\n<!-- /c-example -->").unwrap();
     guide[start..end].to_string()
 }
@@ -36,17 +39,33 @@ fn run_of(dir: &Path, name: &str, config_text: &str) -> PathBuf {
 /// Exports `run` as C (with `extra` flags) and builds the guide's example with it.
 fn build_c(dir: &Path, run: &Path, extra: &[&str]) -> PathBuf {
     let c = dir.join("controller.c");
-    ok(vivae().arg("export").arg(run).args(["--format", "c", "-o"]).arg(&c).args(extra));
+    ok(vivae()
+        .arg("export")
+        .arg(run)
+        .args(["--format", "c", "-o"])
+        .arg(&c)
+        .args(extra));
     std::fs::write(dir.join("drive.c"), guide_example()).unwrap();
     let exe = dir.join("drive");
     let status = Command::new("cc")
-        .args(["-std=c99", "-O2", "-Wall", "-Wextra", "-Werror", "-ffp-contract=off", "-o"])
+        .args([
+            "-std=c99",
+            "-O2",
+            "-Wall",
+            "-Wextra",
+            "-Werror",
+            "-ffp-contract=off",
+            "-o",
+        ])
         .arg(&exe)
         .arg(dir.join("drive.c"))
         .arg(&c)
         .status()
         .expect("cc (the C compiler Rust links with) runs");
-    assert!(status.success(), "the exported C file and the guide's example compile");
+    assert!(
+        status.success(),
+        "the exported C file and the guide's example compile"
+    );
     exe
 }
 
@@ -64,7 +83,12 @@ fn drive(exe: &Path, rec: &Recording) -> Vec<[f64; 2]> {
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    child.stdin.take().unwrap().write_all(input.as_bytes()).unwrap();
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(input.as_bytes())
+        .unwrap();
     let out = child.wait_with_output().unwrap();
     assert!(out.status.success());
     let text = String::from_utf8(out.stdout).unwrap();
@@ -92,7 +116,11 @@ fn c_matches(dir: &Path, run: &Path, sensors: Option<&str>, neurons: Option<&str
     let got = drive(&exe, &rec);
     assert_eq!(got.len(), rec.wheels.len());
     for (t, (g, w)) in got.iter().zip(&rec.wheels).enumerate() {
-        assert_eq!(g.map(f64::to_bits), w.map(f64::to_bits), "step {t}: C {g:?}, vivae {w:?}");
+        assert_eq!(
+            g.map(f64::to_bits),
+            w.map(f64::to_bits),
+            "step {t}: C {g:?}, vivae {w:?}"
+        );
     }
     // A controller that never turns would make the comparison weak.
     let turning = rec.wheels.iter().filter(|w| w[0] != w[1]).count();
@@ -119,9 +147,17 @@ fn an_es_hyperneat_champion_exports_to_c_bit_for_bit() {
 #[test]
 fn a_360_degree_run_evolves_resamples_and_exports() {
     let dir = scratch("export-360");
-    let run = run_of(&dir, "omni", "\n[surface_sensors]\nfov = 360.0\nangles = 8\n");
+    let run = run_of(
+        &dir,
+        "omni",
+        "\n[surface_sensors]\nfov = 360.0\nangles = 8\n",
+    );
     let json = dir.join("omni.json");
-    ok(vivae().arg("export").arg(&run).args(["--format", "json", "--sensors", "4x24", "-o"]).arg(&json));
+    ok(vivae()
+        .arg("export")
+        .arg(&run)
+        .args(["--format", "json", "--sensors", "4x24", "-o"])
+        .arg(&json));
     let doc: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
     let sheet = &doc["sheets"][0];
     assert_eq!(sheet["fov_deg"], 360.0);
@@ -130,7 +166,10 @@ fn a_360_degree_run_evolves_resamples_and_exports() {
     assert_eq!(sheet["places"][23]["angle_deg"], 180.0);
     c_matches(&dir, &run, Some("4x24"), Some("5x5"));
     // Re-sampled and drawn: the replay figure of the 360° sheet.
-    let out = ok(vivae().arg("replay").arg(&run).args(["--sensors", "4x24", "--steps", "100"]));
+    let out = ok(vivae()
+        .arg("replay")
+        .arg(&run)
+        .args(["--sensors", "4x24", "--steps", "100"]));
     assert!(out.contains("fitness="), "{out}");
     assert!(std::fs::read_dir(run.join("replay")).unwrap().count() > 0);
 }

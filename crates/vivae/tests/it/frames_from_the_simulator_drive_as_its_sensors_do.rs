@@ -23,7 +23,12 @@ struct Agreement {
 }
 
 /// Reads every recorded step's sensors from `frames` and drives `net` with them.
-fn agreement(net: &StepNet, sensors: &ImageSensors, rec: &Recording, frames: &[(Image, Camera)]) -> Agreement {
+fn agreement(
+    net: &StepNet,
+    sensors: &ImageSensors,
+    rec: &Recording,
+    frames: &[(Image, Camera)],
+) -> Agreement {
     let mut x = vec![0.0; rec.inputs];
     let mut readings_off = 0;
     for ((image, camera), want) in frames.iter().zip(rec.sensors.chunks_exact(rec.inputs)) {
@@ -72,7 +77,11 @@ fn frames_from_the_simulator_drive_as_its_sensors_do() {
         let share = a.readings_off as f64 / a.readings as f64;
         eprintln!(
             "camera frames at scale {scale}: {} of {} readings differ ({:.3}%), wheels within {:.2e}, {} of 150 steps off by > 0.05",
-            a.readings_off, a.readings, 100.0 * share, a.wheels_off, a.steps_off
+            a.readings_off,
+            a.readings,
+            100.0 * share,
+            a.wheels_off,
+            a.steps_off
         );
         assert!(share <= 0.01, "{share}");
         assert!(a.steps_off <= 150 / 8, "{} steps", a.steps_off);
@@ -87,7 +96,10 @@ fn frames_from_the_simulator_drive_as_its_sensors_do() {
     let share = a.readings_off as f64 / a.readings as f64;
     eprintln!(
         "top-down map: {} of {} readings differ ({:.3}%), wheels within {:.2e}",
-        a.readings_off, a.readings, 100.0 * share, a.wheels_off
+        a.readings_off,
+        a.readings,
+        100.0 * share,
+        a.wheels_off
     );
     assert!(share <= 0.001, "{share}");
     assert!(a.wheels_off <= 1e-6, "{}", a.wheels_off);
@@ -114,7 +126,11 @@ fn drive_image_prints_the_librarys_wheel_commands() {
         poses.push_str(&format!("{},{},{}\n", pos.x, pos.y, heading.to_degrees()));
     }
     let want = drive_frames(&net, &sensors, frames.iter().map(|(i, c)| (i, *c))).unwrap();
-    let csv = ok(vivae().arg("drive-image").arg(&run).args(&files).args(["--radius", "64"]));
+    let csv = ok(vivae()
+        .arg("drive-image")
+        .arg(&run)
+        .args(&files)
+        .args(["--radius", "64"]));
     let got: Vec<[f64; 2]> = (csv.lines().skip(1))
         .map(|l| {
             let v: Vec<f64> = l.split(',').map(|t| t.parse().unwrap()).collect();
@@ -124,7 +140,13 @@ fn drive_image_prints_the_librarys_wheel_commands() {
     assert_eq!(got, want);
     // The map and poses: the map's CSV is within the stated tolerance of the simulator's.
     std::fs::write(dir.join("poses.csv"), poses).unwrap();
-    write_png(&dir.join("map.png"), &ground);
+    ok(vivae()
+        .arg("drive-image")
+        .arg(&run)
+        .arg("--draw-map")
+        .arg(dir.join("map.png")));
+    let drawn = std::fs::read(dir.join("map.png")).unwrap();
+    assert_eq!(drawn, vivae_sim::draw::svg_to_png(&ground, 1.0).unwrap());
     let csv = ok(vivae()
         .arg("drive-image")
         .arg(&run)
@@ -135,10 +157,18 @@ fn drive_image_prints_the_librarys_wheel_commands() {
     assert_eq!(rows.len(), 20);
     for (row, w) in rows.iter().zip(&rec.wheels) {
         let v: Vec<f64> = row.split(',').map(|t| t.parse().unwrap()).collect();
-        assert!((v[1] - w[0]).abs() <= 0.05 && (v[2] - w[1]).abs() <= 0.05, "{row} vs {w:?}");
+        assert!(
+            (v[1] - w[0]).abs() <= 0.05 && (v[2] - w[1]).abs() <= 0.05,
+            "{row} vs {w:?}"
+        );
     }
     // Bad input is one line and exit 2.
-    let out = run_cmd(vivae().arg("drive-image").arg(&run).arg(dir.join("poses.csv")));
+    let out = run_cmd(
+        vivae()
+            .arg("drive-image")
+            .arg(&run)
+            .arg(dir.join("poses.csv")),
+    );
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("not a PNG image"));
 }
