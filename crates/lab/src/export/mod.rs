@@ -137,10 +137,10 @@ impl StepNet {
         let (ni, n) = (self.inputs, self.nodes);
         let mut indegree = vec![0usize; n];
         let mut out: Vec<Vec<usize>> = vec![Vec::new(); n];
-        for t in 0..n {
+        for (t, degree) in indegree.iter_mut().enumerate() {
             for &s in &self.sources[self.starts[t]..self.starts[t + 1]] {
                 if s >= ni {
-                    indegree[t] += 1;
+                    *degree += 1;
                     out[s - ni].push(t);
                 }
             }
