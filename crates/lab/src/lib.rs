@@ -32,6 +32,7 @@
 pub mod config;
 pub mod controller;
 pub mod error;
+pub mod export;
 pub mod io;
 pub mod run;
 pub mod rundir;
