@@ -562,19 +562,56 @@ mod tests {
 
     /// The paper's champion (tests/data) as a genome file recording an ES-HyperNEAT config.
     fn es_champion_source() -> Source {
+        let mut config = Config::default();
+        config.substrate.kind = vivae_lab::controller::es::SubstrateKind::EsHyperneat;
+        champion_source("es", &config)
+    }
+
+    /// The paper's champion (tests/data) as a genome file recording `config`.
+    fn champion_source(name: &str, config: &Config) -> Source {
         let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
         let text = std::fs::read_to_string(root.join("tests/data/paper-champion.json")).unwrap();
         let mut champion: Value = serde_json::from_str(&text).unwrap();
-        let mut config = Config::default();
-        config.substrate.kind = vivae_lab::controller::es::SubstrateKind::EsHyperneat;
-        champion["config"] = serde_json::to_value(&config).unwrap();
-        let dir = std::env::temp_dir().join(format!("vivae-view-es-{}", std::process::id()));
+        champion["config"] = serde_json::to_value(config).unwrap();
+        let dir = std::env::temp_dir().join(format!("vivae-view-{name}-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
-        let path = dir.join("es-champion.json");
+        let path = dir.join(format!("{name}-champion.json"));
         std::fs::write(&path, champion.to_string()).unwrap();
         let source = Source::load(Some(&path), None).unwrap();
         let _ = std::fs::remove_dir_all(&dir);
         source
+    }
+
+    #[test]
+    fn a_360_degree_sheet_drives_and_resamples_in_the_viewer() {
+        let mut config = Config::default();
+        config.surface_sensors.fov = 360.0;
+        config.surface_sensors.angles = 8;
+        with_sim_of(&champion_source("omni", &config), |sim, source, snap| {
+            for (resolution, n) in [("3x8", 24), ("4x24", 96), ("2x5", 10)] {
+                if resolution != "3x8" {
+                    let msg = format!(
+                        r#"{{"type":"resolution","sensors":"{resolution}","neurons":"5x5"}}"#
+                    );
+                    sim.handle(&msg, source, snap).unwrap();
+                }
+                let scene: Value = serde_json::from_str(&sim.scene_msg(source)).unwrap();
+                assert_eq!(scene["sensors"], resolution);
+                let nodes: Vec<[f64; 2]> =
+                    serde_json::from_value(scene["sensor_nodes"].clone()).unwrap();
+                assert_eq!(nodes.len(), n);
+                // The sheet looks all round: its angles reach behind the robot on both sides.
+                let (lo, hi) = (nodes.iter().map(|p| p[1]))
+                    .fold((0.0f64, 0.0f64), |(lo, hi), a| (lo.min(a), hi.max(a)));
+                assert!(lo < -3.1 && hi > 3.1, "{lo} {hi}");
+                sim.handle(r#"{"type":"step","n":30}"#, source, snap)
+                    .unwrap();
+                let frame: Value = serde_json::from_str(&sim.frame_msg()).unwrap();
+                let sensors: Vec<f64> = serde_json::from_value(frame["sensors"].clone()).unwrap();
+                assert_eq!(sensors.len(), 3 * n, "x, y and value of each sensor");
+                assert!(sensors.iter().all(|v| v.is_finite()));
+            }
+        });
     }
 
     #[test]
