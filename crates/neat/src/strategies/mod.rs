@@ -67,7 +67,22 @@ pub(crate) struct Breeding<'a, R: Rng + ?Sized> {
     pub rng: &'a mut R,
 }
 
-impl<R: Rng + ?Sized> Breeding<'_, R> {
+impl<'a, R: Rng + ?Sized> Breeding<'a, R> {
+    /// Borrows what breeding needs from a strategy's state.
+    pub fn new(
+        spec: &'a GenomeSpec,
+        params: &'a NeatParams,
+        tracker: &'a mut InnovationTracker,
+        rng: &'a mut R,
+    ) -> Self {
+        Breeding {
+            spec,
+            params,
+            tracker,
+            rng,
+        }
+    }
+
     /// A child of `a` (crossed with `b` if given, the fitter parent giving
     /// the disjoint genes), then mutated as NEAT does: a crossover child
     /// skips mutation with `mate_only_probability`.
@@ -103,6 +118,20 @@ impl<R: Rng + ?Sized> Breeding<'_, R> {
         }
     }
 
+    /// The next generation in place of `batch`: `n` children bred as
+    /// [`Breeding::children`] breeds them (`crossover` their crossover
+    /// probability); `generation` counts it.
+    pub fn next_batch<'g>(
+        &mut self,
+        (batch, generation): (&mut Vec<Genome>, &mut u32),
+        (n, crossover): (usize, f64),
+        pick: impl FnMut(&mut R) -> (&'g Genome, f64),
+    ) {
+        batch.clear();
+        self.children(n, crossover, batch, pick);
+        *generation += 1;
+    }
+
     /// `n` minimal genomes (NEAT's generation 0).
     pub fn minimal(&mut self, n: usize) -> Vec<Genome> {
         (0..n)
@@ -122,14 +151,14 @@ pub(crate) fn first_batch(
 ) -> (Pcg64, InnovationTracker, Vec<Genome>) {
     let mut rng = Pcg64::seed_from_u64(seed);
     let mut tracker = InnovationTracker::new((spec.inputs + spec.outputs) as u32);
-    let batch = Breeding {
-        spec,
-        params,
-        tracker: &mut tracker,
-        rng: &mut rng,
-    }
-    .minimal(n);
+    let batch = Breeding::new(spec, params, &mut tracker, &mut rng).minimal(n);
     (rng, tracker, batch)
+}
+
+/// Checks NEAT's settings, then the genome spec.
+pub(crate) fn check_neat(params: &NeatParams, spec: &GenomeSpec) -> Result<(), NeatError> {
+    params.validate()?;
+    spec.validate()
 }
 
 /// One evaluation per genome, or [`NeatError::FitnessCount`].
