@@ -107,32 +107,18 @@ impl Network for FeedForwardNetwork {
 mod tests {
     use super::*;
     use crate::activation::Activation;
-    use crate::genome::NodeKind;
-    use crate::test_genes::{link_if as link, node};
+    use crate::test_genes::genome;
 
     #[test]
     fn computes_hand_made_network() {
         use Activation::*;
-        use NodeKind::*;
         // out(2) = bsig(0.5*x0 + 2*h), h(4) = gauss(x1 - x0), dead(5) feeds nothing.
-        let g = Genome::from_parts(
-            vec![
-                node(0, Input, Linear),
-                node(1, Input, Linear),
-                node(2, Output, BipolarSigmoid),
-                node(4, Hidden, Gaussian),
-                node(5, Hidden, Sine),
-            ],
-            vec![
-                link(0, 0, 2, 0.5, true),
-                link(1, 1, 2, 9.0, false),
-                link(2, 1, 4, 1.0, true),
-                link(3, 4, 2, 2.0, true),
-                link(4, 0, 4, -1.0, true),
-                link(5, 0, 5, 1.0, true),
-            ],
-        )
-        .unwrap();
+        let g = genome(
+            "0 input linear, 1 input linear, 2 output bipolar_sigmoid, 4 hidden gaussian, \
+             5 hidden sine",
+            "0: 0 -> 2 0.5, 1: 1 -> 2 9.0 off, 2: 1 -> 4 1.0, 3: 4 -> 2 2.0, 4: 0 -> 4 -1.0, \
+             5: 0 -> 5 1.0",
+        );
         let mut net = FeedForwardNetwork::from_genome(&g);
         assert_eq!(net.num_computed(), 2, "the dead-end node is pruned");
         let mut out = [0.0];
@@ -146,22 +132,10 @@ mod tests {
 
     #[test]
     fn cycles_do_not_hang_or_panic() {
-        use Activation::*;
-        use NodeKind::*;
-        let g = Genome::from_parts(
-            vec![
-                node(0, Input, Linear),
-                node(1, Output, Linear),
-                node(2, Hidden, Linear),
-            ],
-            vec![
-                link(0, 0, 2, 1.0, true),
-                link(1, 2, 1, 1.0, true),
-                link(2, 1, 2, 1.0, true),
-                link(3, 1, 1, 1.0, true),
-            ],
-        )
-        .unwrap();
+        let g = genome(
+            "0 input linear, 1 output linear, 2 hidden linear",
+            "0: 0 -> 2 1.0, 1: 2 -> 1 1.0, 2: 1 -> 2 1.0, 3: 1 -> 1 1.0",
+        );
         let mut net = FeedForwardNetwork::from_genome(&g);
         let mut out = [0.0];
         net.activate(&[2.0], &mut out);
