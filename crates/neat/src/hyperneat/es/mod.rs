@@ -42,7 +42,7 @@ use crate::feedforward::FeedForwardNetwork;
 use crate::genome::Genome;
 use crate::network::Network;
 use discover::{Found, discover};
-use query::OneByOne;
+use query::{Exploration, OneByOne};
 
 /// The fixed part of an ES-HyperNEAT substrate: input and output positions
 /// and which CPPN outputs give weights, biases and link expression.
@@ -108,13 +108,21 @@ pub fn decode_es(
         return Err(HyperError::CppnInputs(cppn.num_inputs()));
     }
     let mut q = OneByOne::new(cppn);
-    let output = layout.weight_output;
+    let (output, p) = (layout.weight_output, params);
     discover(
         &mut q,
         layout,
         params,
-        |q, node, outgoing, found: &mut Vec<Found>| {
-            reference::explore(q, output, node, outgoing, params, found)
+        |q, fixed, found: &mut Vec<Found>| {
+            reference::explore(
+                &mut Exploration {
+                    q,
+                    output,
+                    fixed,
+                    p,
+                },
+                found,
+            )
         },
     )
 }
@@ -134,13 +142,21 @@ pub fn decode_es_genome(
         return Err(HyperError::CppnInputs(cppn.num_inputs()));
     }
     let mut explorer = fast::Explorer::default();
-    let output = layout.weight_output;
+    let (output, p) = (layout.weight_output, params);
     discover(
         &mut cppn,
         layout,
         params,
-        |q, node, outgoing, found: &mut Vec<Found>| {
-            explorer.explore(q, output, node, outgoing, params, found)
+        |q, fixed, found: &mut Vec<Found>| {
+            explorer.explore(
+                &mut Exploration {
+                    q,
+                    output,
+                    fixed,
+                    p,
+                },
+                found,
+            )
         },
     )
 }
