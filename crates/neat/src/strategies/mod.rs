@@ -27,12 +27,18 @@
 //!   generation, what was told of it, the best ever). Its parts stay fields
 //!   of each strategy's serialised state, so that every checkpoint keeps its
 //!   JSON (field names and order); `ToldBatch` borrows them, answers
-//!   `generation`, `champion`, `best_ever` and `stats`, checks them when a
-//!   checkpoint is read, and `told::record` records a told batch, the same
-//!   way for all.
+//!   `ask`, `generation`, `champion`, `best_ever` and `stats`, checks them
+//!   when a checkpoint is read, and `told::record` records a told batch, the
+//!   same way for all. Its macros write what would otherwise be repeated
+//!   per strategy: `impl_told` (the told record's fitness),
+//!   `own_batch_state` (`told_batch()` of a state holding its own batch),
+//!   `own_batch_strategy` (the public type and its checked restore) and
+//!   `told_batch_accessors` (the `Strategy` methods).
 //! * This file: NEAT's breeding (`Breeding`: a child by crossover +
 //!   mutation over one innovation history, a batch of them from any parent
-//!   selection, generation 0 in `first_batch`) and the shared checks.
+//!   selection, the next batch in place of the last in `next_batch`,
+//!   generation 0 in `first_batch`) and the shared checks (`check_neat`,
+//!   `check_count`).
 //!
 //! The old paths still work: `strategies::knn`, and every archive type is
 //! also re-exported from its strategy's module (`map_elites::Cells`,
