@@ -130,19 +130,17 @@ impl Plan {
         let (n_in, num_outputs) = (self.num_inputs, self.output_slots.len());
         assert_io(inputs.len(), outputs.len(), n_in, num_outputs);
         values[..n_in].copy_from_slice(inputs);
-        let value = |k: usize, act: Activation, values: &[f64]| {
-            let (sources, weights) = self.links(k);
-            act.apply(weighted_sum(sources, weights, values))
-        };
         match next {
             None => {
                 for (k, &act) in self.acts.iter().enumerate() {
-                    values[n_in + k] = value(k, act, values);
+                    let (sources, weights) = self.links(k);
+                    values[n_in + k] = act.apply(weighted_sum(sources, weights, values));
                 }
             }
             Some(next) => {
                 for (k, &act) in self.acts.iter().enumerate() {
-                    next[k] = value(k, act, values);
+                    let (sources, weights) = self.links(k);
+                    next[k] = act.apply(weighted_sum(sources, weights, values));
                 }
                 values[n_in..].copy_from_slice(next);
             }
