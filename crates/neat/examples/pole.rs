@@ -258,22 +258,14 @@ fn spec(markov: bool) -> GenomeSpec {
 fn pole_params(markov: bool) -> NeatParams {
     NeatParams {
         population_size: if markov { 150 } else { 1000 },
-        weight_amplitude: 8.0,
         initial_weight_range: if markov { 1.0 } else { 2.5 },
-        compatibility_threshold: 3.0,
-        c_excess: 1.0,
-        c_disjoint: 1.0,
-        c_weight: 0.4,
-        c_activation: 0.0,
-        add_node_probability: 0.03,
         add_link_probability: 0.05,
-        weight_mutation_probability: 0.9,
+        // NEAT's default replacement rate (10 %), not plain NEAT's 20 %.
+        weight_replace_probability: NeatParams::default().weight_replace_probability,
         weight_perturb_power: if markov { 2.5 } else { 1.0 },
-        toggle_enable_probability: 0.0,
-        activation_mutation_probability: 0.0,
         // Population 1000 at threshold 3.0 splits into ~170 tiny species; steer to 20.
         target_species: if markov { None } else { Some(20) },
-        ..NeatParams::default()
+        ..NeatParams::plain_neat()
     }
 }
 

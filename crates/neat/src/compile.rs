@@ -17,7 +17,7 @@ use crate::genome::{Genome, NodeGene, NodeKind};
 /// computed node `k`. Only nodes from which an output can be reached are kept.
 /// Should the enabled links contain a cycle, the links closing it are dropped
 /// and [`Plan::cyclic`] is set.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Default)]
 pub(crate) struct Plan {
     /// Number of input slots.
     pub num_inputs: usize,
@@ -38,15 +38,7 @@ pub(crate) struct Plan {
 impl Plan {
     /// Compiles the enabled links of `genome`.
     pub fn compile(genome: &Genome) -> Plan {
-        let mut plan = Plan {
-            num_inputs: 0,
-            acts: Vec::new(),
-            conn_start: Vec::new(),
-            conn_src: Vec::new(),
-            conn_weight: Vec::new(),
-            output_slots: Vec::new(),
-            cyclic: false,
-        };
+        let mut plan = Plan::default();
         plan.recompile(genome);
         plan
     }
@@ -113,7 +105,53 @@ impl Plan {
         );
     }
 
+    /// Slots in all: the inputs and the computed nodes.
+    pub fn slots(&self) -> usize {
+        self.num_inputs + self.acts.len()
+    }
+
+    /// One activation of a network evaluating this plan, the sparse loop of
+    /// every network of the crate (the [`Network`] contract): `inputs` into
+    /// the first slots of `values`, then each computed node `k`'s
+    /// `act(Σ w·value)` read from `values`, written to `values[num_inputs + k]`
+    /// at once (feed-forward: later nodes read it) or, given `next`, to
+    /// `next[k]`, copied to `values` once all are computed (a synchronous,
+    /// recurrent update); then the output slots into `outputs`.
+    ///
+    /// [`Network`]: crate::network::Network
+    #[inline(always)]
+    pub fn activate(
+        &self,
+        inputs: &[f64],
+        outputs: &mut [f64],
+        values: &mut [f64],
+        next: Option<&mut [f64]>,
+    ) {
+        let (n_in, num_outputs) = (self.num_inputs, self.output_slots.len());
+        assert_io(inputs.len(), outputs.len(), n_in, num_outputs);
+        values[..n_in].copy_from_slice(inputs);
+        match next {
+            None => {
+                for (k, &act) in self.acts.iter().enumerate() {
+                    let (sources, weights) = self.links(k);
+                    values[n_in + k] = act.apply(weighted_sum(sources, weights, values));
+                }
+            }
+            Some(next) => {
+                for (k, &act) in self.acts.iter().enumerate() {
+                    let (sources, weights) = self.links(k);
+                    next[k] = act.apply(weighted_sum(sources, weights, values));
+                }
+                values[n_in..].copy_from_slice(next);
+            }
+        }
+        for (o, &s) in outputs.iter_mut().zip(&self.output_slots) {
+            *o = values[s as usize];
+        }
+    }
+
     /// Incoming links of computed node `k`: source slots and weights.
+    #[inline(always)]
     pub fn links(&self, k: usize) -> (&[u32], &[f64]) {
         links_of(&self.conn_start, &self.conn_src, &self.conn_weight, k)
     }

@@ -361,47 +361,25 @@ fn too_many_disjoint(ga: &[Gene], gb: &[Gene], limit: usize) -> bool {
 mod tests {
     use super::*;
     use crate::activation::Activation;
-    use crate::genome::NodeKind;
-    use crate::test_genes::{link, node};
+    use crate::test_genes::genome;
 
     /// Hand-made pair: a has innovations {0,1,2,3,7}, b has {0,1,4,5}.
     /// Matching {0,1}; disjoint {2,3} ∪ {4,5} = 4; excess {7} = 1.
     fn pair(target_fn_b: Activation) -> (Genome, Genome) {
-        use Activation::*;
-        use NodeKind::*;
-        let a = Genome::from_parts(
-            vec![
-                node(0, Input, Linear),
-                node(1, Input, Linear),
-                node(2, Output, BipolarSigmoid),
-                node(3, Hidden, Gaussian),
-                node(4, Hidden, Sine),
-            ],
-            vec![
-                link(0, 0, 3, 1.0),
-                link(1, 3, 2, 0.5),
-                link(2, 1, 2, 0.0),
-                link(3, 0, 2, 0.0),
-                link(7, 1, 4, 0.0),
-            ],
-        )
-        .unwrap();
-        let b = Genome::from_parts(
-            vec![
-                node(0, Input, Linear),
-                node(1, Input, Linear),
-                node(2, Output, BipolarSigmoid),
-                node(3, Hidden, target_fn_b),
-                node(5, Hidden, Abs),
-            ],
-            vec![
-                link(0, 0, 3, -1.0),
-                link(1, 3, 2, 1.5),
-                link(4, 1, 5, 0.0),
-                link(5, 5, 2, 0.0),
-            ],
-        )
-        .unwrap();
+        let a = genome(
+            "0 input linear, 1 input linear, 2 output bipolar_sigmoid, 3 hidden gaussian, \
+             4 hidden sine",
+            "0: 0 -> 3 1.0, 1: 3 -> 2 0.5, 2: 1 -> 2 0.0, 3: 0 -> 2 0.0, 7: 1 -> 4 0.0",
+        );
+        let target_fn_b = serde_json::to_string(&target_fn_b).unwrap();
+        let b = genome(
+            &format!(
+                "0 input linear, 1 input linear, 2 output bipolar_sigmoid, \
+                 3 hidden {}, 5 hidden abs",
+                target_fn_b.trim_matches('"')
+            ),
+            "0: 0 -> 3 -1.0, 1: 3 -> 2 1.5, 4: 1 -> 5 0.0, 5: 5 -> 2 0.0",
+        );
         (a, b)
     }
 

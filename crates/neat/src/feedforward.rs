@@ -1,7 +1,6 @@
 //! The acyclic phenotype (the CPPN): flat arrays in topological order, one pass.
 
-use crate::activation::Activation;
-use crate::compile::{Plan, assert_io, links_of, weighted_sum};
+use crate::compile::{Plan, assert_io};
 use crate::genome::Genome;
 use crate::network::Network;
 
@@ -13,56 +12,27 @@ use crate::network::Network;
 /// compiled-CPPN ordering, shared with the batched substrate decoder.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FeedForwardNetwork {
-    num_inputs: usize,
-    /// One value per slot: inputs first, then computed nodes in evaluation order.
+    /// Inputs first, then computed nodes in evaluation order, with their links.
+    plan: Plan,
+    /// One value per slot of the plan.
     values: Vec<f64>,
-    /// Activation of computed node k (slot `num_inputs + k`).
-    acts: Vec<Activation>,
-    /// Incoming links of computed node k are `conn_start[k]..conn_start[k + 1]`.
-    conn_start: Vec<u32>,
-    conn_src: Vec<u32>,
-    conn_weight: Vec<f64>,
-    /// Slot of each output, in output order.
-    output_slots: Vec<u32>,
 }
 
 impl FeedForwardNetwork {
     /// Compiles a genome's enabled links into an evaluation plan.
     pub fn from_genome(genome: &Genome) -> FeedForwardNetwork {
         let plan = Plan::compile(genome);
-        FeedForwardNetwork {
-            num_inputs: plan.num_inputs,
-            values: vec![0.0; plan.num_inputs + plan.acts.len()],
-            acts: plan.acts,
-            conn_start: plan.conn_start,
-            conn_src: plan.conn_src,
-            conn_weight: plan.conn_weight,
-            output_slots: plan.output_slots,
-        }
+        let values = vec![0.0; plan.slots()];
+        FeedForwardNetwork { plan, values }
     }
 
     /// Makes this network the network of `genome`, reusing its memory: the
     /// same network as [`FeedForwardNetwork::from_genome`], without allocating
     /// once the arrays are large enough (for evaluating many genomes in turn).
     pub fn recompile(&mut self, genome: &Genome) {
-        let mut plan = Plan {
-            num_inputs: self.num_inputs,
-            acts: std::mem::take(&mut self.acts),
-            conn_start: std::mem::take(&mut self.conn_start),
-            conn_src: std::mem::take(&mut self.conn_src),
-            conn_weight: std::mem::take(&mut self.conn_weight),
-            output_slots: std::mem::take(&mut self.output_slots),
-            cyclic: false,
-        };
-        plan.recompile(genome);
-        self.num_inputs = plan.num_inputs;
+        self.plan.recompile(genome);
         self.values.clear();
-        self.values.resize(plan.num_inputs + plan.acts.len(), 0.0);
-        self.acts = plan.acts;
-        self.conn_start = plan.conn_start;
-        self.conn_src = plan.conn_src;
-        self.conn_weight = plan.conn_weight;
-        self.output_slots = plan.output_slots;
+        self.values.resize(self.plan.slots(), 0.0);
     }
 
     /// Feeds `L` input vectors at once and writes the `L` output vectors:
@@ -79,18 +49,17 @@ impl FeedForwardNetwork {
         outputs: &mut [[f64; L]],
         values: &mut Vec<[f64; L]>,
     ) {
+        let plan = &self.plan;
         assert_io(
             inputs.len(),
             outputs.len(),
-            self.num_inputs,
-            self.output_slots.len(),
+            plan.num_inputs,
+            plan.output_slots.len(),
         );
-        let n_in = self.num_inputs;
         values.clear();
         values.extend_from_slice(inputs);
-        for (k, &act) in self.acts.iter().enumerate() {
-            let (sources, weights) =
-                links_of(&self.conn_start, &self.conn_src, &self.conn_weight, k);
+        for (k, &act) in plan.acts.iter().enumerate() {
+            let (sources, weights) = plan.links(k);
             let mut sum = [0.0; L];
             for (&src, &w) in sources.iter().zip(weights) {
                 let v = &values[src as usize];
@@ -99,51 +68,36 @@ impl FeedForwardNetwork {
                 }
             }
             values.push(sum.map(|x| act.apply(x)));
-            debug_assert_eq!(values.len(), n_in + k + 1);
+            debug_assert_eq!(values.len(), plan.num_inputs + k + 1);
         }
-        for (o, &s) in outputs.iter_mut().zip(&self.output_slots) {
+        for (o, &s) in outputs.iter_mut().zip(&plan.output_slots) {
             *o = values[s as usize];
         }
     }
 
     /// Number of computed (hidden and output) nodes actually evaluated.
     pub fn num_computed(&self) -> usize {
-        self.acts.len()
+        self.plan.acts.len()
     }
 
     /// Number of links actually evaluated.
     pub fn num_links(&self) -> usize {
-        self.conn_src.len()
+        self.plan.conn_src.len()
     }
 }
 
 impl Network for FeedForwardNetwork {
     fn num_inputs(&self) -> usize {
-        self.num_inputs
+        self.plan.num_inputs
     }
 
     fn num_outputs(&self) -> usize {
-        self.output_slots.len()
+        self.plan.output_slots.len()
     }
 
     #[inline]
     fn activate(&mut self, inputs: &[f64], outputs: &mut [f64]) {
-        assert_io(
-            inputs.len(),
-            outputs.len(),
-            self.num_inputs,
-            self.output_slots.len(),
-        );
-        let n_in = self.num_inputs;
-        self.values[..n_in].copy_from_slice(inputs);
-        for (k, &act) in self.acts.iter().enumerate() {
-            let (sources, weights) =
-                links_of(&self.conn_start, &self.conn_src, &self.conn_weight, k);
-            self.values[n_in + k] = act.apply(weighted_sum(sources, weights, &self.values));
-        }
-        for (o, &s) in outputs.iter_mut().zip(&self.output_slots) {
-            *o = self.values[s as usize];
-        }
+        self.plan.activate(inputs, outputs, &mut self.values, None);
     }
 
     fn reset(&mut self) {}
@@ -152,32 +106,19 @@ impl Network for FeedForwardNetwork {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::genome::NodeKind;
-    use crate::test_genes::{link_if as link, node};
+    use crate::activation::Activation;
+    use crate::test_genes::genome;
 
     #[test]
     fn computes_hand_made_network() {
         use Activation::*;
-        use NodeKind::*;
         // out(2) = bsig(0.5*x0 + 2*h), h(4) = gauss(x1 - x0), dead(5) feeds nothing.
-        let g = Genome::from_parts(
-            vec![
-                node(0, Input, Linear),
-                node(1, Input, Linear),
-                node(2, Output, BipolarSigmoid),
-                node(4, Hidden, Gaussian),
-                node(5, Hidden, Sine),
-            ],
-            vec![
-                link(0, 0, 2, 0.5, true),
-                link(1, 1, 2, 9.0, false),
-                link(2, 1, 4, 1.0, true),
-                link(3, 4, 2, 2.0, true),
-                link(4, 0, 4, -1.0, true),
-                link(5, 0, 5, 1.0, true),
-            ],
-        )
-        .unwrap();
+        let g = genome(
+            "0 input linear, 1 input linear, 2 output bipolar_sigmoid, 4 hidden gaussian, \
+             5 hidden sine",
+            "0: 0 -> 2 0.5, 1: 1 -> 2 9.0 off, 2: 1 -> 4 1.0, 3: 4 -> 2 2.0, 4: 0 -> 4 -1.0, \
+             5: 0 -> 5 1.0",
+        );
         let mut net = FeedForwardNetwork::from_genome(&g);
         assert_eq!(net.num_computed(), 2, "the dead-end node is pruned");
         let mut out = [0.0];
@@ -191,22 +132,10 @@ mod tests {
 
     #[test]
     fn cycles_do_not_hang_or_panic() {
-        use Activation::*;
-        use NodeKind::*;
-        let g = Genome::from_parts(
-            vec![
-                node(0, Input, Linear),
-                node(1, Output, Linear),
-                node(2, Hidden, Linear),
-            ],
-            vec![
-                link(0, 0, 2, 1.0, true),
-                link(1, 2, 1, 1.0, true),
-                link(2, 1, 2, 1.0, true),
-                link(3, 1, 1, 1.0, true),
-            ],
-        )
-        .unwrap();
+        let g = genome(
+            "0 input linear, 1 output linear, 2 hidden linear",
+            "0: 0 -> 2 1.0, 1: 2 -> 1 1.0, 2: 1 -> 2 1.0, 3: 1 -> 1 1.0",
+        );
         let mut net = FeedForwardNetwork::from_genome(&g);
         let mut out = [0.0];
         net.activate(&[2.0], &mut out);

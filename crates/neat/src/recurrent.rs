@@ -3,7 +3,7 @@
 use std::collections::BTreeMap;
 
 use crate::activation::Activation;
-use crate::compile::{assert_io, ids_of, links_of, weighted_sum};
+use crate::compile::{Plan, ids_of};
 use crate::genome::{Genome, NodeKind};
 use crate::network::Network;
 
@@ -11,16 +11,12 @@ use crate::network::Network;
 /// computes `act(Σ w·state)` from the previous state at once (synchronous update).
 #[derive(Debug, Clone, PartialEq)]
 pub struct RecurrentNetwork {
-    num_inputs: usize,
-    /// Current value of every slot (inputs first, then the other nodes by id).
+    /// Inputs first, then the other nodes by id, with all their links.
+    plan: Plan,
+    /// Current value of every slot.
     state: Vec<f64>,
     /// Scratch for the synchronous update of the non-input slots.
     next: Vec<f64>,
-    acts: Vec<Activation>,
-    conn_start: Vec<u32>,
-    conn_src: Vec<u32>,
-    conn_weight: Vec<f64>,
-    output_slots: Vec<u32>,
 }
 
 impl RecurrentNetwork {
@@ -52,46 +48,36 @@ impl RecurrentNetwork {
             }
             conn_start.push(conn_src.len() as u32);
         }
-        RecurrentNetwork {
+        let plan = Plan {
             num_inputs: inputs.len(),
-            state: vec![0.0; inputs.len() + others.len()],
-            next: vec![0.0; others.len()],
             acts,
             conn_start,
             conn_src,
             conn_weight,
             output_slots: outputs.iter().map(|o| slot[o]).collect(),
+            // Nothing is dropped: every link reads the previous state.
+            cyclic: false,
+        };
+        RecurrentNetwork {
+            state: vec![0.0; plan.slots()],
+            next: vec![0.0; others.len()],
+            plan,
         }
     }
 }
 
 impl Network for RecurrentNetwork {
     fn num_inputs(&self) -> usize {
-        self.num_inputs
+        self.plan.num_inputs
     }
 
     fn num_outputs(&self) -> usize {
-        self.output_slots.len()
+        self.plan.output_slots.len()
     }
 
     fn activate(&mut self, inputs: &[f64], outputs: &mut [f64]) {
-        assert_io(
-            inputs.len(),
-            outputs.len(),
-            self.num_inputs,
-            self.output_slots.len(),
-        );
-        let n_in = self.num_inputs;
-        self.state[..n_in].copy_from_slice(inputs);
-        for (k, &act) in self.acts.iter().enumerate() {
-            let (sources, weights) =
-                links_of(&self.conn_start, &self.conn_src, &self.conn_weight, k);
-            self.next[k] = act.apply(weighted_sum(sources, weights, &self.state));
-        }
-        self.state[n_in..].copy_from_slice(&self.next);
-        for (o, &s) in outputs.iter_mut().zip(&self.output_slots) {
-            *o = self.state[s as usize];
-        }
+        let next = Some(&mut self.next[..]);
+        self.plan.activate(inputs, outputs, &mut self.state, next);
     }
 
     fn reset(&mut self) {

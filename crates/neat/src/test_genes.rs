@@ -1,7 +1,7 @@
 //! Genes written out by hand, for the unit tests' small genomes.
 
 use crate::activation::Activation;
-use crate::genome::{LinkGene, NodeGene, NodeKind};
+use crate::genome::{Genome, LinkGene, NodeGene, NodeKind};
 
 /// A node gene.
 pub(crate) fn node(id: u32, kind: NodeKind, activation: Activation) -> NodeGene {
@@ -26,4 +26,40 @@ pub(crate) fn link_if(innovation: u32, from: u32, to: u32, weight: f64, enabled:
 /// An enabled link gene.
 pub(crate) fn link(innovation: u32, from: u32, to: u32, weight: f64) -> LinkGene {
     link_if(innovation, from, to, weight, true)
+}
+
+/// A genome written out in one line per part: `nodes` as
+/// `"id kind activation, ..."` (serde's snake_case names, e.g.
+/// `"0 input linear, 2 output bipolar_sigmoid"`), `links` as
+/// `"innovation: from -> to weight, ..."`, a link followed by `off` disabled.
+pub(crate) fn genome(nodes: &str, links: &str) -> Genome {
+    let name = |s: &str| format!("\"{s}\"");
+    let nodes = nodes.split(',').map(|n| {
+        let [id, kind, act] = words(n);
+        let kind: NodeKind = serde_json::from_str(&name(kind)).expect("a node kind");
+        let act: Activation = serde_json::from_str(&name(act)).expect("an activation");
+        node(id.parse().expect("a node id"), kind, act)
+    });
+    let links = links.split(',').map(|l| {
+        let l = l.replace([':'], " ").replace("->", " ");
+        let enabled = !l.trim_end().ends_with("off");
+        let [innovation, from, to, weight] = words(l.trim_end().trim_end_matches("off"));
+        let int = |s: &str| s.parse().expect("an innovation or node id");
+        link_if(
+            int(innovation),
+            int(from),
+            int(to),
+            weight.parse().expect("a weight"),
+            enabled,
+        )
+    });
+    Genome::from_parts(nodes.collect(), links.collect()).expect("a valid genome")
+}
+
+/// The `N` words of `s`.
+fn words<const N: usize>(s: &str) -> [&str; N] {
+    let words: Vec<&str> = s.split_whitespace().collect();
+    words
+        .try_into()
+        .unwrap_or_else(|w| panic!("{N} words expected: {w:?}"))
 }

@@ -4,7 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::error::HyperError;
-use super::layout::{CPPN_INPUTS, check_link_outputs};
+use super::layout::{CPPN_INPUTS, check_finite, check_link_outputs};
 use super::leo::express_link;
 use super::params::HyperParams;
 use super::sparse::{SparseLink, SparseNetwork};
@@ -18,11 +18,11 @@ pub struct LayeredLayout {
     pub layers: Vec<Vec<[f64; 2]>>,
     /// CPPN output giving link weights (queried target first, then source).
     pub weight_output: usize,
-    /// CPPN output giving biases (queried with source (0, 0)); none if `None`.
-    #[serde(default)]
+    /// CPPN output giving biases (queried with source (0, 0)); none if `None` (or absent:
+    /// a missing `Option` field reads as `None`).
     pub bias_output: Option<usize>,
-    /// CPPN output for LEO: a link exists iff it is > 0; `None`: the weight threshold decides.
-    #[serde(default)]
+    /// CPPN output for LEO: a link exists iff it is > 0; `None` (or absent): the weight
+    /// threshold decides.
     pub leo_output: Option<usize>,
 }
 
@@ -38,22 +38,9 @@ impl LayeredLayout {
                 "need two or more non-empty layers",
             ));
         }
-        check_link_outputs(
-            self.weight_output,
-            self.bias_output,
-            self.leo_output,
-            cppn_outputs,
-        )?;
-        for (index, c) in self.layers.iter().flatten().enumerate() {
-            if !(c[0].is_finite() && c[1].is_finite()) {
-                return Err(HyperError::BadCoordinate {
-                    sheet: "layer",
-                    index,
-                    coord: *c,
-                });
-            }
-        }
-        Ok(())
+        let outputs = (self.weight_output, self.bias_output, self.leo_output);
+        check_link_outputs(outputs, cppn_outputs)?;
+        check_finite(self.layers.iter().flatten().map(|c| ("layer", c)))
     }
 }
 
@@ -160,5 +147,17 @@ mod tests {
         let net = decode_layered(&mut always, &leo, &p).unwrap();
         assert_eq!(net.links().len(), 8);
         assert!(net.biases().iter().all(|&b| b == 0.0));
+    }
+
+    #[test]
+    fn layouts_read_without_bias_or_leo_outputs_have_none() {
+        let json = r#"{"layers": [[[0.0, 0.0]], [[0.0, 1.0]]], "weight_output": 1}"#;
+        let layered: LayeredLayout = serde_json::from_str(json).unwrap();
+        assert_eq!((layered.bias_output, layered.leo_output), (None, None));
+        let json = r#"{"inputs": [], "outputs": [[0.0, 1.0]], "weight_output": 1}"#;
+        let es: crate::hyperneat::es::EsLayout = serde_json::from_str(json).unwrap();
+        assert_eq!((es.bias_output, es.leo_output), (None, None));
+        let json = r#"{"inputs": [], "outputs": [], "weight_output": 1, "bias": 0}"#;
+        assert!(serde_json::from_str::<crate::hyperneat::es::EsLayout>(json).is_err());
     }
 }

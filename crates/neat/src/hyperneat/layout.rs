@@ -66,24 +66,30 @@ impl SubstrateLayout {
         for sheet in &self.inputs {
             out("input -> neuron weights", sheet.cppn_output)?;
         }
-        let finite = |sheet, coords: &[[f64; 2]]| {
-            for (index, c) in coords.iter().enumerate() {
-                if !(c[0].is_finite() && c[1].is_finite()) {
-                    return Err(HyperError::BadCoordinate {
-                        sheet,
-                        index,
-                        coord: *c,
-                    });
-                }
-            }
-            Ok(())
-        };
-        finite("neuron", &self.neurons)?;
+        check_finite(self.neurons.iter().map(|c| ("neuron", c)))?;
         for sheet in &self.inputs {
-            finite("input", &sheet.coords)?;
+            check_finite(sheet.coords.iter().map(|c| ("input", c)))?;
         }
         Ok(())
     }
+}
+
+/// Every position finite, else [`HyperError::BadCoordinate`] naming its
+/// sheet and its index (counted over all of `positions`).
+pub(crate) fn check_finite<'c>(
+    positions: impl Iterator<Item = (&'static str, &'c [f64; 2])>,
+) -> Result<(), HyperError> {
+    for (index, (sheet, c)) in positions.enumerate() {
+        if !(c[0].is_finite() && c[1].is_finite()) {
+            let coord = *c;
+            return Err(HyperError::BadCoordinate {
+                sheet,
+                index,
+                coord,
+            });
+        }
+    }
+    Ok(())
 }
 
 /// `output` must be one of the CPPN's `available` outputs; `role` names its use.
@@ -106,9 +112,7 @@ pub(crate) fn check_cppn_output(
 /// The link-weight, optional bias and optional LEO outputs of a layout whose
 /// links are queried one by one, each checked against the CPPN's outputs.
 pub(crate) fn check_link_outputs(
-    weight: usize,
-    bias: Option<usize>,
-    leo: Option<usize>,
+    (weight, bias, leo): (usize, Option<usize>, Option<usize>),
     available: usize,
 ) -> Result<(), HyperError> {
     check_cppn_output("link weights", weight, available)?;

@@ -27,30 +27,44 @@ pub use record::{BestEver, GenerationStats};
 pub use reproduce::allocate_offspring;
 use restore::{RawPopulation, check_genome, check_history};
 
-/// A NEAT population with its complete state (RNG, species, innovations, best-ever),
-/// serialisable so that a restored checkpoint continues bit-identically.
-///
-/// Deserialising validates the whole state (see [`Population::from_json`]):
-/// a `Population` read from JSON is always consistent.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, try_from = "RawPopulation")]
-pub struct Population {
-    params: NeatParams,
-    spec: GenomeSpec,
-    seed: u64,
-    generation: u32,
-    rng: Pcg64,
-    tracker: InnovationTracker,
-    genomes: Vec<Genome>,
-    fitness: Option<Vec<f64>>,
-    species: Vec<Species>,
-    next_species_id: u32,
-    threshold: f64,
-    best_ever: Option<BestEver>,
-    /// Generation of the last refocus on the two best species
-    /// (`population_stagnation_limit`); absent from the JSON when there was none.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    refocused: Option<u32>,
+/// Declares a population's fields, once for the two forms that hold them:
+/// the checked [`Population`] and the `RawPopulation` a checkpoint is read
+/// into before it is checked (`restore.rs`), which differ only in how they
+/// hold genomes, species and the best ever. The order is the JSON's.
+macro_rules! population_fields {
+    ($(#[$attr:meta])* $vis:vis struct $name:ident of ($genome:ty, $species:ty, $best:ty);) => {
+        $(#[$attr])*
+        $vis struct $name {
+            params: $crate::params::NeatParams,
+            spec: $crate::genome::GenomeSpec,
+            seed: u64,
+            generation: u32,
+            rng: rand_pcg::Pcg64,
+            tracker: $crate::innovation::InnovationTracker,
+            genomes: Vec<$genome>,
+            fitness: Option<Vec<f64>>,
+            species: Vec<$species>,
+            next_species_id: u32,
+            threshold: f64,
+            best_ever: Option<$best>,
+            /// Generation of the last refocus on the two best species
+            /// (`population_stagnation_limit`); absent from the JSON when there was none.
+            #[serde(default, skip_serializing_if = "Option::is_none")]
+            refocused: Option<u32>,
+        }
+    };
+}
+pub(crate) use population_fields;
+
+population_fields! {
+    /// A NEAT population with its complete state (RNG, species, innovations, best-ever),
+    /// serialisable so that a restored checkpoint continues bit-identically.
+    ///
+    /// Deserialising validates the whole state (see [`Population::from_json`]):
+    /// a `Population` read from JSON is always consistent.
+    #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+    #[serde(deny_unknown_fields, try_from = "RawPopulation")]
+    pub struct Population of (Genome, Species, BestEver);
 }
 
 impl Population {

@@ -3,35 +3,20 @@
 
 use std::collections::BTreeSet;
 
-use rand_pcg::Pcg64;
 use serde::Deserialize;
 
 use crate::error::{GenomeAt, NeatError, PopulationError};
 use crate::genome::{Genome, GenomeSpec, NodeKind, RawGenome};
 use crate::innovation::InnovationTracker;
-use crate::params::NeatParams;
 use crate::species::Species;
 
-use super::{BestEver, Population};
+use super::{BestEver, Population, population_fields};
 
-/// A population as read, not yet checked (the serialised form of [`Population`]).
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-pub(super) struct RawPopulation {
-    params: NeatParams,
-    spec: GenomeSpec,
-    seed: u64,
-    generation: u32,
-    rng: Pcg64,
-    tracker: InnovationTracker,
-    genomes: Vec<RawGenome>,
-    fitness: Option<Vec<f64>>,
-    species: Vec<RawSpecies>,
-    next_species_id: u32,
-    threshold: f64,
-    best_ever: Option<RawBestEver>,
-    #[serde(default)]
-    refocused: Option<u32>,
+population_fields! {
+    /// A population as read, not yet checked (the serialised form of [`Population`]).
+    #[derive(Deserialize)]
+    #[serde(deny_unknown_fields)]
+    pub(super) struct RawPopulation of (RawGenome, RawSpecies, RawBestEver);
 }
 
 /// A [`Species`] as read, its representative not yet checked.

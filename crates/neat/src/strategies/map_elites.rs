@@ -15,9 +15,9 @@ pub use super::archive::cvt::MAX_SAMPLES;
 pub use super::archive::elites::{Elite, MapElitesStats, insert};
 use super::archive::elites::{archive_stats, check_archive};
 pub use super::archive::grid::{Cells, MAX_CELLS};
-use super::told::{self, ToldBatch, told_batch_accessors};
-use super::{Breeding, check_count, first_batch, invalid};
-use crate::driver::{Batch, Evaluation, Strategy, finite_or_zero};
+use super::told::{self, own_batch_state, own_batch_strategy, told_batch_accessors};
+use super::{Breeding, check_count, check_neat, first_batch, invalid};
+use crate::driver::{Evaluation, Strategy, finite_or_zero};
 use crate::error::NeatError;
 use crate::genome::{Genome, GenomeSpec};
 use crate::innovation::InnovationTracker;
@@ -57,12 +57,6 @@ struct Told {
     inserted: usize,
 }
 
-impl told::Told for Told {
-    fn fitness(&self) -> &[f64] {
-        &self.fitness
-    }
-}
-
 /// The serialised state of [`MapElites`].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -81,37 +75,28 @@ struct State {
     best: Option<BestEver>,
 }
 
-/// MAP-Elites over NEAT genomes (see the module docs).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(try_from = "State")]
-pub struct MapElites(State);
+own_batch_state!(State, Told);
 
-impl TryFrom<State> for MapElites {
-    type Error = NeatError;
-
-    fn try_from(s: State) -> Result<Self, NeatError> {
-        s.params.validate()?;
-        s.spec.validate()?;
-        check_params(&s.map)?;
-        s.cells.check()?;
-        check_archive(&s.archive, &s.cells, s.generation)?;
-        if s.batch.is_empty() {
-            return Err(invalid("batch", 0, "empty or not matching its fitness"));
-        }
-        s.told_batch().check()?;
-        // Telling a batch always fills a cell: breeding needs one.
-        let told = s.told.is_some() || s.generation > 0;
-        if told && s.archive.iter().all(Option::is_none) {
-            return Err(invalid("archive", 0, "empty after a batch was told"));
-        }
-        Ok(MapElites(s))
-    }
+own_batch_strategy! {
+    /// MAP-Elites over NEAT genomes (see the module docs).
+    pub struct MapElites(State);
 }
 
 impl State {
-    /// The batch, its generation, what was told of it and the best ever.
-    fn told_batch(&self) -> ToldBatch<'_, Told> {
-        ToldBatch::new(self.generation, &self.batch, &self.told, &self.best)
+    /// Checks a restored state's settings, cells, archive and batch.
+    fn check_own(&self) -> Result<(), NeatError> {
+        check_params(&self.map)?;
+        self.cells.check()?;
+        check_archive(&self.archive, &self.cells, self.generation)?;
+        if self.batch.is_empty() {
+            return Err(invalid("batch", 0, "empty or not matching its fitness"));
+        }
+        // Telling a batch always fills a cell: breeding needs one.
+        let told = self.told.is_some() || self.generation > 0;
+        if told && self.archive.iter().all(Option::is_none) {
+            return Err(invalid("archive", 0, "empty after a batch was told"));
+        }
+        Ok(())
     }
 }
 
@@ -140,8 +125,7 @@ impl MapElites {
         cells: Cells,
         seed: u64,
     ) -> Result<MapElites, NeatError> {
-        params.validate()?;
-        spec.validate()?;
+        check_neat(&params, &spec)?;
         check_params(&map)?;
         cells.check()?;
         let (rng, tracker, batch) = first_batch(&spec, &params, seed, map.batch_size);
@@ -188,10 +172,7 @@ impl MapElites {
 }
 
 impl Strategy for MapElites {
-    fn ask(&mut self) -> Batch<'_> {
-        self.prepare();
-        Batch::new(&self.0.batch, self.0.seed, self.0.generation)
-    }
+    told_batch_accessors!();
 
     fn tell(&mut self, evaluations: &[Evaluation]) -> Result<(), NeatError> {
         let s = &mut self.0;
@@ -225,24 +206,15 @@ impl Strategy for MapElites {
             return;
         }
         let occupied: Vec<&Elite> = s.archive.iter().flatten().collect();
-        let mut breeding = Breeding {
-            spec: &s.spec,
-            params: &s.params,
-            tracker: &mut s.tracker,
-            rng: &mut s.rng,
-        };
-        s.batch.clear();
         // Elites drawn uniformly.
         let pick = |rng: &mut Pcg64| {
             let e = occupied[rng.random_range(0..occupied.len())];
             (&e.genome, e.fitness)
         };
-        let (n, crossover) = (s.map.batch_size, s.map.crossover_probability);
-        breeding.children(n, crossover, &mut s.batch, pick);
-        s.generation += 1;
+        let next = (&mut s.batch, &mut s.generation);
+        let size = (s.map.batch_size, s.map.crossover_probability);
+        Breeding::new(&s.spec, &s.params, &mut s.tracker, &mut s.rng).next_batch(next, size, pick);
     }
-
-    told_batch_accessors!();
 }
 
 #[cfg(test)]

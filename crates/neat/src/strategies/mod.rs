@@ -27,12 +27,18 @@
 //!   generation, what was told of it, the best ever). Its parts stay fields
 //!   of each strategy's serialised state, so that every checkpoint keeps its
 //!   JSON (field names and order); `ToldBatch` borrows them, answers
-//!   `generation`, `champion`, `best_ever` and `stats`, checks them when a
-//!   checkpoint is read, and `told::record` records a told batch, the same
-//!   way for all.
+//!   `ask`, `generation`, `champion`, `best_ever` and `stats`, checks them
+//!   when a checkpoint is read, and `told::record` records a told batch, the
+//!   same way for all. Its macros write what would otherwise be repeated
+//!   per strategy: `impl_told` (the told record's fitness),
+//!   `own_batch_state` (`told_batch()` of a state holding its own batch),
+//!   `own_batch_strategy` (the public type and its checked restore) and
+//!   `told_batch_accessors` (the `Strategy` methods).
 //! * This file: NEAT's breeding (`Breeding`: a child by crossover +
 //!   mutation over one innovation history, a batch of them from any parent
-//!   selection, generation 0 in `first_batch`) and the shared checks.
+//!   selection, the next batch in place of the last in `next_batch`,
+//!   generation 0 in `first_batch`) and the shared checks (`check_neat`,
+//!   `check_count`).
 //!
 //! The old paths still work: `strategies::knn`, and every archive type is
 //! also re-exported from its strategy's module (`map_elites::Cells`,
@@ -67,7 +73,22 @@ pub(crate) struct Breeding<'a, R: Rng + ?Sized> {
     pub rng: &'a mut R,
 }
 
-impl<R: Rng + ?Sized> Breeding<'_, R> {
+impl<'a, R: Rng + ?Sized> Breeding<'a, R> {
+    /// Borrows what breeding needs from a strategy's state.
+    pub fn new(
+        spec: &'a GenomeSpec,
+        params: &'a NeatParams,
+        tracker: &'a mut InnovationTracker,
+        rng: &'a mut R,
+    ) -> Self {
+        Breeding {
+            spec,
+            params,
+            tracker,
+            rng,
+        }
+    }
+
     /// A child of `a` (crossed with `b` if given, the fitter parent giving
     /// the disjoint genes), then mutated as NEAT does: a crossover child
     /// skips mutation with `mate_only_probability`.
@@ -103,6 +124,20 @@ impl<R: Rng + ?Sized> Breeding<'_, R> {
         }
     }
 
+    /// The next generation in place of `batch`: `n` children bred as
+    /// [`Breeding::children`] breeds them (`crossover` their crossover
+    /// probability); `generation` counts it.
+    pub fn next_batch<'g>(
+        &mut self,
+        (batch, generation): (&mut Vec<Genome>, &mut u32),
+        (n, crossover): (usize, f64),
+        pick: impl FnMut(&mut R) -> (&'g Genome, f64),
+    ) {
+        batch.clear();
+        self.children(n, crossover, batch, pick);
+        *generation += 1;
+    }
+
     /// `n` minimal genomes (NEAT's generation 0).
     pub fn minimal(&mut self, n: usize) -> Vec<Genome> {
         (0..n)
@@ -122,14 +157,14 @@ pub(crate) fn first_batch(
 ) -> (Pcg64, InnovationTracker, Vec<Genome>) {
     let mut rng = Pcg64::seed_from_u64(seed);
     let mut tracker = InnovationTracker::new((spec.inputs + spec.outputs) as u32);
-    let batch = Breeding {
-        spec,
-        params,
-        tracker: &mut tracker,
-        rng: &mut rng,
-    }
-    .minimal(n);
+    let batch = Breeding::new(spec, params, &mut tracker, &mut rng).minimal(n);
     (rng, tracker, batch)
+}
+
+/// Checks NEAT's settings, then the genome spec.
+pub(crate) fn check_neat(params: &NeatParams, spec: &GenomeSpec) -> Result<(), NeatError> {
+    params.validate()?;
+    spec.validate()
 }
 
 /// One evaluation per genome, or [`NeatError::FitnessCount`].

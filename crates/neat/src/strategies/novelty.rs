@@ -17,9 +17,9 @@ use serde::{Deserialize, Serialize};
 
 use super::archive::novelty::NoveltyArchive;
 pub use super::archive::novelty::NoveltyParams;
-use super::told::{self, ToldBatch, told_batch_accessors};
+use super::told::{self, ToldBatch, impl_told, told_batch_accessors};
 use super::{check_count, invalid};
-use crate::driver::{Batch, Evaluation, Strategy, finite_or_zero};
+use crate::driver::{Evaluation, Strategy, finite_or_zero};
 use crate::error::NeatError;
 use crate::population::{BestEver, GenerationStats, Population};
 
@@ -31,11 +31,7 @@ struct Told {
     added: usize,
 }
 
-impl told::Told for Told {
-    fn fitness(&self) -> &[f64] {
-        &self.fitness
-    }
-}
+impl_told!(Told);
 
 /// The serialised state of a [`NoveltySearch`].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -92,7 +88,8 @@ impl State {
     /// and the best ever.
     fn told_batch(&self) -> ToldBatch<'_, Told> {
         let p = &self.population;
-        ToldBatch::new(p.generation(), p.genomes(), &self.told, &self.best)
+        let batch = (p.seed(), p.generation(), p.genomes());
+        ToldBatch::new(batch, &self.told, &self.best)
     }
 
     /// The archive, borrowed.
@@ -194,11 +191,7 @@ fn selection_scores(novelty: &[f64], fitness: &[f64], w: f64) -> Vec<f64> {
 }
 
 impl Strategy for NoveltySearch {
-    fn ask(&mut self) -> Batch<'_> {
-        self.prepare();
-        let p = &self.0.population;
-        Batch::new(p.genomes(), p.seed(), p.generation())
-    }
+    told_batch_accessors!(without_stats);
 
     fn tell(&mut self, evaluations: &[Evaluation]) -> Result<(), NeatError> {
         check_count(evaluations.len(), self.0.population.genomes().len())?;
@@ -224,8 +217,6 @@ impl Strategy for NoveltySearch {
             self.0.population.next_generation();
         }
     }
-
-    told_batch_accessors!(without_stats);
 
     fn stats(&self) -> GenerationStats {
         let p = &self.0.population;

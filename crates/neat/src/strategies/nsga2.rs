@@ -20,9 +20,9 @@ use serde::{Deserialize, Serialize};
 pub use super::archive::pareto::{
     crowding_distances, dominates, fast_non_dominated_sort, non_dominated_fronts,
 };
-use super::told::{self, ToldBatch, told_batch_accessors};
-use super::{Breeding, check_count, first_batch, invalid};
-use crate::driver::{Batch, Evaluation, Strategy};
+use super::told::{self, own_batch_state, own_batch_strategy, told_batch_accessors};
+use super::{Breeding, check_count, check_neat, first_batch, invalid};
+use crate::driver::{Evaluation, Strategy};
 use crate::error::NeatError;
 use crate::genome::{Genome, GenomeSpec};
 use crate::innovation::InnovationTracker;
@@ -107,12 +107,6 @@ struct Told {
     fitness: Vec<f64>,
 }
 
-impl told::Told for Told {
-    fn fitness(&self) -> &[f64] {
-        &self.fitness
-    }
-}
-
 /// The serialised state of [`Nsga2`].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -130,17 +124,17 @@ struct State {
     best: Option<BestEver>,
 }
 
-/// NSGA-II over NEAT genomes (see the module docs).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(try_from = "State")]
-pub struct Nsga2(State);
+own_batch_state!(State, Told);
 
-impl TryFrom<State> for Nsga2 {
-    type Error = NeatError;
+own_batch_strategy! {
+    /// NSGA-II over NEAT genomes (see the module docs).
+    pub struct Nsga2(State);
+}
 
-    fn try_from(s: State) -> Result<Self, NeatError> {
-        s.params.validate()?;
-        s.spec.validate()?;
+impl State {
+    /// Checks a restored state's settings, parents and what was told.
+    fn check_own(&self) -> Result<(), NeatError> {
+        let s = self;
         s.nsga.validate()?;
         let m = s.nsga.objectives.len();
         let ok = |o: &[f64]| o.len() == m && o.iter().all(|v| v.is_finite());
@@ -163,15 +157,7 @@ impl TryFrom<State> for Nsga2 {
                 "empty, or too many parents",
             ));
         }
-        s.told_batch().check()?;
-        Ok(Nsga2(s))
-    }
-}
-
-impl State {
-    /// The batch, its generation, what was told of it and the best ever.
-    fn told_batch(&self) -> ToldBatch<'_, Told> {
-        ToldBatch::new(self.generation, &self.batch, &self.told, &self.best)
+        Ok(())
     }
 }
 
@@ -184,8 +170,7 @@ impl Nsga2 {
         nsga: Nsga2Params,
         seed: u64,
     ) -> Result<Nsga2, NeatError> {
-        params.validate()?;
-        spec.validate()?;
+        check_neat(&params, &spec)?;
         nsga.validate()?;
         let (rng, tracker, batch) = first_batch(&spec, &params, seed, nsga.population_size);
         Ok(Nsga2(State {
@@ -293,10 +278,7 @@ impl Nsga2 {
 }
 
 impl Strategy for Nsga2 {
-    fn ask(&mut self) -> Batch<'_> {
-        self.prepare();
-        Batch::new(&self.0.batch, self.0.seed, self.0.generation)
-    }
+    told_batch_accessors!();
 
     fn tell(&mut self, evaluations: &[Evaluation]) -> Result<(), NeatError> {
         let s = &mut self.0;
@@ -322,12 +304,6 @@ impl Strategy for Nsga2 {
         };
         let (ranks, crowding) = self.select(told);
         let s = &mut self.0;
-        let mut breeding = Breeding {
-            spec: &s.spec,
-            params: &s.params,
-            tracker: &mut s.tracker,
-            rng: &mut s.rng,
-        };
         let parents = &s.parents;
         // Binary tournament on the crowded comparison; a tie goes to the first drawn.
         let tournament = |rng: &mut Pcg64| {
@@ -344,12 +320,10 @@ impl Strategy for Nsga2 {
             let i = tournament(rng);
             (&parents[i].genome, -(ranks[i] as f64))
         };
-        let (n, crossover) = (s.nsga.population_size, s.nsga.crossover_probability);
-        breeding.children(n, crossover, &mut s.batch, pick);
-        s.generation += 1;
+        let next = (&mut s.batch, &mut s.generation);
+        let size = (s.nsga.population_size, s.nsga.crossover_probability);
+        Breeding::new(&s.spec, &s.params, &mut s.tracker, &mut s.rng).next_batch(next, size, pick);
     }
-
-    told_batch_accessors!();
 }
 
 #[cfg(test)]

@@ -3,15 +3,17 @@
 //!
 //! The strategies keep these as fields of their own serialised state (so
 //! each checkpoint's JSON keeps its field names and order) and borrow them
-//! as a [`ToldBatch`], which answers the driver's questions ([`champion`],
-//! [`best_ever`], [`stats`]) and records a told batch ([`record`])
-//! the same way for all of them.
+//! as a [`ToldBatch`], which answers the driver's questions ([`ask`],
+//! [`champion`], [`best_ever`], [`stats`]) and records a told batch
+//! ([`record`]) the same way for all of them.
 //!
+//! [`ask`]: crate::driver::Strategy::ask
 //! [`champion`]: crate::driver::Strategy::champion
 //! [`best_ever`]: crate::driver::Strategy::best_ever
 //! [`stats`]: crate::driver::Strategy::stats
 
 use super::invalid;
+use crate::driver::Batch;
 use crate::error::NeatError;
 use crate::genome::Genome;
 use crate::population::{BestEver, GenerationStats};
@@ -24,8 +26,66 @@ pub(crate) trait Told {
     fn fitness(&self) -> &[f64];
 }
 
+/// `impl Told` for a strategy's record `$told` of a batch, whose
+/// `fitness: Vec<f64>` field is the reported fitness.
+macro_rules! impl_told {
+    ($told:ident) => {
+        impl $crate::strategies::told::Told for $told {
+            fn fitness(&self) -> &[f64] {
+                &self.fitness
+            }
+        }
+    };
+}
+pub(crate) use impl_told;
+
+/// The told state of a strategy breeding its own batches: `impl Told` for
+/// its record `$told`, and `$state::told_batch()` borrowing the fields
+/// every such state has (`seed`, `generation`, `batch`, `told`, `best`).
+macro_rules! own_batch_state {
+    ($state:ident, $told:ident) => {
+        $crate::strategies::told::impl_told!($told);
+
+        impl $state {
+            /// The batch, its generation, what was told of it and the best ever.
+            fn told_batch(&self) -> $crate::strategies::told::ToldBatch<'_, $told> {
+                let batch = (self.seed, self.generation, &self.batch[..]);
+                $crate::strategies::told::ToldBatch::new(batch, &self.told, &self.best)
+            }
+        }
+    };
+}
+pub(crate) use own_batch_state;
+
+/// The public type `$name` of a strategy breeding its own batches: a
+/// checkpoint is its `State`'s JSON, and reading one checks NEAT's settings
+/// and the genome spec, the state's own parts (`State::check_own`), then
+/// its told batch.
+macro_rules! own_batch_strategy {
+    ($(#[$doc:meta])* pub struct $name:ident(State);) => {
+        $(#[$doc])*
+        #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+        #[serde(try_from = "State")]
+        pub struct $name(State);
+
+        impl TryFrom<State> for $name {
+            type Error = $crate::error::NeatError;
+
+            fn try_from(s: State) -> Result<Self, $crate::error::NeatError> {
+                $crate::strategies::check_neat(&s.params, &s.spec)?;
+                s.check_own()?;
+                s.told_batch().check()?;
+                Ok($name(s))
+            }
+        }
+    };
+}
+pub(crate) use own_batch_strategy;
+
 /// A strategy's told-batch state, borrowed from its fields.
 pub(crate) struct ToldBatch<'a, T> {
+    /// The run seed (every evaluation's seed derives from it).
+    pub seed: u64,
     /// The generation of the batch.
     pub generation: u32,
     /// The batch, in order.
@@ -37,19 +97,24 @@ pub(crate) struct ToldBatch<'a, T> {
 }
 
 impl<'a, T: Told> ToldBatch<'a, T> {
-    /// Borrows the four parts.
+    /// Borrows the parts: the batch as `(run seed, generation, genomes)`.
     pub fn new(
-        generation: u32,
-        genomes: &'a [Genome],
+        (seed, generation, genomes): (u64, u32, &'a [Genome]),
         told: &'a Option<T>,
         best: &'a Option<BestEver>,
     ) -> Self {
         ToldBatch {
+            seed,
             generation,
             genomes,
             told,
             best,
         }
+    }
+
+    /// The batch to evaluate, with its contexts.
+    pub fn batch(&self) -> Batch<'a> {
+        Batch::new(self.genomes, self.seed, self.generation)
     }
 
     /// The batch's reported fitness (empty before `tell`).
@@ -109,9 +174,10 @@ pub(crate) fn record<T: Told>(
     *slot = Some(told);
 }
 
-/// The [`Strategy`](crate::driver::Strategy) accessors of a strategy
-/// `Self(State)` whose state has a `told_batch()`: `generation`, `champion`,
-/// `best_ever` and (unless called with `without_stats`) `stats`.
+/// The [`Strategy`](crate::driver::Strategy) methods of a strategy
+/// `Self(State)` whose state has a `told_batch()`: `ask` (after
+/// `prepare`), `generation`, `champion`, `best_ever` and (unless called
+/// with `without_stats`) `stats`.
 macro_rules! told_batch_accessors {
     () => {
         $crate::strategies::told::told_batch_accessors!(without_stats);
@@ -121,6 +187,11 @@ macro_rules! told_batch_accessors {
         }
     };
     (without_stats) => {
+        fn ask(&mut self) -> $crate::driver::Batch<'_> {
+            self.prepare();
+            self.0.told_batch().batch()
+        }
+
         fn generation(&self) -> u32 {
             self.0.told_batch().generation
         }

@@ -7,7 +7,7 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use super::EsLayout;
 use super::params::EsParams;
-use super::query::Query;
+use super::query::{Fixed, Query};
 use crate::hyperneat::error::HyperError;
 use crate::hyperneat::leo::express_link;
 use crate::hyperneat::sparse::{SparseLink, SparseNetwork};
@@ -70,15 +70,19 @@ impl Substrate<'_> {
         q: &mut Q,
         node: Pt,
         outgoing: bool,
-        explore: &mut impl FnMut(&mut Q, [f64; 2], bool, &mut Vec<Found>),
+        explore: &mut impl FnMut(&mut Q, Fixed, &mut Vec<Found>),
     ) -> Vec<(Pt, f64)> {
+        let fixed = Fixed {
+            node: node.0,
+            outgoing,
+        };
         self.found.clear();
-        explore(q, node.0, outgoing, &mut self.found);
+        explore(q, fixed, &mut self.found);
         self.points.clear();
         self.points.extend(self.found.iter().map(|f| f.point));
         if let Some(leo) = self.layout.leo_output {
             self.leo.resize(self.points.len(), 0.0);
-            q.query(leo, node.0, outgoing, &self.points, &mut self.leo);
+            q.query(leo, fixed, &self.points, &mut self.leo);
         }
         let expression = &self.params.expression;
         self.found
@@ -119,7 +123,7 @@ pub(crate) fn discover<Q: Query>(
     q: &mut Q,
     layout: &EsLayout,
     params: &EsParams,
-    mut explore: impl FnMut(&mut Q, [f64; 2], bool, &mut Vec<Found>),
+    mut explore: impl FnMut(&mut Q, Fixed, &mut Vec<Found>),
 ) -> Result<SparseNetwork, HyperError> {
     params.validate()?;
     layout.check(q.num_outputs())?;
@@ -224,7 +228,11 @@ fn assemble<Q: Query>(
     let mut bias = vec![0.0; no + kept_hidden.len()];
     if let Some(output) = layout.bias_output {
         let nodes: Vec<[f64; 2]> = layout.outputs.iter().chain(&kept_hidden).copied().collect();
-        q.query(output, [0.0, 0.0], true, &nodes, &mut bias);
+        let origin = Fixed {
+            node: [0.0, 0.0],
+            outgoing: true,
+        };
+        q.query(output, origin, &nodes, &mut bias);
         for b in bias.iter_mut() {
             *b = params.expression.express(*b).unwrap_or(0.0);
         }

@@ -3,18 +3,13 @@
 //! band-pruning queries) are one batch.
 
 use super::discover::Found;
-use super::params::EsParams;
-use super::query::Query;
+use super::query::{Cell, Exploration, Query};
 use super::reference::{band, child_centres, neighbours, variance};
 
-/// A square in the arena: centre, half side, level, value and its first child (0 = none).
+/// A square in the arena and its first child (0 = none).
 #[derive(Clone, Copy)]
 struct Square {
-    x: f64,
-    y: f64,
-    half: f64,
-    level: u32,
-    w: f64,
+    cell: Cell,
     first_child: usize,
 }
 
@@ -34,35 +29,16 @@ pub(crate) struct Explorer {
 
 impl Explorer {
     /// As [`super::reference::explore`], with the same results bit for bit.
-    pub(crate) fn explore<Q: Query>(
-        &mut self,
-        q: &mut Q,
-        output: usize,
-        node: [f64; 2],
-        outgoing: bool,
-        p: &EsParams,
-        found: &mut Vec<Found>,
-    ) {
-        self.divide(q, output, node, outgoing, p);
-        self.prune(q, output, node, outgoing, p, found);
+    pub(crate) fn explore<Q: Query>(&mut self, e: &mut Exploration<'_, Q>, found: &mut Vec<Found>) {
+        self.divide(e);
+        self.prune(e, found);
     }
 
     /// Division and initialisation, one batch of queries per level.
-    fn divide<Q: Query>(
-        &mut self,
-        q: &mut Q,
-        output: usize,
-        node: [f64; 2],
-        outgoing: bool,
-        p: &EsParams,
-    ) {
+    fn divide<Q: Query>(&mut self, e: &mut Exploration<'_, Q>) {
         self.squares.clear();
         self.squares.push(Square {
-            x: 0.0,
-            y: 0.0,
-            half: 1.0,
-            level: 1,
-            w: 0.0,
+            cell: Cell::ROOT,
             first_child: 0,
         });
         self.frontier.clear();
@@ -70,31 +46,23 @@ impl Explorer {
         while !self.frontier.is_empty() {
             self.points.clear();
             for &s in &self.frontier {
-                let sq = self.squares[s];
-                self.points.extend(child_centres(sq.x, sq.y, sq.half));
+                let c = self.squares[s].cell;
+                self.points.extend(child_centres(c.x, c.y, c.half));
             }
             self.values.resize(self.points.len(), 0.0);
-            q.query(output, node, outgoing, &self.points, &mut self.values);
+            e.query(&self.points, &mut self.values);
             self.next.clear();
             for (k, &s) in self.frontier.iter().enumerate() {
                 let first = self.squares.len();
-                let sq = self.squares[s];
+                let sq = self.squares[s].cell;
                 self.squares[s].first_child = first;
                 let ws = &self.values[4 * k..4 * k + 4];
                 for (c, &w) in ws.iter().enumerate() {
-                    let [x, y] = self.points[4 * k + c];
-                    self.squares.push(Square {
-                        x,
-                        y,
-                        half: sq.half / 2.0,
-                        level: sq.level + 1,
-                        w,
-                        first_child: 0,
-                    });
+                    let cell = sq.child(self.points[4 * k + c], w);
+                    let first_child = 0;
+                    self.squares.push(Square { cell, first_child });
                 }
-                if sq.level < p.initial_depth
-                    || (sq.level < p.max_depth && variance(ws) > p.division_threshold)
-                {
+                if e.divides(sq.level, ws) {
                     self.next.extend(first..first + 4);
                 }
             }
@@ -110,7 +78,7 @@ impl Explorer {
         while let Some(t) = self.stack.pop() {
             let sq = self.squares[t];
             if sq.first_child == 0 {
-                self.leaves.push(sq.w);
+                self.leaves.push(sq.cell.w);
             } else {
                 // Reversed, so that children pop in order.
                 self.stack
@@ -121,15 +89,7 @@ impl Explorer {
 
     /// Pruning and extraction: finds the band candidates in the reference's
     /// depth-first order, then queries all their neighbours in one batch.
-    fn prune<Q: Query>(
-        &mut self,
-        q: &mut Q,
-        output: usize,
-        node: [f64; 2],
-        outgoing: bool,
-        p: &EsParams,
-        found: &mut Vec<Found>,
-    ) {
+    fn prune<Q: Query>(&mut self, e: &mut Exploration<'_, Q>, found: &mut Vec<Found>) {
         self.candidates.clear();
         self.points.clear();
         // (square, next child to examine): the reference's recursion, unrolled.
@@ -144,24 +104,21 @@ impl Explorer {
             let c = sq.first_child + *i;
             *i += 1;
             self.collect_leaves(c);
-            if variance(&self.leaves) > p.variance_threshold && self.squares[c].first_child != 0 {
+            if variance(&self.leaves) > e.p.variance_threshold && self.squares[c].first_child != 0 {
                 self.path.push((c, 0));
             } else {
-                let ch = self.squares[c];
+                let ch = self.squares[c].cell;
                 self.candidates.push(c);
-                self.points.extend(neighbours(ch.x, ch.y, sq.half));
+                self.points.extend(neighbours(ch.x, ch.y, sq.cell.half));
             }
         }
         self.values.resize(self.points.len(), 0.0);
-        q.query(output, node, outgoing, &self.points, &mut self.values);
+        e.query(&self.points, &mut self.values);
         for (k, &c) in self.candidates.iter().enumerate() {
-            let ch = self.squares[c];
+            let ch = self.squares[c].cell;
             let near = [0, 1, 2, 3].map(|j| self.values[4 * k + j]);
-            if band(ch.w, near) > p.band_threshold {
-                found.push(Found {
-                    point: [ch.x, ch.y],
-                    o: ch.w,
-                });
+            if band(ch.w, near) > e.p.band_threshold {
+                found.push(ch.found());
             }
         }
     }

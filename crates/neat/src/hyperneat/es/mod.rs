@@ -36,13 +36,13 @@ pub use params::{EsParams, MAX_DEPTH, MAX_ITERATION_LEVEL};
 
 use super::batch::BatchCppn;
 use super::error::HyperError;
-use super::layout::{CPPN_INPUTS, check_link_outputs};
+use super::layout::{CPPN_INPUTS, check_finite, check_link_outputs};
 use super::sparse::SparseNetwork;
 use crate::feedforward::FeedForwardNetwork;
 use crate::genome::Genome;
 use crate::network::Network;
 use discover::{Found, discover};
-use query::OneByOne;
+use query::{Exploration, OneByOne};
 
 /// The fixed part of an ES-HyperNEAT substrate: input and output positions
 /// and which CPPN outputs give weights, biases and link expression.
@@ -55,11 +55,11 @@ pub struct EsLayout {
     pub outputs: Vec<[f64; 2]>,
     /// CPPN output giving link weights (queried target first, then source).
     pub weight_output: usize,
-    /// CPPN output giving output and hidden biases (queried with source (0, 0)); none if `None`.
-    #[serde(default)]
+    /// CPPN output giving output and hidden biases (queried with source (0, 0)); none if
+    /// `None` (or absent: a missing `Option` field reads as `None`).
     pub bias_output: Option<usize>,
-    /// CPPN output for LEO: a link exists iff it is > 0; `None`: the weight threshold decides.
-    #[serde(default)]
+    /// CPPN output for LEO: a link exists iff it is > 0; `None` (or absent): the weight
+    /// threshold decides.
     pub leo_output: Option<usize>,
 }
 
@@ -70,23 +70,13 @@ impl EsLayout {
         if self.outputs.is_empty() {
             return Err(HyperError::NoNeurons);
         }
-        check_link_outputs(
-            self.weight_output,
-            self.bias_output,
-            self.leo_output,
-            cppn_outputs,
-        )?;
+        let outputs = (self.weight_output, self.bias_output, self.leo_output);
+        check_link_outputs(outputs, cppn_outputs)?;
         let nodes = self.inputs.iter().map(|c| ("input", c));
         let nodes = nodes.chain(self.outputs.iter().map(|c| ("output", c)));
+        check_finite(nodes.clone())?;
         let mut seen = std::collections::BTreeSet::new();
-        for (index, (sheet, c)) in nodes.enumerate() {
-            if !(c[0].is_finite() && c[1].is_finite()) {
-                return Err(HyperError::BadCoordinate {
-                    sheet,
-                    index,
-                    coord: *c,
-                });
-            }
+        for (_, c) in nodes {
             if !seen.insert([(c[0] + 0.0).to_bits(), (c[1] + 0.0).to_bits()]) {
                 return Err(HyperError::Inconsistent(
                     "two input/output nodes at one position",
@@ -108,13 +98,21 @@ pub fn decode_es(
         return Err(HyperError::CppnInputs(cppn.num_inputs()));
     }
     let mut q = OneByOne::new(cppn);
-    let output = layout.weight_output;
+    let (output, p) = (layout.weight_output, params);
     discover(
         &mut q,
         layout,
         params,
-        |q, node, outgoing, found: &mut Vec<Found>| {
-            reference::explore(q, output, node, outgoing, params, found)
+        |q, fixed, found: &mut Vec<Found>| {
+            reference::explore(
+                &mut Exploration {
+                    q,
+                    output,
+                    fixed,
+                    p,
+                },
+                found,
+            )
         },
     )
 }
@@ -134,13 +132,21 @@ pub fn decode_es_genome(
         return Err(HyperError::CppnInputs(cppn.num_inputs()));
     }
     let mut explorer = fast::Explorer::default();
-    let output = layout.weight_output;
+    let (output, p) = (layout.weight_output, params);
     discover(
         &mut cppn,
         layout,
         params,
-        |q, node, outgoing, found: &mut Vec<Found>| {
-            explorer.explore(q, output, node, outgoing, params, found)
+        |q, fixed, found: &mut Vec<Found>| {
+            explorer.explore(
+                &mut Exploration {
+                    q,
+                    output,
+                    fixed,
+                    p,
+                },
+                found,
+            )
         },
     )
 }

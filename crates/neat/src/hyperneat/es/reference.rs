@@ -2,17 +2,11 @@
 //! possible (a recursive tree, one CPPN query per point).
 
 use super::discover::Found;
-use super::params::EsParams;
-use super::query::Query;
+use super::query::{Cell, Exploration, Query};
 
-/// A square of the quadtree: centre, half side, level and the CPPN weight
-/// output at its centre.
+/// A square of the quadtree and its children.
 struct Square {
-    x: f64,
-    y: f64,
-    half: f64,
-    level: u32,
-    w: f64,
+    cell: Cell,
     children: Vec<Square>,
 }
 
@@ -50,40 +44,27 @@ pub(crate) fn neighbours(x: f64, y: f64, d: f64) -> [[f64; 2]; 4] {
     [[x - d, y], [x + d, y], [x, y - d], [x, y + d]]
 }
 
-fn one<Q: Query>(q: &mut Q, output: usize, node: [f64; 2], outgoing: bool, p: [f64; 2]) -> f64 {
+fn one<Q: Query>(e: &mut Exploration<'_, Q>, p: [f64; 2]) -> f64 {
     let mut o = [0.0];
-    q.query(output, node, outgoing, &[p], &mut o);
+    e.query(&[p], &mut o);
     o[0]
 }
 
 /// Division and initialisation: divides `sq` into four, and each child
 /// again while above the initial depth, or while below the maximum depth
 /// and the children's values vary more than the division threshold.
-fn divide<Q: Query>(
-    q: &mut Q,
-    out: usize,
-    node: [f64; 2],
-    outgoing: bool,
-    sq: &mut Square,
-    p: &EsParams,
-) {
-    for [x, y] in child_centres(sq.x, sq.y, sq.half) {
-        let w = one(q, out, node, outgoing, [x, y]);
-        sq.children.push(Square {
-            x,
-            y,
-            half: sq.half / 2.0,
-            level: sq.level + 1,
-            w,
-            children: Vec::new(),
-        });
+fn divide<Q: Query>(e: &mut Exploration<'_, Q>, sq: &mut Square) {
+    let c = sq.cell;
+    for centre in child_centres(c.x, c.y, c.half) {
+        let w = one(e, centre);
+        let cell = c.child(centre, w);
+        let children = Vec::new();
+        sq.children.push(Square { cell, children });
     }
-    let ws: Vec<f64> = sq.children.iter().map(|c| c.w).collect();
-    if sq.level < p.initial_depth
-        || (sq.level < p.max_depth && variance(&ws) > p.division_threshold)
-    {
+    let ws: Vec<f64> = sq.children.iter().map(|c| c.cell.w).collect();
+    if e.divides(c.level, &ws) {
         for c in &mut sq.children {
-            divide(q, out, node, outgoing, c, p);
+            divide(e, c);
         }
     }
 }
@@ -91,7 +72,7 @@ fn divide<Q: Query>(
 /// The values of the leaves under `sq` (itself when it has no children), depth first.
 fn leaves(sq: &Square, into: &mut Vec<f64>) {
     if sq.children.is_empty() {
-        into.push(sq.w);
+        into.push(sq.cell.w);
     }
     for c in &sq.children {
         leaves(c, into);
@@ -101,51 +82,28 @@ fn leaves(sq: &Square, into: &mut Vec<f64>) {
 /// Pruning and extraction: descends where the leaves vary, and elsewhere
 /// keeps the points that lie on a band (differ from both neighbours along x
 /// or along y by more than the band threshold).
-#[allow(clippy::too_many_arguments)]
-fn prune<Q: Query>(
-    q: &mut Q,
-    out: usize,
-    node: [f64; 2],
-    outgoing: bool,
-    sq: &Square,
-    p: &EsParams,
-    found: &mut Vec<Found>,
-) {
+fn prune<Q: Query>(e: &mut Exploration<'_, Q>, sq: &Square, found: &mut Vec<Found>) {
     for c in &sq.children {
         let mut ls = Vec::new();
         leaves(c, &mut ls);
-        if variance(&ls) > p.variance_threshold {
-            prune(q, out, node, outgoing, c, p, found);
+        if variance(&ls) > e.p.variance_threshold {
+            prune(e, c, found);
         } else {
-            let near = neighbours(c.x, c.y, sq.half).map(|n| one(q, out, node, outgoing, n));
-            if band(c.w, near) > p.band_threshold {
-                found.push(Found {
-                    point: [c.x, c.y],
-                    o: c.w,
-                });
+            let near = neighbours(c.cell.x, c.cell.y, sq.cell.half).map(|n| one(e, n));
+            if band(c.cell.w, near) > e.p.band_threshold {
+                found.push(c.cell.found());
             }
         }
     }
 }
 
-/// The points that express a link with `node` (as source when `outgoing`),
-/// in depth-first order, with their CPPN output `output`.
-pub(crate) fn explore<Q: Query>(
-    q: &mut Q,
-    output: usize,
-    node: [f64; 2],
-    outgoing: bool,
-    p: &EsParams,
-    found: &mut Vec<Found>,
-) {
+/// The points that express a link with the fixed node of `e`, in
+/// depth-first order, with their CPPN output.
+pub(crate) fn explore<Q: Query>(e: &mut Exploration<'_, Q>, found: &mut Vec<Found>) {
     let mut root = Square {
-        x: 0.0,
-        y: 0.0,
-        half: 1.0,
-        level: 1,
-        w: 0.0,
+        cell: Cell::ROOT,
         children: Vec::new(),
     };
-    divide(q, output, node, outgoing, &mut root, p);
-    prune(q, output, node, outgoing, &root, p, found);
+    divide(e, &mut root);
+    prune(e, &root, found);
 }
