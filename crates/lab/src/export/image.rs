@@ -98,6 +98,12 @@ impl Camera {
             radius: None,
         }
     }
+
+    /// Whether a frame's `scale` and out-of-view `radius` can be used: finite
+    /// and positive scale, positive radius (or none).
+    pub fn usable(scale: f64, radius: Option<f64>) -> bool {
+        scale.is_finite() && scale > 0.0 && radius.is_none_or(|r| r > 0.0)
+    }
 }
 
 /// Colours and the readings they stand for.

@@ -7,6 +7,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 use vivae_lab::controller::substrate::PolarGrid;
+use vivae_lab::export::choose::Pick;
 use vivae_lab::search::files::Member;
 
 /// The substrate's resolution; a genome's CPPN is re-sampled onto any.
@@ -102,6 +103,28 @@ impl MemberChoice {
     /// The archive or front member asked for, if any.
     pub fn member(&self) -> Option<Member> {
         (self.elite.map(Member::Elite)).or(self.front.map(Member::Front))
+    }
+}
+
+/// Which genome of a run: the champion (default), a generation's best, or an
+/// archive or front member (`export`'s and `drive-image`'s choice).
+#[derive(Args, Debug, Default, Clone, Copy)]
+pub struct GenomeChoice {
+    /// Use the best genome of this generation (best-genomes.jsonl) instead of the champion.
+    #[arg(long, value_name = "G", conflicts_with_all = ["elite", "front"])]
+    pub generation: Option<u32>,
+    #[command(flatten)]
+    pub member: MemberChoice,
+}
+
+impl GenomeChoice {
+    /// The library's name for the genome asked for.
+    pub fn pick(&self) -> Pick {
+        match (self.generation, self.member.member()) {
+            (Some(g), _) => Pick::Generation(g),
+            (None, Some(m)) => Pick::Member(m),
+            (None, None) => Pick::Champion,
+        }
     }
 }
 

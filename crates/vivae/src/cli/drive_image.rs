@@ -14,7 +14,7 @@ use vivae_lab::export::{Exported, StepNet};
 use vivae_lab::io::bad_input;
 use vivae_sim::DVec2;
 
-use super::args::{MemberChoice, Resolution};
+use super::args::{GenomeChoice, Resolution};
 
 /// Options of `vivae drive-image`.
 #[derive(Args, Debug)]
@@ -49,11 +49,8 @@ pub struct DriveImageArgs {
     /// Pixels farther than this from the centre read 0 (an omnidirectional mirror's disc).
     #[arg(long, value_name = "PX")]
     pub radius: Option<f64>,
-    /// Use the best genome of this generation instead of the champion.
-    #[arg(long, value_name = "G", conflicts_with_all = ["elite", "front"])]
-    pub generation: Option<u32>,
     #[command(flatten)]
-    pub member: MemberChoice,
+    pub genome: GenomeChoice,
     #[command(flatten)]
     pub resolution: Resolution,
     /// Write the CSV here instead of printing it.
@@ -110,12 +107,10 @@ fn read_poses(path: &Path) -> anyhow::Result<Vec<(DVec2, f64)>> {
 
 /// Runs `vivae drive-image`.
 pub fn run(args: DriveImageArgs) -> anyhow::Result<ExitCode> {
-    if !(args.scale.is_finite() && args.scale > 0.0)
-        || args.radius.is_some_and(|r| r.is_nan() || r <= 0.0)
-    {
+    if !Camera::usable(args.scale, args.radius) {
         return Err(bad_input("--scale and --radius must be positive numbers").into());
     }
-    let pick = super::export::pick(args.generation, &args.member);
+    let pick = args.genome.pick();
     let chosen = choose(
         &args.source,
         pick,

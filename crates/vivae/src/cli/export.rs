@@ -6,21 +6,18 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::Args;
-use vivae_lab::export::choose::{Pick, choose};
+use vivae_lab::export::choose::choose;
 use vivae_lab::export::{Exported, Format, write};
 
-use super::args::{MemberChoice, Resolution};
+use super::args::{GenomeChoice, Resolution};
 
 /// Options of `vivae export`.
 #[derive(Args, Debug)]
 pub struct ExportArgs {
     /// A run directory or a genome JSON file (champion.json).
     pub source: PathBuf,
-    /// Export the best genome of this generation (best-genomes.jsonl) instead of the champion.
-    #[arg(long, value_name = "G", conflicts_with_all = ["elite", "front"])]
-    pub generation: Option<u32>,
     #[command(flatten)]
-    pub member: MemberChoice,
+    pub genome: GenomeChoice,
     #[command(flatten)]
     pub resolution: Resolution,
     /// The artifact: onnx (opset 17, f64), c (a .c file and its .h) or json.
@@ -31,20 +28,11 @@ pub struct ExportArgs {
     pub out: PathBuf,
 }
 
-/// What `args` picks.
-pub fn pick(generation: Option<u32>, member: &MemberChoice) -> Pick {
-    match (generation, member.member()) {
-        (Some(g), _) => Pick::Generation(g),
-        (None, Some(m)) => Pick::Member(m),
-        (None, None) => Pick::Champion,
-    }
-}
-
 /// Runs `vivae export`.
 pub fn run(args: ExportArgs) -> anyhow::Result<ExitCode> {
     let chosen = choose(
         &args.source,
-        pick(args.generation, &args.member),
+        args.genome.pick(),
         args.resolution.sensors,
         args.resolution.neurons,
     )?;
