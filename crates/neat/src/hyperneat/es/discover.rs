@@ -7,17 +7,10 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use super::EsLayout;
 use super::params::EsParams;
-use super::query::{Fixed, Query};
+use super::query::{Fixed, Found, Query};
 use crate::hyperneat::error::HyperError;
 use crate::hyperneat::leo::express_link;
 use crate::hyperneat::sparse::{SparseLink, SparseNetwork};
-
-/// A quadtree point that expresses a link, with its CPPN weight output.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct Found {
-    pub(crate) point: [f64; 2],
-    pub(crate) o: f64,
-}
 
 /// A substrate point, ordered by y then x (so hidden nodes come out bottom to top).
 #[derive(Debug, Clone, Copy)]

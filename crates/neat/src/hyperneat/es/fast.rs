@@ -2,9 +2,8 @@
 //! level by level so that each level's CPPN queries (and each exploration's
 //! band-pruning queries) are one batch.
 
-use super::discover::Found;
-use super::query::{Cell, Exploration, Query};
-use super::reference::{band, child_centres, neighbours, variance};
+use super::query::{Cell, Exploration, Found, Query, variance};
+use super::reference::{band, child_centres, neighbours};
 
 /// A square in the arena and its first child (0 = none).
 #[derive(Clone, Copy)]

@@ -41,8 +41,8 @@ use super::sparse::SparseNetwork;
 use crate::feedforward::FeedForwardNetwork;
 use crate::genome::Genome;
 use crate::network::Network;
-use discover::{Found, discover};
-use query::{Exploration, OneByOne};
+use discover::discover;
+use query::{Exploration, Found, OneByOne};
 
 /// The fixed part of an ES-HyperNEAT substrate: input and output positions
 /// and which CPPN outputs give weights, biases and link expression.

@@ -1,10 +1,25 @@
 //! The two shapes of CPPN query ES-HyperNEAT makes: one node to many points.
 
-use super::discover::Found;
 use super::params::EsParams;
-use super::reference::variance;
 use crate::hyperneat::batch::BatchCppn;
 use crate::network::Network;
+
+/// A quadtree point that expresses a link, with its CPPN weight output.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Found {
+    pub(crate) point: [f64; 2],
+    pub(crate) o: f64,
+}
+
+/// The population variance of `xs` (mean first, then mean squared deviation, in order).
+pub(crate) fn variance(xs: &[f64]) -> f64 {
+    if xs.is_empty() {
+        return 0.0;
+    }
+    let n = xs.len() as f64;
+    let mean = xs.iter().sum::<f64>() / n;
+    xs.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / n
+}
 
 /// A fixed node and the side of its links queried: to many points when
 /// `outgoing` (it is their source), else from them.

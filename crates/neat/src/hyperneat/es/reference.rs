@@ -1,23 +1,12 @@
 //! The reference quadtree: the paper's algorithms written as plainly as
 //! possible (a recursive tree, one CPPN query per point).
 
-use super::discover::Found;
-use super::query::{Cell, Exploration, Query};
+use super::query::{Cell, Exploration, Found, Query, variance};
 
 /// A square of the quadtree and its children.
 struct Square {
     cell: Cell,
     children: Vec<Square>,
-}
-
-/// The population variance of `xs` (mean first, then mean squared deviation, in order).
-pub(crate) fn variance(xs: &[f64]) -> f64 {
-    if xs.is_empty() {
-        return 0.0;
-    }
-    let n = xs.len() as f64;
-    let mean = xs.iter().sum::<f64>() / n;
-    xs.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / n
 }
 
 /// The band level of a point of value `w` between neighbours left/right
