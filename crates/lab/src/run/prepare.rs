@@ -64,11 +64,13 @@ pub struct Overrides {
     pub behaviour: Option<BehaviourKind>,
     /// `experiment.task` (a registered task).
     pub task: Option<TaskName>,
+    /// `maze.robot` (the maze task's robot model).
+    pub robot: Option<crate::tasks::maze::config::MazeRobot>,
 }
 
 impl Overrides {
     /// Every override's name, in the order of the fields.
-    pub const KEYS: [&'static str; 20] = [
+    pub const KEYS: [&'static str; 21] = [
         "scenario",
         "generations",
         "population",
@@ -89,6 +91,7 @@ impl Overrides {
         "strategy",
         "behaviour",
         "task",
+        "robot",
     ];
 
     /// Sets override `key` from its text as a command line writes it (lists
@@ -118,6 +121,7 @@ impl Overrides {
             "recurrence" => self.recurrence = Some(parse(text).map_err(what)?),
             "strategy" => self.strategy = Some(parse(text).map_err(what)?),
             "behaviour" => self.behaviour = Some(parse(text).map_err(what)?),
+            "robot" => self.robot = Some(parse(text).map_err(what)?),
             "task" => {
                 tasks::entry(text).map_err(|e| format!("{key} = {e}"))?;
                 self.task = Some(TaskName(text.to_string()));
@@ -169,6 +173,7 @@ impl Overrides {
         set(&mut s.recurrence, self.recurrence);
         set(&mut c.strategy.kind, self.strategy);
         set(&mut c.strategy.behaviour, self.behaviour);
+        set(&mut c.maze.robot, self.robot);
     }
 }
 
@@ -225,8 +230,15 @@ pub fn base_config(file: Option<&Path>, task: Option<&TaskName>, option: &str) -
 
 /// [`base_config`] with `overrides` applied, checked by every rule of its
 /// task; a refusal says `what` gave the overrides (`command line`, `arguments`).
+/// Without a file or a task, shipped scenarios drawn for one task (e.g.
+/// `hard-maze`) select it.
 pub fn config(file: Option<&Path>, overrides: &Overrides, what: &str) -> Result<Config> {
-    let mut config = base_config(file, overrides.task.as_ref(), "task ")?;
+    let drawn_for = (file.is_none() && overrides.task.is_none())
+        .then(|| crate::shipped::task_of(&overrides.scenario))
+        .flatten()
+        .map(|t| TaskName(t.to_string()));
+    let task = overrides.task.as_ref().or(drawn_for.as_ref());
+    let mut config = base_config(file, task, "task ")?;
     overrides.apply(&mut config);
     tasks::check(&config).map_err(|e| bad_input(format!("{what}: {e}")))?;
     Ok(config)
