@@ -15,6 +15,7 @@ mod errors;
 mod evo;
 mod lab;
 mod pool;
+mod reproduce;
 // The program's portable C math symbols, shared rather than copied.
 #[path = "../../crates/vivae/src/portable_libm.rs"]
 mod portable_libm;
@@ -39,6 +40,8 @@ fn _vivae(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(lab::load_genome, m)?)?;
     m.add_function(wrap_pyfunction!(lab::scenarios, m)?)?;
     m.add_function(wrap_pyfunction!(lab::default_config, m)?)?;
+    m.add_function(wrap_pyfunction!(reproduce::reproduce, m)?)?;
+    m.add_function(wrap_pyfunction!(reproduce::reproduce_packs, m)?)?;
     m.add_function(wrap_pyfunction!(math_is_portable, m)?)?;
     m.add("OVERRIDES", settings::OVERRIDES.to_vec())?;
     Ok(())

@@ -26,6 +26,8 @@ from vivae._vivae import (
     Population,
     default_config,
     load_genome,
+    reproduce,
+    reproduce_packs,
     scenarios,
 )
 from vivae.envs import DriveEnv, DriveVectorEnv
@@ -49,6 +51,8 @@ __all__ = [
     "load_genome",
     "replay",
     "report",
+    "reproduce",
+    "reproduce_packs",
     "resume",
     "scenarios",
 ]

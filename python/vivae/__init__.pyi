@@ -10,6 +10,8 @@ from vivae._vivae import (
     Population as Population,
     default_config as default_config,
     load_genome as load_genome,
+    reproduce as reproduce,
+    reproduce_packs as reproduce_packs,
     scenarios as scenarios,
 )
 from vivae.envs import DriveEnv as DriveEnv, DriveVectorEnv as DriveVectorEnv
@@ -35,6 +37,8 @@ __all__ = [
     "load_genome",
     "replay",
     "report",
+    "reproduce",
+    "reproduce_packs",
     "resume",
     "scenarios",
 ]

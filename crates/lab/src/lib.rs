@@ -33,6 +33,7 @@ pub mod config;
 pub mod controller;
 pub mod error;
 pub mod io;
+pub mod reproduce;
 pub mod run;
 pub mod rundir;
 pub mod search;

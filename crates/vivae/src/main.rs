@@ -14,7 +14,7 @@ use vivae_lab::io::one_line;
 mod cli;
 mod portable_libm;
 
-use cli::{compare, config, evolve, replay, report, resume, retrain, scenario, view};
+use cli::{compare, config, evolve, replay, report, reproduce, resume, retrain, scenario, view};
 
 /// HyperNEAT-controlled robots that learn to drive on roads (ViVAE).
 #[derive(Parser, Debug)]
@@ -43,6 +43,8 @@ enum Command {
     View(view::ViewArgs),
     /// Compare runs: fitness per generation and per wall-clock second, figure and table.
     Compare(compare::CompareArgs),
+    /// Run a published experiment with the paper's settings: ours beside the paper's numbers.
+    Reproduce(reproduce::ReproduceArgs),
     /// Inspect and draw scenarios.
     #[command(subcommand)]
     Scenario(scenario::ScenarioCommand),
@@ -92,6 +94,7 @@ fn dispatch(cli: Cli, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode>
         Command::Report { run_dir } => report::run(&run_dir),
         Command::View(args) => view::run(args),
         Command::Compare(args) => compare::run(args),
+        Command::Reproduce(args) => reproduce::run(args),
         Command::Scenario(c) => scenario::run(c),
         Command::Config(c) => config::run(c),
     }

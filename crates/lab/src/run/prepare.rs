@@ -228,17 +228,21 @@ pub fn base_config(file: Option<&Path>, task: Option<&TaskName>, option: &str) -
     }
 }
 
-/// [`base_config`] with `overrides` applied, checked by every rule of its
-/// task; a refusal says `what` gave the overrides (`command line`, `arguments`).
-/// Without a file or a task, shipped scenarios drawn for one task (e.g.
-/// `hard-maze`) select it.
-pub fn config(file: Option<&Path>, overrides: &Overrides, what: &str) -> Result<Config> {
+/// The task a new run names: the overrides' `task`, else (without a config
+/// file) the task its shipped scenarios are drawn for (`hard-maze`: the maze).
+pub fn task_named(file: Option<&Path>, overrides: &Overrides) -> Option<TaskName> {
     let drawn_for = (file.is_none() && overrides.task.is_none())
         .then(|| crate::shipped::task_of(&overrides.scenario))
         .flatten()
         .map(|t| TaskName(t.to_string()));
-    let task = overrides.task.as_ref().or(drawn_for.as_ref());
-    let mut config = base_config(file, task, "task ")?;
+    overrides.task.clone().or(drawn_for)
+}
+
+/// [`base_config`] with `overrides` applied, checked by every rule of its
+/// task; a refusal says `what` gave the overrides (`command line`, `arguments`).
+pub fn config(file: Option<&Path>, overrides: &Overrides, what: &str) -> Result<Config> {
+    let task = task_named(file, overrides);
+    let mut config = base_config(file, task.as_ref(), "task ")?;
     overrides.apply(&mut config);
     tasks::check(&config).map_err(|e| bad_input(format!("{what}: {e}")))?;
     Ok(config)
