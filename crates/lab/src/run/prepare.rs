@@ -332,10 +332,11 @@ mod tests {
             ("strategy", "novelty"),
             ("behaviour", "end-position"),
             ("task", "driving"),
+            ("robot", "vivae"),
         ] {
             o.set(key, text).unwrap_or_else(|e| panic!("{key}: {e}"));
         }
-        assert_eq!(Overrides::KEYS.len(), 20);
+        assert_eq!(Overrides::KEYS.len(), 21);
         let mut c = Config::default();
         o.apply(&mut c);
         assert_eq!((c.experiment.generations, c.neat.population_size), (3, 10));
@@ -347,6 +348,11 @@ mod tests {
         assert!(e.starts_with("steps = \"-5\""), "{e}");
         let e = o.set("task", "chess").unwrap_err();
         assert!(e.contains("chess") && e.contains("driving"), "{e}");
+        let e = o.set("robot", "khepera").unwrap_err();
+        assert!(
+            e.contains("khepera") && e.contains("lehman or vivae"),
+            "{e}"
+        );
     }
 
     #[test]
