@@ -79,6 +79,9 @@ impl Table {
     }
 }
 
+/// How a pack runs: with its options, telling `progress` a line per finished run.
+pub type RunPack = fn(&Options, &mut dyn FnMut(&str)) -> Result<Table>;
+
 /// A replication pack.
 #[derive(Debug, Clone, Copy)]
 pub struct Pack {
@@ -87,7 +90,7 @@ pub struct Pack {
     /// One line on what it reproduces.
     pub what: &'static str,
     /// Runs it; `progress` gets a line per finished run.
-    pub run: fn(&Options, &mut dyn FnMut(&str)) -> Result<Table>,
+    pub run: RunPack,
 }
 
 /// Every pack.
@@ -147,7 +150,7 @@ pub(crate) fn stats(xs: &[u64]) -> Option<(f64, f64, f64)> {
     let mut sorted = xs.to_vec();
     sorted.sort_unstable();
     let mid = sorted.len() / 2;
-    let median = if sorted.len() % 2 == 0 {
+    let median = if sorted.len().is_multiple_of(2) {
         (sorted[mid - 1] + sorted[mid]) as f64 / 2.0
     } else {
         sorted[mid] as f64

@@ -33,7 +33,9 @@ use super::config::{Collision, MazeConfig};
 use super::walls::{LehmanMaze, Segment};
 use super::{INPUTS, METRICS, OUTPUTS, Outcome};
 
-/// π as Lehman's code writes it (its degree ↔ radian conversions).
+/// π as Lehman's code writes it (its degree ↔ radian conversions): kept,
+/// not `PI`, so that headings convert as in his simulator.
+#[allow(clippy::approx_constant)]
 const LEHMAN_PI: f64 = 3.1415926;
 /// The robot's radius.
 pub const RADIUS: f64 = 8.0;
