@@ -13,6 +13,7 @@ mod asktell;
 mod drive;
 mod errors;
 mod evo;
+mod export;
 mod lab;
 mod pool;
 mod reproduce;
@@ -42,6 +43,9 @@ fn _vivae(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(lab::default_config, m)?)?;
     m.add_function(wrap_pyfunction!(reproduce::reproduce, m)?)?;
     m.add_function(wrap_pyfunction!(reproduce::reproduce_packs, m)?)?;
+    m.add_function(wrap_pyfunction!(export::export, m)?)?;
+    m.add_function(wrap_pyfunction!(export::record_episode, m)?)?;
+    m.add_function(wrap_pyfunction!(export::drive_image, m)?)?;
     m.add_function(wrap_pyfunction!(math_is_portable, m)?)?;
     m.add("OVERRIDES", settings::OVERRIDES.to_vec())?;
     Ok(())

@@ -20,9 +20,12 @@ __all__ = [
     "Nsga2",
     "Population",
     "default_config",
+    "drive_image",
     "evolve",
+    "export",
     "load_genome",
     "math_is_portable",
+    "record_episode",
     "replay",
     "report",
     "resume",
@@ -262,4 +265,41 @@ def reproduce(
     progress: bool = False,
 ) -> dict[str, Any]: ...
 def reproduce_packs() -> list[tuple[str, str]]: ...
+def export(
+    source: _Path,
+    format: str,
+    out: _Path,
+    *,
+    generation: int | None = None,
+    elite: int | None = None,
+    front: int | None = None,
+    sensors: str | None = None,
+    neurons: str | None = None,
+) -> list[str]: ...
+def record_episode(
+    source: _Path,
+    *,
+    robot: int = 0,
+    steps: int | None = None,
+    generation: int | None = None,
+    elite: int | None = None,
+    front: int | None = None,
+    sensors: str | None = None,
+    neurons: str | None = None,
+) -> dict[str, Any]: ...
+def drive_image(
+    source: _Path,
+    frames: Sequence[_Path | Any],
+    *,
+    poses: Sequence[tuple[float, float, float]] | None = None,
+    centre: tuple[float, float] | None = None,
+    scale: float = 1.0,
+    heading: float = 0.0,
+    radius: float | None = None,
+    generation: int | None = None,
+    elite: int | None = None,
+    front: int | None = None,
+    sensors: str | None = None,
+    neurons: str | None = None,
+) -> list[tuple[float, float]]: ...
 def math_is_portable() -> bool: ...

@@ -4,7 +4,6 @@
 //! walls (docs/results.md, "The maze").
 
 use crate::config::Config;
-use crate::config::strategy::StrategyKind;
 use crate::error::Result;
 use crate::reproduce::{Options, Pack, Table, solved_at, stats, thousands};
 
@@ -35,7 +34,7 @@ pub const HARD: Pack = Pack {
 /// evaluations (sd) when solved, the page.
 struct Paper {
     label: &'static str,
-    kind: StrategyKind,
+    kind: &'static str,
     solved: Option<usize>,
     mean_sd: Option<(u64, u64)>,
     page: &'static str,
@@ -44,14 +43,14 @@ struct Paper {
 const MEDIUM_PAPER: [Paper; 3] = [
     Paper {
         label: "novelty search",
-        kind: StrategyKind::Novelty,
+        kind: "novelty",
         solved: Some(40),
         mean_sd: Some((18_274, 20_447)),
         page: "p. 16",
     },
     Paper {
         label: "fitness-based NEAT",
-        kind: StrategyKind::Neat,
+        kind: "neat",
         solved: Some(40),
         mean_sd: Some((56_334, 48_705)),
         page: "p. 16",
@@ -62,14 +61,14 @@ const MEDIUM_PAPER: [Paper; 3] = [
 const HARD_PAPER: [Paper; 3] = [
     Paper {
         label: "novelty search",
-        kind: StrategyKind::Novelty,
+        kind: "novelty",
         solved: Some(39),
         mean_sd: Some((35_109, 30_236)),
         page: "pp. 16–17",
     },
     Paper {
         label: "fitness-based NEAT",
-        kind: StrategyKind::Neat,
+        kind: "neat",
         solved: Some(3),
         mean_sd: None,
         page: "pp. 16–17",
@@ -79,7 +78,7 @@ const HARD_PAPER: [Paper; 3] = [
 
 const MAP_ELITES: Paper = Paper {
     label: "MAP-Elites (10-unit grid)",
-    kind: StrategyKind::MapElites,
+    kind: "map-elites",
     solved: None,
     mean_sd: None,
     page: "",
@@ -89,7 +88,7 @@ const MAP_ELITES: Paper = Paper {
 /// --strategy KIND --seed SEED --generations budget/250`.
 pub fn config(
     maze: &str,
-    kind: StrategyKind,
+    kind: &str,
     seed: u64,
     evaluations: u64,
     threads: usize,
@@ -99,7 +98,7 @@ pub fn config(
     c.experiment.seed = seed;
     let population = c.neat.population_size as u64;
     c.experiment.generations = evaluations.div_ceil(population) as u32;
-    c.strategy.kind = kind;
+    c.strategy.kind = kind.into();
     c.run.threads = threads;
     c
 }
@@ -128,7 +127,7 @@ fn run(
             let said = at.map_or("unsolved".to_string(), |n| {
                 format!("solved after {n} evaluations")
             });
-            progress(&format!("{maze} {} seed {seed}: {said}", p.kind.name()));
+            progress(&format!("{maze} {} seed {seed}: {said}", p.kind));
             solved.extend(at);
         }
         rows.push(row(p, &solved, runs));
@@ -197,12 +196,9 @@ mod tests {
 
     #[test]
     fn a_pack_run_is_the_cli_runs_config_and_its_table_counts_solvers() {
-        let c = config("hard-maze", StrategyKind::Novelty, 7, 250_000, 1);
+        let c = config("hard-maze", "novelty", 7, 250_000, 1);
         assert_eq!(c.experiment.generations, 1000);
-        assert_eq!(
-            (c.experiment.seed, c.strategy.kind),
-            (7, StrategyKind::Novelty)
-        );
+        assert_eq!((c.experiment.seed, c.strategy.kind.name()), (7, "novelty"));
         crate::tasks::check(&c).unwrap();
         let r = row(&HARD_PAPER[0], &[10_000, 30_000], 3);
         assert_eq!(r[1..4], ["2/3", "20,000 (14,142)", "20,000"]);
