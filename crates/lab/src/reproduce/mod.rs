@@ -9,6 +9,7 @@
 //! a row of the table can be checked run by run from the command line.
 
 mod maze;
+mod xor;
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -94,7 +95,7 @@ pub struct Pack {
 }
 
 /// Every pack.
-pub const PACKS: [Pack; 2] = [maze::MEDIUM, maze::HARD];
+pub const PACKS: [Pack; 3] = [maze::MEDIUM, maze::HARD, xor::XOR];
 
 /// The pack called `name`; bad input naming the packs otherwise.
 pub fn find(name: &str) -> Result<&'static Pack> {
