@@ -86,13 +86,7 @@ const MAP_ELITES: Paper = Paper {
 
 /// The config of one run: `vivae evolve --task maze --scenario MAZE
 /// --strategy KIND --seed SEED --generations budget/250`.
-pub fn config(
-    maze: &str,
-    kind: &str,
-    seed: u64,
-    evaluations: u64,
-    threads: usize,
-) -> Config {
+pub fn config(maze: &str, kind: &str, seed: u64, evaluations: u64, threads: usize) -> Config {
     let mut c = Config::maze();
     c.experiment.scenario = maze.into();
     c.experiment.seed = seed;

@@ -8,7 +8,10 @@
 //! run by the same code, in a scratch run directory removed afterwards), so
 //! a row of the table can be checked run by run from the command line.
 
+mod boxes;
 mod maze;
+mod pole;
+mod retina;
 mod xor;
 
 use std::fmt::Write as _;
@@ -95,7 +98,15 @@ pub struct Pack {
 }
 
 /// Every pack.
-pub const PACKS: [Pack; 3] = [maze::MEDIUM, maze::HARD, xor::XOR];
+pub const PACKS: [Pack; 7] = [
+    maze::MEDIUM,
+    maze::HARD,
+    xor::XOR,
+    pole::MARKOV,
+    pole::NONMARKOV,
+    boxes::BOXES,
+    retina::RETINA,
+];
 
 /// The pack called `name`; bad input naming the packs otherwise.
 pub fn find(name: &str) -> Result<&'static Pack> {

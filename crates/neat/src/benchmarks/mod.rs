@@ -2,4 +2,7 @@
 //! divan benchmarks and the lab's replication packs (`vivae reproduce`) run
 //! the same work. Pure tasks: no file I/O.
 
+pub mod boxes;
+pub mod pole;
+pub mod retina;
 pub mod xor;
