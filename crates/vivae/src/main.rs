@@ -15,8 +15,8 @@ mod cli;
 mod portable_libm;
 
 use cli::{
-    compare, config, drive_image, evolve, export, replay, report, reproduce, resume, retrain, scenario,
-    view,
+    compare, config, drive_image, evolve, export, replay, report, reproduce, resume, retrain,
+    scenario, view,
 };
 
 /// HyperNEAT-controlled robots that learn to drive on roads (ViVAE).

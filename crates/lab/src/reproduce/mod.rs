@@ -12,6 +12,7 @@ mod boxes;
 mod maze;
 mod pole;
 mod retina;
+mod road;
 mod xor;
 
 use std::fmt::Write as _;
@@ -98,7 +99,7 @@ pub struct Pack {
 }
 
 /// Every pack.
-pub const PACKS: [Pack; 7] = [
+pub const PACKS: [Pack; 8] = [
     maze::MEDIUM,
     maze::HARD,
     xor::XOR,
@@ -106,6 +107,7 @@ pub const PACKS: [Pack; 7] = [
     pole::NONMARKOV,
     boxes::BOXES,
     retina::RETINA,
+    road::ROAD,
 ];
 
 /// The pack called `name`; bad input naming the packs otherwise.
@@ -144,7 +146,7 @@ pub(crate) fn solved_at(config: Config) -> Result<Option<u64>> {
 }
 
 /// A fresh scratch run directory for one run of a pack.
-fn scratch_dir() -> PathBuf {
+pub(crate) fn scratch_dir() -> PathBuf {
     use std::sync::atomic::{AtomicU64, Ordering};
     static NEXT: AtomicU64 = AtomicU64::new(0);
     let k = NEXT.fetch_add(1, Ordering::SeqCst);
