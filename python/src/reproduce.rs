@@ -7,7 +7,7 @@ use vivae_lab::reproduce::{Options, run};
 
 use crate::errors;
 
-/// Runs replication pack `name` (`maze-medium`, `maze-hard`, `xor`) as `vivae
+/// Runs replication pack `name` (`reproduce_packs()` lists them) as `vivae
 /// reproduce` does; returns the table as a dict: `title`, `columns`, `rows`
 /// (lists of cells), `notes` and `markdown` (the text the CLI prints).
 /// `progress=True` prints a line per finished run to stderr.

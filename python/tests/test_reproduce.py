@@ -28,3 +28,14 @@ def test_reproduce_returns_the_clis_table_as_data(tmp_path, cli):
 def test_an_unknown_pack_is_a_value_error_naming_the_packs():
     with pytest.raises(ValueError, match="maze-medium"):
         vivae.reproduce("maze-huge")
+
+
+def test_every_pack_runs_at_tiny_settings_and_returns_its_table():
+    names = [name for name, _ in vivae.reproduce_packs()]
+    assert {"xor", "pole-markov", "pole-nonmarkov", "boxes", "retina", "road"} <= set(names)
+    for name in names:
+        table = vivae.reproduce(name, runs=1, evaluations=200, threads=1)
+        assert table["rows"], name
+        assert all(len(r) == len(table["columns"]) for r in table["rows"]), name
+        assert table["columns"][-1] == "source", name
+        assert table["markdown"].startswith("### "), name

@@ -11,7 +11,7 @@ use vivae_lab::reproduce::{Options, PACKS, run as run_pack};
 /// Options of `vivae reproduce`.
 #[derive(Args, Debug)]
 pub struct ReproduceArgs {
-    /// The pack: maze-medium, maze-hard or xor (`vivae reproduce --list`).
+    /// The pack: maze-medium, maze-hard, xor, pole-markov, pole-nonmarkov, boxes, retina or road (`vivae reproduce --list`).
     #[arg(value_name = "NAME", required_unless_present = "list")]
     pub name: Option<String>,
     /// Runs per method (default: the paper's).

@@ -62,3 +62,42 @@ fn an_unknown_pack_exits_2_naming_the_packs() {
     let list = ok(vivae().args(["reproduce", "--list"]));
     assert!(list.lines().any(|l| l.starts_with("maze-hard")), "{list}");
 }
+
+#[test]
+fn every_pack_runs_at_tiny_settings_and_prints_its_sourced_table() {
+    let dir = scratch("reproduce-every");
+    let list = ok(vivae().args(["reproduce", "--list"]));
+    let names: Vec<&str> = list
+        .lines()
+        .filter_map(|l| l.split_whitespace().next())
+        .collect();
+    for name in [
+        "xor",
+        "pole-markov",
+        "pole-nonmarkov",
+        "boxes",
+        "retina",
+        "road",
+    ] {
+        assert!(names.contains(&name), "{name} not in {names:?}");
+        let table_file = dir.join(format!("{name}.md"));
+        let printed = ok(vivae()
+            .args(["reproduce", name, "--runs", "1", "--evaluations", "200"])
+            .args(["--threads", "1", "-q", "-o"])
+            .arg(&table_file));
+        assert_eq!(std::fs::read_to_string(&table_file).unwrap(), printed);
+        assert!(printed.starts_with("### "), "{name}: {printed}");
+        let header = printed.lines().find(|l| l.starts_with("| ")).unwrap();
+        assert!(
+            header.contains("ours") && header.ends_with("| source |"),
+            "{name}: {header}"
+        );
+        let rows = printed.lines().filter(|l| l.starts_with("| ")).count();
+        assert!(rows >= 3, "{name}: a header, its rule and a row: {printed}");
+        assert!(
+            printed.contains("seeds 1–1"),
+            "{name}: the seeds are stated: {printed}"
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
