@@ -30,6 +30,8 @@ pub const NONMARKOV: Pack = Pack {
 /// A setting of ours and the published numbers it is compared with.
 struct Row {
     label: &'static str,
+    /// The setting's name in progress lines.
+    tag: &'static str,
     setup: fn() -> Setup,
     /// The example's flags giving the same runs.
     flags: &'static str,
@@ -39,6 +41,7 @@ struct Row {
 
 const MARKOV_ROWS: [Row; 2] = [
     Row {
+        tag: "markov",
         label: "NEAT, population 150 (vs Stanley's Table 1)",
         setup: Setup::markov,
         flags: "--markov",
@@ -50,6 +53,7 @@ const MARKOV_ROWS: [Row; 2] = [
         ],
     },
     Row {
+        tag: "markov",
         label: "the same runs (vs Gomez et al.'s Table 3; their best, CoSyNE: 954)",
         setup: Setup::markov,
         flags: "--markov",
@@ -64,6 +68,7 @@ const MARKOV_ROWS: [Row; 2] = [
 
 const NONMARKOV_ROWS: [Row; 3] = [
     Row {
+        tag: "stanley-1000",
         label: "Stanley's terms: population 1,000, ≥ 200 of 625 generalisation starts",
         setup: || Setup::nonmarkov(false),
         flags: "",
@@ -75,6 +80,7 @@ const NONMARKOV_ROWS: [Row; 3] = [
         ],
     },
     Row {
+        tag: "stanley-150",
         label: "Stanley's terms, population 150, 10 species, survival 0.4",
         setup: || Setup::nonmarkov(true),
         flags: "--small",
@@ -86,6 +92,7 @@ const NONMARKOV_ROWS: [Row; 3] = [
         ],
     },
     Row {
+        tag: "gomez-16",
         label: "Gomez et al.'s terms: damping fitness, their rule (100,000 steps, no generalisation test), 4.0°, population 16, restarts counted",
         setup: Setup::gomez,
         flags: "--small --set population_size=16 --set target_species=2 --criterion gomez --start-angle 4.0 --restart-after 250 --set weight_perturb_power=0.5 --max-generations 9375",
@@ -158,7 +165,7 @@ fn table(what: &str, rows: &[Row], o: &Options, progress: &mut dyn FnMut(&str)) 
                     let said = one.evals.map_or("unsolved".into(), |e| {
                         format!("solved after {e} evaluations")
                     });
-                    progress(&format!("pole {} seed {seed}: {said}", row.flags));
+                    progress(&format!("pole {} seed {seed}: {said}", row.tag));
                     r.push(one);
                 }
                 notes.push(format!(
