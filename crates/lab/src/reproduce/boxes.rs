@@ -68,7 +68,7 @@ fn run_pack(o: &Options, progress: &mut dyn FnMut(&str)) -> Result<Table> {
                 "the same runs: cargo run --release -p vivae-neat --example boxes -- --runs {runs} --seed {} --max-generations {generations}",
                 o.seed
             ),
-            "the paper (Stanley, D'Ambrosio & Gauci 2009, Artificial Life 15(2):185–212) could not be read here: its figures at 33×33 and 55×55 are not verified and not quoted; a third party's notes on its preprint say 20 runs of 300 generations and \"HyperNEAT generalizes significantly better than P-NEAT (p < 0.01) and scales almost perfectly\" (docs/hyperneat-benchmarks.md). Its fitness (squared distances summed) differs from ours (100/(1 + mean distance))".into(),
+            "the paper (Stanley, D'Ambrosio & Gauci 2009, Artificial Life 15(2)) could not be read here: its figures at 33×33 and 55×55 are not verified and not quoted; a third party's notes on its preprint say 20 runs of 300 generations and \"HyperNEAT generalizes significantly better than P-NEAT (p < 0.01) and scales almost perfectly\" (docs/hyperneat-benchmarks.md). Its fitness (squared distances summed) differs from ours (100/(1 + mean distance))".into(),
         ],
     })
 }

@@ -169,9 +169,13 @@ fn table(what: &str, rows: &[Row], o: &Options, progress: &mut dyn FnMut(&str)) 
                     r.push(one);
                 }
                 notes.push(format!(
-                    "the row \"{}\": cargo run --release -p vivae-neat --example pole -- {} --runs {runs} --seed {} (at most {} generations)",
+                    "the row \"{}\": cargo run --release -p vivae-neat --example pole --{} --runs {runs} --seed {} (at most {} generations)",
                     row.label,
-                    row.flags,
+                    if row.flags.is_empty() {
+                        String::new()
+                    } else {
+                        format!(" {}", row.flags)
+                    },
                     o.seed,
                     setup.max_generations
                 ));
