@@ -16,6 +16,7 @@ mod evo;
 mod export;
 mod lab;
 mod pool;
+mod reproduce;
 // The program's portable C math symbols, shared rather than copied.
 #[path = "../../crates/vivae/src/portable_libm.rs"]
 mod portable_libm;
@@ -40,6 +41,8 @@ fn _vivae(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(lab::load_genome, m)?)?;
     m.add_function(wrap_pyfunction!(lab::scenarios, m)?)?;
     m.add_function(wrap_pyfunction!(lab::default_config, m)?)?;
+    m.add_function(wrap_pyfunction!(reproduce::reproduce, m)?)?;
+    m.add_function(wrap_pyfunction!(reproduce::reproduce_packs, m)?)?;
     m.add_function(wrap_pyfunction!(export::export, m)?)?;
     m.add_function(wrap_pyfunction!(export::record_episode, m)?)?;
     m.add_function(wrap_pyfunction!(export::drive_image, m)?)?;

@@ -13,7 +13,7 @@ use crate::errors;
 
 /// The keyword overrides every entry point accepts: the library's
 /// [`Overrides`] keys, which are the CLI's flags too.
-pub const OVERRIDES: [&str; 20] = Overrides::KEYS;
+pub const OVERRIDES: [&str; 21] = Overrides::KEYS;
 
 /// `config` (a TOML file) or the named task's defaults (the paper's when
 /// none is named), with `overrides` applied and checked: the library's one

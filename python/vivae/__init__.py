@@ -29,6 +29,8 @@ from vivae._vivae import (
     export,
     load_genome,
     record_episode,
+    reproduce,
+    reproduce_packs,
     scenarios,
 )
 from vivae.envs import DriveEnv, DriveVectorEnv
@@ -55,6 +57,8 @@ __all__ = [
     "record_episode",
     "replay",
     "report",
+    "reproduce",
+    "reproduce_packs",
     "resume",
     "scenarios",
 ]

@@ -13,6 +13,8 @@ from vivae._vivae import (
     export as export,
     load_genome as load_genome,
     record_episode as record_episode,
+    reproduce as reproduce,
+    reproduce_packs as reproduce_packs,
     scenarios as scenarios,
 )
 from vivae.envs import DriveEnv as DriveEnv, DriveVectorEnv as DriveVectorEnv
@@ -41,6 +43,8 @@ __all__ = [
     "record_episode",
     "replay",
     "report",
+    "reproduce",
+    "reproduce_packs",
     "resume",
     "scenarios",
 ]

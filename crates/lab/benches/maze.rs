@@ -2,9 +2,10 @@
 //! compare with `gymnasium-hardmaze` stepping its hard maze
 //! (crates/lab/examples/maze_gym.py): the rangefinders and radar read and
 //! the world stepped every step, with a fixed policy (as the Python side)
-//! and with a NEAT network deciding.
+//! and with a NEAT network deciding; and Lehman's robot, the task's default.
 
 use divan::{Bencher, black_box};
+use vivae_lab::tasks::maze::lehman::LehmanTask;
 use vivae_lab::tasks::maze::{Maze, MazeTask};
 use vivae_neat::{NeatParams, Population};
 
@@ -28,4 +29,12 @@ fn hard_maze_evaluation_minimal_genome(bencher: Bencher) {
     let pop = Population::new(NeatParams::plain_neat(), MazeTask::spec(), 1).unwrap();
     let genome = &pop.genomes()[0];
     bencher.bench(|| black_box(task.run_genome(black_box(genome))));
+}
+
+/// Lehman's robot ([`LehmanTask`], the maze task's default) on his hard
+/// maze, full speed ahead with a slight right turn, for all 400 steps.
+#[divan::bench]
+fn lehman_hard_maze_fixed_policy_400_steps(bencher: Bencher) {
+    let task = LehmanTask::shipped(Maze::Hard);
+    bencher.bench(|| black_box(task.run(|_, o| o.copy_from_slice(&[0.55, 1.0]))));
 }

@@ -73,6 +73,18 @@ pub fn find(name: &str) -> Option<&'static Shipped> {
     SHIPPED.iter().find(|s| s.name == name)
 }
 
+/// The task the scenarios `names` are drawn for, when each is a shipped
+/// scenario (no file of that name here) and they agree on one task.
+pub fn task_of(names: &[String]) -> Option<&'static str> {
+    let shipped = |n: &String| {
+        let is_file = std::path::Path::new(n).exists();
+        (!is_file).then(|| find(n)).flatten()
+    };
+    let mut tasks = names.iter().map(|n| shipped(n).map(|s| s.task));
+    let first = tasks.next()??;
+    tasks.all(|t| t == Some(first)).then_some(first)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -116,5 +128,16 @@ mod tests {
         assert_eq!(find("oval").unwrap().name, "oval");
         assert_eq!(find("town.svg").unwrap().name, "town");
         assert!(find("nowhere").is_none());
+    }
+
+    #[test]
+    fn shipped_scenarios_name_the_task_they_are_drawn_for() {
+        let names = |n: &[&str]| n.iter().map(|s| s.to_string()).collect::<Vec<_>>();
+        assert_eq!(task_of(&names(&["hard-maze"])), Some("maze"));
+        assert_eq!(task_of(&names(&["medium-maze.svg"])), Some("maze"));
+        assert_eq!(task_of(&names(&["oval", "town"])), Some("driving"));
+        assert_eq!(task_of(&names(&["oval", "hard-maze"])), None, "two tasks");
+        assert_eq!(task_of(&names(&["my-maze.svg"])), None, "not shipped");
+        assert_eq!(task_of(&[]), None);
     }
 }

@@ -53,6 +53,7 @@
 //! [`stats`] holds the mean and median every summary uses.
 
 pub mod activation;
+pub mod benchmarks;
 mod compile;
 pub mod crossover;
 pub mod distance;

@@ -63,6 +63,12 @@ pub struct Config {
     /// The search strategy (NEAT by default) and its settings.
     #[serde(default, skip_serializing_if = "StrategyConfig::is_default")]
     pub strategy: StrategyConfig,
+    /// The maze task's robot model (`experiment.task = "maze"` only).
+    #[serde(
+        default,
+        skip_serializing_if = "crate::tasks::maze::config::MazeConfig::is_default"
+    )]
+    pub maze: crate::tasks::maze::config::MazeConfig,
 }
 
 /// What is run.

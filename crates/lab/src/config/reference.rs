@@ -156,6 +156,9 @@ pub(super) fn documented_defaults() -> toml::Value {
     if let Some(table) = defaults.as_table_mut() {
         let strategy = toml::Value::try_from(StrategyConfig::default()).expect("TOML");
         table.insert("strategy".into(), strategy);
+        // Likewise `[maze]`, written only when a maze run changes it.
+        let maze = crate::tasks::maze::config::MazeConfig::default();
+        table.insert("maze".into(), toml::Value::try_from(maze).expect("TOML"));
     }
     defaults
 }

@@ -64,11 +64,13 @@ pub struct Overrides {
     pub behaviour: Option<BehaviourKind>,
     /// `experiment.task` (a registered task).
     pub task: Option<TaskName>,
+    /// `maze.robot` (the maze task's robot model).
+    pub robot: Option<crate::tasks::maze::config::MazeRobot>,
 }
 
 impl Overrides {
     /// Every override's name, in the order of the fields.
-    pub const KEYS: [&'static str; 20] = [
+    pub const KEYS: [&'static str; 21] = [
         "scenario",
         "generations",
         "population",
@@ -89,6 +91,7 @@ impl Overrides {
         "strategy",
         "behaviour",
         "task",
+        "robot",
     ];
 
     /// Sets override `key` from its text as a command line writes it (lists
@@ -118,6 +121,7 @@ impl Overrides {
             "recurrence" => self.recurrence = Some(parse(text).map_err(what)?),
             "strategy" => self.strategy = Some(parse(text).map_err(what)?),
             "behaviour" => self.behaviour = Some(parse(text).map_err(what)?),
+            "robot" => self.robot = Some(parse(text).map_err(what)?),
             "task" => {
                 tasks::entry(text).map_err(|e| format!("{key} = {e}"))?;
                 self.task = Some(TaskName(text.to_string()));
@@ -169,6 +173,7 @@ impl Overrides {
         set(&mut s.recurrence, self.recurrence);
         set(&mut c.strategy.kind, self.strategy.clone());
         set(&mut c.strategy.behaviour, self.behaviour);
+        set(&mut c.maze.robot, self.robot);
     }
 }
 
@@ -223,10 +228,21 @@ pub fn base_config(file: Option<&Path>, task: Option<&TaskName>, option: &str) -
     }
 }
 
+/// The task a new run names: the overrides' `task`, else (without a config
+/// file) the task its shipped scenarios are drawn for (`hard-maze`: the maze).
+pub fn task_named(file: Option<&Path>, overrides: &Overrides) -> Option<TaskName> {
+    let drawn_for = (file.is_none() && overrides.task.is_none())
+        .then(|| crate::shipped::task_of(&overrides.scenario))
+        .flatten()
+        .map(|t| TaskName(t.to_string()));
+    overrides.task.clone().or(drawn_for)
+}
+
 /// [`base_config`] with `overrides` applied, checked by every rule of its
 /// task; a refusal says `what` gave the overrides (`command line`, `arguments`).
 pub fn config(file: Option<&Path>, overrides: &Overrides, what: &str) -> Result<Config> {
-    let mut config = base_config(file, overrides.task.as_ref(), "task ")?;
+    let task = task_named(file, overrides);
+    let mut config = base_config(file, task.as_ref(), "task ")?;
     overrides.apply(&mut config);
     tasks::check(&config).map_err(|e| bad_input(format!("{what}: {e}")))?;
     Ok(config)
@@ -316,10 +332,11 @@ mod tests {
             ("strategy", "novelty"),
             ("behaviour", "end-position"),
             ("task", "driving"),
+            ("robot", "vivae"),
         ] {
             o.set(key, text).unwrap_or_else(|e| panic!("{key}: {e}"));
         }
-        assert_eq!(Overrides::KEYS.len(), 20);
+        assert_eq!(Overrides::KEYS.len(), 21);
         let mut c = Config::default();
         o.apply(&mut c);
         assert_eq!((c.experiment.generations, c.neat.population_size), (3, 10));
@@ -331,6 +348,11 @@ mod tests {
         assert!(e.starts_with("steps = \"-5\""), "{e}");
         let e = o.set("task", "chess").unwrap_err();
         assert!(e.contains("chess") && e.contains("driving"), "{e}");
+        let e = o.set("robot", "khepera").unwrap_err();
+        assert!(
+            e.contains("khepera") && e.contains("lehman or vivae"),
+            "{e}"
+        );
     }
 
     #[test]

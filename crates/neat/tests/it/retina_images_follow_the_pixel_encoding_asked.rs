@@ -1,12 +1,9 @@
-//! The retina example's images (`examples/common/retina_task.rs`): `01`
+//! The retina task's images (`vivae_neat::benchmarks::retina`): `01`
 //! pixels are 0 and 1 as before, `pm3` pixels are −3 and +3 (AHNI's
 //! reproduction) with the same labels, and both placements put the eight
 //! pixels at distinct positions with the left half at x < 0.
 
-#[path = "../../examples/common/retina_task.rs"]
-mod retina_task;
-
-use retina_task::{LEFT_OBJECTS, Pixels, Placement, RIGHT_OBJECTS, images};
+use vivae_neat::benchmarks::retina::{LEFT_OBJECTS, Pixels, Placement, RIGHT_OBJECTS, images};
 
 #[test]
 fn zero_one_pixels_are_the_bits_of_the_image() {

@@ -8,7 +8,7 @@ use std::sync::atomic::AtomicBool;
 
 use anyhow::Context as _;
 use clap::Args;
-use vivae_lab::run::prepare::{base_config, prepare};
+use vivae_lab::run::prepare::{base_config, prepare, task_named};
 use vivae_neat::driver::Task;
 
 use super::args::{NewRun, Quiet};
@@ -33,7 +33,8 @@ pub struct EvolveArgs {
 
 /// Runs `vivae evolve`.
 pub fn run(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode> {
-    let task = args.overrides.task.as_ref();
+    let named = task_named(args.config.as_deref(), &args.overrides.to_lab());
+    let task = named.as_ref();
     let mut config = base_config(args.config.as_deref(), task, "--task ")?;
     apply_overrides(&mut config, &args.overrides)?;
     // Without a config file a named task starts from its own defaults,

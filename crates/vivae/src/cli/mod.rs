@@ -19,6 +19,7 @@ pub mod mpi_job;
 pub mod overrides;
 pub mod replay;
 pub mod report;
+pub mod reproduce;
 pub mod resume;
 pub mod retrain;
 pub mod scenario;

@@ -63,6 +63,10 @@ pub struct Overrides {
     /// Distance rays of the second input sheet (distance_sensors.rays; 0 = none).
     #[arg(long, value_name = "N")]
     pub distance_rays: Option<usize>,
+    /// The maze's robot model (maze.robot): lehman (default: Lehman's maze
+    /// navigator) or vivae (our differential robot of [physics]).
+    #[arg(long, value_name = "lehman|vivae")]
+    pub robot: Option<vivae_lab::tasks::maze::config::MazeRobot>,
 }
 
 /// `--task NAME`: one of the registered tasks (listed by `--help`).
@@ -106,6 +110,7 @@ impl Overrides {
             strategy: self.strategy.clone(),
             behaviour: self.behaviour,
             task: self.task.clone(),
+            robot: self.robot,
         }
     }
 }

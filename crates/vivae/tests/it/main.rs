@@ -47,6 +47,7 @@ mod report_html_is_self_contained;
 mod report_plots_keep_the_legend_off_the_curves;
 mod report_refuses_damaged_run_files;
 mod report_shows_each_training_map;
+mod reproduce_packs_print_and_write_their_table;
 mod resume_matches_uninterrupted_run;
 mod resume_redraws_a_stale_report;
 mod resume_removes_stale_temporaries;

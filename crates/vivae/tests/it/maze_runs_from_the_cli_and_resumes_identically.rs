@@ -199,7 +199,17 @@ fn the_cli_maze_run_is_the_examples_run_for_the_same_seed() {
         let out = dir.join(strategy);
         maze(
             &out,
-            &["--strategy", strategy, "--seed", "5", "--generations", "4"],
+            // The example drives our robot (MazeTask): the CLI's `--robot vivae`.
+            &[
+                "--strategy",
+                strategy,
+                "--seed",
+                "5",
+                "--generations",
+                "4",
+                "--robot",
+                "vivae",
+            ],
         );
         // population.csv's rank-0 row of each generation is its best fitness.
         let csv = String::from_utf8(read(&out, "population.csv")).unwrap();
@@ -299,5 +309,50 @@ fn bad_maze_combinations_and_driving_only_commands_exit_2_with_one_line() {
     for name in ["medium-maze", "hard-maze"] {
         assert!(list.lines().any(|l| l.starts_with(name)), "{list}");
     }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_shipped_maze_selects_the_maze_task_and_the_robot_flag_picks_the_model() {
+    let dir = scratch("maze-selected");
+    let evolve = |out: &str, extra: &[&str]| {
+        ok(vivae()
+            .args([
+                "evolve",
+                "-q",
+                "--scenario",
+                "hard-maze",
+                "--generations",
+                "2",
+            ])
+            .args(["--population", "20", "--seed", "2"])
+            .args(extra)
+            .arg("--out")
+            .arg(dir.join(out)))
+    };
+    // No --task: the shipped hard maze is drawn for the maze task.
+    let line = evolve("implicit", &[]);
+    assert!(line.contains("best_distance="), "{line}");
+    let explicit = evolve("explicit", &["--task", "maze"]);
+    for key in ["best", "best_distance", "evaluations"] {
+        assert_eq!(field(&line, key), field(&explicit, key), "{key}");
+    }
+    let config = String::from_utf8(read(&dir.join("implicit"), "config.toml")).unwrap();
+    assert!(
+        config.contains("task = \"maze\"") && !config.contains("[maze]"),
+        "{config}"
+    );
+    // Our robot is another model: another run, recorded in the config.
+    let ours = evolve("vivae", &["--robot", "vivae"]);
+    assert_ne!(field(&ours, "best"), field(&line, "best"));
+    let config = String::from_utf8(read(&dir.join("vivae"), "config.toml")).unwrap();
+    assert!(config.contains("[maze]\nrobot = \"vivae\""), "{config}");
+    refused(
+        vivae()
+            .args(["evolve", "-q", "--robot", "vivae", "--generations", "1"])
+            .arg("--out")
+            .arg(dir.join("driving")),
+        "[maze]",
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -16,7 +16,7 @@ use crate::tasks::{HeaderContext, RunTask, TaskEntry};
 pub static TASK: TaskEntry = TaskEntry {
     name: TaskName::DRIVING,
     default_config: Config::default,
-    validate: |_| Ok(()),
+    validate: crate::tasks::maze::config::refuse_for_other_tasks,
     metric_names: &crate::config::strategy::METRICS,
     generation_columns: "",
     build,

@@ -17,8 +17,10 @@
 //! ends early when the robot reaches the goal, as in Lehman's simulator.
 
 pub mod config;
+pub mod lehman;
 mod present;
 pub mod run;
+pub mod walls;
 
 pub use run::TASK;
 
@@ -89,6 +91,14 @@ pub enum MazeError {
     /// A sensor or physics setting out of range (e.g. a goal mark of no size).
     #[error(transparent)]
     Param(#[from] ParamError),
+    /// A maze file in Lehman's format that does not parse.
+    #[error("{source_name}: {why}")]
+    File {
+        /// The file.
+        source_name: String,
+        /// What is wrong.
+        why: String,
+    },
 }
 
 /// One of the two shipped mazes.
@@ -164,6 +174,62 @@ impl Outcome {
     /// The paper's fitness `b_f − d_g`, never below 0.
     pub fn fitness(&self) -> f64 {
         (FITNESS_BIAS - self.distance).max(0.0)
+    }
+
+    /// The evaluation: fitness, the metrics [`METRICS`], the end position as behaviour.
+    pub fn evaluation(&self) -> Evaluation {
+        Evaluation {
+            fitness: self.fitness(),
+            metrics: vec![
+                f64::from(u8::from(self.solved)),
+                self.distance,
+                self.steps as f64,
+            ],
+            behaviour: vec![self.end.x, self.end.y],
+        }
+    }
+}
+
+/// What a maze run needs of a robot model: Lehman's ([`lehman::LehmanTask`],
+/// the default) or ours ([`MazeTask`], `maze.robot = "vivae"`).
+pub trait MazeModel: Task + Clone + std::fmt::Debug + Send + Sync + 'static {
+    /// One episode driven by `genome`'s network.
+    fn outcome(&self, genome: &Genome) -> Outcome;
+    /// Steps of one episode at most.
+    fn episode_steps(&self) -> u32;
+    /// The box every end position lies in.
+    fn bounds(&self) -> (Vec<f64>, Vec<f64>);
+    /// Where the maze came from, for the run's header and a replay.
+    fn source(&self) -> &str;
+}
+
+impl MazeModel for MazeTask {
+    fn outcome(&self, genome: &Genome) -> Outcome {
+        self.run_genome(genome)
+    }
+    fn episode_steps(&self) -> u32 {
+        self.steps
+    }
+    fn bounds(&self) -> (Vec<f64>, Vec<f64>) {
+        self.arena_bounds()
+    }
+    fn source(&self) -> &str {
+        &self.world.scenario().source
+    }
+}
+
+impl MazeModel for lehman::LehmanTask {
+    fn outcome(&self, genome: &Genome) -> Outcome {
+        self.run_genome(genome)
+    }
+    fn episode_steps(&self) -> u32 {
+        self.steps()
+    }
+    fn bounds(&self) -> (Vec<f64>, Vec<f64>) {
+        self.maze().bounds()
+    }
+    fn source(&self) -> &str {
+        &self.maze().source
     }
 }
 
@@ -311,16 +377,7 @@ impl MazeTask {
 
 impl Task for MazeTask {
     fn evaluate(&self, genome: &Genome, _ctx: &EvalContext) -> Evaluation {
-        let out = self.run_genome(genome);
-        Evaluation {
-            fitness: out.fitness(),
-            metrics: vec![
-                f64::from(u8::from(out.solved)),
-                out.distance,
-                out.steps as f64,
-            ],
-            behaviour: vec![out.end.x, out.end.y],
-        }
+        self.run_genome(genome).evaluation()
     }
 
     fn metric_names(&self) -> &[&str] {

@@ -5,7 +5,8 @@
 use vivae_neat::Genome;
 
 use crate::config::Config;
-use crate::tasks::maze::MazeTask;
+use crate::tasks::maze::MazeModel;
+use crate::tasks::maze::config::MazeRobot;
 use crate::tasks::{Finished, HeaderContext};
 
 /// The header of a maze run.
@@ -13,12 +14,13 @@ pub(super) fn header(config: &Config, ctx: &HeaderContext<'_>) -> String {
     let c = config;
     format!(
         "vivae {}: the maze {}\n\
-         \x20 a plain NEAT network (11 inputs, 2 outputs), {} steps per evaluation, population {}, \
+         \x20 a plain NEAT network (11 inputs, 2 outputs) driving {}, {} steps per evaluation, population {}, \
          at most {} generations{}, seed {}{}\n\
          \x20 output: {}\n\
          \x20 fitness = 300 - the end distance to the goal in px; the run stops when a genome reaches the goal",
         ctx.command,
         ctx.scenario,
+        robot(config),
         c.experiment.steps,
         c.neat.population_size,
         c.experiment.generations,
@@ -29,10 +31,28 @@ pub(super) fn header(config: &Config, ctx: &HeaderContext<'_>) -> String {
     )
 }
 
+/// The robot of a maze run, for its header.
+fn robot(config: &Config) -> String {
+    let m = &config.maze;
+    match m.robot {
+        MazeRobot::Vivae => "our robot of [physics] (--robot vivae)".into(),
+        MazeRobot::Lehman => format!(
+            "Lehman's robot ({}, {} walls, collision {})",
+            if m.quirks {
+                "his code's inputs"
+            } else {
+                "the paper's inputs"
+            },
+            m.walls,
+            m.collision
+        ),
+    }
+}
+
 /// The closing lines and the summary line of a finished maze run.
-pub(super) fn summary(task: &MazeTask, f: &Finished<'_>) -> (String, String) {
+pub(super) fn summary(task: &impl MazeModel, f: &Finished<'_>) -> (String, String) {
     let (progress, dir, wall, rate) = (f.progress, f.dir, f.wall, f.rate);
-    let end = task.run_genome(f.champion);
+    let end = task.outcome(f.champion);
     let verdict = match (progress.solved_at, progress.solved_generation) {
         (Some(n), Some(g)) => format!("solved after {n} evaluations (generation {g})"),
         _ => format!("not solved in {} evaluations", progress.evaluations),
@@ -58,8 +78,8 @@ pub(super) fn summary(task: &MazeTask, f: &Finished<'_>) -> (String, String) {
 }
 
 /// A replay of `genome` in `task`: the episode's end, and a note.
-pub(super) fn replay(task: &MazeTask, genome: &Genome) -> (String, String) {
-    let end = task.run_genome(genome);
+pub(super) fn replay(task: &impl MazeModel, genome: &Genome) -> (String, String) {
+    let end = task.outcome(genome);
     let line = format!(
         "fitness={} solved={} distance={:.3} steps={} end_x={:.3} end_y={:.3}",
         end.fitness(),
@@ -71,7 +91,7 @@ pub(super) fn replay(task: &MazeTask, genome: &Genome) -> (String, String) {
     );
     let note = format!(
         "maze {}: a maze replay prints the episode's end and draws no figure",
-        task.world().scenario().source
+        task.source()
     );
     (line, note)
 }

@@ -18,7 +18,10 @@ use crate::config::Config;
 use crate::error::Result;
 use crate::io::bad_input;
 use crate::tasks::maps::TrainingMap;
-use crate::tasks::maze::{METRICS, MazeTask, NAME};
+use crate::tasks::maze::config::MazeRobot;
+use crate::tasks::maze::lehman::LehmanTask;
+use crate::tasks::maze::walls::LehmanMaze;
+use crate::tasks::maze::{METRICS, MazeModel, MazeTask, NAME};
 use crate::tasks::{Finished, HeaderContext, RunTask, TargetProgress, TaskEntry};
 
 /// The maze task's registration.
@@ -35,8 +38,8 @@ pub static TASK: TaskEntry = TaskEntry {
 pub const CELL: f64 = 10.0;
 
 /// MAP-Elites bins of [`CELL`]-px cells over `task`'s arena (the example's grid).
-pub fn cell_bins(task: &MazeTask) -> Vec<usize> {
-    let (_, upper) = task.arena_bounds();
+pub fn cell_bins(task: &impl MazeModel) -> Vec<usize> {
+    let (_, upper) = task.bounds();
     upper.iter().map(|u| (u / CELL).ceil() as usize).collect()
 }
 
@@ -47,10 +50,23 @@ pub fn task(config: &Config, scenario: &Scenario) -> Result<MazeTask> {
         .map_err(|e| bad_input(e.to_string()))
 }
 
-/// The maze run of `config` on the first of `maps` (a maze run has one).
+/// The maze of `config`'s Lehman robot on `map` (Lehman's walls for a
+/// shipped maze unless `maze.walls = "scenario"`).
+pub fn lehman_task(config: &Config, map: &TrainingMap) -> Result<LehmanTask> {
+    let (scenario, svg) = (&map.loaded.scenario, &map.loaded.text);
+    let maze = LehmanMaze::of_map(scenario, svg, config.maze.walls)
+        .map_err(|e| bad_input(e.to_string()))?;
+    Ok(LehmanTask::new(maze, &config.maze, config.experiment.steps))
+}
+
+/// The maze run of `config` on the first of `maps` (a maze run has one),
+/// with the robot of `maze.robot`.
 fn build(config: &Config, maps: &[TrainingMap]) -> Result<Box<dyn RunTask>> {
     let map = maps.first().ok_or_else(|| bad_input("no maze"))?;
-    Ok(Box::new(task(config, &map.loaded.scenario)?))
+    Ok(match config.maze.robot {
+        MazeRobot::Lehman => Box::new(lehman_task(config, map)?),
+        MazeRobot::Vivae => Box::new(task(config, &map.loaded.scenario)?),
+    })
 }
 
 /// The columns a maze run adds to `generations.csv`, with their leading comma.
@@ -81,7 +97,7 @@ fn solved(e: &Evaluation) -> bool {
     e.metrics.first() == Some(&1.0)
 }
 
-impl RunTask for MazeTask {
+impl<M: MazeModel> RunTask for M {
     fn entry(&self) -> &'static TaskEntry {
         &TASK
     }
@@ -91,11 +107,11 @@ impl RunTask for MazeTask {
     }
 
     fn behaviour_bounds(&self, _config: &Config) -> (Vec<f64>, Vec<f64>) {
-        self.arena_bounds()
+        self.bounds()
     }
 
     fn robot_steps(&self) -> u64 {
-        u64::from(self.steps())
+        u64::from(self.episode_steps())
     }
 
     /// A maze episode ends early at the goal: the steps it took.

@@ -1,0 +1,8 @@
+//! The field's benchmark tasks as library code, so that the examples, the
+//! divan benchmarks and the lab's replication packs (`vivae reproduce`) run
+//! the same work. Pure tasks: no file I/O.
+
+pub mod boxes;
+pub mod pole;
+pub mod retina;
+pub mod xor;

@@ -1,0 +1,71 @@
+//! `vivae reproduce NAME`: a published experiment run with the paper's
+//! settings (a pack of `vivae_lab::reproduce`), its table of ours beside
+//! the paper's numbers printed and written to a Markdown file.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::Args;
+use vivae_lab::reproduce::{Options, PACKS, run as run_pack};
+
+/// Options of `vivae reproduce`.
+#[derive(Args, Debug)]
+pub struct ReproduceArgs {
+    /// The pack: maze-medium, maze-hard, xor, pole-markov, pole-nonmarkov, boxes, retina or road (`vivae reproduce --list`).
+    #[arg(value_name = "NAME", required_unless_present = "list")]
+    pub name: Option<String>,
+    /// Runs per method (default: the paper's).
+    #[arg(long, value_name = "N")]
+    pub runs: Option<usize>,
+    /// The first run's seed; run k has seed SEED + k.
+    #[arg(long, value_name = "S", default_value_t = 1)]
+    pub seed: u64,
+    /// A few-minute version for a first look: fewer runs, a smaller budget.
+    #[arg(long)]
+    pub quick: bool,
+    /// Evaluations per run at most (default: the paper's; --quick: a tenth).
+    #[arg(long, value_name = "N")]
+    pub evaluations: Option<u64>,
+    /// Worker threads per run (0 = one per core); results do not depend on it.
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    pub threads: usize,
+    /// The Markdown file written (default: reproduce-NAME.md).
+    #[arg(short, long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
+    /// No line per finished run.
+    #[arg(short, long)]
+    pub quiet: bool,
+    /// List the packs and exit.
+    #[arg(long)]
+    pub list: bool,
+}
+
+/// Runs `vivae reproduce`: the table printed and written.
+pub fn run(args: ReproduceArgs) -> anyhow::Result<ExitCode> {
+    if args.list {
+        for p in &PACKS {
+            println!("{:<14} {}", p.name, p.what);
+        }
+        return Ok(ExitCode::SUCCESS);
+    }
+    let name = args.name.unwrap_or_default();
+    let options = Options {
+        runs: args.runs,
+        seed: args.seed,
+        quick: args.quick,
+        evaluations: args.evaluations,
+        threads: args.threads,
+    };
+    let quiet = args.quiet;
+    let table = run_pack(&name, &options, &mut |line| {
+        if !quiet {
+            eprintln!("{line}");
+        }
+    })?;
+    let text = table.markdown();
+    let out = (args.out).unwrap_or_else(|| PathBuf::from(format!("reproduce-{name}.md")));
+    vivae_lab::io::write_atomic(&out, text.as_bytes())?;
+    print!("{text}");
+    eprintln!("table: {}", out.display());
+    Ok(ExitCode::SUCCESS)
+}

@@ -1,0 +1,41 @@
+"""vivae.reproduce runs a replication pack as `vivae reproduce` does and returns its table as data."""
+
+from __future__ import annotations
+
+import subprocess
+
+import pytest
+
+import vivae
+
+
+def test_reproduce_returns_the_clis_table_as_data(tmp_path, cli):
+    table = vivae.reproduce("maze-hard", runs=2, seed=3, evaluations=1000, threads=1)
+    assert table["columns"][:2] == ["method", "ours: solved"]
+    assert [r[0] for r in table["rows"]] == ["novelty search", "fitness-based NEAT", "MAP-Elites (10-unit grid)"]
+    assert all(r[1].endswith("/2") for r in table["rows"])
+    assert table["rows"][0][4] == "39/40"
+    out = tmp_path / "t.md"
+    printed = subprocess.run(
+        [cli, "reproduce", "maze-hard", "--runs", "2", "--seed", "3", "--evaluations", "1000", "--threads", "1",
+         "-q", "-o", str(out)],
+        check=True, capture_output=True, text=True,
+    ).stdout
+    assert printed == table["markdown"] == out.read_text()
+    assert ("maze-hard", vivae.reproduce_packs()[1][1]) in vivae.reproduce_packs()
+
+
+def test_an_unknown_pack_is_a_value_error_naming_the_packs():
+    with pytest.raises(ValueError, match="maze-medium"):
+        vivae.reproduce("maze-huge")
+
+
+def test_every_pack_runs_at_tiny_settings_and_returns_its_table():
+    names = [name for name, _ in vivae.reproduce_packs()]
+    assert {"xor", "pole-markov", "pole-nonmarkov", "boxes", "retina", "road"} <= set(names)
+    for name in names:
+        table = vivae.reproduce(name, runs=1, evaluations=200, threads=1)
+        assert table["rows"], name
+        assert all(len(r) == len(table["columns"]) for r in table["rows"]), name
+        assert table["columns"][-1] == "source", name
+        assert table["markdown"].startswith("### "), name
