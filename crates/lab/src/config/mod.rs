@@ -12,6 +12,7 @@ mod toml_error;
 mod validate;
 
 pub mod es;
+pub mod fitness;
 pub mod strategy;
 
 pub use reference::{KeyDoc, SectionDoc, key_doc, reference};
@@ -63,6 +64,9 @@ pub struct Config {
     /// The search strategy (NEAT by default) and its settings.
     #[serde(default, skip_serializing_if = "StrategyConfig::is_default")]
     pub strategy: StrategyConfig,
+    /// What a driving episode scores (unset = average speed, no contact cost).
+    #[serde(default, skip_serializing_if = "fitness::FitnessConfig::is_default")]
+    pub fitness: fitness::FitnessConfig,
 }
 
 /// What is run.

@@ -16,7 +16,7 @@ use crate::tasks::{HeaderContext, RunTask, TaskEntry};
 pub static TASK: TaskEntry = TaskEntry {
     name: TaskName::DRIVING,
     default_config: Config::default,
-    validate: |_| Ok(()),
+    validate: |c| c.fitness.check(),
     metric_names: &crate::config::strategy::METRICS,
     generation_columns: "",
     build,
