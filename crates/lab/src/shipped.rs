@@ -61,7 +61,7 @@ pub const SHIPPED: [Shipped; 10] = [
     },
     Shipped {
         name: "oncoming",
-        what: "a two-lane loop with 4 scripted robots driving the other lane the other way (5 robots)",
+        what: "a two-lane loop with 4 scripted robots driving the other lane the other way, a block in each long side's own lane (5 robots)",
         svg: include_str!("../../../scenarios/oncoming.svg"),
         task: "driving",
     },

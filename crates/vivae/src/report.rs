@@ -51,11 +51,23 @@ pub fn trajectory_figure(
     let on_road = episode
         .on_road
         .expect("a recorded episode measures time on road");
-    let title = format!(
+    let mut title = format!(
         "{title} — fitness {:.3} px/step, {:.1}% on road",
         episode.fitness,
         100.0 * on_road
     );
+    // Where avoidance is the question, say what was hit.
+    if let Some(b) = episode
+        .behaviour
+        .as_ref()
+        .filter(|_| experiment.varies() || !experiment.world().traffic().is_empty())
+    {
+        let c = &b.contacts;
+        title += &format!(
+            "; contacts/1000 robot-steps: robot {:.2}, traffic {:.2}, obstacle {:.2}, wall {:.2}",
+            c.robot, c.traffic, c.obstacle, c.wall
+        );
+    }
     let options = DrawOptions {
         trajectories: true,
         title: Some(title),

@@ -135,7 +135,7 @@ pub fn reference() -> Vec<SectionDoc> {
 }
 
 /// The default config as the reference documents it: keys a default config
-/// does not write (`substrate.kind`, `[substrate.es]`, `[strategy]`: written only when
+/// does not write (`substrate.kind`, `[substrate.es]`, `[strategy]`, `[fitness]`: written only when
 /// set, so that existing runs' files stay the same) with their defaults all the same.
 pub(super) fn documented_defaults() -> toml::Value {
     let mut defaults =
@@ -156,6 +156,11 @@ pub(super) fn documented_defaults() -> toml::Value {
     if let Some(table) = defaults.as_table_mut() {
         let strategy = toml::Value::try_from(StrategyConfig::default()).expect("TOML");
         table.insert("strategy".into(), strategy);
+        let fitness = super::fitness::FitnessConfig::default();
+        table.insert(
+            "fitness".into(),
+            toml::Value::try_from(fitness).expect("TOML"),
+        );
     }
     defaults
 }
