@@ -37,10 +37,9 @@ pub(super) struct Loader<'a> {
     /// Geometry reaching beyond this box is refused.
     limit: Aabb,
     sc: Scenario,
-    /// The route id each robot names (`data-route`), resolved at the end.
-    robot_routes: Vec<Option<String>>,
-    /// The route id each scripted robot follows (`data-traffic`).
-    traffic_routes: Vec<String>,
+    /// The route id each robot names (`data-route`) and each scripted robot
+    /// follows (`data-traffic`), resolved at the end.
+    route_names: (Vec<Option<String>>, Vec<String>),
 }
 
 fn collect_ids<'a>(g: &'a usvg::Group, out: &mut BTreeMap<String, Resolved<'a>>) {
@@ -272,15 +271,13 @@ impl<'a> Loader<'a> {
                 max: DVec2::new(width + reach, height + reach),
             },
             sc: empty_scenario(source, width, height, background),
-            robot_routes: Vec::new(),
-            traffic_routes: Vec::new(),
+            route_names: Default::default(),
         };
         for c in root.children().filter(|c| c.is_element()) {
             loader.walk(c, None)?;
         }
-        let (robot_routes, traffic_routes) = (loader.robot_routes, loader.traffic_routes);
-        let mut sc = loader.sc;
-        episodic::resolve_routes(&mut sc, &robot_routes, &traffic_routes)?;
+        let (mut sc, (robots, traffic)) = (loader.sc, loader.route_names);
+        episodic::resolve_routes(&mut sc, &robots, &traffic)?;
         check_robots_inside(&sc, source)?;
         let ids = material_ids(&mut sc, source)?;
         sc.raster = Arc::new(SurfaceRaster::build(
@@ -492,14 +489,15 @@ impl<'a> Loader<'a> {
         start: RobotStart,
     ) -> Result<(), ScenarioError> {
         let Some(route) = n.attribute("data-traffic") else {
-            self.robot_routes
+            self.route_names
+                .0
                 .push(n.attribute("data-route").map(str::to_string));
             self.sc.robots.push(start);
             return Ok(());
         };
         let (throttle, spread) =
             episodic::traffic_settings(self.source, &start.id, |k| n.attribute(k))?;
-        self.traffic_routes.push(route.to_string());
+        self.route_names.1.push(route.to_string());
         self.sc.traffic.push(TrafficStart {
             id: start.id,
             pos: start.pos,

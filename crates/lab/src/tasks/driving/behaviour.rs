@@ -34,8 +34,7 @@ use vivae_sim::{SurfaceKind, World, wrap_angle};
 
 use crate::tasks::driving::contacts::{ContactCounter, ContactRates};
 
-/// Largest gap between outlines, in px, that still counts as touching.
-pub const TOUCH: f64 = 0.05;
+pub use crate::tasks::driving::contacts::TOUCH;
 /// Steps over which a straight robot's heading stays within [`STRAIGHT_DEG`].
 pub const STRAIGHT_WINDOW: usize = 25;
 /// Heading change, in degrees, below which a robot drives straight.

@@ -6,7 +6,8 @@ use serde::Serialize;
 use vivae_sim::World;
 use vivae_sim::geometry::Shape;
 
-use crate::tasks::driving::behaviour::TOUCH;
+/// Largest gap between outlines, in px, that still counts as touching.
+pub const TOUCH: f64 = 0.05;
 
 /// Contacts begun, by what the learner touched.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
