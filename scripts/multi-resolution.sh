@@ -9,17 +9,9 @@
 #
 #   scripts/multi-resolution.sh [SEED ...]            (default: seeds 1 2 3 4 5)
 #   TRAIN="3x3,9x9" scripts/multi-resolution.sh 1     (other training sheets)
-set -euo pipefail
-cd "$(dirname "$0")/.."
-cargo build --release -q -p vivae
-vivae=target/release/vivae
-seeds=("$@")
-[ ${#seeds[@]} -gt 0 ] || seeds=(1 2 3 4 5)
+source "$(dirname "$0")/common.sh"
 train=${TRAIN:-3x3,5x5,9x9}
 tag=${train//,/-}
-field() { sed -n "s/.*$1=\([^ ]*\).*/\1/p"; }
-pct() { awk -v a="$1" -v b="$2" 'BEGIN{printf "%.3f (%.1f%%)", a, 100*a/b}'; }
-road() { awk -v x="$1" 'BEGIN{printf "%.1f%%", 100*x}'; }
 printf '| seed | training fitness | own 3x3 (vs single-res) | on road | 9x9 neurons | 3x6 sensors | 32x96 sensors (on road) | 32x96 sensors, 9x9 neurons (on road) | wall s |\n'
 printf '| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n'
 for seed in "${seeds[@]}"; do

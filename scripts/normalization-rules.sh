@@ -8,13 +8,7 @@
 #
 # Uses runs/paper-seed-N when it exists (scripts/paper-experiment.sh makes
 # them), else evolves it (about 20-40 s a seed). Prints a Markdown table.
-set -euo pipefail
-cd "$(dirname "$0")/.."
-cargo build --release -q -p vivae
-vivae=target/release/vivae
-seeds=("$@")
-[ ${#seeds[@]} -gt 0 ] || seeds=(1 2 3 4 5)
-field() { sed -n "s/.*$1=\([^ ]*\).*/\1/p"; }
+source "$(dirname "$0")/common.sh"
 rules=("count:true" "count:false" "area:true" "area:false")
 printf '| seed | rule | 3x3 (own) | 9x9 neurons | kept | 3x6 sensors | kept |\n'
 printf '| --- | --- | --- | --- | --- | --- | --- |\n'

@@ -6,13 +6,7 @@
 #   scripts/paper-experiment.sh [SEED ...]      (default: seeds 1 2 3 4 5)
 #
 # Runs go to runs/paper-seed-N (existing ones are replaced). Prints one table row per seed.
-set -euo pipefail
-cd "$(dirname "$0")/.."
-cargo build --release -q -p vivae
-vivae=target/release/vivae
-seeds=("$@")
-[ ${#seeds[@]} -gt 0 ] || seeds=(1 2 3 4 5)
-field() { sed -n "s/.*$1=\([^ ]*\).*/\1/p"; }
+source "$(dirname "$0")/common.sh"
 printf '| seed | gen 1 | gen 10 | champion (gen) | on road | wall s | robot-steps/s | 9x9 | 3x6 | 3x6 after 20 gen retrain |\n'
 printf '| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n'
 for seed in "${seeds[@]}"; do

@@ -11,14 +11,7 @@
 #    and to 3x6 sensors keeps.
 #
 #   scripts/recurrence.sh [SEED ...]      (default: seeds 1 2 3 4 5; about 30 s a seed)
-set -euo pipefail
-cd "$(dirname "$0")/.."
-cargo build --release -q -p vivae
-vivae=target/release/vivae
-seeds=("$@")
-[ ${#seeds[@]} -gt 0 ] || seeds=(1 2 3 4 5)
-field() { sed -n "s/.*$1=\([^ ]*\).*/\1/p"; }
-pct() { awk -v a="$1" -v b="$2" 'BEGIN{printf "%.3f (%.1f%%)", a, 100*a/b}'; }
+source "$(dirname "$0")/common.sh"
 
 printf '| seed | 3x3 | no lateral links | no recurrent links | 5x5 | 7x7 | 9x9 | 15x15 |\n'
 printf '| --- | --- | --- | --- | --- | --- | --- | --- |\n'

@@ -8,14 +8,8 @@
 #
 #   scripts/traffic.sh [SEED ...]          (default: seeds 1 2 3 4 5)
 #   RAYS=9 scripts/traffic.sh 1            (default 5 rays over 180 degrees)
-set -euo pipefail
-cd "$(dirname "$0")/.."
-cargo build --release -q -p vivae
-vivae=target/release/vivae
-seeds=("$@")
-[ ${#seeds[@]} -gt 0 ] || seeds=(1 2 3 4 5)
+source "$(dirname "$0")/common.sh"
 rays=${RAYS:-5}
-field() { sed -n "s/.*$1=\([^ ]*\).*/\1/p"; }
 config=$(mktemp --suffix .toml)
 trap 'rm -f "$config"' EXIT
 printf '[distance_sensors]\nrays = %s\n' "$rays" > "$config"

@@ -16,18 +16,12 @@
 #   EXTRA="--population 50"                     more flags for vivae evolve
 # A run directory that already holds a finished run of that many generations
 # is reused, not evolved again.
-set -euo pipefail
-cd "$(dirname "$0")/.."
-cargo build --release -q -p vivae
-vivae=target/release/vivae
-seeds=("$@")
-[ ${#seeds[@]} -gt 0 ] || seeds=(1 2 3 4 5)
+source "$(dirname "$0")/common.sh"
 read -r -a maps <<< "${MAPS:-roads oval figure8}"
 read -r -a test_maps <<< "${TEST_MAPS:-town obstacles traffic}"
 generations=${GENERATIONS:-400}
 runs=${RUNS:-runs}
 read -r -a extra <<< "${EXTRA:-}"
-field() { sed -n "s/.*$1=\([^ ]*\).*/\1/p"; }
 
 scenario_flags=()
 for m in "${maps[@]}"; do scenario_flags+=(--scenario "$m"); done

@@ -58,19 +58,19 @@ impl DriveTask {
         })
     }
 
-    fn experiment(&self) -> &Episode {
+    fn setup(&self) -> &Episode {
         self.training.primary()
     }
 
     fn controller_of(&self, genome: &Genome) -> PyResult<SubstrateController> {
-        self.experiment()
+        self.setup()
             .controller(&genome.inner)
             .map_err(|e| errors::value(format!("the genome's {e}")))
     }
 
     /// The controller of either substrate kind (dense sheet or ES-HyperNEAT).
     fn robot_controller_of(&self, genome: &Genome) -> PyResult<RobotController> {
-        self.experiment()
+        self.setup()
             .robot_controller(&genome.inner)
             .map_err(|e| errors::value(format!("the genome's {e}")))
     }
@@ -113,20 +113,20 @@ impl DriveTask {
     /// (inputs, outputs) of the CPPNs this task evolves.
     #[getter]
     fn cppn_shape(&self) -> (usize, usize) {
-        let s = self.experiment().cppn_spec();
+        let s = self.setup().cppn_spec();
         (s.inputs, s.outputs)
     }
 
     /// Robots per episode.
     #[getter]
     fn robots(&self) -> usize {
-        self.experiment().robots()
+        self.setup().robots()
     }
 
     /// Steps per episode.
     #[getter]
     fn steps(&self) -> u32 {
-        self.experiment().steps()
+        self.setup().steps()
     }
 
     /// A generation-0 population of CPPNs with the config's NEAT parameters
@@ -208,7 +208,7 @@ impl DriveTask {
         d.set_item("input_weights", inputs.into_pyarray(py))?;
         d.set_item("recurrent_weights", recurrent.into_pyarray(py))?;
         d.set_item("biases", Array1::from(c.biases().to_vec()).into_pyarray(py))?;
-        let w = self.experiment().wheels();
+        let w = self.setup().wheels();
         d.set_item("wheels", (w.left, w.right))?;
         d.set_item("sheet_sizes", c.sheet_sizes().to_vec())?;
         Ok(d)
@@ -222,7 +222,7 @@ impl DriveTask {
             state: c.batch_state(robots),
             inputs: vec![0.0; robots * c.num_inputs()],
             outputs: vec![0.0; robots * c.num_neurons()],
-            wheels: self.experiment().wheels(),
+            wheels: self.setup().wheels(),
             robots,
             controller: c,
         })
@@ -281,7 +281,7 @@ impl DriveTask {
     /// behaviour measures (collisions, turns, loops, side of the road).
     fn episode<'py>(&self, py: Python<'py>, genome: &Genome) -> PyResult<Bound<'py, PyDict>> {
         let c = self.robot_controller_of(genome)?;
-        let exp = self.experiment();
+        let exp = self.setup();
         let episode = py.detach(|| exp.run(&c, true));
         episode_dict(py, &episode)
     }
@@ -397,7 +397,7 @@ pub fn evolve<'py>(
     overrides: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     // Without a config file a named task starts from its own defaults,
-    // which it may fit to its scenario (the maze's MAP-Elites grid).
+    // which it may fit to its scenario (e.g. a grid archive fitted to its arena).
     let task_defaults = config.is_none();
     let config = settings::build(config.as_deref(), overrides)?;
     let prepared = prepare(config, task_defaults).map_err(errors::lab)?;
@@ -438,7 +438,7 @@ pub fn report(py: Python<'_>, out: PathBuf) -> PyResult<PathBuf> {
         // Opened as `vivae resume` opens it (locked; truncated to its newest
         // checkpoint, which a finished run's files already end at).
         let run = Run::resume(&out, None, None)?;
-        if run.experiment().is_none() {
+        if run.episode().is_none() {
             let task = &run.config().experiment.task;
             return Err(vivae_lab::io::bad_input(format!(
                 "{}: a {task} run draws no figures; its curves are in generations.csv",

@@ -13,6 +13,7 @@ mod asktell;
 mod drive;
 mod errors;
 mod evo;
+mod export;
 mod lab;
 mod pool;
 // The program's portable C math symbols, shared rather than copied.
@@ -39,6 +40,9 @@ fn _vivae(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(lab::load_genome, m)?)?;
     m.add_function(wrap_pyfunction!(lab::scenarios, m)?)?;
     m.add_function(wrap_pyfunction!(lab::default_config, m)?)?;
+    m.add_function(wrap_pyfunction!(export::export, m)?)?;
+    m.add_function(wrap_pyfunction!(export::record_episode, m)?)?;
+    m.add_function(wrap_pyfunction!(export::drive_image, m)?)?;
     m.add_function(wrap_pyfunction!(math_is_portable, m)?)?;
     m.add("OVERRIDES", settings::OVERRIDES.to_vec())?;
     Ok(())

@@ -25,7 +25,10 @@ from vivae._vivae import (
     Nsga2,
     Population,
     default_config,
+    drive_image,
+    export,
     load_genome,
+    record_episode,
     scenarios,
 )
 from vivae.envs import DriveEnv, DriveVectorEnv
@@ -45,8 +48,11 @@ __all__ = [
     "Nsga2",
     "Population",
     "default_config",
+    "drive_image",
+    "export",
     "evolve",
     "load_genome",
+    "record_episode",
     "replay",
     "report",
     "resume",

@@ -9,7 +9,10 @@ from vivae._vivae import (
     Nsga2 as Nsga2,
     Population as Population,
     default_config as default_config,
+    drive_image as drive_image,
+    export as export,
     load_genome as load_genome,
+    record_episode as record_episode,
     scenarios as scenarios,
 )
 from vivae.envs import DriveEnv as DriveEnv, DriveVectorEnv as DriveVectorEnv
@@ -31,8 +34,11 @@ __all__ = [
     "Nsga2",
     "Population",
     "default_config",
+    "drive_image",
+    "export",
     "evolve",
     "load_genome",
+    "record_episode",
     "replay",
     "report",
     "resume",

@@ -20,9 +20,12 @@ __all__ = [
     "Nsga2",
     "Population",
     "default_config",
+    "drive_image",
     "evolve",
+    "export",
     "load_genome",
     "math_is_portable",
+    "record_episode",
     "replay",
     "report",
     "resume",
@@ -252,4 +255,41 @@ def replay(source: _Path, **overrides: Any) -> dict[str, Any]: ...
 def load_genome(source: _Path) -> tuple[Genome, float, int]: ...
 def scenarios() -> list[tuple[str, str]]: ...
 def default_config() -> str: ...
+def export(
+    source: _Path,
+    format: str,
+    out: _Path,
+    *,
+    generation: int | None = None,
+    elite: int | None = None,
+    front: int | None = None,
+    sensors: str | None = None,
+    neurons: str | None = None,
+) -> list[str]: ...
+def record_episode(
+    source: _Path,
+    *,
+    robot: int = 0,
+    steps: int | None = None,
+    generation: int | None = None,
+    elite: int | None = None,
+    front: int | None = None,
+    sensors: str | None = None,
+    neurons: str | None = None,
+) -> dict[str, Any]: ...
+def drive_image(
+    source: _Path,
+    frames: Sequence[_Path | Any],
+    *,
+    poses: Sequence[tuple[float, float, float]] | None = None,
+    centre: tuple[float, float] | None = None,
+    scale: float = 1.0,
+    heading: float = 0.0,
+    radius: float | None = None,
+    generation: int | None = None,
+    elite: int | None = None,
+    front: int | None = None,
+    sensors: str | None = None,
+    neurons: str | None = None,
+) -> list[tuple[float, float]]: ...
 def math_is_portable() -> bool: ...

@@ -10,7 +10,20 @@ use vivae_sim::ScenarioError;
 
 use crate::config::ConfigError;
 use crate::simd::SimdError;
-use crate::tasks::driving::episode::EpisodeError;
+
+/// Why a driving episode cannot be set up.
+#[derive(Debug, thiserror::Error)]
+pub enum EpisodeError {
+    /// The scenario cannot host the episode.
+    #[error("{0}")]
+    Scenario(String),
+    /// The parameters do not fit together.
+    #[error("{0}")]
+    Config(String),
+    /// The genome does not fit this episode's substrate.
+    #[error("{0}")]
+    Genome(String),
+}
 
 /// Collapses a message onto one line.
 pub fn one_line(message: &str) -> String {

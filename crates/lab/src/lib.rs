@@ -1,8 +1,8 @@
 //! The vivae experiment library: HyperNEAT-controlled robots learning to drive in ViVAE.
 //!
 //! `vivae-neat` evolves CPPNs and decodes substrates, `vivae-sim` simulates the
-//! world; this crate joins them in tasks ([`tasks`]: the driving experiment,
-//! the maze), decodes controllers ([`controller`]), drives evolution with a
+//! world; this crate joins them in tasks ([`tasks`]: the driving experiment
+//! and others, one folder each), decodes controllers ([`controller`]), drives evolution with a
 //! search strategy ([`search`]) and checkpoints ([`run`]), and owns the config
 //! and run-directory formats ([`config`], [`rundir`], [`io`]). It has no command line, plotting, web server or MPI
 //! in its dependency tree, so that other programs (the `vivae` program, the
@@ -32,6 +32,7 @@
 pub mod config;
 pub mod controller;
 pub mod error;
+pub mod export;
 pub mod io;
 pub mod run;
 pub mod rundir;

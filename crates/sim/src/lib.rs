@@ -43,6 +43,7 @@ pub use sensors::{
     DistanceGrid, DistanceSensors, GoalRadar, Sensor, SensorPlace, SurfaceGrid, SurfaceSensors,
     spread,
 };
+pub use style::surface_color;
 pub use world::{MovableState, PuckState, Robot, SurfaceHere, World, wrap_angle};
 
 /// The default scenario (`scenarios/roads.svg`): a road network with 5 robots.

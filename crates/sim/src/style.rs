@@ -15,7 +15,7 @@ pub fn robot_color(i: usize) -> &'static str {
 }
 
 /// Fill colour of a surface kind.
-pub(crate) fn surface_color(kind: SurfaceKind) -> &'static str {
+pub fn surface_color(kind: SurfaceKind) -> &'static str {
     match kind {
         SurfaceKind::Road => "#2b2b2b",
         SurfaceKind::Grass => "#3a8a2e",

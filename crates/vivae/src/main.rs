@@ -14,7 +14,9 @@ use vivae_lab::io::one_line;
 mod cli;
 mod portable_libm;
 
-use cli::{compare, config, evolve, replay, report, resume, retrain, scenario, view};
+use cli::{
+    compare, config, drive_image, evolve, export, replay, report, resume, retrain, scenario, view,
+};
 
 /// HyperNEAT-controlled robots that learn to drive on roads (ViVAE).
 #[derive(Parser, Debug)]
@@ -34,6 +36,10 @@ enum Command {
     Replay(replay::ReplayArgs),
     /// Continue a run's final population on a re-sampled substrate.
     Retrain(retrain::RetrainArgs),
+    /// Write a run's controller as ONNX, C or JSON, to run outside vivae.
+    Export(export::ExportArgs),
+    /// Drive a run's controller from images: camera frames, or a map and poses.
+    DriveImage(drive_image::DriveImageArgs),
     /// Rebuild a run's self-contained report.html.
     Report {
         /// The run directory.
@@ -89,6 +95,8 @@ fn dispatch(cli: Cli, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode>
         Command::Resume(args) => resume::run(args, interrupted),
         Command::Replay(args) => replay::run(args),
         Command::Retrain(args) => retrain::run(args, interrupted),
+        Command::Export(args) => export::run(args),
+        Command::DriveImage(args) => drive_image::run(args),
         Command::Report { run_dir } => report::run(&run_dir),
         Command::View(args) => view::run(args),
         Command::Compare(args) => compare::run(args),

@@ -90,7 +90,7 @@ pub fn finish_run(run: &Run) -> Result<RunSummary> {
     let dir = run.dir().join(files::FIGURES);
     vivae_lab::io::create_dirs(&dir)?;
     vivae_lab::rundir::unmark_drawn(run.dir())?;
-    let experiment = (run.experiment()).ok_or_else(|| {
+    let experiment = (run.episode()).ok_or_else(|| {
         let task = &run.config().experiment.task;
         bad_input(format!("a {task} run has no trajectory figures"))
     })?;

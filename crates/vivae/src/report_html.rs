@@ -66,7 +66,7 @@ struct ReportData {
     strategy: Option<StrategyData>,
 }
 
-/// What a novelty, map-elites or nsga2 run adds to the report: its part
+/// What a strategy other than NEAT adds to the report: its part
 /// (from its own file in `vivae_lab::search`) and its columns of `generations.csv`.
 #[derive(Debug, Serialize)]
 struct StrategyData {
@@ -216,15 +216,14 @@ fn strategy_data(
     config: &vivae_lab::config::Config,
     experiment: &Episode,
 ) -> vivae_lab::Result<Option<StrategyData>> {
-    let kind = config.strategy.kind;
-    let entry = vivae_lab::search::entry(kind);
+    let entry = vivae_lab::search::entry_of(config)?;
     let Some(mut report) = (entry.report)(dir, config, experiment.robots())? else {
         return Ok(None);
     };
     report.objectives = (report.objectives.iter())
         .map(|o| crate::figures::front::objective_axis(o))
         .collect();
-    let (columns, values) = strategy_columns(&dir.join(files::GENERATIONS), kind)?;
+    let (columns, values) = strategy_columns(&dir.join(files::GENERATIONS), entry)?;
     Ok(Some(StrategyData {
         report,
         columns,
@@ -235,19 +234,16 @@ fn strategy_data(
 /// One generation's values of a strategy's columns (`None` where empty).
 type Row = Vec<Option<f64>>;
 
-/// The columns strategy `kind` adds to `generations.csv` at `path`, and
+/// The columns strategy `entry` adds to `generations.csv` at `path`, and
 /// their values on each complete line (a running evolution may be writing
 /// the last); an empty field is `None`.
 fn strategy_columns(
     path: &Path,
-    kind: vivae_lab::config::strategy::StrategyKind,
+    entry: &vivae_lab::search::StrategyEntry,
 ) -> vivae_lab::Result<(Vec<String>, Vec<Row>)> {
-    let names: Vec<String> = (vivae_lab::search::entry(kind)
-        .extra_columns
-        .split(',')
-        .skip(1))
-    .map(String::from)
-    .collect();
+    let names: Vec<String> = (entry.extra_columns.split(',').skip(1))
+        .map(String::from)
+        .collect();
     let text = read_text(path)?;
     let complete = text.rsplit_once('\n').map_or("", |(done, _)| done);
     let mut values = Vec::new();

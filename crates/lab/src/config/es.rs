@@ -96,8 +96,8 @@ pub struct EsConfig {
     /// the plane's x are expressed. With `substrate.coordinates = "cartesian"`
     /// x is `ρ·sin φ`, the left–right offset (links stay on one side of the
     /// robot); with `"polar"` x is `ρ`, the ring (links stay between nearby
-    /// rings). Needs `leo = true` and a NEAT or novelty run without
-    /// `experiment.init_population`.
+    /// rings). Needs `leo = true`, a strategy that starts from given genomes
+    /// (NEAT's does) and no `experiment.init_population`.
     ///
     /// Example: true.
     #[serde(skip_serializing_if = "std::ops::Not::not")]

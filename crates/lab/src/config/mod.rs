@@ -104,11 +104,10 @@ pub struct ExperimentConfig {
     ///
     /// Unit: path.
     pub init_population: String,
-    /// What genomes are evaluated on: `driving` (HyperNEAT substrates driving
-    /// on roads, the paper's) or `maze` (Lehman & Stanley's maze with a plain
-    /// NEAT network; docs/guide.md, "The maze from the command line"). Unset = driving.
+    /// What genomes are evaluated on: a registered task (docs/guide.md lists
+    /// them); unset = driving (HyperNEAT substrates driving on roads, the paper's).
     ///
-    /// Example: "maze".
+    /// Example: "driving".
     #[serde(default, skip_serializing_if = "TaskName::is_driving")]
     pub task: TaskName,
 }
@@ -485,13 +484,11 @@ impl Config {
     /// [`Config::from_toml`] with the keys `text` leaves unset taken from
     /// `base` (a task's defaults) instead of [`Config::default`].
     pub fn from_toml_over(text: &str, base: Option<&Config>) -> Result<Config, ConfigError> {
-        let config: Config = match base {
-            None => toml::from_str(text).map_err(|e| describe_toml_error(text, &e))?,
-            Some(base) => {
-                toml::from_str::<Config>(text).map_err(|e| describe_toml_error(text, &e))?;
-                over_defaults(text, base)?
-            }
-        };
+        // The strict parse says where the text is wrong; the overlay gives
+        // unset keys the defaults of the config, which for a section that is
+        // the library's params type (`[strategy.novelty]`) are not its own.
+        toml::from_str::<Config>(text).map_err(|e| describe_toml_error(text, &e))?;
+        let config = over_defaults(text, base.unwrap_or(&Config::default()))?;
         config.validate().map_err(|e| e.at_line_of_key(text))?;
         Ok(config)
     }
@@ -553,6 +550,48 @@ impl Config {
 
 #[cfg(test)]
 mod tests {
+    /// The paths of every table in `value` (`["strategy", "novelty"]`, …).
+    fn table_paths(value: &toml::Value, path: &mut Vec<String>, out: &mut Vec<Vec<String>>) {
+        if let toml::Value::Table(t) = value {
+            if !path.is_empty() {
+                out.push(path.clone());
+            }
+            for (k, v) in t {
+                path.push(k.clone());
+                table_paths(v, path, out);
+                path.pop();
+            }
+        }
+    }
+
+    #[test]
+    fn an_empty_or_partial_section_takes_the_configs_defaults() {
+        let default = super::Config::default();
+        let mut paths = Vec::new();
+        table_paths(
+            &toml::Value::try_from(&default).unwrap(),
+            &mut Vec::new(),
+            &mut paths,
+        );
+        assert!(paths.len() > 8, "{paths:?}");
+        for path in paths {
+            let text = format!("[{}]\n", path.join("."));
+            assert_eq!(super::Config::from_toml(&text).unwrap(), default, "{text}");
+            // Every section but the library's novelty params has the
+            // config's defaults as its own serde defaults too.
+            if path != ["strategy", "novelty"] {
+                assert_eq!(
+                    toml::from_str::<super::Config>(&text).unwrap(),
+                    default,
+                    "{text}"
+                );
+            }
+        }
+        let c = super::Config::from_toml("[strategy.novelty]\nk = 9\n").unwrap();
+        let n = &c.strategy.novelty;
+        assert_eq!((n.k, n.threshold, n.threshold_floor), (9, 0.05, 0.005));
+    }
+
     use super::reference::{ParsedDoc, documented_defaults, sentence_fragment};
     use super::*;
 

@@ -93,68 +93,80 @@ impl std::str::FromStr for BehaviourKind {
     }
 }
 
-/// Which search algorithm a run uses.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
-#[serde(rename_all = "kebab-case")]
-pub enum StrategyKind {
-    /// NEAT's speciated population selecting on fitness (the paper's).
-    #[default]
-    Neat,
-    /// Novelty search (Lehman & Stanley 2011).
-    Novelty,
-    /// MAP-Elites (Mouret & Clune 2015).
-    MapElites,
-    /// NSGA-II (Deb et al. 2002).
-    Nsga2,
-}
+/// The name of the search strategy a run uses (`strategy.kind`): one of the
+/// strategies registered in [`crate::search`], which checks it.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(transparent)]
+pub struct StrategyName(pub String);
 
-impl StrategyKind {
+impl StrategyName {
+    /// The default strategy's name: NEAT selecting on fitness, the paper's.
+    pub const NEAT: &'static str = "neat";
+
     /// The name as configs and the command line write it.
-    pub fn name(self) -> &'static str {
-        match self {
-            StrategyKind::Neat => "neat",
-            StrategyKind::Novelty => "novelty",
-            StrategyKind::MapElites => "map-elites",
-            StrategyKind::Nsga2 => "nsga2",
-        }
+    pub fn name(&self) -> &str {
+        &self.0
     }
 }
 
-impl std::str::FromStr for StrategyKind {
+impl Default for StrategyName {
+    fn default() -> Self {
+        StrategyName(Self::NEAT.into())
+    }
+}
+
+impl From<&str> for StrategyName {
+    fn from(name: &str) -> Self {
+        StrategyName(name.into())
+    }
+}
+
+impl std::fmt::Display for StrategyName {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::str::FromStr for StrategyName {
     type Err = String;
 
     fn from_str(s: &str) -> Result<Self, String> {
-        [
-            StrategyKind::Neat,
-            StrategyKind::Novelty,
-            StrategyKind::MapElites,
-            StrategyKind::Nsga2,
-        ]
-        .into_iter()
-        .find(|k| k.name() == s)
-        .ok_or_else(|| format!("'{s}': expected neat, novelty, map-elites or nsga2"))
+        Ok(StrategyName(s.to_string()))
     }
 }
 
 /// The search strategy and its settings.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct StrategyConfig {
     /// Search algorithm: neat, novelty, map-elites or nsga2.
     ///
     /// Paper: neat.
-    pub kind: StrategyKind,
+    pub kind: StrategyName,
     /// Behaviour descriptor for novelty and map-elites: end-position (mean
     /// end position over the arena's size), end-positions (each robot's,
     /// concatenated), side-speed (mean side of the road, mean speed over
     /// v_max) or trajectory (mean position at 5 evenly spaced times).
     pub behaviour: BehaviourKind,
-    /// Novelty search.
-    pub novelty: NoveltyConfig,
+    /// Novelty search (unit of the thresholds: behaviour units, e.g. arena
+    /// sizes for end positions).
+    pub novelty: NoveltyParams,
     /// MAP-Elites.
     pub map_elites: MapElitesConfig,
     /// NSGA-II.
     pub nsga2: Nsga2Config,
+}
+
+impl Default for StrategyConfig {
+    fn default() -> Self {
+        StrategyConfig {
+            kind: StrategyName::default(),
+            behaviour: BehaviourKind::default(),
+            novelty: novelty_defaults(),
+            map_elites: MapElitesConfig::default(),
+            nsga2: Nsga2Config::default(),
+        }
+    }
 }
 
 impl StrategyConfig {
@@ -165,62 +177,14 @@ impl StrategyConfig {
     }
 }
 
-/// Novelty search's settings.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields, default)]
-pub struct NoveltyConfig {
-    /// Nearest neighbours (population and archive) whose mean distance is a
-    /// behaviour's novelty (Lehman & Stanley 2011: 15).
-    pub k: usize,
-    /// Initial archive threshold ρ_min: a behaviour more novel than this is archived.
-    ///
-    /// Unit: behaviour units (end positions: arena sizes).
-    pub threshold: f64,
-    /// ρ_min is never lowered below this.
-    ///
-    /// Unit: behaviour units.
-    pub threshold_floor: f64,
-    /// Generations without an archive addition before ρ_min is lowered (Lehman & Stanley: 10).
-    pub lower_after: u32,
-    /// Factor lowering ρ_min (Lehman & Stanley: 0.95).
-    pub lower_factor: f64,
-    /// More additions than this in one generation raise ρ_min (Lehman & Stanley: 4).
-    pub raise_above: usize,
-    /// Factor raising ρ_min (Lehman & Stanley: 1.2).
-    pub raise_factor: f64,
-    /// Weight w of fitness in the selection score (1 − w)·novelty + w·fitness
-    /// (both min–max normalised per generation); 0 = pure novelty search.
-    pub fitness_weight: f64,
-}
-
-impl Default for NoveltyConfig {
-    fn default() -> Self {
-        NoveltyConfig {
-            k: 15,
-            threshold: 0.05,
-            threshold_floor: 0.005,
-            lower_after: 10,
-            lower_factor: 0.95,
-            raise_above: 4,
-            raise_factor: 1.2,
-            fitness_weight: 0.0,
-        }
-    }
-}
-
-impl NoveltyConfig {
-    /// The library's parameters.
-    pub fn params(&self) -> NoveltyParams {
-        NoveltyParams {
-            k: self.k,
-            threshold: self.threshold,
-            threshold_floor: self.threshold_floor,
-            lower_after: self.lower_after,
-            lower_factor: self.lower_factor,
-            raise_above: self.raise_above,
-            raise_factor: self.raise_factor,
-            fitness_weight: self.fitness_weight,
-        }
+/// Novelty search's settings in a run: the library's, with ρ_min and its
+/// floor on the scale of the descriptors of runs (arena sizes, shares), not
+/// the library's default of 1.
+pub fn novelty_defaults() -> NoveltyParams {
+    NoveltyParams {
+        threshold: 0.05,
+        threshold_floor: 0.005,
+        ..NoveltyParams::default()
     }
 }
 
@@ -321,10 +285,11 @@ pub fn objective_among(name: &str, metrics: &[&str]) -> Option<Objective> {
     Some(Objective { measure, maximise })
 }
 
-/// Checks the `[strategy]` section `s` of a config that trains on several
-/// maps if `multi_map`, whose task measures `metrics` (sizes that depend on
-/// the robots are checked when the run starts); the error names the key.
-pub fn validate(s: &StrategyConfig, multi_map: bool, metrics: &[&str]) -> Result<(), String> {
+/// Checks the settings of the `[strategy]` section `s` of a config whose
+/// task measures `metrics` (sizes that depend on the robots are checked when
+/// the run starts; the strategy's name and what it asks of the run, by
+/// [`crate::search::check`]); the error names the key.
+pub fn validate(s: &StrategyConfig, metrics: &[&str]) -> Result<(), String> {
     let bad = |key: &str, value: &dyn std::fmt::Debug, why: &str| {
         Err(format!("strategy.{key} = {value:?}: {why}"))
     };
@@ -332,17 +297,9 @@ pub fn validate(s: &StrategyConfig, multi_map: bool, metrics: &[&str]) -> Result
         field,
         value,
         reason,
-    }) = s.novelty.params().validate()
+    }) = s.novelty.validate()
     {
         return bad(&format!("novelty.{field}"), &value, reason);
-    }
-    let searches_behaviour = matches!(s.kind, StrategyKind::Novelty | StrategyKind::MapElites);
-    if searches_behaviour && s.behaviour == BehaviourKind::EndPositions && multi_map {
-        return bad(
-            "behaviour",
-            &s.behaviour.name(),
-            "one map only (maps have their own robots): use end-position on several maps",
-        );
     }
     let m = &s.map_elites;
     if m.bins.is_empty() || m.bins.contains(&0) {
@@ -404,9 +361,8 @@ mod tests {
 
     #[test]
     fn bad_settings_name_their_key() {
-        let validate = |s: &StrategyConfig| {
-            validate(s, false, &METRICS).map_err(|message| Message { message })
-        };
+        let validate =
+            |s: &StrategyConfig| validate(s, &METRICS).map_err(|message| Message { message });
         struct Message {
             message: String,
         }
@@ -434,13 +390,5 @@ mod tests {
                 .contains("map_elites.bins")
         );
         assert!(validate(&StrategyConfig::default()).is_ok());
-    }
-
-    #[test]
-    fn names_round_trip() {
-        for k in ["neat", "novelty", "map-elites", "nsga2"] {
-            assert_eq!(k.parse::<StrategyKind>().unwrap().name(), k);
-        }
-        assert!("nsga".parse::<StrategyKind>().is_err());
     }
 }

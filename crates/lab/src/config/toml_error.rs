@@ -91,7 +91,13 @@ pub(super) fn over_defaults(text: &str, base: &Config) -> Result<Config, ConfigE
         }
     }
     let bad = |e: &dyn std::fmt::Display| ConfigError::new(one_line(&e.to_string()));
+    let strategy = toml::Value::try_from(&base.strategy).map_err(|e| bad(&e))?;
     let mut base = toml::Value::try_from(base).map_err(|e| bad(&e))?;
+    // A default `[strategy]` is not written, but its keys are still the
+    // base's (its novelty thresholds are not the library's defaults).
+    if let toml::Value::Table(t) = &mut base {
+        t.entry("strategy").or_insert(strategy);
+    }
     let over: toml::Value = toml::from_str(text).map_err(|e| bad(&e))?;
     merge(&mut base, over);
     base.try_into().map_err(|e: toml::de::Error| bad(&e))

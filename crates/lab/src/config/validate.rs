@@ -95,17 +95,8 @@ impl Config {
         if !es.leo_seed {
             return Ok(());
         }
-        let kind = self.strategy.kind;
-        if matches!(
-            kind,
-            crate::config::strategy::StrategyKind::MapElites
-                | crate::config::strategy::StrategyKind::Nsga2
-        ) {
-            return Err(ConfigError::new(format!(
-                "substrate.es.leo_seed = true: a {} run starts from minimal genomes (only neat and novelty runs start from the seed)",
-                kind.name()
-            )));
-        }
+        // Which strategies can start from the seed is the strategy's to say
+        // (`search::check`).
         if !self.experiment.init_population.is_empty() {
             return Err(ConfigError::new(
                 "substrate.es.leo_seed = true: experiment.init_population already gives generation 0, remove one of them",

@@ -543,7 +543,7 @@ mod tests {
         );
         // Novelty search starts from the same genomes.
         let mut novelty = config.clone();
-        novelty.strategy.kind = crate::config::strategy::StrategyKind::Novelty;
+        novelty.strategy.kind = "novelty".into();
         assert_eq!(search(&novelty).batch(), a);
     }
 
@@ -571,8 +571,7 @@ mod tests {
                 "experiment.init_population",
             ),
         ] {
-            let e = Config::from_toml(text)
-                .and_then(|c| c.validate().map(|_| c))
+            let e = crate::tasks::config_from_toml(text)
                 .unwrap_err()
                 .to_string();
             assert!(e.contains(needle), "{text}: {e}");

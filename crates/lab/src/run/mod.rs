@@ -227,9 +227,9 @@ impl Run {
         &self.config
     }
 
-    /// The experiment reported, drawn and replayed (the first map at the
+    /// The episode reported, drawn and replayed (the first map at the
     /// run's own resolution); none for a task that is not driving.
-    pub fn experiment(&self) -> Option<&Episode> {
+    pub fn episode(&self) -> Option<&Episode> {
         self.task.driving().map(Training::primary)
     }
 
@@ -269,7 +269,7 @@ impl Run {
         &self.search
     }
 
-    /// The NEAT population (ready for the next generation) of a NEAT or novelty run.
+    /// The NEAT population (ready for the next generation) of a strategy that breeds one.
     pub fn population(&self) -> Option<&Population> {
         self.search.population()
     }
@@ -591,10 +591,10 @@ fn validate_progress(path: &Path, cp: &Checkpoint, task: &dyn RunTask) -> Result
         )));
     }
     let search = cp.search().map_err(|why| bad(why.into()))?;
-    if search.kind() != cp.config.strategy.kind {
+    if search.kind() != cp.config.strategy.kind.name() {
         return Err(bad(format!(
             "holds a {} search, its config says strategy.kind = {}",
-            search.kind().name(),
+            search.kind(),
             cp.config.strategy.kind.name()
         )));
     }

@@ -9,7 +9,7 @@ use std::str::FromStr;
 use vivae_neat::Population;
 
 use crate::config::es::SubstrateKind;
-use crate::config::strategy::{BehaviourKind, StrategyKind};
+use crate::config::strategy::{BehaviourKind, StrategyName};
 use crate::config::{Aggregate, Config, NormalizeBy, Recurrence, TaskName};
 use crate::controller::polar::PolarGrid;
 use crate::error::Result;
@@ -59,7 +59,7 @@ pub struct Overrides {
     /// `substrate.recurrence`.
     pub recurrence: Option<Recurrence>,
     /// `strategy.kind`.
-    pub strategy: Option<StrategyKind>,
+    pub strategy: Option<StrategyName>,
     /// `strategy.behaviour`.
     pub behaviour: Option<BehaviourKind>,
     /// `experiment.task` (a registered task).
@@ -167,7 +167,7 @@ impl Overrides {
         set(&mut s.normalize_by, self.normalize_by);
         set(&mut s.normalize_self_loops, self.normalize_self_loops);
         set(&mut s.recurrence, self.recurrence);
-        set(&mut c.strategy.kind, self.strategy);
+        set(&mut c.strategy.kind, self.strategy.clone());
         set(&mut c.strategy.behaviour, self.behaviour);
     }
 }
@@ -335,12 +335,17 @@ mod tests {
 
     #[test]
     fn a_named_task_starts_from_its_defaults_and_a_file_of_another_task_is_refused() {
-        let o = Overrides {
-            task: Some(TaskName(crate::tasks::maze::NAME.into())),
-            ..Overrides::default()
-        };
-        let c = config(None, &o, "test").unwrap();
-        assert_eq!(c, Config::maze());
+        // Every task but the default one: none is named here.
+        let others = crate::tasks::TASKS
+            .iter()
+            .filter(|t| t.name != TaskName::DRIVING);
+        let mut o = Overrides::default();
+        for task in others {
+            o.task = Some(TaskName(task.name.into()));
+            let c = config(None, &o, "test").unwrap();
+            assert_eq!(c, (task.default_config)(), "{}", task.name);
+        }
+        assert!(o.task.is_some(), "a second task is registered");
         let dir = std::env::temp_dir().join(format!("vivae-prepare-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let file = dir.join("driving.toml");

@@ -116,7 +116,7 @@ impl Checkpoint {
         }
     }
 
-    /// The NEAT population inside (a NEAT or novelty run's), for `retrain`.
+    /// The NEAT population inside (of a strategy that breeds one), for `retrain`.
     fn into_population(self, path: &Path) -> Result<(Config, Population)> {
         let population = (self.search().ok()).and_then(|s| s.population().cloned());
         population

@@ -12,7 +12,7 @@ pub(crate) fn generations_header(config: &Config) -> String {
         crate::tasks::entry(config.experiment.task.name()).map_or("", |t| t.generation_columns);
     format!(
         "{base}{}{task}\n",
-        crate::search::entry(config.strategy.kind).extra_columns
+        crate::search::entry_of(config).map_or("", |e| e.extra_columns)
     )
 }
 

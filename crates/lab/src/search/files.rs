@@ -27,7 +27,7 @@ pub fn extra_fields(search: &Search) -> String {
 /// or front's size).
 pub fn summary_fields(search: &Search) -> String {
     let s = search.strategy();
-    format!(" strategy={}{}", s.entry().kind.name(), s.summary_fields())
+    format!(" strategy={}{}", s.entry().kind, s.summary_fields())
 }
 
 /// One elite of a MAP-Elites archive, as a line of `archive.jsonl`.

@@ -8,24 +8,29 @@ use std::path::Path;
 
 use vivae_neat::driver::Strategy;
 use vivae_neat::strategies::{Cells, MapElites, MapElitesParams};
-use vivae_neat::{Genome, GenomeSpec, NeatError, Population};
+use vivae_neat::{Genome, NeatError};
 
 use crate::config::Config;
-use crate::config::strategy::{CellsKind, StrategyKind};
+use crate::config::strategy::CellsKind;
 use crate::error::Result;
 use crate::io::{bad_input, write_atomic};
 use crate::rundir::files;
 use crate::search::files::{ArchiveLine, jsonl};
 use crate::search::{
-    Bounds, GridFigure, GridReport, RunStrategy, Search, StrategyEntry, StrategyFigure,
-    StrategyReport, behaviour_line, refuse_init,
+    Bounds, GridFigure, GridReport, Needs, RunStrategy, Search, Start, StrategyEntry,
+    StrategyFigure, StrategyReport, behaviour_line, state_of,
 };
 
 /// MAP-Elites' registration.
 pub static STRATEGY: StrategyEntry = StrategyEntry {
-    kind: StrategyKind::MapElites,
+    kind: "map-elites",
+    needs: Needs {
+        behaviour: true,
+        metrics: false,
+    },
+    takes_population: false,
     variant: "MapElites",
-    from_state: |state| Ok(Search::of(serde_json::from_str::<MapElites>(state)?)),
+    from_state: state_of::<MapElites>,
     extra_columns: ",filled_cells,coverage,qd_score,archive_best",
     build,
     header_line: behaviour_line,
@@ -41,7 +46,7 @@ fn report(dir: &Path, config: &Config, robots: usize) -> Result<Option<StrategyR
     let (lower, upper) = s.behaviour.bounds(robots);
     let bins = s.map_elites.bins_for(dims);
     let mut data = StrategyReport {
-        kind: s.kind.name(),
+        kind: STRATEGY.kind,
         behaviour_names: s.behaviour.coordinate_names(dims),
         ..StrategyReport::default()
     };
@@ -72,12 +77,13 @@ fn report(dir: &Path, config: &Config, robots: usize) -> Result<Option<StrategyR
 }
 
 fn build(
-    config: &Config,
-    spec: GenomeSpec,
-    bounds: Bounds,
-    init: Option<&Population>,
+    Start {
+        config,
+        spec,
+        bounds,
+        ..
+    }: Start<'_>,
 ) -> Result<Search> {
-    refuse_init(config, init)?;
     let neat = config.neat.clone();
     let m = &config.strategy.map_elites;
     let map = MapElitesParams {

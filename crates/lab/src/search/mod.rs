@@ -30,7 +30,7 @@ use vivae_neat::{
 
 use crate::config::Config;
 use crate::config::es::ES_LEO_OUTPUT;
-use crate::config::strategy::StrategyKind;
+use crate::config::strategy::BehaviourKind;
 use crate::error::Result;
 use crate::io::bad_input;
 
@@ -80,7 +80,8 @@ pub fn initial_population(
 /// `{"Name": state}` (its entry's `variant`), as when it was an enum.
 pub struct Search(Box<dyn DynStrategy>);
 
-/// Every strategy a run can search with; `strategy.kind` names one.
+/// The strategies built in; `strategy.kind` names one of them or one
+/// [`register`]ed by a program.
 pub static STRATEGIES: [&StrategyEntry; 4] = [
     &neat::STRATEGY,
     &novelty::STRATEGY,
@@ -94,7 +95,12 @@ pub type Bounds = (Vec<f64>, Vec<f64>);
 /// A strategy's registration: what a run needs of it before it exists.
 pub struct StrategyEntry {
     /// Its `strategy.kind`.
-    pub kind: StrategyKind,
+    pub kind: &'static str,
+    /// What it selects on beside fitness, which the task then measures.
+    pub needs: Needs,
+    /// Whether it can start from given genomes (`experiment.init_population`,
+    /// LEO's seeded generation 0) rather than minimal ones.
+    pub takes_population: bool,
     /// Its name in a checkpoint's `search` field (`{"Name": state}`).
     pub variant: &'static str,
     /// The strategy of a checkpoint's state (its JSON text).
@@ -102,14 +108,44 @@ pub struct StrategyEntry {
     /// The columns it adds to `generations.csv` (after NEAT's), each with its
     /// leading comma.
     pub extra_columns: &'static str,
-    /// Generation 0 of it for `config` over genomes of shape `spec` whose
-    /// behaviour descriptors lie in `bounds`, from `init`'s genomes if given.
-    pub build: fn(&Config, GenomeSpec, Bounds, Option<&Population>) -> Result<Search>,
+    /// Its generation 0.
+    pub build: fn(Start<'_>) -> Result<Search>,
     /// The line the run's header says of it (with its leading line break), or empty.
     pub header_line: fn(&Config) -> String,
     /// What the report of the run in a directory shows of it, read from the
     /// files it wrote (`None`: nothing, as for NEAT); the task's robots given.
     pub report: ReportOf,
+}
+
+/// What a strategy's generation 0 is built from.
+pub struct Start<'a> {
+    /// The run's config.
+    pub config: &'a Config,
+    /// The shape of the genomes.
+    pub spec: GenomeSpec,
+    /// The box the behaviour descriptors lie in.
+    pub bounds: Bounds,
+    /// The genomes to start from, if given (only to an entry that
+    /// [`StrategyEntry::takes_population`]).
+    pub init: Option<&'a Population>,
+}
+
+/// What a strategy selects on beside fitness: the task measures it only then.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Needs {
+    /// A behaviour descriptor (`strategy.behaviour`).
+    pub behaviour: bool,
+    /// The task's metrics (contacts, on-road share, …).
+    pub metrics: bool,
+}
+
+/// [`StrategyEntry::from_state`] of a strategy whose checkpointed state is
+/// its serde form.
+pub fn state_of<T>(state: &str) -> serde_json::Result<Search>
+where
+    T: DynStrategy + serde::de::DeserializeOwned + 'static,
+{
+    Ok(Search::of(serde_json::from_str::<T>(state)?))
 }
 
 /// How a strategy's part of a run's report is read from the run directory.
@@ -119,7 +155,7 @@ pub type ReportOf = fn(&Path, &Config, usize) -> Result<Option<StrategyReport>>;
 /// the last checkpoint (the program adds its columns of `generations.csv`).
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
 pub struct StrategyReport {
-    /// The strategy's name (`map-elites`, `nsga2`, `novelty`).
+    /// The strategy's name (its `strategy.kind`).
     pub kind: &'static str,
     /// A map-elites archive on a 2-D grid, drawn as a heat map.
     pub grid: Option<GridReport>,
@@ -150,7 +186,7 @@ pub struct GridReport {
 /// A strategy's report with nothing of its own but its name (novelty search).
 pub(crate) fn named_report(_: &Path, config: &Config, _: usize) -> Result<Option<StrategyReport>> {
     Ok(Some(StrategyReport {
-        kind: config.strategy.kind.name(),
+        kind: entry_of(config)?.kind,
         ..StrategyReport::default()
     }))
 }
@@ -163,11 +199,83 @@ impl std::fmt::Debug for StrategyEntry {
     }
 }
 
-/// The registration of strategy `kind`.
-pub fn entry(kind: StrategyKind) -> &'static StrategyEntry {
-    (STRATEGIES.iter().copied())
-        .find(|e| e.kind == kind)
-        .expect("every strategy kind is registered")
+/// The strategies programs added with [`register`].
+static REGISTERED: std::sync::RwLock<Vec<&'static StrategyEntry>> =
+    std::sync::RwLock::new(Vec::new());
+
+/// Adds a strategy to those a config can name (`strategy.kind = "its kind"`),
+/// beside the built-in [`STRATEGIES`]; the error says why not (a name taken).
+pub fn register(entry: &'static StrategyEntry) -> std::result::Result<(), String> {
+    let mut added = REGISTERED.write().unwrap_or_else(|e| e.into_inner());
+    let taken = |e: &&StrategyEntry| e.kind == entry.kind || e.variant == entry.variant;
+    if STRATEGIES.iter().chain(added.iter()).any(taken) {
+        // Registering the same entry twice is harmless (tests, re-imports).
+        if STRATEGIES
+            .iter()
+            .chain(added.iter())
+            .any(|e| std::ptr::eq(*e, entry))
+        {
+            return Ok(());
+        }
+        return Err(format!(
+            "a strategy called '{}' ({}) is registered already",
+            entry.kind, entry.variant
+        ));
+    }
+    added.push(entry);
+    Ok(())
+}
+
+/// Every strategy a config can name: the built-in ones, then the registered.
+pub fn entries() -> Vec<&'static StrategyEntry> {
+    let added = REGISTERED.read().unwrap_or_else(|e| e.into_inner());
+    STRATEGIES.iter().chain(added.iter()).copied().collect()
+}
+
+/// The strategy called `kind`; the error lists the ones there are.
+pub fn entry(kind: &str) -> std::result::Result<&'static StrategyEntry, String> {
+    let all = entries();
+    all.iter().copied().find(|e| e.kind == kind).ok_or_else(|| {
+        let names: Vec<_> = all.iter().map(|e| e.kind).collect();
+        format!("'{kind}': expected {}", names.join(", "))
+    })
+}
+
+/// The strategy `config` names (checked by [`check`]).
+pub fn entry_of(config: &Config) -> Result<&'static StrategyEntry> {
+    entry(config.strategy.kind.name()).map_err(|why| bad_input(format!("strategy.kind = {why}")))
+}
+
+/// Checks `config`'s `[strategy]` section for a task measuring `metrics`:
+/// the strategy is registered, what it needs fits the run, its settings are
+/// valid; the error names the key.
+pub fn check(config: &Config, metrics: &[&str]) -> std::result::Result<(), String> {
+    let s = &config.strategy;
+    let e = entry(s.kind.name()).map_err(|why| format!("strategy.kind = {why}"))?;
+    let multi_map = !config.experiment.scenarios.is_empty();
+    if e.needs.behaviour && s.behaviour == BehaviourKind::EndPositions && multi_map {
+        return Err(format!(
+            "strategy.behaviour = {:?}: one map only (maps have their own robots): use end-position on several maps",
+            s.behaviour.name()
+        ));
+    }
+    if config.substrate.es.leo_seed && !e.takes_population {
+        return Err(format!(
+            "substrate.es.leo_seed = true: a {} run starts from minimal genomes (only {} runs start from the seed)",
+            e.kind,
+            takers().join(" and ")
+        ));
+    }
+    crate::config::strategy::validate(s, metrics)
+}
+
+/// The strategies that can start from given genomes.
+fn takers() -> Vec<&'static str> {
+    entries()
+        .into_iter()
+        .filter(|e| e.takes_population)
+        .map(|e| e.kind)
+        .collect()
 }
 
 /// What a run needs of its search strategy beside ask and tell.
@@ -263,11 +371,10 @@ pub(crate) fn behaviour_line(c: &Config) -> String {
 /// Generation 0 of a NEAT population for `config`: `init`'s genomes (only
 /// they carry over: fitness, species and the champion were measured on
 /// another substrate and mean nothing here), or [`initial_population`].
-pub(crate) fn starting_population(
-    config: &Config,
-    spec: GenomeSpec,
-    init: Option<&Population>,
-) -> Result<Population> {
+pub(crate) fn starting_population(start: Start<'_>) -> Result<Population> {
+    let Start {
+        config, spec, init, ..
+    } = start;
     let (neat, seed) = (config.neat.clone(), config.experiment.seed);
     match init {
         Some(p) => Population::from_genomes(neat, spec, p.genomes().to_vec(), seed)
@@ -277,12 +384,13 @@ pub(crate) fn starting_population(
 }
 
 /// Refuses a starting population for a strategy that starts from minimal genomes.
-pub(crate) fn refuse_init(config: &Config, init: Option<&Population>) -> Result<()> {
+fn refuse_init(config: &Config, init: Option<&Population>) -> Result<()> {
     match init {
         None => Ok(()),
         Some(_) => Err(bad_input(format!(
-            "experiment.init_population: a {} run starts from minimal genomes (only neat and novelty runs start from a population)",
-            config.strategy.kind.name()
+            "experiment.init_population: a {} run starts from minimal genomes (only {} runs start from a population)",
+            config.strategy.kind.name(),
+            takers().join(" and ")
         ))),
     }
 }
@@ -298,7 +406,17 @@ impl Search {
         bounds: Bounds,
         init: Option<&Population>,
     ) -> Result<Search> {
-        (entry(config.strategy.kind).build)(config, spec, bounds, init)
+        let entry = entry_of(config)?;
+        if !entry.takes_population {
+            refuse_init(config, init)?;
+        }
+        let init = init.filter(|_| entry.takes_population);
+        (entry.build)(Start {
+            config,
+            spec,
+            bounds,
+            init,
+        })
     }
 
     /// `strategy` as a run's search.
@@ -316,8 +434,8 @@ impl Search {
         self.0.as_any().downcast_ref()
     }
 
-    /// Which strategy this is.
-    pub fn kind(&self) -> StrategyKind {
+    /// Which strategy this is (its `strategy.kind`).
+    pub fn kind(&self) -> &'static str {
         self.strategy().entry().kind
     }
 
@@ -439,8 +557,7 @@ impl Serialize for Search {
         serializer: S,
     ) -> std::result::Result<S::Ok, S::Error> {
         let entry = self.0.entry();
-        let index = STRATEGIES
-            .iter()
+        let index = (entries().iter())
             .position(|e| e.kind == entry.kind)
             .unwrap_or(0);
         let state = self.0.state().map_err(serde::ser::Error::custom)?;
@@ -474,9 +591,9 @@ impl<'de> serde::de::Visitor<'de> for SearchVisitor {
         let name: String = map
             .next_key()?
             .ok_or_else(|| A::Error::custom("no strategy"))?;
-        let entry = (STRATEGIES.iter())
+        let entry = (entries().into_iter())
             .find(|e| e.variant == name)
-            .ok_or_else(|| A::Error::unknown_variant(&name, variant_names()))?;
+            .ok_or_else(|| A::Error::custom(unknown_variant(&name)))?;
         let state: Box<RawValue> = map.next_value()?;
         if map.next_key::<String>()?.is_some() {
             return Err(A::Error::custom("a search holds one strategy"));
@@ -485,11 +602,17 @@ impl<'de> serde::de::Visitor<'de> for SearchVisitor {
     }
 }
 
-/// The strategies' checkpoint names, as serde's error wants them (a
-/// `'static` list, made once from [`STRATEGIES`]).
-fn variant_names() -> &'static [&'static str] {
-    static NAMES: std::sync::OnceLock<Vec<&'static str>> = std::sync::OnceLock::new();
-    NAMES.get_or_init(|| STRATEGIES.iter().map(|e| e.variant).collect())
+/// What serde says of an unknown variant, over the strategies' checkpoint
+/// names (registered ones included, so not a `'static` list).
+fn unknown_variant(name: &str) -> String {
+    let names: Vec<_> = entries()
+        .iter()
+        .map(|e| format!("`{}`", e.variant))
+        .collect();
+    format!(
+        "unknown variant `{name}`, expected one of {}",
+        names.join(", ")
+    )
 }
 
 impl Strategy for Search {

@@ -2,31 +2,31 @@
 //! files are NEAT's own; it adds no columns and no files.
 
 use vivae_neat::driver::Evaluation;
-use vivae_neat::{Genome, GenomeSpec, Population};
+use vivae_neat::{Genome, Population};
 
-use crate::config::Config;
-use crate::config::strategy::StrategyKind;
 use crate::error::Result;
-use crate::search::{Bounds, RunStrategy, Search, StrategyEntry, starting_population};
+use crate::search::{
+    Needs, RunStrategy, Search, Start, StrategyEntry, starting_population, state_of,
+};
 
 /// NEAT's registration.
 pub static STRATEGY: StrategyEntry = StrategyEntry {
-    kind: StrategyKind::Neat,
+    kind: "neat",
+    needs: Needs {
+        behaviour: false,
+        metrics: false,
+    },
+    takes_population: true,
     variant: "Neat",
-    from_state: |state| Ok(Search::of(serde_json::from_str::<Population>(state)?)),
+    from_state: state_of::<Population>,
     extra_columns: "",
     build,
     header_line: |_| String::new(),
     report: |_, _, _| Ok(None),
 };
 
-fn build(
-    config: &Config,
-    spec: GenomeSpec,
-    _: Bounds,
-    init: Option<&Population>,
-) -> Result<Search> {
-    Ok(Search::of(starting_population(config, spec, init)?))
+fn build(start: Start<'_>) -> Result<Search> {
+    Ok(Search::of(starting_population(start)?))
 }
 
 impl RunStrategy for Population {

@@ -2,36 +2,35 @@
 //! archive's size and the novelty threshold to `generations.csv`.
 
 use vivae_neat::strategies::NoveltySearch;
-use vivae_neat::{Genome, GenomeSpec, NeatError, Population};
+use vivae_neat::{Genome, NeatError, Population};
 
-use crate::config::Config;
-use crate::config::strategy::StrategyKind;
 use crate::error::Result;
 use crate::io::bad_input;
 use crate::search::{
-    Bounds, RunStrategy, Search, StrategyEntry, behaviour_line, starting_population,
+    Needs, RunStrategy, Search, Start, StrategyEntry, behaviour_line, starting_population, state_of,
 };
 
 /// Novelty search's registration.
 pub static STRATEGY: StrategyEntry = StrategyEntry {
-    kind: StrategyKind::Novelty,
+    kind: "novelty",
+    needs: Needs {
+        behaviour: true,
+        metrics: false,
+    },
+    takes_population: true,
     variant: "Novelty",
-    from_state: |state| Ok(Search::of(serde_json::from_str::<NoveltySearch>(state)?)),
+    from_state: state_of::<NoveltySearch>,
     extra_columns: ",archive_size,novelty_threshold",
     build,
     header_line: behaviour_line,
     report: crate::search::named_report,
 };
 
-fn build(
-    config: &Config,
-    spec: GenomeSpec,
-    _: Bounds,
-    init: Option<&Population>,
-) -> Result<Search> {
-    let population = starting_population(config, spec, init)?;
+fn build(start: Start<'_>) -> Result<Search> {
+    let config = start.config;
+    let population = starting_population(start)?;
     let refused = |e: NeatError| bad_input(format!("strategy.novelty: {e}"));
-    let params = config.strategy.novelty.params();
+    let params = config.strategy.novelty.clone();
     Ok(Search::of(
         NoveltySearch::new(population, params).map_err(refused)?,
     ))

@@ -7,24 +7,29 @@ use std::path::Path;
 
 use vivae_neat::driver::Strategy;
 use vivae_neat::strategies::{Nsga2, Nsga2Params};
-use vivae_neat::{Genome, GenomeSpec, NeatError, Population};
+use vivae_neat::{Genome, NeatError};
 
 use crate::config::Config;
-use crate::config::strategy::{StrategyKind, objective_among};
+use crate::config::strategy::objective_among;
 use crate::error::Result;
 use crate::io::{bad_input, write_atomic};
 use crate::rundir::files;
 use crate::search::files::{FrontLine, jsonl};
 use crate::search::{
-    Bounds, FrontFigure, RunStrategy, Search, StrategyEntry, StrategyFigure, StrategyReport,
-    refuse_init,
+    FrontFigure, Needs, RunStrategy, Search, Start, StrategyEntry, StrategyFigure, StrategyReport,
+    state_of,
 };
 
 /// NSGA-II's registration.
 pub static STRATEGY: StrategyEntry = StrategyEntry {
-    kind: StrategyKind::Nsga2,
+    kind: "nsga2",
+    needs: Needs {
+        behaviour: false,
+        metrics: true,
+    },
+    takes_population: false,
     variant: "Nsga2",
-    from_state: |state| Ok(Search::of(serde_json::from_str::<Nsga2>(state)?)),
+    from_state: state_of::<Nsga2>,
     extra_columns: ",front_size",
     build,
     header_line: |c| {
@@ -40,7 +45,7 @@ pub static STRATEGY: StrategyEntry = StrategyEntry {
 fn report(dir: &Path, config: &Config, _robots: usize) -> Result<Option<StrategyReport>> {
     let front = crate::search::files::read_front(dir)?.unwrap_or_default();
     Ok(Some(StrategyReport {
-        kind: config.strategy.kind.name(),
+        kind: STRATEGY.kind,
         objectives: config.strategy.nsga2.objectives.clone(),
         front: (front.into_iter())
             .map(|f| (f.member, f.fitness, f.objectives))
@@ -49,13 +54,7 @@ fn report(dir: &Path, config: &Config, _robots: usize) -> Result<Option<Strategy
     }))
 }
 
-fn build(
-    config: &Config,
-    spec: GenomeSpec,
-    _: Bounds,
-    init: Option<&Population>,
-) -> Result<Search> {
-    refuse_init(config, init)?;
+fn build(Start { config, spec, .. }: Start<'_>) -> Result<Search> {
     let neat = config.neat.clone();
     let s = &config.strategy.nsga2;
     let nsga = Nsga2Params {

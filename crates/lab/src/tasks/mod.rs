@@ -44,7 +44,7 @@ pub struct TaskEntry {
     pub default_config: fn() -> Config,
     /// The rules the task adds to [`Config::validate`]'s (the message names the key).
     pub validate: fn(&Config) -> std::result::Result<(), String>,
-    /// Names of the metrics its evaluations carry (NSGA-II's objectives besides fitness).
+    /// Names of the metrics its evaluations carry (objectives a strategy may select on besides fitness).
     pub metric_names: &'static [&'static str],
     /// The columns it adds to `generations.csv`, each with its leading comma.
     pub generation_columns: &'static str,
@@ -92,12 +92,7 @@ pub fn default_config(task: Option<&TaskName>) -> std::result::Result<Config, St
 pub fn check(config: &Config) -> std::result::Result<(), ConfigError> {
     let task = entry_of(config)?;
     config.validate()?;
-    crate::config::strategy::validate(
-        &config.strategy,
-        !config.experiment.scenarios.is_empty(),
-        task.metric_names,
-    )
-    .map_err(ConfigError::new)?;
+    crate::search::check(config, task.metric_names).map_err(ConfigError::new)?;
     (task.validate)(config).map_err(ConfigError::new)
 }
 
@@ -213,7 +208,7 @@ pub trait RunTask: Task + fmt::Debug + Send + Sync {
     fn genome_spec(&self) -> GenomeSpec;
 
     /// The box the behaviour descriptors of `config`'s strategy lie in
-    /// (MAP-Elites' cells cover it).
+    /// (a grid archive's cells cover it).
     fn behaviour_bounds(&self, config: &Config) -> (Vec<f64>, Vec<f64>);
 
     /// Robot-steps one evaluation simulates at most.
@@ -236,7 +231,7 @@ pub trait RunTask: Task + fmt::Debug + Send + Sync {
     fn describe(&self, maps: &[TrainingMap]) -> String;
 
     /// Settings of a config left at the task's defaults that the task fits
-    /// to itself (the maze's MAP-Elites grid to its arena).
+    /// to itself (e.g. a grid archive to its arena).
     fn fit_defaults(&self, _config: &mut Config) {}
 
     /// Whether a run stops once an evaluation reaches the task's target; its

@@ -1,5 +1,5 @@
 //! A run's progress towards its task's target, for a task that stops once an
-//! evaluation reaches it (the maze's goal): kept in the checkpoints.
+//! evaluation reaches it (a goal reached): kept in the checkpoints.
 
 use serde::{Deserialize, Serialize};
 use vivae_neat::driver::{Evaluation, Task};

@@ -108,8 +108,8 @@ fn conclude(
     Ok(ExitCode::SUCCESS)
 }
 
-/// [`conclude`] for a task that draws no figures (the maze: docs/guide.md,
-/// "The maze from the command line"): its own summary says how it went.
+/// [`conclude`] for a task that draws no figures (one whose `RunTask` is
+/// not the driving one): its own summary says how it went.
 fn conclude_without_figures(
     run: &Run,
     outcome: Outcome,

@@ -37,7 +37,7 @@ pub fn run(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<Ex
     let mut config = base_config(args.config.as_deref(), task, "--task ")?;
     apply_overrides(&mut config, &args.overrides)?;
     // Without a config file a named task starts from its own defaults,
-    // which it may fit to its scenario (the maze's MAP-Elites grid).
+    // which it may fit to its scenario (e.g. a grid archive fitted to its arena).
     let task_defaults = task.is_some() && args.config.is_none();
     let setup = || prepare(config.clone(), task_defaults);
     // Problems with what a config file names are reported against that file too.

@@ -51,23 +51,33 @@ pub struct Overrides {
     #[command(flatten)]
     pub wiring: Wiring,
     /// Search strategy (strategy.kind; default neat, the paper's).
-    #[arg(long, value_name = "neat|novelty|map-elites|nsga2")]
-    pub strategy: Option<vivae_lab::config::strategy::StrategyKind>,
-    /// Behaviour descriptor of novelty and map-elites (strategy.behaviour).
+    #[arg(long, value_name = "NAME", value_parser = strategy_names())]
+    pub strategy: Option<vivae_lab::config::strategy::StrategyName>,
+    /// Behaviour descriptor of the strategies that search on one (strategy.behaviour).
     #[arg(long, value_name = "end-position|end-positions|side-speed|trajectory")]
     pub behaviour: Option<vivae_lab::tasks::driving::descriptors::BehaviourKind>,
-    /// Task (experiment.task): driving (default) or maze (Lehman & Stanley's
-    /// maze with a plain NEAT network; default scenario hard-maze).
-    #[arg(long, value_name = "driving|maze", value_parser = parse_task)]
+    /// Task (experiment.task; default driving, the paper's); docs/guide.md
+    /// says what each one evaluates and which scenario it starts from.
+    #[arg(long, value_name = "NAME", value_parser = task_names())]
     pub task: Option<TaskName>,
     /// Distance rays of the second input sheet (distance_sensors.rays; 0 = none).
     #[arg(long, value_name = "N")]
     pub distance_rays: Option<usize>,
 }
 
-/// `--task NAME`: a registered task.
-fn parse_task(name: &str) -> Result<TaskName, String> {
-    vivae_lab::tasks::entry(name).map(|_| TaskName(name.to_string()))
+/// `--task NAME`: one of the registered tasks (listed by `--help`).
+fn task_names() -> impl clap::builder::TypedValueParser<Value = TaskName> {
+    use clap::builder::TypedValueParser as _;
+    let names = vivae_lab::tasks::TASKS.iter().map(|t| t.name);
+    clap::builder::PossibleValuesParser::new(names).map(TaskName)
+}
+
+/// `--strategy NAME`: one of the registered strategies (listed by `--help`).
+fn strategy_names()
+-> impl clap::builder::TypedValueParser<Value = vivae_lab::config::strategy::StrategyName> {
+    use clap::builder::TypedValueParser as _;
+    let names = vivae_lab::search::entries().into_iter().map(|e| e.kind);
+    clap::builder::PossibleValuesParser::new(names).map(vivae_lab::config::strategy::StrategyName)
 }
 
 impl Overrides {
@@ -93,7 +103,7 @@ impl Overrides {
             normalize_by: self.wiring.normalize_by,
             normalize_self_loops: self.wiring.normalize_self_loops,
             recurrence: self.wiring.recurrence,
-            strategy: self.strategy,
+            strategy: self.strategy.clone(),
             behaviour: self.behaviour,
             task: self.task.clone(),
         }

@@ -1,6 +1,6 @@
 //! `vivae replay`: runs a genome (a run's champion, an elite or a front
-//! member, or a genome file) and draws its trajectories; a maze run's genome
-//! prints its episode's end instead.
+//! member, or a genome file) and draws its trajectories; the genome of a task
+//! without figures prints its episode's end instead.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -143,8 +143,8 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// `vivae replay` of a genome of a task that draws no figures (the maze):
-/// its episode's end, on stdout.
+/// `vivae replay` of a genome of a task that draws no figures: its
+/// episode's end (the task's replay text), on stdout.
 fn replay_without_figures(
     args: &ReplayArgs,
     champion: &rundir::Champion,

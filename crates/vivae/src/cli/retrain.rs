@@ -79,7 +79,7 @@ pub fn run(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<E
 }
 
 /// Points the config of the run in `run_dir` at that run's copies of its
-/// maps; refuses a run of another task (the maze), which has no substrate to re-sample.
+/// maps; refuses a run of another task, which has no substrate to re-sample.
 fn retrain_on_the_runs_maps(config: &mut Config, run_dir: &std::path::Path) -> anyhow::Result<()> {
     if !config.experiment.task.is_driving() {
         return Err(bad_input(format!(

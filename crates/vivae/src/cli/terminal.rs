@@ -50,7 +50,8 @@ fn resuming_note(run: &Run) -> String {
 
 /// The header's line on the search strategy (none for NEAT, the paper's).
 fn strategy_line(c: &Config) -> String {
-    (vivae_lab::search::entry(c.strategy.kind).header_line)(c)
+    // A run's config was checked, so its strategy is registered.
+    vivae_lab::search::entry_of(c).map_or_else(|_| String::new(), |e| (e.header_line)(c))
 }
 
 /// The progress bar of a run of `total` generations, `done` of them already.

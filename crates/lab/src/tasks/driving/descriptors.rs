@@ -35,7 +35,7 @@
 use vivae_neat::driver::Evaluation;
 use vivae_sim::World;
 
-use crate::config::strategy::{StrategyConfig, StrategyKind as K};
+use crate::config::strategy::StrategyConfig;
 use crate::tasks::driving::behaviour::BehaviourMeter;
 use crate::tasks::driving::fitness::Fitness;
 use crate::tasks::driving::rollout::{Drive, Rollout};
@@ -52,21 +52,16 @@ pub struct Measures {
 }
 
 impl Measures {
-    /// What a run with strategy `s` needs: nothing for NEAT (the plain
-    /// episode), a behaviour for novelty search and MAP-Elites, metrics for NSGA-II.
+    /// What a run with strategy `s` needs, as its entry says (`None`:
+    /// nothing, the plain episode; also for a strategy not registered, which
+    /// the config's check refuses).
     pub fn of(s: &StrategyConfig) -> Option<Measures> {
-        let m = match s.kind {
-            K::Neat => return None,
-            K::Novelty | K::MapElites => Measures {
-                behaviour: Some(s.behaviour),
-                metrics: false,
-            },
-            K::Nsga2 => Measures {
-                behaviour: None,
-                metrics: true,
-            },
+        let needs = crate::search::entry(s.kind.name()).ok()?.needs;
+        let m = Measures {
+            behaviour: needs.behaviour.then_some(s.behaviour),
+            metrics: needs.metrics,
         };
-        Some(m)
+        (m.behaviour.is_some() || m.metrics).then_some(m)
     }
 }
 
@@ -200,16 +195,15 @@ pub fn mean_of(parts: &[&[f64]]) -> Vec<f64> {
 mod tests {
     use super::*;
     use crate::config::Config;
-    use crate::config::strategy::StrategyKind;
     use crate::io::load_scenario;
     use crate::tasks::driving::episode::Episode;
     use vivae_neat::Population;
     use vivae_neat::driver::Task;
 
-    fn experiment(kind: StrategyKind, behaviour: BehaviourKind) -> (Config, Episode) {
+    fn experiment(kind: &str, behaviour: BehaviourKind) -> (Config, Episode) {
         let mut config = Config::default();
         config.experiment.steps = 150;
-        config.strategy.kind = kind;
+        config.strategy.kind = kind.into();
         config.strategy.behaviour = behaviour;
         let e = Episode::new(&config, &load_scenario(None).unwrap().scenario).unwrap();
         (config, e)
@@ -217,7 +211,7 @@ mod tests {
 
     #[test]
     fn measuring_keeps_the_fitness_bit_for_bit() {
-        let (config, plain) = experiment(StrategyKind::Neat, BehaviourKind::EndPosition);
+        let (config, plain) = experiment("neat", BehaviourKind::EndPosition);
         let pop = Population::new(config.neat.clone(), plain.cppn_spec(), 5).unwrap();
         let ctx = vivae_neat::EvalContext {
             generation: 0,
@@ -225,10 +219,10 @@ mod tests {
             seed: 0,
         };
         for (kind, behaviour) in [
-            (StrategyKind::MapElites, BehaviourKind::SideSpeed),
-            (StrategyKind::Novelty, BehaviourKind::EndPositions),
-            (StrategyKind::Nsga2, BehaviourKind::EndPosition),
-            (StrategyKind::Novelty, BehaviourKind::Trajectory),
+            ("map-elites", BehaviourKind::SideSpeed),
+            ("novelty", BehaviourKind::EndPositions),
+            ("nsga2", BehaviourKind::EndPosition),
+            ("novelty", BehaviourKind::Trajectory),
         ] {
             let (_, measured) = experiment(kind, behaviour);
             for g in pop.genomes().iter().take(4) {
@@ -237,7 +231,7 @@ mod tests {
                 assert!(a.behaviour.is_empty() && a.metrics.is_empty());
                 assert_eq!(a.fitness.to_bits(), b.fitness.to_bits());
                 let (lower, upper) = behaviour.bounds(measured.robots());
-                if kind == StrategyKind::Nsga2 {
+                if kind == "nsga2" {
                     assert!(b.behaviour.is_empty());
                     assert_eq!(b.metrics.len(), METRICS.len());
                     assert!(b.metrics[0] >= 0.0 && (0.0..=1.0).contains(&b.metrics[1]));
@@ -254,7 +248,7 @@ mod tests {
 
     #[test]
     fn metrics_agree_with_the_recorded_episode() {
-        let (config, e) = experiment(StrategyKind::Nsga2, BehaviourKind::EndPosition);
+        let (config, e) = experiment("nsga2", BehaviourKind::EndPosition);
         let pop = Population::new(config.neat.clone(), e.cppn_spec(), 9).unwrap();
         for g in pop.genomes().iter().take(4) {
             let c = e.controller(g).unwrap();
@@ -272,7 +266,7 @@ mod tests {
 
     #[test]
     fn end_position_is_the_mean_of_end_positions() {
-        let (config, e) = experiment(StrategyKind::Novelty, BehaviourKind::EndPosition);
+        let (config, e) = experiment("novelty", BehaviourKind::EndPosition);
         let pop = Population::new(config.neat.clone(), e.cppn_spec(), 2).unwrap();
         let c = e.controller(&pop.genomes()[0]).unwrap();
         let each = |kind| {
@@ -294,7 +288,7 @@ mod tests {
 
     #[test]
     fn a_trajectory_samples_the_path_and_ends_at_the_end_position() {
-        let (config, e) = experiment(StrategyKind::Novelty, BehaviourKind::Trajectory);
+        let (config, e) = experiment("novelty", BehaviourKind::Trajectory);
         let pop = Population::new(config.neat.clone(), e.cppn_spec(), 3).unwrap();
         let m = |kind| Measures {
             behaviour: Some(kind),

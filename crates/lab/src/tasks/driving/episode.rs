@@ -68,19 +68,8 @@ pub struct EpisodeRecord {
     pub behaviour: Option<Behaviour>,
 }
 
-/// Why an experiment cannot be set up.
-#[derive(Debug, thiserror::Error)]
-pub enum EpisodeError {
-    /// The scenario cannot host the experiment.
-    #[error("{0}")]
-    Scenario(String),
-    /// The parameters do not fit together.
-    #[error("{0}")]
-    Config(String),
-    /// The genome does not fit this experiment's substrate.
-    #[error("{0}")]
-    Genome(String),
-}
+// Defined with the library's error so that the error type needs no task.
+pub use crate::error::EpisodeError;
 
 impl Episode {
     /// Sets up the experiment of `config` on `scenario` (uses its first `robots` robots).
@@ -463,7 +452,7 @@ mod tests {
         let mut config = Config::default();
         config.experiment.steps = 100;
         config.substrate.kind = SubstrateKind::EsHyperneat;
-        config.strategy.kind = crate::config::strategy::StrategyKind::Nsga2;
+        config.strategy.kind = "nsga2".into();
         let exp = paper_experiment(&config);
         let pop = Population::new(config.neat.clone(), exp.cppn_spec(), 5).unwrap();
         let ctx = EvalContext {

@@ -237,7 +237,7 @@ mod tests {
             "strategy.behaviour",
         );
         let mut c = Config::maze();
-        c.strategy.kind = crate::config::strategy::StrategyKind::Nsga2;
+        c.strategy.kind = "nsga2".into();
         c.strategy.nsga2.objectives = vec!["-contacts".into()];
         let e = crate::tasks::check(&c).unwrap_err().message;
         assert!(e.contains("fitness or solved or distance or steps"), "{e}");

@@ -10,26 +10,32 @@ use super::knn::{KdTree, Nearest};
 use crate::error::NeatError;
 use crate::strategies::invalid;
 
-/// Novelty search's own settings (NEAT's are the population's).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+/// Novelty search's own settings (NEAT's are the population's); unset keys
+/// of a serialised one take their defaults.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields, default)]
 pub struct NoveltyParams {
-    /// Neighbours k in the sparseness (the paper: 15).
+    /// Nearest neighbours (population and archive) whose mean distance is a
+    /// behaviour's novelty (Lehman & Stanley 2011: 15).
     pub k: usize,
-    /// Initial archive threshold ρ_min, in behaviour-space units.
+    /// Initial archive threshold ρ_min: a behaviour more novel than this is archived.
+    ///
+    /// Unit: behaviour units.
     pub threshold: f64,
     /// ρ_min is never lowered below this.
+    ///
+    /// Unit: behaviour units.
     pub threshold_floor: f64,
-    /// Generations without an archive addition before ρ_min is lowered (10).
+    /// Generations without an archive addition before ρ_min is lowered (Lehman & Stanley: 10).
     pub lower_after: u32,
-    /// Factor lowering ρ_min (0.95).
+    /// Factor lowering ρ_min (Lehman & Stanley: 0.95).
     pub lower_factor: f64,
-    /// More additions than this in one generation raise ρ_min (4).
+    /// More additions than this in one generation raise ρ_min (Lehman & Stanley: 4).
     pub raise_above: usize,
-    /// Factor raising ρ_min (1.2).
+    /// Factor raising ρ_min (Lehman & Stanley: 1.2).
     pub raise_factor: f64,
-    /// Weight w of fitness in the selection score `(1 − w)·novelty + w·fitness`,
-    /// both min–max normalised over the generation; 0 is pure novelty search.
+    /// Weight w of fitness in the selection score (1 − w)·novelty + w·fitness
+    /// (both min–max normalised per generation); 0 = pure novelty search.
     pub fitness_weight: f64,
 }
 

@@ -1,0 +1,134 @@
+//! Which genome of a run to export or drive, decoded at the resolution asked
+//! for: the one place the CLI (`vivae export`, `vivae drive-image`) and
+//! Python (`vivae.export`, `vivae.drive_image`) find it.
+
+use std::path::{Path, PathBuf};
+
+use vivae_neat::Genome;
+
+use crate::config::Config;
+use crate::controller::es::RobotController;
+use crate::controller::substrate::PolarGrid;
+use crate::error::{Error, Result};
+use crate::io::bad_input;
+use crate::rundir::{self, files};
+use crate::search::files::{Member, read_member};
+use crate::tasks::driving::episode::Episode;
+
+/// Which genome of a run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Pick {
+    /// The run's champion (`champion.json`).
+    #[default]
+    Champion,
+    /// The best genome of this generation (`best-genomes.jsonl`).
+    Generation(u32),
+    /// A MAP-Elites elite or an NSGA-II front member.
+    Member(Member),
+}
+
+/// A run's genome, decoded.
+#[derive(Debug, Clone)]
+pub struct Chosen {
+    /// The config (the run's, with the resolution asked for).
+    pub config: Config,
+    /// The episode setup of the run's (first) map at that resolution.
+    pub episode: Episode,
+    /// The genome.
+    pub genome: Genome,
+    /// Its decoded controller.
+    pub controller: RobotController,
+    /// What was chosen, for the artifact: run, member, resolution, substrate.
+    pub description: String,
+}
+
+/// Decodes `pick` of the run (or champion file) `source` with surface
+/// sensors `sensors` and neurons `neurons` (default: the run's).
+pub fn choose(
+    source: &Path,
+    pick: Pick,
+    sensors: Option<PolarGrid>,
+    neurons: Option<PolarGrid>,
+) -> Result<Chosen> {
+    let (champion, mut config, _) = rundir::load_genome_source(source)?;
+    if !config.experiment.task.is_driving() {
+        return Err(bad_input(format!(
+            "{}: only a driving run's controller can be exported",
+            source.display()
+        )));
+    }
+    let (genome, what) = genome_of(source, pick, champion)?;
+    // A multi-map run's controller reads its sensors the same on every map.
+    if crate::tasks::maps::is_multi_map(&config) {
+        let maps = std::mem::take(&mut config.experiment.scenarios);
+        config.experiment.scenario = maps[0].clone();
+    }
+    let overrides = crate::run::prepare::Overrides {
+        sensors,
+        neurons,
+        ..Default::default()
+    };
+    overrides.apply(&mut config);
+    crate::tasks::check(&config).map_err(|e| bad_input(format!("{}: {e}", source.display())))?;
+    let path = (!config.experiment.scenario.is_empty())
+        .then(|| PathBuf::from(&config.experiment.scenario))
+        .filter(|p| p.exists());
+    // The run's map only gives the robots' starts; the embedded map stands in when it is gone.
+    let scenario = crate::io::load_scenario(path.as_deref())?;
+    let episode = Episode::new(&config, &scenario.scenario).map_err(Error::from)?;
+    let controller = episode
+        .robot_controller(&genome)
+        .map_err(|e| Error::Genome {
+            path: source.to_path_buf(),
+            reason: format!("the genome's {e}"),
+        })?;
+    let s = &config.surface_sensors;
+    let description = format!(
+        "{what} of {}; substrate {}; surface sensors {}x{} over {} deg; neurons {}",
+        source.display(),
+        match config.substrate.kind {
+            crate::controller::es::SubstrateKind::Polar => "polar",
+            crate::controller::es::SubstrateKind::EsHyperneat => "es-hyperneat",
+        },
+        s.rings,
+        s.angles,
+        s.fov,
+        config.substrate.neurons,
+    );
+    Ok(Chosen {
+        config,
+        episode,
+        genome,
+        controller,
+        description,
+    })
+}
+
+/// The genome `pick` names, and how to call it.
+fn genome_of(source: &Path, pick: Pick, champion: rundir::Champion) -> Result<(Genome, String)> {
+    match pick {
+        Pick::Champion => Ok((
+            champion.genome,
+            format!("champion (generation {})", champion.generation),
+        )),
+        Pick::Generation(g) => {
+            let best = rundir::read_best_genomes(&source.join(files::BEST_GENOMES))?;
+            let n = best.len();
+            let b = (best.into_iter().find(|b| b.generation == g)).ok_or_else(|| {
+                bad_input(format!(
+                    "{}: generation {g} has no recorded best genome ({n} generations recorded)",
+                    source.join(files::BEST_GENOMES).display()
+                ))
+            })?;
+            Ok((b.genome, format!("best of generation {g}")))
+        }
+        Pick::Member(m) => {
+            let (genome, _, generation) = read_member(source, m)?;
+            let what = match m {
+                Member::Elite(c) => format!("elite of cell {c} (generation {generation})"),
+                Member::Front(k) => format!("front member {k}"),
+            };
+            Ok((genome, what))
+        }
+    }
+}

@@ -1,0 +1,360 @@
+//! Taking a controller out of vivae: the decoded network of a run's genome
+//! (the dense polar sheet or an ES-HyperNEAT network, at any resolution) as
+//! one plain step function, written as JSON ([`json`]), a dependency-free C
+//! file and header ([`c`]) or an ONNX model ([`onnx`]); [`image`] feeds it
+//! what a camera (or a top-down map) sees, and [`choose`] finds the
+//! genome in a run directory.
+//!
+//! Every format computes the same step as vivae, in f64: each node's sum is
+//! its bias, then `+= w·x` over its links in source order (the sensors, then
+//! the previous state), then the bipolar sigmoid `2/(1 + exp(−4.9·s)) − 1`
+//! with vivae's portable `exp`. Links of weight 0 are left out: adding
+//! `0·x` (x finite) changes at most the sign of a zero sum, and σ(±0) is +0,
+//! so the result keeps its bits.
+
+pub mod c;
+pub mod choose;
+pub mod frames;
+pub mod image;
+pub mod json;
+pub mod onnx;
+mod proto;
+
+use std::path::{Path, PathBuf};
+
+use serde::Serialize;
+use vivae_neat::hyperneat::{SparseNetwork, SubstrateController};
+
+use crate::controller::es::RobotController;
+use crate::controller::sensors::SensorSheet;
+use crate::tasks::driving::episode::Episode;
+
+/// The slope of the bipolar sigmoid every node applies (`vivae_neat::activation`).
+pub const SIGMOID_SLOPE: f64 = 4.9;
+
+/// A decoded controller as one step: `(sensors, state) → (wheels, next state)`.
+///
+/// Node `k` is state entry `k`. A link's source `j` is sensor `j` when
+/// `j < inputs`, else node `j − inputs` (its value in the previous state when
+/// [`StepNet::synchronous`], else its value already updated this step).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StepNet {
+    /// Sensor values in.
+    pub inputs: usize,
+    /// Nodes (the length of the state).
+    pub nodes: usize,
+    /// Bias per node.
+    pub bias: Vec<f64>,
+    /// Links into node `k` are `starts[k]..starts[k + 1]` of `sources` and `weights`.
+    pub starts: Vec<usize>,
+    /// Source of each link, in increasing order within a node.
+    pub sources: Vec<usize>,
+    /// Weight of each link.
+    pub weights: Vec<f64>,
+    /// The order nodes are updated in.
+    pub order: Vec<usize>,
+    /// Every node reads the previous state (a recurrent network, updated
+    /// synchronously); otherwise nodes update in place in `order` (a
+    /// feed-forward network in topological order).
+    pub synchronous: bool,
+    /// The nodes whose new values drive the left and right wheel.
+    pub wheels: [usize; 2],
+}
+
+/// `2/(1 + exp(−4.9·s)) − 1`: vivae's bipolar sigmoid with its portable `exp`.
+pub fn sigmoid(s: f64) -> f64 {
+    vivae_neat::activation::bipolar_sigmoid(s)
+}
+
+impl StepNet {
+    /// The dense polar sheet: neurons are the nodes, updated synchronously.
+    pub fn from_polar(c: &SubstrateController, wheels: [usize; 2]) -> StepNet {
+        let (ni, n) = (vivae_neat::Network::num_inputs(c), c.num_neurons());
+        let mut net = StepNet::empty(ni, n, c.biases().to_vec(), true, wheels);
+        for target in 0..n {
+            for j in 0..ni + n {
+                let w = if j < ni {
+                    c.input_weight(j, target)
+                } else {
+                    c.recurrent_weight(j - ni, target)
+                };
+                if w != 0.0 {
+                    net.sources.push(j);
+                    net.weights.push(w);
+                }
+            }
+            net.starts.push(net.sources.len());
+        }
+        net
+    }
+
+    /// An ES network: its outputs (the wheels, left then right) and hidden
+    /// nodes are the nodes; synchronous when its links form a cycle.
+    pub fn from_sparse(s: &SparseNetwork) -> StepNet {
+        let ni = vivae_neat::Network::num_inputs(s);
+        let n = s.num_nodes() - ni;
+        let mut net = StepNet::empty(ni, n, s.biases().to_vec(), s.is_recurrent(), [0, 1]);
+        // Links come sorted by (target, source): the order vivae sums them in.
+        let links = s.links();
+        let mut at = 0;
+        for target in 0..n {
+            while at < links.len() && links[at].target == ni + target {
+                net.sources.push(links[at].source);
+                net.weights.push(links[at].weight);
+                at += 1;
+            }
+            net.starts.push(at);
+        }
+        if !net.synchronous {
+            net.order = net.topological_order();
+        }
+        net
+    }
+
+    fn empty(
+        ni: usize,
+        n: usize,
+        bias: Vec<f64>,
+        synchronous: bool,
+        wheels: [usize; 2],
+    ) -> StepNet {
+        StepNet {
+            inputs: ni,
+            nodes: n,
+            bias,
+            starts: vec![0],
+            sources: Vec::new(),
+            weights: Vec::new(),
+            order: (0..n).collect(),
+            synchronous,
+            wheels,
+        }
+    }
+
+    /// Kahn's order, smallest node first (any topological order gives the
+    /// same values: a node reads only nodes already final).
+    fn topological_order(&self) -> Vec<usize> {
+        let (ni, n) = (self.inputs, self.nodes);
+        let mut indegree = vec![0usize; n];
+        let mut out: Vec<Vec<usize>> = vec![Vec::new(); n];
+        for (t, degree) in indegree.iter_mut().enumerate() {
+            for &s in &self.sources[self.starts[t]..self.starts[t + 1]] {
+                if s >= ni {
+                    *degree += 1;
+                    out[s - ni].push(t);
+                }
+            }
+        }
+        let mut ready: std::collections::BTreeSet<usize> =
+            (0..n).filter(|&k| indegree[k] == 0).collect();
+        let mut order = Vec::with_capacity(n);
+        while let Some(k) = ready.pop_first() {
+            order.push(k);
+            for &t in &out[k] {
+                indegree[t] -= 1;
+                if indegree[t] == 0 {
+                    ready.insert(t);
+                }
+            }
+        }
+        order
+    }
+
+    /// Number of links.
+    pub fn links(&self) -> usize {
+        self.sources.len()
+    }
+
+    /// One step: `state` (`nodes` long, zero at the start) becomes the next
+    /// state, and the wheel commands are returned. `scratch` is `nodes` long.
+    pub fn step(&self, inputs: &[f64], state: &mut [f64], scratch: &mut [f64]) -> [f64; 2] {
+        assert!(inputs.len() == self.inputs && state.len() == self.nodes);
+        let ni = self.inputs;
+        for &k in &self.order {
+            let mut s = self.bias[k];
+            for l in self.starts[k]..self.starts[k + 1] {
+                let j = self.sources[l];
+                let x = if j < ni { inputs[j] } else { state[j - ni] };
+                s += self.weights[l] * x;
+            }
+            if self.synchronous {
+                scratch[k] = sigmoid(s);
+            } else {
+                state[k] = sigmoid(s);
+            }
+        }
+        if self.synchronous {
+            state.copy_from_slice(&scratch[..self.nodes]);
+        }
+        [state[self.wheels[0]], state[self.wheels[1]]]
+    }
+}
+
+/// One sensor sheet as a robot must read it, in controller-input order.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SheetGeometry {
+    /// The sensor (`"surface"`, `"distance"`).
+    pub sensor: String,
+    /// First input of this sheet.
+    pub first_input: usize,
+    /// Rings of the sheet.
+    pub rings: usize,
+    /// Field of view, degrees, centred ahead.
+    pub fov_deg: f64,
+    /// What one reading is.
+    pub reading: String,
+    /// Every reading's place, in input order.
+    pub places: Vec<Place>,
+}
+
+/// Where one reading is taken, relative to the robot.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Place {
+    /// Ring (0 = nearest).
+    pub ring: usize,
+    /// Angle index (0 = leftmost).
+    pub angle_index: usize,
+    /// Angle from straight ahead, degrees, negative = left.
+    pub angle_deg: f64,
+    /// Distance from the robot's centre, px (distance rays: ray length from the rim).
+    pub distance: f64,
+}
+
+/// What the two outputs mean to the robot.
+pub const WHEELS: &str = "out[0] = left wheel, out[1] = right wheel, each in [-1, 1]; \
+vivae's robot accelerates by a_max*(L+R)/2 and turns by omega_max*(L-R)/2*(1 - speed/v_max) per step \
+(clockwise when L > R)";
+
+/// An exported controller: its step and everything a robot needs to feed it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Exported {
+    /// What it is: the run, the member and the substrate.
+    pub description: String,
+    /// `"polar"` or `"es-hyperneat"`.
+    pub substrate: String,
+    /// The sensor sheets, in input order.
+    pub sheets: Vec<SheetGeometry>,
+    /// The wheel semantics ([`WHEELS`]).
+    pub wheels: String,
+    /// Simulator units: 1 px = one unit of the scenario; a step is one simulation step.
+    pub units: String,
+    /// The network.
+    pub net: StepNet,
+}
+
+impl Exported {
+    /// `controller` of `episode` (decoded from its genome), described by `description`.
+    pub fn new(episode: &Episode, controller: &RobotController, description: &str) -> Exported {
+        let (substrate, net) = match controller {
+            RobotController::Polar(c) => {
+                let w = episode.wheels();
+                ("polar", StepNet::from_polar(c, [w.left, w.right]))
+            }
+            RobotController::Es(c) => ("es-hyperneat", StepNet::from_sparse(c.network())),
+        };
+        Exported {
+            description: description.to_string(),
+            substrate: substrate.into(),
+            sheets: sheet_geometry(episode.sensors()),
+            wheels: WHEELS.into(),
+            units: "distances in scenario px; one step = one simulation step".into(),
+            net,
+        }
+    }
+}
+
+/// The geometry of `sheets`, in input order.
+fn sheet_geometry(sheets: &[SensorSheet]) -> Vec<SheetGeometry> {
+    let mut first = 0;
+    sheets
+        .iter()
+        .map(|s| {
+            let places: Vec<Place> = (s.sensor.places().iter())
+                .map(|p| Place {
+                    ring: p.ring,
+                    angle_index: p.angle_index,
+                    angle_deg: p.angle.to_degrees(),
+                    distance: p.distance,
+                })
+                .collect();
+            let angles = places.iter().map(|p| p.angle_deg);
+            let lo = angles.clone().fold(f64::INFINITY, f64::min);
+            let hi = angles.fold(f64::NEG_INFINITY, f64::max);
+            let g = SheetGeometry {
+                sensor: s.name().into(),
+                first_input: first,
+                rings: s.sensor.rings(),
+                fov_deg: if places.len() > 1 { hi - lo } else { 0.0 },
+                reading: reading_of(s.name()).into(),
+                places,
+            };
+            first += s.len();
+            g
+        })
+        .collect()
+}
+
+/// What a reading of sensor `name` is.
+fn reading_of(name: &str) -> &'static str {
+    match name {
+        "surface" => {
+            "the surface under the place: 1 = the least friction (road) ... 0 = the most \
+             (grass), (hi - friction)/(hi - lo) over the scenario's materials; 0 outside the arena"
+        }
+        "distance" => {
+            "1 - (free length of the ray)/(range): 0 = nothing within range, 1 = touching"
+        }
+        _ => "the sensor's reading in [0, 1]",
+    }
+}
+
+/// The artifact formats.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    /// ONNX, opset [`onnx::OPSET`], f64 tensors.
+    Onnx,
+    /// A C file and its header.
+    C,
+    /// JSON.
+    Json,
+}
+
+impl std::str::FromStr for Format {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Format, String> {
+        match s {
+            "onnx" => Ok(Format::Onnx),
+            "c" => Ok(Format::C),
+            "json" => Ok(Format::Json),
+            _ => Err(format!("unknown format {s:?} (expected onnx, c or json)")),
+        }
+    }
+}
+
+/// Writes `exported` as `format` to `path` (C: also the header beside it,
+/// `path` with extension `.h`), atomically; returns the files written.
+pub fn write(exported: &Exported, format: Format, path: &Path) -> crate::Result<Vec<PathBuf>> {
+    match format {
+        Format::Json => {
+            crate::io::write_atomic(path, json::to_json(exported).as_bytes())?;
+            Ok(vec![path.to_path_buf()])
+        }
+        Format::Onnx => {
+            crate::io::write_atomic(path, &onnx::to_onnx(exported))?;
+            Ok(vec![path.to_path_buf()])
+        }
+        Format::C => {
+            let header = path.with_extension("h");
+            let name = header.file_name().map_or_else(
+                || "controller.h".into(),
+                |n| n.to_string_lossy().into_owned(),
+            );
+            crate::io::write_atomic(&header, c::header(exported).as_bytes())?;
+            crate::io::write_atomic(path, c::source(exported, &name).as_bytes())?;
+            Ok(vec![path.to_path_buf(), header])
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,144 @@
+//! The exported step is vivae's step, bit for bit, for every kind of controller.
+
+use super::frames::record;
+use super::*;
+use crate::config::Config;
+use crate::controller::es::SubstrateKind;
+use crate::controller::substrate::PolarGrid;
+use crate::io::load_scenario;
+use vivae_neat::Population;
+
+fn episode(config: &Config) -> Episode {
+    Episode::new(config, &load_scenario(None).unwrap().scenario).unwrap()
+}
+
+/// Steps `net` through every recorded step of `genome`'s episode and
+/// returns how many genomes' wheels differed in any bit (0 expected).
+fn replays_bit_identically(
+    config: &Config,
+    genomes: usize,
+    want: impl Fn(&StepNet) -> bool,
+) -> usize {
+    let exp = episode(config);
+    let pop = Population::new(config.neat.clone(), exp.cppn_spec(), 3).unwrap();
+    let mut checked = 0;
+    for g in pop.genomes().iter().take(genomes) {
+        let c = exp.robot_controller(g).unwrap();
+        let e = Exported::new(&exp, &c, "test");
+        if !want(&e.net) {
+            continue;
+        }
+        let rec = record(&exp, &c, 1, exp.steps()).unwrap();
+        let (mut state, mut scratch) = (vec![0.0; e.net.nodes], vec![0.0; e.net.nodes]);
+        for (x, w) in rec.sensors.chunks_exact(rec.inputs).zip(&rec.wheels) {
+            let out = e.net.step(x, &mut state, &mut scratch);
+            assert_eq!(out.map(f64::to_bits), w.map(f64::to_bits));
+        }
+        checked += 1;
+    }
+    checked
+}
+
+#[test]
+fn the_polar_step_is_vivaes_at_any_resolution() {
+    let mut config = Config::default();
+    config.experiment.steps = 200;
+    assert_eq!(replays_bit_identically(&config, 12, |_| true), 12);
+    config.surface_sensors.rings = 4;
+    config.surface_sensors.angles = 9;
+    config.surface_sensors.fov = 360.0;
+    config.substrate.neurons = PolarGrid::new(5, 5).unwrap();
+    config.distance_sensors.rays = 3;
+    assert_eq!(replays_bit_identically(&config, 6, |_| true), 6);
+}
+
+#[test]
+fn the_es_step_is_vivaes_recurrent_or_feed_forward() {
+    let mut config = Config::default();
+    config.experiment.steps = 150;
+    config.substrate.kind = SubstrateKind::EsHyperneat;
+    let hidden = |n: &StepNet| n.nodes > 2;
+    assert!(replays_bit_identically(&config, 30, |n| hidden(n) && n.synchronous) >= 3);
+    config.substrate.es.recurrent = false;
+    // Random first-generation CPPNs discover no hidden node without cycles:
+    // the wheels straight from the sensors (a layered net is checked below).
+    assert_eq!(replays_bit_identically(&config, 10, |n| !n.synchronous), 10);
+}
+
+#[test]
+fn the_geometry_lists_every_input_where_the_simulator_reads_it() {
+    let mut config = Config::default();
+    config.distance_sensors.rays = 4;
+    let exp = episode(&config);
+    let pop = Population::new(config.neat.clone(), exp.cppn_spec(), 3).unwrap();
+    let c = exp.robot_controller(&pop.genomes()[0]).unwrap();
+    let e = Exported::new(&exp, &c, "test");
+    let total: usize = e.sheets.iter().map(|s| s.places.len()).sum();
+    assert_eq!(total, e.net.inputs);
+    assert_eq!(e.sheets[0].sensor, "surface");
+    assert_eq!(e.sheets[1].first_input, 15);
+    assert_eq!(e.sheets[0].fov_deg, 180.0);
+    assert_eq!(e.sheets[0].places[0].angle_deg, -90.0);
+    assert_eq!(e.sheets[0].places[14].distance, 50.0);
+}
+
+#[test]
+fn formats_parse_by_name() {
+    assert_eq!("onnx".parse::<Format>(), Ok(Format::Onnx));
+    assert_eq!("c".parse::<Format>(), Ok(Format::C));
+    assert!(
+        "png"
+            .parse::<Format>()
+            .unwrap_err()
+            .contains("onnx, c or json")
+    );
+}
+
+/// A feed-forward net of three levels and a recurrent one, from their links.
+fn sparse(recurrent: bool) -> SparseNetwork {
+    use vivae_neat::hyperneat::SparseLink;
+    let l = |source, target, weight| SparseLink {
+        source,
+        target,
+        weight,
+    };
+    // Inputs 0..3, wheels 3 and 4, hidden 5 and 6: 0,1 → 5 → 6 → wheels, 2 → 4.
+    let mut links = vec![
+        l(0, 5, 1.3),
+        l(1, 5, -0.7),
+        l(5, 6, 2.1),
+        l(6, 3, -1.9),
+        l(6, 4, 0.4),
+    ];
+    links.extend([l(2, 4, 0.9), l(5, 3, 0.3)]);
+    if recurrent {
+        links.extend([l(3, 5, 0.8), l(6, 6, -0.5)]);
+    }
+    let bias = vec![0.1, -0.2, 0.05, 0.0];
+    SparseNetwork::new(3, 2, vec![[0.1, 0.2], [0.3, -0.4]], bias, links).unwrap()
+}
+
+#[test]
+fn a_layered_or_recurrent_sparse_net_steps_as_vivae_does() {
+    use vivae_neat::Network;
+    for recurrent in [false, true] {
+        let mut net = sparse(recurrent);
+        let step = StepNet::from_sparse(&net);
+        assert_eq!(step.synchronous, recurrent);
+        if !recurrent {
+            assert_eq!(super::onnx::levels(&step).len(), 3, "{:?}", step.order);
+        }
+        let (mut state, mut scratch) = (vec![0.0; 4], vec![0.0; 4]);
+        let mut want = [0.0; 2];
+        for t in 0..20 {
+            let x = [(t as f64 * 0.37).sin(), 0.5, -(t as f64) / 7.0];
+            net.activate(&x, &mut want);
+            let got = step.step(&x, &mut state, &mut scratch);
+            assert_eq!(
+                got.map(f64::to_bits),
+                want.map(f64::to_bits),
+                "recurrent {recurrent}, step {t}"
+            );
+        }
+    }
+}

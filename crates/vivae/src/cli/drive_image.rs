@@ -1,0 +1,180 @@
+//! `vivae drive-image`: a run's controller driven by pictures instead of the
+//! simulator: a sequence of camera frames, or one top-down map and a list of
+//! poses (`vivae_lab::export::image` states the camera model). Prints the
+//! wheel commands of every frame as CSV.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use clap::Args;
+use vivae_lab::export::choose::choose;
+use vivae_lab::export::image::{Camera, Image, ImageSensors, drive_frames};
+use vivae_lab::export::{Exported, StepNet};
+use vivae_lab::io::bad_input;
+use vivae_sim::DVec2;
+
+use super::args::{MemberChoice, Resolution};
+
+/// Options of `vivae drive-image`.
+#[derive(Args, Debug)]
+pub struct DriveImageArgs {
+    /// A run directory or a genome JSON file (champion.json).
+    pub source: PathBuf,
+    /// PNG frames, in order (with --poses: the one top-down map).
+    #[arg(required_unless_present = "draw_map", value_name = "PNG")]
+    pub frames: Vec<PathBuf>,
+    /// Only write the run's map as a top-down PNG for --poses (one pixel per
+    /// scenario px, no robots, no anti-aliasing), then stop.
+    #[arg(long, value_name = "PNG", conflicts_with_all = ["frames", "poses"])]
+    pub draw_map: Option<PathBuf>,
+    /// A CSV of robot poses on the map (x,y,heading in scenario px and
+    /// degrees clockwise from up; a header line is skipped): one frame each.
+    #[arg(long, value_name = "CSV")]
+    pub poses: Option<PathBuf>,
+    /// The robot's centre in each frame, pixels, as X,Y (default: the frame's middle).
+    #[arg(long, value_name = "X,Y", conflicts_with = "poses")]
+    pub centre: Option<String>,
+    /// Image pixels per scenario px.
+    #[arg(long, value_name = "S", default_value_t = 1.0)]
+    pub scale: f64,
+    /// The robot's heading in each frame, degrees clockwise from the image's up.
+    #[arg(
+        long,
+        value_name = "DEG",
+        default_value_t = 0.0,
+        conflicts_with = "poses"
+    )]
+    pub heading: f64,
+    /// Pixels farther than this from the centre read 0 (an omnidirectional mirror's disc).
+    #[arg(long, value_name = "PX")]
+    pub radius: Option<f64>,
+    /// Use the best genome of this generation instead of the champion.
+    #[arg(long, value_name = "G", conflicts_with_all = ["elite", "front"])]
+    pub generation: Option<u32>,
+    #[command(flatten)]
+    pub member: MemberChoice,
+    #[command(flatten)]
+    pub resolution: Resolution,
+    /// Write the CSV here instead of printing it.
+    #[arg(short, long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
+}
+
+/// Reads a PNG file.
+fn read_png(path: &Path) -> anyhow::Result<Image> {
+    let bytes = vivae_lab::io::read_regular(path, 1 << 30).map_err(|e| {
+        bad_input(format!(
+            "{}: {}",
+            path.display(),
+            vivae_lab::io::io_reason(&e)
+        ))
+    })?;
+    Ok(Image::from_png(&bytes, &path.display().to_string())?)
+}
+
+/// `X,Y` as two numbers.
+fn pair(text: &str, flag: &str) -> anyhow::Result<[f64; 2]> {
+    let v: Vec<f64> = (text.split(',').map(|t| t.trim().parse::<f64>()))
+        .collect::<Result<_, _>>()
+        .map_err(|_| bad_input(format!("{flag} {text}: expected two numbers X,Y")))?;
+    match v[..] {
+        [x, y] if x.is_finite() && y.is_finite() => Ok([x, y]),
+        _ => Err(bad_input(format!("{flag} {text}: expected two numbers X,Y")).into()),
+    }
+}
+
+/// The poses of a CSV file: (x, y, heading in radians).
+fn read_poses(path: &Path) -> anyhow::Result<Vec<(DVec2, f64)>> {
+    let text = vivae_lab::io::read_text(path)?;
+    let mut poses = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        let v: Result<Vec<f64>, _> = line.split(',').map(|t| t.trim().parse::<f64>()).collect();
+        match v.as_deref() {
+            Ok([x, y, h]) if x.is_finite() && y.is_finite() && h.is_finite() => {
+                poses.push((DVec2::new(*x, *y), h.to_radians()));
+            }
+            _ if i == 0 => {} // a header
+            _ => {
+                return Err(bad_input(format!(
+                    "{} line {}: expected x,y,heading",
+                    path.display(),
+                    i + 1
+                ))
+                .into());
+            }
+        }
+    }
+    Ok(poses)
+}
+
+/// Runs `vivae drive-image`.
+pub fn run(args: DriveImageArgs) -> anyhow::Result<ExitCode> {
+    if !(args.scale.is_finite() && args.scale > 0.0) || args.radius.is_some_and(|r| !(r > 0.0)) {
+        return Err(bad_input("--scale and --radius must be positive numbers").into());
+    }
+    let pick = super::export::pick(args.generation, &args.member);
+    let chosen = choose(
+        &args.source,
+        pick,
+        args.resolution.sensors,
+        args.resolution.neurons,
+    )?;
+    if let Some(path) = &args.draw_map {
+        let svg = vivae_lab::export::frames::ground_svg(chosen.episode.world(), true)?;
+        let png = vivae_sim::draw::svg_to_png(&svg, args.scale)
+            .map_err(|e| bad_input(format!("{}: {e}", path.display())))?;
+        vivae_lab::io::write_atomic(path, &png)?;
+        eprintln!("wrote {}", path.display());
+        return Ok(ExitCode::SUCCESS);
+    }
+    let sensors = ImageSensors::new(&chosen.episode, None)?;
+    let net: StepNet = Exported::new(&chosen.episode, &chosen.controller, "").net;
+    let wheels = match &args.poses {
+        Some(poses) => {
+            let [map] = &args.frames[..] else {
+                return Err(bad_input("--poses takes exactly one image: the map").into());
+            };
+            let map = read_png(map)?;
+            let cameras = read_poses(poses)?.into_iter().map(|(p, h)| {
+                let mut c = Camera::on_map(p, h, args.scale);
+                c.radius = args.radius;
+                (&map, c)
+            });
+            drive_frames(&net, &sensors, cameras)?
+        }
+        None => {
+            let frames: Vec<Image> = args
+                .frames
+                .iter()
+                .map(|f| read_png(f))
+                .collect::<Result<_, _>>()?;
+            let centre = args
+                .centre
+                .as_deref()
+                .map(|c| pair(c, "--centre"))
+                .transpose()?;
+            let cameras = frames.iter().map(|f| {
+                let centre = centre.unwrap_or([f.width as f64 / 2.0, f.height as f64 / 2.0]);
+                let c = Camera {
+                    centre,
+                    scale: args.scale,
+                    heading: args.heading.to_radians(),
+                    radius: args.radius,
+                };
+                (f, c)
+            });
+            drive_frames(&net, &sensors, cameras)?
+        }
+    };
+    let mut csv = String::from("frame,left,right\n");
+    for (i, [l, r]) in wheels.iter().enumerate() {
+        let _ = writeln!(csv, "{i},{l},{r}");
+    }
+    match &args.out {
+        Some(path) => vivae_lab::io::write_atomic(path, csv.as_bytes())?,
+        None => print!("{csv}"),
+    }
+    eprintln!("{}: {} frames", chosen.description, wheels.len());
+    Ok(ExitCode::SUCCESS)
+}
