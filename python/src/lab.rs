@@ -294,6 +294,7 @@ fn episode_dict<'py>(
     let d = PyDict::new(py);
     d.set_item("fitness", e.fitness)?;
     d.set_item("on_road", e.on_road)?;
+    d.set_item("speed", e.speed)?;
     if let Some(b) = &e.behaviour {
         d.set_item("collisions", b.collisions)?;
         d.set_item("left_turns", b.left_turns)?;

@@ -165,6 +165,7 @@ def test_evolve_writes_the_same_run_directory_as_the_cli(tmp_path, cli):
     measured = vivae.replay(ours)
     assert repr(measured["fitness"]) == fields["fitness"] or measured["fitness"] == float(fields["fitness"])
     assert f"{measured['on_road']:.4f}" == fields["on_road"]
+    assert f"{measured['speed']:.4f}" == fields["speed"]
     assert f"{measured['collisions']:.3f}" == fields["collisions"]
     assert str(measured["left_turns"]) == fields["left_turns"]
 

@@ -189,6 +189,7 @@ def replay(source: str | os.PathLike, **overrides: Any) -> dict:
 
     Returns:
         The episode's measures: ``fitness`` (px/step), ``on_road`` (fraction),
+        ``speed`` (average speed in px/step, whatever the run's fitness),
         ``collisions`` (per 1,000 robot-steps), ``left_turns``,
         ``right_turns``, ``loops``, ``side`` (None off roads), and contacts
         by kind per 1,000 robot-steps: ``contacts_robot``,

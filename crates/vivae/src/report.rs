@@ -229,6 +229,8 @@ pub struct Replay {
     pub fitness: f64,
     /// Fraction of robot-steps on road.
     pub on_road: f64,
+    /// Average speed (Σ odometer / robot-steps), whatever the fitness.
+    pub speed: f64,
     /// Collisions, turns, loops and side of the road.
     pub behaviour: vivae_lab::tasks::driving::behaviour::Behaviour,
     /// The trajectory figure (PNG).
@@ -278,6 +280,7 @@ pub fn replay(
     Ok(Replay {
         fitness: episode.fitness,
         on_road: episode.on_road.unwrap_or_default(),
+        speed: episode.speed.unwrap_or_default(),
         behaviour: episode.behaviour.ok_or(Error::Invalid(
             "the replay recorded no behaviour measures".into(),
         ))?,

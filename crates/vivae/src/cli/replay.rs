@@ -134,9 +134,10 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<ExitCode> {
     let name = report::replay_scenario_name(path.as_deref(), &scenario.text);
     let replay = report::replay(&experiment, &config, &champion, &name, &out, member)?;
     println!(
-        "fitness={} on_road={:.4} {}",
+        "fitness={} on_road={:.4} speed={:.4} {}",
         replay.fitness,
         replay.on_road,
+        replay.speed,
         replay.behaviour.fields()
     );
     eprintln!("figure: {}", replay.figure.display());

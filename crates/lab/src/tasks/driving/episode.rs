@@ -62,6 +62,10 @@ pub struct EpisodeRecord {
     /// Fraction of robot-steps that ended with the robot's centre on a road
     /// (measured when recording: evolution does not need it).
     pub on_road: Option<f64>,
+    /// Average speed, Σ odometer / (robots × steps) in px per step, whatever
+    /// the fitness (measured when recording: with a progress fitness or a
+    /// contact cost it differs from `fitness`).
+    pub speed: Option<f64>,
     /// Every robot's path (start position first), when recorded.
     pub trajectories: Option<Vec<Vec<DVec2>>>,
     /// Collisions, turns, loops and side of the road, when recorded.
@@ -376,6 +380,8 @@ impl Episode {
         let episode = EpisodeRecord {
             fitness: meter.score(&world, robot_steps),
             on_road: record.then_some(on_road as f64 / robot_steps),
+            speed: record
+                .then(|| world.robots().iter().map(|r| r.odometer).sum::<f64>() / robot_steps),
             trajectories: world.trajectories().map(|t| t.to_vec()),
             behaviour: behaviour.map(|m| m.finish()),
         };
@@ -439,6 +445,9 @@ mod tests {
             assert_eq!(plain.fitness, recorded.fitness);
             assert_eq!(plain.fitness, exp.fitness(g));
             assert!(plain.on_road.is_none() && plain.trajectories.is_none());
+            assert!(plain.speed.is_none());
+            // The paper's fitness is the average speed the record measures.
+            assert_eq!(recorded.speed, Some(recorded.fitness));
             let on_road = recorded.on_road.unwrap();
             assert!((0.0..=1.0).contains(&on_road));
             let t = recorded.trajectories.unwrap();
