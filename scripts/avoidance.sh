@@ -1,36 +1,90 @@
 #!/usr/bin/env bash
-# The avoidance experiment (docs/results.md, "Avoidance, learnt"): on SCENARIO
-# (default oncoming), per seed, the surface sheet only and surface + 5
-# distance rays, each with speed fitness, speed + a contact cost, and NSGA-II
-# (speed against contacts); every champion replayed on placements 1-5 (never
-# used in training: training draws placements from hashed evaluation seeds).
-# Prints one line per replay: scenario setup sheets seed placement fitness collisions contacts_*.
-# Usage: [SETUPS='speed cost nsga2'] scripts/avoidance.sh SCENARIO GENERATIONS SEED... (runs go to runs/avoid-*)
-set -euo pipefail
-vivae=${VIVAE:-vivae}
-scenario=$1; gens=$2; shift 2
-mkdir -p runs
-printf '[distance_sensors]\nrays = 5\n' > runs/rays.toml
-printf '[fitness]\ncontact_cost = 0.25\n' > runs/cost.toml
-printf '[distance_sensors]\nrays = 5\n[fitness]\ncontact_cost = 0.25\n' > runs/rays-cost.toml
-for seed in "$@"; do
-  for setup in ${SETUPS:-speed cost nsga2}; do
-    for sheets in surface rays; do
-      out=runs/avoid-$scenario-$setup-$sheets-$seed
-      args=(--scenario "$scenario" --generations "$gens" --seed "$seed" --out "$out")
-      case $setup-$sheets in
-        speed-rays) args+=(--config runs/rays.toml) ;;
-        cost-surface) args+=(--config runs/cost.toml) ;;
-        cost-rays) args+=(--config runs/rays-cost.toml) ;;
-        nsga2-surface) args+=(--strategy nsga2) ;;
-        nsga2-rays) args+=(--strategy nsga2 --config runs/rays.toml) ;;
-      esac
-      [ -f "$out/champion.json" ] || nice -n 10 "$vivae" evolve -q "${args[@]}" >/dev/null
-      for p in 1 2 3 4 5; do
-        line=$(nice -n 10 "$vivae" replay "$out" --placement-seed "$p" --out "$out/held-out-$p" 2>/dev/null)
-        field() { echo "$line" | tr ' ' '\n' | sed -n "s/^$1=//p"; }
-        echo "$scenario $setup $sheets $seed $p $(field fitness) $(field collisions) $(field contacts_robot) $(field contacts_traffic) $(field contacts_obstacle) $(field contacts_wall)"
+# Avoidance, learnt (issue 38, docs/results.md "Avoidance, learnt"): on the
+# shipped scenarios `oncoming` and `obstacles-random`, per seed, the
+# surface sheet only and surface + RAYS distance rays, each evolved with
+#   speed  — the progress fitness (speed along the road's route),
+#   cost   — progress minus COST per contact per 1,000 robot-steps,
+#   nsga2  — NSGA-II over progress and -contacts; the member evaluated is the
+#            one with fewest training contacts among the front's members
+#            with ≥ 90% of its fittest member's training fitness;
+# then every champion replayed on placements (obstacles and traffic) 1..HELD,
+# never used in training (training draws each evaluation's placement from a
+# hashed seed), and every distance-sheet champion also with its distance
+# sheet re-sampled to 9 and 15 rays. Runs, replays and the tables go to OUT:
+# OUT/replays.tsv (one line per replay) and OUT/summary.md (the tables).
+#
+#   scripts/avoidance.sh [SEED ...]     (default: seeds 1 2 3 4 5)
+#   GENERATIONS=80 HELD=10 RAYS=5 COST=0.25 OUT=/work/runs-avoid SCENARIOS='oncoming obstacles-random' VIVAE=path/to/vivae
+#
+# Finished runs (a champion.json) are not evolved again, so a stopped
+# experiment continues where it stopped.
+source "$(dirname "$0")/common.sh"
+vivae=${VIVAE:-$vivae}
+gens=${GENERATIONS:-80}
+held=${HELD:-10}
+rays=${RAYS:-5}
+cost=${COST:-0.25}
+out=${OUT:-/work/runs-avoid}
+scenarios=${SCENARIOS:-oncoming obstacles-random}
+mkdir -p "$out"
+# One config per setup and sheet.
+for setup in speed cost nsga2; do
+  for sheets in surface rays; do
+    {
+      printf '[fitness]\nkind = "progress"\n'
+      [ "$setup" = cost ] && printf 'contact_cost = %s\n' "$cost"
+      [ "$sheets" = rays ] && printf '[distance_sensors]\nrays = %s\n' "$rays"
+      [ "$setup" = nsga2 ] && printf '[strategy]\nkind = "nsga2"\n'
+    } > "$out/$setup-$sheets.toml"
+  done
+done
+
+# The front member of an nsga2 run that is evaluated (see above).
+pick_member() {
+  awk -F, 'NR > 1 { f[NR] = $2; c[NR] = $4; m[NR] = $1; if ($2 > best) best = $2 }
+    END { for (i in f) if (f[i] >= 0.9 * best && (pick == "" || c[i] < c[pick] || (c[i] == c[pick] && f[i] > f[pick]))) pick = i;
+          print m[pick] }' best=-1e300 "$1/front.csv"
+}
+
+# One replay as a TSV line: scenario setup sheets seed rays placement member fields...
+replay_line() {
+  local dir=$1 placement=$2 member=$3 r=$4 tag=$5
+  local args=("$dir" --placement-seed "$placement" --out "$dir/held-out/$tag-p$placement")
+  [ -n "$member" ] && args+=(--front "$member")
+  [ "$r" = run ] || args+=(--distance-rays "$r")
+  nice -n 10 "$vivae" replay "${args[@]}" 2>/dev/null
+}
+
+tsv=$out/replays.tsv
+[ -f "$tsv" ] || printf 'scenario\tsetup\tsheets\tseed\trays\tplacement\tmember\tfitness\tspeed\ton_road\tcollisions\trobot\ttraffic\tobstacle\twall\n' > "$tsv"
+for scenario in $scenarios; do
+  for seed in "${seeds[@]}"; do
+    for setup in speed cost nsga2; do
+      for sheets in surface rays; do
+        dir=$out/$scenario-$setup-$sheets-seed-$seed
+        if [ ! -f "$dir/champion.json" ]; then
+          nice -n 10 "$vivae" evolve -q --config "$out/$setup-$sheets.toml" --scenario "$scenario" \
+            --generations "$gens" --seed "$seed" --out "$dir" --force > "$dir.evolve.txt"
+        fi
+        member=; [ "$setup" = nsga2 ] && member=$(pick_member "$dir")
+        rayset=(run); [ "$sheets" = rays ] && rayset=(run 9 15)
+        for r in "${rayset[@]}"; do
+          nr=$r; [ "$r" = run ] && { nr=$rays; [ "$sheets" = surface ] && nr=0; }
+          # Already replayed (a continued experiment)?
+          grep -q "^$scenario	$setup	$sheets	$seed	$nr	" "$tsv" && continue
+          for p in $(seq 1 "$held"); do
+            line=$(replay_line "$dir" "$p" "$member" "$r" "rays$nr")
+            f() { echo "$line" | field "$1"; }
+            printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' \
+              "$scenario" "$setup" "$sheets" "$seed" "$nr" "$p" "${member:--}" \
+              "$(f fitness)" "$(f speed)" "$(f on_road)" "$(f collisions)" \
+              "$(f contacts_robot)" "$(f contacts_traffic)" "$(f contacts_obstacle)" "$(f contacts_wall)" >> "$tsv"
+          done
+        done
       done
     done
   done
 done
+python3 "$(dirname "$0")/avoidance-table.py" "$tsv" "$cost" "$rays" > "$out/summary.md.tmp"
+mv "$out/summary.md.tmp" "$out/summary.md"
+cat "$out/summary.md"
