@@ -14,13 +14,13 @@
 # OUT/replays.tsv (one line per replay) and OUT/summary.md (the tables).
 #
 #   scripts/avoidance.sh [SEED ...]     (default: seeds 1 2 3 4 5)
-#   GENERATIONS=80 HELD=10 RAYS=5 COST=0.25 OUT=/work/runs-avoid SCENARIOS='oncoming obstacles-random' VIVAE=path/to/vivae
+#   GENERATIONS=50 HELD=10 RAYS=5 COST=0.25 OUT=/work/runs-avoid SCENARIOS='oncoming obstacles-random' VIVAE=path/to/vivae
 #
 # Finished runs (a champion.json) are not evolved again, so a stopped
 # experiment continues where it stopped.
 source "$(dirname "$0")/common.sh"
 vivae=${VIVAE:-$vivae}
-gens=${GENERATIONS:-80}
+gens=${GENERATIONS:-50}
 held=${HELD:-10}
 rays=${RAYS:-5}
 cost=${COST:-0.25}
