@@ -60,7 +60,11 @@ pub fn trajectory_figure(
     if let Some(b) = episode
         .behaviour
         .as_ref()
-        .filter(|_| experiment.varies() || !experiment.world().traffic().is_empty())
+        .filter(|_| {
+            experiment.varies()
+                || experiment.placement().is_some()
+                || !experiment.world().traffic().is_empty()
+        })
     {
         let c = &b.contacts;
         title += &format!(

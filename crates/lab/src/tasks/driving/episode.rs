@@ -33,6 +33,9 @@ pub struct Episode {
     /// obstacles or traffic are placed per episode: every evaluation starts
     /// from its own placement, drawn from the evaluation's seed.
     varying: Option<Arc<Scenario>>,
+    /// The placement this experiment was fixed to ([`Episode::with_placement_seed`]
+    /// of a varying scenario).
+    placement: Option<u64>,
     /// The robots' sensors, in controller-input order.
     sensors: Vec<SensorSheet>,
     /// The first sheet's surface sensors, typed, for pictures of what robots see.
@@ -143,6 +146,7 @@ impl Episode {
         Ok(Episode {
             world,
             varying,
+            placement: None,
             sensors,
             surface: surface_grid,
             spec,
@@ -171,8 +175,15 @@ impl Episode {
         if let Some(sc) = self.varying.take() {
             self.world = World::new(&placed(&sc, seed), self.world.params())
                 .expect("the parameters were checked when the episode was set up");
+            self.placement = Some(seed);
         }
         self
+    }
+
+    /// The placement this experiment is fixed to: `Some` once
+    /// [`Episode::with_placement_seed`] fixed a varying scenario's.
+    pub fn placement(&self) -> Option<u64> {
+        self.placement
     }
 
     /// Whether evaluations place obstacles or traffic from their seeds.
