@@ -57,15 +57,11 @@ pub fn trajectory_figure(
         100.0 * on_road
     );
     // Where avoidance is the question, say what was hit.
-    if let Some(b) = episode
-        .behaviour
-        .as_ref()
-        .filter(|_| {
-            experiment.varies()
-                || experiment.placement().is_some()
-                || !experiment.world().traffic().is_empty()
-        })
-    {
+    if let Some(b) = episode.behaviour.as_ref().filter(|_| {
+        experiment.varies()
+            || experiment.placement().is_some()
+            || !experiment.world().traffic().is_empty()
+    }) {
         let c = &b.contacts;
         title += &format!(
             "; contacts/1000 robot-steps: robot {:.2}, traffic {:.2}, obstacle {:.2}, wall {:.2}",

@@ -110,7 +110,9 @@ fn read_poses(path: &Path) -> anyhow::Result<Vec<(DVec2, f64)>> {
 
 /// Runs `vivae drive-image`.
 pub fn run(args: DriveImageArgs) -> anyhow::Result<ExitCode> {
-    if !(args.scale.is_finite() && args.scale > 0.0) || args.radius.is_some_and(|r| !(r > 0.0)) {
+    if !(args.scale.is_finite() && args.scale > 0.0)
+        || args.radius.is_some_and(|r| r.is_nan() || r <= 0.0)
+    {
         return Err(bad_input("--scale and --radius must be positive numbers").into());
     }
     let pick = super::export::pick(args.generation, &args.member);
