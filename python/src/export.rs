@@ -170,7 +170,7 @@ pub fn drive_image(
     sensors: Option<&str>,
     neurons: Option<&str>,
 ) -> PyResult<Vec<(f64, f64)>> {
-    if !(scale.is_finite() && scale > 0.0) || radius.is_some_and(|r| !(r > 0.0)) {
+    if !(scale.is_finite() && scale > 0.0) || radius.is_some_and(|r| r.is_nan() || r <= 0.0) {
         return Err(PyValueError::new_err(
             "scale= and radius= must be positive numbers",
         ));
