@@ -14,7 +14,7 @@
 # OUT/replays.tsv (one line per replay) and OUT/summary.md (the tables).
 #
 #   scripts/avoidance.sh [SEED ...]     (default: seeds 1 2 3 4 5)
-#   GENERATIONS=50 HELD=10 RAYS=5 COST=0.25 OUT=/work/runs-avoid SCENARIOS='oncoming obstacles-random' VIVAE=path/to/vivae
+#   GENERATIONS=50 HELD=10 RAYS=5 COST=0.25 OUT=runs/avoidance SCENARIOS='oncoming obstacles-random' VIVAE=path/to/vivae
 #
 # Finished runs (a champion.json) are not evolved again, so a stopped
 # experiment continues where it stopped.
@@ -24,7 +24,7 @@ gens=${GENERATIONS:-50}
 held=${HELD:-10}
 rays=${RAYS:-5}
 cost=${COST:-0.25}
-out=${OUT:-/work/runs-avoid}
+out=${OUT:-runs/avoidance}
 scenarios=${SCENARIOS:-oncoming obstacles-random}
 mkdir -p "$out"
 # One config per setup and sheet.
