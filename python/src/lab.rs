@@ -294,12 +294,17 @@ fn episode_dict<'py>(
     let d = PyDict::new(py);
     d.set_item("fitness", e.fitness)?;
     d.set_item("on_road", e.on_road)?;
+    d.set_item("speed", e.speed)?;
     if let Some(b) = &e.behaviour {
         d.set_item("collisions", b.collisions)?;
         d.set_item("left_turns", b.left_turns)?;
         d.set_item("right_turns", b.right_turns)?;
         d.set_item("loops", b.loops)?;
         d.set_item("side", b.side)?;
+        d.set_item("contacts_robot", b.contacts.robot)?;
+        d.set_item("contacts_traffic", b.contacts.traffic)?;
+        d.set_item("contacts_obstacle", b.contacts.obstacle)?;
+        d.set_item("contacts_wall", b.contacts.wall)?;
     }
     Ok(d)
 }
@@ -543,6 +548,14 @@ pub fn replay<'py>(
     if let Some(o) = overrides {
         extra.update(o.as_mapping())?;
     }
+    // Not a config key: which placement of random obstacles and traffic to replay on.
+    let placement_seed: u64 = match extra.get_item("placement_seed")? {
+        Some(v) => {
+            extra.del_item("placement_seed")?;
+            v.extract()?
+        }
+        None => 0,
+    };
     let config = settings::build_from(config, Some(&extra))?;
     let path = settings::scenario_path(&config);
     if let Some(p) = path.as_deref().filter(|p| !other_scenario && !p.exists()) {
@@ -554,7 +567,8 @@ pub fn replay<'py>(
     }
     let scenario = vivae_lab::io::load_scenario(path.as_deref()).map_err(errors::lab)?;
     let experiment = Episode::new(&config, &scenario.scenario)
-        .map_err(|e| errors::lab(vivae_lab::Error::from(e)))?;
+        .map_err(|e| errors::lab(vivae_lab::Error::from(e)))?
+        .with_placement_seed(placement_seed);
     let controller = experiment.robot_controller(&champion.genome).map_err(|e| {
         errors::lab(vivae_lab::Error::Genome {
             path: source.clone(),

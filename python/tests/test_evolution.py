@@ -165,6 +165,7 @@ def test_evolve_writes_the_same_run_directory_as_the_cli(tmp_path, cli):
     measured = vivae.replay(ours)
     assert repr(measured["fitness"]) == fields["fitness"] or measured["fitness"] == float(fields["fitness"])
     assert f"{measured['on_road']:.4f}" == fields["on_road"]
+    assert f"{measured['speed']:.4f}" == fields["speed"]
     assert f"{measured['collisions']:.3f}" == fields["collisions"]
     assert str(measured["left_turns"]) == fields["left_turns"]
 
@@ -300,3 +301,16 @@ def test_a_genome_evolved_by_ask_tell_saves_as_a_champion_the_cli_replays(tmp_pa
     printed = subprocess.run([cli, "replay", str(path), "--out", str(tmp_path / "r")], check=True,
                              capture_output=True, text=True, cwd=tmp_path).stdout
     assert float(dict(kv.split("=") for kv in printed.split())["fitness"]) == fitness
+
+
+def test_replay_on_a_placement_of_random_obstacles_and_traffic(tmp_path):
+    out = tmp_path / "oncoming"
+    vivae.evolve(out=out, progress=False, scenario="oncoming", **SETTINGS)
+    default, seven = vivae.replay(out), vivae.replay(out, placement_seed=7)
+    assert default == vivae.replay(out, placement_seed=0)
+    assert seven == vivae.replay(out, placement_seed=7)
+    assert seven != default
+    kinds = {"contacts_robot", "contacts_traffic", "contacts_obstacle", "contacts_wall"}
+    assert kinds <= set(seven)
+    robot, traffic, obstacle = (seven[k] for k in ("contacts_robot", "contacts_traffic", "contacts_obstacle"))
+    assert seven["collisions"] == pytest.approx(robot + traffic + obstacle)

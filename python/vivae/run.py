@@ -183,11 +183,17 @@ def replay(source: str | os.PathLike, **overrides: Any) -> dict:
         source: a run directory or a ``champion.json``.
         **overrides: ``scenario``, ``steps``, ``robots``, ``sensors``,
             ``neurons``, … as :func:`evolve` (another scenario drives all of
-            its robots unless ``robots`` says otherwise).
+            its robots unless ``robots`` says otherwise); and
+            ``placement_seed`` (as ``vivae replay --placement-seed``): the
+            placement of a scenario's random obstacles and traffic (default 0).
 
     Returns:
         The episode's measures: ``fitness`` (px/step), ``on_road`` (fraction),
+        ``speed`` (average speed in px/step, whatever the run's fitness),
         ``collisions`` (per 1,000 robot-steps), ``left_turns``,
-        ``right_turns``, ``loops`` and ``side`` (None off roads).
+        ``right_turns``, ``loops``, ``side`` (None off roads), and contacts
+        by kind per 1,000 robot-steps: ``contacts_robot``,
+        ``contacts_traffic`` (scripted robots), ``contacts_obstacle``,
+        ``contacts_wall``.
     """
     return _vivae.replay(source, **overrides)

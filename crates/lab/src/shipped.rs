@@ -16,7 +16,7 @@ pub struct Shipped {
 
 /// Every shipped scenario; `roads` is the default. Each names the task it is
 /// drawn for.
-pub const SHIPPED: [Shipped; 8] = [
+pub const SHIPPED: [Shipped; 10] = [
     Shipped {
         name: "roads",
         what: "the default: a road loop with a crossroad, a spur and an S-curve (5 robots)",
@@ -51,6 +51,18 @@ pub const SHIPPED: [Shipped; 8] = [
         name: "traffic",
         what: "a two-lane road loop driven both ways, with blocks and movable crates on the road (6 robots)",
         svg: include_str!("../../../scenarios/traffic.svg"),
+        task: "driving",
+    },
+    Shipped {
+        name: "obstacles-random",
+        what: "a road loop whose 8 blocks are placed at random for every episode (5 robots)",
+        svg: include_str!("../../../scenarios/obstacles-random.svg"),
+        task: "driving",
+    },
+    Shipped {
+        name: "oncoming",
+        what: "a two-lane loop with 4 scripted robots driving the other lane the other way, a block in each long side's own lane (5 robots)",
+        svg: include_str!("../../../scenarios/oncoming.svg"),
         task: "driving",
     },
     Shipped {

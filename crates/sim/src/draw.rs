@@ -129,6 +129,10 @@ fn legend_items(world: &World, opts: &DrawOptions) -> Vec<LegendItem> {
         };
         items.push(LegendItem::new(disc(robot_color(i), "#000000"), name));
     }
+    if !world.traffic().is_empty() {
+        let fill = crate::draw_traffic::TRAFFIC_FILL;
+        items.push(LegendItem::new(disc(fill, "#000000"), "scripted traffic"));
+    }
     if trajectories {
         items.push(LegendItem::new(
             disc("none", "#000000"),
@@ -300,6 +304,7 @@ pub fn render_svg(world: &World, opts: &DrawOptions) -> String {
     if let Some(layout) = &opts.surface_sensors {
         draw_surface_dots(&mut s, world, layout, r);
     }
+    crate::draw_traffic::draw_traffic(&mut s, world, opts.trajectories);
     draw_robots(&mut s, world, r);
     s.push_str("</g></g>\n");
     if lines > 0 {

@@ -21,6 +21,7 @@
 //! ```
 
 pub mod draw;
+mod draw_traffic;
 pub mod geometry;
 pub mod physics;
 pub mod raster;
@@ -35,8 +36,8 @@ pub use draw::{DrawError, DrawOptions, render_png, render_svg};
 pub use glam::DVec2;
 pub use physics::{FrictionTable, ParamError, PhysicsParams};
 pub use scenario::{
-    LoadOptions, Mark, Obstacle, Puck, PuckKind, RobotStart, Scenario, ScenarioError,
-    ScenarioSummary, Surface, SurfaceKind,
+    LoadOptions, Mark, Obstacle, ObstacleRegion, Puck, PuckKind, RobotStart, Route, Scenario,
+    ScenarioError, ScenarioSummary, Surface, SurfaceKind, TrafficStart,
 };
 pub use sensors::{
     DistanceGrid, DistanceSensors, GoalRadar, Sensor, SensorPlace, SurfaceGrid, SurfaceSensors,

@@ -51,11 +51,23 @@ pub fn trajectory_figure(
     let on_road = episode
         .on_road
         .expect("a recorded episode measures time on road");
-    let title = format!(
+    let mut title = format!(
         "{title} — fitness {:.3} px/step, {:.1}% on road",
         episode.fitness,
         100.0 * on_road
     );
+    // Where avoidance is the question, say what was hit.
+    if let Some(b) = episode.behaviour.as_ref().filter(|_| {
+        experiment.varies()
+            || experiment.placement().is_some()
+            || !experiment.world().traffic().is_empty()
+    }) {
+        let c = &b.contacts;
+        title += &format!(
+            "; contacts/1000 robot-steps: robot {:.2}, traffic {:.2}, obstacle {:.2}, wall {:.2}",
+            c.robot, c.traffic, c.obstacle, c.wall
+        );
+    }
     let options = DrawOptions {
         trajectories: true,
         title: Some(title),
@@ -217,6 +229,8 @@ pub struct Replay {
     pub fitness: f64,
     /// Fraction of robot-steps on road.
     pub on_road: f64,
+    /// Average speed (Σ odometer / robot-steps), whatever the fitness.
+    pub speed: f64,
     /// Collisions, turns, loops and side of the road.
     pub behaviour: vivae_lab::tasks::driving::behaviour::Behaviour,
     /// The trajectory figure (PNG).
@@ -266,6 +280,7 @@ pub fn replay(
     Ok(Replay {
         fitness: episode.fitness,
         on_road: episode.on_road.unwrap_or_default(),
+        speed: episode.speed.unwrap_or_default(),
         behaviour: episode.behaviour.ok_or(Error::Invalid(
             "the replay recorded no behaviour measures".into(),
         ))?,

@@ -12,6 +12,7 @@ mod toml_error;
 mod validate;
 
 pub mod es;
+pub mod fitness;
 pub mod strategy;
 
 pub use reference::{KeyDoc, SectionDoc, key_doc, reference};
@@ -69,6 +70,9 @@ pub struct Config {
         skip_serializing_if = "crate::tasks::maze::config::MazeConfig::is_default"
     )]
     pub maze: crate::tasks::maze::config::MazeConfig,
+    /// What a driving episode scores (unset = average speed, no contact cost).
+    #[serde(default, skip_serializing_if = "fitness::FitnessConfig::is_default")]
+    pub fitness: fitness::FitnessConfig,
 }
 
 /// What is run.

@@ -135,7 +135,7 @@ pub fn reference() -> Vec<SectionDoc> {
 }
 
 /// The default config as the reference documents it: keys a default config
-/// does not write (`substrate.kind`, `[substrate.es]`, `[strategy]`: written only when
+/// does not write (`substrate.kind`, `[substrate.es]`, `[strategy]`, `[fitness]`: written only when
 /// set, so that existing runs' files stay the same) with their defaults all the same.
 pub(super) fn documented_defaults() -> toml::Value {
     let mut defaults =
@@ -159,6 +159,11 @@ pub(super) fn documented_defaults() -> toml::Value {
         // Likewise `[maze]`, written only when a maze run changes it.
         let maze = crate::tasks::maze::config::MazeConfig::default();
         table.insert("maze".into(), toml::Value::try_from(maze).expect("TOML"));
+        let fitness = super::fitness::FitnessConfig::default();
+        table.insert(
+            "fitness".into(),
+            toml::Value::try_from(fitness).expect("TOML"),
+        );
     }
     defaults
 }

@@ -11,6 +11,10 @@ pub(super) enum Class {
     Puck(PuckKind),
     Robot,
     Mark,
+    /// `ObstacleRegion`: obstacles placed at random each episode.
+    Region,
+    /// `Route`: a directed centre line.
+    Route,
 }
 
 /// Kind named by a label part (case-insensitive).
@@ -46,6 +50,8 @@ pub(super) fn classify(label: &str) -> Option<Class> {
         "bigpuck" => Some(Class::Puck(PuckKind::Big)),
         "puck" => Some(Class::Puck(PuckKind::Plain)),
         "positionmark" => Some(Class::Mark),
+        "obstacleregion" => Some(Class::Region),
+        "route" => Some(Class::Route),
         s if s.contains("robot") => Some(Class::Robot),
         _ => None,
     }
@@ -72,6 +78,8 @@ mod tests {
             classify("vivae.example.FRNNControlledRobot"),
             Some(Class::Robot)
         );
+        assert_eq!(classify("ObstacleRegion 2"), Some(Class::Region));
+        assert_eq!(classify("route"), Some(Class::Route));
         assert_eq!(classify("Layer 1"), None);
         assert_eq!(classify("SmallPuck"), Some(Class::Puck(PuckKind::Small)));
     }

@@ -12,6 +12,7 @@ use glam::DVec2;
 use crate::geometry::{Aabb, FillRule, Shape, flatten_path};
 use crate::raster::SurfaceRaster;
 
+use super::episodic::{self, TrafficStart};
 use super::ids::{is_shape, unique_ids};
 use super::labels::{Class, classify, surface_kind};
 use super::limits::*;
@@ -36,6 +37,9 @@ pub(super) struct Loader<'a> {
     /// Geometry reaching beyond this box is refused.
     limit: Aabb,
     sc: Scenario,
+    /// The route id each robot names (`data-route`) and each scripted robot
+    /// follows (`data-traffic`), resolved at the end.
+    route_names: (Vec<Option<String>>, Vec<String>),
 }
 
 fn collect_ids<'a>(g: &'a usvg::Group, out: &mut BTreeMap<String, Resolved<'a>>) {
@@ -195,6 +199,9 @@ fn empty_scenario(source: &str, width: f64, height: f64, background: SurfaceKind
         pucks: Vec::new(),
         marks: Vec::new(),
         robots: Vec::new(),
+        routes: Vec::new(),
+        obstacle_regions: Vec::new(),
+        traffic: Vec::new(),
         warnings: Vec::new(),
         raster: Arc::new(SurfaceRaster::empty()),
     }
@@ -264,11 +271,13 @@ impl<'a> Loader<'a> {
                 max: DVec2::new(width + reach, height + reach),
             },
             sc: empty_scenario(source, width, height, background),
+            route_names: Default::default(),
         };
         for c in root.children().filter(|c| c.is_element()) {
             loader.walk(c, None)?;
         }
-        let mut sc = loader.sc;
+        let (mut sc, (robots, traffic)) = (loader.sc, loader.route_names);
+        episodic::resolve_routes(&mut sc, &robots, &traffic)?;
         check_robots_inside(&sc, source)?;
         let ids = material_ids(&mut sc, source)?;
         sc.raster = Arc::new(SurfaceRaster::build(
@@ -450,15 +459,74 @@ impl<'a> Loader<'a> {
             }
             Class::Robot => {
                 let (pos, heading) = self.pose(n, &shapes, bbox);
-                self.sc.robots.push(RobotStart {
-                    id,
-                    label,
-                    pos,
-                    heading,
-                });
+                self.add_robot(
+                    n,
+                    RobotStart {
+                        id,
+                        label,
+                        pos,
+                        heading,
+                        route: None,
+                    },
+                )?;
             }
+            Class::Region => {
+                let (_, shape) = shapes.into_iter().next().expect("checked non-empty");
+                let attr = |k: &str| n.attribute(k).or_else(|| owner.attribute(k));
+                let region = episodic::region(self.source, id, shape, attr)?;
+                self.sc.obstacle_regions.push(region);
+            }
+            Class::Route => self.add_route(id, &shapes),
         }
         Ok(())
+    }
+
+    /// Adds a learner, or a scripted robot when it names a route to follow
+    /// (`data-traffic`).
+    fn add_robot(
+        &mut self,
+        n: roxmltree::Node<'a, 'a>,
+        start: RobotStart,
+    ) -> Result<(), ScenarioError> {
+        let Some(route) = n.attribute("data-traffic") else {
+            self.route_names
+                .0
+                .push(n.attribute("data-route").map(str::to_string));
+            self.sc.robots.push(start);
+            return Ok(());
+        };
+        let (throttle, spread) =
+            episodic::traffic_settings(self.source, &start.id, |k| n.attribute(k))?;
+        self.route_names.1.push(route.to_string());
+        self.sc.traffic.push(TrafficStart {
+            id: start.id,
+            pos: start.pos,
+            heading: start.heading,
+            route: usize::MAX,
+            throttle,
+            spread,
+        });
+        Ok(())
+    }
+
+    /// Adds a route along the first shape's centre line (not its stroke).
+    fn add_route(&mut self, id: String, shapes: &[(&'a usvg::Path, Shape)]) {
+        let p = shapes[0].0;
+        let closed = p
+            .data()
+            .segments()
+            .any(|s| matches!(s, tiny_skia::PathSegment::Close));
+        let line = flatten_path(p.data(), p.abs_transform(), FLATTEN_TOLERANCE);
+        match line
+            .first()
+            .and_then(|pts| super::Route::new(id.clone(), pts, closed))
+        {
+            Some(r) => self.sc.routes.push(r),
+            None => self.warn(format!(
+                "{}: route '{id}' has no length, ignored",
+                self.source
+            )),
+        }
     }
 
     /// Adds `surface`, or warns (labelled `label`) when it has no area.

@@ -1,13 +1,16 @@
 //! A loaded scenario: the arena and everything in it ([`Scenario`]).
 //!
 //! One concern per file: `labels` (what a label means), `load` (SVG →
-//! scenario), `error`, `summary`.
+//! scenario), `error`, `summary`, `route` (routes), `episodic` (what may
+//! change per episode: obstacle regions, scripted traffic).
 
+mod episodic;
 mod error;
 mod ids;
 mod labels;
 mod limits;
 mod load;
+mod route;
 mod summary;
 
 use std::sync::Arc;
@@ -18,8 +21,10 @@ use serde::{Deserialize, Serialize};
 use crate::geometry::Shape;
 use crate::raster::SurfaceRaster;
 
+pub use episodic::{MAX_REGION_COUNT, ObstacleRegion, TrafficStart};
 pub use error::ScenarioError;
 pub use limits::LoadOptions;
+pub use route::{Route, RoutePlace};
 pub use summary::{ArenaSummary, RobotSummary, ScenarioSummary, heading_degrees};
 
 /// Kind of ground surface (ViVAE's friction classes).
@@ -145,6 +150,9 @@ pub struct RobotStart {
     pub pos: DVec2,
     /// Heading in radians, 0 = up (−y), clockwise positive.
     pub heading: f64,
+    /// Index of its route in [`Scenario::routes`] (`data-route`): the
+    /// direction its progress is measured along.
+    pub route: Option<usize>,
 }
 
 /// A loaded scenario: the arena and everything in it, plus the surface raster.
@@ -173,6 +181,12 @@ pub struct Scenario {
     pub marks: Vec<Mark>,
     /// Robot starts in document order.
     pub robots: Vec<RobotStart>,
+    /// Routes (paths labelled `Route`), in document order.
+    pub routes: Vec<Route>,
+    /// Regions where obstacles are placed at random each episode.
+    pub obstacle_regions: Vec<ObstacleRegion>,
+    /// Scripted robots (traffic), in document order; not learners.
+    pub traffic: Vec<TrafficStart>,
     /// Non-fatal problems (unknown labels, elements without geometry).
     pub warnings: Vec<String>,
     /// Surface ids on a grid, built once at load.
@@ -246,6 +260,21 @@ impl Scenario {
         } else {
             Ok(self)
         }
+    }
+
+    /// Whether an episode's start depends on its seed: obstacles placed at
+    /// random, or traffic whose throttle or start varies.
+    pub fn varies(&self) -> bool {
+        self.obstacle_regions.iter().any(|r| r.count > 0)
+            || (self.traffic.iter()).any(|t| t.spread > 0.0 || t.throttle.0 != t.throttle.1)
+    }
+
+    /// The route nearest `p` (by distance to its line), if any.
+    pub fn nearest_route(&self, p: DVec2) -> Option<usize> {
+        (self.routes.iter().enumerate())
+            .map(|(i, r)| (i, r.locate(p, None).distance))
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .map(|(i, _)| i)
     }
 
     /// Number of surface shapes of `kind`.

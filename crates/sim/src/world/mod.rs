@@ -1,6 +1,7 @@
 //! The simulated world: robots, movable bodies and the physics step.
 
 mod contacts;
+pub mod traffic;
 
 use std::sync::Arc;
 
@@ -8,6 +9,7 @@ use glam::DVec2;
 
 use crate::physics::{ParamError, PhysicsParams};
 use crate::scenario::{Scenario, SurfaceKind};
+use traffic::TrafficState;
 
 /// A robot's state.
 #[derive(Clone, Debug, PartialEq)]
@@ -109,7 +111,13 @@ pub(crate) struct Statics {
 pub struct World {
     pub(crate) statics: Arc<Statics>,
     pub(crate) params: PhysicsParams,
+    /// Learners first, then the scripted robots (traffic): contacts and
+    /// sensors see them all.
     pub(crate) robots: Vec<Robot>,
+    /// How many of `robots` are learners (driven by the caller's controls).
+    learners: usize,
+    /// The scripted robots' drivers, in `robots[learners..]` order.
+    traffic: Vec<TrafficState>,
     pub(crate) pucks: Vec<PuckState>,
     pub(crate) movables: Vec<MovableState>,
     prev_robots: Vec<DVec2>,
@@ -180,20 +188,22 @@ impl World {
     /// A world at the scenario's start state. Fails if `params` is invalid.
     pub fn new(scenario: &Scenario, params: &PhysicsParams) -> Result<World, ParamError> {
         params.validate()?;
-        let robots: Vec<Robot> = scenario
-            .robots
-            .iter()
-            .map(|r| {
+        let robots: Vec<Robot> = (scenario.robots.iter().map(|r| (r.pos, r.heading)))
+            .chain(scenario.traffic.iter().map(|t| (t.pos, t.heading)))
+            .map(|(pos, heading)| {
                 let mut rb = Robot {
-                    pos: r.pos,
+                    pos,
                     heading: 0.0,
                     speed: 0.0,
                     odometer: 0.0,
                     dir: DVec2::ZERO,
                 };
-                rb.set_heading(r.heading);
+                rb.set_heading(heading);
                 rb
             })
+            .collect();
+        let traffic = (scenario.traffic.iter())
+            .map(|t| TrafficState::new(t.route, 0.5 * (t.throttle.0 + t.throttle.1)))
             .collect();
         let pucks: Vec<PuckState> = scenario
             .pucks
@@ -220,6 +230,8 @@ impl World {
             prev_movables: vec![DVec2::ZERO; movables.len()],
             statics: Arc::new(Statics::new(scenario, surface_table(scenario, params))),
             params: params.clone(),
+            learners: scenario.robots.len(),
+            traffic,
             robots,
             pucks,
             movables,
@@ -238,13 +250,24 @@ impl World {
         &self.params
     }
 
-    /// Robots in scenario order.
+    /// The learners (robots driven by the caller's controls) in scenario order.
     pub fn robots(&self) -> &[Robot] {
-        &self.robots
+        &self.robots[..self.learners]
     }
+
+    /// The scripted robots (traffic) in scenario order.
+    pub fn traffic(&self) -> &[Robot] {
+        &self.robots[self.learners..]
+    }
+
+    /// The scripted robots' drivers (route and throttle), in [`World::traffic`] order.
+    pub fn traffic_drivers(&self) -> &[TrafficState] {
+        &self.traffic
+    }
+
     /// Places robot `i` by hand (position, heading) and stops it; false if no such robot.
     pub fn set_pose(&mut self, i: usize, pos: DVec2, heading: f64) -> bool {
-        match self.robots.get_mut(i) {
+        match self.robots[..self.learners].get_mut(i) {
             Some(r) => {
                 r.pos = pos;
                 r.set_heading(heading);
@@ -284,9 +307,14 @@ impl World {
         self.trajectories = Some(t);
     }
 
-    /// Recorded trajectories (one per robot), if recording.
+    /// Recorded trajectories (one per learner), if recording.
     pub fn trajectories(&self) -> Option<&[Vec<DVec2>]> {
-        self.trajectories.as_deref()
+        self.trajectories.as_deref().map(|t| &t[..self.learners])
+    }
+
+    /// Recorded trajectories of the scripted robots, if recording.
+    pub fn traffic_trajectories(&self) -> Option<&[Vec<DVec2>]> {
+        self.trajectories.as_deref().map(|t| &t[self.learners..])
     }
 
     /// Surface at `p` (via the raster); `None` outside the arena.
@@ -319,15 +347,20 @@ impl World {
             .and_then(|r| self.surface_at(r.pos))
             .is_some_and(|s| s.kind == SurfaceKind::Road)
     }
-    /// One time step: `controls[i] = [L, R]` in [−1, 1] for robot `i` (missing
-    /// entries count as [0, 0], extra ones are ignored). Allocation-free
+    /// One time step: `controls[i] = [L, R]` in [−1, 1] for learner `i` (missing
+    /// entries count as [0, 0], extra ones are ignored; scripted robots drive themselves). Allocation-free
     /// unless trajectories are being recorded.
     pub fn step(&mut self, controls: &[[f64; 2]]) {
         let pp = &self.params;
         let (v_max, a_max, om_max, k) = (pp.v_max, pp.a_max, pp.omega_max, pp.k);
         let outside = pp.friction.of(self.statics.scenario.background());
         for i in 0..self.robots.len() {
-            let [l, r] = controls.get(i).copied().unwrap_or([0.0, 0.0]);
+            let [l, r] = if i < self.learners {
+                controls.get(i).copied().unwrap_or([0.0, 0.0])
+            } else {
+                let t = &mut self.traffic[i - self.learners];
+                t.controls(&self.robots[i], &self.statics.scenario.routes[t.route])
+            };
             let l = if l.is_nan() { 0.0 } else { l.clamp(-1.0, 1.0) };
             let r = if r.is_nan() { 0.0 } else { r.clamp(-1.0, 1.0) };
             let mu = self

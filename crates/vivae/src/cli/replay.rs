@@ -39,6 +39,15 @@ pub struct ReplayArgs {
     pub out: Option<PathBuf>,
     #[command(flatten)]
     pub wiring: Wiring,
+    /// Placement of a scenario's random obstacles and traffic, as an
+    /// evaluation with this seed has it (default 0); training draws its
+    /// placements from hashed seeds, so small numbers are ones never trained on.
+    #[arg(long, value_name = "N")]
+    pub placement_seed: Option<u64>,
+    /// Distance rays of the second input sheet, re-sampled from the run's
+    /// (default: the run's).
+    #[arg(long, value_name = "N")]
+    pub distance_rays: Option<usize>,
 }
 
 impl ReplayArgs {
@@ -52,6 +61,7 @@ impl ReplayArgs {
                 robots,
             },
             wiring: self.wiring,
+            distance_rays: self.distance_rays,
             ..Overrides::default()
         }
     }
@@ -97,6 +107,14 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<ExitCode> {
     }
     let scenario = load_scenario(path.as_deref())?;
     let experiment = Episode::new(&config, &scenario.scenario).map_err(vivae_lab::Error::from)?;
+    if experiment.varies() {
+        eprintln!(
+            "{}: obstacles and traffic at placement {}",
+            scenario.scenario.source,
+            args.placement_seed.unwrap_or(0)
+        );
+    }
+    let experiment = experiment.with_placement_seed(args.placement_seed.unwrap_or(0));
     // Checked before anything is written: a genome that does not fit is bad input.
     experiment
         .robot_controller(&champion.genome)
@@ -116,9 +134,10 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<ExitCode> {
     let name = report::replay_scenario_name(path.as_deref(), &scenario.text);
     let replay = report::replay(&experiment, &config, &champion, &name, &out, member)?;
     println!(
-        "fitness={} on_road={:.4} {}",
+        "fitness={} on_road={:.4} speed={:.4} {}",
         replay.fitness,
         replay.on_road,
+        replay.speed,
         replay.behaviour.fields()
     );
     eprintln!("figure: {}", replay.figure.display());

@@ -6,9 +6,13 @@
 //! measures"):
 //!
 //! * **collisions** — contacts that begin, per 1,000 robot-steps: a robot
-//!   touching another robot or an obstacle (fixed or movable) at a step when
-//!   that pair was not touching at the step before. Touching: the gap between
-//!   the outlines is at most [`TOUCH`] px after the step's contact resolution.
+//!   touching another robot (a learner or a scripted one) or an obstacle
+//!   (fixed, movable or placed for the episode) at a step when that pair was
+//!   not touching at the step before. Touching: the gap between the outlines
+//!   is at most [`TOUCH`] px after the step's contact resolution.
+//! * **contacts by kind** — the same per 1,000 robot-steps for each kind
+//!   ([`crate::tasks::driving::contacts`]): robot–robot, robot–scripted
+//!   robot, robot–obstacle, and robot–wall (not in `collisions`).
 //! * **turns** — each robot's heading is unwrapped over the episode; the robot
 //!   is *straight* at step t when its heading moved less than [`STRAIGHT_DEG`]
 //!   over the last [`STRAIGHT_WINDOW`] steps. Between two straight stretches
@@ -28,8 +32,9 @@ use serde::Serialize;
 use vivae_sim::DVec2;
 use vivae_sim::{SurfaceKind, World, wrap_angle};
 
-/// Largest gap between outlines, in px, that still counts as touching.
-pub const TOUCH: f64 = 0.05;
+use crate::tasks::driving::contacts::{ContactCounter, ContactRates};
+
+pub use crate::tasks::driving::contacts::TOUCH;
 /// Steps over which a straight robot's heading stays within [`STRAIGHT_DEG`].
 pub const STRAIGHT_WINDOW: usize = 25;
 /// Heading change, in degrees, below which a robot drives straight.
@@ -50,6 +55,8 @@ pub struct Behaviour {
     pub loops: u32,
     /// Mean signed offset from the road's centre in half-widths, right positive.
     pub side: Option<f64>,
+    /// Contacts begun per 1,000 robot-steps, by what was touched.
+    pub contacts: ContactRates,
 }
 
 impl Behaviour {
@@ -59,8 +66,12 @@ impl Behaviour {
             .side
             .map_or_else(|| "none".to_string(), |s| format!("{s:.4}"));
         format!(
-            "collisions={:.3} left_turns={} right_turns={} loops={} side={side}",
-            self.collisions, self.left_turns, self.right_turns, self.loops
+            "collisions={:.3} left_turns={} right_turns={} loops={} side={side} {}",
+            self.collisions,
+            self.left_turns,
+            self.right_turns,
+            self.loops,
+            self.contacts.fields()
         )
     }
 }
@@ -71,10 +82,8 @@ impl Behaviour {
 pub struct BehaviourMeter {
     /// Unwrapped heading of each robot at every observed step.
     headings: Vec<Vec<f64>>,
-    /// Which pairs touched at the previous step: robot-major, then robots,
-    /// fixed obstacles and movable obstacles.
-    touching: Vec<bool>,
-    contacts_begun: u64,
+    /// Contacts by kind.
+    contacts: ContactCounter,
     robot_steps: u64,
     side_sum: f64,
     side_steps: u64,
@@ -85,9 +94,6 @@ pub struct BehaviourMeter {
 impl BehaviourMeter {
     /// A meter for `world`'s robots, observing up to `steps` steps.
     pub fn new(world: &World, steps: usize) -> Self {
-        let n = world.robots().len();
-        let sc = world.scenario();
-        let others = n + sc.fixed_obstacles.len() + sc.movable_obstacles.len();
         BehaviourMeter {
             headings: world
                 .robots()
@@ -98,8 +104,7 @@ impl BehaviourMeter {
                     h
                 })
                 .collect(),
-            touching: vec![false; n * others],
-            contacts_begun: 0,
+            contacts: ContactCounter::new(world),
             robot_steps: 0,
             side_sum: 0.0,
             side_steps: 0,
@@ -118,30 +123,11 @@ impl BehaviourMeter {
     pub fn observe(&mut self, world: &World) {
         let robots = world.robots();
         let n = robots.len();
-        let sc = world.scenario();
-        let r = world.params().robot_radius;
-        let others = n + sc.fixed_obstacles.len() + sc.movable_obstacles.len();
+        self.contacts.observe(world);
         for (i, robot) in robots.iter().enumerate() {
             let history = &mut self.headings[i];
             let last = *history.last().expect("starts with the initial heading");
             history.push(last + wrap_angle(robot.heading - wrap_angle(last)));
-            let touched = &mut self.touching[i * others..(i + 1) * others];
-            for (k, was_touching) in touched.iter_mut().enumerate() {
-                let touches = if k < n {
-                    k != i && robots[k].pos.distance(robot.pos) <= 2.0 * r + TOUCH
-                } else if k < n + sc.fixed_obstacles.len() {
-                    touches_shape(&sc.fixed_obstacles[k - n].shape, robot.pos, r)
-                } else {
-                    let m = k - n - sc.fixed_obstacles.len();
-                    let offset = world.movables()[m].offset;
-                    touches_shape(&sc.movable_obstacles[m].shape, robot.pos - offset, r)
-                };
-                let was = std::mem::replace(was_touching, touches);
-                // A robot pair is one contact, counted once (from its lower index).
-                if touches && !was && (k >= n || i < k) {
-                    self.contacts_begun += 1;
-                }
-            }
             if let Some(s) = self
                 .side
                 .then(|| side_offset(world, robot.pos, robot.right()))
@@ -167,20 +153,15 @@ impl BehaviourMeter {
             collisions: if self.robot_steps == 0 {
                 0.0
             } else {
-                1000.0 * self.contacts_begun as f64 / self.robot_steps as f64
+                1000.0 * self.contacts.counts().collisions() as f64 / self.robot_steps as f64
             },
+            contacts: ContactRates::of(self.contacts.counts(), self.robot_steps),
             left_turns,
             right_turns,
             loops,
             side: (self.side_steps > 0).then(|| self.side_sum / self.side_steps as f64),
         }
     }
-}
-
-/// Whether a disc of radius `r` at `p` touches (or overlaps) `shape`.
-fn touches_shape(shape: &vivae_sim::geometry::Shape, p: DVec2, r: f64) -> bool {
-    shape.bbox.contains_with_margin(p, r + TOUCH)
-        && (shape.contains(p) || shape.closest_boundary_point(p).1 <= r + TOUCH)
 }
 
 /// Signed offset from the road's centre, in half-widths (right positive);

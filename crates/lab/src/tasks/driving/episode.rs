@@ -1,6 +1,7 @@
 //! The driving experiment's one task: an episode on one map, at one
 //! substrate resolution, scored by one fitness function.
 
+use std::borrow::Cow;
 use std::sync::Arc;
 
 use vivae_neat::driver::{Evaluation, Task};
@@ -18,7 +19,8 @@ use crate::controller::substrate::{
 use crate::tasks::driving::behaviour::{Behaviour, BehaviourMeter};
 use crate::tasks::driving::combined::DrivingTask;
 use crate::tasks::driving::descriptors::{EpisodeSetup, METRICS, Measures, measured_episode};
-use crate::tasks::driving::fitness::{AverageSpeed, Fitness};
+use crate::tasks::driving::fitness::Fitness;
+use crate::tasks::driving::placement::placed;
 use crate::tasks::driving::rollout::{Drive, Rollout};
 
 /// Everything needed to evaluate genomes on one scenario with one config.
@@ -27,6 +29,13 @@ use crate::tasks::driving::rollout::{Drive, Rollout};
 #[derive(Debug, Clone)]
 pub struct Episode {
     world: World,
+    /// The scenario (its robots as the experiment uses them) when its
+    /// obstacles or traffic are placed per episode: every evaluation starts
+    /// from its own placement, drawn from the evaluation's seed.
+    varying: Option<Arc<Scenario>>,
+    /// The placement this experiment was fixed to ([`Episode::with_placement_seed`]
+    /// of a varying scenario).
+    placement: Option<u64>,
     /// The robots' sensors, in controller-input order.
     sensors: Vec<SensorSheet>,
     /// The first sheet's surface sensors, typed, for pictures of what robots see.
@@ -56,6 +65,10 @@ pub struct EpisodeRecord {
     /// Fraction of robot-steps that ended with the robot's centre on a road
     /// (measured when recording: evolution does not need it).
     pub on_road: Option<f64>,
+    /// Average speed, Σ odometer / (robots × steps) in px per step, whatever
+    /// the fitness (measured when recording: with a progress fitness or a
+    /// contact cost it differs from `fitness`).
+    pub speed: Option<f64>,
     /// Every robot's path (start position first), when recorded.
     pub trajectories: Option<Vec<Vec<DVec2>>>,
     /// Collisions, turns, loops and side of the road, when recorded.
@@ -85,8 +98,18 @@ impl Episode {
             }
             scenario.robots.truncate(wanted);
         }
-        let world = World::new(&scenario, &config.physics)
+        if config.fitness.kind == crate::config::fitness::FitnessKind::Progress
+            && scenario.routes.is_empty()
+        {
+            return Err(EpisodeError::Scenario(format!(
+                "{}: fitness.kind = \"progress\" needs a route (a path labelled Route), and the scenario has none",
+                scenario.source
+            )));
+        }
+        // A varying scenario's own start is placement 0 (replay's default).
+        let world = World::new(&placed(&scenario, 0), &config.physics)
             .map_err(|e| EpisodeError::Config(format!("physics.{e}")))?;
+        let varying = scenario.varies().then(|| Arc::new(scenario));
         let distance_layout = config.distance_sensors.layout();
         let surface = &config.surface_sensors;
         let spec = SubstrateSpec {
@@ -122,6 +145,8 @@ impl Episode {
         };
         Ok(Episode {
             world,
+            varying,
+            placement: None,
             sensors,
             surface: surface_grid,
             spec,
@@ -132,7 +157,7 @@ impl Episode {
             scale,
             steps: config.experiment.steps,
             cppn_outputs,
-            fitness: Arc::new(AverageSpeed),
+            fitness: crate::tasks::driving::fitness_contacts::of_config(&config.fitness),
             measures: Measures::of(&config.strategy),
         })
     }
@@ -141,6 +166,40 @@ impl Episode {
     pub fn with_fitness(mut self, fitness: Arc<dyn Fitness>) -> Episode {
         self.fitness = fitness;
         self
+    }
+
+    /// This experiment always on placement `seed` (obstacles and traffic as
+    /// an evaluation with that seed has them), e.g. one never used in
+    /// training; unchanged when the scenario places nothing per episode.
+    pub fn with_placement_seed(mut self, seed: u64) -> Episode {
+        if let Some(sc) = self.varying.take() {
+            self.world = World::new(&placed(&sc, seed), self.world.params())
+                .expect("the parameters were checked when the episode was set up");
+            self.placement = Some(seed);
+        }
+        self
+    }
+
+    /// The placement this experiment is fixed to: `Some` once
+    /// [`Episode::with_placement_seed`] fixed a varying scenario's.
+    pub fn placement(&self) -> Option<u64> {
+        self.placement
+    }
+
+    /// Whether evaluations place obstacles or traffic from their seeds.
+    pub fn varies(&self) -> bool {
+        self.varying.is_some()
+    }
+
+    /// The world an evaluation with seed `seed` starts from.
+    pub fn start(&self, seed: u64) -> Cow<'_, World> {
+        match &self.varying {
+            None => Cow::Borrowed(&self.world),
+            Some(sc) => Cow::Owned(
+                World::new(&placed(sc, seed), self.world.params())
+                    .expect("the parameters were checked when the episode was set up"),
+            ),
+        }
     }
 
     /// The fitness function episodes are scored by.
@@ -254,8 +313,13 @@ impl Episode {
     /// The fitness of `genome`'s controller (average speed by default); 0 for
     /// a genome that does not fit the substrate (evolution never makes one).
     pub fn fitness(&self, genome: &Genome) -> f64 {
+        self.fitness_from(&self.world, genome)
+    }
+
+    /// [`Episode::fitness`] of an episode starting from `start`.
+    fn fitness_from(&self, start: &World, genome: &Genome) -> f64 {
         match self.robot_controller(genome) {
-            Ok(c) => self.run(&c, false).fitness,
+            Ok(c) => self.run_from(start, &c, false).0.fitness,
             Err(_) => 0.0,
         }
     }
@@ -275,8 +339,13 @@ impl Episode {
 
     /// The start, length and fitness of this experiment's episodes.
     pub fn setup(&self) -> EpisodeSetup<'_> {
+        self.setup_from(&self.world)
+    }
+
+    /// [`Episode::setup`] starting from `start`.
+    fn setup_from<'a>(&'a self, start: &'a World) -> EpisodeSetup<'a> {
         EpisodeSetup {
-            start: &self.world,
+            start,
             steps: self.steps,
             fitness: &*self.fitness,
         }
@@ -288,8 +357,18 @@ impl Episode {
         controller: &(impl Drive + ?Sized),
         record: bool,
     ) -> (EpisodeRecord, World) {
+        self.run_from(&self.world, controller, record)
+    }
+
+    /// [`Episode::run_world`] starting from `start`.
+    fn run_from(
+        &self,
+        start: &World,
+        controller: &(impl Drive + ?Sized),
+        record: bool,
+    ) -> (EpisodeRecord, World) {
         let n = self.robots();
-        let mut world = self.world.clone();
+        let mut world = start.clone();
         if record {
             world.record_trajectories(self.steps as usize);
         }
@@ -312,6 +391,8 @@ impl Episode {
         let episode = EpisodeRecord {
             fitness: meter.score(&world, robot_steps),
             on_road: record.then_some(on_road as f64 / robot_steps),
+            speed: record
+                .then(|| world.robots().iter().map(|r| r.odometer).sum::<f64>() / robot_steps),
             trajectories: world.trajectories().map(|t| t.to_vec()),
             behaviour: behaviour.map(|m| m.finish()),
         };
@@ -320,15 +401,17 @@ impl Episode {
 }
 
 /// The driving experiment as a NEAT task: a genome's fitness is its
-/// controller's episode score (deterministic: the episode has no randomness),
-/// with the behaviour and metrics the run's strategy needs ([`crate::tasks::driving::descriptors`]).
+/// controller's episode score (deterministic: the only randomness, a varying
+/// scenario's placement, comes from `ctx.seed`), with the behaviour and
+/// metrics the run's strategy needs ([`crate::tasks::driving::descriptors`]).
 impl Task for Episode {
-    fn evaluate(&self, genome: &Genome, _ctx: &EvalContext) -> Evaluation {
+    fn evaluate(&self, genome: &Genome, ctx: &EvalContext) -> Evaluation {
+        let start = self.start(ctx.seed);
         let Some(measures) = self.measures else {
-            return Evaluation::fitness(self.fitness(genome));
+            return Evaluation::fitness(self.fitness_from(&start, genome));
         };
         match self.robot_controller(genome) {
-            Ok(c) => measured_episode(self.setup(), self.rollout(&c), &c, measures),
+            Ok(c) => measured_episode(self.setup_from(&start), self.rollout(&c), &c, measures),
             Err(_) => crate::tasks::driving::descriptors::unfit(measures, self.robots()),
         }
     }
@@ -373,6 +456,9 @@ mod tests {
             assert_eq!(plain.fitness, recorded.fitness);
             assert_eq!(plain.fitness, exp.fitness(g));
             assert!(plain.on_road.is_none() && plain.trajectories.is_none());
+            assert!(plain.speed.is_none());
+            // The paper's fitness is the average speed the record measures.
+            assert_eq!(recorded.speed, Some(recorded.fitness));
             let on_road = recorded.on_road.unwrap();
             assert!((0.0..=1.0).contains(&on_road));
             let t = recorded.trajectories.unwrap();

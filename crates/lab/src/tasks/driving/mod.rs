@@ -5,9 +5,13 @@
 
 pub mod behaviour;
 pub mod combined;
+pub mod contacts;
 pub mod descriptors;
 pub mod episode;
 pub mod fitness;
+pub mod fitness_contacts;
+pub mod fitness_progress;
+pub mod placement;
 pub mod resolutions;
 pub mod rollout;
 pub mod run;

@@ -16,7 +16,10 @@ use crate::tasks::{HeaderContext, RunTask, TaskEntry};
 pub static TASK: TaskEntry = TaskEntry {
     name: TaskName::DRIVING,
     default_config: Config::default,
-    validate: crate::tasks::maze::config::refuse_for_other_tasks,
+    validate: |c| {
+        crate::tasks::maze::config::refuse_for_other_tasks(c)?;
+        c.fitness.check()
+    },
     metric_names: &crate::config::strategy::METRICS,
     generation_columns: "",
     build,
