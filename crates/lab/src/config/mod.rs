@@ -67,9 +67,9 @@ pub struct Config {
     /// The maze task's robot model (`experiment.task = "maze"` only).
     #[serde(
         default,
-        skip_serializing_if = "crate::tasks::maze::config::MazeConfig::is_default"
+        skip_serializing_if = "crate::tasks::maze::section::MazeConfig::is_default"
     )]
-    pub maze: crate::tasks::maze::config::MazeConfig,
+    pub maze: crate::tasks::maze::section::MazeConfig,
     /// What a driving episode scores (unset = average speed, no contact cost).
     #[serde(default, skip_serializing_if = "fitness::FitnessConfig::is_default")]
     pub fitness: fitness::FitnessConfig,

@@ -157,7 +157,7 @@ pub(super) fn documented_defaults() -> toml::Value {
         let strategy = toml::Value::try_from(StrategyConfig::default()).expect("TOML");
         table.insert("strategy".into(), strategy);
         // Likewise `[maze]`, written only when a maze run changes it.
-        let maze = crate::tasks::maze::config::MazeConfig::default();
+        let maze = crate::tasks::maze::section::MazeConfig::default();
         table.insert("maze".into(), toml::Value::try_from(maze).expect("TOML"));
         let fitness = super::fitness::FitnessConfig::default();
         table.insert(

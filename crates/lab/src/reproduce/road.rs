@@ -100,17 +100,20 @@ fn resampled(config: &Config, scenario: &Scenario, genome: &Genome) -> Result<Se
     })
 }
 
+/// The range of `f` over `seeds` (`lo–hi`, as percentages with `pct`).
+fn range_over(seeds: &[Seed], f: &dyn Fn(&Seed) -> f64, pct: bool) -> String {
+    let xs: Vec<f64> = seeds.iter().map(f).collect();
+    let lo = xs.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = xs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    match (xs.is_empty(), pct) {
+        (true, _) => "—".to_string(),
+        (false, true) => format!("{:.1}–{:.1}%", 100.0 * lo, 100.0 * hi),
+        (false, false) => format!("{lo:.3}–{hi:.3}"),
+    }
+}
+
 fn table(seeds: &[Seed], first: u64, generations: u32) -> Table {
-    let range = |f: &dyn Fn(&Seed) -> f64, pct: bool| {
-        let xs: Vec<f64> = seeds.iter().map(f).collect();
-        let lo = xs.iter().copied().fold(f64::INFINITY, f64::min);
-        let hi = xs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        match (xs.is_empty(), pct) {
-            (true, _) => "—".to_string(),
-            (false, true) => format!("{:.1}–{:.1}%", 100.0 * lo, 100.0 * hi),
-            (false, false) => format!("{lo:.3}–{hi:.3}"),
-        }
-    };
+    let range = |f: &dyn Fn(&Seed) -> f64, pct: bool| range_over(seeds, f, pct);
     let count = |ok: &dyn Fn(&Seed) -> bool| {
         format!("{}/{}", seeds.iter().filter(|s| ok(s)).count(), seeds.len())
     };

@@ -65,7 +65,7 @@ pub struct Overrides {
     /// `experiment.task` (a registered task).
     pub task: Option<TaskName>,
     /// `maze.robot` (the maze task's robot model).
-    pub robot: Option<crate::tasks::maze::config::MazeRobot>,
+    pub robot: Option<crate::tasks::maze::section::MazeRobot>,
 }
 
 impl Overrides {

@@ -66,7 +66,7 @@ pub struct Overrides {
     /// The maze's robot model (maze.robot): lehman (default: Lehman's maze
     /// navigator) or vivae (our differential robot of [physics]).
     #[arg(long, value_name = "lehman|vivae")]
-    pub robot: Option<vivae_lab::tasks::maze::config::MazeRobot>,
+    pub robot: Option<vivae_lab::tasks::maze::section::MazeRobot>,
 }
 
 /// `--task NAME`: one of the registered tasks (listed by `--help`).

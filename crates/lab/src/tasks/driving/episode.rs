@@ -75,37 +75,44 @@ pub struct EpisodeRecord {
     pub behaviour: Option<Behaviour>,
 }
 
+/// `scenario` with the robots the config asks for, checked against the
+/// config's fitness (a progress fitness needs a route).
+fn fitted(config: &Config, scenario: &Scenario) -> Result<Scenario, EpisodeError> {
+    scenario
+        .require_robots()
+        .map_err(|e| EpisodeError::Scenario(e.to_string()))?;
+    let wanted = config.experiment.robots;
+    let mut scenario = scenario.clone();
+    if wanted > 0 {
+        if scenario.robots.len() < wanted {
+            let have = scenario.robots.len();
+            return Err(EpisodeError::Scenario(format!(
+                "{}: has {have} robot{}, the config asks for experiment.robots = {wanted}; \
+                 use --robots {have} (or --robots 0 for all of them), or draw more robots",
+                scenario.source,
+                if have == 1 { "" } else { "s" }
+            )));
+        }
+        scenario.robots.truncate(wanted);
+    }
+    if config.fitness.kind == crate::config::fitness::FitnessKind::Progress
+        && scenario.routes.is_empty()
+    {
+        return Err(EpisodeError::Scenario(format!(
+            "{}: fitness.kind = \"progress\" needs a route (a path labelled Route), and the scenario has none",
+            scenario.source
+        )));
+    }
+    Ok(scenario)
+}
+
 // Defined with the library's error so that the error type needs no task.
 pub use crate::error::EpisodeError;
 
 impl Episode {
     /// Sets up the experiment of `config` on `scenario` (uses its first `robots` robots).
     pub fn new(config: &Config, scenario: &Scenario) -> Result<Episode, EpisodeError> {
-        scenario
-            .require_robots()
-            .map_err(|e| EpisodeError::Scenario(e.to_string()))?;
-        let wanted = config.experiment.robots;
-        let mut scenario = scenario.clone();
-        if wanted > 0 {
-            if scenario.robots.len() < wanted {
-                let have = scenario.robots.len();
-                return Err(EpisodeError::Scenario(format!(
-                    "{}: has {have} robot{}, the config asks for experiment.robots = {wanted}; \
-                     use --robots {have} (or --robots 0 for all of them), or draw more robots",
-                    scenario.source,
-                    if have == 1 { "" } else { "s" }
-                )));
-            }
-            scenario.robots.truncate(wanted);
-        }
-        if config.fitness.kind == crate::config::fitness::FitnessKind::Progress
-            && scenario.routes.is_empty()
-        {
-            return Err(EpisodeError::Scenario(format!(
-                "{}: fitness.kind = \"progress\" needs a route (a path labelled Route), and the scenario has none",
-                scenario.source
-            )));
-        }
+        let scenario = fitted(config, scenario)?;
         // A varying scenario's own start is placement 0 (replay's default).
         let world = World::new(&placed(&scenario, 0), &config.physics)
             .map_err(|e| EpisodeError::Config(format!("physics.{e}")))?;

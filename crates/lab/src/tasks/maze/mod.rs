@@ -20,6 +20,7 @@ pub mod config;
 pub mod lehman;
 mod present;
 pub mod run;
+pub mod section;
 pub mod walls;
 
 pub use run::TASK;
