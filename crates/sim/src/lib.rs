@@ -42,7 +42,7 @@ pub use sensors::{
     DistanceGrid, DistanceSensors, GoalRadar, Sensor, SensorPlace, SurfaceGrid, SurfaceSensors,
     spread,
 };
-pub use world::{MovableState, PuckState, Robot, SurfaceHere, World, wrap_angle};
+pub use world::{MovableState, PuckState, Robot, SurfaceHere, TeamContact, World, wrap_angle};
 
 /// The default scenario (`scenarios/roads.svg`): a road network with 5 robots.
 pub const ROADS_SVG: &str = include_str!("../../../scenarios/roads.svg");

@@ -145,6 +145,9 @@ pub struct RobotStart {
     pub pos: DVec2,
     /// Heading in radians, 0 = up (−y), clockwise positive.
     pub heading: f64,
+    /// Its team (`data-team`), empty for none: robots of different teams
+    /// touching is a [`crate::TeamContact`].
+    pub team: String,
 }
 
 /// A loaded scenario: the arena and everything in it, plus the surface raster.
