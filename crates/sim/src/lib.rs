@@ -39,8 +39,8 @@ pub use scenario::{
     ScenarioSummary, Surface, SurfaceKind,
 };
 pub use sensors::{
-    DistanceGrid, DistanceSensors, GoalRadar, Sensor, SensorPlace, SurfaceGrid, SurfaceSensors,
-    spread,
+    DistanceGrid, DistanceSensors, GoalRadar, OpponentRadar, Sensor, SensorPlace, SurfaceGrid,
+    SurfaceSensors, spread,
 };
 pub use world::{MovableState, PuckState, Robot, SurfaceHere, TeamContact, World, wrap_angle};
 

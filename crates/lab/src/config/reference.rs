@@ -156,6 +156,11 @@ pub(super) fn documented_defaults() -> toml::Value {
     if let Some(table) = defaults.as_table_mut() {
         let strategy = toml::Value::try_from(StrategyConfig::default()).expect("TOML");
         table.insert("strategy".into(), strategy);
+        let opponent = toml::Value::try_from(OpponentConfig::default()).expect("TOML");
+        table.insert("opponent_sensors".into(), opponent);
+        let coevolution =
+            toml::Value::try_from(super::coevolution::CoevolutionConfig::default()).expect("TOML");
+        table.insert("coevolution".into(), coevolution);
     }
     defaults
 }
