@@ -15,6 +15,7 @@ pub mod drive;
 pub mod evolve;
 pub mod mpi_job;
 pub mod overrides;
+pub mod own_driver;
 pub mod replay;
 pub mod report;
 pub mod resume;
