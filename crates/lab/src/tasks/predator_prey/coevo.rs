@@ -222,6 +222,30 @@ impl Coevolution {
     }
 }
 
+/// What `champions.json` holds: each side's master-tournament winner.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct Champions {
+    /// Generations done.
+    pub generations: u32,
+    /// The hunter champion.
+    pub hunter: ChampionEntry,
+    /// The prey champion.
+    pub prey: ChampionEntry,
+}
+
+/// One side's champion: the generation whose best has the highest mean
+/// fitness against every champion of the other side (Floreano & Nolfi's
+/// master tournament).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct ChampionEntry {
+    /// Its generation.
+    pub generation: u32,
+    /// Its mean fitness in the master tournament.
+    pub master_fitness: f64,
+    /// The genome.
+    pub genome: Genome,
+}
+
 /// `genome` of `side` against each of `opponents`: its mean fitness and its catches.
 fn score(arena: &Arena, side: Side, genome: &Genome, opponents: &[Genome]) -> (f64, usize) {
     let mut sum = 0.0;

@@ -5,8 +5,7 @@ use std::path::Path;
 
 use crate::config::Config;
 use crate::config::coevolution::Opponents;
-use crate::tasks::predator_prey::coevo::GenerationRecord;
-use crate::tasks::predator_prey::run::Champions;
+use crate::tasks::predator_prey::coevo::{Champions, GenerationRecord};
 
 /// The header of a predator–prey run.
 pub(super) fn header(config: &Config, command: &str, scenario: &str, dir: &Path) -> String {

@@ -21,6 +21,7 @@ use crate::config::Config;
 use crate::error::{Error, Result};
 use crate::io::{bad_input, create_dirs, load_scenario, read_text, write_atomic};
 use crate::tasks::maps::TrainingMap;
+pub use crate::tasks::predator_prey::coevo::{ChampionEntry, Champions};
 use crate::tasks::predator_prey::coevo::{
     CiaoCell, Coevolution, GenerationRecord, SideRecord, master_tournament,
 };
@@ -94,30 +95,6 @@ pub struct HallEntry {
     pub generation: u32,
     /// Its fitness in that generation (against that generation's opponents).
     pub fitness: f64,
-    /// The genome.
-    pub genome: Genome,
-}
-
-/// What `champions.json` holds: each side's master-tournament winner.
-#[derive(Debug, Clone, Serialize, Deserialize)]
-pub struct Champions {
-    /// Generations done.
-    pub generations: u32,
-    /// The hunter champion.
-    pub hunter: ChampionEntry,
-    /// The prey champion.
-    pub prey: ChampionEntry,
-}
-
-/// One side's champion: the generation whose best has the highest mean
-/// fitness against every champion of the other side (Floreano & Nolfi's
-/// master tournament).
-#[derive(Debug, Clone, Serialize, Deserialize)]
-pub struct ChampionEntry {
-    /// Its generation.
-    pub generation: u32,
-    /// Its mean fitness in the master tournament.
-    pub master_fitness: f64,
     /// The genome.
     pub genome: Genome,
 }
