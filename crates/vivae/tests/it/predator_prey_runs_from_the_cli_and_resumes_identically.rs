@@ -116,6 +116,14 @@ fn both_kinds_of_opponents_run_and_resume_bit_identical() {
         for file in FILES {
             assert!(read(&whole, file) == read(&part, file), "{name}: {file}");
         }
+        // The commands that show one-population runs refuse it in one line.
+        for command in ["replay", "report"] {
+            let out = run(vivae().arg(command).arg(&whole));
+            let err = String::from_utf8_lossy(&out.stderr);
+            assert_eq!(out.status.code(), Some(2), "{command}: {err}");
+            assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+            assert!(err.contains("ciao.csv"), "{command}: {err}");
+        }
         // One thread gives the same results (only the recorded thread count differs).
         let one = dir.join(format!("{name}-one-thread"));
         evolve(
