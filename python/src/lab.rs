@@ -401,15 +401,62 @@ pub fn evolve<'py>(
     // which it may fit to its scenario (e.g. a grid archive fitted to its arena).
     let task_defaults = config.is_none();
     let config = settings::build(config.as_deref(), overrides)?;
+    let dir = out.clone().unwrap_or_else(vivae_lab::io::default_run_dir);
+    if let Some(driver) = vivae_lab::tasks::entry_of(&config)
+        .ok()
+        .and_then(|e| e.own_driver)
+    {
+        return own_driver_run(py, &dir, |session| {
+            (driver.evolve)(&dir, config, force, session)
+        });
+    }
     let prepared = prepare(config, task_defaults).map_err(errors::lab)?;
     for m in &prepared.maps {
         errors::warn_scenario(py, &m.loaded.scenario)?;
     }
-    let dir = out.unwrap_or_else(vivae_lab::io::default_run_dir);
     let run = py
         .detach(|| prepared.create(&dir, force))
         .map_err(errors::lab)?;
     drive(py, run, on_generation)
+}
+
+/// Runs a task on its own driver (the predator–prey task's two
+/// populations): the dict holds `out`, `finished` and the summary line's
+/// `key=value` fields (numbers as numbers).
+fn own_driver_run<'py>(
+    py: Python<'py>,
+    dir: &Path,
+    run: impl FnOnce(&vivae_lab::tasks::Session<'_>) -> vivae_lab::Result<String> + Send,
+) -> PyResult<Bound<'py, PyDict>> {
+    let stop = AtomicBool::new(false);
+    let quiet = |_: &str| {};
+    let line = py
+        .detach(|| {
+            run(&vivae_lab::tasks::Session {
+                interrupted: &stop,
+                say: &quiet,
+            })
+        })
+        .map_err(errors::lab)?;
+    let d = PyDict::new(py);
+    d.set_item("out", dir.to_path_buf())?;
+    for (key, value) in line.split_whitespace().filter_map(|w| w.split_once('=')) {
+        if key == "out" {
+            continue;
+        }
+        match (value.parse::<u64>(), value.parse::<f64>()) {
+            (Ok(n), _) => d.set_item(key, n)?,
+            (_, Ok(x)) => d.set_item(key, x)?,
+            _ => d.set_item(key, value)?,
+        }
+    }
+    let done = d
+        .get_item("generations")?
+        .map(|g| g.extract::<u32>())
+        .transpose()?;
+    let config = vivae_lab::tasks::read_config(&dir.join("config.toml")).map_err(errors::lab)?;
+    d.set_item("finished", done == Some(config.experiment.generations))?;
+    Ok(d)
 }
 
 /// Continues the interrupted run in `out` (or extends a finished one to
@@ -423,6 +470,11 @@ pub fn resume<'py>(
     threads: Option<usize>,
     on_generation: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    if let Some(driver) = vivae_lab::tasks::own_driver_of_run(&out) {
+        return own_driver_run(py, &out, |session| {
+            (driver.resume)(&out, generations, session)
+        });
+    }
     let run = py
         .detach(|| Run::resume(&out, generations, threads))
         .map_err(errors::lab)?;

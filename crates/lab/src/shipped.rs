@@ -16,7 +16,7 @@ pub struct Shipped {
 
 /// Every shipped scenario; `roads` is the default. Each names the task it is
 /// drawn for.
-pub const SHIPPED: [Shipped; 10] = [
+pub const SHIPPED: [Shipped; 12] = [
     Shipped {
         name: "roads",
         what: "the default: a road loop with a crossroad, a spur and an S-curve (5 robots)",
@@ -76,6 +76,18 @@ pub const SHIPPED: [Shipped; 10] = [
         what: "Lehman & Stanley's hard (deceptive) maze, for --task maze (1 robot, a goal)",
         svg: include_str!("../../../scenarios/hard-maze.svg"),
         task: "maze",
+    },
+    Shipped {
+        name: "predator-prey",
+        what: "an open 300 x 300 arena, for --task predator-prey (a hunter and a prey)",
+        svg: include_str!("../../../scenarios/predator-prey.svg"),
+        task: "predator-prey",
+    },
+    Shipped {
+        name: "predator-prey-obstacles",
+        what: "the predator-prey arena with four blocks to hide behind (a hunter and a prey)",
+        svg: include_str!("../../../scenarios/predator-prey-obstacles.svg"),
+        task: "predator-prey",
     },
 ];
 

@@ -40,11 +40,11 @@ pub use scenario::{
     ScenarioError, ScenarioSummary, Surface, SurfaceKind, TrafficStart,
 };
 pub use sensors::{
-    DistanceGrid, DistanceSensors, GoalRadar, Sensor, SensorPlace, SurfaceGrid, SurfaceSensors,
-    spread,
+    DistanceGrid, DistanceSensors, GoalRadar, OpponentRadar, Sensor, SensorPlace, SurfaceGrid,
+    SurfaceSensors, spread,
 };
 pub use style::surface_color;
-pub use world::{MovableState, PuckState, Robot, SurfaceHere, World, wrap_angle};
+pub use world::{MovableState, PuckState, Robot, SurfaceHere, TeamContact, World, wrap_angle};
 
 /// The default scenario (`scenarios/roads.svg`): a road network with 5 robots.
 pub const ROADS_SVG: &str = include_str!("../../../scenarios/roads.svg");

@@ -133,9 +133,14 @@ impl World {
             } else {
                 &start.label
             };
+            let team = if start.team.is_empty() {
+                String::new()
+            } else {
+                format!(r#" data-team="{}""#, xml_escape(&start.team))
+            };
             let _ = writeln!(
                 s,
-                r##"    <rect id="{}" inkscape:label="{}" x="{}" y="{}" width="{}" height="{}" transform="rotate({} {} {})" style="fill:{}"/>"##,
+                r##"    <rect id="{}" inkscape:label="{}"{team} x="{}" y="{}" width="{}" height="{}" transform="rotate({} {} {})" style="fill:{}"/>"##,
                 xml_escape(&start.id),
                 xml_escape(label),
                 fmt_num(rb.pos.x - r),

@@ -11,6 +11,7 @@ mod reference;
 mod toml_error;
 mod validate;
 
+pub mod coevolution;
 pub mod es;
 pub mod fitness;
 pub mod strategy;
@@ -55,6 +56,10 @@ pub struct Config {
     pub surface_sensors: SurfaceSensors,
     /// Optional distance sensors (a second input sheet).
     pub distance_sensors: DistanceConfig,
+    /// Opponent radar: pie slices pointing at the nearest robot of another
+    /// team (`data-team` in the scenario); off unless `slices > 0`.
+    #[serde(default, skip_serializing_if = "OpponentConfig::is_off_by_default")]
+    pub opponent_sensors: OpponentConfig,
     /// Physics constants of the simulator.
     pub physics: PhysicsParams,
     /// NEAT hyper-parameters for the CPPNs.
@@ -73,6 +78,13 @@ pub struct Config {
     /// What a driving episode scores (unset = average speed, no contact cost).
     #[serde(default, skip_serializing_if = "fitness::FitnessConfig::is_default")]
     pub fitness: fitness::FitnessConfig,
+    /// Co-evolution of two populations (the predator-prey task): whom each is
+    /// evaluated against.
+    #[serde(
+        default,
+        skip_serializing_if = "coevolution::CoevolutionConfig::is_default"
+    )]
+    pub coevolution: coevolution::CoevolutionConfig,
 }
 
 /// What is run.
@@ -423,6 +435,44 @@ impl DistanceConfig {
             fov: self.fov,
             range: self.range,
         })
+    }
+}
+
+/// The opponent radar (`vivae_sim::OpponentRadar`): off unless `slices > 0`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct OpponentConfig {
+    /// Pie slices of the full circle around the robot, left to right, the
+    /// last centred behind; the slice holding the nearest robot of another
+    /// team reads 1 - d/range, the others 0. An input sheet of its own (CPPN
+    /// output 4); 0 switches the sensor off.
+    pub slices: usize,
+    /// How far the radar sees (centre to centre); beyond it the slice reads 0.
+    ///
+    /// Unit: px.
+    pub range: f64,
+}
+
+impl Default for OpponentConfig {
+    fn default() -> Self {
+        OpponentConfig {
+            slices: 0,
+            range: 300.0,
+        }
+    }
+}
+
+impl OpponentConfig {
+    /// Whether this is the default (off): a config written without the section.
+    pub fn is_off_by_default(&self) -> bool {
+        *self == OpponentConfig::default()
+    }
+
+    /// The simulator's radar, or `None` when switched off (or invalid: [`Config::validate`] refuses that).
+    pub fn radar(&self) -> Option<vivae_sim::OpponentRadar> {
+        (self.slices > 0)
+            .then(|| vivae_sim::OpponentRadar::new(self.slices, self.range).ok())
+            .flatten()
     }
 }
 

@@ -164,6 +164,11 @@ pub(super) fn documented_defaults() -> toml::Value {
             "fitness".into(),
             toml::Value::try_from(fitness).expect("TOML"),
         );
+        let opponent = toml::Value::try_from(OpponentConfig::default()).expect("TOML");
+        table.insert("opponent_sensors".into(), opponent);
+        let coevolution =
+            toml::Value::try_from(super::coevolution::CoevolutionConfig::default()).expect("TOML");
+        table.insert("coevolution".into(), coevolution);
     }
     defaults
 }

@@ -78,6 +78,12 @@ impl Config {
                 ConfigError::new(format!("distance_sensors.{}", param_message(&err)))
             })?;
         }
+        if self.opponent_sensors.slices > 0 {
+            let o = &self.opponent_sensors;
+            vivae_sim::OpponentRadar::new(o.slices, o.range).map_err(|err| {
+                ConfigError::new(format!("opponent_sensors.{}", param_message(&err)))
+            })?;
+        }
         self.substrate.es.validate().map_err(ConfigError::new)?;
         self.validate_leo()
     }

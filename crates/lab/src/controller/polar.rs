@@ -15,6 +15,8 @@ pub const BIAS_OUTPUT: usize = 1;
 pub const RECURRENT_OUTPUT: usize = 2;
 /// CPPN output painting distance sensor → neuron weights (only with distance sensors).
 pub const DISTANCE_OUTPUT: usize = 3;
+/// CPPN output painting opponent radar → neuron weights (only with the opponent radar).
+pub const OPPONENT_OUTPUT: usize = 4;
 /// The radius the wheel neurons sit nearest to: the middle ring of a 3-ring sheet.
 pub const WHEEL_RADIUS: f64 = 2.0 / 3.0;
 /// Largest number of rings or angles a grid may have.

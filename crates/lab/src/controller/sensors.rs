@@ -14,7 +14,7 @@ use std::sync::Arc;
 use vivae_sim::{DistanceSensors, Sensor, SurfaceSensors, World};
 
 use crate::config::Config;
-use crate::controller::polar::{DISTANCE_OUTPUT, PolarNode, SURFACE_OUTPUT};
+use crate::controller::polar::{DISTANCE_OUTPUT, OPPONENT_OUTPUT, PolarNode, SURFACE_OUTPUT};
 
 /// One sensor kind the config can build: an entry of [`SENSORS`].
 #[derive(Debug, Clone, Copy)]
@@ -45,7 +45,7 @@ impl SensorKind {
 
 /// The registry: every sensor kind the config can build, in controller-input
 /// order (the surface sensors first: they are always there).
-pub static SENSORS: [SensorKind; 2] = [
+pub static SENSORS: [SensorKind; 3] = [
     SensorKind {
         name: "surface",
         label: "surface sensors",
@@ -63,6 +63,18 @@ pub static SENSORS: [SensorKind; 2] = [
             c.distance_sensors
                 .layout()
                 .map(|d| Arc::new(d.grid()) as Arc<dyn Sensor>)
+        },
+    },
+    SensorKind {
+        name: "opponent",
+        label: "opponent radar",
+        cppn_output: OPPONENT_OUTPUT,
+        // The maze radar's four slices.
+        reference_len: || 4,
+        build: |c| {
+            c.opponent_sensors
+                .radar()
+                .map(|r| Arc::new(r) as Arc<dyn Sensor>)
         },
     },
 ];
@@ -179,10 +191,30 @@ mod tests {
     fn every_kind_builds_the_sensor_it_names() {
         let mut config = Config::default();
         config.distance_sensors.rays = 3;
+        config.opponent_sensors.slices = 4;
         for kind in &SENSORS {
             let sheet = kind.sheet(&config).unwrap();
             assert_eq!(sheet.name(), kind.name);
             assert_eq!(sheet.cppn_output, kind.cppn_output);
         }
+    }
+
+    #[test]
+    fn the_opponent_radar_is_a_sheet_of_its_own_output() {
+        let mut config = Config::default();
+        assert_eq!(sensor_sheets(&config).len(), 1, "off by default");
+        config.opponent_sensors.slices = 6;
+        let sheets = sensor_sheets(&config);
+        let radar = &sheets[1];
+        assert_eq!((radar.name(), radar.len()), ("opponent", 6));
+        assert_eq!(radar.cppn_output, OPPONENT_OUTPUT);
+        assert!(radar.nodes().iter().all(|n| n.rho == 1.0));
+        assert_eq!(crate::controller::substrate::cppn_outputs(&sheets), 5);
+        // A driving config may switch it on; a bad range is refused by key.
+        config.experiment.steps = 20;
+        crate::tasks::check(&config).unwrap();
+        config.opponent_sensors.range = -1.0;
+        let err = crate::tasks::check(&config).unwrap_err().to_string();
+        assert!(err.contains("opponent_sensors.range"), "{err}");
     }
 }

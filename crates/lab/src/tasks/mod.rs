@@ -12,11 +12,13 @@
 pub mod driving;
 pub mod maps;
 pub mod maze;
+pub mod predator_prey;
 mod target;
 
 use std::any::Any;
 use std::fmt;
 use std::path::Path;
+use std::sync::atomic::AtomicBool;
 
 use vivae_neat::driver::{Evaluation, Task};
 use vivae_neat::{Genome, GenomeSpec};
@@ -30,7 +32,7 @@ pub use target::TargetProgress;
 
 /// Every task a run can evolve for; `experiment.task` names one. A new task
 /// is a folder here and one line in this list.
-pub static TASKS: [&TaskEntry; 2] = [&driving::TASK, &maze::TASK];
+pub static TASKS: [&TaskEntry; 3] = [&driving::TASK, &maze::TASK, &predator_prey::TASK];
 
 /// How a task is built from a config and its maps.
 pub type BuildTask = fn(&Config, &[TrainingMap]) -> Result<Box<dyn RunTask>>;
@@ -50,6 +52,37 @@ pub struct TaskEntry {
     pub generation_columns: &'static str,
     /// Builds the task of `config` on `maps` (from [`maps::load`]).
     pub build: BuildTask,
+    /// For a task that runs on a driver of its own (two populations) rather
+    /// than [`crate::run::Run`]: that driver. `None` for one population.
+    pub own_driver: Option<OwnDriver>,
+}
+
+/// What a running task's own driver tells the program: lines for a person
+/// (the header, a line per generation, the closing lines) and whether the
+/// user asked it to stop.
+pub struct Session<'a> {
+    /// Set when the user asks the run to stop after the generation.
+    pub interrupted: &'a AtomicBool,
+    /// Says a line to a person (the program prints it on stderr unless quiet).
+    pub say: &'a (dyn Fn(&str) + Sync),
+}
+
+/// The driver of a task that runs on its own: it creates, resumes and runs
+/// its run directories and returns the run's machine-readable summary line.
+#[derive(Debug, Clone, Copy)]
+pub struct OwnDriver {
+    /// Creates a run of `config` in `dir` (replacing a run there with
+    /// `force`) and runs it to its end or an interruption.
+    pub evolve:
+        fn(dir: &Path, config: Config, force: bool, session: &Session<'_>) -> Result<String>,
+    /// Resumes the run in `dir`, to `generations` generations in all when given.
+    pub resume: fn(dir: &Path, generations: Option<u32>, session: &Session<'_>) -> Result<String>,
+}
+
+/// The driver of the run in `dir`, when its task (in its `config.toml`) runs on its own.
+pub fn own_driver_of_run(dir: &Path) -> Option<OwnDriver> {
+    let text = std::fs::read_to_string(dir.join(crate::rundir::files::CONFIG)).ok()?;
+    entry(task_of_text(&text)?.name()).ok()?.own_driver
 }
 
 impl fmt::Debug for TaskEntry {
@@ -119,7 +152,7 @@ pub fn config_from_toml(text: &str) -> std::result::Result<Config, ConfigError> 
 }
 
 /// Reads a config file with its task's defaults and checks it; relative paths in it (scenario, initial
-/// population) become relative to the file's folder.
+/// population) become relative to the file's folder (a bare shipped name with no such file there stays shipped).
 pub fn read_config(path: &Path) -> Result<Config> {
     let text = read_text(path)?;
     let mut config = config_from_toml(&text).map_err(|error| Error::Config {
@@ -127,13 +160,13 @@ pub fn read_config(path: &Path) -> Result<Config> {
         error,
     })?;
     let base = path.parent().unwrap_or(Path::new(""));
-    for p in [
-        &mut config.experiment.scenario,
-        &mut config.experiment.init_population,
-    ] {
-        if !p.is_empty() && Path::new(p.as_str()).is_relative() {
-            *p = base.join(&*p).to_string_lossy().into_owned();
-        }
+    // A bare shipped name (a task's default arena) with no such file there stays shipped.
+    if !config.experiment.scenario.is_empty() {
+        config.experiment.scenario = resolve_map(base, &config.experiment.scenario);
+    }
+    let p = &mut config.experiment.init_population;
+    if !p.is_empty() && Path::new(p.as_str()).is_relative() {
+        *p = base.join(&*p).to_string_lossy().into_owned();
     }
     for p in &mut config.experiment.scenarios {
         *p = resolve_map(base, p);

@@ -459,6 +459,7 @@ impl<'a> Loader<'a> {
             }
             Class::Robot => {
                 let (pos, heading) = self.pose(n, &shapes, bbox);
+                let team = self.team_of(n, owner)?;
                 self.add_robot(
                     n,
                     RobotStart {
@@ -467,6 +468,7 @@ impl<'a> Loader<'a> {
                         pos,
                         heading,
                         route: None,
+                        team,
                     },
                 )?;
             }
@@ -623,6 +625,38 @@ impl<'a> Loader<'a> {
                     value: v.to_string(),
                 }),
             },
+        }
+    }
+
+    /// A robot's team: `data-team` on the element or its labelled group
+    /// (letters, digits, `-` and `_`), or empty for a robot of no team.
+    fn team_of(
+        &self,
+        n: roxmltree::Node<'a, 'a>,
+        owner: roxmltree::Node<'a, 'a>,
+    ) -> Result<String, ScenarioError> {
+        let attr = n
+            .attribute("data-team")
+            .map(|v| (n, v))
+            .or_else(|| owner.attribute("data-team").map(|v| (owner, v)));
+        let Some((e, v)) = attr else {
+            return Ok(String::new());
+        };
+        let team = v.trim();
+        let ok = !team.is_empty()
+            && team.len() <= 64
+            && team
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_');
+        if ok {
+            Ok(team.to_string())
+        } else {
+            Err(ScenarioError::Attribute {
+                source_name: self.source.to_string(),
+                id: self.name_of(e),
+                attribute: "data-team".into(),
+                value: v.to_string(),
+            })
         }
     }
 }

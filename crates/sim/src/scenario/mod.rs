@@ -153,6 +153,9 @@ pub struct RobotStart {
     /// Index of its route in [`Scenario::routes`] (`data-route`): the
     /// direction its progress is measured along.
     pub route: Option<usize>,
+    /// Its team (`data-team`), empty for none: robots of different teams
+    /// touching is a [`crate::TeamContact`].
+    pub team: String,
 }
 
 /// A loaded scenario: the arena and everything in it, plus the surface raster.

@@ -26,6 +26,9 @@ pub struct RobotSummary {
     pub y: f64,
     /// Heading in degrees in [0, 360), 0 = up, clockwise.
     pub heading_deg: f64,
+    /// Its team (`data-team`); absent for a robot of no team.
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub team: String,
 }
 
 /// What `vivae scenario info` prints: a serialisable overview of a scenario.
@@ -65,6 +68,7 @@ impl Scenario {
                     x: r.pos.x,
                     y: r.pos.y,
                     heading_deg: heading_degrees(r.heading),
+                    team: r.team.clone(),
                 })
                 .collect(),
             surfaces: SurfaceKind::ALL

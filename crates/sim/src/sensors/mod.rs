@@ -6,6 +6,7 @@
 
 mod distance;
 mod goal_radar;
+mod opponent;
 mod surface;
 
 use std::fmt;
@@ -16,6 +17,7 @@ use crate::world::World;
 
 pub use distance::{DistanceGrid, DistanceSensors};
 pub use goal_radar::GoalRadar;
+pub use opponent::OpponentRadar;
 pub use surface::{SurfaceGrid, SurfaceSensors};
 
 /// A sensor every robot carries: a fixed number of readings, each from a

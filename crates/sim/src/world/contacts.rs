@@ -4,7 +4,7 @@ use glam::DVec2;
 
 use crate::geometry::{Aabb, Shape};
 use crate::scenario::Obstacle;
-use crate::world::{MovableState, PuckState, Robot, World};
+use crate::world::{MovableState, PuckState, Robot, TeamContact, World};
 
 /// Push needed to move a disc (centre `c`, radius `r`) out of `shape` seen
 /// from offset `off`, or `None` when they do not overlap.
@@ -108,15 +108,17 @@ impl World {
             robots,
             pucks,
             movables,
+            team_contacts,
             ..
         } = self;
+        team_contacts.clear();
         let sc = &statics.scenario;
         let arena = (sc.width(), sc.height());
         let (rr, rm) = (params.robot_radius, params.robot_mass);
         let (loose, fixed) = (&sc.movable_obstacles[..], &sc.fixed_obstacles[..]);
         for _ in 0..params.collision_iterations {
             // `|=` on bool does not short-circuit: every pass runs in order.
-            let mut any = robots_apart(robots, rr);
+            let mut any = robots_apart(robots, rr, &statics.teams, team_contacts);
             any |= robots_push_loose_bodies(robots, pucks, movables, loose, rr, rm);
             any |= pucks_apart(pucks, movables, loose);
             any |= movables_apart(movables, loose);
@@ -135,8 +137,15 @@ impl World {
     }
 }
 
-/// Robot–robot contacts (equal masses); whether any robot moved.
-fn robots_apart(robots: &mut [Robot], rr: f64) -> bool {
+/// Robot–robot contacts (equal masses); whether any robot moved. A contact
+/// between robots of different teams (`teams`: 0 = none) is added to
+/// `contacts` once per step.
+fn robots_apart(
+    robots: &mut [Robot],
+    rr: f64,
+    teams: &[u16],
+    contacts: &mut Vec<TeamContact>,
+) -> bool {
     let mut any = false;
     let n = robots.len();
     for i in 0..n {
@@ -144,6 +153,15 @@ fn robots_apart(robots: &mut [Robot], rr: f64) -> bool {
             let d = robots[j].pos - robots[i].pos;
             let dist2 = d.length_squared();
             if dist2 < 4.0 * rr * rr {
+                // Scripted robots (traffic) follow the learners and have no team.
+                let team = |k: usize| teams.get(k).copied().unwrap_or(0);
+                let (ti, tj) = (team(i), team(j));
+                if ti != tj && ti != 0 && tj != 0 {
+                    let c = TeamContact { a: i, b: j };
+                    if !contacts.contains(&c) {
+                        contacts.push(c);
+                    }
+                }
                 let dist = dist2.sqrt();
                 let nrm = if dist > 1e-12 { d / dist } else { DVec2::X };
                 let push = nrm * ((2.0 * rr - dist) * 0.5);

@@ -46,6 +46,16 @@ impl Robot {
     }
 }
 
+/// Two robots of different teams that touched during a step (a catch, for
+/// a predator–prey task): robot indices in scenario order, `a < b`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TeamContact {
+    /// The first robot.
+    pub a: usize,
+    /// The second robot.
+    pub b: usize,
+}
+
 /// A movable puck's state.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PuckState {
@@ -104,6 +114,9 @@ pub(crate) struct Statics {
     pub(crate) lanes: bool,
     /// Indexed by material id (`scenario.materials()`).
     pub(crate) here: Vec<SurfaceHere>,
+    /// Each robot's team as a number: 0 for none, else 1 + the index of its
+    /// name among the scenario's teams in order of first appearance.
+    pub(crate) teams: Vec<u16>,
 }
 
 /// A running simulation: `Clone` is cheap-ish (shares the scenario and raster).
@@ -125,6 +138,8 @@ pub struct World {
     prev_movables: Vec<DVec2>,
     trajectories: Option<Vec<Vec<DVec2>>>,
     steps: u64,
+    /// Contacts between teams in the last step.
+    pub(crate) team_contacts: Vec<TeamContact>,
 }
 
 /// The per-material surface table (`scenario.materials()` order): friction
@@ -178,6 +193,7 @@ impl Statics {
             few_materials: table.len() <= 16,
             cell_pow2: is_normal_pow2(scenario.raster().cell)
                 && is_normal_pow2(1.0 / scenario.raster().cell),
+            teams: team_numbers(scenario),
             scenario: scenario.clone(),
             here: table,
         }
@@ -237,6 +253,7 @@ impl World {
             movables,
             trajectories: None,
             steps: 0,
+            team_contacts: Vec::new(),
         })
     }
 
@@ -276,6 +293,30 @@ impl World {
             }
             None => false,
         }
+    }
+
+    /// Robot `i`'s team (`data-team`), empty for none or no such robot.
+    pub fn team(&self, i: usize) -> &str {
+        self.scenario()
+            .robots
+            .get(i)
+            .map_or("", |r| r.team.as_str())
+    }
+
+    /// Whether robots `i` and `j` are of different teams (both having one).
+    #[inline]
+    pub fn opponents(&self, i: usize, j: usize) -> bool {
+        let t = &self.statics.teams;
+        match (t.get(i), t.get(j)) {
+            (Some(&a), Some(&b)) => a != b && a != 0 && b != 0,
+            _ => false,
+        }
+    }
+
+    /// The contacts between robots of different teams during the last step
+    /// (empty before the first step, and when `collision_iterations` is 0).
+    pub fn team_contacts(&self) -> &[TeamContact] {
+        &self.team_contacts
     }
 
     /// Pucks in scenario order.
@@ -407,6 +448,23 @@ impl World {
         }
         self.steps += 1;
     }
+}
+
+/// Each robot's team number (see [`Statics::teams`]).
+fn team_numbers(scenario: &Scenario) -> Vec<u16> {
+    let mut names: Vec<&str> = Vec::new();
+    (scenario.robots.iter())
+        .map(|r| {
+            if r.team.is_empty() {
+                return 0;
+            }
+            let k = names.iter().position(|n| *n == r.team).unwrap_or_else(|| {
+                names.push(&r.team);
+                names.len() - 1
+            });
+            u16::try_from(k + 1).unwrap_or(u16::MAX)
+        })
+        .collect()
 }
 
 /// Whether `x` is a power of two with a normal exponent (a positive, normal

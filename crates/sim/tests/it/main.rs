@@ -10,3 +10,4 @@ mod raster_and_contacts_properties;
 mod scenario_features_load;
 mod sensors_see_roads_and_walls;
 mod snapshot_reloads_same_objects_and_poses;
+mod teams_load_and_report_contacts;

@@ -37,6 +37,19 @@ pub fn run(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<Ex
     let task = named.as_ref();
     let mut config = base_config(args.config.as_deref(), task, "--task ")?;
     apply_overrides(&mut config, &args.overrides)?;
+    if let Some(driver) = vivae_lab::tasks::entry_of(&config)
+        .ok()
+        .and_then(|e| e.own_driver)
+    {
+        let (dir, force) = (args.new_run.dir(), args.new_run.force);
+        let quiet = args.quiet.quiet;
+        let run =
+            || super::own_driver::evolve(driver, &dir, config.clone(), force, quiet, interrupted);
+        return match &args.config {
+            Some(path) => run().with_context(|| path.display().to_string()),
+            None => run(),
+        };
+    }
     // Without a config file a named task starts from its own defaults,
     // which it may fit to its scenario (e.g. a grid archive fitted to its arena).
     let task_defaults = task.is_some() && args.config.is_none();

@@ -17,6 +17,7 @@ pub mod evolve;
 pub mod export;
 pub mod mpi_job;
 pub mod overrides;
+pub mod own_driver;
 pub mod replay;
 pub mod report;
 pub mod reproduce;

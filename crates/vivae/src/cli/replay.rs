@@ -69,6 +69,7 @@ impl ReplayArgs {
 
 /// Runs `vivae replay`.
 pub fn run(args: ReplayArgs) -> anyhow::Result<ExitCode> {
+    super::report::refuse_own_driver(&args.source, "replay")?;
     let (mut champion, mut config, base) = rundir::load_genome_source(&args.source)?;
     let member = args.member.member();
     if let Some(member) = member {

@@ -16,10 +16,24 @@ pub fn run(run_dir: &Path) -> anyhow::Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
+/// Refuses, in one line, `command` on a run of a task on its own driver
+/// (two co-evolved populations, whose files are not a one-population run's).
+pub fn refuse_own_driver(path: &Path, command: &str) -> anyhow::Result<()> {
+    if path.is_dir() && vivae_lab::tasks::own_driver_of_run(path).is_some() {
+        return Err(bad_input(format!(
+            "{}: a run of two co-evolved populations: `vivae {command}` shows one-population runs only; its records are hunters.csv, prey.csv, ciao.csv and champions.json",
+            path.display()
+        ))
+        .into());
+    }
+    Ok(())
+}
+
 /// Refuses, in one line, `command` on a run of a task other than driving (a
 /// run directory or a genome file recording its config): the command draws
 /// driving runs only.
 pub fn refuse_other_task(path: &Path, command: &str) -> anyhow::Result<()> {
+    refuse_own_driver(path, command)?;
     let config = if path.is_dir() {
         read_config(&path.join(files::CONFIG)).ok()
     } else {

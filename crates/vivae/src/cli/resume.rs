@@ -33,6 +33,10 @@ pub struct ResumeArgs {
 /// Runs `vivae resume`.
 pub fn run(args: ResumeArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode> {
     let quiet = args.quiet.quiet;
+    if let Some(driver) = vivae_lab::tasks::own_driver_of_run(&args.run_dir) {
+        let generations = args.generations.generations;
+        return super::own_driver::resume(driver, &args.run_dir, generations, quiet, interrupted);
+    }
     if launched_by_mpi() {
         // Every rank reads the run (rank 0 writes to it only after the handshake).
         let prepared = (|| -> anyhow::Result<_> {

@@ -23,6 +23,7 @@ pub static TASK: TaskEntry = TaskEntry {
     metric_names: &crate::config::strategy::METRICS,
     generation_columns: "",
     build,
+    own_driver: None,
 };
 
 /// The training of `config` on `maps`.

@@ -32,6 +32,7 @@ pub static TASK: TaskEntry = TaskEntry {
     metric_names: &METRICS,
     generation_columns: COLUMNS,
     build,
+    own_driver: None,
 };
 
 /// Side of MAP-Elites' grid cells over the maze, px (the example's).

@@ -1,0 +1,58 @@
+//! The `[coevolution]` section: how a two-population run (the predator–prey
+//! task) picks the opponents each population is evaluated against.
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// Whom each population's genomes meet in a generation.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "kebab-case")]
+pub enum Opponents {
+    /// The other population's best of the previous generation (ViVAE's
+    /// `PredatorKorist`; its first genome in generation 0).
+    #[default]
+    Best,
+    /// A sample (with replacement) of the other population's hall of fame,
+    /// its best of every earlier generation (Rosin & Belew 1997).
+    HallOfFame,
+}
+
+impl Opponents {
+    /// The name in the config.
+    pub fn name(self) -> &'static str {
+        match self {
+            Opponents::Best => "best",
+            Opponents::HallOfFame => "hall-of-fame",
+        }
+    }
+}
+
+/// Co-evolution of two populations.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct CoevolutionConfig {
+    /// Whom each population's genomes are evaluated against: "best" (the
+    /// other population's best of the previous generation) or
+    /// "hall-of-fame" (a sample of its best of every earlier generation);
+    /// a genome's fitness is its mean over the opponents.
+    pub opponents: Opponents,
+    /// Opponents drawn from the hall of fame per generation (with
+    /// "hall-of-fame"); the same sample for every genome of a population.
+    pub sample: usize,
+}
+
+impl Default for CoevolutionConfig {
+    fn default() -> Self {
+        CoevolutionConfig {
+            opponents: Opponents::Best,
+            sample: 5,
+        }
+    }
+}
+
+impl CoevolutionConfig {
+    /// Whether this is the default: a config written without the section.
+    pub fn is_default(&self) -> bool {
+        *self == CoevolutionConfig::default()
+    }
+}

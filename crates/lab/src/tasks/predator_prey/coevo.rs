@@ -1,0 +1,346 @@
+//! Two NEAT populations co-evolved: hunters and prey, each genome evaluated
+//! against opponents from the other population, and the records of
+//! co-evolutionary progress (the hall of fame and the CIAO matrix).
+//!
+//! A generation: each population's opponents are picked from the other's
+//! hall of fame *before* the generation (so both sides are evaluated
+//! against the past, in either order, and the result does not depend on
+//! which goes first); every genome plays one episode against each opponent
+//! and its fitness is the mean; each side's best joins its hall of fame;
+//! the new hunter champion plays every prey champion so far and the new
+//! prey champion every earlier hunter champion (the CIAO matrix's new row
+//! and column, Cliff & Miller 1995).
+
+use serde::{Deserialize, Serialize};
+use vivae_neat::driver::Strategy;
+use vivae_neat::{GenerationStats, Genome, NeatError, Population, eval_seed};
+
+use crate::config::Config;
+use crate::config::coevolution::Opponents;
+use crate::tasks::predator_prey::{Arena, Outcome, Side};
+
+/// One cell of the CIAO matrix: the best hunter of one generation against
+/// the best prey of another.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct CiaoCell {
+    /// The hunter's generation.
+    pub hunter: u32,
+    /// The prey's generation.
+    pub prey: u32,
+    /// The hunter's fitness in the episode (the prey's is 2 minus it).
+    pub hunter_fitness: f64,
+    /// Whether the hunter caught the prey.
+    pub caught: bool,
+}
+
+/// What one generation of one side gave.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SideRecord {
+    /// Its statistics (best and mean fitness, species, sizes).
+    pub stats: GenerationStats,
+    /// The generations of the opponents it met (the other side's hall of fame).
+    pub opponents: Vec<u32>,
+    /// Share of its episodes that ended in a catch.
+    pub catch_rate: f64,
+}
+
+/// What one generation gave.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GenerationRecord {
+    /// Its number (0 = the first).
+    pub generation: u32,
+    /// The hunters'.
+    pub hunters: SideRecord,
+    /// The prey's.
+    pub prey: SideRecord,
+    /// The CIAO matrix's new cells.
+    pub ciao: Vec<CiaoCell>,
+}
+
+/// The complete state of a co-evolution: serialisable, so that a restored
+/// one continues bit-identically.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Coevolution {
+    /// The hunter population.
+    pub hunters: Population,
+    /// The prey population.
+    pub prey: Population,
+    /// The best hunter of every generation done (the hunters' hall of fame).
+    pub hall_hunters: Vec<Genome>,
+    /// The best prey of every generation done.
+    pub hall_prey: Vec<Genome>,
+    /// The run's seed (the hall-of-fame samples are drawn from it).
+    pub seed: u64,
+}
+
+impl Coevolution {
+    /// Two fresh populations of `config`'s NEAT settings: the hunters from
+    /// the run's seed, the prey from a seed derived from it.
+    pub fn new(config: &Config) -> Result<Coevolution, NeatError> {
+        let seed = config.experiment.seed;
+        let spec = Arena::spec();
+        Ok(Coevolution {
+            hunters: Population::new(config.neat.clone(), spec.clone(), seed)?,
+            prey: Population::new(config.neat.clone(), spec, eval_seed(seed, u32::MAX, 1))?,
+            hall_hunters: Vec::new(),
+            hall_prey: Vec::new(),
+            seed,
+        })
+    }
+
+    /// Generations done.
+    pub fn done(&self) -> u32 {
+        self.hall_hunters.len() as u32
+    }
+
+    /// The hall of fame of `side`.
+    pub fn hall(&self, side: Side) -> &[Genome] {
+        match side {
+            Side::Hunter => &self.hall_hunters,
+            Side::Prey => &self.hall_prey,
+        }
+    }
+
+    /// The generations of the opponents `side` meets in generation `g`:
+    /// indices into the other side's hall of fame (empty in generation 0,
+    /// when it meets the other population's first genome).
+    pub fn opponents(&self, side: Side, g: u32, how: Opponents, sample: usize) -> Vec<u32> {
+        let n = self.hall(side.other()).len() as u64;
+        if n == 0 {
+            return Vec::new();
+        }
+        match how {
+            Opponents::Best => vec![(n - 1) as u32],
+            Opponents::HallOfFame => {
+                let stream = match side {
+                    Side::Hunter => 0,
+                    Side::Prey => 1 << 20,
+                };
+                (0..sample.max(1))
+                    .map(|k| (eval_seed(self.seed, g, stream + k) % n) as u32)
+                    .collect()
+            }
+        }
+    }
+
+    /// Plays generation `done()`: breeds both populations (after the first),
+    /// evaluates each against the other's opponents in parallel, and adds
+    /// both champions to the halls of fame.
+    pub fn generation(
+        &mut self,
+        arena: &Arena,
+        config: &Config,
+    ) -> Result<GenerationRecord, NeatError> {
+        let g = self.done();
+        let how = config.coevolution.opponents;
+        let sample = config.coevolution.sample;
+        self.hunters.prepare();
+        self.prey.prepare();
+        let picks = [Side::Hunter, Side::Prey].map(|s| self.opponents(s, g, how, sample));
+        let genomes_of = |side: Side, picks: &[u32]| -> Vec<Genome> {
+            if picks.is_empty() {
+                let first = match side {
+                    Side::Hunter => &self.prey.genomes()[0],
+                    Side::Prey => &self.hunters.genomes()[0],
+                };
+                vec![first.clone()]
+            } else {
+                let hall = self.hall(side.other());
+                picks.iter().map(|&i| hall[i as usize].clone()).collect()
+            }
+        };
+        let against = [
+            genomes_of(Side::Hunter, &picks[0]),
+            genomes_of(Side::Prey, &picks[1]),
+        ];
+        let mut catches = [0usize; 2];
+        for (k, side) in [Side::Hunter, Side::Prey].into_iter().enumerate() {
+            let opponents = &against[k];
+            let pop = match side {
+                Side::Hunter => &mut self.hunters,
+                Side::Prey => &mut self.prey,
+            };
+            let results: Vec<(f64, usize)> = {
+                use rayon::prelude::*;
+                pop.genomes()
+                    .par_iter()
+                    .map(|genome| score(arena, side, genome, opponents))
+                    .collect()
+            };
+            catches[k] = results.iter().map(|r| r.1).sum();
+            pop.set_fitnesses(results.iter().map(|r| r.0).collect())?;
+        }
+        let champion = |pop: &Population| pop.champion().map(|(g, _)| g.clone());
+        let (h, p) = (champion(&self.hunters), champion(&self.prey));
+        let (Some(h), Some(p)) = (h, p) else {
+            return Err(NeatError::Checkpoint("an empty population".into()));
+        };
+        self.hall_hunters.push(h);
+        self.hall_prey.push(p);
+        let record = |pop: &Population, picks: &[u32], caught: usize, games: usize| SideRecord {
+            stats: pop.stats(),
+            opponents: picks.to_vec(),
+            catch_rate: caught as f64 / games.max(1) as f64,
+        };
+        let games = |k: usize, pop: &Population| against[k].len() * pop.genomes().len();
+        Ok(GenerationRecord {
+            generation: g,
+            hunters: record(
+                &self.hunters,
+                &picks[0],
+                catches[0],
+                games(0, &self.hunters),
+            ),
+            prey: record(&self.prey, &picks[1], catches[1], games(1, &self.prey)),
+            ciao: self.ciao_of(arena, g),
+        })
+    }
+
+    /// The CIAO matrix's cells new in generation `g`: its hunter champion
+    /// against every prey champion up to `g`, and every earlier hunter
+    /// champion against its prey champion.
+    pub fn ciao_of(&self, arena: &Arena, g: u32) -> Vec<CiaoCell> {
+        use rayon::prelude::*;
+        let pairs: Vec<(u32, u32)> = (0..=g)
+            .map(|i| (g, i))
+            .chain((0..g).map(|i| (i, g)))
+            .collect();
+        pairs
+            .par_iter()
+            .map(|&(h, p)| {
+                let out =
+                    arena.play_genomes(&self.hall_hunters[h as usize], &self.hall_prey[p as usize]);
+                CiaoCell {
+                    hunter: h,
+                    prey: p,
+                    hunter_fitness: out.hunter_fitness(),
+                    caught: out.caught,
+                }
+            })
+            .collect()
+    }
+}
+
+/// What `champions.json` holds: each side's master-tournament winner.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct Champions {
+    /// Generations done.
+    pub generations: u32,
+    /// The hunter champion.
+    pub hunter: ChampionEntry,
+    /// The prey champion.
+    pub prey: ChampionEntry,
+}
+
+/// One side's champion: the generation whose best has the highest mean
+/// fitness against every champion of the other side (Floreano & Nolfi's
+/// master tournament).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct ChampionEntry {
+    /// Its generation.
+    pub generation: u32,
+    /// Its mean fitness in the master tournament.
+    pub master_fitness: f64,
+    /// The genome.
+    pub genome: Genome,
+}
+
+/// `genome` of `side` against each of `opponents`: its mean fitness and its catches.
+fn score(arena: &Arena, side: Side, genome: &Genome, opponents: &[Genome]) -> (f64, usize) {
+    let mut sum = 0.0;
+    let mut caught = 0;
+    for o in opponents {
+        let out: Outcome = match side {
+            Side::Hunter => arena.play_genomes(genome, o),
+            Side::Prey => arena.play_genomes(o, genome),
+        };
+        sum += out.fitness(side);
+        caught += usize::from(out.caught);
+    }
+    (sum / opponents.len().max(1) as f64, caught)
+}
+
+/// The master tournament (Floreano & Nolfi 1997) from a full CIAO matrix
+/// of `n` generations: each generation's champion's mean fitness against
+/// every champion of the other side, for `side`.
+pub fn master_tournament(cells: &[CiaoCell], n: u32, side: Side) -> Vec<f64> {
+    let mut sum = vec![0.0; n as usize];
+    for c in cells {
+        let (g, f) = match side {
+            Side::Hunter => (c.hunter, c.hunter_fitness),
+            Side::Prey => (c.prey, 2.0 - c.hunter_fitness),
+        };
+        if let Some(s) = sum.get_mut(g as usize) {
+            *s += f;
+        }
+    }
+    sum.iter().map(|s| s / f64::from(n.max(1))).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use vivae_sim::{LoadOptions, Scenario};
+
+    fn setup(how: Opponents) -> (Arena, Config) {
+        let mut config = Config::predator_prey();
+        config.neat.population_size = 12;
+        config.experiment.steps = 60;
+        config.coevolution.opponents = how;
+        config.coevolution.sample = 4;
+        let svg = crate::shipped::find("predator-prey").unwrap().svg;
+        let sc = Scenario::from_svg(svg, "pp.svg", &LoadOptions::default()).unwrap();
+        let arena = Arena::new(&sc, &config.physics, config.experiment.steps).unwrap();
+        (arena, config)
+    }
+
+    #[test]
+    fn opponents_are_the_last_champion_or_a_sample_of_the_hall() {
+        for how in [Opponents::Best, Opponents::HallOfFame] {
+            let (arena, config) = setup(how);
+            let mut co = Coevolution::new(&config).unwrap();
+            for g in 0..4 {
+                let r = co.generation(&arena, &config).unwrap();
+                assert_eq!(r.generation, g);
+                let want = match (g, how) {
+                    (0, _) => 0,
+                    (_, Opponents::Best) => 1,
+                    (_, Opponents::HallOfFame) => 4,
+                };
+                assert_eq!(r.hunters.opponents.len(), want, "{how:?} {g}");
+                assert!(r.prey.opponents.iter().all(|&o| o < g));
+                if how == Opponents::Best && g > 0 {
+                    assert_eq!(r.hunters.opponents, [g - 1]);
+                }
+                // The CIAO matrix grows by a row and a column.
+                assert_eq!(r.ciao.len() as u32, 2 * g + 1);
+            }
+            assert_eq!((co.done(), co.hall_prey.len()), (4, 4));
+            // The two sides' samples are drawn from different streams.
+            if how == Opponents::HallOfFame {
+                let h = co.opponents(Side::Hunter, 9, how, 8);
+                let p = co.opponents(Side::Prey, 9, how, 8);
+                assert_ne!(h, p);
+            }
+        }
+    }
+
+    #[test]
+    fn master_tournament_averages_each_champion_over_the_other_side() {
+        let cell = |hunter, prey, f| CiaoCell {
+            hunter,
+            prey,
+            hunter_fitness: f,
+            caught: f > 1.0,
+        };
+        let cells = [
+            cell(0, 0, 0.5),
+            cell(0, 1, 0.25),
+            cell(1, 0, 1.5),
+            cell(1, 1, 1.0),
+        ];
+        assert_eq!(master_tournament(&cells, 2, Side::Hunter), [0.375, 1.25]);
+        assert_eq!(master_tournament(&cells, 2, Side::Prey), [1.0, 1.375]);
+    }
+}

@@ -1,0 +1,101 @@
+//! The predator–prey task's config: its defaults and the keys it cannot honour.
+
+use vivae_neat::NeatParams;
+
+use crate::config::strategy::StrategyConfig;
+use crate::config::{Config, DistanceConfig, OpponentConfig, SubstrateConfig, TaskName};
+use crate::tasks::maze::MazeTask;
+use crate::tasks::predator_prey::{NAME, STEPS};
+
+impl Config {
+    /// The config of a predator–prey run: the open arena, 500 steps, the
+    /// maze's robot for both sides, plain NEAT with populations of 100,
+    /// 50 generations, opponents = the other side's previous best.
+    pub fn predator_prey() -> Config {
+        let mut c = Config::default();
+        c.experiment.task = TaskName(NAME.into());
+        c.experiment.scenario = "predator-prey".into();
+        c.experiment.steps = STEPS;
+        c.experiment.robots = 2;
+        c.experiment.generations = 50;
+        c.physics = MazeTask::physics();
+        c.neat = NeatParams {
+            population_size: 100,
+            ..NeatParams::plain_neat()
+        };
+        // The driving default selects on a metric this task has not.
+        c.strategy.nsga2.objectives = vec!["fitness".into()];
+        c
+    }
+}
+
+/// With `experiment.task = "predator-prey"`: refuses the keys such a run
+/// cannot honour; the message names the key.
+pub(super) fn validate(c: &Config) -> Result<(), String> {
+    let e = &c.experiment;
+    let refuse = |key: &str, why: &str| {
+        Err(format!(
+            "{key}: {why} (experiment.task = \"predator-prey\")"
+        ))
+    };
+    if !e.scenarios.is_empty() {
+        return refuse(
+            "experiment.scenarios",
+            "a predator-prey run has one arena: name it with experiment.scenario",
+        );
+    }
+    if e.scenario.is_empty() {
+        return refuse(
+            "experiment.scenario",
+            "name the arena: predator-prey, predator-prey-obstacles or an SVG file with a hunter and a prey",
+        );
+    }
+    if e.robots != 2 {
+        return refuse(
+            &format!("experiment.robots = {}", e.robots),
+            "the arena has a hunter and a prey: use 2",
+        );
+    }
+    if !e.init_population.is_empty() {
+        return refuse(
+            "experiment.init_population",
+            "both populations start from minimal networks",
+        );
+    }
+    if e.steps == 0 {
+        return refuse("experiment.steps = 0", "an episode needs at least one step");
+    }
+    if c.coevolution.sample == 0 {
+        return refuse("coevolution.sample = 0", "draw at least one opponent");
+    }
+    let unused = [
+        ("substrate", c.substrate == SubstrateConfig::default()),
+        (
+            "surface_sensors",
+            c.surface_sensors == vivae_sim::SurfaceSensors::default(),
+        ),
+        (
+            "distance_sensors",
+            c.distance_sensors == DistanceConfig::default(),
+        ),
+        (
+            "opponent_sensors",
+            c.opponent_sensors == OpponentConfig::default(),
+        ),
+        (
+            "hyperneat",
+            c.hyperneat == vivae_neat::hyperneat::HyperParams::default(),
+        ),
+        (
+            "strategy",
+            c.strategy.kind == StrategyConfig::default().kind,
+        ),
+    ];
+    match unused.iter().find(|(_, default)| !default) {
+        Some((section, _)) => refuse(
+            &format!("[{section}]"),
+            "both sides are plain NEAT networks with 4 opponent radar slices, 6 rangefinders and a bias, evolved by NEAT: leave this section at its defaults",
+        ),
+        None => Ok(()),
+    }
+}

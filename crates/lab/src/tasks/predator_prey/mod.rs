@@ -1,0 +1,353 @@
+//! Predators and prey: two populations of plain NEAT networks co-evolved in
+//! one arena, as in ViVAE's later predator–prey experiment
+//! (`PredatorKorist`): a hunter population and a prey population, each
+//! genome evaluated against opponents from the other population (its best
+//! of the previous generation, or a sample of its hall of fame:
+//! `[coevolution]`).
+//!
+//! The arena is a scenario with one robot of team `hunter` and one of team
+//! `prey` (`data-team`, docs/scenario-format.md); the shipped ones are
+//! `scenarios/predator-prey.svg` and `predator-prey-obstacles.svg`. Both
+//! robots are the maze's robot ([`crate::tasks::maze::MazeTask::physics`]):
+//! the same speed, so a hunter catches a prey only by cutting it off. Each
+//! carries the opponent radar (four pie slices reading `1 − d/range`,
+//! [`OpponentRadar`]), the maze's six rangefinders and a bias; its outputs
+//! are the maze's turn and forward ([`crate::tasks::maze::wheels`]). An
+//! episode ends when the two touch (a team contact: the catch) or after
+//! `experiment.steps` steps.
+//!
+//! Fitness, with `T` the episode's steps, `t` the step of the catch and
+//! `d̄` the mean hunter–prey distance over the episode as a share of the
+//! arena's diagonal:
+//!
+//! * hunter: `2 − t/T` after a catch (in [1, 2): sooner is better), else
+//!   `1 − d̄` (in [0, 1]: staying close is better than not, and every catch
+//!   beats every miss);
+//! * prey: `2 − hunter` (`t/T` when caught: later is better; `1 + d̄` when
+//!   not: every escape beats every catch, further away is better).
+//!
+//! The game is constant-sum (hunter + prey = 2), so a CIAO matrix of the
+//! hunter's fitness says everything about both sides.
+
+pub mod coevo;
+pub mod config;
+mod present;
+pub mod run;
+
+pub use run::TASK;
+
+use vivae_neat::{Genome, GenomeSpec, Network, RecurrentNetwork};
+use vivae_sim::{
+    DistanceGrid, OpponentRadar, ParamError, PhysicsParams, Scenario, ScenarioError, Sensor, World,
+};
+
+use crate::tasks::maze::{MazeTask, RANGE, wheels};
+
+/// The task's name in `experiment.task` and `--task`.
+pub const NAME: &str = "predator-prey";
+/// The hunters' team name in a scenario.
+pub const HUNTER_TEAM: &str = "hunter";
+/// The prey's team name in a scenario.
+pub const PREY_TEAM: &str = "prey";
+/// Slices of the opponent radar.
+pub const RADAR_SLICES: usize = 4;
+/// Network inputs: 4 opponent radar slices, 6 rangefinders, a bias of 1.
+pub const INPUTS: usize = 11;
+/// Network outputs: turn, forward.
+pub const OUTPUTS: usize = 2;
+/// Steps of one episode by default.
+pub const STEPS: u32 = 500;
+
+/// Why a scenario is not a predator–prey arena.
+#[derive(Debug, thiserror::Error)]
+pub enum ArenaError {
+    /// The SVG did not load.
+    #[error(transparent)]
+    Scenario(#[from] ScenarioError),
+    /// Not two robots, one of each team.
+    #[error(
+        "{source_name}: a predator-prey arena has two robots, one with data-team=\"hunter\" and one with data-team=\"prey\" (found {hunters} and {prey}, {robots} robots in all)"
+    )]
+    Teams {
+        /// The scenario file.
+        source_name: String,
+        /// Hunters found.
+        hunters: usize,
+        /// Prey found.
+        prey: usize,
+        /// Robots in the scenario.
+        robots: usize,
+    },
+    /// A sensor or physics setting out of range.
+    #[error(transparent)]
+    Param(#[from] ParamError),
+}
+
+/// Which side of the game.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Side {
+    /// The hunters.
+    Hunter,
+    /// The prey.
+    Prey,
+}
+
+impl Side {
+    /// `"hunter"` or `"prey"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Side::Hunter => HUNTER_TEAM,
+            Side::Prey => PREY_TEAM,
+        }
+    }
+
+    /// The other side.
+    pub fn other(self) -> Side {
+        match self {
+            Side::Hunter => Side::Prey,
+            Side::Prey => Side::Hunter,
+        }
+    }
+}
+
+/// How one episode ended.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Outcome {
+    /// Whether the hunter caught the prey.
+    pub caught: bool,
+    /// Steps played (the step of the catch, or all of them).
+    pub steps: u32,
+    /// Steps an episode has at most.
+    pub max_steps: u32,
+    /// Mean hunter–prey centre distance over the steps, as a share of the arena's diagonal.
+    pub mean_distance: f64,
+}
+
+impl Outcome {
+    /// The hunter's fitness: `2 − t/T` after a catch, else `1 − d̄`.
+    pub fn hunter_fitness(&self) -> f64 {
+        if self.caught {
+            2.0 - f64::from(self.steps) / f64::from(self.max_steps)
+        } else {
+            (1.0 - self.mean_distance).clamp(0.0, 1.0)
+        }
+    }
+
+    /// The prey's fitness: `2 − hunter` (the game is constant-sum).
+    pub fn prey_fitness(&self) -> f64 {
+        2.0 - self.hunter_fitness()
+    }
+
+    /// The fitness of `side`.
+    pub fn fitness(&self, side: Side) -> f64 {
+        match side {
+            Side::Hunter => self.hunter_fitness(),
+            Side::Prey => self.prey_fitness(),
+        }
+    }
+}
+
+/// The arena: a scenario's walls, its hunter and its prey, and their sensors.
+#[derive(Debug, Clone)]
+pub struct Arena {
+    world: World,
+    hunter: usize,
+    prey: usize,
+    radar: OpponentRadar,
+    rays: DistanceGrid,
+    steps: u32,
+    diagonal: f64,
+}
+
+impl Arena {
+    /// The arena of `scenario` with the robot of `physics`, episodes of `steps` steps.
+    pub fn new(
+        scenario: &Scenario,
+        physics: &PhysicsParams,
+        steps: u32,
+    ) -> Result<Arena, ArenaError> {
+        let of = |team: &str| -> Vec<usize> {
+            (scenario.robots.iter().enumerate())
+                .filter(|(_, r)| r.team == team)
+                .map(|(i, _)| i)
+                .collect()
+        };
+        let (hunters, prey) = (of(HUNTER_TEAM), of(PREY_TEAM));
+        let (&[hunter], &[prey_i], 2) =
+            (hunters.as_slice(), prey.as_slice(), scenario.robots.len())
+        else {
+            return Err(ArenaError::Teams {
+                source_name: scenario.source.clone(),
+                hunters: hunters.len(),
+                prey: prey.len(),
+                robots: scenario.robots.len(),
+            });
+        };
+        let diagonal = scenario.width().hypot(scenario.height());
+        let rim = RANGE - physics.robot_radius;
+        Ok(Arena {
+            world: World::new(scenario, physics)?,
+            hunter,
+            prey: prey_i,
+            radar: OpponentRadar::new(RADAR_SLICES, diagonal)?,
+            rays: DistanceGrid::at_angles(&MazeTask::rangefinder_angles(), rim),
+            steps,
+            diagonal,
+        })
+    }
+
+    /// The genome layout of both populations: [`INPUTS`] inputs, [`OUTPUTS`]
+    /// sigmoid outputs, recurrent links allowed (as the maze's).
+    pub fn spec() -> GenomeSpec {
+        MazeTask::spec()
+    }
+
+    /// Steps of one episode at most.
+    pub fn steps(&self) -> u32 {
+        self.steps
+    }
+
+    /// The world at the start.
+    pub fn world(&self) -> &World {
+        &self.world
+    }
+
+    /// The robot index of `side` in the world.
+    pub fn robot(&self, side: Side) -> usize {
+        match side {
+            Side::Hunter => self.hunter,
+            Side::Prey => self.prey,
+        }
+    }
+
+    /// Reads robot `robot`'s inputs: radar slices, rangefinders, bias.
+    fn read(&self, world: &World, robot: usize, inputs: &mut [f64; INPUTS]) {
+        let (radar, rest) = inputs.split_at_mut(self.radar.len());
+        self.radar.read(world, robot, radar);
+        self.rays.read(world, robot, rest);
+        inputs[INPUTS - 1] = 1.0;
+    }
+
+    /// Plays one episode: `hunter` and `prey` are asked each step for their
+    /// outputs (turn, forward in [0, 1]) from their inputs. `each` sees the
+    /// world after every step (for trajectories). Allocation-free after the
+    /// world's copy.
+    pub fn play(
+        &self,
+        mut hunter: impl FnMut(&[f64], &mut [f64]),
+        mut prey: impl FnMut(&[f64], &mut [f64]),
+        mut each: impl FnMut(&World),
+    ) -> Outcome {
+        let mut world = self.world.clone();
+        let (mut hi, mut pi) = ([0.0; INPUTS], [0.0; INPUTS]);
+        let (mut ho, mut po) = ([0.0; OUTPUTS], [0.0; OUTPUTS]);
+        let mut controls = [[0.0; 2]; 2];
+        let (mut sum, mut steps, mut caught) = (0.0, 0, false);
+        while steps < self.steps && !caught {
+            self.read(&world, self.hunter, &mut hi);
+            self.read(&world, self.prey, &mut pi);
+            hunter(&hi, &mut ho);
+            prey(&pi, &mut po);
+            controls[self.hunter] = wheels(ho[0], ho[1]);
+            controls[self.prey] = wheels(po[0], po[1]);
+            world.step(&controls);
+            steps += 1;
+            let (a, b) = (self.hunter.min(self.prey), self.hunter.max(self.prey));
+            caught = world.team_contacts().iter().any(|c| c.a == a && c.b == b);
+            let r = world.robots();
+            sum += r[self.hunter].pos.distance(r[self.prey].pos);
+            each(&world);
+        }
+        Outcome {
+            caught,
+            steps,
+            max_steps: self.steps,
+            mean_distance: if steps == 0 {
+                0.0
+            } else {
+                sum / f64::from(steps) / self.diagonal
+            },
+        }
+    }
+
+    /// An episode of `hunter`'s network against `prey`'s.
+    pub fn play_genomes(&self, hunter: &Genome, prey: &Genome) -> Outcome {
+        let mut h = RecurrentNetwork::from_genome(hunter);
+        let mut p = RecurrentNetwork::from_genome(prey);
+        self.play(|i, o| h.activate(i, o), |i, o| p.activate(i, o), |_| {})
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use vivae_sim::LoadOptions;
+
+    fn arena(name: &str) -> Arena {
+        let svg = crate::shipped::find(name).unwrap().svg;
+        let sc = Scenario::from_svg(svg, name, &LoadOptions::default()).unwrap();
+        Arena::new(&sc, &MazeTask::physics(), STEPS).unwrap()
+    }
+
+    /// Full speed at an opponent ahead; else slows down (a robot at top
+    /// speed cannot turn) and turns towards the slice that sees it.
+    fn chase(i: &[f64], o: &mut [f64]) {
+        // Slices: left, ahead, right, behind.
+        let out = if i[1] > 0.0 {
+            [0.5, 1.0]
+        } else if i[2] > 0.0 {
+            [1.0, 0.3]
+        } else {
+            [0.0, 0.3]
+        };
+        o.copy_from_slice(&out);
+    }
+
+    #[test]
+    fn a_chasing_hunter_catches_a_standing_prey_and_scores_by_time() {
+        let a = arena("predator-prey");
+        let out = a.play(chase, |_, o| o.copy_from_slice(&[0.5, 0.5]), |_| {});
+        assert!(out.caught && out.steps < STEPS, "{out:?}");
+        assert!(out.hunter_fitness() > 1.0 && out.hunter_fitness() < 2.0);
+        assert_eq!(out.hunter_fitness() + out.prey_fitness(), 2.0);
+        // Standing still, nobody catches anybody: fitness from the distance.
+        let idle = a.play(|_, o| o.fill(0.5), |_, o| o.fill(0.5), |_| {});
+        assert!(!idle.caught && idle.steps == STEPS);
+        let start = a.world().robots()[0]
+            .pos
+            .distance(a.world().robots()[1].pos);
+        let d = start / 300f64.hypot(300.0);
+        assert!((idle.hunter_fitness() - (1.0 - d)).abs() < 1e-12);
+        assert!(idle.prey_fitness() > 1.0, "every escape beats every catch");
+    }
+
+    #[test]
+    fn inputs_see_the_opponent_and_the_walls() {
+        let a = arena("predator-prey-obstacles");
+        let mut first = None;
+        a.play(
+            |i, o| {
+                first.get_or_insert_with(|| i.to_vec());
+                o.fill(0.5);
+            },
+            |_, o| o.fill(0.5),
+            |_| {},
+        );
+        let i = first.unwrap();
+        // The hunter faces up at (60, 240); the prey is ahead-right at (240, 60), 45°: a slice boundary.
+        assert_eq!(i[0], 0.0);
+        assert_eq!(i[3], 0.0);
+        assert!(i[1] + i[2] > 0.3, "{i:?}");
+        assert_eq!(i[INPUTS - 1], 1.0);
+        assert!(i.iter().all(|v| (0.0..=1.0).contains(v)));
+    }
+
+    #[test]
+    fn a_scenario_without_both_teams_is_refused() {
+        let sc = Scenario::from_svg(vivae_sim::ROADS_SVG, "roads.svg", &LoadOptions::default());
+        let err = Arena::new(&sc.unwrap(), &MazeTask::physics(), 10)
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("roads.svg") && err.contains("hunter"), "{err}");
+    }
+}

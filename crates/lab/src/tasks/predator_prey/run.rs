@@ -1,0 +1,422 @@
+//! A predator–prey run (`experiment.task = "predator-prey"`): its
+//! registration and its run directory, on a driver of its own (two
+//! populations do not fit [`crate::run::Run`]'s one strategy).
+//!
+//! The run directory holds `config.toml`, `scenario.svg`, `hunters.csv` and
+//! `prey.csv` (one row per generation of each population), `ciao.csv` (the
+//! CIAO matrix, one row per pair of generations), `hall-of-fame.jsonl`
+//! (each generation's best hunter and prey genomes), `checkpoint.json` (both
+//! populations and halls of fame, and the lengths of the files above: a
+//! resume truncates what a crash left after it, so a resumed run's files
+//! are the bytes of an uninterrupted one's) and, when it stops,
+//! `champions.json` (the master tournament's winners).
+
+use std::fs;
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+use vivae_neat::Genome;
+
+use crate::config::Config;
+use crate::error::{Error, Result};
+use crate::io::{bad_input, create_dirs, load_scenario, read_text, write_atomic};
+use crate::tasks::maps::TrainingMap;
+pub use crate::tasks::predator_prey::coevo::{ChampionEntry, Champions};
+use crate::tasks::predator_prey::coevo::{
+    CiaoCell, Coevolution, GenerationRecord, SideRecord, master_tournament,
+};
+use crate::tasks::predator_prey::{Arena, NAME, Side, present};
+use crate::tasks::{OwnDriver, RunTask, Session, TaskEntry};
+
+/// The predator–prey task's registration.
+pub static TASK: TaskEntry = TaskEntry {
+    name: NAME,
+    default_config: Config::predator_prey,
+    validate: crate::tasks::predator_prey::config::validate,
+    metric_names: &[],
+    generation_columns: "",
+    build,
+    own_driver: Some(OwnDriver { evolve, resume }),
+};
+
+/// The files of a predator–prey run directory.
+pub mod files {
+    /// Each generation of the hunter population.
+    pub const HUNTERS: &str = "hunters.csv";
+    /// Each generation of the prey population.
+    pub const PREY: &str = "prey.csv";
+    /// The CIAO matrix.
+    pub const CIAO: &str = "ciao.csv";
+    /// Each generation's champions' genomes.
+    pub const HALL: &str = "hall-of-fame.jsonl";
+    /// The run's state after its last generation.
+    pub const CHECKPOINT: &str = "checkpoint.json";
+    /// The master tournament's winners.
+    pub const CHAMPIONS: &str = "champions.json";
+}
+
+/// Header of `hunters.csv` and `prey.csv`.
+pub const SIDE_HEADER: &str =
+    "generation,best_fitness,mean_fitness,catch_rate,species,mean_links,opponents\n";
+/// Header of `ciao.csv`.
+pub const CIAO_HEADER: &str = "hunter_generation,prey_generation,hunter_fitness,caught\n";
+
+/// A predator–prey run is not built as a one-population task.
+fn build(_: &Config, _: &[TrainingMap]) -> Result<Box<dyn RunTask>> {
+    Err(bad_input(
+        "experiment.task = \"predator-prey\" co-evolves two populations on its own driver: run it with `vivae evolve --task predator-prey` or Python's vivae.coevolve",
+    ))
+}
+
+/// Lengths of the appended files at a checkpoint, bytes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+struct Lengths {
+    hunters: u64,
+    prey: u64,
+    ciao: u64,
+    hall: u64,
+}
+
+/// What `checkpoint.json` holds.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Checkpoint {
+    config: Config,
+    state: Coevolution,
+    lengths: Lengths,
+}
+
+/// One line of `hall-of-fame.jsonl`.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct HallEntry {
+    /// `hunter` or `prey`.
+    pub side: String,
+    /// Its generation.
+    pub generation: u32,
+    /// Its fitness in that generation (against that generation's opponents).
+    pub fitness: f64,
+    /// The genome.
+    pub genome: Genome,
+}
+
+/// A predator–prey run in its directory.
+struct PpRun {
+    dir: PathBuf,
+    config: Config,
+    arena: Arena,
+    state: Coevolution,
+    lengths: Lengths,
+}
+
+/// The arena of `config` in the scenario at `path` (a file or a shipped name).
+fn arena_of(config: &Config, path: &Path) -> Result<(Arena, String)> {
+    let loaded = load_scenario(Some(path))?;
+    let arena = Arena::new(&loaded.scenario, &config.physics, config.experiment.steps)
+        .map_err(|e| bad_input(e.to_string()))?;
+    Ok((arena, loaded.text))
+}
+
+/// Makes `dir` ready for a new run: refused when it holds anything, unless
+/// `force` and it is a run directory (it holds a `config.toml`), which is removed.
+fn clear_dir(dir: &Path, force: bool) -> Result<()> {
+    let occupied = fs::read_dir(dir).is_ok_and(|mut d| d.next().is_some());
+    if occupied {
+        let is_run = dir.join(crate::rundir::files::CONFIG).is_file();
+        if !force || !is_run {
+            return Err(bad_input(format!(
+                "{}: exists and is not empty{}",
+                dir.display(),
+                if is_run {
+                    "; --force replaces the run in it"
+                } else {
+                    " and holds no run: choose another --out"
+                }
+            )));
+        }
+        fs::remove_dir_all(dir).map_err(Error::io("remove", dir))?;
+    }
+    create_dirs(dir)
+}
+
+/// Creates a run of `config` in `dir` and runs it.
+fn evolve(dir: &Path, mut config: Config, force: bool, session: &Session<'_>) -> Result<String> {
+    crate::tasks::check(&config).map_err(|e| bad_input(format!("config: {e}")))?;
+    let scenario = PathBuf::from(&config.experiment.scenario);
+    let (arena, text) = arena_of(&config, &scenario)?;
+    let state = Coevolution::new(&config).map_err(|e| Error::Evolution(e.to_string()))?;
+    clear_dir(dir, force)?;
+    config.experiment.scenario = crate::rundir::files::SCENARIO.into();
+    write_atomic(&dir.join(crate::rundir::files::SCENARIO), text.as_bytes())?;
+    write_atomic(
+        &dir.join(crate::rundir::files::CONFIG),
+        config.to_toml().as_bytes(),
+    )?;
+    for (name, header) in [
+        (files::HUNTERS, SIDE_HEADER),
+        (files::PREY, SIDE_HEADER),
+        (files::CIAO, CIAO_HEADER),
+        (files::HALL, ""),
+    ] {
+        write_atomic(&dir.join(name), header.as_bytes())?;
+    }
+    let side = SIDE_HEADER.len() as u64;
+    let lengths = Lengths {
+        hunters: side,
+        prey: side,
+        ciao: CIAO_HEADER.len() as u64,
+        hall: 0,
+    };
+    let mut run = PpRun {
+        dir: dir.to_path_buf(),
+        config,
+        arena,
+        state,
+        lengths,
+    };
+    run.checkpoint()?;
+    (session.say)(&present::header(
+        &run.config,
+        "evolve",
+        &scenario.display().to_string(),
+        dir,
+    ));
+    run.run(session)
+}
+
+/// Resumes the run in `dir`.
+fn resume(dir: &Path, generations: Option<u32>, session: &Session<'_>) -> Result<String> {
+    let path = dir.join(files::CHECKPOINT);
+    let text = read_text(&path)?;
+    let bad = |reason: String| Error::Checkpoint {
+        path: path.clone(),
+        reason,
+    };
+    let mut cp: Checkpoint = serde_json::from_str(&text).map_err(|e| bad(e.to_string()))?;
+    let done = cp.state.done();
+    if let Some(n) = generations {
+        if n < done {
+            return Err(bad_input(format!(
+                "--generations {n}: the run already has {done} generations"
+            )));
+        }
+        cp.config.experiment.generations = n;
+        let config = dir.join(crate::rundir::files::CONFIG);
+        write_atomic(&config, cp.config.to_toml().as_bytes())?;
+    }
+    let (arena, _) = arena_of(&cp.config, &dir.join(crate::rundir::files::SCENARIO))?;
+    let l = cp.lengths;
+    for (name, len) in [
+        (files::HUNTERS, l.hunters),
+        (files::PREY, l.prey),
+        (files::CIAO, l.ciao),
+        (files::HALL, l.hall),
+    ] {
+        let p = dir.join(name);
+        let file = fs::OpenOptions::new()
+            .write(true)
+            .open(&p)
+            .map_err(Error::io("open", &p))?;
+        let have = file.metadata().map_err(Error::io("read", &p))?.len();
+        if have < len {
+            return Err(bad(format!(
+                "{name} is shorter ({have} bytes) than it recorded ({len})"
+            )));
+        }
+        file.set_len(len).map_err(Error::io("truncate", &p))?;
+    }
+    let mut run = PpRun {
+        dir: dir.to_path_buf(),
+        config: cp.config,
+        arena,
+        state: cp.state,
+        lengths: cp.lengths,
+    };
+    let from = format!(" (resuming after generation {done})");
+    let header = present::header(
+        &run.config,
+        "resume",
+        &(dir.display().to_string() + &from),
+        dir,
+    );
+    (session.say)(&header);
+    run.run(session)
+}
+
+impl PpRun {
+    /// Runs generations until the total or an interruption; writes the champions; the summary line.
+    fn run(&mut self, session: &Session<'_>) -> Result<String> {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(self.config.run.threads)
+            .build()
+            .map_err(|e| Error::Threads(e.to_string()))?;
+        let total = self.config.experiment.generations;
+        let mut interrupted = false;
+        while self.state.done() < total {
+            if session
+                .interrupted
+                .load(std::sync::atomic::Ordering::SeqCst)
+            {
+                interrupted = true;
+                break;
+            }
+            let (state, arena, config) = (&mut self.state, &self.arena, &self.config);
+            let record = pool
+                .install(|| state.generation(arena, config))
+                .map_err(|e| Error::Evolution(e.to_string()))?;
+            self.append(&record)?;
+            self.checkpoint()?;
+            (session.say)(&present::generation_line(&record, total));
+        }
+        let champions = self.champions()?;
+        let text = serde_json::to_string_pretty(&champions).map_err(|e| Error::Serialize {
+            what: "champions",
+            reason: e.to_string(),
+        })?;
+        write_atomic(&self.dir.join(files::CHAMPIONS), text.as_bytes())?;
+        let (person, line) = present::summary(&champions, &self.dir, interrupted);
+        (session.say)(&person);
+        Ok(line)
+    }
+
+    /// Appends generation `r`'s rows to the run's files.
+    fn append(&mut self, r: &GenerationRecord) -> Result<()> {
+        let g = r.generation;
+        let hunters = side_row(g, &r.hunters);
+        let prey = side_row(g, &r.prey);
+        let ciao: String = r.ciao.iter().map(ciao_row).collect();
+        let hall = [Side::Hunter, Side::Prey]
+            .iter()
+            .map(|&side| {
+                let (rec, genome) = match side {
+                    Side::Hunter => (&r.hunters, &self.state.hall_hunters[g as usize]),
+                    Side::Prey => (&r.prey, &self.state.hall_prey[g as usize]),
+                };
+                let entry = HallEntry {
+                    side: side.name().into(),
+                    generation: g,
+                    fitness: rec.stats.best_fitness.unwrap_or_default(),
+                    genome: genome.clone(),
+                };
+                serde_json::to_string(&entry).map(|s| s + "\n")
+            })
+            .collect::<std::result::Result<String, _>>()
+            .map_err(|e| Error::Serialize {
+                what: "hall of fame",
+                reason: e.to_string(),
+            })?;
+        let l = &mut self.lengths;
+        for (name, text, len) in [
+            (files::HUNTERS, hunters, &mut l.hunters),
+            (files::PREY, prey, &mut l.prey),
+            (files::CIAO, ciao, &mut l.ciao),
+            (files::HALL, hall, &mut l.hall),
+        ] {
+            let p = self.dir.join(name);
+            crate::rundir::append(&p, &text)?;
+            *len += text.len() as u64;
+        }
+        Ok(())
+    }
+
+    /// Writes `checkpoint.json` (atomically).
+    fn checkpoint(&self) -> Result<()> {
+        #[derive(Serialize)]
+        struct Out<'a> {
+            config: &'a Config,
+            state: &'a Coevolution,
+            lengths: Lengths,
+        }
+        let out = Out {
+            config: &self.config,
+            state: &self.state,
+            lengths: self.lengths,
+        };
+        let text = serde_json::to_string(&out).map_err(|e| Error::Serialize {
+            what: "checkpoint",
+            reason: e.to_string(),
+        })?;
+        write_atomic(&self.dir.join(files::CHECKPOINT), text.as_bytes())
+    }
+
+    /// The master tournament's winners over the CIAO matrix in `ciao.csv`.
+    fn champions(&self) -> Result<Champions> {
+        let n = self.state.done();
+        let cells = read_ciao(&self.dir.join(files::CIAO))?;
+        let pick = |side: Side| -> Result<ChampionEntry> {
+            let scores = master_tournament(&cells, n, side);
+            // The first of the best (the earliest generation on ties).
+            let best = (0..scores.len())
+                .reduce(|b, i| if scores[i] > scores[b] { i } else { b })
+                .ok_or(Error::NoChampion)?;
+            Ok(ChampionEntry {
+                generation: best as u32,
+                master_fitness: scores[best],
+                genome: self.state.hall(side)[best].clone(),
+            })
+        };
+        Ok(Champions {
+            generations: n,
+            hunter: pick(Side::Hunter)?,
+            prey: pick(Side::Prey)?,
+        })
+    }
+}
+
+/// A row of `hunters.csv` or `prey.csv`.
+fn side_row(g: u32, r: &SideRecord) -> String {
+    let s = &r.stats;
+    let opponents: Vec<String> = r.opponents.iter().map(u32::to_string).collect();
+    format!(
+        "{g},{},{},{},{},{},{}\n",
+        s.best_fitness.unwrap_or_default(),
+        s.mean_fitness.unwrap_or_default(),
+        r.catch_rate,
+        s.species,
+        s.mean_links,
+        opponents.join(";"),
+    )
+}
+
+/// A row of `ciao.csv`.
+fn ciao_row(c: &CiaoCell) -> String {
+    format!(
+        "{},{},{},{}\n",
+        c.hunter,
+        c.prey,
+        c.hunter_fitness,
+        u8::from(c.caught)
+    )
+}
+
+/// Reads `ciao.csv` back.
+pub fn read_ciao(path: &Path) -> Result<Vec<CiaoCell>> {
+    let text = read_text(path)?;
+    let bad = |line: usize| Error::RunFile {
+        path: path.to_path_buf(),
+        reason: format!("line {}: not a CIAO row", line + 1),
+    };
+    (text.lines().enumerate().skip(1))
+        .map(|(i, line)| {
+            let f: Vec<&str> = line.split(',').collect();
+            let [h, p, fit, caught] = f.as_slice() else {
+                return Err(bad(i));
+            };
+            Ok(CiaoCell {
+                hunter: h.parse().map_err(|_| bad(i))?,
+                prey: p.parse().map_err(|_| bad(i))?,
+                hunter_fitness: fit.parse().map_err(|_| bad(i))?,
+                caught: *caught == "1",
+            })
+        })
+        .collect()
+}
+
+/// Reads `champions.json` of the run in `dir`.
+pub fn read_champions(dir: &Path) -> Result<Champions> {
+    let path = dir.join(files::CHAMPIONS);
+    let text = read_text(&path)?;
+    serde_json::from_str(&text).map_err(|e| Error::RunFile {
+        path,
+        reason: e.to_string(),
+    })
+}

@@ -1,0 +1,69 @@
+//! Running a task that has a driver of its own (the predator–prey task's two
+//! populations): its lines for a person on stderr (unless quiet), its summary
+//! line on stdout. It runs on threads of this process, not under MPI.
+
+use std::path::Path;
+use std::process::ExitCode;
+use std::sync::Arc;
+use std::sync::atomic::AtomicBool;
+
+use vivae_lab::config::Config;
+use vivae_lab::tasks::{OwnDriver, Session};
+
+use super::mpi_job::launched_by_mpi;
+
+/// Creates and runs a run of `config` in `dir` on `driver`.
+pub fn evolve(
+    driver: OwnDriver,
+    dir: &Path,
+    config: Config,
+    force: bool,
+    quiet: bool,
+    interrupted: &Arc<AtomicBool>,
+) -> anyhow::Result<ExitCode> {
+    refuse_mpi()?;
+    let say = move |line: &str| {
+        if !quiet {
+            eprintln!("{line}");
+        }
+    };
+    let session = Session {
+        interrupted,
+        say: &say,
+    };
+    println!("{}", (driver.evolve)(dir, config, force, &session)?);
+    Ok(ExitCode::SUCCESS)
+}
+
+/// Resumes the run in `dir` on `driver`.
+pub fn resume(
+    driver: OwnDriver,
+    dir: &Path,
+    generations: Option<u32>,
+    quiet: bool,
+    interrupted: &Arc<AtomicBool>,
+) -> anyhow::Result<ExitCode> {
+    refuse_mpi()?;
+    let say = move |line: &str| {
+        if !quiet {
+            eprintln!("{line}");
+        }
+    };
+    let session = Session {
+        interrupted,
+        say: &say,
+    };
+    println!("{}", (driver.resume)(dir, generations, &session)?);
+    Ok(ExitCode::SUCCESS)
+}
+
+/// A task on its own driver does not run under MPI (every rank would run it).
+fn refuse_mpi() -> anyhow::Result<()> {
+    if launched_by_mpi() {
+        return Err(vivae_lab::io::bad_input(
+            "this task co-evolves two populations on its own driver, which does not run under MPI: run it without mpirun",
+        )
+        .into());
+    }
+    Ok(())
+}
