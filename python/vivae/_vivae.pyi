@@ -28,6 +28,8 @@ __all__ = [
     "record_episode",
     "replay",
     "report",
+    "reproduce",
+    "reproduce_packs",
     "resume",
     "scenarios",
 ]

@@ -21,18 +21,9 @@ pub fn evolve(
     quiet: bool,
     interrupted: &Arc<AtomicBool>,
 ) -> anyhow::Result<ExitCode> {
-    refuse_mpi()?;
-    let say = move |line: &str| {
-        if !quiet {
-            eprintln!("{line}");
-        }
-    };
-    let session = Session {
-        interrupted,
-        say: &say,
-    };
-    println!("{}", (driver.evolve)(dir, config, force, &session)?);
-    Ok(ExitCode::SUCCESS)
+    in_session(quiet, interrupted, |session| {
+        (driver.evolve)(dir, config, force, session)
+    })
 }
 
 /// Resumes the run in `dir` on `driver`.
@@ -42,6 +33,18 @@ pub fn resume(
     generations: Option<u32>,
     quiet: bool,
     interrupted: &Arc<AtomicBool>,
+) -> anyhow::Result<ExitCode> {
+    in_session(quiet, interrupted, |session| {
+        (driver.resume)(dir, generations, session)
+    })
+}
+
+/// Runs `work` in a session that says its progress on stderr unless `quiet`,
+/// then prints its summary line (one process: MPI is refused).
+fn in_session(
+    quiet: bool,
+    interrupted: &Arc<AtomicBool>,
+    work: impl FnOnce(&Session<'_>) -> vivae_lab::Result<String>,
 ) -> anyhow::Result<ExitCode> {
     refuse_mpi()?;
     let say = move |line: &str| {
@@ -53,7 +56,7 @@ pub fn resume(
         interrupted,
         say: &say,
     };
-    println!("{}", (driver.resume)(dir, generations, &session)?);
+    println!("{}", work(&session)?);
     Ok(ExitCode::SUCCESS)
 }
 
