@@ -10,9 +10,12 @@ use crate::errors;
 /// Runs replication pack `name` (`reproduce_packs()` lists them) as `vivae
 /// reproduce` does; returns the table as a dict: `title`, `columns`, `rows`
 /// (lists of cells), `notes` and `markdown` (the text the CLI prints).
-/// `progress=True` prints a line per finished run to stderr.
+/// `progress=True` prints a line per finished run to stderr. `methods` picks
+/// some of a maze pack's methods (`novelty`, `neat`, `map-elites`);
+/// `journal` is a file of finished runs that a call again skips (none: every
+/// run is run).
 #[pyfunction]
-#[pyo3(signature = (name, runs=None, seed=1, quick=false, evaluations=None, threads=0, progress=false))]
+#[pyo3(signature = (name, runs=None, seed=1, quick=false, evaluations=None, threads=0, progress=false, methods=None, journal=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn reproduce<'py>(
     py: Python<'py>,
@@ -23,6 +26,8 @@ pub fn reproduce<'py>(
     evaluations: Option<u64>,
     threads: usize,
     progress: bool,
+    methods: Option<Vec<String>>,
+    journal: Option<std::path::PathBuf>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let options = Options {
         runs,
@@ -30,6 +35,8 @@ pub fn reproduce<'py>(
         quick,
         evaluations,
         threads,
+        methods: methods.unwrap_or_default(),
+        journal,
     };
     let table = py
         .detach(|| {

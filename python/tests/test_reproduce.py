@@ -39,3 +39,18 @@ def test_every_pack_runs_at_tiny_settings_and_returns_its_table():
         assert all(len(r) == len(table["columns"]) for r in table["rows"]), name
         assert table["columns"][-1] == "source", name
         assert table["markdown"].startswith("### "), name
+
+
+def test_a_journal_skips_finished_runs_and_methods_pick_rows(tmp_path):
+    journal = tmp_path / "runs.tsv"
+    first = vivae.reproduce("maze-hard", runs=2, seed=2, evaluations=1000, threads=1,
+                            methods=["neat"], journal=journal)
+    assert first["rows"][0][1] == "not run (--method)"
+    assert first["rows"][1][1].endswith("/2")
+    assert len([line for line in journal.read_text().splitlines() if not line.startswith("#")]) == 2
+    again = vivae.reproduce("maze-hard", runs=2, seed=2, evaluations=1000, threads=1, journal=journal)
+    assert again["rows"][1] == first["rows"][1]
+    fresh = vivae.reproduce("maze-hard", runs=2, seed=2, evaluations=1000, threads=1)
+    assert fresh["rows"] == again["rows"]
+    with pytest.raises(ValueError, match="no method"):
+        vivae.reproduce("maze-hard", methods=["cma-es"])

@@ -265,6 +265,8 @@ def reproduce(
     evaluations: int | None = None,
     threads: int = 0,
     progress: bool = False,
+    methods: list[str] | None = None,
+    journal: _Path | None = None,
 ) -> dict[str, Any]: ...
 def reproduce_packs() -> list[tuple[str, str]]: ...
 def export(

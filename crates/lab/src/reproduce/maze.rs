@@ -5,7 +5,7 @@
 
 use crate::config::Config;
 use crate::error::Result;
-use crate::reproduce::{Options, Pack, Table, solved_at, stats, thousands};
+use crate::reproduce::{Journal, Options, Pack, Table, solved_at_journaled, stats, thousands};
 
 /// The paper's runs per method.
 const PAPER_RUNS: usize = 40;
@@ -16,10 +16,14 @@ const QUICK: (usize, u64) = (5, 25_000);
 /// Where the paper's numbers are.
 const SOURCE: &str = "Lehman & Stanley 2011, Evol. Comput. 19(2):189–223, Sec. 6";
 
+/// The methods, in the order a pack runs them (`--method`).
+const METHODS: [&str; 3] = ["novelty", "neat", "map-elites"];
+
 /// `vivae reproduce maze-medium`.
 pub const MEDIUM: Pack = Pack {
     name: "maze-medium",
     what: "Lehman & Stanley 2011's medium maze: novelty search vs fitness-based NEAT vs MAP-Elites",
+    methods: &METHODS,
     run: |o, p| run("medium-maze", &MEDIUM_PAPER, o, p),
 };
 
@@ -27,6 +31,7 @@ pub const MEDIUM: Pack = Pack {
 pub const HARD: Pack = Pack {
     name: "maze-hard",
     what: "Lehman & Stanley 2011's hard (deceptive) maze: novelty search vs fitness-based NEAT vs MAP-Elites",
+    methods: &METHODS,
     run: |o, p| run("hard-maze", &HARD_PAPER, o, p),
 };
 
@@ -112,16 +117,24 @@ fn run(
     } else {
         PAPER_EVALUATIONS
     });
+    let mut journal = Journal::open(o.journal.as_deref())?;
     let mut rows = Vec::new();
     for p in paper {
+        if !o.methods.is_empty() && !o.methods.iter().any(|m| m == p.kind) {
+            rows.push(not_run(p));
+            continue;
+        }
         let mut solved = Vec::new();
         for k in 0..runs {
             let seed = o.seed + k as u64;
-            let at = solved_at(config(maze, p.kind, seed, budget, o.threads))?;
+            let what = format!("{maze} {} seed {seed}", p.kind);
+            let c = config(maze, p.kind, seed, budget, o.threads);
+            let (at, journaled) = solved_at_journaled(c, &what, &mut journal)?;
             let said = at.map_or("unsolved".to_string(), |n| {
                 format!("solved after {n} evaluations")
             });
-            progress(&format!("{maze} {} seed {seed}: {said}", p.kind));
+            let from = if journaled { " (from the journal)" } else { "" };
+            progress(&format!("{what}: {said}{from}"));
             solved.extend(at);
         }
         rows.push(row(p, &solved, runs));
@@ -152,6 +165,13 @@ fn run(
             format!("each run: vivae evolve --task maze --scenario {maze} --strategy KIND --seed SEED --generations {}", budget.div_ceil(250)),
         ],
     })
+}
+
+/// The row of a method `--method` left out.
+fn not_run(p: &Paper) -> Vec<String> {
+    let mut r = row(p, &[], 0);
+    r[1..4].fill("not run (--method)".into());
+    r
 }
 
 fn row(p: &Paper, solved: &[u64], runs: usize) -> Vec<String> {

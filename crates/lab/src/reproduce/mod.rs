@@ -9,6 +9,7 @@
 //! a row of the table can be checked run by run from the command line.
 
 mod boxes;
+mod journal;
 mod maze;
 mod pole;
 mod retina;
@@ -24,6 +25,8 @@ use crate::error::Result;
 use crate::io::bad_input;
 use crate::run::prepare::prepare;
 
+pub use journal::Journal;
+
 /// How a pack is run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Options {
@@ -37,6 +40,10 @@ pub struct Options {
     pub evaluations: Option<u64>,
     /// Worker threads per run (0 = one per core); results do not depend on it.
     pub threads: usize,
+    /// Only these methods (a pack's [`Pack::methods`]); empty = all of them.
+    pub methods: Vec<String>,
+    /// The journal of finished runs, which a run again skips (none = in memory).
+    pub journal: Option<PathBuf>,
 }
 
 impl Default for Options {
@@ -47,6 +54,8 @@ impl Default for Options {
             quick: false,
             evaluations: None,
             threads: 0,
+            methods: Vec::new(),
+            journal: None,
         }
     }
 }
@@ -94,6 +103,8 @@ pub struct Pack {
     pub name: &'static str,
     /// One line on what it reproduces.
     pub what: &'static str,
+    /// The methods `--method` can pick (empty: the pack has no choice).
+    pub methods: &'static [&'static str],
     /// Runs it; `progress` gets a line per finished run.
     pub run: RunPack,
 }
@@ -129,11 +140,42 @@ pub fn run(name: &str, options: &Options, progress: &mut dyn FnMut(&str)) -> Res
             "reproduce: --runs and --evaluations must be at least 1",
         ));
     }
+    if let Some(m) = (options.methods.iter()).find(|m| !pack.methods.contains(&m.as_str())) {
+        return Err(bad_input(if pack.methods.is_empty() {
+            format!("reproduce: pack {name} has no choice of method (asked for {m:?})")
+        } else {
+            format!(
+                "reproduce: pack {name} has no method {m:?}; its methods are {}",
+                pack.methods.join(", ")
+            )
+        }));
+    }
     (pack.run)(options, progress)
 }
 
+/// What one run gave, from `journal` when it finished before, else run and
+/// recorded there: the evaluations up to its first solver, if it solved; and
+/// whether it came from the journal.
+pub(crate) fn solved_at_journaled(
+    config: Config,
+    run: &str,
+    journal: &mut Journal,
+) -> Result<(Option<u64>, bool)> {
+    let known = journal.get(&config).and_then(|o| match o {
+        "unsolved" => Some(None),
+        _ => (o.strip_prefix("solved ")?.parse().ok()).map(Some),
+    });
+    if let Some(at) = known {
+        return Ok((at, true));
+    }
+    let at = solved_at(config.clone())?;
+    let outcome = at.map_or("unsolved".to_string(), |n| format!("solved {n}"));
+    journal.record(&config, run, &outcome)?;
+    Ok((at, false))
+}
+
 /// What one run gave: the evaluations up to its first solver, if it solved.
-pub(crate) fn solved_at(config: Config) -> Result<Option<u64>> {
+fn solved_at(config: Config) -> Result<Option<u64>> {
     let dir = scratch_dir();
     let result = (|| {
         let mut run = prepare(config, true)?.create(&dir, true)?;

@@ -29,9 +29,18 @@ pub struct ReproduceArgs {
     /// Worker threads per run (0 = one per core); results do not depend on it.
     #[arg(long, value_name = "N", default_value_t = 0)]
     pub threads: usize,
+    /// Only these methods (maze packs: novelty, neat, map-elites); repeat or comma-separate.
+    #[arg(long, value_name = "KIND", value_delimiter = ',')]
+    pub method: Vec<String>,
     /// The Markdown file written (default: reproduce-NAME.md).
     #[arg(short, long, value_name = "FILE")]
     pub out: Option<PathBuf>,
+    /// The journal of finished runs, which a run again skips (default: the table's name with .runs.tsv).
+    #[arg(long, value_name = "FILE", conflicts_with = "no_journal")]
+    pub journal: Option<PathBuf>,
+    /// Keep no journal: every run is run.
+    #[arg(long)]
+    pub no_journal: bool,
     /// No line per finished run.
     #[arg(short, long)]
     pub quiet: bool,
@@ -49,12 +58,20 @@ pub fn run(args: ReproduceArgs) -> anyhow::Result<ExitCode> {
         return Ok(ExitCode::SUCCESS);
     }
     let name = args.name.unwrap_or_default();
+    let out = (args.out).unwrap_or_else(|| PathBuf::from(format!("reproduce-{name}.md")));
+    let journal = match (args.no_journal, args.journal) {
+        (true, _) => None,
+        (false, Some(j)) => Some(j),
+        (false, None) => Some(out.with_extension("runs.tsv")),
+    };
     let options = Options {
         runs: args.runs,
         seed: args.seed,
         quick: args.quick,
         evaluations: args.evaluations,
         threads: args.threads,
+        methods: args.method,
+        journal,
     };
     let quiet = args.quiet;
     let table = run_pack(&name, &options, &mut |line| {
@@ -63,7 +80,6 @@ pub fn run(args: ReproduceArgs) -> anyhow::Result<ExitCode> {
         }
     })?;
     let text = table.markdown();
-    let out = (args.out).unwrap_or_else(|| PathBuf::from(format!("reproduce-{name}.md")));
     vivae_lab::io::write_atomic(&out, text.as_bytes())?;
     print!("{text}");
     eprintln!("table: {}", out.display());

@@ -101,3 +101,64 @@ fn every_pack_runs_at_tiny_settings_and_prints_its_sourced_table() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn a_stopped_pack_continues_from_its_journal_and_picks_methods() {
+    let dir = scratch("reproduce-journal");
+    let table = dir.join("t.md");
+    let pack = |extra: &[&str]| {
+        let mut c = vivae();
+        c.args(["reproduce", "maze-medium", "--runs", "2", "--seed", "4"])
+            .args(["--evaluations", "1500", "--threads", "1", "-o"])
+            .arg(&table)
+            .args(extra);
+        run(&mut c)
+    };
+    // One method first: the others' rows say so, and only its runs are journaled.
+    let first = pack(&["--method", "neat"]);
+    assert!(first.status.success(), "{first:?}");
+    let printed = String::from_utf8_lossy(&first.stdout).to_string();
+    let rows: Vec<&str> = printed.lines().filter(|l| l.starts_with("| ")).collect();
+    assert!(rows[2].contains("not run (--method)"), "{printed}");
+    assert!(
+        rows[3].starts_with("| fitness-based NEAT | ") && rows[3].contains("/2 |"),
+        "{printed}"
+    );
+    let journal = std::fs::read_to_string(dir.join("t.runs.tsv")).unwrap();
+    assert_eq!(
+        journal.lines().filter(|l| !l.starts_with('#')).count(),
+        2,
+        "{journal}"
+    );
+    // All methods: NEAT's runs come from the journal and give the same row.
+    let all = pack(&[]);
+    let err = String::from_utf8_lossy(&all.stderr);
+    assert_eq!(err.matches("(from the journal)").count(), 2, "{err}");
+    assert!(
+        err.contains("medium-maze neat seed 5: ") && err.contains("medium-maze novelty seed 4: "),
+        "{err}"
+    );
+    let again = String::from_utf8_lossy(&all.stdout).to_string();
+    assert!(again.lines().any(|l| l == rows[3]), "{again}");
+    // Without the journal every run is run, and the table is the same.
+    let fresh = pack(&["--no-journal"]);
+    assert_eq!(String::from_utf8_lossy(&fresh.stdout), again);
+    assert!(!String::from_utf8_lossy(&fresh.stderr).contains("(from the journal)"));
+    // A method the pack does not have, or a broken journal: one line, exit 2.
+    let bad = pack(&["--method", "cma-es"]);
+    let err = String::from_utf8_lossy(&bad.stderr);
+    assert_eq!(bad.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("no method \"cma-es\"") && err.contains("novelty, neat, map-elites"),
+        "{err}"
+    );
+    std::fs::write(dir.join("t.runs.tsv"), "garbage\n").unwrap();
+    let broken = pack(&[]);
+    let err = String::from_utf8_lossy(&broken.stderr);
+    assert_eq!(broken.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("t.runs.tsv") && err.contains("line 1"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
