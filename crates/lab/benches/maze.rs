@@ -6,7 +6,7 @@
 
 use divan::{Bencher, black_box};
 use vivae_lab::tasks::maze::lehman::LehmanTask;
-use vivae_lab::tasks::maze::{Maze, MazeTask};
+use vivae_lab::tasks::maze::{Maze, MazeModel, MazeTask};
 use vivae_neat::{NeatParams, Population};
 
 fn main() {
@@ -28,7 +28,7 @@ fn hard_maze_evaluation_minimal_genome(bencher: Bencher) {
     let task = MazeTask::shipped(Maze::Hard).unwrap();
     let pop = Population::new(NeatParams::plain_neat(), MazeTask::spec(), 1).unwrap();
     let genome = &pop.genomes()[0];
-    bencher.bench(|| black_box(task.run_genome(black_box(genome))));
+    bencher.bench(|| black_box(task.outcome(black_box(genome))));
 }
 
 /// Lehman's robot ([`LehmanTask`], the maze task's default) on his hard

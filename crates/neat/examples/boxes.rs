@@ -8,29 +8,19 @@
 //! reproduce boxes` runs too); this example is its command line.
 
 mod common;
-use common::{RunResult, apply_overrides, args_or_exit, fail, summarize};
+use common::{RunResult, apply_overrides, args_or_exit, fail, summarize, usage};
 
 use vivae_neat::NeatParams;
 use vivae_neat::benchmarks::boxes::{Resampled, run};
 
-const USAGE: &str = "\
-Visual discrimination (boxes) with HyperNEAT: evolved at 11x11, re-sampled at 33x33 and 55x55.
-
-Usage: cargo run --release -p vivae-neat --example boxes -- [OPTIONS]
-
-Options:
-  --runs N              runs, with seeds S, S+1, ... (default 20)
-  --seed S              seed of the first run (default 1)
-  --max-generations G   generations before a run counts as unsolved (default 200)
-  --set FIELD=JSON      override one NeatParams field (repeatable)
-  -h, --help            print this help
-
-Prints `boxes: solved=S/N mean_evals=... acc11=... dist11=... acc33=... ...`
-on stdout and one line per run on stderr.
-";
+/// The first line of `--help`.
+const TITLE: &str = "Visual discrimination (boxes) with HyperNEAT: evolved at 11x11, re-sampled at 33x33 and 55x55.";
+/// What the summary line holds.
+const SUMMARY: &str = "solved=S/N mean_evals=... acc11=... dist11=... acc33=... ...";
 
 fn main() {
-    let Some(args) = args_or_exit("boxes", USAGE, &[], &[]) else {
+    let help = usage("boxes", TITLE, 20, 200, "", SUMMARY);
+    let Some(args) = args_or_exit("boxes", &help, &[], &[]) else {
         return;
     };
     let params =

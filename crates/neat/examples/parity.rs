@@ -10,25 +10,9 @@
 //! generation's statistics are printed on stderr (species counts over time).
 
 mod common;
-use common::{RunResult, apply_overrides, args_or_exit, fail, summarize};
+use common::{RunResult, fail, plain_main};
 
 use vivae_neat::{FeedForwardNetwork, Genome, GenomeSpec, NeatParams, Population};
-
-const USAGE: &str = "\
-3-bit parity with NEAT: many seeded runs, one summary line.
-
-Usage: cargo run --release -p vivae-neat --example parity -- [OPTIONS]
-
-Options:
-  --runs N              runs, with seeds S, S+1, ... (default 50)
-  --seed S              seed of the first run (default 1)
-  --max-generations G   generations before a run counts as unsolved (default 500)
-  --set FIELD=JSON      override one NeatParams field (repeatable), e.g. --set target_species=10
-  -h, --help            print this help
-
-Prints `parity: solved=S/N mean_evals=... median_evals=... mean_hidden=... mean_ms=...`
-on stdout and one line per run on stderr.
-";
 
 const CASES: usize = 8;
 
@@ -93,17 +77,12 @@ fn run(params: &NeatParams, seed: u64, max_generations: u32) -> RunResult {
     RunResult::unsolved()
 }
 
+/// The first line of `--help`.
+const TITLE: &str = "3-bit parity with NEAT: many seeded runs, one summary line.";
+/// What the summary line holds.
+const SUMMARY: &str = "solved=S/N mean_evals=... median_evals=... mean_hidden=... mean_ms=...";
+
 fn main() {
-    let Some(args) = args_or_exit("parity", USAGE, &[], &[]) else {
-        return;
-    };
-    let params = apply_overrides(NeatParams::plain_neat(), &args.sets)
-        .unwrap_or_else(|e| fail("parity", &e));
-    let runs = args.runs.unwrap_or(50);
-    let seed = args.seed.unwrap_or(1);
-    let max_generations = args.max_generations.unwrap_or(500);
-    let line = summarize("parity", runs, seed, |seed| {
-        run(&params, seed, max_generations)
-    });
-    println!("{line}");
+    let text = (TITLE, SUMMARY, "target_species=10");
+    plain_main("parity", text, (50, 500), run);
 }

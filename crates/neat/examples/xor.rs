@@ -10,26 +10,10 @@
 mod common;
 #[path = "common/xor_task.rs"]
 mod xor_task;
-use common::{RunResult, apply_overrides, args_or_exit, fail, summarize};
+use common::{RunResult, plain_main};
 use xor_task::run_xor;
 
 use vivae_neat::NeatParams;
-
-const USAGE: &str = "\
-XOR with NEAT (Stanley & Miikkulainen 2002): many seeded runs, one summary line.
-
-Usage: cargo run --release -p vivae-neat --example xor -- [OPTIONS]
-
-Options:
-  --runs N              runs, with seeds S, S+1, ... (default 100)
-  --seed S              seed of the first run (default 1)
-  --max-generations G   generations before a run counts as unsolved (default 500)
-  --set FIELD=JSON      override one NeatParams field (repeatable), e.g. --set population_size=300
-  -h, --help            print this help
-
-Prints `xor: solved=S/N mean_evals=... median_evals=... mean_hidden=... mean_ms=...`
-on stdout and one line per run on stderr.
-";
 
 fn run(params: &NeatParams, seed: u64, max_generations: u32) -> RunResult {
     match run_xor(params, seed, max_generations) {
@@ -42,17 +26,13 @@ fn run(params: &NeatParams, seed: u64, max_generations: u32) -> RunResult {
     }
 }
 
+/// The first line of `--help`.
+const TITLE: &str =
+    "XOR with NEAT (Stanley & Miikkulainen 2002): many seeded runs, one summary line.";
+/// What the summary line holds.
+const SUMMARY: &str = "solved=S/N mean_evals=... median_evals=... mean_hidden=... mean_ms=...";
+
 fn main() {
-    let Some(args) = args_or_exit("xor", USAGE, &[], &[]) else {
-        return;
-    };
-    let params =
-        apply_overrides(NeatParams::plain_neat(), &args.sets).unwrap_or_else(|e| fail("xor", &e));
-    let runs = args.runs.unwrap_or(100);
-    let seed = args.seed.unwrap_or(1);
-    let max_generations = args.max_generations.unwrap_or(500);
-    let line = summarize("xor", runs, seed, |seed| {
-        run(&params, seed, max_generations)
-    });
-    println!("{line}");
+    let text = (TITLE, SUMMARY, "population_size=300");
+    plain_main("xor", text, (100, 500), run);
 }

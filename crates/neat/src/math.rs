@@ -9,31 +9,21 @@
 //! others are the `libm` crate's (a port of musl's, compiled from Rust source,
 //! so no runtime dispatch). `sqrt` needs no wrapper: IEEE 754 makes it exact.
 
-/// `e^x` within a few ULP, computed the same way on every machine.
-///
-/// The platform's libm may pick different code paths per CPU (glibc has an
-/// FMA variant), which could change the last bit between machines; this one
-/// is plain IEEE arithmetic, branch-free (so blocks of neurons vectorise) and
-/// cheaper than a libm call. Saturates to 0 below −708 and to `e^709` above 709.
-#[inline(always)]
-pub fn exp(x: f64) -> f64 {
-    const LOG2E: f64 = std::f64::consts::LOG2_E;
-    // ln 2 split so that k·LN2_HI is exact for |k| < 2^11.
-    const LN2_HI: f64 = f64::from_bits(0x3fe6_2e42_fee0_0000);
-    const LN2_LO: f64 = f64::from_bits(0x3dea_39ef_3579_3c76);
-    // 1.5·2^52: adding it rounds to an integer held in the low mantissa bits.
-    const SHIFT: f64 = 6_755_399_441_055_744.0;
-    let x = if x.is_nan() {
-        x
-    } else {
-        x.clamp(-708.0, 709.0)
-    };
-    let kf = x * LOG2E + SHIFT;
-    let k = kf - SHIFT;
-    let r = x - k * LN2_HI - k * LN2_LO;
-    // Taylor series to r^12 on |r| ≤ ln2/2: truncation error < 2e-16 relative.
-    let mut p = 1.0 / 479_001_600.0;
-    for c in [
+/// The constants of [`exp`], for code that must compute it the same way
+/// (the C export writes them out).
+pub mod exp_constants {
+    /// log2(e).
+    pub const LOG2E: f64 = std::f64::consts::LOG2_E;
+    /// ln 2's high part: k·LN2_HI is exact for |k| < 2^11.
+    pub const LN2_HI: f64 = f64::from_bits(0x3fe6_2e42_fee0_0000);
+    /// ln 2's low part.
+    pub const LN2_LO: f64 = f64::from_bits(0x3dea_39ef_3579_3c76);
+    /// 1.5·2^52: adding it rounds to an integer held in the low mantissa bits.
+    pub const SHIFT: f64 = 6_755_399_441_055_744.0;
+    /// The Taylor series' leading coefficient, 1/12!.
+    pub const TAYLOR_FIRST: f64 = 1.0 / 479_001_600.0;
+    /// The Taylor series' other coefficients, 1/11! down to 1/0!, in Horner order.
+    pub const TAYLOR: [f64; 12] = [
         1.0 / 39_916_800.0,
         1.0 / 3_628_800.0,
         1.0 / 362_880.0,
@@ -46,7 +36,29 @@ pub fn exp(x: f64) -> f64 {
         0.5,
         1.0,
         1.0,
-    ] {
+    ];
+}
+
+/// `e^x` within a few ULP, computed the same way on every machine.
+///
+/// The platform's libm may pick different code paths per CPU (glibc has an
+/// FMA variant), which could change the last bit between machines; this one
+/// is plain IEEE arithmetic, branch-free (so blocks of neurons vectorise) and
+/// cheaper than a libm call. Saturates to 0 below −708 and to `e^709` above 709.
+#[inline(always)]
+pub fn exp(x: f64) -> f64 {
+    use exp_constants::{LN2_HI, LN2_LO, LOG2E, SHIFT, TAYLOR, TAYLOR_FIRST};
+    let x = if x.is_nan() {
+        x
+    } else {
+        x.clamp(-708.0, 709.0)
+    };
+    let kf = x * LOG2E + SHIFT;
+    let k = kf - SHIFT;
+    let r = x - k * LN2_HI - k * LN2_LO;
+    // Taylor series to r^12 on |r| ≤ ln2/2: truncation error < 2e-16 relative.
+    let mut p = TAYLOR_FIRST;
+    for c in TAYLOR {
         p = p * r + c;
     }
     // 2^k from the integer in kf's low bits.

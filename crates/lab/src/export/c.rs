@@ -163,25 +163,8 @@ fn rows(c: &mut String, values: impl Iterator<Item = String>, per: usize) {
 
 /// vivae's portable `exp` (`vivae_neat::math::exp`), operation for operation.
 fn exp_function() -> String {
-    let ln2_hi = f64::from_bits(0x3fe6_2e42_fee0_0000);
-    let ln2_lo = f64::from_bits(0x3dea_39ef_3579_3c76);
-    let coefficients: Vec<String> = [
-        1.0 / 39_916_800.0,
-        1.0 / 3_628_800.0,
-        1.0 / 362_880.0,
-        1.0 / 40_320.0,
-        1.0 / 5040.0,
-        1.0 / 720.0,
-        1.0 / 120.0,
-        1.0 / 24.0,
-        1.0 / 6.0,
-        0.5,
-        1.0,
-        1.0,
-    ]
-    .iter()
-    .map(|&v| lit(v))
-    .collect();
+    use vivae_neat::math::exp_constants::{LN2_HI, LN2_LO, LOG2E, SHIFT, TAYLOR, TAYLOR_FIRST};
+    let coefficients: Vec<String> = TAYLOR.iter().map(|&v| lit(v)).collect();
     format!(
         "/* vivae's portable exp: range reduction by ln 2 split in two, Taylor to r^12. */\n\
          static double vivae_exp(double x) {{\n    \
@@ -199,11 +182,11 @@ fn exp_function() -> String {
          double scale;\n    memcpy(&scale, &sbits, sizeof scale);\n    \
          return p * scale;\n}}\n",
         coefficients.join(", "),
-        lit(6_755_399_441_055_744.0),
-        lit(std::f64::consts::LOG2_E),
-        lit(ln2_hi),
-        lit(ln2_lo),
-        lit(1.0 / 479_001_600.0),
+        lit(SHIFT),
+        lit(LOG2E),
+        lit(LN2_HI),
+        lit(LN2_LO),
+        lit(TAYLOR_FIRST),
     )
 }
 

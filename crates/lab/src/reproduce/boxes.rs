@@ -43,9 +43,9 @@ fn run_pack(o: &Options, progress: &mut dyn FnMut(&str)) -> Result<Table> {
         ));
         results.push(r);
     }
-    Ok(Table {
-        title: "Visual discrimination (boxes, HyperNEAT), ours beside the paper's".into(),
-        columns: [
+    Ok(Table::new(
+        "Visual discrimination (boxes, HyperNEAT), ours beside the paper's",
+        &[
             "setting",
             "ours: solved at 11×11 (75/75 trials)",
             "ours: mean evaluations (sd)",
@@ -55,11 +55,9 @@ fn run_pack(o: &Options, progress: &mut dyn FnMut(&str)) -> Result<Table> {
             "ours: 33×33 / 11×11",
             "paper",
             "source",
-        ]
-        .map(String::from)
-        .to_vec(),
-        rows: vec![row(&results, population, generations)],
-        notes: vec![
+        ],
+        vec![row(&results, population, generations)],
+        vec![
             format!(
                 "ours: {runs} runs, seeds {}–{}, population {population} (NeatParams::paper_cppn), at most {generations} generations, evolution stops at the first genome right on all 75 trials; accuracy = the champions' (solver, else best ever) share of trials whose most active target node is the large box's centre, mean over runs",
                 o.seed,
@@ -71,7 +69,7 @@ fn run_pack(o: &Options, progress: &mut dyn FnMut(&str)) -> Result<Table> {
             ),
             "the paper (Stanley, D'Ambrosio & Gauci 2009, Artificial Life 15(2)) could not be read here: its figures at 33×33 and 55×55 are not verified and not quoted; a third party's notes on its preprint say 20 runs of 300 generations and \"HyperNEAT generalizes significantly better than P-NEAT (p < 0.01) and scales almost perfectly\" (docs/hyperneat-benchmarks.md). Its fitness (squared distances summed) differs from ours (100/(1 + mean distance))".into(),
         ],
-    })
+    ))
 }
 
 fn row(results: &[BoxesRun], population: u64, generations: u32) -> Vec<String> {

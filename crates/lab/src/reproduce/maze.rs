@@ -140,9 +140,9 @@ fn run(
         rows.push(row(p, &solved, runs));
     }
     let last = o.seed + runs as u64 - 1;
-    Ok(Table {
-        title: format!("The {} (Lehman & Stanley 2011), ours beside the paper's", maze.replace('-', " ")),
-        columns: [
+    Ok(Table::new(
+        format!("The {} (Lehman & Stanley 2011), ours beside the paper's", maze.replace('-', " ")),
+        &[
             "method",
             "ours: solved",
             "ours: mean evaluations (sd)",
@@ -150,11 +150,9 @@ fn run(
             "paper: solved",
             "paper: mean evaluations (sd)",
             "source",
-        ]
-        .map(String::from)
-        .to_vec(),
+        ],
         rows,
-        notes: vec![
+        vec![
             format!(
                 "ours: {runs} runs per method, seeds {}–{last}, population 250, at most {} evaluations a run; a run stops at its first solver, whose evaluation is counted; means over solved runs",
                 o.seed,
@@ -164,7 +162,7 @@ fn run(
             "the paper: 40 runs, 250,000 evaluations, steady-state rtNEAT (Novelty Search C++); page numbers of the authors' preprint".into(),
             format!("each run: vivae evolve --task maze --scenario {maze} --strategy KIND --seed SEED --generations {}", budget.div_ceil(250)),
         ],
-    })
+    ))
 }
 
 /// The row of a method `--method` left out.

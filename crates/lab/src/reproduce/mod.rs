@@ -74,6 +74,21 @@ pub struct Table {
 }
 
 impl Table {
+    /// A table titled `title` with these columns, rows and notes.
+    pub fn new(
+        title: impl Into<String>,
+        columns: &[&str],
+        rows: Vec<Vec<String>>,
+        notes: Vec<String>,
+    ) -> Table {
+        Table {
+            title: title.into(),
+            columns: columns.iter().map(|c| c.to_string()).collect(),
+            rows,
+            notes,
+        }
+    }
+
     /// The table as Markdown: a heading, the table, the notes as a list.
     pub fn markdown(&self) -> String {
         let mut s = format!("### {}\n\n", self.title);

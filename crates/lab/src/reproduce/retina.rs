@@ -55,9 +55,9 @@ fn run_pack(o: &Options, progress: &mut dyn FnMut(&str)) -> Result<Table> {
         }
         rows.push(row(flag, paper, &results));
     }
-    Ok(Table {
-        title: "The left & right retina problem (HyperNEAT), ours beside the papers'".into(),
-        columns: [
+    Ok(Table::new(
+        "The left & right retina problem (HyperNEAT), ours beside the papers'",
+        &[
             "mode",
             "ours: solved (all 512 answers right)",
             "ours: mean evaluations (sd)",
@@ -65,11 +65,9 @@ fn run_pack(o: &Options, progress: &mut dyn FnMut(&str)) -> Result<Table> {
             "ours: mean substrate hidden nodes",
             "paper",
             "source",
-        ]
-        .map(String::from)
-        .to_vec(),
+        ],
         rows,
-        notes: vec![
+        vec![
             format!(
                 "ours: {runs} runs a mode, seeds {}–{}, population {population} (NeatParams::paper_cppn), at most {generations} generations, the retina on a line, 0/1 pixels; best accuracy = the best share of the 512 answers any genome got right, mean over runs",
                 o.seed,
@@ -81,7 +79,7 @@ fn run_pack(o: &Options, progress: &mut dyn FnMut(&str)) -> Result<Table> {
             ),
             "the papers (Verbancsics & Stanley 2011, GECCO; Risi & Stanley 2012, Artificial Life 18(4)) could not be read here: no published number is quoted. The public reproduction AHNI runs 30 runs of 2,500 generations of 500 (1,250,000 evaluations a run) on a 3-D substrate with ±3 pixels (docs/hyperneat-benchmarks.md)".into(),
         ],
-    })
+    ))
 }
 
 fn row(flag: &str, paper: &str, results: &[RetinaRun]) -> Vec<String> {

@@ -165,19 +165,17 @@ fn table(seeds: &[Seed], first: u64, generations: u32) -> Table {
             "it loses fitness: 66% kept (as quoted in docs/results.md; not verified)",
         ),
     ];
-    Table {
-        title: "The road experiment (the seed paper), ours beside the paper's".into(),
-        columns: [
+    Table::new(
+        "The road experiment (the seed paper), ours beside the paper's",
+        &[
             "measure",
             "ours: range over seeds",
             "ours: seeds meeting the paper's claim",
             "paper",
             "source",
-        ]
-        .map(String::from)
-        .to_vec(),
+        ],
         rows,
-        notes: vec![
+        vec![
             format!(
                 "ours: seeds {first}–{}, the default config (population 100, {generations} generations, 3×5 sensors, 3×3 neurons, 5 robots, 1,000 steps, the embedded road scenario); each seed's champion replayed at its resolution and re-sampled without re-training",
                 first + seeds.len() as u64 - 1
@@ -187,7 +185,7 @@ fn table(seeds: &[Seed], first: u64, generations: u32) -> Table {
             ),
             "the paper reports one run and gives its results as figures; its text was not read here, so no number of it is verified".into(),
         ],
-    }
+    )
 }
 
 #[cfg(test)]

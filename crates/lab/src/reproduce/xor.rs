@@ -40,9 +40,9 @@ fn run(o: &Options, progress: &mut dyn FnMut(&str)) -> Result<Table> {
     let ours = stats(&evals);
     let mean_hidden = hidden.iter().sum::<f64>() / hidden.len().max(1) as f64;
     let fmt = |(m, sd, _): (f64, f64, f64)| format!("{} ({})", thousands(m), thousands(sd));
-    Ok(Table {
-        title: "XOR (Stanley & Miikkulainen 2002), ours beside the paper's".into(),
-        columns: [
+    Ok(Table::new(
+        "XOR (Stanley & Miikkulainen 2002), ours beside the paper's",
+        &[
             "method",
             "ours: solved",
             "ours: mean evaluations (sd)",
@@ -52,10 +52,8 @@ fn run(o: &Options, progress: &mut dyn FnMut(&str)) -> Result<Table> {
             "paper: mean evaluations (sd)",
             "paper: mean hidden nodes",
             "source",
-        ]
-        .map(String::from)
-        .to_vec(),
-        rows: vec![vec![
+        ],
+        vec![vec![
             "NEAT, population 150".into(),
             format!("{}/{runs}", evals.len()),
             ours.map_or("—".into(), fmt),
@@ -70,7 +68,7 @@ fn run(o: &Options, progress: &mut dyn FnMut(&str)) -> Result<Table> {
             "2.35".into(),
             "Stanley & Miikkulainen 2002, Evol. Comput. 10(2):99–127, Sec. 4.2, p. 112".into(),
         ]],
-        notes: vec![
+        vec![
             format!(
                 "ours: {runs} runs, seeds {}–{}, at most {generations} generations a run, NeatParams::plain_neat; evaluations up to and including the first solver",
                 o.seed,
@@ -79,7 +77,7 @@ fn run(o: &Options, progress: &mut dyn FnMut(&str)) -> Result<Table> {
             "the same runs: cargo run --release -p vivae-neat --example xor -- --runs N --seed S"
                 .into(),
         ],
-    })
+    ))
 }
 
 #[cfg(test)]

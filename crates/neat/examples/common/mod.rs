@@ -80,6 +80,67 @@ pub fn args_or_exit(
     }
 }
 
+/// The usage text of an example with only the common options: `title` on
+/// top, the defaults of `--runs` and `--max-generations`, an example value of
+/// `--set` (may be empty), and what the summary line holds (`prints`).
+// Each example compiles its own copy of this module; some write their own text.
+#[allow(dead_code)]
+pub fn usage(
+    name: &str,
+    title: &str,
+    runs: usize,
+    generations: u32,
+    set: &str,
+    prints: &str,
+) -> String {
+    let set = if set.is_empty() {
+        String::new()
+    } else {
+        format!(", e.g. --set {set}")
+    };
+    format!(
+        "{title}
+
+Usage: cargo run --release -p vivae-neat --example {name} -- [OPTIONS]
+
+Options:
+  --runs N              runs, with seeds S, S+1, ... (default {runs})
+  --seed S              seed of the first run (default 1)
+  --max-generations G   generations before a run counts as unsolved (default {generations})
+  --set FIELD=JSON      override one NeatParams field (repeatable){set}
+  -h, --help            print this help
+
+Prints `{name}: {prints}`
+on stdout and one line per run on stderr.
+"
+    )
+}
+
+/// The main of an example with only the common options: parses them
+/// (`usage`'s arguments, the defaults `runs` and `generations`), runs
+/// `run(params, seed, max_generations)` for each seed from plain NEAT with
+/// the `--set` overrides, prints the summary line.
+#[allow(dead_code)]
+pub fn plain_main(
+    name: &str,
+    (title, summary, set): (&str, &str, &str),
+    (runs, generations): (usize, u32),
+    run: impl Fn(&NeatParams, u64, u32) -> RunResult,
+) {
+    let help = usage(name, title, runs, generations, set, summary);
+    let Some(args) = args_or_exit(name, &help, &[], &[]) else {
+        return;
+    };
+    let params =
+        apply_overrides(NeatParams::plain_neat(), &args.sets).unwrap_or_else(|e| fail(name, &e));
+    let (runs, seed) = (args.runs.unwrap_or(runs), args.seed.unwrap_or(1));
+    let generations = args.max_generations.unwrap_or(generations);
+    println!(
+        "{}",
+        summarize(name, runs, seed, |s| run(&params, s, generations))
+    );
+}
+
 /// Prints `NAME: MESSAGE` on stderr and exits with code 2 (bad input).
 pub fn fail(name: &str, message: &str) -> ! {
     eprintln!("{name}: {message}");

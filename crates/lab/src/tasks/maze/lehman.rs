@@ -26,7 +26,7 @@
 
 use vivae_neat::driver::{Evaluation, Task};
 use vivae_neat::math::{atan2, cos, sin};
-use vivae_neat::{EvalContext, Genome, Network, RecurrentNetwork};
+use vivae_neat::{EvalContext, Genome};
 use vivae_sim::DVec2;
 
 use super::config::{Collision, MazeConfig};
@@ -203,31 +203,11 @@ impl LehmanTask {
                 break;
             }
         }
-        let d2 = n.pos.distance_squared(self.maze.goal);
-        Outcome {
-            end: n.pos,
-            distance: d2.sqrt(),
-            solved: d2 < r2,
-            steps,
-        }
-    }
-
-    /// An episode driven by `genome`'s network.
-    pub fn run_genome(&self, genome: &Genome) -> Outcome {
-        let mut net = RecurrentNetwork::from_genome(genome);
-        self.run(|i, o| net.activate(i, o))
+        Outcome::ended(n.pos, self.maze.goal, steps, |d2| d2 < r2)
     }
 }
 
-impl Task for LehmanTask {
-    fn evaluate(&self, genome: &Genome, _ctx: &EvalContext) -> Evaluation {
-        self.run_genome(genome).evaluation()
-    }
-
-    fn metric_names(&self) -> &[&str] {
-        &METRICS
-    }
-}
+super::maze_task!(LehmanTask);
 
 #[cfg(test)]
 mod tests {

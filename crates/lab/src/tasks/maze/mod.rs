@@ -172,6 +172,19 @@ pub struct Outcome {
 }
 
 impl Outcome {
+    /// An episode that ended at `end` after `steps`; `solved` tells from the
+    /// squared distance to `goal` whether it reached it (the models differ:
+    /// Lehman's `<`, ours `<=`).
+    pub fn ended(end: DVec2, goal: DVec2, steps: u32, solved: impl FnOnce(f64) -> bool) -> Outcome {
+        let d2 = end.distance_squared(goal);
+        Outcome {
+            end,
+            distance: d2.sqrt(),
+            solved: solved(d2),
+            steps,
+        }
+    }
+
     /// The paper's fitness `b_f − d_g`, never below 0.
     pub fn fitness(&self) -> f64 {
         (FITNESS_BIAS - self.distance).max(0.0)
@@ -191,6 +204,16 @@ impl Outcome {
     }
 }
 
+/// The `goal` mark of a maze scenario, checked to have exactly one robot.
+fn maze_goal(scenario: &Scenario) -> Result<&vivae_sim::Mark, MazeError> {
+    let source_name = scenario.source.clone();
+    if scenario.robots.len() != 1 {
+        let count = scenario.robots.len();
+        return Err(MazeError::Robots { source_name, count });
+    }
+    (scenario.mark(GOAL_MARK)).ok_or(MazeError::NoGoal { source_name })
+}
+
 /// What a maze run needs of a robot model: Lehman's ([`lehman::LehmanTask`],
 /// the default) or ours ([`MazeTask`], `maze.robot = "vivae"`).
 pub trait MazeModel: Task + Clone + std::fmt::Debug + Send + Sync + 'static {
@@ -204,9 +227,26 @@ pub trait MazeModel: Task + Clone + std::fmt::Debug + Send + Sync + 'static {
     fn source(&self) -> &str;
 }
 
+/// A maze model's [`Task`]: an evaluation is one episode's outcome.
+macro_rules! maze_task {
+    ($model:ty) => {
+        impl Task for $model {
+            fn evaluate(&self, genome: &Genome, _ctx: &EvalContext) -> Evaluation {
+                $crate::tasks::maze::MazeModel::outcome(self, genome).evaluation()
+            }
+
+            fn metric_names(&self) -> &[&str] {
+                &METRICS
+            }
+        }
+    };
+}
+pub(crate) use maze_task;
+
 impl MazeModel for MazeTask {
     fn outcome(&self, genome: &Genome) -> Outcome {
-        self.run_genome(genome)
+        let mut net = RecurrentNetwork::from_genome(genome);
+        self.run(|i, o| net.activate(i, o))
     }
     fn episode_steps(&self) -> u32 {
         self.steps
@@ -221,7 +261,8 @@ impl MazeModel for MazeTask {
 
 impl MazeModel for lehman::LehmanTask {
     fn outcome(&self, genome: &Genome) -> Outcome {
-        self.run_genome(genome)
+        let mut net = RecurrentNetwork::from_genome(genome);
+        self.run(|i, o| net.activate(i, o))
     }
     fn episode_steps(&self) -> u32 {
         self.steps()
@@ -277,14 +318,7 @@ impl MazeTask {
         physics: &PhysicsParams,
         steps: u32,
     ) -> Result<MazeTask, MazeError> {
-        let source_name = scenario.source.clone();
-        if scenario.robots.len() != 1 {
-            let count = scenario.robots.len();
-            return Err(MazeError::Robots { source_name, count });
-        }
-        let goal = scenario
-            .mark(GOAL_MARK)
-            .ok_or(MazeError::NoGoal { source_name })?;
+        let goal = maze_goal(scenario)?;
         let rim = RANGE - physics.robot_radius;
         Ok(MazeTask {
             world: World::new(scenario, physics)?,
@@ -359,32 +393,11 @@ impl MazeTask {
             world.step(&[wheels(outputs[0], outputs[1])]);
             steps += 1;
         }
-        let end = world.robots()[0].pos;
-        let d2 = end.distance_squared(goal);
-        Outcome {
-            end,
-            distance: d2.sqrt(),
-            solved: d2 <= r2,
-            steps,
-        }
-    }
-
-    /// An episode driven by `genome`'s network.
-    pub fn run_genome(&self, genome: &Genome) -> Outcome {
-        let mut net = RecurrentNetwork::from_genome(genome);
-        self.run(|i, o| net.activate(i, o))
+        Outcome::ended(world.robots()[0].pos, goal, steps, |d2| d2 <= r2)
     }
 }
 
-impl Task for MazeTask {
-    fn evaluate(&self, genome: &Genome, _ctx: &EvalContext) -> Evaluation {
-        self.run_genome(genome).evaluation()
-    }
-
-    fn metric_names(&self) -> &[&str] {
-        &METRICS
-    }
-}
+maze_task!(MazeTask);
 
 #[cfg(test)]
 mod tests {
@@ -443,7 +456,7 @@ mod tests {
         let e = task.evaluate(&pop.genomes()[0], &ctx);
         assert_eq!(e.behaviour.len(), 2);
         assert_eq!(e.metrics.len(), METRICS.len());
-        let out = task.run_genome(&pop.genomes()[0]);
+        let out = task.outcome(&pop.genomes()[0]);
         assert_eq!(e.behaviour, [out.end.x, out.end.y]);
         assert_eq!(e.fitness, out.fitness());
         assert_eq!(task.evaluate(&pop.genomes()[0], &ctx), e, "deterministic");

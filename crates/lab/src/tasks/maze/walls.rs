@@ -12,7 +12,7 @@
 use vivae_sim::{DVec2, Scenario};
 
 use super::config::MazeWalls;
-use super::{GOAL_MARK, Maze, MazeError};
+use super::{Maze, MazeError};
 
 /// Lehman's medium maze file.
 pub const MEDIUM_MAZE_TXT: &str = include_str!("../../../../../scenarios/medium-maze.txt");
@@ -132,14 +132,7 @@ impl LehmanMaze {
     /// The maze a scenario draws: every edge of its fixed obstacles' outlines
     /// is a wall, its one robot the start, its `goal` mark the goal.
     pub fn from_scenario(scenario: &Scenario) -> Result<LehmanMaze, MazeError> {
-        let source_name = scenario.source.clone();
-        if scenario.robots.len() != 1 {
-            let count = scenario.robots.len();
-            return Err(MazeError::Robots { source_name, count });
-        }
-        let goal = scenario
-            .mark(GOAL_MARK)
-            .ok_or(MazeError::NoGoal { source_name })?;
+        let goal = super::maze_goal(scenario)?;
         let mut walls = Vec::new();
         for ring in scenario.fixed_obstacles.iter().flat_map(|o| &o.shape.rings) {
             for (k, &a) in ring.iter().enumerate() {
