@@ -641,8 +641,7 @@ pub fn load_genome(source: PathBuf) -> PyResult<(Genome, f64, u32)> {
 /// The shipped scenarios: (name, description).
 #[pyfunction]
 pub fn scenarios() -> Vec<(String, String)> {
-    vivae_lab::shipped::SHIPPED
-        .iter()
+    vivae_lab::shipped::all()
         .map(|s| (s.name.to_string(), s.what.to_string()))
         .collect()
 }

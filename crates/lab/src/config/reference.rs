@@ -156,9 +156,10 @@ pub(super) fn documented_defaults() -> toml::Value {
     if let Some(table) = defaults.as_table_mut() {
         let strategy = toml::Value::try_from(StrategyConfig::default()).expect("TOML");
         table.insert("strategy".into(), strategy);
-        // Likewise `[maze]`, written only when a maze run changes it.
-        let maze = crate::tasks::maze::section::MazeConfig::default();
-        table.insert("maze".into(), toml::Value::try_from(maze).expect("TOML"));
+        // Likewise the tasks' own sections, written only when a run changes them.
+        for task in crate::tasks::TASKS {
+            table.extend((task.sections)());
+        }
         let fitness = super::fitness::FitnessConfig::default();
         table.insert(
             "fitness".into(),

@@ -68,8 +68,9 @@ pub fn choose(
         neurons,
         ..Default::default()
     };
-    overrides.apply(&mut config);
-    crate::tasks::check(&config).map_err(|e| bad_input(format!("{}: {e}", source.display())))?;
+    let refused = |e: String| bad_input(format!("{}: {e}", source.display()));
+    overrides.apply(&mut config).map_err(refused)?;
+    crate::tasks::check(&config).map_err(|e| refused(e.to_string()))?;
     let path = (!config.experiment.scenario.is_empty())
         .then(|| PathBuf::from(&config.experiment.scenario))
         .filter(|p| p.exists());

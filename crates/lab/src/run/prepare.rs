@@ -64,8 +64,9 @@ pub struct Overrides {
     pub behaviour: Option<BehaviourKind>,
     /// `experiment.task` (a registered task).
     pub task: Option<TaskName>,
-    /// `maze.robot` (the maze task's robot model).
-    pub robot: Option<crate::tasks::maze::section::MazeRobot>,
+    /// The task's robot model, where it has a choice (its entry's
+    /// [`crate::tasks::TaskEntry::set_robot`]).
+    pub robot: Option<String>,
 }
 
 impl Overrides {
@@ -121,7 +122,7 @@ impl Overrides {
             "recurrence" => self.recurrence = Some(parse(text).map_err(what)?),
             "strategy" => self.strategy = Some(parse(text).map_err(what)?),
             "behaviour" => self.behaviour = Some(parse(text).map_err(what)?),
-            "robot" => self.robot = Some(parse(text).map_err(what)?),
+            "robot" => self.robot = Some(text.trim().to_string()),
             "task" => {
                 tasks::entry(text).map_err(|e| format!("{key} = {e}"))?;
                 self.task = Some(TaskName(text.to_string()));
@@ -137,7 +138,7 @@ impl Overrides {
     }
 
     /// Writes the overrides that are set into `config` (unchecked: see [`config`]).
-    pub fn apply(&self, c: &mut Config) {
+    pub fn apply(&self, c: &mut Config) -> std::result::Result<(), String> {
         // Given maps replace the config's: one is a single-map run, several a multi-map run.
         match self.scenario.as_slice() {
             [] => {}
@@ -173,7 +174,10 @@ impl Overrides {
         set(&mut s.recurrence, self.recurrence);
         set(&mut c.strategy.kind, self.strategy.clone());
         set(&mut c.strategy.behaviour, self.behaviour);
-        set(&mut c.maze.robot, self.robot);
+        match &self.robot {
+            Some(robot) => tasks::set_robot(c, robot),
+            None => Ok(()),
+        }
     }
 }
 
@@ -243,8 +247,9 @@ pub fn task_named(file: Option<&Path>, overrides: &Overrides) -> Option<TaskName
 pub fn config(file: Option<&Path>, overrides: &Overrides, what: &str) -> Result<Config> {
     let task = task_named(file, overrides);
     let mut config = base_config(file, task.as_ref(), "task ")?;
-    overrides.apply(&mut config);
-    tasks::check(&config).map_err(|e| bad_input(format!("{what}: {e}")))?;
+    let refused = |e: String| bad_input(format!("{what}: {e}"));
+    overrides.apply(&mut config).map_err(refused)?;
+    tasks::check(&config).map_err(|e| refused(e.to_string()))?;
     Ok(config)
 }
 
@@ -331,14 +336,14 @@ mod tests {
             ("recurrence", "self"),
             ("strategy", "novelty"),
             ("behaviour", "end-position"),
-            ("task", "driving"),
+            ("task", "maze"),
             ("robot", "vivae"),
         ] {
             o.set(key, text).unwrap_or_else(|e| panic!("{key}: {e}"));
         }
         assert_eq!(Overrides::KEYS.len(), 21);
-        let mut c = Config::default();
-        o.apply(&mut c);
+        let mut c = Config::maze();
+        o.apply(&mut c).unwrap();
         assert_eq!((c.experiment.generations, c.neat.population_size), (3, 10));
         assert_eq!(c.substrate.train_neurons.len(), 2);
         assert_eq!(c.experiment.scenario, "oval");
@@ -348,11 +353,18 @@ mod tests {
         assert!(e.starts_with("steps = \"-5\""), "{e}");
         let e = o.set("task", "chess").unwrap_err();
         assert!(e.contains("chess") && e.contains("driving"), "{e}");
-        let e = o.set("robot", "khepera").unwrap_err();
+        // A robot model is the task's to read: refused by the maze, and by a
+        // task without a choice.
+        assert_eq!(c.maze.robot, crate::tasks::maze::section::MazeRobot::Vivae);
+        o.set("robot", "khepera").unwrap();
+        let e = o.apply(&mut c).unwrap_err();
         assert!(
             e.contains("khepera") && e.contains("lehman or vivae"),
             "{e}"
         );
+        o.set("task", "driving").unwrap();
+        let e = o.apply(&mut Config::default()).unwrap_err();
+        assert!(e.contains("a driving run has one robot model"), "{e}");
     }
 
     #[test]

@@ -34,6 +34,9 @@ pub use target::TargetProgress;
 /// is a folder here and one line in this list.
 pub static TASKS: [&TaskEntry; 3] = [&driving::TASK, &maze::TASK, &predator_prey::TASK];
 
+/// How a task with a choice of robot models sets one by name.
+pub type SetRobot = fn(&mut Config, &str) -> std::result::Result<(), String>;
+
 /// How a task is built from a config and its maps.
 pub type BuildTask = fn(&Config, &[TrainingMap]) -> Result<Box<dyn RunTask>>;
 
@@ -55,6 +58,16 @@ pub struct TaskEntry {
     /// For a task that runs on a driver of its own (two populations) rather
     /// than [`crate::run::Run`]: that driver. `None` for one population.
     pub own_driver: Option<OwnDriver>,
+    /// The scenarios shipped for it (`vivae scenario list`, `--scenario NAME`).
+    pub scenarios: &'static [crate::shipped::Shipped],
+    /// What its own config sections must be when another task runs (e.g.
+    /// at their defaults: they would be ignored); the message names the key.
+    pub refuse_when_other: fn(&Config) -> std::result::Result<(), String>,
+    /// Sets its robot model by name (`--robot`), for a task with a choice of them.
+    pub set_robot: Option<SetRobot>,
+    /// Its own config sections at their defaults, for the config reference
+    /// (a run's config writes them only when they differ).
+    pub sections: fn() -> Vec<(String, toml::Value)>,
 }
 
 /// What a running task's own driver tells the program: lines for a person
@@ -120,12 +133,33 @@ pub fn default_config(task: Option<&TaskName>) -> std::result::Result<Config, St
     }
 }
 
+/// Sets `config`'s robot model to `robot` (`--robot`) by its task's
+/// [`TaskEntry::set_robot`]; refused for a task without a choice.
+pub fn set_robot(config: &mut Config, robot: &str) -> std::result::Result<(), String> {
+    let task = entry(config.experiment.task.name())?;
+    let Some(set) = task.set_robot else {
+        let with: Vec<&str> = (TASKS.iter())
+            .filter(|t| t.set_robot.is_some())
+            .map(|t| t.name)
+            .collect();
+        return Err(format!(
+            "robot = {robot}: a {} run has one robot model (tasks with a choice: {})",
+            task.name,
+            with.join(", ")
+        ));
+    };
+    set(config, robot).map_err(|e| format!("robot = {e}"))
+}
+
 /// Checks `config` by the shared rules and by its task's: the one validation
 /// of a config that a run starts from.
 pub fn check(config: &Config) -> std::result::Result<(), ConfigError> {
     let task = entry_of(config)?;
     config.validate()?;
     crate::search::check(config, task.metric_names).map_err(ConfigError::new)?;
+    for other in TASKS.iter().filter(|t| t.name != task.name) {
+        (other.refuse_when_other)(config).map_err(ConfigError::new)?;
+    }
     (task.validate)(config).map_err(ConfigError::new)
 }
 

@@ -63,10 +63,10 @@ pub struct Overrides {
     /// Distance rays of the second input sheet (distance_sensors.rays; 0 = none).
     #[arg(long, value_name = "N")]
     pub distance_rays: Option<usize>,
-    /// The maze's robot model (maze.robot): lehman (default: Lehman's maze
-    /// navigator) or vivae (our differential robot of [physics]).
-    #[arg(long, value_name = "lehman|vivae")]
-    pub robot: Option<vivae_lab::tasks::maze::section::MazeRobot>,
+    /// The task's robot model, where it has a choice (the maze: lehman, the
+    /// default, Lehman's navigator; or vivae, our robot of [physics]).
+    #[arg(long, value_name = "MODEL")]
+    pub robot: Option<String>,
 }
 
 /// `--task NAME`: one of the registered tasks (listed by `--help`).
@@ -110,7 +110,7 @@ impl Overrides {
             strategy: self.strategy.clone(),
             behaviour: self.behaviour,
             task: self.task.clone(),
-            robot: self.robot,
+            robot: self.robot.clone(),
         }
     }
 }
@@ -118,8 +118,9 @@ impl Overrides {
 /// Sets each config key `o` gives, then checks the result by every rule of
 /// the config's task.
 pub fn apply_overrides(config: &mut Config, o: &Overrides) -> anyhow::Result<()> {
-    o.to_lab().apply(config);
-    vivae_lab::tasks::check(config).map_err(|e| bad_input(format!("command line: {e}")).into())
+    let refused = |e: String| anyhow::Error::from(bad_input(format!("command line: {e}")));
+    o.to_lab().apply(config).map_err(refused)?;
+    vivae_lab::tasks::check(config).map_err(|e| refused(e.to_string()))
 }
 
 /// The config's single scenario file, if it names one (none: the embedded scenario or several maps).

@@ -38,7 +38,7 @@ pub enum ScenarioCommand {
 pub fn run(command: ScenarioCommand) -> anyhow::Result<ExitCode> {
     match command {
         ScenarioCommand::List => {
-            for s in vivae_lab::shipped::SHIPPED {
+            for s in vivae_lab::shipped::all() {
                 println!("{:<10} {}", s.name, s.what);
             }
         }

@@ -352,7 +352,7 @@ fn a_shipped_maze_selects_the_maze_task_and_the_robot_flag_picks_the_model() {
             .args(["evolve", "-q", "--robot", "vivae", "--generations", "1"])
             .arg("--out")
             .arg(dir.join("driving")),
-        "[maze]",
+        "a driving run has one robot model",
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }

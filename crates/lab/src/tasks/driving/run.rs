@@ -16,14 +16,15 @@ use crate::tasks::{HeaderContext, RunTask, TaskEntry};
 pub static TASK: TaskEntry = TaskEntry {
     name: TaskName::DRIVING,
     default_config: Config::default,
-    validate: |c| {
-        crate::tasks::maze::config::refuse_for_other_tasks(c)?;
-        c.fitness.check()
-    },
+    validate: |c| c.fitness.check(),
     metric_names: &crate::config::strategy::METRICS,
     generation_columns: "",
     build,
     own_driver: None,
+    scenarios: &crate::tasks::driving::scenarios::SCENARIOS,
+    refuse_when_other: |_| Ok(()),
+    set_robot: None,
+    sections: Vec::new,
 };
 
 /// The training of `config` on `maps`.

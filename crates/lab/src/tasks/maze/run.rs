@@ -33,6 +33,16 @@ pub static TASK: TaskEntry = TaskEntry {
     generation_columns: COLUMNS,
     build,
     own_driver: None,
+    scenarios: &crate::tasks::maze::SCENARIOS,
+    refuse_when_other: crate::tasks::maze::config::refuse_for_other_tasks,
+    set_robot: Some(|c, r| {
+        c.maze.robot = r.parse()?;
+        Ok(())
+    }),
+    sections: || {
+        let maze = crate::tasks::maze::section::MazeConfig::default();
+        vec![(NAME.into(), toml::Value::try_from(maze).expect("TOML"))]
+    },
 };
 
 /// Side of MAP-Elites' grid cells over the maze, px (the example's).
