@@ -137,7 +137,7 @@ class PredatorPreyParallelEnv(_PicklesBySettings, ParallelEnv):
     after the step as a share of the arena's diagonal and T = ``steps``;
     the final step gives each side its task fitness minus its rewards so
     far. So an episode's summed rewards are the task's fitnesses (to
-    floating-point rounding, ~1e-15): the hunter's ``2 - t/T`` after a catch
+    floating-point rounding): the hunter's ``2 - t/T`` after a catch
     at step t, else ``1 - mean d``; the prey's ``2 - hunter`` (constant-sum:
     the two sum to 2/T in each non-final step and to 2 over the episode).
     The last step's ``infos`` hold the exact figures (``fitness``) and
