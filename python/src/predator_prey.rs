@@ -416,6 +416,16 @@ impl PredatorPreyTask {
             }
             sum / opponents.len() as f64
         };
-        Ok(py.detach(|| pool.install(|| genomes.par_iter().map(|g| score(g)).collect())))
+        // In chunks of a few genomes per thread, so that Ctrl-C is noticed
+        // between them rather than only at the end.
+        let chunk = 4 * pool.current_num_threads().max(1);
+        let mut fitnesses = Vec::with_capacity(genomes.len());
+        for part in genomes.chunks(chunk) {
+            let done: Vec<f64> =
+                py.detach(|| pool.install(|| part.par_iter().map(|g| score(g)).collect()));
+            fitnesses.extend(done);
+            py.check_signals()?;
+        }
+        Ok(fitnesses)
     }
 }

@@ -182,6 +182,7 @@ def coevolve(generations, **settings):
     hall = []
     for _ in range(generations):
         hs, ps = hunters.ask(), prey.ask()
+        assert hunters.champion is None, "a batch asked, not yet told"
         against_hunters = [hall[-1][2]] if hall else [ps[0]]
         against_prey = [hall[-1][0]] if hall else [hs[0]]
         hunters.tell(task.evaluate("hunter", hs, against_hunters))
