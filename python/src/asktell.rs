@@ -56,6 +56,14 @@ macro_rules! ask_tell {
                 $crate::asktell::best_ever(&self.inner, self.recurrent)
             }
 
+            /// (genome, fitness) of the best genome of the batch last told
+            /// (its generation's champion), or None before `tell`.
+            #[getter]
+            fn champion(&self) -> Option<($crate::evo::Genome, f64)> {
+                vivae_neat::driver::Strategy::champion(&self.inner)
+                    .map(|(g, f)| ($crate::evo::Genome::new(g.clone(), self.recurrent), f))
+            }
+
             /// Statistics of the current batch as a dict.
             fn stats<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
                 $crate::asktell::to_python(py, &vivae_neat::driver::Strategy::stats(&self.inner))

@@ -16,6 +16,7 @@ mod evo;
 mod export;
 mod lab;
 mod pool;
+mod predator_prey;
 mod reproduce;
 // The program's portable C math symbols, shared rather than copied.
 #[path = "../../crates/vivae/src/portable_libm.rs"]
@@ -33,6 +34,8 @@ fn _vivae(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<strategies::MapElites>()?;
     m.add_class::<strategies::Nsga2>()?;
     m.add_class::<lab::DriveTask>()?;
+    m.add_class::<predator_prey::PredatorPreyCore>()?;
+    m.add_class::<predator_prey::PredatorPreyTask>()?;
     m.add_class::<lab::Controller>()?;
     m.add_function(wrap_pyfunction!(lab::evolve, m)?)?;
     m.add_function(wrap_pyfunction!(lab::replay, m)?)?;

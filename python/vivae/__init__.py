@@ -24,6 +24,7 @@ from vivae._vivae import (
     NoveltySearch,
     Nsga2,
     Population,
+    PredatorPreyTask,
     default_config,
     drive_image,
     export,
@@ -49,6 +50,8 @@ __all__ = [
     "NoveltySearch",
     "Nsga2",
     "Population",
+    "PredatorPreyParallelEnv",
+    "PredatorPreyTask",
     "default_config",
     "drive_image",
     "export",
@@ -79,4 +82,8 @@ def __getattr__(name: str):
         from vivae.parallel import DriveParallelEnv
 
         return DriveParallelEnv
+    if name == "PredatorPreyParallelEnv":
+        from vivae.parallel import PredatorPreyParallelEnv
+
+        return PredatorPreyParallelEnv
     raise AttributeError(f"module 'vivae' has no attribute {name!r}")

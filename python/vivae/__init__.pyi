@@ -8,6 +8,7 @@ from vivae._vivae import (
     NoveltySearch as NoveltySearch,
     Nsga2 as Nsga2,
     Population as Population,
+    PredatorPreyTask as PredatorPreyTask,
     default_config as default_config,
     drive_image as drive_image,
     export as export,
@@ -18,7 +19,10 @@ from vivae._vivae import (
     scenarios as scenarios,
 )
 from vivae.envs import DriveEnv as DriveEnv, DriveVectorEnv as DriveVectorEnv
-from vivae.parallel import DriveParallelEnv as DriveParallelEnv
+from vivae.parallel import (
+    DriveParallelEnv as DriveParallelEnv,
+    PredatorPreyParallelEnv as PredatorPreyParallelEnv,
+)
 from vivae.run import evolve as evolve, replay as replay, report as report, resume as resume
 
 __version__: str
@@ -35,6 +39,8 @@ __all__ = [
     "NoveltySearch",
     "Nsga2",
     "Population",
+    "PredatorPreyParallelEnv",
+    "PredatorPreyTask",
     "default_config",
     "drive_image",
     "export",

@@ -40,8 +40,8 @@ def _count(name: str, value: Any, lowest: int) -> int:
     return int(value)
 
 
-def _action(action: Any, shape: tuple[int, ...]) -> np.ndarray:
-    """`action` as float32 of `shape`: real numbers only (a string, None, a
+def _action(action: Any, shape: tuple[int, ...], dtype: Any = np.float32) -> np.ndarray:
+    """`action` as `dtype` (float32 unless told) of `shape`: real numbers only (a string, None, a
     complex number or a bool is a TypeError), a wrong shape a ValueError."""
     try:
         given = np.asarray(action)
@@ -51,7 +51,7 @@ def _action(action: Any, shape: tuple[int, ...]) -> np.ndarray:
         raise TypeError(
             f"action: expected real numbers (float or int) of shape {shape}, got dtype {given.dtype}"
         )
-    a = np.ascontiguousarray(given, dtype=np.float32)
+    a = np.ascontiguousarray(given, dtype=dtype)
     if a.shape != shape:
         raise ValueError(f"action has shape {a.shape}, expected {shape}")
     return a

@@ -31,6 +31,7 @@
 
 pub mod coevo;
 pub mod config;
+pub mod meeting;
 mod present;
 pub mod run;
 
