@@ -30,9 +30,7 @@ fn _vivae(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<evo::Genome>()?;
     m.add_class::<evo::Network>()?;
     m.add_class::<evo::Population>()?;
-    m.add_class::<strategies::NoveltySearch>()?;
-    m.add_class::<strategies::MapElites>()?;
-    m.add_class::<strategies::Nsga2>()?;
+    strategies::register(m)?;
     m.add_class::<lab::DriveTask>()?;
     m.add_class::<predator_prey::PredatorPreyCore>()?;
     m.add_class::<predator_prey::PredatorPreyTask>()?;

@@ -223,3 +223,10 @@ ask_tell!(Nsga2, "Nsga2", "NSGA-II", &["spec"], {
             .collect()
     }
 });
+
+/// Adds the strategies' classes to the module.
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<NoveltySearch>()?;
+    m.add_class::<MapElites>()?;
+    m.add_class::<Nsga2>()
+}

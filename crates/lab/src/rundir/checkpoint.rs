@@ -123,7 +123,7 @@ impl Checkpoint {
             .map(|p| (self.config, p))
             .ok_or_else(|| Error::Checkpoint {
                 path: path.to_path_buf(),
-                reason: "holds no NEAT population (a map-elites or nsga2 run)".into(),
+                reason: "holds no NEAT population (its strategy keeps an archive or a front instead)".into(),
             })
     }
 }

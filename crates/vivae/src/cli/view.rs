@@ -16,11 +16,11 @@ use super::report::refuse_other_task;
 /// Options of `vivae view`.
 #[derive(Args, Debug, Clone)]
 #[command(mut_arg("elite", |a| a.help(
-    "Drive the elite of this cell of a map-elites run's archive (archive.csv) \
+    "Drive the elite of this cell of the run's archive (archive.csv, runs whose strategy keeps one) \
      when a page opens; the page's controller list offers every elite"
 )))]
 #[command(mut_arg("front", |a| a.help(
-    "Drive this member of an nsga2 run's Pareto front (front.csv; 0 = the \
+    "Drive this member of the run's Pareto front (front.csv, runs whose strategy keeps one; 0 = the \
      fittest) when a page opens; the page's list offers every member"
 )))]
 pub struct ViewArgs {
