@@ -33,7 +33,7 @@ pub struct SideRow {
 
 /// Renders the CIAO heat map of `generations` generations: hunter generation
 /// on x, prey generation on y, the hunter's fitness as colour on the fixed
-/// scale [0, 2] (1 and above: a catch; a dot marks each catch).
+/// scale [0, 2] (1 and above: a catch; a dot marks each catch, up to 140 generations).
 pub fn ciao(cells: &[CiaoCell], generations: u32) -> Result<Figure, FigureError> {
     let svg = draw_ciao(cells, generations)?;
     let png = svg_to_png(&svg)?;
@@ -85,8 +85,9 @@ fn draw_ciao(cells: &[CiaoCell], n: u32) -> Result<String, FigureError> {
             Rectangle::new([(h - 0.5, p - 0.5), (h + 0.5, p + 0.5)], colour.filled())
         });
         chart.draw_series(squares).map_err(draw_err)?;
-        let size = (560 / n).clamp(1, 4) as i32;
-        let dots = grid.iter().enumerate().filter_map(|(k, cell)| {
+        // Small dots: a fifth of a cell, none where cells are too small to hold one.
+        let size = (140 / n).min(4) as i32;
+        let dots = grid.iter().enumerate().filter(|_| size > 0).filter_map(|(k, cell)| {
             let (h, p) = ((k as u32 / n) as f64, (k as u32 % n) as f64);
             matches!(cell, Some((_, true))).then(|| Circle::new((h, p), size, WHITE.filled()))
         });
