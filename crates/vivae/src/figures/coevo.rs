@@ -87,10 +87,14 @@ fn draw_ciao(cells: &[CiaoCell], n: u32) -> Result<String, FigureError> {
         chart.draw_series(squares).map_err(draw_err)?;
         // Small dots: a fifth of a cell, none where cells are too small to hold one.
         let size = (140 / n).min(4) as i32;
-        let dots = grid.iter().enumerate().filter(|_| size > 0).filter_map(|(k, cell)| {
-            let (h, p) = ((k as u32 / n) as f64, (k as u32 % n) as f64);
-            matches!(cell, Some((_, true))).then(|| Circle::new((h, p), size, WHITE.filled()))
-        });
+        let dots = grid
+            .iter()
+            .enumerate()
+            .filter(|_| size > 0)
+            .filter_map(|(k, cell)| {
+                let (h, p) = ((k as u32 / n) as f64, (k as u32 % n) as f64);
+                matches!(cell, Some((_, true))).then(|| Circle::new((h, p), size, WHITE.filled()))
+            });
         chart.draw_series(dots).map_err(draw_err)?;
         draw_ciao_bar(&bar)?;
         root.present().map_err(draw_err)?;
