@@ -7,7 +7,10 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::common::browser::{Browser, Viewer, shots};
+use futures_util::{SinkExt, StreamExt};
+use tokio_tungstenite::tungstenite::Message;
+
+use crate::common::browser::{Browser, Viewer, http, shots};
 use crate::common::*;
 
 /// A finished predator–prey run of `generations` generations (small populations).
@@ -75,6 +78,64 @@ fn a_finished_run_and_vivae_report_draw_the_ciao_figure_and_the_curves() {
 
 fn run_report(run: &Path) -> std::process::Output {
     crate::common::run(vivae().arg("report").arg(run))
+}
+
+/// Reads messages until one of `kind` arrives; returns it.
+async fn next_of(
+    ws: &mut (impl StreamExt<Item = Result<Message, tokio_tungstenite::tungstenite::Error>> + Unpin),
+    kind: &str,
+) -> serde_json::Value {
+    loop {
+        let m = ws.next().await.expect("socket open").expect("message");
+        if let Message::Text(t) = m {
+            let v: serde_json::Value = serde_json::from_str(t.as_str()).unwrap();
+            if v["type"] == kind {
+                return v;
+            }
+        }
+    }
+}
+
+#[test]
+fn hostile_messages_to_the_predator_prey_page_get_an_error_reply() {
+    let run = pp_run("pp-hostile", 2);
+    let v = Viewer::start(&[run.as_os_str()]);
+    // Only the listed run files are served.
+    assert_eq!(http(v.port, "GET", "/run/ciao.csv", None).status, 200);
+    assert_eq!(http(v.port, "GET", "/run/checkpoint.json", None).status, 404);
+    assert_eq!(http(v.port, "GET", "/run/..%2Fconfig.toml", None).status, 404);
+    let rt = tokio::runtime::Runtime::new().unwrap();
+    rt.block_on(async {
+        let mut ws = v.connect().await;
+        let info = next_of(&mut ws, "info").await;
+        assert_eq!(info["generations"], 2);
+        next_of(&mut ws, "frame").await;
+        for bad in [
+            "not json",
+            r#"{"type":"pick","hunter":2,"prey":0}"#,
+            r#"{"type":"pick","hunter":0,"prey":4294967296}"#,
+            r#"{"type":"speed","value":-1}"#,
+            r#"{"type":"step","n":100000}"#,
+            r#"{"type":"keys","up":"yes"}"#,
+            r#"{"type":"human","on":true,"robot":7}"#,
+        ] {
+            ws.send(Message::Text(bad.into())).await.unwrap();
+            let e = next_of(&mut ws, "error").await;
+            assert!(!e["message"].as_str().unwrap().is_empty(), "{bad}");
+        }
+        ws.send(Message::Binary(vec![0u8; 8].into())).await.unwrap();
+        next_of(&mut ws, "error").await;
+        // Still playing: a valid choice is obeyed.
+        ws.send(Message::Text(r#"{"type":"pick","hunter":1,"prey":0}"#.into()))
+            .await
+            .unwrap();
+        let mut f = next_of(&mut ws, "frame").await;
+        while f["hunter"] != 1 {
+            f = next_of(&mut ws, "frame").await;
+        }
+        assert_eq!(f["prey"], 0);
+    });
+    let _ = std::fs::remove_dir_all(run.parent().unwrap());
 }
 
 /// Where the page last drew robot `i`.
@@ -216,4 +277,28 @@ fn predator_prey_report_animates_the_champions_from_file_with_networking_off() {
     let errors = b.console_errors();
     assert!(errors.is_empty(), "console errors: {errors:?}");
     let _ = std::fs::remove_dir_all(run.parent().unwrap());
+}
+
+/// Saves the guide's screenshot of the viewer on the run `VIVAE_RUN` (its
+/// champions a hundred steps in) into `VIVAE_SHOTS` (not a check: run it by
+/// name with `--ignored`).
+#[test]
+#[ignore = "screenshot for docs/guide.md; run with --ignored"]
+fn screenshot_a_predator_prey_run_for_the_guide() {
+    let (Some(run), Some(dir)) = (std::env::var_os("VIVAE_RUN"), std::env::var_os("VIVAE_SHOTS"))
+    else {
+        return;
+    };
+    let Some(b) = Browser::start(&[]) else {
+        return;
+    };
+    let v = Viewer::start(&[run.as_os_str()]);
+    b.goto(&v.url);
+    b.wait_for(
+        "var s = window.vivaeCoevo; return !!s && (s.step > 100 || s.caught !== null);",
+        "a hundred steps",
+    );
+    b.eval("document.getElementById('play').click(); return true;");
+    std::thread::sleep(std::time::Duration::from_millis(300));
+    b.save_screenshot(&PathBuf::from(dir).join("view-coevo.png"));
 }
