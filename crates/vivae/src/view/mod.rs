@@ -48,25 +48,33 @@ pub struct ViewOptions {
     pub idle_timeout: Duration,
 }
 
+/// The predator–prey run `source` is, with its generations of champions
+/// (`None`: another source); refused in one line if it cannot be shown.
+fn predator_prey_run(
+    source: Option<&Path>,
+    options: &ViewOptions,
+) -> vivae_lab::Result<Option<(PathBuf, usize)>> {
+    let Some(dir) = source.filter(|p| crate::report_coevo::is_predator_prey_run(p)) else {
+        return Ok(None);
+    };
+    if options.member.is_some() || options.scenarios.is_some() {
+        return Err(bad_input(format!(
+            "{}: a predator-prey run: --elite, --front and --scenarios do not apply (the page picks any generation's hunter and prey)",
+            dir.display()
+        )));
+    }
+    // Refused now, in one line, rather than on every page.
+    let hall = coevo::Hall::load(dir)?;
+    Ok(Some((dir.to_path_buf(), hall.generations())))
+}
+
 /// Runs `vivae view` on `source` (a run directory, which it follows while it
 /// runs, a genome JSON, a scenario SVG, or none: the embedded road scenario)
 /// until interrupted.
 pub fn run(source: Option<&Path>, options: &ViewOptions) -> vivae_lab::Result<ExitCode> {
     let host = options.addr.ip();
     let hosts = hosts::HostPolicy::new(host, &options.allow_host)?;
-    let coevo_run = source.filter(|p| crate::report_coevo::is_predator_prey_run(p));
-    let mut shown = None;
-    if let Some(dir) = coevo_run {
-        if options.member.is_some() || options.scenarios.is_some() {
-            return Err(bad_input(format!(
-                "{}: a predator-prey run: --elite, --front and --scenarios do not apply (the page picks any generation's hunter and prey)",
-                dir.display()
-            )));
-        }
-        // Refused now, in one line, rather than on every page.
-        let hall = coevo::Hall::load(dir)?;
-        shown = Some((dir.to_path_buf(), hall.generations()));
-    }
+    let shown = predator_prey_run(source, options)?;
     let mut source = match &shown {
         Some(_) => Source::load(None, None)?,
         None => Source::load(source, options.scenarios.as_deref())?,

@@ -102,8 +102,14 @@ fn hostile_messages_to_the_predator_prey_page_get_an_error_reply() {
     let v = Viewer::start(&[run.as_os_str()]);
     // Only the listed run files are served.
     assert_eq!(http(v.port, "GET", "/run/ciao.csv", None).status, 200);
-    assert_eq!(http(v.port, "GET", "/run/checkpoint.json", None).status, 404);
-    assert_eq!(http(v.port, "GET", "/run/..%2Fconfig.toml", None).status, 404);
+    assert_eq!(
+        http(v.port, "GET", "/run/checkpoint.json", None).status,
+        404
+    );
+    assert_eq!(
+        http(v.port, "GET", "/run/..%2Fconfig.toml", None).status,
+        404
+    );
     let rt = tokio::runtime::Runtime::new().unwrap();
     rt.block_on(async {
         let mut ws = v.connect().await;
@@ -126,9 +132,11 @@ fn hostile_messages_to_the_predator_prey_page_get_an_error_reply() {
         ws.send(Message::Binary(vec![0u8; 8].into())).await.unwrap();
         next_of(&mut ws, "error").await;
         // Still playing: a valid choice is obeyed.
-        ws.send(Message::Text(r#"{"type":"pick","hunter":1,"prey":0}"#.into()))
-            .await
-            .unwrap();
+        ws.send(Message::Text(
+            r#"{"type":"pick","hunter":1,"prey":0}"#.into(),
+        ))
+        .await
+        .unwrap();
         let mut f = next_of(&mut ws, "frame").await;
         while f["hunter"] != 1 {
             f = next_of(&mut ws, "frame").await;
@@ -285,8 +293,10 @@ fn predator_prey_report_animates_the_champions_from_file_with_networking_off() {
 #[test]
 #[ignore = "screenshot for docs/guide.md; run with --ignored"]
 fn screenshot_a_predator_prey_run_for_the_guide() {
-    let (Some(run), Some(dir)) = (std::env::var_os("VIVAE_RUN"), std::env::var_os("VIVAE_SHOTS"))
-    else {
+    let (Some(run), Some(dir)) = (
+        std::env::var_os("VIVAE_RUN"),
+        std::env::var_os("VIVAE_SHOTS"),
+    ) else {
         return;
     };
     let Some(b) = Browser::start(&[]) else {
