@@ -90,7 +90,7 @@
     $("manualnote").textContent = m.human ? "you drive the prey: ↑ forward, ↓ back, ← → turn" : "";
     var who = "hunter of generation " + m.hunter + " against " + (m.human ? "you" : "the prey of generation " + m.prey);
     $("outcome").textContent = m.caught !== null ? "Caught at step " + m.caught + " (" + (m.caught / (info ? info.real_time_steps : 30)).toFixed(1) + " s)"
-      : m.step >= m.max_steps ? "Escaped: no catch in " + m.max_steps + " steps" : "Running…";
+      : m.step >= m.max_steps ? "Escaped: no catch in " + m.max_steps + " steps" : m.playing ? "Running…" : "Paused";
     $("clock").textContent = who + " · step " + m.step + " of " + m.max_steps;
     fresh = true;
   }
