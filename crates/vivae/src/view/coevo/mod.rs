@@ -417,6 +417,7 @@ mod tests {
             assert_eq!(game.caught, out.caught.then_some(out.steps), "({h}, {p})");
             assert_eq!(game.step, out.steps);
         }
+        game.frame_msg(&hall);
         let before = game.frame_msg(&hall);
         for bad in [
             r#"{"type":"pick","hunter":2,"prey":0}"#,
