@@ -56,6 +56,32 @@ fn a_finished_run_and_vivae_report_draw_the_ciao_figure_and_the_curves() {
     ] {
         assert!(html.contains(needle), "report.html lacks {needle}");
     }
+    // The champions' match on the page is their CIAO game.
+    let data = html
+        .split_once(r#"<script type="application/json" id="vivae-data">"#)
+        .and_then(|(_, rest)| rest.split_once("</script>"))
+        .map(|(json, _)| serde_json::from_str::<serde_json::Value>(json).unwrap())
+        .expect("the page's data block");
+    let (h, p) = (
+        &data["champions"]["hunter_generation"],
+        &data["champions"]["prey_generation"],
+    );
+    let ciao = String::from_utf8(read(&run, "ciao.csv")).unwrap();
+    let row = ciao
+        .lines()
+        .find(|l| l.starts_with(&format!("{h},{p},")))
+        .expect("the champions' CIAO cell");
+    let game = &data["game"];
+    assert_eq!(row.ends_with(",1"), game["caught"] == true, "{row}");
+    if game["caught"] == true {
+        let fitness: f64 = row.split(',').nth(2).unwrap().parse().unwrap();
+        let steps = game["steps"].as_f64().unwrap() / game["max_steps"].as_f64().unwrap();
+        assert!(
+            (fitness - (2.0 - steps)).abs() < 1e-12,
+            "{row}: steps {}",
+            game["steps"]
+        );
+    }
     // `vivae report` rebuilds the same figures.
     let before = read(&run, "ciao.svg");
     std::fs::remove_file(run.join("ciao.svg")).unwrap();
