@@ -432,10 +432,15 @@ fn own_driver_run<'py>(
     let quiet = |_: &str| {};
     let line = py
         .detach(|| {
-            run(&vivae_lab::tasks::Session {
+            let line = run(&vivae_lab::tasks::Session {
                 interrupted: &stop,
                 say: &quiet,
-            })
+            })?;
+            // Its figures and report.html, as the CLI draws them when a run stops.
+            if vivae::report_coevo::is_predator_prey_run(dir) {
+                vivae::report_coevo::write(dir)?;
+            }
+            Ok::<_, vivae_lab::Error>(line)
         })
         .map_err(errors::lab)?;
     let d = PyDict::new(py);
@@ -488,6 +493,9 @@ pub fn resume<'py>(
 #[pyfunction]
 pub fn report(py: Python<'_>, out: PathBuf) -> PyResult<PathBuf> {
     py.detach(|| {
+        if vivae::report_coevo::is_predator_prey_run(&out) {
+            return vivae::report_coevo::write(&out);
+        }
         // Opened as `vivae resume` opens it (locked; truncated to its newest
         // checkpoint, which a finished run's files already end at).
         let run = Run::resume(&out, None, None)?;

@@ -105,7 +105,7 @@ pub struct PredatorPreyCore {
 impl PredatorPreyCore {
     fn observe<'py>(&self, py: Python<'py>, side: Side) -> Bound<'py, PyArray1<f64>> {
         let mut i = [0.0; INPUTS];
-        self.arena.inputs(&self.meeting, side, &mut i);
+        self.arena.inputs(self.meeting.world(), side, &mut i);
         Array1::from(i.to_vec()).into_pyarray(py)
     }
 }

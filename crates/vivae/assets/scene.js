@@ -87,7 +87,8 @@ var VivaeScene = (function () {
   };
 
   // robots: [{x, y, h}] (h: heading in radians, 0 = up, clockwise);
-  // trails: per robot [x0, y0, x1, y1, ...] or null; opts: {selected, sensors: [{x, y, v}]}.
+  // trails: per robot [x0, y0, x1, y1, ...] or null; opts: {selected, sensors: [{x, y, v}],
+  // colors: per robot a CSS colour (default: the figures' robot colours)}.
   Scene.prototype.draw = function (robots, trails, opts) {
     var c = this.ctx, w = this.canvas.width, h = this.canvas.height;
     opts = opts || {};
@@ -101,7 +102,7 @@ var VivaeScene = (function () {
       for (i = 0; i < trails.length; i++) {
         var t = trails[i];
         if (!t || t.length < 4) { continue; }
-        c.strokeStyle = color(i);
+        c.strokeStyle = opts.colors ? opts.colors[i] : color(i);
         c.globalAlpha = 0.9;
         c.beginPath();
         c.moveTo(t[0], t[1]);
@@ -123,7 +124,7 @@ var VivaeScene = (function () {
         c.stroke();
         c.setLineDash([]);
       }
-      c.fillStyle = color(i);
+      c.fillStyle = opts.colors ? opts.colors[i] : color(i);
       c.strokeStyle = "#000";
       c.lineWidth = 1;
       c.beginPath();

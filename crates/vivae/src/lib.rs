@@ -21,6 +21,7 @@ pub mod figures;
 #[cfg(feature = "mpi")]
 pub mod mpi;
 pub mod report;
+pub mod report_coevo;
 pub mod report_html;
 #[cfg(feature = "viewer")]
 pub mod view;

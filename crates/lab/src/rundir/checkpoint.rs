@@ -123,7 +123,9 @@ impl Checkpoint {
             .map(|p| (self.config, p))
             .ok_or_else(|| Error::Checkpoint {
                 path: path.to_path_buf(),
-                reason: "holds no NEAT population (its strategy keeps an archive or a front instead)".into(),
+                reason:
+                    "holds no NEAT population (its strategy keeps an archive or a front instead)"
+                        .into(),
             })
     }
 }

@@ -23,7 +23,8 @@ pub fn evolve(
 ) -> anyhow::Result<ExitCode> {
     in_session(quiet, interrupted, |session| {
         (driver.evolve)(dir, config, force, session)
-    })
+    })?;
+    report(dir, quiet)
 }
 
 /// Resumes the run in `dir` on `driver`.
@@ -36,7 +37,20 @@ pub fn resume(
 ) -> anyhow::Result<ExitCode> {
     in_session(quiet, interrupted, |session| {
         (driver.resume)(dir, generations, session)
-    })
+    })?;
+    report(dir, quiet)
+}
+
+/// Draws the figures and `report.html` of a predator–prey run that has
+/// stopped (`vivae report` rebuilds them); says where unless `quiet`.
+fn report(dir: &Path, quiet: bool) -> anyhow::Result<ExitCode> {
+    if vivae::report_coevo::is_predator_prey_run(dir) {
+        let path = vivae::report_coevo::write(dir)?;
+        if !quiet {
+            eprintln!("report: {} (and ciao.png, coevolution.png)", path.display());
+        }
+    }
+    Ok(ExitCode::SUCCESS)
 }
 
 /// Runs `work` in a session that says its progress on stderr unless `quiet`,

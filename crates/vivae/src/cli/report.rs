@@ -1,4 +1,5 @@
-//! `vivae report`: rebuilds a run's report.html; and the refusal, shared with
+//! `vivae report`: rebuilds a run's report.html (a driving run's, or a
+//! predator–prey run's with its CIAO figure); and the refusal, shared with
 //! `vivae view`, of a command that shows driving runs only.
 
 use std::path::Path;
@@ -10,8 +11,13 @@ use vivae_lab::tasks::read_config;
 
 /// Runs `vivae report` on the run directory `run_dir`.
 pub fn run(run_dir: &Path) -> anyhow::Result<ExitCode> {
-    refuse_other_task(run_dir, "report")?;
-    let path = vivae::report_html::write(run_dir)?;
+    let path = if vivae::report_coevo::is_predator_prey_run(run_dir) {
+        // Two co-evolved populations: the CIAO figure, both sides' curves, the champions.
+        vivae::report_coevo::write(run_dir)?
+    } else {
+        refuse_other_task(run_dir, "report")?;
+        vivae::report_html::write(run_dir)?
+    };
     eprintln!("report: {}", path.display());
     Ok(ExitCode::SUCCESS)
 }

@@ -54,7 +54,9 @@ pub struct ViewArgs {
 
 /// Runs `vivae view` until interrupted.
 pub fn run(args: ViewArgs) -> anyhow::Result<ExitCode> {
-    if let Some(source) = &args.source {
+    if let Some(source) = &args.source
+        && !vivae::report_coevo::is_predator_prey_run(source)
+    {
         refuse_other_task(source, "view")?;
     }
     if args.max_viewers == 0 {

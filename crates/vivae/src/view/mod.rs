@@ -4,8 +4,10 @@
 //! `vivae-sim` world, one simulation per open page, and streamed to the page
 //! over a WebSocket ([`session`]). The page is plain HTML/CSS/JS embedded in
 //! the binary. The server answers only its own assets, a fixed list of the
-//! given run's files and the WebSocket; every other path is a 404.
+//! given run's files and the WebSocket; every other path is a 404. A
+//! predator–prey run has a page of its own ([`coevo`]): its two teams meet.
 
+mod coevo;
 #[doc(hidden)]
 pub mod fuzzing;
 mod hosts;
@@ -46,13 +48,37 @@ pub struct ViewOptions {
     pub idle_timeout: Duration,
 }
 
+/// The predator–prey run `source` is, with its generations of champions
+/// (`None`: another source); refused in one line if it cannot be shown.
+fn predator_prey_run(
+    source: Option<&Path>,
+    options: &ViewOptions,
+) -> vivae_lab::Result<Option<(PathBuf, usize)>> {
+    let Some(dir) = source.filter(|p| crate::report_coevo::is_predator_prey_run(p)) else {
+        return Ok(None);
+    };
+    if options.member.is_some() || options.scenarios.is_some() {
+        return Err(bad_input(format!(
+            "{}: a predator-prey run: --elite, --front and --scenarios do not apply (the page picks any generation's hunter and prey)",
+            dir.display()
+        )));
+    }
+    // Refused now, in one line, rather than on every page.
+    let hall = coevo::Hall::load(dir)?;
+    Ok(Some((dir.to_path_buf(), hall.generations())))
+}
+
 /// Runs `vivae view` on `source` (a run directory, which it follows while it
 /// runs, a genome JSON, a scenario SVG, or none: the embedded road scenario)
 /// until interrupted.
 pub fn run(source: Option<&Path>, options: &ViewOptions) -> vivae_lab::Result<ExitCode> {
     let host = options.addr.ip();
     let hosts = hosts::HostPolicy::new(host, &options.allow_host)?;
-    let mut source = Source::load(source, options.scenarios.as_deref())?;
+    let shown = predator_prey_run(source, options)?;
+    let mut source = match &shown {
+        Some(_) => Source::load(None, None)?,
+        None => Source::load(source, options.scenarios.as_deref())?,
+    };
     if let Some(member) = options.member {
         source.start_with(member)?;
     }
@@ -89,26 +115,30 @@ pub fn run(source: Option<&Path>, options: &ViewOptions) -> vivae_lab::Result<Ex
             "warning: listening on {host} — anyone who can reach this machine on the network can watch this run"
         );
     }
-    let shown = if host.is_unspecified() {
+    let url = if host.is_unspecified() {
         SocketAddr::new(IpAddr::V4(Ipv4Addr::LOCALHOST), local.port())
     } else {
         local
     };
-    println!("vivae view: http://{shown}/");
-    eprintln!("{} (Ctrl-C stops the server)", source.describe());
-    if let Some(note) = source.unusable_note() {
-        eprintln!("{note}");
+    println!("vivae view: http://{url}/");
+    if let Some((dir, generations)) = &shown {
+        eprintln!(
+            "showing predator-prey run {} ({generations} generations of champions; Ctrl-C stops the server)",
+            dir.display()
+        );
+    } else {
+        eprintln!("{} (Ctrl-C stops the server)", source.describe());
+        if let Some(note) = source.unusable_note() {
+            eprintln!("{note}");
+        }
     }
     use std::io::Write as _;
     let _ = std::io::stdout().flush();
-    runtime
-        .block_on(server::serve(
-            listener,
-            source,
-            options.max_viewers,
-            hosts,
-            options.idle_timeout,
-        ))
-        .map_err(io("serve on"))?;
+    let (max, idle) = (options.max_viewers, options.idle_timeout);
+    let served = match shown {
+        Some((dir, _)) => runtime.block_on(coevo::server::serve(listener, dir, max, hosts, idle)),
+        None => runtime.block_on(server::serve(listener, source, max, hosts, idle)),
+    };
+    served.map_err(io("serve on"))?;
     Ok(ExitCode::SUCCESS)
 }

@@ -38,9 +38,9 @@ const RUN_FILES: [(&str, &str); 7] = [
 /// How often a followed run directory is checked for new generations.
 const POLL: Duration = Duration::from_millis(700);
 /// Interval between frames sent to a page.
-const FRAME: Duration = Duration::from_millis(16);
+pub(super) const FRAME: Duration = Duration::from_millis(16);
 /// Largest message a page may send.
-const MAX_MESSAGE: usize = 16 * 1024;
+pub(super) const MAX_MESSAGE: usize = 16 * 1024;
 /// Pages silent this long (no message, not even the answer to a ping, which
 /// browsers send by themselves) are dropped and their viewer slot freed.
 pub const IDLE_TIMEOUT: Duration = Duration::from_secs(120);
@@ -59,7 +59,7 @@ struct App {
 }
 
 /// Frees a viewer slot when its page's session ends (however it ends).
-struct ViewerSlot(Arc<AtomicUsize>);
+pub(super) struct ViewerSlot(pub(super) Arc<AtomicUsize>);
 
 impl Drop for ViewerSlot {
     fn drop(&mut self) {
@@ -139,11 +139,11 @@ async fn known_host(
     next.run(request).await
 }
 
-async fn not_found() -> Response {
+pub(super) async fn not_found() -> Response {
     (StatusCode::NOT_FOUND, "not found\n").into_response()
 }
 
-fn text(content_type: &'static str, body: impl Into<axum::body::Body>) -> Response {
+pub(super) fn text(content_type: &'static str, body: impl Into<axum::body::Body>) -> Response {
     (
         [
             (header::CONTENT_TYPE, content_type),
@@ -186,7 +186,7 @@ async fn run_file(State(app): State<App>, UrlPath(name): UrlPath<String>) -> Res
 /// Opens a run file to be served: it must be a regular file inside the run
 /// directory once symlinks are followed (a link to `/etc/passwd`, a FIFO or
 /// `/dev/zero` is refused, without waiting on it).
-fn open_run_file(dir: &Path, path: &Path) -> std::io::Result<(std::fs::File, u64)> {
+pub(super) fn open_run_file(dir: &Path, path: &Path) -> std::io::Result<(std::fs::File, u64)> {
     let real = std::fs::canonicalize(path)?;
     if !real.starts_with(std::fs::canonicalize(dir)?) {
         return Err(std::io::ErrorKind::PermissionDenied.into());
@@ -196,7 +196,7 @@ fn open_run_file(dir: &Path, path: &Path) -> std::io::Result<(std::fs::File, u64
 }
 
 /// The first `len` bytes of `file`, read and sent a chunk at a time.
-fn file_body(file: std::fs::File, len: u64) -> axum::body::Body {
+pub(super) fn file_body(file: std::fs::File, len: u64) -> axum::body::Body {
     use tokio::io::AsyncReadExt;
     let reader = tokio::fs::File::from_std(file).take(len);
     let chunks = futures_util::stream::unfold(Some(reader), |reader| async move {
@@ -216,7 +216,7 @@ fn file_body(file: std::fs::File, len: u64) -> axum::body::Body {
 
 /// A browser page may open the WebSocket only from this server's own page:
 /// another site open in the same browser must not read the run.
-fn same_origin(headers: &HeaderMap) -> bool {
+pub(super) fn same_origin(headers: &HeaderMap) -> bool {
     let Some(origin) = headers.get(header::ORIGIN) else {
         // Not a browser page (a script or a test client).
         return true;
@@ -250,13 +250,13 @@ async fn ws(State(app): State<App>, headers: HeaderMap, upgrade: WebSocketUpgrad
         })
 }
 
-fn error_msg(message: &str) -> String {
+pub(super) fn error_msg(message: &str) -> String {
     serde_json::json!({"type": "error", "message": message}).to_string()
 }
 
 /// Sends `text`, giving up (`false`) if the page has not taken it within
 /// `idle`: a page that stops reading must not hold its slot either.
-async fn send_within(socket: &mut WebSocket, message: Message, idle: Duration) -> bool {
+pub(super) async fn send_within(socket: &mut WebSocket, message: Message, idle: Duration) -> bool {
     matches!(
         tokio::time::timeout(idle, socket.send(message)).await,
         Ok(Ok(()))

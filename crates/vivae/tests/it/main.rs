@@ -40,6 +40,7 @@ mod multi_resolution_evolution_is_reproducible;
 mod network_figure_stays_small_at_camera_resolution;
 mod non_regular_input_files_are_refused;
 mod output_path_mistakes_exit_2_with_one_line;
+mod predator_prey_report_and_viewer_show_both_teams;
 mod predator_prey_runs_from_the_cli_and_resumes_identically;
 mod random_placements_are_seeded_and_replayable;
 mod replay_from_champion_file_matches_run_dir;

@@ -6,7 +6,7 @@
 use vivae_sim::World;
 
 use crate::tasks::maze::wheels;
-use crate::tasks::predator_prey::{Arena, INPUTS, Outcome, Side};
+use crate::tasks::predator_prey::{Arena, Outcome};
 
 /// An episode under way: the world, the steps played, the distance summed, the catch.
 #[derive(Debug, Clone)]
@@ -47,11 +47,6 @@ impl Arena {
         }
     }
 
-    /// The inputs `side`'s network sees now: radar slices, rangefinders, bias.
-    pub fn inputs(&self, m: &Meeting, side: Side, inputs: &mut [f64; INPUTS]) {
-        self.read(&m.world, self.robot(side), inputs);
-    }
-
     /// Whether the episode is over: the catch, or all its steps played.
     pub fn over(&self, m: &Meeting) -> bool {
         m.caught || m.steps >= self.steps
@@ -67,8 +62,7 @@ impl Arena {
         m.controls[self.prey] = wheels(prey[0], prey[1]);
         m.world.step(&m.controls);
         m.steps += 1;
-        let (a, b) = (self.hunter.min(self.prey), self.hunter.max(self.prey));
-        m.caught = (m.world.team_contacts().iter()).any(|c| c.a == a && c.b == b);
+        m.caught = self.caught(&m.world);
         m.sum += self.gap(&m.world);
     }
 
@@ -102,7 +96,7 @@ impl Arena {
 mod tests {
     use super::*;
     use crate::tasks::maze::MazeTask;
-    use crate::tasks::predator_prey::{OUTPUTS, STEPS};
+    use crate::tasks::predator_prey::{INPUTS, OUTPUTS, STEPS, Side};
     use vivae_neat::{Network, Population, RecurrentNetwork};
     use vivae_sim::{LoadOptions, Scenario};
 
@@ -120,8 +114,8 @@ mod tests {
         let (mut hi, mut pi) = ([0.0; INPUTS], [0.0; INPUTS]);
         let (mut ho, mut po) = ([0.0; OUTPUTS], [0.0; OUTPUTS]);
         while !a.over(&m) {
-            a.inputs(&m, Side::Hunter, &mut hi);
-            a.inputs(&m, Side::Prey, &mut pi);
+            a.inputs(m.world(), Side::Hunter, &mut hi);
+            a.inputs(m.world(), Side::Prey, &mut pi);
             hn.activate(&hi, &mut ho);
             pn.activate(&pi, &mut po);
             a.advance(&mut m, ho, po);
@@ -171,7 +165,7 @@ mod tests {
         let mut m = a.start();
         let mut i = [0.0; INPUTS];
         while !a.over(&m) {
-            a.inputs(&m, Side::Hunter, &mut i);
+            a.inputs(m.world(), Side::Hunter, &mut i);
             let turn = if i[1] > 0.0 {
                 0.5
             } else if i[2] > 0.0 {

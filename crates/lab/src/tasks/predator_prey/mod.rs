@@ -221,6 +221,18 @@ impl Arena {
         }
     }
 
+    /// Reads `side`'s inputs in `world` (radar slices, rangefinders, bias),
+    /// as [`Arena::play`] does each step (for a viewer that steps an episode itself).
+    pub fn inputs(&self, world: &World, side: Side, inputs: &mut [f64; INPUTS]) {
+        self.read(world, self.robot(side), inputs);
+    }
+
+    /// Whether the hunter touches the prey in `world` after its last step: the catch.
+    pub fn caught(&self, world: &World) -> bool {
+        let (a, b) = (self.hunter.min(self.prey), self.hunter.max(self.prey));
+        world.team_contacts().iter().any(|c| c.a == a && c.b == b)
+    }
+
     /// Reads robot `robot`'s inputs: radar slices, rangefinders, bias.
     fn read(&self, world: &World, robot: usize, inputs: &mut [f64; INPUTS]) {
         let (radar, rest) = inputs.split_at_mut(self.radar.len());
@@ -253,8 +265,7 @@ impl Arena {
             controls[self.prey] = wheels(po[0], po[1]);
             world.step(&controls);
             steps += 1;
-            let (a, b) = (self.hunter.min(self.prey), self.hunter.max(self.prey));
-            caught = world.team_contacts().iter().any(|c| c.a == a && c.b == b);
+            caught = self.caught(&world);
             let r = world.robots();
             sum += r[self.hunter].pos.distance(r[self.prey].pos);
             each(&world);

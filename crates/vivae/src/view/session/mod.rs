@@ -92,16 +92,16 @@ enum ClientMsg {
 
 /// Arrow keys held down.
 #[derive(Debug, Clone, Copy, Default)]
-struct Keys {
-    up: bool,
-    down: bool,
-    left: bool,
-    right: bool,
+pub(in crate::view) struct Keys {
+    pub up: bool,
+    pub down: bool,
+    pub left: bool,
+    pub right: bool,
 }
 
 impl Keys {
     /// Wheel commands `[L, R]` for the keys held, as ViVAE's keyboard controller.
-    fn controls(self) -> [f64; 2] {
+    pub(in crate::view) fn controls(self) -> [f64; 2] {
         let forward = f64::from(i8::from(self.up) - i8::from(self.down));
         let turn = f64::from(i8::from(self.right) - i8::from(self.left));
         if forward == 0.0 {
