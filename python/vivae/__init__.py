@@ -12,6 +12,8 @@ with the GIL released.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import gymnasium
 
 from vivae._vivae import (
@@ -36,6 +38,10 @@ from vivae._vivae import (
 )
 from vivae.envs import DriveEnv, DriveVectorEnv
 from vivae.run import evolve, replay, report, resume
+
+if TYPE_CHECKING:
+    # Imported lazily at run time (by __getattr__ below): PettingZoo is optional.
+    from vivae.parallel import DriveParallelEnv, PredatorPreyParallelEnv
 
 __all__ = [
     "OVERRIDES",
