@@ -137,11 +137,11 @@ pub fn read_member(dir: &Path, member: Member) -> Result<(Genome, f64, u32)> {
     let text = crate::io::read_regular_text(&path, crate::rundir::MAX_RUN_FILE_BYTES).map_err(
         |e| match e.kind() {
             std::io::ErrorKind::NotFound => crate::io::bad_input(format!(
-                "{}: no such file (only a {} run has one)",
+                "{}: no such file (only a run whose strategy keeps {} has one)",
                 path.display(),
                 match member {
-                    Member::Elite(_) => "map-elites",
-                    Member::Front(_) => "nsga2",
+                    Member::Elite(_) => "an archive",
+                    Member::Front(_) => "a Pareto front",
                 }
             )),
             _ => Error::io("read", &path)(e),

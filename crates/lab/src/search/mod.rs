@@ -17,6 +17,8 @@ mod neat;
 mod novelty;
 mod nsga2;
 
+pub use nsga2::front_objective_names;
+
 use std::any::Any;
 use std::path::Path;
 

@@ -135,3 +135,11 @@ impl RunStrategy for Nsga2 {
         write_atomic(&dir.join(files::FRONT_GENOMES), jsonl(&lines)?.as_bytes())
     }
 }
+
+/// Names of the objectives a run's Pareto front is over (a minimised one
+/// without its `-`), for labelling its members.
+pub fn front_objective_names(config: &Config) -> Vec<String> {
+    (config.strategy.nsga2.objectives.iter())
+        .map(|o| o.trim_start_matches('-').to_string())
+        .collect()
+}

@@ -199,11 +199,9 @@ impl Source {
         self.config.strategy.behaviour.coordinate_names(dims)
     }
 
-    /// Names of an nsga2 run's objectives (a minimised one without its `-`).
+    /// Names of the objectives of the run's Pareto front (a minimised one without its `-`).
     pub fn objective_names(&self) -> Vec<String> {
-        (self.config.strategy.nsga2.objectives.iter())
-            .map(|o| o.trim_start_matches('-').to_string())
-            .collect()
+        vivae_lab::search::front_objective_names(&self.config)
     }
 
     /// One line saying what is shown.

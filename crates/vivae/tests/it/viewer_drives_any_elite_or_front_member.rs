@@ -58,7 +58,7 @@ fn view_starts_on_the_elite_or_front_member_asked_for_and_refuses_missing_ones()
         (vec!["--elite", "100000"], "no elite in cell 100000"),
         (
             vec!["--front", "0"],
-            "no such file (only a nsga2 run has one)",
+            "no such file (only a run whose strategy keeps a Pareto front has one)",
         ),
     ] {
         let out = run(vivae().arg("view").arg(&elites).args(&args));

@@ -87,9 +87,7 @@ pub(super) fn chosen_genome<'a>(
         Choice::Front(n) => {
             let f = (snap.front.iter().find(|f| f.member == n))
                 .ok_or_else(|| missing("front member", n, snap.front.len(), "members"))?;
-            let names: Vec<String> = (config.strategy.nsga2.objectives.iter())
-                .map(|o| o.trim_start_matches('-').to_string())
-                .collect();
+            let names = vivae_lab::search::front_objective_names(config);
             let label = format!(
                 "front member {n} (fitness {:.3}; {})",
                 f.fitness,
@@ -103,9 +101,9 @@ pub(super) fn chosen_genome<'a>(
 /// Why `what` `index` is not there, where the run holds `held` `things`.
 fn missing(what: &str, index: usize, held: usize, things: &str) -> String {
     match held {
-        0 => format!(
-            "no {what} {index}: this run has none (only a map-elites run has an archive, an nsga2 run a front)"
-        ),
+        0 => {
+            format!("no {what} {index}: this run has none (its strategy keeps no archive or front)")
+        }
         n => format!("no {what} {index} (the run has {n} {things})"),
     }
 }
