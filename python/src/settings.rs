@@ -37,7 +37,8 @@ pub fn build_from(c: Config, overrides: Option<&Bound<'_, PyDict>>) -> PyResult<
 
 /// `c` with `o` applied, checked by every rule of its task.
 fn applied(mut c: Config, o: &Overrides) -> PyResult<Config> {
-    o.apply(&mut c).map_err(|e| errors::value(format!("arguments: {e}")))?;
+    o.apply(&mut c)
+        .map_err(|e| errors::value(format!("arguments: {e}")))?;
     vivae_lab::tasks::check(&c).map_err(|e| errors::value(format!("arguments: {e}")))?;
     Ok(c)
 }
