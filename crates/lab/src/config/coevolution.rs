@@ -15,6 +15,10 @@ pub enum Opponents {
     /// A sample (with replacement) of the other population's hall of fame,
     /// its best of every earlier generation (Rosin & Belew 1997).
     HallOfFame,
+    /// A fixed, non-evolving prey (`fixed_prey`): only the hunters evolve,
+    /// every hunter meets that one prey (the baseline co-evolved hunters
+    /// are compared with).
+    Fixed,
 }
 
 impl Opponents {
@@ -23,6 +27,7 @@ impl Opponents {
         match self {
             Opponents::Best => "best",
             Opponents::HallOfFame => "hall-of-fame",
+            Opponents::Fixed => "fixed",
         }
     }
 }
@@ -32,13 +37,20 @@ impl Opponents {
 #[serde(deny_unknown_fields, default)]
 pub struct CoevolutionConfig {
     /// Whom each population's genomes are evaluated against: "best" (the
-    /// other population's best of the previous generation) or
-    /// "hall-of-fame" (a sample of its best of every earlier generation);
+    /// other population's best of the previous generation),
+    /// "hall-of-fame" (a sample of its best of every earlier generation) or
+    /// "fixed" (only the hunters evolve, against the prey of `fixed_prey`);
     /// a genome's fitness is its mean over the opponents.
     pub opponents: Opponents,
     /// Opponents drawn from the hall of fame per generation (with
     /// "hall-of-fame"); the same sample for every genome of a population.
     pub sample: usize,
+    /// With opponents = "fixed": the prey every hunter meets, the prey
+    /// champion of a predator-prey run (its directory or its
+    /// champions.json, or a fixed-prey run's fixed-prey.json); the run
+    /// copies it to fixed-prey.json.
+    #[serde(skip_serializing_if = "String::is_empty")]
+    pub fixed_prey: String,
 }
 
 impl Default for CoevolutionConfig {
@@ -46,6 +58,7 @@ impl Default for CoevolutionConfig {
         CoevolutionConfig {
             opponents: Opponents::Best,
             sample: 5,
+            fixed_prey: String::new(),
         }
     }
 }

@@ -23,6 +23,7 @@ mod every_strategy_resumes_bit_identical;
 mod export_runs_as_vivae_does;
 mod finished_run_and_retrain_neurons_only;
 mod first_hour_output_says_what_to_do_next;
+mod fixed_prey_baseline_and_tournaments_between_runs;
 mod force_replaces_only_a_run;
 mod forged_checkpoint_is_refused_before_anything_changes;
 mod frames_from_the_simulator_drive_as_its_sensors_do;

@@ -72,6 +72,10 @@ pub struct Coevolution {
     pub hall_prey: Vec<Genome>,
     /// The run's seed (the hall-of-fame samples are drawn from it).
     pub seed: u64,
+    /// With opponents = "fixed": the prey every hunter meets (the prey
+    /// population then does not evolve).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fixed_prey: Option<Genome>,
 }
 
 impl Coevolution {
@@ -86,6 +90,7 @@ impl Coevolution {
             hall_hunters: Vec::new(),
             hall_prey: Vec::new(),
             seed,
+            fixed_prey: None,
         })
     }
 
@@ -111,7 +116,8 @@ impl Coevolution {
             return Vec::new();
         }
         match how {
-            Opponents::Best => vec![(n - 1) as u32],
+            // Fixed: the hunters meet the fixed prey, not a hall of fame.
+            Opponents::Best | Opponents::Fixed => vec![(n - 1) as u32],
             Opponents::HallOfFame => {
                 let stream = match side {
                     Side::Hunter => 0,
@@ -132,6 +138,9 @@ impl Coevolution {
         arena: &Arena,
         config: &Config,
     ) -> Result<GenerationRecord, NeatError> {
+        if let Some(prey) = self.fixed_prey.clone() {
+            return self.generation_fixed(arena, &prey);
+        }
         let g = self.done();
         let how = config.coevolution.opponents;
         let sample = config.coevolution.sample;
@@ -194,6 +203,67 @@ impl Coevolution {
             ),
             prey: record(&self.prey, &picks[1], catches[1], games(1, &self.prey)),
             ciao: self.ciao_of(arena, g),
+        })
+    }
+
+    /// Generation `done()` against the fixed prey `prey`: breeds and
+    /// evaluates the hunters only; the prey's record is that one genome's
+    /// (its fitness the mean over its games, `2 −` the hunters' mean) and
+    /// it fills the prey's hall of fame, so the CIAO matrix's columns are
+    /// all the fixed prey.
+    fn generation_fixed(
+        &mut self,
+        arena: &Arena,
+        prey: &Genome,
+    ) -> Result<GenerationRecord, NeatError> {
+        use rayon::prelude::*;
+        let g = self.done();
+        self.hunters.prepare();
+        let opponents = std::slice::from_ref(prey);
+        let results: Vec<(f64, usize)> = (self.hunters.genomes().par_iter())
+            .map(|genome| score(arena, Side::Hunter, genome, opponents))
+            .collect();
+        let caught: usize = results.iter().map(|r| r.1).sum();
+        let fitness: Vec<f64> = results.iter().map(|r| r.0).collect();
+        let mean = fitness.iter().sum::<f64>() / fitness.len().max(1) as f64;
+        self.hunters.set_fitnesses(fitness)?;
+        let Some((h, _)) = self.hunters.champion() else {
+            return Err(NeatError::Checkpoint("an empty population".into()));
+        };
+        self.hall_hunters.push(h.clone());
+        self.hall_prey.push(prey.clone());
+        let catch_rate = caught as f64 / results.len().max(1) as f64;
+        // Every column is the same prey: one game per hunter champion.
+        let row: Vec<CiaoCell> = (0..=g)
+            .into_par_iter()
+            .map(|h| {
+                let out = arena.play_genomes(&self.hall_hunters[h as usize], prey);
+                CiaoCell {
+                    hunter: h,
+                    prey: g,
+                    hunter_fitness: out.hunter_fitness(),
+                    caught: out.caught,
+                }
+            })
+            .collect();
+        let last = row[g as usize];
+        let ciao = (0..=g)
+            .map(|p| CiaoCell { prey: p, ..last })
+            .chain(row[..g as usize].iter().copied())
+            .collect();
+        Ok(GenerationRecord {
+            generation: g,
+            hunters: SideRecord {
+                stats: self.hunters.stats(),
+                opponents: Vec::new(),
+                catch_rate,
+            },
+            prey: SideRecord {
+                stats: GenerationStats::of_batch(g, opponents, &[2.0 - mean]),
+                opponents: Vec::new(),
+                catch_rate,
+            },
+            ciao,
         })
     }
 

@@ -2,6 +2,7 @@
 
 use vivae_neat::NeatParams;
 
+use crate::config::coevolution::Opponents;
 use crate::config::strategy::StrategyConfig;
 use crate::config::{Config, DistanceConfig, OpponentConfig, SubstrateConfig, TaskName};
 use crate::tasks::maze::MazeTask;
@@ -67,6 +68,19 @@ pub(super) fn validate(c: &Config) -> Result<(), String> {
     }
     if c.coevolution.sample == 0 {
         return refuse("coevolution.sample = 0", "draw at least one opponent");
+    }
+    let fixed = c.coevolution.opponents == Opponents::Fixed;
+    if fixed && c.coevolution.fixed_prey.is_empty() {
+        return refuse(
+            "coevolution.opponents = \"fixed\"",
+            "name the prey with coevolution.fixed_prey (a predator-prey run directory or its champions.json)",
+        );
+    }
+    if !fixed && !c.coevolution.fixed_prey.is_empty() {
+        return refuse(
+            "coevolution.fixed_prey",
+            "only with coevolution.opponents = \"fixed\"",
+        );
     }
     let unused = [
         ("substrate", c.substrate == SubstrateConfig::default()),

@@ -33,6 +33,7 @@ pub mod coevo;
 pub mod config;
 mod present;
 pub mod run;
+pub mod tournament;
 
 pub use run::TASK;
 

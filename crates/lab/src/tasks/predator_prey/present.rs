@@ -16,6 +16,10 @@ pub(super) fn header(config: &Config, command: &str, scenario: &str, dir: &Path)
             "{} of the other population's earlier champions (hall of fame)",
             c.coevolution.sample
         ),
+        Opponents::Fixed => format!(
+            "a fixed prey ({}; only the hunters evolve)",
+            c.coevolution.fixed_prey
+        ),
     };
     format!(
         "vivae {command}: predators and prey in {scenario}\n\
