@@ -32,6 +32,7 @@ __all__ = [
     "reproduce_packs",
     "resume",
     "scenarios",
+    "tournament",
 ]
 
 OVERRIDES: list[str]
@@ -267,6 +268,12 @@ def reproduce(
     progress: bool = False,
 ) -> dict[str, Any]: ...
 def reproduce_packs() -> list[tuple[str, str]]: ...
+def tournament(
+    a: _Path,
+    b: _Path,
+    threads: int | None = None,
+    csv: _Path | None = None,
+) -> list[dict[str, Any]]: ...
 def export(
     source: _Path,
     format: str,
