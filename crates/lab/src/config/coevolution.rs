@@ -32,6 +32,33 @@ impl Opponents {
     }
 }
 
+/// What one side's genomes are.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "kebab-case")]
+pub enum SideController {
+    /// A plain NEAT network of the sensors (11 inputs, 2 outputs).
+    #[default]
+    Neat,
+    /// A CPPN decoded onto a substrate whose input nodes sit at the
+    /// sensors' angles (HyperNEAT, the `[hyperneat]` settings).
+    Hyperneat,
+}
+
+impl SideController {
+    /// The name in the config.
+    pub fn name(self) -> &'static str {
+        match self {
+            SideController::Neat => "neat",
+            SideController::Hyperneat => "hyperneat",
+        }
+    }
+
+    /// Whether this is plain NEAT (the default, not written to a config).
+    pub fn is_neat(&self) -> bool {
+        *self == SideController::Neat
+    }
+}
+
 /// Co-evolution of two populations.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
@@ -51,6 +78,13 @@ pub struct CoevolutionConfig {
     /// copies it to fixed-prey.json.
     #[serde(skip_serializing_if = "String::is_empty")]
     pub fixed_prey: String,
+    /// The hunters' genomes: "neat" (plain NEAT networks) or "hyperneat"
+    /// (CPPNs decoded onto a substrate at the sensors' angles).
+    #[serde(skip_serializing_if = "SideController::is_neat")]
+    pub hunter: SideController,
+    /// The prey's genomes: "neat" or "hyperneat", as `hunter`.
+    #[serde(skip_serializing_if = "SideController::is_neat")]
+    pub prey: SideController,
 }
 
 impl Default for CoevolutionConfig {
@@ -59,6 +93,8 @@ impl Default for CoevolutionConfig {
             opponents: Opponents::Best,
             sample: 5,
             fixed_prey: String::new(),
+            hunter: SideController::Neat,
+            prey: SideController::Neat,
         }
     }
 }

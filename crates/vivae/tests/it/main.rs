@@ -27,6 +27,7 @@ mod fixed_prey_baseline_and_tournaments_between_runs;
 mod force_replaces_only_a_run;
 mod forged_checkpoint_is_refused_before_anything_changes;
 mod frames_from_the_simulator_drive_as_its_sensors_do;
+mod hyperneat_hunters_or_prey_resume_bit_identical;
 mod idle_viewer_pages_free_their_slots;
 mod inconsistent_checkpoint_population_is_refused;
 mod interrupt_checkpoints_and_exits_130;

@@ -79,14 +79,16 @@ pub struct Coevolution {
 }
 
 impl Coevolution {
-    /// Two fresh populations of `config`'s NEAT settings: the hunters from
+    /// Two fresh populations of `config`'s NEAT settings, of the genomes of
+    /// their sides' kinds (`[coevolution] hunter`, `prey`): the hunters from
     /// the run's seed, the prey from a seed derived from it.
     pub fn new(config: &Config) -> Result<Coevolution, NeatError> {
         let seed = config.experiment.seed;
-        let spec = Arena::spec();
+        let c = &config.coevolution;
+        let (hunters, prey) = (Arena::spec_of(c.hunter), Arena::spec_of(c.prey));
         Ok(Coevolution {
-            hunters: Population::new(config.neat.clone(), spec.clone(), seed)?,
-            prey: Population::new(config.neat.clone(), spec, eval_seed(seed, u32::MAX, 1))?,
+            hunters: Population::new(config.neat.clone(), hunters, seed)?,
+            prey: Population::new(config.neat.clone(), prey, eval_seed(seed, u32::MAX, 1))?,
             hall_hunters: Vec::new(),
             hall_prey: Vec::new(),
             seed,
@@ -375,7 +377,7 @@ mod tests {
                 assert_eq!(r.generation, g);
                 let want = match (g, how) {
                     (0, _) => 0,
-                    (_, Opponents::Best) => 1,
+                    (_, Opponents::Best | Opponents::Fixed) => 1,
                     (_, Opponents::HallOfFame) => 4,
                 };
                 assert_eq!(r.hunters.opponents.len(), want, "{how:?} {g}");
@@ -394,6 +396,31 @@ mod tests {
                 assert_ne!(h, p);
             }
         }
+    }
+
+    #[test]
+    fn against_a_fixed_prey_only_the_hunters_evolve() {
+        let (arena, config) = setup(Opponents::Fixed);
+        let mut co = Coevolution::new(&config).unwrap();
+        let prey = co.prey.genomes()[3].clone();
+        co.fixed_prey = Some(prey.clone());
+        let before = co.prey.clone();
+        for g in 0..3 {
+            let r = co.generation(&arena, &config).unwrap();
+            // The same CIAO cells as a co-evolution's: a row and a column.
+            assert_eq!(r.ciao.len() as u32, 2 * g + 1);
+            for c in &r.ciao {
+                let out = arena.play_genomes(&co.hall_hunters[c.hunter as usize], &prey);
+                assert_eq!(
+                    (c.hunter_fitness, c.caught),
+                    (out.hunter_fitness(), out.caught)
+                );
+            }
+            let (h, p) = (r.hunters.stats.mean_fitness, r.prey.stats.best_fitness);
+            assert!((h.unwrap() + p.unwrap() - 2.0).abs() < 1e-12);
+        }
+        assert!(co.hall_prey.iter().all(|g| *g == prey));
+        assert_eq!(co.prey, before, "the prey population does not evolve");
     }
 
     #[test]

@@ -2,7 +2,7 @@
 
 use vivae_neat::NeatParams;
 
-use crate::config::coevolution::Opponents;
+use crate::config::coevolution::{Opponents, SideController};
 use crate::config::strategy::StrategyConfig;
 use crate::config::{Config, DistanceConfig, OpponentConfig, SubstrateConfig, TaskName};
 use crate::tasks::maze::MazeTask;
@@ -82,6 +82,10 @@ pub(super) fn validate(c: &Config) -> Result<(), String> {
             "only with coevolution.opponents = \"fixed\"",
         );
     }
+    let hyper = [c.coevolution.hunter, c.coevolution.prey].contains(&SideController::Hyperneat);
+    if let Err(e) = c.hyperneat.validate() {
+        return refuse("[hyperneat]", &e.to_string());
+    }
     let unused = [
         ("substrate", c.substrate == SubstrateConfig::default()),
         (
@@ -98,7 +102,7 @@ pub(super) fn validate(c: &Config) -> Result<(), String> {
         ),
         (
             "hyperneat",
-            c.hyperneat == vivae_neat::hyperneat::HyperParams::default(),
+            hyper || c.hyperneat == vivae_neat::hyperneat::HyperParams::default(),
         ),
         (
             "strategy",
@@ -108,7 +112,7 @@ pub(super) fn validate(c: &Config) -> Result<(), String> {
     match unused.iter().find(|(_, default)| !default) {
         Some((section, _)) => refuse(
             &format!("[{section}]"),
-            "both sides are plain NEAT networks with 4 opponent radar slices, 6 rangefinders and a bias, evolved by NEAT: leave this section at its defaults",
+            "both sides are NEAT networks (or, with coevolution.hunter/prey = \"hyperneat\", CPPNs on a fixed substrate) of 4 opponent radar slices, 6 rangefinders and a bias, evolved by NEAT: leave this section at its defaults",
         ),
         None => Ok(()),
     }

@@ -18,6 +18,7 @@ use serde::{Deserialize, Serialize};
 use vivae_neat::Genome;
 
 use crate::config::Config;
+use crate::config::coevolution::SideController;
 use crate::error::{Error, Result};
 use crate::io::{bad_input, create_dirs, load_scenario, read_text, write_atomic};
 use crate::tasks::maps::TrainingMap;
@@ -113,8 +114,10 @@ struct PpRun {
 /// The arena of `config` in the scenario at `path` (a file or a shipped name).
 pub(super) fn arena_of(config: &Config, path: &Path) -> Result<(Arena, String)> {
     let loaded = load_scenario(Some(path))?;
+    let c = &config.coevolution;
     let arena = Arena::new(&loaded.scenario, &config.physics, config.experiment.steps)
-        .map_err(|e| bad_input(e.to_string()))?;
+        .map_err(|e| bad_input(e.to_string()))?
+        .with_controllers(c.hunter, c.prey, config.hyperneat.clone());
     Ok((arena, loaded.text))
 }
 
@@ -122,7 +125,7 @@ pub(super) fn arena_of(config: &Config, path: &Path) -> Result<(Arena, String)> 
 /// run in the directory `from` or in the champions.json file `from` (or the
 /// prey of a fixed-prey run's `fixed-prey.json`), and
 /// its entry as JSON (for the new run's `fixed-prey.json`).
-pub fn fixed_prey(from: &Path) -> Result<(Genome, String)> {
+pub fn fixed_prey(from: &Path, kind: SideController) -> Result<(Genome, String)> {
     let path = if from.is_dir() {
         from.join(files::CHAMPIONS)
     } else {
@@ -145,13 +148,15 @@ pub fn fixed_prey(from: &Path) -> Result<(Genome, String)> {
         })?,
     };
     let genome = entry.genome.clone();
-    let spec = Arena::spec();
+    let spec = Arena::spec_of(kind);
     if genome.check().is_err()
         || (genome.num_inputs(), genome.num_outputs()) != (spec.inputs, spec.outputs)
     {
         return Err(bad(format!(
-            "its prey is not a network of {} inputs and {} outputs",
-            spec.inputs, spec.outputs
+            "its prey is not a genome of {} inputs and {} outputs, as coevolution.prey = \"{}\" has",
+            spec.inputs,
+            spec.outputs,
+            kind.name()
         )));
     }
     let entry = serde_json::to_string_pretty(&entry).map_err(|e| Error::Serialize {
@@ -191,7 +196,7 @@ fn evolve(dir: &Path, mut config: Config, force: bool, session: &Session<'_>) ->
     let mut state = Coevolution::new(&config).map_err(|e| Error::Evolution(e.to_string()))?;
     let fixed = match config.coevolution.fixed_prey.as_str() {
         "" => None,
-        from => Some(fixed_prey(Path::new(from))?),
+        from => Some(fixed_prey(Path::new(from), config.coevolution.prey)?),
     };
     clear_dir(dir, force)?;
     if let Some(prey) = fixed {

@@ -11,6 +11,9 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use vivae_neat::Genome;
+use vivae_neat::hyperneat::HyperParams;
+
+use crate::config::coevolution::SideController;
 
 use crate::error::{Error, Result};
 use crate::io::{bad_input, read_text};
@@ -47,6 +50,8 @@ pub struct TournamentRow {
 /// A run's champions: each side's master-tournament winner and hall of fame.
 struct Entrant {
     name: String,
+    controllers: [SideController; 2],
+    hyper: HyperParams,
     champion: [Genome; 2],
     hall: [Vec<Genome>; 2],
 }
@@ -71,6 +76,7 @@ impl Entrant {
 
 /// Reads the champions and the hall of fame of the finished run in `dir`.
 fn entrant(dir: &Path) -> Result<Entrant> {
+    let config = crate::tasks::read_config(&dir.join(crate::rundir::files::CONFIG))?;
     let champions = read_champions(dir)?;
     let path = dir.join(files::HALL);
     let text = read_text(&path)?;
@@ -89,6 +95,8 @@ fn entrant(dir: &Path) -> Result<Entrant> {
     }
     Ok(Entrant {
         name: dir.display().to_string(),
+        controllers: [config.coevolution.hunter, config.coevolution.prey],
+        hyper: config.hyperneat,
         champion: [champions.hunter.genome, champions.prey.genome],
         hall,
     })
@@ -135,6 +143,14 @@ pub fn tournament(a: &Path, b: &Path, threads: usize) -> Result<Vec<TournamentRo
                     runs[h].set(Side::Hunter, hunters),
                     runs[p].set(Side::Prey, prey),
                 );
+                // Each side plays with its own run's kind of controller.
+                let (hr, pr) = (&runs[h], &runs[p]);
+                let arena = arena.clone().with_controllers(
+                    hr.controllers[0],
+                    pr.controllers[1],
+                    hr.hyper.clone(),
+                );
+                let arena = arena.with_prey_params(pr.hyper.clone());
                 let outcomes = pool.install(|| play_all(&arena, hs, ps));
                 rows.push(row(&runs[h].name, &runs[p].name, hunters, prey, &outcomes));
             }
