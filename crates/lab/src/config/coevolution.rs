@@ -78,11 +78,12 @@ pub struct CoevolutionConfig {
     /// copies it to fixed-prey.json.
     #[serde(skip_serializing_if = "String::is_empty")]
     pub fixed_prey: String,
-    /// The hunters' genomes: "neat" (plain NEAT networks) or "hyperneat"
-    /// (CPPNs decoded onto a substrate at the sensors' angles).
+    /// The hunters' genomes: "neat" (plain NEAT networks; unset means it)
+    /// or "hyperneat" (CPPNs decoded onto a substrate at the sensors'
+    /// angles, with the [hyperneat] settings).
     #[serde(skip_serializing_if = "SideController::is_neat")]
     pub hunter: SideController,
-    /// The prey's genomes: "neat" or "hyperneat", as `hunter`.
+    /// The prey's genomes: "neat" (unset means it) or "hyperneat", as `hunter`.
     #[serde(skip_serializing_if = "SideController::is_neat")]
     pub prey: SideController,
 }
