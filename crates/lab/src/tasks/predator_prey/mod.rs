@@ -219,7 +219,7 @@ impl Arena {
         params: HyperParams,
     ) -> Arena {
         self.controllers = [hunter, prey];
-        self.hyper = [params.clone(), params];
+        self.hyper = [params, params];
         self
     }
 

@@ -117,7 +117,7 @@ pub(super) fn arena_of(config: &Config, path: &Path) -> Result<(Arena, String)> 
     let c = &config.coevolution;
     let arena = Arena::new(&loaded.scenario, &config.physics, config.experiment.steps)
         .map_err(|e| bad_input(e.to_string()))?
-        .with_controllers(c.hunter, c.prey, config.hyperneat.clone());
+        .with_controllers(c.hunter, c.prey, config.hyperneat);
     Ok((arena, loaded.text))
 }
 

@@ -145,12 +145,11 @@ pub fn tournament(a: &Path, b: &Path, threads: usize) -> Result<Vec<TournamentRo
                 );
                 // Each side plays with its own run's kind of controller.
                 let (hr, pr) = (&runs[h], &runs[p]);
-                let arena = arena.clone().with_controllers(
-                    hr.controllers[0],
-                    pr.controllers[1],
-                    hr.hyper.clone(),
-                );
-                let arena = arena.with_prey_params(pr.hyper.clone());
+                let arena =
+                    arena
+                        .clone()
+                        .with_controllers(hr.controllers[0], pr.controllers[1], hr.hyper);
+                let arena = arena.with_prey_params(pr.hyper);
                 let outcomes = pool.install(|| play_all(&arena, hs, ps));
                 rows.push(row(&runs[h].name, &runs[p].name, hunters, prey, &outcomes));
             }
