@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use vivae_lab::tasks::predator_prey::tournament;
+use vivae_lab::tasks::predator_prey::tournament as games;
 
 use crate::errors;
 
@@ -27,11 +27,10 @@ pub fn tournament<'py>(
     csv: Option<PathBuf>,
 ) -> PyResult<Vec<Bound<'py, PyDict>>> {
     let rows = py
-        .detach(|| tournament::tournament(&a, &b, threads.unwrap_or(0)))
+        .detach(|| games::tournament(&a, &b, threads.unwrap_or(0)))
         .map_err(errors::lab)?;
     if let Some(path) = csv {
-        vivae_lab::io::write_atomic(&path, tournament::csv(&rows).as_bytes())
-            .map_err(errors::lab)?;
+        vivae_lab::io::write_atomic(&path, games::csv(&rows).as_bytes()).map_err(errors::lab)?;
     }
     rows.iter()
         .map(|r| {
