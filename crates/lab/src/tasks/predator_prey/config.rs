@@ -66,26 +66,9 @@ pub(super) fn validate(c: &Config) -> Result<(), String> {
     if e.steps == 0 {
         return refuse("experiment.steps = 0", "an episode needs at least one step");
     }
-    if c.coevolution.sample == 0 {
-        return refuse("coevolution.sample = 0", "draw at least one opponent");
-    }
-    let fixed = c.coevolution.opponents == Opponents::Fixed;
-    if fixed && c.coevolution.fixed_prey.is_empty() {
-        return refuse(
-            "coevolution.opponents = \"fixed\"",
-            "name the prey with coevolution.fixed_prey (a predator-prey run directory or its champions.json)",
-        );
-    }
-    if !fixed && !c.coevolution.fixed_prey.is_empty() {
-        return refuse(
-            "coevolution.fixed_prey",
-            "only with coevolution.opponents = \"fixed\"",
-        );
-    }
+    validate_coevolution(c)
+        .map_err(|(key, why)| format!("{key}: {why} (experiment.task = \"predator-prey\")"))?;
     let hyper = [c.coevolution.hunter, c.coevolution.prey].contains(&SideController::Hyperneat);
-    if let Err(e) = c.hyperneat.validate() {
-        return refuse("[hyperneat]", &e.to_string());
-    }
     let unused = [
         ("substrate", c.substrate == SubstrateConfig::default()),
         (
@@ -115,5 +98,30 @@ pub(super) fn validate(c: &Config) -> Result<(), String> {
             "both sides are NEAT networks (or, with coevolution.hunter/prey = \"hyperneat\", CPPNs on a fixed substrate) of 4 opponent radar slices, 6 rangefinders and a bias, evolved by NEAT: leave this section at its defaults",
         ),
         None => Ok(()),
+    }
+}
+
+/// The `[coevolution]` and `[hyperneat]` keys: the key and why it is refused.
+fn validate_coevolution(c: &Config) -> Result<(), (String, String)> {
+    let refuse = |key: &str, why: &str| Err((key.to_string(), why.to_string()));
+    if c.coevolution.sample == 0 {
+        return refuse("coevolution.sample = 0", "draw at least one opponent");
+    }
+    let fixed = c.coevolution.opponents == Opponents::Fixed;
+    if fixed && c.coevolution.fixed_prey.is_empty() {
+        return refuse(
+            "coevolution.opponents = \"fixed\"",
+            "name the prey with coevolution.fixed_prey (a predator-prey run directory or its champions.json)",
+        );
+    }
+    if !fixed && !c.coevolution.fixed_prey.is_empty() {
+        return refuse(
+            "coevolution.fixed_prey",
+            "only with coevolution.opponents = \"fixed\"",
+        );
+    }
+    match c.hyperneat.validate() {
+        Err(e) => refuse("[hyperneat]", &e.to_string()),
+        Ok(()) => Ok(()),
     }
 }
