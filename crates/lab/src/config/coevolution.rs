@@ -76,14 +76,21 @@ pub struct CoevolutionConfig {
     /// champion of a predator-prey run (its directory or its
     /// champions.json, or a fixed-prey run's fixed-prey.json); the run
     /// copies it to fixed-prey.json.
+    ///
+    /// Example: "runs/hall-6".
     #[serde(skip_serializing_if = "String::is_empty")]
     pub fixed_prey: String,
     /// The hunters' genomes: "neat" (plain NEAT networks; unset means it)
     /// or "hyperneat" (CPPNs decoded onto a substrate at the sensors'
     /// angles, with the [hyperneat] settings).
+    ///
+    /// Example: "hyperneat".
     #[serde(skip_serializing_if = "SideController::is_neat")]
     pub hunter: SideController,
-    /// The prey's genomes: "neat" (unset means it) or "hyperneat", as `hunter`.
+    /// The prey's genomes: "neat" (unset means it) or "hyperneat", as
+    /// `hunter`.
+    ///
+    /// Example: "hyperneat".
     #[serde(skip_serializing_if = "SideController::is_neat")]
     pub prey: SideController,
 }
