@@ -23,6 +23,7 @@ mod reproduce;
 mod portable_libm;
 mod settings;
 mod strategies;
+mod tournament;
 
 #[pymodule]
 fn _vivae(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -48,6 +49,7 @@ fn _vivae(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(export::record_episode, m)?)?;
     m.add_function(wrap_pyfunction!(export::drive_image, m)?)?;
     m.add_function(wrap_pyfunction!(math_is_portable, m)?)?;
+    m.add_function(wrap_pyfunction!(tournament::tournament, m)?)?;
     m.add("OVERRIDES", settings::OVERRIDES.to_vec())?;
     Ok(())
 }

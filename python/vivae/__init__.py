@@ -35,6 +35,7 @@ from vivae._vivae import (
     reproduce,
     reproduce_packs,
     scenarios,
+    tournament,
 )
 from vivae.envs import DriveEnv, DriveVectorEnv
 from vivae.run import evolve, replay, report, resume
@@ -70,6 +71,7 @@ __all__ = [
     "reproduce_packs",
     "resume",
     "scenarios",
+    "tournament",
 ]
 
 __version__ = "0.1.0"

@@ -34,6 +34,7 @@ __all__ = [
     "reproduce_packs",
     "resume",
     "scenarios",
+    "tournament",
 ]
 
 OVERRIDES: list[str]
@@ -314,6 +315,12 @@ def reproduce(
     journal: _Path | None = None,
 ) -> dict[str, Any]: ...
 def reproduce_packs() -> list[tuple[str, str]]: ...
+def tournament(
+    a: _Path,
+    b: _Path,
+    threads: int | None = None,
+    csv: _Path | None = None,
+) -> list[dict[str, Any]]: ...
 def export(
     source: _Path,
     format: str,

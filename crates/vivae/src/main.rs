@@ -16,7 +16,7 @@ mod portable_libm;
 
 use cli::{
     compare, config, drive_image, evolve, export, replay, report, reproduce, resume, retrain,
-    scenario, view,
+    scenario, tournament, view,
 };
 
 /// HyperNEAT-controlled robots that learn to drive on roads (ViVAE).
@@ -50,6 +50,8 @@ enum Command {
     View(view::ViewArgs),
     /// Compare runs: fitness per generation and per wall-clock second, figure and table.
     Compare(compare::CompareArgs),
+    /// Play one predator-prey run's champions against another's: catch rates and hunter fitness.
+    Tournament(tournament::TournamentArgs),
     /// Run a published experiment with the paper's settings: ours beside the paper's numbers.
     Reproduce(reproduce::ReproduceArgs),
     /// Inspect and draw scenarios.
@@ -103,6 +105,7 @@ fn dispatch(cli: Cli, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode>
         Command::Report { run_dir } => report::run(&run_dir),
         Command::View(args) => view::run(args),
         Command::Compare(args) => compare::run(args),
+        Command::Tournament(args) => tournament::run(args),
         Command::Reproduce(args) => reproduce::run(args),
         Command::Scenario(c) => scenario::run(c),
         Command::Config(c) => config::run(c),

@@ -25,4 +25,5 @@ pub mod resume;
 pub mod retrain;
 pub mod scenario;
 pub mod terminal;
+pub mod tournament;
 pub mod view;

@@ -72,20 +72,27 @@ pub struct Coevolution {
     pub hall_prey: Vec<Genome>,
     /// The run's seed (the hall-of-fame samples are drawn from it).
     pub seed: u64,
+    /// With opponents = "fixed": the prey every hunter meets (the prey
+    /// population then does not evolve).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fixed_prey: Option<Genome>,
 }
 
 impl Coevolution {
-    /// Two fresh populations of `config`'s NEAT settings: the hunters from
+    /// Two fresh populations of `config`'s NEAT settings, of the genomes of
+    /// their sides' kinds (`[coevolution] hunter`, `prey`): the hunters from
     /// the run's seed, the prey from a seed derived from it.
     pub fn new(config: &Config) -> Result<Coevolution, NeatError> {
         let seed = config.experiment.seed;
-        let spec = Arena::spec();
+        let c = &config.coevolution;
+        let (hunters, prey) = (Arena::spec_of(c.hunter), Arena::spec_of(c.prey));
         Ok(Coevolution {
-            hunters: Population::new(config.neat.clone(), spec.clone(), seed)?,
-            prey: Population::new(config.neat.clone(), spec, eval_seed(seed, u32::MAX, 1))?,
+            hunters: Population::new(config.neat.clone(), hunters, seed)?,
+            prey: Population::new(config.neat.clone(), prey, eval_seed(seed, u32::MAX, 1))?,
             hall_hunters: Vec::new(),
             hall_prey: Vec::new(),
             seed,
+            fixed_prey: None,
         })
     }
 
@@ -111,7 +118,8 @@ impl Coevolution {
             return Vec::new();
         }
         match how {
-            Opponents::Best => vec![(n - 1) as u32],
+            // Fixed: the hunters meet the fixed prey, not a hall of fame.
+            Opponents::Best | Opponents::Fixed => vec![(n - 1) as u32],
             Opponents::HallOfFame => {
                 let stream = match side {
                     Side::Hunter => 0,
@@ -132,6 +140,9 @@ impl Coevolution {
         arena: &Arena,
         config: &Config,
     ) -> Result<GenerationRecord, NeatError> {
+        if let Some(prey) = self.fixed_prey.clone() {
+            return self.generation_fixed(arena, &prey);
+        }
         let g = self.done();
         let how = config.coevolution.opponents;
         let sample = config.coevolution.sample;
@@ -194,6 +205,67 @@ impl Coevolution {
             ),
             prey: record(&self.prey, &picks[1], catches[1], games(1, &self.prey)),
             ciao: self.ciao_of(arena, g),
+        })
+    }
+
+    /// Generation `done()` against the fixed prey `prey`: breeds and
+    /// evaluates the hunters only; the prey's record is that one genome's
+    /// (its fitness the mean over its games, `2 −` the hunters' mean) and
+    /// it fills the prey's hall of fame, so the CIAO matrix's columns are
+    /// all the fixed prey.
+    fn generation_fixed(
+        &mut self,
+        arena: &Arena,
+        prey: &Genome,
+    ) -> Result<GenerationRecord, NeatError> {
+        use rayon::prelude::*;
+        let g = self.done();
+        self.hunters.prepare();
+        let opponents = std::slice::from_ref(prey);
+        let results: Vec<(f64, usize)> = (self.hunters.genomes().par_iter())
+            .map(|genome| score(arena, Side::Hunter, genome, opponents))
+            .collect();
+        let caught: usize = results.iter().map(|r| r.1).sum();
+        let fitness: Vec<f64> = results.iter().map(|r| r.0).collect();
+        let mean = fitness.iter().sum::<f64>() / fitness.len().max(1) as f64;
+        self.hunters.set_fitnesses(fitness)?;
+        let Some((h, _)) = self.hunters.champion() else {
+            return Err(NeatError::Checkpoint("an empty population".into()));
+        };
+        self.hall_hunters.push(h.clone());
+        self.hall_prey.push(prey.clone());
+        let catch_rate = caught as f64 / results.len().max(1) as f64;
+        // Every column is the same prey: one game per hunter champion.
+        let row: Vec<CiaoCell> = (0..=g)
+            .into_par_iter()
+            .map(|h| {
+                let out = arena.play_genomes(&self.hall_hunters[h as usize], prey);
+                CiaoCell {
+                    hunter: h,
+                    prey: g,
+                    hunter_fitness: out.hunter_fitness(),
+                    caught: out.caught,
+                }
+            })
+            .collect();
+        let last = row[g as usize];
+        let ciao = (0..=g)
+            .map(|p| CiaoCell { prey: p, ..last })
+            .chain(row[..g as usize].iter().copied())
+            .collect();
+        Ok(GenerationRecord {
+            generation: g,
+            hunters: SideRecord {
+                stats: self.hunters.stats(),
+                opponents: Vec::new(),
+                catch_rate,
+            },
+            prey: SideRecord {
+                stats: GenerationStats::of_batch(g, opponents, &[2.0 - mean]),
+                opponents: Vec::new(),
+                catch_rate,
+            },
+            ciao,
         })
     }
 
@@ -305,7 +377,7 @@ mod tests {
                 assert_eq!(r.generation, g);
                 let want = match (g, how) {
                     (0, _) => 0,
-                    (_, Opponents::Best) => 1,
+                    (_, Opponents::Best | Opponents::Fixed) => 1,
                     (_, Opponents::HallOfFame) => 4,
                 };
                 assert_eq!(r.hunters.opponents.len(), want, "{how:?} {g}");
@@ -324,6 +396,31 @@ mod tests {
                 assert_ne!(h, p);
             }
         }
+    }
+
+    #[test]
+    fn against_a_fixed_prey_only_the_hunters_evolve() {
+        let (arena, config) = setup(Opponents::Fixed);
+        let mut co = Coevolution::new(&config).unwrap();
+        let prey = co.prey.genomes()[3].clone();
+        co.fixed_prey = Some(prey.clone());
+        let before = co.prey.clone();
+        for g in 0..3 {
+            let r = co.generation(&arena, &config).unwrap();
+            // The same CIAO cells as a co-evolution's: a row and a column.
+            assert_eq!(r.ciao.len() as u32, 2 * g + 1);
+            for c in &r.ciao {
+                let out = arena.play_genomes(&co.hall_hunters[c.hunter as usize], &prey);
+                assert_eq!(
+                    (c.hunter_fitness, c.caught),
+                    (out.hunter_fitness(), out.caught)
+                );
+            }
+            let (h, p) = (r.hunters.stats.mean_fitness, r.prey.stats.best_fitness);
+            assert!((h.unwrap() + p.unwrap() - 2.0).abs() < 1e-12);
+        }
+        assert!(co.hall_prey.iter().all(|g| *g == prey));
+        assert_eq!(co.prey, before, "the prey population does not evolve");
     }
 
     #[test]

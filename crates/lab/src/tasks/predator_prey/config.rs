@@ -2,6 +2,7 @@
 
 use vivae_neat::NeatParams;
 
+use crate::config::coevolution::{Opponents, SideController};
 use crate::config::strategy::StrategyConfig;
 use crate::config::{Config, DistanceConfig, OpponentConfig, SubstrateConfig, TaskName};
 use crate::tasks::maze::MazeTask;
@@ -65,9 +66,9 @@ pub(super) fn validate(c: &Config) -> Result<(), String> {
     if e.steps == 0 {
         return refuse("experiment.steps = 0", "an episode needs at least one step");
     }
-    if c.coevolution.sample == 0 {
-        return refuse("coevolution.sample = 0", "draw at least one opponent");
-    }
+    validate_coevolution(c)
+        .map_err(|(key, why)| format!("{key}: {why} (experiment.task = \"predator-prey\")"))?;
+    let hyper = [c.coevolution.hunter, c.coevolution.prey].contains(&SideController::Hyperneat);
     let unused = [
         ("substrate", c.substrate == SubstrateConfig::default()),
         (
@@ -84,7 +85,7 @@ pub(super) fn validate(c: &Config) -> Result<(), String> {
         ),
         (
             "hyperneat",
-            c.hyperneat == vivae_neat::hyperneat::HyperParams::default(),
+            hyper || c.hyperneat == vivae_neat::hyperneat::HyperParams::default(),
         ),
         (
             "strategy",
@@ -94,8 +95,33 @@ pub(super) fn validate(c: &Config) -> Result<(), String> {
     match unused.iter().find(|(_, default)| !default) {
         Some((section, _)) => refuse(
             &format!("[{section}]"),
-            "both sides are plain NEAT networks with 4 opponent radar slices, 6 rangefinders and a bias, evolved by NEAT: leave this section at its defaults",
+            "both sides are NEAT networks (or, with coevolution.hunter/prey = \"hyperneat\", CPPNs on a fixed substrate) of 4 opponent radar slices, 6 rangefinders and a bias, evolved by NEAT: leave this section at its defaults",
         ),
         None => Ok(()),
+    }
+}
+
+/// The `[coevolution]` and `[hyperneat]` keys: the key and why it is refused.
+fn validate_coevolution(c: &Config) -> Result<(), (String, String)> {
+    let refuse = |key: &str, why: &str| Err((key.to_string(), why.to_string()));
+    if c.coevolution.sample == 0 {
+        return refuse("coevolution.sample = 0", "draw at least one opponent");
+    }
+    let fixed = c.coevolution.opponents == Opponents::Fixed;
+    if fixed && c.coevolution.fixed_prey.is_empty() {
+        return refuse(
+            "coevolution.opponents = \"fixed\"",
+            "name the prey with coevolution.fixed_prey (a predator-prey run directory or its champions.json)",
+        );
+    }
+    if !fixed && !c.coevolution.fixed_prey.is_empty() {
+        return refuse(
+            "coevolution.fixed_prey",
+            "only with coevolution.opponents = \"fixed\"",
+        );
+    }
+    match c.hyperneat.validate() {
+        Err(e) => refuse("[hyperneat]", &e.to_string()),
+        Ok(()) => Ok(()),
     }
 }

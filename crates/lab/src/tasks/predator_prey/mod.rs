@@ -29,20 +29,25 @@
 //! The game is constant-sum (hunter + prey = 2), so a CIAO matrix of the
 //! hunter's fitness says everything about both sides.
 
+pub mod brain;
 pub mod coevo;
 pub mod config;
 pub mod meeting;
 mod present;
 pub mod run;
+pub mod tournament;
 
 pub use run::TASK;
 
-use vivae_neat::{Genome, GenomeSpec, Network, RecurrentNetwork};
+use vivae_neat::hyperneat::HyperParams;
+use vivae_neat::{Genome, GenomeSpec};
 use vivae_sim::{
     DistanceGrid, OpponentRadar, ParamError, PhysicsParams, Scenario, ScenarioError, Sensor, World,
 };
 
+use crate::config::coevolution::SideController;
 use crate::tasks::maze::{MazeTask, RANGE, wheels};
+use crate::tasks::predator_prey::brain::{Brain, Substrate};
 
 /// The task's name in `experiment.task` and `--task`.
 pub const NAME: &str = "predator-prey";
@@ -158,6 +163,9 @@ pub struct Arena {
     rays: DistanceGrid,
     steps: u32,
     diagonal: f64,
+    substrate: Substrate,
+    controllers: [SideController; 2],
+    hyper: [HyperParams; 2],
 }
 
 impl Arena {
@@ -186,21 +194,63 @@ impl Arena {
         };
         let diagonal = scenario.width().hypot(scenario.height());
         let rim = RANGE - physics.robot_radius;
+        let radar = OpponentRadar::new(RADAR_SLICES, diagonal)?;
+        let rays = DistanceGrid::at_angles(&MazeTask::rangefinder_angles(), rim);
         Ok(Arena {
             world: World::new(scenario, physics)?,
             hunter,
             prey: prey_i,
-            radar: OpponentRadar::new(RADAR_SLICES, diagonal)?,
-            rays: DistanceGrid::at_angles(&MazeTask::rangefinder_angles(), rim),
+            substrate: Substrate::new(&radar, &rays),
+            radar,
+            rays,
             steps,
             diagonal,
+            controllers: [SideController::Neat; 2],
+            hyper: [HyperParams::default(), HyperParams::default()],
         })
     }
 
-    /// The genome layout of both populations: [`INPUTS`] inputs, [`OUTPUTS`]
-    /// sigmoid outputs, recurrent links allowed (as the maze's).
+    /// This arena with the hunters' and the prey's controllers of kinds
+    /// `hunter` and `prey` (plain NEAT networks by default), HyperNEAT
+    /// ones decoded with `params`.
+    pub fn with_controllers(
+        mut self,
+        hunter: SideController,
+        prey: SideController,
+        params: HyperParams,
+    ) -> Arena {
+        self.controllers = [hunter, prey];
+        self.hyper = [params, params];
+        self
+    }
+
+    /// This arena with the prey's HyperNEAT controllers decoded with
+    /// `params` (when the two sides come from runs of different settings).
+    pub fn with_prey_params(mut self, params: HyperParams) -> Arena {
+        self.hyper[1] = params;
+        self
+    }
+
+    /// The kind of `side`'s controllers.
+    pub fn controller(&self, side: Side) -> SideController {
+        self.controllers[usize::from(side == Side::Prey)]
+    }
+
+    /// The genome layout of a plain NEAT side: [`INPUTS`] inputs,
+    /// [`OUTPUTS`] sigmoid outputs, recurrent links allowed (as the maze's).
     pub fn spec() -> GenomeSpec {
         MazeTask::spec()
+    }
+
+    /// The genome layout of a side of kind `kind`: [`Arena::spec`], or a
+    /// CPPN of the substrate ([`brain`]).
+    pub fn spec_of(kind: SideController) -> GenomeSpec {
+        let radar = OpponentRadar::new(RADAR_SLICES, 1.0);
+        let rays = DistanceGrid::at_angles(&MazeTask::rangefinder_angles(), RANGE);
+        match radar {
+            Ok(radar) => Substrate::new(&radar, &rays).spec(kind),
+            Err(_) => MazeTask::spec(),
+        }
     }
 
     /// Steps of one episode at most.
@@ -282,11 +332,15 @@ impl Arena {
         }
     }
 
-    /// An episode of `hunter`'s network against `prey`'s.
+    /// An episode of `hunter`'s controller against `prey`'s (each of its
+    /// side's kind).
     pub fn play_genomes(&self, hunter: &Genome, prey: &Genome) -> Outcome {
-        let mut h = RecurrentNetwork::from_genome(hunter);
-        let mut p = RecurrentNetwork::from_genome(prey);
-        self.play(|i, o| h.activate(i, o), |i, o| p.activate(i, o), |_| {})
+        let brain = |side: Side, genome: &Genome| {
+            let k = usize::from(side == Side::Prey);
+            Brain::new(self.controllers[k], genome, &self.substrate, &self.hyper[k])
+        };
+        let (mut h, mut p) = (brain(Side::Hunter, hunter), brain(Side::Prey, prey));
+        self.play(|i, o| h.act(i, o), |i, o| p.act(i, o), |_| {})
     }
 }
 

@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use crate::config::Config;
-use crate::config::coevolution::Opponents;
+use crate::config::coevolution::{Opponents, SideController};
 use crate::tasks::predator_prey::coevo::{Champions, GenerationRecord};
 
 /// The header of a predator–prey run.
@@ -16,10 +16,24 @@ pub(super) fn header(config: &Config, command: &str, scenario: &str, dir: &Path)
             "{} of the other population's earlier champions (hall of fame)",
             c.coevolution.sample
         ),
+        Opponents::Fixed => format!(
+            "a fixed prey ({}; only the hunters evolve)",
+            c.coevolution.fixed_prey
+        ),
+    };
+    let kinds = match (c.coevolution.hunter, c.coevolution.prey) {
+        (SideController::Neat, SideController::Neat) => {
+            "plain NEAT networks (11 inputs, 2 outputs)".to_string()
+        }
+        (h, p) => format!(
+            "genomes (hunters {}, prey {}; hyperneat = CPPNs on a 3x3 substrate at the sensors' angles)",
+            h.name(),
+            p.name()
+        ),
     };
     format!(
         "vivae {command}: predators and prey in {scenario}\n\
-         \x20 two populations of {} plain NEAT networks (11 inputs, 2 outputs), {} steps per episode, \
+         \x20 two populations of {} {kinds}, {} steps per episode, \
          {} generations, seed {}\n\
          \x20 each genome meets {opponents}\n\
          \x20 hunter fitness = 2 - t/T after a catch at step t, else 1 - the mean distance / the arena's diagonal; prey = 2 - hunter\n\

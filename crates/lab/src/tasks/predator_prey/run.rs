@@ -18,6 +18,7 @@ use serde::{Deserialize, Serialize};
 use vivae_neat::Genome;
 
 use crate::config::Config;
+use crate::config::coevolution::SideController;
 use crate::error::{Error, Result};
 use crate::io::{bad_input, create_dirs, load_scenario, read_text, write_atomic};
 use crate::shipped::Shipped;
@@ -74,6 +75,8 @@ pub mod files {
     pub const CHECKPOINT: &str = "checkpoint.json";
     /// The master tournament's winners.
     pub const CHAMPIONS: &str = "champions.json";
+    /// With opponents = "fixed": the prey every hunter meets.
+    pub const FIXED_PREY: &str = "fixed-prey.json";
 }
 
 /// Header of `hunters.csv` and `prey.csv`.
@@ -130,11 +133,58 @@ struct PpRun {
 }
 
 /// The arena of `config` in the scenario at `path` (a file or a shipped name).
-fn arena_of(config: &Config, path: &Path) -> Result<(Arena, String)> {
+pub(super) fn arena_of(config: &Config, path: &Path) -> Result<(Arena, String)> {
     let loaded = load_scenario(Some(path))?;
+    let c = &config.coevolution;
     let arena = Arena::new(&loaded.scenario, &config.physics, config.experiment.steps)
-        .map_err(|e| bad_input(e.to_string()))?;
+        .map_err(|e| bad_input(e.to_string()))?
+        .with_controllers(c.hunter, c.prey, config.hyperneat);
     Ok((arena, loaded.text))
+}
+
+/// The fixed prey named by `from`: the prey champion of the predator-prey
+/// run in the directory `from` or in the champions.json file `from` (or the
+/// prey of a fixed-prey run's `fixed-prey.json`), and
+/// its entry as JSON (for the new run's `fixed-prey.json`).
+pub fn fixed_prey(from: &Path, kind: SideController) -> Result<(Genome, String)> {
+    let path = if from.is_dir() {
+        from.join(files::CHAMPIONS)
+    } else {
+        from.to_path_buf()
+    };
+    let text = read_text(&path)?;
+    let bad = |why: String| {
+        bad_input(format!(
+            "coevolution.fixed_prey = {}: {why}",
+            from.display()
+        ))
+    };
+    // A run's champions.json, or a run's fixed-prey.json (one entry).
+    let entry: ChampionEntry = match serde_json::from_str::<Champions>(&text) {
+        Ok(champions) => champions.prey,
+        Err(e) => serde_json::from_str(&text).map_err(|_| {
+            bad(format!(
+                "neither a predator-prey run's champions.json nor its fixed-prey.json ({e})"
+            ))
+        })?,
+    };
+    let genome = entry.genome.clone();
+    let spec = Arena::spec_of(kind);
+    if genome.check().is_err()
+        || (genome.num_inputs(), genome.num_outputs()) != (spec.inputs, spec.outputs)
+    {
+        return Err(bad(format!(
+            "its prey is not a genome of {} inputs and {} outputs, as coevolution.prey = \"{}\" has",
+            spec.inputs,
+            spec.outputs,
+            kind.name()
+        )));
+    }
+    let entry = serde_json::to_string_pretty(&entry).map_err(|e| Error::Serialize {
+        what: "fixed prey",
+        reason: e.to_string(),
+    })?;
+    Ok((genome, entry))
 }
 
 /// Makes `dir` ready for a new run: refused when it holds anything, unless
@@ -164,8 +214,17 @@ fn evolve(dir: &Path, mut config: Config, force: bool, session: &Session<'_>) ->
     crate::tasks::check(&config).map_err(|e| bad_input(format!("config: {e}")))?;
     let scenario = PathBuf::from(&config.experiment.scenario);
     let (arena, text) = arena_of(&config, &scenario)?;
-    let state = Coevolution::new(&config).map_err(|e| Error::Evolution(e.to_string()))?;
+    let mut state = Coevolution::new(&config).map_err(|e| Error::Evolution(e.to_string()))?;
+    let fixed = match config.coevolution.fixed_prey.as_str() {
+        "" => None,
+        from => Some(fixed_prey(Path::new(from), config.coevolution.prey)?),
+    };
     clear_dir(dir, force)?;
+    if let Some(prey) = fixed {
+        write_atomic(&dir.join(files::FIXED_PREY), prey.1.as_bytes())?;
+        config.coevolution.fixed_prey = files::FIXED_PREY.into();
+        state.fixed_prey = Some(prey.0);
+    }
     config.experiment.scenario = crate::rundir::files::SCENARIO.into();
     write_atomic(&dir.join(crate::rundir::files::SCENARIO), text.as_bytes())?;
     write_atomic(

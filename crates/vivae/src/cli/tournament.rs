@@ -1,0 +1,36 @@
+//! `vivae tournament`: one predator–prey run's champions against another's
+//! (see `vivae_lab::tasks::predator_prey::tournament`).
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::Args;
+use vivae_lab::tasks::predator_prey::tournament;
+
+use super::args::Threads;
+
+/// Options of `vivae tournament`.
+#[derive(Args, Debug)]
+pub struct TournamentArgs {
+    /// A finished predator-prey run directory.
+    #[arg(value_name = "RUN_A")]
+    pub a: PathBuf,
+    /// Another (e.g. a held-out seed's, or a fixed-prey baseline; may be RUN_A itself).
+    #[arg(value_name = "RUN_B")]
+    pub b: PathBuf,
+    /// Also write the table as CSV to this file.
+    #[arg(long, value_name = "FILE")]
+    pub csv: Option<PathBuf>,
+    #[command(flatten)]
+    pub threads: Threads,
+}
+
+/// Runs `vivae tournament`: the table on stdout (and the CSV written).
+pub fn run(args: TournamentArgs) -> anyhow::Result<ExitCode> {
+    let rows = tournament::tournament(&args.a, &args.b, args.threads.threads.unwrap_or(0))?;
+    if let Some(path) = &args.csv {
+        vivae_lab::io::write_atomic(path, tournament::csv(&rows).as_bytes())?;
+    }
+    print!("{}", tournament::table(&rows));
+    Ok(ExitCode::SUCCESS)
+}
