@@ -53,8 +53,7 @@ fn arena_of(
     let path = settings::scenario_path(&config);
     let loaded = vivae_lab::io::load_scenario(path.as_deref()).map_err(errors::lab)?;
     errors::warn_scenario(py, &loaded.scenario)?;
-    let arena = Arena::new(&loaded.scenario, &config.physics, config.experiment.steps)
-        .map_err(errors::value)?;
+    let arena = Arena::of_config(&loaded.scenario, &config).map_err(errors::value)?;
     Ok((config, arena))
 }
 
@@ -300,8 +299,7 @@ impl PredatorPreyTask {
             let path = settings::scenario_path(&config);
             let loaded = vivae_lab::io::load_scenario(path.as_deref()).map_err(errors::lab)?;
             errors::warn_scenario(py, &loaded.scenario)?;
-            let arena = Arena::new(&loaded.scenario, &config.physics, config.experiment.steps)
-                .map_err(errors::value)?;
+            let arena = Arena::of_config(&loaded.scenario, &config).map_err(errors::value)?;
             (config, arena)
         };
         let pool = crate::pool::ForkSafePool::new(config.run.threads)?;

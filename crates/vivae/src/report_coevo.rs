@@ -15,7 +15,7 @@ use vivae_lab::tasks::predator_prey::coevo::{Champions, master_tournament};
 use vivae_lab::tasks::predator_prey::run::{files, read_champions, read_ciao};
 use vivae_lab::tasks::predator_prey::{Arena, NAME, Side};
 use vivae_lab::tasks::read_config;
-use vivae_neat::{Genome, Network as _};
+use vivae_neat::Genome;
 use vivae_sim::World;
 
 use crate::figures::coevo::{self, HUNTER_COLOUR, PREY_COLOUR, SideRow};
@@ -85,7 +85,7 @@ struct MatchData {
 fn champions_match(dir: &Path, hunter: &Genome, prey: &Genome) -> Result<MatchData> {
     let config = read_config(&dir.join(run_files::CONFIG))?;
     let loaded = load_scenario(Some(&dir.join(run_files::SCENARIO)))?;
-    let arena = Arena::new(&loaded.scenario, &config.physics, config.experiment.steps)
+    let arena = Arena::of_config(&loaded.scenario, &config)
         .map_err(|e| vivae_lab::io::bad_input(e.to_string()))?;
     let round = |v: f64| (v * 100.0).round() / 100.0;
     let snapshot = |w: &World| -> Vec<[f64; 3]> {
@@ -94,11 +94,13 @@ fn champions_match(dir: &Path, hunter: &Genome, prey: &Genome) -> Result<MatchDa
             .collect()
     };
     let mut frames = vec![snapshot(arena.world())];
-    let mut h = vivae_neat::RecurrentNetwork::from_genome(hunter);
-    let mut p = vivae_neat::RecurrentNetwork::from_genome(prey);
+    let (mut h, mut p) = (
+        arena.brain(Side::Hunter, hunter),
+        arena.brain(Side::Prey, prey),
+    );
     let out = arena.play(
-        |i, o| h.activate(i, o),
-        |i, o| p.activate(i, o),
+        |i, o| h.act(i, o),
+        |i, o| p.act(i, o),
         |w| frames.push(snapshot(w)),
     );
     Ok(MatchData {

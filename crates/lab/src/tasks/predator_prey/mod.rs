@@ -46,7 +46,7 @@ use vivae_sim::{
 };
 
 use crate::config::coevolution::SideController;
-use crate::tasks::maze::{MazeTask, RANGE, wheels};
+use crate::tasks::maze::{MazeTask, RANGE};
 use crate::tasks::predator_prey::brain::{Brain, Substrate};
 
 /// The task's name in `experiment.task` and `--task`.
@@ -224,6 +224,23 @@ impl Arena {
         self
     }
 
+    /// The arena of a run's `config` in `scenario`: its physics, steps and
+    /// both sides' kinds of controllers (`[coevolution]`, `[hyperneat]`).
+    pub fn of_config(
+        scenario: &Scenario,
+        config: &crate::config::Config,
+    ) -> Result<Arena, ArenaError> {
+        let c = &config.coevolution;
+        let arena = Arena::new(scenario, &config.physics, config.experiment.steps)?;
+        Ok(arena.with_controllers(c.hunter, c.prey, config.hyperneat))
+    }
+
+    /// `side`'s controller of `genome` for one episode (of its side's kind).
+    pub fn brain(&self, side: Side, genome: &Genome) -> Brain {
+        let k = usize::from(side == Side::Prey);
+        Brain::new(self.controllers[k], genome, &self.substrate, &self.hyper[k])
+    }
+
     /// This arena with the prey's HyperNEAT controllers decoded with
     /// `params` (when the two sides come from runs of different settings).
     pub fn with_prey_params(mut self, params: HyperParams) -> Arena {
@@ -301,45 +318,27 @@ impl Arena {
         mut prey: impl FnMut(&[f64], &mut [f64]),
         mut each: impl FnMut(&World),
     ) -> Outcome {
-        let mut world = self.world.clone();
+        let mut m = self.start();
         let (mut hi, mut pi) = ([0.0; INPUTS], [0.0; INPUTS]);
         let (mut ho, mut po) = ([0.0; OUTPUTS], [0.0; OUTPUTS]);
-        let mut controls = [[0.0; 2]; 2];
-        let (mut sum, mut steps, mut caught) = (0.0, 0, false);
-        while steps < self.steps && !caught {
-            self.read(&world, self.hunter, &mut hi);
-            self.read(&world, self.prey, &mut pi);
+        while !self.over(&m) {
+            self.read(m.world(), self.hunter, &mut hi);
+            self.read(m.world(), self.prey, &mut pi);
             hunter(&hi, &mut ho);
             prey(&pi, &mut po);
-            controls[self.hunter] = wheels(ho[0], ho[1]);
-            controls[self.prey] = wheels(po[0], po[1]);
-            world.step(&controls);
-            steps += 1;
-            caught = self.caught(&world);
-            let r = world.robots();
-            sum += r[self.hunter].pos.distance(r[self.prey].pos);
-            each(&world);
+            self.advance(&mut m, [ho[0], ho[1]], [po[0], po[1]]);
+            each(m.world());
         }
-        Outcome {
-            caught,
-            steps,
-            max_steps: self.steps,
-            mean_distance: if steps == 0 {
-                0.0
-            } else {
-                sum / f64::from(steps) / self.diagonal
-            },
-        }
+        self.outcome(&m)
     }
 
     /// An episode of `hunter`'s controller against `prey`'s (each of its
     /// side's kind).
     pub fn play_genomes(&self, hunter: &Genome, prey: &Genome) -> Outcome {
-        let brain = |side: Side, genome: &Genome| {
-            let k = usize::from(side == Side::Prey);
-            Brain::new(self.controllers[k], genome, &self.substrate, &self.hyper[k])
-        };
-        let (mut h, mut p) = (brain(Side::Hunter, hunter), brain(Side::Prey, prey));
+        let (mut h, mut p) = (
+            self.brain(Side::Hunter, hunter),
+            self.brain(Side::Prey, prey),
+        );
         self.play(|i, o| h.act(i, o), |i, o| p.act(i, o), |_| {})
     }
 }

@@ -135,10 +135,7 @@ struct PpRun {
 /// The arena of `config` in the scenario at `path` (a file or a shipped name).
 pub(super) fn arena_of(config: &Config, path: &Path) -> Result<(Arena, String)> {
     let loaded = load_scenario(Some(path))?;
-    let c = &config.coevolution;
-    let arena = Arena::new(&loaded.scenario, &config.physics, config.experiment.steps)
-        .map_err(|e| bad_input(e.to_string()))?
-        .with_controllers(c.hunter, c.prey, config.hyperneat);
+    let arena = Arena::of_config(&loaded.scenario, config).map_err(|e| bad_input(e.to_string()))?;
     Ok((arena, loaded.text))
 }
 

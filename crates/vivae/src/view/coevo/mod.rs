@@ -20,10 +20,11 @@ use serde_json::{Value, json};
 use vivae_lab::io::{load_scenario, one_line, read_text};
 use vivae_lab::rundir::files as run_files;
 use vivae_lab::tasks::maze::wheels;
+use vivae_lab::tasks::predator_prey::brain::Brain;
 use vivae_lab::tasks::predator_prey::run::{HallEntry, files, read_champions};
 use vivae_lab::tasks::predator_prey::{Arena, INPUTS, OUTPUTS, Side};
 use vivae_lab::tasks::read_config;
-use vivae_neat::{Genome, Network as _, RecurrentNetwork};
+use vivae_neat::Genome;
 use vivae_sim::World;
 
 use super::session::{Keys, REAL_TIME_STEPS};
@@ -56,7 +57,7 @@ impl Hall {
     pub(crate) fn load(dir: &Path) -> vivae_lab::Result<Hall> {
         let config = read_config(&dir.join(run_files::CONFIG))?;
         let loaded = load_scenario(Some(&dir.join(run_files::SCENARIO)))?;
-        let arena = Arena::new(&loaded.scenario, &config.physics, config.experiment.steps)
+        let arena = Arena::of_config(&loaded.scenario, &config)
             .map_err(|e| vivae_lab::io::bad_input(e.to_string()))?;
         let scene = SceneData::new(&loaded.scenario, arena.world());
         let path = dir.join(files::HALL);
@@ -154,8 +155,8 @@ enum ClientMsg {
 pub(crate) struct Game {
     world: World,
     picked: (u32, u32),
-    hunter: RecurrentNetwork,
-    prey: RecurrentNetwork,
+    hunter: Brain,
+    prey: Brain,
     /// The keyboard drives the prey.
     human: bool,
     keys: Keys,
@@ -181,8 +182,12 @@ impl Game {
         let mut game = Game {
             world: hall.arena.world().clone(),
             picked,
-            hunter: RecurrentNetwork::from_genome(&hall.hunters[picked.0 as usize].0),
-            prey: RecurrentNetwork::from_genome(&hall.prey[picked.1 as usize].0),
+            hunter: hall
+                .arena
+                .brain(Side::Hunter, &hall.hunters[picked.0 as usize].0),
+            prey: hall
+                .arena
+                .brain(Side::Prey, &hall.prey[picked.1 as usize].0),
             human: false,
             keys: Keys::default(),
             step: 0,
@@ -214,8 +219,8 @@ impl Game {
     /// Back to the start: the world, the networks' state, the clock.
     fn reset(&mut self, hall: &Hall) {
         self.world = hall.arena.world().clone();
-        self.hunter = RecurrentNetwork::from_genome(&hall.hunters[self.picked.0 as usize].0);
-        self.prey = RecurrentNetwork::from_genome(&hall.prey[self.picked.1 as usize].0);
+        self.hunter = (hall.arena).brain(Side::Hunter, &hall.hunters[self.picked.0 as usize].0);
+        self.prey = (hall.arena).brain(Side::Prey, &hall.prey[self.picked.1 as usize].0);
         self.step = 0;
         self.caught = None;
         self.carry = 0.0;
@@ -242,10 +247,10 @@ impl Game {
         let (mut inputs, mut outputs) = ([0.0; INPUTS], [0.0; OUTPUTS]);
         let mut controls = vec![[0.0; 2]; self.world.robots().len()];
         arena.inputs(&self.world, Side::Hunter, &mut inputs);
-        self.hunter.activate(&inputs, &mut outputs);
+        self.hunter.act(&inputs, &mut outputs);
         controls[arena.robot(Side::Hunter)] = wheels(outputs[0], outputs[1]);
         arena.inputs(&self.world, Side::Prey, &mut inputs);
-        self.prey.activate(&inputs, &mut outputs);
+        self.prey.act(&inputs, &mut outputs);
         controls[arena.robot(Side::Prey)] = if self.human {
             self.keys.controls()
         } else {
