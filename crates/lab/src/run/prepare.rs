@@ -130,9 +130,7 @@ impl Overrides {
             "behaviour" => self.behaviour = Some(parse(text).map_err(what)?),
             "robot" => self.robot = Some(text.trim().to_string()),
             "placements" => self.placements = Some(number(text).map_err(what)?),
-            "placements_aggregate" => {
-                self.placements_aggregate = Some(parse(text).map_err(what)?)
-            }
+            "placements_aggregate" => self.placements_aggregate = Some(parse(text).map_err(what)?),
             "task" => {
                 tasks::entry(text).map_err(|e| format!("{key} = {e}"))?;
                 self.task = Some(TaskName(text.to_string()));

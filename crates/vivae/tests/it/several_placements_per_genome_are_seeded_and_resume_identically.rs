@@ -78,7 +78,10 @@ fn several_placements_per_genome_are_seeded_and_resume_identically() {
     assert!(!dir.join("roads").join("champion.json").exists());
     // So would a task that places nothing, and 0 placements is no evaluation.
     for (extra, says) in [
-        (&["--placements", "2", "--task", "maze"][..], "only a driving run"),
+        (
+            &["--placements", "2", "--task", "maze"][..],
+            "only a driving run",
+        ),
         (&["--placements", "0"][..], "must be from 1 to"),
     ] {
         let out = run(vivae()

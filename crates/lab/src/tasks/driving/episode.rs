@@ -438,7 +438,9 @@ impl Episode {
             .map(|k| {
                 let start = self.start(placement_seed(seed, k));
                 match self.measures {
-                    None => Evaluation::fitness(self.run_from(&start, &controller, false).0.fitness),
+                    None => {
+                        Evaluation::fitness(self.run_from(&start, &controller, false).0.fitness)
+                    }
                     Some(m) => measured_episode(
                         self.setup_from(&start),
                         self.rollout(&controller),
