@@ -556,6 +556,59 @@ mod tests {
     }
 
     #[test]
+    fn several_placements_score_the_mean_or_the_worst_of_their_episodes() {
+        let mut config = Config::default();
+        config.experiment.steps = 60;
+        let sc = crate::shipped::find("obstacles-random").unwrap();
+        let scenario = Scenario::from_svg(sc.svg, "obstacles-random", &Default::default()).unwrap();
+        let one = Episode::new(&config, &scenario).unwrap();
+        config.experiment.placements = 3;
+        let three = Episode::new(&config, &scenario).unwrap();
+        config.experiment.placements_aggregate = Aggregate::Min;
+        let worst = Episode::new(&config, &scenario).unwrap();
+        assert_eq!((one.placements(), three.placements()), (1, 3));
+        let pop = Population::new(config.neat.clone(), one.cppn_spec(), 3).unwrap();
+        let ctx = EvalContext {
+            generation: 2,
+            index: 1,
+            seed: 99,
+        };
+        let mut differ = 0;
+        for g in pop.genomes().iter().take(8) {
+            let parts: Vec<f64> = (0..3)
+                .map(|k| {
+                    one.evaluate(
+                        g,
+                        &EvalContext {
+                            seed: placement_seed(99, k),
+                            ..ctx
+                        },
+                    )
+                    .fitness
+                })
+                .collect();
+            assert_eq!(
+                parts[0],
+                one.evaluate(g, &ctx).fitness,
+                "placement 0 is the seed's"
+            );
+            assert_eq!(
+                three.evaluate(g, &ctx).fitness,
+                Aggregate::Mean.combine(&parts)
+            );
+            assert_eq!(
+                worst.evaluate(g, &ctx).fitness,
+                Aggregate::Min.combine(&parts)
+            );
+            differ += usize::from(parts[0] != parts[1] || parts[1] != parts[2]);
+        }
+        assert!(differ > 0, "the placements gave one episode");
+        // A scenario that places nothing is run once.
+        let plain = paper_experiment(&config);
+        assert_eq!(plain.placements(), 1);
+    }
+
+    #[test]
     fn robots_never_move_faster_than_v_max() {
         let config = Config {
             experiment: crate::config::ExperimentConfig {
