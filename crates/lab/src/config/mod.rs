@@ -128,6 +128,30 @@ pub struct ExperimentConfig {
     /// Example: "driving".
     #[serde(default, skip_serializing_if = "TaskName::is_driving")]
     pub task: TaskName,
+    /// Placements per evaluation on a scenario that places obstacles or
+    /// traffic per evaluation (`obstacles-random`, `oncoming`): every genome
+    /// is evaluated on this many placements, the evaluation's seed s and
+    /// splitmix64(s ^ k) for k = 1 … N−1, its fitness combined by
+    /// `placements_aggregate` and its metrics and behaviour the mean over
+    /// them. 1 = one placement (the seed s); more than 1 is refused when no
+    /// training map places anything per evaluation.
+    ///
+    /// Example: 4.
+    #[serde(default = "one", skip_serializing_if = "is_one")]
+    pub placements: u32,
+    /// How the fitnesses on `placements` placements combine: `mean` (unset) or `min`.
+    ///
+    /// Example: "min".
+    #[serde(default, skip_serializing_if = "Aggregate::is_mean")]
+    pub placements_aggregate: Aggregate,
+}
+
+fn one() -> u32 {
+    1
+}
+
+fn is_one(n: &u32) -> bool {
+    *n == 1
 }
 
 /// The name of the task a run evolves controllers for (`experiment.task`):
@@ -182,6 +206,8 @@ impl Default for ExperimentConfig {
             robots: 5,
             init_population: String::new(),
             task: TaskName::default(),
+            placements: 1,
+            placements_aggregate: Aggregate::Mean,
         }
     }
 }
@@ -333,7 +359,8 @@ fn is_true(b: &bool) -> bool {
     *b
 }
 
-/// How a genome's fitnesses at several training resolutions combine into one.
+/// How a genome's fitnesses at several training resolutions (or on several
+/// placements) combine into one.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Aggregate {
@@ -375,6 +402,8 @@ impl std::str::FromStr for Aggregate {
 pub const MAX_TRAINING_RESOLUTIONS: usize = 16;
 /// Most training maps (`experiment.scenarios`).
 pub const MAX_MAPS: usize = 64;
+/// Most placements per evaluation (`experiment.placements`).
+pub const MAX_PLACEMENTS: u32 = 64;
 
 impl Default for SubstrateConfig {
     fn default() -> Self {

@@ -35,6 +35,12 @@ impl Config {
                 e.scenarios.len()
             )));
         }
+        if e.placements == 0 || e.placements > MAX_PLACEMENTS {
+            return Err(ConfigError::new(format!(
+                "experiment.placements = {}: must be from 1 to {MAX_PLACEMENTS}",
+                e.placements
+            )));
+        }
         if e.scenarios.iter().any(String::is_empty) {
             return Err(ConfigError::new(
                 "experiment.scenarios = [.., \"\", ..]: a map name is empty",

@@ -67,11 +67,15 @@ pub struct Overrides {
     /// The task's robot model, where it has a choice (its entry's
     /// [`crate::tasks::TaskEntry::set_robot`]).
     pub robot: Option<String>,
+    /// `experiment.placements`.
+    pub placements: Option<u32>,
+    /// `experiment.placements_aggregate`.
+    pub placements_aggregate: Option<Aggregate>,
 }
 
 impl Overrides {
     /// Every override's name, in the order of the fields.
-    pub const KEYS: [&'static str; 21] = [
+    pub const KEYS: [&'static str; 23] = [
         "scenario",
         "generations",
         "population",
@@ -93,6 +97,8 @@ impl Overrides {
         "behaviour",
         "task",
         "robot",
+        "placements",
+        "placements_aggregate",
     ];
 
     /// Sets override `key` from its text as a command line writes it (lists
@@ -123,6 +129,8 @@ impl Overrides {
             "strategy" => self.strategy = Some(parse(text).map_err(what)?),
             "behaviour" => self.behaviour = Some(parse(text).map_err(what)?),
             "robot" => self.robot = Some(text.trim().to_string()),
+            "placements" => self.placements = Some(number(text).map_err(what)?),
+            "placements_aggregate" => self.placements_aggregate = Some(parse(text).map_err(what)?),
             "task" => {
                 tasks::entry(text).map_err(|e| format!("{key} = {e}"))?;
                 self.task = Some(TaskName(text.to_string()));
@@ -157,6 +165,8 @@ impl Overrides {
         set(&mut e.steps, self.steps);
         set(&mut e.robots, self.robots);
         set(&mut e.task, self.task.clone());
+        set(&mut e.placements, self.placements);
+        set(&mut e.placements_aggregate, self.placements_aggregate);
         set(&mut c.neat.population_size, self.population);
         if let Some(g) = self.sensors {
             (c.surface_sensors.rings, c.surface_sensors.angles) = (g.rings, g.angles);
@@ -338,10 +348,12 @@ mod tests {
             ("behaviour", "end-position"),
             ("task", "maze"),
             ("robot", "vivae"),
+            ("placements", "1"),
+            ("placements_aggregate", "mean"),
         ] {
             o.set(key, text).unwrap_or_else(|e| panic!("{key}: {e}"));
         }
-        assert_eq!(Overrides::KEYS.len(), 21);
+        assert_eq!(Overrides::KEYS.len(), 23);
         let mut c = Config::maze();
         o.apply(&mut c).unwrap();
         assert_eq!((c.experiment.generations, c.neat.population_size), (3, 10));

@@ -67,6 +67,14 @@ pub struct Overrides {
     /// default, Lehman's navigator; or vivae, our robot of [physics]).
     #[arg(long, value_name = "MODEL")]
     pub robot: Option<String>,
+    /// Placements per evaluation on a scenario that places obstacles or
+    /// traffic per evaluation (experiment.placements; default 1): every
+    /// genome is scored on N placements drawn from its evaluation's seed.
+    #[arg(long, value_name = "N")]
+    pub placements: Option<u32>,
+    /// How the fitnesses on --placements placements combine: mean (default) or min.
+    #[arg(long, value_name = "mean|min")]
+    pub placements_aggregate: Option<vivae_lab::config::Aggregate>,
 }
 
 /// `--task NAME`: one of the registered tasks (listed by `--help`).
@@ -111,6 +119,8 @@ impl Overrides {
             behaviour: self.behaviour,
             task: self.task.clone(),
             robot: self.robot.clone(),
+            placements: self.placements,
+            placements_aggregate: self.placements_aggregate,
         }
     }
 }

@@ -62,6 +62,7 @@ mod same_bits_at_every_simd_level;
 mod same_bits_on_older_cpu_code_paths;
 mod scenario_render_bounds_its_sensors;
 mod second_writer_of_a_run_is_refused;
+mod several_placements_per_genome_are_seeded_and_resume_identically;
 mod shipped_scenarios_run_by_name;
 mod short_run_matches_pinned_hash;
 mod sigterm_checkpoints_and_exits_130;

@@ -9,7 +9,7 @@ use vivae_neat::hyperneat::{HyperParams, SubstrateController, SubstrateLayout, d
 use vivae_neat::{EvalContext, Genome, GenomeSpec};
 use vivae_sim::{DVec2, Scenario, SurfaceGrid, World};
 
-use crate::config::Config;
+use crate::config::{Aggregate, Config};
 use crate::controller::es::{EsSetup, RobotController, SubstrateKind};
 use crate::controller::normalize::SourceScale;
 use crate::controller::sensors::{SensorSheet, read_sheets, sensor_sheets};
@@ -20,7 +20,7 @@ use crate::tasks::driving::behaviour::{Behaviour, BehaviourMeter};
 use crate::tasks::driving::combined::DrivingTask;
 use crate::tasks::driving::descriptors::{EpisodeSetup, METRICS, Measures, measured_episode};
 use crate::tasks::driving::fitness::Fitness;
-use crate::tasks::driving::placement::placed;
+use crate::tasks::driving::placement::{placed, placement_seed};
 use crate::tasks::driving::rollout::{Drive, Rollout};
 
 /// Everything needed to evaluate genomes on one scenario with one config.
@@ -54,6 +54,10 @@ pub struct Episode {
     fitness: Arc<dyn Fitness>,
     /// What an evaluation measures besides fitness (`None`: fitness only).
     measures: Option<Measures>,
+    /// Placements per evaluation of a varying scenario (`experiment.placements`).
+    placements: u32,
+    /// How the fitnesses on several placements combine.
+    placements_aggregate: Aggregate,
 }
 
 /// The outcome of one episode.
@@ -166,6 +170,8 @@ impl Episode {
             cppn_outputs,
             fitness: crate::tasks::driving::fitness_contacts::of_config(&config.fitness),
             measures: Measures::of(&config.strategy),
+            placements: config.experiment.placements.max(1),
+            placements_aggregate: config.experiment.placements_aggregate,
         })
     }
 
@@ -196,6 +202,12 @@ impl Episode {
     /// Whether evaluations place obstacles or traffic from their seeds.
     pub fn varies(&self) -> bool {
         self.varying.is_some()
+    }
+
+    /// Episodes per evaluation: `experiment.placements` when evaluations
+    /// place obstacles or traffic, else 1 (every placement would be the same episode).
+    pub fn placements(&self) -> u32 {
+        if self.varies() { self.placements } else { 1 }
     }
 
     /// The world an evaluation with seed `seed` starts from.
@@ -407,12 +419,57 @@ impl Episode {
     }
 }
 
+impl Episode {
+    /// An evaluation on [`Episode::placements`] placements, drawn from
+    /// [`placement_seed`]`(seed, k)`: the fitness combined by
+    /// `experiment.placements_aggregate`, metrics and behaviour the mean over
+    /// the placements, coordinate by coordinate.
+    fn evaluate_placements(&self, genome: &Genome, seed: u64) -> Evaluation {
+        let controller = match self.robot_controller(genome) {
+            Ok(c) => c,
+            Err(_) => {
+                return match self.measures {
+                    None => Evaluation::fitness(0.0),
+                    Some(m) => crate::tasks::driving::descriptors::unfit(m, self.robots()),
+                };
+            }
+        };
+        let parts: Vec<Evaluation> = (0..self.placements())
+            .map(|k| {
+                let start = self.start(placement_seed(seed, k));
+                match self.measures {
+                    None => {
+                        Evaluation::fitness(self.run_from(&start, &controller, false).0.fitness)
+                    }
+                    Some(m) => measured_episode(
+                        self.setup_from(&start),
+                        self.rollout(&controller),
+                        &controller,
+                        m,
+                    ),
+                }
+            })
+            .collect();
+        let fitnesses: Vec<f64> = parts.iter().map(|e| e.fitness).collect();
+        let metrics: Vec<&[f64]> = parts.iter().map(|e| &e.metrics[..]).collect();
+        let behaviours: Vec<&[f64]> = parts.iter().map(|e| &e.behaviour[..]).collect();
+        Evaluation {
+            fitness: self.placements_aggregate.combine(&fitnesses),
+            metrics: crate::tasks::driving::descriptors::mean_of(&metrics),
+            behaviour: crate::tasks::driving::descriptors::mean_of(&behaviours),
+        }
+    }
+}
+
 /// The driving experiment as a NEAT task: a genome's fitness is its
 /// controller's episode score (deterministic: the only randomness, a varying
 /// scenario's placement, comes from `ctx.seed`), with the behaviour and
 /// metrics the run's strategy needs ([`crate::tasks::driving::descriptors`]).
 impl Task for Episode {
     fn evaluate(&self, genome: &Genome, ctx: &EvalContext) -> Evaluation {
+        if self.placements() > 1 {
+            return self.evaluate_placements(genome, ctx.seed);
+        }
         let start = self.start(ctx.seed);
         let Some(measures) = self.measures else {
             return Evaluation::fitness(self.fitness_from(&start, genome));
@@ -433,7 +490,7 @@ impl Task for Episode {
 
 impl DrivingTask for Episode {
     fn robot_steps(&self) -> u64 {
-        self.robots() as u64 * u64::from(self.steps)
+        self.robots() as u64 * u64::from(self.steps) * u64::from(self.placements())
     }
 
     fn cppn_spec(&self) -> GenomeSpec {
@@ -496,6 +553,59 @@ mod tests {
             moved += usize::from(e.fitness > 0.0);
         }
         assert!(moved > 0, "no ES controller drove: were they decoded?");
+    }
+
+    #[test]
+    fn several_placements_score_the_mean_or_the_worst_of_their_episodes() {
+        let mut config = Config::default();
+        config.experiment.steps = 60;
+        let sc = crate::shipped::find("obstacles-random").unwrap();
+        let scenario = Scenario::from_svg(sc.svg, "obstacles-random", &Default::default()).unwrap();
+        let one = Episode::new(&config, &scenario).unwrap();
+        config.experiment.placements = 3;
+        let three = Episode::new(&config, &scenario).unwrap();
+        config.experiment.placements_aggregate = Aggregate::Min;
+        let worst = Episode::new(&config, &scenario).unwrap();
+        assert_eq!((one.placements(), three.placements()), (1, 3));
+        let pop = Population::new(config.neat.clone(), one.cppn_spec(), 3).unwrap();
+        let ctx = EvalContext {
+            generation: 2,
+            index: 1,
+            seed: 99,
+        };
+        let mut differ = 0;
+        for g in pop.genomes().iter().take(8) {
+            let parts: Vec<f64> = (0..3)
+                .map(|k| {
+                    one.evaluate(
+                        g,
+                        &EvalContext {
+                            seed: placement_seed(99, k),
+                            ..ctx
+                        },
+                    )
+                    .fitness
+                })
+                .collect();
+            assert_eq!(
+                parts[0],
+                one.evaluate(g, &ctx).fitness,
+                "placement 0 is the seed's"
+            );
+            assert_eq!(
+                three.evaluate(g, &ctx).fitness,
+                Aggregate::Mean.combine(&parts)
+            );
+            assert_eq!(
+                worst.evaluate(g, &ctx).fitness,
+                Aggregate::Min.combine(&parts)
+            );
+            differ += usize::from(parts[0] != parts[1] || parts[1] != parts[2]);
+        }
+        assert!(differ > 0, "the placements gave one episode");
+        // A scenario that places nothing is run once.
+        let plain = paper_experiment(&config);
+        assert_eq!(plain.placements(), 1);
     }
 
     #[test]

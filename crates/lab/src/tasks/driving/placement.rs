@@ -14,6 +14,16 @@ const TRIES: u32 = 200;
 /// Least gap between two obstacles, px (a robot fits through).
 const GAP: f64 = 14.0;
 
+/// The seed of placement `k` of an evaluation with seed `seed`
+/// (`experiment.placements`): the evaluation's own seed for `k = 0` (what a
+/// one-placement run uses), `splitmix64(seed ^ k)` for every other `k`.
+pub fn placement_seed(seed: u64, k: u32) -> u64 {
+    match k {
+        0 => seed,
+        k => vivae_neat::eval::splitmix64(seed ^ u64::from(k)),
+    }
+}
+
 /// `scenario` as episode `seed` has it: every obstacle region's obstacles
 /// placed (as fixed obstacles, after the drawn ones) and every scripted
 /// robot's throttle and start drawn. The result varies no more

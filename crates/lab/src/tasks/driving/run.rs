@@ -22,10 +22,25 @@ pub static TASK: TaskEntry = TaskEntry {
     build,
     own_driver: None,
     scenarios: &crate::tasks::driving::scenarios::SCENARIOS,
-    refuse_when_other: |_| Ok(()),
+    refuse_when_other: refuse_placements,
     set_robot: None,
     sections: Vec::new,
 };
+
+/// With another task than driving: refuses `experiment.placements` (and its
+/// aggregate) off their defaults: only a driving episode places obstacles
+/// and traffic per evaluation.
+fn refuse_placements(c: &Config) -> std::result::Result<(), String> {
+    let e = &c.experiment;
+    if e.placements != 1 || !e.placements_aggregate.is_mean() {
+        return Err(format!(
+            "experiment.placements = {}: only a driving run places obstacles or traffic per evaluation \
+             (experiment.task = \"{}\"): drop it",
+            e.placements, e.task
+        ));
+    }
+    Ok(())
+}
 
 /// The training of `config` on `maps`.
 fn build(config: &Config, maps: &[TrainingMap]) -> Result<Box<dyn RunTask>> {

@@ -42,6 +42,7 @@ impl Training {
             .ok_or_else(|| crate::io::bad_input("no training map"))?;
         if !is_multi_map(config) {
             let (primary, task, resolutions) = map_task(config, first)?;
+            refuse_fixed_placements(config, [&primary])?;
             return Ok(Training::of(primary, Vec::new(), resolutions, config, task));
         }
         let mut experiments = Vec::with_capacity(maps.len());
@@ -56,6 +57,7 @@ impl Training {
             parts.push((m.label.clone(), task));
             resolutions = r;
         }
+        refuse_fixed_placements(config, experiments.iter().map(|(_, e)| e))?;
         let primary = experiments[0].1.clone();
         let task: Box<dyn DrivingTask> = Box::new(Combined::new(parts, Aggregate::Mean));
         Ok(Training::of(
@@ -132,6 +134,23 @@ impl Training {
             .collect::<Vec<_>>()
             .join(", ")
     }
+}
+
+/// Refuses `experiment.placements` > 1 when none of `maps` places obstacles
+/// or traffic per evaluation: every placement would be the same episode.
+fn refuse_fixed_placements<'a>(
+    config: &Config,
+    maps: impl IntoIterator<Item = &'a Episode>,
+) -> std::result::Result<(), EpisodeError> {
+    let n = config.experiment.placements;
+    if n > 1 && !maps.into_iter().any(Episode::varies) {
+        return Err(EpisodeError::Config(format!(
+            "experiment.placements = {n}: no training map places obstacles or traffic per \
+             evaluation, so every placement would be the same episode; use a scenario that \
+             does (obstacles-random, oncoming) or drop it"
+        )));
+    }
+    Ok(())
 }
 
 /// A map's experiment at the run's own resolution, its training task, and
