@@ -104,7 +104,7 @@ fn set(o: &mut Overrides, key: &str, v: &Bound<'_, PyAny>) -> PyResult<()> {
         "behaviour" => o.behaviour = Some(parsed(key, v)?),
         "placements" => o.placements = Some(int(key, v)?),
         "placements_aggregate" => o.placements_aggregate = Some(parsed(key, v)?),
-        "task" => {
+        "task" | "robot" => {
             let t: String = v.extract()?;
             o.set(key, &t).map_err(errors::value)?;
         }

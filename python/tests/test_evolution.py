@@ -314,3 +314,13 @@ def test_replay_on_a_placement_of_random_obstacles_and_traffic(tmp_path):
     assert kinds <= set(seven)
     robot, traffic, obstacle = (seven[k] for k in ("contacts_robot", "contacts_traffic", "contacts_obstacle"))
     assert seven["collisions"] == pytest.approx(robot + traffic + obstacle)
+
+
+def test_a_maze_run_takes_its_robot_model_and_other_tasks_refuse_one(tmp_path):
+    vivae.evolve(out=tmp_path / "m", task="maze", robot="vivae", generations=1, population=20,
+                 threads=1, progress=False)
+    assert 'robot = "vivae"' in (tmp_path / "m" / "config.toml").read_text()
+    with pytest.raises(ValueError, match="khepera"):
+        vivae.evolve(out=tmp_path / "k", task="maze", robot="khepera", generations=1, progress=False)
+    with pytest.raises(ValueError, match="one robot model"):
+        vivae.evolve(out=tmp_path / "d", robot="vivae", generations=1, progress=False)
