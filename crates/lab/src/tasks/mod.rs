@@ -58,8 +58,6 @@ pub struct TaskEntry {
     /// For a task that runs on a driver of its own (two populations) rather
     /// than [`crate::run::Run`]: that driver. `None` for one population.
     pub own_driver: Option<OwnDriver>,
-    /// The scenarios shipped for it (`vivae scenario list`, `--scenario NAME`).
-    pub scenarios: &'static [crate::shipped::Shipped],
     /// What its own config sections must be when another task runs (e.g.
     /// at their defaults: they would be ignored); the message names the key.
     pub refuse_when_other: fn(&Config) -> std::result::Result<(), String>,

@@ -15,7 +15,6 @@ pub mod placement;
 pub mod resolutions;
 pub mod rollout;
 pub mod run;
-pub mod scenarios;
 pub mod training;
 
 pub use run::TASK;

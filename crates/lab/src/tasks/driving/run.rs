@@ -21,7 +21,6 @@ pub static TASK: TaskEntry = TaskEntry {
     generation_columns: "",
     build,
     own_driver: None,
-    scenarios: &crate::tasks::driving::scenarios::SCENARIOS,
     refuse_when_other: refuse_placements,
     set_robot: None,
     sections: Vec::new,

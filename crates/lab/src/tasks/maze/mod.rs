@@ -25,8 +25,6 @@ pub mod walls;
 
 pub use run::TASK;
 
-use crate::shipped::Shipped;
-
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
 
 use vivae_neat::driver::{Evaluation, Task};
@@ -37,25 +35,22 @@ use vivae_sim::{
 };
 
 /// The medium maze (`scenarios/medium-maze.svg`).
-pub const MEDIUM_MAZE_SVG: &str = SCENARIOS[0].svg;
+pub const MEDIUM_MAZE_SVG: &str = shipped_svg("medium-maze");
 /// The hard maze (`scenarios/hard-maze.svg`).
-pub const HARD_MAZE_SVG: &str = SCENARIOS[1].svg;
+pub const HARD_MAZE_SVG: &str = shipped_svg("hard-maze");
 
-/// The mazes shipped for maze runs (`vivae scenario list`).
-pub const SCENARIOS: [Shipped; 2] = [
-    Shipped {
-        name: "medium-maze",
-        what: "Lehman & Stanley's medium maze, for --task maze (1 robot, a goal)",
-        svg: include_str!("../../../../../scenarios/medium-maze.svg"),
-        task: NAME,
-    },
-    Shipped {
-        name: "hard-maze",
-        what: "Lehman & Stanley's hard (deceptive) maze, for --task maze (1 robot, a goal)",
-        svg: include_str!("../../../../../scenarios/hard-maze.svg"),
-        task: NAME,
-    },
-];
+/// The SVG text of shipped scenario `name` (evaluated at compile time).
+const fn shipped_svg(name: &str) -> &'static str {
+    let mut i = 0;
+    while i < crate::shipped::SHIPPED.len() {
+        let s = &crate::shipped::SHIPPED[i];
+        if s.name.eq_ignore_ascii_case(name) {
+            return s.svg;
+        }
+        i += 1;
+    }
+    panic!("not a shipped scenario")
+}
 
 /// The task's name in `experiment.task` and `--task`.
 pub const NAME: &str = "maze";

@@ -33,7 +33,6 @@ pub static TASK: TaskEntry = TaskEntry {
     generation_columns: COLUMNS,
     build,
     own_driver: None,
-    scenarios: &crate::tasks::maze::SCENARIOS,
     refuse_when_other: crate::tasks::maze::config::refuse_for_other_tasks,
     set_robot: Some(|c, r| {
         c.maze.robot = r.parse()?;
