@@ -129,25 +129,11 @@ enum ClientMsg {
     Play,
     Pause,
     Reset,
-    Step {
-        n: u32,
-    },
-    Speed {
-        value: f64,
-    },
-    Pick {
-        hunter: u32,
-        prey: u32,
-    },
-    Human {
-        on: bool,
-    },
-    Keys {
-        up: bool,
-        down: bool,
-        left: bool,
-        right: bool,
-    },
+    Step { n: u32 },
+    Speed { value: f64 },
+    Pick { hunter: u32, prey: u32 },
+    Human { on: bool },
+    Keys(Keys),
 }
 
 /// One page's game: the hunter and the prey of the chosen generations.
@@ -323,19 +309,7 @@ impl Game {
                 self.reset(hall);
                 self.playing = true;
             }
-            ClientMsg::Keys {
-                up,
-                down,
-                left,
-                right,
-            } => {
-                self.keys = Keys {
-                    up,
-                    down,
-                    left,
-                    right,
-                }
-            }
+            ClientMsg::Keys(keys) => self.keys = keys,
         }
         self.dirty = true;
         Ok(())
@@ -425,6 +399,7 @@ mod tests {
             r#"{"type":"speed","value":1e308}"#,
             r#"{"type":"step","n":0}"#,
             r#"{"type":"keys","up":1}"#,
+            r#"{"type":"keys","up":true,"down":false,"left":false,"right":false,"fire":true}"#,
             r#"{"type":"launch"}"#,
             "[]",
             "\u{0}",
