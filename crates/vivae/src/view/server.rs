@@ -25,20 +25,32 @@ const INDEX_HTML: &str = include_str!("../../assets/view.html");
 /// The viewer page's script.
 const VIEW_JS: &str = include_str!("../../assets/view.js");
 /// The viewers' WebSocket and status line, loaded by both viewer pages.
-pub(super) const SOCKET_JS: &str = include_str!("../../assets/socket.js");
+const SOCKET_JS: &str = include_str!("../../assets/socket.js");
 /// The viewers' playback controls (play, step, reset, speed), put where a
 /// page says `<!--VIVAE-PLAYBACK-->`.
 const PLAYBACK_HTML: &str = include_str!("../../assets/playback.html");
 
-/// Run files a page may fetch (as `/run/NAME`); nothing else of the disk is served.
-const RUN_FILES: [(&str, &str); 7] = [
+/// Assets every viewer serves (`/assets/NAME`): name, content type, body.
+const COMMON_ASSETS: [(&str, &str, &str); 3] = [
+    ("style.css", "text/css; charset=utf-8", STYLE_CSS),
+    ("scene.js", "text/javascript; charset=utf-8", SCENE_JS),
+    ("socket.js", "text/javascript; charset=utf-8", SOCKET_JS),
+];
+
+/// Files of every run a viewer's page may fetch (`/run/NAME`), with their
+/// content types.
+const COMMON_RUN_FILES: [(&str, &str); 3] = [
     (files::CONFIG, "text/plain; charset=utf-8"),
     (files::SCENARIO, "image/svg+xml"),
+    (files::REPORT, "text/html; charset=utf-8"),
+];
+
+/// A driving run's own files a page may fetch.
+const RUN_FILES: [(&str, &str); 4] = [
     (files::GENERATIONS, "text/csv; charset=utf-8"),
     (files::POPULATION, "text/csv; charset=utf-8"),
     (files::CHAMPION, "application/json"),
     (files::BEST_GENOMES, "text/plain; charset=utf-8"),
-    (files::REPORT, "text/html; charset=utf-8"),
 ];
 
 /// How often a followed run directory is checked for new generations.
@@ -106,9 +118,6 @@ pub(super) async fn serve(
     let site = Site {
         page: page(INDEX_HTML),
         assets: &[
-            ("style.css", "text/css; charset=utf-8", STYLE_CSS),
-            ("scene.js", "text/javascript; charset=utf-8", SCENE_JS),
-            ("socket.js", "text/javascript; charset=utf-8", SOCKET_JS),
             ("plots.js", "text/javascript; charset=utf-8", PLOTS_JS),
             ("view.js", "text/javascript; charset=utf-8", VIEW_JS),
         ],
@@ -124,10 +133,12 @@ pub(super) async fn serve(
 pub(super) struct Site {
     /// The page at `/` (see [`page`]).
     pub page: String,
-    /// `/assets/NAME`: name, content type, body.
+    /// The page's own `/assets/NAME` besides [`COMMON_ASSETS`]: name,
+    /// content type, body.
     pub assets: &'static [(&'static str, &'static str, &'static str)],
-    /// Run files a page may fetch (as `/run/NAME`), with their content types;
-    /// nothing else of the disk is served.
+    /// Run files a page may fetch (as `/run/NAME`) besides
+    /// [`COMMON_RUN_FILES`], with their content types; nothing else of the
+    /// disk is served.
     pub run_files: &'static [(&'static str, &'static str)],
     /// The run directory they are read from (none: no run files).
     pub run_dir: Option<PathBuf>,
@@ -224,7 +235,8 @@ async fn index(State(shared): State<Shared>) -> Response {
 }
 
 async fn asset(State(shared): State<Shared>, UrlPath(name): UrlPath<String>) -> Response {
-    match shared.site.assets.iter().find(|(n, _, _)| *n == name) {
+    let mut assets = COMMON_ASSETS.iter().chain(shared.site.assets);
+    match assets.find(|(n, _, _)| *n == name) {
         Some((_, content_type, body)) => text(content_type, *body),
         None => not_found().await,
     }
@@ -235,7 +247,8 @@ async fn run_file(State(shared): State<Shared>, UrlPath(name): UrlPath<String>) 
         return not_found().await;
     };
     // Only the exact names listed: no path of the page's choosing reaches the disk.
-    let Some((file, content_type)) = shared.site.run_files.iter().find(|(n, _)| *n == name) else {
+    let mut listed = COMMON_RUN_FILES.iter().chain(shared.site.run_files);
+    let Some((file, content_type)) = listed.find(|(n, _)| *n == name) else {
         return not_found().await;
     };
     let (dir, path) = (dir.to_path_buf(), dir.join(file));

@@ -10,12 +10,8 @@ use std::time::Duration;
 use axum::extract::ws::{Message, WebSocket};
 
 use super::{Game, Hall};
-use crate::report_html::{SCENE_JS, STYLE_CSS};
 use crate::view::hosts::HostPolicy;
-use crate::view::server::{
-    Play, SOCKET_JS, Session, Site, error_msg, page, play, send_within, serve_site,
-};
-use vivae_lab::rundir::files as run_files;
+use crate::view::server::{Play, Session, Site, error_msg, page, play, send_within, serve_site};
 use vivae_lab::tasks::predator_prey::run::files;
 
 /// The predator–prey viewer page.
@@ -23,15 +19,12 @@ const INDEX_HTML: &str = include_str!("../../../assets/coevo.html");
 /// Its script.
 const COEVO_JS: &str = include_str!("../../../assets/coevo.js");
 
-/// Run files a page may fetch (as `/run/NAME`); nothing else of the disk is served.
-const RUN_FILES: [(&str, &str); 9] = [
-    (run_files::CONFIG, "text/plain; charset=utf-8"),
-    (run_files::SCENARIO, "image/svg+xml"),
+/// A predator–prey run's own files a page may fetch (as `/run/NAME`).
+const RUN_FILES: [(&str, &str); 6] = [
     (files::HUNTERS, "text/csv; charset=utf-8"),
     (files::PREY, "text/csv; charset=utf-8"),
     (files::CIAO, "text/csv; charset=utf-8"),
     (files::CHAMPIONS, "application/json"),
-    (run_files::REPORT, "text/html; charset=utf-8"),
     ("ciao.png", "image/png"),
     ("coevolution.png", "image/png"),
 ];
@@ -46,12 +39,7 @@ pub(in crate::view) async fn serve(
 ) -> std::io::Result<()> {
     let site = Site {
         page: page(INDEX_HTML),
-        assets: &[
-            ("style.css", "text/css; charset=utf-8", STYLE_CSS),
-            ("scene.js", "text/javascript; charset=utf-8", SCENE_JS),
-            ("socket.js", "text/javascript; charset=utf-8", SOCKET_JS),
-            ("coevo.js", "text/javascript; charset=utf-8", COEVO_JS),
-        ],
+        assets: &[("coevo.js", "text/javascript; charset=utf-8", COEVO_JS)],
         run_files: &RUN_FILES,
         run_dir: Some(dir.clone()),
     };
