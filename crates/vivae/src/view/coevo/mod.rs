@@ -356,8 +356,11 @@ impl Game {
 mod tests {
     use super::*;
 
-    fn hall() -> (Hall, PathBuf) {
-        let dir = std::env::temp_dir().join(format!("vivae-coevo-view-{}", std::process::id()));
+    /// A small run's hall in a folder of its own (`name`: the test's, as
+    /// tests run in parallel).
+    fn hall(name: &str) -> (Hall, PathBuf) {
+        let dir =
+            std::env::temp_dir().join(format!("vivae-coevo-view-{name}-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
         let mut config = vivae_lab::config::Config::predator_prey();
         config.experiment.generations = 2;
@@ -377,7 +380,7 @@ mod tests {
 
     #[test]
     fn the_viewers_game_is_the_evaluations_episode_and_refuses_bad_messages() {
-        let (hall, dir) = hall();
+        let (hall, dir) = hall("episode");
         assert_eq!(hall.generations(), 2);
         let mut game = Game::new(&hall).unwrap();
         for (h, p) in [(0, 1), (1, 0), (1, 1)] {
@@ -416,7 +419,7 @@ mod tests {
 
     #[test]
     fn the_keyboard_drives_the_prey() {
-        let (hall, dir) = hall();
+        let (hall, dir) = hall("keyboard");
         let mut game = Game::new(&hall).unwrap();
         game.handle(r#"{"type":"human","on":true}"#, &hall).unwrap();
         let prey = hall.arena.robot(Side::Prey);
