@@ -87,6 +87,17 @@ class _PicklesBySettings:
     fresh (as after ``__init__``), in the process that unpickles it."""
 
     _init_args: dict[str, Any]
+    render_mode: str | None
+    render_scale: float
+
+    def _keep_settings(self, **init_args: Any) -> None:
+        """Checks ``render_mode`` and keeps the arguments ``__init__`` was
+        called with (``render_mode`` and ``render_scale`` among them, which
+        are also kept as attributes)."""
+        _render_mode(init_args["render_mode"])
+        self._init_args = init_args
+        self.render_mode = init_args["render_mode"]
+        self.render_scale = init_args["render_scale"]
 
     def __getstate__(self) -> dict[str, Any]:
         return {"init_args": self._init_args}
@@ -132,8 +143,7 @@ class DriveEnv(_PicklesBySettings, gymnasium.Env):
         render_scale: float = 0.5,
         **overrides: Any,
     ) -> None:
-        _render_mode(render_mode)
-        self._init_args = dict(
+        self._keep_settings(
             scenario=scenario, sensors=sensors, render_mode=render_mode, config=config,
             render_scale=render_scale, **overrides,
         )
@@ -141,8 +151,6 @@ class DriveEnv(_PicklesBySettings, gymnasium.Env):
         n = self._core.obs_size
         self.observation_space = spaces.Box(0.0, 1.0, shape=(n,), dtype=np.float32)
         self.action_space = spaces.Box(-1.0, 1.0, shape=(2,), dtype=np.float32)
-        self.render_mode = render_mode
-        self.render_scale = render_scale
         self.max_steps = self._core.max_steps
         self._obs = np.zeros((1, 1, n), dtype=np.float32)
         self._act = np.zeros((1, 1, 2), dtype=np.float32)
@@ -207,7 +215,7 @@ class DriveVectorEnv(_PicklesBySettings, gymnasium.vector.VectorEnv):
     ) -> None:
         _render_mode(render_mode)
         num_envs, threads = _count("num_envs", num_envs, 1), _count("threads", threads, 0)
-        self._init_args = dict(
+        self._keep_settings(
             num_envs=num_envs, scenario=scenario, sensors=sensors, render_mode=render_mode,
             config=config, threads=threads, copy=copy, render_scale=render_scale, **overrides,
         )
@@ -218,8 +226,6 @@ class DriveVectorEnv(_PicklesBySettings, gymnasium.vector.VectorEnv):
         self.single_action_space = spaces.Box(-1.0, 1.0, shape=(2,), dtype=np.float32)
         self.observation_space = batch_space(self.single_observation_space, num_envs)
         self.action_space = batch_space(self.single_action_space, num_envs)
-        self.render_mode = render_mode
-        self.render_scale = render_scale
         self.copy = copy
         self.max_steps = self._core.max_steps
         self._obs = np.zeros((num_envs, 1, n), dtype=np.float32)

@@ -10,7 +10,7 @@ from gymnasium import spaces
 from pettingzoo import ParallelEnv  # type: ignore[import-untyped]
 
 from vivae._vivae import PredatorPreyCore
-from vivae.envs import _PicklesBySettings, _action, _core, _options, _render_mode, _seed
+from vivae.envs import _PicklesBySettings, _action, _core, _options, _seed
 
 
 class DriveParallelEnv(_PicklesBySettings, ParallelEnv):
@@ -40,8 +40,7 @@ class DriveParallelEnv(_PicklesBySettings, ParallelEnv):
         render_scale: float = 0.5,
         **overrides: Any,
     ) -> None:
-        _render_mode(render_mode)
-        self._init_args = dict(
+        self._keep_settings(
             scenario=scenario, sensors=sensors, robots=robots, render_mode=render_mode,
             config=config, render_scale=render_scale, **overrides,
         )
@@ -52,8 +51,6 @@ class DriveParallelEnv(_PicklesBySettings, ParallelEnv):
         self._index = {a: i for i, a in enumerate(self.possible_agents)}
         self._obs_space = spaces.Box(0.0, 1.0, shape=(n,), dtype=np.float32)
         self._act_space = spaces.Box(-1.0, 1.0, shape=(2,), dtype=np.float32)
-        self.render_mode = render_mode
-        self.render_scale = render_scale
         self.max_steps = self._core.max_steps
         self._obs = np.zeros((1, r, n), dtype=np.float32)
         self._act = np.zeros((1, r, 2), dtype=np.float32)
@@ -171,8 +168,7 @@ class PredatorPreyParallelEnv(_PicklesBySettings, ParallelEnv):
         render_scale: float = 1.0,
         **overrides: Any,
     ) -> None:
-        _render_mode(render_mode)
-        self._init_args = dict(
+        self._keep_settings(
             scenario=scenario, steps=steps, render_mode=render_mode, config=config,
             render_scale=render_scale, **overrides,
         )
@@ -191,8 +187,6 @@ class PredatorPreyParallelEnv(_PicklesBySettings, ParallelEnv):
         self.agents: list[str] = []
         self._obs_space = spaces.Box(0.0, 1.0, shape=(n,), dtype=np.float64)
         self._act_spaces = {a: spaces.Box(0.0, 1.0, shape=(2,), dtype=np.float64) for a in self.possible_agents}
-        self.render_mode = render_mode
-        self.render_scale = render_scale
         self.max_steps = self._core.max_steps
         self._last: tuple[np.ndarray, np.ndarray] | None = None
 

@@ -10,31 +10,15 @@
   var sceneInfo = null, info = null, frame = null, trails = [], colours = [], fresh = false;
   var keys = { up: false, down: false, left: false, right: false };
 
-  var proto = location.protocol === "https:" ? "wss://" : "ws://";
-  var ws = new WebSocket(proto + location.host + "/ws");
-  function send(msg) { if (ws.readyState === 1) { ws.send(JSON.stringify(msg)); } }
-  function status(text, isError) {
-    $("status").textContent = text;
-    $("status").className = "sub" + (isError ? " error" : "");
-  }
-  function act(msg) {
-    if ($("status").className.indexOf("error") >= 0) { status("connected"); }
-    send(msg);
-  }
-  ws.onopen = function () { stats.connected = true; status("connected"); };
-  ws.onclose = function () { stats.connected = false; status("disconnected: reload the page to reconnect", true); };
-  ws.onmessage = function (ev) {
-    var m;
-    try { m = JSON.parse(ev.data); } catch (e) { return; }
-    if (m.type === "info") { onInfo(m); }
-    else if (m.type === "scene") { onScene(m); }
-    else if (m.type === "frame") { onFrame(m); }
-    else if (m.type === "error") {
+  var socket = VivaeSocket.open(stats, {
+    info: onInfo, scene: onScene, frame: onFrame,
+    error: function (m) {
       stats.errors.push(m.message);
       status("server: " + m.message, true);
       if (frame) { $("hunter").value = frame.hunter; $("prey").value = frame.prey; $("human").checked = frame.human; }
     }
-  };
+  });
+  var send = socket.send, act = socket.act, status = socket.status;
 
   function fill(select, fitness, champion) {
     select.innerHTML = "";

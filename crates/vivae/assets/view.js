@@ -15,32 +15,10 @@
   var dragging = -1, dragMoved = false;
   var keys = { up: false, down: false, left: false, right: false };
 
-  var proto = location.protocol === "https:" ? "wss://" : "ws://";
-  var ws = new WebSocket(proto + location.host + "/ws");
-  function send(msg) { if (ws.readyState === 1) { ws.send(JSON.stringify(msg)); } }
-  // A user's action: an error shown for an earlier one is over (the server
-  // answers in order, so an error for this one arrives after this).
-  function act(msg) {
-    if (stats.connected && $("status").className.indexOf("error") >= 0) { status("connected"); }
-    send(msg);
-  }
-
-  function status(text, isError) {
-    $("status").textContent = text;
-    $("status").className = "sub" + (isError ? " error" : "");
-  }
-
-  ws.onopen = function () { stats.connected = true; status("connected"); };
-  ws.onclose = function () { stats.connected = false; status("disconnected: reload the page to reconnect", true); };
-  ws.onmessage = function (ev) {
-    var m;
-    try { m = JSON.parse(ev.data); } catch (e) { return; }
-    if (m.type === "info") { onInfo(m); }
-    else if (m.type === "scene") { onScene(m); }
-    else if (m.type === "frame") { onFrame(m); }
-    else if (m.type === "progress") { onProgress(m); }
-    else if (m.type === "error") { onError(m); }
-  };
+  var socket = VivaeSocket.open(stats, {
+    info: onInfo, scene: onScene, frame: onFrame, progress: onProgress, error: onError
+  });
+  var send = socket.send, act = socket.act, status = socket.status;
 
   // Shows the error and puts the page's choices back to what the server runs.
   function onError(m) {

@@ -20,7 +20,7 @@ use vivae_sim::World;
 
 use crate::figures::coevo::{self, HUNTER_COLOUR, PREY_COLOUR, SideRow};
 use crate::figures::convergence::hex;
-use crate::report_html::{SCENE_JS, STYLE_CSS, SceneData};
+use crate::report_html::{SCENE_JS, SceneData, report_page};
 
 /// The page template; `/*VIVAE-DATA*/`, `/*VIVAE-CSS*/`, `/*VIVAE-JS*/`,
 /// `<!--CIAO-->` and `<!--CURVES-->` are filled in.
@@ -194,12 +194,14 @@ pub fn write(dir: &Path) -> Result<PathBuf> {
         what: "report data",
         reason: e.to_string(),
     })?;
-    let html = TEMPLATE
-        .replacen("/*VIVAE-CSS*/", STYLE_CSS, 1)
-        .replacen("/*VIVAE-JS*/", &format!("{SCENE_JS}\n{REPORT_JS}"), 1)
+    let template = TEMPLATE
         .replacen("<!--CIAO-->", &strip_xml_header(&ciao.svg), 1)
-        .replacen("<!--CURVES-->", &strip_xml_header(&curves.svg), 1)
-        .replacen("/*VIVAE-DATA*/", &json.replace("</", "<\\/"), 1);
+        .replacen("<!--CURVES-->", &strip_xml_header(&curves.svg), 1);
+    let html = report_page(
+        &template,
+        &format!("{SCENE_JS}\n{REPORT_JS}"),
+        &json.replace("</", "<\\/"),
+    );
     let path = dir.join(run_files::REPORT);
     write_atomic(&path, html.as_bytes())?;
     Ok(path)
@@ -220,9 +222,11 @@ fn strip_xml_header(svg: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::report_html::with_report_end;
 
     #[test]
     fn template_has_every_slot_once_and_scripts_load_nothing() {
+        let template = with_report_end(TEMPLATE);
         for slot in [
             "/*VIVAE-DATA*/",
             "/*VIVAE-CSS*/",
@@ -230,12 +234,12 @@ mod tests {
             "<!--CIAO-->",
             "<!--CURVES-->",
         ] {
-            assert_eq!(TEMPLATE.matches(slot).count(), 1, "{slot}");
+            assert_eq!(template.matches(slot).count(), 1, "{slot}");
         }
-        for text in [TEMPLATE, REPORT_JS] {
+        for text in [template.as_str(), REPORT_JS] {
             let stripped = text.replace("http://www.w3.org/2000/svg", "");
             assert!(!stripped.contains("http://") && !stripped.contains("https://"));
-            assert!(!text.to_ascii_lowercase().contains("</script") || text == TEMPLATE);
+            assert!(!text.to_ascii_lowercase().contains("</script") || text == template);
         }
     }
 

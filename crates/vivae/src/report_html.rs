@@ -392,10 +392,26 @@ pub fn build_reusing(dir: &Path, reuse: &Reuse<'_>) -> vivae_lab::Result<String>
             })?,
         );
     let js = [SCENE_JS, PLOTS_JS, REPORT_JS].join("\n");
-    Ok(TEMPLATE
+    Ok(report_page(TEMPLATE, &js, &json))
+}
+
+/// The end every report page shares (its last line of text, the data and the
+/// scripts), put where a template says `<!--VIVAE-REPORT-END-->`.
+const REPORT_END: &str = include_str!("../assets/report_end.html");
+
+/// A report page's template with the shared end in its place.
+pub(crate) fn with_report_end(template: &str) -> String {
+    template.replacen("<!--VIVAE-REPORT-END-->\n", REPORT_END, 1)
+}
+
+/// A self-contained report page: `template` (see [`with_report_end`]) with
+/// the style, the script `js` and the page's `data` (JSON already safe inside
+/// a script block) in their slots.
+pub(crate) fn report_page(template: &str, js: &str, data: &str) -> String {
+    with_report_end(template)
         .replacen("/*VIVAE-CSS*/", STYLE_CSS, 1)
-        .replacen("/*VIVAE-JS*/", &js, 1)
-        .replacen("/*VIVAE-DATA*/", &json, 1))
+        .replacen("/*VIVAE-JS*/", js, 1)
+        .replacen("/*VIVAE-DATA*/", data, 1)
 }
 
 /// Writes `report.html` into the run directory `dir`; returns its path.
@@ -428,7 +444,9 @@ mod tests {
         for js in [SCENE_JS, PLOTS_JS, REPORT_JS] {
             assert!(!js.to_ascii_lowercase().contains("</script"));
         }
-        for text in [TEMPLATE, STYLE_CSS, SCENE_JS, PLOTS_JS, REPORT_JS] {
+        for text in [
+            REPORT_END, TEMPLATE, STYLE_CSS, SCENE_JS, PLOTS_JS, REPORT_JS,
+        ] {
             // The SVG namespace is a name, not a request.
             let stripped = text.replace("http://www.w3.org/2000/svg", "");
             assert!(!stripped.contains("http://") && !stripped.contains("https://"));
@@ -450,8 +468,9 @@ mod tests {
 
     #[test]
     fn template_has_every_slot_once() {
+        let template = with_report_end(TEMPLATE);
         for slot in ["/*VIVAE-DATA*/", "/*VIVAE-CSS*/", "/*VIVAE-JS*/"] {
-            assert_eq!(TEMPLATE.matches(slot).count(), 1, "{slot}");
+            assert_eq!(template.matches(slot).count(), 1, "{slot}");
         }
     }
 }

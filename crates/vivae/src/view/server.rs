@@ -1,6 +1,6 @@
 //! The HTTP side of `vivae view`: routes, the WebSocket, the run watcher.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
@@ -11,6 +11,7 @@ use axum::extract::{Path as UrlPath, State};
 use axum::http::{HeaderMap, StatusCode, header};
 use axum::response::{IntoResponse, Response};
 use axum::routing::get;
+use futures_util::future::BoxFuture;
 use tokio::sync::watch;
 
 use super::hosts::HostPolicy;
@@ -23,16 +24,33 @@ use vivae_lab::rundir::files;
 const INDEX_HTML: &str = include_str!("../../assets/view.html");
 /// The viewer page's script.
 const VIEW_JS: &str = include_str!("../../assets/view.js");
+/// The viewers' WebSocket and status line, loaded by both viewer pages.
+const SOCKET_JS: &str = include_str!("../../assets/socket.js");
+/// The viewers' playback controls (play, step, reset, speed), put where a
+/// page says `<!--VIVAE-PLAYBACK-->`.
+const PLAYBACK_HTML: &str = include_str!("../../assets/playback.html");
 
-/// Run files a page may fetch (as `/run/NAME`); nothing else of the disk is served.
-const RUN_FILES: [(&str, &str); 7] = [
+/// Assets every viewer serves (`/assets/NAME`): name, content type, body.
+const COMMON_ASSETS: [(&str, &str, &str); 3] = [
+    ("style.css", "text/css; charset=utf-8", STYLE_CSS),
+    ("scene.js", "text/javascript; charset=utf-8", SCENE_JS),
+    ("socket.js", "text/javascript; charset=utf-8", SOCKET_JS),
+];
+
+/// Files of every run a viewer's page may fetch (`/run/NAME`), with their
+/// content types.
+const COMMON_RUN_FILES: [(&str, &str); 3] = [
     (files::CONFIG, "text/plain; charset=utf-8"),
     (files::SCENARIO, "image/svg+xml"),
+    (files::REPORT, "text/html; charset=utf-8"),
+];
+
+/// A driving run's own files a page may fetch.
+const RUN_FILES: [(&str, &str); 4] = [
     (files::GENERATIONS, "text/csv; charset=utf-8"),
     (files::POPULATION, "text/csv; charset=utf-8"),
     (files::CHAMPION, "application/json"),
     (files::BEST_GENOMES, "text/plain; charset=utf-8"),
-    (files::REPORT, "text/html; charset=utf-8"),
 ];
 
 /// How often a followed run directory is checked for new generations.
@@ -51,15 +69,12 @@ const CHUNK: usize = 64 * 1024;
 struct App {
     source: Arc<Source>,
     snapshot: watch::Receiver<SharedSnapshot>,
-    viewers: Arc<AtomicUsize>,
-    max_viewers: usize,
-    hosts: Arc<HostPolicy>,
     /// See [`IDLE_TIMEOUT`].
     idle: Duration,
 }
 
 /// Frees a viewer slot when its page's session ends (however it ends).
-pub(super) struct ViewerSlot(pub(super) Arc<AtomicUsize>);
+struct ViewerSlot(Arc<AtomicUsize>);
 
 impl Drop for ViewerSlot {
     fn drop(&mut self) {
@@ -67,7 +82,7 @@ impl Drop for ViewerSlot {
     }
 }
 
-/// Serves until the process is stopped.
+/// Serves a driving run (or a scenario) until the process is stopped.
 pub(super) async fn serve(
     listener: tokio::net::TcpListener,
     source: Source,
@@ -94,13 +109,75 @@ pub(super) async fn serve(
             }
         });
     }
+    let run_dir = source.run_dir().map(Path::to_path_buf);
     let app = App {
         source,
         snapshot: rx,
+        idle,
+    };
+    let site = Site {
+        page: page(INDEX_HTML),
+        assets: &[
+            ("plots.js", "text/javascript; charset=utf-8", PLOTS_JS),
+            ("view.js", "text/javascript; charset=utf-8", VIEW_JS),
+        ],
+        run_files: &RUN_FILES,
+        run_dir,
+    };
+    let session: Session = Arc::new(move |socket| Box::pin(session(socket, app.clone())));
+    serve_site(listener, site, max_viewers, hosts, session).await
+}
+
+/// What a viewer serves besides its WebSocket: its page, the assets the page
+/// loads and the run files it may fetch.
+pub(super) struct Site {
+    /// The page at `/` (see [`page`]).
+    pub page: String,
+    /// The page's own `/assets/NAME` besides [`COMMON_ASSETS`]: name,
+    /// content type, body.
+    pub assets: &'static [(&'static str, &'static str, &'static str)],
+    /// Run files a page may fetch (as `/run/NAME`) besides
+    /// [`COMMON_RUN_FILES`], with their content types; nothing else of the
+    /// disk is served.
+    pub run_files: &'static [(&'static str, &'static str)],
+    /// The run directory they are read from (none: no run files).
+    pub run_dir: Option<PathBuf>,
+}
+
+/// A viewer page from its template: the shared pieces put in their places.
+pub(super) fn page(template: &str) -> String {
+    template.replacen("      <!--VIVAE-PLAYBACK-->\n", PLAYBACK_HTML, 1)
+}
+
+/// Plays one page's WebSocket session to its end.
+pub(super) type Session = Arc<dyn Fn(WebSocket) -> BoxFuture<'static, ()> + Send + Sync>;
+
+/// The state every route of a viewer shares.
+#[derive(Clone)]
+struct Shared {
+    site: Arc<Site>,
+    viewers: Arc<AtomicUsize>,
+    max_viewers: usize,
+    hosts: Arc<HostPolicy>,
+    session: Session,
+}
+
+/// Serves `site`, and a [`Session`] for each page's WebSocket (at most
+/// `max_viewers` at once), to the Host names `hosts` allows, until the
+/// process is stopped.
+pub(super) async fn serve_site(
+    listener: tokio::net::TcpListener,
+    site: Site,
+    max_viewers: usize,
+    hosts: HostPolicy,
+    session: Session,
+) -> std::io::Result<()> {
+    let shared = Shared {
+        site: Arc::new(site),
         viewers: Arc::new(AtomicUsize::new(0)),
         max_viewers,
         hosts: Arc::new(hosts),
-        idle,
+        session,
     };
     let router = Router::new()
         .route("/", get(index))
@@ -109,19 +186,18 @@ pub(super) async fn serve(
         .route("/ws", get(ws))
         .fallback(not_found)
         .layer(axum::middleware::from_fn_with_state(
-            app.clone(),
+            shared.clone(),
             known_host,
         ))
-        .with_state(app);
-    axum::serve(listener, router).await?;
-    Ok(())
+        .with_state(shared);
+    axum::serve(listener, router).await
 }
 
 /// Answers only requests addressed to a Host name this server accepts (see
 /// [`HostPolicy`]): a DNS-rebinding page, which names its own site, is refused
 /// on every path, the WebSocket upgrade included.
 async fn known_host(
-    State(app): State<App>,
+    State(shared): State<Shared>,
     request: axum::extract::Request,
     next: axum::middleware::Next,
 ) -> Response {
@@ -129,7 +205,7 @@ async fn known_host(
         .headers()
         .get(header::HOST)
         .and_then(|h| h.to_str().ok());
-    if !app.hosts.allows(host) {
+    if !shared.hosts.allows(host) {
         return (
             StatusCode::FORBIDDEN,
             "unknown Host name (vivae view --allow-host NAME accepts another)\n",
@@ -154,26 +230,25 @@ pub(super) fn text(content_type: &'static str, body: impl Into<axum::body::Body>
         .into_response()
 }
 
-async fn index() -> Response {
-    text("text/html; charset=utf-8", INDEX_HTML)
+async fn index(State(shared): State<Shared>) -> Response {
+    text("text/html; charset=utf-8", shared.site.page.clone())
 }
 
-async fn asset(UrlPath(name): UrlPath<String>) -> Response {
-    match name.as_str() {
-        "style.css" => text("text/css; charset=utf-8", STYLE_CSS),
-        "scene.js" => text("text/javascript; charset=utf-8", SCENE_JS),
-        "plots.js" => text("text/javascript; charset=utf-8", PLOTS_JS),
-        "view.js" => text("text/javascript; charset=utf-8", VIEW_JS),
-        _ => not_found().await,
+async fn asset(State(shared): State<Shared>, UrlPath(name): UrlPath<String>) -> Response {
+    let mut assets = COMMON_ASSETS.iter().chain(shared.site.assets);
+    match assets.find(|(n, _, _)| *n == name) {
+        Some((_, content_type, body)) => text(content_type, *body),
+        None => not_found().await,
     }
 }
 
-async fn run_file(State(app): State<App>, UrlPath(name): UrlPath<String>) -> Response {
-    let Some(dir) = app.source.run_dir() else {
+async fn run_file(State(shared): State<Shared>, UrlPath(name): UrlPath<String>) -> Response {
+    let Some(dir) = shared.site.run_dir.as_deref() else {
         return not_found().await;
     };
     // Only the exact names listed: no path of the page's choosing reaches the disk.
-    let Some((file, content_type)) = RUN_FILES.iter().find(|(n, _)| *n == name) else {
+    let mut listed = COMMON_RUN_FILES.iter().chain(shared.site.run_files);
+    let Some((file, content_type)) = listed.find(|(n, _)| *n == name) else {
         return not_found().await;
     };
     let (dir, path) = (dir.to_path_buf(), dir.join(file));
@@ -228,25 +303,29 @@ pub(super) fn same_origin(headers: &HeaderMap) -> bool {
     }
 }
 
-async fn ws(State(app): State<App>, headers: HeaderMap, upgrade: WebSocketUpgrade) -> Response {
+async fn ws(
+    State(shared): State<Shared>,
+    headers: HeaderMap,
+    upgrade: WebSocketUpgrade,
+) -> Response {
     if !same_origin(&headers) {
         return (StatusCode::FORBIDDEN, "foreign origin\n").into_response();
     }
-    if app.viewers.fetch_add(1, Ordering::SeqCst) >= app.max_viewers {
-        app.viewers.fetch_sub(1, Ordering::SeqCst);
+    if shared.viewers.fetch_add(1, Ordering::SeqCst) >= shared.max_viewers {
+        shared.viewers.fetch_sub(1, Ordering::SeqCst);
         return (
             StatusCode::SERVICE_UNAVAILABLE,
             "too many viewers: close another page first\n",
         )
             .into_response();
     }
-    let slot = ViewerSlot(app.viewers.clone());
+    let slot = ViewerSlot(shared.viewers.clone());
     upgrade
         .max_message_size(MAX_MESSAGE)
         .max_frame_size(MAX_MESSAGE)
         .on_upgrade(move |socket| async move {
             let _slot = slot;
-            session(socket, app).await;
+            (shared.session)(socket).await;
         })
 }
 
@@ -293,19 +372,29 @@ async fn open_session(socket: &mut WebSocket, app: &mut App) -> Option<(Sim, Sha
     Some((sim, snap))
 }
 
-/// One page's session: runs its simulation until the page goes away, or
-/// has been silent for [`App::idle`] (it is pinged meanwhile; a browser
-/// answers pings by itself, so an open page is never silent).
-async fn session(mut socket: WebSocket, mut app: App) {
-    let Some((mut sim, mut snap)) = open_session(&mut socket, &mut app).await else {
-        return;
-    };
+/// What a page plays in its session: the driving viewer's simulation or a
+/// predator–prey game.
+pub(super) trait Play: Send {
+    /// Obeys one text message from the page; what went wrong, if anything.
+    fn handle(&mut self, text: &str) -> Result<(), String>;
+    /// Moves on by `dt` seconds of wall time.
+    fn advance(&mut self, dt: f64);
+    /// Waits for news from outside the page (a followed run's new
+    /// generations) and says what to tell it; never, if nothing can change.
+    fn news(&mut self) -> impl Future<Output = Option<Message>> + Send;
+    /// Adds to `out` what the page is owed after a turn (a new frame).
+    fn owed(&mut self, out: &mut Vec<Message>);
+}
+
+/// One page's session: plays `game` until the page goes away, or has been
+/// silent for `idle` (it is pinged meanwhile; a browser answers pings by
+/// itself, so an open page is never silent).
+pub(super) async fn play(mut socket: WebSocket, mut game: impl Play, idle: Duration) {
     let mut tick = tokio::time::interval(FRAME);
     tick.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Skip);
-    let mut ping = tokio::time::interval(app.idle / 4);
+    let mut ping = tokio::time::interval(idle / 4);
     let mut heard = tokio::time::Instant::now();
     let mut last = Instant::now();
-    let mut watching = true;
     loop {
         let mut out: Vec<Message> = Vec::new();
         tokio::select! {
@@ -314,37 +403,22 @@ async fn session(mut socket: WebSocket, mut app: App) {
                 None | Some(Err(_)) | Some(Ok(Message::Close(_))) => break,
                 Some(Ok(m)) => {
                     heard = tokio::time::Instant::now();
-                    out.extend(page_message(m, &mut sim, &app, &snap));
+                    out.extend(page_message(m, &mut game));
                 }
             },
-            _ = tokio::time::sleep_until(heard + app.idle) => break,
+            _ = tokio::time::sleep_until(heard + idle) => break,
             _ = ping.tick() => out.push(Message::Ping(Default::default())),
             _ = tick.tick() => {
                 let now = Instant::now();
                 // A stalled page does not make the simulation jump ahead.
-                sim.advance((now - last).as_secs_f64().min(0.25));
+                game.advance((now - last).as_secs_f64().min(0.25));
                 last = now;
             }
-            changed = app.snapshot.changed(), if watching => {
-                if changed.is_err() {
-                    // No watcher (not a run): nothing will change.
-                    watching = false;
-                } else {
-                    snap = app.snapshot.borrow_and_update().clone();
-                    let p = serde_json::to_string(&snap.progress()).unwrap_or_default();
-                    out.push(Message::Text(p.into()));
-                }
-            }
+            news = game.news() => out.extend(news),
         }
-        if sim.scene_dirty {
-            sim.scene_dirty = false;
-            out.push(Message::Text(sim.scene_msg(&app.source).into()));
-        }
-        if sim.dirty {
-            out.push(Message::Text(sim.frame_msg().into()));
-        }
+        game.owed(&mut out);
         for m in out {
-            if !send_within(&mut socket, m, app.idle).await {
+            if !send_within(&mut socket, m, idle).await {
                 return;
             }
         }
@@ -352,12 +426,70 @@ async fn session(mut socket: WebSocket, mut app: App) {
 }
 
 /// Obeys one message from the page; what to answer (an error, if any).
-fn page_message(m: Message, sim: &mut Sim, app: &App, snap: &SharedSnapshot) -> Option<Message> {
+fn page_message(m: Message, game: &mut impl Play) -> Option<Message> {
     let error = match m {
-        Message::Text(t) => sim.handle(t.as_str(), &app.source, snap).err(),
+        Message::Text(t) => game.handle(t.as_str()).err(),
         Message::Binary(_) => Some("binary messages are not understood".into()),
         // Pongs (and pings) only show that the page is there.
         _ => None,
     };
     error.map(|e| Message::Text(error_msg(&e).into()))
+}
+
+/// A page's driving simulation, following the run's snapshot.
+struct Driving {
+    sim: Sim,
+    snap: SharedSnapshot,
+    app: App,
+    /// Whether the snapshot can still change (a followed run).
+    watching: bool,
+}
+
+impl Play for Driving {
+    fn handle(&mut self, text: &str) -> Result<(), String> {
+        self.sim.handle(text, &self.app.source, &self.snap)
+    }
+
+    fn advance(&mut self, dt: f64) {
+        self.sim.advance(dt);
+    }
+
+    async fn news(&mut self) -> Option<Message> {
+        if !self.watching {
+            return std::future::pending().await;
+        }
+        if self.app.snapshot.changed().await.is_err() {
+            // No watcher (not a run): nothing will change.
+            self.watching = false;
+            return None;
+        }
+        self.snap = self.app.snapshot.borrow_and_update().clone();
+        let p = serde_json::to_string(&self.snap.progress()).unwrap_or_default();
+        Some(Message::Text(p.into()))
+    }
+
+    fn owed(&mut self, out: &mut Vec<Message>) {
+        if self.sim.scene_dirty {
+            self.sim.scene_dirty = false;
+            out.push(Message::Text(self.sim.scene_msg(&self.app.source).into()));
+        }
+        if self.sim.dirty {
+            out.push(Message::Text(self.sim.frame_msg().into()));
+        }
+    }
+}
+
+/// One page's session on a driving run or scenario.
+async fn session(mut socket: WebSocket, mut app: App) {
+    let Some((sim, snap)) = open_session(&mut socket, &mut app).await else {
+        return;
+    };
+    let idle = app.idle;
+    let driving = Driving {
+        sim,
+        snap,
+        app,
+        watching: true,
+    };
+    play(socket, driving, idle).await;
 }

@@ -130,25 +130,11 @@ enum ClientMsg {
     Play,
     Pause,
     Reset,
-    Step {
-        n: u32,
-    },
-    Speed {
-        value: f64,
-    },
-    Pick {
-        hunter: u32,
-        prey: u32,
-    },
-    Human {
-        on: bool,
-    },
-    Keys {
-        up: bool,
-        down: bool,
-        left: bool,
-        right: bool,
-    },
+    Step { n: u32 },
+    Speed { value: f64 },
+    Pick { hunter: u32, prey: u32 },
+    Human { on: bool },
+    Keys(Keys),
 }
 
 /// One page's game: the hunter and the prey of the chosen generations.
@@ -328,19 +314,7 @@ impl Game {
                 self.reset(hall);
                 self.playing = true;
             }
-            ClientMsg::Keys {
-                up,
-                down,
-                left,
-                right,
-            } => {
-                self.keys = Keys {
-                    up,
-                    down,
-                    left,
-                    right,
-                }
-            }
+            ClientMsg::Keys(keys) => self.keys = keys,
         }
         self.dirty = true;
         Ok(())
@@ -387,8 +361,11 @@ impl Game {
 mod tests {
     use super::*;
 
-    fn hall() -> (Hall, PathBuf) {
-        let dir = std::env::temp_dir().join(format!("vivae-coevo-view-{}", std::process::id()));
+    /// A small run's hall in a folder of its own (`name`: the test's, as
+    /// tests run in parallel).
+    fn hall(name: &str) -> (Hall, PathBuf) {
+        let dir =
+            std::env::temp_dir().join(format!("vivae-coevo-view-{name}-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
         let mut config = vivae_lab::config::Config::predator_prey();
         config.experiment.generations = 2;
@@ -408,7 +385,7 @@ mod tests {
 
     #[test]
     fn the_viewers_game_is_the_evaluations_episode_and_refuses_bad_messages() {
-        let (hall, dir) = hall();
+        let (hall, dir) = hall("episode");
         assert_eq!(hall.generations(), 2);
         let mut game = Game::new(&hall).unwrap();
         for (h, p) in [(0, 1), (1, 0), (1, 1)] {
@@ -430,6 +407,7 @@ mod tests {
             r#"{"type":"speed","value":1e308}"#,
             r#"{"type":"step","n":0}"#,
             r#"{"type":"keys","up":1}"#,
+            r#"{"type":"keys","up":true,"down":false,"left":false,"right":false,"fire":true}"#,
             r#"{"type":"launch"}"#,
             "[]",
             "\u{0}",
@@ -446,7 +424,7 @@ mod tests {
 
     #[test]
     fn the_keyboard_drives_the_prey() {
-        let (hall, dir) = hall();
+        let (hall, dir) = hall("keyboard");
         let mut game = Game::new(&hall).unwrap();
         game.handle(r#"{"type":"human","on":true}"#, &hall).unwrap();
         let prey = hall.arena.robot(Side::Prey);

@@ -64,12 +64,7 @@ enum ClientMsg {
     Drive {
         robot: Option<usize>,
     },
-    Keys {
-        up: bool,
-        down: bool,
-        left: bool,
-        right: bool,
-    },
+    Keys(Keys),
     Resolution {
         sensors: String,
         neurons: String,
@@ -90,8 +85,10 @@ enum ClientMsg {
     },
 }
 
-/// Arrow keys held down.
-#[derive(Debug, Clone, Copy, Default)]
+/// Arrow keys held down (as a page's `keys` message says them; both
+/// viewers take it).
+#[derive(Debug, Clone, Copy, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub(in crate::view) struct Keys {
     pub up: bool,
     pub down: bool,
@@ -387,19 +384,7 @@ impl Sim {
                 self.manual = robot;
                 self.keys = Keys::default();
             }
-            ClientMsg::Keys {
-                up,
-                down,
-                left,
-                right,
-            } => {
-                self.keys = Keys {
-                    up,
-                    down,
-                    left,
-                    right,
-                };
-            }
+            ClientMsg::Keys(keys) => self.keys = keys,
             ClientMsg::Resolution { sensors, neurons } => {
                 self.set_resolution(&sensors, &neurons, source, snap)?;
             }
