@@ -50,11 +50,17 @@ fn arena_of(
             config.experiment.task.0
         )));
     }
-    let path = settings::scenario_path(&config);
+    let arena = config_arena(py, &config)?;
+    Ok((config, arena))
+}
+
+/// The arena of a resolved predator–prey `config`: its scenario loaded (a
+/// warning for each of the scenario's), its physics, steps and controllers.
+fn config_arena(py: Python<'_>, config: &Config) -> PyResult<Arena> {
+    let path = settings::scenario_path(config);
     let loaded = vivae_lab::io::load_scenario(path.as_deref()).map_err(errors::lab)?;
     errors::warn_scenario(py, &loaded.scenario)?;
-    let arena = Arena::of_config(&loaded.scenario, &config).map_err(errors::value)?;
-    Ok((config, arena))
+    Arena::of_config(&loaded.scenario, config).map_err(errors::value)
 }
 
 /// `side` by its name.
@@ -295,13 +301,7 @@ impl PredatorPreyTask {
     #[staticmethod]
     fn from_config_toml(py: Python<'_>, text: &str) -> PyResult<PredatorPreyTask> {
         let config = Config::from_toml(text).map_err(|e| errors::value(format!("config: {e}")))?;
-        let (config, arena) = {
-            let path = settings::scenario_path(&config);
-            let loaded = vivae_lab::io::load_scenario(path.as_deref()).map_err(errors::lab)?;
-            errors::warn_scenario(py, &loaded.scenario)?;
-            let arena = Arena::of_config(&loaded.scenario, &config).map_err(errors::value)?;
-            (config, arena)
-        };
+        let arena = config_arena(py, &config)?;
         let pool = crate::pool::ForkSafePool::new(config.run.threads)?;
         Ok(PredatorPreyTask {
             config,

@@ -95,16 +95,10 @@ impl Arena {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::tasks::maze::MazeTask;
     use crate::tasks::predator_prey::{INPUTS, OUTPUTS, STEPS, Side};
     use vivae_neat::{Network, Population, RecurrentNetwork};
-    use vivae_sim::{LoadOptions, Scenario};
 
-    fn arena(name: &str) -> Arena {
-        let svg = crate::shipped::find(name).unwrap().svg;
-        let sc = Scenario::from_svg(svg, name, &LoadOptions::default()).unwrap();
-        Arena::new(&sc, &MazeTask::physics(), STEPS).unwrap()
-    }
+    use crate::tasks::predator_prey::shipped_arena as arena;
 
     /// Steps `hunter` and `prey` through a meeting as a caller from outside would.
     fn stepped(a: &Arena, h: &vivae_neat::Genome, p: &vivae_neat::Genome) -> (Outcome, World) {

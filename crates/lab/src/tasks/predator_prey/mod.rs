@@ -343,15 +343,22 @@ impl Arena {
     }
 }
 
+/// The shipped arena `name` with the task's robots and steps (for tests).
+#[cfg(test)]
+pub(crate) fn shipped_arena(name: &str) -> Arena {
+    let svg = crate::shipped::find(name).unwrap().svg;
+    let options = vivae_sim::LoadOptions::default();
+    let sc = Scenario::from_svg(svg, name, &options).unwrap();
+    Arena::new(&sc, &MazeTask::physics(), STEPS).unwrap()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use vivae_sim::LoadOptions;
 
     fn arena(name: &str) -> Arena {
-        let svg = crate::shipped::find(name).unwrap().svg;
-        let sc = Scenario::from_svg(svg, name, &LoadOptions::default()).unwrap();
-        Arena::new(&sc, &MazeTask::physics(), STEPS).unwrap()
+        shipped_arena(name)
     }
 
     /// Full speed at an opponent ahead; else slows down (a robot at top
