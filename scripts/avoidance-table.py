@@ -18,7 +18,6 @@ from statistics import mean
 
 tsv, cost, rays = sys.argv[1], float(sys.argv[2]), int(sys.argv[3])
 KINDS = ["robot", "traffic", "obstacle", "wall"]
-SETUPS = ["speed", "cost", "nsga2"]
 SETUP_NAME = {"speed": "progress", "cost": f"progress − {cost:g}/contact", "nsga2": "NSGA-II"}
 
 runs = defaultdict(list)
@@ -31,6 +30,8 @@ for row in csv.DictReader(open(tsv), delimiter="\t"):
     runs[key].append(m)
 run = {k: {f: mean(m[f] for m in v) for f in v[0]} | {"n": len(v)} for k, v in runs.items()}
 scenarios = list(dict.fromkeys(k[0] for k in run))
+# The setups the experiment ran (SETUPS of avoidance.sh), in a fixed order.
+SETUPS = [s for s in ["speed", "cost", "nsga2"] if any(k[1] == s for k in run)]
 seeds = sorted({k[3] for k in run})
 placements = sorted({m["n"] for m in run.values()})
 

@@ -15,6 +15,8 @@
 #
 #   scripts/avoidance.sh [SEED ...]     (default: seeds 1 2 3 4 5)
 #   GENERATIONS=50 HELD=10 RAYS=5 COST=0.25 OUT=runs/avoidance SCENARIOS='oncoming obstacles-random' VIVAE=path/to/vivae
+#   PLACEMENTS=1 (placements per evaluation in training: experiment.placements)
+#   SETUPS='speed cost nsga2' (which of the three fitness setups to run)
 #
 # Finished runs (a champion.json) are not evolved again, so a stopped
 # experiment continues where it stopped.
@@ -26,15 +28,18 @@ rays=${RAYS:-5}
 cost=${COST:-0.25}
 out=${OUT:-runs/avoidance}
 scenarios=${SCENARIOS:-oncoming obstacles-random}
+placements=${PLACEMENTS:-1}
+setups=${SETUPS:-speed cost nsga2}
 mkdir -p "$out"
 # One config per setup and sheet.
-for setup in speed cost nsga2; do
+for setup in $setups; do
   for sheets in surface rays; do
     {
       printf '[fitness]\nkind = "progress"\n'
       [ "$setup" = cost ] && printf 'contact_cost = %s\n' "$cost"
       [ "$sheets" = rays ] && printf '[distance_sensors]\nrays = %s\n' "$rays"
       [ "$setup" = nsga2 ] && printf '[strategy]\nkind = "nsga2"\n'
+      if [ "$placements" -gt 1 ]; then printf '[experiment]\nplacements = %s\n' "$placements"; fi
     } > "$out/$setup-$sheets.toml"
   done
 done
@@ -59,7 +64,7 @@ tsv=$out/replays.tsv
 [ -f "$tsv" ] || printf 'scenario\tsetup\tsheets\tseed\trays\tplacement\tmember\tfitness\tspeed\ton_road\tcollisions\trobot\ttraffic\tobstacle\twall\n' > "$tsv"
 for scenario in $scenarios; do
   for seed in "${seeds[@]}"; do
-    for setup in speed cost nsga2; do
+    for setup in $setups; do
       for sheets in surface rays; do
         dir=$out/$scenario-$setup-$sheets-seed-$seed
         if [ ! -f "$dir/champion.json" ]; then
