@@ -41,7 +41,7 @@ pub fn refuse_for_other_tasks(c: &crate::config::Config) -> Result<(), String> {
         Ok(())
     } else {
         Err(format!(
-            "[maze]: only a maze run reads it (experiment.task = \"{}\"): use --task maze or drop the section",
+            "[maze]: only a maze run reads it (experiment.task = \"{}\"): set `task = \"maze\"` under [experiment] or drop the section",
             c.experiment.task
         ))
     }
@@ -135,5 +135,23 @@ fn validate_robot(c: &Config) -> Result<(), String> {
             Err("[maze] quirks/walls/collision: these are options of Lehman's robot (maze.robot = \"lehman\"); our robot reads [physics] and the scenario's walls".into())
         }
         _ => Ok(()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::tasks::config_from_toml;
+
+    #[test]
+    fn a_maze_section_in_a_driving_config_names_the_key_that_fixes_it() {
+        let e = config_from_toml("[maze]\nrobot = \"vivae\"\n")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("[maze]") && e.contains("task = \"maze\"") && e.contains("[experiment]"),
+            "{e}"
+        );
+        let fixed = "[experiment]\ntask = \"maze\"\n[maze]\nrobot = \"vivae\"\n";
+        assert!(config_from_toml(fixed).is_ok());
     }
 }
