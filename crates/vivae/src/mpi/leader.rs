@@ -36,12 +36,12 @@ pub(super) fn leaders_workers() -> Option<Vec<WorkerRank>> {
 }
 
 /// Reports the run's traffic (before rank 0 goes on to draw the figures),
-/// its batches called `batch` and their items `item`.
-pub(super) fn report_traffic(batch: &str, item: &str) {
+/// its batches called `batch` (plural `batches`) and their items `items`.
+pub(super) fn report_traffic(batch: &str, batches: &str, items: &str) {
     let summary = state(|s| {
         s.as_ref()
             .filter(|s| !s.quiet && s.traffic.batches > 0)
-            .map(|s| s.traffic.summary(s.size, batch, item))
+            .map(|s| s.traffic.summary(s.size, [batch, batches, items]))
     });
     if let Some(line) = summary {
         eprintln!("{line}");
@@ -63,7 +63,7 @@ impl<T: Task> MpiEvaluator<T> {
 
 impl<T> Drop for MpiEvaluator<T> {
     fn drop(&mut self) {
-        report_traffic("generation", "genome");
+        report_traffic("generation", "generations", "genomes");
     }
 }
 
@@ -298,11 +298,12 @@ impl<O: DeserializeOwned> Round<'_, O> {
 
 impl super::Traffic {
     /// One line for the end of a run: per-batch bytes and rank 0's time,
-    /// its batches called `batch` ("generation") and their items `item` ("genome").
-    fn summary(&self, size: i32, batch: &str, item: &str) -> String {
+    /// its batches called `batch` ("generation", plural `batches`) and
+    /// their items `items` ("genomes").
+    fn summary(&self, size: i32, [batch, batches, items]: [&str; 3]) -> String {
         let g = self.batches.max(1) as f64;
         format!(
-            "mpi: {size} ranks, {} {batch}s; per {batch}: {:.0} bytes sent to workers in {:.1} messages, {:.0} bytes received, evaluation {:.1} ms, rank 0 outside evaluation {:.2} ms; rank 0 evaluated {:.1}% of {item}s",
+            "mpi: {size} ranks, {} {batches}; per {batch}: {:.0} bytes sent to workers in {:.1} messages, {:.0} bytes received, evaluation {:.1} ms, rank 0 outside evaluation {:.2} ms; rank 0 evaluated {:.1}% of {items}",
             self.batches,
             self.bytes_sent as f64 / g,
             self.messages_sent as f64 / g,

@@ -43,7 +43,7 @@ impl MpiMeetings {
 
 impl Drop for MpiMeetings {
     fn drop(&mut self) {
-        report_traffic("batch", "meeting");
+        report_traffic("batch of meetings", "batches of meetings", "meetings");
     }
 }
 
