@@ -70,7 +70,7 @@ pub fn join_mpi_meetings(
         let work = prepared
             .as_ref()
             .ok()
-            .map(|(_, _, a)| vivae::mpi::MeetingsOf(*a));
+            .map(|(_, _, a)| vivae::mpi::MeetingsOf(a));
         let setup = match (prepared, &work) {
             (Ok((config, text, _)), Some(work)) => Ok((config, text, work as _)),
             (Err(e), _) => Err(e),
