@@ -366,7 +366,7 @@ pub fn master_tournament(cells: &[CiaoCell], n: u32, side: Side) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::tasks::predator_prey::meetings::OnThreads;
+    use crate::tasks::predator_prey::meetings::{MeetingsError, OnThreads};
     use vivae_sim::{LoadOptions, Scenario};
 
     fn setup(how: Opponents) -> (Arena, Config) {
@@ -435,6 +435,61 @@ mod tests {
         }
         assert!(co.hall_prey.iter().all(|g| *g == prey));
         assert_eq!(co.prey, before, "the prey population does not evolve");
+    }
+
+    /// Plays each batch backwards, one meeting at a time, as another
+    /// player (the program's over MPI) may; or refuses every batch.
+    struct Backwards {
+        fail: bool,
+        batches: std::sync::atomic::AtomicUsize,
+    }
+
+    impl Meetings for Backwards {
+        fn play(&self, arena: &Arena, pairs: &[Pair<'_>]) -> Result<Vec<Outcome>, MeetingsError> {
+            self.batches
+                .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            if self.fail {
+                return Err(MeetingsError("rank 1 is gone".into()));
+            }
+            let mut out: Vec<Outcome> = (pairs.iter().rev())
+                .map(|&(h, p)| arena.play_genomes(h, p))
+                .collect();
+            out.reverse();
+            Ok(out)
+        }
+    }
+
+    #[test]
+    fn any_player_of_the_meetings_gives_the_same_coevolution() {
+        for how in [Opponents::Best, Opponents::HallOfFame, Opponents::Fixed] {
+            let (arena, config) = setup(how);
+            let mut a = Coevolution::new(&config).unwrap();
+            if how == Opponents::Fixed {
+                a.fixed_prey = Some(a.prey.genomes()[2].clone());
+            }
+            let mut b = a.clone();
+            let player = Backwards {
+                fail: false,
+                batches: Default::default(),
+            };
+            for _ in 0..3 {
+                let ra = a.generation(&arena, &config, &OnThreads).unwrap();
+                let rb = b.generation(&arena, &config, &player).unwrap();
+                assert_eq!(ra, rb, "{how:?}");
+            }
+            assert_eq!(a, b, "{how:?}");
+            // Two batches a generation: its games, then its CIAO cells.
+            assert_eq!(player.batches.into_inner(), 6);
+        }
+        let (arena, config) = setup(Opponents::Best);
+        let mut co = Coevolution::new(&config).unwrap();
+        let failing = Backwards {
+            fail: true,
+            batches: Default::default(),
+        };
+        let err = co.generation(&arena, &config, &failing).unwrap_err();
+        assert!(err.to_string().contains("rank 1 is gone"), "{err}");
+        assert_eq!(co.done(), 0, "a failed generation adds no champions");
     }
 
     #[test]
