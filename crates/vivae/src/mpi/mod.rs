@@ -3,10 +3,11 @@
 //! Under `mpirun -n N vivae evolve …` every rank parses the same command line
 //! and builds the same experiment. Rank 0 runs NEAT and writes every file
 //! exactly as a single-process run does; ranks 1…N-1 are workers that
-//! evaluate genomes on their own rayon threads. Work is handed out one genome
-//! at a time from a shared queue (self-scheduling), with a few genomes in
+//! evaluate genomes (in a predator–prey run: play meetings, a hunter genome
+//! against a prey genome) on their own rayon threads. Work is handed out one
+//! item at a time from a shared queue (self-scheduling), with a few items in
 //! flight per worker to hide the round trip; rank 0's own threads take from
-//! the same queue. Every evaluation is placed by its index, so the run's
+//! the same queue. Every result is placed by its index, so the run's
 //! results are bit-identical to the single-process run at any N and any
 //! thread count.
 //!
