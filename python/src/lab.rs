@@ -435,6 +435,7 @@ fn own_driver_run<'py>(
             let line = run(&vivae_lab::tasks::Session {
                 interrupted: &stop,
                 say: &quiet,
+                meetings: None,
             })?;
             // Its figures and report.html, as the CLI draws them when a run stops.
             if vivae::report_coevo::is_predator_prey_run(dir) {

@@ -76,6 +76,9 @@ pub struct Session<'a> {
     pub interrupted: &'a AtomicBool,
     /// Says a line to a person (the program prints it on stderr unless quiet).
     pub say: &'a (dyn Fn(&str) + Sync),
+    /// Who plays the predator–prey task's meetings when not this process's
+    /// threads (`None`): the program's players across an MPI job's ranks.
+    pub meetings: Option<&'a dyn predator_prey::meetings::Meetings>,
 }
 
 /// The driver of a task that runs on its own: it creates, resumes and runs

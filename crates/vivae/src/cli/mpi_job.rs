@@ -1,6 +1,7 @@
 //! The evolving commands' side of an MPI job (the feature `mpi`; see
 //! `vivae::mpi` and docs/distributed.md): whether this process is one of its
-//! ranks, the start-up handshake, and spreading generations over the ranks.
+//! ranks, the start-up handshake, and spreading generations (or a
+//! predator–prey run's meetings) over the ranks.
 //! Without the feature each is a no-op, so the commands call them always.
 
 use std::process::ExitCode;
@@ -10,6 +11,8 @@ use vivae_lab::config::Config;
 use vivae_lab::run::{Outcome, Run};
 use vivae_lab::rundir::GenerationRecord;
 use vivae_lab::tasks::maps::TrainingMap;
+use vivae_lab::tasks::predator_prey::Arena;
+use vivae_lab::tasks::predator_prey::meetings::Meetings;
 use vivae_neat::driver::Task;
 
 /// Whether an MPI launcher started this process (never without the `mpi` feature).
@@ -21,10 +24,11 @@ pub fn launched_by_mpi() -> bool {
 }
 
 /// Under an MPI launcher, the start-up handshake of every rank (see
-/// `vivae::mpi`), for every command that evolves: each rank brings the run it
-/// prepared (config, training maps, experiment) or why it could not, and the
-/// evaluation threads it will use. `Some(code)` on a worker rank whose work is
-/// done, `None` where the run goes on (always, without MPI).
+/// `vivae::mpi`), for every command that evolves one population: each rank
+/// brings the run it prepared (config, training maps, experiment) or why it
+/// could not, and the evaluation threads it will use. `Some(code)` on a
+/// worker rank whose work is done, `None` where the run goes on (always,
+/// without MPI).
 pub fn join_mpi_job(
     prepared: Result<(&Config, &[TrainingMap], &dyn Task), &anyhow::Error>,
     threads: usize,
@@ -32,32 +36,91 @@ pub fn join_mpi_job(
 ) -> anyhow::Result<Option<ExitCode>> {
     #[cfg(feature = "mpi")]
     {
-        use vivae::mpi::{MpiError, Setup, Started, start};
-        use vivae_lab::io::{bad_input, one_line};
         let fingerprint = prepared.as_ref().map_or_else(
             |_| String::new(),
             |(_, maps, _)| vivae_lab::tasks::maps::fingerprint_text(maps),
         );
-        let setup = prepared
-            .map(|(config, _, training)| Setup {
-                config,
-                scenario_text: &fingerprint,
-                task: training,
-                threads,
-            })
-            .map_err(|e| one_line(&format!("{e:#}")));
-        match start(setup, quiet) {
-            Ok(Started::Lead) => Ok(None),
-            Ok(Started::WorkerDone) => Ok(Some(ExitCode::SUCCESS)),
-            Err(e @ MpiError::Refused(_)) => Err(bad_input(e.to_string()).into()),
-            Err(e) => Err(e.into()),
-        }
+        let work = prepared
+            .as_ref()
+            .ok()
+            .map(|(_, _, t)| vivae::mpi::Genomes(*t));
+        let setup = match (prepared, &work) {
+            (Ok((config, _, _)), Some(work)) => Ok((config, fingerprint.as_str(), work as _)),
+            (Err(e), _) => Err(e),
+            (Ok(_), None) => unreachable!("work is built from the prepared run"),
+        };
+        join(setup, threads, quiet)
     }
     #[cfg(not(feature = "mpi"))]
     {
         let _ = (prepared, threads, quiet);
         Ok(None)
     }
+}
+
+/// [`join_mpi_job`] for a predator–prey run: each rank brings its config,
+/// the arena's scenario text and the arena (a worker plays meetings in it).
+pub fn join_mpi_meetings(
+    prepared: Result<(&Config, &str, &Arena), &anyhow::Error>,
+    threads: usize,
+    quiet: bool,
+) -> anyhow::Result<Option<ExitCode>> {
+    #[cfg(feature = "mpi")]
+    {
+        let work = prepared
+            .as_ref()
+            .ok()
+            .map(|(_, _, a)| vivae::mpi::MeetingsOf(a));
+        let setup = match (prepared, &work) {
+            (Ok((config, text, _)), Some(work)) => Ok((config, text, work as _)),
+            (Err(e), _) => Err(e),
+            (Ok(_), None) => unreachable!("work is built from the prepared run"),
+        };
+        join(setup, threads, quiet)
+    }
+    #[cfg(not(feature = "mpi"))]
+    {
+        let _ = (prepared, threads, quiet);
+        Ok(None)
+    }
+}
+
+/// The handshake of this rank with `prepared` (config, scenario text, what
+/// it does as a worker).
+#[cfg(feature = "mpi")]
+fn join(
+    prepared: Result<(&Config, &str, &dyn vivae::mpi::Work), &anyhow::Error>,
+    threads: usize,
+    quiet: bool,
+) -> anyhow::Result<Option<ExitCode>> {
+    use vivae::mpi::{MpiError, Setup, Started, start};
+    use vivae_lab::io::{bad_input, one_line};
+    let setup = prepared
+        .map(|(config, scenario_text, work)| Setup {
+            config,
+            scenario_text,
+            work,
+            threads,
+        })
+        .map_err(|e| one_line(&format!("{e:#}")));
+    match start(setup, quiet) {
+        Ok(Started::Lead) => Ok(None),
+        Ok(Started::WorkerDone) => Ok(Some(ExitCode::SUCCESS)),
+        Err(e @ MpiError::Refused(_)) => Err(bad_input(e.to_string()).into()),
+        Err(e) => Err(e.into()),
+    }
+}
+
+/// Who plays a predator–prey run's meetings on rank 0 of an MPI job whose
+/// workers joined (on `threads` threads of its own, and the workers');
+/// `None` (this process's threads) otherwise.
+pub fn meetings_player(threads: usize) -> anyhow::Result<Option<Box<dyn Meetings>>> {
+    #[cfg(feature = "mpi")]
+    if let Some(player) = vivae::mpi::MpiMeetings::for_leader(threads)? {
+        return Ok(Some(Box::new(player)));
+    }
+    let _ = threads;
+    Ok(None)
 }
 
 /// Runs the generations of `run`; rank 0 of an MPI job spreads each one over the job's ranks.

@@ -4,12 +4,11 @@
 use mpi::point_to_point::{Destination, Source};
 use mpi::topology::{Communicator, SimpleCommunicator};
 use serde::{Deserialize, Serialize};
-use vivae_neat::driver::Task;
 
 use vivae_lab::config::{Config, RunConfig};
 
 use super::worker::{serve, wait_from_root};
-use super::{MpiError, TAG_GO, TAG_HELLO, TAG_STOP, WorkerRank, decode, encode, state};
+use super::{MpiError, TAG_GO, TAG_HELLO, TAG_STOP, Work, WorkerRank, decode, encode, state};
 
 /// What one rank tells rank 0 at start-up.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -34,8 +33,10 @@ pub struct Setup<'a> {
     pub config: &'a Config,
     /// The scenario's text.
     pub scenario_text: &'a str,
-    /// The task built from both (a run's `Training`, or any other task).
-    pub task: &'a dyn Task,
+    /// What this rank does as a worker: evaluate genomes of the task built
+    /// from both ([`super::Genomes`]), or play meetings in the arena built
+    /// from both ([`super::MeetingsOf`]).
+    pub work: &'a dyn Work,
     /// Evaluation threads for this rank (0 = one per core).
     pub threads: usize,
 }
@@ -54,7 +55,7 @@ pub enum Started {
 ///
 /// Rank 0 gathers every worker's fingerprint and refuses the job if one
 /// differs from its own or a worker's set-up failed. A worker sends its
-/// fingerprint, then evaluates genomes until rank 0 stops it. Without MPI, or
+/// fingerprint, then does work items until rank 0 stops it. Without MPI, or
 /// in a job of one rank, this does nothing. When rank 0's own set-up failed it
 /// returns [`Started::Lead`] so the caller reports that failure; its workers
 /// are stopped when the [`Launch`] is dropped.
@@ -80,7 +81,7 @@ pub fn start(setup: Result<Setup<'_>, String>, quiet: bool) -> Result<Started, M
         let (_, tag) = wait_from_root(&world);
         return match (tag, setup) {
             (TAG_GO, Ok(setup)) => {
-                serve(&world, setup.task, setup.threads)?;
+                serve(&world, setup.work, setup.threads)?;
                 Ok(Started::WorkerDone)
             }
             (TAG_STOP, _) => Ok(Started::WorkerDone),

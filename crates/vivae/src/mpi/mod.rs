@@ -3,10 +3,11 @@
 //! Under `mpirun -n N vivae evolve …` every rank parses the same command line
 //! and builds the same experiment. Rank 0 runs NEAT and writes every file
 //! exactly as a single-process run does; ranks 1…N-1 are workers that
-//! evaluate genomes on their own rayon threads. Work is handed out one genome
-//! at a time from a shared queue (self-scheduling), with a few genomes in
+//! evaluate genomes (in a predator–prey run: play meetings, a hunter genome
+//! against a prey genome) on their own rayon threads. Work is handed out one
+//! item at a time from a shared queue (self-scheduling), with a few items in
 //! flight per worker to hide the round trip; rank 0's own threads take from
-//! the same queue. Every evaluation is placed by its index, so the run's
+//! the same queue. Every result is placed by its index, so the run's
 //! results are bit-identical to the single-process run at any N and any
 //! thread count.
 //!
@@ -16,14 +17,18 @@
 //! (`mpirun`, `srun`) started the process; otherwise nothing changes.
 //!
 //! This file holds the process's place in the job ([`Launch`]) and the
-//! message format; `handshake` is the start-up ([`start`]), `worker` a
-//! worker rank's loop, `leader` rank 0's [`MpiEvaluator`].
+//! message format; `handshake` is the start-up ([`start`]), `work` what a
+//! worker does with an item (evaluate a genome, or play a predator–prey
+//! meeting), `worker` a worker rank's loop, `leader` rank 0's side of a
+//! batch and its [`MpiEvaluator`] for one-population runs, `meetings` its
+//! [`MpiMeetings`] for the predator–prey task's two populations.
 
 mod handshake;
 mod leader;
+mod meetings;
+mod work;
 mod worker;
 
-use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::sync::Mutex;
 use std::time::Duration;
 
@@ -31,11 +36,11 @@ use mpi::Threading;
 use mpi::point_to_point::Destination;
 use mpi::topology::{Communicator, SimpleCommunicator};
 use serde::{Deserialize, Serialize};
-use vivae_neat::driver::{Evaluation, Task};
-use vivae_neat::{EvalContext, Genome};
 
 pub use handshake::{Setup, Started, start};
 pub use leader::MpiEvaluator;
+pub use meetings::MpiMeetings;
+pub use work::{Genomes, MeetingsOf, Work};
 
 /// Message tags. Rank 0 → worker: GO, WORK, STOP; worker → rank 0: HELLO, RESULT, FAILED.
 const TAG_HELLO: i32 = 1;
@@ -77,15 +82,17 @@ struct WorkerRank {
 /// Message traffic and timing of rank 0 over a run.
 #[derive(Debug, Clone, Default)]
 struct Traffic {
-    generations: u64,
-    genomes: u64,
+    /// Batches handed out (generations of a one-population run).
+    batches: u64,
+    /// Items in them (genomes, or meetings).
+    items: u64,
     evaluated_by_rank0: u64,
     bytes_sent: u64,
     bytes_received: u64,
     messages_sent: u64,
-    /// Wall time inside `evaluate`.
+    /// Wall time spent on batches.
     evaluating: Duration,
-    /// Wall time between two `evaluate` calls: NEAT, files, checkpoints.
+    /// Wall time between two batches: NEAT, files, checkpoints.
     outside: Duration,
     /// Gaps counted in `outside` (generations after the first).
     gaps: u64,
@@ -185,18 +192,4 @@ fn encode<T: Serialize + ?Sized>(value: &T) -> Result<Vec<u8>, MpiError> {
 
 fn decode<'a, T: Deserialize<'a>>(bytes: &'a [u8]) -> Result<T, postcard::Error> {
     postcard::from_bytes(bytes)
-}
-
-/// Evaluates `genome` in `ctx`, turning a panic into a message.
-fn evaluate_caught(
-    task: &dyn Task,
-    genome: &Genome,
-    ctx: &EvalContext,
-) -> Result<Evaluation, String> {
-    catch_unwind(AssertUnwindSafe(|| task.evaluate(genome, ctx))).map_err(|p| {
-        p.downcast_ref::<&str>()
-            .map(|s| s.to_string())
-            .or_else(|| p.downcast_ref::<String>().cloned())
-            .unwrap_or_else(|| "panic".into())
-    })
 }

@@ -1,15 +1,12 @@
-//! A worker rank's side: evaluate the genomes rank 0 sends until it says stop.
+//! A worker rank's side: do the work items rank 0 sends (evaluate genomes,
+//! or play meetings) until it says stop.
 
 use std::sync::mpsc;
 
 use mpi::point_to_point::{Destination, MatchedReceiveVec, Source};
 use mpi::topology::{Communicator, SimpleCommunicator};
-use vivae_neat::driver::{Evaluation, Task};
-use vivae_neat::{EvalContext, Genome};
 
-use super::{
-    MpiError, POLL, TAG_FAILED, TAG_RESULT, TAG_STOP, TAG_WORK, decode, encode, evaluate_caught,
-};
+use super::{MpiError, POLL, TAG_FAILED, TAG_RESULT, TAG_STOP, TAG_WORK, Work};
 
 /// Waits (without spinning) for the next message from rank 0; returns its bytes and tag.
 pub(super) fn wait_from_root(world: &SimpleCommunicator) -> (Vec<u8>, i32) {
@@ -23,10 +20,10 @@ pub(super) fn wait_from_root(world: &SimpleCommunicator) -> (Vec<u8>, i32) {
     }
 }
 
-/// A worker's life: evaluate what rank 0 sends until it says stop.
+/// A worker's life: do the work items rank 0 sends until it says stop.
 pub(super) fn serve(
     world: &SimpleCommunicator,
-    task: &dyn Task,
+    work: &dyn Work,
     threads: usize,
 ) -> Result<(), MpiError> {
     let rank = world.rank();
@@ -35,35 +32,23 @@ pub(super) fn serve(
         .build()
         .map_err(|e| MpiError::Mpi(format!("rank {rank}: starting worker threads: {e}")))?;
     let root = world.process_at_rank(0);
-    let (tx, rx) = mpsc::channel::<(u64, Result<Evaluation, String>)>();
-    let reply = |(index, result): (u64, Result<Evaluation, String>)| -> Result<(), MpiError> {
-        match result {
-            Ok(evaluation) => {
-                root.send_with_tag(&encode(&(index, evaluation))?[..], TAG_RESULT);
-            }
-            Err(why) => {
-                let text = format!("rank {rank}: evaluating genome {index} panicked: {why}");
-                root.send_with_tag(text.as_bytes(), TAG_FAILED);
-            }
-        }
-        Ok(())
+    let (tx, rx) = mpsc::channel::<Result<Vec<u8>, String>>();
+    let reply = |done: Result<Vec<u8>, String>| match done {
+        Ok(result) => root.send_with_tag(&result[..], TAG_RESULT),
+        Err(why) => root.send_with_tag(format!("rank {rank}: {why}").as_bytes(), TAG_FAILED),
     };
     pool.in_place_scope(|scope| -> Result<(), MpiError> {
         loop {
             while let Ok(done) = rx.try_recv() {
-                reply(done)?;
+                reply(done);
             }
             if let Some((msg, status)) = root.immediate_matched_probe() {
                 let (bytes, _) = (msg, status).matched_receive_vec::<u8>();
                 match status.tag() {
                     TAG_WORK => {
-                        let (ctx, genome): (EvalContext, Genome) = decode(&bytes).map_err(|e| {
-                            MpiError::Mpi(format!("rank {rank}: unreadable work item: {e}"))
-                        })?;
                         let tx = tx.clone();
                         scope.spawn(move |_| {
-                            let result = evaluate_caught(task, &genome, &ctx);
-                            let _ = tx.send((ctx.index as u64, result));
+                            let _ = tx.send(work.work(&bytes));
                         });
                     }
                     TAG_STOP => return Ok(()),
@@ -76,7 +61,7 @@ pub(super) fn serve(
                 continue;
             }
             if let Ok(done) = rx.recv_timeout(POLL) {
-                reply(done)?;
+                reply(done);
             }
         }
     })

@@ -12,6 +12,7 @@ mod mpi_killed_rank_then_resume_matches;
 mod mpi_maze_run_equals_single_process_run;
 mod mpi_mismatched_rank_is_refused;
 mod mpi_multi_map_run_equals_single_process_run;
+mod mpi_predator_prey_run_equals_single_process_run;
 mod mpi_resume_with_other_rank_count_matches;
 mod mpi_runs_equal_single_process_run;
 mod mpi_strategy_runs_equal_single_process_run;

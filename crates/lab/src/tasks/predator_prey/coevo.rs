@@ -17,6 +17,8 @@ use vivae_neat::{GenerationStats, Genome, NeatError, Population, eval_seed};
 
 use crate::config::Config;
 use crate::config::coevolution::Opponents;
+use crate::error::{Error, Result};
+use crate::tasks::predator_prey::meetings::{Meetings, Pair};
 use crate::tasks::predator_prey::{Arena, Outcome, Side};
 
 /// One cell of the CIAO matrix: the best hunter of one generation against
@@ -133,15 +135,16 @@ impl Coevolution {
     }
 
     /// Plays generation `done()`: breeds both populations (after the first),
-    /// evaluates each against the other's opponents in parallel, and adds
-    /// both champions to the halls of fame.
+    /// has `meetings` play every genome against its side's opponents (both
+    /// sides in one batch), and adds both champions to the halls of fame.
     pub fn generation(
         &mut self,
         arena: &Arena,
         config: &Config,
-    ) -> Result<GenerationRecord, NeatError> {
+        meetings: &dyn Meetings,
+    ) -> Result<GenerationRecord> {
         if let Some(prey) = self.fixed_prey.clone() {
-            return self.generation_fixed(arena, &prey);
+            return self.generation_fixed(arena, &prey, meetings);
         }
         let g = self.done();
         let how = config.coevolution.opponents;
@@ -149,43 +152,33 @@ impl Coevolution {
         self.hunters.prepare();
         self.prey.prepare();
         let picks = [Side::Hunter, Side::Prey].map(|s| self.opponents(s, g, how, sample));
-        let genomes_of = |side: Side, picks: &[u32]| -> Vec<Genome> {
-            if picks.is_empty() {
-                let first = match side {
-                    Side::Hunter => &self.prey.genomes()[0],
-                    Side::Prey => &self.hunters.genomes()[0],
-                };
-                vec![first.clone()]
-            } else {
-                let hall = self.hall(side.other());
-                picks.iter().map(|&i| hall[i as usize].clone()).collect()
-            }
-        };
         let against = [
-            genomes_of(Side::Hunter, &picks[0]),
-            genomes_of(Side::Prey, &picks[1]),
+            self.opponent_genomes(Side::Hunter, &picks[0]),
+            self.opponent_genomes(Side::Prey, &picks[1]),
         ];
-        let mut catches = [0usize; 2];
-        for (k, side) in [Side::Hunter, Side::Prey].into_iter().enumerate() {
-            let opponents = &against[k];
-            let pop = match side {
-                Side::Hunter => &mut self.hunters,
-                Side::Prey => &mut self.prey,
-            };
-            let results: Vec<(f64, usize)> = {
-                use rayon::prelude::*;
-                pop.genomes()
-                    .par_iter()
-                    .map(|genome| score(arena, side, genome, opponents))
-                    .collect()
-            };
-            catches[k] = results.iter().map(|r| r.1).sum();
-            pop.set_fitnesses(results.iter().map(|r| r.0).collect())?;
-        }
+        let [hunters, prey] = {
+            let (hs, ps) = (self.hunters.genomes(), self.prey.genomes());
+            let hunter_pairs = hs
+                .iter()
+                .flat_map(|h| against[0].iter().map(move |o| (h, o)));
+            let prey_pairs = ps
+                .iter()
+                .flat_map(|p| against[1].iter().map(move |o| (o, p)));
+            let pairs: Vec<Pair<'_>> = hunter_pairs.chain(prey_pairs).collect();
+            let outcomes = meetings.play(arena, &pairs).map_err(evolution)?;
+            let (ho, po) = outcomes.split_at(hs.len() * against[0].len());
+            [
+                scores(Side::Hunter, ho, against[0].len()),
+                scores(Side::Prey, po, against[1].len()),
+            ]
+        };
+        let catches = [hunters.1, prey.1];
+        self.hunters.set_fitnesses(hunters.0).map_err(evolution)?;
+        self.prey.set_fitnesses(prey.0).map_err(evolution)?;
         let champion = |pop: &Population| pop.champion().map(|(g, _)| g.clone());
         let (h, p) = (champion(&self.hunters), champion(&self.prey));
         let (Some(h), Some(p)) = (h, p) else {
-            return Err(NeatError::Checkpoint("an empty population".into()));
+            return Err(evolution("an empty population"));
         };
         self.hall_hunters.push(h);
         self.hall_prey.push(p);
@@ -204,8 +197,23 @@ impl Coevolution {
                 games(0, &self.hunters),
             ),
             prey: record(&self.prey, &picks[1], catches[1], games(1, &self.prey)),
-            ciao: self.ciao_of(arena, g),
+            ciao: self.ciao_of(arena, g, meetings)?,
         })
+    }
+
+    /// The genomes `side` meets at the hall-of-fame indices `picks` (the
+    /// other population's first genome when there are none: generation 0).
+    fn opponent_genomes(&self, side: Side, picks: &[u32]) -> Vec<Genome> {
+        if picks.is_empty() {
+            let first = match side {
+                Side::Hunter => &self.prey.genomes()[0],
+                Side::Prey => &self.hunters.genomes()[0],
+            };
+            vec![first.clone()]
+        } else {
+            let hall = self.hall(side.other());
+            picks.iter().map(|&i| hall[i as usize].clone()).collect()
+        }
     }
 
     /// Generation `done()` against the fixed prey `prey`: breeds and
@@ -217,35 +225,33 @@ impl Coevolution {
         &mut self,
         arena: &Arena,
         prey: &Genome,
-    ) -> Result<GenerationRecord, NeatError> {
-        use rayon::prelude::*;
+        meetings: &dyn Meetings,
+    ) -> Result<GenerationRecord> {
         let g = self.done();
         self.hunters.prepare();
         let opponents = std::slice::from_ref(prey);
-        let results: Vec<(f64, usize)> = (self.hunters.genomes().par_iter())
-            .map(|genome| score(arena, Side::Hunter, genome, opponents))
-            .collect();
-        let caught: usize = results.iter().map(|r| r.1).sum();
-        let fitness: Vec<f64> = results.iter().map(|r| r.0).collect();
+        let pairs: Vec<Pair<'_>> = self.hunters.genomes().iter().map(|h| (h, prey)).collect();
+        let outcomes = meetings.play(arena, &pairs).map_err(evolution)?;
+        let (fitness, caught) = scores(Side::Hunter, &outcomes, 1);
+        let games = outcomes.len();
         let mean = fitness.iter().sum::<f64>() / fitness.len().max(1) as f64;
-        self.hunters.set_fitnesses(fitness)?;
+        self.hunters.set_fitnesses(fitness).map_err(evolution)?;
         let Some((h, _)) = self.hunters.champion() else {
-            return Err(NeatError::Checkpoint("an empty population".into()));
+            return Err(evolution("an empty population"));
         };
         self.hall_hunters.push(h.clone());
         self.hall_prey.push(prey.clone());
-        let catch_rate = caught as f64 / results.len().max(1) as f64;
+        let catch_rate = caught as f64 / games.max(1) as f64;
         // Every column is the same prey: one game per hunter champion.
+        let pairs: Vec<Pair<'_>> = self.hall_hunters.iter().map(|h| (h, prey)).collect();
+        let outcomes = meetings.play(arena, &pairs).map_err(evolution)?;
         let row: Vec<CiaoCell> = (0..=g)
-            .into_par_iter()
-            .map(|h| {
-                let out = arena.play_genomes(&self.hall_hunters[h as usize], prey);
-                CiaoCell {
-                    hunter: h,
-                    prey: g,
-                    hunter_fitness: out.hunter_fitness(),
-                    caught: out.caught,
-                }
+            .zip(&outcomes)
+            .map(|(h, out)| CiaoCell {
+                hunter: h,
+                prey: g,
+                hunter_fitness: out.hunter_fitness(),
+                caught: out.caught,
             })
             .collect();
         let last = row[g as usize];
@@ -271,27 +277,32 @@ impl Coevolution {
 
     /// The CIAO matrix's cells new in generation `g`: its hunter champion
     /// against every prey champion up to `g`, and every earlier hunter
-    /// champion against its prey champion.
-    pub fn ciao_of(&self, arena: &Arena, g: u32) -> Vec<CiaoCell> {
-        use rayon::prelude::*;
-        let pairs: Vec<(u32, u32)> = (0..=g)
+    /// champion against its prey champion (played by `meetings`).
+    pub fn ciao_of(&self, arena: &Arena, g: u32, meetings: &dyn Meetings) -> Result<Vec<CiaoCell>> {
+        let cells: Vec<(u32, u32)> = (0..=g)
             .map(|i| (g, i))
             .chain((0..g).map(|i| (i, g)))
             .collect();
-        pairs
-            .par_iter()
-            .map(|&(h, p)| {
-                let out =
-                    arena.play_genomes(&self.hall_hunters[h as usize], &self.hall_prey[p as usize]);
-                CiaoCell {
-                    hunter: h,
-                    prey: p,
-                    hunter_fitness: out.hunter_fitness(),
-                    caught: out.caught,
-                }
+        let pairs: Vec<Pair<'_>> = (cells.iter())
+            .map(|&(h, p)| (&self.hall_hunters[h as usize], &self.hall_prey[p as usize]))
+            .collect();
+        let outcomes = meetings.play(arena, &pairs).map_err(evolution)?;
+        Ok(cells
+            .iter()
+            .zip(&outcomes)
+            .map(|(&(h, p), out)| CiaoCell {
+                hunter: h,
+                prey: p,
+                hunter_fitness: out.hunter_fitness(),
+                caught: out.caught,
             })
-            .collect()
+            .collect())
     }
+}
+
+/// An error of the co-evolution (a population's, or the meetings').
+fn evolution(e: impl std::fmt::Display) -> Error {
+    Error::Evolution(e.to_string())
 }
 
 /// What `champions.json` holds: each side's master-tournament winner.
@@ -318,19 +329,21 @@ pub struct ChampionEntry {
     pub genome: Genome,
 }
 
-/// `genome` of `side` against each of `opponents`: its mean fitness and its catches.
-fn score(arena: &Arena, side: Side, genome: &Genome, opponents: &[Genome]) -> (f64, usize) {
-    let mut sum = 0.0;
-    let mut caught = 0;
-    for o in opponents {
-        let out: Outcome = match side {
-            Side::Hunter => arena.play_genomes(genome, o),
-            Side::Prey => arena.play_genomes(o, genome),
-        };
-        sum += out.fitness(side);
-        caught += usize::from(out.caught);
-    }
-    (sum / opponents.len().max(1) as f64, caught)
+/// The mean fitness for `side` and the catches of each genome whose
+/// meetings are `outcomes`, `per` consecutive ones per genome (its
+/// opponents in order).
+fn scores(side: Side, outcomes: &[Outcome], per: usize) -> (Vec<f64>, usize) {
+    let fitness = (outcomes.chunks(per.max(1)))
+        .map(|games| {
+            let mut sum = 0.0;
+            for out in games {
+                sum += out.fitness(side);
+            }
+            sum / per.max(1) as f64
+        })
+        .collect();
+    let caught = outcomes.iter().filter(|o| o.caught).count();
+    (fitness, caught)
 }
 
 /// The master tournament (Floreano & Nolfi 1997) from a full CIAO matrix
@@ -353,6 +366,7 @@ pub fn master_tournament(cells: &[CiaoCell], n: u32, side: Side) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::tasks::predator_prey::meetings::{MeetingsError, OnThreads};
     use vivae_sim::{LoadOptions, Scenario};
 
     fn setup(how: Opponents) -> (Arena, Config) {
@@ -373,7 +387,7 @@ mod tests {
             let (arena, config) = setup(how);
             let mut co = Coevolution::new(&config).unwrap();
             for g in 0..4 {
-                let r = co.generation(&arena, &config).unwrap();
+                let r = co.generation(&arena, &config, &OnThreads).unwrap();
                 assert_eq!(r.generation, g);
                 let want = match (g, how) {
                     (0, _) => 0,
@@ -406,7 +420,7 @@ mod tests {
         co.fixed_prey = Some(prey.clone());
         let before = co.prey.clone();
         for g in 0..3 {
-            let r = co.generation(&arena, &config).unwrap();
+            let r = co.generation(&arena, &config, &OnThreads).unwrap();
             // The same CIAO cells as a co-evolution's: a row and a column.
             assert_eq!(r.ciao.len() as u32, 2 * g + 1);
             for c in &r.ciao {
@@ -421,6 +435,61 @@ mod tests {
         }
         assert!(co.hall_prey.iter().all(|g| *g == prey));
         assert_eq!(co.prey, before, "the prey population does not evolve");
+    }
+
+    /// Plays each batch backwards, one meeting at a time, as another
+    /// player (the program's over MPI) may; or refuses every batch.
+    struct Backwards {
+        fail: bool,
+        batches: std::sync::atomic::AtomicUsize,
+    }
+
+    impl Meetings for Backwards {
+        fn play(&self, arena: &Arena, pairs: &[Pair<'_>]) -> Result<Vec<Outcome>, MeetingsError> {
+            self.batches
+                .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            if self.fail {
+                return Err(MeetingsError("rank 1 is gone".into()));
+            }
+            let mut out: Vec<Outcome> = (pairs.iter().rev())
+                .map(|&(h, p)| arena.play_genomes(h, p))
+                .collect();
+            out.reverse();
+            Ok(out)
+        }
+    }
+
+    #[test]
+    fn any_player_of_the_meetings_gives_the_same_coevolution() {
+        for how in [Opponents::Best, Opponents::HallOfFame, Opponents::Fixed] {
+            let (arena, config) = setup(how);
+            let mut a = Coevolution::new(&config).unwrap();
+            if how == Opponents::Fixed {
+                a.fixed_prey = Some(a.prey.genomes()[2].clone());
+            }
+            let mut b = a.clone();
+            let player = Backwards {
+                fail: false,
+                batches: Default::default(),
+            };
+            for _ in 0..3 {
+                let ra = a.generation(&arena, &config, &OnThreads).unwrap();
+                let rb = b.generation(&arena, &config, &player).unwrap();
+                assert_eq!(ra, rb, "{how:?}");
+            }
+            assert_eq!(a, b, "{how:?}");
+            // Two batches a generation: its games, then its CIAO cells.
+            assert_eq!(player.batches.into_inner(), 6);
+        }
+        let (arena, config) = setup(Opponents::Best);
+        let mut co = Coevolution::new(&config).unwrap();
+        let failing = Backwards {
+            fail: true,
+            batches: Default::default(),
+        };
+        let err = co.generation(&arena, &config, &failing).unwrap_err();
+        assert!(err.to_string().contains("rank 1 is gone"), "{err}");
+        assert_eq!(co.done(), 0, "a failed generation adds no champions");
     }
 
     #[test]

@@ -33,6 +33,7 @@ pub mod brain;
 pub mod coevo;
 pub mod config;
 pub mod meeting;
+pub mod meetings;
 mod present;
 pub mod run;
 pub mod tournament;
@@ -117,7 +118,7 @@ impl Side {
 }
 
 /// How one episode ended.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Outcome {
     /// Whether the hunter caught the prey.
     pub caught: bool,

@@ -26,6 +26,7 @@ pub use crate::tasks::predator_prey::coevo::{ChampionEntry, Champions};
 use crate::tasks::predator_prey::coevo::{
     CiaoCell, Coevolution, GenerationRecord, SideRecord, master_tournament,
 };
+use crate::tasks::predator_prey::meetings::OnThreads;
 use crate::tasks::predator_prey::{Arena, NAME, Side, present};
 use crate::tasks::{OwnDriver, RunTask, Session, TaskEntry};
 
@@ -114,8 +115,9 @@ struct PpRun {
     lengths: Lengths,
 }
 
-/// The arena of `config` in the scenario at `path` (a file or a shipped name).
-pub(super) fn arena_of(config: &Config, path: &Path) -> Result<(Arena, String)> {
+/// The arena of `config` in the scenario at `path` (a file or a shipped
+/// name), and the scenario's text.
+pub fn arena_of(config: &Config, path: &Path) -> Result<(Arena, String)> {
     let loaded = load_scenario(Some(path))?;
     let arena = Arena::of_config(&loaded.scenario, config).map_err(|e| bad_input(e.to_string()))?;
     Ok((arena, loaded.text))
@@ -242,15 +244,39 @@ fn evolve(dir: &Path, mut config: Config, force: bool, session: &Session<'_>) ->
     run.run(session)
 }
 
+/// The arena a new run of `config` plays in (its scenario's text too),
+/// after checking `config`: what every rank of an MPI job builds.
+pub fn arena_for(config: &Config) -> Result<(Arena, String)> {
+    crate::tasks::check(config).map_err(|e| bad_input(format!("config: {e}")))?;
+    arena_of(config, Path::new(&config.experiment.scenario))
+}
+
+/// The config of the run in `dir` (its last checkpoint's) and its arena
+/// (and the scenario's text): what every rank of an MPI job resuming it builds.
+pub fn arena_of_run(dir: &Path) -> Result<(Config, Arena, String)> {
+    let cp = read_checkpoint(dir)?;
+    let (arena, text) = arena_of(&cp.config, &dir.join(crate::rundir::files::SCENARIO))?;
+    Ok((cp.config, arena, text))
+}
+
+/// The checkpoint of the run in `dir`.
+fn read_checkpoint(dir: &Path) -> Result<Checkpoint> {
+    let path = dir.join(files::CHECKPOINT);
+    let text = read_text(&path)?;
+    serde_json::from_str(&text).map_err(|e| Error::Checkpoint {
+        path,
+        reason: e.to_string(),
+    })
+}
+
 /// Resumes the run in `dir`.
 fn resume(dir: &Path, generations: Option<u32>, session: &Session<'_>) -> Result<String> {
     let path = dir.join(files::CHECKPOINT);
-    let text = read_text(&path)?;
     let bad = |reason: String| Error::Checkpoint {
         path: path.clone(),
         reason,
     };
-    let mut cp: Checkpoint = serde_json::from_str(&text).map_err(|e| bad(e.to_string()))?;
+    let mut cp = read_checkpoint(dir)?;
     let done = cp.state.done();
     if let Some(n) = generations {
         if n < done {
@@ -319,9 +345,12 @@ impl PpRun {
                 break;
             }
             let (state, arena, config) = (&mut self.state, &self.arena, &self.config);
-            let record = pool
-                .install(|| state.generation(arena, config))
-                .map_err(|e| Error::Evolution(e.to_string()))?;
+            // Meetings played elsewhere (across an MPI job's ranks) are handed
+            // out from this thread; else this process's threads play them.
+            let record = match session.meetings {
+                Some(meetings) => state.generation(arena, config, meetings)?,
+                None => pool.install(|| state.generation(arena, config, &OnThreads))?,
+            };
             self.append(&record)?;
             self.checkpoint()?;
             (session.say)(&present::generation_line(&record, total));

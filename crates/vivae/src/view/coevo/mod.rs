@@ -377,6 +377,7 @@ mod tests {
         let session = vivae_lab::tasks::Session {
             interrupted: &stop,
             say: &quiet,
+            meetings: None,
         };
         let driver = vivae_lab::tasks::predator_prey::TASK.own_driver.unwrap();
         (driver.evolve)(&dir, config, false, &session).unwrap();
