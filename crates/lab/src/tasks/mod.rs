@@ -13,6 +13,7 @@ pub mod driving;
 pub mod maps;
 pub mod maze;
 pub mod predator_prey;
+pub mod robot;
 mod target;
 
 use std::any::Any;
