@@ -18,6 +18,7 @@
 
 pub mod config;
 pub mod lehman;
+pub mod pack;
 mod present;
 pub mod run;
 pub mod section;
@@ -27,6 +28,8 @@ pub use run::TASK;
 
 pub use crate::tasks::robot::{INPUTS, OUTPUTS, RANGE, wheels};
 
+use crate::shipped::Shipped;
+
 use vivae_neat::driver::{Evaluation, Task};
 use vivae_neat::{EvalContext, Genome, GenomeSpec, Network, RecurrentNetwork};
 use vivae_sim::{
@@ -35,22 +38,25 @@ use vivae_sim::{
 };
 
 /// The medium maze (`scenarios/medium-maze.svg`).
-pub const MEDIUM_MAZE_SVG: &str = shipped_svg("medium-maze");
+pub const MEDIUM_MAZE_SVG: &str = include_str!("../../../../../scenarios/medium-maze.svg");
 /// The hard maze (`scenarios/hard-maze.svg`).
-pub const HARD_MAZE_SVG: &str = shipped_svg("hard-maze");
+pub const HARD_MAZE_SVG: &str = include_str!("../../../../../scenarios/hard-maze.svg");
 
-/// The SVG text of shipped scenario `name` (evaluated at compile time).
-const fn shipped_svg(name: &str) -> &'static str {
-    let mut i = 0;
-    while i < crate::shipped::SHIPPED.len() {
-        let s = &crate::shipped::SHIPPED[i];
-        if s.name.eq_ignore_ascii_case(name) {
-            return s.svg;
-        }
-        i += 1;
-    }
-    panic!("not a shipped scenario")
-}
+/// The mazes as shipped scenarios (`--scenario medium-maze`).
+pub const SCENARIOS: [Shipped; 2] = [
+    Shipped {
+        name: "medium-maze",
+        what: "Lehman & Stanley's medium maze, for --task maze (1 robot, a goal)",
+        svg: MEDIUM_MAZE_SVG,
+        task: NAME,
+    },
+    Shipped {
+        name: "hard-maze",
+        what: "Lehman & Stanley's hard (deceptive) maze, for --task maze (1 robot, a goal)",
+        svg: HARD_MAZE_SVG,
+        task: NAME,
+    },
+];
 
 /// The task's name in `experiment.task` and `--task`.
 pub const NAME: &str = "maze";

@@ -42,6 +42,8 @@ pub static TASK: TaskEntry = TaskEntry {
         let maze = crate::tasks::maze::section::MazeConfig::default();
         vec![(NAME.into(), toml::Value::try_from(maze).expect("TOML"))]
     },
+    scenarios: &super::SCENARIOS,
+    packs: &[super::pack::MEDIUM, super::pack::HARD],
 };
 
 /// Side of MAP-Elites' grid cells over the maze, px (the example's).
