@@ -22,7 +22,7 @@ pub use seam::{
     check, config_from_toml, default_config, entry, entry_of, metric_names, own_driver_of_run,
     read_config, set_robot,
 };
-pub use target::TargetProgress;
+pub use target::{StoredTarget, TargetProgress};
 
 /// Every task a run can evolve for; `experiment.task` names one. A new task
 /// is a folder here and one line in this list.
