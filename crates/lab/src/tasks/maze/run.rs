@@ -213,6 +213,23 @@ mod tests {
     }
 
     #[test]
+    fn the_robot_override_sets_the_maze_robot_model_and_names_the_models() {
+        let mut o = crate::run::prepare::Overrides::default();
+        o.set("task", NAME).unwrap();
+        let mut c = Config::maze();
+        assert_eq!(c.maze.robot, MazeRobot::Lehman);
+        o.set("robot", "vivae").unwrap();
+        o.apply(&mut c).unwrap();
+        assert_eq!(c.maze.robot, MazeRobot::Vivae);
+        o.set("robot", "khepera").unwrap();
+        let e = o.apply(&mut c).unwrap_err();
+        assert!(
+            e.contains("khepera") && e.contains("lehman or vivae"),
+            "{e}"
+        );
+    }
+
+    #[test]
     fn evaluations_to_solve_count_up_to_the_first_solver() {
         let task = MazeTask::shipped(crate::tasks::maze::Maze::Hard).unwrap();
         let mut p = TargetProgress::default();
