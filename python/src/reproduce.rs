@@ -59,7 +59,7 @@ pub fn reproduce<'py>(
 /// The replication packs: (name, description).
 #[pyfunction]
 pub fn reproduce_packs() -> Vec<(String, String)> {
-    (vivae_lab::reproduce::PACKS.iter())
+    vivae_lab::reproduce::packs()
         .map(|p| (p.name.to_string(), p.what.to_string()))
         .collect()
 }

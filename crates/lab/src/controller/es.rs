@@ -501,7 +501,8 @@ mod tests {
     }
 
     #[test]
-    fn leo_seed_starts_neat_and_novelty_from_seeded_genomes_drawn_from_the_run_seed() {
+    fn leo_seed_starts_every_strategy_that_takes_a_population_from_seeded_genomes_drawn_from_the_run_seed()
+     {
         use crate::search::Search;
         use vivae_neat::activation::Activation;
         use vivae_neat::genome::NodeKind;
@@ -541,10 +542,15 @@ mod tests {
                 .iter()
                 .all(|g| g.num_hidden() == 0)
         );
-        // Novelty search starts from the same genomes.
-        let mut novelty = config.clone();
-        novelty.strategy.kind = "novelty".into();
-        assert_eq!(search(&novelty).batch(), a);
+        // Every strategy that starts from given genomes starts from the same ones.
+        let takers = crate::search::entries()
+            .into_iter()
+            .filter(|e| e.takes_population);
+        for e in takers {
+            let mut other = config.clone();
+            other.strategy.kind = e.kind.into();
+            assert_eq!(search(&other).batch(), a, "{}", e.kind);
+        }
     }
 
     #[test]
@@ -559,14 +565,6 @@ mod tests {
                 "substrate.es.leo_seed = true",
             ),
             (
-                "[strategy]\nkind = \"nsga2\"\n[substrate]\nkind = \"es-hyperneat\"\n[substrate.es]\nleo = true\nleo_seed = true\n",
-                "a nsga2 run starts from minimal genomes",
-            ),
-            (
-                "[strategy]\nkind = \"map-elites\"\n[substrate]\nkind = \"es-hyperneat\"\n[substrate.es]\nleo = true\nleo_seed = true\n",
-                "a map-elites run starts from minimal genomes",
-            ),
-            (
                 "[experiment]\ninit_population = \"x.json\"\n[substrate]\nkind = \"es-hyperneat\"\n[substrate.es]\nleo = true\nleo_seed = true\n",
                 "experiment.init_population",
             ),
@@ -576,6 +574,21 @@ mod tests {
                 .to_string();
             assert!(e.contains(needle), "{text}: {e}");
             assert_eq!(e.lines().count(), 1, "{e}");
+        }
+        // A strategy that breeds from minimal genomes refuses the seed.
+        let minimal = crate::search::entries()
+            .into_iter()
+            .filter(|e| !e.takes_population);
+        for e in minimal {
+            let kind = e.kind;
+            let text = format!(
+                "[strategy]\nkind = \"{kind}\"\n[substrate]\nkind = \"es-hyperneat\"\n[substrate.es]\nleo = true\nleo_seed = true\n"
+            );
+            let e = crate::tasks::config_from_toml(&text)
+                .unwrap_err()
+                .to_string();
+            let needle = format!("a {kind} run starts from minimal genomes");
+            assert!(e.contains(&needle) && e.lines().count() == 1, "{text}: {e}");
         }
         let text = toml::to_string(&leo_config()).unwrap();
         assert!(

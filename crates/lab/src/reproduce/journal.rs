@@ -117,11 +117,11 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("vivae-journal-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join("runs.tsv");
-        let mut a = Config::maze();
+        let mut a = Config::default();
         a.experiment.seed = 3;
         let mut j = Journal::open(Some(&path)).unwrap();
         assert!(j.is_empty() && j.get(&a).is_none());
-        j.record(&a, "maze seed 3", "solved 1250").unwrap();
+        j.record(&a, "road seed 3", "solved 1250").unwrap();
         let mut threads = a.clone();
         threads.run.threads = 7;
         let mut other = a.clone();

@@ -3,20 +3,21 @@
 //! numbers with their source (`vivae reproduce NAME`, Python's
 //! `vivae.reproduce(name)`).
 //!
-//! A pack is a file here and a line in [`PACKS`]. Each run of a pack is the
-//! very run `vivae evolve` makes with the same settings (it is prepared and
-//! run by the same code, in a scratch run directory removed afterwards), so
-//! a row of the table can be checked run by run from the command line.
+//! A pack is a file here and a line in `PACKS`, or a file in its task's
+//! folder and a line in the task's entry (`TaskEntry::packs`). Each run of
+//! a pack is the very run `vivae evolve` makes with the same settings (it is
+//! prepared and run by the same code, in a scratch run directory removed
+//! afterwards), so a row of the table can be checked run by run from the
+//! command line.
 
 mod boxes;
 mod journal;
-mod maze;
+mod pack;
 mod pole;
 mod retina;
 mod road;
 mod xor;
 
-use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
 
@@ -26,108 +27,10 @@ use crate::io::bad_input;
 use crate::run::prepare::prepare;
 
 pub use journal::Journal;
+pub use pack::{Options, Pack, RunPack, Table};
 
-/// How a pack is run.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Options {
-    /// Runs per method (the paper's count by default).
-    pub runs: Option<usize>,
-    /// The first run's seed; run `k` has seed `seed + k`.
-    pub seed: u64,
-    /// A few-minute version: fewer runs and a smaller budget.
-    pub quick: bool,
-    /// Evaluations per run at most (the paper's, or the quick budget, by default).
-    pub evaluations: Option<u64>,
-    /// Worker threads per run (0 = one per core); results do not depend on it.
-    pub threads: usize,
-    /// Only these methods (a pack's [`Pack::methods`]); empty = all of them.
-    pub methods: Vec<String>,
-    /// The journal of finished runs, which a run again skips (none = in memory).
-    pub journal: Option<PathBuf>,
-}
-
-impl Default for Options {
-    fn default() -> Self {
-        Options {
-            runs: None,
-            seed: 1,
-            quick: false,
-            evaluations: None,
-            threads: 0,
-            methods: Vec::new(),
-            journal: None,
-        }
-    }
-}
-
-/// A pack's result: one table, ours beside the paper's.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Table {
-    /// What was run (the pack's title).
-    pub title: String,
-    /// Column headings.
-    pub columns: Vec<String>,
-    /// One row per method, as many cells as columns.
-    pub rows: Vec<Vec<String>>,
-    /// Lines under the table: settings, seeds, sources, differences.
-    pub notes: Vec<String>,
-}
-
-impl Table {
-    /// A table titled `title` with these columns, rows and notes.
-    pub fn new(
-        title: impl Into<String>,
-        columns: &[&str],
-        rows: Vec<Vec<String>>,
-        notes: Vec<String>,
-    ) -> Table {
-        Table {
-            title: title.into(),
-            columns: columns.iter().map(|c| c.to_string()).collect(),
-            rows,
-            notes,
-        }
-    }
-
-    /// The table as Markdown: a heading, the table, the notes as a list.
-    pub fn markdown(&self) -> String {
-        let mut s = format!("### {}\n\n", self.title);
-        let row = |cells: &[String]| format!("| {} |\n", cells.join(" | "));
-        s += &row(&self.columns);
-        s += &row(&vec!["---".to_string(); self.columns.len()]);
-        for r in &self.rows {
-            s += &row(r);
-        }
-        if !self.notes.is_empty() {
-            s.push('\n');
-        }
-        for n in &self.notes {
-            let _ = writeln!(s, "* {n}");
-        }
-        s
-    }
-}
-
-/// How a pack runs: with its options, telling `progress` a line per finished run.
-pub type RunPack = fn(&Options, &mut dyn FnMut(&str)) -> Result<Table>;
-
-/// A replication pack.
-#[derive(Debug, Clone, Copy)]
-pub struct Pack {
-    /// Its name (`vivae reproduce NAME`).
-    pub name: &'static str,
-    /// One line on what it reproduces.
-    pub what: &'static str,
-    /// The methods `--method` can pick (empty: the pack has no choice).
-    pub methods: &'static [&'static str],
-    /// Runs it; `progress` gets a line per finished run.
-    pub run: RunPack,
-}
-
-/// Every pack.
-pub const PACKS: [Pack; 8] = [
-    maze::MEDIUM,
-    maze::HARD,
+/// The packs of no task: the benchmarks of `vivae_neat::benchmarks` and the road.
+const PACKS: [Pack; 6] = [
     xor::XOR,
     pole::MARKOV,
     pole::NONMARKOV,
@@ -136,10 +39,17 @@ pub const PACKS: [Pack; 8] = [
     road::ROAD,
 ];
 
+/// Every pack: the registered tasks' ([`crate::tasks::TaskEntry::packs`]),
+/// then the others.
+pub fn packs() -> impl Iterator<Item = &'static Pack> {
+    let tasks = crate::tasks::TASKS.iter().flat_map(|t| t.packs.iter());
+    tasks.chain(PACKS.iter())
+}
+
 /// The pack called `name`; bad input naming the packs otherwise.
 pub fn find(name: &str) -> Result<&'static Pack> {
-    PACKS.iter().find(|p| p.name == name).ok_or_else(|| {
-        let names: Vec<&str> = PACKS.iter().map(|p| p.name).collect();
+    packs().find(|p| p.name == name).ok_or_else(|| {
+        let names: Vec<&str> = packs().map(|p| p.name).collect();
         bad_input(format!(
             "reproduce: no pack {name:?}; the packs are {}",
             names.join(", ")
@@ -262,7 +172,7 @@ mod tests {
         let e = run("nope", &Options::default(), &mut |_| {})
             .unwrap_err()
             .to_string();
-        assert!(e.contains("\"nope\"") && e.contains("maze-hard"), "{e}");
+        assert!(e.contains("\"nope\"") && e.contains("xor"), "{e}");
     }
 
     #[test]

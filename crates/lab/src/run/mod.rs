@@ -38,7 +38,7 @@ use crate::rundir::{
 use crate::tasks::driving::episode::Episode;
 use crate::tasks::driving::training::Training;
 use crate::tasks::maps::{TrainingMap, is_multi_map};
-use crate::tasks::{RunTask, TargetProgress};
+use crate::tasks::{RunTask, StoredTarget, TargetProgress};
 
 /// Generations whose best individual gets a trajectory figure (besides the champion).
 pub const FIGURE_GENERATIONS: [u32; 2] = [1, 10];
@@ -138,7 +138,7 @@ impl Run {
                     .collect()
             }),
             generations_len: generations_header(&config).len() as u64,
-            target: task.has_target().then(TargetProgress::default),
+            target: StoredTarget::start(task.as_ref()),
             ..Progress::start(search.generation())
         };
         let filled = copy_maps(&tmp, &mut config, maps)
@@ -247,7 +247,7 @@ impl Run {
     /// The run's progress towards its task's target (evaluations, when
     /// first reached); none for a task without one.
     pub fn target_progress(&self) -> Option<&TargetProgress> {
-        self.progress.target.as_ref()
+        self.progress.target.get()
     }
 
     /// Whether the run has nothing left to do: every generation done, or
@@ -494,7 +494,7 @@ impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
     /// for a task without a target); raises the halt flag once the target is
     /// reached or the user asked to stop.
     fn tell_task(&mut self, generation: u32, evaluations: &[Evaluation]) -> String {
-        let Some(target) = self.progress.target.as_mut() else {
+        let Some(target) = self.progress.target.get_mut() else {
             return String::new();
         };
         target.tell(self.task, generation, evaluations);
@@ -598,7 +598,7 @@ fn validate_progress(path: &Path, cp: &Checkpoint, task: &dyn RunTask) -> Result
             cp.config.strategy.kind.name()
         )));
     }
-    if p.target.is_some() != task.has_target() {
+    if !p.target.fits(task) {
         return Err(bad(format!(
             "its progress does not fit experiment.task = {}",
             cp.config.experiment.task.name()

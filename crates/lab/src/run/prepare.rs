@@ -344,17 +344,22 @@ mod tests {
             ("normalize_by", "area"),
             ("normalize_self_loops", "false"),
             ("recurrence", "self"),
-            ("strategy", "novelty"),
+            ("strategy", "neat"),
             ("behaviour", "end-position"),
-            ("task", "maze"),
-            ("robot", "vivae"),
+            ("task", "driving"),
+            ("robot", "khepera"),
             ("placements", "1"),
             ("placements_aggregate", "mean"),
         ] {
             o.set(key, text).unwrap_or_else(|e| panic!("{key}: {e}"));
         }
         assert_eq!(Overrides::KEYS.len(), 23);
-        let mut c = Config::maze();
+        // A robot model is the task's to read (the tasks with a choice test
+        // theirs): refused by a task without a choice.
+        let e = o.apply(&mut Config::default()).unwrap_err();
+        assert!(e.contains("a driving run has one robot model"), "{e}");
+        o.robot = None;
+        let mut c = Config::default();
         o.apply(&mut c).unwrap();
         assert_eq!((c.experiment.generations, c.neat.population_size), (3, 10));
         assert_eq!(c.substrate.train_neurons.len(), 2);
@@ -365,18 +370,6 @@ mod tests {
         assert!(e.starts_with("steps = \"-5\""), "{e}");
         let e = o.set("task", "chess").unwrap_err();
         assert!(e.contains("chess") && e.contains("driving"), "{e}");
-        // A robot model is the task's to read: refused by the maze, and by a
-        // task without a choice.
-        assert_eq!(c.maze.robot, crate::tasks::maze::section::MazeRobot::Vivae);
-        o.set("robot", "khepera").unwrap();
-        let e = o.apply(&mut c).unwrap_err();
-        assert!(
-            e.contains("khepera") && e.contains("lehman or vivae"),
-            "{e}"
-        );
-        o.set("task", "driving").unwrap();
-        let e = o.apply(&mut Config::default()).unwrap_err();
-        assert!(e.contains("a driving run has one robot model"), "{e}");
     }
 
     #[test]

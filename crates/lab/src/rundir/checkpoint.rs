@@ -25,10 +25,9 @@ pub(crate) struct Progress {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub(crate) maps_fnv: Option<Vec<u64>>,
     /// The run's progress towards its task's target (tasks with a target
-    /// only). Stored as `maze`, the key of the first task that had one, so
-    /// that checkpoints keep their bytes.
-    #[serde(default, rename = "maze", skip_serializing_if = "Option::is_none")]
-    pub(crate) target: Option<crate::tasks::TargetProgress>,
+    /// only), stored under the task's name.
+    #[serde(flatten)]
+    pub(crate) target: crate::tasks::StoredTarget,
 }
 
 /// Refuses a run whose `config.toml` was edited since its newest checkpoint:
@@ -227,7 +226,7 @@ impl Progress {
             figure_genomes: Vec::new(),
             scenario_fnv: None,
             maps_fnv: None,
-            target: None,
+            target: crate::tasks::StoredTarget::default(),
         }
     }
 }

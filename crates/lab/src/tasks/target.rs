@@ -1,10 +1,15 @@
 //! A run's progress towards its task's target, for a task that stops once an
 //! evaluation reaches it (a goal reached): kept in the checkpoints.
 
-use serde::{Deserialize, Serialize};
+use std::fmt;
+use std::sync::LazyLock;
+
+use serde::de::{self, MapAccess, Visitor};
+use serde::ser::SerializeMap;
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use vivae_neat::driver::{Evaluation, Task};
 
-use crate::tasks::RunTask;
+use crate::tasks::{RunTask, TASKS};
 
 /// Evaluations done so far, and when the target was first reached.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -42,6 +47,83 @@ impl TargetProgress {
             Some(n) => format!(" solved=yes evals_to_solve={n}"),
             None => " solved=no evals_to_solve=none".into(),
         }
+    }
+}
+
+/// A run's [`TargetProgress`] as a checkpoint holds it: stored under its
+/// task's name (`"maze": {…}` beside the checkpoint's other progress
+/// fields, flattened into them), nothing for a task without a target.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct StoredTarget(Option<(&'static str, TargetProgress)>);
+
+impl StoredTarget {
+    /// A new run's: no evaluations yet, for a task with a target.
+    pub fn start(task: &dyn RunTask) -> StoredTarget {
+        StoredTarget(
+            task.has_target()
+                .then(|| (task.entry().name, TargetProgress::default())),
+        )
+    }
+
+    /// The progress, if the run's task has a target.
+    pub fn get(&self) -> Option<&TargetProgress> {
+        self.0.as_ref().map(|(_, p)| p)
+    }
+
+    /// The progress to update, if the run's task has a target.
+    pub fn get_mut(&mut self) -> Option<&mut TargetProgress> {
+        self.0.as_mut().map(|(_, p)| p)
+    }
+
+    /// Whether it is what a run of `task` keeps: progress stored under its
+    /// name when it has a target, nothing otherwise.
+    pub fn fits(&self, task: &dyn RunTask) -> bool {
+        self.0.map(|(name, _)| name) == task.has_target().then(|| task.entry().name)
+    }
+}
+
+/// The registered tasks' names: the keys a [`StoredTarget`] may have.
+fn task_names() -> &'static [&'static str] {
+    static NAMES: LazyLock<Vec<&'static str>> =
+        LazyLock::new(|| TASKS.iter().map(|t| t.name).collect());
+    NAMES.as_slice()
+}
+
+impl Serialize for StoredTarget {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let mut map = serializer.serialize_map(Some(usize::from(self.0.is_some())))?;
+        if let Some((name, progress)) = &self.0 {
+            map.serialize_entry(name, progress)?;
+        }
+        map.end()
+    }
+}
+
+impl<'de> Deserialize<'de> for StoredTarget {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct Keys;
+        impl<'de> Visitor<'de> for Keys {
+            type Value = StoredTarget;
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str("a task's target progress under the task's name")
+            }
+            fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<StoredTarget, A::Error> {
+                let mut stored = None;
+                while let Some(key) = map.next_key::<String>()? {
+                    let Some(&name) = task_names().iter().find(|n| **n == key) else {
+                        return Err(de::Error::unknown_field(&key, task_names()));
+                    };
+                    if stored.is_some() {
+                        return Err(de::Error::custom("target progress of two tasks"));
+                    }
+                    stored = Some((name, map.next_value()?));
+                }
+                Ok(StoredTarget(stored))
+            }
+        }
+        // As a struct whose fields are the task names: flattened into the
+        // checkpoint's progress, it takes only those keys from it.
+        deserializer.deserialize_struct("StoredTarget", task_names(), Keys)
     }
 }
 

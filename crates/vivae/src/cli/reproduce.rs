@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::Args;
-use vivae_lab::reproduce::{Options, PACKS, run as run_pack};
+use vivae_lab::reproduce::{Options, packs, run as run_pack};
 
 /// Options of `vivae reproduce`.
 #[derive(Args, Debug)]
@@ -52,7 +52,7 @@ pub struct ReproduceArgs {
 /// Runs `vivae reproduce`: the table printed and written.
 pub fn run(args: ReproduceArgs) -> anyhow::Result<ExitCode> {
     if args.list {
-        for p in &PACKS {
+        for p in packs() {
             println!("{:<14} {}", p.name, p.what);
         }
         return Ok(ExitCode::SUCCESS);

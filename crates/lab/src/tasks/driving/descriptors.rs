@@ -200,6 +200,16 @@ mod tests {
     use vivae_neat::Population;
     use vivae_neat::driver::Task;
 
+    /// A registered strategy that selects on a behaviour (`behaviour`) or
+    /// on the task's metrics (`!behaviour`).
+    fn needing(behaviour: bool) -> &'static str {
+        let fits = |e: &&crate::search::StrategyEntry| {
+            (e.needs.behaviour, e.needs.metrics) == (behaviour, !behaviour)
+        };
+        let found = crate::search::entries().into_iter().find(fits);
+        found.expect("a registered strategy needs it").kind
+    }
+
     fn experiment(kind: &str, behaviour: BehaviourKind) -> (Config, Episode) {
         let mut config = Config::default();
         config.experiment.steps = 150;
@@ -219,10 +229,10 @@ mod tests {
             seed: 0,
         };
         for (kind, behaviour) in [
-            ("map-elites", BehaviourKind::SideSpeed),
-            ("novelty", BehaviourKind::EndPositions),
-            ("nsga2", BehaviourKind::EndPosition),
-            ("novelty", BehaviourKind::Trajectory),
+            (needing(true), BehaviourKind::SideSpeed),
+            (needing(true), BehaviourKind::EndPositions),
+            (needing(false), BehaviourKind::EndPosition),
+            (needing(true), BehaviourKind::Trajectory),
         ] {
             let (_, measured) = experiment(kind, behaviour);
             for g in pop.genomes().iter().take(4) {
@@ -231,7 +241,7 @@ mod tests {
                 assert!(a.behaviour.is_empty() && a.metrics.is_empty());
                 assert_eq!(a.fitness.to_bits(), b.fitness.to_bits());
                 let (lower, upper) = behaviour.bounds(measured.robots());
-                if kind == "nsga2" {
+                if kind == needing(false) {
                     assert!(b.behaviour.is_empty());
                     assert_eq!(b.metrics.len(), METRICS.len());
                     assert!(b.metrics[0] >= 0.0 && (0.0..=1.0).contains(&b.metrics[1]));
@@ -248,7 +258,7 @@ mod tests {
 
     #[test]
     fn metrics_agree_with_the_recorded_episode() {
-        let (config, e) = experiment("nsga2", BehaviourKind::EndPosition);
+        let (config, e) = experiment(needing(false), BehaviourKind::EndPosition);
         let pop = Population::new(config.neat.clone(), e.cppn_spec(), 9).unwrap();
         for g in pop.genomes().iter().take(4) {
             let c = e.controller(g).unwrap();
@@ -266,7 +276,7 @@ mod tests {
 
     #[test]
     fn end_position_is_the_mean_of_end_positions() {
-        let (config, e) = experiment("novelty", BehaviourKind::EndPosition);
+        let (config, e) = experiment(needing(true), BehaviourKind::EndPosition);
         let pop = Population::new(config.neat.clone(), e.cppn_spec(), 2).unwrap();
         let c = e.controller(&pop.genomes()[0]).unwrap();
         let each = |kind| {
@@ -288,7 +298,7 @@ mod tests {
 
     #[test]
     fn a_trajectory_samples_the_path_and_ends_at_the_end_position() {
-        let (config, e) = experiment("novelty", BehaviourKind::Trajectory);
+        let (config, e) = experiment(needing(true), BehaviourKind::Trajectory);
         let pop = Population::new(config.neat.clone(), e.cppn_spec(), 3).unwrap();
         let m = |kind| Measures {
             behaviour: Some(kind),

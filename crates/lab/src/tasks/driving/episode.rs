@@ -536,7 +536,11 @@ mod tests {
         let mut config = Config::default();
         config.experiment.steps = 100;
         config.substrate.kind = SubstrateKind::EsHyperneat;
-        config.strategy.kind = "nsga2".into();
+        // A strategy that selects on the task's metrics.
+        let metrics = crate::search::entries()
+            .into_iter()
+            .find(|e| e.needs.metrics);
+        config.strategy.kind = metrics.expect("a strategy selects on metrics").kind.into();
         let exp = paper_experiment(&config);
         let pop = Population::new(config.neat.clone(), exp.cppn_spec(), 5).unwrap();
         let ctx = EvalContext {

@@ -15,6 +15,7 @@ pub mod placement;
 pub mod resolutions;
 pub mod rollout;
 pub mod run;
+pub mod scenarios;
 pub mod training;
 
 pub use run::TASK;

@@ -24,6 +24,8 @@ pub static TASK: TaskEntry = TaskEntry {
     refuse_when_other: refuse_placements,
     set_robot: None,
     sections: Vec::new,
+    scenarios: &crate::tasks::driving::scenarios::SCENARIOS,
+    packs: &[],
 };
 
 /// With another task than driving: refuses `experiment.placements` (and its

@@ -18,6 +18,7 @@
 
 pub mod config;
 pub mod lehman;
+pub mod pack;
 mod present;
 pub mod run;
 pub mod section;
@@ -25,7 +26,9 @@ pub mod walls;
 
 pub use run::TASK;
 
-use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
+pub use crate::tasks::robot::{INPUTS, OUTPUTS, RANGE, wheels};
+
+use crate::shipped::Shipped;
 
 use vivae_neat::driver::{Evaluation, Task};
 use vivae_neat::{EvalContext, Genome, GenomeSpec, Network, RecurrentNetwork};
@@ -35,22 +38,25 @@ use vivae_sim::{
 };
 
 /// The medium maze (`scenarios/medium-maze.svg`).
-pub const MEDIUM_MAZE_SVG: &str = shipped_svg("medium-maze");
+pub const MEDIUM_MAZE_SVG: &str = include_str!("../../../../../scenarios/medium-maze.svg");
 /// The hard maze (`scenarios/hard-maze.svg`).
-pub const HARD_MAZE_SVG: &str = shipped_svg("hard-maze");
+pub const HARD_MAZE_SVG: &str = include_str!("../../../../../scenarios/hard-maze.svg");
 
-/// The SVG text of shipped scenario `name` (evaluated at compile time).
-const fn shipped_svg(name: &str) -> &'static str {
-    let mut i = 0;
-    while i < crate::shipped::SHIPPED.len() {
-        let s = &crate::shipped::SHIPPED[i];
-        if s.name.eq_ignore_ascii_case(name) {
-            return s.svg;
-        }
-        i += 1;
-    }
-    panic!("not a shipped scenario")
-}
+/// The mazes as shipped scenarios (`--scenario medium-maze`).
+pub const SCENARIOS: [Shipped; 2] = [
+    Shipped {
+        name: "medium-maze",
+        what: "Lehman & Stanley's medium maze, for --task maze (1 robot, a goal)",
+        svg: MEDIUM_MAZE_SVG,
+        task: NAME,
+    },
+    Shipped {
+        name: "hard-maze",
+        what: "Lehman & Stanley's hard (deceptive) maze, for --task maze (1 robot, a goal)",
+        svg: HARD_MAZE_SVG,
+        task: NAME,
+    },
+];
 
 /// The task's name in `experiment.task` and `--task`.
 pub const NAME: &str = "maze";
@@ -60,12 +66,6 @@ pub const STEPS: u32 = 400;
 pub const FITNESS_BIAS: f64 = 300.0;
 /// Id of the position mark that is the goal.
 pub const GOAL_MARK: &str = "goal";
-/// Rangefinder reach from the robot's centre, px (the paper's 100).
-pub const RANGE: f64 = 100.0;
-/// Network inputs: 6 rangefinders, 4 radar slices, a bias of 1.
-pub const INPUTS: usize = 11;
-/// Network outputs: turn, forward.
-pub const OUTPUTS: usize = 2;
 /// Names of [`Evaluation::metrics`], in order.
 pub const METRICS: [&str; 3] = ["solved", "distance", "steps"];
 
@@ -140,22 +140,6 @@ impl Maze {
         let source = format!("{}-maze.svg", self.name());
         Scenario::from_svg(self.svg(), &source, &LoadOptions::default())
     }
-}
-
-/// The wheel commands `[L, R]` for the network's outputs `turn` and
-/// `forward` in [0, 1]: with `v = 2·forward − 1` and `w = 2·turn − 1`,
-/// `L = v + w` and `R = v − w` (the world clips each to [−1, 1]).
-///
-/// Why: our robot accelerates by `a_max·(L+R)/2 = a_max·v` and turns by
-/// `omega_max·(L−R)/2 = omega_max·w` (less at speed), so with `a_max = 0.5`
-/// the forward output changes the speed by `forward − 0.5` per step, as in
-/// Lehman's simulator, and `turn > 0.5` turns right (clockwise on screen),
-/// as there.
-#[inline]
-pub fn wheels(turn: f64, forward: f64) -> [f64; 2] {
-    let v = 2.0 * forward - 1.0;
-    let w = 2.0 * turn - 1.0;
-    [v + w, v - w]
 }
 
 /// How one episode ended.
@@ -286,24 +270,14 @@ pub struct MazeTask {
 }
 
 impl MazeTask {
-    /// The paper's robot in our physics: radius 8, top speed 3 px/step,
-    /// ±0.5 px/step² from the forward output, no friction drag (Lehman's
-    /// robot keeps its speed), turning up to 0.1 rad/step at standstill.
+    /// The robot's physics ([`crate::tasks::robot::physics`]).
     pub fn physics() -> PhysicsParams {
-        PhysicsParams {
-            robot_radius: 8.0,
-            v_max: 3.0,
-            a_max: 0.5,
-            omega_max: 0.1,
-            k: 0.0,
-            ..PhysicsParams::default()
-        }
+        crate::tasks::robot::physics()
     }
 
-    /// The rangefinders' angles, radians from ahead (negative = left): the
-    /// paper's −90°, −45°, 0°, 45°, 90° and 180° (behind).
+    /// Its rangefinders' angles ([`crate::tasks::robot::rangefinder_angles`]).
     pub fn rangefinder_angles() -> [f64; 6] {
-        [-FRAC_PI_2, -FRAC_PI_4, 0.0, FRAC_PI_4, FRAC_PI_2, PI]
+        crate::tasks::robot::rangefinder_angles()
     }
 
     /// The maze in `scenario`: one robot, a `goal` mark.
@@ -334,13 +308,9 @@ impl MazeTask {
         MazeTask::new(&maze.scenario()?)
     }
 
-    /// The genome layout: [`INPUTS`] inputs, [`OUTPUTS`] sigmoid outputs,
-    /// recurrent links allowed (as in Lehman's NEAT).
+    /// The genome layout ([`crate::tasks::robot::spec`]).
     pub fn spec() -> GenomeSpec {
-        GenomeSpec {
-            allow_recurrent: true,
-            ..GenomeSpec::plain(INPUTS, OUTPUTS)
-        }
+        crate::tasks::robot::spec()
     }
 
     /// Where the goal is.

@@ -42,6 +42,8 @@ pub static TASK: TaskEntry = TaskEntry {
         let maze = crate::tasks::maze::section::MazeConfig::default();
         vec![(NAME.into(), toml::Value::try_from(maze).expect("TOML"))]
     },
+    scenarios: &super::SCENARIOS,
+    packs: &[super::pack::MEDIUM, super::pack::HARD],
 };
 
 /// Side of MAP-Elites' grid cells over the maze, px (the example's).
@@ -208,6 +210,23 @@ mod tests {
             metrics: vec![f64::from(u8::from(solved)), distance, 400.0],
             behaviour: vec![0.0, 0.0],
         }
+    }
+
+    #[test]
+    fn the_robot_override_sets_the_maze_robot_model_and_names_the_models() {
+        let mut o = crate::run::prepare::Overrides::default();
+        o.set("task", NAME).unwrap();
+        let mut c = Config::maze();
+        assert_eq!(c.maze.robot, MazeRobot::Lehman);
+        o.set("robot", "vivae").unwrap();
+        o.apply(&mut c).unwrap();
+        assert_eq!(c.maze.robot, MazeRobot::Vivae);
+        o.set("robot", "khepera").unwrap();
+        let e = o.apply(&mut c).unwrap_err();
+        assert!(
+            e.contains("khepera") && e.contains("lehman or vivae"),
+            "{e}"
+        );
     }
 
     #[test]

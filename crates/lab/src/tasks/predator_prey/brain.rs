@@ -13,7 +13,7 @@
 //! polar sheet over 180°, fully recurrent (output 2); its left and right
 //! wheel neurons (ρ = 2/3, the outermost angles) drive the wheels: their
 //! states in [−1, 1] are the wheel speeds, given to the game as the turn
-//! and forward in [0, 1] that [`crate::tasks::maze::wheels`] turns back
+//! and forward in [0, 1] that [`crate::tasks::robot::wheels`] turns back
 //! into those speeds. The weights are not normalised.
 
 use vivae_neat::hyperneat::{HyperParams, SubstrateController, SubstrateLayout, decode_genome};
@@ -26,8 +26,8 @@ use crate::controller::polar::{
 };
 use crate::controller::sensors::SensorSheet;
 use crate::controller::substrate::{cppn_outputs, layout_of};
-use crate::tasks::maze::MazeTask;
 use crate::tasks::predator_prey::{INPUTS, OUTPUTS};
+use crate::tasks::robot;
 
 /// Sensor inputs of the substrate: the radar's and the rangefinders' (no bias).
 const SENSED: usize = INPUTS - 1;
@@ -71,10 +71,10 @@ impl Substrate {
     }
 
     /// The genome layout of a side of kind `kind`: the plain NEAT network's
-    /// ([`MazeTask::spec`]) or a CPPN with this substrate's outputs.
+    /// ([`robot::spec`]) or a CPPN with this substrate's outputs.
     pub fn spec(&self, kind: SideController) -> GenomeSpec {
         match kind {
-            SideController::Neat => MazeTask::spec(),
+            SideController::Neat => robot::spec(),
             SideController::Hyperneat => GenomeSpec {
                 outputs: self.cppn_outputs,
                 ..GenomeSpec::cppn()
@@ -129,12 +129,12 @@ impl Brain {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::tasks::maze::{RANGE, wheels};
     use crate::tasks::predator_prey::RADAR_SLICES;
+    use crate::tasks::robot::{RANGE, wheels};
 
     fn substrate() -> Substrate {
         let radar = OpponentRadar::new(RADAR_SLICES, 400.0).unwrap();
-        let rays = DistanceGrid::at_angles(&MazeTask::rangefinder_angles(), RANGE);
+        let rays = DistanceGrid::at_angles(&robot::rangefinder_angles(), RANGE);
         Substrate::new(&radar, &rays)
     }
 
@@ -160,7 +160,7 @@ mod tests {
         assert!(close(rays.coords[5], [0.0, -1.0]));
         assert_eq!((l.num_inputs(), l.neurons.len()), (SENSED, 9));
         assert_eq!(s.spec(SideController::Hyperneat).outputs, 5);
-        assert_eq!(s.spec(SideController::Neat), MazeTask::spec());
+        assert_eq!(s.spec(SideController::Neat), robot::spec());
     }
 
     #[test]
@@ -187,7 +187,7 @@ mod tests {
         assert!((l - state[w.left]).abs() < 1e-12 && (r - state[w.right]).abs() < 1e-12);
         assert!(out.iter().all(|o| (0.0..=1.0).contains(o)), "{out:?}");
         // A plain NEAT genome is no CPPN of this substrate: it stands still.
-        let neat = first(MazeTask::spec());
+        let neat = first(robot::spec());
         let mut idle = Brain::new(SideController::Hyperneat, &neat, &s, &hyper);
         idle.act(&inputs, &mut out);
         assert_eq!(out, [0.5, 0.5]);

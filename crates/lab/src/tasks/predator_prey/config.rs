@@ -5,8 +5,8 @@ use vivae_neat::NeatParams;
 use crate::config::coevolution::{Opponents, SideController};
 use crate::config::strategy::StrategyConfig;
 use crate::config::{Config, DistanceConfig, OpponentConfig, SubstrateConfig, TaskName};
-use crate::tasks::maze::MazeTask;
 use crate::tasks::predator_prey::{NAME, STEPS};
+use crate::tasks::robot;
 
 impl Config {
     /// The config of a predator–prey run: the open arena, 500 steps, the
@@ -19,7 +19,7 @@ impl Config {
         c.experiment.steps = STEPS;
         c.experiment.robots = 2;
         c.experiment.generations = 50;
-        c.physics = MazeTask::physics();
+        c.physics = robot::physics();
         c.neat = NeatParams {
             population_size: 100,
             ..NeatParams::plain_neat()

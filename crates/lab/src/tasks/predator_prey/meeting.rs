@@ -5,8 +5,8 @@
 
 use vivae_sim::World;
 
-use crate::tasks::maze::wheels;
 use crate::tasks::predator_prey::{Arena, Outcome};
+use crate::tasks::robot::wheels;
 
 /// An episode under way: the world, the steps played, the distance summed, the catch.
 #[derive(Debug, Clone)]

@@ -8,11 +8,11 @@
 //! The arena is a scenario with one robot of team `hunter` and one of team
 //! `prey` (`data-team`, docs/scenario-format.md); the shipped ones are
 //! `scenarios/predator-prey.svg` and `predator-prey-obstacles.svg`. Both
-//! robots are the maze's robot ([`crate::tasks::maze::MazeTask::physics`]):
+//! robots are Lehman & Stanley's robot ([`crate::tasks::robot::physics`]):
 //! the same speed, so a hunter catches a prey only by cutting it off. Each
 //! carries the opponent radar (four pie slices reading `1 − d/range`,
 //! [`OpponentRadar`]), the maze's six rangefinders and a bias; its outputs
-//! are the maze's turn and forward ([`crate::tasks::maze::wheels`]). An
+//! are the maze's turn and forward ([`crate::tasks::robot::wheels`]). An
 //! episode ends when the two touch (a team contact: the catch) or after
 //! `experiment.steps` steps.
 //!
@@ -47,8 +47,8 @@ use vivae_sim::{
 };
 
 use crate::config::coevolution::SideController;
-use crate::tasks::maze::{MazeTask, RANGE};
 use crate::tasks::predator_prey::brain::{Brain, Substrate};
+use crate::tasks::robot::{self, RANGE};
 
 /// The task's name in `experiment.task` and `--task`.
 pub const NAME: &str = "predator-prey";
@@ -196,7 +196,7 @@ impl Arena {
         let diagonal = scenario.width().hypot(scenario.height());
         let rim = RANGE - physics.robot_radius;
         let radar = OpponentRadar::new(RADAR_SLICES, diagonal)?;
-        let rays = DistanceGrid::at_angles(&MazeTask::rangefinder_angles(), rim);
+        let rays = DistanceGrid::at_angles(&robot::rangefinder_angles(), rim);
         Ok(Arena {
             world: World::new(scenario, physics)?,
             hunter,
@@ -257,17 +257,17 @@ impl Arena {
     /// The genome layout of a plain NEAT side: [`INPUTS`] inputs,
     /// [`OUTPUTS`] sigmoid outputs, recurrent links allowed (as the maze's).
     pub fn spec() -> GenomeSpec {
-        MazeTask::spec()
+        robot::spec()
     }
 
     /// The genome layout of a side of kind `kind`: [`Arena::spec`], or a
     /// CPPN of the substrate ([`brain`]).
     pub fn spec_of(kind: SideController) -> GenomeSpec {
         let radar = OpponentRadar::new(RADAR_SLICES, 1.0);
-        let rays = DistanceGrid::at_angles(&MazeTask::rangefinder_angles(), RANGE);
+        let rays = DistanceGrid::at_angles(&robot::rangefinder_angles(), RANGE);
         match radar {
             Ok(radar) => Substrate::new(&radar, &rays).spec(kind),
-            Err(_) => MazeTask::spec(),
+            Err(_) => robot::spec(),
         }
     }
 
@@ -350,7 +350,7 @@ pub(crate) fn shipped_arena(name: &str) -> Arena {
     let svg = crate::shipped::find(name).unwrap().svg;
     let options = vivae_sim::LoadOptions::default();
     let sc = Scenario::from_svg(svg, name, &options).unwrap();
-    Arena::new(&sc, &MazeTask::physics(), STEPS).unwrap()
+    Arena::new(&sc, &robot::physics(), STEPS).unwrap()
 }
 
 #[cfg(test)]
@@ -418,7 +418,7 @@ mod tests {
     #[test]
     fn a_scenario_without_both_teams_is_refused() {
         let sc = Scenario::from_svg(vivae_sim::ROADS_SVG, "roads.svg", &LoadOptions::default());
-        let err = Arena::new(&sc.unwrap(), &MazeTask::physics(), 10)
+        let err = Arena::new(&sc.unwrap(), &robot::physics(), 10)
             .unwrap_err()
             .to_string();
         assert!(err.contains("roads.svg") && err.contains("hunter"), "{err}");

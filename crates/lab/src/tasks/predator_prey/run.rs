@@ -21,6 +21,7 @@ use crate::config::Config;
 use crate::config::coevolution::SideController;
 use crate::error::{Error, Result};
 use crate::io::{bad_input, create_dirs, load_scenario, read_text, write_atomic};
+use crate::shipped::Shipped;
 use crate::tasks::maps::TrainingMap;
 pub use crate::tasks::predator_prey::coevo::{ChampionEntry, Champions};
 use crate::tasks::predator_prey::coevo::{
@@ -42,7 +43,25 @@ pub static TASK: TaskEntry = TaskEntry {
     refuse_when_other: |_| Ok(()),
     set_robot: None,
     sections: Vec::new,
+    scenarios: &SCENARIOS,
+    packs: &[],
 };
+
+/// The predator–prey arenas as shipped scenarios (`--scenario predator-prey`).
+pub const SCENARIOS: [Shipped; 2] = [
+    Shipped {
+        name: "predator-prey",
+        what: "an open 300 x 300 arena, for --task predator-prey (a hunter and a prey)",
+        svg: include_str!("../../../../../scenarios/predator-prey.svg"),
+        task: NAME,
+    },
+    Shipped {
+        name: "predator-prey-obstacles",
+        what: "the predator-prey arena with four blocks to hide behind (a hunter and a prey)",
+        svg: include_str!("../../../../../scenarios/predator-prey-obstacles.svg"),
+        task: NAME,
+    },
+];
 
 /// The files of a predator–prey run directory.
 pub mod files {

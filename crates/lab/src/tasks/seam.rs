@@ -1,0 +1,346 @@
+//! The task seam: what a run asks of its task ([`RunTask`]) and what it
+//! knows of a task before building it ([`TaskEntry`]), and reading and
+//! checking a config by its task's defaults and rules. The tasks themselves
+//! are registered in [`super::TASKS`].
+
+use std::any::Any;
+use std::fmt;
+use std::path::Path;
+use std::sync::atomic::AtomicBool;
+
+use vivae_neat::driver::{Evaluation, Task};
+use vivae_neat::{Genome, GenomeSpec};
+
+use super::TASKS;
+use super::maps::TrainingMap;
+use super::{TargetProgress, driving};
+use crate::config::{Config, ConfigError, TaskName};
+use crate::error::{Error, Result};
+use crate::io::{read_text, resolve_map};
+use crate::reproduce::Pack;
+use crate::shipped::Shipped;
+
+/// How a task with a choice of robot models sets one by name.
+pub type SetRobot = fn(&mut Config, &str) -> std::result::Result<(), String>;
+
+/// How a task is built from a config and its maps.
+pub type BuildTask = fn(&Config, &[TrainingMap]) -> Result<Box<dyn RunTask>>;
+
+/// A task's registration: what a run needs to know of it before it is built.
+pub struct TaskEntry {
+    /// Its name in `experiment.task` and `--task`.
+    pub name: &'static str,
+    /// The config a run of it starts from without a config file; a config
+    /// file's unset keys are taken from it too.
+    pub default_config: fn() -> Config,
+    /// The rules the task adds to [`Config::validate`]'s (the message names the key).
+    pub validate: fn(&Config) -> std::result::Result<(), String>,
+    /// Names of the metrics its evaluations carry (objectives a strategy may select on besides fitness).
+    pub metric_names: &'static [&'static str],
+    /// The columns it adds to `generations.csv`, each with its leading comma.
+    pub generation_columns: &'static str,
+    /// Builds the task of `config` on `maps` (from [`maps::load`]).
+    pub build: BuildTask,
+    /// For a task that runs on a driver of its own (two populations) rather
+    /// than [`crate::run::Run`]: that driver. `None` for one population.
+    pub own_driver: Option<OwnDriver>,
+    /// What its own config sections must be when another task runs (e.g.
+    /// at their defaults: they would be ignored); the message names the key.
+    pub refuse_when_other: fn(&Config) -> std::result::Result<(), String>,
+    /// Sets its robot model by name (`--robot`), for a task with a choice of them.
+    pub set_robot: Option<SetRobot>,
+    /// Its own config sections at their defaults, for the config reference
+    /// (a run's config writes them only when they differ).
+    pub sections: fn() -> Vec<(String, toml::Value)>,
+    /// The scenarios shipped for it (`--scenario NAME`; [`crate::shipped::all`]).
+    pub scenarios: &'static [Shipped],
+    /// Its replication packs (`vivae reproduce NAME`; [`crate::reproduce::packs`]).
+    pub packs: &'static [Pack],
+}
+
+/// What a running task's own driver tells the program: lines for a person
+/// (the header, a line per generation, the closing lines) and whether the
+/// user asked it to stop.
+pub struct Session<'a> {
+    /// Set when the user asks the run to stop after the generation.
+    pub interrupted: &'a AtomicBool,
+    /// Says a line to a person (the program prints it on stderr unless quiet).
+    pub say: &'a (dyn Fn(&str) + Sync),
+    /// Who plays the predator–prey task's meetings when not this process's
+    /// threads (`None`): the program's players across an MPI job's ranks.
+    pub meetings: Option<&'a dyn super::predator_prey::meetings::Meetings>,
+}
+
+/// The driver of a task that runs on its own: it creates, resumes and runs
+/// its run directories and returns the run's machine-readable summary line.
+#[derive(Debug, Clone, Copy)]
+pub struct OwnDriver {
+    /// Creates a run of `config` in `dir` (replacing a run there with
+    /// `force`) and runs it to its end or an interruption.
+    pub evolve:
+        fn(dir: &Path, config: Config, force: bool, session: &Session<'_>) -> Result<String>,
+    /// Resumes the run in `dir`, to `generations` generations in all when given.
+    pub resume: fn(dir: &Path, generations: Option<u32>, session: &Session<'_>) -> Result<String>,
+}
+
+/// The driver of the run in `dir`, when its task (in its `config.toml`) runs on its own.
+pub fn own_driver_of_run(dir: &Path) -> Option<OwnDriver> {
+    let text = std::fs::read_to_string(dir.join(crate::rundir::files::CONFIG)).ok()?;
+    entry(task_of_text(&text)?.name()).ok()?.own_driver
+}
+
+impl fmt::Debug for TaskEntry {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("TaskEntry")
+            .field("name", &self.name)
+            .finish()
+    }
+}
+
+/// The registered task called `name`; the error lists the ones there are.
+pub fn entry(name: &str) -> std::result::Result<&'static TaskEntry, String> {
+    TASKS
+        .iter()
+        .copied()
+        .find(|t| t.name == name)
+        .ok_or_else(|| {
+            let names: Vec<_> = TASKS.iter().map(|t| t.name).collect();
+            format!("'{name}': expected {}", names.join(" or "))
+        })
+}
+
+/// The entry of `config`'s task (checked by [`check`]).
+pub fn entry_of(config: &Config) -> std::result::Result<&'static TaskEntry, ConfigError> {
+    entry(config.experiment.task.name())
+        .map_err(|why| ConfigError::new(format!("experiment.task = {why}")))
+}
+
+/// The config a run of `task` starts from without a config file (the
+/// paper's driving experiment when no task is named).
+pub fn default_config(task: Option<&TaskName>) -> std::result::Result<Config, String> {
+    match task {
+        Some(t) => entry(t.name()).map(|e| (e.default_config)()),
+        None => Ok(Config::default()),
+    }
+}
+
+/// Sets `config`'s robot model to `robot` (`--robot`) by its task's
+/// [`TaskEntry::set_robot`]; refused for a task without a choice.
+pub fn set_robot(config: &mut Config, robot: &str) -> std::result::Result<(), String> {
+    let task = entry(config.experiment.task.name())?;
+    let Some(set) = task.set_robot else {
+        let with: Vec<&str> = (TASKS.iter())
+            .filter(|t| t.set_robot.is_some())
+            .map(|t| t.name)
+            .collect();
+        return Err(format!(
+            "robot = {robot}: a {} run has one robot model (tasks with a choice: {})",
+            task.name,
+            with.join(", ")
+        ));
+    };
+    set(config, robot).map_err(|e| format!("robot = {e}"))
+}
+
+/// Checks `config` by the shared rules and by its task's: the one validation
+/// of a config that a run starts from.
+pub fn check(config: &Config) -> std::result::Result<(), ConfigError> {
+    let task = entry_of(config)?;
+    config.validate()?;
+    crate::search::check(config, task.metric_names).map_err(ConfigError::new)?;
+    for other in TASKS.iter().filter(|t| t.name != task.name) {
+        (other.refuse_when_other)(config).map_err(ConfigError::new)?;
+    }
+    (task.validate)(config).map_err(ConfigError::new)
+}
+
+/// Parses a config's TOML text: unset keys take the defaults of the task it
+/// names, and it is [`check`]ed; errors are one line naming the line and key.
+pub fn config_from_toml(text: &str) -> std::result::Result<Config, ConfigError> {
+    let named = Config::from_toml(text);
+    // The shared rules may refuse a value that the task's defaults would set
+    // differently: the task comes from the text whatever they say.
+    let task: TaskName = match &named {
+        Ok(c) => c.experiment.task.clone(),
+        Err(_) => task_of_text(text).unwrap_or_default(),
+    };
+    let entry =
+        entry(task.name()).map_err(|why| ConfigError::new(format!("experiment.task = {why}")))?;
+    let defaults = (entry.default_config)();
+    let config = if defaults == Config::default() {
+        named?
+    } else {
+        Config::from_toml_over(text, Some(&defaults))?
+    };
+    check(&config).map_err(|e| e.at_line_of_key(text))?;
+    Ok(config)
+}
+
+/// Reads a config file with its task's defaults and checks it; relative paths in it (scenario, initial
+/// population) become relative to the file's folder (a bare shipped name with no such file there stays shipped).
+pub fn read_config(path: &Path) -> Result<Config> {
+    let text = read_text(path)?;
+    let mut config = config_from_toml(&text).map_err(|error| Error::Config {
+        path: path.to_path_buf(),
+        error,
+    })?;
+    let base = path.parent().unwrap_or(Path::new(""));
+    // A bare shipped name (a task's default arena) with no such file there stays shipped.
+    if !config.experiment.scenario.is_empty() {
+        config.experiment.scenario = resolve_map(base, &config.experiment.scenario);
+    }
+    let p = &mut config.experiment.init_population;
+    if !p.is_empty() && Path::new(p.as_str()).is_relative() {
+        *p = base.join(&*p).to_string_lossy().into_owned();
+    }
+    for p in &mut config.experiment.scenarios {
+        *p = resolve_map(base, p);
+    }
+    Ok(config)
+}
+
+/// `experiment.task` as `text` sets it, if it parses that far.
+fn task_of_text(text: &str) -> Option<TaskName> {
+    let value: toml::Value = toml::from_str(text).ok()?;
+    let task = value.get("experiment")?.get("task")?.as_str()?;
+    Some(TaskName(task.to_string()))
+}
+
+/// Metric names of `config`'s task (none for a task that is not registered).
+pub fn metric_names(config: &Config) -> &'static [&'static str] {
+    entry(config.experiment.task.name()).map_or(&[], |e| e.metric_names)
+}
+
+/// The task of `config` on `maps` (from [`maps::load`]).
+pub fn build(config: &Config, maps: &[TrainingMap]) -> Result<Box<dyn RunTask>> {
+    let task = entry(config.experiment.task.name()).map_err(crate::io::bad_input)?;
+    (task.build)(config, maps)
+}
+
+/// What the program tells a task for its [`RunTask::header`].
+#[derive(Debug, Clone, Copy)]
+pub struct HeaderContext<'a> {
+    /// The command running the run (`evolve`, `resume`, …).
+    pub command: &'a str,
+    /// What it trains on ([`RunTask::describe`]).
+    pub scenario: &'a str,
+    /// ` (resuming after generation N)`, or empty for a new run.
+    pub start: &'a str,
+    /// The evaluation threads, as a person reads them.
+    pub threads: &'a str,
+    /// The line on the search strategy (with its leading line break), or empty.
+    pub strategy: &'a str,
+    /// The run directory.
+    pub output: &'a str,
+}
+
+/// A finished run, for [`RunTask::summary`].
+#[derive(Debug, Clone, Copy)]
+pub struct Finished<'a> {
+    /// The champion genome.
+    pub champion: &'a Genome,
+    /// Its fitness.
+    pub fitness: f64,
+    /// The run-relative generation it was found in.
+    pub generation: u32,
+    /// Progress towards the task's target (default for a task without one).
+    pub progress: TargetProgress,
+    /// Generations done.
+    pub generations: u32,
+    /// Wall-clock seconds of this invocation.
+    pub wall: f64,
+    /// Robot-steps per second.
+    pub rate: f64,
+    /// The run directory.
+    pub dir: &'a str,
+    /// The strategy's summary fields (leading spaces included).
+    pub strategy_fields: &'a str,
+}
+
+/// A task as a run evaluates, records and reports it.
+pub trait RunTask: Task + fmt::Debug + Send + Sync {
+    /// Its registration.
+    fn entry(&self) -> &'static TaskEntry;
+
+    /// The shape of the genomes the run evolves.
+    fn genome_spec(&self) -> GenomeSpec;
+
+    /// The box the behaviour descriptors of `config`'s strategy lie in
+    /// (a grid archive's cells cover it).
+    fn behaviour_bounds(&self, config: &Config) -> (Vec<f64>, Vec<f64>);
+
+    /// Robot-steps one evaluation simulates at most.
+    fn robot_steps(&self) -> u64;
+
+    /// Robot-steps a generation's `evaluations` simulated (a task whose
+    /// episodes end early counts the steps they took).
+    fn robot_steps_of(&self, evaluations: &[Evaluation]) -> f64 {
+        evaluations.len() as f64 * self.robot_steps() as f64
+    }
+
+    /// Why `genome` does not fit the task, if it does not.
+    fn check_genome(&self, genome: &Genome) -> std::result::Result<(), String>;
+
+    /// The links `genome`'s network expresses and could express
+    /// (`generations.csv`'s `best_substrate_links`, `possible_substrate_links`).
+    fn links(&self, genome: &Genome) -> Result<(usize, usize)>;
+
+    /// What the run trains on, for the run's header line.
+    fn describe(&self, maps: &[TrainingMap]) -> String;
+
+    /// Settings of a config left at the task's defaults that the task fits
+    /// to itself (e.g. a grid archive to its arena).
+    fn fit_defaults(&self, _config: &mut Config) {}
+
+    /// Whether a run stops once an evaluation reaches the task's target; its
+    /// progress towards it is then kept in the checkpoints.
+    fn has_target(&self) -> bool {
+        false
+    }
+
+    /// Whether `evaluation` reached the task's target.
+    fn reached_target(&self, _evaluation: &Evaluation) -> bool {
+        false
+    }
+
+    /// The task's own fields of a `generations.csv` row (its
+    /// [`TaskEntry::generation_columns`]), with their leading commas.
+    fn generation_fields(&self, _progress: &TargetProgress, _evaluations: &[Evaluation]) -> String {
+        String::new()
+    }
+
+    /// The lines that open a run in the terminal: what is evolved, on what,
+    /// how it is scored.
+    fn header(&self, config: &Config, ctx: &HeaderContext<'_>) -> String;
+
+    /// A finished run's closing text for a task that draws no figures: the
+    /// lines for a person and the machine-readable summary line; `None` for
+    /// the driving experiment, whose figures and report the program draws.
+    fn summary(&self, _finished: &Finished<'_>) -> Option<(String, String)> {
+        None
+    }
+
+    /// A replay of `genome` for a task that draws no figures: the episode's
+    /// end (for stdout) and a note (for stderr); `None` for driving.
+    fn replay_text(&self, _genome: &Genome) -> Option<(String, String)> {
+        None
+    }
+
+    /// The driving experiment, when the task is one: figures, replays and the
+    /// viewer show its robots.
+    fn driving(&self) -> Option<&driving::training::Training> {
+        None
+    }
+
+    /// The task as [`Any`], for code that knows a task's concrete type.
+    fn as_any(&self) -> &dyn Any;
+
+    /// A boxed copy (each evaluator holds its own).
+    fn clone_box(&self) -> Box<dyn RunTask>;
+}
+
+impl Clone for Box<dyn RunTask> {
+    fn clone(&self) -> Self {
+        self.clone_box()
+    }
+}
