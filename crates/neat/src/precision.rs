@@ -157,7 +157,12 @@ mod tests {
                 worst = (rel, x);
             }
         }
-        assert!(worst.0 < 1.0e-7, "relative error {:e} at {}", worst.0, worst.1);
+        assert!(
+            worst.0 < 1.0e-7,
+            "relative error {:e} at {}",
+            worst.0,
+            worst.1
+        );
         // Clamped outside, saturating rather than overflowing.
         assert_eq!(exp_f32(-1000.0), exp_f32(-87.0));
         assert_eq!(exp_f32(1000.0), exp_f32(88.0));
@@ -176,7 +181,12 @@ mod tests {
                 worst = (err, x);
             }
         }
-        assert!(worst.0 < 2.0e-7, "absolute error {:e} at {}", worst.0, worst.1);
+        assert!(
+            worst.0 < 2.0e-7,
+            "absolute error {:e} at {}",
+            worst.0,
+            worst.1
+        );
         assert_eq!(bipolar_sigmoid_f32(0.0), 0.0);
         assert_eq!(bipolar_sigmoid_f32(1e30), 1.0);
         assert_eq!(bipolar_sigmoid_f32(-1e30), -1.0);
