@@ -16,7 +16,9 @@
 use serde::{Deserialize, Serialize};
 
 /// The arithmetic precision of a controller's step.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize, schemars::JsonSchema,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum Precision {
     /// f64 weights and states, the portable f64 `exp`: the reference bits.
@@ -27,6 +29,11 @@ pub enum Precision {
 }
 
 impl Precision {
+    /// Whether this is the default, [`Precision::Exact`].
+    pub fn is_exact(&self) -> bool {
+        *self == Precision::Exact
+    }
+
     /// The name used in configs and on the command line (`exact`, `fast`).
     pub fn name(self) -> &'static str {
         match self {
@@ -42,6 +49,14 @@ impl Precision {
             "fast" => Some(Precision::Fast),
             _ => None,
         }
+    }
+}
+
+impl std::str::FromStr for Precision {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        Precision::from_name(s).ok_or_else(|| format!("'{s}': expected exact or fast"))
     }
 }
 
