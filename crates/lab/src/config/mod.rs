@@ -148,8 +148,8 @@ pub struct ExperimentConfig {
     /// every recorded run) or `fast` (f32 weights, states and a polynomial
     /// sigmoid within 2e-7 of the exact one: other bits, again the same on
     /// every CPU, SIMD level and thread count). A checkpoint keeps it;
-    /// resuming in the other precision is refused. Used by the dense polar
-    /// substrate of the driving tasks; elsewhere it changes nothing yet.
+    /// resuming in the other precision is refused. Only the dense polar
+    /// substrate of the driving task has a fast step: elsewhere `fast` is refused.
     ///
     /// Example: "fast".
     #[serde(default, skip_serializing_if = "Precision::is_exact")]
