@@ -17,7 +17,10 @@ const PINNED_FAST: u64 = 0x5c1e_34f3_b24c_3e3c;
 /// The exact run's pinned hash (`short_run_matches_pinned_hash`).
 const PINNED_EXACT: u64 = 0x8b3b_eb74_273b_9cda;
 
-fn fast_run(out: &Path, extra: &[(&str, &str)], env: &[(&str, &str)]) {
+/// A flag and its value, or an environment variable and its value.
+type Pair = (&'static str, &'static str);
+
+fn fast_run(out: &Path, extra: &[Pair], env: &[Pair]) {
     let mut cmd = common::short_run_command(out);
     cmd.args(["--precision", "fast"]);
     for (flag, value) in extra {
@@ -57,7 +60,7 @@ fn fast_short_run_matches_pinned_hash() {
 #[test]
 fn fast_short_run_is_bit_identical_at_every_simd_level_thread_count_and_old_cpu_path() {
     let dir = scratch("fast-levels");
-    let variants: [(&str, &[(&str, &str)], &[(&str, &str)]); 4] = [
+    let variants: [(&str, &[Pair], &[Pair]); 4] = [
         (
             "scalar-1",
             &[("--threads", "1")],
