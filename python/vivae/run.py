@@ -90,7 +90,8 @@ def evolve(
         **overrides: settings by the CLI's flag names: ``scenario`` (a path,
             a shipped name, or a list for several maps), ``generations``,
             ``population``, ``seed``, ``sensors="3x5"``, ``neurons="3x3"``,
-            ``steps``, ``robots``, ``threads``, … (``vivae.OVERRIDES``);
+            ``steps``, ``robots``, ``threads``, ``precision="fast"`` (the f32
+            controller step), … (``vivae.OVERRIDES``);
             ``task="maze"`` runs Lehman & Stanley's maze (default
             ``hard-maze``) as ``vivae evolve --task maze`` does.
 
