@@ -355,10 +355,11 @@ mod tests {
             ("robot", "vivae"),
             ("placements", "1"),
             ("placements_aggregate", "mean"),
+            ("precision", "exact"),
         ] {
             o.set(key, text).unwrap_or_else(|e| panic!("{key}: {e}"));
         }
-        assert_eq!(Overrides::KEYS.len(), 23);
+        assert_eq!(Overrides::KEYS.len(), 24);
         let mut c = Config::maze();
         o.apply(&mut c).unwrap();
         assert_eq!((c.experiment.generations, c.neat.population_size), (3, 10));
@@ -368,6 +369,8 @@ mod tests {
         assert!(e.contains("popsize") && e.contains("population"), "{e}");
         let e = o.set("steps", "-5").unwrap_err();
         assert!(e.starts_with("steps = \"-5\""), "{e}");
+        let e = o.set("precision", "half").unwrap_err();
+        assert!(e.contains("expected exact or fast"), "{e}");
         let e = o.set("task", "chess").unwrap_err();
         assert!(e.contains("chess") && e.contains("driving"), "{e}");
         // A robot model is the task's to read: refused by the maze, and by a
