@@ -467,22 +467,28 @@ fn own_driver_run<'py>(
 
 /// Continues the interrupted run in `out` (or extends a finished one to
 /// `generations`) as `vivae resume` does: the same files, byte for byte.
+/// `precision` ("exact" or "fast"), when given, must be the run's own.
 #[pyfunction]
-#[pyo3(signature = (out, generations=None, threads=None, on_generation=None))]
+#[pyo3(signature = (out, generations=None, threads=None, on_generation=None, precision=None))]
 pub fn resume<'py>(
     py: Python<'py>,
     out: PathBuf,
     generations: Option<u32>,
     threads: Option<usize>,
     on_generation: Option<Py<PyAny>>,
+    precision: Option<String>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let precision = precision
+        .map(|p| p.parse::<vivae_neat::Precision>())
+        .transpose()
+        .map_err(|e| errors::value(format!("precision: {e}")))?;
     if let Some(driver) = vivae_lab::tasks::own_driver_of_run(&out) {
         return own_driver_run(py, &out, |session| {
             (driver.resume)(&out, generations, session)
         });
     }
     let run = py
-        .detach(|| Run::resume(&out, generations, threads))
+        .detach(|| Run::resume_in(&out, generations, threads, precision))
         .map_err(errors::lab)?;
     drive(py, run, on_generation)
 }

@@ -13,7 +13,7 @@ use crate::errors;
 
 /// The keyword overrides every entry point accepts: the library's
 /// [`Overrides`] keys, which are the CLI's flags too.
-pub const OVERRIDES: [&str; 23] = Overrides::KEYS;
+pub const OVERRIDES: [&str; 24] = Overrides::KEYS;
 
 /// `config` (a TOML file) or the named task's defaults (the paper's when
 /// none is named), with `overrides` applied and checked: the library's one
@@ -104,6 +104,7 @@ fn set(o: &mut Overrides, key: &str, v: &Bound<'_, PyAny>) -> PyResult<()> {
         "behaviour" => o.behaviour = Some(parsed(key, v)?),
         "placements" => o.placements = Some(int(key, v)?),
         "placements_aggregate" => o.placements_aggregate = Some(parsed(key, v)?),
+        "precision" => o.precision = Some(parsed(key, v)?),
         "task" | "robot" => {
             let t: String = v.extract()?;
             o.set(key, &t).map_err(errors::value)?;

@@ -80,3 +80,20 @@ def test_report_draws_what_the_program_draws(tmp_path, cli):
 def test_report_of_a_folder_that_is_not_a_run_is_an_error(tmp_path):
     with pytest.raises((ValueError, OSError)):
         vivae.report(tmp_path)
+
+
+def test_a_fast_run_keeps_its_precision_and_refuses_the_other(tmp_path):
+    fast = tmp_path / "fast"
+    vivae.evolve(out=fast, generations=2, precision="fast", **SETTINGS)
+    assert 'precision = "fast"' in (fast / "config.toml").read_text()
+    exact = tmp_path / "exact"
+    vivae.evolve(out=exact, generations=2, **SETTINGS)
+    assert "precision" not in (exact / "config.toml").read_text()
+    assert (fast / "champion.json").read_bytes() != (exact / "champion.json").read_bytes()
+    before = (fast / "generations.csv").read_bytes()
+    with pytest.raises(ValueError, match="computes in fast precision"):
+        vivae.resume(fast, generations=3, precision="exact", progress=False)
+    assert (fast / "generations.csv").read_bytes() == before
+    with pytest.raises(ValueError, match="expected exact or fast"):
+        vivae.evolve(out=tmp_path / "bad", generations=2, precision="half", **SETTINGS)
+    vivae.resume(fast, generations=3, precision="fast", progress=False)

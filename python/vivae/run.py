@@ -90,7 +90,8 @@ def evolve(
         **overrides: settings by the CLI's flag names: ``scenario`` (a path,
             a shipped name, or a list for several maps), ``generations``,
             ``population``, ``seed``, ``sensors="3x5"``, ``neurons="3x3"``,
-            ``steps``, ``robots``, ``threads``, … (``vivae.OVERRIDES``);
+            ``steps``, ``robots``, ``threads``, ``precision="fast"`` (the f32
+            controller step), … (``vivae.OVERRIDES``);
             ``task="maze"`` runs Lehman & Stanley's maze (default
             ``hard-maze``) as ``vivae evolve --task maze`` does.
 
@@ -137,24 +138,29 @@ def resume(
     threads: int | None = None,
     progress: bool = True,
     on_generation: Callable[[dict], Any] | None = None,
+    precision: str | None = None,
 ) -> dict:
     """Continues an interrupted run as ``vivae resume OUT [--generations N]`` does.
 
     The finished files are byte for byte those of an uninterrupted run (at
-    any thread count); ``generations`` extends a finished run.
+    any thread count); ``generations`` extends a finished run. ``precision``
+    (``"exact"`` or ``"fast"``), when given, must be the one the run started
+    with (its checkpoint records it); another is refused.
 
     Returns:
         The dict :func:`evolve` returns.
 
     Raises:
-        ValueError: not a run, a damaged checkpoint, or ``generations`` below
-            the generations it already has.
+        ValueError: not a run, a damaged checkpoint, ``generations`` below
+            the generations it already has, or another ``precision``.
         OSError: a file that cannot be read or written.
         KeyboardInterrupt: as in :func:`evolve`.
     """
     return _with_bar(
         progress, generations or 0, on_generation,
-        lambda each: _vivae.resume(out, generations=generations, threads=threads, on_generation=each),
+        lambda each: _vivae.resume(
+            out, generations=generations, threads=threads, on_generation=each, precision=precision
+        ),
     )
 
 

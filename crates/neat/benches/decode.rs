@@ -14,6 +14,8 @@
 //! * `controller_step_paper`: one update of the 3×5 → 3×3 controller (done
 //!   ~200 M times in the default run: 100 genomes × 400 generations × 5 robots
 //!   × 1000 steps).
+//! * `controller_batch_step_paper` / `_camera`: one batched update of 5
+//!   robots, 3×5 → 3×3 and 32×96 → 9×9, in exact and in fast precision.
 
 use divan::Bencher;
 use vivae_neat::hyperneat::es::{EsLayout, EsParams, decode_es, decode_es_genome};
@@ -251,4 +253,39 @@ fn controller_episode_paper(bencher: Bencher) {
         }
         out[3]
     });
+}
+
+/// One batched update of 5 robots (as in one evaluation step) in each
+/// precision: the paper's 3×5 → 3×3 controller and the camera's 32×96 → 9×9.
+fn batch_step(bencher: Bencher, sensors: (usize, usize), neurons: (usize, usize), precision: &str) {
+    let mut c = decode(
+        &mut cppn(),
+        &layout(sensors, neurons),
+        &HyperParams::default(),
+    )
+    .unwrap();
+    c.set_precision(vivae_neat::Precision::from_name(precision).unwrap());
+    let robots = 5;
+    let ni = Network::num_inputs(&c);
+    let inputs: Vec<f64> = (0..robots * ni)
+        .map(|k| [1.0, 0.0, 0.72, 0.39][k % 4])
+        .collect();
+    let mut out = vec![0.0; robots * c.num_neurons()];
+    let mut states = c.batch_state(robots);
+    bencher.bench_local(|| {
+        c.activate_batch(&mut states, divan::black_box(&inputs), &mut out);
+        out[3]
+    });
+}
+
+/// `batch_step` of the paper's controller, exact vs fast.
+#[divan::bench(args = ["exact", "fast"])]
+fn controller_batch_step_paper(bencher: Bencher, precision: &str) {
+    batch_step(bencher, (3, 5), (3, 3), precision);
+}
+
+/// `batch_step` of the camera-resolution controller (32×96 → 9×9), exact vs fast.
+#[divan::bench(args = ["exact", "fast"])]
+fn controller_batch_step_camera(bencher: Bencher, precision: &str) {
+    batch_step(bencher, (32, 96), (9, 9), precision);
 }

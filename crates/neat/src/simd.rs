@@ -30,25 +30,26 @@ pub fn set_level(wanted: SimdLevel) -> SimdLevel {
     LEVEL.set(wanted)
 }
 
-/// Vector operations of one instruction level, as used by the hot loops.
+/// Vector operations of one instruction level on elements `E` (f64 for the
+/// exact precision, f32 for the fast one), as used by the hot loops.
 ///
 /// Implemented by zero-sized tokens: a token of a level above the baseline
 /// can only be made on a CPU that supports it, which is what makes its
 /// (safe) methods sound. Only separately rounded `mul` and `add` are offered:
 /// no fused multiply-add, so every level computes the same bits.
-pub(crate) trait Simd: Copy {
-    /// A vector of `LANES` f64.
+pub(crate) trait Simd<E = f64>: Copy {
+    /// A vector of `LANES` elements.
     type V: Copy;
-    /// f64 per vector.
+    /// Elements per vector.
     const LANES: usize;
     /// Robots per tile of the batched controller step (sums kept in registers).
     const MAX_TILE: usize;
     /// All lanes `x`.
-    fn splat(self, x: f64) -> Self::V;
+    fn splat(self, x: E) -> Self::V;
     /// The first `LANES` values of `s` (panics when `s` is shorter).
-    fn load(self, s: &[f64]) -> Self::V;
+    fn load(self, s: &[E]) -> Self::V;
     /// Writes `v` to the first `LANES` values of `s` (panics when shorter).
-    fn store(self, v: Self::V, s: &mut [f64]);
+    fn store(self, v: Self::V, s: &mut [E]);
     /// Lane-wise `a + b`.
     fn add(self, a: Self::V, b: Self::V) -> Self::V;
     /// Lane-wise `a · b`.
@@ -118,6 +119,91 @@ impl Simd for Baseline {
     #[inline(always)]
     fn mul(self, a: Self::V, b: Self::V) -> Self::V {
         [a[0] * b[0], a[1] * b[1]]
+    }
+}
+
+/// Defines `Simd<f32>` for an x86 token from the intrinsics of its vector
+/// type (the f32 lanes of the fast precision), one definition per level.
+#[cfg(target_arch = "x86_64")]
+macro_rules! x86_f32 {
+    ($token:ty, $v:ty, $lanes:literal, $tile:literal, $feature:literal,
+     $set1:ident, $loadu:ident, $storeu:ident, $add:ident, $mul:ident) => {
+        // SAFETY (every `unsafe` block of this impl): the token exists only
+        // when the CPU supports `$feature` (the baseline's SSE2 always);
+        // loads and stores go through slices checked to hold `$lanes` f32.
+        impl Simd<f32> for $token {
+            type V = $v;
+            const LANES: usize = $lanes;
+            const MAX_TILE: usize = $tile;
+            #[inline(always)]
+            fn splat(self, x: f32) -> $v {
+                // SAFETY: see the impl: the level's instructions are supported.
+                unsafe { std::arch::x86_64::$set1(x) }
+            }
+            #[inline(always)]
+            fn load(self, s: &[f32]) -> $v {
+                let s = &s[..$lanes];
+                // SAFETY: see the impl; `s` holds `$lanes` f32, the load is unaligned.
+                unsafe { std::arch::x86_64::$loadu(s.as_ptr()) }
+            }
+            #[inline(always)]
+            fn store(self, v: $v, s: &mut [f32]) {
+                let s = &mut s[..$lanes];
+                // SAFETY: see the impl; `s` holds `$lanes` f32, the store is unaligned.
+                unsafe { std::arch::x86_64::$storeu(s.as_mut_ptr(), v) }
+            }
+            #[inline(always)]
+            fn add(self, a: $v, b: $v) -> $v {
+                // SAFETY: see the impl: the level's instructions are supported.
+                unsafe { std::arch::x86_64::$add(a, b) }
+            }
+            #[inline(always)]
+            fn mul(self, a: $v, b: $v) -> $v {
+                // SAFETY: see the impl: the level's instructions are supported.
+                unsafe { std::arch::x86_64::$mul(a, b) }
+            }
+        }
+    };
+}
+
+#[cfg(target_arch = "x86_64")]
+x86_f32!(
+    Baseline,
+    std::arch::x86_64::__m128,
+    4,
+    6,
+    "sse2",
+    _mm_set1_ps,
+    _mm_loadu_ps,
+    _mm_storeu_ps,
+    _mm_add_ps,
+    _mm_mul_ps
+);
+
+#[cfg(not(target_arch = "x86_64"))]
+impl Simd<f32> for Baseline {
+    type V = [f32; 4];
+    const LANES: usize = 4;
+    const MAX_TILE: usize = 6;
+    #[inline(always)]
+    fn splat(self, x: f32) -> Self::V {
+        [x; 4]
+    }
+    #[inline(always)]
+    fn load(self, s: &[f32]) -> Self::V {
+        [s[0], s[1], s[2], s[3]]
+    }
+    #[inline(always)]
+    fn store(self, v: Self::V, s: &mut [f32]) {
+        s[..4].copy_from_slice(&v);
+    }
+    #[inline(always)]
+    fn add(self, a: Self::V, b: Self::V) -> Self::V {
+        std::array::from_fn(|i| a[i] + b[i])
+    }
+    #[inline(always)]
+    fn mul(self, a: Self::V, b: Self::V) -> Self::V {
+        std::array::from_fn(|i| a[i] * b[i])
     }
 }
 
@@ -224,6 +310,31 @@ pub(crate) mod x86 {
             unsafe { _mm512_mul_pd(a, b) }
         }
     }
+
+    x86_f32!(
+        Avx2,
+        __m256,
+        8,
+        6,
+        "avx2",
+        _mm256_set1_ps,
+        _mm256_loadu_ps,
+        _mm256_storeu_ps,
+        _mm256_add_ps,
+        _mm256_mul_ps
+    );
+    x86_f32!(
+        Avx512,
+        __m512,
+        16,
+        8,
+        "avx512f",
+        _mm512_set1_ps,
+        _mm512_loadu_ps,
+        _mm512_storeu_ps,
+        _mm512_add_ps,
+        _mm512_mul_ps
+    );
 }
 
 #[cfg(test)]

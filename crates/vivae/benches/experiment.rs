@@ -9,7 +9,7 @@ use divan::counter::ItemsCount;
 use vivae_lab::config::Config;
 use vivae_lab::io::load_scenario;
 use vivae_lab::tasks::driving::episode::Episode;
-use vivae_neat::{Genome, NeatParams, Population};
+use vivae_neat::{Genome, NeatParams, Population, Precision};
 
 fn main() {
     divan::main();
@@ -38,7 +38,18 @@ fn experiment(config: &Config) -> Episode {
 /// One evaluation of the paper's experiment: decode + 5 robots × 1000 steps.
 #[divan::bench]
 fn evaluation_3x5_to_3x3(bencher: divan::Bencher) {
-    let config = Config::default();
+    evaluation_3x5(bencher, Precision::Exact);
+}
+
+/// The same in fast precision (`experiment.precision = "fast"`).
+#[divan::bench]
+fn evaluation_3x5_to_3x3_fast(bencher: divan::Bencher) {
+    evaluation_3x5(bencher, Precision::Fast);
+}
+
+fn evaluation_3x5(bencher: divan::Bencher, precision: Precision) {
+    let mut config = Config::default();
+    config.experiment.precision = precision;
     let exp = experiment(&config);
     let g = genome(&exp);
     let robot_steps = (exp.robots() as u64) * u64::from(exp.steps());
@@ -68,7 +79,18 @@ fn evaluation_3x6_to_9x9(bencher: divan::Bencher) {
 /// (decode of 255,474 links + 5 robots × 1000 steps).
 #[divan::bench(sample_count = 10, sample_size = 1)]
 fn evaluation_32x96_to_9x9(bencher: divan::Bencher) {
+    evaluation_32x96(bencher, Precision::Exact);
+}
+
+/// The same in fast precision (`experiment.precision = "fast"`).
+#[divan::bench(sample_count = 10, sample_size = 1)]
+fn evaluation_32x96_to_9x9_fast(bencher: divan::Bencher) {
+    evaluation_32x96(bencher, Precision::Fast);
+}
+
+fn evaluation_32x96(bencher: divan::Bencher, precision: Precision) {
     let mut config = Config::default();
+    config.experiment.precision = precision;
     config.surface_sensors.rings = 32;
     config.surface_sensors.angles = 96;
     config.substrate.neurons = vivae_lab::controller::substrate::PolarGrid {

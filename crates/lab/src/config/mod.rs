@@ -23,8 +23,8 @@ use std::fmt::Write as _;
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
-use vivae_neat::NeatParams;
 use vivae_neat::hyperneat::HyperParams;
+use vivae_neat::{NeatParams, Precision};
 use vivae_sim::{DistanceSensors, PhysicsParams, SurfaceSensors};
 
 use crate::config::es::{EsConfig, SubstrateKind};
@@ -144,6 +144,16 @@ pub struct ExperimentConfig {
     /// Example: "min".
     #[serde(default, skip_serializing_if = "Aggregate::is_mean")]
     pub placements_aggregate: Aggregate,
+    /// Arithmetic of the controller step: `exact` (unset; f64, the bits of
+    /// every recorded run) or `fast` (f32 weights, states and a polynomial
+    /// sigmoid within 2e-7 of the exact one: other bits, again the same on
+    /// every CPU, SIMD level and thread count). A checkpoint keeps it;
+    /// resuming in the other precision is refused. Only the dense polar
+    /// substrate of the driving task has a fast step: elsewhere `fast` is refused.
+    ///
+    /// Example: "fast".
+    #[serde(default, skip_serializing_if = "Precision::is_exact")]
+    pub precision: Precision,
 }
 
 fn one() -> u32 {
@@ -208,6 +218,7 @@ impl Default for ExperimentConfig {
             task: TaskName::default(),
             placements: 1,
             placements_aggregate: Aggregate::Mean,
+            precision: Precision::Exact,
         }
     }
 }

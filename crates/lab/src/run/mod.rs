@@ -23,7 +23,7 @@ use vivae_neat::driver::{
     Observer, ParallelEvaluator, StopCriteria, StopReason,
 };
 use vivae_neat::driver::{Evaluation, Strategy};
-use vivae_neat::{Genome, Population, stats};
+use vivae_neat::{Genome, Population, Precision, stats};
 
 use crate::config::Config;
 use crate::error::{Error, Result};
@@ -163,10 +163,30 @@ impl Run {
     /// shortens, if not yet reached) the total. Files written after that
     /// checkpoint are truncated back to it.
     pub fn resume(dir: &Path, generations: Option<u32>, threads: Option<usize>) -> Result<Run> {
+        Run::resume_in(dir, generations, threads, None)
+    }
+
+    /// [`Run::resume`], refused (nothing changed) when `precision` is given
+    /// and is not the one the run's checkpoint records: a run's bits depend
+    /// on it, so a run resumes in the precision it started with.
+    pub fn resume_in(
+        dir: &Path,
+        generations: Option<u32>,
+        threads: Option<usize>,
+        precision: Option<Precision>,
+    ) -> Result<Run> {
         let path = latest_checkpoint(dir)?;
         // Locked before anything is read: another writer may be mid-generation.
         let lock = RunLock::acquire(dir)?;
         let mut cp = decode_checkpoint(&path)?;
+        let recorded = cp.config.experiment.precision;
+        if let Some(p) = precision.filter(|&p| p != recorded) {
+            return Err(bad_input(format!(
+                "precision {p}: {} computes in {recorded} precision (its checkpoint records it); \
+                 a run resumes in the precision it started with: drop the setting, or start a new run",
+                dir.display()
+            )));
+        }
         check_config_unchanged(dir, &path, &cp.config)?;
         if let Some(n) = generations {
             if n < cp.progress.done {

@@ -6,7 +6,7 @@
 use std::path::Path;
 use std::str::FromStr;
 
-use vivae_neat::Population;
+use vivae_neat::{Population, Precision};
 
 use crate::config::es::SubstrateKind;
 use crate::config::strategy::{BehaviourKind, StrategyName};
@@ -71,11 +71,13 @@ pub struct Overrides {
     pub placements: Option<u32>,
     /// `experiment.placements_aggregate`.
     pub placements_aggregate: Option<Aggregate>,
+    /// `experiment.precision`.
+    pub precision: Option<Precision>,
 }
 
 impl Overrides {
     /// Every override's name, in the order of the fields.
-    pub const KEYS: [&'static str; 23] = [
+    pub const KEYS: [&'static str; 24] = [
         "scenario",
         "generations",
         "population",
@@ -99,6 +101,7 @@ impl Overrides {
         "robot",
         "placements",
         "placements_aggregate",
+        "precision",
     ];
 
     /// Sets override `key` from its text as a command line writes it (lists
@@ -131,6 +134,7 @@ impl Overrides {
             "robot" => self.robot = Some(text.trim().to_string()),
             "placements" => self.placements = Some(number(text).map_err(what)?),
             "placements_aggregate" => self.placements_aggregate = Some(parse(text).map_err(what)?),
+            "precision" => self.precision = Some(parse(text).map_err(what)?),
             "task" => {
                 tasks::entry(text).map_err(|e| format!("{key} = {e}"))?;
                 self.task = Some(TaskName(text.to_string()));
@@ -167,6 +171,7 @@ impl Overrides {
         set(&mut e.task, self.task.clone());
         set(&mut e.placements, self.placements);
         set(&mut e.placements_aggregate, self.placements_aggregate);
+        set(&mut e.precision, self.precision);
         set(&mut c.neat.population_size, self.population);
         if let Some(g) = self.sensors {
             (c.surface_sensors.rings, c.surface_sensors.angles) = (g.rings, g.angles);
@@ -350,10 +355,11 @@ mod tests {
             ("robot", "khepera"),
             ("placements", "1"),
             ("placements_aggregate", "mean"),
+            ("precision", "exact"),
         ] {
             o.set(key, text).unwrap_or_else(|e| panic!("{key}: {e}"));
         }
-        assert_eq!(Overrides::KEYS.len(), 23);
+        assert_eq!(Overrides::KEYS.len(), 24);
         // A robot model is the task's to read (the tasks with a choice test
         // theirs): refused by a task without a choice.
         let e = o.apply(&mut Config::default()).unwrap_err();
@@ -368,6 +374,8 @@ mod tests {
         assert!(e.contains("popsize") && e.contains("population"), "{e}");
         let e = o.set("steps", "-5").unwrap_err();
         assert!(e.starts_with("steps = \"-5\""), "{e}");
+        let e = o.set("precision", "half").unwrap_err();
+        assert!(e.contains("expected exact or fast"), "{e}");
         let e = o.set("task", "chess").unwrap_err();
         assert!(e.contains("chess") && e.contains("driving"), "{e}");
     }

@@ -75,6 +75,11 @@ pub struct Overrides {
     /// How the fitnesses on --placements placements combine: mean (default) or min.
     #[arg(long, value_name = "mean|min")]
     pub placements_aggregate: Option<vivae_lab::config::Aggregate>,
+    /// Arithmetic of the controller step (experiment.precision): exact (the
+    /// default, f64) or fast (f32 and a polynomial sigmoid: other bits, the
+    /// same on every CPU). A resumed run keeps its checkpoint's.
+    #[arg(long, value_name = "exact|fast")]
+    pub precision: Option<vivae_neat::Precision>,
 }
 
 /// `--task NAME`: one of the registered tasks (listed by `--help`).
@@ -121,6 +126,7 @@ impl Overrides {
             robot: self.robot.clone(),
             placements: self.placements,
             placements_aggregate: self.placements_aggregate,
+            precision: self.precision,
         }
     }
 }

@@ -28,6 +28,10 @@ pub struct ResumeArgs {
     pub threads: Threads,
     #[command(flatten)]
     pub quiet: Quiet,
+    /// The precision the run computes in (exact|fast): refused unless it is
+    /// the one the run started with (its checkpoint records it).
+    #[arg(long, value_name = "exact|fast")]
+    pub precision: Option<vivae_neat::Precision>,
 }
 
 /// Runs `vivae resume`.
@@ -53,10 +57,11 @@ pub fn run(args: ResumeArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<Ex
             return Ok(code);
         }
     }
-    let run = Run::resume(
+    let run = Run::resume_in(
         &args.run_dir,
         args.generations.generations,
         args.threads.threads,
+        args.precision,
     )?;
     if already_finished(&run)? {
         return Ok(ExitCode::SUCCESS);

@@ -4,6 +4,7 @@
 use std::borrow::Cow;
 use std::sync::Arc;
 
+use vivae_neat::Precision;
 use vivae_neat::driver::{Evaluation, Task};
 use vivae_neat::hyperneat::{HyperParams, SubstrateController, SubstrateLayout, decode_genome};
 use vivae_neat::{EvalContext, Genome, GenomeSpec};
@@ -58,6 +59,8 @@ pub struct Episode {
     placements: u32,
     /// How the fitnesses on several placements combine.
     placements_aggregate: Aggregate,
+    /// The arithmetic the dense controller steps in (`experiment.precision`).
+    precision: Precision,
 }
 
 /// The outcome of one episode.
@@ -147,6 +150,14 @@ impl Episode {
         let layout = layout_of(&sensors, &spec.neuron_nodes(), spec.coords);
         let cppn_outputs = cppn_outputs(&sensors);
         let scale = SourceScale::new(&config.substrate, &sensors, &spec.neuron_nodes());
+        if !config.experiment.precision.is_exact() && config.substrate.kind != SubstrateKind::Polar
+        {
+            return Err(EpisodeError::Config(
+                "experiment.precision = \"fast\" steps the dense polar substrate only; \
+                 substrate.kind = \"es-hyperneat\" computes exactly: drop one of them"
+                    .into(),
+            ));
+        }
         let es = match config.substrate.kind {
             SubstrateKind::Polar => None,
             SubstrateKind::EsHyperneat => Some(
@@ -172,6 +183,7 @@ impl Episode {
             measures: Measures::of(&config.strategy),
             placements: config.experiment.placements.max(1),
             placements_aggregate: config.experiment.placements_aggregate,
+            precision: config.experiment.precision,
         })
     }
 
@@ -326,6 +338,7 @@ impl Episode {
         let mut controller = decode_genome(genome, &self.layout, &self.hyper)
             .map_err(|e| EpisodeError::Genome(e.to_string()))?;
         self.scale.apply(&mut controller);
+        controller.set_precision(self.precision);
         Ok(controller)
     }
 

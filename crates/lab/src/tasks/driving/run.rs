@@ -30,9 +30,17 @@ pub static TASK: TaskEntry = TaskEntry {
 
 /// With another task than driving: refuses `experiment.placements` (and its
 /// aggregate) off their defaults: only a driving episode places obstacles
-/// and traffic per evaluation.
+/// and traffic per evaluation; and `experiment.precision = "fast"`: only the
+/// driving task's dense controller has a fast step.
 fn refuse_placements(c: &Config) -> std::result::Result<(), String> {
     let e = &c.experiment;
+    if !e.precision.is_exact() {
+        return Err(format!(
+            "experiment.precision = \"{}\": only a driving run has a fast controller step \
+             (experiment.task = \"{}\"): drop it",
+            e.precision, e.task
+        ));
+    }
     if e.placements != 1 || !e.placements_aggregate.is_mean() {
         return Err(format!(
             "experiment.placements = {}: only a driving run places obstacles or traffic per evaluation \

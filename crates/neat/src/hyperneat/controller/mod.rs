@@ -2,8 +2,10 @@
 //!
 //! This file holds the controller (its padded, panelled storage, its
 //! accessors and checkpoint form) and the batch state of several robots;
-//! [`step`] is the update itself, vectorised at every instruction level.
+//! [`step`] is the update itself, vectorised at every instruction level;
+//! [`fast`] the f32 copy the fast [`Precision`] steps with.
 
+mod fast;
 mod step;
 
 use serde::{Deserialize, Serialize};
@@ -11,7 +13,9 @@ use serde::{Deserialize, Serialize};
 use super::error::HyperError;
 use super::layout::SubstrateLayout;
 use crate::network::Network;
+use crate::precision::Precision;
 use crate::simd::{self, SimdLevel};
+use fast::{Fast, FastStates};
 use step::Kernel;
 
 /// The source end of a controller link.
@@ -47,6 +51,13 @@ struct ControllerData {
     neurons: usize,
     bias: Vec<f64>,
     weights: Vec<f64>,
+    /// Absent in exact precision (and in every file written before there was a fast one).
+    #[serde(default, skip_serializing_if = "is_exact")]
+    precision: Precision,
+}
+
+fn is_exact(p: &Precision) -> bool {
+    *p == Precision::Exact
 }
 
 /// Neuron columns are padded to a multiple of this many lanes (one AVX-512
@@ -78,6 +89,11 @@ const PANEL: usize = 2 * PAD;
 /// of robots through [`activate_batch`](Self::activate_batch), each robot's
 /// neuron states held in a [`BatchState`]. The [`Network`] implementation is
 /// the same step for one robot whose state the controller holds itself.
+///
+/// In [`Precision::Fast`] ([`set_precision`](Self::set_precision)) the step
+/// runs on an f32 copy of the weights, biases and states instead (the f64
+/// weights stay, for everything that reads them): other bits than exact
+/// precision, but again the same on every machine and at every level.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(try_from = "ControllerData", into = "ControllerData")]
 pub struct SubstrateController {
@@ -100,6 +116,8 @@ pub struct SubstrateController {
     acc: Vec<f64>,
     /// Number of non-zero entries of `weights`.
     expressed: usize,
+    /// The f32 copy stepped with in fast precision (`None`: exact).
+    fast: Option<Box<Fast>>,
 }
 
 impl TryFrom<ControllerData> for SubstrateController {
@@ -121,12 +139,9 @@ impl TryFrom<ControllerData> for SubstrateController {
         if d.weights.iter().chain(&d.bias).any(|w| !w.is_finite()) {
             return Err(HyperError::Inconsistent("non-finite weight or bias"));
         }
-        Ok(SubstrateController::new(
-            d.sheet_sizes,
-            d.neurons,
-            &d.bias,
-            &d.weights,
-        ))
+        let mut c = SubstrateController::new(d.sheet_sizes, d.neurons, &d.bias, &d.weights);
+        c.set_precision(d.precision);
+        Ok(c)
     }
 }
 
@@ -138,6 +153,7 @@ impl From<SubstrateController> for ControllerData {
             .map(|(j, i)| c.weights[c.at(j, i)])
             .collect();
         ControllerData {
+            precision: c.precision(),
             neurons: c.n,
             bias: c.biases().to_vec(),
             sheet_sizes: c.sheet_sizes,
@@ -165,6 +181,7 @@ impl SubstrateController {
             state: vec![0.0; stride],
             acc: vec![0.0; stride],
             expressed,
+            fast: None,
         };
         for (j, column) in weights.chunks_exact(n).enumerate() {
             for (i, &w) in column.iter().enumerate() {
@@ -180,6 +197,31 @@ impl SubstrateController {
         let p0 = i / PANEL * PANEL;
         let width = PANEL.min(self.stride - p0);
         p0 * (self.num_inputs + self.n) + j * width + (i - p0)
+    }
+
+    /// The precision [`activate_batch`](Self::activate_batch) and
+    /// [`activate`](Network::activate) compute in (exact unless set).
+    pub fn precision(&self) -> Precision {
+        if self.fast.is_some() {
+            Precision::Fast
+        } else {
+            Precision::Exact
+        }
+    }
+
+    /// Makes every later step compute in `precision` (fast: from the
+    /// weights rounded to f32 now; states start at zero). Batch states made
+    /// before do not fit any more.
+    pub fn set_precision(&mut self, precision: Precision) {
+        self.fast = match precision {
+            Precision::Exact => None,
+            Precision::Fast => Some(Box::new(Fast::new(
+                self.num_inputs,
+                self.n,
+                &self.bias[..self.n],
+                |j, i| self.weights[self.at(j, i)],
+            ))),
+        };
     }
 
     /// Number of neurons.
@@ -223,6 +265,7 @@ impl SubstrateController {
             let k = self.at(source, target);
             self.weights[k] *= factor;
         }
+        self.set_precision(self.precision());
     }
 
     /// Multiplies the weight of neuron `source` → neuron `target` by `factor`.
@@ -231,6 +274,7 @@ impl SubstrateController {
         assert!(source < self.n && target < self.n);
         let k = self.at(self.num_inputs + source, target);
         self.weights[k] *= factor;
+        self.set_precision(self.precision());
     }
 
     /// Weight of input `input` (over all sheets concatenated) → neuron `target`; 0 = no link.
@@ -275,6 +319,7 @@ impl SubstrateController {
             stride: self.stride,
             state: vec![0.0; robots * self.stride],
             acc: vec![0.0; robots * self.stride],
+            fast: (self.fast.as_ref()).map(|f| FastStates::new(robots, self.num_inputs, f.stride)),
         }
     }
 
@@ -311,8 +356,14 @@ impl SubstrateController {
             "controller input length"
         );
         assert_eq!(outputs.len(), robots * self.n, "controller output length");
-        self.kernel()
-            .step(level, robots, inputs, &mut states.state, &mut states.acc);
+        match (&self.fast, &mut states.fast) {
+            (None, None) => {
+                self.kernel()
+                    .step(level, robots, inputs, &mut states.state, &mut states.acc)
+            }
+            (Some(f), Some(fs)) => f.step(level, fs, inputs, &mut states.state, self.stride),
+            _ => panic!("batch state of another controller precision"),
+        }
         if self.n > 0 {
             for (out, y) in outputs
                 .chunks_exact_mut(self.n)
@@ -323,7 +374,7 @@ impl SubstrateController {
         }
     }
 
-    fn kernel(&self) -> Kernel<'_> {
+    fn kernel(&self) -> Kernel<'_, f64> {
         Kernel {
             ni: self.num_inputs,
             n: self.n,
@@ -347,6 +398,9 @@ pub struct BatchState {
     state: Vec<f64>,
     /// Scratch for the synchronous update, laid out as `state`.
     acc: Vec<f64>,
+    /// The f32 states that advance in fast precision (`state` then holds
+    /// them widened to f64).
+    fast: Option<FastStates>,
 }
 
 impl BatchState {
@@ -363,6 +417,9 @@ impl BatchState {
     /// Clears every robot's state (as [`Network::reset`]).
     pub fn reset(&mut self) {
         self.state.fill(0.0);
+        if let Some(f) = &mut self.fast {
+            f.reset();
+        }
     }
 }
 
@@ -378,19 +435,34 @@ impl Network for SubstrateController {
     fn activate(&mut self, inputs: &[f64], outputs: &mut [f64]) {
         assert_eq!(inputs.len(), self.num_inputs, "controller input length");
         assert_eq!(outputs.len(), self.n, "controller output length");
-        let kernel = Kernel {
-            ni: self.num_inputs,
-            n: self.n,
-            stride: self.stride,
-            bias: &self.bias,
-            weights: &self.weights,
-        };
-        kernel.step(simd::level(), 1, inputs, &mut self.state, &mut self.acc);
+        if let Some(f) = &mut self.fast {
+            let mut own = std::mem::take(&mut f.own);
+            f.step(
+                simd::level(),
+                &mut own,
+                inputs,
+                &mut self.state,
+                self.stride,
+            );
+            f.own = own;
+        } else {
+            let kernel = Kernel {
+                ni: self.num_inputs,
+                n: self.n,
+                stride: self.stride,
+                bias: &self.bias,
+                weights: &self.weights,
+            };
+            kernel.step(simd::level(), 1, inputs, &mut self.state, &mut self.acc);
+        }
         outputs.copy_from_slice(&self.state[..self.n]);
     }
 
     fn reset(&mut self) {
         self.state.fill(0.0);
+        if let Some(f) = &mut self.fast {
+            f.own.reset();
+        }
     }
 }
 
@@ -672,6 +744,127 @@ mod tests {
                 Some(f) => assert_eq!(&b, f, "{level:?}"),
             }
         }
+    }
+
+    /// The update equation in f32, one neuron at a time: what fast precision computes.
+    fn reference_step_f32(c: &SubstrateController, x: &[f64], y: &mut Vec<f32>) {
+        let next: Vec<f32> = (0..c.num_neurons())
+            .map(|i| {
+                let mut a = c.biases()[i] as f32;
+                for (j, &v) in x.iter().enumerate() {
+                    a += c.input_weight(j, i) as f32 * v as f32;
+                }
+                for (k, &v) in y.iter().enumerate() {
+                    a += c.recurrent_weight(k, i) as f32 * v;
+                }
+                crate::precision::bipolar_sigmoid_f32(a)
+            })
+            .collect();
+        *y = next;
+    }
+
+    #[test]
+    fn fast_batched_step_follows_the_f32_equation_at_every_level() {
+        for (case, &(sheets, n)) in [
+            (&[15][..], 9),
+            (&[3][..], 7),
+            (&[40][..], 17),
+            (&[300][..], 81),
+        ]
+        .iter()
+        .enumerate()
+        {
+            let mut c = random_controller(sheets.to_vec(), n, 200 + case as u64);
+            c.set_precision(Precision::Fast);
+            assert_eq!(c.precision(), Precision::Fast);
+            let ni = c.num_inputs();
+            for robots in [1, 3, 8, 9, 17] {
+                let mut expected: Vec<Vec<f32>> = vec![vec![0.0; n]; robots];
+                let mut per_robot: Vec<SubstrateController> = vec![c.clone(); robots];
+                let mut batches: Vec<(SimdLevel, BatchState)> = simd::available()
+                    .into_iter()
+                    .map(|l| (l, c.batch_state(robots)))
+                    .collect();
+                let (mut out, mut one) = (vec![0.0; robots * n], vec![0.0; n]);
+                for step in 0..5 {
+                    let x = values(robots * ni, 7000 * step + robots as u64);
+                    for (r, y) in expected.iter_mut().enumerate() {
+                        reference_step_f32(&c, &x[r * ni..][..ni], y);
+                        per_robot[r].activate(&x[r * ni..][..ni], &mut one);
+                        let wide: Vec<f64> = y.iter().map(|&v| f64::from(v)).collect();
+                        assert_eq!(bits(&one), bits(&wide), "robot {r} alone, step {step}");
+                    }
+                    for (level, state) in &mut batches {
+                        c.activate_batch_at(*level, state, &x, &mut out);
+                        for (r, y) in expected.iter().enumerate() {
+                            let wide: Vec<f64> = y.iter().map(|&v| f64::from(v)).collect();
+                            let at = format!("{level:?}, {n} neurons, robot {r} of {robots}");
+                            assert_eq!(bits(&out[r * n..][..n]), bits(&wide), "{at}, step {step}");
+                            assert_eq!(bits(state.state(r)), bits(&wide));
+                        }
+                    }
+                }
+                for (_, state) in &mut batches {
+                    state.reset();
+                    assert!(state.state(robots - 1).iter().all(|&v| v == 0.0));
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn fast_extreme_sums_give_the_same_bits_at_every_level() {
+        let n = 11;
+        let mut bias = values(n, 3);
+        bias[0] = 1e30;
+        bias[1] = -1e30;
+        bias[2] = -0.0;
+        let mut weights = values((2 + n) * n, 4);
+        weights[4] = 1e300; // beyond f32: an infinite weight
+        weights[5] = -3e38;
+        let mut c = SubstrateController::new(vec![2], n, &bias, &weights);
+        c.set_precision(Precision::Fast);
+        let x = [1e10, -0.0];
+        let mut first: Option<Vec<u64>> = None;
+        for level in simd::available() {
+            let mut state = c.batch_state(1);
+            let mut out = vec![0.0; n];
+            for _ in 0..3 {
+                c.activate_batch_at(level, &mut state, &x, &mut out);
+            }
+            let b = bits(&out);
+            match &first {
+                None => first = Some(b),
+                Some(f) => assert_eq!(&b, f, "{level:?}"),
+            }
+        }
+    }
+
+    #[test]
+    fn fast_precision_is_kept_through_serde_and_scaling() {
+        let mut c = random_controller(vec![5, 2], 9, 7);
+        let exact_json = serde_json::to_string(&c).unwrap();
+        assert!(
+            !exact_json.contains("precision"),
+            "exact files stay as they were"
+        );
+        c.set_precision(Precision::Fast);
+        let d: SubstrateController =
+            serde_json::from_str(&serde_json::to_string(&c).unwrap()).unwrap();
+        assert_eq!(d.precision(), Precision::Fast);
+        assert_eq!(c, d);
+        // Scaling a fast controller scales its f32 copy too.
+        let mut scaled = c.clone();
+        scaled.scale_source(0, -1.0);
+        let mut again = random_controller(vec![5, 2], 9, 7);
+        again.scale_source(0, -1.0);
+        again.set_precision(Precision::Fast);
+        assert_eq!(scaled, again);
+        let (mut a, mut b) = ([0.0; 9], [0.0; 9]);
+        let x = [0.05; 7];
+        scaled.activate(&x, &mut a);
+        c.activate(&x, &mut b);
+        assert_ne!(a, b);
     }
 
     fn bits(v: &[f64]) -> Vec<u64> {

@@ -1,13 +1,80 @@
 //! One synchronous update of the controller for a batch of robots: neuron
 //! sums in the update equation's order, vectorised across neurons and tiled
-//! across robots, compiled once per instruction level (same bits at each).
+//! across robots, compiled once per instruction level (same bits at each)
+//! and once per element type (f64 for the exact precision, f32 for the fast one).
 
-use super::{PAD, PANEL};
 use crate::activation::bipolar_sigmoid;
-use crate::simd::{Simd, SimdLevel};
+use crate::precision::bipolar_sigmoid_f32;
+use crate::simd::{Baseline, Simd, SimdLevel};
+
+/// An element type of the controller step: its column padding and panel
+/// width, its squashing function, and the step at every level.
+pub(super) trait Element: Copy + Default + 'static {
+    /// Neuron columns are padded to a multiple of this many lanes (one
+    /// AVX-512 vector), so every vector loop runs on whole vectors.
+    const PAD: usize;
+    /// Neurons per weight panel (two AVX-512 vectors).
+    const PANEL: usize;
+    /// The bipolar sigmoid in this precision.
+    fn squash(a: Self) -> Self;
+    /// [`Kernel::step`] at `level` (see there).
+    fn step_at(
+        level: SimdLevel,
+        k: &Kernel<Self>,
+        robots: usize,
+        x: &[Self],
+        y: &mut [Self],
+        acc: &mut [Self],
+    );
+}
+
+/// Implements [`Element`] for `$e`: the best token the CPU has at or below
+/// `level` runs [`step_body`] compiled for it.
+macro_rules! element {
+    ($e:ty, $pad:expr, $squash:path) => {
+        impl Element for $e {
+            const PAD: usize = $pad;
+            const PANEL: usize = 2 * $pad;
+            #[inline(always)]
+            fn squash(a: $e) -> $e {
+                $squash(a)
+            }
+            fn step_at(
+                level: SimdLevel,
+                k: &Kernel<$e>,
+                robots: usize,
+                x: &[$e],
+                y: &mut [$e],
+                acc: &mut [$e],
+            ) {
+                #[cfg(target_arch = "x86_64")]
+                {
+                    use crate::simd::x86::{Avx2, Avx512};
+                    if level >= SimdLevel::Avx512
+                        && let Some(t) = Avx512::new()
+                    {
+                        // SAFETY: the token `t` exists only when this CPU supports AVX-512F.
+                        return unsafe { step_avx512(t, k, robots, x, y, acc) };
+                    }
+                    if level >= SimdLevel::Avx2
+                        && let Some(t) = Avx2::new()
+                    {
+                        // SAFETY: the token `t` exists only when this CPU supports AVX2.
+                        return unsafe { step_avx2(t, k, robots, x, y, acc) };
+                    }
+                }
+                let _ = level;
+                step_body(Baseline, k, robots, x, y, acc);
+            }
+        }
+    };
+}
+
+element!(f64, super::PAD, bipolar_sigmoid);
+element!(f32, 2 * super::PAD, bipolar_sigmoid_f32);
 
 /// The read-only parts of a controller one step needs.
-pub(super) struct Kernel<'a> {
+pub(super) struct Kernel<'a, E> {
     /// Inputs per robot.
     pub(super) ni: usize,
     /// Neurons.
@@ -15,20 +82,20 @@ pub(super) struct Kernel<'a> {
     /// Padded column length (a multiple of [`PAD`]).
     pub(super) stride: usize,
     /// Padded biases.
-    pub(super) bias: &'a [f64],
+    pub(super) bias: &'a [E],
     /// Padded, panelled weights (see [`SubstrateController::at`]).
-    pub(super) weights: &'a [f64],
+    pub(super) weights: &'a [E],
 }
 
-impl Kernel<'_> {
+impl<E: Element> Kernel<'_, E> {
     /// Updates `state` (robots × stride) from `inputs` (robots × ni), using `acc` as scratch.
     pub(super) fn step(
         &self,
         level: SimdLevel,
         robots: usize,
-        inputs: &[f64],
-        state: &mut [f64],
-        acc: &mut [f64],
+        inputs: &[E],
+        state: &mut [E],
+        acc: &mut [E],
     ) {
         assert!(
             inputs.len() == robots * self.ni
@@ -36,25 +103,9 @@ impl Kernel<'_> {
                 && acc.len() == state.len()
                 && self.bias.len() == self.stride
                 && self.weights.len() == (self.ni + self.n) * self.stride
-                && self.stride.is_multiple_of(PAD)
+                && self.stride.is_multiple_of(E::PAD)
         );
-        #[cfg(target_arch = "x86_64")]
-        {
-            use crate::simd::x86::{Avx2, Avx512};
-            if level >= SimdLevel::Avx512
-                && let Some(t) = Avx512::new()
-            {
-                // SAFETY: the token `t` exists only when this CPU supports AVX-512F.
-                return unsafe { step_avx512(t, self, robots, inputs, state, acc) };
-            }
-            if level >= SimdLevel::Avx2
-                && let Some(t) = Avx2::new()
-            {
-                // SAFETY: the token `t` exists only when this CPU supports AVX2.
-                return unsafe { step_avx2(t, self, robots, inputs, state, acc) };
-            }
-        }
-        step_body(crate::simd::Baseline, self, robots, inputs, state, acc);
+        E::step_at(level, self, robots, inputs, state, acc);
     }
 }
 
@@ -69,14 +120,16 @@ macro_rules! step_at_level {
         #[doc = concat!("The CPU must support ", $feature, " (the token proves it).")]
         #[cfg(target_arch = "x86_64")]
         #[target_feature(enable = $feature)]
-        unsafe fn $name(
+        unsafe fn $name<E: Element>(
             t: crate::simd::x86::$token,
-            k: &Kernel,
+            k: &Kernel<E>,
             robots: usize,
-            x: &[f64],
-            y: &mut [f64],
-            acc: &mut [f64],
-        ) {
+            x: &[E],
+            y: &mut [E],
+            acc: &mut [E],
+        ) where
+            crate::simd::x86::$token: Simd<E>,
+        {
             step_body(t, k, robots, x, y, acc)
         }
     };
@@ -92,7 +145,14 @@ step_at_level!(step_avx2, "avx2", Avx2);
 /// for each neuron in order — the update equation's order, whatever the
 /// vector width or the tiling, so every level gives the same bits.
 #[inline(always)]
-fn step_body<S: Simd>(s: S, k: &Kernel, robots: usize, x: &[f64], y: &mut [f64], acc: &mut [f64]) {
+fn step_body<E: Element, S: Simd<E>>(
+    s: S,
+    k: &Kernel<E>,
+    robots: usize,
+    x: &[E],
+    y: &mut [E],
+    acc: &mut [E],
+) {
     // Lanes past `live` hold only padding neurons: they are neither summed nor
     // squashed (their state stays 0 and no neuron reads it), which spares a
     // quarter of the work for 9 neurons on 4-lane vectors.
@@ -101,8 +161,8 @@ fn step_body<S: Simd>(s: S, k: &Kernel, robots: usize, x: &[f64], y: &mut [f64],
     while r0 < robots {
         let rt = (robots - r0).min(S::MAX_TILE);
         let m = k.ni + k.n;
-        for p0 in (0..k.stride).step_by(PANEL) {
-            let width = PANEL.min(k.stride - p0);
+        for p0 in (0..k.stride).step_by(E::PANEL) {
+            let width = E::PANEL.min(k.stride - p0);
             let panel = Panel {
                 p0,
                 width,
@@ -113,10 +173,10 @@ fn step_body<S: Simd>(s: S, k: &Kernel, robots: usize, x: &[f64], y: &mut [f64],
             let mut sub = 0;
             while sub < needed {
                 if needed - sub >= 2 * S::LANES {
-                    tile_rt::<S, 2>(s, k, &panel, rt, r0, sub, x, y, acc);
+                    tile_rt::<E, S, 2>(s, k, &panel, rt, r0, sub, x, y, acc);
                     sub += 2 * S::LANES;
                 } else {
-                    tile_rt::<S, 1>(s, k, &panel, rt, r0, sub, x, y, acc);
+                    tile_rt::<E, S, 1>(s, k, &panel, rt, r0, sub, x, y, acc);
                     sub += S::LANES;
                 }
             }
@@ -126,7 +186,7 @@ fn step_body<S: Simd>(s: S, k: &Kernel, robots: usize, x: &[f64], y: &mut [f64],
     // σ over the live lanes of every robot (live padding lanes: σ(0) = 0).
     for (y, a) in y.chunks_exact_mut(k.stride).zip(acc.chunks_exact(k.stride)) {
         for (y, &a) in y[..live].iter_mut().zip(&a[..live]) {
-            *y = bipolar_sigmoid(a);
+            *y = E::squash(a);
         }
     }
 }
@@ -134,21 +194,21 @@ fn step_body<S: Simd>(s: S, k: &Kernel, robots: usize, x: &[f64], y: &mut [f64],
 /// Dispatches a tile of `rt` robots to the kernel compiled for that count.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn tile_rt<S: Simd, const NB: usize>(
+fn tile_rt<E: Element, S: Simd<E>, const NB: usize>(
     s: S,
-    k: &Kernel,
-    panel: &Panel,
+    k: &Kernel<E>,
+    panel: &Panel<E>,
     rt: usize,
     r0: usize,
     sub: usize,
-    x: &[f64],
-    y: &[f64],
-    acc: &mut [f64],
+    x: &[E],
+    y: &[E],
+    acc: &mut [E],
 ) {
     macro_rules! tiles {
         ($($n:literal),*) => {
             match rt {
-                $($n => tile::<S, $n, NB>(s, k, panel, r0, sub, x, y, acc),)*
+                $($n => tile::<E, S, $n, NB>(s, k, panel, r0, sub, x, y, acc),)*
                 _ => unreachable!("robot tile of {rt}"),
             }
         };
@@ -157,13 +217,13 @@ fn tile_rt<S: Simd, const NB: usize>(
 }
 
 /// One panel of weights: neurons `p0..p0 + width`, every source.
-struct Panel<'a> {
+struct Panel<'a, E> {
     /// First neuron.
     p0: usize,
     /// Neurons in the panel.
     width: usize,
     /// `(ni + n) × width` weights, source-major.
-    weights: &'a [f64],
+    weights: &'a [E],
 }
 
 /// Sums of the `NB` vectors of neurons from `panel.p0 + sub` of robots
@@ -171,25 +231,25 @@ struct Panel<'a> {
 /// panel's columns stream by once.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn tile<S: Simd, const RT: usize, const NB: usize>(
+fn tile<E: Element, S: Simd<E>, const RT: usize, const NB: usize>(
     s: S,
-    k: &Kernel,
-    panel: &Panel,
+    k: &Kernel<E>,
+    panel: &Panel<E>,
     r0: usize,
     sub: usize,
-    x: &[f64],
-    y: &[f64],
-    acc: &mut [f64],
+    x: &[E],
+    y: &[E],
+    acc: &mut [E],
 ) {
     let group = NB * S::LANES;
     let i0 = panel.p0 + sub;
-    let load = |column: &[f64], from: usize| -> [S::V; NB] {
+    let load = |column: &[E], from: usize| -> [S::V; NB] {
         let column = &column[from..from + group];
         std::array::from_fn(|b| s.load(&column[b * S::LANES..]))
     };
     let mut sum = [load(k.bias, i0); RT];
-    let xs: [&[f64]; RT] = std::array::from_fn(|r| &x[(r0 + r) * k.ni..][..k.ni]);
-    let ys: [&[f64]; RT] = std::array::from_fn(|r| &y[(r0 + r) * k.stride..][..k.n]);
+    let xs: [&[E]; RT] = std::array::from_fn(|r| &x[(r0 + r) * k.ni..][..k.ni]);
+    let ys: [&[E]; RT] = std::array::from_fn(|r| &y[(r0 + r) * k.stride..][..k.n]);
     let (w_in, w_rec) = panel.weights.split_at(k.ni * panel.width);
     for (j, column) in w_in.chunks_exact(panel.width).enumerate() {
         let w = load(column, sub);
