@@ -12,8 +12,9 @@ use crate::config::Config;
 use crate::error::Result;
 use crate::search::{Bounds, RunStrategy, Start, entries, entry_of, refuse_init};
 
-/// A run's search strategy: the one of [`STRATEGIES`] the config's
-/// `[strategy]` section names, held as a trait object. In a checkpoint it is
+/// A run's search strategy: the one of
+/// [`STRATEGIES`](crate::search::STRATEGIES) the config's `[strategy]`
+/// section names, held as a trait object. In a checkpoint it is
 /// `{"Name": state}` (its entry's `variant`), as when it was an enum.
 pub struct Search(Box<dyn DynStrategy>);
 

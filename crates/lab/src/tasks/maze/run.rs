@@ -151,6 +151,7 @@ impl<M: MazeModel> RunTask for M {
 
     /// Cells of [`CELL`] px over this maze's arena (the example's grid).
     fn fit_defaults(&self, config: &mut Config) {
+        // The box starts at 0 px: its upper corner is its extent.
         let (_, upper) = self.bounds();
         config.strategy.fit_to(&TaskFacts {
             cell: Some(CELL),
