@@ -28,8 +28,8 @@ use vivae_neat::{NeatParams, Precision};
 use vivae_sim::{DistanceSensors, PhysicsParams, SurfaceSensors};
 
 use crate::config::es::{EsConfig, SubstrateKind};
-use crate::config::strategy::StrategyConfig;
 use crate::controller::polar::{CoordMode, PolarGrid};
+use crate::search::StrategyConfig;
 
 /// Most simulation steps per evaluation (`experiment.steps`, `replay --steps`).
 pub const MAX_STEPS: u32 = 1_000_000;

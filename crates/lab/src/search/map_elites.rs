@@ -6,19 +6,20 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
 use vivae_neat::driver::Strategy;
 use vivae_neat::strategies::{Cells, MapElites, MapElitesParams};
 use vivae_neat::{Genome, NeatError};
 
 use crate::config::Config;
-use crate::config::strategy::CellsKind;
 use crate::error::Result;
 use crate::io::{bad_input, write_atomic};
 use crate::rundir::files;
 use crate::search::files::{ArchiveLine, jsonl};
 use crate::search::{
     Bounds, GridFigure, GridReport, Needs, RunStrategy, Search, Start, StrategyEntry,
-    StrategyFigure, StrategyReport, behaviour_line, state_of,
+    StrategyFigure, StrategyReport, TaskFacts, bad_setting, behaviour_line, state_of,
 };
 
 /// MAP-Elites' registration.
@@ -36,6 +37,109 @@ pub static STRATEGY: StrategyEntry = StrategyEntry {
     header_line: behaviour_line,
     report,
 };
+
+/// How MAP-Elites cuts the behaviour space into cells.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum CellsKind {
+    /// A regular grid of `bins` cells per dimension.
+    #[default]
+    Grid,
+    /// A centroidal Voronoi tessellation of `cvt_cells` cells.
+    Cvt,
+}
+
+/// MAP-Elites' settings.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct MapElitesConfig {
+    /// Cells: grid (regular, over the descriptor's box) or cvt (a centroidal
+    /// Voronoi tessellation, for many dimensions).
+    pub cells: CellsKind,
+    /// Grid cells per behaviour dimension, one count per dimension or one for all.
+    pub bins: Vec<usize>,
+    /// CVT cells.
+    pub cvt_cells: usize,
+    /// Uniform samples the CVT is computed from (Lloyd's algorithm).
+    pub cvt_samples: usize,
+    /// Iterations of Lloyd's algorithm computing the CVT.
+    pub cvt_iterations: usize,
+    /// Probability that a child is the crossover of two elites rather than a mutant of one.
+    pub crossover_probability: f64,
+    /// Subtracted from every elite's fitness in the QD-score (Σ (fitness − offset)).
+    ///
+    /// Unit: fitness units.
+    pub qd_offset: f64,
+}
+
+impl Default for MapElitesConfig {
+    fn default() -> Self {
+        MapElitesConfig {
+            cells: CellsKind::Grid,
+            bins: vec![10],
+            cvt_cells: 100,
+            cvt_samples: 10_000,
+            cvt_iterations: 20,
+            crossover_probability: 0.1,
+            qd_offset: 0.0,
+        }
+    }
+}
+
+impl MapElitesConfig {
+    /// Bins per dimension for a descriptor of `dims` coordinates.
+    pub fn bins_for(&self, dims: usize) -> Vec<usize> {
+        match self.bins.as_slice() {
+            [one] => vec![*one; dims],
+            many => many.to_vec(),
+        }
+    }
+}
+
+/// Checks `[strategy.map_elites]` (the bins' count against the behaviour's
+/// dimensions is checked when the run starts); the error names the key.
+pub(super) fn validate(m: &MapElitesConfig) -> std::result::Result<(), String> {
+    let bad = |key: &str, value: &dyn std::fmt::Debug, why: &str| {
+        Err(bad_setting(&format!("map_elites.{key}"), value, why))
+    };
+    if m.bins.is_empty() || m.bins.contains(&0) {
+        return bad(
+            "bins",
+            &m.bins,
+            "one count ≥ 1 per dimension, or one for all",
+        );
+    }
+    if m.cvt_cells == 0 || m.cvt_samples < m.cvt_cells {
+        return bad(
+            "cvt_cells",
+            &m.cvt_cells,
+            "need 1 ≤ cvt_cells ≤ cvt_samples",
+        );
+    }
+    if !(0.0..=1.0).contains(&m.crossover_probability) {
+        return bad(
+            "crossover_probability",
+            &m.crossover_probability,
+            "must be in [0, 1]",
+        );
+    }
+    if !m.qd_offset.is_finite() {
+        return bad("qd_offset", &m.qd_offset, "must be finite");
+    }
+    Ok(())
+}
+
+/// A grid of a task's cell width over its behaviour's extent: one bin count
+/// per extent given (rounded up, so the cells cover it).
+pub(super) fn fit_to(m: &mut MapElitesConfig, task: &TaskFacts<'_>) {
+    if let Some(cell) = task.cell
+        && !task.extent.is_empty()
+    {
+        m.bins = (task.extent.iter())
+            .map(|e| (e / cell).ceil() as usize)
+            .collect();
+    }
+}
 
 /// The archive as saved with the last checkpoint: its elites and, on a
 /// 2-D grid, the grid the report draws as a heat map.

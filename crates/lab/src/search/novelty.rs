@@ -1,13 +1,14 @@
 //! Novelty search (Lehman & Stanley 2011) over a NEAT population: it adds the
 //! archive's size and the novelty threshold to `generations.csv`.
 
-use vivae_neat::strategies::NoveltySearch;
+use vivae_neat::strategies::{NoveltyParams, NoveltySearch};
 use vivae_neat::{Genome, NeatError, Population};
 
 use crate::error::Result;
 use crate::io::bad_input;
 use crate::search::{
-    Needs, RunStrategy, Search, Start, StrategyEntry, behaviour_line, starting_population, state_of,
+    Needs, RunStrategy, Search, Start, StrategyEntry, TaskFacts, bad_setting, behaviour_line,
+    starting_population, state_of,
 };
 
 /// Novelty search's registration.
@@ -25,6 +26,40 @@ pub static STRATEGY: StrategyEntry = StrategyEntry {
     header_line: behaviour_line,
     report: crate::search::named_report,
 };
+
+/// Novelty search's settings in a run: the library's, with ρ_min and its
+/// floor on the scale of the descriptors of runs (arena sizes, shares), not
+/// the library's default of 1.
+pub fn novelty_defaults() -> NoveltyParams {
+    NoveltyParams {
+        threshold: 0.05,
+        threshold_floor: 0.005,
+        ..NoveltyParams::default()
+    }
+}
+
+/// Checks `[strategy.novelty]`; the error names the key.
+pub(super) fn validate(p: &NoveltyParams) -> std::result::Result<(), String> {
+    match p.validate() {
+        Err(NeatError::InvalidParam {
+            field,
+            value,
+            reason,
+        }) => Err(bad_setting(&format!("novelty.{field}"), &value, reason)),
+        _ => Ok(()),
+    }
+}
+
+/// A task's distance between distinct behaviours is ρ_min, and its floor
+/// the floor ρ_min adapts down to.
+pub(super) fn fit_to(p: &mut NoveltyParams, task: &TaskFacts<'_>) {
+    if let Some(distinct) = task.distinct {
+        p.threshold = distinct;
+    }
+    if let Some(floor) = task.distinct_floor {
+        p.threshold_floor = floor;
+    }
+}
 
 fn build(start: Start<'_>) -> Result<Search> {
     let config = start.config;

@@ -5,20 +5,96 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
 use vivae_neat::driver::Strategy;
-use vivae_neat::strategies::{Nsga2, Nsga2Params};
+use vivae_neat::strategies::{Measure, Nsga2, Nsga2Params, Objective};
 use vivae_neat::{Genome, NeatError};
 
 use crate::config::Config;
-use crate::config::strategy::objective_among;
+use crate::config::strategy::METRICS;
 use crate::error::Result;
 use crate::io::{bad_input, write_atomic};
 use crate::rundir::files;
 use crate::search::files::{FrontLine, jsonl};
 use crate::search::{
     FrontFigure, Needs, RunStrategy, Search, Start, StrategyEntry, StrategyFigure, StrategyReport,
-    state_of,
+    TaskFacts, bad_setting, state_of,
 };
+
+/// NSGA-II's settings.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct Nsga2Config {
+    /// Objectives: fitness or a metric (contacts, on_road), maximised, or
+    /// minimised when written with a leading minus (-contacts).
+    pub objectives: Vec<String>,
+    /// Probability that a child is the crossover of two tournament winners rather than a mutant.
+    pub crossover_probability: f64,
+}
+
+impl Default for Nsga2Config {
+    fn default() -> Self {
+        Nsga2Config {
+            objectives: vec!["fitness".into(), "-contacts".into()],
+            crossover_probability: 0.5,
+        }
+    }
+}
+
+/// The objective `name` (`fitness`, `contacts`, `on_road`, optionally with a leading `-`).
+pub fn objective(name: &str) -> Option<Objective> {
+    objective_among(name, &METRICS)
+}
+
+/// The objective `name`: `fitness` or one of a task's `metrics`, optionally
+/// with a leading `-` (minimised).
+pub fn objective_among(name: &str, metrics: &[&str]) -> Option<Objective> {
+    let (maximise, what) = match name.strip_prefix('-') {
+        Some(rest) => (false, rest),
+        None => (true, name),
+    };
+    let measure = match what {
+        "fitness" => Measure::Fitness,
+        other => Measure::Metric(metrics.iter().position(|m| *m == other)?),
+    };
+    Some(Objective { measure, maximise })
+}
+
+/// Checks `[strategy.nsga2]` for a task measuring `metrics`; the error
+/// names the key.
+pub(super) fn validate(n: &Nsga2Config, metrics: &[&str]) -> std::result::Result<(), String> {
+    if n.objectives.is_empty() {
+        return Err(bad_setting(
+            "nsga2.objectives",
+            &n.objectives,
+            "at least one objective",
+        ));
+    }
+    if let Some(o) = (n.objectives.iter()).find(|o| objective_among(o, metrics).is_none()) {
+        return Err(format!(
+            "strategy.nsga2.objectives = {o:?}: expected fitness or {}, each optionally with a leading -",
+            metrics.join(" or ")
+        ));
+    }
+    if !(0.0..=1.0).contains(&n.crossover_probability) {
+        return Err(bad_setting(
+            "nsga2.crossover_probability",
+            &n.crossover_probability,
+            "must be in [0, 1]",
+        ));
+    }
+    Ok(())
+}
+
+/// Keeps the objectives the task measures (the default minimises contacts,
+/// which not every task counts).
+pub(super) fn fit_to(n: &mut Nsga2Config, task: &TaskFacts<'_>) {
+    if let Some(metrics) = task.metrics {
+        n.objectives
+            .retain(|o| objective_among(o, metrics).is_some());
+    }
+}
 
 /// NSGA-II's registration.
 pub static STRATEGY: StrategyEntry = StrategyEntry {
@@ -142,4 +218,18 @@ pub fn front_objective_names(config: &Config) -> Vec<String> {
     (config.strategy.nsga2.objectives.iter())
         .map(|o| o.trim_start_matches('-').to_string())
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn objectives_parse_with_their_direction() {
+        let o = objective("-contacts").unwrap();
+        assert_eq!((o.measure, o.maximise), (Measure::Metric(0), false));
+        assert_eq!(objective("fitness").unwrap().measure, Measure::Fitness);
+        assert_eq!(objective("on_road").unwrap().measure, Measure::Metric(1));
+        assert!(objective("speed").is_none() && objective("--fitness").is_none());
+    }
 }

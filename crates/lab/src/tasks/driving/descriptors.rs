@@ -35,7 +35,7 @@
 use vivae_neat::driver::Evaluation;
 use vivae_sim::World;
 
-use crate::config::strategy::StrategyConfig;
+use crate::search::StrategyConfig;
 use crate::tasks::driving::behaviour::BehaviourMeter;
 use crate::tasks::driving::fitness::Fitness;
 use crate::tasks::driving::rollout::{Drive, Rollout};

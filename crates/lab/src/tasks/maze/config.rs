@@ -5,11 +5,13 @@ use vivae_neat::NeatParams;
 
 pub use super::section::{Collision, MazeConfig, MazeRobot, MazeWalls};
 use crate::config::{Config, DistanceConfig, SubstrateConfig, TaskName};
+use crate::search::TaskFacts;
 
 impl Config {
     /// The config of a maze run with the example's settings: the hard maze,
     /// 400 steps, the paper's robot, plain NEAT with a population of 250,
-    /// novelty search's ρ_min = 6 px, NSGA-II on fitness alone.
+    /// the strategies fitted to its px and metrics (novelty search's ρ_min =
+    /// 6 px, 10 px MAP-Elites cells, NSGA-II on fitness alone).
     pub fn maze() -> Config {
         let mut c = Config::default();
         c.experiment.task = TaskName(super::NAME.into());
@@ -23,13 +25,18 @@ impl Config {
             population_size: 250,
             ..NeatParams::plain_neat()
         };
-        let novelty = vivae_neat::strategies::NoveltyParams::default();
-        // ρ_min in px (Lehman's maze code, via goNEAT_NS): the behaviour is in px.
-        c.strategy.novelty.threshold = 6.0;
-        c.strategy.novelty.threshold_floor = novelty.threshold_floor;
-        c.strategy.nsga2.objectives = vec!["fitness".into()];
-        // 10 px cells over the hard maze (205 × 205); `vivae evolve --task maze` fits them to its maze.
-        c.strategy.map_elites.bins = vec![21];
+        c.strategy.fit_to(&TaskFacts {
+            metrics: Some(&super::METRICS),
+            // The behaviour is in px: behaviours 6 px apart are distinct
+            // (Lehman's maze code, via goNEAT_NS), adapting down to 0.05 px
+            // (the library's floor).
+            distinct: Some(6.0),
+            distinct_floor: Some(0.05),
+            // Cells of 10 px over the hard maze (205 × 205); `vivae evolve
+            // --task maze` fits them to its maze.
+            cell: Some(super::CELL),
+            extent: &[205.0],
+        });
         c
     }
 }
@@ -140,7 +147,20 @@ fn validate_robot(c: &Config) -> Result<(), String> {
 
 #[cfg(test)]
 mod tests {
+    use crate::config::Config;
     use crate::tasks::config_from_toml;
+
+    #[test]
+    fn the_maze_fits_the_strategies_to_its_px_and_metrics() {
+        let s = Config::maze().strategy;
+        let library = vivae_neat::strategies::NoveltyParams::default();
+        assert_eq!(
+            (s.novelty.threshold, s.novelty.threshold_floor),
+            (6.0, library.threshold_floor)
+        );
+        assert_eq!(s.map_elites.bins, [21]);
+        assert_eq!(s.nsga2.objectives, ["fitness"]);
+    }
 
     #[test]
     fn a_maze_section_in_a_driving_config_names_the_key_that_fixes_it() {

@@ -68,6 +68,9 @@ pub const FITNESS_BIAS: f64 = 300.0;
 pub const GOAL_MARK: &str = "goal";
 /// Names of [`Evaluation::metrics`], in order.
 pub const METRICS: [&str; 3] = ["solved", "distance", "steps"];
+/// Side of a cell of the maze's behaviour space worth one elite, px (the
+/// example's MAP-Elites grid).
+pub const CELL: f64 = 10.0;
 
 /// Why a scenario is not a maze.
 #[derive(Debug, thiserror::Error)]

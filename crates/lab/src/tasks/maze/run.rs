@@ -17,11 +17,12 @@ use vivae_sim::Scenario;
 use crate::config::Config;
 use crate::error::Result;
 use crate::io::bad_input;
+use crate::search::TaskFacts;
 use crate::tasks::maps::TrainingMap;
 use crate::tasks::maze::config::MazeRobot;
 use crate::tasks::maze::lehman::LehmanTask;
 use crate::tasks::maze::walls::LehmanMaze;
-use crate::tasks::maze::{METRICS, MazeModel, MazeTask, NAME};
+use crate::tasks::maze::{CELL, METRICS, MazeModel, MazeTask, NAME};
 use crate::tasks::{Finished, HeaderContext, RunTask, TargetProgress, TaskEntry};
 
 /// The maze task's registration.
@@ -45,15 +46,6 @@ pub static TASK: TaskEntry = TaskEntry {
     scenarios: &super::SCENARIOS,
     packs: &[super::pack::MEDIUM, super::pack::HARD],
 };
-
-/// Side of MAP-Elites' grid cells over the maze, px (the example's).
-pub const CELL: f64 = 10.0;
-
-/// MAP-Elites bins of [`CELL`]-px cells over `task`'s arena (the example's grid).
-pub fn cell_bins(task: &impl MazeModel) -> Vec<usize> {
-    let (_, upper) = task.bounds();
-    upper.iter().map(|u| (u / CELL).ceil() as usize).collect()
-}
 
 /// The maze task of a maze run's `config` on `scenario`; bad input (naming
 /// the scenario) when it is not a maze.
@@ -157,9 +149,15 @@ impl<M: MazeModel> RunTask for M {
             .unwrap_or_default()
     }
 
-    /// The grid of 10 px cells over this maze's arena.
+    /// Cells of [`CELL`] px over this maze's arena (the example's grid).
     fn fit_defaults(&self, config: &mut Config) {
-        config.strategy.map_elites.bins = cell_bins(self);
+        // The box starts at 0 px: its upper corner is its extent.
+        let (_, upper) = self.bounds();
+        config.strategy.fit_to(&TaskFacts {
+            cell: Some(CELL),
+            extent: &upper,
+            ..TaskFacts::default()
+        });
     }
 
     fn has_target(&self) -> bool {
@@ -309,9 +307,14 @@ mod tests {
 
     #[test]
     fn map_elites_cells_are_ten_px_over_the_arena() {
-        let task = MazeTask::shipped(crate::tasks::maze::Maze::Medium).unwrap();
-        assert_eq!(cell_bins(&task), [30, 14]);
-        let task = MazeTask::shipped(crate::tasks::maze::Maze::Hard).unwrap();
-        assert_eq!(cell_bins(&task), [21, 21]);
+        for (maze, bins) in [
+            (crate::tasks::maze::Maze::Medium, [30, 14]),
+            (crate::tasks::maze::Maze::Hard, [21, 21]),
+        ] {
+            let task = MazeTask::shipped(maze).unwrap();
+            let mut c = Config::maze();
+            task.fit_defaults(&mut c);
+            assert_eq!(c.strategy.map_elites.bins, bins);
+        }
     }
 }

@@ -3,8 +3,8 @@
 use vivae_neat::NeatParams;
 
 use crate::config::coevolution::{Opponents, SideController};
-use crate::config::strategy::StrategyConfig;
 use crate::config::{Config, DistanceConfig, OpponentConfig, SubstrateConfig, TaskName};
+use crate::search::{StrategyConfig, TaskFacts};
 use crate::tasks::predator_prey::{NAME, STEPS};
 use crate::tasks::robot;
 
@@ -24,8 +24,11 @@ impl Config {
             population_size: 100,
             ..NeatParams::plain_neat()
         };
-        // The driving default selects on a metric this task has not.
-        c.strategy.nsga2.objectives = vec!["fitness".into()];
+        // The defaults select on a metric this task has not: it has none.
+        c.strategy.fit_to(&TaskFacts {
+            metrics: Some(&[]),
+            ..TaskFacts::default()
+        });
         c
     }
 }

@@ -1,0 +1,180 @@
+//! A strategy's registration: its [`StrategyEntry`], the built-in ones
+//! and those a program [`register`]s, and the check of a config's
+//! `[strategy]` section against the one it names.
+
+use std::path::Path;
+
+use vivae_neat::{GenomeSpec, Population};
+
+use crate::config::Config;
+use crate::config::strategy::BehaviourKind;
+use crate::error::Result;
+use crate::io::bad_input;
+use crate::search::{DynStrategy, STRATEGIES, Search, StrategyReport};
+
+/// The box (lower, upper) the behaviour descriptors lie in.
+pub type Bounds = (Vec<f64>, Vec<f64>);
+
+/// A strategy's registration: what a run needs of it before it exists.
+pub struct StrategyEntry {
+    /// Its `strategy.kind`.
+    pub kind: &'static str,
+    /// What it selects on beside fitness, which the task then measures.
+    pub needs: Needs,
+    /// Whether it can start from given genomes (`experiment.init_population`,
+    /// LEO's seeded generation 0) rather than minimal ones.
+    pub takes_population: bool,
+    /// Its name in a checkpoint's `search` field (`{"Name": state}`).
+    pub variant: &'static str,
+    /// The strategy of a checkpoint's state (its JSON text).
+    pub from_state: fn(&str) -> serde_json::Result<Search>,
+    /// The columns it adds to `generations.csv` (after NEAT's), each with its
+    /// leading comma.
+    pub extra_columns: &'static str,
+    /// Its generation 0.
+    pub build: fn(Start<'_>) -> Result<Search>,
+    /// The line the run's header says of it (with its leading line break), or empty.
+    pub header_line: fn(&Config) -> String,
+    /// What the report of the run in a directory shows of it, read from the
+    /// files it wrote (`None`: nothing, as for NEAT); the task's robots given.
+    pub report: ReportOf,
+}
+
+/// What a strategy's generation 0 is built from.
+pub struct Start<'a> {
+    /// The run's config.
+    pub config: &'a Config,
+    /// The shape of the genomes.
+    pub spec: GenomeSpec,
+    /// The box the behaviour descriptors lie in.
+    pub bounds: Bounds,
+    /// The genomes to start from, if given (only to an entry that
+    /// [`StrategyEntry::takes_population`]).
+    pub init: Option<&'a Population>,
+}
+
+/// What a strategy selects on beside fitness: the task measures it only then.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Needs {
+    /// A behaviour descriptor (`strategy.behaviour`).
+    pub behaviour: bool,
+    /// The task's metrics (contacts, on-road share, …).
+    pub metrics: bool,
+}
+
+/// [`StrategyEntry::from_state`] of a strategy whose checkpointed state is
+/// its serde form.
+pub fn state_of<T>(state: &str) -> serde_json::Result<Search>
+where
+    T: DynStrategy + serde::de::DeserializeOwned + 'static,
+{
+    Ok(Search::of(serde_json::from_str::<T>(state)?))
+}
+
+/// How a strategy's part of a run's report is read from the run directory.
+pub type ReportOf = fn(&Path, &Config, usize) -> Result<Option<StrategyReport>>;
+
+/// A strategy's report with nothing of its own but its name (novelty search).
+pub(crate) fn named_report(_: &Path, config: &Config, _: usize) -> Result<Option<StrategyReport>> {
+    Ok(Some(StrategyReport {
+        kind: entry_of(config)?.kind,
+        ..StrategyReport::default()
+    }))
+}
+
+impl std::fmt::Debug for StrategyEntry {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("StrategyEntry")
+            .field("kind", &self.kind)
+            .finish()
+    }
+}
+
+/// The strategies programs added with [`register`].
+static REGISTERED: std::sync::RwLock<Vec<&'static StrategyEntry>> =
+    std::sync::RwLock::new(Vec::new());
+
+/// Adds a strategy to those a config can name (`strategy.kind = "its kind"`),
+/// beside the built-in [`STRATEGIES`]; the error says why not (a name taken).
+pub fn register(entry: &'static StrategyEntry) -> std::result::Result<(), String> {
+    let mut added = REGISTERED.write().unwrap_or_else(|e| e.into_inner());
+    let taken = |e: &&StrategyEntry| e.kind == entry.kind || e.variant == entry.variant;
+    if STRATEGIES.iter().chain(added.iter()).any(taken) {
+        // Registering the same entry twice is harmless (tests, re-imports).
+        if STRATEGIES
+            .iter()
+            .chain(added.iter())
+            .any(|e| std::ptr::eq(*e, entry))
+        {
+            return Ok(());
+        }
+        return Err(format!(
+            "a strategy called '{}' ({}) is registered already",
+            entry.kind, entry.variant
+        ));
+    }
+    added.push(entry);
+    Ok(())
+}
+
+/// Every strategy a config can name: the built-in ones, then the registered.
+pub fn entries() -> Vec<&'static StrategyEntry> {
+    let added = REGISTERED.read().unwrap_or_else(|e| e.into_inner());
+    STRATEGIES.iter().chain(added.iter()).copied().collect()
+}
+
+/// The strategy called `kind`; the error lists the ones there are.
+pub fn entry(kind: &str) -> std::result::Result<&'static StrategyEntry, String> {
+    let all = entries();
+    all.iter().copied().find(|e| e.kind == kind).ok_or_else(|| {
+        let names: Vec<_> = all.iter().map(|e| e.kind).collect();
+        format!("'{kind}': expected {}", names.join(", "))
+    })
+}
+
+/// The strategy `config` names (checked by [`check`]).
+pub fn entry_of(config: &Config) -> Result<&'static StrategyEntry> {
+    entry(config.strategy.kind.name()).map_err(|why| bad_input(format!("strategy.kind = {why}")))
+}
+
+/// Checks `config`'s `[strategy]` section for a task measuring `metrics`:
+/// the strategy is registered, what it needs fits the run, its settings are
+/// valid; the error names the key.
+pub fn check(config: &Config, metrics: &[&str]) -> std::result::Result<(), String> {
+    let s = &config.strategy;
+    let e = entry(s.kind.name()).map_err(|why| format!("strategy.kind = {why}"))?;
+    let multi_map = !config.experiment.scenarios.is_empty();
+    if e.needs.behaviour && s.behaviour == BehaviourKind::EndPositions && multi_map {
+        return Err(format!(
+            "strategy.behaviour = {:?}: one map only (maps have their own robots): use end-position on several maps",
+            s.behaviour.name()
+        ));
+    }
+    if config.substrate.es.leo_seed && !e.takes_population {
+        return Err(format!(
+            "substrate.es.leo_seed = true: a {} run starts from minimal genomes (only {} runs start from the seed)",
+            e.kind,
+            takers().join(" and ")
+        ));
+    }
+    s.validate(metrics)
+}
+
+/// The strategies that can start from given genomes.
+pub(crate) fn takers() -> Vec<&'static str> {
+    entries()
+        .into_iter()
+        .filter(|e| e.takes_population)
+        .map(|e| e.kind)
+        .collect()
+}
+
+/// The header line of the strategies that search on a behaviour descriptor.
+pub(crate) fn behaviour_line(c: &Config) -> String {
+    let s = &c.strategy;
+    format!(
+        "\n  strategy: {}, behaviour {}",
+        s.kind.name(),
+        s.behaviour.name()
+    )
+}
