@@ -36,20 +36,14 @@ pub fn join_mpi_job(
 ) -> anyhow::Result<Option<ExitCode>> {
     #[cfg(feature = "mpi")]
     {
-        let fingerprint = prepared.as_ref().map_or_else(
-            |_| String::new(),
-            |(_, maps, _)| vivae_lab::tasks::maps::fingerprint_text(maps),
-        );
-        let work = prepared
-            .as_ref()
-            .ok()
-            .map(|(_, _, t)| vivae::mpi::Genomes(*t));
-        let setup = match (prepared, &work) {
-            (Ok((config, _, _)), Some(work)) => Ok((config, fingerprint.as_str(), work as _)),
-            (Err(e), _) => Err(e),
-            (Ok(_), None) => unreachable!("work is built from the prepared run"),
-        };
-        join(setup, threads, quiet)
+        match prepared {
+            Ok((config, maps, task)) => {
+                let fingerprint = vivae_lab::tasks::maps::fingerprint_text(maps);
+                let work = vivae::mpi::Genomes(task);
+                join(Ok((config, fingerprint.as_str(), &work)), threads, quiet)
+            }
+            Err(e) => join(Err(e), threads, quiet),
+        }
     }
     #[cfg(not(feature = "mpi"))]
     {
@@ -67,16 +61,14 @@ pub fn join_mpi_meetings(
 ) -> anyhow::Result<Option<ExitCode>> {
     #[cfg(feature = "mpi")]
     {
-        let work = prepared
-            .as_ref()
-            .ok()
-            .map(|(_, _, a)| vivae::mpi::MeetingsOf(a));
-        let setup = match (prepared, &work) {
-            (Ok((config, text, _)), Some(work)) => Ok((config, text, work as _)),
-            (Err(e), _) => Err(e),
-            (Ok(_), None) => unreachable!("work is built from the prepared run"),
-        };
-        join(setup, threads, quiet)
+        match prepared {
+            Ok((config, text, arena)) => join(
+                Ok((config, text, &vivae::mpi::MeetingsOf(arena))),
+                threads,
+                quiet,
+            ),
+            Err(e) => join(Err(e), threads, quiet),
+        }
     }
     #[cfg(not(feature = "mpi"))]
     {
