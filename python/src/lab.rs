@@ -435,11 +435,11 @@ fn own_driver_run<'py>(
             let line = run(&vivae_lab::tasks::Session {
                 interrupted: &stop,
                 say: &quiet,
-                meetings: None,
+                players: None,
             })?;
             // Its figures and report.html, as the CLI draws them when a run stops.
-            if vivae::report_coevo::is_predator_prey_run(dir) {
-                vivae::report_coevo::write(dir)?;
+            if let Some(tools) = vivae::tasks::of_run(dir) {
+                (tools.report)(dir)?;
             }
             Ok::<_, vivae_lab::Error>(line)
         })
@@ -500,8 +500,8 @@ pub fn resume<'py>(
 #[pyfunction]
 pub fn report(py: Python<'_>, out: PathBuf) -> PyResult<PathBuf> {
     py.detach(|| {
-        if vivae::report_coevo::is_predator_prey_run(&out) {
-            return vivae::report_coevo::write(&out);
+        if let Some(tools) = vivae::tasks::of_run(&out) {
+            return (tools.report)(&out);
         }
         // Opened as `vivae resume` opens it (locked; truncated to its newest
         // checkpoint, which a finished run's files already end at).

@@ -16,14 +16,13 @@ mod evo;
 mod export;
 mod lab;
 mod pool;
-mod predator_prey;
 mod reproduce;
 // The program's portable C math symbols, shared rather than copied.
 #[path = "../../crates/vivae/src/portable_libm.rs"]
 mod portable_libm;
 mod settings;
 mod strategies;
-mod tournament;
+mod tasks;
 
 #[pymodule]
 fn _vivae(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -33,8 +32,7 @@ fn _vivae(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<evo::Population>()?;
     strategies::register(m)?;
     m.add_class::<lab::DriveTask>()?;
-    m.add_class::<predator_prey::PredatorPreyCore>()?;
-    m.add_class::<predator_prey::PredatorPreyTask>()?;
+    tasks::register(m)?;
     m.add_class::<lab::Controller>()?;
     m.add_function(wrap_pyfunction!(lab::evolve, m)?)?;
     m.add_function(wrap_pyfunction!(lab::replay, m)?)?;
@@ -49,7 +47,6 @@ fn _vivae(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(export::record_episode, m)?)?;
     m.add_function(wrap_pyfunction!(export::drive_image, m)?)?;
     m.add_function(wrap_pyfunction!(math_is_portable, m)?)?;
-    m.add_function(wrap_pyfunction!(tournament::tournament, m)?)?;
     m.add("OVERRIDES", settings::OVERRIDES.to_vec())?;
     Ok(())
 }

@@ -21,8 +21,8 @@ pub mod figures;
 #[cfg(feature = "mpi")]
 pub mod mpi;
 pub mod report;
-pub mod report_coevo;
 pub mod report_html;
+pub mod tasks;
 #[cfg(feature = "viewer")]
 pub mod view;
 

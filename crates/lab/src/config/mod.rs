@@ -11,7 +11,6 @@ mod reference;
 mod toml_error;
 mod validate;
 
-pub mod coevolution;
 pub mod es;
 pub mod fitness;
 pub mod strategy;
@@ -82,9 +81,9 @@ pub struct Config {
     /// evaluated against.
     #[serde(
         default,
-        skip_serializing_if = "coevolution::CoevolutionConfig::is_default"
+        skip_serializing_if = "crate::tasks::CoevolutionConfig::is_default"
     )]
-    pub coevolution: coevolution::CoevolutionConfig,
+    pub coevolution: crate::tasks::CoevolutionConfig,
 }
 
 /// What is run.

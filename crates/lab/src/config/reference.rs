@@ -168,7 +168,7 @@ pub(super) fn documented_defaults() -> toml::Value {
         let opponent = toml::Value::try_from(OpponentConfig::default()).expect("TOML");
         table.insert("opponent_sensors".into(), opponent);
         let coevolution =
-            toml::Value::try_from(super::coevolution::CoevolutionConfig::default()).expect("TOML");
+            toml::Value::try_from(super::Config::default().coevolution).expect("TOML");
         table.insert("coevolution".into(), coevolution);
     }
     defaults

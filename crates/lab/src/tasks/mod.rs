@@ -19,10 +19,13 @@ mod target;
 
 pub use seam::{
     BuildTask, Finished, HeaderContext, OwnDriver, RunTask, Session, SetRobot, TaskEntry, build,
-    check, config_from_toml, default_config, entry, entry_of, metric_names, own_driver_of_run,
-    read_config, set_robot,
+    check, config_from_toml, default_config, entry, entry_of, entry_of_run, metric_names,
+    own_driver_of_run, read_config, set_robot,
 };
 pub use target::{StoredTarget, TargetProgress};
+
+/// The config's `[coevolution]` section, the predator–prey task's own.
+pub use predator_prey::section::CoevolutionConfig;
 
 /// Every task a run can evolve for; `experiment.task` names one. A new task
 /// is a folder here and one line in this list.

@@ -66,9 +66,11 @@ pub struct Session<'a> {
     pub interrupted: &'a AtomicBool,
     /// Says a line to a person (the program prints it on stderr unless quiet).
     pub say: &'a (dyn Fn(&str) + Sync),
-    /// Who plays the predator–prey task's meetings when not this process's
-    /// threads (`None`): the program's players across an MPI job's ranks.
-    pub meetings: Option<&'a dyn super::predator_prey::meetings::Meetings>,
+    /// Who plays the task's batches (e.g. the predator–prey task's meetings)
+    /// when not this process's threads (`None`): the program's players
+    /// across an MPI job's ranks, of a type the task's driver knows (it
+    /// built them for the program: the program's tools of the task).
+    pub players: Option<&'a (dyn Any + Sync)>,
 }
 
 /// The driver of a task that runs on its own: it creates, resumes and runs
@@ -85,8 +87,14 @@ pub struct OwnDriver {
 
 /// The driver of the run in `dir`, when its task (in its `config.toml`) runs on its own.
 pub fn own_driver_of_run(dir: &Path) -> Option<OwnDriver> {
+    entry_of_run(dir)?.own_driver
+}
+
+/// The entry of the task that the run in `dir` names in its `config.toml`
+/// (read only that far: the config may be refused whole).
+pub fn entry_of_run(dir: &Path) -> Option<&'static TaskEntry> {
     let text = std::fs::read_to_string(dir.join(crate::rundir::files::CONFIG)).ok()?;
-    entry(task_of_text(&text)?.name()).ok()?.own_driver
+    entry(task_of_text(&text)?.name()).ok()
 }
 
 impl fmt::Debug for TaskEntry {

@@ -1,9 +1,10 @@
 //! The evolving commands' side of an MPI job (the feature `mpi`; see
 //! `vivae::mpi` and docs/distributed.md): whether this process is one of its
-//! ranks, the start-up handshake, and spreading generations (or a
-//! predator–prey run's meetings) over the ranks.
+//! ranks, the start-up handshake, and spreading generations (or the batches
+//! of a run on its task's own driver) over the ranks.
 //! Without the feature each is a no-op, so the commands call them always.
 
+use std::path::Path;
 use std::process::ExitCode;
 use std::sync::atomic::AtomicBool;
 
@@ -11,9 +12,10 @@ use vivae_lab::config::Config;
 use vivae_lab::run::{Outcome, Run};
 use vivae_lab::rundir::GenerationRecord;
 use vivae_lab::tasks::maps::TrainingMap;
-use vivae_lab::tasks::predator_prey::Arena;
-use vivae_lab::tasks::predator_prey::meetings::Meetings;
 use vivae_neat::driver::Task;
+
+/// Rank 0's players of a task's batches, as its driver's session takes them.
+pub type Players = Box<dyn std::any::Any + Sync>;
 
 /// Whether an MPI launcher started this process (never without the `mpi` feature).
 pub fn launched_by_mpi() -> bool {
@@ -52,28 +54,54 @@ pub fn join_mpi_job(
     }
 }
 
-/// [`join_mpi_job`] for a predator–prey run: each rank brings its config,
-/// the arena's scenario text and the arena (a worker plays meetings in it).
-pub fn join_mpi_meetings(
-    prepared: Result<(&Config, &str, &Arena), &anyhow::Error>,
-    threads: usize,
+/// A run on its task's own driver, as every rank of an MPI job prepares it.
+#[derive(Debug, Clone, Copy)]
+#[cfg_attr(not(feature = "mpi"), allow(dead_code))]
+pub enum OwnRun<'a> {
+    /// A new run of a config.
+    New(&'a Config),
+    /// The run in a directory, resumed.
+    Existing(&'a Path),
+}
+
+/// [`join_mpi_job`] for a run on its task's own driver: each rank prepares
+/// what the task's program-side tools say (config, scenario text, what a
+/// worker does). The run's threads (an existing run's recorded ones, 0
+/// when it cannot be read or without MPI) and `Some(code)` on a worker rank
+/// whose work is done.
+pub fn join_mpi_own_driver(
+    run: OwnRun<'_>,
     quiet: bool,
-) -> anyhow::Result<Option<ExitCode>> {
+) -> anyhow::Result<(usize, Option<ExitCode>)> {
     #[cfg(feature = "mpi")]
     {
-        match prepared {
-            Ok((config, text, arena)) => join(
-                Ok((config, text, &vivae::mpi::MeetingsOf(arena))),
-                threads,
-                quiet,
-            ),
-            Err(e) => join(Err(e), threads, quiet),
+        let entry = match run {
+            OwnRun::New(config) => vivae_lab::tasks::entry_of(config).ok(),
+            OwnRun::Existing(dir) => vivae_lab::tasks::entry_of_run(dir),
+        };
+        let Some(mpi) = entry.and_then(|e| vivae::tasks::of_task(e.name)?.mpi) else {
+            let why = "this run's task has no MPI work: run it without mpirun";
+            return Err(vivae_lab::io::bad_input(why).into());
+        };
+        let prepared = match run {
+            OwnRun::New(config) => (mpi.for_config)(config),
+            OwnRun::Existing(dir) => (mpi.for_run)(dir),
         }
+        .map_err(anyhow::Error::from);
+        // A new run's threads are its config's; an existing run's, those it recorded.
+        let threads = match (run, &prepared) {
+            (OwnRun::New(config), _) => config.run.threads,
+            (OwnRun::Existing(_), Ok(p)) => p.config.run.threads,
+            (OwnRun::Existing(_), Err(_)) => 0,
+        };
+        let joining =
+            (prepared.as_ref()).map(|p| (&p.config, p.scenario_text.as_str(), p.work.as_ref()));
+        Ok((threads, join(joining, threads, quiet)?))
     }
     #[cfg(not(feature = "mpi"))]
     {
-        let _ = (prepared, threads, quiet);
-        Ok(None)
+        let _ = (run, quiet);
+        Ok((0, None))
     }
 }
 
@@ -103,15 +131,16 @@ fn join(
     }
 }
 
-/// Who plays a predator–prey run's meetings on rank 0 of an MPI job whose
-/// workers joined (on `threads` threads of its own, and the workers');
+/// Who plays the batches of a run on the task `task`'s own driver, on rank
+/// 0 of an MPI job whose workers joined (on `threads` threads of its own,
+/// and the workers'): the task's players, as its session takes them;
 /// `None` (this process's threads) otherwise.
-pub fn meetings_player(threads: usize) -> anyhow::Result<Option<Box<dyn Meetings>>> {
+pub fn own_driver_players(task: Option<&str>, threads: usize) -> anyhow::Result<Option<Players>> {
     #[cfg(feature = "mpi")]
-    if let Some(player) = vivae::mpi::MpiMeetings::for_leader(threads)? {
-        return Ok(Some(Box::new(player)));
+    if let Some(mpi) = task.and_then(vivae::tasks::of_task).and_then(|t| t.mpi) {
+        return Ok((mpi.player)(threads)?);
     }
-    let _ = threads;
+    let _ = (task, threads);
     Ok(None)
 }
 

@@ -1,8 +1,9 @@
 //! Running a task that has a driver of its own (the predator–prey task's two
 //! populations): its lines for a person on stderr (unless quiet), its summary
-//! line on stdout. Under MPI every rank builds the run's arena and joins the
-//! job; rank 0 runs the driver, which has the job's ranks play its meetings
-//! (docs/distributed.md), and the workers play them.
+//! line on stdout, then its report (the task's program-side tools). Under
+//! MPI every rank prepares what the task's tools say (e.g. the run's arena)
+//! and joins the job; rank 0 runs the driver, which has the job's ranks play
+//! its batches (docs/distributed.md), and the workers play them.
 
 use std::path::Path;
 use std::process::ExitCode;
@@ -10,10 +11,9 @@ use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 
 use vivae_lab::config::Config;
-use vivae_lab::tasks::predator_prey::run::{arena_for, arena_of_run};
-use vivae_lab::tasks::{OwnDriver, Session};
+use vivae_lab::tasks::{OwnDriver, Session, entry_of_run};
 
-use super::mpi_job::{join_mpi_meetings, launched_by_mpi, meetings_player};
+use super::mpi_job::{OwnRun, join_mpi_own_driver, launched_by_mpi, own_driver_players};
 
 /// Creates and runs a run of `config` in `dir` on `driver`.
 pub fn evolve(
@@ -26,14 +26,13 @@ pub fn evolve(
 ) -> anyhow::Result<ExitCode> {
     let threads = config.run.threads;
     if launched_by_mpi() {
-        // Every rank builds the arena; rank 0 writes to `dir` only after the handshake.
-        let prepared = arena_for(&config).map_err(anyhow::Error::from);
-        let joining = (prepared.as_ref()).map(|(arena, text)| (&config, text.as_str(), arena));
-        if let Some(code) = join_mpi_meetings(joining, threads, quiet)? {
+        // Every rank prepares the run; rank 0 writes to `dir` only after the handshake.
+        if let (_, Some(code)) = join_mpi_own_driver(OwnRun::New(&config), quiet)? {
             return Ok(code);
         }
     }
-    in_session(quiet, threads, interrupted, |session| {
+    let task = config.experiment.task.name().to_string();
+    in_session(Some(&task), quiet, threads, interrupted, |session| {
         (driver.evolve)(dir, config, force, session)
     })?;
     report(dir, quiet)
@@ -50,26 +49,27 @@ pub fn resume(
     let mut threads = 0;
     if launched_by_mpi() {
         // Every rank reads the run (rank 0 writes to it only after the handshake).
-        let prepared = arena_of_run(dir).map_err(anyhow::Error::from);
-        threads = prepared.as_ref().map_or(0, |(c, _, _)| c.run.threads);
-        let joining = (prepared.as_ref()).map(|(c, arena, text)| (c, text.as_str(), arena));
-        if let Some(code) = join_mpi_meetings(joining, threads, quiet)? {
+        let (recorded, code) = join_mpi_own_driver(OwnRun::Existing(dir), quiet)?;
+        threads = recorded;
+        if let Some(code) = code {
             return Ok(code);
         }
     }
-    in_session(quiet, threads, interrupted, |session| {
+    let task = entry_of_run(dir).map(|e| e.name);
+    in_session(task, quiet, threads, interrupted, |session| {
         (driver.resume)(dir, generations, session)
     })?;
     report(dir, quiet)
 }
 
-/// Draws the figures and `report.html` of a predator–prey run that has
-/// stopped (`vivae report` rebuilds them); says where unless `quiet`.
+/// Draws the figures and `report.html` of a run that has stopped, when its
+/// task's program-side tools draw them (`vivae report` rebuilds them); says
+/// where unless `quiet`.
 fn report(dir: &Path, quiet: bool) -> anyhow::Result<ExitCode> {
-    if vivae::report_coevo::is_predator_prey_run(dir) {
-        let path = vivae::report_coevo::write(dir)?;
+    if let Some(tools) = vivae::tasks::of_run(dir) {
+        let path = (tools.report)(dir)?;
         if !quiet {
-            eprintln!("report: {} (and ciao.png, coevolution.png)", path.display());
+            eprintln!("report: {}{}", path.display(), tools.report_note);
         }
     }
     Ok(ExitCode::SUCCESS)
@@ -77,9 +77,10 @@ fn report(dir: &Path, quiet: bool) -> anyhow::Result<ExitCode> {
 
 /// Runs `work` in a session that says its progress on stderr unless
 /// `quiet`, then prints its summary line. On rank 0 of an MPI job the
-/// session's meetings are played across the job's ranks (rank 0 on
-/// `threads` threads).
+/// session's batches are played across the job's ranks by the players of
+/// `task` (rank 0 on `threads` threads).
 fn in_session(
+    task: Option<&str>,
     quiet: bool,
     threads: usize,
     interrupted: &Arc<AtomicBool>,
@@ -90,15 +91,15 @@ fn in_session(
             eprintln!("{line}");
         }
     };
-    let player = meetings_player(threads)?;
+    let players = own_driver_players(task, threads)?;
     let session = Session {
         interrupted,
         say: &say,
-        meetings: player.as_deref(),
+        players: players.as_deref(),
     };
     let line = work(&session);
     // The job's traffic line (unless quiet) before the summary line.
-    drop(player);
+    drop(players);
     println!("{}", line?);
     Ok(ExitCode::SUCCESS)
 }

@@ -1,19 +1,20 @@
-//! `vivae report`: rebuilds a run's report.html (a driving run's, or a
-//! predator–prey run's with its CIAO figure); and the refusal, shared with
-//! `vivae view`, of a command that shows driving runs only.
+//! `vivae report`: rebuilds a run's report.html (a driving run's, or that of
+//! a run whose task's program-side tools draw its own, e.g. a predator–prey
+//! run's with its CIAO figure); and the refusal, shared with `vivae view`,
+//! of a command that shows driving runs only.
 
 use std::path::Path;
 use std::process::ExitCode;
 
 use vivae_lab::io::bad_input;
 use vivae_lab::rundir::{self, files};
-use vivae_lab::tasks::read_config;
+use vivae_lab::tasks::{entry_of_run, read_config};
 
 /// Runs `vivae report` on the run directory `run_dir`.
 pub fn run(run_dir: &Path) -> anyhow::Result<ExitCode> {
-    let path = if vivae::report_coevo::is_predator_prey_run(run_dir) {
-        // Two co-evolved populations: the CIAO figure, both sides' curves, the champions.
-        vivae::report_coevo::write(run_dir)?
+    let path = if let Some(tools) = vivae::tasks::of_run(run_dir) {
+        // A task's own report (two co-evolved populations: the CIAO figure, both sides' curves).
+        (tools.report)(run_dir)?
     } else {
         refuse_other_task(run_dir, "report")?;
         vivae::report_html::write(run_dir)?
@@ -25,9 +26,11 @@ pub fn run(run_dir: &Path) -> anyhow::Result<ExitCode> {
 /// Refuses, in one line, `command` on a run of a task on its own driver
 /// (two co-evolved populations, whose files are not a one-population run's).
 pub fn refuse_own_driver(path: &Path, command: &str) -> anyhow::Result<()> {
-    if path.is_dir() && vivae_lab::tasks::own_driver_of_run(path).is_some() {
+    let own = path.is_dir().then(|| entry_of_run(path)).flatten();
+    if let Some(task) = own.filter(|e| e.own_driver.is_some()) {
+        let records = vivae::tasks::of_task(task.name).map_or("its own", |t| t.records);
         return Err(bad_input(format!(
-            "{}: a run of two co-evolved populations: `vivae {command}` shows one-population runs only; its records are hunters.csv, prey.csv, ciao.csv and champions.json",
+            "{}: a run of two co-evolved populations: `vivae {command}` shows one-population runs only; its records are {records}",
             path.display()
         ))
         .into());

@@ -1,11 +1,11 @@
 //! `vivae tournament`: one predator–prey run's champions against another's
-//! (see `vivae_lab::tasks::predator_prey::tournament`).
+//! (the tournament of RUN_A's task, from its program-side tools:
+//! `vivae::tasks`).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::Args;
-use vivae_lab::tasks::predator_prey::tournament;
 
 use super::args::Threads;
 
@@ -27,10 +27,13 @@ pub struct TournamentArgs {
 
 /// Runs `vivae tournament`: the table on stdout (and the CSV written).
 pub fn run(args: TournamentArgs) -> anyhow::Result<ExitCode> {
-    let rows = tournament::tournament(&args.a, &args.b, args.threads.threads.unwrap_or(0))?;
+    let Some(tournament) = vivae::tasks::tournament_for(&args.a) else {
+        return Err(vivae_lab::io::bad_input("no task plays tournaments").into());
+    };
+    let tables = tournament(&args.a, &args.b, args.threads.threads.unwrap_or(0))?;
     if let Some(path) = &args.csv {
-        vivae_lab::io::write_atomic(path, tournament::csv(&rows).as_bytes())?;
+        vivae_lab::io::write_atomic(path, tables.csv.as_bytes())?;
     }
-    print!("{}", tournament::table(&rows));
+    print!("{}", tables.table);
     Ok(ExitCode::SUCCESS)
 }

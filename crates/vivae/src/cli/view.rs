@@ -54,8 +54,12 @@ pub struct ViewArgs {
 
 /// Runs `vivae view` until interrupted.
 pub fn run(args: ViewArgs) -> anyhow::Result<ExitCode> {
+    // A run whose task has a page of its own (its program-side tools) is served that page.
+    let own_page = (args.source.as_deref())
+        .and_then(vivae::tasks::of_run)
+        .and_then(|t| t.view);
     if let Some(source) = &args.source
-        && !vivae::report_coevo::is_predator_prey_run(source)
+        && own_page.is_none()
     {
         refuse_other_task(source, "view")?;
     }
@@ -73,5 +77,9 @@ pub fn run(args: ViewArgs) -> anyhow::Result<ExitCode> {
         max_viewers: args.max_viewers,
         idle_timeout: Duration::from_secs_f64(args.idle_timeout),
     };
-    Ok(vivae::view::run(args.source.as_deref(), &options)?)
+    Ok(vivae::view::run(
+        args.source.as_deref(),
+        own_page,
+        &options,
+    )?)
 }

@@ -11,7 +11,6 @@
 /// The MAP-Elites archive heat map.
 pub mod archive;
 /// The figures of a predator–prey run: the CIAO matrix and both sides' curves.
-pub mod coevo;
 pub mod compare;
 mod controller;
 pub mod convergence;

@@ -34,8 +34,8 @@ pub struct Setup<'a> {
     /// The scenario's text.
     pub scenario_text: &'a str,
     /// What this rank does as a worker: evaluate genomes of the task built
-    /// from both ([`super::Genomes`]), or play meetings in the arena built
-    /// from both ([`super::MeetingsOf`]).
+    /// from both ([`super::Genomes`]), or a task on its own driver's kind
+    /// ([`super::OwnDriverWork`]).
     pub work: &'a dyn Work,
     /// Evaluation threads for this rank (0 = one per core).
     pub threads: usize,

@@ -18,14 +18,15 @@
 //!
 //! This file holds the process's place in the job ([`Launch`]) and the
 //! message format; `handshake` is the start-up ([`start`]), `work` what a
-//! worker does with an item (evaluate a genome, or play a predator–prey
-//! meeting), `worker` a worker rank's loop, `leader` rank 0's side of a
-//! batch and its [`MpiEvaluator`] for one-population runs, `meetings` its
-//! [`MpiMeetings`] for the predator–prey task's two populations.
+//! worker does with an item (evaluate a genome; a task on its own driver
+//! brings its own kind), `worker` a worker rank's loop, `leader` rank 0's
+//! side of a batch and its [`MpiEvaluator`] for one-population runs,
+//! `spread` its [`Spread`] of a task's own batches (the predator–prey task's
+//! meetings: `crate::tasks`).
 
 mod handshake;
 mod leader;
-mod meetings;
+mod spread;
 mod work;
 mod worker;
 
@@ -39,8 +40,8 @@ use serde::{Deserialize, Serialize};
 
 pub use handshake::{Setup, Started, start};
 pub use leader::MpiEvaluator;
-pub use meetings::MpiMeetings;
-pub use work::{Genomes, MeetingsOf, Work};
+pub use spread::{OwnDriverWork, Players, Prepared, Spread};
+pub use work::{Genomes, Work, caught, work_item};
 
 /// Message tags. Rank 0 → worker: GO, WORK, STOP; worker → rank 0: HELLO, RESULT, FAILED.
 const TAG_HELLO: i32 = 1;

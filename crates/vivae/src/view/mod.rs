@@ -4,15 +4,16 @@
 //! `vivae-sim` world, one simulation per open page, and streamed to the page
 //! over a WebSocket ([`session`]). The page is plain HTML/CSS/JS embedded in
 //! the binary. The server answers only its own assets, a fixed list of the
-//! given run's files and the WebSocket; every other path is a 404. A
-//! predator–prey run has a page of its own ([`coevo`]): its two teams meet.
+//! given run's files and the WebSocket; every other path is a 404. A run
+//! of a task with a page of its own ([`OwnPage`], in its program-side
+//! tools: `crate::tasks`) is served that page instead (e.g. a predator–prey
+//! run's two teams meet).
 
-mod coevo;
 #[doc(hidden)]
 pub mod fuzzing;
-mod hosts;
-mod server;
-mod session;
+pub(crate) mod hosts;
+pub(crate) mod server;
+pub(crate) mod session;
 mod source;
 
 pub use server::IDLE_TIMEOUT;
@@ -48,33 +49,47 @@ pub struct ViewOptions {
     pub idle_timeout: Duration,
 }
 
-/// The predator–prey run `source` is, with its generations of champions
-/// (`None`: another source); refused in one line if it cannot be shown.
-fn predator_prey_run(
-    source: Option<&Path>,
-    options: &ViewOptions,
-) -> vivae_lab::Result<Option<(PathBuf, usize)>> {
-    let Some(dir) = source.filter(|p| crate::report_coevo::is_predator_prey_run(p)) else {
-        return Ok(None);
-    };
-    if options.member.is_some() || options.scenarios.is_some() {
-        return Err(bad_input(format!(
-            "{}: a predator-prey run: --elite, --front and --scenarios do not apply (the page picks any generation's hunter and prey)",
-            dir.display()
-        )));
-    }
-    // Refused now, in one line, rather than on every page.
-    let hall = coevo::Hall::load(dir)?;
-    Ok(Some((dir.to_path_buf(), hall.generations())))
+/// A task's page of its own for its runs (its program-side tools' `view`).
+#[derive(Debug, Clone, Copy)]
+pub struct OwnPage {
+    /// Loads the run in a directory for its page, refusing in one line what
+    /// cannot be shown (or options that do not apply); the line saying what is shown.
+    pub open: fn(&Path, &ViewOptions) -> vivae_lab::Result<String>,
+    /// Serves the page of the run in a directory on `runtime` until the process is stopped.
+    pub serve: fn(&tokio::runtime::Runtime, Served) -> std::io::Result<()>,
+}
+
+/// What a page of its own is served on: the listener, the run, the limits.
+#[derive(Debug)]
+pub struct Served {
+    /// Where it listens.
+    pub listener: tokio::net::TcpListener,
+    /// The run directory.
+    pub dir: PathBuf,
+    /// Most pages simulated at once.
+    pub max_viewers: usize,
+    /// The Host names it answers.
+    pub hosts: hosts::HostPolicy,
+    /// How long a page may stay silent.
+    pub idle: Duration,
 }
 
 /// Runs `vivae view` on `source` (a run directory, which it follows while it
 /// runs, a genome JSON, a scenario SVG, or none: the embedded road scenario)
-/// until interrupted.
-pub fn run(source: Option<&Path>, options: &ViewOptions) -> vivae_lab::Result<ExitCode> {
+/// until interrupted; a run whose task has a page of its own is served
+/// `own_page` (from the task's program-side tools: `crate::tasks::of_run`).
+pub fn run(
+    source: Option<&Path>,
+    own_page: Option<OwnPage>,
+    options: &ViewOptions,
+) -> vivae_lab::Result<ExitCode> {
     let host = options.addr.ip();
     let hosts = hosts::HostPolicy::new(host, &options.allow_host)?;
-    let shown = predator_prey_run(source, options)?;
+    // Refused now, in one line, rather than on every page.
+    let shown = match (source, own_page) {
+        (Some(dir), Some(page)) => Some((dir.to_path_buf(), page, (page.open)(dir, options)?)),
+        _ => None,
+    };
     let mut source = match &shown {
         Some(_) => Source::load(None, None)?,
         None => Source::load(source, options.scenarios.as_deref())?,
@@ -90,17 +105,7 @@ pub fn run(source: Option<&Path>, options: &ViewOptions) -> vivae_lab::Result<Ex
     let addr = options.addr;
     let listener = runtime
         .block_on(tokio::net::TcpListener::bind(addr))
-        .map_err(|e| {
-            let why = match e.kind() {
-                std::io::ErrorKind::AddrInUse => {
-                    "port already in use (choose another --port)".into()
-                }
-                std::io::ErrorKind::AddrNotAvailable => "no such address on this machine".into(),
-                std::io::ErrorKind::PermissionDenied => "permission denied".into(),
-                _ => e.to_string(),
-            };
-            bad_input(format!("cannot listen on {addr}: {why}"))
-        })?;
+        .map_err(|e| cannot_listen(addr, &e))?;
     let io = |action: &'static str| {
         move |error: std::io::Error| vivae_lab::Error::Io {
             action,
@@ -121,11 +126,8 @@ pub fn run(source: Option<&Path>, options: &ViewOptions) -> vivae_lab::Result<Ex
         local
     };
     println!("vivae view: http://{url}/");
-    if let Some((dir, generations)) = &shown {
-        eprintln!(
-            "showing predator-prey run {} ({generations} generations of champions; Ctrl-C stops the server)",
-            dir.display()
-        );
+    if let Some((_, _, showing)) = &shown {
+        eprintln!("{showing}");
     } else {
         eprintln!("{} (Ctrl-C stops the server)", source.describe());
         if let Some(note) = source.unusable_note() {
@@ -136,9 +138,29 @@ pub fn run(source: Option<&Path>, options: &ViewOptions) -> vivae_lab::Result<Ex
     let _ = std::io::stdout().flush();
     let (max, idle) = (options.max_viewers, options.idle_timeout);
     let served = match shown {
-        Some((dir, _)) => runtime.block_on(coevo::server::serve(listener, dir, max, hosts, idle)),
+        Some((dir, page, _)) => {
+            let served = Served {
+                listener,
+                dir,
+                max_viewers: max,
+                hosts,
+                idle,
+            };
+            (page.serve)(&runtime, served)
+        }
         None => runtime.block_on(server::serve(listener, source, max, hosts, idle)),
     };
     served.map_err(io("serve on"))?;
     Ok(ExitCode::SUCCESS)
+}
+
+/// Why `vivae view` cannot listen on `addr`, in one line.
+fn cannot_listen(addr: SocketAddr, e: &std::io::Error) -> vivae_lab::Error {
+    let why = match e.kind() {
+        std::io::ErrorKind::AddrInUse => "port already in use (choose another --port)".into(),
+        std::io::ErrorKind::AddrNotAvailable => "no such address on this machine".into(),
+        std::io::ErrorKind::PermissionDenied => "permission denied".into(),
+        _ => e.to_string(),
+    };
+    bad_input(format!("cannot listen on {addr}: {why}"))
 }

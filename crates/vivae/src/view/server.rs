@@ -56,9 +56,9 @@ const RUN_FILES: [(&str, &str); 4] = [
 /// How often a followed run directory is checked for new generations.
 const POLL: Duration = Duration::from_millis(700);
 /// Interval between frames sent to a page.
-pub(super) const FRAME: Duration = Duration::from_millis(16);
+pub(crate) const FRAME: Duration = Duration::from_millis(16);
 /// Largest message a page may send.
-pub(super) const MAX_MESSAGE: usize = 16 * 1024;
+pub(crate) const MAX_MESSAGE: usize = 16 * 1024;
 /// Pages silent this long (no message, not even the answer to a ping, which
 /// browsers send by themselves) are dropped and their viewer slot freed.
 pub const IDLE_TIMEOUT: Duration = Duration::from_secs(120);
@@ -83,7 +83,7 @@ impl Drop for ViewerSlot {
 }
 
 /// Serves a driving run (or a scenario) until the process is stopped.
-pub(super) async fn serve(
+pub(crate) async fn serve(
     listener: tokio::net::TcpListener,
     source: Source,
     max_viewers: usize,
@@ -130,7 +130,7 @@ pub(super) async fn serve(
 
 /// What a viewer serves besides its WebSocket: its page, the assets the page
 /// loads and the run files it may fetch.
-pub(super) struct Site {
+pub(crate) struct Site {
     /// The page at `/` (see [`page`]).
     pub page: String,
     /// The page's own `/assets/NAME` besides [`COMMON_ASSETS`]: name,
@@ -145,12 +145,12 @@ pub(super) struct Site {
 }
 
 /// A viewer page from its template: the shared pieces put in their places.
-pub(super) fn page(template: &str) -> String {
+pub(crate) fn page(template: &str) -> String {
     template.replacen("      <!--VIVAE-PLAYBACK-->\n", PLAYBACK_HTML, 1)
 }
 
 /// Plays one page's WebSocket session to its end.
-pub(super) type Session = Arc<dyn Fn(WebSocket) -> BoxFuture<'static, ()> + Send + Sync>;
+pub(crate) type Session = Arc<dyn Fn(WebSocket) -> BoxFuture<'static, ()> + Send + Sync>;
 
 /// The state every route of a viewer shares.
 #[derive(Clone)]
@@ -165,7 +165,7 @@ struct Shared {
 /// Serves `site`, and a [`Session`] for each page's WebSocket (at most
 /// `max_viewers` at once), to the Host names `hosts` allows, until the
 /// process is stopped.
-pub(super) async fn serve_site(
+pub(crate) async fn serve_site(
     listener: tokio::net::TcpListener,
     site: Site,
     max_viewers: usize,
@@ -215,11 +215,11 @@ async fn known_host(
     next.run(request).await
 }
 
-pub(super) async fn not_found() -> Response {
+pub(crate) async fn not_found() -> Response {
     (StatusCode::NOT_FOUND, "not found\n").into_response()
 }
 
-pub(super) fn text(content_type: &'static str, body: impl Into<axum::body::Body>) -> Response {
+pub(crate) fn text(content_type: &'static str, body: impl Into<axum::body::Body>) -> Response {
     (
         [
             (header::CONTENT_TYPE, content_type),
@@ -261,7 +261,7 @@ async fn run_file(State(shared): State<Shared>, UrlPath(name): UrlPath<String>) 
 /// Opens a run file to be served: it must be a regular file inside the run
 /// directory once symlinks are followed (a link to `/etc/passwd`, a FIFO or
 /// `/dev/zero` is refused, without waiting on it).
-pub(super) fn open_run_file(dir: &Path, path: &Path) -> std::io::Result<(std::fs::File, u64)> {
+pub(crate) fn open_run_file(dir: &Path, path: &Path) -> std::io::Result<(std::fs::File, u64)> {
     let real = std::fs::canonicalize(path)?;
     if !real.starts_with(std::fs::canonicalize(dir)?) {
         return Err(std::io::ErrorKind::PermissionDenied.into());
@@ -271,7 +271,7 @@ pub(super) fn open_run_file(dir: &Path, path: &Path) -> std::io::Result<(std::fs
 }
 
 /// The first `len` bytes of `file`, read and sent a chunk at a time.
-pub(super) fn file_body(file: std::fs::File, len: u64) -> axum::body::Body {
+pub(crate) fn file_body(file: std::fs::File, len: u64) -> axum::body::Body {
     use tokio::io::AsyncReadExt;
     let reader = tokio::fs::File::from_std(file).take(len);
     let chunks = futures_util::stream::unfold(Some(reader), |reader| async move {
@@ -291,7 +291,7 @@ pub(super) fn file_body(file: std::fs::File, len: u64) -> axum::body::Body {
 
 /// A browser page may open the WebSocket only from this server's own page:
 /// another site open in the same browser must not read the run.
-pub(super) fn same_origin(headers: &HeaderMap) -> bool {
+pub(crate) fn same_origin(headers: &HeaderMap) -> bool {
     let Some(origin) = headers.get(header::ORIGIN) else {
         // Not a browser page (a script or a test client).
         return true;
@@ -329,13 +329,13 @@ async fn ws(
         })
 }
 
-pub(super) fn error_msg(message: &str) -> String {
+pub(crate) fn error_msg(message: &str) -> String {
     serde_json::json!({"type": "error", "message": message}).to_string()
 }
 
 /// Sends `text`, giving up (`false`) if the page has not taken it within
 /// `idle`: a page that stops reading must not hold its slot either.
-pub(super) async fn send_within(socket: &mut WebSocket, message: Message, idle: Duration) -> bool {
+pub(crate) async fn send_within(socket: &mut WebSocket, message: Message, idle: Duration) -> bool {
     matches!(
         tokio::time::timeout(idle, socket.send(message)).await,
         Ok(Ok(()))
@@ -374,7 +374,7 @@ async fn open_session(socket: &mut WebSocket, app: &mut App) -> Option<(Sim, Sha
 
 /// What a page plays in its session: the driving viewer's simulation or a
 /// predator–prey game.
-pub(super) trait Play: Send {
+pub(crate) trait Play: Send {
     /// Obeys one text message from the page; what went wrong, if anything.
     fn handle(&mut self, text: &str) -> Result<(), String>;
     /// Moves on by `dt` seconds of wall time.
@@ -389,7 +389,7 @@ pub(super) trait Play: Send {
 /// One page's session: plays `game` until the page goes away, or has been
 /// silent for `idle` (it is pinged meanwhile; a browser answers pings by
 /// itself, so an open page is never silent).
-pub(super) async fn play(mut socket: WebSocket, mut game: impl Play, idle: Duration) {
+pub(crate) async fn play(mut socket: WebSocket, mut game: impl Play, idle: Duration) {
     let mut tick = tokio::time::interval(FRAME);
     tick.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Skip);
     let mut ping = tokio::time::interval(idle / 4);

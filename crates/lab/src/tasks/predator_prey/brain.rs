@@ -20,12 +20,12 @@ use vivae_neat::hyperneat::{HyperParams, SubstrateController, SubstrateLayout, d
 use vivae_neat::{Genome, GenomeSpec, Network, RecurrentNetwork};
 use vivae_sim::{DistanceGrid, OpponentRadar, Sensor};
 
-use crate::config::coevolution::SideController;
 use crate::controller::polar::{
     CoordMode, DISTANCE_OUTPUT, OPPONENT_OUTPUT, PolarGrid, WheelNeurons,
 };
 use crate::controller::sensors::SensorSheet;
 use crate::controller::substrate::{cppn_outputs, layout_of};
+use crate::tasks::predator_prey::section::SideController;
 use crate::tasks::predator_prey::{INPUTS, OUTPUTS};
 use crate::tasks::robot;
 

@@ -16,9 +16,9 @@ use vivae_neat::driver::Strategy;
 use vivae_neat::{GenerationStats, Genome, NeatError, Population, eval_seed};
 
 use crate::config::Config;
-use crate::config::coevolution::Opponents;
 use crate::error::{Error, Result};
 use crate::tasks::predator_prey::meetings::{Meetings, Pair};
+use crate::tasks::predator_prey::section::Opponents;
 use crate::tasks::predator_prey::{Arena, Outcome, Side};
 
 /// One cell of the CIAO matrix: the best hunter of one generation against

@@ -2,9 +2,9 @@
 
 use vivae_neat::NeatParams;
 
-use crate::config::coevolution::{Opponents, SideController};
 use crate::config::{Config, DistanceConfig, OpponentConfig, SubstrateConfig, TaskName};
 use crate::search::{StrategyConfig, TaskFacts};
+use crate::tasks::predator_prey::section::{Opponents, SideController};
 use crate::tasks::predator_prey::{NAME, STEPS};
 use crate::tasks::robot;
 

@@ -5,9 +5,12 @@
 //! none). A meeting depends on its two genomes and the arena alone, so the
 //! outcomes, and the run's bits, are the same whoever plays them.
 
+use std::any::Any;
+
 use rayon::prelude::*;
 use vivae_neat::Genome;
 
+use crate::tasks::Session;
 use crate::tasks::predator_prey::{Arena, Outcome};
 
 /// One meeting to play: a hunter genome against a prey genome.
@@ -35,4 +38,16 @@ impl Meetings for OnThreads {
             .map(|&(h, p)| arena.play_genomes(h, p))
             .collect())
     }
+}
+
+/// `meetings` as a [`Session::players`] (the program's player across an MPI job's ranks).
+pub fn player(meetings: Box<dyn Meetings>) -> Box<dyn Any + Sync> {
+    Box::new(meetings)
+}
+
+/// Who plays `session`'s meetings when not this process's threads (`None`):
+/// its players, when they are a [`player`].
+pub fn played_by<'a>(session: &Session<'a>) -> Option<&'a dyn Meetings> {
+    let players: &'a dyn Any = session.players?;
+    players.downcast_ref::<Box<dyn Meetings>>().map(|m| &**m)
 }

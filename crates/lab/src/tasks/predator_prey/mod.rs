@@ -36,6 +36,7 @@ pub mod meeting;
 pub mod meetings;
 mod present;
 pub mod run;
+pub mod section;
 pub mod tournament;
 
 pub use run::TASK;
@@ -46,8 +47,8 @@ use vivae_sim::{
     DistanceGrid, OpponentRadar, ParamError, PhysicsParams, Scenario, ScenarioError, Sensor, World,
 };
 
-use crate::config::coevolution::SideController;
 use crate::tasks::predator_prey::brain::{Brain, Substrate};
+use crate::tasks::predator_prey::section::SideController;
 use crate::tasks::robot::{self, RANGE};
 
 /// The task's name in `experiment.task` and `--task`.

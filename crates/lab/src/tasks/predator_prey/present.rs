@@ -4,8 +4,8 @@
 use std::path::Path;
 
 use crate::config::Config;
-use crate::config::coevolution::{Opponents, SideController};
 use crate::tasks::predator_prey::coevo::{Champions, GenerationRecord};
+use crate::tasks::predator_prey::section::{Opponents, SideController};
 
 /// The header of a predator–prey run.
 pub(super) fn header(config: &Config, command: &str, scenario: &str, dir: &Path) -> String {

@@ -18,7 +18,6 @@ use serde::{Deserialize, Serialize};
 use vivae_neat::Genome;
 
 use crate::config::Config;
-use crate::config::coevolution::SideController;
 use crate::error::{Error, Result};
 use crate::io::{bad_input, create_dirs, load_scenario, read_text, write_atomic};
 use crate::shipped::Shipped;
@@ -27,7 +26,8 @@ pub use crate::tasks::predator_prey::coevo::{ChampionEntry, Champions};
 use crate::tasks::predator_prey::coevo::{
     CiaoCell, Coevolution, GenerationRecord, SideRecord, master_tournament,
 };
-use crate::tasks::predator_prey::meetings::OnThreads;
+use crate::tasks::predator_prey::meetings::{self, OnThreads};
+use crate::tasks::predator_prey::section::SideController;
 use crate::tasks::predator_prey::{Arena, NAME, Side, present};
 use crate::tasks::{OwnDriver, RunTask, Session, TaskEntry};
 
@@ -366,7 +366,7 @@ impl PpRun {
             let (state, arena, config) = (&mut self.state, &self.arena, &self.config);
             // Meetings played elsewhere (across an MPI job's ranks) are handed
             // out from this thread; else this process's threads play them.
-            let record = match session.meetings {
+            let record = match meetings::played_by(session) {
                 Some(meetings) => state.generation(arena, config, meetings)?,
                 None => pool.install(|| state.generation(arena, config, &OnThreads))?,
             };

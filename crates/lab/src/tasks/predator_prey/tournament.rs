@@ -13,7 +13,7 @@ use std::path::Path;
 use vivae_neat::Genome;
 use vivae_neat::hyperneat::HyperParams;
 
-use crate::config::coevolution::SideController;
+use crate::tasks::predator_prey::section::SideController;
 
 use crate::error::{Error, Result};
 use crate::io::{bad_input, read_text};

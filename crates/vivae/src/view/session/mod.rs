@@ -89,7 +89,7 @@ enum ClientMsg {
 /// viewers take it).
 #[derive(Debug, Clone, Copy, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(in crate::view) struct Keys {
+pub(crate) struct Keys {
     pub up: bool,
     pub down: bool,
     pub left: bool,
@@ -98,7 +98,7 @@ pub(in crate::view) struct Keys {
 
 impl Keys {
     /// Wheel commands `[L, R]` for the keys held, as ViVAE's keyboard controller.
-    pub(in crate::view) fn controls(self) -> [f64; 2] {
+    pub(crate) fn controls(self) -> [f64; 2] {
         let forward = f64::from(i8::from(self.up) - i8::from(self.down));
         let turn = f64::from(i8::from(self.right) - i8::from(self.left));
         if forward == 0.0 {

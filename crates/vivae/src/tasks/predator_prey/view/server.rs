@@ -10,14 +10,14 @@ use std::time::Duration;
 use axum::extract::ws::{Message, WebSocket};
 
 use super::{Game, Hall};
-use crate::view::hosts::HostPolicy;
+use crate::view::Served;
 use crate::view::server::{Play, Session, Site, error_msg, page, play, send_within, serve_site};
 use vivae_lab::tasks::predator_prey::run::files;
 
 /// The predator–prey viewer page.
-const INDEX_HTML: &str = include_str!("../../../assets/coevo.html");
+const INDEX_HTML: &str = include_str!("../../../../assets/coevo.html");
 /// Its script.
-const COEVO_JS: &str = include_str!("../../../assets/coevo.js");
+const COEVO_JS: &str = include_str!("../../../../assets/coevo.js");
 
 /// A predator–prey run's own files a page may fetch (as `/run/NAME`).
 const RUN_FILES: [(&str, &str); 6] = [
@@ -30,13 +30,14 @@ const RUN_FILES: [(&str, &str); 6] = [
 ];
 
 /// Serves the predator–prey run in `dir` until the process is stopped.
-pub(in crate::view) async fn serve(
-    listener: tokio::net::TcpListener,
-    dir: PathBuf,
-    max_viewers: usize,
-    hosts: HostPolicy,
-    idle: Duration,
-) -> std::io::Result<()> {
+pub(super) async fn serve(served: Served) -> std::io::Result<()> {
+    let Served {
+        listener,
+        dir,
+        max_viewers,
+        hosts,
+        idle,
+    } = served;
     let site = Site {
         page: page(INDEX_HTML),
         assets: &[("coevo.js", "text/javascript; charset=utf-8", COEVO_JS)],

@@ -6,7 +6,7 @@
 use plotters::prelude::*;
 use vivae_lab::tasks::predator_prey::coevo::CiaoCell;
 
-use super::{
+use crate::figures::{
     FAMILY, Figure, FigureError, axis_font, draw_err, label_font, register_font, svg_to_png,
     viridis,
 };

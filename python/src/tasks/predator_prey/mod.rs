@@ -4,6 +4,8 @@
 //! (`PredatorPreyTask`). vivae-lab owns the rules (the arena, the inputs,
 //! the catch, the fitness); this module only binds them.
 
+mod tournament;
+
 use std::path::PathBuf;
 
 use numpy::ndarray::Array1;
@@ -99,6 +101,13 @@ fn outcome_dict<'py>(py: Python<'py>, o: &Outcome) -> PyResult<Bound<'py, PyDict
 /// One predator–prey episode stepped a call at a time (the engine behind
 /// `vivae.PredatorPreyParallelEnv`), with per-step rewards whose sums are
 /// the task's fitnesses.
+/// Adds the task's classes and `tournament` to the module `m`.
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<PredatorPreyCore>()?;
+    m.add_class::<PredatorPreyTask>()?;
+    m.add_function(wrap_pyfunction!(tournament::tournament, m)?)
+}
+
 #[pyclass(module = "vivae._vivae")]
 pub struct PredatorPreyCore {
     arena: Arena,

@@ -13,29 +13,24 @@ use vivae_lab::io::{load_scenario, read_text, write_atomic};
 use vivae_lab::rundir::files as run_files;
 use vivae_lab::tasks::predator_prey::coevo::{Champions, master_tournament};
 use vivae_lab::tasks::predator_prey::run::{files, read_champions, read_ciao};
-use vivae_lab::tasks::predator_prey::{Arena, NAME, Side};
+use vivae_lab::tasks::predator_prey::{Arena, Side};
 use vivae_lab::tasks::read_config;
 use vivae_neat::Genome;
 use vivae_sim::World;
 
-use crate::figures::coevo::{self, HUNTER_COLOUR, PREY_COLOUR, SideRow};
+use super::figures::{self as coevo, HUNTER_COLOUR, PREY_COLOUR, SideRow};
 use crate::figures::convergence::hex;
 use crate::report_html::{SCENE_JS, SceneData, report_page};
 
 /// The page template; `/*VIVAE-DATA*/`, `/*VIVAE-CSS*/`, `/*VIVAE-JS*/`,
 /// `<!--CIAO-->` and `<!--CURVES-->` are filled in.
-const TEMPLATE: &str = include_str!("../assets/report_coevo.html");
+const TEMPLATE: &str = include_str!("../../../assets/report_coevo.html");
 /// The page's own script (the champions' match, animated).
-const REPORT_JS: &str = include_str!("../assets/report_coevo.js");
+const REPORT_JS: &str = include_str!("../../../assets/report_coevo.js");
 /// The CIAO figure's file name, without extension.
 pub const CIAO_FIGURE: &str = "ciao";
 /// The curves figure's file name, without extension.
 pub const CURVES_FIGURE: &str = "coevolution";
-
-/// Whether the run in `dir` is a predator–prey run.
-pub fn is_predator_prey_run(dir: &Path) -> bool {
-    read_config(&dir.join(run_files::CONFIG)).is_ok_and(|c| c.experiment.task.name() == NAME)
-}
 
 /// Reads `hunters.csv` or `prey.csv`.
 pub fn read_side(path: &Path) -> Result<Vec<SideRow>> {

@@ -27,10 +27,33 @@ use vivae_lab::tasks::robot::wheels;
 use vivae_neat::Genome;
 use vivae_sim::World;
 
-use super::session::{Keys, REAL_TIME_STEPS};
-use crate::figures::coevo::{HUNTER_COLOUR, PREY_COLOUR};
+use super::figures::{HUNTER_COLOUR, PREY_COLOUR};
 use crate::figures::convergence::hex;
 use crate::report_html::SceneData;
+use crate::view::session::{Keys, REAL_TIME_STEPS};
+use crate::view::{OwnPage, ViewOptions};
+
+/// The page of a predator–prey run.
+pub(crate) const PAGE: OwnPage = OwnPage {
+    open,
+    serve: |runtime, served| runtime.block_on(server::serve(served)),
+};
+
+/// The predator–prey run in `dir` as its page shows it: the line saying so,
+/// with its generations of champions; refused in one line if it cannot be shown.
+fn open(dir: &Path, options: &ViewOptions) -> vivae_lab::Result<String> {
+    if options.member.is_some() || options.scenarios.is_some() {
+        return Err(vivae_lab::io::bad_input(format!(
+            "{}: a predator-prey run: --elite, --front and --scenarios do not apply (the page picks any generation's hunter and prey)",
+            dir.display()
+        )));
+    }
+    let generations = Hall::load(dir)?.generations();
+    Ok(format!(
+        "showing predator-prey run {} ({generations} generations of champions; Ctrl-C stops the server)",
+        dir.display()
+    ))
+}
 
 /// Most simulation steps computed for one frame, whatever the speed.
 const MAX_STEPS_PER_FRAME: u32 = 400;
@@ -377,7 +400,7 @@ mod tests {
         let session = vivae_lab::tasks::Session {
             interrupted: &stop,
             say: &quiet,
-            meetings: None,
+            players: None,
         };
         let driver = vivae_lab::tasks::predator_prey::TASK.own_driver.unwrap();
         (driver.evolve)(&dir, config, false, &session).unwrap();
