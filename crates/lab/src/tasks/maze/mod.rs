@@ -24,6 +24,7 @@ pub mod run;
 pub mod section;
 pub mod walls;
 
+pub use config::lehman_neat;
 pub use run::TASK;
 
 pub use crate::tasks::robot::{INPUTS, OUTPUTS, RANGE, wheels};
