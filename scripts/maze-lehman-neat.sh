@@ -3,9 +3,9 @@
 # his released code's maze.ne and rtNEAT settings (weight mutation ±0.8
 # uniform, weights within ±3, started within ±1; 16 target species; add-node
 # 0.005, add-link 0.1; survival 0.4; no stagnation cull) where our config has
-# the knob, in place of our plain-NEAT defaults; everything else is the
-# reproduce pack's run (Lehman's robot and walls, population 250, 250,000
-# evaluations). One line per run goes to OUT/runs.tsv (maze, strategy, seed,
+# the knob, written out in full: since they became the maze task's defaults
+# (tasks::maze::lehman_neat) this is the reproduce pack's run (Lehman's robot
+# and walls, population 250, 250,000 evaluations) with a journal of its own. One line per run goes to OUT/runs.tsv (maze, strategy, seed,
 # solved, evaluations to solve).
 #
 #   scripts/maze-lehman-neat.sh [SEED ...]     (default: seeds 1 2 3 4 5)
