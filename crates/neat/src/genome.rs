@@ -89,7 +89,7 @@ impl GenomeSpec {
 pub enum NodeKind {
     /// Receives an external input (the bias is an input held constant by the caller).
     Input,
-    /// Added by the add-node mutation.
+    /// Added by the add-node mutation (or in a start genome with `start_hidden`).
     Hidden,
     /// Produces an external output.
     Output,
@@ -184,7 +184,8 @@ impl TryFrom<RawGenome> for Genome {
 }
 
 impl Genome {
-    /// The minimal genome: inputs fully connected to outputs with random weights.
+    /// The start genome: inputs fully connected to outputs with random
+    /// weights, or through `params.start_hidden` hidden nodes.
     pub fn minimal<R: Rng + ?Sized>(
         spec: &GenomeSpec,
         params: &NeatParams,
@@ -193,7 +194,8 @@ impl Genome {
     ) -> Genome {
         let n_in = spec.inputs as u32;
         let n_out = spec.outputs as u32;
-        let mut nodes = Vec::with_capacity((n_in + n_out) as usize);
+        let n_hidden = params.start_hidden as u32;
+        let mut nodes = Vec::with_capacity((n_in + n_out + n_hidden) as usize);
         for id in 0..n_in {
             nodes.push(NodeGene {
                 id,
@@ -208,18 +210,38 @@ impl Genome {
                 activation: spec.output_activation,
             });
         }
-        let mut links = Vec::with_capacity((n_in * n_out) as usize);
-        for from in 0..n_in {
-            for to in n_in..n_in + n_out {
-                links.push(LinkGene {
-                    innovation: tracker.link_innovation(from, to),
-                    from,
-                    to,
-                    weight: random_weight(params, rng),
-                    enabled: true,
-                });
-            }
+        // The start's hidden nodes have the same ids in every genome (the
+        // first hidden ids), so that crossover aligns them.
+        let hidden: Vec<u32> = (0..n_hidden).map(|k| n_in + n_out + k).collect();
+        for &id in &hidden {
+            tracker.absorb_node(id);
+            nodes.push(NodeGene {
+                id,
+                kind: NodeKind::Hidden,
+                activation: spec.hidden_activations[0],
+            });
         }
+        let pairs: Vec<(u32, u32)> = if hidden.is_empty() {
+            (0..n_in)
+                .flat_map(|from| (n_in..n_in + n_out).map(move |to| (from, to)))
+                .collect()
+        } else {
+            let into = (0..n_in).flat_map(|from| hidden.iter().map(move |&h| (from, h)));
+            let out = hidden
+                .iter()
+                .flat_map(|&h| (n_in..n_in + n_out).map(move |to| (h, to)));
+            into.chain(out).collect()
+        };
+        let mut links: Vec<LinkGene> = pairs
+            .into_iter()
+            .map(|(from, to)| LinkGene {
+                innovation: tracker.link_innovation(from, to),
+                from,
+                to,
+                weight: random_weight(params, rng),
+                enabled: true,
+            })
+            .collect();
         links.sort_by_key(|l| l.innovation);
         Genome { nodes, links }
     }

@@ -115,6 +115,17 @@ pub struct NeatParams {
     /// Unit: generations. Example: 20.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub population_stagnation_limit: Option<u32>,
+    /// Hidden nodes of the start genome, every input linked to each and each
+    /// to every output; 0 links the inputs straight to the outputs (NEAT's
+    /// minimal start). Lehman's maze code starts from 1 (`mazestartgenes`).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub start_hidden: usize,
+}
+
+/// Whether a count is 0, which a serialised config leaves out (so configs
+/// written before the key existed keep their checksums).
+fn is_zero(n: &usize) -> bool {
+    *n == 0
 }
 
 impl Default for NeatParams {
@@ -151,12 +162,15 @@ impl Default for NeatParams {
             elitism_min_species_size: 5,
             stagnation_limit: 15,
             population_stagnation_limit: None,
+            start_hidden: 0,
         }
     }
 }
 
 /// Largest accepted `population_size`.
 pub const MAX_POPULATION: usize = 100_000;
+/// Largest accepted `start_hidden`.
+pub const MAX_START_HIDDEN: usize = 1_000;
 /// Largest accepted `add_link_attempts`.
 pub const MAX_ADD_LINK_ATTEMPTS: usize = 10_000;
 
@@ -308,12 +322,18 @@ impl NeatParams {
         if self.stagnation_limit == 0 {
             return Err(invalid("stagnation_limit", 0, "must be at least 1"));
         }
+        self.validate_counts()
+    }
+
+    /// The counts `validate` leaves: the start's hidden nodes and the population's stagnation.
+    fn validate_counts(&self) -> Result<(), NeatError> {
+        if self.start_hidden > MAX_START_HIDDEN {
+            let reason = "must be at most 1000";
+            return Err(invalid("start_hidden", self.start_hidden, reason));
+        }
         if self.population_stagnation_limit == Some(0) {
-            return Err(invalid(
-                "population_stagnation_limit",
-                0,
-                "must be at least 1 when set",
-            ));
+            let reason = "must be at least 1 when set";
+            return Err(invalid("population_stagnation_limit", 0, reason));
         }
         Ok(())
     }

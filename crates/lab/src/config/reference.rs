@@ -151,10 +151,18 @@ pub(super) fn documented_defaults() -> toml::Value {
         sub.insert("kind".into(), kind);
         sub.insert("es".into(), es);
     }
+    // Keys written only when changed (so that existing runs' config files
+    // and checksums stay the same), documented at their defaults.
+    if let Some(neat) = defaults.get_mut("neat").and_then(|s| s.as_table_mut()) {
+        neat.insert("start_hidden".into(), toml::Value::Integer(0));
+    }
     // A default config is written without its `[strategy]` section (so that
     // NEAT runs' files stay as they were); it is documented all the same.
     if let Some(table) = defaults.as_table_mut() {
-        let strategy = toml::Value::try_from(StrategyConfig::default()).expect("TOML");
+        let mut strategy = toml::Value::try_from(StrategyConfig::default()).expect("TOML");
+        if let Some(novelty) = strategy.get_mut("novelty").and_then(|s| s.as_table_mut()) {
+            novelty.insert("metric".into(), toml::Value::String("euclidean".into()));
+        }
         table.insert("strategy".into(), strategy);
         // Likewise the tasks' own sections, written only when a run changes them.
         for task in crate::tasks::TASKS {

@@ -52,7 +52,7 @@ mod told;
 
 pub use archive::knn;
 pub use map_elites::{Cells, Elite, MapElites, MapElitesParams, MapElitesStats};
-pub use novelty::{NoveltyParams, NoveltySearch};
+pub use novelty::{NoveltyMetric, NoveltyParams, NoveltySearch};
 pub use nsga2::{Measure, Nsga2, Nsga2Params, Objective};
 
 use rand::{Rng, RngExt, SeedableRng};

@@ -16,7 +16,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::archive::novelty::NoveltyArchive;
-pub use super::archive::novelty::NoveltyParams;
+pub use super::archive::novelty::{NoveltyMetric, NoveltyParams};
 use super::told::{self, ToldBatch, impl_told, told_batch_accessors};
 use super::{check_count, invalid};
 use crate::driver::{Evaluation, Strategy, finite_or_zero};

@@ -53,9 +53,9 @@ proptest! {
     #![proptest_config(ProptestConfig::with_cases(64))]
 
     #[test]
-    fn invariants_hold(seed in any::<u64>(), ops in prop::collection::vec(0u8..6, 1..120), recurrent in any::<bool>()) {
+    fn invariants_hold(seed in any::<u64>(), ops in prop::collection::vec(0u8..6, 1..120), recurrent in any::<bool>(), start_hidden in 0usize..3) {
         let spec = spec(recurrent);
-        let params = NeatParams::default();
+        let params = NeatParams { start_hidden, ..NeatParams::default() };
         let mut rng = Pcg64::seed_from_u64(seed);
         let mut tracker = InnovationTracker::new((spec.inputs + spec.outputs) as u32);
         let mut genomes: Vec<Genome> = (0..4)
@@ -95,4 +95,41 @@ proptest! {
         }
         prop_assert!(innovations_consistent(&genomes));
     }
+}
+
+/// Lehman's maze start (`start_hidden = 1`): every input reaches the outputs
+/// only through the one hidden node, which every genome of the start shares.
+#[test]
+fn start_hidden_routes_every_input_through_shared_hidden_nodes() {
+    let spec = GenomeSpec::plain(11, 2);
+    let params = NeatParams {
+        start_hidden: 1,
+        ..NeatParams::plain_neat()
+    };
+    let mut rng = Pcg64::seed_from_u64(7);
+    let mut tracker = InnovationTracker::new(13);
+    let a = Genome::minimal(&spec, &params, &mut tracker, &mut rng);
+    let b = Genome::minimal(&spec, &params, &mut tracker, &mut rng);
+    assert_eq!(a.num_hidden(), 1);
+    assert_eq!(a.links().len(), 11 + 2);
+    assert!(
+        a.links()
+            .iter()
+            .all(|l| (l.from < 11 && l.to == 13) || (l.from == 13 && l.to >= 11))
+    );
+    let innovations = |g: &Genome| g.links().iter().map(|l| l.innovation).collect::<Vec<_>>();
+    assert_eq!(innovations(&a), innovations(&b));
+    assert_ne!(a.links()[0].weight, b.links()[0].weight);
+    // Later hidden nodes never reuse the start's id.
+    let mut c = a.clone();
+    mutate_add_node(&mut c, &spec, &mut tracker, &mut rng);
+    assert!(c.nodes().iter().filter(|n| n.id == 13).count() == 1 && c.num_hidden() == 2);
+    // And 0 keeps NEAT's minimal start.
+    let direct = Genome::minimal(
+        &spec,
+        &NeatParams::plain_neat(),
+        &mut InnovationTracker::new(13),
+        &mut rng,
+    );
+    assert_eq!((direct.num_hidden(), direct.links().len()), (0, 22));
 }

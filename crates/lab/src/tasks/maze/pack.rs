@@ -158,7 +158,7 @@ fn run(
                 o.seed,
                 thousands(budget as f64)
             ),
-            "ours: Lehman's robot and walls (maze.robot = \"lehman\", his code's quirks), plain NEAT with the parameters of his code (tasks::maze::lehman_neat, generational); novelty k = 15, threshold 6 in px, ×0.95 after 10 generations without additions, ×1.2 above 4 (his code; its distance is the mean absolute coordinate difference, ours Euclidean)".into(),
+            "ours: Lehman's robot and walls (maze.robot = \"lehman\", his code's quirks), plain NEAT with the parameters and the one-hidden-node start network of his code (tasks::maze::lehman_neat; generational, his is steady-state); novelty k = 15, threshold 6 in px, ×0.95 after 10 generations without additions, ×1.2 above 4 (his code; Euclidean distance, his mean absolute coordinate difference is strategy.novelty.metric = \"mean-absolute\")".into(),
             "the paper: 40 runs, 250,000 evaluations, steady-state rtNEAT (Novelty Search C++); page numbers of the authors' preprint".into(),
             format!("each run: vivae evolve --task maze --scenario {maze} --strategy KIND --seed SEED --generations {}", budget.div_ceil(250)),
         ],

@@ -37,6 +37,42 @@ pub struct NoveltyParams {
     /// Weight w of fitness in the selection score (1 − w)·novelty + w·fitness
     /// (both min–max normalised per generation); 0 = pure novelty search.
     pub fitness_weight: f64,
+    /// The distance between two behaviours: Euclidean, or the mean absolute
+    /// coordinate difference of Lehman's released maze code.
+    #[serde(skip_serializing_if = "NoveltyMetric::is_euclidean")]
+    pub metric: NoveltyMetric,
+}
+
+/// How far apart two behaviours are, for sparseness and the archive threshold.
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema,
+)]
+#[serde(rename_all = "kebab-case")]
+pub enum NoveltyMetric {
+    /// √Σ (aᵢ − bᵢ)² (Lehman & Stanley 2011's text).
+    #[default]
+    Euclidean,
+    /// Σ |aᵢ − bᵢ| / dims: `hist_diff` in Lehman's `histogram.h`, which his
+    /// maze experiment (`maze_novelty_metric`, noveltyexp.cpp) uses.
+    MeanAbsolute,
+}
+
+impl NoveltyMetric {
+    /// Whether this is the default, which a serialised config leaves out
+    /// (so configs written before the key existed keep their checksums).
+    fn is_euclidean(&self) -> bool {
+        *self == NoveltyMetric::Euclidean
+    }
+
+    /// The distance between `a` and `b`.
+    pub fn distance(self, a: &[f64], b: &[f64]) -> f64 {
+        match self {
+            NoveltyMetric::Euclidean => super::knn::squared_distance(a, b).sqrt(),
+            NoveltyMetric::MeanAbsolute => {
+                a.iter().zip(b).map(|(x, y)| (x - y).abs()).sum::<f64>() / a.len().max(1) as f64
+            }
+        }
+    }
 }
 
 impl Default for NoveltyParams {
@@ -51,6 +87,7 @@ impl Default for NoveltyParams {
             raise_above: 4,
             raise_factor: 1.2,
             fitness_weight: 0.0,
+            metric: NoveltyMetric::Euclidean,
         }
     }
 }
@@ -109,6 +146,9 @@ impl NoveltyArchive<'_> {
     /// Novelty of each of the `behaviours` (end to end): the mean distance
     /// to its k nearest among the archive and the other behaviours.
     pub fn sparseness(&self, behaviours: &[f64]) -> Vec<f64> {
+        if self.params.metric != NoveltyMetric::Euclidean {
+            return self.sparseness_brute_force(behaviours);
+        }
         let dims = self.dims;
         let offset = self.points.len() / dims;
         let points = self.points.iter().chain(behaviours).copied();
@@ -119,6 +159,40 @@ impl NoveltyArchive<'_> {
                 let q = &behaviours[i * dims..(i + 1) * dims];
                 tree.nearest_k(q, Some(offset + i), &mut nearest);
                 nearest.mean_distance()
+            })
+            .collect()
+    }
+
+    /// [`Self::sparseness`] under any metric, every pair visited (the k-d
+    /// tree prunes by Euclidean bounds only); the k nearest distances are
+    /// summed in ascending order so that equal neighbour sets give equal bits.
+    fn sparseness_brute_force(&self, behaviours: &[f64]) -> Vec<f64> {
+        let (dims, k, metric) = (self.dims, self.params.k, self.params.metric);
+        let offset = self.points.len() / dims;
+        let all: Vec<&[f64]> = self
+            .points
+            .chunks_exact(dims)
+            .chain(behaviours.chunks_exact(dims))
+            .collect();
+        let mut d = Vec::with_capacity(all.len());
+        (0..behaviours.len() / dims)
+            .map(|i| {
+                let q = all[offset + i];
+                d.clear();
+                d.extend(
+                    (all.iter().enumerate())
+                        .filter(|&(j, _)| j != offset + i)
+                        .map(|(_, p)| metric.distance(q, p)),
+                );
+                let n = k.min(d.len());
+                if n == 0 {
+                    return 0.0;
+                }
+                if n < d.len() {
+                    d.select_nth_unstable_by(n - 1, f64::total_cmp);
+                }
+                d[..n].sort_unstable_by(f64::total_cmp);
+                d[..n].iter().sum::<f64>() / n as f64
             })
             .collect()
     }
@@ -147,5 +221,86 @@ impl NoveltyArchive<'_> {
             *threshold *= p.raise_factor;
         }
         added
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn sparseness(
+        metric: NoveltyMetric,
+        k: usize,
+        archive: &[f64],
+        behaviours: &[f64],
+    ) -> Vec<f64> {
+        let params = NoveltyParams {
+            k,
+            metric,
+            ..NoveltyParams::default()
+        };
+        let (mut points, mut threshold, mut idle) = (archive.to_vec(), 1.0, 0);
+        let archive = NoveltyArchive {
+            dims: 2,
+            points: &mut points,
+            threshold: &mut threshold,
+            idle: &mut idle,
+            params: &params,
+        };
+        archive.sparseness(behaviours)
+    }
+
+    #[test]
+    fn mean_absolute_metric_is_lehmans_hist_diff() {
+        // (0, 0) and (3, 4): Euclidean 5, mean absolute (3 + 4) / 2.
+        assert_eq!(
+            NoveltyMetric::Euclidean.distance(&[0.0, 0.0], &[3.0, 4.0]),
+            5.0
+        );
+        assert_eq!(
+            NoveltyMetric::MeanAbsolute.distance(&[0.0, 0.0], &[3.0, 4.0]),
+            3.5
+        );
+        // Behaviour (0, 0) against an archived (3, 4) and a behaviour (1, 0), k = 2.
+        let s = sparseness(
+            NoveltyMetric::MeanAbsolute,
+            2,
+            &[3.0, 4.0],
+            &[0.0, 0.0, 1.0, 0.0],
+        );
+        assert_eq!(s, vec![(0.5 + 3.5) / 2.0, (0.5 + 3.0) / 2.0]);
+    }
+
+    #[test]
+    fn unset_metric_is_not_written() {
+        let json = serde_json::to_string(&NoveltyParams::default()).unwrap();
+        assert!(!json.contains("metric"), "{json}");
+        let p: NoveltyParams = serde_json::from_str(r#"{"metric": "mean-absolute"}"#).unwrap();
+        assert_eq!(p.metric, NoveltyMetric::MeanAbsolute);
+    }
+
+    proptest! {
+        /// The brute-force path under the Euclidean metric gives the k-d tree's bits.
+        #[test]
+        fn brute_force_matches_the_tree(
+            pts in prop::collection::vec(-50.0f64..50.0, 2..80),
+            k in 1usize..20,
+            split in 0usize..40,
+        ) {
+            let pts = &pts[..pts.len() / 2 * 2];
+            let split = (split * 2).min(pts.len() - 2);
+            let (archive, behaviours) = pts.split_at(split);
+            let params = NoveltyParams { k, ..NoveltyParams::default() };
+            let (mut points, mut threshold, mut idle) = (archive.to_vec(), 1.0, 0);
+            let a = NoveltyArchive {
+                dims: 2,
+                points: &mut points,
+                threshold: &mut threshold,
+                idle: &mut idle,
+                params: &params,
+            };
+            prop_assert_eq!(a.sparseness_brute_force(behaviours), a.sparseness(behaviours));
+        }
     }
 }
