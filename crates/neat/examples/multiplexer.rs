@@ -16,7 +16,9 @@ mod efficacy;
 #[path = "common/mux_task.rs"]
 mod mux_task;
 
-use mux_task::{MUX_CASES, mux_fitness};
+use std::cell::RefCell;
+
+use mux_task::{MUX_CASES, MUX_LANES, mux_fitness_lanes};
 use vivae_neat::{EvalContext, FeedForwardNetwork, Genome, GenomeSpec, NeatParams};
 
 const TITLE: &str = "The binary 11-multiplexer (SharpNEAT's fitness)";
@@ -26,7 +28,20 @@ fn main() {
         population_size: 600,
         ..NeatParams::plain_neat()
     };
-    let task = |g: &Genome, _: &EvalContext| mux_fitness(&mut FeedForwardNetwork::from_genome(g));
+    let task = |g: &Genome, _: &EvalContext| {
+        // One network and lane scratch per thread, recompiled in place for
+        // each genome: no allocation per evaluation once they are large enough.
+        thread_local! {
+            static NET: RefCell<Option<(FeedForwardNetwork, Vec<[f64; MUX_LANES]>)>> =
+                const { RefCell::new(None) };
+        }
+        NET.with_borrow_mut(|slot| {
+            let (net, scratch) =
+                slot.get_or_insert_with(|| (FeedForwardNetwork::from_genome(g), Vec::new()));
+            net.recompile(g);
+            mux_fitness_lanes(net, scratch)
+        })
+    };
     let target = MUX_CASES as f64;
     let spec = GenomeSpec::plain(12, 1);
     if let Some(line) = efficacy::sample("multiplexer", TITLE, params, &spec, target, task) {

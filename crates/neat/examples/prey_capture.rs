@@ -19,7 +19,7 @@ mod efficacy;
 mod prey_task;
 
 use prey_task::SHARPNEAT_PREY;
-use vivae_neat::{EvalContext, Genome, GenomeSpec, NeatParams, RecurrentNetwork};
+use vivae_neat::{EvalContext, Genome, GenomeSpec, NeatParams};
 
 const TITLE: &str = "SharpNEAT's prey capture";
 
@@ -30,7 +30,7 @@ fn main() {
     };
     let world = SHARPNEAT_PREY;
     let task = |g: &Genome, ctx: &EvalContext| {
-        world.fitness(&mut RecurrentNetwork::from_genome(g), ctx.seed)
+        common::with_recurrent(g, |net| world.fitness(net, ctx.seed))
     };
     let spec = GenomeSpec {
         allow_recurrent: true,

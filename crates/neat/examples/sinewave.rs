@@ -18,7 +18,7 @@ mod efficacy;
 mod sine_task;
 
 use sine_task::Sine;
-use vivae_neat::{EvalContext, Genome, GenomeSpec, NeatParams, RecurrentNetwork};
+use vivae_neat::{EvalContext, Genome, GenomeSpec, NeatParams};
 
 const TITLE: &str = "SharpNEAT's generative sinewave";
 
@@ -28,7 +28,7 @@ fn main() {
         ..NeatParams::plain_neat()
     };
     let sine = Sine::new();
-    let task = |g: &Genome, _: &EvalContext| sine.fitness(&mut RecurrentNetwork::from_genome(g));
+    let task = |g: &Genome, _: &EvalContext| common::with_recurrent(g, |net| sine.fitness(net));
     let spec = GenomeSpec {
         allow_recurrent: true,
         ..GenomeSpec::plain(1, 1)

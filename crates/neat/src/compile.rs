@@ -425,6 +425,7 @@ pub(crate) fn weighted_sum(sources: &[u32], weights: &[f64], values: &[f64]) -> 
 }
 
 /// Ids of the nodes of `kind`, ascending.
+#[cfg(test)]
 pub(crate) fn ids_of(genome: &Genome, kind: NodeKind) -> Vec<u32> {
     genome
         .nodes()

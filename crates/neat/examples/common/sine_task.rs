@@ -17,6 +17,8 @@ const GRADIENT_WEIGHT: f64 = 0.9;
 pub struct Sine {
     y: [f64; SINE_SAMPLES],
     dy: [f64; SINE_SAMPLES],
+    /// The x spans of the gradients, computed once (the same bits as each time).
+    spans: [f64; SINE_SAMPLES],
     /// Middle of the target's range.
     pub mid: f64,
     /// The target's range over 0.8 (the logistic function's useful range).
@@ -27,13 +29,24 @@ fn x(k: usize) -> f64 {
     X_MAX / (SINE_SAMPLES - 1) as f64 * k as f64
 }
 
-fn gradients(y: &[f64; SINE_SAMPLES], dy: &mut [f64; SINE_SAMPLES]) {
+/// The denominators of [`gradients`]: the x spans of each sample's difference.
+fn spans() -> [f64; SINE_SAMPLES] {
     let n = SINE_SAMPLES - 1;
-    dy[0] = (y[1] - y[0]) / (x(1) - x(0));
+    std::array::from_fn(|k| match k {
+        0 => x(1) - x(0),
+        k if k == n => x(n) - x(n - 1),
+        k => x(k + 1) - x(k - 1),
+    })
+}
+
+/// Central differences of `y` over `spans` (one-sided at the ends).
+fn gradients(y: &[f64; SINE_SAMPLES], spans: &[f64; SINE_SAMPLES], dy: &mut [f64; SINE_SAMPLES]) {
+    let n = SINE_SAMPLES - 1;
+    dy[0] = (y[1] - y[0]) / spans[0];
     for k in 1..n {
-        dy[k] = (y[k + 1] - y[k - 1]) / (x(k + 1) - x(k - 1));
+        dy[k] = (y[k + 1] - y[k - 1]) / spans[k];
     }
-    dy[n] = (y[n] - y[n - 1]) / (x(n) - x(n - 1));
+    dy[n] = (y[n] - y[n - 1]) / spans[n];
 }
 
 impl Default for Sine {
@@ -49,14 +62,16 @@ impl Sine {
         for (k, v) in y.iter_mut().enumerate() {
             *v = math::sin(x(k));
         }
+        let spans = spans();
         let mut dy = [0.0; SINE_SAMPLES];
-        gradients(&y, &mut dy);
+        gradients(&y, &spans, &mut dy);
         let (lo, hi) = y
             .iter()
             .fold((f64::MAX, f64::MIN), |(a, b), &v| (a.min(v), b.max(v)));
         Sine {
             y,
             dy,
+            spans,
             mid: (lo + hi) / 2.0,
             scale: (hi - lo) / 0.8,
         }
@@ -78,7 +93,7 @@ impl Sine {
             return 0.0;
         }
         let mut dgot = [0.0; SINE_SAMPLES];
-        gradients(&got, &mut dgot);
+        gradients(&got, &self.spans, &mut dgot);
         let mse = |a: &[f64], b: &[f64]| {
             a.iter().zip(b).map(|(p, q)| (p - q) * (p - q)).sum::<f64>() / SINE_SAMPLES as f64
         };

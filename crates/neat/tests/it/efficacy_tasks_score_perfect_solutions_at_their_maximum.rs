@@ -65,6 +65,30 @@ fn multiplexer_gives_2048_to_the_multiplexer_and_less_to_a_guess() {
     assert_eq!(mux_task::mux_fitness(&mut one_wrong), 2048.0 - 256.0);
 }
 
+/// The example's lane scorer gives the bits of the one-case-at-a-time one
+/// on evolved-looking networks (hidden nodes, links of every sign).
+#[test]
+fn multiplexer_lanes_give_the_bits_of_single_cases() {
+    use rand::SeedableRng;
+    use vivae_neat::mutation::{mutate_add_link, mutate_add_node, mutate_weights};
+    use vivae_neat::{FeedForwardNetwork, Genome, GenomeSpec, InnovationTracker, NeatParams};
+    let (spec, params) = (GenomeSpec::plain(12, 1), NeatParams::plain_neat());
+    let mut rng = rand_pcg::Pcg64::seed_from_u64(11);
+    let mut tracker = InnovationTracker::new(13);
+    let mut scratch = Vec::new();
+    for _ in 0..20 {
+        let mut g = Genome::minimal(&spec, &params, &mut tracker, &mut rng);
+        for _ in 0..6 {
+            mutate_add_node(&mut g, &spec, &mut tracker, &mut rng);
+            mutate_add_link(&mut g, &spec, &params, &mut tracker, &mut rng);
+            mutate_weights(&mut g, &params, &mut rng);
+        }
+        let mut net = FeedForwardNetwork::from_genome(&g);
+        let lanes = mux_task::mux_fitness_lanes(&net, &mut scratch);
+        assert_eq!(lanes.to_bits(), mux_task::mux_fitness(&mut net).to_bits());
+    }
+}
+
 #[test]
 fn sinewave_gives_1000_to_the_sine_and_less_to_a_flat_line() {
     let sine = sine_task::Sine::new();
