@@ -324,3 +324,20 @@ def test_a_maze_run_takes_its_robot_model_and_other_tasks_refuse_one(tmp_path):
         vivae.evolve(out=tmp_path / "k", task="maze", robot="khepera", generations=1, progress=False)
     with pytest.raises(ValueError, match="one robot model"):
         vivae.evolve(out=tmp_path / "d", robot="vivae", generations=1, progress=False)
+
+
+def test_maze_networks_start_from_lehmans_hidden_node_unless_the_config_says_otherwise(tmp_path):
+    settings = dict(generations=1, population=20, seed=1, threads=1, progress=False)
+    lehman = vivae.evolve(out=tmp_path / "lehman", task="maze", **settings)
+    assert lehman["champion"].num_hidden == 1
+    # NEAT's minimal start and Lehman's novelty distance, from a config file as on the command line.
+    config = tmp_path / "direct.toml"
+    config.write_text('[experiment]\ntask = "maze"\n[neat]\nstart_hidden = 0\n'
+                      '[strategy]\nkind = "novelty"\n[strategy.novelty]\nmetric = "mean-absolute"\n')
+    direct = vivae.evolve(out=tmp_path / "direct", config=config, **settings)
+    assert direct["champion"].num_hidden == 0
+    written = (tmp_path / "direct" / "config.toml").read_text()
+    assert 'metric = "mean-absolute"' in written and "start_hidden" not in written
+    with pytest.raises(ValueError, match="start_hidden"):
+        config.write_text('[experiment]\ntask = "maze"\n[neat]\nstart_hidden = 5000\n')
+        vivae.evolve(out=tmp_path / "bad", config=config, **settings)
