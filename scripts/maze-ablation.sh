@@ -14,6 +14,8 @@
 #   scripts/maze-ablation.sh [SEED ...]     (default: seeds 1 2 3 4 5)
 #   OUT=runs/maze-ablation MAZES='medium-maze hard-maze' VARIANTS='lehman walls slide vivae'
 #   STRATEGIES='novelty' (any of novelty neat map-elites) VIVAE=path/to/vivae
+#   EXTRA='[neat]\nstart_hidden = 0' (config lines appended to every variant's
+#   file, `\n` for newlines: here NEAT's minimal start instead of Lehman's)
 #
 # Finished runs (a line in runs.tsv) are not run again, so a stopped
 # experiment continues where it stopped.
@@ -33,7 +35,7 @@ for variant in $variants; do
     vivae) body='robot = "vivae"' ;;
     *) echo "unknown variant $variant" >&2; exit 2 ;;
   esac
-  printf '[experiment]\ntask = "maze"\n[maze]\n%s\n' "$body" > "$out/$variant.toml"
+  printf '[experiment]\ntask = "maze"\n[maze]\n%s\n%b\n' "$body" "${EXTRA:-}" > "$out/$variant.toml"
 done
 for maze in $mazes; do
   for variant in $variants; do
