@@ -49,7 +49,7 @@ pub struct NoveltyParams {
 )]
 #[serde(rename_all = "kebab-case")]
 pub enum NoveltyMetric {
-    /// √Σ (aᵢ − bᵢ)² (Lehman & Stanley 2011's text).
+    /// √Σ (aᵢ − bᵢ)².
     #[default]
     Euclidean,
     /// Σ |aᵢ − bᵢ| / dims: `hist_diff` in Lehman's `histogram.h`, which his
