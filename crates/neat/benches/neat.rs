@@ -1,5 +1,7 @@
 //! NEAT benchmarks: CPPN activation, recurrent activation, one generation of
-//! reproduction, one whole XOR run.
+//! reproduction, one whole XOR run, and the efficacy examples' evaluation
+//! paths (the multiplexer one case at a time against 16 as lanes, a
+//! recurrent network built per genome against recompiled in place).
 
 use divan::{Bencher, black_box};
 use rand::SeedableRng;
@@ -10,6 +12,8 @@ use vivae_neat::{
     RecurrentNetwork,
 };
 
+#[path = "../examples/common/mux_task.rs"]
+mod mux_task;
 #[path = "../examples/common/xor_task.rs"]
 mod xor_task;
 
@@ -90,4 +94,50 @@ fn reproduction(bencher: Bencher, size: usize) {
 fn xor_run(bencher: Bencher) {
     let params = NeatParams::plain_neat();
     bencher.bench_local(|| xor_task::run_xor(black_box(&params), black_box(1), 500));
+}
+
+/// A multiplexer network as the example evolves them (12 inputs, 1 output, `hidden` hidden nodes).
+fn mux_genome(hidden: usize) -> Genome {
+    grown(&GenomeSpec::plain(12, 1), hidden)
+}
+
+/// One multiplexer evaluation (2,048 cases), one case at a time.
+#[divan::bench(args = [0, 5])]
+fn mux_fitness_single(bencher: Bencher, hidden: usize) {
+    let mut net = FeedForwardNetwork::from_genome(&mux_genome(hidden));
+    bencher.bench_local(|| black_box(mux_task::mux_fitness(&mut net)));
+}
+
+/// The same evaluation, 16 cases as the lanes of one pass (the example's path; same bits).
+#[divan::bench(args = [0, 5])]
+fn mux_fitness_lanes(bencher: Bencher, hidden: usize) {
+    let net = FeedForwardNetwork::from_genome(&mux_genome(hidden));
+    let mut scratch = Vec::new();
+    bencher.bench_local(|| black_box(mux_task::mux_fitness_lanes(&net, &mut scratch)));
+}
+
+/// A recurrent network built for a genome with `hidden` hidden nodes.
+#[divan::bench(args = [0, 10, 30])]
+fn recurrent_from_genome(bencher: Bencher, hidden: usize) {
+    let spec = GenomeSpec {
+        allow_recurrent: true,
+        ..GenomeSpec::cppn()
+    };
+    let g = grown(&spec, hidden);
+    bencher.bench_local(|| black_box(RecurrentNetwork::from_genome(black_box(&g))));
+}
+
+/// The same network recompiled in place in a reused one (the efficacy examples' path).
+#[divan::bench(args = [0, 10, 30])]
+fn recurrent_recompile(bencher: Bencher, hidden: usize) {
+    let spec = GenomeSpec {
+        allow_recurrent: true,
+        ..GenomeSpec::cppn()
+    };
+    let g = grown(&spec, hidden);
+    let mut net = RecurrentNetwork::from_genome(&g);
+    bencher.bench_local(|| {
+        net.recompile(black_box(&g));
+        black_box(net.num_outputs())
+    });
 }
