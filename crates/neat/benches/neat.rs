@@ -48,14 +48,19 @@ fn cppn_activate(bencher: Bencher, hidden: usize) {
     });
 }
 
-/// One synchronous update of a recurrent network with `hidden` hidden nodes.
-#[divan::bench(args = [0, 10, 30])]
-fn recurrent_activate(bencher: Bencher, hidden: usize) {
+/// A grown recurrent genome (5 inputs, 3 outputs, `hidden` hidden nodes).
+fn recurrent_genome(hidden: usize) -> Genome {
     let spec = GenomeSpec {
         allow_recurrent: true,
         ..GenomeSpec::cppn()
     };
-    let mut net = RecurrentNetwork::from_genome(&grown(&spec, hidden));
+    grown(&spec, hidden)
+}
+
+/// One synchronous update of a recurrent network with `hidden` hidden nodes.
+#[divan::bench(args = [0, 10, 30])]
+fn recurrent_activate(bencher: Bencher, hidden: usize) {
+    let mut net = RecurrentNetwork::from_genome(&recurrent_genome(hidden));
     let mut out = [0.0; 3];
     bencher.bench_local(|| {
         net.activate(black_box(&[0.1, 0.3, -0.2, 0.7, 1.0]), &mut out);
@@ -119,22 +124,14 @@ fn mux_fitness_lanes(bencher: Bencher, hidden: usize) {
 /// A recurrent network built for a genome with `hidden` hidden nodes.
 #[divan::bench(args = [0, 10, 30])]
 fn recurrent_from_genome(bencher: Bencher, hidden: usize) {
-    let spec = GenomeSpec {
-        allow_recurrent: true,
-        ..GenomeSpec::cppn()
-    };
-    let g = grown(&spec, hidden);
+    let g = recurrent_genome(hidden);
     bencher.bench_local(|| black_box(RecurrentNetwork::from_genome(black_box(&g))));
 }
 
 /// The same network recompiled in place in a reused one (the efficacy examples' path).
 #[divan::bench(args = [0, 10, 30])]
 fn recurrent_recompile(bencher: Bencher, hidden: usize) {
-    let spec = GenomeSpec {
-        allow_recurrent: true,
-        ..GenomeSpec::cppn()
-    };
-    let g = grown(&spec, hidden);
+    let g = recurrent_genome(hidden);
     let mut net = RecurrentNetwork::from_genome(&g);
     bencher.bench_local(|| {
         net.recompile(black_box(&g));

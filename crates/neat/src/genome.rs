@@ -212,8 +212,9 @@ impl Genome {
         }
         // The start's hidden nodes have the same ids in every genome (the
         // first hidden ids), so that crossover aligns them.
-        let hidden: Vec<u32> = (0..n_hidden).map(|k| n_in + n_out + k).collect();
-        for &id in &hidden {
+        let first_hidden = n_in + n_out;
+        let hidden = first_hidden..first_hidden + n_hidden;
+        for id in hidden.clone() {
             tracker.absorb_node(id);
             nodes.push(NodeGene {
                 id,
@@ -221,16 +222,17 @@ impl Genome {
                 activation: spec.hidden_activations[0],
             });
         }
+        // Every node of one layer linked to every node of the next.
+        let full = |from: std::ops::Range<u32>, to: std::ops::Range<u32>| {
+            from.flat_map(move |f| to.clone().map(move |t| (f, t)))
+        };
+        let (inputs, outputs) = (0..n_in, n_in..first_hidden);
         let pairs: Vec<(u32, u32)> = if hidden.is_empty() {
-            (0..n_in)
-                .flat_map(|from| (n_in..n_in + n_out).map(move |to| (from, to)))
-                .collect()
+            full(inputs, outputs).collect()
         } else {
-            let into = (0..n_in).flat_map(|from| hidden.iter().map(move |&h| (from, h)));
-            let out = hidden
-                .iter()
-                .flat_map(|&h| (n_in..n_in + n_out).map(move |to| (h, to)));
-            into.chain(out).collect()
+            full(inputs, hidden.clone())
+                .chain(full(hidden, outputs))
+                .collect()
         };
         let mut links: Vec<LinkGene> = pairs
             .into_iter()

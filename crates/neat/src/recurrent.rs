@@ -82,18 +82,18 @@ impl RecurrentNetwork {
         plan.conn_src.resize(total, 0);
         plan.conn_weight.clear();
         plan.conn_weight.resize(total, 0.0);
-        // `next` serves as the cursor of each target while the links are placed.
-        self.next.clear();
-        self.next
-            .extend(plan.conn_start[..computed].iter().map(|&c| f64::from(c)));
+        // `conn_start[to]` serves as target `to`'s cursor while its links are
+        // placed, ending at the start of `to + 1`; shifting by one restores it.
         for l in genome.links().iter().filter(incoming) {
             if let Some((from, to)) = target(l) {
-                let at = self.next[to] as usize;
+                let at = plan.conn_start[to] as usize;
                 plan.conn_src[at] = from;
                 plan.conn_weight[at] = l.weight;
-                self.next[to] += 1.0;
+                plan.conn_start[to] += 1;
             }
         }
+        plan.conn_start.copy_within(0..computed, 1);
+        plan.conn_start[0] = 0;
         plan.output_slots.clear();
         let outputs = nodes.iter().filter(|n| n.kind == NodeKind::Output);
         plan.output_slots

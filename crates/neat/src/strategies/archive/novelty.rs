@@ -229,26 +229,25 @@ mod tests {
     use super::*;
     use proptest::prelude::*;
 
-    fn sparseness(
-        metric: NoveltyMetric,
-        k: usize,
+    /// `f` of a 2-d archive holding `archive`, with k and the metric as given.
+    fn with_archive<R>(
+        (metric, k): (NoveltyMetric, usize),
         archive: &[f64],
-        behaviours: &[f64],
-    ) -> Vec<f64> {
+        f: impl FnOnce(&NoveltyArchive<'_>) -> R,
+    ) -> R {
         let params = NoveltyParams {
             k,
             metric,
             ..NoveltyParams::default()
         };
         let (mut points, mut threshold, mut idle) = (archive.to_vec(), 1.0, 0);
-        let archive = NoveltyArchive {
+        f(&NoveltyArchive {
             dims: 2,
             points: &mut points,
             threshold: &mut threshold,
             idle: &mut idle,
             params: &params,
-        };
-        archive.sparseness(behaviours)
+        })
     }
 
     #[test]
@@ -263,12 +262,10 @@ mod tests {
             3.5
         );
         // Behaviour (0, 0) against an archived (3, 4) and a behaviour (1, 0), k = 2.
-        let s = sparseness(
-            NoveltyMetric::MeanAbsolute,
-            2,
-            &[3.0, 4.0],
-            &[0.0, 0.0, 1.0, 0.0],
-        );
+        let behaviours = [0.0, 0.0, 1.0, 0.0];
+        let s = with_archive((NoveltyMetric::MeanAbsolute, 2), &[3.0, 4.0], |a| {
+            a.sparseness(&behaviours)
+        });
         assert_eq!(s, vec![(0.5 + 3.5) / 2.0, (0.5 + 3.0) / 2.0]);
     }
 
@@ -291,16 +288,10 @@ mod tests {
             let pts = &pts[..pts.len() / 2 * 2];
             let split = (split * 2).min(pts.len() - 2);
             let (archive, behaviours) = pts.split_at(split);
-            let params = NoveltyParams { k, ..NoveltyParams::default() };
-            let (mut points, mut threshold, mut idle) = (archive.to_vec(), 1.0, 0);
-            let a = NoveltyArchive {
-                dims: 2,
-                points: &mut points,
-                threshold: &mut threshold,
-                idle: &mut idle,
-                params: &params,
-            };
-            prop_assert_eq!(a.sparseness_brute_force(behaviours), a.sparseness(behaviours));
+            let (brute, tree) = with_archive((NoveltyMetric::Euclidean, k), archive, |a| {
+                (a.sparseness_brute_force(behaviours), a.sparseness(behaviours))
+            });
+            prop_assert_eq!(brute, tree);
         }
     }
 }
