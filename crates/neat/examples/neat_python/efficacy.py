@@ -1,6 +1,7 @@
 """neat-python 2.0 on the efficacy tasks of examples/{multiplexer,sinewave,prey_capture}.rs.
 
-python efficacy.py TASK SECONDS RUNS [fixed]   (TASK: multiplexer | sinewave | prey_capture)
+python efficacy.py TASK SECONDS RUNS [fixed]   (TASK: multiplexer | sinewave | prey_capture
+                                               | xor | pole_markov | pole_nonmarkov)
 
 `fixed` turns off every structural mutation (add/delete node and connection), so
 every network keeps the full input-to-output start topology: the like-for-like
@@ -9,6 +10,14 @@ speed measurement, run beside the Rust examples with
 
 Same task definitions as the Rust examples' common/*_task.rs (SharpNEAT's), same
 population sizes, fixed wall-clock runs on one process; prints the same summary line.
+
+xor, pole_markov and pole_nonmarkov are vivae-neat's own tasks (benchmarks/xor.rs,
+benchmarks/pole.rs), run beside examples/{xor_speed,pole_markov_speed,pole_nonmarkov_speed}.rs:
+populations 150, 150 and 1,000; these runs never stop at a solution, and stop evaluating
+mid-generation once their time is up (the rest of that generation is neither scored nor
+counted). The pole tasks also print network activations (control steps) per evaluation
+and per second. With `fixed` these three also keep every link enabled and give the
+recurrent start no output self-link, so that the networks are vivae-neat's exactly.
 """
 import math, os, random, statistics, sys, time
 import neat
@@ -91,11 +100,75 @@ def prey_capture(net):
     rng = random.Random(random.getrandbits(64))
     return float(sum(prey_trial(net, rng) for _ in range(100)))
 
+XOR_CASES = [((0.0, 0.0, 1.0), 0.0), ((0.0, 1.0, 1.0), 1.0), ((1.0, 0.0, 1.0), 1.0), ((1.0, 1.0, 1.0), 0.0)]
+
+def xor(net):
+    err = 0.0
+    for x, t in XOR_CASES:
+        err += abs(net.activate(x)[0] - t)
+    return (4.0 - err) ** 2
+
+# Double pole balancing as vivae-neat's benchmarks/pole.rs: Wieland's equations, RK4 in
+# 0.01 s steps, the action held for two; failure at |x| > 2.4 m or a pole beyond 36 degrees.
+GRAVITY, MASS_CART, MASS_POLE_1, LENGTH_1, MASS_POLE_2, LENGTH_2 = -9.8, 1.0, 0.1, 0.5, 0.01, 0.05
+FORCE_MAG, TAU, MUP, FAIL_ANGLE = 10.0, 0.01, 0.000002, 36.0 * math.pi / 180.0
+POLE_STEPS = [0]  # network activations of all pole evaluations so far
+
+def pole_derivs(force, s):
+    sin1, cos1, sin2, cos2 = math.sin(s[2]), math.cos(s[2]), math.sin(s[4]), math.cos(s[4])
+    gsin1, gsin2 = GRAVITY * sin1, GRAVITY * sin2
+    ml1, ml2 = LENGTH_1 * MASS_POLE_1, LENGTH_2 * MASS_POLE_2
+    temp1, temp2 = MUP * s[3] / ml1, MUP * s[5] / ml2
+    fi1 = ml1 * s[3] * s[3] * sin1 + 0.75 * MASS_POLE_1 * cos1 * (temp1 + gsin1)
+    fi2 = ml2 * s[5] * s[5] * sin2 + 0.75 * MASS_POLE_2 * cos2 * (temp2 + gsin2)
+    mi1 = MASS_POLE_1 * (1.0 - 0.75 * cos1 * cos1)
+    mi2 = MASS_POLE_2 * (1.0 - 0.75 * cos2 * cos2)
+    xacc = (force + fi1 + fi2) / (mi1 + mi2 + MASS_CART)
+    acc1 = -0.75 * (xacc * cos1 + gsin1 + temp1) / LENGTH_1
+    acc2 = -0.75 * (xacc * cos2 + gsin2 + temp2) / LENGTH_2
+    return (s[1], xacc, s[3], acc1, s[5], acc2)
+
+def rk4(force, s):
+    k1 = pole_derivs(force, s)
+    k2 = pole_derivs(force, [a + TAU / 2.0 * k for a, k in zip(s, k1)])
+    k3 = pole_derivs(force, [a + TAU / 2.0 * k for a, k in zip(s, k2)])
+    k4 = pole_derivs(force, [a + TAU * k for a, k in zip(s, k3)])
+    return [a + TAU / 6.0 * (p + 2.0 * q + 2.0 * r + u) for a, p, q, r, u in zip(s, k1, k2, k3, k4)]
+
+def balance(net, markov, s, max_steps):
+    """Steps survived and Gruau's stability term over the last 100 steps."""
+    last = [0.0] * 100
+    for t in range(max_steps):
+        if markov:
+            obs = [s[0] / 4.8, s[1] / 2.0, s[2] / 0.52, s[3] / 2.0, s[4] / 0.52, s[5] / 2.0, 0.5]
+        else:
+            obs = [s[0] / 4.8, s[2] / 0.52, s[4] / 0.52, 0.5]
+        force = (net.activate(obs)[0] - 0.5) * FORCE_MAG * 2.0
+        s = rk4(force, rk4(force, s))
+        if abs(s[0]) > 2.4 or abs(s[2]) > FAIL_ANGLE or abs(s[4]) > FAIL_ANGLE:
+            POLE_STEPS[0] += t + 1
+            return t, sum(last)
+        last[t % 100] = abs(s[0]) + abs(s[1]) + abs(s[2]) + abs(s[3])
+    POLE_STEPS[0] += max_steps
+    return max_steps, sum(last)
+
+def pole_markov(net):
+    return float(balance(net, True, [0.0, 0.0, 0.07, 0.0, 0.0, 0.0], 100000)[0])
+
+def pole_nonmarkov(net):
+    net.reset()
+    t, wiggle = balance(net, False, [0.0, 0.0, math.radians(4.5), 0.0, 0.0, 0.0], 1000)
+    return 0.1 * (t / 1000.0) + 0.9 * (0.0 if t < 100 else 0.75 / max(wiggle, 1e-9))
+
 TASKS = {  # name: (fitness, inputs, outputs, feed_forward, population, max fitness)
     "multiplexer": (mux, 12, 1, True, 600, 2048.0),
     "sinewave": (sine, 1, 1, False, 600, 1000.0),
     "prey_capture": (prey_capture, 14, 4, False, 225, 100.0),
+    "xor": (xor, 3, 1, True, 150, math.inf),
+    "pole_markov": (pole_markov, 7, 1, True, 150, math.inf),
+    "pole_nonmarkov": (pole_nonmarkov, 4, 1, False, 1000, math.inf),
 }
+CUT = {"xor", "pole_markov", "pole_nonmarkov"}  # stop mid-generation when the time is up
 
 def main():
     name, seconds, runs = sys.argv[1], float(sys.argv[2]), int(sys.argv[3])
@@ -110,6 +183,11 @@ def main():
     if sys.argv[4:] == ["fixed"]:
         g = cfg.genome_config
         g.conn_add_prob = g.conn_delete_prob = g.node_add_prob = g.node_delete_prob = 0.0
+        if name in CUT:
+            # vivae-neat's start networks exactly: no link toggled (plain_neat never toggles)
+            # and no output self-link (its recurrent start has none; `make` stays recurrent).
+            g.enabled_mutate_rate = 0.0
+            g.feed_forward = True
     elif sys.argv[4:]:
         print(f"efficacy.py: unknown argument {sys.argv[4]!r} (only `fixed`)", file=sys.stderr)
         sys.exit(2)
@@ -120,6 +198,10 @@ def main():
         state = {"n": 0, "best": 0.0, "links": 0, "hidden": 0}
         def eval_genomes(genomes, config):
             for _, g in genomes:
+                if name in CUT and ("cut" in state or time.time() - start >= seconds):
+                    state.setdefault("cut", time.time())
+                    g.fitness = 0.0  # not evaluated, not counted
+                    continue
                 g.fitness = fit(make(g, config))
                 state["n"] += 1
                 state["best"] = max(state["best"], g.fitness)
@@ -130,7 +212,7 @@ def main():
         start = time.time()
         while time.time() - start < seconds and state["best"] < top:
             p.run(eval_genomes, 1)
-        s = time.time() - start
+        s = state.get("cut", time.time()) - start
         n = max(state["n"], 1)
         print(f"{name} seed={1 + r} best={state['best']} evals={state['n']} s={s:.1f} "
               f"mean_links={state['links'] / n:.1f} mean_hidden={state['hidden'] / n:.1f}", file=sys.stderr)
@@ -138,6 +220,9 @@ def main():
     print(f"neat-python {name}: runs={runs} best_fitness(min/median/max)={min(bests):.2f}/"
           f"{statistics.median(bests):.2f}/{max(bests):.2f} evals_per_run(median)="
           f"{statistics.median(evals):.0f} evals_per_s={sum(evals) / secs:.0f}")
+    if name.startswith("pole"):
+        print(f"neat-python {name}: steps_per_eval={POLE_STEPS[0] / max(sum(evals), 1):.1f} "
+              f"steps_per_s={POLE_STEPS[0] / secs:.0f}")
 
 if __name__ == "__main__":
     main()
