@@ -1,7 +1,9 @@
 //! NEAT benchmarks: CPPN activation, recurrent activation, one generation of
 //! reproduction, one whole XOR run, and the efficacy examples' evaluation
 //! paths (the multiplexer one case at a time against 16 as lanes, a
-//! recurrent network built per genome against recompiled in place).
+//! recurrent network built per genome against recompiled in place, the
+//! sinewave one network at a time against 8 side by side as lanes, one prey
+//! capture evaluation).
 
 use divan::{Bencher, black_box};
 use rand::SeedableRng;
@@ -9,11 +11,15 @@ use rand_pcg::Pcg64;
 use vivae_neat::mutation::{mutate_add_link, mutate_add_node};
 use vivae_neat::{
     FeedForwardNetwork, Genome, GenomeSpec, InnovationTracker, NeatParams, Network, Population,
-    RecurrentNetwork,
+    RecurrentLanes, RecurrentNetwork,
 };
 
 #[path = "../examples/common/mux_task.rs"]
 mod mux_task;
+#[path = "../examples/common/prey_task.rs"]
+mod prey_task;
+#[path = "../examples/common/sine_task.rs"]
+mod sine_task;
 #[path = "../examples/common/xor_task.rs"]
 mod xor_task;
 
@@ -137,4 +143,69 @@ fn recurrent_recompile(bencher: Bencher, hidden: usize) {
         net.recompile(black_box(&g));
         black_box(net.num_outputs())
     });
+}
+
+/// Eight sinewave networks as the example evolves them (1 input, 1 output,
+/// recurrent, `hidden` hidden nodes; different weights each).
+fn sine_genomes(hidden: usize) -> Vec<Genome> {
+    let spec = GenomeSpec {
+        allow_recurrent: true,
+        ..GenomeSpec::plain(1, 1)
+    };
+    let params = NeatParams::default();
+    let mut rng = Pcg64::seed_from_u64(5);
+    let mut t = InnovationTracker::new(2);
+    (0..sine_task::MAX_LANES)
+        .map(|_| {
+            let mut g = Genome::minimal(&spec, &params, &mut t, &mut rng);
+            for _ in 0..hidden {
+                mutate_add_node(&mut g, &spec, &mut t, &mut rng);
+                mutate_add_link(&mut g, &spec, &params, &mut t, &mut rng);
+            }
+            g
+        })
+        .collect()
+}
+
+/// Eight sinewave evaluations (83 steps each), one network at a time.
+#[divan::bench(args = [0, 3])]
+fn sine_fitness_single(bencher: Bencher, hidden: usize) {
+    let genomes = sine_genomes(hidden);
+    let sine = sine_task::Sine::new();
+    let mut net = RecurrentNetwork::from_genome(&genomes[0]);
+    bencher.bench_local(|| {
+        let mut f = 0.0;
+        for g in &genomes {
+            net.recompile(g);
+            f += sine.fitness(&mut net);
+        }
+        black_box(f)
+    });
+}
+
+/// The same eight evaluations side by side as lanes (the example's path; same bits).
+#[divan::bench(args = [0, 3])]
+fn sine_fitness_lanes(bencher: Bencher, hidden: usize) {
+    let genomes = sine_genomes(hidden);
+    let sine = sine_task::Sine::new();
+    let mut lanes = RecurrentLanes::new(sine_task::MAX_LANES);
+    let mut out = Vec::new();
+    bencher.bench_local(|| {
+        lanes.recompile(&genomes);
+        out.clear();
+        sine.fitness_lanes(&mut lanes, &mut out);
+        black_box(out.iter().sum::<f64>())
+    });
+}
+
+/// One prey capture evaluation (100 trials of up to 70 steps) of a start
+/// network (14 inputs, 4 outputs, 56 links), the like-for-like network.
+#[divan::bench(sample_count = 50)]
+fn prey_fitness(bencher: Bencher) {
+    let spec = GenomeSpec {
+        allow_recurrent: true,
+        ..GenomeSpec::plain(14, 4)
+    };
+    let mut net = RecurrentNetwork::from_genome(&grown(&spec, 0));
+    bencher.bench_local(|| black_box(prey_task::SHARPNEAT_PREY.fitness(&mut net, black_box(7))));
 }

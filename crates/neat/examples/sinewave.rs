@@ -17,23 +17,58 @@ mod efficacy;
 #[path = "common/sine_task.rs"]
 mod sine_task;
 
-use sine_task::Sine;
-use vivae_neat::{EvalContext, Genome, GenomeSpec, NeatParams};
+use std::cell::RefCell;
+
+use sine_task::{MAX_LANES, Sine};
+use vivae_neat::driver::{Evaluation, GroupTask};
+use vivae_neat::{EvalContext, Genome, GenomeSpec, NeatParams, RecurrentLanes};
 
 const TITLE: &str = "SharpNEAT's generative sinewave";
+
+/// The sinewave scored a group of genomes at a time, their networks side by side.
+#[derive(Clone)]
+struct SineLanes(Sine);
+
+impl GroupTask for SineLanes {
+    fn group_size(&self) -> usize {
+        MAX_LANES
+    }
+
+    fn evaluate_group(&self, genomes: &[Genome], _: &[EvalContext], out: &mut Vec<Evaluation>) {
+        thread_local! {
+            static LANES: RefCell<RecurrentLanes> = RefCell::new(RecurrentLanes::new(MAX_LANES));
+            static FITNESS: RefCell<Vec<f64>> = const { RefCell::new(Vec::new()) };
+        }
+        LANES.with_borrow_mut(|lanes| {
+            FITNESS.with_borrow_mut(|fitness| {
+                lanes.recompile(genomes);
+                fitness.clear();
+                self.0.fitness_lanes(lanes, fitness);
+                out.extend(fitness.iter().map(|&f| Evaluation::fitness(f)));
+            })
+        })
+    }
+}
 
 fn main() {
     let params = NeatParams {
         population_size: 600,
         ..NeatParams::plain_neat()
     };
-    let sine = Sine::new();
-    let task = |g: &Genome, _: &EvalContext| common::with_recurrent(g, |net| sine.fitness(net));
     let spec = GenomeSpec {
         allow_recurrent: true,
         ..GenomeSpec::plain(1, 1)
     };
-    if let Some(line) = efficacy::sample("sinewave", TITLE, params, &spec, 1000.0, task) {
+    // `--one-at-a-time`: each network alone (the same bits, for comparison).
+    let alone = std::env::args().any(|a| a == "--one-at-a-time");
+    let sine = Sine::new();
+    let line = if alone {
+        let task = |g: &Genome, _: &EvalContext| common::with_recurrent(g, |net| sine.fitness(net));
+        efficacy::sample("sinewave", TITLE, params, &spec, 1000.0, task)
+    } else {
+        efficacy::sample_grouped("sinewave", TITLE, params, &spec, 1000.0, SineLanes(sine))
+    };
+    if let Some(line) = line {
         println!("{line}");
     }
 }

@@ -138,10 +138,13 @@ impl Plan {
                 }
             }
             Some(next) => {
-                for (k, &act) in self.acts.iter().enumerate() {
+                // Every node reads the previous state, so all sums come
+                // first and their activations go together (same bits).
+                for (k, n) in next.iter_mut().enumerate() {
                     let (sources, weights) = self.links(k);
-                    next[k] = act.apply(weighted_sum(sources, weights, values));
+                    *n = weighted_sum(sources, weights, values);
                 }
+                crate::activation::apply_all(&self.acts, next);
                 values[n_in..].copy_from_slice(next);
             }
         }

@@ -61,9 +61,11 @@ pub fn exp(x: f64) -> f64 {
     for c in TAYLOR {
         p = p * r + c;
     }
-    // 2^k from the integer in kf's low bits.
-    let k_int = i64::from(kf.to_bits() as i32);
-    let scale = f64::from_bits(((k_int + 1023) as u64) << 52);
+    // 2^k from the integer k in kf's low bits: the shift keeps only the low
+    // 12 bits of k + 1023 (in [1, 2046] after the clamp), so adding the
+    // bias to the raw bits gives the same exponent as extracting k first, in
+    // 64-bit integer operations every vector level has.
+    let scale = f64::from_bits(kf.to_bits().wrapping_add(1023) << 52);
     p * scale
 }
 
@@ -322,6 +324,53 @@ mod tests {
         assert!(exp(-708.0) > 0.0 && exp(-708.0) < 1e-307);
         assert!(exp(1e6).is_finite());
         assert!(exp(f64::NAN).is_nan());
+    }
+
+    /// `exp` as it was written before its scale came from the raw bits.
+    fn exp_extracting_k(x: f64) -> f64 {
+        use exp_constants::{LN2_HI, LN2_LO, LOG2E, SHIFT, TAYLOR, TAYLOR_FIRST};
+        let x = if x.is_nan() {
+            x
+        } else {
+            x.clamp(-708.0, 709.0)
+        };
+        let kf = x * LOG2E + SHIFT;
+        let k = kf - SHIFT;
+        let r = x - k * LN2_HI - k * LN2_LO;
+        let mut p = TAYLOR_FIRST;
+        for c in TAYLOR {
+            p = p * r + c;
+        }
+        let k_int = i64::from(kf.to_bits() as i32);
+        p * f64::from_bits(((k_int + 1023) as u64) << 52)
+    }
+
+    #[test]
+    fn exp_scale_from_raw_bits_is_the_extracted_ks() {
+        let mut bits = 0x9e37_79b9_7f4a_7c15u64;
+        let check = |x: f64| {
+            assert_eq!(exp(x).to_bits(), exp_extracting_k(x).to_bits(), "exp({x})");
+        };
+        for x in [
+            0.0,
+            -0.0,
+            f64::NAN,
+            -f64::NAN,
+            f64::INFINITY,
+            -f64::INFINITY,
+        ] {
+            check(x);
+        }
+        for x in [-708.0, 709.0, -707.9, 708.9, f64::MAX, f64::MIN, 1e-310] {
+            check(x);
+        }
+        for _ in 0..2_000_000 {
+            // xorshift: arguments over the whole clamped range and beyond.
+            bits ^= bits << 13;
+            bits ^= bits >> 7;
+            bits ^= bits << 17;
+            check((bits >> 11) as f64 / (1u64 << 53) as f64 * 1500.0 - 750.0);
+        }
     }
 
     #[test]

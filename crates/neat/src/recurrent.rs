@@ -9,9 +9,9 @@ use crate::network::Network;
 #[derive(Debug, Clone, PartialEq)]
 pub struct RecurrentNetwork {
     /// Inputs first, then the other nodes by id, with all their links.
-    plan: Plan,
+    pub(crate) plan: Plan,
     /// Current value of every slot.
-    state: Vec<f64>,
+    pub(crate) state: Vec<f64>,
     /// Scratch for the synchronous update of the non-input slots.
     next: Vec<f64>,
     /// Scratch of a compile: each node's slot, in node-id order.

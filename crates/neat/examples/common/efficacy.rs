@@ -6,8 +6,8 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 use vivae_neat::driver::{
-    Evolution, GenerationReport, HookError, NoCheckpoints, Observer, ParallelEvaluator,
-    StopCriteria, Task,
+    Evaluator, Evolution, GenerationReport, GroupTask, GroupedEvaluator, HookError, NoCheckpoints,
+    Observer, ParallelEvaluator, StopCriteria, Task,
 };
 use vivae_neat::{GenomeSpec, NeatParams, Population, stats};
 
@@ -68,6 +68,8 @@ Options:
   --seed S              seed of the first run (default 1)
   --max-generations G   also stop a run after G generations
   --set FIELD=JSON      override one NeatParams field (repeatable)
+  --one-at-a-time       score each network alone, not side by side with others
+                        as vector lanes (the sinewave; the same bits, slower)
   -h, --help            print this help
 
 Prints `{name}: runs=N best_fitness(min/median/max)=... evals_per_run(median)=...
@@ -87,8 +89,31 @@ pub fn sample<T: Task + Clone>(
     target: f64,
     task: T,
 ) -> Option<String> {
+    let (args, pool) = start(name, title)?;
+    let make = || ParallelEvaluator::with_pool(task.clone(), &pool);
+    Some(runs(name, &args, params, spec, target, make))
+}
+
+/// [`sample`] for a task that scores genomes a group at a time (their
+/// networks side by side as vector lanes): the same runs, the same bits.
+#[allow(dead_code)]
+pub fn sample_grouped<T: GroupTask + Clone>(
+    name: &str,
+    title: &str,
+    params: NeatParams,
+    spec: &GenomeSpec,
+    target: f64,
+    task: T,
+) -> Option<String> {
+    let (args, pool) = start(name, title)?;
+    let make = || GroupedEvaluator::with_pool(task.clone(), &pool);
+    Some(runs(name, &args, params, spec, target, make))
+}
+
+/// The command line and a one-thread pool (`None` after `--help`).
+fn start(name: &str, title: &str) -> Option<(cli::Args, rayon::ThreadPool)> {
     let argv: Vec<String> = std::env::args().skip(1).collect();
-    let args = match cli::parse(&argv, &[], &["--seconds"]) {
+    let args = match cli::parse(&argv, &["--one-at-a-time"], &["--seconds"]) {
         Ok(cli::Parsed::Run(a)) => a,
         Ok(cli::Parsed::Help) => {
             print!("{}", usage(name, title));
@@ -96,11 +121,23 @@ pub fn sample<T: Task + Clone>(
         }
         Err(e) => fail(name, &e),
     };
-    let seconds = seconds(name, &args);
-    let params = apply_overrides(params, &args.sets).unwrap_or_else(|e| fail(name, &e));
-    let (runs, seed) = (args.runs.unwrap_or(5), args.seed.unwrap_or(1));
     let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build();
     let pool = pool.unwrap_or_else(|e| fail(name, &format!("thread pool: {e}")));
+    Some((args, pool))
+}
+
+/// The runs of [`sample`], each evaluating on a fresh `evaluator()`.
+fn runs<E: Evaluator>(
+    name: &str,
+    args: &cli::Args,
+    params: NeatParams,
+    spec: &GenomeSpec,
+    target: f64,
+    evaluator: impl Fn() -> E,
+) -> String {
+    let seconds = seconds(name, args);
+    let params = apply_overrides(params, &args.sets).unwrap_or_else(|e| fail(name, &e));
+    let (runs, seed) = (args.runs.unwrap_or(5), args.seed.unwrap_or(1));
     let (mut bests, mut evals, mut secs) = (Vec::new(), Vec::new(), 0.0);
     for r in 0..runs as u64 {
         let pop = Population::new(params.clone(), spec.clone(), seed + r)
@@ -121,7 +158,7 @@ pub fn sample<T: Task + Clone>(
             links: 0.0,
             hidden: 0.0,
         };
-        let mut evolution = Evolution::new(pop, ParallelEvaluator::with_pool(task.clone(), &pool));
+        let mut evolution = Evolution::new(pop, evaluator());
         let reason = evolution.run(&criteria, &mut clock, &mut NoCheckpoints);
         let reason = reason.unwrap_or_else(|e| fail(name, &e.to_string()));
         let s = clock.start.elapsed().as_secs_f64();
@@ -140,9 +177,9 @@ pub fn sample<T: Task + Clone>(
     let min = bests.iter().copied().fold(f64::INFINITY, f64::min);
     let max = bests.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     let median = stats::median(&bests).unwrap_or(0.0);
-    Some(format!(
+    format!(
         "{name}: runs={runs} best_fitness(min/median/max)={min:.2}/{median:.2}/{max:.2} evals_per_run(median)={:.0} evals_per_s={:.0}",
         stats::median(&evals).unwrap_or(0.0),
         evals.iter().sum::<f64>() / secs.max(1e-9)
-    ))
+    )
 }

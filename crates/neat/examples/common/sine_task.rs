@@ -6,14 +6,19 @@
 //! `20 / (0.1 * mse(y) + 0.9 * mse(gradient) + 0.02)`, so a perfect network
 //! scores 1,000; gradients are central differences (one-sided at the ends).
 
-use vivae_neat::{Network, math};
+use vivae_neat::{Network, RecurrentLanes, math};
 
 /// Samples of the function.
 pub const SINE_SAMPLES: usize = 80;
 const X_MAX: f64 = 25.132_741_23;
 const GRADIENT_WEIGHT: f64 = 0.9;
+/// Activations before the samples are read.
+const WARM_UP: usize = 3;
+/// The most networks [`Sine::fitness_lanes`] steps side by side.
+pub const MAX_LANES: usize = 8;
 
 /// The targets, their gradients, and the probe's `mid` and `scale`.
+#[derive(Clone)]
 pub struct Sine {
     y: [f64; SINE_SAMPLES],
     dy: [f64; SINE_SAMPLES],
@@ -82,23 +87,50 @@ impl Sine {
         let mut got = [0.0; SINE_SAMPLES];
         let mut out = [0.0];
         net.reset();
-        for _ in 0..3 {
+        for _ in 0..WARM_UP {
             net.activate(&[1.0], &mut out);
         }
         for g in got.iter_mut() {
             net.activate(&[1.0], &mut out);
             *g = (out[0] - 0.5) * self.scale + self.mid;
         }
+        self.score(&got)
+    }
+
+    /// The fitness of every network in `lanes` (as [`Sine::fitness`] of
+    /// each, the same bits), stepped side by side, pushed onto `out`.
+    #[allow(dead_code)]
+    pub fn fitness_lanes(&self, lanes: &mut RecurrentLanes, out: &mut Vec<f64>) {
+        let n = lanes.lanes();
+        assert!(n <= MAX_LANES, "at most {MAX_LANES} lanes");
+        let mut got = [[0.0; SINE_SAMPLES]; MAX_LANES];
+        let mut o = [[0.0]; MAX_LANES];
+        let inputs = [&[1.0][..]; MAX_LANES];
+        lanes.reset();
+        for t in 0..WARM_UP + SINE_SAMPLES {
+            let mut outs: [&mut [f64]; MAX_LANES] = o.each_mut().map(|o| &mut o[..]);
+            lanes.activate(&inputs[..n], &mut outs[..n]);
+            if let Some(k) = t.checked_sub(WARM_UP) {
+                for (g, o) in got.iter_mut().zip(&o).take(n) {
+                    g[k] = (o[0] - 0.5) * self.scale + self.mid;
+                }
+            }
+        }
+        out.extend(got[..n].iter().map(|g| self.score(g)));
+    }
+
+    /// The fitness of the outputs `got`.
+    fn score(&self, got: &[f64; SINE_SAMPLES]) -> f64 {
         if got.iter().any(|v| !v.is_finite()) {
             return 0.0;
         }
         let mut dgot = [0.0; SINE_SAMPLES];
-        gradients(&got, &self.spans, &mut dgot);
+        gradients(got, &self.spans, &mut dgot);
         let mse = |a: &[f64], b: &[f64]| {
             a.iter().zip(b).map(|(p, q)| (p - q) * (p - q)).sum::<f64>() / SINE_SAMPLES as f64
         };
         let e =
-            (1.0 - GRADIENT_WEIGHT) * mse(&got, &self.y) + GRADIENT_WEIGHT * mse(&dgot, &self.dy);
+            (1.0 - GRADIENT_WEIGHT) * mse(got, &self.y) + GRADIENT_WEIGHT * mse(&dgot, &self.dy);
         20.0 / (e + 0.02)
     }
 }

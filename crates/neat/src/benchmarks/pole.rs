@@ -53,6 +53,7 @@ pub const SUCCESS_STEPS: u32 = 100_000;
 pub type State = [f64; 6];
 
 /// Wieland's equations of motion (as in Stanley's NEAT code).
+#[inline]
 fn derivatives(force: f64, s: &State) -> State {
     let (sin1, cos1) = sin_cos(s[2]);
     let (sin2, cos2) = sin_cos(s[4]);
@@ -72,6 +73,7 @@ fn derivatives(force: f64, s: &State) -> State {
     [s[1], xacc, s[3], acc1, s[5], acc2]
 }
 
+#[inline]
 fn rk4(force: f64, s: &State) -> State {
     let add = |a: &State, k: &State, h: f64| -> State { std::array::from_fn(|i| a[i] + h * k[i]) };
     let k1 = derivatives(force, s);
@@ -82,6 +84,7 @@ fn rk4(force: f64, s: &State) -> State {
 }
 
 /// One control step: the action (network output in [0, 1]) held for two RK4 steps.
+#[inline]
 fn step(action: f64, s: &mut State) {
     let force = (action - 0.5) * FORCE_MAG * 2.0;
     for _ in 0..2 {
@@ -113,7 +116,12 @@ fn observe(s: &State, markov: bool, out: &mut [f64; 7]) -> usize {
 
 /// Balances from `start` for at most `max_steps`; returns the steps survived and
 /// Gruau's stability term Σ over the last 100 steps of |x| + |ẋ| + |θ1| + |θ̇1|.
-fn balance(net: &mut dyn Network, markov: bool, start: State, max_steps: u32) -> (u32, f64) {
+fn balance<N: Network + ?Sized>(
+    net: &mut N,
+    markov: bool,
+    start: State,
+    max_steps: u32,
+) -> (u32, f64) {
     net.reset();
     let mut s = start;
     let mut obs = [0.0; 7];
@@ -148,20 +156,28 @@ fn network(g: &Genome, markov: bool) -> Box<dyn Network> {
 }
 
 fn fitness(g: &Genome, markov: bool, start: State) -> f64 {
-    let mut net = network(g, markov);
+    score(network(g, markov).as_mut(), markov, start).0
+}
+
+/// The task's fitness of `net` from `start` (Markov: steps balanced, at most
+/// 100,000; without velocities: Gruau's damping fitness over at most 1,000
+/// steps), and the network activations it took.
+pub fn score<N: Network + ?Sized>(net: &mut N, markov: bool, start: State) -> (f64, u32) {
+    let max_steps = if markov { SUCCESS_STEPS } else { 1000 };
+    let (t, wiggle) = balance(net, markov, start, max_steps);
+    // A trial that fails at step t activated the network t + 1 times.
+    let activations = (t + 1).min(max_steps);
     if markov {
-        balance(net.as_mut(), true, start, SUCCESS_STEPS).0 as f64
-    } else {
-        // Gruau et al. (1996): 0.1·t/1000 + 0.9·f2, f2 = 0.75 / wiggle if t ≥ 100.
-        let (t, wiggle) = balance(net.as_mut(), false, start, 1000);
-        let f1 = t as f64 / 1000.0;
-        let f2 = if t < 100 {
-            0.0
-        } else {
-            0.75 / wiggle.max(1e-9)
-        };
-        0.1 * f1 + 0.9 * f2
+        return (t as f64, activations);
     }
+    // Gruau et al. (1996): 0.1·t/1000 + 0.9·f2, f2 = 0.75 / wiggle if t ≥ 100.
+    let f1 = t as f64 / 1000.0;
+    let f2 = if t < 100 {
+        0.0
+    } else {
+        0.75 / wiggle.max(1e-9)
+    };
+    (0.1 * f1 + 0.9 * f2, activations)
 }
 
 /// The 625 generalisation starts: x, ẋ, θ1, θ̇1 each at 0.05, 0.25, 0.5, 0.75, 0.95 of

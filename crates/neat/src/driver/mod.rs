@@ -11,6 +11,7 @@
 //! The driver does no I/O: result files, progress bars and checkpoint files
 //! are observer and checkpointer implementations that live with the program.
 
+mod grouped;
 mod observer;
 mod stop;
 pub mod strategy;
@@ -18,6 +19,7 @@ mod task;
 
 use std::sync::atomic::Ordering;
 
+pub use grouped::{GroupTask, GroupedEvaluator};
 pub use observer::{
     CheckpointState, Checkpointer, GenerationReport, HookError, NoCheckpoints, Observer,
 };
