@@ -39,9 +39,60 @@ pub const SHARPNEAT_PREY: Prey = Prey {
     trials: 100,
 };
 
+/// The squared distance and the angle in [0, 2π) of the offset (dx, dy).
 fn polar(dx: i32, dy: i32) -> (i32, f64) {
     let a = math::atan2(dy as f64, dx as f64);
     (dx * dx + dy * dy, if a < 0.0 { a + 2.0 * PI } else { a })
+}
+
+/// Offsets between two cells of the grid, per axis.
+const OFFSETS: usize = 2 * GRID as usize - 1;
+
+/// [`polar`] and the prey's move weights for every offset between two cells,
+/// computed once: pure functions of two small integers, so looking them up
+/// gives the same bits as computing them each step (which was a third of an
+/// evaluation: two `atan2`, a square root and four 32nd powers per step).
+struct Tables {
+    /// `polar(dx, dy)` at [`offset`]`(dx, dy)`.
+    polar: Vec<(i32, f64)>,
+    /// The prey's weights of moving N, E, S, W, given the agent at (dx, dy) from it.
+    weights: Vec<[f64; 4]>,
+}
+
+/// The index of (dx, dy) in the tables.
+fn offset(dx: i32, dy: i32) -> usize {
+    (dx + GRID - 1) as usize * OFFSETS + (dy + GRID - 1) as usize
+}
+
+/// The tables, built on first use.
+fn tables() -> &'static Tables {
+    static TABLES: std::sync::OnceLock<Tables> = std::sync::OnceLock::new();
+    TABLES.get_or_init(|| {
+        let range = || (1 - GRID..GRID).flat_map(|dx| (1 - GRID..GRID).map(move |dy| (dx, dy)));
+        Tables {
+            polar: range().map(|(dx, dy)| polar(dx, dy)).collect(),
+            weights: range().map(|(dx, dy)| move_weights(dx, dy)).collect(),
+        }
+    })
+}
+
+/// The prey's weights of moving N, E, S, W with the agent at (dx, dy) from it:
+/// away from the agent, more strongly the nearer it is.
+fn move_weights(dx: i32, dy: i32) -> [f64; 4] {
+    let (r2, az) = polar(dx, dy);
+    let d = (r2 as f64).sqrt();
+    let t = if d <= 4.0 {
+        15.0 - d
+    } else if d <= 15.0 {
+        9.0 - d * 0.5
+    } else {
+        1.0
+    } * 0.33;
+    let w = |b: f64| {
+        let d = (az - b).abs();
+        exp32(if d > PI { 2.0 * PI - d } else { d } / PI * t)
+    };
+    [w(PI * 0.5), w(0.0), w(PI * 1.5), w(PI)]
 }
 
 fn step(p: &mut (i32, i32), dir: usize) {
@@ -60,7 +111,7 @@ fn exp32(x: f64) -> f64 {
 
 impl Prey {
     fn inputs(&self, agent: (i32, i32), prey: (i32, i32), v: &mut [f64; 14]) {
-        let (r2, az) = polar(prey.0 - agent.0, prey.1 - agent.1);
+        let (r2, az) = tables().polar[offset(prey.0 - agent.0, prey.1 - agent.1)];
         *v = [0.0; 14];
         v[0] = 1.0;
         if r2 as f64 <= self.sensor_range * self.sensor_range {
@@ -78,20 +129,7 @@ impl Prey {
         if self.speed < 1.0 && rng.random::<f64>() >= self.speed {
             return;
         }
-        let (r2, az) = polar(agent.0 - prey.0, agent.1 - prey.1);
-        let d = (r2 as f64).sqrt();
-        let t = if d <= 4.0 {
-            15.0 - d
-        } else if d <= 15.0 {
-            9.0 - d * 0.5
-        } else {
-            1.0
-        } * 0.33;
-        let w = |b: f64| {
-            let d = (az - b).abs();
-            exp32(if d > PI { 2.0 * PI - d } else { d } / PI * t)
-        };
-        let p = [w(PI * 0.5), w(0.0), w(PI * 1.5), w(PI)];
+        let p = tables().weights[offset(agent.0 - prey.0, agent.1 - prey.1)];
         let thresh = rng.random::<f64>() * p.iter().sum::<f64>();
         let mut acc = 0.0;
         let dir = p.iter().position(|&q| {

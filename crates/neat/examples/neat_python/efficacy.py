@@ -55,6 +55,19 @@ def polar(dx, dy):
     a = math.atan2(dy, dx)
     return dx * dx + dy * dy, a + 2 * math.pi if a < 0 else a
 
+def prey_weights(dx, dy):
+    """The prey's weights of moving N, E, S, W with the agent at (dx, dy) from it."""
+    r2, az = polar(dx, dy)
+    d = math.sqrt(r2)
+    k = (15 - d if d <= 4 else 9 - d * 0.5 if d <= 15 else 1.0) * 0.33
+    w = lambda b: (1 + min(abs(az - b), 2 * math.pi - abs(az - b)) / math.pi * k / 29.5) ** 32
+    return [w(math.pi / 2), w(0.0), w(1.5 * math.pi), w(math.pi)]
+
+# Both are pure functions of an offset between two cells: looked up, as the
+# Rust task does (common/prey_task.rs), not computed each step.
+POLAR = {(dx, dy): polar(dx, dy) for dx in range(-23, 24) for dy in range(-23, 24)}
+PREY_WEIGHTS = {(dx, dy): prey_weights(dx, dy) for dx in range(-23, 24) for dy in range(-23, 24)}
+
 def step(p, d):
     x, y = p
     return [(x, min(y + 1, 23)), (min(x + 1, 23), y), (x, max(y - 1, 0)), (max(x - 1, 0), y)][d]
@@ -66,7 +79,7 @@ def prey_trial(net, rng):
     net.reset()
     near = lambda d: (4 - d) / 4 if d <= 4 else 0.0
     for t in range(70):
-        r2, az = polar(prey[0] - agent[0], prey[1] - agent[1])
+        r2, az = POLAR[(prey[0] - agent[0], prey[1] - agent[1])]
         v = [1.0] + [0.0] * 13
         if r2 <= 16:
             a = az - math.pi / 8
@@ -80,11 +93,7 @@ def prey_trial(net, rng):
                 agent = step(agent, b)
             if agent == prey:
                 return True
-        r2, az = polar(agent[0] - prey[0], agent[1] - prey[1])
-        d = math.sqrt(r2)
-        k = (15 - d if d <= 4 else 9 - d * 0.5 if d <= 15 else 1.0) * 0.33
-        w = lambda b: (1 + min(abs(az - b), 2 * math.pi - abs(az - b)) / math.pi * k / 29.5) ** 32
-        p = [w(math.pi / 2), w(0.0), w(1.5 * math.pi), w(math.pi)]
+        p = PREY_WEIGHTS[(agent[0] - prey[0], agent[1] - prey[1])]
         th, acc, dirn = rng.random() * sum(p), 0.0, 3
         for i, q in enumerate(p):
             acc += q
@@ -219,7 +228,7 @@ def main():
         bests.append(state["best"]); evals.append(state["n"]); secs += s
     print(f"neat-python {name}: runs={runs} best_fitness(min/median/max)={min(bests):.2f}/"
           f"{statistics.median(bests):.2f}/{max(bests):.2f} evals_per_run(median)="
-          f"{statistics.median(evals):.0f} evals_per_s={sum(evals) / secs:.0f}")
+          f"{statistics.median(evals):.0f} evals_per_s={sum(evals) / secs:.2f}")
     if name.startswith("pole"):
         print(f"neat-python {name}: steps_per_eval={POLE_STEPS[0] / max(sum(evals), 1):.1f} "
               f"steps_per_s={POLE_STEPS[0] / secs:.0f}")
