@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Developer script (not part of CI): evaluations per second of vivae-neat and
 # neat-python on the same networks (structural mutations off on both sides),
-# on the six tasks of issue 36, one library after the other, one thread each.
+# on the six tasks of issue 36, one library after the other, one thread each
+# (not under `nice`: a niced run gets a fraction of a core whenever anything
+# else runs, which is no longer a like-for-like measurement).
 #
 #   scripts/neat-python-six.sh                    # 2 runs of 15 s per task and library
 #   SECONDS_PER_RUN=30 TASKS="sinewave prey_capture" scripts/neat-python-six.sh
@@ -13,7 +15,8 @@ cd "$(dirname "$0")/.."
 T="${SECONDS_PER_RUN:-15}"
 TASKS="${TASKS:-xor pole_markov pole_nonmarkov multiplexer sinewave prey_capture}"
 TARGET="${CARGO_TARGET_DIR:-target}"
-VENV="$TARGET/neat-python-venv"
+mkdir -p "$TARGET"
+VENV="$(cd "$TARGET" && pwd)/neat-python-venv"
 if [ ! -x "$VENV/bin/python" ]; then
     python3 -m venv "$VENV"
 fi
@@ -34,9 +37,9 @@ rate() { sed -n 's/.*evals_per_s=\([0-9.]*\).*/\1/p' | head -1; }
 for task in $TASKS; do
     echo "== $task ($(date -u +%H:%M:%S) UTC, load $(cut -d' ' -f1 /proc/loadavg))"
     # shellcheck disable=SC2086
-    ours="$(nice -n 10 "$TARGET/release/examples/$(example "$task")" --runs 2 --seconds "$T" --seed 1 $FIXED 2>/dev/null)"
+    ours="$("$TARGET/release/examples/$(example "$task")" --runs 2 --seconds "$T" --seed 1 $FIXED 2>/dev/null)"
     echo "$ours"
-    theirs="$(cd crates/neat/examples/neat_python && nice -n 10 "../../../../$VENV/bin/python" efficacy.py "$task" "$T" 2 fixed 2>/dev/null)"
+    theirs="$(cd crates/neat/examples/neat_python && "$VENV/bin/python" efficacy.py "$task" "$T" 2 fixed 2>/dev/null)"
     echo "$theirs"
     a="$(echo "$ours" | rate)"
     b="$(echo "$theirs" | rate)"

@@ -3,7 +3,7 @@
 //! then all their activation functions at once, as vector lanes.
 
 use crate::activation::{Activation, apply_all};
-use crate::compile::{assert_io, weighted_sum};
+use crate::compile::{assert_io, copy_short, weighted_sum};
 use crate::genome::Genome;
 use crate::network::Network;
 use crate::recurrent::RecurrentNetwork;
@@ -18,8 +18,10 @@ use crate::recurrent::RecurrentNetwork;
 /// the same number of times (or mask the ones that are done).
 #[derive(Debug, Clone)]
 pub struct RecurrentLanes {
-    /// One network per lane; the first `used` hold the current genomes.
+    /// One network per lane used so far; the first `used` hold the current genomes.
     nets: Vec<RecurrentNetwork>,
+    /// The most lanes.
+    capacity: usize,
     /// Lanes in use.
     used: usize,
     /// The activation of every computed node of every used lane, lane after lane.
@@ -31,10 +33,9 @@ pub struct RecurrentLanes {
 impl RecurrentLanes {
     /// Room for `capacity` genomes' networks (at least one).
     pub fn new(capacity: usize) -> RecurrentLanes {
-        let empty = Genome::from_parts(Vec::new(), Vec::new());
-        let net = RecurrentNetwork::from_genome(&empty.expect("an empty genome is valid"));
         RecurrentLanes {
-            nets: vec![net; capacity.max(1)],
+            nets: Vec::new(),
+            capacity: capacity.max(1),
             used: 0,
             acts: Vec::new(),
             sums: Vec::new(),
@@ -43,7 +44,7 @@ impl RecurrentLanes {
 
     /// The most genomes one pass holds.
     pub fn capacity(&self) -> usize {
-        self.nets.len()
+        self.capacity
     }
 
     /// Genomes held now.
@@ -57,9 +58,13 @@ impl RecurrentLanes {
         self.used = 0;
         self.acts.clear();
         for g in genomes {
-            let net = &mut self.nets[self.used];
-            net.recompile(g);
-            self.acts.extend_from_slice(&net.plan.acts);
+            assert!(self.used < self.capacity, "more genomes than lanes");
+            if let Some(net) = self.nets.get_mut(self.used) {
+                net.recompile(g);
+            } else {
+                self.nets.push(RecurrentNetwork::from_genome(g));
+            }
+            self.acts.extend_from_slice(&self.nets[self.used].plan.acts);
             self.used += 1;
         }
         self.sums.clear();
@@ -96,7 +101,7 @@ impl RecurrentLanes {
             let plan = &net.plan;
             let n_in = plan.num_inputs;
             assert_io(input.len(), output.len(), n_in, plan.output_slots.len());
-            net.state[..n_in].copy_from_slice(input);
+            copy_short(&mut net.state[..n_in], input);
             let sums = &mut self.sums[at..at + plan.acts.len()];
             for (k, sum) in sums.iter_mut().enumerate() {
                 let (sources, weights) = plan.links(k);
@@ -109,7 +114,7 @@ impl RecurrentLanes {
         for (net, output) in self.nets[..self.used].iter_mut().zip(outputs) {
             let plan = &net.plan;
             let (n_in, computed) = (plan.num_inputs, plan.acts.len());
-            net.state[n_in..].copy_from_slice(&self.sums[at..at + computed]);
+            copy_short(&mut net.state[n_in..], &self.sums[at..at + computed]);
             for (o, &s) in output.iter_mut().zip(&plan.output_slots) {
                 *o = net.state[s as usize];
             }
