@@ -416,9 +416,6 @@ pub(crate) fn links_of<'a>(
     (&conn_src[s..e], &conn_weight[s..e])
 }
 
-/// Σ `weights[i] · values[sources[i]]`, added in link order from 0: the one
-/// sum order of the networks' activation, so that they give the same bits.
-#[inline(always)]
 /// `dst.copy_from_slice(src)`, without a call to `memcpy` for the one
 /// value of a bias-only input or a single computed node (a call each step
 /// was a tenth of a small recurrent network's time).
@@ -430,6 +427,9 @@ pub(crate) fn copy_short(dst: &mut [f64], src: &[f64]) {
     }
 }
 
+/// Σ `weights[i] · values[sources[i]]`, added in link order from 0: the one
+/// sum order of the networks' activation, so that they give the same bits.
+#[inline(always)]
 pub(crate) fn weighted_sum(sources: &[u32], weights: &[f64], values: &[f64]) -> f64 {
     let mut sum = 0.0;
     for (&src, &w) in sources.iter().zip(weights) {
