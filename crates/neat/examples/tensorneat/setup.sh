@@ -8,18 +8,15 @@
 # is a git checkout. Without TENSORNEAT_SRC it asks pip for the same commit from
 # its git source (this needs access to that host; the machine these figures were
 # taken on had none, so they were taken with a local copy of that commit).
-# Every other package comes from PyPI at the version below (what pip resolved on
-# 2026-12-04 for tensorneat's own requirements; pinned here).
+# Every other package comes from PyPI at the version in requirements-freeze.txt
+# (what pip resolved on 2026-12-04 for tensorneat's own requirements: jax and
+# jaxlib 0.10.2, numpy 2.4.6, brax 0.14.2, gymnax 1.0.1, ...).
 set -euo pipefail
 VENV=${1:-/work/tnvenv}
 COMMIT=ee204900e8e55ffe0ed756651ea871c70230dd34
 python3 -m venv "$VENV"
 "$VENV/bin/pip" install -q --upgrade pip
-"$VENV/bin/pip" install -q \
-  jax==0.10.2 jaxlib==0.10.2 numpy==2.4.6 \
-  brax==0.14.2 gymnax==1.0.1 flax==0.12.8 optax==0.2.8 jaxopt==0.8.5 \
-  mujoco==4.0.1 mujoco-mjx==3.17.0 scipy==1.17.1 ml_dtypes==0.7.0 \
-  networkx matplotlib sympy
+"$VENV/bin/pip" install -q -r "$(dirname "$0")/requirements-freeze.txt"
 if [ -n "${TENSORNEAT_SRC:-}" ]; then
   if [ -d "$TENSORNEAT_SRC/.git" ]; then
     got=$(git -C "$TENSORNEAT_SRC" rev-parse HEAD)
