@@ -44,4 +44,10 @@ for task in $TASKS; do
     a="$(echo "$ours" | rate)"
     b="$(echo "$theirs" | rate)"
     python3 -c "print(f'$task: vivae-neat / neat-python = {$a / $b:.0f}x in evaluations per second')"
+    steps() { sed -n 's/.*steps_per_s=\([0-9.]*\).*/\1/p' | head -1; }
+    if [ -n "$(echo "$ours" | steps)" ]; then
+        a="$(echo "$ours" | steps)"
+        b="$(echo "$theirs" | steps)"
+        python3 -c "print(f'$task: vivae-neat / neat-python = {$a / $b:.0f}x in network activations per second')"
+    fi
 done
