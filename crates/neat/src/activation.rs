@@ -164,8 +164,8 @@ fn apply_all_body(acts: &[Activation], xs: &mut [f64], exp_pass: impl Fn(&mut [f
         // No branch: one vectorised `exp` for the pass.
         exp_pass(&mut e);
         for ((x, &a), &e) in x.iter_mut().zip(a).zip(&e) {
-            let two = a == Activation::BipolarSigmoid;
-            let q = if two { 2.0 } else { 1.0 } / (1.0 + e);
+            let numerator = if a == Activation::BipolarSigmoid { 2.0 } else { 1.0 };
+            let q = numerator / (1.0 + e);
             *x = match a {
                 Activation::BipolarSigmoid => q - 1.0,
                 Activation::Sigmoid => q,
