@@ -170,7 +170,7 @@ impl GeneTable {
 /// the difference of the overlapping lengths; the walk then stops as soon as
 /// the disjoint genes seen, plus those the rest must still hold, reach the
 /// count that with the excess genes alone puts δ at or above the threshold.
-/// Every gene not yet seen can only raise δ (see [`combine`]), so no pair is
+/// Every gene not yet seen can only raise δ (see `combine`), so no pair is
 /// ever placed differently.
 #[derive(Debug, Clone)]
 pub struct Compatibility<'p> {
