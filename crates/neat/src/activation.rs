@@ -164,7 +164,11 @@ fn apply_all_body(acts: &[Activation], xs: &mut [f64], exp_pass: impl Fn(&mut [f
         // No branch: one vectorised `exp` for the pass.
         exp_pass(&mut e);
         for ((x, &a), &e) in x.iter_mut().zip(a).zip(&e) {
-            let numerator = if a == Activation::BipolarSigmoid { 2.0 } else { 1.0 };
+            let numerator = if a == Activation::BipolarSigmoid {
+                2.0
+            } else {
+                1.0
+            };
             let q = numerator / (1.0 + e);
             *x = match a {
                 Activation::BipolarSigmoid => q - 1.0,
