@@ -11,11 +11,12 @@ use crate::{FeedForwardNetwork, Genome, GenomeSpec, NeatParams, Population};
 const INPUTS: [[f64; 4]; 3] = [[0.0, 0.0, 1.0, 1.0], [0.0, 1.0, 0.0, 1.0], [1.0; 4]];
 const TARGETS: [f64; 4] = [0.0, 1.0, 1.0, 0.0];
 
-/// Fitness and whether all four cases are on the right side of 0.5; `net` is
-/// any network, recompiled for `g` in place, and `scratch` its lane values
-/// (no allocation per genome). The four cases run as lanes of one pass: the
-/// same bits as four activations, their activation functions overlapping.
-fn evaluate(net: &mut FeedForwardNetwork, scratch: &mut Vec<[f64; 4]>, g: &Genome) -> (f64, bool) {
+/// The task's fitness of `g` and whether all four cases are on the right
+/// side of 0.5; `net` is any network, recompiled for `g` in place, and
+/// `scratch` its lane values (no allocation per genome). The four cases run
+/// as lanes of one pass: the same bits as four activations, their activation
+/// functions overlapping.
+pub fn score(net: &mut FeedForwardNetwork, scratch: &mut Vec<[f64; 4]>, g: &Genome) -> (f64, bool) {
     net.recompile(g);
     let mut out = [[0.0; 4]];
     net.activate_lanes(&INPUTS, &mut out, scratch);
@@ -53,7 +54,7 @@ pub fn run_xor_observed(
         let mut fitness = Vec::with_capacity(pop.genomes().len());
         let mut first_solver = None;
         for (i, g) in pop.genomes().iter().enumerate() {
-            let (f, solved) = evaluate(&mut net, &mut scratch, g);
+            let (f, solved) = score(&mut net, &mut scratch, g);
             fitness.push(f);
             if solved && first_solver.is_none() {
                 first_solver = Some(i);
