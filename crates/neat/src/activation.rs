@@ -209,15 +209,9 @@ mod tests {
     fn apply_all_gives_the_bits_of_apply() {
         use rand::{RngExt, SeedableRng};
         let mut rng = rand_pcg::Pcg64::seed_from_u64(3);
-        let all = [
-            Activation::BipolarSigmoid,
-            Activation::Linear,
-            Activation::Gaussian,
-            Activation::Abs,
-            Activation::Sine,
-            Activation::Cosine,
-            Activation::Sigmoid,
-        ];
+        let all: Vec<Activation> = (Activation::CPPN_SET.into_iter())
+            .chain([Activation::Sigmoid])
+            .collect();
         let specials = [
             0.0,
             -0.0,
@@ -228,7 +222,9 @@ mod tests {
             -800.0,
         ];
         for n in 0..40 {
-            let acts: Vec<Activation> = (0..n).map(|_| all[rng.random_range(0..7)]).collect();
+            let acts: Vec<Activation> = (0..n)
+                .map(|_| all[rng.random_range(0..all.len())])
+                .collect();
             let xs: Vec<f64> = (0..n)
                 .map(|k| match rng.random_range(0..8) {
                     0 => specials[k % specials.len()],

@@ -135,8 +135,8 @@ mod tests {
     use crate::compile::ids_of;
     use crate::genome::{GenomeSpec, LinkGene, NodeGene};
     use crate::innovation::InnovationTracker;
-    use crate::mutation::{mutate_add_link, mutate_add_node, mutate_toggle_enable};
     use crate::params::NeatParams;
+    use crate::test_genes::grown;
     use rand::SeedableRng;
 
     /// The map-based compiler this network started with: the definition
@@ -184,12 +184,7 @@ mod tests {
         let mut reused =
             RecurrentNetwork::from_genome(&Genome::minimal(&spec, &params, &mut tracker, &mut rng));
         for round in 0..40 {
-            let mut g = Genome::minimal(&spec, &params, &mut tracker, &mut rng);
-            for _ in 0..round % 9 {
-                mutate_add_node(&mut g, &spec, &mut tracker, &mut rng);
-                mutate_add_link(&mut g, &spec, &params, &mut tracker, &mut rng);
-                mutate_toggle_enable(&mut g, &mut rng);
-            }
+            let g = grown(&spec, &params, &mut tracker, &mut rng, round % 9);
             let fresh = RecurrentNetwork::from_genome(&g);
             assert_eq!(fresh.plan, plan_reference(&g), "round {round}");
             // A network that held a larger or smaller genome, then recompiled.

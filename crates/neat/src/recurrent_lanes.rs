@@ -128,8 +128,8 @@ mod tests {
     use super::*;
     use crate::genome::GenomeSpec;
     use crate::innovation::InnovationTracker;
-    use crate::mutation::{mutate_add_link, mutate_add_node, mutate_toggle_enable};
     use crate::params::NeatParams;
+    use crate::test_genes::grown;
     use rand::{RngExt, SeedableRng};
 
     #[test]
@@ -144,15 +144,7 @@ mod tests {
         let mut lanes = RecurrentLanes::new(6);
         for round in 0..30 {
             let genomes: Vec<Genome> = (0..1 + round % 6)
-                .map(|i| {
-                    let mut g = Genome::minimal(&spec, &params, &mut tracker, &mut rng);
-                    for _ in 0..(round + i) % 7 {
-                        mutate_add_node(&mut g, &spec, &mut tracker, &mut rng);
-                        mutate_add_link(&mut g, &spec, &params, &mut tracker, &mut rng);
-                        mutate_toggle_enable(&mut g, &mut rng);
-                    }
-                    g
-                })
+                .map(|i| grown(&spec, &params, &mut tracker, &mut rng, (round + i) % 7))
                 .collect();
             lanes.recompile(&genomes);
             let mut alone: Vec<RecurrentNetwork> =

@@ -1,7 +1,30 @@
-//! Genes written out by hand, for the unit tests' small genomes.
+//! Genes written out by hand, and grown genomes, for the unit tests.
+
+use rand::Rng;
 
 use crate::activation::Activation;
-use crate::genome::{Genome, LinkGene, NodeGene, NodeKind};
+use crate::genome::{Genome, GenomeSpec, LinkGene, NodeGene, NodeKind};
+use crate::innovation::InnovationTracker;
+use crate::mutation::{mutate_add_link, mutate_add_node, mutate_toggle_enable};
+use crate::params::NeatParams;
+
+/// A minimal genome of `spec` grown by `rounds` rounds of add-node, add-link
+/// and toggle-a-link mutations.
+pub(crate) fn grown<R: Rng>(
+    spec: &GenomeSpec,
+    params: &NeatParams,
+    tracker: &mut InnovationTracker,
+    rng: &mut R,
+    rounds: usize,
+) -> Genome {
+    let mut g = Genome::minimal(spec, params, tracker, rng);
+    for _ in 0..rounds {
+        mutate_add_node(&mut g, spec, tracker, rng);
+        mutate_add_link(&mut g, spec, params, tracker, rng);
+        mutate_toggle_enable(&mut g, rng);
+    }
+    g
+}
 
 /// A node gene.
 pub(crate) fn node(id: u32, kind: NodeKind, activation: Activation) -> NodeGene {

@@ -2,7 +2,7 @@
 
 use rayon::prelude::*;
 
-use super::task::{Evaluation, Evaluator, EvaluatorError};
+use super::task::{Evaluation, Evaluator, EvaluatorError, on_pool};
 use crate::eval::EvalContext;
 use crate::genome::Genome;
 
@@ -57,16 +57,10 @@ impl<T: GroupTask> Evaluator for GroupedEvaluator<'_, T> {
         genomes: &[Genome],
         contexts: &[EvalContext],
     ) -> Result<Vec<Evaluation>, EvaluatorError> {
-        if genomes.len() != contexts.len() {
-            return Err(EvaluatorError(format!(
-                "{} genomes but {} evaluation contexts",
-                genomes.len(),
-                contexts.len()
-            )));
-        }
+        EvaluatorError::unless_one_context_each(genomes, contexts)?;
         let (task, size) = (&self.task, self.task.group_size().max(1));
-        let run = || {
-            let groups: Vec<Vec<Evaluation>> = genomes
+        let groups: Vec<Vec<Evaluation>> = on_pool(self.pool, || {
+            genomes
                 .par_chunks(size)
                 .zip(contexts.par_chunks(size))
                 .map(|(g, c)| {
@@ -74,13 +68,8 @@ impl<T: GroupTask> Evaluator for GroupedEvaluator<'_, T> {
                     task.evaluate_group(g, c, &mut out);
                     out
                 })
-                .collect();
-            groups
-        };
-        let groups = match self.pool {
-            Some(pool) => pool.install(run),
-            None => run(),
-        };
+                .collect()
+        });
         let evaluations: Vec<Evaluation> = groups.into_iter().flatten().collect();
         if evaluations.len() != genomes.len() {
             return Err(EvaluatorError(format!(

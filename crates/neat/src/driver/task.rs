@@ -82,6 +82,34 @@ pub trait Evaluator {
 #[error("{0}")]
 pub struct EvaluatorError(pub String);
 
+impl EvaluatorError {
+    /// The error every [`Evaluator`] gives unless there is one context per genome.
+    pub fn unless_one_context_each(
+        genomes: &[Genome],
+        contexts: &[EvalContext],
+    ) -> Result<(), EvaluatorError> {
+        if genomes.len() == contexts.len() {
+            return Ok(());
+        }
+        Err(EvaluatorError(format!(
+            "{} genomes but {} evaluation contexts",
+            genomes.len(),
+            contexts.len()
+        )))
+    }
+}
+
+/// `run` on the threads of `pool`, or of rayon's global pool.
+pub(super) fn on_pool<R: Send>(
+    pool: Option<&rayon::ThreadPool>,
+    run: impl FnOnce() -> R + Send,
+) -> R {
+    match pool {
+        Some(pool) => pool.install(run),
+        None => run(),
+    }
+}
+
 /// Evaluates a [`Task`] on the rayon threads of `pool` (or of the global pool).
 ///
 /// Results are collected by index, so they are identical at any thread count.
@@ -118,24 +146,14 @@ impl<T: Task> Evaluator for ParallelEvaluator<'_, T> {
         genomes: &[Genome],
         contexts: &[EvalContext],
     ) -> Result<Vec<Evaluation>, EvaluatorError> {
-        if genomes.len() != contexts.len() {
-            return Err(EvaluatorError(format!(
-                "{} genomes but {} evaluation contexts",
-                genomes.len(),
-                contexts.len()
-            )));
-        }
+        EvaluatorError::unless_one_context_each(genomes, contexts)?;
         let task = &self.task;
-        let run = || {
+        Ok(on_pool(self.pool, || {
             genomes
                 .par_iter()
                 .zip(contexts.par_iter())
                 .map(|(g, ctx)| task.evaluate(g, ctx))
                 .collect()
-        };
-        Ok(match self.pool {
-            Some(pool) => pool.install(run),
-            None => run(),
-        })
+        }))
     }
 }

@@ -73,13 +73,7 @@ impl<T: Task> Evaluator for MpiEvaluator<T> {
         genomes: &[Genome],
         contexts: &[EvalContext],
     ) -> Result<Vec<Evaluation>, EvaluatorError> {
-        if genomes.len() != contexts.len() {
-            return Err(EvaluatorError(format!(
-                "{} genomes but {} evaluation contexts",
-                genomes.len(),
-                contexts.len()
-            )));
-        }
+        EvaluatorError::unless_one_context_each(genomes, contexts)?;
         let item = |i: usize| encode(&(i as u64, &contexts[i], &genomes[i]));
         let local = |i: usize| {
             evaluate_caught(&self.task, &genomes[i], &contexts[i])
