@@ -127,27 +127,58 @@ impl Plan {
         values: &mut [f64],
         next: Option<&mut [f64]>,
     ) {
-        let (n_in, num_outputs) = (self.num_inputs, self.output_slots.len());
-        assert_io(inputs.len(), outputs.len(), n_in, num_outputs);
-        copy_short(&mut values[..n_in], inputs);
         match next {
             None => {
+                let n_in = self.num_inputs;
+                assert_io(inputs.len(), outputs.len(), n_in, self.output_slots.len());
+                copy_short(&mut values[..n_in], inputs);
                 for (k, &act) in self.acts.iter().enumerate() {
                     let (sources, weights) = self.links(k);
                     values[n_in + k] = act.apply(weighted_sum(sources, weights, values));
                 }
+                self.read_outputs(values, outputs);
             }
             Some(next) => {
                 // Every node reads the previous state, so all sums come
                 // first and their activations go together (same bits).
-                for (k, n) in next.iter_mut().enumerate() {
-                    let (sources, weights) = self.links(k);
-                    *n = weighted_sum(sources, weights, values);
-                }
+                self.recurrent_sums(inputs, outputs.len(), values, next);
                 crate::activation::apply_all(&self.acts, next);
-                copy_short(&mut values[n_in..], next);
+                self.recurrent_finish(values, next, outputs);
             }
         }
+    }
+
+    /// The first half of a synchronous update: `inputs` into the first
+    /// slots of `values` (checked against this plan and `num_outputs`
+    /// outputs), then each computed node's `Σ w·value` into `next`.
+    #[inline(always)]
+    pub fn recurrent_sums(
+        &self,
+        inputs: &[f64],
+        num_outputs: usize,
+        values: &mut [f64],
+        next: &mut [f64],
+    ) {
+        let n_in = self.num_inputs;
+        assert_io(inputs.len(), num_outputs, n_in, self.output_slots.len());
+        copy_short(&mut values[..n_in], inputs);
+        for (k, n) in next.iter_mut().enumerate() {
+            let (sources, weights) = self.links(k);
+            *n = weighted_sum(sources, weights, values);
+        }
+    }
+
+    /// The second half, once `next` holds the activated sums: `next` into
+    /// the computed slots of `values`, then the output slots into `outputs`.
+    #[inline(always)]
+    pub fn recurrent_finish(&self, values: &mut [f64], next: &[f64], outputs: &mut [f64]) {
+        copy_short(&mut values[self.num_inputs..], next);
+        self.read_outputs(values, outputs);
+    }
+
+    /// The output slots of `values` into `outputs`.
+    #[inline(always)]
+    fn read_outputs(&self, values: &[f64], outputs: &mut [f64]) {
         for (o, &s) in outputs.iter_mut().zip(&self.output_slots) {
             *o = values[s as usize];
         }

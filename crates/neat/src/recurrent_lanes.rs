@@ -3,7 +3,6 @@
 //! then all their activation functions at once, as vector lanes.
 
 use crate::activation::{Activation, apply_all};
-use crate::compile::{assert_io, copy_short, weighted_sum};
 use crate::genome::Genome;
 use crate::network::Network;
 use crate::recurrent::RecurrentNetwork;
@@ -98,26 +97,18 @@ impl RecurrentLanes {
         let mut at = 0;
         let lanes = self.nets[..self.used].iter_mut().zip(inputs);
         for ((net, input), output) in lanes.zip(outputs.iter()) {
-            let plan = &net.plan;
-            let n_in = plan.num_inputs;
-            assert_io(input.len(), output.len(), n_in, plan.output_slots.len());
-            copy_short(&mut net.state[..n_in], input);
-            let sums = &mut self.sums[at..at + plan.acts.len()];
-            for (k, sum) in sums.iter_mut().enumerate() {
-                let (sources, weights) = plan.links(k);
-                *sum = weighted_sum(sources, weights, &net.state);
-            }
-            at += plan.acts.len();
+            let computed = net.plan.acts.len();
+            let sums = &mut self.sums[at..at + computed];
+            net.plan
+                .recurrent_sums(input, output.len(), &mut net.state, sums);
+            at += computed;
         }
         apply_all(&self.acts, &mut self.sums);
         let mut at = 0;
         for (net, output) in self.nets[..self.used].iter_mut().zip(outputs) {
-            let plan = &net.plan;
-            let (n_in, computed) = (plan.num_inputs, plan.acts.len());
-            copy_short(&mut net.state[n_in..], &self.sums[at..at + computed]);
-            for (o, &s) in output.iter_mut().zip(&plan.output_slots) {
-                *o = net.state[s as usize];
-            }
+            let computed = net.plan.acts.len();
+            let sums = &self.sums[at..at + computed];
+            net.plan.recurrent_finish(&mut net.state, sums, output);
             at += computed;
         }
     }
