@@ -5,7 +5,8 @@
 //! * `decode_8m`: an 8-million-connection substrate (2000 inputs, 2000
 //!   neurons: 2000 × (2000 + 2000 + 1) = 8 002 000 CPPN queries, the size of
 //!   the HyperNEAT paper's largest), target ≤ 1 s on one core; with
-//!   `decode_genome` (batched) and, for comparison, generic `decode`.
+//!   `decode_genome` (batched), `decode_8m_fast` (the fast precision's f32
+//!   queries, `decode_genome_at`) and, for comparison, generic `decode`.
 //! * `decode_paper`: the paper's 3×5 → 3×3 substrate (done once per genome).
 //! * `es_decode_paper` / `es_decode_paper_reference`: ES-HyperNEAT at the
 //!   paper's settings (`EsParams::default()`: initial and maximum depth 3,
@@ -21,8 +22,11 @@ use divan::Bencher;
 use vivae_neat::hyperneat::es::{EsLayout, EsParams, decode_es, decode_es_genome};
 use vivae_neat::hyperneat::{
     HyperParams, InputSheet, SubstrateController, SubstrateLayout, decode, decode_genome,
+    decode_genome_at,
 };
-use vivae_neat::{Activation, FeedForwardNetwork, Genome, LinkGene, Network, NodeGene, NodeKind};
+use vivae_neat::{
+    Activation, FeedForwardNetwork, Genome, LinkGene, Network, NodeGene, NodeKind, Precision,
+};
 
 fn main() {
     divan::main();
@@ -149,6 +153,16 @@ fn decode_8m(bencher: Bencher) {
     assert_eq!(layout.num_queries(), 8_002_000);
     let g = genome();
     bencher.bench_local(|| decode_genome(&g, &layout, &HyperParams::default()).unwrap());
+}
+
+/// The fast precision's decode: f32 queries, the controller in fast precision.
+#[divan::bench(sample_count = 3, sample_size = 1)]
+fn decode_8m_fast(bencher: Bencher) {
+    let layout = layout((20, 100), (20, 100));
+    let g = genome();
+    bencher.bench_local(|| {
+        decode_genome_at(&g, &layout, &HyperParams::default(), Precision::Fast).unwrap()
+    });
 }
 
 /// The generic path: `decode` over any `Network`, one query at a time.

@@ -437,12 +437,12 @@ pub(crate) fn assert_io(inputs: usize, outputs: usize, num_inputs: usize, num_ou
 /// of the crate uses (node k's links at `conn_start[k]..conn_start[k + 1]`):
 /// their source slots and weights.
 #[inline(always)]
-pub(crate) fn links_of<'a>(
+pub(crate) fn links_of<'a, W>(
     conn_start: &[u32],
     conn_src: &'a [u32],
-    conn_weight: &'a [f64],
+    conn_weight: &'a [W],
     k: usize,
-) -> (&'a [u32], &'a [f64]) {
+) -> (&'a [u32], &'a [W]) {
     let (s, e) = (conn_start[k] as usize, conn_start[k + 1] as usize);
     (&conn_src[s..e], &conn_weight[s..e])
 }

@@ -1,6 +1,6 @@
 //! Decoding a CPPN over a layout into a [`SubstrateController`].
 
-use super::batch::BatchCppn;
+use super::batch::{BatchCppn, CppnElement};
 use super::controller::SubstrateController;
 use super::error::HyperError;
 use super::layout::SubstrateLayout;
@@ -8,6 +8,7 @@ use super::params::HyperParams;
 use crate::feedforward::FeedForwardNetwork;
 use crate::genome::Genome;
 use crate::network::Network;
+use crate::precision::Precision;
 
 /// Decodes `cppn` over `layout` into a controller.
 ///
@@ -58,25 +59,57 @@ pub fn decode_genome(
     layout: &SubstrateLayout,
     params: &HyperParams,
 ) -> Result<SubstrateController, HyperError> {
-    let Some(mut cppn) = BatchCppn::new(genome) else {
-        return decode(&mut FeedForwardNetwork::from_genome(genome), layout, params);
+    match BatchCppn::<f64>::new(genome) {
+        Some(mut cppn) => decode_batched(&mut cppn, layout, params),
+        None => decode(&mut FeedForwardNetwork::from_genome(genome), layout, params),
+    }
+}
+
+/// Decodes a CPPN genome over `layout` for a controller stepping in
+/// `precision`: [`Precision::Exact`] is [`decode_genome`]; [`Precision::Fast`]
+/// queries an acyclic CPPN in f32 ([`BatchCppn<f32>`]: other bits than the
+/// exact decode, the same on every CPU) and returns the controller already
+/// in fast precision. A cyclic CPPN is decoded in f64 either way.
+pub fn decode_genome_at(
+    genome: &Genome,
+    layout: &SubstrateLayout,
+    params: &HyperParams,
+    precision: Precision,
+) -> Result<SubstrateController, HyperError> {
+    let fast = match precision {
+        Precision::Fast => BatchCppn::<f32>::new(genome),
+        Precision::Exact => None,
     };
+    let mut controller = match fast {
+        Some(mut cppn) => decode_batched(&mut cppn, layout, params)?,
+        None => decode_genome(genome, layout, params)?,
+    };
+    controller.set_precision(precision);
+    Ok(controller)
+}
+
+/// The batched decode: every neuron's bias in one batch, then one batch per
+/// source over all targets, written to the source's column.
+fn decode_batched<E: CppnElement>(
+    cppn: &mut BatchCppn<E>,
+    layout: &SubstrateLayout,
+    params: &HyperParams,
+) -> Result<SubstrateController, HyperError> {
     params.validate()?;
     layout.check(cppn.num_inputs(), cppn.num_outputs())?;
     let n = layout.neurons.len();
-    let mut bias = vec![0.0; n];
-    let mut out = vec![0.0; n];
+    let mut out = vec![E::default(); n];
     cppn.query_targets(layout.bias_output, &layout.neurons, [0.0, 0.0], &mut out);
-    for (b, &o) in bias.iter_mut().zip(&out) {
-        *b = params.weight_or_zero(o);
-    }
-    // One batch per source: all targets, written to the source's column.
+    let bias: Vec<f64> = out
+        .iter()
+        .map(|&o| params.weight_or_zero(o.to_f64()))
+        .collect();
     let sources = layout.sources();
     Ok(SubstrateController::build(layout, &bias, |j, column| {
         let (source, output) = sources[j];
-        cppn.query_targets(output, &layout.neurons, source, column);
-        for w in column.iter_mut() {
-            *w = params.weight_or_zero(*w);
+        cppn.query_targets(output, &layout.neurons, source, &mut out);
+        for (w, &o) in column.iter_mut().zip(&out) {
+            *w = params.weight_or_zero(o.to_f64());
         }
     }))
 }
@@ -86,6 +119,7 @@ mod tests {
     use super::*;
     use crate::hyperneat::test_util::{FnCppn, close, known, layout, random_genomes};
     use crate::hyperneat::{InputSheet, LinkSource};
+    use crate::precision::Precision;
 
     #[test]
     fn bias_is_queried_with_zero_source() {
@@ -274,5 +308,40 @@ mod tests {
             assert_eq!(batched, plain);
         }
         assert!(hidden > 20, "genomes should have hidden nodes");
+    }
+
+    #[test]
+    fn fast_decode_stays_close_to_the_exact_one_and_steps_in_f32() {
+        let l = layout(
+            (0..40).map(|i| [i as f64 / 20.0 - 1.0, 0.3]).collect(),
+            (0..20).map(|i| [i as f64 / 10.0 - 1.0, 0.8]).collect(),
+        );
+        let p = HyperParams::default();
+        let mut differ = 0;
+        for g in random_genomes(20, 7) {
+            let exact = decode_genome(&g, &l, &p).unwrap();
+            let same = decode_genome_at(&g, &l, &p, Precision::Exact).unwrap();
+            assert_eq!(exact, same);
+            let fast = decode_genome_at(&g, &l, &p, Precision::Fast).unwrap();
+            assert_eq!(fast.precision(), Precision::Fast);
+            for t in 0..20 {
+                let pairs = (0..40)
+                    .map(|s| (exact.input_weight(s, t), fast.input_weight(s, t)))
+                    .chain(
+                        (0..20)
+                            .map(|s| (exact.recurrent_weight(s, t), fast.recurrent_weight(s, t))),
+                    )
+                    .chain([(exact.biases()[t], fast.biases()[t])]);
+                for (e, f) in pairs {
+                    // A CPPN output 2e-5 off moves a weight at most 2e-5 / 0.8 × 3.
+                    assert!((e - f).abs() < 1e-4, "exact {e}, fast {f}");
+                    differ += usize::from(e != f);
+                }
+            }
+        }
+        assert!(
+            differ > 1000,
+            "only {differ} weights differ: were they decoded in f32?"
+        );
     }
 }

@@ -16,7 +16,7 @@
 //!
 //! One concern per file: [`HyperParams`] (expression rule), [`SubstrateLayout`]
 //! (geometry), [`BatchCppn`] (the CPPN compiled for batched queries),
-//! [`decode`] / [`decode_genome`] (CPPN → controller) and
+//! [`decode`] / [`decode_genome`] / [`decode_genome_at`] (CPPN → controller) and
 //! [`SubstrateController`] (the decoded network); [`HyperError`] for all of them.
 
 mod batch;
@@ -32,9 +32,9 @@ mod sparse;
 #[cfg(test)]
 mod test_util;
 
-pub use batch::BatchCppn;
+pub use batch::{BatchCppn, CppnElement};
 pub use controller::{BatchState, Link, LinkSource, SubstrateController};
-pub use decode::{decode, decode_genome};
+pub use decode::{decode, decode_genome, decode_genome_at};
 pub use error::HyperError;
 pub use layered::{LayeredLayout, decode_layered};
 pub use layout::{CPPN_INPUTS, InputSheet, SubstrateLayout};

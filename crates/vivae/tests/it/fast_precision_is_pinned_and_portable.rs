@@ -12,7 +12,7 @@ use crate::common::{DETERMINISTIC_FILES, fnv1a_from, read, scratch};
 /// FNV-1a 64 of `generations.csv`, `population.csv` and `champion.json` of
 /// `vivae evolve --generations 12 --seed 2 --precision fast` (hashed as
 /// `short_run_matches_pinned_hash` hashes the exact run).
-const PINNED_FAST: u64 = 0x5c1e_34f3_b24c_3e3c;
+const PINNED_FAST: u64 = 0x9197_6e02_f2ed_be5f;
 
 /// The exact run's pinned hash (`short_run_matches_pinned_hash`).
 const PINNED_EXACT: u64 = 0x8b3b_eb74_273b_9cda;

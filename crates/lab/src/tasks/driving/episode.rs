@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use vivae_neat::Precision;
 use vivae_neat::driver::{Evaluation, Task};
-use vivae_neat::hyperneat::{HyperParams, SubstrateController, SubstrateLayout, decode_genome};
+use vivae_neat::hyperneat::{HyperParams, SubstrateController, SubstrateLayout, decode_genome_at};
 use vivae_neat::{EvalContext, Genome, GenomeSpec};
 use vivae_sim::{DVec2, Scenario, SurfaceGrid, World};
 
@@ -335,10 +335,9 @@ impl Episode {
             ));
         }
         self.check_genome(genome)?;
-        let mut controller = decode_genome(genome, &self.layout, &self.hyper)
+        let mut controller = decode_genome_at(genome, &self.layout, &self.hyper, self.precision)
             .map_err(|e| EpisodeError::Genome(e.to_string()))?;
         self.scale.apply(&mut controller);
-        controller.set_precision(self.precision);
         Ok(controller)
     }
 

@@ -37,14 +37,17 @@ pub(super) fn panel_index(panel: usize, stride: usize, m: usize, j: usize, i: us
 }
 
 impl Fast {
-    /// The f32 copy of `n` neurons' `bias` and `weight(j, i)` (source `j`
-    /// of `ni + n`, neuron `i`), each rounded to the nearest f32.
-    pub(super) fn new(
+    /// The f32 copy of `n` neurons' `bias` and weights, each rounded to the
+    /// nearest f32: `run(j, i)` is the weights from source `j` (of `ni + n`)
+    /// to neurons `i, i + 1, …` as far as they lie contiguously (at least
+    /// one), so whole runs are converted at a time.
+    pub(super) fn new<'w>(
         ni: usize,
         n: usize,
         bias: &[f64],
-        weight: impl Fn(usize, usize) -> f64,
+        run: impl Fn(usize, usize) -> &'w [f64],
     ) -> Fast {
+        let panel = <f32 as Element>::PANEL;
         let stride = n.next_multiple_of(<f32 as Element>::PAD);
         let m = ni + n;
         let mut b = vec![0.0f32; stride];
@@ -52,10 +55,22 @@ impl Fast {
             *b = v as f32;
         }
         let mut weights = vec![0.0f32; m * stride];
-        for j in 0..m {
-            for i in 0..n {
-                weights[panel_index(<f32 as Element>::PANEL, stride, m, j, i)] =
-                    weight(j, i) as f32;
+        // Panel by panel, source by source: the f32 matrix is written in order.
+        for p0 in (0..n).step_by(panel) {
+            let end = (p0 + panel).min(n);
+            for j in 0..m {
+                let at = panel_index(panel, stride, m, j, p0);
+                let dst = &mut weights[at..at + (end - p0)];
+                let mut i = p0;
+                while i < end {
+                    let src = run(j, i);
+                    let len = src.len().min(end - i);
+                    for (d, &s) in dst[i - p0..i - p0 + len].iter_mut().zip(src) {
+                        *d = s as f32;
+                    }
+                    assert!(len > 0, "an empty run of weights");
+                    i += len;
+                }
             }
         }
         Fast {
@@ -66,6 +81,13 @@ impl Fast {
             weights,
             own: FastStates::new(1, ni, stride),
         }
+    }
+
+    /// Sets the weight from source `j` to neuron `i` to `w` rounded to f32
+    /// (what [`Fast::new`] would give it).
+    pub(super) fn set_weight(&mut self, j: usize, i: usize, w: f64) {
+        let at = panel_index(<f32 as Element>::PANEL, self.stride, self.ni + self.n, j, i);
+        self.weights[at] = w as f32;
     }
 
     fn kernel(&self) -> Kernel<'_, f32> {

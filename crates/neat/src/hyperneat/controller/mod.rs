@@ -199,6 +199,14 @@ impl SubstrateController {
         p0 * (self.num_inputs + self.n) + j * width + (i - p0)
     }
 
+    /// The weights from source `j` to neurons `i, i + 1, …` to the end of
+    /// `i`'s panel (they lie contiguously).
+    fn run(&self, j: usize, i: usize) -> &[f64] {
+        let end = (i / PANEL * PANEL + PANEL).min(self.n);
+        let at = self.at(j, i);
+        &self.weights[at..at + (end - i)]
+    }
+
     /// The precision [`activate_batch`](Self::activate_batch) and
     /// [`activate`](Network::activate) compute in (exact unless set).
     pub fn precision(&self) -> Precision {
@@ -219,7 +227,7 @@ impl SubstrateController {
                 self.num_inputs,
                 self.n,
                 &self.bias[..self.n],
-                |j, i| self.weights[self.at(j, i)],
+                |j, i| self.run(j, i),
             ))),
         };
     }
@@ -262,19 +270,25 @@ impl SubstrateController {
             "source {source} out of range"
         );
         for target in 0..self.n {
-            let k = self.at(source, target);
-            self.weights[k] *= factor;
+            self.scale_weight(source, target, factor);
         }
-        self.set_precision(self.precision());
     }
 
     /// Multiplies the weight of neuron `source` → neuron `target` by `factor`.
     /// Panics when out of range.
     pub fn scale_recurrent(&mut self, source: usize, target: usize, factor: f64) {
         assert!(source < self.n && target < self.n);
-        let k = self.at(self.num_inputs + source, target);
+        self.scale_weight(self.num_inputs + source, target, factor);
+    }
+
+    /// Multiplies the weight from source `j` to neuron `i` by `factor`, in
+    /// the f32 copy too (rounded as [`set_precision`](Self::set_precision) rounds).
+    fn scale_weight(&mut self, j: usize, i: usize, factor: f64) {
+        let k = self.at(j, i);
         self.weights[k] *= factor;
-        self.set_precision(self.precision());
+        if let Some(f) = &mut self.fast {
+            f.set_weight(j, i, self.weights[k]);
+        }
     }
 
     /// Weight of input `input` (over all sheets concatenated) → neuron `target`; 0 = no link.
@@ -860,11 +874,30 @@ mod tests {
         again.scale_source(0, -1.0);
         again.set_precision(Precision::Fast);
         assert_eq!(scaled, again);
+        scaled.scale_recurrent(2, 3, 0.37);
+        again.set_precision(Precision::Exact);
+        again.scale_recurrent(2, 3, 0.37);
+        again.set_precision(Precision::Fast);
+        assert_eq!(scaled, again);
         let (mut a, mut b) = ([0.0; 9], [0.0; 9]);
         let x = [0.05; 7];
         scaled.activate(&x, &mut a);
         c.activate(&x, &mut b);
         assert_ne!(a, b);
+    }
+
+    #[test]
+    fn the_f32_copy_converts_whole_runs_as_single_weights() {
+        // 17 and 40 neurons cross f64 panels (16) and f32 panels (32).
+        for n in [9, 17, 40, 70] {
+            let c = random_controller(vec![5, 2], n, 3);
+            let bias = &c.bias[..n];
+            let runs = Fast::new(c.num_inputs, n, bias, |j, i| c.run(j, i));
+            let one = Fast::new(c.num_inputs, n, bias, |j, i| {
+                std::slice::from_ref(&c.weights[c.at(j, i)])
+            });
+            assert_eq!(runs, one, "{n} neurons");
+        }
     }
 
     fn bits(v: &[f64]) -> Vec<u64> {
