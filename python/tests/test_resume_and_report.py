@@ -97,3 +97,8 @@ def test_a_fast_run_keeps_its_precision_and_refuses_the_other(tmp_path):
     with pytest.raises(ValueError, match="expected exact or fast"):
         vivae.evolve(out=tmp_path / "bad", generations=2, precision="half", **SETTINGS)
     vivae.resume(fast, generations=3, precision="fast", progress=False)
+    # A champion re-scored in the other precision (as `vivae replay --precision`).
+    # 300 steps: long enough that some output is not saturated in either.
+    own = vivae.replay(fast, steps=300)["fitness"]
+    assert vivae.replay(fast, steps=300, precision="fast")["fitness"] == own
+    assert vivae.replay(fast, steps=300, precision="exact")["fitness"] != own

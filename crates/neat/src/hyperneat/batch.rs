@@ -153,7 +153,11 @@ impl<E: CppnElement> BatchCppn<E> {
         sources: &[[f64; 2]],
         out: &mut [E],
     ) {
-        self.query(output, Points::Many(sources), Points::One(target), out);
+        let points = Points::Many(sources);
+        assert_eq!(sources.len(), out.len(), "one output per point");
+        self.query(output, points, Points::One(target), |start, v| {
+            out[start..start + v.len()].copy_from_slice(v);
+        });
     }
 
     /// Output `output` for each of `targets` and source `source`, into
@@ -165,10 +169,32 @@ impl<E: CppnElement> BatchCppn<E> {
         source: [f64; 2],
         out: &mut [E],
     ) {
-        self.query(output, Points::One(source), Points::Many(targets), out);
+        assert_eq!(targets.len(), out.len(), "one output per point");
+        self.query_targets_with(output, targets, source, |start, v| {
+            out[start..start + v.len()].copy_from_slice(v);
+        });
     }
 
-    fn query(&mut self, output: usize, sources: Points<'_>, targets: Points<'_>, out: &mut [E]) {
+    /// Output `output` for each of `targets` and source `source`, handed to
+    /// `sink(start, values)` a batch at a time (`values[q]` is target
+    /// `start + q`'s), so the caller can use them without a copy.
+    pub fn query_targets_with(
+        &mut self,
+        output: usize,
+        targets: &[[f64; 2]],
+        source: [f64; 2],
+        sink: impl FnMut(usize, &[E]),
+    ) {
+        self.query(output, Points::One(source), Points::Many(targets), sink);
+    }
+
+    fn query(
+        &mut self,
+        output: usize,
+        sources: Points<'_>,
+        targets: Points<'_>,
+        mut sink: impl FnMut(usize, &[E]),
+    ) {
         let level = self.level.unwrap_or_else(simd::level);
         assert_eq!(
             self.plan.num_inputs, CPPN_INPUTS,
@@ -178,11 +204,10 @@ impl<E: CppnElement> BatchCppn<E> {
             output < self.plan.output_slots.len(),
             "no CPPN output {output}"
         );
-        for points in [sources, targets] {
-            if let Points::Many(p) = points {
-                assert_eq!(p.len(), out.len(), "one output per point");
-            }
-        }
+        let len = match (sources, targets) {
+            (Points::Many(p), _) | (_, Points::Many(p)) => p.len(),
+            (Points::One(_), Points::One(_)) => 1,
+        };
         let graph = Graph {
             conn_start: &self.plan.conn_start,
             conn_src: &self.plan.conn_src,
@@ -191,8 +216,8 @@ impl<E: CppnElement> BatchCppn<E> {
             num_inputs: self.plan.num_inputs,
             dependencies: &self.dependencies[output],
         };
-        for (start, out) in (0..).step_by(BATCH).zip(out.chunks_mut(BATCH)) {
-            let b = out.len();
+        for start in (0..len).step_by(BATCH) {
+            let b = BATCH.min(len - start);
             let v = &mut self.values;
             // Input slots 0..5 = x1, y1, x2, y2, bias.
             for (slot, points) in [(0, targets), (2, sources)] {
@@ -212,7 +237,7 @@ impl<E: CppnElement> BatchCppn<E> {
             v[4 * BATCH..4 * BATCH + b].fill(E::from_f64(1.0));
             let out_slot = self.plan.output_slots[output] as usize;
             evaluate(level, &graph, v, b);
-            out.copy_from_slice(&v[out_slot * BATCH..out_slot * BATCH + b]);
+            sink(start, &v[out_slot * BATCH..out_slot * BATCH + b]);
         }
     }
 }

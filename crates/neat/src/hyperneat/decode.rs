@@ -38,17 +38,22 @@ pub fn decode(
     // Source by source, so that each source's column is written contiguously.
     let sources = layout.sources();
     debug_assert_eq!(sources.len(), num_inputs + n);
-    Ok(SubstrateController::build(layout, &bias, |j, column| {
-        let ([x2, y2], output) = sources[j];
-        query[2] = x2;
-        query[3] = y2;
-        for (&[x1, y1], w) in layout.neurons.iter().zip(column.iter_mut()) {
-            query[0] = x1;
-            query[1] = y1;
-            cppn.activate(&query, &mut out);
-            *w = params.weight_or_zero(out[output]);
-        }
-    }))
+    Ok(SubstrateController::build(
+        layout,
+        &bias,
+        Precision::Exact,
+        |j, column| {
+            let ([x2, y2], output) = sources[j];
+            query[2] = x2;
+            query[3] = y2;
+            for (&[x1, y1], w) in layout.neurons.iter().zip(column.iter_mut()) {
+                query[0] = x1;
+                query[1] = y1;
+                cppn.activate(&query, &mut out);
+                *w = params.weight_or_zero(out[output]);
+            }
+        },
+    ))
 }
 
 /// Decodes a CPPN genome over `layout`: the batched path ([`BatchCppn`]) for
@@ -60,7 +65,7 @@ pub fn decode_genome(
     params: &HyperParams,
 ) -> Result<SubstrateController, HyperError> {
     match BatchCppn::<f64>::new(genome) {
-        Some(mut cppn) => decode_batched(&mut cppn, layout, params),
+        Some(mut cppn) => decode_batched(&mut cppn, layout, params, Precision::Exact),
         None => decode(&mut FeedForwardNetwork::from_genome(genome), layout, params),
     }
 }
@@ -80,20 +85,24 @@ pub fn decode_genome_at(
         Precision::Fast => BatchCppn::<f32>::new(genome),
         Precision::Exact => None,
     };
-    let mut controller = match fast {
-        Some(mut cppn) => decode_batched(&mut cppn, layout, params)?,
-        None => decode_genome(genome, layout, params)?,
-    };
-    controller.set_precision(precision);
-    Ok(controller)
+    match fast {
+        Some(mut cppn) => decode_batched(&mut cppn, layout, params, precision),
+        None => {
+            let mut controller = decode_genome(genome, layout, params)?;
+            controller.set_precision(precision);
+            Ok(controller)
+        }
+    }
 }
 
-/// The batched decode: every neuron's bias in one batch, then one batch per
-/// source over all targets, written to the source's column.
+/// The batched decode into a controller in `precision`: every neuron's bias
+/// in one batch, then one batch per source over all targets, expressed
+/// straight into the source's column.
 fn decode_batched<E: CppnElement>(
     cppn: &mut BatchCppn<E>,
     layout: &SubstrateLayout,
     params: &HyperParams,
+    precision: Precision,
 ) -> Result<SubstrateController, HyperError> {
     params.validate()?;
     layout.check(cppn.num_inputs(), cppn.num_outputs())?;
@@ -105,13 +114,19 @@ fn decode_batched<E: CppnElement>(
         .map(|&o| params.weight_or_zero(o.to_f64()))
         .collect();
     let sources = layout.sources();
-    Ok(SubstrateController::build(layout, &bias, |j, column| {
-        let (source, output) = sources[j];
-        cppn.query_targets(output, &layout.neurons, source, &mut out);
-        for (w, &o) in column.iter_mut().zip(&out) {
-            *w = params.weight_or_zero(o.to_f64());
-        }
-    }))
+    Ok(SubstrateController::build(
+        layout,
+        &bias,
+        precision,
+        |j, column| {
+            let (source, output) = sources[j];
+            cppn.query_targets_with(output, &layout.neurons, source, |start, values| {
+                for (w, &o) in column[start..].iter_mut().zip(values) {
+                    *w = params.weight_or_zero(o.to_f64());
+                }
+            });
+        },
+    ))
 }
 
 #[cfg(test)]

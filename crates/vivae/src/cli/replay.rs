@@ -48,6 +48,10 @@ pub struct ReplayArgs {
     /// (default: the run's).
     #[arg(long, value_name = "N")]
     pub distance_rays: Option<usize>,
+    /// Arithmetic of the controller (exact|fast; default: the run's): a
+    /// champion evolved in one precision re-scored in the other.
+    #[arg(long, value_name = "exact|fast")]
+    pub precision: Option<vivae_neat::Precision>,
 }
 
 impl ReplayArgs {
@@ -62,6 +66,7 @@ impl ReplayArgs {
             },
             wiring: self.wiring,
             distance_rays: self.distance_rays,
+            precision: self.precision,
             ..Overrides::default()
         }
     }

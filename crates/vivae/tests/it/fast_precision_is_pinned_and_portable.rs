@@ -154,3 +154,42 @@ fn fast_precision_where_it_has_no_fast_step_exits_2_with_one_line() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `vivae replay DIR [--precision P]`'s fitness, as printed.
+fn replay_fitness(dir: &Path, precision: Option<&str>) -> String {
+    let mut cmd = common::vivae();
+    cmd.arg("replay")
+        .arg(dir)
+        .arg("--out")
+        .arg(dir.join("replay"));
+    if let Some(p) = precision {
+        cmd.args(["--precision", p]);
+    }
+    let out = common::run(&mut cmd);
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(out.status.code(), Some(0), "{stdout}");
+    let field = stdout
+        .split_whitespace()
+        .find(|f| f.starts_with("fitness="));
+    field.expect("a fitness= field").to_string()
+}
+
+#[test]
+fn a_champion_replays_in_either_precision() {
+    let dir = scratch("precision-replay");
+    let out = dir.join("fast");
+    let mut cmd = common::vivae();
+    cmd.args(["evolve", "-q", "--generations", "2", "--population", "10"])
+        .args(["--steps", "300", "--precision", "fast", "--out"])
+        .arg(&out);
+    common::ok(&mut cmd);
+    let own = replay_fitness(&out, None);
+    assert_eq!(
+        own,
+        replay_fitness(&out, Some("fast")),
+        "the run's precision"
+    );
+    let exact = replay_fitness(&out, Some("exact"));
+    assert_ne!(own, exact, "re-scored in exact precision: other arithmetic");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -37,57 +37,62 @@ pub(super) fn panel_index(panel: usize, stride: usize, m: usize, j: usize, i: us
 }
 
 impl Fast {
-    /// The f32 copy of `n` neurons' `bias` and weights, each rounded to the
-    /// nearest f32: `run(j, i)` is the weights from source `j` (of `ni + n`)
-    /// to neurons `i, i + 1, …` as far as they lie contiguously (at least
-    /// one), so whole runs are converted at a time.
-    pub(super) fn new<'w>(
-        ni: usize,
-        n: usize,
-        bias: &[f64],
-        run: impl Fn(usize, usize) -> &'w [f64],
-    ) -> Fast {
-        let panel = <f32 as Element>::PANEL;
+    /// The f32 copy of `n` neurons' `bias` (rounded to nearest), its
+    /// weights all zero until [`Fast::set_column`] fills them.
+    pub(super) fn zeroed(ni: usize, n: usize, bias: &[f64]) -> Fast {
         let stride = n.next_multiple_of(<f32 as Element>::PAD);
-        let m = ni + n;
         let mut b = vec![0.0f32; stride];
         for (b, &v) in b.iter_mut().zip(bias) {
             *b = v as f32;
-        }
-        let mut weights = vec![0.0f32; m * stride];
-        // Panel by panel, source by source: the f32 matrix is written in order.
-        for p0 in (0..n).step_by(panel) {
-            let end = (p0 + panel).min(n);
-            for j in 0..m {
-                let at = panel_index(panel, stride, m, j, p0);
-                let dst = &mut weights[at..at + (end - p0)];
-                let mut i = p0;
-                while i < end {
-                    let src = run(j, i);
-                    let len = src.len().min(end - i);
-                    for (d, &s) in dst[i - p0..i - p0 + len].iter_mut().zip(src) {
-                        *d = s as f32;
-                    }
-                    assert!(len > 0, "an empty run of weights");
-                    i += len;
-                }
-            }
         }
         Fast {
             ni,
             n,
             stride,
             bias: b,
-            weights,
+            weights: vec![0.0f32; (ni + n) * stride],
             own: FastStates::new(1, ni, stride),
         }
     }
 
+    /// Sets the weights from source `j` (of `ni + n`) to every neuron to
+    /// `column` (`n` values) rounded to the nearest f32, a panel's run at a time.
+    pub(super) fn set_column(&mut self, j: usize, column: &[f64]) {
+        let panel = <f32 as Element>::PANEL;
+        let m = self.ni + self.n;
+        for (p0, src) in (0..).step_by(panel).zip(column[..self.n].chunks(panel)) {
+            let at = panel_index(panel, self.stride, m, j, p0);
+            for (d, &s) in self.weights[at..at + src.len()].iter_mut().zip(src) {
+                *d = s as f32;
+            }
+        }
+    }
+
+    /// Where the weight from source `j` to neuron `i` lies.
+    fn at(&self, j: usize, i: usize) -> usize {
+        panel_index(<f32 as Element>::PANEL, self.stride, self.ni + self.n, j, i)
+    }
+
     /// Sets the weight from source `j` to neuron `i` to `w` rounded to f32
-    /// (what [`Fast::new`] would give it).
+    /// (what [`Fast::set_column`] would give it).
     pub(super) fn set_weight(&mut self, j: usize, i: usize, w: f64) {
-        let at = panel_index(<f32 as Element>::PANEL, self.stride, self.ni + self.n, j, i);
+        let at = self.at(j, i);
         self.weights[at] = w as f32;
+    }
+
+    /// The weight from source `j` to neuron `i`.
+    pub(super) fn weight(&self, j: usize, i: usize) -> f32 {
+        self.weights[self.at(j, i)]
+    }
+
+    /// The biases (padded with zeros).
+    pub(super) fn biases(&self) -> &[f32] {
+        &self.bias
+    }
+
+    /// Number of non-zero weights.
+    pub(super) fn expressed(&self) -> usize {
+        self.weights.iter().filter(|w| **w != 0.0).count()
     }
 
     fn kernel(&self) -> Kernel<'_, f32> {

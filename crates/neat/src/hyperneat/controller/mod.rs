@@ -90,10 +90,11 @@ const PANEL: usize = 2 * PAD;
 /// neuron states held in a [`BatchState`]. The [`Network`] implementation is
 /// the same step for one robot whose state the controller holds itself.
 ///
-/// In [`Precision::Fast`] ([`set_precision`](Self::set_precision)) the step
-/// runs on an f32 copy of the weights, biases and states instead (the f64
-/// weights stay, for everything that reads them): other bits than exact
-/// precision, but again the same on every machine and at every level.
+/// In [`Precision::Fast`] ([`set_precision`](Self::set_precision)) the
+/// weights are held in f32 only (half the memory; every accessor widens
+/// them) and the step runs on f32 weights, biases and states: other bits
+/// than exact precision, but again the same on every machine and at every
+/// level.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(try_from = "ControllerData", into = "ControllerData")]
 pub struct SubstrateController {
@@ -108,15 +109,16 @@ pub struct SubstrateController {
     /// Bias per neuron (0 = none), padded to `stride`.
     bias: Vec<f64>,
     /// Panel-major, then source-major weights, `(num_inputs + n) × stride`
-    /// values (padding lanes 0); see [`SubstrateController::at`].
+    /// values (padding lanes 0); see [`SubstrateController::at`]. Empty in
+    /// fast precision, where `fast` holds the weights.
     weights: Vec<f64>,
     /// Neuron states `y(t)` of the [`Network`] interface, padded to `stride`.
     state: Vec<f64>,
     /// Scratch for the synchronous update, padded to `stride`.
     acc: Vec<f64>,
-    /// Number of non-zero entries of `weights`.
+    /// Number of non-zero weights.
     expressed: usize,
-    /// The f32 copy stepped with in fast precision (`None`: exact).
+    /// The f32 weights, biases and states of fast precision (`None`: exact).
     fast: Option<Box<Fast>>,
 }
 
@@ -150,7 +152,7 @@ impl From<SubstrateController> for ControllerData {
         let m = c.num_inputs + c.n;
         let weights = (0..m)
             .flat_map(|j| (0..c.n).map(move |i| (j, i)))
-            .map(|(j, i)| c.weights[c.at(j, i)])
+            .map(|(j, i)| c.weight(j, i))
             .collect();
         ControllerData {
             precision: c.precision(),
@@ -199,12 +201,22 @@ impl SubstrateController {
         p0 * (self.num_inputs + self.n) + j * width + (i - p0)
     }
 
-    /// The weights from source `j` to neurons `i, i + 1, …` to the end of
-    /// `i`'s panel (they lie contiguously).
-    fn run(&self, j: usize, i: usize) -> &[f64] {
-        let end = (i / PANEL * PANEL + PANEL).min(self.n);
-        let at = self.at(j, i);
-        &self.weights[at..at + (end - i)]
+    /// The weights from source `j` to every neuron, into `column` (`n`
+    /// values); exact precision only (fast holds no f64 weights).
+    fn column(&self, j: usize, column: &mut [f64]) {
+        let m = self.num_inputs + self.n;
+        for (p0, dst) in (0..).step_by(PANEL).zip(column[..self.n].chunks_mut(PANEL)) {
+            let at = p0 * m + j * PANEL.min(self.stride - p0);
+            dst.copy_from_slice(&self.weights[at..at + dst.len()]);
+        }
+    }
+
+    /// The weight from source `j` (inputs, then neurons) to neuron `i`.
+    fn weight(&self, j: usize, i: usize) -> f64 {
+        match &self.fast {
+            Some(f) => f64::from(f.weight(j, i)),
+            None => self.weights[self.at(j, i)],
+        }
     }
 
     /// The precision [`activate_batch`](Self::activate_batch) and
@@ -217,19 +229,47 @@ impl SubstrateController {
         }
     }
 
-    /// Makes every later step compute in `precision` (fast: from the
-    /// weights rounded to f32 now; states start at zero). Batch states made
-    /// before do not fit any more.
+    /// Makes every later step compute in `precision`, states from zero.
+    /// Exact to fast rounds every weight and bias to f32 (and drops the
+    /// f64 weights); fast to exact widens them back, exactly. Batch states
+    /// made before do not fit any more.
     pub fn set_precision(&mut self, precision: Precision) {
-        self.fast = match precision {
-            Precision::Exact => None,
-            Precision::Fast => Some(Box::new(Fast::new(
-                self.num_inputs,
-                self.n,
-                &self.bias[..self.n],
-                |j, i| self.run(j, i),
-            ))),
-        };
+        let m = self.num_inputs + self.n;
+        match (precision, self.fast.take()) {
+            (Precision::Exact, None) => {}
+            (Precision::Fast, Some(f)) => self.fast = Some(f),
+            (Precision::Fast, None) => {
+                let mut f = Fast::zeroed(self.num_inputs, self.n, &self.bias[..self.n]);
+                let mut column = vec![0.0; self.n];
+                for j in 0..m {
+                    self.column(j, &mut column);
+                    f.set_column(j, &column);
+                }
+                self.expressed = f.expressed();
+                self.weights = Vec::new();
+                self.fast = Some(Box::new(f));
+                self.round_biases();
+            }
+            (Precision::Exact, Some(f)) => {
+                self.weights = vec![0.0; m * self.stride];
+                for j in 0..m {
+                    for i in 0..self.n {
+                        let at = self.at(j, i);
+                        self.weights[at] = f64::from(f.weight(j, i));
+                    }
+                }
+            }
+        }
+    }
+
+    /// In fast precision: the f64 biases become the f32 ones widened, so
+    /// that [`biases`](Self::biases) tells what the step adds.
+    fn round_biases(&mut self) {
+        if let Some(f) = &self.fast {
+            for (b, fb) in self.bias.iter_mut().zip(f.biases()) {
+                *b = f64::from(*fb);
+            }
+        }
     }
 
     /// Number of neurons.
@@ -281,13 +321,18 @@ impl SubstrateController {
         self.scale_weight(self.num_inputs + source, target, factor);
     }
 
-    /// Multiplies the weight from source `j` to neuron `i` by `factor`, in
-    /// the f32 copy too (rounded as [`set_precision`](Self::set_precision) rounds).
+    /// Multiplies the weight from source `j` to neuron `i` by `factor` (in
+    /// fast precision: the f32 weight, widened, times `factor`, rounded back).
     fn scale_weight(&mut self, j: usize, i: usize, factor: f64) {
-        let k = self.at(j, i);
-        self.weights[k] *= factor;
-        if let Some(f) = &mut self.fast {
-            f.set_weight(j, i, self.weights[k]);
+        match &mut self.fast {
+            Some(f) => {
+                let w = f64::from(f.weight(j, i)) * factor;
+                f.set_weight(j, i, w);
+            }
+            None => {
+                let k = self.at(j, i);
+                self.weights[k] *= factor;
+            }
         }
     }
 
@@ -295,13 +340,13 @@ impl SubstrateController {
     /// Panics when an index is out of range.
     pub fn input_weight(&self, input: usize, target: usize) -> f64 {
         assert!(input < self.num_inputs && target < self.n);
-        self.weights[self.at(input, target)]
+        self.weight(input, target)
     }
 
     /// Weight of neuron `source` → neuron `target`; 0 = no link. Panics when out of range.
     pub fn recurrent_weight(&self, source: usize, target: usize) -> f64 {
         assert!(source < self.n && target < self.n);
-        self.weights[self.at(self.num_inputs + source, target)]
+        self.weight(self.num_inputs + source, target)
     }
 
     /// All expressed links, input links first (sheet by sheet), then recurrent links.
@@ -315,7 +360,7 @@ impl SubstrateController {
             .chain((0..self.n).map(LinkSource::Neuron));
         sources.enumerate().flat_map(move |(j, source)| {
             (0..self.n).filter_map(move |target| {
-                let weight = self.weights[self.at(j, target)];
+                let weight = self.weight(j, target);
                 (weight != 0.0).then_some(Link {
                     source,
                     target,
@@ -488,6 +533,7 @@ impl SubstrateController {
     pub(super) fn build(
         layout: &SubstrateLayout,
         bias: &[f64],
+        precision: Precision,
         mut column: impl FnMut(usize, &mut [f64]),
     ) -> Self {
         let n = bias.len();
@@ -498,16 +544,30 @@ impl SubstrateController {
             &[],
         );
         let m = c.num_inputs + n;
+        // Fast precision keeps f32 weights only, converted while the column is in cache.
+        let mut fast = (precision == Precision::Fast).then(|| {
+            c.weights = Vec::new();
+            Fast::zeroed(c.num_inputs, n, bias)
+        });
         let mut values = vec![0.0; n];
         for j in 0..m {
             column(j, &mut values);
+            if let Some(f) = &mut fast {
+                f.set_column(j, &values);
+                continue;
+            }
             for p0 in (0..c.stride).step_by(PANEL) {
                 let width = PANEL.min(c.stride - p0);
                 let end = (p0 + width).min(n);
                 c.weights[p0 * m + j * width..][..end - p0].copy_from_slice(&values[p0..end]);
             }
         }
-        c.expressed = c.weights.iter().filter(|w| **w != 0.0).count();
+        c.expressed = match &fast {
+            Some(f) => f.expressed(),
+            None => c.weights.iter().filter(|w| **w != 0.0).count(),
+        };
+        c.fast = fast.map(Box::new);
+        c.round_biases();
         c
     }
 }
@@ -874,11 +934,16 @@ mod tests {
         again.scale_source(0, -1.0);
         again.set_precision(Precision::Fast);
         assert_eq!(scaled, again);
-        scaled.scale_recurrent(2, 3, 0.37);
-        again.set_precision(Precision::Exact);
-        again.scale_recurrent(2, 3, 0.37);
-        again.set_precision(Precision::Fast);
-        assert_eq!(scaled, again);
+        // A fast weight scales as f32 widened, times the factor, rounded back.
+        let (s, t) = (0..9)
+            .flat_map(|s| (0..9).map(move |t| (s, t)))
+            .find(|&(s, t)| scaled.recurrent_weight(s, t) != 0.0)
+            .expect("an expressed recurrent link");
+        let before = scaled.recurrent_weight(s, t);
+        scaled.scale_recurrent(s, t, 0.37);
+        let after = scaled.recurrent_weight(s, t);
+        assert_eq!(after, f64::from((before * 0.37) as f32));
+        assert_ne!(after, before);
         let (mut a, mut b) = ([0.0; 9], [0.0; 9]);
         let x = [0.05; 7];
         scaled.activate(&x, &mut a);
@@ -887,16 +952,32 @@ mod tests {
     }
 
     #[test]
-    fn the_f32_copy_converts_whole_runs_as_single_weights() {
+    fn fast_precision_holds_each_weight_rounded_to_f32_and_widens_back() {
         // 17 and 40 neurons cross f64 panels (16) and f32 panels (32).
         for n in [9, 17, 40, 70] {
-            let c = random_controller(vec![5, 2], n, 3);
-            let bias = &c.bias[..n];
-            let runs = Fast::new(c.num_inputs, n, bias, |j, i| c.run(j, i));
-            let one = Fast::new(c.num_inputs, n, bias, |j, i| {
-                std::slice::from_ref(&c.weights[c.at(j, i)])
-            });
-            assert_eq!(runs, one, "{n} neurons");
+            let exact = random_controller(vec![5, 2], n, 3);
+            let mut fast = exact.clone();
+            fast.set_precision(Precision::Fast);
+            assert!(fast.weights.is_empty(), "no f64 weights in fast precision");
+            for t in 0..n {
+                let round = |w: f64| f64::from(w as f32);
+                for s in 0..7 {
+                    let w = exact.input_weight(s, t);
+                    assert_eq!(fast.input_weight(s, t), round(w), "{n}: {s} → {t}");
+                }
+                for s in 0..n {
+                    let w = exact.recurrent_weight(s, t);
+                    assert_eq!(fast.recurrent_weight(s, t), round(w), "{n}: {s} → {t}");
+                }
+                assert_eq!(fast.biases()[t], round(exact.biases()[t]));
+            }
+            assert_eq!(fast.links().count(), fast.expressed_links());
+            // Back to exact: the widened f32 values, and fast again is the same.
+            let mut back = fast.clone();
+            back.set_precision(Precision::Exact);
+            assert_eq!(back.input_weight(3, 1), fast.input_weight(3, 1));
+            back.set_precision(Precision::Fast);
+            assert_eq!(back, fast);
         }
     }
 
