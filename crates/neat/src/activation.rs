@@ -72,6 +72,14 @@ const PASS: usize = 4;
 /// With AVX2 (at or below [`simd::level`](crate::simd::level)) a pass is one
 /// vector; no fused multiply-add, so every level gives the same bits.
 pub fn apply_all(acts: &[Activation], xs: &mut [f64]) {
+    // Fewer than a pass (a network's one or two output nodes): one by one,
+    // as the body would, without choosing an instruction level.
+    if xs.len() < PASS && acts.len() == xs.len() {
+        for (&a, x) in acts.iter().zip(xs) {
+            *x = a.apply(*x);
+        }
+        return;
+    }
     apply_all_at(crate::simd::level(), acts, xs);
 }
 

@@ -139,6 +139,34 @@ pub fn cos_in_place(xs: &mut [f64]) {
     }
 }
 
+/// `(sin x, cos x)` of every element of `xs` into `sin` and `cos`: exactly
+/// the bits of [`sin_cos`].
+///
+/// When every |x| ≤ π/4 (always, for a balanced pole's angle) a branch-free
+/// copy of the libm crate's `sincos` for that range — its tiny-argument
+/// case and its two kernels, selected, not branched — runs over the slice,
+/// so the loop vectorises; otherwise each element goes to [`sin_cos`] (the
+/// lane-wise `sin` and `cos` of [`sin_in_place`], which compute every
+/// branch, were slower for a failing pole's few large angles).
+#[inline(always)]
+pub fn sin_cos_in_place(xs: &[f64], sin: &mut [f64], cos: &mut [f64]) {
+    if xs
+        .iter()
+        .fold(true, |ok, &x| ok & (high_word(x) <= 0x3fe9_21fb))
+    {
+        for ((&x, s), c) in xs.iter().zip(sin).zip(cos) {
+            let tiny = high_word(x) < 0x3e46_a09e;
+            let (ks, kc) = (k_sin(x, 0.0, false), k_cos(x, 0.0));
+            *s = if tiny { x } else { ks };
+            *c = if tiny { 1.0 } else { kc };
+        }
+    } else {
+        for ((&x, s), c) in xs.iter().zip(sin).zip(cos) {
+            (*s, *c) = sin_cos(x);
+        }
+    }
+}
+
 /// High word of |x|, as musl's trigonometric functions test it.
 #[inline(always)]
 fn high_word(x: f64) -> u32 {
@@ -305,6 +333,43 @@ fn cos_lane(x: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn sin_cos_in_place_gives_the_bits_of_sin_cos() {
+        let mut xs: Vec<f64> = (0..200_001)
+            .map(|i| (i as f64 - 100_000.0) * (0.8 / 100_000.0))
+            .collect();
+        // Around the tiny and the π/4 thresholds, and beyond them.
+        for b in [0x3e46_a09e_0000_0000u64, 0x3fe9_21fb_0000_0000] {
+            for d in 0..2000u64 {
+                let x = f64::from_bits(b - 1000 * 0x1_0000_0000 + d * 0x1_0000_0000);
+                xs.extend([x, -x]);
+            }
+        }
+        xs.extend((0..4000).map(|i| (i as f64 - 2000.0) * 0.37));
+        xs.extend([
+            0.0,
+            -0.0,
+            1e-300,
+            5e-324,
+            3.0,
+            -100.0,
+            f64::NAN,
+            f64::INFINITY,
+        ]);
+        for chunk in xs.chunks(8) {
+            let (mut s, mut c) = (vec![0.0; chunk.len()], vec![0.0; chunk.len()]);
+            sin_cos_in_place(chunk, &mut s, &mut c);
+            for ((&x, s), c) in chunk.iter().zip(s).zip(c) {
+                let (ws, wc) = sin_cos(x);
+                assert_eq!(
+                    (s.to_bits(), c.to_bits()),
+                    (ws.to_bits(), wc.to_bits()),
+                    "{x:e}"
+                );
+            }
+        }
+    }
 
     #[test]
     fn portable_exp_matches_libm_within_a_few_ulp() {

@@ -36,7 +36,58 @@ pub fn steps_line(name: &str, seconds: f64) -> String {
     )
 }
 
-/// The pole speed examples' main: fixed-length runs of the library's task, never stopped early.
+/// The task scored a group of genomes at a time, their trials side by side
+/// as vector lanes (`benchmarks::pole_lanes`: the bits of one at a time).
+#[derive(Clone)]
+pub struct PoleLanes {
+    /// With velocities (feed-forward networks) or without (recurrent).
+    pub markov: bool,
+    /// The start state.
+    pub start: State,
+}
+
+impl vivae_neat::driver::GroupTask for PoleLanes {
+    fn group_size(&self) -> usize {
+        // Enough trials to keep the lanes full while short ones end (256:
+        // as fast as the whole population, and still a group per thread).
+        16 * vivae_neat::benchmarks::pole_lanes::LANES
+    }
+
+    fn evaluate_group(
+        &self,
+        genomes: &[vivae_neat::Genome],
+        _: &[vivae_neat::EvalContext],
+        out: &mut Vec<vivae_neat::driver::Evaluation>,
+    ) {
+        use std::cell::RefCell;
+        use vivae_neat::benchmarks::pole_lanes::score_lanes;
+        use vivae_neat::driver::Evaluation;
+        use vivae_neat::{FeedForwardNetwork, RecurrentNetwork};
+        thread_local! {
+            static SCORES: RefCell<Vec<(f64, u32)>> = const { RefCell::new(Vec::new()) };
+        }
+        SCORES.with_borrow_mut(|scores| {
+            if self.markov {
+                let mut nets: Vec<_> = genomes
+                    .iter()
+                    .map(FeedForwardNetwork::from_genome)
+                    .collect();
+                score_lanes(&mut nets, true, self.start, scores);
+            } else {
+                let mut nets: Vec<_> = genomes.iter().map(RecurrentNetwork::from_genome).collect();
+                score_lanes(&mut nets, false, self.start, scores);
+            }
+            for &(f, steps) in scores.iter() {
+                STEPS.fetch_add(u64::from(steps), Ordering::Relaxed);
+                EVALS.fetch_add(1, Ordering::Relaxed);
+                out.push(Evaluation::fitness(f));
+            }
+        })
+    }
+}
+
+/// The pole speed examples' main: fixed-length runs of the library's task,
+/// never stopped early; trials side by side unless `--one-at-a-time`.
 pub fn speed_main(name: &str, title: &str, markov: bool) {
     use std::cell::RefCell;
     use vivae_neat::benchmarks::pole::{pole_params, spec, start_state};
@@ -58,8 +109,15 @@ pub fn speed_main(name: &str, title: &str, markov: bool) {
     };
     let clock = std::time::Instant::now();
     let (params, spec) = (pole_params(markov), spec(markov));
+    let alone = std::env::args().any(|a| a == "--one-at-a-time");
     // An infinite target: a run that balances keeps evaluating until its time is up.
-    if let Some(line) = crate::efficacy::sample(name, title, params, &spec, f64::INFINITY, task) {
+    let line = if alone {
+        crate::efficacy::sample(name, title, params, &spec, f64::INFINITY, task)
+    } else {
+        let lanes = PoleLanes { markov, start };
+        crate::efficacy::sample_grouped(name, title, params, &spec, f64::INFINITY, lanes)
+    };
+    if let Some(line) = line {
         println!("{line}");
         println!("{}", steps_line(name, clock.elapsed().as_secs_f64()));
     }

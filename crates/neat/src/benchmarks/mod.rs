@@ -4,5 +4,6 @@
 
 pub mod boxes;
 pub mod pole;
+pub mod pole_lanes;
 pub mod retina;
 pub mod xor;

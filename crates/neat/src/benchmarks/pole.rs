@@ -42,8 +42,8 @@ const MASS_POLE_1: f64 = 0.1;
 const LENGTH_1: f64 = 0.5; // half length
 const MASS_POLE_2: f64 = 0.01;
 const LENGTH_2: f64 = 0.05;
-const FORCE_MAG: f64 = 10.0;
-const TAU: f64 = 0.01;
+pub(super) const FORCE_MAG: f64 = 10.0;
+pub(super) const TAU: f64 = 0.01;
 const MUP: f64 = 0.000002;
 const FAIL_ANGLE: f64 = 36.0 * std::f64::consts::PI / 180.0;
 /// Steps a controller must balance from the start state to succeed.
@@ -57,6 +57,14 @@ pub type State = [f64; 6];
 fn derivatives(force: f64, s: &State) -> State {
     let (sin1, cos1) = sin_cos(s[2]);
     let (sin2, cos2) = sin_cos(s[4]);
+    derivatives_given(force, s, [sin1, cos1, sin2, cos2])
+}
+
+/// [`derivatives`] given `[sin θ1, cos θ1, sin θ2, cos θ2]` (shared with the
+/// episodes side by side of [`super::pole_lanes`]: the same operations).
+#[inline(always)]
+pub(super) fn derivatives_given(force: f64, s: &State, trig: [f64; 4]) -> State {
+    let [sin1, cos1, sin2, cos2] = trig;
     let gsin1 = GRAVITY * sin1;
     let gsin2 = GRAVITY * sin2;
     let ml1 = LENGTH_1 * MASS_POLE_1;
@@ -85,18 +93,20 @@ fn rk4(force: f64, s: &State) -> State {
 
 /// One control step: the action (network output in [0, 1]) held for two RK4 steps.
 #[inline]
-fn step(action: f64, s: &mut State) {
+pub(super) fn step(action: f64, s: &mut State) {
     let force = (action - 0.5) * FORCE_MAG * 2.0;
     for _ in 0..2 {
         *s = rk4(force, s);
     }
 }
 
-fn failed(s: &State) -> bool {
+/// Whether the cart left the track or a pole fell beyond ±36°.
+pub(super) fn failed(s: &State) -> bool {
     s[0].abs() > 2.4 || s[2].abs() > FAIL_ANGLE || s[4].abs() > FAIL_ANGLE
 }
 
-fn observe(s: &State, markov: bool, out: &mut [f64; 7]) -> usize {
+/// The network's inputs in `out` (scaled as in Stanley's code); their number.
+pub(super) fn observe(s: &State, markov: bool, out: &mut [f64; 7]) -> usize {
     if markov {
         *out = [
             s[0] / 4.8,
@@ -135,9 +145,15 @@ fn balance<N: Network + ?Sized>(
         if failed(&s) {
             return (t, last.iter().sum());
         }
-        last[t as usize % 100] = s[0].abs() + s[1].abs() + s[2].abs() + s[3].abs();
+        last[t as usize % 100] = stability(&s);
     }
     (max_steps, last.iter().sum())
+}
+
+/// Gruau's stability term of one step: |x| + |ẋ| + |θ1| + |θ̇1|.
+#[inline(always)]
+pub(super) fn stability(s: &State) -> f64 {
+    s[0].abs() + s[1].abs() + s[2].abs() + s[3].abs()
 }
 
 /// The start state: the long pole at `degrees` (without velocities; Gruau's 4.5°
@@ -163,8 +179,19 @@ fn fitness(g: &Genome, markov: bool, start: State) -> f64 {
 /// 100,000; without velocities: Gruau's damping fitness over at most 1,000
 /// steps), and the network activations it took.
 pub fn score<N: Network + ?Sized>(net: &mut N, markov: bool, start: State) -> (f64, u32) {
-    let max_steps = if markov { SUCCESS_STEPS } else { 1000 };
+    let max_steps = max_steps(markov);
     let (t, wiggle) = balance(net, markov, start, max_steps);
+    fitness_of(markov, max_steps, t, wiggle)
+}
+
+/// A trial's length: 100,000 steps with velocities, 1,000 without.
+pub(super) fn max_steps(markov: bool) -> u32 {
+    if markov { SUCCESS_STEPS } else { 1000 }
+}
+
+/// [`score`]'s result for a trial that balanced `t` steps (of at most
+/// `max_steps`) with Gruau's stability sum `wiggle`.
+pub(super) fn fitness_of(markov: bool, max_steps: u32, t: u32, wiggle: f64) -> (f64, u32) {
     // A trial that fails at step t activated the network t + 1 times.
     let activations = (t + 1).min(max_steps);
     if markov {
