@@ -163,18 +163,6 @@ pub fn start_state(markov: bool, degrees: f64) -> State {
     [0.0, 0.0, theta, 0.0, 0.0, 0.0]
 }
 
-fn network(g: &Genome, markov: bool) -> Box<dyn Network> {
-    if markov {
-        Box::new(FeedForwardNetwork::from_genome(g))
-    } else {
-        Box::new(RecurrentNetwork::from_genome(g))
-    }
-}
-
-fn fitness(g: &Genome, markov: bool, start: State) -> f64 {
-    score(network(g, markov).as_mut(), markov, start).0
-}
-
 /// The task's fitness of `net` from `start` (Markov: steps balanced, at most
 /// 100,000; without velocities: Gruau's damping fitness over at most 1,000
 /// steps), and the network activations it took.
@@ -454,6 +442,29 @@ impl Setup {
     }
 }
 
+/// The task's fitness of every genome, their trials side by side
+/// ([`super::pole_lanes`]: the bits of [`score`] of each one's network), a share of the
+/// genomes per rayon thread.
+fn lane_fitnesses(genomes: &[Genome], markov: bool, start: State) -> Vec<f64> {
+    use super::pole_lanes::score_lanes;
+    use rayon::prelude::*;
+    let share = genomes.len().div_ceil(rayon::current_num_threads()).max(1);
+    genomes
+        .par_chunks(share)
+        .flat_map_iter(|gs| {
+            let mut out = Vec::with_capacity(gs.len());
+            if markov {
+                let mut nets: Vec<_> = gs.iter().map(FeedForwardNetwork::from_genome).collect();
+                score_lanes(&mut nets, true, start, &mut out);
+            } else {
+                let mut nets: Vec<_> = gs.iter().map(RecurrentNetwork::from_genome).collect();
+                score_lanes(&mut nets, false, start, &mut out);
+            }
+            out.into_iter().map(|(f, _)| f)
+        })
+        .collect()
+}
+
 /// One population evolved for at most `generations`: the result if solved, else
 /// the evaluations spent.
 fn attempt(
@@ -467,7 +478,8 @@ fn attempt(
     let mut rotation = ChampionRotation::default();
     let mut spent = 0;
     for _ in 0..generations {
-        pop.evaluate(|g, _| fitness(g, markov, setup.start));
+        let fitness = lane_fitnesses(pop.genomes(), markov, setup.start);
+        pop.set_fitnesses(fitness)?;
         let done = spent;
         spent += pop.genomes().len();
         if markov {
