@@ -3,7 +3,8 @@
 //! paths (the multiplexer one case at a time against 16 as lanes, a
 //! recurrent network built per genome against recompiled in place, the
 //! sinewave one network at a time against 8 side by side as lanes, one prey
-//! capture evaluation).
+//! capture evaluation, a first double-pole generation one trial at a time
+//! against its trials as lanes).
 
 use divan::{Bencher, black_box};
 use rand::SeedableRng;
@@ -208,4 +209,54 @@ fn prey_fitness(bencher: Bencher) {
     };
     let mut net = RecurrentNetwork::from_genome(&grown(&spec, 0));
     bencher.bench_local(|| black_box(prey_task::SHARPNEAT_PREY.fitness(&mut net, black_box(7))));
+}
+
+/// A first generation of the double pole (`markov`: with velocities,
+/// population 150; without: 1,000), built from seed 1.
+fn pole_generation(markov: bool) -> Vec<Genome> {
+    use vivae_neat::benchmarks::pole::{pole_params, spec};
+    let pop = Population::new(pole_params(markov), spec(markov), 1).expect("valid parameters");
+    pop.genomes().to_vec()
+}
+
+/// Scoring a first pole generation one trial at a time (`pole::score` per genome).
+#[divan::bench(args = [false, true], sample_count = 20)]
+fn pole_generation_one_at_a_time(bencher: Bencher, markov: bool) {
+    use vivae_neat::benchmarks::pole::{score, start_state};
+    let genomes = pole_generation(markov);
+    let start = start_state(markov, 4.5);
+    bencher.bench_local(|| {
+        let mut sum = 0.0;
+        for g in &genomes {
+            sum += if markov {
+                score(&mut FeedForwardNetwork::from_genome(g), true, start).0
+            } else {
+                score(&mut RecurrentNetwork::from_genome(g), false, start).0
+            };
+        }
+        black_box(sum)
+    });
+}
+
+/// The same generation's trials side by side as lanes (`pole_lanes::score_lanes`; same bits).
+#[divan::bench(args = [false, true], sample_count = 20)]
+fn pole_generation_lanes(bencher: Bencher, markov: bool) {
+    use vivae_neat::benchmarks::pole::start_state;
+    use vivae_neat::benchmarks::pole_lanes::score_lanes;
+    let genomes = pole_generation(markov);
+    let start = start_state(markov, 4.5);
+    let mut out = Vec::new();
+    bencher.bench_local(|| {
+        if markov {
+            let mut nets: Vec<_> = genomes
+                .iter()
+                .map(FeedForwardNetwork::from_genome)
+                .collect();
+            score_lanes(&mut nets, true, start, &mut out);
+        } else {
+            let mut nets: Vec<_> = genomes.iter().map(RecurrentNetwork::from_genome).collect();
+            score_lanes(&mut nets, false, start, &mut out);
+        }
+        black_box(out.iter().map(|o| o.0).sum::<f64>())
+    });
 }
