@@ -63,19 +63,27 @@ impl vivae_neat::driver::GroupTask for PoleLanes {
         use vivae_neat::benchmarks::pole_lanes::score_lanes;
         use vivae_neat::driver::Evaluation;
         use vivae_neat::{FeedForwardNetwork, RecurrentNetwork};
+        // Networks recompiled in place group after group (no allocation once warm).
         thread_local! {
             static SCORES: RefCell<Vec<(f64, u32)>> = const { RefCell::new(Vec::new()) };
+            static FF: RefCell<Vec<FeedForwardNetwork>> = const { RefCell::new(Vec::new()) };
+            static REC: RefCell<Vec<RecurrentNetwork>> = const { RefCell::new(Vec::new()) };
         }
         SCORES.with_borrow_mut(|scores| {
             if self.markov {
-                let mut nets: Vec<_> = genomes
-                    .iter()
-                    .map(FeedForwardNetwork::from_genome)
-                    .collect();
-                score_lanes(&mut nets, true, self.start, scores);
+                FF.with_borrow_mut(|nets| {
+                    recompile(nets, genomes, FeedForwardNetwork::from_genome, |n, g| {
+                        n.recompile(g)
+                    });
+                    score_lanes(&mut nets[..genomes.len()], true, self.start, scores);
+                });
             } else {
-                let mut nets: Vec<_> = genomes.iter().map(RecurrentNetwork::from_genome).collect();
-                score_lanes(&mut nets, false, self.start, scores);
+                REC.with_borrow_mut(|nets| {
+                    recompile(nets, genomes, RecurrentNetwork::from_genome, |n, g| {
+                        n.recompile(g)
+                    });
+                    score_lanes(&mut nets[..genomes.len()], false, self.start, scores);
+                });
             }
             for &(f, steps) in scores.iter() {
                 STEPS.fetch_add(u64::from(steps), Ordering::Relaxed);
@@ -83,6 +91,21 @@ impl vivae_neat::driver::GroupTask for PoleLanes {
                 out.push(Evaluation::fitness(f));
             }
         })
+    }
+}
+
+/// Makes `nets[i]` the network of `genomes[i]`, recompiling those there are.
+fn recompile<N>(
+    nets: &mut Vec<N>,
+    genomes: &[vivae_neat::Genome],
+    build: impl Fn(&vivae_neat::Genome) -> N,
+    again: impl Fn(&mut N, &vivae_neat::Genome),
+) {
+    for (i, g) in genomes.iter().enumerate() {
+        match nets.get_mut(i) {
+            Some(n) => again(n, g),
+            None => nets.push(build(g)),
+        }
     }
 }
 

@@ -39,8 +39,19 @@ struct Trial {
     net: usize,
     /// Control steps balanced so far.
     t: u32,
-    /// The last 100 stability terms, a ring (as in `pole::balance`).
-    last: [f64; 100],
+    /// Which of the rings holds its last 100 stability terms (moving a
+    /// trial to another lane moves this index, not the ring).
+    ring: usize,
+}
+
+/// [`pole::balance`](super::pole)'s stability sum of a trial that balanced
+/// `t` steps: all 100 entries of its ring in index order once it has
+/// wrapped, else the `t` written so far — the same bits, since the entries
+/// not yet written are the scalar code's zeros, and adding +0 to a sum of
+/// non-negative terms leaves it as it is (the sign of an empty sum's zero
+/// is never read: the damping term needs 100 steps).
+fn wiggle(ring: &[f64; 100], t: u32) -> f64 {
+    ring[..(t as usize).min(100)].iter().sum()
 }
 
 /// A network whose trials [`score_lanes`] runs side by side: it may step
@@ -135,11 +146,12 @@ pub fn score_lanes<N: LaneNetwork>(
     out.resize(nets.len(), (0.0, 0));
     let max = max_steps(markov);
     let mut s: Lanes = [[0.0; LANES]; 6];
-    let mut trials = [Trial {
+    let mut trials: [Trial; LANES] = std::array::from_fn(|l| Trial {
         net: 0,
         t: 0,
-        last: [0.0; 100],
-    }; LANES];
+        ring: l,
+    });
+    let mut rings = [[0.0; 100]; LANES];
     // Lanes 0..live hold trials; network `next` is the next to start.
     let (mut live, mut next) = (0, 0);
     while live < LANES && next < nets.len() {
@@ -172,7 +184,7 @@ pub fn score_lanes<N: LaneNetwork>(
             let ended = if failed(&state) {
                 true
             } else {
-                tr.last[tr.t as usize % 100] = stability(&state);
+                rings[tr.ring][tr.t as usize % 100] = stability(&state);
                 tr.t += 1;
                 tr.t == max
             };
@@ -180,7 +192,7 @@ pub fn score_lanes<N: LaneNetwork>(
                 l += 1;
                 continue;
             }
-            out[tr.net] = fitness_of(markov, max, tr.t, tr.last.iter().sum());
+            out[tr.net] = fitness_of(markov, max, tr.t, wiggle(&rings[tr.ring], tr.t));
             if next < nets.len() {
                 start_trial(&mut s, &mut trials, l, next, start);
                 nets[next].reset();
@@ -198,16 +210,14 @@ pub fn score_lanes<N: LaneNetwork>(
     }
 }
 
-/// Starts network `net`'s trial from `start` in lane `l`.
+/// Starts network `net`'s trial from `start` in lane `l` (with the ring of
+/// the lane's last trial: [`wiggle`] reads only what this one writes).
 fn start_trial(s: &mut Lanes, trials: &mut [Trial; LANES], l: usize, net: usize, start: State) {
     for (v, &x) in s.iter_mut().zip(&start) {
         v[l] = x;
     }
-    trials[l] = Trial {
-        net,
-        t: 0,
-        last: [0.0; 100],
-    };
+    trials[l].net = net;
+    trials[l].t = 0;
 }
 
 /// Lane `l`'s state.
@@ -327,11 +337,26 @@ mod tests {
         for markov in [true, false] {
             let (spec, params) = (spec(markov), pole_params(markov));
             let mut tracker = InnovationTracker::new((spec.inputs + spec.outputs) as u32);
-            // 21 trials of every length through 8 lanes: lanes are refilled.
-            let genomes: Vec<_> = (0..21)
+            // Grown genomes and a first generation: trials of every length
+            // (some past 100 steps, where the damping term counts), more
+            // than the lanes, so lanes are refilled and then compacted.
+            let mut genomes: Vec<_> = (0..21)
                 .map(|i| grown(&spec, &params, &mut tracker, &mut rng, i % 5))
                 .collect();
+            // A few generations of evolution, so that some trials balance long.
+            let mut pop = crate::Population::new(params.clone(), spec.clone(), 1).unwrap();
             let start = start_state(markov, 4.5);
+            for _ in 0..8 {
+                pop.evaluate(|g, _| {
+                    if markov {
+                        score(&mut FeedForwardNetwork::from_genome(g), true, start).0
+                    } else {
+                        score(&mut RecurrentNetwork::from_genome(g), false, start).0
+                    }
+                });
+                pop.next_generation();
+            }
+            genomes.extend_from_slice(&pop.genomes()[..150]);
             let alone: Vec<(f64, u32)> = genomes
                 .iter()
                 .map(|g| {
@@ -344,6 +369,10 @@ mod tests {
                 .collect();
             let lengths: std::collections::BTreeSet<u32> = alone.iter().map(|a| a.1).collect();
             assert!(lengths.len() > 5, "trials of several lengths: {lengths:?}");
+            assert!(
+                lengths.last() > Some(&100),
+                "a trial past 100 steps: {lengths:?}"
+            );
             for level in simd::available() {
                 let before = simd::set_level(level);
                 let mut out = Vec::new();
