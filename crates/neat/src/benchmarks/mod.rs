@@ -3,6 +3,7 @@
 //! the same work. Pure tasks: no file I/O.
 
 pub mod boxes;
+mod cart_pole;
 pub mod pole;
 pub mod pole_lanes;
 pub mod retina;

@@ -18,7 +18,7 @@ use crate::math::sin_cos_in_place;
 use crate::network::Network;
 use crate::{FeedForwardNetwork, RecurrentNetwork};
 
-use super::pole::{
+use super::cart_pole::{
     FORCE_MAG, State, TAU, derivatives_given, failed, fitness_of, max_steps, observe, stability,
     step,
 };
