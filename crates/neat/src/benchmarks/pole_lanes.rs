@@ -135,7 +135,7 @@ impl LaneNetwork for RecurrentNetwork {
 /// Live trials are kept in the first lanes (a lane whose trial ends takes
 /// the next genome's, or the last live lane's trial), so that when few are
 /// left — a Markov population's few long balancers — a step costs one
-/// vector of 4 lanes or one scalar trial, not 8 lanes.
+/// vector of 4 lanes or one scalar trial, not all 16 lanes.
 pub fn score_lanes<N: LaneNetwork>(
     nets: &mut [N],
     markov: bool,
@@ -228,8 +228,8 @@ fn lane(s: &Lanes, l: usize) -> State {
 
 /// One control step of lanes `0..live`: each lane's action held for two
 /// RK4 steps — one trial alone as `pole::step`, up to 4 as one AVX2 vector,
-/// else all 8 lanes — at the best vector level the CPU has (no FMA: the
-/// same bits at every width and level).
+/// up to 8 as two, else all 16 — at the best vector level the CPU has (no
+/// FMA: the same bits at every width and level).
 fn control_step(action: &V, s: &mut Lanes, live: usize) {
     if live == 1 {
         let mut one = lane(s, 0);
