@@ -312,6 +312,26 @@ impl Drive for RobotController {
         }
     }
 
+    fn single_inputs(&self) -> bool {
+        match self {
+            RobotController::Polar(c) => c.single_inputs(),
+            RobotController::Es(c) => c.single_inputs(),
+        }
+    }
+
+    fn step_robots_single(
+        &self,
+        states: &mut RobotStates,
+        inputs: &[f32],
+        wide: &mut [f64],
+        outputs: &mut [f64],
+    ) {
+        match self {
+            RobotController::Polar(c) => c.step_robots_single(states, inputs, wide, outputs),
+            RobotController::Es(c) => c.step_robots_single(states, inputs, wide, outputs),
+        }
+    }
+
     fn wheel_outputs(&self) -> Option<WheelNeurons> {
         match self {
             RobotController::Polar(c) => c.wheel_outputs(),

@@ -140,6 +140,26 @@ pub fn read_sheets(sheets: &[SensorSheet], world: &World, robot: usize, inputs: 
     }
 }
 
+/// [`read_sheets`] in single precision, for controllers that step in f32:
+/// each sheet's `Sensor::read_f32` (the surface sensors compute in f32;
+/// the others read in f64 into `scratch`, at least as long as the longest
+/// sheet, and round). Allocation-free.
+#[inline]
+pub fn read_sheets_single(
+    sheets: &[SensorSheet],
+    world: &World,
+    robot: usize,
+    inputs: &mut [f32],
+    scratch: &mut [f64],
+) {
+    let mut rest = inputs;
+    for sheet in sheets {
+        let (mine, others) = rest.split_at_mut(sheet.len());
+        sheet.sensor.read_f32(world, robot, mine, scratch);
+        rest = others;
+    }
+}
+
 /// The input sheets `config` asks for, in controller-input order: every
 /// kind of the registry [`SENSORS`] the config switches on.
 pub fn sensor_sheets(config: &Config) -> Vec<SensorSheet> {

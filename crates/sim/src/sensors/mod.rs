@@ -8,6 +8,7 @@ mod distance;
 mod goal_radar;
 mod opponent;
 mod surface;
+mod surface_f32;
 
 use std::fmt;
 
@@ -48,6 +49,21 @@ pub trait Sensor: fmt::Debug + Send + Sync {
     /// Writes robot `robot`'s readings, each in [0, 1], to `out[..self.len()]`
     /// (entries beyond are left untouched).
     fn read(&self, world: &World, robot: usize, out: &mut [f64]);
+
+    /// [`Sensor::read`] in single precision, for controllers that step in f32.
+    ///
+    /// The default reads in f64 into `scratch` (at least [`Sensor::len`]
+    /// long, or it panics) and rounds each reading to the nearest f32; a sensor may
+    /// instead compute in f32 throughout (the surface sensors do: 16 lanes
+    /// per AVX-512 vector), which gives the same bits at every SIMD level
+    /// but not always those of the rounded f64 read.
+    fn read_f32(&self, world: &World, robot: usize, out: &mut [f32], scratch: &mut [f64]) {
+        let wide = &mut scratch[..self.len()];
+        self.read(world, robot, wide);
+        for (o, &v) in out.iter_mut().zip(wide.iter()) {
+            *o = v as f32;
+        }
+    }
 }
 
 /// Where one reading of a sensor is taken, relative to the robot.

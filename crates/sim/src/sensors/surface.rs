@@ -112,6 +112,8 @@ impl SurfaceSensors {
         SurfaceGrid {
             ox: offsets.iter().map(|o| o.x).collect(),
             oy: offsets.iter().map(|o| o.y).collect(),
+            ox32: offsets.iter().map(|o| o.x as f32).collect(),
+            oy32: offsets.iter().map(|o| o.y as f32).collect(),
             offsets,
             places,
             rings: self.rings,
@@ -127,6 +129,9 @@ pub struct SurfaceGrid {
     /// The offsets' x and y apart, so that one vector instruction serves several sensors.
     ox: Vec<f64>,
     oy: Vec<f64>,
+    /// The offsets rounded to f32, for the single-precision read (`surface_f32`).
+    pub(super) ox32: Vec<f32>,
+    pub(super) oy32: Vec<f32>,
     places: Vec<SensorPlace>,
     rings: usize,
 }
@@ -374,6 +379,11 @@ impl Sensor for SurfaceGrid {
     #[inline]
     fn read(&self, world: &World, i: usize, out: &mut [f64]) {
         self.read_at_level(world, i, out, crate::simd::level());
+    }
+
+    #[inline]
+    fn read_f32(&self, world: &World, i: usize, out: &mut [f32], _scratch: &mut [f64]) {
+        self.read_single(world, i, out);
     }
 }
 

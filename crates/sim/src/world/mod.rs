@@ -98,6 +98,8 @@ pub(crate) struct Statics {
     /// Sensor reading per material id (same indexing as `here`); 256 entries so
     /// that indexing by a `u8` needs no bounds check.
     pub(crate) readings: Box<[f64; 256]>,
+    /// `readings` rounded to f32, for the single-precision read.
+    pub(crate) readings_f32: Box<[f32; 256]>,
     /// Friction per material id, 256 entries like `readings`.
     pub(crate) frictions: Box<[f64; 256]>,
     /// Arena size in raster cells (the outside test of the fast look-up).
@@ -170,6 +172,13 @@ impl Statics {
                 let mut r = Box::new([0.0; 256]);
                 for (slot, h) in r.iter_mut().zip(&table) {
                     *slot = h.reading;
+                }
+                r
+            },
+            readings_f32: {
+                let mut r = Box::new([0.0f32; 256]);
+                for (slot, h) in r.iter_mut().zip(&table) {
+                    *slot = h.reading as f32;
                 }
                 r
             },

@@ -3,10 +3,11 @@
 //! environments all step robots through it.
 
 use vivae_neat::Network;
+use vivae_neat::Precision;
 use vivae_neat::hyperneat::{BatchState, SubstrateController};
 use vivae_sim::World;
 
-use crate::controller::sensors::{SensorSheet, read_sheets};
+use crate::controller::sensors::{SensorSheet, read_sheets, read_sheets_single};
 use crate::controller::substrate::WheelNeurons;
 
 /// A controller that drives every robot of an episode with one set of
@@ -23,6 +24,26 @@ pub trait Drive {
     /// One update of every robot: `inputs` and `outputs` hold the robots one
     /// after the other. Allocation-free.
     fn step_robots(&self, states: &mut RobotStates, inputs: &[f64], outputs: &mut [f64]);
+    /// Whether the controller steps in single precision and takes its
+    /// inputs as f32 ([`Drive::step_robots_single`]): the fast precision.
+    fn single_inputs(&self) -> bool {
+        false
+    }
+    /// [`Drive::step_robots`] with f32 inputs, which the rollout reads when
+    /// [`Drive::single_inputs`] holds. The default widens them into `wide`
+    /// (as long as `inputs`) and steps on that. Allocation-free.
+    fn step_robots_single(
+        &self,
+        states: &mut RobotStates,
+        inputs: &[f32],
+        wide: &mut [f64],
+        outputs: &mut [f64],
+    ) {
+        for (w, &v) in wide.iter_mut().zip(inputs) {
+            *w = f64::from(v);
+        }
+        self.step_robots(states, &wide[..inputs.len()], outputs);
+    }
     /// Which outputs drive the wheels when they are not the substrate's wheel neurons.
     fn wheel_outputs(&self) -> Option<WheelNeurons> {
         None
@@ -62,6 +83,23 @@ impl Drive for SubstrateController {
         };
         self.activate_batch(states, inputs, outputs);
     }
+
+    fn single_inputs(&self) -> bool {
+        self.precision() == Precision::Fast
+    }
+
+    fn step_robots_single(
+        &self,
+        states: &mut RobotStates,
+        inputs: &[f32],
+        _wide: &mut [f64],
+        outputs: &mut [f64],
+    ) {
+        let RobotStates::Polar(states) = states else {
+            panic!("a polar controller steps polar states (Rollout::new built them)");
+        };
+        self.activate_batch_single(states, inputs, outputs);
+    }
 }
 
 /// The controller side of an episode in progress: every robot's neuron
@@ -77,6 +115,9 @@ pub struct Rollout {
     wheels: WheelNeurons,
     states: RobotStates,
     inputs: Vec<f64>,
+    /// The inputs in f32 when the controller takes them so (fast
+    /// precision; `inputs` is then the f64 sensors' scratch); else empty.
+    single: Vec<f32>,
     outputs: Vec<f64>,
     controls: Vec<[f64; 2]>,
     steps: u64,
@@ -98,6 +139,11 @@ impl Rollout {
             wheels: controller.wheel_outputs().unwrap_or(wheels),
             states: controller.robot_states(n),
             inputs: vec![0.0; n * controller.num_inputs()],
+            single: if controller.single_inputs() {
+                vec![0.0; n * controller.num_inputs()]
+            } else {
+                Vec::new()
+            },
             outputs: vec![0.0; n * controller.num_outputs()],
             controls: vec![[0.0; 2]; n],
             steps: 0,
@@ -114,12 +160,26 @@ impl Rollout {
         manual: Option<(usize, [f64; 2])>,
     ) {
         let (ni, nn) = (controller.num_inputs(), controller.num_outputs());
-        if ni > 0 {
-            for (i, inputs) in self.inputs.chunks_exact_mut(ni).enumerate() {
-                read_sheets(&self.sensors, world, i, inputs);
+        if controller.single_inputs() && self.single.len() == self.inputs.len() {
+            if ni > 0 {
+                for (i, inputs) in self.single.chunks_exact_mut(ni).enumerate() {
+                    read_sheets_single(&self.sensors, world, i, inputs, &mut self.inputs);
+                }
             }
+            controller.step_robots_single(
+                &mut self.states,
+                &self.single,
+                &mut self.inputs,
+                &mut self.outputs,
+            );
+        } else {
+            if ni > 0 {
+                for (i, inputs) in self.inputs.chunks_exact_mut(ni).enumerate() {
+                    read_sheets(&self.sensors, world, i, inputs);
+                }
+            }
+            controller.step_robots(&mut self.states, &self.inputs, &mut self.outputs);
         }
-        controller.step_robots(&mut self.states, &self.inputs, &mut self.outputs);
         let wheels = self.wheels;
         for (c, out) in self.controls.iter_mut().zip(self.outputs.chunks_exact(nn)) {
             *c = [out[wheels.left], out[wheels.right]];
@@ -168,5 +228,64 @@ impl Rollout {
     /// Steps taken so far.
     pub fn steps(&self) -> u64 {
         self.steps
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use vivae_neat::{Population, Precision};
+
+    use super::*;
+    use crate::config::Config;
+    use crate::controller::sensors::read_sheets_single;
+    use crate::io::load_scenario;
+    use crate::tasks::driving::episode::Episode;
+
+    /// A fast controller's rollout reads the sensors in f32 and steps on them
+    /// as they are; an exact one reads and steps in f64. (Where the two reads
+    /// differ — a sensor within an f32 rounding of a cell border — the fast
+    /// pinned hash tells them apart.)
+    #[test]
+    fn fast_rollout_steps_on_the_single_precision_read() {
+        let scenario = load_scenario(None).unwrap().scenario;
+        for precision in [Precision::Exact, Precision::Fast] {
+            let mut config = Config::default();
+            config.experiment.precision = precision;
+            let exp = Episode::new(&config, &scenario).unwrap();
+            let pop = Population::new(config.neat.clone(), exp.cppn_spec(), 5).unwrap();
+            let c = exp.controller(&pop.genomes()[0]).unwrap();
+            assert_eq!(c.single_inputs(), precision == Precision::Fast);
+            let mut world = exp.world().clone();
+            let mut rollout = exp.rollout(&c);
+            // The same step by hand.
+            let robots = exp.robots();
+            let ni = Drive::num_inputs(&c);
+            let mut states = c.batch_state(robots);
+            let mut wide = vec![0.0; robots * ni];
+            let mut single = vec![0.0f32; robots * ni];
+            let mut outputs = vec![0.0; robots * Drive::num_outputs(&c)];
+            for step in 0..60 {
+                let by_hand = &world;
+                for r in 0..robots {
+                    let w = &mut wide[r * ni..][..ni];
+                    read_sheets(exp.sensors(), by_hand, r, w);
+                    let s = &mut single[r * ni..][..ni];
+                    read_sheets_single(exp.sensors(), by_hand, r, s, &mut [0.0; 0]);
+                }
+                match precision {
+                    Precision::Fast => c.activate_batch_single(&mut states, &single, &mut outputs),
+                    Precision::Exact => c.activate_batch(&mut states, &wide, &mut outputs),
+                }
+                rollout.step(&mut world, &c, None);
+                for r in 0..robots {
+                    let want: Vec<u64> = outputs[r * c.num_neurons()..][..c.num_neurons()]
+                        .iter()
+                        .map(|v| v.to_bits())
+                        .collect();
+                    let got: Vec<u64> = rollout.outputs(r).iter().map(|v| v.to_bits()).collect();
+                    assert_eq!(got, want, "{precision:?} robot {r} step {step}");
+                }
+            }
+        }
     }
 }

@@ -2,8 +2,8 @@
 //! biases in the same panelled layout (columns padded to 16 lanes, panels of
 //! 32 neurons), f32 neuron states, and the f32 step around the kernel.
 //!
-//! Inputs arrive as f64 (the sensors) and are rounded to f32 once per step;
-//! the new states are widened back to f64 for the outputs. Rounding and
+//! Inputs arrive as f32 (the sensors' single-precision read) or as f64,
+//! rounded to f32 once per step; the new states are widened back to f64 for the outputs. Rounding and
 //! widening are exact IEEE conversions, the kernel the same f32 operations
 //! in the same order at every level, so fast runs give the same bits on
 //! every CPU.
@@ -119,9 +119,37 @@ impl Fast {
         for (x, &v) in states.x.iter_mut().zip(inputs) {
             *x = v as f32;
         }
-        let robots = states.robots;
-        self.kernel()
-            .step(level, robots, &states.x, &mut states.state, &mut states.acc);
+        let FastStates {
+            robots,
+            x,
+            state,
+            acc,
+        } = states;
+        self.kernel().step(level, *robots, x, state, acc);
+        self.widen(states, wide, wide_stride);
+    }
+
+    /// [`Fast::step`] with inputs already in f32 (the sensors' single-precision read).
+    pub(super) fn step_single(
+        &self,
+        level: SimdLevel,
+        states: &mut FastStates,
+        inputs: &[f32],
+        wide: &mut [f64],
+        wide_stride: usize,
+    ) {
+        self.kernel().step(
+            level,
+            states.robots,
+            inputs,
+            &mut states.state,
+            &mut states.acc,
+        );
+        self.widen(states, wide, wide_stride);
+    }
+
+    /// Each robot's new f32 states widened into `wide[r * wide_stride..][..n]`.
+    fn widen(&self, states: &FastStates, wide: &mut [f64], wide_stride: usize) {
         if self.n > 0 {
             for (w, y) in wide
                 .chunks_exact_mut(wide_stride)

@@ -379,6 +379,7 @@ impl SubstrateController {
             state: vec![0.0; robots * self.stride],
             acc: vec![0.0; robots * self.stride],
             fast: (self.fast.as_ref()).map(|f| FastStates::new(robots, self.num_inputs, f.stride)),
+            wide: Vec::new(),
         }
     }
 
@@ -433,6 +434,61 @@ impl SubstrateController {
         }
     }
 
+    /// [`activate_batch`](Self::activate_batch) with inputs in f32, as the
+    /// fast precision computes with them: they go into the f32 step as they
+    /// are (no rounding). An exact controller widens them to f64 first
+    /// (exactly), in a buffer of `states` kept for the purpose.
+    pub fn activate_batch_single(
+        &self,
+        states: &mut BatchState,
+        inputs: &[f32],
+        outputs: &mut [f64],
+    ) {
+        self.activate_batch_single_at(simd::level(), states, inputs, outputs);
+    }
+
+    /// [`activate_batch_single`](Self::activate_batch_single) at a given
+    /// instruction level (clamped to what the CPU supports).
+    pub(crate) fn activate_batch_single_at(
+        &self,
+        level: SimdLevel,
+        states: &mut BatchState,
+        inputs: &[f32],
+        outputs: &mut [f64],
+    ) {
+        let robots = states.robots;
+        assert!(
+            states.n == self.n && states.stride == self.stride,
+            "batch state of another controller shape"
+        );
+        assert_eq!(
+            inputs.len(),
+            robots * self.num_inputs,
+            "controller input length"
+        );
+        assert_eq!(outputs.len(), robots * self.n, "controller output length");
+        match (&self.fast, &mut states.fast) {
+            (Some(f), Some(fs)) => f.step_single(level, fs, inputs, &mut states.state, self.stride),
+            (None, None) => {
+                let mut wide = std::mem::take(&mut states.wide);
+                wide.clear();
+                wide.extend(inputs.iter().map(|&v| f64::from(v)));
+                self.kernel()
+                    .step(level, robots, &wide, &mut states.state, &mut states.acc);
+                states.wide = wide;
+            }
+            _ => panic!("batch state of another controller precision"),
+        }
+        if self.n > 0 {
+            for (out, y) in outputs
+                .chunks_exact_mut(self.n)
+                .zip(states.state.chunks_exact(self.stride))
+            {
+                out.copy_from_slice(&y[..self.n]);
+            }
+        }
+    }
+
     fn kernel(&self) -> Kernel<'_, f64> {
         Kernel {
             ni: self.num_inputs,
@@ -460,6 +516,9 @@ pub struct BatchState {
     /// The f32 states that advance in fast precision (`state` then holds
     /// them widened to f64).
     fast: Option<FastStates>,
+    /// f32 inputs widened to f64 when an exact controller is given them
+    /// ([`SubstrateController::activate_batch_single`]); empty until then.
+    wide: Vec<f64>,
 }
 
 impl BatchState {
@@ -881,6 +940,34 @@ mod tests {
                 for (_, state) in &mut batches {
                     state.reset();
                     assert!(state.state(robots - 1).iter().all(|&v| v == 0.0));
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn single_inputs_step_as_their_f64_widening_in_both_precisions() {
+        // f32 inputs are what the sensors' single-precision read hands over:
+        // a fast controller steps on them as they are, an exact one on their
+        // (exact) widening; either way the bits of the f64 call on the same values.
+        for precision in [Precision::Exact, Precision::Fast] {
+            let (n, robots) = (81, 5);
+            let mut c = random_controller(vec![300], n, 300);
+            c.set_precision(precision);
+            let ni = c.num_inputs();
+            for level in simd::available() {
+                let mut wide_state = c.batch_state(robots);
+                let mut single_state = c.batch_state(robots);
+                let (mut a, mut b) = (vec![0.0; robots * n], vec![0.0; robots * n]);
+                for step in 0..4 {
+                    let x32: Vec<f32> = values(robots * ni, 9000 + step)
+                        .iter()
+                        .map(|&v| v as f32)
+                        .collect();
+                    let x64: Vec<f64> = x32.iter().map(|&v| f64::from(v)).collect();
+                    c.activate_batch_at(level, &mut wide_state, &x64, &mut a);
+                    c.activate_batch_single_at(level, &mut single_state, &x32, &mut b);
+                    assert_eq!(bits(&a), bits(&b), "{precision:?} {level:?} step {step}");
                 }
             }
         }

@@ -1,0 +1,456 @@
+//! The surface sensors in single precision (the fast precision's read):
+//! every sensor's cell computed in f32, 16 sensors per AVX-512 vector and 8
+//! per AVX2 one (the f64 read has 8 and 4), the readings rounded to f32.
+//!
+//! Each path performs the same f32 operations in the same order as
+//! [`Query32::one`] (separately rounded multiplies and adds, no FMA, ordered
+//! compares, truncation to i32), so every level gives the same bits. They
+//! are not always the f64 read's bits rounded: a sensor within an f32
+//! rounding (about 6e-5 cells at 1,000 cells from the origin) of a cell
+//! border may land in the neighbouring cell.
+
+use super::frame;
+use super::surface::SurfaceGrid;
+use crate::simd::SimdLevel;
+use crate::world::World;
+
+/// One robot's read in f32 and raster cells: as the f64 `Query`, rounded.
+struct Query32<'a> {
+    bx: f32,
+    by: f32,
+    axx: f32,
+    axy: f32,
+    rxx: f32,
+    rxy: f32,
+    limx: f32,
+    limy: f32,
+    tiles_x: usize,
+    ids: &'a [u8],
+    readings: &'a [f32; 256],
+    /// At most 16 materials: one AVX-512 register holds every reading.
+    few: bool,
+}
+
+impl Query32<'_> {
+    /// The reading at robot-frame offset (`x`, `y`): the formula every path follows.
+    #[inline(always)]
+    fn one(&self, x: f32, y: f32) -> f32 {
+        let cx = self.bx + self.axx * x + self.rxx * y;
+        let cy = self.by + self.axy * x + self.rxy * y;
+        // Non-short-circuit tests compile to one branch; NaN is outside.
+        if (cx >= 0.0) & (cy >= 0.0) & (cx < self.limx) & (cy < self.limy) {
+            // In range, so the i32 truncation is exact; `limx` ≤ the raster's
+            // columns (they are an integer below 2^24 and rounding is monotone).
+            let (c, r) = (cx as i32 as usize, cy as i32 as usize);
+            let idx = ((r >> 3) * self.tiles_x + (c >> 3)) * 64 + ((r & 7) << 3) + (c & 7);
+            self.readings[self.ids.get(idx).copied().unwrap_or(0) as usize]
+        } else {
+            0.0
+        }
+    }
+
+    /// Scalar read of every sensor.
+    #[inline(always)]
+    fn scalar(&self, ox: &[f32], oy: &[f32], out: &mut [f32]) {
+        for ((v, &x), &y) in out.iter_mut().zip(ox).zip(oy) {
+            *v = self.one(x, y);
+        }
+    }
+}
+
+/// Lane-wise reads: [`Query32::one`]'s arithmetic one sensor per lane, then
+/// the two look-ups as gathers (or one permute for few materials). Only
+/// called when `Statics::lanes` holds, so the u32 lane index equals `one`'s
+/// usize one for every in-arena sensor.
+#[cfg(target_arch = "x86_64")]
+mod lanes {
+    use std::arch::x86_64::*;
+
+    use super::Query32;
+
+    /// Largest index whose 4-byte gather stays inside `ids` (the raster pads
+    /// `ids` with `raster::PAD` zero bytes so that this is the last cell).
+    #[inline(always)]
+    fn last_gather(q: &Query32) -> u32 {
+        (q.ids.len() - crate::raster::PAD) as u32 - 1
+    }
+
+    /// AVX2: eight sensors per iteration, the rest scalar.
+    ///
+    /// # Safety
+    /// The CPU must support AVX2; `q.ids.len()` must be in `PAD + 1 ..= u32::MAX`.
+    #[target_feature(enable = "avx2")]
+    pub(super) unsafe fn avx2(q: &Query32, ox: &[f32], oy: &[f32], out: &mut [f32]) {
+        let n = out.len().min(ox.len()).min(oy.len());
+        let whole = n - n % 8;
+        let (bx, by) = (_mm256_set1_ps(q.bx), _mm256_set1_ps(q.by));
+        let (axx, axy) = (_mm256_set1_ps(q.axx), _mm256_set1_ps(q.axy));
+        let (rxx, rxy) = (_mm256_set1_ps(q.rxx), _mm256_set1_ps(q.rxy));
+        let (lx, ly) = (_mm256_set1_ps(q.limx), _mm256_set1_ps(q.limy));
+        let zero = _mm256_setzero_ps();
+        let tx = _mm256_set1_epi32(q.tiles_x as i32);
+        let (seven, byte) = (_mm256_set1_epi32(7), _mm256_set1_epi32(0xff));
+        let last = _mm256_set1_epi32(last_gather(q) as i32);
+        let mut j = 0;
+        while j < whole {
+            // SAFETY: j + 8 <= n <= the lengths of ox, oy and out (unaligned loads/stores).
+            let (x, y) = unsafe {
+                (
+                    _mm256_loadu_ps(ox.as_ptr().add(j)),
+                    _mm256_loadu_ps(oy.as_ptr().add(j)),
+                )
+            };
+            let cx = _mm256_add_ps(
+                _mm256_add_ps(bx, _mm256_mul_ps(axx, x)),
+                _mm256_mul_ps(rxx, y),
+            );
+            let cy = _mm256_add_ps(
+                _mm256_add_ps(by, _mm256_mul_ps(axy, x)),
+                _mm256_mul_ps(rxy, y),
+            );
+            // Ordered compares: NaN is outside, as in `one`.
+            let ins = _mm256_and_ps(
+                _mm256_and_ps(
+                    _mm256_cmp_ps::<_CMP_GE_OQ>(cx, zero),
+                    _mm256_cmp_ps::<_CMP_GE_OQ>(cy, zero),
+                ),
+                _mm256_and_ps(
+                    _mm256_cmp_ps::<_CMP_LT_OQ>(cx, lx),
+                    _mm256_cmp_ps::<_CMP_LT_OQ>(cy, ly),
+                ),
+            );
+            // Outside lanes become +0.0, so cell 0; their reading is discarded below.
+            let c = _mm256_cvttps_epi32(_mm256_and_ps(cx, ins));
+            let r = _mm256_cvttps_epi32(_mm256_and_ps(cy, ins));
+            let tile = _mm256_add_epi32(
+                _mm256_mullo_epi32(_mm256_srli_epi32::<3>(r), tx),
+                _mm256_srli_epi32::<3>(c),
+            );
+            let within = _mm256_add_epi32(
+                _mm256_slli_epi32::<3>(_mm256_and_si256(r, seven)),
+                _mm256_and_si256(c, seven),
+            );
+            let idx = _mm256_add_epi32(_mm256_slli_epi32::<6>(tile), within);
+            // Unsigned min: a no-op for the indices `one` computes, a bound for the gather.
+            let idx = _mm256_min_epu32(idx, last);
+            // SAFETY: every lane of idx is <= last, so the 4 bytes read at ids + idx lie
+            // inside ids; each id is masked to 0..=255, inside the 256 readings.
+            let v = unsafe {
+                let ids = _mm256_and_si256(
+                    _mm256_i32gather_epi32::<1>(q.ids.as_ptr().cast(), idx),
+                    byte,
+                );
+                _mm256_i32gather_ps::<4>(q.readings.as_ptr(), ids)
+            };
+            // SAFETY: as for the loads.
+            unsafe { _mm256_storeu_ps(out.as_mut_ptr().add(j), _mm256_and_ps(v, ins)) };
+            j += 8;
+        }
+        q.scalar(&ox[whole..n], &oy[whole..n], &mut out[whole..n]);
+    }
+
+    /// AVX-512F: sixteen sensors per iteration, the last batch masked.
+    ///
+    /// # Safety
+    /// The CPU must support AVX-512F; `q.ids.len()` must be in `PAD + 1 ..= u32::MAX`.
+    // avx512f implies FMA in LLVM, but Rust never fuses a separate mul and add
+    // (no contraction), so the bits stay those of `one`.
+    #[target_feature(enable = "avx512f")]
+    pub(super) unsafe fn avx512(q: &Query32, ox: &[f32], oy: &[f32], out: &mut [f32]) {
+        let n = out.len().min(ox.len()).min(oy.len());
+        let (bx, by) = (_mm512_set1_ps(q.bx), _mm512_set1_ps(q.by));
+        let (axx, axy) = (_mm512_set1_ps(q.axx), _mm512_set1_ps(q.axy));
+        let (rxx, rxy) = (_mm512_set1_ps(q.rxx), _mm512_set1_ps(q.rxy));
+        let (lx, ly) = (_mm512_set1_ps(q.limx), _mm512_set1_ps(q.limy));
+        let zero = _mm512_setzero_ps();
+        let tx = _mm512_set1_epi32(q.tiles_x as i32);
+        let (seven, byte) = (_mm512_set1_epi32(7), _mm512_set1_epi32(0xff));
+        let last = _mm512_set1_epi32(last_gather(q) as i32);
+        // SAFETY: readings has 256 entries, so 0..16 are in bounds.
+        let table = unsafe { _mm512_loadu_ps(q.readings.as_ptr()) };
+        let mut j = 0;
+        while j < n {
+            // The last batch may be partial: its missing lanes are neither loaded nor stored.
+            let todo: __mmask16 = if n - j >= 16 {
+                0xffff
+            } else {
+                (1u16 << (n - j)) - 1
+            };
+            // SAFETY: the lanes of `todo` are j..min(j + 16, n), inside ox, oy and out;
+            // masked-off lanes are not accessed (and cannot fault).
+            let (x, y) = unsafe {
+                (
+                    _mm512_maskz_loadu_ps(todo, ox.as_ptr().add(j)),
+                    _mm512_maskz_loadu_ps(todo, oy.as_ptr().add(j)),
+                )
+            };
+            let cx = _mm512_add_ps(
+                _mm512_add_ps(bx, _mm512_mul_ps(axx, x)),
+                _mm512_mul_ps(rxx, y),
+            );
+            let cy = _mm512_add_ps(
+                _mm512_add_ps(by, _mm512_mul_ps(axy, x)),
+                _mm512_mul_ps(rxy, y),
+            );
+            // Ordered compares, each masked by the previous ones: NaN is outside.
+            let ins = _mm512_cmp_ps_mask::<_CMP_GE_OQ>(cx, zero);
+            let ins = _mm512_mask_cmp_ps_mask::<_CMP_GE_OQ>(ins, cy, zero);
+            let ins = _mm512_mask_cmp_ps_mask::<_CMP_LT_OQ>(ins, cx, lx);
+            let ins = _mm512_mask_cmp_ps_mask::<_CMP_LT_OQ>(ins, cy, ly);
+            // Outside lanes become 0, so cell 0; their reading is discarded below.
+            let c = _mm512_maskz_cvttps_epi32(ins, cx);
+            let r = _mm512_maskz_cvttps_epi32(ins, cy);
+            let tile = _mm512_add_epi32(
+                _mm512_mullo_epi32(_mm512_srli_epi32::<3>(r), tx),
+                _mm512_srli_epi32::<3>(c),
+            );
+            let within = _mm512_add_epi32(
+                _mm512_slli_epi32::<3>(_mm512_and_si512(r, seven)),
+                _mm512_and_si512(c, seven),
+            );
+            let idx = _mm512_add_epi32(_mm512_slli_epi32::<6>(tile), within);
+            // Unsigned min: a no-op for the indices `one` computes, a bound for the gather.
+            let idx = _mm512_min_epu32(idx, last);
+            // SAFETY: every lane of idx is <= last, so the 4 bytes read at ids + idx lie
+            // inside ids.
+            let ids = unsafe { _mm512_i32gather_epi32::<1>(idx, q.ids.as_ptr().cast()) };
+            let ids = _mm512_and_si512(ids, byte);
+            let v = if q.few {
+                // All ids are below 16: one register holds every reading.
+                _mm512_permutexvar_ps(ids, table)
+            } else {
+                // SAFETY: each id is masked to 0..=255, inside the 256 readings.
+                unsafe { _mm512_i32gather_ps::<4>(ids, q.readings.as_ptr().cast()) }
+            };
+            // SAFETY: as for the loads.
+            unsafe {
+                _mm512_mask_storeu_ps(out.as_mut_ptr().add(j), todo, _mm512_maskz_mov_ps(ins, v))
+            };
+            j += 16;
+        }
+    }
+}
+
+impl SurfaceGrid {
+    /// Robot `i`'s readings computed in f32 ([`crate::Sensor::read_f32`] of the
+    /// surface sensors; the module doc says how it differs from `read`).
+    #[inline]
+    pub fn read_single(&self, world: &World, i: usize, out: &mut [f32]) {
+        self.read_single_at_level(world, i, out, crate::simd::level());
+    }
+
+    /// `read_single` with the instruction set `level` (which must not exceed
+    /// `simd::detected()`; every level gives the same bits).
+    #[inline]
+    fn read_single_at_level(&self, world: &World, i: usize, out: &mut [f32], level: SimdLevel) {
+        let (p, ahead, right) = frame(world, i);
+        let st = &*world.statics;
+        let inv = st.inv_cell;
+        let (ids, tiles_x) = st.scenario.raster().tiles();
+        // The robot's frame in cells as the f64 read computes it, then rounded.
+        let (base, ax, rx) = (p * inv, ahead * inv, right * inv);
+        let q = Query32 {
+            bx: base.x as f32,
+            by: base.y as f32,
+            axx: ax.x as f32,
+            axy: ax.y as f32,
+            rxx: rx.x as f32,
+            rxy: rx.y as f32,
+            limx: st.limit.x as f32,
+            limy: st.limit.y as f32,
+            tiles_x,
+            ids,
+            readings: &st.readings_f32,
+            few: st.few_materials,
+        };
+        let n = self.ox32.len().min(out.len());
+        let out = &mut out[..n];
+        if n == 0 {
+            return;
+        }
+        if !st.lanes {
+            return q.scalar(&self.ox32, &self.oy32, out);
+        }
+        debug_assert!(level <= crate::simd::detected());
+        match level {
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: callers pass a level up to `detected()`, which saw AVX-512F on
+            // this CPU; `lanes` holds, so ids.len() is in PAD + 1 ..= u32::MAX.
+            SimdLevel::Avx512 => unsafe { lanes::avx512(&q, &self.ox32, &self.oy32, out) },
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: as above, with AVX2.
+            SimdLevel::Avx2 => unsafe { lanes::avx2(&q, &self.ox32, &self.oy32, out) },
+            _ => q.scalar(&self.ox32, &self.oy32, out),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec2;
+    use proptest::prelude::*;
+
+    use super::*;
+    use crate::simd::detected;
+    use crate::{LoadOptions, PhysicsParams, Scenario, Sensor, SurfaceSensors};
+
+    /// The f32 formula written out plainly: the reference every level must match.
+    fn reference(g: &SurfaceGrid, world: &World, i: usize, out: &mut [f32]) {
+        let (p, ahead, right) = frame(world, i);
+        let st = &*world.statics;
+        let ras = st.scenario.raster();
+        let inv = st.inv_cell;
+        let (base, ax, rx) = (p * inv, ahead * inv, right * inv);
+        let (lx, ly) = (st.limit.x as f32, st.limit.y as f32);
+        for (o, v) in g.offsets.iter().zip(out.iter_mut()) {
+            let (x, y) = (o.x as f32, o.y as f32);
+            let cx = base.x as f32 + ax.x as f32 * x + rx.x as f32 * y;
+            let cy = base.y as f32 + ax.y as f32 * x + rx.y as f32 * y;
+            *v = if cx >= 0.0 && cy >= 0.0 && cx < lx && cy < ly {
+                st.readings[ras.get_in_arena(cx as usize, cy as usize) as usize] as f32
+            } else {
+                0.0
+            };
+        }
+    }
+
+    fn levels() -> Vec<SimdLevel> {
+        [SimdLevel::Scalar, SimdLevel::Avx2, SimdLevel::Avx512]
+            .into_iter()
+            .filter(|&l| l <= detected())
+            .collect()
+    }
+
+    /// roads.svg, and 20 sand strips of different friction (more than 16
+    /// materials: the look-up that gathers readings) on a 0.75 px raster.
+    fn worlds() -> Vec<World> {
+        let roads =
+            Scenario::from_svg(crate::ROADS_SVG, "roads.svg", &LoadOptions::default()).unwrap();
+        let mut strips = String::from(
+            r#"<svg xmlns="http://www.w3.org/2000/svg" xmlns:inkscape="http://www.inkscape.org/namespaces/inkscape" width="203" height="101">"#,
+        );
+        for k in 0..20 {
+            strips += &format!(
+                r#"<rect id="s{k}" inkscape:label="Sand" data-friction="{}" x="{}" y="{}" width="9.5" height="80"/>"#,
+                1.0 + k as f64 * 0.4,
+                k * 10,
+                k % 3
+            );
+        }
+        strips +=
+            r#"<rect id="r" inkscape:label="Robot" x="94" y="44" width="12" height="12"/></svg>"#;
+        let opts = LoadOptions {
+            cell_size: 0.75,
+            ..Default::default()
+        };
+        let strips = Scenario::from_svg(&strips, "strips.svg", &opts).unwrap();
+        assert!(strips.materials().len() > 16);
+        [roads, strips]
+            .iter()
+            .map(|sc| World::new(sc, &PhysicsParams::default()).unwrap())
+            .collect()
+    }
+
+    fn same_bits(a: &[f32], b: &[f32]) -> bool {
+        a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
+    }
+
+    /// Reads robot 0 at `pos`/`heading` with every level and the reference.
+    fn check(world: &mut World, g: &SurfaceGrid, pos: DVec2, heading: f64) {
+        world.set_pose(0, pos, heading);
+        let mut want = vec![7.0; g.len() + 3];
+        reference(g, world, 0, &mut want);
+        for l in levels() {
+            let mut got = vec![7.0; g.len() + 3];
+            g.read_single_at_level(world, 0, &mut got, l);
+            assert!(
+                same_bits(&got, &want),
+                "{l:?} differs at {pos:?} heading {heading}: {got:?} vs {want:?}"
+            );
+        }
+        // The trait's read uses the process-wide level: same bits too.
+        let mut got = vec![7.0; g.len() + 3];
+        g.read_f32(world, 0, &mut got, &mut []);
+        assert!(same_bits(&got, &want));
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(400))]
+
+        /// Random poses, inside and outside the arena, with grids of every tail length.
+        #[test]
+        fn every_level_reads_the_single_precision_reference_bits(
+            rings in 1usize..24, angles in 1usize..70, fov in 0.0f64..360.0,
+            d_max in 0.0f64..300.0, x in -150.0f64..950.0, y in -150.0f64..750.0,
+            heading in -4.0f64..4.0, w in 0usize..2,
+        ) {
+            let mut worlds = worlds();
+            let g = SurfaceSensors { rings, angles, fov, d_min: 0.0, d_max }.grid();
+            check(&mut worlds[w], &g, DVec2::new(x, y), heading);
+        }
+
+        /// Integer positions facing a grid axis: sensors on cell borders and the arena's edges.
+        #[test]
+        fn every_level_agrees_in_single_precision_on_cell_borders(
+            x in -60i32..860, y in -60i32..660, quarter in -1i32..3, w in 0usize..2,
+        ) {
+            let mut worlds = worlds();
+            let g = SurfaceSensors { rings: 11, angles: 9, fov: 180.0, d_min: 0.0, d_max: 50.0 }.grid();
+            let heading = quarter as f64 * std::f64::consts::FRAC_PI_2;
+            check(&mut worlds[w], &g, DVec2::new(x as f64, y as f64), heading);
+        }
+
+        /// Away from cell borders the single-precision read is the f64 read rounded.
+        #[test]
+        fn single_precision_reads_the_f64_cells_off_the_borders(
+            x in 0.0f64..800.0, y in 0.0f64..600.0, heading in -4.0f64..4.0,
+        ) {
+            let mut worlds = worlds();
+            let world = &mut worlds[0];
+            let g = SurfaceSensors { rings: 7, angles: 13, ..Default::default() }.grid();
+            world.set_pose(0, DVec2::new(x, y), heading);
+            let mut wide = vec![0.0; g.len()];
+            g.read(world, 0, &mut wide);
+            let mut single = vec![0.0f32; g.len()];
+            g.read_single(world, 0, &mut single);
+            let positions = g.positions(world, 0);
+            let inv = world.statics.inv_cell;
+            for ((w, s), p) in wide.iter().zip(&single).zip(positions) {
+                let c = p * inv;
+                // Farther than 1e-3 cells from every cell border and the arena's edge.
+                let clear = |v: f64| (v - v.round()).abs() > 1e-3;
+                if clear(c.x) && clear(c.y) {
+                    prop_assert_eq!(*w as f32, *s, "at {:?}", c);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn every_level_reads_exact_borders_and_odd_values_in_single_precision() {
+        let mut worlds = worlds();
+        let g = SurfaceSensors {
+            rings: 7,
+            angles: 13,
+            ..Default::default()
+        }
+        .grid();
+        for world in &mut worlds {
+            let (w, h) = (world.scenario().width(), world.scenario().height());
+            for pos in [
+                DVec2::new(0.0, 0.0),
+                DVec2::new(w, h),
+                DVec2::new(w - 1e-9, h - 1e-9),
+                DVec2::new(-0.0, 30.0),
+                DVec2::new(f64::NAN, 30.0),
+                DVec2::new(f64::INFINITY, 30.0),
+                DVec2::new(1e300, -1e300),
+                DVec2::new(w / 2.0, h / 2.0),
+            ] {
+                for heading in [0.0, 1.0, -2.5, std::f64::consts::PI] {
+                    check(world, &g, pos, heading);
+                }
+            }
+        }
+    }
+}
