@@ -126,6 +126,76 @@ pub fn exp_f32(x: f32) -> f32 {
     y * scale
 }
 
+/// `x·y + z` rounded once to f32 (IEEE 754 fusedMultiplyAdd, to nearest,
+/// ties to even): the bits of the CPU's fused multiply-add instruction,
+/// computed with f64 operations where there is none (the scalar level).
+///
+/// Why it is exact: `x·y` of two f32 is exact in f64 (48 significant bits),
+/// and the f64 sum `s` differs from the true `x·y + z` by less than half an
+/// f64 ULP, so rounding `s` to f32 is right unless `s` lies exactly halfway
+/// between two f32 (f64 holds every such midpoint); there the sum's exact
+/// rounding error (Knuth's TwoSum) says on which side the true value lies.
+/// The fast precision's neuron sums use it; the test
+/// `fma_f32_gives_the_fused_instructions_bits` compares it with the
+/// instruction on millions of arguments, halfway cases included.
+#[inline]
+pub fn fma_f32(x: f32, y: f32, z: f32) -> f32 {
+    let xy = f64::from(x) * f64::from(y);
+    let zw = f64::from(z);
+    let s = xy + zw;
+    let r = s as f32;
+    let r64 = f64::from(r);
+    if r64 == s || s.is_nan() {
+        return r;
+    }
+    // The other f32 next to `s` (beyond f32::MAX: 2^128, where f32 rounds to infinity).
+    let (other, other64) = if r.is_infinite() {
+        let max = f32::MAX.copysign(r);
+        (max, f64::from(max))
+    } else if s > r64 {
+        let up = r.next_up();
+        (
+            up,
+            if up.is_infinite() {
+                2f64.powi(128)
+            } else {
+                f64::from(up)
+            },
+        )
+    } else {
+        let down = r.next_down();
+        (
+            down,
+            if down.is_infinite() {
+                -(2f64.powi(128))
+            } else {
+                f64::from(down)
+            },
+        )
+    };
+    let (lo, hi) = if r.is_infinite() {
+        (other64, 2f64.powi(128).copysign(s))
+    } else {
+        (r64, other64)
+    };
+    if s != (lo + hi) * 0.5 || s.is_infinite() {
+        return r;
+    }
+    // `s` is a midpoint, where `as f32` broke the tie to even: the exact
+    // error of the f64 sum decides instead.
+    let b = s - xy;
+    let err = (xy - (s - b)) + (zw - b);
+    if err == 0.0 {
+        return r;
+    }
+    let toward_other = if r.is_infinite() {
+        (err < 0.0) == (s > 0.0)
+    } else {
+        (err > 0.0) == (other64 > r64)
+    };
+    if toward_other { other } else { r }
+}
+
 /// The bipolar sigmoid `2/(1+e^(−4.9x)) − 1` in single precision, the same
 /// bits on every machine (from [`exp_f32`] and one IEEE division).
 ///
@@ -244,6 +314,104 @@ fn trig_f32_lane(x: f32, quarter: u32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The fused multiply-add instruction's result (None on a CPU without one).
+    fn hardware_fma(x: f32, y: f32, z: f32) -> Option<f32> {
+        #[cfg(target_arch = "x86_64")]
+        {
+            use std::arch::x86_64::*;
+            #[target_feature(enable = "fma")]
+            unsafe fn fused(x: f32, y: f32, z: f32) -> f32 {
+                _mm_cvtss_f32(_mm_fmadd_ss(_mm_set_ss(x), _mm_set_ss(y), _mm_set_ss(z)))
+            }
+            if is_x86_feature_detected!("fma") {
+                // SAFETY: the CPU supports FMA (checked just above).
+                return Some(unsafe { fused(x, y, z) });
+            }
+        }
+        let _ = (x, y, z);
+        None
+    }
+
+    /// Random f32 of every exponent and sign, NaN excluded (a NaN's payload
+    /// is not part of the fast precision's promise).
+    fn random_f32(state: &mut u64) -> f32 {
+        loop {
+            *state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            let v = f32::from_bits((*state >> 32) as u32);
+            if !v.is_nan() {
+                return v;
+            }
+        }
+    }
+
+    #[test]
+    fn fma_f32_gives_the_fused_instructions_bits() {
+        let mut state = 0x5eed_u64;
+        let mut checked = 0usize;
+        let mut double_roundings = 0usize;
+        let mut check = |x: f32, y: f32, z: f32| {
+            let got = fma_f32(x, y, z);
+            let Some(want) = hardware_fma(x, y, z) else {
+                return;
+            };
+            assert!(
+                got.to_bits() == want.to_bits() || (got.is_nan() && want.is_nan()),
+                "fma_f32({x:e}, {y:e}, {z:e}) = {got:e}, the instruction gives {want:e}"
+            );
+            checked += 1;
+            let naive = (f64::from(x) * f64::from(y) + f64::from(z)) as f32;
+            if naive.to_bits() != want.to_bits() && !want.is_nan() {
+                double_roundings += 1;
+            }
+        };
+        // Random bit patterns: every exponent, overflow, underflow, infinities.
+        for _ in 0..1_000_000 {
+            let (x, y, z) = (
+                random_f32(&mut state),
+                random_f32(&mut state),
+                random_f32(&mut state),
+            );
+            check(x, y, z);
+        }
+        // Sums of the size the controller makes, with cancellation.
+        for _ in 0..1_000_000 {
+            let f = |s: &mut u64| (random_f32(s).to_bits() % 2_000_000) as f32 / 1e6 - 1.0;
+            let (x, y) = (f(&mut state), f(&mut state));
+            let z = -(x * y) + f(&mut state) * 1e-6;
+            check(x, y, z);
+        }
+        // The double-rounding cases: x·y = 2^(e−24)·(1 − 2^−2k) or
+        // (1 + 2^−k)², z of odd or even significand, so that the f64 sum
+        // lands on an f32 midpoint and the tie must not break to even.
+        for k in 12..=23 {
+            let small = 2f32.powi(-k);
+            for bits in (0x3f80_0000u32..0x3f80_0000 + 4096).chain(0x3fff_f000..0x4000_0000) {
+                let z = f32::from_bits(bits);
+                for e in [-30, -10, 0, 20, 60] {
+                    let z = z * 2f32.powi(e);
+                    let unit = 2f32.powi(e - 24);
+                    for (a, b) in [(1.0 + small, 1.0 - small), (1.0 + small, 1.0 + small)] {
+                        for sign in [1.0f32, -1.0] {
+                            check(a * unit * sign, b, z);
+                            check(a * unit * sign, b, -z);
+                        }
+                    }
+                }
+            }
+        }
+        if hardware_fma(1.0, 1.0, 1.0).is_some() {
+            assert!(checked > 3_000_000, "{checked}");
+            assert!(
+                double_roundings > 1000,
+                "the midpoint cases were not reached: {double_roundings}"
+            );
+        } else {
+            eprintln!("note: no FMA instruction on this CPU; fma_f32 was not compared");
+        }
+    }
 
     /// `count` arguments evenly over `[lo, hi]`, plus every f32 in `[lo, hi]`
     /// at a stride of `stride` bit patterns (dense near 0, where f32s are).

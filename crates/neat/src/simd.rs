@@ -13,6 +13,8 @@
 //! [`SubstrateController::activate_batch`]: crate::hyperneat::SubstrateController::activate_batch
 
 use vivae_simd::LevelSetting;
+
+use crate::precision::fma_f32;
 pub use vivae_simd::{SimdLevel, available, detected};
 
 /// This library's level (vivae-sim keeps its own).
@@ -35,8 +37,10 @@ pub fn set_level(wanted: SimdLevel) -> SimdLevel {
 ///
 /// Implemented by zero-sized tokens: a token of a level above the baseline
 /// can only be made on a CPU that supports it, which is what makes its
-/// (safe) methods sound. Only separately rounded `mul` and `add` are offered:
-/// no fused multiply-add, so every level computes the same bits.
+/// (safe) methods sound. `mul` and `add` are separately rounded; the one
+/// fused operation, [`Simd::accumulate`] in f32, is the IEEE 754 fused
+/// multiply-add at every level (the instruction, or `fma_f32` in software),
+/// so every level computes the same bits.
 pub(crate) trait Simd<E = f64>: Copy {
     /// A vector of `LANES` elements.
     type V: Copy;
@@ -54,6 +58,13 @@ pub(crate) trait Simd<E = f64>: Copy {
     fn add(self, a: Self::V, b: Self::V) -> Self::V;
     /// Lane-wise `a · b`.
     fn mul(self, a: Self::V, b: Self::V) -> Self::V;
+    /// Lane-wise `acc + w · v` by the element type's accumulation rule:
+    /// separately rounded in f64 (the exact precision's bits), fused — one
+    /// rounding, IEEE 754 fusedMultiplyAdd — in f32 (the fast precision).
+    #[inline(always)]
+    fn accumulate(self, acc: Self::V, w: Self::V, v: Self::V) -> Self::V {
+        self.add(acc, self.mul(w, v))
+    }
 }
 
 /// The baseline level: SSE2 on x86_64 (part of the architecture), plain
@@ -127,7 +138,7 @@ impl Simd for Baseline {
 #[cfg(target_arch = "x86_64")]
 macro_rules! x86_f32 {
     ($token:ty, $v:ty, $lanes:literal, $tile:literal, $feature:literal,
-     $set1:ident, $loadu:ident, $storeu:ident, $add:ident, $mul:ident) => {
+     $set1:ident, $loadu:ident, $storeu:ident, $add:ident, $mul:ident, $fused:path) => {
         // SAFETY (every `unsafe` block of this impl): the token exists only
         // when the CPU supports `$feature` (the baseline's SSE2 always);
         // loads and stores go through slices checked to hold `$lanes` f32.
@@ -162,8 +173,38 @@ macro_rules! x86_f32 {
                 // SAFETY: see the impl: the level's instructions are supported.
                 unsafe { std::arch::x86_64::$mul(a, b) }
             }
+            #[inline(always)]
+            fn accumulate(self, acc: $v, w: $v, v: $v) -> $v {
+                // SAFETY: see the impl: the level's instructions are supported.
+                unsafe { $fused(w, v, acc) }
+            }
         }
     };
+}
+
+/// `a · b + c` in four f32 lanes with one rounding each ([`fma_f32`]): SSE2
+/// has no fused multiply-add.
+///
+/// # Safety
+/// None beyond SSE2, part of x86_64 (the signature matches the intrinsics').
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+unsafe fn fused_sse2(
+    a: std::arch::x86_64::__m128,
+    b: std::arch::x86_64::__m128,
+    c: std::arch::x86_64::__m128,
+) -> std::arch::x86_64::__m128 {
+    use std::arch::x86_64::*;
+    let (mut x, mut y, mut z) = ([0.0f32; 4], [0.0f32; 4], [0.0f32; 4]);
+    // SAFETY: each array holds 4 f32; SSE2 is part of x86_64.
+    unsafe {
+        _mm_storeu_ps(x.as_mut_ptr(), a);
+        _mm_storeu_ps(y.as_mut_ptr(), b);
+        _mm_storeu_ps(z.as_mut_ptr(), c);
+    }
+    let r: [f32; 4] = std::array::from_fn(|i| fma_f32(x[i], y[i], z[i]));
+    // SAFETY: as above.
+    unsafe { _mm_loadu_ps(r.as_ptr()) }
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -177,7 +218,8 @@ x86_f32!(
     _mm_loadu_ps,
     _mm_storeu_ps,
     _mm_add_ps,
-    _mm_mul_ps
+    _mm_mul_ps,
+    fused_sse2
 );
 
 #[cfg(not(target_arch = "x86_64"))]
@@ -205,6 +247,10 @@ impl Simd<f32> for Baseline {
     fn mul(self, a: Self::V, b: Self::V) -> Self::V {
         std::array::from_fn(|i| a[i] * b[i])
     }
+    #[inline(always)]
+    fn accumulate(self, acc: Self::V, w: Self::V, v: Self::V) -> Self::V {
+        std::array::from_fn(|i| fma_f32(w[i], v[i], acc[i]))
+    }
 }
 
 /// The AVX2 and AVX-512F tokens.
@@ -219,15 +265,17 @@ pub(crate) mod x86 {
     pub(crate) struct Avx2(());
 
     impl Avx2 {
-        /// The token, if this CPU supports AVX2.
+        /// The token, if this CPU supports AVX2 and FMA (every AVX2 CPU of
+        /// Intel and AMD has both; the fast precision's sums need the FMA).
         #[inline]
         pub(crate) fn new() -> Option<Avx2> {
-            is_x86_feature_detected!("avx2").then_some(Avx2(()))
+            (is_x86_feature_detected!("avx2") && is_x86_feature_detected!("fma"))
+                .then_some(Avx2(()))
         }
     }
 
     // SAFETY (every `unsafe` block of this impl): an `Avx2` token exists only
-    // when `is_x86_feature_detected!("avx2")` held, so the AVX intrinsics are
+    // when `is_x86_feature_detected!("avx2")` (and "fma") held, so the AVX intrinsics are
     // supported; loads and stores go through slices checked to hold 4 f64.
     impl Simd for Avx2 {
         type V = __m256d;
@@ -321,7 +369,8 @@ pub(crate) mod x86 {
         _mm256_loadu_ps,
         _mm256_storeu_ps,
         _mm256_add_ps,
-        _mm256_mul_ps
+        _mm256_mul_ps,
+        _mm256_fmadd_ps
     );
     x86_f32!(
         Avx512,
@@ -333,7 +382,8 @@ pub(crate) mod x86 {
         _mm512_loadu_ps,
         _mm512_storeu_ps,
         _mm512_add_ps,
-        _mm512_mul_ps
+        _mm512_mul_ps,
+        _mm512_fmadd_ps
     );
 }
 

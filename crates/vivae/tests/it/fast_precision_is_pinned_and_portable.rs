@@ -12,7 +12,7 @@ use crate::common::{DETERMINISTIC_FILES, fnv1a_from, read, scratch};
 /// FNV-1a 64 of `generations.csv`, `population.csv` and `champion.json` of
 /// `vivae evolve --generations 12 --seed 2 --precision fast` (hashed as
 /// `short_run_matches_pinned_hash` hashes the exact run).
-const PINNED_FAST: u64 = 0x8da1_ddde_ff33_e23c;
+const PINNED_FAST: u64 = 0x3526_b331_f07a_e072;
 
 /// The exact run's pinned hash (`short_run_matches_pinned_hash`).
 const PINNED_EXACT: u64 = 0x8b3b_eb74_273b_9cda;

@@ -879,16 +879,19 @@ mod tests {
         }
     }
 
-    /// The update equation in f32, one neuron at a time: what fast precision computes.
+    /// The update equation in f32 with fused multiply-adds, one neuron at a
+    /// time: what fast precision computes.
     fn reference_step_f32(c: &SubstrateController, x: &[f64], y: &mut Vec<f32>) {
         let next: Vec<f32> = (0..c.num_neurons())
             .map(|i| {
+                // Each term fused: one rounding per `+= w·x`.
+                let fma = crate::precision::fma_f32;
                 let mut a = c.biases()[i] as f32;
                 for (j, &v) in x.iter().enumerate() {
-                    a += c.input_weight(j, i) as f32 * v as f32;
+                    a = fma(c.input_weight(j, i) as f32, v as f32, a);
                 }
                 for (k, &v) in y.iter().enumerate() {
-                    a += c.recurrent_weight(k, i) as f32 * v;
+                    a = fma(c.recurrent_weight(k, i) as f32, v, a);
                 }
                 crate::precision::bipolar_sigmoid_f32(a)
             })

@@ -110,8 +110,9 @@ impl<E: Element> Kernel<'_, E> {
 }
 
 /// Defines `$name`: [`step_body`] compiled with the target feature
-/// `$feature` for the token `$token` (no FMA: the same bits as the baseline),
-/// one definition for every level above the baseline.
+/// `$feature` for the token `$token` (the f64 sums separately rounded, the
+/// f32 ones fused: the same bits as the baseline), one definition for every
+/// level above the baseline.
 macro_rules! step_at_level {
     ($name:ident, $feature:literal, $token:ident) => {
         #[doc = concat!("[`step_body`] compiled with ", $feature, ".")]
@@ -136,14 +137,15 @@ macro_rules! step_at_level {
 }
 
 step_at_level!(step_avx512, "avx512f", Avx512);
-step_at_level!(step_avx2, "avx2", Avx2);
+step_at_level!(step_avx2, "avx2,fma", Avx2);
 
 /// One step of all robots: neuron groups of two vectors (one for the last
 /// vector of a column), robots in tiles of up to `S::MAX_TILE`.
 ///
 /// Every neuron's sum is `bias`, then `+= w·x` for each input in order, then
 /// for each neuron in order — the update equation's order, whatever the
-/// vector width or the tiling, so every level gives the same bits.
+/// vector width or the tiling, so every level gives the same bits (each
+/// `+= w·x` separately rounded in f64, one fused multiply-add in f32).
 #[inline(always)]
 fn step_body<E: Element, S: Simd<E>>(
     s: S,
@@ -256,7 +258,7 @@ fn tile<E: Element, S: Simd<E>, const RT: usize, const NB: usize>(
         for r in 0..RT {
             let v = s.splat(xs[r][j]);
             for b in 0..NB {
-                sum[r][b] = s.add(sum[r][b], s.mul(w[b], v));
+                sum[r][b] = s.accumulate(sum[r][b], w[b], v);
             }
         }
     }
@@ -265,7 +267,7 @@ fn tile<E: Element, S: Simd<E>, const RT: usize, const NB: usize>(
         for r in 0..RT {
             let v = s.splat(ys[r][j]);
             for b in 0..NB {
-                sum[r][b] = s.add(sum[r][b], s.mul(w[b], v));
+                sum[r][b] = s.accumulate(sum[r][b], w[b], v);
             }
         }
     }
