@@ -26,7 +26,10 @@ bench() {
 
 echo "== machine"
 grep -m1 "model name" /proc/cpuinfo
-grep -o -m1 -w "avx512f\|avx2" /proc/cpuinfo | head -1 | sed 's/^/widest vector level: /'
+# The widest level the CPU has (grep -o would print whichever flag comes first).
+for level in avx512f avx2; do
+    if grep -qw "$level" /proc/cpuinfo; then echo "widest vector level: $level"; break; fi
+done
 uptime
 
 echo "== whole default run, 2 threads (wall seconds)"

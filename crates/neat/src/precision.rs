@@ -7,9 +7,11 @@
 //! f32 and squashes with [`bipolar_sigmoid_f32`]: twice the lanes per
 //! vector and half the bytes per weight, at a stated loss of accuracy (see
 //! [`exp_f32`] and [`bipolar_sigmoid_f32`]). Both are portable: separately
-//! rounded IEEE add, multiply and divide only (no fused multiply-add, no
-//! platform libm), the same operations lane by lane at every vector width,
-//! so a fast run gives the same bits on every CPU and at every
+//! rounded IEEE add, multiply and divide, and in fast precision the neuron
+//! sums' fused multiply-add ([`fma_f32`]: rounded once, so the instruction
+//! and the software give the same bits); no platform libm, the same
+//! operations lane by lane at every vector width, so a fast run gives the
+//! same bits on every CPU and at every
 //! [`SimdLevel`](crate::simd::SimdLevel) — only different bits from an
 //! exact run.
 

@@ -5,7 +5,9 @@
 //! compiled three times: for the baseline x86_64 (SSE2), with AVX2 and with
 //! AVX-512F enabled. All three perform the same IEEE operations in the same
 //! order per value (vectorised only across independent neurons, robots or
-//! queries; no fused multiply-add is enabled), so they give the same bits; the
+//! queries; no separate multiply and add is ever fused, and the one fused
+//! operation, the fast precision's neuron-sum multiply-add ([`fma_f32`] in
+//! software), is fused at every level), so they give the same bits; the
 //! level only changes speed. The active level starts as the best the CPU
 //! supports and can be lowered (e.g. to test that the bits really agree).
 //! The levels and the CPU detection are vivae-simd's, shared with vivae-sim.

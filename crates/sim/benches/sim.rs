@@ -106,6 +106,39 @@ fn read_5_robots_32x96_surface_sensors(bencher: Bencher) {
     surface_reads(bencher, 32, 96);
 }
 
+/// [`surface_reads`] in single precision (`SurfaceGrid::read_single`, the
+/// fast precision's read): twice the lanes per vector.
+fn surface_reads_single(bencher: Bencher, rings: usize, angles: usize) {
+    let grid = SurfaceSensors {
+        rings,
+        angles,
+        ..Default::default()
+    }
+    .grid();
+    let worlds = driven_worlds();
+    let n = worlds[0].robots().len();
+    let mut buf = vec![0.0f32; grid.len()];
+    let mut k = 0;
+    bencher.counter(ItemsCount::new(n)).bench_local(|| {
+        let w = &worlds[k % worlds.len()];
+        k += 1;
+        for i in 0..n {
+            grid.read_single(black_box(w), i, &mut buf);
+            black_box(&mut buf);
+        }
+    });
+}
+
+#[divan::bench]
+fn read_5_robots_3x5_surface_sensors_f32(bencher: Bencher) {
+    surface_reads_single(bencher, 3, 5);
+}
+
+#[divan::bench]
+fn read_5_robots_32x96_surface_sensors_f32(bencher: Bencher) {
+    surface_reads_single(bencher, 32, 96);
+}
+
 /// The 5 robots' 8 distance rays alone (no step), at the same 16 moments' poses.
 #[divan::bench]
 fn read_5_robots_8_distance_sensors(bencher: Bencher) {
