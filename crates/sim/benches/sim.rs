@@ -2,7 +2,8 @@
 
 use divan::{Bencher, black_box, counter::ItemsCount};
 use vivae_sim::{
-    DistanceSensors, LoadOptions, PhysicsParams, Scenario, Sensor, SurfaceSensors, World,
+    DistanceSensors, LoadOptions, PhysicsParams, Scenario, Sensor, SurfaceGrid, SurfaceSensors,
+    World,
 };
 
 fn main() {
@@ -68,9 +69,15 @@ fn driven_worlds() -> Vec<World> {
 }
 
 /// Surface sensors alone (no step): each of 5 robots reads `rings × angles`
-/// sensors, at poses taken from 16 moments of a driven run so that the
-/// look-ups are not all the same cells.
-fn surface_reads(bencher: Bencher, rings: usize, angles: usize) {
+/// sensors with `read` into a buffer of `T` (f64 for `SurfaceGrid::read`,
+/// f32 for `read_single`, the fast precision's), at poses taken from 16
+/// moments of a driven run so that the look-ups are not all the same cells.
+fn surface_reads_with<T: Copy + Default>(
+    bencher: Bencher,
+    rings: usize,
+    angles: usize,
+    read: impl Fn(&SurfaceGrid, &World, usize, &mut [T]),
+) {
     let grid = SurfaceSensors {
         rings,
         angles,
@@ -79,15 +86,30 @@ fn surface_reads(bencher: Bencher, rings: usize, angles: usize) {
     .grid();
     let worlds = driven_worlds();
     let n = worlds[0].robots().len();
-    let mut buf = vec![0.0; grid.len()];
+    let mut buf = vec![T::default(); grid.len()];
     let mut k = 0;
     bencher.counter(ItemsCount::new(n)).bench_local(|| {
         let w = &worlds[k % worlds.len()];
         k += 1;
         for i in 0..n {
-            grid.read(black_box(w), i, &mut buf);
+            read(&grid, black_box(w), i, &mut buf);
             black_box(&mut buf);
         }
+    });
+}
+
+/// `SurfaceGrid::read` (f64) of `rings × angles` sensors for each of 5 robots.
+fn surface_reads(bencher: Bencher, rings: usize, angles: usize) {
+    surface_reads_with(bencher, rings, angles, |g, w, i, out: &mut [f64]| {
+        g.read(w, i, out)
+    });
+}
+
+/// [`surface_reads`] in single precision (`SurfaceGrid::read_single`, the
+/// fast precision's read): twice the lanes per vector.
+fn surface_reads_single(bencher: Bencher, rings: usize, angles: usize) {
+    surface_reads_with(bencher, rings, angles, |g, w, i, out: &mut [f32]| {
+        g.read_single(w, i, out)
     });
 }
 
@@ -104,29 +126,6 @@ fn read_5_robots_20x60_surface_sensors(bencher: Bencher) {
 #[divan::bench]
 fn read_5_robots_32x96_surface_sensors(bencher: Bencher) {
     surface_reads(bencher, 32, 96);
-}
-
-/// [`surface_reads`] in single precision (`SurfaceGrid::read_single`, the
-/// fast precision's read): twice the lanes per vector.
-fn surface_reads_single(bencher: Bencher, rings: usize, angles: usize) {
-    let grid = SurfaceSensors {
-        rings,
-        angles,
-        ..Default::default()
-    }
-    .grid();
-    let worlds = driven_worlds();
-    let n = worlds[0].robots().len();
-    let mut buf = vec![0.0f32; grid.len()];
-    let mut k = 0;
-    bencher.counter(ItemsCount::new(n)).bench_local(|| {
-        let w = &worlds[k % worlds.len()];
-        k += 1;
-        for i in 0..n {
-            grid.read_single(black_box(w), i, &mut buf);
-            black_box(&mut buf);
-        }
-    });
 }
 
 #[divan::bench]

@@ -428,32 +428,14 @@ impl SurfaceGrid {
     }
 }
 
+/// The worlds and levels the surface reads are tested on, f64 and f32 alike.
 #[cfg(test)]
-mod tests {
-    use proptest::prelude::*;
-
-    use super::*;
+pub(super) mod fixtures {
     use crate::simd::{SimdLevel, detected};
-    use crate::{LoadOptions, PhysicsParams, Scenario};
+    use crate::{LoadOptions, PhysicsParams, Scenario, World};
 
-    /// The read as it was before the vector paths: the reference every level must match.
-    fn reference(g: &SurfaceGrid, world: &World, i: usize, out: &mut [f64]) {
-        let (p, ahead, right) = frame(world, i);
-        let st = &*world.statics;
-        let (ras, readings) = (st.scenario.raster(), &*st.readings);
-        let (inv, lim) = (st.inv_cell, st.limit);
-        let (base, ax, rx) = (p * inv, ahead * inv, right * inv);
-        for (o, v) in g.offsets.iter().zip(out.iter_mut()) {
-            let c = base + ax * o.x + rx * o.y;
-            *v = if (c.x >= 0.0) & (c.y >= 0.0) & (c.x < lim.x) & (c.y < lim.y) {
-                readings[ras.get_in_arena(c.x as i32 as usize, c.y as i32 as usize) as usize]
-            } else {
-                0.0
-            };
-        }
-    }
-
-    fn levels() -> Vec<SimdLevel> {
+    /// Every level this CPU runs.
+    pub(in crate::sensors) fn levels() -> Vec<SimdLevel> {
         [SimdLevel::Scalar, SimdLevel::Avx2, SimdLevel::Avx512]
             .into_iter()
             .filter(|&l| l <= detected())
@@ -462,7 +444,7 @@ mod tests {
 
     /// roads.svg, and an arena of 20 sand strips of different friction (more than
     /// 16 materials: the look-up that gathers readings) on a 0.75 px raster.
-    fn worlds() -> Vec<World> {
+    pub(in crate::sensors) fn worlds() -> Vec<World> {
         let roads =
             Scenario::from_svg(crate::ROADS_SVG, "roads.svg", &LoadOptions::default()).unwrap();
         let mut strips = String::from(
@@ -488,6 +470,31 @@ mod tests {
             .iter()
             .map(|sc| World::new(sc, &PhysicsParams::default()).unwrap())
             .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use proptest::prelude::*;
+
+    use super::fixtures::{levels, worlds};
+    use super::*;
+
+    /// The read as it was before the vector paths: the reference every level must match.
+    fn reference(g: &SurfaceGrid, world: &World, i: usize, out: &mut [f64]) {
+        let (p, ahead, right) = frame(world, i);
+        let st = &*world.statics;
+        let (ras, readings) = (st.scenario.raster(), &*st.readings);
+        let (inv, lim) = (st.inv_cell, st.limit);
+        let (base, ax, rx) = (p * inv, ahead * inv, right * inv);
+        for (o, v) in g.offsets.iter().zip(out.iter_mut()) {
+            let c = base + ax * o.x + rx * o.y;
+            *v = if (c.x >= 0.0) & (c.y >= 0.0) & (c.x < lim.x) & (c.y < lim.y) {
+                readings[ras.get_in_arena(c.x as i32 as usize, c.y as i32 as usize) as usize]
+            } else {
+                0.0
+            };
+        }
     }
 
     fn same_bits(a: &[f64], b: &[f64]) -> bool {

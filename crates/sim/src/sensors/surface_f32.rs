@@ -291,8 +291,8 @@ mod tests {
     use proptest::prelude::*;
 
     use super::*;
-    use crate::simd::detected;
-    use crate::{LoadOptions, PhysicsParams, Scenario, Sensor, SurfaceSensors};
+    use crate::sensors::surface::fixtures::{levels, worlds};
+    use crate::{Sensor, SurfaceSensors};
 
     /// The f32 formula written out plainly: the reference every level must match.
     fn reference(g: &SurfaceGrid, world: &World, i: usize, out: &mut [f32]) {
@@ -312,43 +312,6 @@ mod tests {
                 0.0
             };
         }
-    }
-
-    fn levels() -> Vec<SimdLevel> {
-        [SimdLevel::Scalar, SimdLevel::Avx2, SimdLevel::Avx512]
-            .into_iter()
-            .filter(|&l| l <= detected())
-            .collect()
-    }
-
-    /// roads.svg, and 20 sand strips of different friction (more than 16
-    /// materials: the look-up that gathers readings) on a 0.75 px raster.
-    fn worlds() -> Vec<World> {
-        let roads =
-            Scenario::from_svg(crate::ROADS_SVG, "roads.svg", &LoadOptions::default()).unwrap();
-        let mut strips = String::from(
-            r#"<svg xmlns="http://www.w3.org/2000/svg" xmlns:inkscape="http://www.inkscape.org/namespaces/inkscape" width="203" height="101">"#,
-        );
-        for k in 0..20 {
-            strips += &format!(
-                r#"<rect id="s{k}" inkscape:label="Sand" data-friction="{}" x="{}" y="{}" width="9.5" height="80"/>"#,
-                1.0 + k as f64 * 0.4,
-                k * 10,
-                k % 3
-            );
-        }
-        strips +=
-            r#"<rect id="r" inkscape:label="Robot" x="94" y="44" width="12" height="12"/></svg>"#;
-        let opts = LoadOptions {
-            cell_size: 0.75,
-            ..Default::default()
-        };
-        let strips = Scenario::from_svg(&strips, "strips.svg", &opts).unwrap();
-        assert!(strips.materials().len() > 16);
-        [roads, strips]
-            .iter()
-            .map(|sc| World::new(sc, &PhysicsParams::default()).unwrap())
-            .collect()
     }
 
     fn same_bits(a: &[f32], b: &[f32]) -> bool {

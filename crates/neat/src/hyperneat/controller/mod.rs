@@ -406,16 +406,7 @@ impl SubstrateController {
         outputs: &mut [f64],
     ) {
         let robots = states.robots;
-        assert!(
-            states.n == self.n && states.stride == self.stride,
-            "batch state of another controller shape"
-        );
-        assert_eq!(
-            inputs.len(),
-            robots * self.num_inputs,
-            "controller input length"
-        );
-        assert_eq!(outputs.len(), robots * self.n, "controller output length");
+        self.check_batch(states, inputs.len(), outputs.len());
         match (&self.fast, &mut states.fast) {
             (None, None) => {
                 self.kernel()
@@ -424,14 +415,7 @@ impl SubstrateController {
             (Some(f), Some(fs)) => f.step(level, fs, inputs, &mut states.state, self.stride),
             _ => panic!("batch state of another controller precision"),
         }
-        if self.n > 0 {
-            for (out, y) in outputs
-                .chunks_exact_mut(self.n)
-                .zip(states.state.chunks_exact(self.stride))
-            {
-                out.copy_from_slice(&y[..self.n]);
-            }
-        }
+        self.copy_outputs(states, outputs);
     }
 
     /// [`activate_batch`](Self::activate_batch) with inputs in f32, as the
@@ -457,16 +441,7 @@ impl SubstrateController {
         outputs: &mut [f64],
     ) {
         let robots = states.robots;
-        assert!(
-            states.n == self.n && states.stride == self.stride,
-            "batch state of another controller shape"
-        );
-        assert_eq!(
-            inputs.len(),
-            robots * self.num_inputs,
-            "controller input length"
-        );
-        assert_eq!(outputs.len(), robots * self.n, "controller output length");
+        self.check_batch(states, inputs.len(), outputs.len());
         match (&self.fast, &mut states.fast) {
             (Some(f), Some(fs)) => f.step_single(level, fs, inputs, &mut states.state, self.stride),
             (None, None) => {
@@ -479,6 +454,26 @@ impl SubstrateController {
             }
             _ => panic!("batch state of another controller precision"),
         }
+        self.copy_outputs(states, outputs);
+    }
+
+    /// Panics unless `states` is this controller's shape and the input and
+    /// output lengths fit its robots.
+    fn check_batch(&self, states: &BatchState, inputs: usize, outputs: usize) {
+        assert!(
+            states.n == self.n && states.stride == self.stride,
+            "batch state of another controller shape"
+        );
+        assert_eq!(
+            inputs,
+            states.robots * self.num_inputs,
+            "controller input length"
+        );
+        assert_eq!(outputs, states.robots * self.n, "controller output length");
+    }
+
+    /// Each robot's new neuron states from `states` into `outputs`, robot after robot.
+    fn copy_outputs(&self, states: &BatchState, outputs: &mut [f64]) {
         if self.n > 0 {
             for (out, y) in outputs
                 .chunks_exact_mut(self.n)
