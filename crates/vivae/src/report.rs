@@ -94,45 +94,55 @@ pub fn finish_run(run: &Run) -> Result<RunSummary> {
         let task = &run.config().experiment.task;
         bad_input(format!("a {task} run has no trajectory figures"))
     })?;
-    let mut episodes = Vec::new();
-    for (generation, _, genome) in run.figure_genomes() {
-        let episode = trajectory_figure(
-            experiment,
-            genome,
-            &format!("Best of generation {generation}"),
-            &dir,
-            &format!("trajectories-gen{generation:03}"),
-        )?;
-        episodes.push((genome, episode));
-    }
     let champion = run.champion().ok_or(Error::NoChampion)?;
-    let episode = trajectory_figure(
-        experiment,
-        &champion.genome,
-        &format!("Champion (generation {})", champion.generation),
-        &dir,
-        "trajectories-champion",
-    )?;
-    let map_episodes = per_map_figures(run, &champion.genome, &dir)?;
-
-    let fitness = rundir::read_population_csv(&run.dir().join(files::POPULATION))?;
-    let convergence = figures::convergence::render(&fitness, &ConvergenceOptions::default())?;
-    write_figure(&dir, "convergence", &convergence.svg, &convergence.png)?;
-    strategy_figure(run, &dir)?;
-
-    let controller = experiment.robot_controller(&champion.genome)?;
-    let options = crate::report_html::network_options(
-        champion.generation,
-        champion.fitness,
-        run.config().hyperneat.amplitude,
+    // The network figure takes as long as all the others together: it is
+    // drawn on a second core meanwhile (each figure is its own files).
+    let (drawn, network) = rayon::join(
+        || -> Result<_> {
+            let mut episodes = Vec::new();
+            for (generation, _, genome) in run.figure_genomes() {
+                let episode = trajectory_figure(
+                    experiment,
+                    genome,
+                    &format!("Best of generation {generation}"),
+                    &dir,
+                    &format!("trajectories-gen{generation:03}"),
+                )?;
+                episodes.push((genome, episode));
+            }
+            let episode = trajectory_figure(
+                experiment,
+                &champion.genome,
+                &format!("Champion (generation {})", champion.generation),
+                &dir,
+                "trajectories-champion",
+            )?;
+            let map_episodes = per_map_figures(run, &champion.genome, &dir)?;
+            let fitness = rundir::read_population_csv(&run.dir().join(files::POPULATION))?;
+            let convergence =
+                figures::convergence::render(&fitness, &ConvergenceOptions::default())?;
+            write_figure(&dir, "convergence", &convergence.svg, &convergence.png)?;
+            strategy_figure(run, &dir)?;
+            Ok((episodes, episode, map_episodes))
+        },
+        || -> Result<_> {
+            let controller = experiment.robot_controller(&champion.genome)?;
+            let options = crate::report_html::network_options(
+                champion.generation,
+                champion.fitness,
+                run.config().hyperneat.amplitude,
+            );
+            let network = figures::network::render_robot(experiment, &controller, &options)?;
+            write_figure(&dir, "network", &network.svg, &network.png)?;
+            Ok(network.svg)
+        },
     );
-    let network = figures::network::render_robot(experiment, &controller, &options)?;
-    drop(controller);
-    write_figure(&dir, "network", &network.svg, &network.png)?;
+    let (episodes, episode, map_episodes) = drawn?;
+    let network_svg = network?;
     // The report shows the same episodes and network: reuse them rather than run them again.
     let mut reuse = crate::report_html::Reuse {
         episodes: episodes.iter().map(|(g, e)| (*g, e)).collect(),
-        network_svg: Some(network.svg),
+        network_svg: Some(network_svg),
         map_episodes: map_episodes.iter().map(|(_, e)| e).collect(),
     };
     reuse.episodes.push((&champion.genome, &episode));

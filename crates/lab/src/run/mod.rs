@@ -29,11 +29,11 @@ use crate::config::Config;
 use crate::error::{Error, Result};
 use crate::io::{bad_input, fnv1a, write_atomic};
 use crate::rundir::{
-    BestLine, Champion, Checkpoint, GenerationRecord, GenerationRow, POPULATION_HEADER, Progress,
-    RunLock, TIMING_HEADER, append, check_config_unchanged, check_csv_prefixes, copy_maps,
-    decode_checkpoint, files, fill_new_run, generations_header, latest_checkpoint, load_run,
-    population_rows, read_best_genomes, remove_abandoned_builds, remove_stale_temporaries,
-    truncate, truncate_lines, write_checkpoint,
+    BestLine, Champion, Checkpoint, CheckpointWriter, GenerationRecord, GenerationRow,
+    POPULATION_HEADER, Progress, RunLock, TIMING_HEADER, append, check_config_unchanged,
+    check_csv_prefixes, copy_maps, decode_checkpoint, files, fill_new_run, generations_header,
+    latest_checkpoint, load_run, population_rows, read_best_genomes, remove_abandoned_builds,
+    remove_stale_temporaries, truncate, truncate_lines, write_checkpoint,
 };
 use crate::tasks::driving::episode::Episode;
 use crate::tasks::driving::training::Training;
@@ -339,12 +339,19 @@ impl Run {
                 .map(|b| (b.generation, b.genome)),
             halt: (stop, &halt),
             on_generation,
+            writer: CheckpointWriter::default(),
+            champion_text: None,
         };
         let flag = if self.task.has_target() { &halt } else { stop };
         let criteria = StopCriteria::generations(total).or_interrupt(flag);
         let result = evolution.run_with(&criteria, &mut recorder);
+        // A run that stops writes its last checkpoint itself; one that
+        // fails may leave one under way, which must land (or say why not).
+        let written = recorder.writer.wait();
         self.search = evolution.into_strategy();
-        match result.map_err(driver_error)? {
+        let reason = result.map_err(driver_error)?;
+        written?;
+        match reason {
             StopReason::Interrupted if stop.load(Ordering::SeqCst) => Ok(Outcome::Interrupted),
             _ => Ok(Outcome::Finished),
         }
@@ -429,6 +436,10 @@ struct Recorder<'a, F> {
     /// either the user's or the target being reached).
     halt: (&'a AtomicBool, &'a AtomicBool),
     on_generation: F,
+    /// Writes the checkpoints of generations that do not stop the run.
+    writer: CheckpointWriter,
+    /// What this recorder last wrote to `champion.json`.
+    champion_text: Option<String>,
 }
 
 impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
@@ -464,7 +475,11 @@ impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
                 what: "champion",
                 reason: e.to_string(),
             })? + "\n";
-            write_atomic(&self.dir.join(files::CHAMPION), text.as_bytes())?;
+            // Most generations keep the champion: its file is synced only when it changes.
+            if self.champion_text.as_ref() != Some(&text) {
+                write_atomic(&self.dir.join(files::CHAMPION), text.as_bytes())?;
+                self.champion_text = Some(text);
+            }
         }
         self.progress.done = generation;
         (self.on_generation)(&record);
@@ -578,7 +593,15 @@ impl<F> Checkpointer<Search> for Recorder<'_, F> {
                 .generations_done
                 .is_multiple_of(self.config.run.checkpoint_interval)
         {
-            write_checkpoint(self.dir, self.config, self.progress, state.strategy)?;
+            if state.stopping.is_some() {
+                // The last checkpoint is on disk before the run returns.
+                self.writer.wait()?;
+                write_checkpoint(self.dir, self.config, self.progress, state.strategy)?;
+            } else {
+                let cp = Checkpoint::new(self.config, self.progress, state.strategy);
+                let keep = self.config.run.checkpoint_keep;
+                self.writer.start(self.dir.to_path_buf(), keep, cp)?;
+            }
             write_outputs(self.dir, self.config, state.strategy)?;
         }
         self.started = Instant::now();

@@ -209,10 +209,16 @@ pub(crate) fn write_checkpoint(
     search: &Search,
 ) -> Result<()> {
     let cp = Checkpoint::new(config, progress, search);
+    write_checkpoint_file(dir, config.run.checkpoint_keep, &cp)
+}
+
+/// Writes `cp` into the run directory `dir` (atomically) and prunes all but
+/// the newest `keep` checkpoints.
+pub(crate) fn write_checkpoint_file(dir: &Path, keep: usize, cp: &Checkpoint) -> Result<()> {
     let dir = dir.join(files::CHECKPOINTS);
-    let path = dir.join(format!("gen-{:06}.ckpt", progress.done));
-    write_atomic(&path, encode_checkpoint(&cp)?.as_bytes())?;
-    prune_checkpoints(&dir, config.run.checkpoint_keep)
+    let path = dir.join(format!("gen-{:06}.ckpt", cp.progress.done));
+    write_atomic(&path, encode_checkpoint(cp)?.as_bytes())?;
+    prune_checkpoints(&dir, keep)
 }
 
 impl Progress {

@@ -24,6 +24,7 @@ use crate::error::{Error, Result};
 use crate::io::{bad_input, fnv1a, load_scenario, read_text, safe_file_stem, write_atomic};
 use crate::tasks::maps::{TrainingMap, is_multi_map};
 
+mod background;
 mod champion;
 mod checkpoint;
 mod lifecycle;
@@ -31,6 +32,7 @@ mod maps;
 pub mod replace;
 mod rows;
 
+pub(crate) use background::CheckpointWriter;
 pub use champion::*;
 pub use checkpoint::*;
 pub use lifecycle::*;
