@@ -61,19 +61,9 @@ mod tests {
     use std::fs;
     use std::path::Path;
 
-    use vivae_neat::{GenomeSpec, NeatParams, Population};
-
     use super::*;
-    use crate::config::Config;
-    use crate::rundir::{Progress, checkpoint_names, decode_checkpoint, files};
-    use crate::search::Search;
-
-    /// The checkpoint of a fresh population after generation `done`.
-    fn checkpoint(config: &Config, search: &Search, done: u32) -> Checkpoint {
-        let mut progress = Progress::start(1);
-        progress.done = done;
-        Checkpoint::new(config, &progress, search)
-    }
+    use crate::rundir::checkpoint::tests::sample;
+    use crate::rundir::{checkpoint_names, decode_checkpoint, files};
 
     /// A fresh run folder named for the test.
     fn run_dir(name: &str, with_checkpoints: bool) -> PathBuf {
@@ -86,25 +76,16 @@ mod tests {
         dir
     }
 
-    fn search() -> Search {
-        let population =
-            Population::new(NeatParams::default(), GenomeSpec::plain(3, 2), 7).unwrap();
-        Search::of(population)
-    }
-
     fn names(dir: &Path) -> Vec<String> {
         checkpoint_names(fs::read_dir(dir.join(files::CHECKPOINTS)).unwrap())
     }
 
     #[test]
     fn background_checkpoints_land_in_order_and_are_pruned() {
-        let (config, search) = (Config::default(), search());
         let dir = run_dir("order", true);
         let mut writer = CheckpointWriter::default();
         for done in 1..=6 {
-            writer
-                .start(dir.clone(), 3, checkpoint(&config, &search, done))
-                .unwrap();
+            writer.start(dir.clone(), 3, sample(done)).unwrap();
         }
         writer.wait().unwrap();
         assert_eq!(
@@ -112,9 +93,7 @@ mod tests {
             ["gen-000004.ckpt", "gen-000005.ckpt", "gen-000006.ckpt"]
         );
         let path = dir.join(files::CHECKPOINTS).join("gen-000006.ckpt");
-        let back = decode_checkpoint(&path).unwrap();
-        assert_eq!(back.progress.done, 6);
-        assert_eq!(back.population, search.population().cloned());
+        assert_eq!(decode_checkpoint(&path).unwrap(), sample(6));
         // Nothing half-written is left behind.
         let all: Vec<_> = fs::read_dir(dir.join(files::CHECKPOINTS))
             .unwrap()
@@ -125,16 +104,11 @@ mod tests {
 
     #[test]
     fn a_failed_background_write_is_reported_and_stops_the_next_one() {
-        let (config, search) = (Config::default(), search());
         // No checkpoints folder: the write cannot create its file.
         let dir = run_dir("fails", false);
         let mut writer = CheckpointWriter::default();
-        writer
-            .start(dir.clone(), 3, checkpoint(&config, &search, 1))
-            .unwrap();
-        let e = writer
-            .start(dir.clone(), 3, checkpoint(&config, &search, 2))
-            .unwrap_err();
+        writer.start(dir.clone(), 3, sample(1)).unwrap();
+        let e = writer.start(dir.clone(), 3, sample(2)).unwrap_err();
         assert!(e.to_string().contains("gen-000001.ckpt"), "{e}");
         // The second was refused, not started: nothing is under way.
         writer.wait().unwrap();

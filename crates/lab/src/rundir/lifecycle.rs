@@ -124,7 +124,7 @@ pub(crate) fn fill_new_run(
         let init_cp = Checkpoint::new(config, progress, search);
         write_atomic(
             &dir.join(files::INIT_POPULATION),
-            encode_checkpoint(&init_cp)?.as_bytes(),
+            &encode_checkpoint(&init_cp)?,
         )?;
         config.experiment.init_population = files::INIT_POPULATION.into();
     }

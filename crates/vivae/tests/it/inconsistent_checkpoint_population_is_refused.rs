@@ -13,7 +13,8 @@ fn a_checksummed_but_inconsistent_population_is_refused() {
     let ckpt = run_dir.join("checkpoints/gen-000002.ckpt");
     let good = std::fs::read_to_string(&ckpt).unwrap();
     let (header, body) = good.split_once('\n').unwrap();
-    let magic = header.rsplit_once(' ').unwrap().0;
+    // What the program writes, with the checksum of the current format.
+    assert_eq!(good, vivae_lab::rundir::seal_checkpoint(body), "{header}");
 
     // Each edit keeps the JSON well formed; the checksum is recomputed.
     let edits: [(&str, &str, &str, &str); 3] = [
@@ -52,7 +53,7 @@ fn a_checksummed_but_inconsistent_population_is_refused() {
         };
         let edited = format!("{}{}{}", &body[..from], replacement, &body[to..]);
         assert_ne!(edited, body);
-        let text = format!("{magic} {:016x}\n{edited}", fnv1a(edited.as_bytes()));
+        let text = vivae_lab::rundir::seal_checkpoint(&edited);
         std::fs::write(&ckpt, &text).unwrap();
         let out = run(vivae()
             .args(["resume", "-q", "--generations", "3"])
