@@ -29,35 +29,55 @@ pub fn crossover<R: Rng + ?Sized>(
     params: &NeatParams,
     rng: &mut R,
 ) -> Genome {
+    let mut child = Genome {
+        nodes: Vec::new(),
+        links: Vec::new(),
+    };
+    crossover_into(a, fa, b, fb, params, rng, &mut child);
+    child
+}
+
+/// [`crossover`] into `child`, whatever it held (its memory is reused).
+pub(crate) fn crossover_into<R: Rng + ?Sized>(
+    a: &Genome,
+    fa: f64,
+    b: &Genome,
+    fb: f64,
+    params: &NeatParams,
+    rng: &mut R,
+    child: &mut Genome,
+) {
     let (fit, other) = if first_is_fitter(a, fa, b, fb) {
         (a, b)
     } else {
         (b, a)
     };
-    let mut links = Vec::with_capacity(fit.links.len());
+    let links = &mut child.links;
+    links.clear();
+    links.reserve(fit.links.len());
     let mut j = 0;
     for g in &fit.links {
         while j < other.links.len() && other.links[j].innovation < g.innovation {
             j += 1;
         }
         let matching = other.links.get(j).filter(|o| o.innovation == g.innovation);
-        let mut child = *g;
+        let mut gene = *g;
         let mut disabled = !g.enabled;
         if let Some(o) = matching {
             if rng.random_bool(0.5) {
-                child.weight = o.weight;
+                gene.weight = o.weight;
             }
             disabled |= !o.enabled;
         }
-        child.enabled = if disabled {
+        gene.enabled = if disabled {
             !rng.random_bool(params.disabled_inherit_probability)
         } else {
             true
         };
-        links.push(child);
+        links.push(gene);
     }
-    let mut nodes = fit.nodes.clone();
-    for n in &mut nodes {
+    child.nodes.clone_from(&fit.nodes);
+    for n in &mut child.nodes {
         if let Some(o) = other.node(n.id)
             && o.activation != n.activation
             && rng.random_bool(0.5)
@@ -65,7 +85,6 @@ pub fn crossover<R: Rng + ?Sized>(
             n.activation = o.activation;
         }
     }
-    Genome { nodes, links }
 }
 
 #[cfg(test)]

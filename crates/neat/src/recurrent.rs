@@ -21,14 +21,19 @@ pub struct RecurrentNetwork {
 impl RecurrentNetwork {
     /// Compiles a genome's enabled links (any topology) into a recurrent network.
     pub fn from_genome(genome: &Genome) -> RecurrentNetwork {
-        let mut net = RecurrentNetwork {
+        let mut net = RecurrentNetwork::empty();
+        net.recompile(genome);
+        net
+    }
+
+    /// A network of no nodes, to [`recompile`](Self::recompile) genomes into.
+    pub(crate) fn empty() -> RecurrentNetwork {
+        RecurrentNetwork {
             plan: Plan::default(),
             state: Vec::new(),
             next: Vec::new(),
             slots: Vec::new(),
-        };
-        net.recompile(genome);
-        net
+        }
     }
 
     /// Makes this network the network of `genome`, state cleared, reusing

@@ -3,8 +3,8 @@
 //! then all their activation functions at once, as vector lanes.
 
 use crate::activation::{Activation, apply_all};
+use crate::compile::{assert_io, copy_short, weighted_sum};
 use crate::genome::Genome;
-use crate::network::Network;
 use crate::recurrent::RecurrentNetwork;
 
 /// The recurrent networks of up to [`RecurrentLanes::capacity`] genomes,
@@ -15,27 +15,65 @@ use crate::recurrent::RecurrentNetwork;
 /// of dependent operations; side by side, the `exp`s of several genomes'
 /// networks share vector instructions. For tasks that step every network
 /// the same number of times (or mask the ones that are done).
+///
+/// The lanes' networks are held as one: every lane's slots in one array,
+/// every computed node's links in one list whose sources index that array.
+/// A step then walks the nodes of all lanes in one loop, with none of the
+/// per-network work (its arrays, its checks) that is most of a step of a
+/// network this small.
 #[derive(Debug, Clone)]
 pub struct RecurrentLanes {
-    /// One network per lane used so far; the first `used` hold the current genomes.
-    nets: Vec<RecurrentNetwork>,
     /// The most lanes.
     capacity: usize,
-    /// Lanes in use.
-    used: usize,
+    /// Where each used lane lives in the arrays below.
+    lanes: Vec<Lane>,
+    /// Compiles a genome (its plan is copied into the arrays below).
+    compiler: RecurrentNetwork,
+    /// Every used lane's slots (its inputs, then its computed nodes), lane after lane.
+    values: Vec<f64>,
+    /// Computed node `k`'s links are `starts[k]..starts[k + 1]` of `sources` and `weights`.
+    starts: Vec<u32>,
+    /// Each link's source: an index into `values`.
+    sources: Vec<u32>,
+    /// Each link's weight.
+    weights: Vec<f64>,
+    /// Every lane's output slots (indices into `values`), lane after lane.
+    outputs: Vec<u32>,
     /// The activation of every computed node of every used lane, lane after lane.
     acts: Vec<Activation>,
     /// Scratch: every computed node's sum, then its value, in `acts`' order.
     sums: Vec<f64>,
 }
 
+/// One lane's place in the arrays of [`RecurrentLanes`].
+#[derive(Debug, Clone, Copy)]
+struct Lane {
+    /// Its first slot in `values`.
+    slot0: usize,
+    /// Its inputs (the first slots).
+    inputs: usize,
+    /// Its computed nodes (the slots after the inputs; `acts[node0..]`).
+    computed: usize,
+    /// Its first computed node in `acts` and `sums`.
+    node0: usize,
+    /// Its first output in `outputs`.
+    out0: usize,
+    /// Its outputs.
+    outs: usize,
+}
+
 impl RecurrentLanes {
     /// Room for `capacity` genomes' networks (at least one).
     pub fn new(capacity: usize) -> RecurrentLanes {
         RecurrentLanes {
-            nets: Vec::new(),
             capacity: capacity.max(1),
-            used: 0,
+            lanes: Vec::new(),
+            compiler: RecurrentNetwork::empty(),
+            values: Vec::new(),
+            starts: vec![0],
+            sources: Vec::new(),
+            weights: Vec::new(),
+            outputs: Vec::new(),
             acts: Vec::new(),
             sums: Vec::new(),
         }
@@ -48,68 +86,87 @@ impl RecurrentLanes {
 
     /// Genomes held now.
     pub fn lanes(&self) -> usize {
-        self.used
+        self.lanes.len()
     }
 
     /// Makes lane `l` the network of `genomes[l]`, states cleared, reusing
     /// memory (panics with more genomes than [`RecurrentLanes::capacity`]).
     pub fn recompile<'g>(&mut self, genomes: impl IntoIterator<Item = &'g Genome>) {
-        self.used = 0;
+        self.lanes.clear();
+        self.values.clear();
+        self.starts.clear();
+        self.starts.push(0);
+        self.sources.clear();
+        self.weights.clear();
+        self.outputs.clear();
         self.acts.clear();
         for g in genomes {
-            assert!(self.used < self.capacity, "more genomes than lanes");
-            if let Some(net) = self.nets.get_mut(self.used) {
-                net.recompile(g);
-            } else {
-                self.nets.push(RecurrentNetwork::from_genome(g));
+            assert!(self.lanes.len() < self.capacity, "more genomes than lanes");
+            // The network `RecurrentNetwork` would step, moved into the shared arrays.
+            self.compiler.recompile(g);
+            let plan = &self.compiler.plan;
+            let slot0 = self.values.len();
+            let lane = Lane {
+                slot0,
+                inputs: plan.num_inputs,
+                computed: plan.acts.len(),
+                node0: self.acts.len(),
+                out0: self.outputs.len(),
+                outs: plan.output_slots.len(),
+            };
+            self.values.resize(slot0 + plan.slots(), 0.0);
+            for k in 0..plan.acts.len() {
+                let (sources, weights) = plan.links(k);
+                self.sources
+                    .extend(sources.iter().map(|&s| slot0 as u32 + s));
+                self.weights.extend_from_slice(weights);
+                self.starts.push(self.sources.len() as u32);
             }
-            self.acts.extend_from_slice(&self.nets[self.used].plan.acts);
-            self.used += 1;
+            self.acts.extend_from_slice(&plan.acts);
+            self.outputs
+                .extend(plan.output_slots.iter().map(|&s| slot0 as u32 + s));
+            self.lanes.push(lane);
         }
         self.sums.clear();
         self.sums.resize(self.acts.len(), 0.0);
     }
 
-    /// The network in lane `l`.
-    pub fn lane(&self, l: usize) -> &RecurrentNetwork {
-        &self.nets[..self.used][l]
-    }
-
-    /// Clears the state of lane `l` (as [`Network::reset`] on its network).
+    /// Clears the state of lane `l` (as [`Network::reset`](crate::Network::reset) on its network).
     pub fn reset_lane(&mut self, l: usize) {
-        self.nets[..self.used][l].reset();
+        let lane = self.lanes[l];
+        self.values[lane.slot0..][..lane.inputs + lane.computed].fill(0.0);
     }
 
     /// Clears every lane's state.
     pub fn reset(&mut self) {
-        for net in &mut self.nets[..self.used] {
-            net.reset();
-        }
+        self.values.fill(0.0);
     }
 
     /// One step of every lane: lane `l` reads `inputs[l]` and writes
-    /// `outputs[l]`, exactly as its network's [`Network::activate`] would.
+    /// `outputs[l]`, exactly as its network's [`Network::activate`](crate::Network::activate) would.
     pub fn activate(&mut self, inputs: &[&[f64]], outputs: &mut [&mut [f64]]) {
         assert!(
-            inputs.len() == self.used && outputs.len() == self.used,
+            inputs.len() == self.lanes.len() && outputs.len() == self.lanes.len(),
             "one input and one output slice per lane"
         );
-        let mut at = 0;
-        let lanes = self.nets[..self.used].iter_mut().zip(inputs);
-        for ((net, input), output) in lanes.zip(outputs.iter()) {
-            let computed = net.plan.acts.len();
-            let sums = &mut self.sums[at..at + computed];
-            net.plan
-                .recurrent_sums(input, output.len(), &mut net.state, sums);
-            at += computed;
+        for ((lane, input), output) in self.lanes.iter().zip(inputs).zip(outputs.iter()) {
+            assert_io(input.len(), output.len(), lane.inputs, lane.outs);
+            copy_short(&mut self.values[lane.slot0..][..lane.inputs], input);
+        }
+        // Every lane's sums read the previous state, in each node's link order.
+        let values = &self.values;
+        for (k, sum) in self.sums.iter_mut().enumerate() {
+            let (s, e) = (self.starts[k] as usize, self.starts[k + 1] as usize);
+            *sum = weighted_sum(&self.sources[s..e], &self.weights[s..e], values);
         }
         apply_all(&self.acts, &mut self.sums);
-        let mut at = 0;
-        for (net, output) in self.nets[..self.used].iter_mut().zip(outputs) {
-            let computed = net.plan.acts.len();
-            let sums = &self.sums[at..at + computed];
-            net.plan.recurrent_finish(&mut net.state, sums, output);
-            at += computed;
+        for (lane, output) in self.lanes.iter().zip(outputs) {
+            let computed = &mut self.values[lane.slot0 + lane.inputs..][..lane.computed];
+            copy_short(computed, &self.sums[lane.node0..][..lane.computed]);
+            let slots = &self.outputs[lane.out0..][..lane.outs];
+            for (o, &s) in output.iter_mut().zip(slots) {
+                *o = self.values[s as usize];
+            }
         }
     }
 }
@@ -119,6 +176,7 @@ mod tests {
     use super::*;
     use crate::genome::GenomeSpec;
     use crate::innovation::InnovationTracker;
+    use crate::network::Network;
     use crate::params::NeatParams;
     use crate::test_genes::grown;
     use rand::{RngExt, SeedableRng};
