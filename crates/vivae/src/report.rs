@@ -98,44 +98,8 @@ pub fn finish_run(run: &Run) -> Result<RunSummary> {
     // The network figure takes as long as all the others together: it is
     // drawn on a second core meanwhile (each figure is its own files).
     let (drawn, network) = rayon::join(
-        || -> Result<_> {
-            let mut episodes = Vec::new();
-            for (generation, _, genome) in run.figure_genomes() {
-                let episode = trajectory_figure(
-                    experiment,
-                    genome,
-                    &format!("Best of generation {generation}"),
-                    &dir,
-                    &format!("trajectories-gen{generation:03}"),
-                )?;
-                episodes.push((genome, episode));
-            }
-            let episode = trajectory_figure(
-                experiment,
-                &champion.genome,
-                &format!("Champion (generation {})", champion.generation),
-                &dir,
-                "trajectories-champion",
-            )?;
-            let map_episodes = per_map_figures(run, &champion.genome, &dir)?;
-            let fitness = rundir::read_population_csv(&run.dir().join(files::POPULATION))?;
-            let convergence =
-                figures::convergence::render(&fitness, &ConvergenceOptions::default())?;
-            write_figure(&dir, "convergence", &convergence.svg, &convergence.png)?;
-            strategy_figure(run, &dir)?;
-            Ok((episodes, episode, map_episodes))
-        },
-        || -> Result<_> {
-            let controller = experiment.robot_controller(&champion.genome)?;
-            let options = crate::report_html::network_options(
-                champion.generation,
-                champion.fitness,
-                run.config().hyperneat.amplitude,
-            );
-            let network = figures::network::render_robot(experiment, &controller, &options)?;
-            write_figure(&dir, "network", &network.svg, &network.png)?;
-            Ok(network.svg)
-        },
+        || episode_figures(run, experiment, &champion, &dir),
+        || network_figure(run, experiment, &champion, &dir),
     );
     let (episodes, episode, map_episodes) = drawn?;
     let network_svg = network?;
@@ -170,6 +134,64 @@ pub fn finish_run(run: &Run) -> Result<RunSummary> {
             .map(|(l, e)| (l, e.fitness))
             .collect(),
     })
+}
+
+/// The episodes a finished run draws — the figure generations' bests and
+/// the champion, on every training map — then its convergence and strategy
+/// figures; returns the episodes (the report shows them too).
+#[allow(clippy::type_complexity)]
+fn episode_figures<'r>(
+    run: &'r Run,
+    experiment: &Episode,
+    champion: &Champion,
+    dir: &Path,
+) -> Result<(
+    Vec<(&'r Genome, EpisodeRecord)>,
+    EpisodeRecord,
+    Vec<(String, EpisodeRecord)>,
+)> {
+    let mut episodes = Vec::new();
+    for (generation, _, genome) in run.figure_genomes() {
+        let episode = trajectory_figure(
+            experiment,
+            genome,
+            &format!("Best of generation {generation}"),
+            dir,
+            &format!("trajectories-gen{generation:03}"),
+        )?;
+        episodes.push((genome, episode));
+    }
+    let episode = trajectory_figure(
+        experiment,
+        &champion.genome,
+        &format!("Champion (generation {})", champion.generation),
+        dir,
+        "trajectories-champion",
+    )?;
+    let map_episodes = per_map_figures(run, &champion.genome, dir)?;
+    let fitness = rundir::read_population_csv(&run.dir().join(files::POPULATION))?;
+    let convergence = figures::convergence::render(&fitness, &ConvergenceOptions::default())?;
+    write_figure(dir, "convergence", &convergence.svg, &convergence.png)?;
+    strategy_figure(run, dir)?;
+    Ok((episodes, episode, map_episodes))
+}
+
+/// The champion's network figure; returns its SVG (the report shows it too).
+fn network_figure(
+    run: &Run,
+    experiment: &Episode,
+    champion: &Champion,
+    dir: &Path,
+) -> Result<String> {
+    let controller = experiment.robot_controller(&champion.genome)?;
+    let options = crate::report_html::network_options(
+        champion.generation,
+        champion.fitness,
+        run.config().hyperneat.amplitude,
+    );
+    let network = figures::network::render_robot(experiment, &controller, &options)?;
+    write_figure(dir, "network", &network.svg, &network.png)?;
+    Ok(network.svg)
 }
 
 /// The strategy's own end-of-run figure, if it has one: a grid archive as
