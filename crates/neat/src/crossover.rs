@@ -29,20 +29,15 @@ pub fn crossover<R: Rng + ?Sized>(
     params: &NeatParams,
     rng: &mut R,
 ) -> Genome {
-    let mut child = Genome {
-        nodes: Vec::new(),
-        links: Vec::new(),
-    };
-    crossover_into(a, fa, b, fb, params, rng, &mut child);
+    let mut child = Genome::empty();
+    crossover_into([(a, fa), (b, fb)], params, rng, &mut child);
     child
 }
 
-/// [`crossover`] into `child`, whatever it held (its memory is reused).
+/// [`crossover`] of the two `(parent, fitness)` pairs into `child`,
+/// whatever it held (its memory is reused).
 pub(crate) fn crossover_into<R: Rng + ?Sized>(
-    a: &Genome,
-    fa: f64,
-    b: &Genome,
-    fb: f64,
+    [(a, fa), (b, fb)]: [(&Genome, f64); 2],
     params: &NeatParams,
     rng: &mut R,
     child: &mut Genome,

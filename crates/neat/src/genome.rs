@@ -184,6 +184,14 @@ impl TryFrom<RawGenome> for Genome {
 }
 
 impl Genome {
+    /// A genome of no genes, to be filled (breeding reuses genomes' memory).
+    pub(crate) fn empty() -> Genome {
+        Genome {
+            nodes: Vec::new(),
+            links: Vec::new(),
+        }
+    }
+
     /// The start genome: inputs fully connected to outputs with random
     /// weights, or through `params.start_hidden` hidden nodes.
     pub fn minimal<R: Rng + ?Sized>(

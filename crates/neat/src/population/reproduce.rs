@@ -256,15 +256,11 @@ impl Population {
             match b {
                 Some(b) => {
                     let mut c = recycled();
-                    crossover_into(
-                        &self.genomes[a],
-                        fitness[a],
-                        &self.genomes[b],
-                        fitness[b],
-                        params,
-                        rng,
-                        &mut c,
-                    );
+                    let parents = [
+                        (&self.genomes[a], fitness[a]),
+                        (&self.genomes[b], fitness[b]),
+                    ];
+                    crossover_into(parents, params, rng, &mut c);
                     if rng.random_bool(params.mate_only_probability) {
                         return c;
                     }
@@ -301,10 +297,9 @@ fn retire(old: Vec<Genome>) {
 
 /// A retired genome to overwrite, or a new empty one.
 fn recycled() -> Genome {
-    RETIRED.with_borrow_mut(Vec::pop).unwrap_or_else(|| Genome {
-        nodes: Vec::new(),
-        links: Vec::new(),
-    })
+    RETIRED
+        .with_borrow_mut(Vec::pop)
+        .unwrap_or_else(Genome::empty)
 }
 
 /// A copy of `g`, in a retired genome's memory when there is one.
@@ -365,6 +360,45 @@ mod tests {
     use super::*;
     use crate::genome::GenomeSpec;
     use crate::params::NeatParams;
+
+    #[test]
+    fn breeding_into_retired_genomes_is_invisible() {
+        let params = NeatParams {
+            population_size: 40,
+            ..NeatParams::plain_neat()
+        };
+        let spec = GenomeSpec::plain(3, 2);
+        fn fitness(g: &Genome, _: crate::EvalContext) -> f64 {
+            g.links().iter().map(|l| l.weight.abs()).sum::<f64>() + g.num_hidden() as f64
+        }
+        fn evolve(pops: &mut [Population]) {
+            for _ in 0..15 {
+                for p in pops.iter_mut() {
+                    p.evaluate(fitness);
+                    p.next_generation();
+                }
+            }
+        }
+        // Alone, on a thread whose pool starts empty.
+        let alone = std::thread::spawn({
+            let (params, spec) = (params.clone(), spec.clone());
+            move || {
+                let mut p = [Population::new(params, spec, 9).unwrap()];
+                evolve(&mut p);
+                p[0].to_json().unwrap()
+            }
+        })
+        .join()
+        .unwrap();
+        // Beside another population, each breeding into genomes the other retired.
+        let mut both = [
+            Population::new(params.clone(), spec.clone(), 9).unwrap(),
+            Population::new(params, spec, 4).unwrap(),
+        ];
+        evolve(&mut both);
+        assert_eq!(both[0].to_json().unwrap(), alone);
+        assert!(RETIRED.with_borrow(|r| !r.is_empty()));
+    }
 
     #[test]
     fn allocation_sums_exactly() {
