@@ -1,5 +1,5 @@
 //! The ONNX artifact: one step as an ONNX graph (opset [`OPSET`], IR version
-//! [`IR_VERSION`], every tensor f64), encoded by hand ([`super::proto`]):
+//! [`IR_VERSION`], every tensor f64), encoded by hand (`super::proto`):
 //! no dependency, and the file is a few `MatMul`, `Add`, `Exp` and
 //! element-wise nodes any runtime has.
 //!

@@ -39,7 +39,7 @@ pub struct TaskEntry {
     pub metric_names: &'static [&'static str],
     /// The columns it adds to `generations.csv`, each with its leading comma.
     pub generation_columns: &'static str,
-    /// Builds the task of `config` on `maps` (from [`maps::load`]).
+    /// Builds the task of `config` on `maps` (from [`crate::tasks::maps::load`]).
     pub build: BuildTask,
     /// For a task that runs on a driver of its own (two populations) rather
     /// than [`crate::run::Run`]: that driver. `None` for one population.
@@ -219,7 +219,7 @@ pub fn metric_names(config: &Config) -> &'static [&'static str] {
     entry(config.experiment.task.name()).map_or(&[], |e| e.metric_names)
 }
 
-/// The task of `config` on `maps` (from [`maps::load`]).
+/// The task of `config` on `maps` (from [`crate::tasks::maps::load`]).
 pub fn build(config: &Config, maps: &[TrainingMap]) -> Result<Box<dyn RunTask>> {
     let task = entry(config.experiment.task.name()).map_err(crate::io::bad_input)?;
     (task.build)(config, maps)

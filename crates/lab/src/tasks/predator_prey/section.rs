@@ -82,7 +82,7 @@ pub struct CoevolutionConfig {
     pub fixed_prey: String,
     /// The hunters' genomes: "neat" (plain NEAT networks; unset means it)
     /// or "hyperneat" (CPPNs decoded onto a substrate at the sensors'
-    /// angles, with the [hyperneat] settings).
+    /// angles, with the `[hyperneat]` settings).
     ///
     /// Example: "hyperneat".
     #[serde(skip_serializing_if = "SideController::is_neat")]
