@@ -419,7 +419,7 @@ pub fn write(dir: &Path) -> vivae_lab::Result<PathBuf> {
     write_reusing(dir, &Reuse::default())
 }
 
-/// [`write`], reusing what the end of a run computed already.
+/// [`write()`], reusing what the end of a run computed already.
 pub fn write_reusing(dir: &Path, reuse: &Reuse<'_>) -> vivae_lab::Result<PathBuf> {
     let html = build_reusing(dir, reuse)?;
     let path = dir.join(files::REPORT);

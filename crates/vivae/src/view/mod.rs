@@ -1,8 +1,8 @@
 //! `vivae view`: a local web server where robots drive live in the browser.
 //!
-//! The robots are simulated here, by the real [`Episode`] controller and
+//! The robots are simulated here, by the real [`Episode`](vivae_lab::tasks::driving::episode::Episode) controller and
 //! `vivae-sim` world, one simulation per open page, and streamed to the page
-//! over a WebSocket ([`session`]). The page is plain HTML/CSS/JS embedded in
+//! over a WebSocket (`session`). The page is plain HTML/CSS/JS embedded in
 //! the binary. The server answers only its own assets, a fixed list of the
 //! given run's files and the WebSocket; every other path is a 404. A run
 //! of a task with a page of its own ([`OwnPage`], in its program-side

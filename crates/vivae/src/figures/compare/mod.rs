@@ -10,7 +10,7 @@
 
 //!
 //! `runs` reads and groups the runs, `table` makes the numbers, `plot`
-//! draws the figure; [`run`] does all three for the command.
+//! draws the figure; [`run`](crate::figures::compare::run) does all three for the command.
 
 mod plot;
 mod runs;

@@ -7,7 +7,7 @@
 //!
 //! Above [`NetworkOptions::max_links`] expressed links (a few hundred) lines
 //! stop being readable and cost time and bytes per link, so [`render`] draws
-//! the receptive-field form of [`super::fields`] instead.
+//! the receptive-field form of `super::fields` instead.
 //!
 //! `polar` draws the dense controller's sheets, `es` an ES-HyperNEAT
 //! controller, `legend` the legend both share; this file chooses the form
