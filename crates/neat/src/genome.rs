@@ -150,11 +150,28 @@ pub struct LinkGene {
 ///
 /// Deserialising checks every invariant of [`Genome::check`] (through
 /// [`RawGenome`]), so a `Genome` read from JSON is always valid.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, PartialEq, Serialize, Deserialize)]
 #[serde(try_from = "RawGenome")]
 pub struct Genome {
     pub(crate) nodes: Vec<NodeGene>,
     pub(crate) links: Vec<LinkGene>,
+}
+
+/// Written out for `clone_from`, which reuses the target's gene arrays
+/// (breeding copies parents into retired genomes; the derived one would
+/// allocate anew).
+impl Clone for Genome {
+    fn clone(&self) -> Genome {
+        Genome {
+            nodes: self.nodes.clone(),
+            links: self.links.clone(),
+        }
+    }
+
+    fn clone_from(&mut self, source: &Genome) {
+        self.nodes.clone_from(&source.nodes);
+        self.links.clone_from(&source.links);
+    }
 }
 
 /// A genome's genes as read, not yet checked; `Genome::try_from` validates them.

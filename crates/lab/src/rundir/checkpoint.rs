@@ -166,10 +166,13 @@ pub fn fnv1a_words(bytes: &[u8]) -> u64 {
 /// `body` (a checkpoint's JSON) behind the header of the current format:
 /// the bytes of a checkpoint file (for tests and tools that edit one).
 pub fn seal_checkpoint(body: &str) -> String {
-    format!(
-        "{CHECKPOINT_MAGIC} {:016x}\n{body}",
-        fnv1a_words(body.as_bytes())
-    )
+    header(fnv1a_words(body.as_bytes())) + body
+}
+
+/// The header line of a current-format checkpoint whose body hashes to
+/// `checksum` (always the same length: the checksum has 16 digits).
+fn header(checksum: u64) -> String {
+    format!("{CHECKPOINT_MAGIC} {checksum:016x}\n")
 }
 
 pub(crate) fn encode_checkpoint(cp: &Checkpoint) -> Result<Vec<u8>> {
@@ -177,7 +180,7 @@ pub(crate) fn encode_checkpoint(cp: &Checkpoint) -> Result<Vec<u8>> {
     // it: the body is neither copied nor reallocated for the header.
     // The last checkpoint's size: the next one is about as large.
     static LAST_LEN: AtomicUsize = AtomicUsize::new(0);
-    let placeholder = format!("{CHECKPOINT_MAGIC} {:016x}\n", 0);
+    let placeholder = header(0);
     let mut out =
         Vec::with_capacity(LAST_LEN.load(Ordering::Relaxed).max(placeholder.len()) + 4096);
     out.extend_from_slice(placeholder.as_bytes());
@@ -185,9 +188,8 @@ pub(crate) fn encode_checkpoint(cp: &Checkpoint) -> Result<Vec<u8>> {
         what: "checkpoint",
         reason: e.to_string(),
     })?;
-    let hash = format!("{:016x}", fnv1a_words(&out[placeholder.len()..]));
-    let at = CHECKPOINT_MAGIC.len() + 1;
-    out[at..at + 16].copy_from_slice(hash.as_bytes());
+    let sealed = header(fnv1a_words(&out[placeholder.len()..]));
+    out[..placeholder.len()].copy_from_slice(sealed.as_bytes());
     LAST_LEN.store(out.len(), Ordering::Relaxed);
     Ok(out)
 }

@@ -305,8 +305,7 @@ fn recycled() -> Genome {
 /// A copy of `g`, in a retired genome's memory when there is one.
 fn copy_of(g: &Genome) -> Genome {
     let mut copy = recycled();
-    copy.nodes.clone_from(&g.nodes);
-    copy.links.clone_from(&g.links);
+    copy.clone_from(g);
     copy
 }
 

@@ -64,6 +64,17 @@ pub enum RobotStates {
     },
 }
 
+impl RobotStates {
+    /// The dense sheet's batched state (panics for another kind: the
+    /// controller that steps them made them, in [`Rollout::new`]).
+    fn polar(&mut self) -> &mut BatchState {
+        let RobotStates::Polar(states) = self else {
+            panic!("a polar controller steps polar states (Rollout::new built them)");
+        };
+        states
+    }
+}
+
 impl Drive for SubstrateController {
     fn num_inputs(&self) -> usize {
         Network::num_inputs(self)
@@ -78,10 +89,7 @@ impl Drive for SubstrateController {
     }
 
     fn step_robots(&self, states: &mut RobotStates, inputs: &[f64], outputs: &mut [f64]) {
-        let RobotStates::Polar(states) = states else {
-            panic!("a polar controller steps polar states (Rollout::new built them)");
-        };
-        self.activate_batch(states, inputs, outputs);
+        self.activate_batch(states.polar(), inputs, outputs);
     }
 
     fn single_inputs(&self) -> bool {
@@ -95,10 +103,7 @@ impl Drive for SubstrateController {
         _wide: &mut [f64],
         outputs: &mut [f64],
     ) {
-        let RobotStates::Polar(states) = states else {
-            panic!("a polar controller steps polar states (Rollout::new built them)");
-        };
-        self.activate_batch_single(states, inputs, outputs);
+        self.activate_batch_single(states.polar(), inputs, outputs);
     }
 }
 
