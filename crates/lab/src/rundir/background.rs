@@ -63,13 +63,12 @@ mod tests {
 
     use super::*;
     use crate::rundir::checkpoint::tests::sample;
+    use crate::rundir::tests::scratch;
     use crate::rundir::{checkpoint_names, decode_checkpoint, files};
 
     /// A fresh run folder named for the test.
     fn run_dir(name: &str, with_checkpoints: bool) -> PathBuf {
-        let dir = std::env::temp_dir().join(format!("vivae-writer-{name}-{}", std::process::id()));
-        let _ = fs::remove_dir_all(&dir);
-        fs::create_dir_all(&dir).unwrap();
+        let dir = scratch(name);
         if with_checkpoints {
             fs::create_dir(dir.join(files::CHECKPOINTS)).unwrap();
         }

@@ -80,10 +80,18 @@ pub mod files {
 mod tests {
     use super::*;
 
+    /// A fresh, empty folder for the test that names it `name` (unique
+    /// among this module's tests, which run side by side in one process).
+    pub(in crate::rundir) fn scratch(name: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("vivae-rundir-{name}-{}", std::process::id()));
+        let _ = fs::remove_dir_all(&dir);
+        fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
     /// `text` written as a file of a fresh folder, read by `read`.
     fn read_back<T>(name: &str, text: &str, read: impl Fn(&Path) -> Result<T>) -> Result<T> {
-        let dir = std::env::temp_dir().join(format!("vivae-rundir-{name}-{}", std::process::id()));
-        fs::create_dir_all(&dir).unwrap();
+        let dir = scratch(name);
         let path = dir.join(name);
         fs::write(&path, text).unwrap();
         let out = read(&path);

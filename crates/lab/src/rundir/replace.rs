@@ -248,13 +248,7 @@ fn remove_run_files(dir: &Path) {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn scratch(name: &str) -> PathBuf {
-        let dir = std::env::temp_dir().join(format!("vivae-replace-{name}-{}", std::process::id()));
-        let _ = fs::remove_dir_all(&dir);
-        fs::create_dir_all(&dir).unwrap();
-        dir
-    }
+    use crate::rundir::tests::scratch;
 
     /// A folder shaped like a run: config, a checkpoint, a figure.
     fn fake_run(dir: &Path) {

@@ -21,14 +21,9 @@ fn snapshot(dir: &Path) -> Vec<(String, Vec<u8>)> {
     .collect()
 }
 
-/// A checkpoint with a valid checksum over `body`.
+/// A checkpoint with a valid checksum over `body`, in the format the program writes.
 fn encode(body: &Value) -> Vec<u8> {
-    let body = serde_json::to_string(body).unwrap();
-    format!(
-        "vivae-checkpoint v1 {:016x}\n{body}",
-        fnv1a(body.as_bytes())
-    )
-    .into_bytes()
+    vivae_lab::rundir::seal_checkpoint(&serde_json::to_string(body).unwrap()).into_bytes()
 }
 
 /// Drops input node 4 (and its links) from a CPPN genome: 4 inputs instead of 5.

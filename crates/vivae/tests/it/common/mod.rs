@@ -201,8 +201,3 @@ pub fn fnv1a_from(h: u64, bytes: &[u8]) -> u64 {
         .iter()
         .fold(h, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3))
 }
-
-/// FNV-1a 64 of `bytes`: the checkpoint checksum.
-pub fn fnv1a(bytes: &[u8]) -> u64 {
-    fnv1a_from(0xcbf2_9ce4_8422_2325, bytes)
-}
