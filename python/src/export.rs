@@ -15,6 +15,7 @@ use vivae_lab::export::choose::{Chosen, Pick, choose};
 use vivae_lab::export::image::{Camera, Image, ImageSensors, drive_frames};
 use vivae_lab::export::{Exported, Format, write};
 use vivae_lab::search::files::Member;
+use vivae_neat::Precision;
 use vivae_sim::DVec2;
 
 use crate::errors;
@@ -49,16 +50,20 @@ fn chosen(
     who: (Option<u32>, Option<usize>, Option<usize>),
     sensors: Option<&str>,
     neurons: Option<&str>,
+    precision: Option<&str>,
 ) -> PyResult<Chosen> {
     let pick = pick(who.0, who.1, who.2)?;
     let (s, n) = (grid("sensors", sensors)?, grid("neurons", neurons)?);
-    choose(source, pick, s, n).map_err(errors::lab)
+    let precision = (precision.map(str::parse::<Precision>).transpose())
+        .map_err(|e| PyValueError::new_err(format!("precision: {e}")))?;
+    choose(source, pick, s, n, precision).map_err(errors::lab)
 }
 
 /// Writes a run's controller (as `vivae export`): `format` is "onnx", "c" or
-/// "json"; returns the files written (C: the .c file and its .h header).
+/// "json", `precision` "exact" or "fast" (default: the run's); returns the
+/// files written (C: the .c file and its .h header).
 #[pyfunction]
-#[pyo3(signature = (source, format, out, *, generation=None, elite=None, front=None, sensors=None, neurons=None))]
+#[pyo3(signature = (source, format, out, *, generation=None, elite=None, front=None, sensors=None, neurons=None, precision=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn export(
     source: PathBuf,
@@ -69,19 +74,27 @@ pub fn export(
     front: Option<usize>,
     sensors: Option<&str>,
     neurons: Option<&str>,
+    precision: Option<&str>,
 ) -> PyResult<Vec<String>> {
     let format: Format = format.parse().map_err(PyValueError::new_err)?;
-    let c = chosen(&source, (generation, elite, front), sensors, neurons)?;
+    let c = chosen(
+        &source,
+        (generation, elite, front),
+        sensors,
+        neurons,
+        precision,
+    )?;
     let exported = Exported::new(&c.episode, &c.controller, &c.description);
     let written = write(&exported, format, &out).map_err(errors::lab)?;
     Ok(written.iter().map(|p| p.display().to_string()).collect())
 }
 
 /// Records robot `robot` of a run's episode (every robot driven, as in
-/// evolution): its sensor readings `[steps, inputs]`, wheel commands
-/// `[steps, 2]` and poses `[steps, 3]` (x, y, heading in degrees).
+/// evolution; `precision` as in [`export`]): its sensor readings `[steps,
+/// inputs]`, wheel commands `[steps, 2]` and poses `[steps, 3]` (x, y,
+/// heading in degrees).
 #[pyfunction]
-#[pyo3(signature = (source, *, robot=0, steps=None, generation=None, elite=None, front=None, sensors=None, neurons=None))]
+#[pyo3(signature = (source, *, robot=0, steps=None, generation=None, elite=None, front=None, sensors=None, neurons=None, precision=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn record_episode<'py>(
     py: Python<'py>,
@@ -93,8 +106,15 @@ pub fn record_episode<'py>(
     front: Option<usize>,
     sensors: Option<&str>,
     neurons: Option<&str>,
+    precision: Option<&str>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let c = chosen(&source, (generation, elite, front), sensors, neurons)?;
+    let c = chosen(
+        &source,
+        (generation, elite, front),
+        sensors,
+        neurons,
+        precision,
+    )?;
     let steps = steps.unwrap_or(c.episode.steps());
     let rec = py
         .detach(|| vivae_lab::export::frames::record(&c.episode, &c.controller, robot, steps))
@@ -175,7 +195,7 @@ pub fn drive_image(
             "scale= and radius= must be positive numbers",
         ));
     }
-    let c = chosen(&source, (generation, elite, front), sensors, neurons)?;
+    let c = chosen(&source, (generation, elite, front), sensors, neurons, None)?;
     let images: Vec<Image> = frames.iter().map(frame).collect::<PyResult<_>>()?;
     let image_sensors = ImageSensors::new(&c.episode, None).map_err(errors::lab)?;
     let net = Exported::new(&c.episode, &c.controller, "").net;

@@ -2,7 +2,8 @@
 onnxruntime with vivae's wheel commands on a recorded episode (to 1e-9:
 ONNX's MatMul sums in the runtime's order and its Exp is the runtime's, not
 vivae's portable one, so the last bits may differ); the JSON artifact,
-stepped in plain Python in vivae's order, matches to the bit; and frames
+stepped in plain Python in vivae's order, matches to the bit, in either
+precision (fast: f32 with a fused multiply-add); and frames
 drive the controller as `vivae drive-image` does."""
 
 from __future__ import annotations
@@ -112,11 +113,105 @@ def test_the_json_artifact_steps_to_vivaes_bits(tmp_path):
         assert json_step(net, x, state) == w
 
 
+def fma_f32(x: float, y: float, z: float) -> float:
+    """vivae_neat::precision::fma_f32: x*y + z rounded once to f32."""
+    import struct
+
+    def f32(v: float) -> float:
+        with np.errstate(over="ignore"):
+            return float(np.float32(v))
+
+    def next_up(v: float) -> float:
+        (b,) = struct.unpack("<I", struct.pack("<f", v))
+        b = 1 if b & 0x7FFFFFFF == 0 else (b - 1 if b >> 31 else b + 1)
+        return struct.unpack("<f", struct.pack("<I", b))[0]
+
+    two128, big = 2.0**128, float(np.finfo(np.float32).max)
+    xy, zw = x * y, z
+    s = xy + zw
+    r = f32(s)
+    if r == s or s != s:
+        return r
+    inf = abs(r) == float("inf")
+    if inf:
+        other = -big if r < 0 else big
+        other64 = other
+    elif s > r:
+        other = next_up(r)
+        other64 = two128 if abs(other) == float("inf") else other
+    else:
+        other = -next_up(-r)
+        other64 = -two128 if abs(other) == float("inf") else other
+    lo, hi = (other64, two128 if s > 0 else -two128) if inf else (r, other64)
+    if s != (lo + hi) * 0.5 or abs(s) == float("inf"):
+        return r
+    b = s - xy
+    err = (xy - (s - b)) + (zw - b)
+    if err == 0.0:
+        return r
+    toward = (err < 0.0) == (s > 0.0) if inf else (err > 0.0) == (other64 > r)
+    return other if toward else r
+
+
+def exp_f32(x: np.float32) -> np.float32:
+    """vivae_neat::precision::exp_f32 (Cephes' expf), in float32 operations."""
+    f = np.float32
+    if x == x:
+        x = min(max(x, f(-87.0)), f(88.0))
+    shift = f(12582912.0)
+    kf = x * f(1.442695) + shift
+    k = kf - shift
+    r = x - k * f(0.6933594) - k * f(-2.1219444e-4)
+    q = f(1.9875691e-4)
+    for c in [1.3981999e-3, 8.333452e-3, 4.1665796e-2, 1.6666666e-1, 0.5]:
+        q = q * r + f(c)
+    y = q * (r * r) + r + f(1.0)
+    bits = (int(kf.view(np.uint32)) - (0x4B400000 - 127)) << 23 & 0xFFFFFFFF
+    return y * np.uint32(bits).view(np.float32)
+
+
+def json_step_fast(net: dict, x: list[float], state: list[float]) -> list[float]:
+    """One step of a fast controller as the JSON's `step` key says: f32 throughout."""
+    f = np.float32
+    ni, nxt = net["inputs"], list(state)
+    for k in net["order"]:
+        s = float(f(net["bias"][k]))
+        for l in range(net["starts"][k], net["starts"][k + 1]):
+            j = net["sources"][l]
+            v = x[j] if j < ni else state[j - ni]
+            s = fma_f32(float(f(net["weights"][l])), float(f(v)), s)
+        nxt[k] = float(f(2.0) / (f(1.0) + exp_f32(f(-4.9) * f(s))) - f(1.0))
+    state[:] = nxt
+    return [state[net["wheels"][0]], state[net["wheels"][1]]]
+
+
+def test_a_fast_json_artifact_steps_to_vivaes_fast_bits(tmp_path):
+    run = small_run(tmp_path)
+    out = tmp_path / "fast.json"
+    vivae.export(run, "json", out, precision="fast")
+    net = json.loads(out.read_text())["net"]
+    assert net["precision"] == "fast"
+    assert all(float(np.float32(w)) == w for w in net["weights"] + net["bias"])
+    rec = vivae.record_episode(run, robot=0, steps=200, precision="fast")
+    exact = vivae.record_episode(run, robot=0, steps=200)
+    assert np.all(rec["sensors"].astype(np.float32) == rec["sensors"]), "fast reads in f32"
+    assert np.any(rec["wheels"] != exact["wheels"]), "the two precisions give other bits"
+    state = [0.0] * net["nodes"]
+    for x, w in zip(rec["sensors"].tolist(), rec["wheels"].tolist()):
+        assert json_step_fast(net, x, state) == w
+    with pytest.raises(ValueError, match="precision"):
+        vivae.export(run, "json", out, precision="half")
+
+
 def test_c_export_writes_the_file_and_its_header(tmp_path):
     run = small_run(tmp_path)
     written = vivae.export(run, "c", tmp_path / "ctl.c", generation=2)
     assert written == [str(tmp_path / "ctl.c"), str(tmp_path / "ctl.h")]
-    assert "void vivae_step(const double *in, double *state, double *out);" in (tmp_path / "ctl.h").read_text()
+    header = (tmp_path / "ctl.h").read_text()
+    assert "typedef double vivae_real;" in header
+    assert "void vivae_step(const vivae_real *in, vivae_real *state, vivae_real *out);" in header
+    vivae.export(run, "c", tmp_path / "fast.c", precision="fast")
+    assert "typedef float vivae_real;" in (tmp_path / "fast.h").read_text()
     with pytest.raises(ValueError, match="generation 99"):
         vivae.export(run, "c", tmp_path / "x.c", generation=99)
     with pytest.raises(ValueError, match="onnx, c or json"):

@@ -332,6 +332,7 @@ def export(
     front: int | None = None,
     sensors: str | None = None,
     neurons: str | None = None,
+    precision: str | None = None,
 ) -> list[str]: ...
 def record_episode(
     source: _Path,
@@ -343,6 +344,7 @@ def record_episode(
     front: int | None = None,
     sensors: str | None = None,
     neurons: str | None = None,
+    precision: str | None = None,
 ) -> dict[str, Any]: ...
 def drive_image(
     source: _Path,

@@ -1,14 +1,19 @@
 //! The C artifact: one dependency-free C99 file with
-//! `void vivae_step(const double *in, double *state, double *out)` and a
-//! header with the sensor layout.
+//! `void vivae_step(const vivae_real *in, vivae_real *state, vivae_real *out)`
+//! and a header with the sensor layout; `vivae_real` is `double` for an
+//! exact controller and `float` for a fast one.
 //!
-//! The file computes vivae's step in the same f64 operations in the same
-//! order, with vivae's portable `exp` written out: compiled without
+//! The file computes vivae's step in the same operations in the same
+//! order, with vivae's portable `exp` written out (the f32 one, and the
+//! neuron sums' fused multiply-add, for a fast controller): compiled without
 //! contracting `a*b + c` into FMA (`-ffp-contract=off`; GCC and Clang do not
-//! contract on plain x86-64 anyway) on an IEEE machine evaluating doubles as
-//! doubles (`FLT_EVAL_METHOD == 0`: x86-64, AArch64), it gives vivae's bits.
+//! contract on plain x86-64 anyway) on an IEEE machine evaluating each type
+//! in itself (`FLT_EVAL_METHOD == 0`: x86-64, AArch64, Cortex-M with an
+//! FPU), it gives vivae's bits.
 
 use std::fmt::Write;
+
+use vivae_neat::Precision;
 
 use super::{Exported, SIGMOID_SLOPE};
 
@@ -21,6 +26,16 @@ fn lit(v: f64) -> String {
     } else {
         format!("{s}.0")
     }
+}
+
+/// A C `float` literal that reads back to exactly `v`.
+fn lit32(v: f32) -> String {
+    format!("{v:e}f")
+}
+
+/// Whether `e` steps in f32.
+fn is_fast(e: &Exported) -> bool {
+    e.net.precision == Precision::Fast
 }
 
 /// The header: sizes, the sensor layout, the wheels and the step's prototype.
@@ -37,6 +52,19 @@ pub fn header(e: &Exported) -> String {
     let _ = writeln!(h, "#define VIVAE_INPUTS {}", net.inputs);
     let _ = writeln!(h, "#define VIVAE_STATE {}", net.nodes);
     h.push_str("#define VIVAE_OUTPUTS 2\n\n");
+    if is_fast(e) {
+        h.push_str(
+            "/* Precision: fast (vivae's --precision fast step): float readings, states\n   \
+             and commands; every sum a fused multiply-add rounded once (portable code,\n   \
+             or the C library's fmaf when compiled with -DVIVAE_USE_FMAF and -lm). */\n\
+             #define VIVAE_FAST 1\ntypedef float vivae_real;\n\n",
+        );
+    } else {
+        h.push_str(
+            "/* Precision: exact (vivae's default step): double readings, states and commands. */\n\
+             #define VIVAE_FAST 0\ntypedef double vivae_real;\n\n",
+        );
+    }
     let _ = writeln!(h, "/* Wheels: {}. */", e.wheels);
     let _ = writeln!(h, "/* Units: {}. */\n", e.units);
     for s in &e.sheets {
@@ -55,11 +83,15 @@ pub fn header(e: &Exported) -> String {
          extern const struct vivae_place vivae_places[VIVAE_INPUTS];\n\n\
          /* One step: in[VIVAE_INPUTS] sensor readings, state[VIVAE_STATE]\n   \
          (all zero at the start; updated in place), out[2] the wheel commands. */\n\
-         void vivae_step(const double *in, double *state, double *out);\n\
-         /* The same step for float readings and commands (the state stays double). */\n\
-         void vivae_step_f32(const float *in, double *state, float *out);\n\n\
-         #endif\n",
+         void vivae_step(const vivae_real *in, vivae_real *state, vivae_real *out);\n",
     );
+    if !is_fast(e) {
+        h.push_str(
+            "/* The same step for float readings and commands (the state stays double). */\n\
+             void vivae_step_f32(const float *in, double *state, float *out);\n",
+        );
+    }
+    h.push_str("\n#endif\n");
     h
 }
 
@@ -85,6 +117,9 @@ pub fn source(e: &Exported, header_name: &str) -> String {
         c,
         "#include \"{header_name}\"\n#include <stdint.h>\n#include <string.h>\n"
     );
+    if is_fast(e) {
+        c.push_str("#ifdef VIVAE_USE_FMAF\n#include <math.h>\n#endif\n");
+    }
     c.push_str("#if defined(__clang__)\n#pragma STDC FP_CONTRACT OFF\n#endif\n\n");
     places(&mut c, e);
     int_table(
@@ -102,16 +137,30 @@ pub fn source(e: &Exported, header_name: &str) -> String {
         "order",
         &net.order.iter().map(|&v| v as u64).collect::<Vec<_>>(),
     );
-    real_table(&mut c, "bias", &net.bias);
-    real_table(&mut c, "weights", &net.weights);
-    c.push_str(&exp_function());
-    let _ = writeln!(
-        c,
-        "\n/* vivae's bipolar sigmoid. */\nstatic double sigma(double s) {{\n    \
-         return 2.0 / (1.0 + vivae_exp({} * s)) - 1.0;\n}}\n",
-        lit(-SIGMOID_SLOPE)
-    );
-    c.push_str(&step_function(net.synchronous, net.wheels));
+    if is_fast(e) {
+        float_table(&mut c, "bias", &net.bias);
+        float_table(&mut c, "weights", &net.weights);
+        c.push_str(&exp_f32_function());
+        c.push('\n');
+        c.push_str(&fmaf_function());
+        let _ = writeln!(
+            c,
+            "\n/* vivae's bipolar sigmoid in f32. */\nstatic float sigma(float s) {{\n    \
+             return 2.0f / (1.0f + vivae_expf({} * s)) - 1.0f;\n}}\n",
+            lit32(-SIGMOID_SLOPE as f32)
+        );
+    } else {
+        real_table(&mut c, "bias", &net.bias);
+        real_table(&mut c, "weights", &net.weights);
+        c.push_str(&exp_function());
+        let _ = writeln!(
+            c,
+            "\n/* vivae's bipolar sigmoid. */\nstatic double sigma(double s) {{\n    \
+             return 2.0 / (1.0 + vivae_exp({} * s)) - 1.0;\n}}\n",
+            lit(-SIGMOID_SLOPE)
+        );
+    }
+    c.push_str(&step_function(net.synchronous, net.wheels, is_fast(e)));
     c
 }
 
@@ -153,6 +202,16 @@ fn real_table(c: &mut String, name: &str, v: &[f64]) {
     c.push_str("};\n\n");
 }
 
+/// A `static const float` table (never empty) of values that are f32 values.
+fn float_table(c: &mut String, name: &str, v: &[f64]) {
+    let _ = writeln!(c, "static const float {name}[{}] = {{", v.len().max(1));
+    rows(c, v.iter().map(|&x| lit32(x as f32)), 4);
+    if v.is_empty() {
+        c.push_str("    0.0f\n");
+    }
+    c.push_str("};\n\n");
+}
+
 /// Values, `per` to a line.
 fn rows(c: &mut String, values: impl Iterator<Item = String>, per: usize) {
     let values: Vec<String> = values.collect();
@@ -190,8 +249,98 @@ fn exp_function() -> String {
     )
 }
 
-/// The step: the network's nodes in order, synchronously or in place.
-fn step_function(synchronous: bool, wheels: [usize; 2]) -> String {
+/// vivae's f32 `exp` (`vivae_neat::precision::exp_f32`), operation for operation.
+fn exp_f32_function() -> String {
+    use vivae_neat::precision::exp_f32_constants::{
+        HIGH, LN2_HI, LN2_LO, LOG2E, LOW, P, SHIFT, SHIFT_BITS,
+    };
+    let coefficients: Vec<String> = P.iter().map(|&v| lit32(v)).collect();
+    format!(
+        "/* vivae's f32 exp (Cephes' expf): range reduction by ln 2 split in two,\n   \
+         e^r = 1 + r + r^2 P(r) with a degree-5 P, times 2^k from the exponent bits. */\n\
+         static float vivae_expf(float x) {{\n    \
+         static const float p[6] = {{{}}};\n    \
+         const float shift = {};\n    \
+         if (x == x) {{\n        if (x < {low}) x = {low};\n        if (x > {high}) x = {high};\n    }}\n    \
+         float kf = x * {} + shift;\n    \
+         float k = kf - shift;\n    \
+         float r = x - k * {} - k * {};\n    \
+         float q = p[0];\n    \
+         for (int i = 1; i < 6; i++) q = q * r + p[i];\n    \
+         float y = q * (r * r) + r + 1.0f;\n    \
+         uint32_t bits;\n    memcpy(&bits, &kf, sizeof bits);\n    \
+         uint32_t sbits = (uint32_t)(bits - {}u) << 23;\n    \
+         float scale;\n    memcpy(&scale, &sbits, sizeof scale);\n    \
+         return y * scale;\n}}\n",
+        coefficients.join(", "),
+        lit32(SHIFT),
+        lit32(LOG2E),
+        lit32(LN2_HI),
+        lit32(LN2_LO),
+        SHIFT_BITS,
+        low = lit32(LOW),
+        high = lit32(HIGH),
+    )
+}
+
+/// `x·y + z` rounded once to f32 (`vivae_neat::precision::fma_f32`, the
+/// fast step's sums): with double operations and no library, or the C
+/// library's `fmaf` under `VIVAE_USE_FMAF`; the same bits either way.
+pub fn fmaf_function() -> String {
+    format!(
+        "/* x*y + z rounded once to float (IEEE fusedMultiplyAdd): the product of two\n   \
+         floats is exact in double, so the double sum is off by less than half a\n   \
+         double ulp and rounds right unless it lies on a float midpoint, where the\n   \
+         sum's exact error (TwoSum) decides. */\n\
+         #ifdef VIVAE_USE_FMAF\n\
+         static float vivae_fmaf(float x, float y, float z) {{\n    \
+         return fmaf(x, y, z);\n}}\n\
+         #else\n\
+         static int vivae_isinf32(float v) {{\n    \
+         uint32_t b;\n    memcpy(&b, &v, sizeof b);\n    \
+         return (b & 0x7fffffffu) == 0x7f800000u;\n}}\n\n\
+         static int vivae_isinf64(double v) {{\n    \
+         uint64_t b;\n    memcpy(&b, &v, sizeof b);\n    \
+         return (b & 0x7fffffffffffffffu) == 0x7ff0000000000000u;\n}}\n\n\
+         /* The next float above a finite v. */\n\
+         static float vivae_next_up(float v) {{\n    \
+         uint32_t b;\n    memcpy(&b, &v, sizeof b);\n    \
+         if ((b & 0x7fffffffu) == 0) b = 1u;\n    \
+         else if (b >> 31) b -= 1u;\n    \
+         else b += 1u;\n    \
+         memcpy(&v, &b, sizeof v);\n    return v;\n}}\n\n\
+         static float vivae_fmaf(float x, float y, float z) {{\n    \
+         const double two128 = {two128};\n    \
+         double xy = (double)x * (double)y;\n    \
+         double zw = (double)z;\n    \
+         double s = xy + zw;\n    \
+         float r = (float)s;\n    \
+         double r64 = (double)r;\n    \
+         if (r64 == s || s != s) return r;\n    \
+         int r_inf = vivae_isinf32(r);\n    \
+         float other;\n    double other64, lo, hi;\n    \
+         if (r_inf) {{\n        other = r < 0.0f ? -{max} : {max};\n        other64 = (double)other;\n    \
+         }} else if (s > r64) {{\n        other = vivae_next_up(r);\n        \
+         other64 = vivae_isinf32(other) ? two128 : (double)other;\n    \
+         }} else {{\n        other = -vivae_next_up(-r);\n        \
+         other64 = vivae_isinf32(other) ? -two128 : (double)other;\n    }}\n    \
+         if (r_inf) {{\n        lo = other64;\n        hi = s < 0.0 ? -two128 : two128;\n    \
+         }} else {{\n        lo = r64;\n        hi = other64;\n    }}\n    \
+         if (s != (lo + hi) * 0.5 || vivae_isinf64(s)) return r;\n    \
+         double b = s - xy;\n    \
+         double err = (xy - (s - b)) + (zw - b);\n    \
+         if (err == 0.0) return r;\n    \
+         int toward_other = r_inf ? ((err < 0.0) == (s > 0.0)) : ((err > 0.0) == (other64 > r64));\n    \
+         return toward_other ? other : r;\n}}\n\
+         #endif\n",
+        two128 = lit(2f64.powi(128)),
+        max = lit32(f32::MAX),
+    )
+}
+
+/// The step: the network's nodes in order, synchronously or in place, in
+/// f64 or (fast) in f32 with fused sums.
+fn step_function(synchronous: bool, wheels: [usize; 2], fast: bool) -> String {
     let (write, finish) = if synchronous {
         (
             "next[k] = sigma(s);",
@@ -201,28 +350,38 @@ fn step_function(synchronous: bool, wheels: [usize; 2]) -> String {
         ("state[k] = sigma(s);", "")
     };
     let scratch = if synchronous {
-        "    double next[VIVAE_STATE];\n"
+        "    vivae_real next[VIVAE_STATE];\n"
     } else {
         ""
     };
-    format!(
-        "void vivae_step(const double *in, double *state, double *out) {{\n\
+    let sum = if fast {
+        "s = vivae_fmaf(weights[l], x, s);"
+    } else {
+        "s += weights[l] * x;"
+    };
+    let mut c = format!(
+        "void vivae_step(const vivae_real *in, vivae_real *state, vivae_real *out) {{\n\
          {scratch}    \
          for (int o = 0; o < VIVAE_STATE; o++) {{\n        \
          int32_t k = order[o];\n        \
-         double s = bias[k];\n        \
+         vivae_real s = bias[k];\n        \
          for (int32_t l = starts[k]; l < starts[k + 1]; l++) {{\n            \
          int32_t j = sources[l];\n            \
-         double x = j < VIVAE_INPUTS ? in[j] : state[j - VIVAE_INPUTS];\n            \
-         s += weights[l] * x;\n        }}\n        \
+         vivae_real x = j < VIVAE_INPUTS ? in[j] : state[j - VIVAE_INPUTS];\n            \
+         {sum}\n        }}\n        \
          {write}\n    }}\n\
          {finish}    \
-         out[0] = state[{}];\n    out[1] = state[{}];\n}}\n\n\
-         void vivae_step_f32(const float *in, double *state, float *out) {{\n    \
-         double x[VIVAE_INPUTS], y[2];\n    \
-         for (int i = 0; i < VIVAE_INPUTS; i++) x[i] = in[i];\n    \
-         vivae_step(x, state, y);\n    \
-         out[0] = (float)y[0];\n    out[1] = (float)y[1];\n}}\n",
+         out[0] = state[{}];\n    out[1] = state[{}];\n}}\n",
         wheels[0], wheels[1]
-    )
+    );
+    if !fast {
+        c.push_str(
+            "\nvoid vivae_step_f32(const float *in, double *state, float *out) {\n    \
+             double x[VIVAE_INPUTS], y[2];\n    \
+             for (int i = 0; i < VIVAE_INPUTS; i++) x[i] = in[i];\n    \
+             vivae_step(x, state, y);\n    \
+             out[0] = (float)y[0];\n    out[1] = (float)y[1];\n}\n",
+        );
+    }
+    c
 }

@@ -4,7 +4,7 @@
 
 use std::path::{Path, PathBuf};
 
-use vivae_neat::Genome;
+use vivae_neat::{Genome, Precision};
 
 use crate::config::Config;
 use crate::controller::es::RobotController;
@@ -43,12 +43,14 @@ pub struct Chosen {
 }
 
 /// Decodes `pick` of the run (or champion file) `source` with surface
-/// sensors `sensors` and neurons `neurons` (default: the run's).
+/// sensors `sensors`, neurons `neurons` and in precision `precision`
+/// (default: the run's).
 pub fn choose(
     source: &Path,
     pick: Pick,
     sensors: Option<PolarGrid>,
     neurons: Option<PolarGrid>,
+    precision: Option<Precision>,
 ) -> Result<Chosen> {
     let (champion, mut config, _) = rundir::load_genome_source(source)?;
     if !config.experiment.task.is_driving() {
@@ -66,6 +68,7 @@ pub fn choose(
     let overrides = crate::run::prepare::Overrides {
         sensors,
         neurons,
+        precision,
         ..Default::default()
     };
     let refused = |e: String| bad_input(format!("{}: {e}", source.display()));
@@ -76,7 +79,7 @@ pub fn choose(
         .filter(|p| p.exists());
     // The run's map only gives the robots' starts; the embedded map stands in when it is gone.
     let scenario = crate::io::load_scenario(path.as_deref())?;
-    let episode = Episode::new(&config, &scenario.scenario).map_err(Error::from)?;
+    let episode = Episode::new(&config, &scenario.scenario).map_err(|e| refused(e.to_string()))?;
     let controller = episode
         .robot_controller(&genome)
         .map_err(|e| Error::Genome {
@@ -85,7 +88,7 @@ pub fn choose(
         })?;
     let s = &config.surface_sensors;
     let description = format!(
-        "{what} of {}; substrate {}; surface sensors {}x{} over {} deg; neurons {}",
+        "{what} of {}; substrate {}; surface sensors {}x{} over {} deg; neurons {}; precision {}",
         source.display(),
         match config.substrate.kind {
             crate::controller::es::SubstrateKind::Polar => "polar",
@@ -95,6 +98,7 @@ pub fn choose(
         s.angles,
         s.fov,
         config.substrate.neurons,
+        config.experiment.precision,
     );
     Ok(Chosen {
         config,

@@ -87,7 +87,8 @@ pub struct Recording {
 }
 
 /// Runs `steps` steps of `episode` driven by `controller` (every robot, as
-/// evolution does) and records robot `robot`.
+/// evolution does) and records robot `robot` (a fast controller's f32
+/// readings widened to f64, exactly).
 pub fn record(
     episode: &Episode,
     controller: &RobotController,
@@ -110,9 +111,18 @@ pub fn record(
         poses: Vec::with_capacity(steps as usize),
     };
     let mut inputs = vec![0.0; ni];
+    // A fast controller reads its sensors in f32, as the rollout does for it.
+    let mut single = vec![0.0f32; if controller.single_inputs() { ni } else { 0 }];
     for _ in 0..steps {
         // The rollout reads the same world at the start of its step.
-        episode.read_inputs(&world, robot, &mut inputs);
+        if single.is_empty() {
+            episode.read_inputs(&world, robot, &mut inputs);
+        } else {
+            episode.read_inputs_single(&world, robot, &mut single, &mut inputs);
+            for (x, &v) in inputs.iter_mut().zip(&single) {
+                *x = f64::from(v);
+            }
+        }
         let r = &world.robots()[robot];
         rec.poses.push((r.pos, r.heading));
         rec.sensors.extend_from_slice(&inputs);

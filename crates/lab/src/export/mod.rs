@@ -5,12 +5,16 @@
 //! what a camera (or a top-down map) sees, and [`choose`] finds the
 //! genome in a run directory.
 //!
-//! Every format computes the same step as vivae, in f64: each node's sum is
-//! its bias, then `+= w·x` over its links in source order (the sensors, then
+//! Every format computes the same step as vivae: each node's sum is its
+//! bias, then `+= w·x` over its links in source order (the sensors, then
 //! the previous state), then the bipolar sigmoid `2/(1 + exp(−4.9·s)) − 1`
-//! with vivae's portable `exp`. Links of weight 0 are left out: adding
-//! `0·x` (x finite) changes at most the sign of a zero sum, and σ(±0) is +0,
-//! so the result keeps its bits.
+//! with vivae's portable `exp`; in f64 for an exact controller, and for a
+//! fast one ([`Precision::Fast`]: the dense sheet of a `--precision fast`
+//! run, or any dense controller exported with `--precision fast`) in f32,
+//! each `+= w·x` one fused multiply-add and σ with the f32 `exp`, as
+//! vivae's fast step. Links of weight 0 are left out: adding `0·x` (x
+//! finite) changes at most the sign of a zero sum, and σ(±0) is +0 in
+//! either precision, so the result keeps its bits.
 
 pub mod c;
 pub mod choose;
@@ -23,7 +27,9 @@ mod proto;
 use std::path::{Path, PathBuf};
 
 use serde::Serialize;
+use vivae_neat::Precision;
 use vivae_neat::hyperneat::{SparseNetwork, SubstrateController};
+use vivae_neat::precision::{bipolar_sigmoid_f32, fma_f32};
 
 use crate::controller::es::RobotController;
 use crate::controller::sensors::SensorSheet;
@@ -59,6 +65,9 @@ pub struct StepNet {
     pub synchronous: bool,
     /// The nodes whose new values drive the left and right wheel.
     pub wheels: [usize; 2],
+    /// The arithmetic of the step: exact (f64) or fast (f32; every weight
+    /// and bias then an f32 value).
+    pub precision: Precision,
 }
 
 /// `2/(1 + exp(−4.9·s)) − 1`: vivae's bipolar sigmoid with its portable `exp`.
@@ -71,6 +80,7 @@ impl StepNet {
     pub fn from_polar(c: &SubstrateController, wheels: [usize; 2]) -> StepNet {
         let (ni, n) = (vivae_neat::Network::num_inputs(c), c.num_neurons());
         let mut net = StepNet::empty(ni, n, c.biases().to_vec(), true, wheels);
+        net.precision = c.precision();
         for target in 0..n {
             for j in 0..ni + n {
                 let w = if j < ni {
@@ -128,6 +138,7 @@ impl StepNet {
             order: (0..n).collect(),
             synchronous,
             wheels,
+            precision: Precision::Exact,
         }
     }
 
@@ -167,20 +178,33 @@ impl StepNet {
 
     /// One step: `state` (`nodes` long, zero at the start) becomes the next
     /// state, and the wheel commands are returned. `scratch` is `nodes` long.
+    /// In fast precision inputs and states are rounded to f32 (exact for the
+    /// f32 values a fast controller reads and makes) and the new states are
+    /// f32 values.
     pub fn step(&self, inputs: &[f64], state: &mut [f64], scratch: &mut [f64]) -> [f64; 2] {
         assert!(inputs.len() == self.inputs && state.len() == self.nodes);
         let ni = self.inputs;
+        let fast = self.precision == Precision::Fast;
         for &k in &self.order {
-            let mut s = self.bias[k];
-            for l in self.starts[k]..self.starts[k + 1] {
-                let j = self.sources[l];
-                let x = if j < ni { inputs[j] } else { state[j - ni] };
-                s += self.weights[l] * x;
-            }
-            if self.synchronous {
-                scratch[k] = sigmoid(s);
+            let links = self.starts[k]..self.starts[k + 1];
+            let source = |j: usize| if j < ni { inputs[j] } else { state[j - ni] };
+            let y = if fast {
+                let mut s = self.bias[k] as f32;
+                for l in links {
+                    s = fma_f32(self.weights[l] as f32, source(self.sources[l]) as f32, s);
+                }
+                f64::from(bipolar_sigmoid_f32(s))
             } else {
-                state[k] = sigmoid(s);
+                let mut s = self.bias[k];
+                for l in links {
+                    s += self.weights[l] * source(self.sources[l]);
+                }
+                sigmoid(s)
+            };
+            if self.synchronous {
+                scratch[k] = y;
+            } else {
+                state[k] = y;
             }
         }
         if self.synchronous {

@@ -6,7 +6,7 @@ use crate::config::Config;
 use crate::controller::es::SubstrateKind;
 use crate::controller::substrate::PolarGrid;
 use crate::io::load_scenario;
-use vivae_neat::Population;
+use vivae_neat::{Population, Precision};
 
 fn episode(config: &Config) -> Episode {
     Episode::new(config, &load_scenario(None).unwrap().scenario).unwrap()
@@ -50,6 +50,71 @@ fn the_polar_step_is_vivaes_at_any_resolution() {
     config.substrate.neurons = PolarGrid::new(5, 5).unwrap();
     config.distance_sensors.rays = 3;
     assert_eq!(replays_bit_identically(&config, 6, |_| true), 6);
+}
+
+#[test]
+fn the_fast_polar_step_is_vivaes_fast_step() {
+    let mut config = Config::default();
+    config.experiment.steps = 200;
+    config.experiment.precision = Precision::Fast;
+    let fast = |n: &StepNet| n.precision == Precision::Fast;
+    assert_eq!(replays_bit_identically(&config, 12, fast), 12);
+    // A re-sampled sheet with distance rays (read in f64, rounded) as well.
+    config.surface_sensors.rings = 4;
+    config.surface_sensors.angles = 9;
+    config.substrate.neurons = PolarGrid::new(5, 5).unwrap();
+    config.distance_sensors.rays = 3;
+    assert_eq!(replays_bit_identically(&config, 6, fast), 6);
+}
+
+#[test]
+fn the_fast_step_differs_from_the_exact_one_of_the_same_genome() {
+    // Else the fast replay above could pass on an f64 step.
+    let mut config = Config::default();
+    config.experiment.steps = 100;
+    let exact = episode(&config);
+    config.experiment.precision = Precision::Fast;
+    let fast = episode(&config);
+    let pop = Population::new(config.neat.clone(), exact.cppn_spec(), 3).unwrap();
+    let mut differing = 0;
+    for g in pop.genomes().iter().take(6) {
+        let (ce, cf) = (
+            exact.robot_controller(g).unwrap(),
+            fast.robot_controller(g).unwrap(),
+        );
+        let (ne, nf) = (
+            Exported::new(&exact, &ce, "e").net,
+            Exported::new(&fast, &cf, "f").net,
+        );
+        assert_eq!(
+            (ne.precision, nf.precision),
+            (Precision::Exact, Precision::Fast)
+        );
+        let rec = record(&fast, &cf, 1, 100).unwrap();
+        let mut states = [vec![0.0; ne.nodes], vec![0.0; nf.nodes]];
+        let mut scratch = vec![0.0; ne.nodes];
+        for x in rec.sensors.chunks_exact(rec.inputs) {
+            let we = ne.step(x, &mut states[0], &mut scratch);
+            let wf = nf.step(x, &mut states[1], &mut scratch);
+            differing += usize::from(we != wf);
+            // Both steps compute the same function to about f32's precision.
+            for (a, b) in we.iter().zip(&wf) {
+                assert!((a - b).abs() < 1e-2, "{we:?} against {wf:?}");
+            }
+        }
+    }
+    assert!(differing > 100, "{differing} of 600 steps differ");
+}
+
+#[test]
+fn the_json_step_text_names_the_f32_exp_constants() {
+    use vivae_neat::precision::exp_f32_constants::{HIGH, LN2_HI, LN2_LO, LOW, P};
+    let numbers: Vec<f32> = (super::json::STEP.split(|c: char| ", []()*=^".contains(c)))
+        .filter_map(|t| t.trim_end_matches('.').parse().ok())
+        .collect();
+    for c in [LOW, HIGH, LN2_HI, LN2_LO].iter().chain(&P) {
+        assert!(numbers.contains(c), "{c:e} is not in the step text");
+    }
 }
 
 #[test]

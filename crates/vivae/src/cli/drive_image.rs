@@ -116,6 +116,7 @@ pub fn run(args: DriveImageArgs) -> anyhow::Result<ExitCode> {
         pick,
         args.resolution.sensors,
         args.resolution.neurons,
+        None,
     )?;
     if let Some(path) = &args.draw_map {
         let svg = vivae_lab::export::frames::ground_svg(chosen.episode.world(), true)?;

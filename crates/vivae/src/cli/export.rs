@@ -26,6 +26,12 @@ pub struct ExportArgs {
     /// The file to write (c: the header goes beside it, ending in .h).
     #[arg(short, long, value_name = "FILE")]
     pub out: PathBuf,
+    /// Arithmetic of the exported step (default: the run's): exact (f64) or
+    /// fast (f32, vivae's --precision fast step: the CPPN decoded in f32, C
+    /// in float for a processor with a single-precision FPU). Dense polar
+    /// substrate only.
+    #[arg(long, value_name = "exact|fast")]
+    pub precision: Option<vivae_neat::Precision>,
 }
 
 /// Runs `vivae export`.
@@ -35,6 +41,7 @@ pub fn run(args: ExportArgs) -> anyhow::Result<ExitCode> {
         args.genome.pick(),
         args.resolution.sensors,
         args.resolution.neurons,
+        args.precision,
     )?;
     let exported = Exported::new(&chosen.episode, &chosen.controller, &chosen.description);
     if let Some(dir) = args.out.parent().filter(|d| !d.as_os_str().is_empty()) {

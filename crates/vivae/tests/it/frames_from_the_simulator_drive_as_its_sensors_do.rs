@@ -57,7 +57,14 @@ fn write_png(path: &Path, svg: &str) {
 #[test]
 fn frames_from_the_simulator_drive_as_its_sensors_do() {
     let run = small_run("drive-image", 3);
-    let chosen = choose(&run, Pick::Champion, Some("6x24".parse().unwrap()), None).unwrap();
+    let chosen = choose(
+        &run,
+        Pick::Champion,
+        Some("6x24".parse().unwrap()),
+        None,
+        None,
+    )
+    .unwrap();
     let (episode, controller) = (&chosen.episode, &chosen.controller);
     let rec = record(episode, controller, 0, 150).unwrap();
     let net = Exported::new(episode, controller, "").net;
@@ -109,7 +116,7 @@ fn frames_from_the_simulator_drive_as_its_sensors_do() {
 fn drive_image_prints_the_librarys_wheel_commands() {
     let run = small_run("drive-image-cli", 2);
     let dir = run.parent().unwrap().to_path_buf();
-    let chosen = choose(&run, Pick::Champion, None, None).unwrap();
+    let chosen = choose(&run, Pick::Champion, None, None, None).unwrap();
     let rec = record(&chosen.episode, &chosen.controller, 2, 20).unwrap();
     let net = Exported::new(&chosen.episode, &chosen.controller, "").net;
     let sensors = ImageSensors::new(&chosen.episode, None).unwrap();
