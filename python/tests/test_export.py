@@ -67,6 +67,29 @@ def test_an_exported_champion_runs_in_onnxruntime_as_in_vivae(tmp_path, extra, g
     assert np.any(rec["wheels"][:, 0] != rec["wheels"][:, 1]), "the robot never turns"
 
 
+def test_a_fast_champion_runs_in_onnxruntime_in_float32(tmp_path):
+    run = small_run(tmp_path)
+    model = tmp_path / "fast.onnx"
+    vivae.export(run, "onnx", model, precision="fast")
+    onnx = pytest.importorskip("onnx")
+    m = onnx.load(str(model))
+    onnx.checker.check_model(m, full_check=True)
+    assert m.graph.input[0].type.tensor_type.elem_type == onnx.TensorProto.FLOAT
+    rec = vivae.record_episode(run, robot=1, steps=300, precision="fast")
+    ort = pytest.importorskip("onnxruntime")
+    session = ort.InferenceSession(str(model), providers=["CPUExecutionProvider"])
+    state = np.zeros((1, session.get_inputs()[1].shape[1]), dtype=np.float32)
+    got = []
+    for x in rec["sensors"].astype(np.float32):
+        w, state = session.run(["wheels", "next_state"], {"sensors": x[None, :], "state": state})
+        got.append(w[0])
+    worst = float(np.max(np.abs(np.array(got, dtype=np.float64) - rec["wheels"])))
+    print(f"onnxruntime float32 vs vivae fast: largest difference {worst:.3e}")
+    # MatMul's order and the runtime's expf against vivae's: float32 rounding apart.
+    assert worst <= 1e-5
+    assert np.any(rec["wheels"][:, 0] != rec["wheels"][:, 1]), "the robot never turns"
+
+
 def json_step(net: dict, x: list[float], state: list[float]) -> list[float]:
     """One step as the JSON's `step` key says, with vivae's portable exp."""
     ni, nxt = net["inputs"], list(state)

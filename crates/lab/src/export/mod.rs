@@ -335,7 +335,7 @@ fn reading_of(name: &str) -> &'static str {
 /// The artifact formats.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Format {
-    /// ONNX, opset [`onnx::OPSET`], f64 tensors.
+    /// ONNX, opset [`onnx::OPSET`], f64 tensors (f32 in fast precision).
     Onnx,
     /// A C file and its header.
     C,

@@ -1,5 +1,6 @@
 //! The ONNX artifact: one step as an ONNX graph (opset [`OPSET`], IR version
-//! [`IR_VERSION`], every tensor f64), encoded by hand (`super::proto`):
+//! [`IR_VERSION`], every tensor f64, or f32 for a controller in fast
+//! precision), encoded by hand (`super::proto`):
 //! no dependency, and the file is a few `MatMul`, `Add`, `Exp` and
 //! element-wise nodes any runtime has.
 //!
@@ -13,6 +14,8 @@
 //! The sensor geometry and the wheel semantics are in the model's
 //! `metadata_props` (`vivae_geometry`: JSON; `wheels`; `description`).
 
+use vivae_neat::Precision;
+
 use super::proto::Message;
 use super::{Exported, SIGMOID_SLOPE, StepNet};
 
@@ -22,6 +25,8 @@ pub const OPSET: i64 = 17;
 pub const IR_VERSION: i64 = 8;
 /// ONNX's data type number of f64.
 const DOUBLE: i64 = 11;
+/// ONNX's data type number of f32.
+const FLOAT: i64 = 1;
 /// ONNX's data type number of i64.
 const INT64: i64 = 7;
 /// AttributeProto's type number of an int.
@@ -31,6 +36,8 @@ const ATTRIBUTE_INT: i64 = 2;
 struct Graph {
     graph: Message,
     counter: usize,
+    /// The real tensors' type: [`DOUBLE`] or [`FLOAT`].
+    real: i64,
 }
 
 impl Graph {
@@ -63,10 +70,15 @@ impl Graph {
         out
     }
 
-    /// A constant f64 tensor of shape `dims`.
-    fn doubles(&mut self, what: &str, dims: &[usize], v: &[f64]) -> String {
-        let raw: Vec<u8> = v.iter().flat_map(|x| x.to_le_bytes()).collect();
-        self.tensor(what, dims, DOUBLE, &raw)
+    /// A constant real tensor of shape `dims` (f32: each value rounded,
+    /// exact for the f32 values of a fast controller).
+    fn reals(&mut self, what: &str, dims: &[usize], v: &[f64]) -> String {
+        let raw: Vec<u8> = if self.real == FLOAT {
+            v.iter().flat_map(|&x| (x as f32).to_le_bytes()).collect()
+        } else {
+            v.iter().flat_map(|x| x.to_le_bytes()).collect()
+        };
+        self.tensor(what, dims, self.real, &raw)
     }
 
     /// A constant i64 tensor of shape `dims`.
@@ -88,9 +100,9 @@ impl Graph {
 
     /// σ(z) = 2/(1 + exp(−4.9·z)) − 1, node by node.
     fn sigma(&mut self, z: &str, out: Option<&str>) -> String {
-        let slope = self.doubles("slope", &[], &[-SIGMOID_SLOPE]);
-        let one = self.doubles("one", &[], &[1.0]);
-        let two = self.doubles("two", &[], &[2.0]);
+        let slope = self.reals("slope", &[], &[-SIGMOID_SLOPE]);
+        let one = self.reals("one", &[], &[1.0]);
+        let two = self.reals("two", &[], &[2.0]);
         let t = self.node("Mul", &[z, &slope], None, &[]);
         let e = self.node("Exp", &[&t], None, &[]);
         let d = self.node("Add", &[&e, &one], None, &[]);
@@ -99,8 +111,8 @@ impl Graph {
     }
 }
 
-/// A value declaration `[N, width]` of f64.
-fn value_info(name: &str, width: usize) -> Message {
+/// A value declaration `[N, width]` of the real type `real`.
+fn value_info(name: &str, width: usize, real: i64) -> Message {
     let mut batch = Message::new();
     batch.string(2, "N");
     let mut w = Message::new();
@@ -108,7 +120,7 @@ fn value_info(name: &str, width: usize) -> Message {
     let mut shape = Message::new();
     shape.message(1, &batch).message(1, &w);
     let mut tensor = Message::new();
-    tensor.int(1, DOUBLE).message(2, &shape);
+    tensor.int(1, real).message(2, &shape);
     let mut ty = Message::new();
     ty.message(1, &tensor);
     let mut v = Message::new();
@@ -151,8 +163,8 @@ fn dense(net: &StepNet, nodes: &[usize]) -> (Vec<f64>, Vec<f64>) {
 /// One update of `nodes` from the value vector `v`: their new values `[N, nodes.len()]`.
 fn update(g: &mut Graph, net: &StepNet, v: &str, nodes: &[usize], out: Option<&str>) -> String {
     let (w, b) = dense(net, nodes);
-    let w = g.doubles("weights", &[net.inputs + net.nodes, nodes.len()], &w);
-    let b = g.doubles("bias", &[nodes.len()], &b);
+    let w = g.reals("weights", &[net.inputs + net.nodes, nodes.len()], &w);
+    let b = g.reals("bias", &[nodes.len()], &b);
     let z = g.node("MatMul", &[v, &w], None, &[]);
     let z = g.node("Add", &[&z, &b], None, &[]);
     g.sigma(&z, out)
@@ -162,9 +174,14 @@ fn update(g: &mut Graph, net: &StepNet, v: &str, nodes: &[usize], out: Option<&s
 pub fn to_onnx(exported: &Exported) -> Vec<u8> {
     let net = &exported.net;
     let (ni, n) = (net.inputs, net.nodes);
+    let real = match net.precision {
+        Precision::Exact => DOUBLE,
+        Precision::Fast => FLOAT,
+    };
     let mut g = Graph {
         graph: Message::new(),
         counter: 0,
+        real,
     };
     let mut v = g.node("Concat", &["sensors", "state"], None, &[("axis", 1)]);
     let next = if net.synchronous {
@@ -185,8 +202,8 @@ pub fn to_onnx(exported: &Exported) -> Vec<u8> {
                 keep[ni + k] = 0.0;
                 place[r * (ni + n) + ni + k] = 1.0;
             }
-            let keep = g.doubles("keep", &[ni + n], &keep);
-            let place = g.doubles("place", &[nodes.len(), ni + n], &place);
+            let keep = g.reals("keep", &[ni + n], &keep);
+            let place = g.reals("place", &[nodes.len(), ni + n], &place);
             let kept = g.node("Mul", &[&v, &keep], None, &[]);
             let placed = g.node("MatMul", &[&y, &place], None, &[]);
             v = g.node("Add", &[&kept, &placed], None, &[]);
@@ -202,10 +219,10 @@ pub fn to_onnx(exported: &Exported) -> Vec<u8> {
     graph
         .string(2, "vivae_controller_step")
         .string(10, &exported.description)
-        .message(11, &value_info("sensors", ni))
-        .message(11, &value_info("state", n))
-        .message(12, &value_info("wheels", 2))
-        .message(12, &value_info("next_state", n));
+        .message(11, &value_info("sensors", ni, real))
+        .message(11, &value_info("state", n, real))
+        .message(12, &value_info("wheels", 2, real))
+        .message(12, &value_info("next_state", n, real));
     model(exported, &graph)
 }
 

@@ -20,7 +20,7 @@ pub struct ExportArgs {
     pub genome: GenomeChoice,
     #[command(flatten)]
     pub resolution: Resolution,
-    /// The artifact: onnx (opset 17, f64), c (a .c file and its .h) or json.
+    /// The artifact: onnx (opset 17; f64, f32 in fast precision), c (a .c file and its .h) or json.
     #[arg(long, value_name = "onnx|c|json")]
     pub format: Format,
     /// The file to write (c: the header goes beside it, ending in .h).
