@@ -101,7 +101,11 @@ pub fn finish_run(run: &Run) -> Result<RunSummary> {
         || episode_figures(run, experiment, &champion, &dir),
         || network_figure(run, experiment, &champion, &dir),
     );
-    let (episodes, episode, map_episodes) = drawn?;
+    let DrawnEpisodes {
+        generations: episodes,
+        champion: episode,
+        maps: map_episodes,
+    } = drawn?;
     let network_svg = network?;
     // The report shows the same episodes and network: reuse them rather than run them again.
     let mut reuse = crate::report_html::Reuse {
@@ -136,20 +140,25 @@ pub fn finish_run(run: &Run) -> Result<RunSummary> {
     })
 }
 
+/// The episodes [`episode_figures`] drew, which the report shows too.
+struct DrawnEpisodes<'r> {
+    /// Each figure generation's best genome and its episode.
+    generations: Vec<(&'r Genome, EpisodeRecord)>,
+    /// The champion's episode on the run's (first) map.
+    champion: EpisodeRecord,
+    /// The champion's episode on each training map, by map label (empty on one map).
+    maps: Vec<(String, EpisodeRecord)>,
+}
+
 /// The episodes a finished run draws — the figure generations' bests and
 /// the champion, on every training map — then its convergence and strategy
 /// figures; returns the episodes (the report shows them too).
-#[allow(clippy::type_complexity)]
 fn episode_figures<'r>(
     run: &'r Run,
     experiment: &Episode,
     champion: &Champion,
     dir: &Path,
-) -> Result<(
-    Vec<(&'r Genome, EpisodeRecord)>,
-    EpisodeRecord,
-    Vec<(String, EpisodeRecord)>,
-)> {
+) -> Result<DrawnEpisodes<'r>> {
     let mut episodes = Vec::new();
     for (generation, _, genome) in run.figure_genomes() {
         let episode = trajectory_figure(
@@ -173,7 +182,11 @@ fn episode_figures<'r>(
     let convergence = figures::convergence::render(&fitness, &ConvergenceOptions::default())?;
     write_figure(dir, "convergence", &convergence.svg, &convergence.png)?;
     strategy_figure(run, dir)?;
-    Ok((episodes, episode, map_episodes))
+    Ok(DrawnEpisodes {
+        generations: episodes,
+        champion: episode,
+        maps: map_episodes,
+    })
 }
 
 /// The champion's network figure; returns its SVG (the report shows it too).
