@@ -173,7 +173,7 @@ fn frame(f: &Bound<'_, PyAny>) -> PyResult<Image> {
 /// camera, or with `poses` (rows x, y, heading in degrees) one top-down
 /// `frames[0]` map; returns the wheel commands `(left, right)` of every frame.
 #[pyfunction]
-#[pyo3(signature = (source, frames, *, poses=None, centre=None, scale=1.0, heading=0.0, radius=None, generation=None, elite=None, front=None, sensors=None, neurons=None))]
+#[pyo3(signature = (source, frames, *, poses=None, centre=None, scale=1.0, heading=0.0, radius=None, generation=None, elite=None, front=None, sensors=None, neurons=None, precision=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn drive_image(
     py: Python<'_>,
@@ -189,13 +189,20 @@ pub fn drive_image(
     front: Option<usize>,
     sensors: Option<&str>,
     neurons: Option<&str>,
+    precision: Option<&str>,
 ) -> PyResult<Vec<(f64, f64)>> {
     if !Camera::usable(scale, radius) {
         return Err(PyValueError::new_err(
             "scale= and radius= must be positive numbers",
         ));
     }
-    let c = chosen(&source, (generation, elite, front), sensors, neurons, None)?;
+    let c = chosen(
+        &source,
+        (generation, elite, front),
+        sensors,
+        neurons,
+        precision,
+    )?;
     let images: Vec<Image> = frames.iter().map(frame).collect::<PyResult<_>>()?;
     let image_sensors = ImageSensors::new(&c.episode, None).map_err(errors::lab)?;
     let net = Exported::new(&c.episode, &c.controller, "").net;

@@ -360,5 +360,6 @@ def drive_image(
     front: int | None = None,
     sensors: str | None = None,
     neurons: str | None = None,
+    precision: str | None = None,
 ) -> list[tuple[float, float]]: ...
 def math_is_portable() -> bool: ...

@@ -56,6 +56,10 @@ pub struct DriveImageArgs {
     /// Write the CSV here instead of printing it.
     #[arg(short, long, value_name = "FILE")]
     pub out: Option<PathBuf>,
+    /// Arithmetic of the controller's step (default: the run's): exact (f64)
+    /// or fast (f32), as `vivae export --precision` writes it.
+    #[arg(long, value_name = "exact|fast")]
+    pub precision: Option<vivae_neat::Precision>,
 }
 
 /// Reads a PNG file.
@@ -116,7 +120,7 @@ pub fn run(args: DriveImageArgs) -> anyhow::Result<ExitCode> {
         pick,
         args.resolution.sensors,
         args.resolution.neurons,
-        None,
+        args.precision,
     )?;
     if let Some(path) = &args.draw_map {
         let svg = vivae_lab::export::frames::ground_svg(chosen.episode.world(), true)?;

@@ -9,6 +9,7 @@ use vivae_lab::export::choose::{Pick, choose};
 use vivae_lab::export::frames::{Recording, ground_svg, rasterize, record, robot_view};
 use vivae_lab::export::image::{Camera, Image, ImageSensors, drive_frames};
 use vivae_lab::export::{Exported, StepNet};
+use vivae_neat::Precision;
 
 use crate::common::*;
 
@@ -145,6 +146,25 @@ fn drive_image_prints_the_librarys_wheel_commands() {
         })
         .collect();
     assert_eq!(got, want);
+    // In fast precision: the f32 step of the controller decoded in f32, as exported.
+    let fast = choose(&run, Pick::Champion, None, None, Some(Precision::Fast)).unwrap();
+    let fast_net = Exported::new(&fast.episode, &fast.controller, "").net;
+    assert_eq!(fast_net.precision, Precision::Fast);
+    let want_fast = drive_frames(&fast_net, &sensors, frames.iter().map(|(i, c)| (i, *c))).unwrap();
+    assert_ne!(want_fast, want, "the f32 step gives other bits");
+    let csv = ok(vivae().arg("drive-image").arg(&run).args(&files).args([
+        "--radius",
+        "64",
+        "--precision",
+        "fast",
+    ]));
+    let got: Vec<[f64; 2]> = (csv.lines().skip(1))
+        .map(|l| {
+            let v: Vec<f64> = l.split(',').map(|t| t.parse().unwrap()).collect();
+            [v[1], v[2]]
+        })
+        .collect();
+    assert_eq!(got, want_fast);
     // The map and poses: the map's CSV is within the stated tolerance of the simulator's.
     std::fs::write(dir.join("poses.csv"), poses).unwrap();
     ok(vivae()
