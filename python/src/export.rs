@@ -48,8 +48,7 @@ fn grid(key: &str, text: Option<&str>) -> PyResult<Option<PolarGrid>> {
 fn chosen(
     source: &Path,
     who: (Option<u32>, Option<usize>, Option<usize>),
-    sensors: Option<&str>,
-    neurons: Option<&str>,
+    (sensors, neurons): (Option<&str>, Option<&str>),
     precision: Option<&str>,
 ) -> PyResult<Chosen> {
     let pick = pick(who.0, who.1, who.2)?;
@@ -80,8 +79,7 @@ pub fn export(
     let c = chosen(
         &source,
         (generation, elite, front),
-        sensors,
-        neurons,
+        (sensors, neurons),
         precision,
     )?;
     let exported = Exported::new(&c.episode, &c.controller, &c.description);
@@ -111,8 +109,7 @@ pub fn record_episode<'py>(
     let c = chosen(
         &source,
         (generation, elite, front),
-        sensors,
-        neurons,
+        (sensors, neurons),
         precision,
     )?;
     let steps = steps.unwrap_or(c.episode.steps());
@@ -199,8 +196,7 @@ pub fn drive_image(
     let c = chosen(
         &source,
         (generation, elite, front),
-        sensors,
-        neurons,
+        (sensors, neurons),
         precision,
     )?;
     let images: Vec<Image> = frames.iter().map(frame).collect::<PyResult<_>>()?;

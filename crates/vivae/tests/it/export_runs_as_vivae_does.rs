@@ -53,32 +53,29 @@ fn build_c_with(dir: &Path, run: &Path, extra: &[&str], cflags: &[&str]) -> Path
         .args(extra));
     std::fs::write(dir.join("drive.c"), guide_example()).unwrap();
     let exe = dir.join("drive");
-    let status = Command::new("cc")
-        .args([
-            "-std=c99",
-            "-O2",
-            "-Wall",
-            "-Wextra",
-            "-Werror",
-            "-ffp-contract=off",
-            "-o",
-        ])
-        .arg(&exe)
-        .args(cflags)
-        .arg(dir.join("drive.c"))
-        .arg(&c)
-        .args(if cflags.is_empty() {
-            &[][..]
-        } else {
-            &["-lm"][..]
-        })
-        .status()
-        .expect("cc (the C compiler Rust links with) runs");
+    let libm: &[&str] = if cflags.is_empty() { &[] } else { &["-lm"] };
+    let sources = [dir.join("drive.c"), c];
     assert!(
-        status.success(),
+        cc(&exe, cflags, &sources, libm),
         "the exported C file and the guide's example compile"
     );
     exe
+}
+
+/// Compiles `sources` into `exe` with `cc` (the C compiler Rust links
+/// with) as C99, warnings as errors and no FMA contraction, plus `cflags`
+/// and then `libs`; whether it succeeded.
+fn cc(exe: &Path, cflags: &[&str], sources: &[PathBuf], libs: &[&str]) -> bool {
+    Command::new("cc")
+        .args(["-std=c99", "-O2", "-Wall", "-Wextra", "-Werror"])
+        .args(["-ffp-contract=off", "-o"])
+        .arg(exe)
+        .args(cflags)
+        .args(sources)
+        .args(libs)
+        .status()
+        .expect("cc runs")
+        .success()
 }
 
 /// The wheel commands `exe` prints for `rec`'s inputs, one line a step.
@@ -200,20 +197,10 @@ fn the_exported_fused_multiply_add_rounds_as_vivaes() {
     );
     std::fs::write(dir.join("fmaf.c"), harness).unwrap();
     let exe = dir.join("fmaf");
-    let status = Command::new("cc")
-        .args([
-            "-std=c99",
-            "-O2",
-            "-Wall",
-            "-Werror",
-            "-ffp-contract=off",
-            "-o",
-        ])
-        .arg(&exe)
-        .arg(dir.join("fmaf.c"))
-        .status()
-        .unwrap();
-    assert!(status.success(), "the harness compiles");
+    assert!(
+        cc(&exe, &[], &[dir.join("fmaf.c")], &[]),
+        "the harness compiles"
+    );
     let mut cases: Vec<[f32; 3]> = Vec::new();
     for k in 12..=23 {
         let small = 2f32.powi(-k);

@@ -113,6 +113,16 @@ fn frames_from_the_simulator_drive_as_its_sensors_do() {
     assert!(a.wheels_off <= 1e-6, "{}", a.wheels_off);
 }
 
+/// The wheel commands of a `frame,left,right` CSV from `vivae drive-image`.
+fn wheels_of(csv: &str) -> Vec<[f64; 2]> {
+    (csv.lines().skip(1))
+        .map(|l| {
+            let v: Vec<f64> = l.split(',').map(|t| t.parse().unwrap()).collect();
+            [v[1], v[2]]
+        })
+        .collect()
+}
+
 #[test]
 fn drive_image_prints_the_librarys_wheel_commands() {
     let run = small_run("drive-image-cli", 2);
@@ -139,13 +149,7 @@ fn drive_image_prints_the_librarys_wheel_commands() {
         .arg(&run)
         .args(&files)
         .args(["--radius", "64"]));
-    let got: Vec<[f64; 2]> = (csv.lines().skip(1))
-        .map(|l| {
-            let v: Vec<f64> = l.split(',').map(|t| t.parse().unwrap()).collect();
-            [v[1], v[2]]
-        })
-        .collect();
-    assert_eq!(got, want);
+    assert_eq!(wheels_of(&csv), want);
     // In fast precision: the f32 step of the controller decoded in f32, as exported.
     let fast = choose(&run, Pick::Champion, None, None, Some(Precision::Fast)).unwrap();
     let fast_net = Exported::new(&fast.episode, &fast.controller, "").net;
@@ -158,13 +162,7 @@ fn drive_image_prints_the_librarys_wheel_commands() {
         "--precision",
         "fast",
     ]));
-    let got: Vec<[f64; 2]> = (csv.lines().skip(1))
-        .map(|l| {
-            let v: Vec<f64> = l.split(',').map(|t| t.parse().unwrap()).collect();
-            [v[1], v[2]]
-        })
-        .collect();
-    assert_eq!(got, want_fast);
+    assert_eq!(wheels_of(&csv), want_fast);
     // The map and poses: the map's CSV is within the stated tolerance of the simulator's.
     std::fs::write(dir.join("poses.csv"), poses).unwrap();
     ok(vivae()
