@@ -1,6 +1,6 @@
 //! Speed of the experiment: one full evaluation (5 robots × 1000 steps, decode
-//! included) at the paper's, a re-sampled and a camera resolution, and
-//! decoding a CPPN onto the paper's substrate.
+//! included) at the paper's, a re-sampled and a camera resolution, of the
+//! default run's champion, and decoding a CPPN onto the paper's substrate.
 //!
 //! Throughput is reported in robot-steps (one robot, one simulation step with its
 //! sensor reading and controller update) and in evaluations.
@@ -33,6 +33,31 @@ fn genome(experiment: &Episode) -> Genome {
 fn experiment(config: &Config) -> Episode {
     let scenario = load_scenario(None).unwrap();
     Episode::new(config, &scenario.scenario).unwrap()
+}
+
+/// The default run's champion (`vivae evolve`, seed 1: generation 398,
+/// 3.61 px/step; `benches/paper-champion.json`): a controller that drives
+/// the loop and turns, as most of a run's evaluations do. The synthetic
+/// genome above hardly turns, so its evaluation skips the heading's
+/// `sincos` that costs a run 8 %.
+fn paper_champion() -> Genome {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/benches/paper-champion.json");
+    vivae_lab::rundir::read_champion(std::path::Path::new(path))
+        .unwrap()
+        .genome
+}
+
+/// One evaluation of the default run's champion, in each precision.
+#[divan::bench(args = ["exact", "fast"])]
+fn evaluation_of_the_paper_champion(bencher: divan::Bencher, precision: &str) {
+    let mut config = Config::default();
+    config.experiment.precision = precision.parse().unwrap();
+    let exp = experiment(&config);
+    let g = paper_champion();
+    let robot_steps = (exp.robots() as u64) * u64::from(exp.steps());
+    bencher
+        .counter(ItemsCount::new(robot_steps))
+        .bench(|| divan::black_box(exp.fitness(divan::black_box(&g))));
 }
 
 /// One evaluation of the paper's experiment: decode + 5 robots × 1000 steps.
