@@ -110,23 +110,12 @@ pub fn record(
         wheels: Vec::with_capacity(steps as usize),
         poses: Vec::with_capacity(steps as usize),
     };
-    let mut inputs = vec![0.0; ni];
-    // A fast controller reads its sensors in f32, as the rollout does for it.
-    let mut single = vec![0.0f32; if controller.single_inputs() { ni } else { 0 }];
     for _ in 0..steps {
-        // The rollout reads the same world at the start of its step.
-        if single.is_empty() {
-            episode.read_inputs(&world, robot, &mut inputs);
-        } else {
-            episode.read_inputs_single(&world, robot, &mut single, &mut inputs);
-            for (x, &v) in inputs.iter_mut().zip(&single) {
-                *x = f64::from(v);
-            }
-        }
+        // The pose the rollout reads the sensors at, at the start of its step.
         let r = &world.robots()[robot];
         rec.poses.push((r.pos, r.heading));
-        rec.sensors.extend_from_slice(&inputs);
         rollout.step(&mut world, controller, None);
+        rollout.extend_inputs(robot, &mut rec.sensors);
         rec.wheels.push(rollout.controls(robot));
     }
     Ok(rec)

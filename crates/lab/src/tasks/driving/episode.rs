@@ -283,24 +283,6 @@ impl Episode {
         read_sheets(&self.sensors, world, robot, inputs);
     }
 
-    /// [`Episode::read_inputs`] in f32, as a fast controller's rollout reads
-    /// them (`scratch`: f64 room for the longest sheet, e.g. `inputs.len()`).
-    pub fn read_inputs_single(
-        &self,
-        world: &World,
-        robot: usize,
-        inputs: &mut [f32],
-        scratch: &mut [f64],
-    ) {
-        crate::controller::sensors::read_sheets_single(
-            &self.sensors,
-            world,
-            robot,
-            inputs,
-            scratch,
-        );
-    }
-
     /// Simulation steps per episode.
     pub fn steps(&self) -> u32 {
         self.steps

@@ -225,6 +225,22 @@ impl Rollout {
         }
     }
 
+    /// Appends robot `robot`'s controller inputs of the last step to `out`,
+    /// as the controller took them (a fast controller's f32 readings
+    /// widened, exactly).
+    pub fn extend_inputs(&self, robot: usize, out: &mut Vec<f64>) {
+        let ni = self.inputs.len() / self.controls.len().max(1);
+        if self.single.is_empty() {
+            out.extend_from_slice(&self.inputs[robot * ni..][..ni]);
+        } else {
+            out.extend(
+                self.single[robot * ni..][..ni]
+                    .iter()
+                    .map(|&v| f64::from(v)),
+            );
+        }
+    }
+
     /// Robot `robot`'s wheel commands in the last step.
     pub fn controls(&self, robot: usize) -> [f64; 2] {
         self.controls[robot]
