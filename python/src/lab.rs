@@ -529,8 +529,10 @@ fn drive<'py>(
     let stop = AtomicBool::new(false);
     let failure: Mutex<Option<PyErr>> = Mutex::new(None);
     let started = std::time::Instant::now();
+    let mut reused = 0u64;
     let outcome = py.detach(|| {
         run.run(&stop, |r: &GenerationRecord| {
+            reused += r.reused as u64;
             Python::attach(|py| {
                 let result = match &on_generation {
                     Some(cb) => record_dict(py, r).and_then(|d| cb.call1(py, (d,)).map(|_| ())),
@@ -561,6 +563,7 @@ fn drive<'py>(
     d.set_item("generations", run.done())?;
     d.set_item("finished", outcome == Outcome::Finished)?;
     d.set_item("wall_s", wall)?;
+    d.set_item("evaluations_reused", reused)?;
     if let Some(m) = run.target_progress() {
         // A task with a goal: as the CLI's `solved=` and `evals_to_solve=`.
         d.set_item("solved", m.solved_at.is_some())?;
@@ -588,6 +591,7 @@ fn record_dict<'py>(py: Python<'py>, r: &GenerationRecord) -> PyResult<Bound<'py
     d.set_item("best_ever", r.best_ever)?;
     d.set_item("seconds", r.seconds)?;
     d.set_item("robot_steps_per_second", r.robot_steps_per_second)?;
+    d.set_item("reused", r.reused)?;
     Ok(d)
 }
 

@@ -254,6 +254,19 @@ def test_evolve_reports_each_generation_and_replay_returns_the_measures(tmp_path
     assert genome.to_json() == result["champion"].to_json()
 
 
+def test_evolve_runs_each_repeated_genome_once_and_says_so(tmp_path):
+    seen = []
+    result = vivae.evolve(out=tmp_path / "run", progress=False, on_generation=seen.append, **SETTINGS)
+    # The first generation has no elites to copy; each later one has some.
+    assert seen[0]["reused"] == 0
+    assert all(r["reused"] >= 1 for r in seen[1:])
+    assert result["evaluations_reused"] == sum(r["reused"] for r in seen)
+    placed = vivae.evolve(
+        out=tmp_path / "placed", progress=False, scenario="obstacles-random", on_generation=seen.append, **SETTINGS
+    )
+    assert placed["evaluations_reused"] == 0
+
+
 def test_evolve_refuses_an_existing_run_and_bad_settings(tmp_path):
     vivae.evolve(out=tmp_path / "run", progress=False, **SETTINGS)
     with pytest.raises(ValueError, match="run"):

@@ -20,7 +20,7 @@ use crate::search::Search;
 use crate::search::files::{extra_fields, write_outputs};
 use vivae_neat::driver::{
     CheckpointState, Checkpointer, DriverError, Evaluator, Evolution, GenerationReport, HookError,
-    Observer, ParallelEvaluator, StopCriteria, StopReason,
+    Observer, ParallelEvaluator, Reusing, StopCriteria, StopReason,
 };
 use vivae_neat::driver::{Evaluation, Strategy};
 use vivae_neat::{Genome, Population, Precision, stats};
@@ -323,6 +323,9 @@ impl Run {
         if self.finished() {
             return Ok(Outcome::Finished);
         }
+        // A task whose evaluations depend on the genome alone runs each
+        // distinct genome once: the same bits, less work.
+        let evaluator = Reusing::new(evaluator, self.task.context_free());
         let mut evolution = Evolution::resume(self.search.clone(), evaluator, self.progress.done);
         // A run with a target also stops once it is reached: the recorder raises `halt` then,
         // or when `stop` is set.
@@ -503,7 +506,12 @@ impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
         let (mean, median) = stats::mean(fitnesses)
             .zip(stats::median_of_sorted(sorted))
             .expect("an evaluated population has fitnesses");
-        let robot_steps = self.task.robot_steps_of(report.evaluations);
+        // Only the evaluations run simulated anything; reused ones were copied.
+        let run: Vec<Evaluation> = (report.evaluations.iter().enumerate())
+            .filter(|(i, _)| report.reused.binary_search(i).is_err())
+            .map(|(_, e)| e.clone())
+            .collect();
+        let robot_steps = self.task.robot_steps_of(&run);
         let row = GenerationRow {
             generation: report.generation,
             best,
@@ -521,6 +529,7 @@ impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
             total: self.total,
             seconds,
             robot_steps_per_second: robot_steps / seconds.max(1e-9),
+            reused: report.reused.len(),
             best_ever: search.best_ever().map_or(best, |b| b.fitness),
         })
     }

@@ -33,6 +33,8 @@ pub struct GenerationRecord {
     pub seconds: f64,
     /// Simulated robot-steps per second of wall time.
     pub robot_steps_per_second: f64,
+    /// Evaluations of the generation copied from an equal genome's instead of run.
+    pub reused: usize,
     /// Best fitness of the run so far.
     pub best_ever: f64,
 }

@@ -259,6 +259,8 @@ pub struct Finished<'a> {
     pub wall: f64,
     /// Robot-steps per second.
     pub rate: f64,
+    /// Evaluations of this invocation copied from an equal genome's instead of run.
+    pub reused: u64,
     /// The run directory.
     pub dir: &'a str,
     /// The strategy's summary fields (leading spaces included).

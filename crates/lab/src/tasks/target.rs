@@ -135,4 +135,8 @@ impl Task for Box<dyn RunTask> {
     fn metric_names(&self) -> &[&str] {
         (**self).metric_names()
     }
+
+    fn context_free(&self) -> bool {
+        (**self).context_free()
+    }
 }

@@ -13,6 +13,7 @@
 
 mod grouped;
 mod observer;
+mod reuse;
 mod stop;
 pub mod strategy;
 mod task;
@@ -23,6 +24,7 @@ pub use grouped::{GroupTask, GroupedEvaluator};
 pub use observer::{
     CheckpointState, Checkpointer, GenerationReport, HookError, NoCheckpoints, Observer,
 };
+pub use reuse::Reusing;
 pub use stop::{StopCriteria, StopReason};
 pub use strategy::{Batch, Strategy};
 pub(crate) use task::finite_or_zero;
@@ -177,6 +179,7 @@ impl<S: Strategy, E: Evaluator> Evolution<S, E> {
                 generation: self.done + 1,
                 strategy: &self.strategy,
                 evaluations: &evaluations,
+                reused: self.evaluator.reused(),
                 stats: &stats,
             })
             .map_err(DriverError::Hook)?;

@@ -22,6 +22,9 @@ pub struct GenerationReport<'a, S: ?Sized = Population> {
     pub strategy: &'a S,
     /// One evaluation per genome, in batch order.
     pub evaluations: &'a [Evaluation],
+    /// Indices of the batch whose evaluations were copied from an equal
+    /// genome's instead of run ([`Reusing`](super::Reusing)).
+    pub reused: &'a [usize],
     /// Statistics of the evaluated generation.
     pub stats: &'a GenerationStats,
 }
@@ -40,6 +43,7 @@ impl<S: ?Sized + fmt::Debug> fmt::Debug for GenerationReport<'_, S> {
             .field("generation", &self.generation)
             .field("strategy", &self.strategy)
             .field("evaluations", &self.evaluations)
+            .field("reused", &self.reused)
             .field("stats", &self.stats)
             .finish()
     }

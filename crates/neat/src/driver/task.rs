@@ -52,6 +52,13 @@ pub trait Task: Sync {
     fn metric_names(&self) -> &[&str] {
         &[]
     }
+
+    /// Whether `evaluate` ignores its context, so that equal genomes always
+    /// get equal evaluations and a [`Reusing`](super::Reusing) evaluator may
+    /// run each genome once (false by default).
+    fn context_free(&self) -> bool {
+        false
+    }
 }
 
 impl<F> Task for F
@@ -75,6 +82,12 @@ pub trait Evaluator {
         genomes: &[Genome],
         contexts: &[EvalContext],
     ) -> Result<Vec<Evaluation>, EvaluatorError>;
+
+    /// Indices of the last batch whose evaluations were reused from an equal
+    /// genome's instead of run (none unless the evaluator reuses).
+    fn reused(&self) -> &[usize] {
+        &[]
+    }
 }
 
 /// Why a generation could not be evaluated (e.g. a worker process was lost).

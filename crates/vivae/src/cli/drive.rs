@@ -40,16 +40,18 @@ pub fn drive(
     let bar = (!quiet && std::io::stderr().is_terminal()).then(|| progress_bar(total, run.done()));
     let mut robot_steps = 0.0;
     let mut busy = 0.0;
+    let mut reused = 0;
     let outcome = run_generations(&mut run, interrupted, |r: &GenerationRecord| {
         robot_steps += r.robot_steps_per_second * r.seconds;
         busy += r.seconds;
+        reused += r.reused as u64;
         show_generation(r, bar.as_ref(), quiet);
     })?;
     if let Some(b) = &bar {
         b.finish_and_clear();
     }
     let rate = robot_steps / busy.max(1e-9);
-    conclude(&run, outcome, started_after, start, rate, quiet)
+    conclude(&run, outcome, started_after, start, (rate, reused), quiet)
 }
 
 /// Sets `flag` on Ctrl-C; a second Ctrl-C while the generation finishes aborts at once.
@@ -66,18 +68,19 @@ fn install_ctrlc(flag: &Arc<AtomicBool>) {
 }
 
 /// The end of [`drive`]: figures, the closing summary and the summary line
-/// (a task without figures' by [`conclude_without_figures`]); `rate` is robot-steps per second.
+/// (a task without figures' by [`conclude_without_figures`]); `rate` is
+/// robot-steps per second, `reused` the evaluations copied instead of run.
 fn conclude(
     run: &Run,
     outcome: Outcome,
     started_after: u32,
     start: Instant,
-    rate: f64,
+    (rate, reused): (f64, u64),
     quiet: bool,
 ) -> anyhow::Result<ExitCode> {
     if run.task().driving().is_none() {
         let wall = start.elapsed().as_secs_f64();
-        return conclude_without_figures(run, outcome, wall, rate, quiet);
+        return conclude_without_figures(run, outcome, wall, (rate, reused), quiet);
     }
     if outcome == Outcome::Interrupted {
         // The figures show the run so far; a resumed run redraws them at its end.
@@ -95,7 +98,7 @@ fn conclude(
     // The machine-readable summary, for scripts.
     let per_map = per_map_field(&summary).map_or_else(String::new, |p| format!(" per_map={p}"));
     println!(
-        "evolve: generations={} best={} champion_generation={} on_road={:.4}{per_map}{} wall_s={:.1} robot_steps_per_s={:.0} out={}",
+        "evolve: generations={} best={} champion_generation={} on_road={:.4}{per_map}{} evaluations_reused={reused} wall_s={:.1} robot_steps_per_s={:.0} out={}",
         run.done(),
         summary.champion_fitness,
         summary.champion_generation,
@@ -114,7 +117,7 @@ fn conclude_without_figures(
     run: &Run,
     outcome: Outcome,
     wall: f64,
-    rate: f64,
+    (rate, reused): (f64, u64),
     quiet: bool,
 ) -> anyhow::Result<ExitCode> {
     let dir = run.dir().display().to_string();
@@ -131,6 +134,7 @@ fn conclude_without_figures(
         generations: run.done(),
         wall,
         rate,
+        reused,
         dir: &dir,
         strategy_fields: &vivae_lab::search::files::summary_fields(run.search()),
     };

@@ -108,6 +108,10 @@ impl Task for Combined {
     fn metric_names(&self) -> &[&str] {
         self.parts.first().map_or(&[], |(_, t)| t.metric_names())
     }
+
+    fn context_free(&self) -> bool {
+        self.parts.iter().all(|(_, t)| t.context_free())
+    }
 }
 
 impl DrivingTask for Combined {

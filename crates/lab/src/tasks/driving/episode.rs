@@ -498,6 +498,11 @@ impl Task for Episode {
             _ => &[],
         }
     }
+
+    /// The context's seed only places a varying scenario's obstacles and traffic.
+    fn context_free(&self) -> bool {
+        !self.varies()
+    }
 }
 
 impl DrivingTask for Episode {
@@ -622,6 +627,83 @@ mod tests {
         // A scenario that places nothing is run once.
         let plain = paper_experiment(&config);
         assert_eq!(plain.placements(), 1);
+    }
+
+    /// Records, for every evaluation a run reused, whether a fresh one in
+    /// another context has the same bits.
+    struct CheckReused<'a> {
+        exp: &'a Episode,
+        reused: usize,
+    }
+
+    impl vivae_neat::driver::Observer for CheckReused<'_> {
+        fn on_generation(
+            &mut self,
+            report: &vivae_neat::driver::GenerationReport<'_>,
+        ) -> Result<(), vivae_neat::driver::HookError> {
+            for &i in report.reused {
+                let genome = &report.strategy.genomes()[i];
+                let fresh = self.exp.evaluate(
+                    genome,
+                    &EvalContext {
+                        generation: 999,
+                        index: 1000 + i,
+                        seed: 12345,
+                    },
+                );
+                assert_eq!(
+                    fresh, report.evaluations[i],
+                    "generation {}",
+                    report.generation
+                );
+                assert_eq!(
+                    fresh.fitness.to_bits(),
+                    report.evaluations[i].fitness.to_bits()
+                );
+                self.reused += 1;
+            }
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn a_reused_driving_evaluation_has_the_bits_of_a_fresh_one() {
+        use vivae_neat::driver::{
+            Evolution, NoCheckpoints, ParallelEvaluator, Reusing, StopCriteria,
+        };
+        let mut config = Config::default();
+        config.experiment.steps = 150;
+        config.neat.population_size = 30;
+        let exp = paper_experiment(&config);
+        assert!(exp.context_free(), "the paper's scenario places nothing");
+        let pop = Population::new(config.neat.clone(), exp.cppn_spec(), 5).unwrap();
+        let evaluator = Reusing::new(ParallelEvaluator::new(exp.clone()), exp.context_free());
+        let mut evolution = Evolution::new(pop, evaluator);
+        let mut check = CheckReused {
+            exp: &exp,
+            reused: 0,
+        };
+        evolution
+            .run(
+                &StopCriteria::generations(6),
+                &mut check,
+                &mut NoCheckpoints,
+            )
+            .unwrap();
+        // Elites alone are copied every generation after the first.
+        assert!(
+            check.reused >= 5,
+            "only {} evaluations reused",
+            check.reused
+        );
+    }
+
+    #[test]
+    fn an_episode_that_places_from_its_seed_is_not_context_free() {
+        let config = Config::default();
+        let sc = crate::shipped::find("obstacles-random").unwrap();
+        let scenario = Scenario::from_svg(sc.svg, "obstacles-random", &Default::default()).unwrap();
+        assert!(!Episode::new(&config, &scenario).unwrap().context_free());
     }
 
     #[test]

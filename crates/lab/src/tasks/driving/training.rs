@@ -177,6 +177,10 @@ impl Task for Training {
     fn metric_names(&self) -> &[&str] {
         self.task.metric_names()
     }
+
+    fn context_free(&self) -> bool {
+        self.task.context_free()
+    }
 }
 
 impl DrivingTask for Training {

@@ -226,6 +226,11 @@ macro_rules! maze_task {
             fn metric_names(&self) -> &[&str] {
                 &METRICS
             }
+
+            /// An episode starts where the maze says: it depends on the genome alone.
+            fn context_free(&self) -> bool {
+                true
+            }
         }
     };
 }

@@ -65,7 +65,7 @@ pub(super) fn summary(task: &impl MazeModel, f: &Finished<'_>) -> (String, Strin
         f.generations, f.fitness, f.generation, end.distance,
     );
     let line = format!(
-        "evolve: generations={} best={} champion_generation={}{} best_distance={:.3} evaluations={}{} wall_s={wall:.1} robot_steps_per_s={rate:.0} out={dir}",
+        "evolve: generations={} best={} champion_generation={}{} best_distance={:.3} evaluations={}{} evaluations_reused={} wall_s={wall:.1} robot_steps_per_s={rate:.0} out={dir}",
         f.generations,
         f.fitness,
         f.generation,
@@ -73,6 +73,7 @@ pub(super) fn summary(task: &impl MazeModel, f: &Finished<'_>) -> (String, Strin
         end.distance,
         progress.evaluations,
         f.strategy_fields,
+        f.reused,
     );
     (person, line)
 }
