@@ -114,17 +114,8 @@ fn a_multi_map_run_reports_and_draws_every_map() {
         &run_dir,
         &["--scenario", "roads", "--scenario", "oval"],
     );
-    let field = summary
-        .split_whitespace()
-        .find_map(|f| f.strip_prefix("per_map="))
-        .unwrap_or_else(|| panic!("no per_map in {summary}"));
-    let best: f64 = summary
-        .split_whitespace()
-        .find_map(|f| f.strip_prefix("best="))
-        .unwrap()
-        .parse()
-        .unwrap();
-    let per_map: Vec<(&str, f64)> = field
+    let best = number(&summary, "best");
+    let per_map: Vec<(&str, f64)> = field(&summary, "per_map")
         .split(',')
         .map(|p| {
             let (label, f) = p.split_once(':').unwrap();

@@ -7,10 +7,7 @@
 use crate::common::*;
 
 fn fitness(line: &str) -> f64 {
-    line.split_whitespace()
-        .find_map(|f| f.strip_prefix("fitness="))
-        .and_then(|v| v.parse().ok())
-        .unwrap_or_else(|| panic!("no fitness in {line:?}"))
+    number(line, "fitness")
 }
 
 fn replay(run: &std::path::Path, extra: &[&str]) -> f64 {

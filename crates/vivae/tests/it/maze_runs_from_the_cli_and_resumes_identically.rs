@@ -24,14 +24,6 @@ fn maze(out: &Path, args: &[&str]) -> String {
         .arg(out))
 }
 
-/// The value of `key=` on a summary line.
-fn field<'a>(line: &'a str, key: &str) -> &'a str {
-    let prefix = format!("{key}=");
-    line.split_whitespace()
-        .find_map(|w| w.strip_prefix(prefix.as_str()))
-        .unwrap_or_else(|| panic!("no {key}= in {line}"))
-}
-
 /// Asserts a command fails with exit 2 and one line of stderr containing `needle`.
 fn refused(cmd: &mut std::process::Command, needle: &str) {
     let out = run(cmd);

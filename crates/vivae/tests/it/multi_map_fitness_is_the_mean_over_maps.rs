@@ -6,11 +6,7 @@ use crate::common::*;
 
 /// The `fitness=` of a replay's output line.
 fn replay_fitness(stdout: &str) -> f64 {
-    let field = stdout
-        .split_whitespace()
-        .find_map(|f| f.strip_prefix("fitness="))
-        .unwrap_or_else(|| panic!("no fitness in {stdout:?}"));
-    field.parse().unwrap()
+    number(stdout, "fitness")
 }
 
 #[test]

@@ -38,14 +38,6 @@ fn evolve(out: &Path, args: &[&str]) -> String {
         .arg(out))
 }
 
-/// The value of `key=` on a summary line.
-fn field<'a>(line: &'a str, key: &str) -> &'a str {
-    let prefix = format!("{key}=");
-    line.split_whitespace()
-        .find_map(|w| w.strip_prefix(prefix.as_str()))
-        .unwrap_or_else(|| panic!("no {key}= in {line}"))
-}
-
 fn append(path: &Path, text: &str) {
     let mut f = std::fs::OpenOptions::new().append(true).open(path).unwrap();
     f.write_all(text.as_bytes()).unwrap();

@@ -9,10 +9,7 @@ use crate::common::*;
 
 /// The `evaluations_reused=` field of a summary line.
 fn reused(summary: &str) -> u64 {
-    let field = (summary.split_whitespace())
-        .find_map(|f| f.strip_prefix("evaluations_reused="))
-        .unwrap_or_else(|| panic!("no evaluations_reused= in {summary}"));
-    field.parse().unwrap()
+    field(summary, "evaluations_reused").parse().unwrap()
 }
 
 #[test]

@@ -3,7 +3,7 @@
 //! a real headless Chromium. Skipped, with a SKIPPED note, without chromium.
 
 use crate::common::browser::{Browser, shots};
-use crate::common::{evolve, scratch, write_small_config};
+use crate::common::{evolve, field, scratch, write_small_config};
 
 #[test]
 fn each_training_map_has_a_panel_named_by_map_with_its_fitness() {
@@ -17,10 +17,7 @@ fn each_training_map_has_a_panel_named_by_map_with_its_fitness() {
         &["--robots", "0", "--scenario", "roads", "--scenario", "oval"],
     );
     // per_map=roads:2.647,oval:3.398 on the summary line.
-    let per_map: Vec<(String, String)> = out
-        .split_whitespace()
-        .find_map(|f| f.strip_prefix("per_map="))
-        .unwrap_or_else(|| panic!("no per_map= in {out:?}"))
+    let per_map: Vec<(String, String)> = field(&out, "per_map")
         .split(',')
         .map(|m| {
             let (name, f) = m.split_once(':').unwrap();

@@ -27,6 +27,20 @@ pub fn small_config(generations: u32) -> String {
     )
 }
 
+/// The value of the `key=value` field of a `key=value …` line (a summary
+/// line, a replay's line); panics, showing the line, when it has none.
+pub fn field<'a>(line: &'a str, key: &str) -> &'a str {
+    (line.split_whitespace())
+        .find_map(|f| f.strip_prefix(key)?.strip_prefix('='))
+        .unwrap_or_else(|| panic!("no {key}= in {line:?}"))
+}
+
+/// [`field`] parsed as a number.
+pub fn number(line: &str, key: &str) -> f64 {
+    let value = field(line, key);
+    (value.parse()).unwrap_or_else(|_| panic!("{key}={value} is not a number in {line:?}"))
+}
+
 /// Writes `small_config(generations)` to `dir/c.toml` and returns its path.
 pub fn write_small_config(dir: &Path, generations: u32) -> PathBuf {
     let path = dir.join("c.toml");
