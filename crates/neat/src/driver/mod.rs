@@ -164,14 +164,7 @@ impl<S: Strategy, E: Evaluator> Evolution<S, E> {
     ) -> Result<Told, DriverError> {
         let batch = self.strategy.ask();
         let evaluations = self.evaluator.evaluate(batch.genomes, &batch.contexts)?;
-        if evaluations.len() != batch.contexts.len() {
-            return Err(EvaluatorError(format!(
-                "the evaluator returned {} evaluations for {} genomes",
-                evaluations.len(),
-                batch.contexts.len()
-            ))
-            .into());
-        }
+        EvaluatorError::unless_one_evaluation_each(&evaluations, batch.contexts.len())?;
         self.strategy.tell(&evaluations)?;
         let stats = self.strategy.stats();
         observer

@@ -103,21 +103,15 @@ impl<E: Evaluator> Evaluator for Reusing<E> {
         let run: Vec<usize> = (0..genomes.len())
             .filter(|&i| matches!(sources[i], Source::Run))
             .collect();
-        let mut ran = if run.len() == genomes.len() {
+        let ran = if run.len() == genomes.len() {
             self.inner.evaluate(genomes, contexts)?
         } else {
             let subset: Vec<Genome> = run.iter().map(|&i| genomes[i].clone()).collect();
             let subset_contexts: Vec<EvalContext> = run.iter().map(|&i| contexts[i]).collect();
             self.inner.evaluate(&subset, &subset_contexts)?
         };
-        if ran.len() != run.len() {
-            return Err(EvaluatorError(format!(
-                "the evaluator returned {} evaluations for {} genomes",
-                ran.len(),
-                run.len()
-            )));
-        }
-        let mut ran = ran.drain(..);
+        EvaluatorError::unless_one_evaluation_each(&ran, run.len())?;
+        let mut ran = ran.into_iter();
         let mut out: Vec<Evaluation> = Vec::with_capacity(genomes.len());
         for (i, source) in sources.iter().enumerate() {
             let evaluation = match *source {
@@ -130,7 +124,6 @@ impl<E: Evaluator> Evaluator for Reusing<E> {
             }
             out.push(evaluation);
         }
-        drop(ran);
         self.remember(genomes, &sources, &out);
         Ok(out)
     }

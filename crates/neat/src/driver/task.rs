@@ -96,6 +96,20 @@ pub trait Evaluator {
 pub struct EvaluatorError(pub String);
 
 impl EvaluatorError {
+    /// The error an evaluator's caller gives unless it got one evaluation per genome.
+    pub fn unless_one_evaluation_each(
+        evaluations: &[Evaluation],
+        genomes: usize,
+    ) -> Result<(), EvaluatorError> {
+        if evaluations.len() == genomes {
+            return Ok(());
+        }
+        Err(EvaluatorError(format!(
+            "the evaluator returned {} evaluations for {genomes} genomes",
+            evaluations.len()
+        )))
+    }
+
     /// The error every [`Evaluator`] gives unless there is one context per genome.
     pub fn unless_one_context_each(
         genomes: &[Genome],
