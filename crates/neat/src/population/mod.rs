@@ -239,6 +239,9 @@ impl Population {
             .genomes
             .par_iter()
             .zip(contexts.into_par_iter())
+            // One genome per job, as in `ParallelEvaluator`: no thread waits
+            // at the end of a generation while the other finishes a long run.
+            .with_max_len(1)
             .map(|(g, ctx)| f(g, ctx))
             .collect();
         self.record_fitness(fitness);
