@@ -588,9 +588,44 @@ fn svg_to_png_capped(svg: &str, scale: f64, max_pixels: f64) -> Result<Vec<u8>, 
         tiny_skia::Transform::from_scale(scale as f32, scale as f32),
         &mut pixmap.as_mut(),
     );
-    pixmap
-        .encode_png()
-        .map_err(|e| DrawError::Png(e.to_string()))
+    encode_png(&pixmap)
+}
+
+/// Encodes `pixmap` as PNG with fast compression (tiny-skia's own encoder,
+/// at the default level, spends most of a large figure's time compressing).
+pub fn encode_png(pixmap: &tiny_skia::Pixmap) -> Result<Vec<u8>, DrawError> {
+    let png_err = |e: png::EncodingError| DrawError::Png(e.to_string());
+    // Opaque and fully transparent pixels read the same premultiplied or not:
+    // a figure's pixmap (opaque background) needs no straight-alpha copy.
+    let straight = pixmap
+        .pixels()
+        .iter()
+        .all(|p| p.alpha() == 255 || p.alpha() == 0);
+    let copy;
+    let rgba = if straight {
+        pixmap.data()
+    } else {
+        copy = pixmap
+            .pixels()
+            .iter()
+            .flat_map(|p| {
+                let c = p.demultiply();
+                [c.red(), c.green(), c.blue(), c.alpha()]
+            })
+            .collect::<Vec<u8>>();
+        &copy
+    };
+    let mut out = Vec::new();
+    {
+        let mut encoder = png::Encoder::new(&mut out, pixmap.width(), pixmap.height());
+        encoder.set_color(png::ColorType::Rgba);
+        encoder.set_depth(png::BitDepth::Eight);
+        encoder.set_compression(png::Compression::Fast);
+        let mut writer = encoder.write_header().map_err(png_err)?;
+        writer.write_image_data(rgba).map_err(png_err)?;
+        writer.finish().map_err(png_err)?;
+    }
+    Ok(out)
 }
 
 /// The world as a PNG picture (see [`render_svg`]).

@@ -95,11 +95,15 @@ pub fn finish_run(run: &Run) -> Result<RunSummary> {
         bad_input(format!("a {task} run has no trajectory figures"))
     })?;
     let champion = run.champion().ok_or(Error::NoChampion)?;
-    // The network figure takes as long as all the others together: it is
-    // drawn on a second core meanwhile (each figure is its own files).
+    // The episodes' figures on one core, the network's and the population's
+    // on the other: the two take about as long (each figure is its own files).
     let (drawn, network) = rayon::join(
         || episode_figures(run, experiment, &champion, &dir),
-        || network_figure(run, experiment, &champion, &dir),
+        || {
+            let network = network_figure(run, experiment, &champion, &dir)?;
+            population_figures(run, &dir)?;
+            Ok::<_, Error>(network)
+        },
     );
     let DrawnEpisodes {
         generations: episodes,
@@ -151,8 +155,8 @@ struct DrawnEpisodes<'r> {
 }
 
 /// The episodes a finished run draws — the figure generations' bests and
-/// the champion, on every training map — then its convergence and strategy
-/// figures; returns the episodes (the report shows them too).
+/// the champion, on every training map; returns the episodes (the report
+/// shows them too).
 fn episode_figures<'r>(
     run: &'r Run,
     experiment: &Episode,
@@ -178,15 +182,19 @@ fn episode_figures<'r>(
         "trajectories-champion",
     )?;
     let map_episodes = per_map_figures(run, &champion.genome, dir)?;
-    let fitness = rundir::read_population_csv(&run.dir().join(files::POPULATION))?;
-    let convergence = figures::convergence::render(&fitness, &ConvergenceOptions::default())?;
-    write_figure(dir, "convergence", &convergence.svg, &convergence.png)?;
-    strategy_figure(run, dir)?;
     Ok(DrawnEpisodes {
         generations: episodes,
         champion: episode,
         maps: map_episodes,
     })
+}
+
+/// The run's convergence figure and its strategy's own figure, if any.
+fn population_figures(run: &Run, dir: &Path) -> Result<()> {
+    let fitness = rundir::read_population_csv(&run.dir().join(files::POPULATION))?;
+    let convergence = figures::convergence::render(&fitness, &ConvergenceOptions::default())?;
+    write_figure(dir, "convergence", &convergence.svg, &convergence.png)?;
+    strategy_figure(run, dir)
 }
 
 /// The champion's network figure; returns its SVG (the report shows it too).

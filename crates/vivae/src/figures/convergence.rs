@@ -366,9 +366,7 @@ fn embed_heat_image(
                 tiny_skia::ColorU8::from_rgba(c.0, c.1, c.2, 255).premultiply();
         }
     }
-    let png = image
-        .encode_png()
-        .map_err(|e| FigureError::Png(e.to_string()))?;
+    let png = super::encode_png_fast(&image)?;
     let (xs, ys) = heat_px;
     let element = format!(
         "<image x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" preserveAspectRatio=\"none\" \

@@ -18,6 +18,7 @@ mod fields;
 /// NSGA-II's Pareto front over two objectives.
 pub mod front;
 pub mod network;
+mod opacity;
 
 use std::sync::OnceLock;
 
@@ -103,7 +104,7 @@ pub(crate) fn draw_err(e: impl std::fmt::Display) -> FigureError {
 
 /// Renders an SVG document (as produced by the figures) to PNG bytes at [`PNG_SCALE`].
 pub fn svg_to_png(svg: &str) -> Result<Vec<u8>, FigureError> {
-    vivae_sim::draw::svg_to_png(svg, f64::from(PNG_SCALE))
+    vivae_sim::draw::svg_to_png(&opacity::on_paint(svg), f64::from(PNG_SCALE))
         .map_err(|e| FigureError::Png(e.to_string()))
 }
 
@@ -140,41 +141,9 @@ pub(crate) fn draw_svg_over(
     Ok(())
 }
 
-/// Encodes `pixmap` as PNG with fast compression (tiny-skia's own encoder
-/// spends most of a large figure's time compressing).
+/// Encodes `pixmap` as PNG with fast compression.
 pub(crate) fn encode_png_fast(pixmap: &tiny_skia::Pixmap) -> Result<Vec<u8>, FigureError> {
-    let png_err = |e: png::EncodingError| FigureError::Png(e.to_string());
-    // Opaque and fully transparent pixels read the same premultiplied or not:
-    // a figure's pixmap (opaque background) needs no straight-alpha copy.
-    let straight = pixmap
-        .pixels()
-        .iter()
-        .all(|p| p.alpha() == 255 || p.alpha() == 0);
-    let copy;
-    let rgba = if straight {
-        pixmap.data()
-    } else {
-        copy = pixmap
-            .pixels()
-            .iter()
-            .flat_map(|p| {
-                let c = p.demultiply();
-                [c.red(), c.green(), c.blue(), c.alpha()]
-            })
-            .collect::<Vec<u8>>();
-        &copy
-    };
-    let mut out = Vec::new();
-    {
-        let mut encoder = png::Encoder::new(&mut out, pixmap.width(), pixmap.height());
-        encoder.set_color(png::ColorType::Rgba);
-        encoder.set_depth(png::BitDepth::Eight);
-        encoder.set_compression(png::Compression::Fast);
-        let mut writer = encoder.write_header().map_err(png_err)?;
-        writer.write_image_data(rgba).map_err(png_err)?;
-        writer.finish().map_err(png_err)?;
-    }
-    Ok(out)
+    vivae_sim::draw::encode_png(pixmap).map_err(|e| FigureError::Png(e.to_string()))
 }
 
 /// Standard base64 (RFC 4648, with padding), for images embedded in SVG.
