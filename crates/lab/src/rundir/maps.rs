@@ -106,3 +106,20 @@ pub fn load_run(dir: &Path, config: &Config, hashes: Option<&[u64]>) -> Result<V
     }
     Ok(maps)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::tasks::maps::load;
+
+    #[test]
+    fn copies_of_maps_with_one_name_get_distinct_files() {
+        let mut c = Config::default();
+        c.experiment.scenarios = ["oval", "oval", "roads"].map(String::from).to_vec();
+        let maps = load(&c).unwrap();
+        assert_eq!(copy_names(&maps), ["oval.svg", "oval-2.svg", "roads.svg"]);
+        let m = manifest(&copy_names(&maps), &maps);
+        assert_eq!(m.lines().count(), 4);
+        assert!(m.contains("oval-2.svg "));
+    }
+}

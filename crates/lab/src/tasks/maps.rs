@@ -165,100 +165,12 @@ pub fn fingerprint_text(maps: &[TrainingMap]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::rundir::{copy_names, manifest};
-    use crate::tasks::driving::combined::DrivingTask;
-    use crate::tasks::driving::episode::Episode;
-    use crate::tasks::driving::training::Training;
-    use vivae_neat::driver::Task;
-    use vivae_neat::{EvalContext, Population};
 
     fn config(maps: &[&str]) -> Config {
         let mut c = Config::default();
         c.experiment.steps = 60;
         c.experiment.scenarios = maps.iter().map(|s| s.to_string()).collect();
         c
-    }
-
-    #[test]
-    fn fitness_is_the_mean_over_maps_of_each_maps_own_fitness() {
-        let c = config(&["roads", "oval", "traffic"]);
-        let maps = load(&c).unwrap();
-        let e = Training::new(&c, &maps).unwrap();
-        let pop = Population::new(c.neat.clone(), e.cppn_spec(), 3).unwrap();
-        let ctx = EvalContext {
-            generation: 1,
-            index: 0,
-            seed: 0,
-        };
-        for g in pop.genomes().iter().take(4) {
-            let alone: Vec<f64> = maps
-                .iter()
-                .map(|m| {
-                    let mut single = c.clone();
-                    single.experiment.scenarios.clear();
-                    Episode::new(&single, &m.loaded.scenario)
-                        .unwrap()
-                        .fitness(g)
-                })
-                .collect();
-            let want = (alone[0] + alone[1] + alone[2]) / 3.0;
-            assert_eq!(e.evaluate(g, &ctx).fitness.to_bits(), want.to_bits());
-        }
-        // Reported and drawn: the first map.
-        assert_eq!(e.primary().robots(), 5);
-        let steps: u64 = [5u64, 5, 5].iter().map(|r| r * 60).sum();
-        assert_eq!(e.robot_steps(), steps);
-    }
-
-    #[test]
-    fn maps_compose_with_training_resolutions() {
-        let mut c = config(&["roads", "oval"]);
-        c.substrate.train_neurons = vec![
-            crate::controller::substrate::PolarGrid {
-                rings: 3,
-                angles: 3,
-            },
-            crate::controller::substrate::PolarGrid {
-                rings: 5,
-                angles: 5,
-            },
-        ];
-        let maps = load(&c).unwrap();
-        let e = Training::new(&c, &maps).unwrap();
-        assert_eq!(e.map_labels().collect::<Vec<_>>(), ["roads", "oval"]);
-        assert_eq!(e.resolution_labels(), ["s3x5-n3x3", "s3x5-n5x5"]);
-        let pop = Population::new(c.neat.clone(), e.cppn_spec(), 5).unwrap();
-        let g = &pop.genomes()[0];
-        let ctx = EvalContext {
-            generation: 1,
-            index: 0,
-            seed: 0,
-        };
-        let per_map: Vec<f64> = maps
-            .iter()
-            .map(|m| {
-                crate::tasks::driving::resolutions::at_resolutions(&c, &m.loaded.scenario)
-                    .unwrap()
-                    .unwrap()
-                    .evaluate(g, &ctx)
-                    .fitness
-            })
-            .collect();
-        assert_eq!(
-            e.evaluate(g, &ctx).fitness.to_bits(),
-            mean(&per_map).to_bits()
-        );
-        assert_eq!(e.robot_steps(), 2 * 2 * 5 * 60);
-    }
-
-    #[test]
-    fn copies_of_maps_with_one_name_get_distinct_files() {
-        let c = config(&["oval", "oval", "roads"]);
-        let maps = load(&c).unwrap();
-        assert_eq!(copy_names(&maps), ["oval.svg", "oval-2.svg", "roads.svg"]);
-        let m = manifest(&copy_names(&maps), &maps);
-        assert_eq!(m.lines().count(), 4);
-        assert!(m.contains("oval-2.svg "));
     }
 
     /// Writes `copies` files of one big arena (10001×9990 px, just under the
@@ -314,13 +226,5 @@ mod tests {
             warnings[0]
         );
         assert!(repeat_warnings(&load(&config(&["oval", "roads"])).unwrap()).is_empty());
-    }
-
-    #[test]
-    fn a_single_scenario_config_builds_the_plain_experiment() {
-        let c = Config::default();
-        let e = Training::new(&c, &load(&c).unwrap()).unwrap();
-        assert_eq!(e.map_labels().count(), 0);
-        assert!(e.resolution_labels().is_empty());
     }
 }

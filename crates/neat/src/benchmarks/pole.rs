@@ -385,6 +385,11 @@ pub fn run_observed(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::benchmarks::pole_lanes::score_lanes;
+    use crate::simd;
+    use crate::test_genes::grown;
+    use crate::{InnovationTracker, RecurrentNetwork};
+    use rand::SeedableRng;
 
     #[test]
     fn the_markov_task_is_solved_and_counts_evaluations_up_to_the_solver() {
@@ -417,5 +422,69 @@ mod tests {
         assert!(generalisation(&g) < 625);
         assert!(Criterion::parse("gomez").is_ok() && Criterion::parse("x").is_err());
         assert_eq!(Setup::gomez().params.population_size, 16);
+    }
+
+    #[test]
+    fn episodes_side_by_side_score_each_genome_as_alone() {
+        let mut rng = rand_pcg::Pcg64::seed_from_u64(11);
+        for markov in [true, false] {
+            let (spec, params) = (spec(markov), pole_params(markov));
+            let mut tracker = InnovationTracker::new((spec.inputs + spec.outputs) as u32);
+            // Grown genomes and a first generation: trials of every length
+            // (some past 100 steps, where the damping term counts), more
+            // than the lanes, so lanes are refilled and then compacted.
+            let mut genomes: Vec<_> = (0..21)
+                .map(|i| grown(&spec, &params, &mut tracker, &mut rng, i % 5))
+                .collect();
+            // A few generations of evolution, so that some trials balance long.
+            let mut pop = crate::Population::new(params.clone(), spec.clone(), 1).unwrap();
+            let start = start_state(markov, 4.5);
+            for _ in 0..8 {
+                pop.evaluate(|g, _| {
+                    if markov {
+                        score(&mut FeedForwardNetwork::from_genome(g), true, start).0
+                    } else {
+                        score(&mut RecurrentNetwork::from_genome(g), false, start).0
+                    }
+                });
+                pop.next_generation();
+            }
+            genomes.extend_from_slice(&pop.genomes()[..150]);
+            let alone: Vec<(f64, u32)> = genomes
+                .iter()
+                .map(|g| {
+                    if markov {
+                        score(&mut FeedForwardNetwork::from_genome(g), markov, start)
+                    } else {
+                        score(&mut RecurrentNetwork::from_genome(g), markov, start)
+                    }
+                })
+                .collect();
+            let lengths: std::collections::BTreeSet<u32> = alone.iter().map(|a| a.1).collect();
+            assert!(lengths.len() > 5, "trials of several lengths: {lengths:?}");
+            assert!(
+                lengths.last() > Some(&100),
+                "a trial past 100 steps: {lengths:?}"
+            );
+            for level in simd::available() {
+                let before = simd::set_level(level);
+                let mut out = Vec::new();
+                if markov {
+                    let mut nets: Vec<_> = genomes
+                        .iter()
+                        .map(FeedForwardNetwork::from_genome)
+                        .collect();
+                    score_lanes(&mut nets, markov, start, &mut out);
+                } else {
+                    let mut nets: Vec<_> =
+                        genomes.iter().map(RecurrentNetwork::from_genome).collect();
+                    score_lanes(&mut nets, markov, start, &mut out);
+                }
+                simd::set_level(before);
+                let bits =
+                    |v: &[(f64, u32)]| v.iter().map(|(f, t)| (f.to_bits(), *t)).collect::<Vec<_>>();
+                assert_eq!(bits(&out), bits(&alone), "markov {markov}, {level:?}");
+            }
+        }
     }
 }

@@ -515,6 +515,17 @@ impl DrivingTask for Episode {
     }
 }
 
+// Tests of the modules an episode is built from that need an episode to
+// run: those modules cannot import `Episode` without importing their user.
+#[cfg(test)]
+mod es_controllers;
+#[cfg(test)]
+mod measures;
+#[cfg(test)]
+mod normalized_controllers;
+#[cfg(test)]
+mod rollouts;
+
 #[cfg(test)]
 mod tests {
     use super::*;
