@@ -163,10 +163,12 @@ pub fn fingerprint_text(maps: &[TrainingMap]) -> String {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
-    fn config(maps: &[&str]) -> Config {
+    /// A short run's config training on the shipped `maps` (also the
+    /// training tests').
+    pub(crate) fn config(maps: &[&str]) -> Config {
         let mut c = Config::default();
         c.experiment.steps = 60;
         c.experiment.scenarios = maps.iter().map(|s| s.to_string()).collect();

@@ -196,16 +196,9 @@ impl DrivingTask for Training {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::tasks::maps::tests::config;
     use crate::tasks::maps::{load, mean};
     use vivae_neat::Population;
-
-    /// A short run's config training on the shipped `maps`.
-    fn config(maps: &[&str]) -> Config {
-        let mut c = Config::default();
-        c.experiment.steps = 60;
-        c.experiment.scenarios = maps.iter().map(|s| s.to_string()).collect();
-        c
-    }
 
     #[test]
     fn fitness_is_the_mean_over_maps_of_each_maps_own_fitness() {
