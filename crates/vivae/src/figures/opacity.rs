@@ -32,7 +32,7 @@ pub(crate) fn on_paint(svg: &str) -> Cow<'_, str> {
     while let Some(start) = rest.find('<') {
         out.push_str(&rest[..start]);
         rest = &rest[start..];
-        let end = rest.find('>').map_or(rest.len(), |e| e + 1);
+        let end = tag_end(rest);
         let tag = &rest[..end];
         match SHAPES
             .iter()
@@ -46,6 +46,21 @@ pub(crate) fn on_paint(svg: &str) -> Cow<'_, str> {
     }
     out.push_str(rest);
     Cow::Owned(out)
+}
+
+/// The length of the markup `s` starts with, up to its `>` outside quotes
+/// (an attribute value may hold a `>`), or all of `s`.
+fn tag_end(s: &str) -> usize {
+    let mut quote = None;
+    for (i, b) in s.bytes().enumerate() {
+        match (quote, b) {
+            (None, b'"' | b'\'') => quote = Some(b),
+            (Some(q), _) if b == q => quote = None,
+            (None, b'>') => return i + 1,
+            _ => {}
+        }
+    }
+    s.len()
 }
 
 /// The start tag `tag` with its opacity on its one paint, if it qualifies.
@@ -100,6 +115,18 @@ mod tests {
         );
         let no_stroke = r##"<polygon opacity="0.25" fill="#00FF00" points="0,0 1,0 1,1"/>"##;
         assert!(on_paint(no_stroke).contains(r#" fill-opacity="0.25""#));
+    }
+
+    #[test]
+    fn a_greater_than_sign_in_an_attribute_does_not_end_the_tag() {
+        let svg = r##"<svg><polyline data-note="a>b" fill="none" opacity="0.5" stroke="#000000" points="0,0 1,1"/><text>x > y</text></svg>"##;
+        assert_eq!(
+            on_paint(svg),
+            r##"<svg><polyline data-note="a>b" fill="none" stroke-opacity="0.5" stroke="#000000" points="0,0 1,1"/><text>x > y</text></svg>"##
+        );
+        // Its fill and stroke after the `>` are read: two paints, left alone.
+        let two = r##"<rect data-note="a>b" opacity="0.5" fill="#FFFFFF" stroke="#000000"/>"##;
+        assert_eq!(on_paint(two), two);
     }
 
     #[test]
