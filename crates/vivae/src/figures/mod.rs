@@ -132,7 +132,8 @@ pub(crate) fn draw_svg_over(
         font_family: "DejaVu Sans".to_string(),
         ..Default::default()
     };
-    let tree = usvg::Tree::from_str(svg, &opt).map_err(|e| FigureError::Png(e.to_string()))?;
+    let tree = usvg::Tree::from_str(&opacity::on_paint(svg), &opt)
+        .map_err(|e| FigureError::Png(e.to_string()))?;
     resvg::render(
         &tree,
         tiny_skia::Transform::from_scale(scale, scale),
