@@ -455,13 +455,13 @@ pub(crate) fn links_of<'a, W>(
 /// vector moves: the first and the last `K` values, overlapping when fewer
 /// than `2K` (`memcpy`'s own trick).
 #[inline(always)]
-pub(crate) fn copy_short(dst: &mut [f64], src: &[f64]) {
+pub(crate) fn copy_short<T: Copy>(dst: &mut [T], src: &[T]) {
     /// The first and last `K` of `src` (`K ≤ src.len() ≤ 2K`) into `dst`.
     #[inline(always)]
-    fn ends<const K: usize>(dst: &mut [f64], src: &[f64]) {
+    fn ends<T: Copy, const K: usize>(dst: &mut [T], src: &[T]) {
         let n = src.len();
-        let head: [f64; K] = src[..K].try_into().expect("K values");
-        let tail: [f64; K] = src[n - K..].try_into().expect("K values");
+        let head: [T; K] = src[..K].try_into().expect("K values");
+        let tail: [T; K] = src[n - K..].try_into().expect("K values");
         dst[..K].copy_from_slice(&head);
         dst[n - K..].copy_from_slice(&tail);
     }
@@ -469,9 +469,9 @@ pub(crate) fn copy_short(dst: &mut [f64], src: &[f64]) {
     match src.len() {
         0 => {}
         1 => dst[0] = src[0],
-        2..=3 => ends::<2>(dst, src),
-        4..=7 => ends::<4>(dst, src),
-        8..=16 => ends::<8>(dst, src),
+        2..=3 => ends::<T, 2>(dst, src),
+        4..=7 => ends::<T, 4>(dst, src),
+        8..=16 => ends::<T, 8>(dst, src),
         _ => dst.copy_from_slice(src),
     }
 }

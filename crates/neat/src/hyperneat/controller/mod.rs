@@ -834,6 +834,9 @@ mod tests {
                                 "{level:?}, {n} neurons, robot {r} of {robots}, step {step}"
                             );
                             assert_eq!(bits(state.state(r)), bits(y));
+                            // Padding lanes stay 0: the squash packs the sums and never writes them.
+                            let pad = &state.state[r * state.stride..][n..state.stride];
+                            assert!(pad.iter().all(|v| v.to_bits() == 0), "{level:?} padding");
                         }
                     }
                 }

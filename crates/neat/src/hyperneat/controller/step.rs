@@ -155,9 +155,9 @@ fn step_body<E: Element, S: Simd<E>>(
     y: &mut [E],
     acc: &mut [E],
 ) {
-    // Lanes past `live` hold only padding neurons: they are neither summed nor
-    // squashed (their state stays 0 and no neuron reads it), which spares a
-    // quarter of the work for 9 neurons on 4-lane vectors.
+    // Lanes past `live` hold only padding neurons: they are not summed (their
+    // state stays 0 and no neuron reads it), which spares a quarter of the
+    // work for 9 neurons on 4-lane vectors.
     let live = k.n.next_multiple_of(S::LANES);
     let mut r0 = 0;
     while r0 < robots {
@@ -185,11 +185,45 @@ fn step_body<E: Element, S: Simd<E>>(
         }
         r0 += rt;
     }
-    // σ over the live lanes of every robot (live padding lanes: σ(0) = 0).
-    for (y, a) in y.chunks_exact_mut(k.stride).zip(acc.chunks_exact(k.stride)) {
-        for (y, &a) in y[..live].iter_mut().zip(&a[..live]) {
-            *y = E::squash(a);
+    squash_packed::<E, S>(s, k, robots, y, acc);
+}
+
+/// `y = σ(acc)` for every robot's `n` neurons, the sums first packed robot
+/// after robot so that no vector is spent on padding lanes: 9 neurons of 5
+/// robots are 6 vectors of 8 lanes (3 of 16) instead of 10 (5). σ is
+/// computed lane by lane, so packing does not change a bit; the padding
+/// lanes of `y` are never written and stay 0.
+#[inline(always)]
+fn squash_packed<E: Element, S: Simd<E>>(
+    s: S,
+    k: &Kernel<E>,
+    robots: usize,
+    y: &mut [E],
+    acc: &mut [E],
+) {
+    let n = k.n;
+    let live = n.next_multiple_of(S::LANES);
+    // Robot r's sums move down from r·stride to r·n, whole vectors in
+    // ascending order: a store ends at r·n + live ≤ (r + 1)·stride, before the
+    // sums of the next robot, and the lanes it writes past r·n + n are the
+    // next robot's to overwrite (or the tail's, zeroed below).
+    for r in 1..robots {
+        for v in (0..live).step_by(S::LANES) {
+            let x = s.load(&acc[r * k.stride + v..]);
+            s.store(x, &mut acc[r * n + v..]);
         }
+    }
+    // Whole vectors only (robots · stride is a multiple of the vector width,
+    // so they fit); the tail past the last sum is zeroed, not left stale.
+    let packed = (robots * n).next_multiple_of(S::LANES);
+    acc[robots * n..packed].fill(E::default());
+    for lanes in acc[..packed].chunks_exact_mut(S::LANES) {
+        for v in lanes {
+            *v = E::squash(*v);
+        }
+    }
+    for (r, y) in y.chunks_exact_mut(k.stride).enumerate() {
+        crate::compile::copy_short(&mut y[..n], &acc[r * n..][..n]);
     }
 }
 
