@@ -14,7 +14,7 @@ use crate::common::browser::{Browser, Viewer, http, shots};
 use crate::common::*;
 
 /// A finished predator–prey run of `generations` generations (small populations).
-fn pp_run(name: &str, generations: u32) -> PathBuf {
+fn pp_run(name: &str, generations: u32) -> Scratch {
     let dir = scratch(name);
     let out = dir.join("run");
     ok(vivae()
@@ -30,7 +30,7 @@ fn pp_run(name: &str, generations: u32) -> PathBuf {
         .arg(generations.to_string())
         .arg("--out")
         .arg(&out));
-    out
+    dir.into_sub("run")
 }
 
 fn png_width(path: &Path) -> u32 {

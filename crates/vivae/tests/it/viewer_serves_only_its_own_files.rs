@@ -2,24 +2,14 @@
 //! else, survives hostile WebSocket messages, bounds its viewers, frees a
 //! closed page's slot, and refuses a busy port with exit 2.
 
-use crate::common;
-
 use crate::common::browser::{Viewer, http};
-use crate::common::{scratch, vivae, write_small_config};
+use crate::common::{scratch, small_run, vivae};
 use futures_util::{SinkExt, StreamExt};
 use tokio_tungstenite::tungstenite::Message;
 
-fn small_run(name: &str) -> std::path::PathBuf {
-    let dir = scratch(name);
-    let config = write_small_config(&dir, 2);
-    let out = dir.join("run");
-    common::evolve(&config, &out, &[]);
-    out
-}
-
 #[test]
 fn only_own_assets_and_listed_run_files_are_served() {
-    let run = small_run("view-files");
+    let run = small_run("view-files", 2);
     let v = Viewer::start(&[run.as_os_str()]);
     for ok in [
         "/",
@@ -56,7 +46,7 @@ fn only_own_assets_and_listed_run_files_are_served() {
 
 #[test]
 fn a_genome_or_scenario_source_serves_no_run_files() {
-    let run = small_run("view-genome");
+    let run = small_run("view-genome", 2);
     let v = Viewer::start(&[run.join("champion.json").as_os_str()]);
     assert_eq!(http(v.port, "GET", "/run/champion.json", None).status, 404);
     assert_eq!(http(v.port, "GET", "/", None).status, 200);
@@ -81,7 +71,7 @@ async fn next_of(
 
 #[test]
 fn hostile_messages_get_an_error_reply_and_the_server_lives_on() {
-    let run = small_run("view-hostile");
+    let run = small_run("view-hostile", 2);
     let v = Viewer::start(&[run.as_os_str(), "--max-viewers".as_ref(), "1".as_ref()]);
     let url = v.ws_url();
     let rt = tokio::runtime::Runtime::new().unwrap();
@@ -166,7 +156,7 @@ fn bad_sources_are_one_line_and_exit_2() {
     let dir = scratch("view-bad");
     let junk = dir.join("junk.json");
     std::fs::write(&junk, "{\"format\":").unwrap();
-    for arg in [dir.join("missing.svg"), junk, dir.clone()] {
+    for arg in [dir.join("missing.svg"), junk, dir.to_path_buf()] {
         let out = vivae().arg("view").arg(&arg).output().unwrap();
         assert_eq!(out.status.code(), Some(2), "{}", arg.display());
         let err = String::from_utf8(out.stderr).unwrap();

@@ -225,15 +225,21 @@ impl Browser {
     /// One attempt at a driver on a fresh port with one session.
     fn try_start(chromium: &Path, driver: &Path, args: &[String]) -> Result<Browser, String> {
         let port = free_port();
+        let profile =
+            std::env::temp_dir().join(format!("vivae-chromium-{}-{port}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&profile);
+        // Chromium makes its own `org.chromium.Chromium.scoped_dir.*` in
+        // TMPDIR and leaves them when the session ends: inside the profile,
+        // they go with it.
+        let tmp = profile.join("tmp");
+        std::fs::create_dir_all(&tmp).expect("a scratch directory for Chromium");
         let child = Command::new(driver)
             .arg(format!("--port={port}"))
+            .env("TMPDIR", &tmp)
             .stdout(Stdio::null())
             .stderr(Stdio::null())
             .spawn()
             .expect("chromedriver starts");
-        let profile =
-            std::env::temp_dir().join(format!("vivae-chromium-{}-{port}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&profile);
         // Dropping `browser` on any failure below kills this driver.
         let mut browser = Browser {
             driver: child,

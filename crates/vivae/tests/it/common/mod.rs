@@ -13,11 +13,72 @@ pub fn vivae() -> Command {
 }
 
 /// A fresh, empty scratch directory for one test.
-pub fn scratch(name: &str) -> PathBuf {
+pub fn scratch(name: &str) -> Scratch {
     let dir = std::env::temp_dir().join(format!("vivae-test-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
-    dir
+    Scratch {
+        path: dir.clone(),
+        root: dir,
+    }
+}
+
+/// A test's scratch directory, removed when the test is done with it; a
+/// failing test's is kept (and named) for a look at what went wrong. Without
+/// it, every test that forgot to clean up left its runs and compiled
+/// programs in the temporary directory, a few hundred after a day's work.
+#[derive(Debug)]
+pub struct Scratch {
+    /// The path the test works in: the scratch directory or a path inside it.
+    path: PathBuf,
+    /// The scratch directory [`scratch`] made, removed on drop.
+    root: PathBuf,
+}
+
+impl Scratch {
+    /// The same scratch, standing for `rel` inside it.
+    pub fn into_sub(self, rel: &str) -> Scratch {
+        let path = self.root.join(rel);
+        let root = self.root.clone();
+        // The directory is the new value's to remove, not this one's.
+        std::mem::forget(self);
+        Scratch { path, root }
+    }
+
+    /// The path as an owned value.
+    pub fn to_path_buf(&self) -> PathBuf {
+        self.path.clone()
+    }
+}
+
+impl std::ops::Deref for Scratch {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        &self.path
+    }
+}
+
+impl AsRef<Path> for Scratch {
+    fn as_ref(&self) -> &Path {
+        &self.path
+    }
+}
+
+impl AsRef<std::ffi::OsStr> for Scratch {
+    fn as_ref(&self) -> &std::ffi::OsStr {
+        self.path.as_os_str()
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        if std::thread::panicking() {
+            eprintln!("kept the failing test's scratch {}", self.root.display());
+        } else {
+            // A test may have removed it already.
+            let _ = std::fs::remove_dir_all(&self.root);
+        }
+    }
 }
 
 /// A small but complete experiment config: quick to run, still the real pipeline.
@@ -60,13 +121,14 @@ pub fn evolve(config: &Path, out: &Path, extra: &[&str]) -> String {
 }
 
 /// A finished small run of `generations` (seed 7) in a fresh scratch
-/// directory `name`; returns the run directory (its parent is the scratch).
-pub fn small_run(name: &str, generations: u32) -> PathBuf {
+/// directory `name`; returns the run directory (its parent is the scratch,
+/// removed with it).
+pub fn small_run(name: &str, generations: u32) -> Scratch {
     let dir = scratch(name);
     let config = write_small_config(&dir, generations);
     let out = dir.join("run");
     evolve(&config, &out, &[]);
-    out
+    dir.into_sub("run")
 }
 
 /// Makes a FIFO at `path` (a special file that blocks a reader until a writer comes).
