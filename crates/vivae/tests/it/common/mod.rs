@@ -37,12 +37,14 @@ pub struct Scratch {
 
 impl Scratch {
     /// The same scratch, standing for `rel` inside it.
-    pub fn into_sub(self, rel: &str) -> Scratch {
-        let path = self.root.join(rel);
-        let root = self.root.clone();
-        // The directory is the new value's to remove, not this one's.
-        std::mem::forget(self);
-        Scratch { path, root }
+    pub fn into_sub(mut self, rel: &str) -> Scratch {
+        // The directory becomes the new value's to remove; `self` is left
+        // with no root, so dropping it removes nothing.
+        let root = std::mem::take(&mut self.root);
+        Scratch {
+            path: root.join(rel),
+            root,
+        }
     }
 
     /// The path as an owned value.
@@ -72,7 +74,9 @@ impl AsRef<std::ffi::OsStr> for Scratch {
 
 impl Drop for Scratch {
     fn drop(&mut self) {
-        if std::thread::panicking() {
+        if self.root.as_os_str().is_empty() {
+            // Handed on by `into_sub`.
+        } else if std::thread::panicking() {
             eprintln!("kept the failing test's scratch {}", self.root.display());
         } else {
             // A test may have removed it already.
