@@ -35,7 +35,8 @@ for level in avx512f avx2; do
 done
 uptime
 
-# `run NAME PRECISION ARGS...`: one whole run, 2 threads, its wall and CPU time.
+# `run NAME PRECISION ARGS...`: one whole run on every core (the 2 of the
+# machines measured), its wall and CPU time.
 run() {
     local name=$1 precision=$2
     shift 2

@@ -46,11 +46,6 @@ impl Scratch {
             root,
         }
     }
-
-    /// The path as an owned value.
-    pub fn to_path_buf(&self) -> PathBuf {
-        self.path.clone()
-    }
 }
 
 impl std::ops::Deref for Scratch {
