@@ -92,6 +92,14 @@ impl RecurrentLanes {
     /// Makes lane `l` the network of `genomes[l]`, states cleared, reusing
     /// memory (panics with more genomes than [`RecurrentLanes::capacity`]).
     pub fn recompile<'g>(&mut self, genomes: impl IntoIterator<Item = &'g Genome>) {
+        self.clear();
+        for g in genomes {
+            self.push(g);
+        }
+    }
+
+    /// Holds no lane (memory kept).
+    pub fn clear(&mut self) {
         self.lanes.clear();
         self.values.clear();
         self.starts.clear();
@@ -100,35 +108,74 @@ impl RecurrentLanes {
         self.weights.clear();
         self.outputs.clear();
         self.acts.clear();
-        for g in genomes {
-            assert!(self.lanes.len() < self.capacity, "more genomes than lanes");
-            // The network `RecurrentNetwork` would step, moved into the shared arrays.
-            self.compiler.recompile(g);
-            let plan = &self.compiler.plan;
-            let slot0 = self.values.len();
-            let lane = Lane {
-                slot0,
-                inputs: plan.num_inputs,
-                computed: plan.acts.len(),
-                node0: self.acts.len(),
-                out0: self.outputs.len(),
-                outs: plan.output_slots.len(),
-            };
-            self.values.resize(slot0 + plan.slots(), 0.0);
-            for k in 0..plan.acts.len() {
-                let (sources, weights) = plan.links(k);
-                self.sources
-                    .extend(sources.iter().map(|&s| slot0 as u32 + s));
-                self.weights.extend_from_slice(weights);
-                self.starts.push(self.sources.len() as u32);
-            }
-            self.acts.extend_from_slice(&plan.acts);
-            self.outputs
-                .extend(plan.output_slots.iter().map(|&s| slot0 as u32 + s));
-            self.lanes.push(lane);
-        }
         self.sums.clear();
+    }
+
+    /// Adds `genome`'s network as the last lane, its state cleared; the other
+    /// lanes keep theirs (panics when all [`RecurrentLanes::capacity`] lanes are held).
+    pub fn push(&mut self, genome: &Genome) {
+        assert!(self.lanes.len() < self.capacity, "more genomes than lanes");
+        // The network `RecurrentNetwork` would step, moved into the shared arrays.
+        self.compiler.recompile(genome);
+        let plan = &self.compiler.plan;
+        let slot0 = self.values.len();
+        let lane = Lane {
+            slot0,
+            inputs: plan.num_inputs,
+            computed: plan.acts.len(),
+            node0: self.acts.len(),
+            out0: self.outputs.len(),
+            outs: plan.output_slots.len(),
+        };
+        self.values.resize(slot0 + plan.slots(), 0.0);
+        for k in 0..plan.acts.len() {
+            let (sources, weights) = plan.links(k);
+            self.sources
+                .extend(sources.iter().map(|&s| slot0 as u32 + s));
+            self.weights.extend_from_slice(weights);
+            self.starts.push(self.sources.len() as u32);
+        }
+        self.acts.extend_from_slice(&plan.acts);
+        self.outputs
+            .extend(plan.output_slots.iter().map(|&s| slot0 as u32 + s));
         self.sums.resize(self.acts.len(), 0.0);
+        self.lanes.push(lane);
+    }
+
+    /// Drops lane `l`; the lanes after it move down one place, states and
+    /// all (so a task whose genomes finish at different times can keep every
+    /// lane busy: drop a finished one, [`push`](Self::push) the next genome).
+    pub fn remove(&mut self, l: usize) {
+        let lane = self.lanes.remove(l);
+        let slots = lane.inputs + lane.computed;
+        let (k0, k1) = (lane.node0, lane.node0 + lane.computed);
+        let (link0, link1) = (self.starts[k0] as usize, self.starts[k1] as usize);
+        let links = (link1 - link0) as u32;
+        self.values.drain(lane.slot0..lane.slot0 + slots);
+        self.sources.drain(link0..link1);
+        self.weights.drain(link0..link1);
+        self.starts.drain(k0 + 1..=k1);
+        self.acts.drain(k0..k1);
+        self.sums.truncate(self.acts.len());
+        self.outputs.drain(lane.out0..lane.out0 + lane.outs);
+        // Everything after the lane (only later lanes' slots are named
+        // there) sits `slots` slots, `links` links, `computed` nodes and
+        // `outs` outputs lower now.
+        let slots32 = slots as u32;
+        for s in self.sources[link0..]
+            .iter_mut()
+            .chain(&mut self.outputs[lane.out0..])
+        {
+            *s -= slots32;
+        }
+        for st in &mut self.starts[k0 + 1..] {
+            *st -= links;
+        }
+        for later in &mut self.lanes[l..] {
+            later.slot0 -= slots;
+            later.node0 -= lane.computed;
+            later.out0 -= lane.outs;
+        }
     }
 
     /// Clears the state of lane `l` (as [`Network::reset`](crate::Network::reset) on its network).
@@ -222,5 +269,72 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Lanes dropped and added mid-run (genomes of every size, the dropped
+    /// lane anywhere) leave every other lane stepping as its own network.
+    #[test]
+    fn removing_and_pushing_lanes_keeps_every_other_lanes_bits() {
+        let spec = GenomeSpec {
+            allow_recurrent: true,
+            ..GenomeSpec::plain(3, 2)
+        };
+        let params = NeatParams::plain_neat();
+        let mut rng = rand_pcg::Pcg64::seed_from_u64(12);
+        let mut tracker = InnovationTracker::new(5);
+        let mut lanes = RecurrentLanes::new(5);
+        let mut alone: Vec<RecurrentNetwork> = Vec::new();
+        let mut made = 0;
+        let mut grow = |rng: &mut rand_pcg::Pcg64| {
+            made += 1;
+            grown(&spec, &params, &mut tracker, rng, made % 7)
+        };
+        for _ in 0..5 {
+            let g = grow(&mut rng);
+            lanes.push(&g);
+            alone.push(RecurrentNetwork::from_genome(&g));
+        }
+        for step in 0..200 {
+            let n = alone.len();
+            let inputs: Vec<[f64; 3]> = (0..n)
+                .map(|_| std::array::from_fn(|_| rng.random::<f64>() * 4.0 - 2.0))
+                .collect();
+            let mut outs = vec![[0.0; 2]; n];
+            let ins: Vec<&[f64]> = inputs.iter().map(|i| &i[..]).collect();
+            let mut out_refs: Vec<&mut [f64]> = outs.iter_mut().map(|o| &mut o[..]).collect();
+            lanes.activate(&ins, &mut out_refs);
+            for (l, net) in alone.iter_mut().enumerate() {
+                let mut want = [0.0; 2];
+                net.activate(&inputs[l], &mut want);
+                assert_eq!(
+                    outs[l].map(f64::to_bits),
+                    want.map(f64::to_bits),
+                    "step {step} lane {l}"
+                );
+            }
+            if step % 3 == 2 && n > 0 {
+                let l = rng.random_range(0..n);
+                lanes.remove(l);
+                alone.remove(l);
+            }
+            if step % 4 == 3 && alone.len() < lanes.capacity() {
+                let g = grow(&mut rng);
+                lanes.push(&g);
+                alone.push(RecurrentNetwork::from_genome(&g));
+            }
+            assert_eq!(lanes.lanes(), alone.len());
+        }
+        // Emptied and refilled, it is as new.
+        while lanes.lanes() > 0 {
+            lanes.remove(0);
+        }
+        let g = grow(&mut rng);
+        lanes.push(&g);
+        let mut fresh = RecurrentLanes::new(5);
+        fresh.recompile([&g]);
+        let (mut a, mut b) = ([0.0; 2], [0.0; 2]);
+        lanes.activate(&[&[0.5, -1.0, 2.0]], &mut [&mut a]);
+        fresh.activate(&[&[0.5, -1.0, 2.0]], &mut [&mut b]);
+        assert_eq!(a.map(f64::to_bits), b.map(f64::to_bits));
     }
 }
