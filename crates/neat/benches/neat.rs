@@ -211,6 +211,50 @@ fn prey_fitness(bencher: Bencher) {
     bencher.bench_local(|| black_box(prey_task::SHARPNEAT_PREY.fitness(&mut net, black_box(7))));
 }
 
+/// Sixteen start networks of prey capture (14 inputs, 4 outputs, 56 links;
+/// different weights each), the like-for-like networks.
+fn prey_genomes() -> Vec<Genome> {
+    let spec = GenomeSpec {
+        allow_recurrent: true,
+        ..GenomeSpec::plain(14, 4)
+    };
+    let params = NeatParams::default();
+    let mut rng = Pcg64::seed_from_u64(5);
+    let mut t = InnovationTracker::new(18);
+    (0..prey_task::PREY_LANES)
+        .map(|_| Genome::minimal(&spec, &params, &mut t, &mut rng))
+        .collect()
+}
+
+/// Sixteen prey capture evaluations, one network at a time.
+#[divan::bench(sample_count = 20)]
+fn prey_fitness_16_single(bencher: Bencher) {
+    let genomes = prey_genomes();
+    let mut net = RecurrentNetwork::from_genome(&genomes[0]);
+    bencher.bench_local(|| {
+        let mut f = 0.0;
+        for (i, g) in genomes.iter().enumerate() {
+            net.recompile(g);
+            f += prey_task::SHARPNEAT_PREY.fitness(&mut net, i as u64);
+        }
+        black_box(f)
+    });
+}
+
+/// The same sixteen evaluations side by side as lanes (the example's path; same bits).
+#[divan::bench(sample_count = 20)]
+fn prey_fitness_16_lanes(bencher: Bencher) {
+    let genomes = prey_genomes();
+    let seeds: Vec<u64> = (0..genomes.len() as u64).collect();
+    let mut lanes = RecurrentLanes::new(prey_task::PREY_LANES);
+    let mut out = Vec::new();
+    bencher.bench_local(|| {
+        out.clear();
+        prey_task::SHARPNEAT_PREY.fitness_lanes(&genomes, &seeds, &mut lanes, &mut out);
+        black_box(out.iter().sum::<f64>())
+    });
+}
+
 /// A first generation of the double pole (`markov`: with velocities,
 /// population 150; without: 1,000), built from seed 1.
 fn pole_generation(markov: bool) -> Vec<Genome> {

@@ -10,7 +10,7 @@
 
 use rand::{RngExt, SeedableRng};
 use rand_pcg::Pcg64Mcg;
-use vivae_neat::{Network, math};
+use vivae_neat::{Genome, Network, RecurrentLanes, math};
 
 const GRID: i32 = 24;
 const PI: f64 = std::f64::consts::PI;
@@ -38,6 +38,17 @@ pub const SHARPNEAT_PREY: Prey = Prey {
     max_steps: 70,
     trials: 100,
 };
+
+/// Networks [`Prey::fitness_lanes`] steps side by side at most.
+pub const PREY_LANES: usize = 16;
+
+/// One trial in progress: the agent's and the prey's cells, and the step.
+#[derive(Clone, Copy)]
+struct Trial {
+    agent: (i32, i32),
+    prey: (i32, i32),
+    t: usize,
+}
 
 /// The squared distance and the angle in [0, 2π) of the offset (dx, dy).
 fn polar(dx: i32, dy: i32) -> (i32, f64) {
@@ -95,13 +106,19 @@ fn move_weights(dx: i32, dy: i32) -> [f64; 4] {
     [w(PI * 0.5), w(0.0), w(PI * 1.5), w(PI)]
 }
 
-fn step(p: &mut (i32, i32), dir: usize) {
-    match dir {
-        0 => p.1 = (p.1 + 1).min(GRID - 1),
-        1 => p.0 = (p.0 + 1).min(GRID - 1),
-        2 => p.1 = (p.1 - 1).max(0),
-        _ => p.0 = (p.0 - 1).max(0),
-    }
+/// The cell offsets of the moves N, E, S, W.
+const MOVES: [(i32, i32); 4] = [(0, 1), (1, 0), (0, -1), (-1, 0)];
+
+/// Moves `p` (a cell of the grid) one cell `dir` (N, E, S, W), not past the
+/// walls; `go` false leaves it. Selects, not branches: the direction is the
+/// network's or the dice's, which no predictor guesses.
+fn step(p: &mut (i32, i32), dir: usize, go: bool) {
+    let (dx, dy) = MOVES[dir];
+    let go = i32::from(go);
+    *p = (
+        (p.0 + go * dx).clamp(0, GRID - 1),
+        (p.1 + go * dy).clamp(0, GRID - 1),
+    );
 }
 
 /// SharpNEAT's e^x ≈ (1 + x / 29.5)^32, tuned for [0, 2π].
@@ -114,13 +131,14 @@ impl Prey {
         let (r2, az) = tables().polar[offset(prey.0 - agent.0, prey.1 - agent.1)];
         *v = [0.0; 14];
         v[0] = 1.0;
-        if r2 as f64 <= self.sensor_range * self.sensor_range {
-            let t = az - PI / 8.0;
-            let t = if t < 0.0 { t + 2.0 * PI } else { t };
-            v[1 + ((t * 4.0 / PI).floor() as usize).min(7)] = 1.0;
-        }
-        v[9] = if r2 <= 4 { 1.0 } else { 0.0 };
-        let near = |d: i32| if d <= 4 { (4 - d) as f64 / 4.0 } else { 0.0 };
+        // The sector is written 1 when the prey is in range, else 0 (as it
+        // was): no branch on where the prey is. `t` ≥ 0, so truncating is floor.
+        let seen = r2 as f64 <= self.sensor_range * self.sensor_range;
+        let t = az - PI / 8.0;
+        let t = if t < 0.0 { t + 2.0 * PI } else { t };
+        v[1 + ((t * 4.0 / PI) as usize).min(7)] = f64::from(u8::from(seen));
+        v[9] = f64::from(u8::from(r2 <= 4));
+        let near = |d: i32| (4 - d).max(0) as f64 / 4.0;
         (v[10], v[11]) = (near(GRID - 1 - agent.1), near(GRID - 1 - agent.0));
         (v[12], v[13]) = (near(agent.1), near(agent.0));
     }
@@ -131,47 +149,69 @@ impl Prey {
         }
         let p = tables().weights[offset(agent.0 - prey.0, agent.1 - prey.1)];
         let thresh = rng.random::<f64>() * p.iter().sum::<f64>();
-        let mut acc = 0.0;
-        let dir = p.iter().position(|&q| {
+        // The first direction whose running sum passes `thresh` (else W):
+        // the weights are positive, so the running sums rise and that
+        // direction is the count of sums not past it.
+        let (mut acc, mut dir) = (0.0, 0);
+        for q in p {
             acc += q;
-            acc > thresh
-        });
-        step(prey, dir.unwrap_or(3));
+            dir += usize::from(acc <= thresh);
+        }
+        step(prey, dir.min(3), true);
     }
 
-    /// One trial: whether `net` (14 inputs, 4 outputs) catches the prey.
-    fn trial(&self, net: &mut impl Network, rng: &mut Pcg64Mcg) -> bool {
-        let mut prey = (
+    /// A trial's start, drawn from `rng`: the prey, then the agent around it.
+    fn start(&self, rng: &mut Pcg64Mcg) -> Trial {
+        let prey = (
             4 + rng.random_range(0..GRID - 8),
             4 + rng.random_range(0..GRID - 8),
         );
         let (s, c) = math::sin_cos(2.0 * PI * rng.random::<f64>());
         let r = 2.0 + 2.0 * rng.random::<f64>();
-        let mut agent = (
+        let agent = (
             prey.0 + (c * r).trunc() as i32,
             prey.1 + (s * r).trunc() as i32,
         );
-        let (mut v, mut out) = ([0.0; 14], [0.0; 4]);
-        net.reset();
-        for t in 0..self.max_steps {
-            self.inputs(agent, prey, &mut v);
-            net.activate(&v, &mut out);
-            if t >= self.init_moves {
-                let best = (1..4).fold(0, |b, i| if out[i] > out[b] { i } else { b });
-                let tie = (0..4).any(|i| i != best && out[i] == out[best]);
-                if !tie && out[best] >= 0.1 {
-                    step(&mut agent, best);
-                }
-                if agent == prey {
-                    return true;
-                }
-            }
-            self.move_prey(agent, &mut prey, rng);
-            if agent == prey && t >= self.init_moves {
-                return true;
+        Trial { agent, prey, t: 0 }
+    }
+
+    /// The rest of step `trial.t` once the network has answered `out`: the
+    /// agent's move, then the prey's. `Some(caught)` when the trial ends.
+    fn advance(&self, trial: &mut Trial, out: &[f64; 4], rng: &mut Pcg64Mcg) -> Option<bool> {
+        let t = trial.t;
+        if t >= self.init_moves {
+            let best = (1..4).fold(0, |b, i| if out[i] > out[b] { i } else { b });
+            // Another output equal to the best one is a tie (counting the
+            // best itself: NaN equals nothing, as before).
+            let tie = out.iter().filter(|&&o| o == out[best]).count() > 1;
+            step(&mut trial.agent, best, !tie && out[best] >= 0.1);
+            if trial.agent == trial.prey {
+                return Some(true);
             }
         }
-        false
+        self.move_prey(trial.agent, &mut trial.prey, rng);
+        if trial.agent == trial.prey && t >= self.init_moves {
+            return Some(true);
+        }
+        trial.t += 1;
+        (trial.t >= self.max_steps).then_some(false)
+    }
+
+    /// One trial: whether `net` (14 inputs, 4 outputs) catches the prey.
+    fn trial(&self, net: &mut impl Network, rng: &mut Pcg64Mcg) -> bool {
+        let mut trial = self.start(rng);
+        if self.max_steps == 0 {
+            return false;
+        }
+        let (mut v, mut out) = ([0.0; 14], [0.0; 4]);
+        net.reset();
+        loop {
+            self.inputs(trial.agent, trial.prey, &mut v);
+            net.activate(&v, &mut out);
+            if let Some(caught) = self.advance(&mut trial, &out, rng) {
+                return caught;
+            }
+        }
     }
 
     /// The number of trials (seeded by `seed`) in which `net` catches the prey.
@@ -180,5 +220,82 @@ impl Prey {
         (0..self.trials)
             .filter(|_| self.trial(net, &mut rng))
             .count() as f64
+    }
+
+    /// [`Prey::fitness`] of each of `genomes`' recurrent networks, trials
+    /// seeded by `seeds` (one each), pushed onto `out` in order: the same
+    /// bits, with up to `lanes.capacity()` networks stepped side by side
+    /// ([`RecurrentLanes`]). A genome's trials run one after the other in
+    /// its lane, and a genome done with its last hands the lane to the next
+    /// genome, so no lane idles while genomes are left.
+    #[allow(dead_code)]
+    pub fn fitness_lanes(
+        &self,
+        genomes: &[Genome],
+        seeds: &[u64],
+        lanes: &mut RecurrentLanes,
+        out: &mut Vec<f64>,
+    ) {
+        assert_eq!(genomes.len(), seeds.len(), "one seed per genome");
+        let base = out.len();
+        out.resize(base + genomes.len(), 0.0);
+        if self.trials == 0 || self.max_steps == 0 {
+            return; // nothing can be caught
+        }
+        /// A genome in a lane: its trials so far and the one in progress.
+        struct Run {
+            genome: usize,
+            rng: Pcg64Mcg,
+            trials: usize,
+            caught: usize,
+            trial: Trial,
+        }
+        let width = lanes.capacity().min(PREY_LANES);
+        let mut runs: Vec<Run> = Vec::with_capacity(width);
+        let (mut v, mut o) = ([[0.0; 14]; PREY_LANES], [[0.0; 4]; PREY_LANES]);
+        let mut next = 0;
+        lanes.clear();
+        loop {
+            while runs.len() < width && next < genomes.len() {
+                let mut rng = Pcg64Mcg::seed_from_u64(seeds[next]);
+                let trial = self.start(&mut rng);
+                lanes.push(&genomes[next]);
+                runs.push(Run {
+                    genome: next,
+                    rng,
+                    trials: 0,
+                    caught: 0,
+                    trial,
+                });
+                next += 1;
+            }
+            if runs.is_empty() {
+                return;
+            }
+            let n = runs.len();
+            for (r, v) in runs.iter().zip(&mut v) {
+                self.inputs(r.trial.agent, r.trial.prey, v);
+            }
+            let ins: [&[f64]; PREY_LANES] = std::array::from_fn(|l| &v[l][..]);
+            let mut outs: [&mut [f64]; PREY_LANES] = o.each_mut().map(|o| &mut o[..]);
+            lanes.activate(&ins[..n], &mut outs[..n]);
+            // Backwards, so that dropping a lane moves only lanes already done.
+            for l in (0..n).rev() {
+                let r = &mut runs[l];
+                let Some(caught) = self.advance(&mut r.trial, &o[l], &mut r.rng) else {
+                    continue;
+                };
+                r.caught += usize::from(caught);
+                r.trials += 1;
+                if r.trials < self.trials {
+                    r.trial = self.start(&mut r.rng);
+                    lanes.reset_lane(l);
+                } else {
+                    out[base + r.genome] = r.caught as f64;
+                    runs.remove(l);
+                    lanes.remove(l);
+                }
+            }
+        }
     }
 }

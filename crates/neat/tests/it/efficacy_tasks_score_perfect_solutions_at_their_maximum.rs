@@ -106,6 +106,62 @@ fn sinewave_gives_1000_to_the_sine_and_less_to_a_flat_line() {
     assert_eq!(sine.fitness(&mut runaway), 0.0);
 }
 
+/// The example's lane scorer gives each genome the fitness its network
+/// scores alone, with its own trials' seed: start networks and grown
+/// recurrent ones side by side, more genomes than lanes (so finished lanes
+/// take the next genome mid-run), at several lane counts.
+#[test]
+fn prey_capture_lanes_give_each_genome_its_fitness_alone() {
+    use rand::SeedableRng;
+    use vivae_neat::mutation::{mutate_add_link, mutate_add_node, mutate_weights};
+    use vivae_neat::{
+        Genome, GenomeSpec, InnovationTracker, NeatParams, RecurrentLanes, RecurrentNetwork,
+    };
+    let spec = GenomeSpec {
+        allow_recurrent: true,
+        ..GenomeSpec::plain(14, 4)
+    };
+    let params = NeatParams::plain_neat();
+    let mut rng = rand_pcg::Pcg64::seed_from_u64(3);
+    let mut tracker = InnovationTracker::new(18);
+    let genomes: Vec<Genome> = (0..40)
+        .map(|i| {
+            let mut g = Genome::minimal(&spec, &params, &mut tracker, &mut rng);
+            for _ in 0..i % 5 {
+                mutate_add_node(&mut g, &spec, &mut tracker, &mut rng);
+                mutate_weights(&mut g, &params, &mut rng);
+            }
+            // Links among the hidden and output nodes too, loops and
+            // cycles among them: state that carries from step to step.
+            for _ in 0..12 * (i % 5) {
+                mutate_add_link(&mut g, &spec, &params, &mut tracker, &mut rng);
+            }
+            g
+        })
+        .collect();
+    let seeds: Vec<u64> = (0..genomes.len() as u64).map(|i| 1000 + 7 * i).collect();
+    let world = prey_task::SHARPNEAT_PREY;
+    let alone: Vec<f64> = genomes
+        .iter()
+        .zip(&seeds)
+        .map(|(g, &s)| world.fitness(&mut RecurrentNetwork::from_genome(g), s))
+        .collect();
+    // Not a degenerate case: the networks catch different numbers of prey.
+    let distinct: std::collections::BTreeSet<u64> = alone.iter().map(|f| f.to_bits()).collect();
+    assert!(distinct.len() >= 4, "fitnesses {alone:?}");
+    for capacity in [1, 3, prey_task::PREY_LANES] {
+        let mut lanes = RecurrentLanes::new(capacity);
+        let mut out = vec![-1.0];
+        world.fitness_lanes(&genomes, &seeds, &mut lanes, &mut out);
+        assert_eq!(out[0], -1.0, "what was in `out` stays");
+        assert_eq!(
+            out[1..].iter().map(|f| f.to_bits()).collect::<Vec<_>>(),
+            alone.iter().map(|f| f.to_bits()).collect::<Vec<_>>(),
+            "{capacity} lanes"
+        );
+    }
+}
+
 /// Moves towards the sector the prey is sensed in (north first on diagonals).
 fn chase(x: &[f64], _: usize, y: &mut [f64]) {
     y.fill(0.0);
