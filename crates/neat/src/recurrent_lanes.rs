@@ -228,6 +228,32 @@ mod tests {
     use crate::test_genes::grown;
     use rand::{RngExt, SeedableRng};
 
+    /// One step of random inputs (3 a lane) through `lanes` and through each
+    /// lane's own network in `alone`: the same output bits, or a panic naming `what`.
+    fn step_both(
+        lanes: &mut RecurrentLanes,
+        alone: &mut [RecurrentNetwork],
+        rng: &mut rand_pcg::Pcg64,
+        what: &str,
+    ) {
+        let inputs: Vec<[f64; 3]> = (0..alone.len())
+            .map(|_| std::array::from_fn(|_| rng.random::<f64>() * 4.0 - 2.0))
+            .collect();
+        let mut outs = vec![[0.0; 2]; alone.len()];
+        let ins: Vec<&[f64]> = inputs.iter().map(|i| &i[..]).collect();
+        let mut out_refs: Vec<&mut [f64]> = outs.iter_mut().map(|o| &mut o[..]).collect();
+        lanes.activate(&ins, &mut out_refs);
+        for (l, net) in alone.iter_mut().enumerate() {
+            let mut want = [0.0; 2];
+            net.activate(&inputs[l], &mut want);
+            assert_eq!(
+                outs[l].map(f64::to_bits),
+                want.map(f64::to_bits),
+                "{what} lane {l}"
+            );
+        }
+    }
+
     #[test]
     fn lanes_step_each_genome_as_its_own_network() {
         let spec = GenomeSpec {
@@ -246,22 +272,12 @@ mod tests {
             let mut alone: Vec<RecurrentNetwork> =
                 genomes.iter().map(RecurrentNetwork::from_genome).collect();
             for step in 0..12 {
-                let inputs: Vec<[f64; 3]> = (0..genomes.len())
-                    .map(|_| std::array::from_fn(|_| rng.random::<f64>() * 4.0 - 2.0))
-                    .collect();
-                let mut outs = vec![[0.0; 2]; genomes.len()];
-                let ins: Vec<&[f64]> = inputs.iter().map(|i| &i[..]).collect();
-                let mut out_refs: Vec<&mut [f64]> = outs.iter_mut().map(|o| &mut o[..]).collect();
-                lanes.activate(&ins, &mut out_refs);
-                for (l, net) in alone.iter_mut().enumerate() {
-                    let mut want = [0.0; 2];
-                    net.activate(&inputs[l], &mut want);
-                    assert_eq!(
-                        outs[l].map(f64::to_bits),
-                        want.map(f64::to_bits),
-                        "round {round} step {step} lane {l}"
-                    );
-                }
+                step_both(
+                    &mut lanes,
+                    &mut alone,
+                    &mut rng,
+                    &format!("round {round} step {step}"),
+                );
                 if step == 5 {
                     // One lane restarts alone.
                     lanes.reset_lane(0);
@@ -296,22 +312,7 @@ mod tests {
         }
         for step in 0..200 {
             let n = alone.len();
-            let inputs: Vec<[f64; 3]> = (0..n)
-                .map(|_| std::array::from_fn(|_| rng.random::<f64>() * 4.0 - 2.0))
-                .collect();
-            let mut outs = vec![[0.0; 2]; n];
-            let ins: Vec<&[f64]> = inputs.iter().map(|i| &i[..]).collect();
-            let mut out_refs: Vec<&mut [f64]> = outs.iter_mut().map(|o| &mut o[..]).collect();
-            lanes.activate(&ins, &mut out_refs);
-            for (l, net) in alone.iter_mut().enumerate() {
-                let mut want = [0.0; 2];
-                net.activate(&inputs[l], &mut want);
-                assert_eq!(
-                    outs[l].map(f64::to_bits),
-                    want.map(f64::to_bits),
-                    "step {step} lane {l}"
-                );
-            }
+            step_both(&mut lanes, &mut alone, &mut rng, &format!("step {step}"));
             if step % 3 == 2 && n > 0 {
                 let l = rng.random_range(0..n);
                 lanes.remove(l);
