@@ -145,6 +145,7 @@ impl RecurrentLanes {
     /// Drops lane `l`; the lanes after it move down one place, states and
     /// all (so a task whose genomes finish at different times can keep every
     /// lane busy: drop a finished one, [`push`](Self::push) the next genome).
+    /// Panics if there is no lane `l`, as [`Vec::remove`] does.
     pub fn remove(&mut self, l: usize) {
         let lane = self.lanes.remove(l);
         let slots = lane.inputs + lane.computed;
