@@ -67,8 +67,10 @@ const PASS: usize = 4;
 /// One `exp` is a chain of about 30 dependent operations; computed one node
 /// at a time (a match per node) they cannot share vector instructions, here
 /// each pass selects every node's argument, takes one lane-wise `exp` of all
-/// of them and selects each node's result, without a branch. Sine and cosine
-/// nodes, which need the portable libm, are finished one by one afterwards.
+/// of them and selects each node's result, without a branch (a pass of four
+/// sigmoids of one kind needs no selects and divides as one vector). Sine
+/// and cosine nodes, which need the portable libm, are finished one by one
+/// afterwards.
 /// With AVX2 (at or below [`simd::level`](crate::simd::level)) a pass is one
 /// vector; no fused multiply-add, so every level gives the same bits.
 pub fn apply_all(acts: &[Activation], xs: &mut [f64]) {
