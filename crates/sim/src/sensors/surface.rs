@@ -162,7 +162,29 @@ struct Query<'a> {
     few: bool,
 }
 
-impl Query<'_> {
+impl<'w> Query<'w> {
+    /// Robot `i`'s read in `world`. The lane paths build it themselves: built
+    /// by their caller and passed by reference, it was stored field by field
+    /// and reloaded with wider loads, which the CPU cannot forward from those
+    /// stores, and every read stalled on it.
+    #[inline(always)]
+    fn at(world: &'w World, i: usize) -> Self {
+        let st = &*world.statics;
+        let (p, ahead, right) = frame(world, i);
+        let inv = st.inv_cell;
+        let (ids, tiles_x) = st.scenario.raster().tiles();
+        Query {
+            base: p * inv,
+            ax: ahead * inv,
+            rx: right * inv,
+            lim: st.limit,
+            tiles_x,
+            ids,
+            readings: &st.readings,
+            few: st.few_materials,
+        }
+    }
+
     /// The reading at robot-frame offset (`x`, `y`): the formula every path follows.
     #[inline(always)]
     fn one(&self, x: f64, y: f64) -> f64 {
@@ -198,6 +220,8 @@ mod lanes {
     use std::arch::x86_64::*;
 
     use super::Query;
+    use crate::World;
+    use crate::sensors::surface::SurfaceGrid;
 
     /// Largest index whose 4-byte gather stays inside `ids` (the raster pads
     /// `ids` with `raster::PAD` zero bytes so that this is the last cell).
@@ -206,29 +230,38 @@ mod lanes {
         (q.ids.len() - crate::raster::PAD) as u32 - 1
     }
 
-    /// AVX2: four sensors per iteration, the rest scalar.
+    /// AVX2: four sensors' cells per iteration, the last batch partial; the
+    /// look-ups one sensor at a time.
+    ///
+    /// Scalar look-ups, not AVX2 gathers, as in the f32 read (see there).
     ///
     /// # Safety
     /// The CPU must support AVX2; `q.ids.len()` must be in `PAD + 1 ..= u32::MAX`.
     #[target_feature(enable = "avx2")]
-    pub(super) unsafe fn avx2(q: &Query, ox: &[f64], oy: &[f64], out: &mut [f64]) {
+    pub(super) unsafe fn avx2(g: &SurfaceGrid, world: &World, i: usize, out: &mut [f64]) {
+        let (q, ox, oy) = (&Query::at(world, i), &g.ox[..], &g.oy[..]);
         let n = out.len().min(ox.len()).min(oy.len());
-        let whole = n - n % 4;
         let (bx, by) = (_mm256_set1_pd(q.base.x), _mm256_set1_pd(q.base.y));
         let (axx, axy) = (_mm256_set1_pd(q.ax.x), _mm256_set1_pd(q.ax.y));
         let (rxx, rxy) = (_mm256_set1_pd(q.rx.x), _mm256_set1_pd(q.rx.y));
         let (lx, ly) = (_mm256_set1_pd(q.lim.x), _mm256_set1_pd(q.lim.y));
         let zero = _mm256_setzero_pd();
         let tx = _mm_set1_epi32(q.tiles_x as i32);
-        let (seven, byte) = (_mm_set1_epi32(7), _mm_set1_epi32(0xff));
+        let seven = _mm_set1_epi32(7);
         let last = _mm_set1_epi32(last_gather(q) as i32);
+        let lane = _mm256_setr_epi64x(0, 1, 2, 3);
+        let mut cells = [0u32; 4];
         let mut j = 0;
-        while j < whole {
-            // SAFETY: j + 4 <= n <= the lengths of ox, oy and out (unaligned loads/stores).
+        while j < n {
+            let m = (n - j).min(4);
+            // Lanes past the last sensor are neither loaded nor stored.
+            let todo = _mm256_cmpgt_epi64(_mm256_set1_epi64x(m as i64), lane);
+            // SAFETY: the lanes of `todo` are j..j + m, inside ox and oy;
+            // masked-off lanes are not accessed (and cannot fault).
             let (x, y) = unsafe {
                 (
-                    _mm256_loadu_pd(ox.as_ptr().add(j)),
-                    _mm256_loadu_pd(oy.as_ptr().add(j)),
+                    _mm256_maskload_pd(ox.as_ptr().add(j), todo),
+                    _mm256_maskload_pd(oy.as_ptr().add(j), todo),
                 )
             };
             let cx = _mm256_add_pd(
@@ -250,7 +283,7 @@ mod lanes {
                     _mm256_cmp_pd::<_CMP_LT_OQ>(cy, ly),
                 ),
             );
-            // Outside lanes become +0.0, so cell 0; their reading is discarded below.
+            // Outside lanes become +0.0, so cell 0; their reading is not used.
             let c = _mm256_cvttpd_epi32(_mm256_and_pd(cx, ins));
             let r = _mm256_cvttpd_epi32(_mm256_and_pd(cy, ins));
             let tile = _mm_add_epi32(
@@ -261,20 +294,20 @@ mod lanes {
                 _mm_slli_epi32::<3>(_mm_and_si128(r, seven)),
                 _mm_and_si128(c, seven),
             );
-            let idx = _mm_add_epi32(_mm_slli_epi32::<6>(tile), within);
-            // Unsigned min: a no-op for the indices `one` computes, a bound for the gather.
-            let idx = _mm_min_epu32(idx, last);
-            // SAFETY: every lane of idx is <= last, so the 4 bytes read at ids + idx lie
-            // inside ids; each id is masked to 0..=255, inside the 256 readings.
-            let v = unsafe {
-                let ids = _mm_and_si128(_mm_i32gather_epi32::<1>(q.ids.as_ptr().cast(), idx), byte);
-                _mm256_i32gather_pd::<8>(q.readings.as_ptr(), ids)
-            };
-            // SAFETY: as for the loads.
-            unsafe { _mm256_storeu_pd(out.as_mut_ptr().add(j), _mm256_and_pd(v, ins)) };
+            let cell = _mm_add_epi32(_mm_slli_epi32::<6>(tile), within);
+            // Unsigned min: a no-op for the indices `one` computes, a bound for the look-up.
+            let cell = _mm_min_epu32(cell, last);
+            // SAFETY: cells has room for the 4 lanes.
+            unsafe { _mm_storeu_si128(cells.as_mut_ptr().cast(), cell) };
+            let inside = _mm256_movemask_pd(ins) as u32;
+            for (l, (v, &k)) in out[j..j + m].iter_mut().zip(&cells).enumerate() {
+                // SAFETY: k <= last < ids.len() (the min above).
+                let id = unsafe { *q.ids.get_unchecked(k as usize) };
+                let reading = q.readings[id as usize];
+                *v = if inside >> l & 1 == 1 { reading } else { 0.0 };
+            }
             j += 4;
         }
-        q.scalar(&ox[whole..n], &oy[whole..n], &mut out[whole..n]);
     }
 
     /// AVX-512F: eight sensors per iteration, the last batch masked.
@@ -284,7 +317,8 @@ mod lanes {
     // avx512f implies FMA in LLVM, but Rust never fuses a separate mul and add
     // (no contraction), so the bits stay those of `one`.
     #[target_feature(enable = "avx512f")]
-    pub(super) unsafe fn avx512(q: &Query, ox: &[f64], oy: &[f64], out: &mut [f64]) {
+    pub(super) unsafe fn avx512(g: &SurfaceGrid, world: &World, i: usize, out: &mut [f64]) {
+        let (q, ox, oy) = (&Query::at(world, i), &g.ox[..], &g.oy[..]);
         let n = out.len().min(ox.len()).min(oy.len());
         let (bx, by) = (_mm512_set1_pd(q.base.x), _mm512_set1_pd(q.base.y));
         let (axx, axy) = (_mm512_set1_pd(q.ax.x), _mm512_set1_pd(q.ax.y));
@@ -392,38 +426,25 @@ impl SurfaceGrid {
     /// `simd::detected()`; every level gives the same bits).
     #[inline]
     fn read_at_level(&self, world: &World, i: usize, out: &mut [f64], level: SimdLevel) {
-        let (p, ahead, right) = frame(world, i);
         let st = &*world.statics;
-        let inv = st.inv_cell;
-        let (ids, tiles_x) = st.scenario.raster().tiles();
-        let q = Query {
-            base: p * inv,
-            ax: ahead * inv,
-            rx: right * inv,
-            lim: st.limit,
-            tiles_x,
-            ids,
-            readings: &st.readings,
-            few: st.few_materials,
-        };
         let n = self.ox.len().min(out.len());
         let out = &mut out[..n];
         if n == 0 {
             return;
         }
         if !st.lanes {
-            return q.scalar(&self.ox, &self.oy, out);
+            return Query::at(world, i).scalar(&self.ox, &self.oy, out);
         }
         debug_assert!(level <= crate::simd::detected());
         match level {
             #[cfg(target_arch = "x86_64")]
             // SAFETY: callers pass a level up to `detected()`, which saw AVX-512F on
             // this CPU; `lanes` holds, so ids.len() is in PAD + 1 ..= u32::MAX.
-            SimdLevel::Avx512 => unsafe { lanes::avx512(&q, &self.ox, &self.oy, out) },
+            SimdLevel::Avx512 => unsafe { lanes::avx512(self, world, i, out) },
             #[cfg(target_arch = "x86_64")]
             // SAFETY: as above, with AVX2.
-            SimdLevel::Avx2 => unsafe { lanes::avx2(&q, &self.ox, &self.oy, out) },
-            _ => q.scalar(&self.ox, &self.oy, out),
+            SimdLevel::Avx2 => unsafe { lanes::avx2(self, world, i, out) },
+            _ => Query::at(world, i).scalar(&self.ox, &self.oy, out),
         }
     }
 }

@@ -31,7 +31,35 @@ struct Query32<'a> {
     few: bool,
 }
 
-impl Query32<'_> {
+impl<'w> Query32<'w> {
+    /// Robot `i`'s read in `world`. The lane paths build it themselves: built
+    /// by their caller and passed by reference, it was stored field by field
+    /// and reloaded with wider loads, which the CPU cannot forward from those
+    /// stores, and every read stalled on it.
+    #[inline(always)]
+    fn at(world: &'w World, i: usize) -> Self {
+        let st = &*world.statics;
+        let (p, ahead, right) = frame(world, i);
+        let inv = st.inv_cell;
+        let (ids, tiles_x) = st.scenario.raster().tiles();
+        // The robot's frame in cells as the f64 read computes it, then rounded.
+        let (base, ax, rx) = (p * inv, ahead * inv, right * inv);
+        Query32 {
+            bx: base.x as f32,
+            by: base.y as f32,
+            axx: ax.x as f32,
+            axy: ax.y as f32,
+            rxx: rx.x as f32,
+            rxy: rx.y as f32,
+            limx: st.limit.x as f32,
+            limy: st.limit.y as f32,
+            tiles_x,
+            ids,
+            readings: &st.readings_f32,
+            few: st.few_materials,
+        }
+    }
+
     /// The reading at robot-frame offset (`x`, `y`): the formula every path follows.
     #[inline(always)]
     fn one(&self, x: f32, y: f32) -> f32 {
@@ -67,6 +95,8 @@ mod lanes {
     use std::arch::x86_64::*;
 
     use super::Query32;
+    use crate::World;
+    use crate::sensors::surface::SurfaceGrid;
 
     /// Largest index whose 4-byte gather stays inside `ids` (the raster pads
     /// `ids` with `raster::PAD` zero bytes so that this is the last cell).
@@ -75,29 +105,40 @@ mod lanes {
         (q.ids.len() - crate::raster::PAD) as u32 - 1
     }
 
-    /// AVX2: eight sensors per iteration, the rest scalar.
+    /// AVX2: eight sensors' cells per iteration, the last batch partial;
+    /// the look-ups one sensor at a time.
+    ///
+    /// Scalar look-ups, not AVX2 gathers: on AMD Zen 4 the two dependent
+    /// gathers took as long as the rest of the read, and the tail of a
+    /// 15-sensor grid ran through `one` with a branch per sensor.
     ///
     /// # Safety
     /// The CPU must support AVX2; `q.ids.len()` must be in `PAD + 1 ..= u32::MAX`.
     #[target_feature(enable = "avx2")]
-    pub(super) unsafe fn avx2(q: &Query32, ox: &[f32], oy: &[f32], out: &mut [f32]) {
+    pub(super) unsafe fn avx2(g: &SurfaceGrid, world: &World, i: usize, out: &mut [f32]) {
+        let (q, ox, oy) = (&Query32::at(world, i), &g.ox32[..], &g.oy32[..]);
         let n = out.len().min(ox.len()).min(oy.len());
-        let whole = n - n % 8;
         let (bx, by) = (_mm256_set1_ps(q.bx), _mm256_set1_ps(q.by));
         let (axx, axy) = (_mm256_set1_ps(q.axx), _mm256_set1_ps(q.axy));
         let (rxx, rxy) = (_mm256_set1_ps(q.rxx), _mm256_set1_ps(q.rxy));
         let (lx, ly) = (_mm256_set1_ps(q.limx), _mm256_set1_ps(q.limy));
         let zero = _mm256_setzero_ps();
         let tx = _mm256_set1_epi32(q.tiles_x as i32);
-        let (seven, byte) = (_mm256_set1_epi32(7), _mm256_set1_epi32(0xff));
+        let seven = _mm256_set1_epi32(7);
         let last = _mm256_set1_epi32(last_gather(q) as i32);
+        let lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+        let mut idx = [0u32; 8];
         let mut j = 0;
-        while j < whole {
-            // SAFETY: j + 8 <= n <= the lengths of ox, oy and out (unaligned loads/stores).
+        while j < n {
+            let m = (n - j).min(8);
+            // Lanes past the last sensor are neither loaded nor stored.
+            let todo = _mm256_cmpgt_epi32(_mm256_set1_epi32(m as i32), lane);
+            // SAFETY: the lanes of `todo` are j..j + m, inside ox and oy;
+            // masked-off lanes are not accessed (and cannot fault).
             let (x, y) = unsafe {
                 (
-                    _mm256_loadu_ps(ox.as_ptr().add(j)),
-                    _mm256_loadu_ps(oy.as_ptr().add(j)),
+                    _mm256_maskload_ps(ox.as_ptr().add(j), todo),
+                    _mm256_maskload_ps(oy.as_ptr().add(j), todo),
                 )
             };
             let cx = _mm256_add_ps(
@@ -119,7 +160,7 @@ mod lanes {
                     _mm256_cmp_ps::<_CMP_LT_OQ>(cy, ly),
                 ),
             );
-            // Outside lanes become +0.0, so cell 0; their reading is discarded below.
+            // Outside lanes become +0.0, so cell 0; their reading is not used.
             let c = _mm256_cvttps_epi32(_mm256_and_ps(cx, ins));
             let r = _mm256_cvttps_epi32(_mm256_and_ps(cy, ins));
             let tile = _mm256_add_epi32(
@@ -130,23 +171,20 @@ mod lanes {
                 _mm256_slli_epi32::<3>(_mm256_and_si256(r, seven)),
                 _mm256_and_si256(c, seven),
             );
-            let idx = _mm256_add_epi32(_mm256_slli_epi32::<6>(tile), within);
-            // Unsigned min: a no-op for the indices `one` computes, a bound for the gather.
-            let idx = _mm256_min_epu32(idx, last);
-            // SAFETY: every lane of idx is <= last, so the 4 bytes read at ids + idx lie
-            // inside ids; each id is masked to 0..=255, inside the 256 readings.
-            let v = unsafe {
-                let ids = _mm256_and_si256(
-                    _mm256_i32gather_epi32::<1>(q.ids.as_ptr().cast(), idx),
-                    byte,
-                );
-                _mm256_i32gather_ps::<4>(q.readings.as_ptr(), ids)
-            };
-            // SAFETY: as for the loads.
-            unsafe { _mm256_storeu_ps(out.as_mut_ptr().add(j), _mm256_and_ps(v, ins)) };
+            let cell = _mm256_add_epi32(_mm256_slli_epi32::<6>(tile), within);
+            // Unsigned min: a no-op for the indices `one` computes, a bound for the look-up.
+            let cell = _mm256_min_epu32(cell, last);
+            // SAFETY: idx has room for the 8 lanes.
+            unsafe { _mm256_storeu_si256(idx.as_mut_ptr().cast(), cell) };
+            let inside = _mm256_movemask_ps(ins) as u32;
+            for (l, (v, &k)) in out[j..j + m].iter_mut().zip(&idx).enumerate() {
+                // SAFETY: k <= last < ids.len() (the min above).
+                let id = unsafe { *q.ids.get_unchecked(k as usize) };
+                let reading = q.readings[id as usize];
+                *v = if inside >> l & 1 == 1 { reading } else { 0.0 };
+            }
             j += 8;
         }
-        q.scalar(&ox[whole..n], &oy[whole..n], &mut out[whole..n]);
     }
 
     /// AVX-512F: sixteen sensors per iteration, the last batch masked.
@@ -156,7 +194,8 @@ mod lanes {
     // avx512f implies FMA in LLVM, but Rust never fuses a separate mul and add
     // (no contraction), so the bits stay those of `one`.
     #[target_feature(enable = "avx512f")]
-    pub(super) unsafe fn avx512(q: &Query32, ox: &[f32], oy: &[f32], out: &mut [f32]) {
+    pub(super) unsafe fn avx512(g: &SurfaceGrid, world: &World, i: usize, out: &mut [f32]) {
+        let (q, ox, oy) = (&Query32::at(world, i), &g.ox32[..], &g.oy32[..]);
         let n = out.len().min(ox.len()).min(oy.len());
         let (bx, by) = (_mm512_set1_ps(q.bx), _mm512_set1_ps(q.by));
         let (axx, axy) = (_mm512_set1_ps(q.axx), _mm512_set1_ps(q.axy));
@@ -243,44 +282,25 @@ impl SurfaceGrid {
     /// `simd::detected()`; every level gives the same bits).
     #[inline]
     fn read_single_at_level(&self, world: &World, i: usize, out: &mut [f32], level: SimdLevel) {
-        let (p, ahead, right) = frame(world, i);
         let st = &*world.statics;
-        let inv = st.inv_cell;
-        let (ids, tiles_x) = st.scenario.raster().tiles();
-        // The robot's frame in cells as the f64 read computes it, then rounded.
-        let (base, ax, rx) = (p * inv, ahead * inv, right * inv);
-        let q = Query32 {
-            bx: base.x as f32,
-            by: base.y as f32,
-            axx: ax.x as f32,
-            axy: ax.y as f32,
-            rxx: rx.x as f32,
-            rxy: rx.y as f32,
-            limx: st.limit.x as f32,
-            limy: st.limit.y as f32,
-            tiles_x,
-            ids,
-            readings: &st.readings_f32,
-            few: st.few_materials,
-        };
         let n = self.ox32.len().min(out.len());
         let out = &mut out[..n];
         if n == 0 {
             return;
         }
         if !st.lanes {
-            return q.scalar(&self.ox32, &self.oy32, out);
+            return Query32::at(world, i).scalar(&self.ox32, &self.oy32, out);
         }
         debug_assert!(level <= crate::simd::detected());
         match level {
             #[cfg(target_arch = "x86_64")]
             // SAFETY: callers pass a level up to `detected()`, which saw AVX-512F on
             // this CPU; `lanes` holds, so ids.len() is in PAD + 1 ..= u32::MAX.
-            SimdLevel::Avx512 => unsafe { lanes::avx512(&q, &self.ox32, &self.oy32, out) },
+            SimdLevel::Avx512 => unsafe { lanes::avx512(self, world, i, out) },
             #[cfg(target_arch = "x86_64")]
             // SAFETY: as above, with AVX2.
-            SimdLevel::Avx2 => unsafe { lanes::avx2(&q, &self.ox32, &self.oy32, out) },
-            _ => q.scalar(&self.ox32, &self.oy32, out),
+            SimdLevel::Avx2 => unsafe { lanes::avx2(self, world, i, out) },
+            _ => Query32::at(world, i).scalar(&self.ox32, &self.oy32, out),
         }
     }
 }
