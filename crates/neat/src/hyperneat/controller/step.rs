@@ -3,8 +3,8 @@
 //! across robots, compiled once per instruction level (same bits at each)
 //! and once per element type (f64 for the exact precision, f32 for the fast one).
 
-use crate::activation::bipolar_sigmoid;
-use crate::precision::bipolar_sigmoid_f32;
+use crate::activation::{bipolar_sigmoid, bipolar_sigmoid_block};
+use crate::precision::{bipolar_sigmoid_f32, bipolar_sigmoid_f32_block};
 use crate::simd::{Baseline, Simd, SimdLevel};
 
 /// An element type of the controller step: its column padding and panel
@@ -17,6 +17,8 @@ pub(super) trait Element: Copy + Default + 'static {
     const PANEL: usize;
     /// The bipolar sigmoid in this precision.
     fn squash(a: Self) -> Self;
+    /// [`Element::squash`] of each of a block's values, the same bits.
+    fn squash_block<const N: usize>(a: &mut [Self; N]);
     /// [`Kernel::step`] at `level` (see there).
     fn step_at(
         level: SimdLevel,
@@ -31,13 +33,17 @@ pub(super) trait Element: Copy + Default + 'static {
 /// Implements [`Element`] for `$e`: the best token the CPU has at or below
 /// `level` runs [`step_body`] compiled for it.
 macro_rules! element {
-    ($e:ty, $pad:expr, $squash:path) => {
+    ($e:ty, $pad:expr, $squash:path, $block:path) => {
         impl Element for $e {
             const PAD: usize = $pad;
             const PANEL: usize = 2 * $pad;
             #[inline(always)]
             fn squash(a: $e) -> $e {
                 $squash(a)
+            }
+            #[inline(always)]
+            fn squash_block<const N: usize>(a: &mut [$e; N]) {
+                $block(a)
             }
             fn step_at(
                 level: SimdLevel,
@@ -70,8 +76,18 @@ macro_rules! element {
     };
 }
 
-element!(f64, super::PAD, bipolar_sigmoid);
-element!(f32, 2 * super::PAD, bipolar_sigmoid_f32);
+element!(f64, super::PAD, bipolar_sigmoid, bipolar_sigmoid_block);
+element!(
+    f32,
+    2 * super::PAD,
+    bipolar_sigmoid_f32,
+    bipolar_sigmoid_f32_block
+);
+
+/// Values squashed together: two AVX-512 vectors of f64, one of f32. (Blocks
+/// of 32 or 48 measured slower on the default run: their constants and
+/// chains no longer fit the 32 vector registers.)
+const SQUASH_BLOCK: usize = 16;
 
 /// The read-only parts of a controller one step needs.
 pub(super) struct Kernel<'a, E> {
@@ -217,10 +233,16 @@ fn squash_packed<E: Element, S: Simd<E>>(
     // so they fit); the tail past the last sum is zeroed, not left stale.
     let packed = (robots * n).next_multiple_of(S::LANES);
     acc[robots * n..packed].fill(E::default());
-    for lanes in acc[..packed].chunks_exact_mut(S::LANES) {
-        for v in lanes {
-            *v = E::squash(*v);
-        }
+    // Blocks whose statements run across the block: whole vectors at every
+    // level, their chains overlapping. (A loop over `S::LANES`-chunks was left
+    // to the SLP vectoriser, which gave up on the f32 sigmoid with AVX2 and ran
+    // it one lane at a time: the fast precision slower than the exact one.)
+    let mut blocks = acc[..packed].chunks_exact_mut(SQUASH_BLOCK);
+    for b in &mut blocks {
+        E::squash_block::<SQUASH_BLOCK>(b.try_into().expect("a whole block"));
+    }
+    for v in blocks.into_remainder() {
+        *v = E::squash(*v);
     }
     for (r, y) in y.chunks_exact_mut(k.stride).enumerate() {
         crate::compile::copy_short(&mut y[..n], &acc[r * n..][..n]);
