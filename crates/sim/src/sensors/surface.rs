@@ -213,8 +213,9 @@ impl<'w> Query<'w> {
 
 /// Lane-wise reads: the same per-sensor arithmetic as [`Query::one`] (IEEE mul
 /// and add in the same order, no FMA, truncation to i32), one sensor per lane,
-/// then the two look-ups as gathers. Only called when `Statics::lanes` holds,
-/// so the u32 lane index equals `one`'s usize one for every in-arena sensor.
+/// then the two look-ups: as gathers with AVX-512, one sensor at a time with
+/// AVX2. Only called when `Statics::lanes` holds, so the u32 lane index
+/// equals `one`'s usize one for every in-arena sensor.
 #[cfg(target_arch = "x86_64")]
 mod lanes {
     use std::arch::x86_64::*;

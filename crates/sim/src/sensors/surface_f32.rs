@@ -87,9 +87,10 @@ impl<'w> Query32<'w> {
 }
 
 /// Lane-wise reads: [`Query32::one`]'s arithmetic one sensor per lane, then
-/// the two look-ups as gathers (or one permute for few materials). Only
-/// called when `Statics::lanes` holds, so the u32 lane index equals `one`'s
-/// usize one for every in-arena sensor.
+/// the two look-ups: as gathers (or one permute for few materials) with
+/// AVX-512, one sensor at a time with AVX2. Only called when
+/// `Statics::lanes` holds, so the u32 lane index equals `one`'s usize one
+/// for every in-arena sensor.
 #[cfg(target_arch = "x86_64")]
 mod lanes {
     use std::arch::x86_64::*;
