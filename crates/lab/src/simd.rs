@@ -18,13 +18,7 @@ pub enum SimdError {
 
 /// The level named `name` (`scalar`, `avx2` or `avx512`).
 pub fn parse(name: &str) -> Result<vivae_neat::simd::SimdLevel, SimdError> {
-    use vivae_neat::simd::SimdLevel;
-    match name {
-        "scalar" => Ok(SimdLevel::Scalar),
-        "avx2" => Ok(SimdLevel::Avx2),
-        "avx512" => Ok(SimdLevel::Avx512),
-        other => Err(SimdError::Unknown(other.to_string())),
-    }
+    vivae_neat::simd::SimdLevel::from_name(name).ok_or_else(|| SimdError::Unknown(name.to_string()))
 }
 
 /// Applies `VIVAE_SIMD` if it is set (a level above what the CPU supports

@@ -32,14 +32,9 @@ fn main() {
     // `VIVAE_SIMD=scalar|avx2|avx512` benchmarks that level (the program's
     // switch, read here because the library does no environment I/O).
     if let Ok(v) = std::env::var("VIVAE_SIMD") {
-        use vivae_neat::simd::{SimdLevel, set_level};
-        let wanted = match v.as_str() {
-            "scalar" => SimdLevel::Scalar,
-            "avx2" => SimdLevel::Avx2,
-            "avx512" => SimdLevel::Avx512,
-            other => panic!("VIVAE_SIMD={other:?}: expected scalar, avx2 or avx512"),
-        };
-        eprintln!("VIVAE_SIMD: {:?}", set_level(wanted));
+        let wanted =
+            vivae_neat::simd::SimdLevel::from_name(&v).expect("VIVAE_SIMD: scalar, avx2 or avx512");
+        eprintln!("VIVAE_SIMD: {:?}", vivae_neat::simd::set_level(wanted));
     }
     divan::main();
 }

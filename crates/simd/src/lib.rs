@@ -22,6 +22,18 @@ pub enum SimdLevel {
     Avx512,
 }
 
+impl SimdLevel {
+    /// The level named `name` (`scalar`, `avx2` or `avx512`: `VIVAE_SIMD`'s values).
+    pub fn from_name(name: &str) -> Option<SimdLevel> {
+        match name {
+            "scalar" => Some(SimdLevel::Scalar),
+            "avx2" => Some(SimdLevel::Avx2),
+            "avx512" => Some(SimdLevel::Avx512),
+            _ => None,
+        }
+    }
+}
+
 /// The best level this CPU supports.
 pub fn detected() -> SimdLevel {
     #[cfg(target_arch = "x86_64")]
@@ -94,6 +106,16 @@ impl Default for LevelSetting {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn levels_are_named_as_vivae_simd_takes_them() {
+        assert_eq!(SimdLevel::from_name("scalar"), Some(SimdLevel::Scalar));
+        assert_eq!(SimdLevel::from_name("avx2"), Some(SimdLevel::Avx2));
+        assert_eq!(SimdLevel::from_name("avx512"), Some(SimdLevel::Avx512));
+        for bad in ["", "AVX2", "avx9", "avx512 "] {
+            assert_eq!(SimdLevel::from_name(bad), None, "{bad:?}");
+        }
+    }
 
     #[test]
     fn a_setting_starts_detected_and_is_clamped_to_the_cpu() {

@@ -149,17 +149,17 @@ impl SurfaceGrid {
 
 /// One robot's read, everything in raster cells: the robot's centre and axes,
 /// the arena size, and the raster the readings come from.
-struct Query<'a> {
-    base: DVec2,
-    ax: DVec2,
-    rx: DVec2,
-    lim: DVec2,
-    tiles_x: usize,
-    ids: &'a [u8],
+pub(super) struct Query<'a> {
+    pub(super) base: DVec2,
+    pub(super) ax: DVec2,
+    pub(super) rx: DVec2,
+    pub(super) lim: DVec2,
+    pub(super) tiles_x: usize,
+    pub(super) ids: &'a [u8],
     readings: &'a [f64; 256],
     /// Whether the scenario has at most 16 materials (so every id is below 16
     /// and two AVX-512 registers hold every reading).
-    few: bool,
+    pub(super) few: bool,
 }
 
 impl<'w> Query<'w> {
@@ -168,7 +168,7 @@ impl<'w> Query<'w> {
     /// and reloaded with wider loads, which the CPU cannot forward from those
     /// stores, and every read stalled on it.
     #[inline(always)]
-    fn at(world: &'w World, i: usize) -> Self {
+    pub(super) fn at(world: &'w World, i: usize) -> Self {
         let st = &*world.statics;
         let (p, ahead, right) = frame(world, i);
         let inv = st.inv_cell;

@@ -9,8 +9,7 @@
 //! rounding (about 6e-5 cells at 1,000 cells from the origin) of a cell
 //! border may land in the neighbouring cell.
 
-use super::frame;
-use super::surface::SurfaceGrid;
+use super::surface::{Query, SurfaceGrid};
 use crate::simd::SimdLevel;
 use crate::world::World;
 
@@ -32,31 +31,24 @@ struct Query32<'a> {
 }
 
 impl<'w> Query32<'w> {
-    /// Robot `i`'s read in `world`. The lane paths build it themselves: built
-    /// by their caller and passed by reference, it was stored field by field
-    /// and reloaded with wider loads, which the CPU cannot forward from those
-    /// stores, and every read stalled on it.
+    /// Robot `i`'s read in `world`: the f64 read's frame in cells, rounded
+    /// (built by the lane paths themselves, as [`Query::at`] says why).
     #[inline(always)]
     fn at(world: &'w World, i: usize) -> Self {
-        let st = &*world.statics;
-        let (p, ahead, right) = frame(world, i);
-        let inv = st.inv_cell;
-        let (ids, tiles_x) = st.scenario.raster().tiles();
-        // The robot's frame in cells as the f64 read computes it, then rounded.
-        let (base, ax, rx) = (p * inv, ahead * inv, right * inv);
+        let q = Query::at(world, i);
         Query32 {
-            bx: base.x as f32,
-            by: base.y as f32,
-            axx: ax.x as f32,
-            axy: ax.y as f32,
-            rxx: rx.x as f32,
-            rxy: rx.y as f32,
-            limx: st.limit.x as f32,
-            limy: st.limit.y as f32,
-            tiles_x,
-            ids,
-            readings: &st.readings_f32,
-            few: st.few_materials,
+            bx: q.base.x as f32,
+            by: q.base.y as f32,
+            axx: q.ax.x as f32,
+            axy: q.ax.y as f32,
+            rxx: q.rx.x as f32,
+            rxy: q.rx.y as f32,
+            limx: q.lim.x as f32,
+            limy: q.lim.y as f32,
+            tiles_x: q.tiles_x,
+            ids: q.ids,
+            readings: &world.statics.readings_f32,
+            few: q.few,
         }
     }
 
@@ -312,6 +304,7 @@ mod tests {
     use proptest::prelude::*;
 
     use super::*;
+    use crate::sensors::frame;
     use crate::sensors::surface::fixtures::{levels, worlds};
     use crate::{Sensor, SurfaceSensors};
 
