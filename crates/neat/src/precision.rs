@@ -140,8 +140,27 @@ pub fn exp_f32(x: f32) -> f32 {
 /// The fast precision's neuron sums use it; the test
 /// `fma_f32_gives_the_fused_instructions_bits` compares it with the
 /// instruction on millions of arguments, halfway cases included.
-#[inline]
+#[inline(always)]
 pub fn fma_f32(x: f32, y: f32, z: f32) -> f32 {
+    let s = f64::from(x) * f64::from(y) + f64::from(z);
+    let r = s as f32;
+    // The common cases, inline. Every f32 midpoint (normal, subnormal, or
+    // the overflow threshold 2^128 − 2^103) has its low 28 f64 mantissa bits
+    // zero, so an `s` with any of them set is no midpoint, and rounding it
+    // once more rounds as the exact value would (rounding to f64 is
+    // monotone and keeps every midpoint where it is). An `s` that is an
+    // f32 (zero, say) needs no rounding at all.
+    if s.to_bits() & 0x0fff_ffff != 0 || f64::from(r) == s {
+        return r;
+    }
+    fma_f32_rare(x, y, z)
+}
+
+/// [`fma_f32`] where the f64 sum may lie on an f32 midpoint (or is
+/// infinite or NaN): out of line, so the common cases stay small.
+#[cold]
+#[inline(never)]
+fn fma_f32_rare(x: f32, y: f32, z: f32) -> f32 {
     let xy = f64::from(x) * f64::from(y);
     let zw = f64::from(z);
     let s = xy + zw;
@@ -424,6 +443,24 @@ mod tests {
                 let (want_e, want_s) = (exp_f32(x), bipolar_sigmoid_f32(x));
                 assert!(e[i].to_bits() == want_e.to_bits() || e[i].is_nan() && want_e.is_nan());
                 assert!(s[i].to_bits() == want_s.to_bits() || s[i].is_nan() && want_s.is_nan());
+            }
+        }
+    }
+
+    #[test]
+    fn fma_f32_rounds_subnormal_midpoints_once() {
+        // x·y = 2^-150 − 2^-196, so x·y + z lies just below the midpoint
+        // z + 2^-150 of two subnormal f32 and its f64 sum lands on that
+        // midpoint: rounding the sum once more would break the tie to even.
+        let x = f32::from_bits(0x1a00_0001); // 2^-75 (1 + 2^-23)
+        let y = f32::from_bits(0x19ff_fffe); // 2^-75 (1 − 2^-23)
+        for k in [1u32, 3, 1001, (1 << 22) + 1, (1 << 23) - 3] {
+            for z in [f32::from_bits(k), -f32::from_bits(k)] {
+                let (got, want) = (fma_f32(x, y, z), fma_f32(-x, -y, z));
+                assert_eq!(got.to_bits(), want.to_bits());
+                if let Some(hw) = hardware_fma(x, y, z) {
+                    assert_eq!(got.to_bits(), hw.to_bits(), "z = {z:e}");
+                }
             }
         }
     }

@@ -204,7 +204,10 @@ unsafe fn fused_sse2(
         _mm_storeu_ps(y.as_mut_ptr(), b);
         _mm_storeu_ps(z.as_mut_ptr(), c);
     }
-    let r: [f32; 4] = std::array::from_fn(|i| fma_f32(x[i], y[i], z[i]));
+    let mut r = [0.0f32; 4];
+    for i in 0..4 {
+        r[i] = fma_f32(x[i], y[i], z[i]);
+    }
     // SAFETY: as above.
     unsafe { _mm_loadu_ps(r.as_ptr()) }
 }
