@@ -112,6 +112,32 @@ fn surface_reads(bencher: Bencher, rings: usize, angles: usize) {
     });
 }
 
+/// [`surface_reads`] with every robot read in one call
+/// (`Sensor::read_robots`, as a rollout reads them), into one buffer of `T`.
+fn surface_reads_batched<T: Copy + Default>(
+    bencher: Bencher,
+    rings: usize,
+    angles: usize,
+    read: impl Fn(&SurfaceGrid, &World, usize, &mut [T], usize),
+) {
+    let grid = SurfaceSensors {
+        rings,
+        angles,
+        ..Default::default()
+    }
+    .grid();
+    let worlds = driven_worlds();
+    let n = worlds[0].robots().len();
+    let mut buf = vec![T::default(); n * grid.len()];
+    let mut k = 0;
+    bencher.counter(ItemsCount::new(n)).bench_local(|| {
+        let w = &worlds[k % worlds.len()];
+        k += 1;
+        read(&grid, black_box(w), n, &mut buf, grid.len());
+        black_box(&mut buf);
+    });
+}
+
 /// [`surface_reads`] in single precision (`SurfaceGrid::read_single`, the
 /// fast precision's read): twice the lanes per vector.
 fn surface_reads_single(bencher: Bencher, rings: usize, angles: usize) {
@@ -123,6 +149,22 @@ fn surface_reads_single(bencher: Bencher, rings: usize, angles: usize) {
 #[divan::bench]
 fn read_5_robots_3x5_surface_sensors(bencher: Bencher) {
     surface_reads(bencher, 3, 5);
+}
+
+/// The 5 robots' 3×5 surface sensors read in one call (f64), as a rollout reads them.
+#[divan::bench]
+fn read_5_robots_3x5_surface_sensors_batched(bencher: Bencher) {
+    surface_reads_batched(bencher, 3, 5, |g, w, n, out: &mut [f64], stride| {
+        g.read_robots(w, n, out, stride)
+    });
+}
+
+/// As `read_5_robots_3x5_surface_sensors_batched`, in single precision.
+#[divan::bench]
+fn read_5_robots_3x5_surface_sensors_batched_f32(bencher: Bencher) {
+    surface_reads_batched(bencher, 3, 5, |g, w, n, out: &mut [f32], stride| {
+        g.read_robots_f32(w, n, out, stride, &mut [])
+    });
 }
 
 #[divan::bench]

@@ -160,6 +160,43 @@ pub fn read_sheets_single(
     }
 }
 
+/// [`read_sheets`] of robots `0..robots` at once, robot `r`'s input vector
+/// at `inputs[r · ni..][..ni]` (`ni` = `inputs.len() / robots`): each sheet
+/// reads every robot in one call ([`vivae_sim::Sensor::read_robots`]), the
+/// same bits. Allocation-free.
+#[inline]
+pub fn read_sheets_all(sheets: &[SensorSheet], world: &World, robots: usize, inputs: &mut [f64]) {
+    let ni = inputs.len() / robots.max(1);
+    let mut at = 0;
+    for sheet in sheets {
+        sheet
+            .sensor
+            .read_robots(world, robots, &mut inputs[at..], ni);
+        at += sheet.len();
+    }
+}
+
+/// [`read_sheets_all`] in single precision (each sheet's
+/// [`vivae_sim::Sensor::read_robots_f32`]; `scratch` as in
+/// [`read_sheets_single`]). Allocation-free.
+#[inline]
+pub fn read_sheets_single_all(
+    sheets: &[SensorSheet],
+    world: &World,
+    robots: usize,
+    inputs: &mut [f32],
+    scratch: &mut [f64],
+) {
+    let ni = inputs.len() / robots.max(1);
+    let mut at = 0;
+    for sheet in sheets {
+        sheet
+            .sensor
+            .read_robots_f32(world, robots, &mut inputs[at..], ni, scratch);
+        at += sheet.len();
+    }
+}
+
 /// The input sheets `config` asks for, in controller-input order: every
 /// kind of the registry [`SENSORS`] the config switches on.
 pub fn sensor_sheets(config: &Config) -> Vec<SensorSheet> {

@@ -64,6 +64,53 @@ pub trait Sensor: fmt::Debug + Send + Sync {
             *o = v as f32;
         }
     }
+
+    /// Every robot's [`Sensor::read`] at once: robot `r`'s readings (for `r`
+    /// in `0..robots`) to `out[r · stride..][..self.len()]`, the same bits.
+    ///
+    /// Panics unless `stride ≥ self.len()` and `out` holds
+    /// `(robots − 1) · stride + self.len()` values. The default reads robot
+    /// after robot; a sensor may read them together (the surface sensors do:
+    /// one call lets the CPU overlap one robot's look-ups with the next's).
+    fn read_robots(&self, world: &World, robots: usize, out: &mut [f64], stride: usize) {
+        let len = self.len();
+        check_batch(len, robots, out.len(), stride);
+        for r in 0..robots {
+            self.read(world, r, &mut out[r * stride..][..len]);
+        }
+    }
+
+    /// [`Sensor::read_robots`] in single precision: each robot's
+    /// [`Sensor::read_f32`] (`scratch` as there), the same bits.
+    fn read_robots_f32(
+        &self,
+        world: &World,
+        robots: usize,
+        out: &mut [f32],
+        stride: usize,
+        scratch: &mut [f64],
+    ) {
+        let len = self.len();
+        check_batch(len, robots, out.len(), stride);
+        for r in 0..robots {
+            self.read_f32(world, r, &mut out[r * stride..][..len], scratch);
+        }
+    }
+}
+
+/// Checks a batched read's buffer (see [`Sensor::read_robots`]): panics,
+/// naming the sizes, unless it holds every robot's `len` readings.
+#[inline]
+pub(crate) fn check_batch(len: usize, robots: usize, out: usize, stride: usize) {
+    assert!(
+        stride >= len
+            && (robots == 0
+                || (robots - 1)
+                    .checked_mul(stride)
+                    .and_then(|v| v.checked_add(len))
+                    .is_some_and(|need| out >= need)),
+        "a batched read of {robots} robots × {len} readings (stride {stride}) needs a longer buffer than {out}"
+    );
 }
 
 /// Where one reading of a sensor is taken, relative to the robot.

@@ -1,6 +1,8 @@
 //! Surface sensors: the paper's polar grid of friction readings in front of
 //! the robot (road 1 … grass 0, 0 outside the arena).
 
+use std::ops::Range;
+
 use glam::DVec2;
 use serde::{Deserialize, Serialize};
 
@@ -219,6 +221,7 @@ impl<'w> Query<'w> {
 #[cfg(target_arch = "x86_64")]
 mod lanes {
     use std::arch::x86_64::*;
+    use std::ops::Range;
 
     use super::Query;
     use crate::World;
@@ -231,6 +234,28 @@ mod lanes {
         (q.ids.len() - crate::raster::PAD) as u32 - 1
     }
 
+    /// [`avx2_robot`] of each of `robots`, robot `robots.start + k`'s
+    /// readings to `all[k · stride..]` (at most `stride` of them): one call
+    /// for every robot, so the CPU overlaps one robot's look-ups with the next's.
+    ///
+    /// # Safety
+    /// As for [`avx2_robot`].
+    #[target_feature(enable = "avx2")]
+    pub(super) unsafe fn avx2(
+        g: &SurfaceGrid,
+        world: &World,
+        robots: Range<usize>,
+        all: &mut [f64],
+        stride: usize,
+    ) {
+        for (k, i) in robots.enumerate() {
+            let out = &mut all[k * stride..];
+            let n = out.len().min(stride);
+            // SAFETY: the caller's guarantees are this function's.
+            unsafe { avx2_robot(g, world, i, &mut out[..n]) };
+        }
+    }
+
     /// AVX2: four sensors' cells per iteration, the last batch partial; the
     /// look-ups one sensor at a time.
     ///
@@ -239,7 +264,8 @@ mod lanes {
     /// # Safety
     /// The CPU must support AVX2; `q.ids.len()` must be in `PAD + 1 ..= u32::MAX`.
     #[target_feature(enable = "avx2")]
-    pub(super) unsafe fn avx2(g: &SurfaceGrid, world: &World, i: usize, out: &mut [f64]) {
+    #[inline]
+    unsafe fn avx2_robot(g: &SurfaceGrid, world: &World, i: usize, out: &mut [f64]) {
         let (q, ox, oy) = (&Query::at(world, i), &g.ox[..], &g.oy[..]);
         let n = out.len().min(ox.len()).min(oy.len());
         let (bx, by) = (_mm256_set1_pd(q.base.x), _mm256_set1_pd(q.base.y));
@@ -311,6 +337,28 @@ mod lanes {
         }
     }
 
+    /// [`avx512_robot`] of each of `robots`, robot `robots.start + k`'s
+    /// readings to `all[k · stride..]` (at most `stride` of them): one call
+    /// for every robot, so the CPU overlaps one robot's look-ups with the next's.
+    ///
+    /// # Safety
+    /// As for [`avx512_robot`].
+    #[target_feature(enable = "avx512f")]
+    pub(super) unsafe fn avx512(
+        g: &SurfaceGrid,
+        world: &World,
+        robots: Range<usize>,
+        all: &mut [f64],
+        stride: usize,
+    ) {
+        for (k, i) in robots.enumerate() {
+            let out = &mut all[k * stride..];
+            let n = out.len().min(stride);
+            // SAFETY: the caller's guarantees are this function's.
+            unsafe { avx512_robot(g, world, i, &mut out[..n]) };
+        }
+    }
+
     /// AVX-512F: eight sensors per iteration, the last batch masked.
     ///
     /// # Safety
@@ -318,7 +366,8 @@ mod lanes {
     // avx512f implies FMA in LLVM, but Rust never fuses a separate mul and add
     // (no contraction), so the bits stay those of `one`.
     #[target_feature(enable = "avx512f")]
-    pub(super) unsafe fn avx512(g: &SurfaceGrid, world: &World, i: usize, out: &mut [f64]) {
+    #[inline]
+    unsafe fn avx512_robot(g: &SurfaceGrid, world: &World, i: usize, out: &mut [f64]) {
         let (q, ox, oy) = (&Query::at(world, i), &g.ox[..], &g.oy[..]);
         let n = out.len().min(ox.len()).min(oy.len());
         let (bx, by) = (_mm512_set1_pd(q.base.x), _mm512_set1_pd(q.base.y));
@@ -413,39 +462,70 @@ impl Sensor for SurfaceGrid {
 
     #[inline]
     fn read(&self, world: &World, i: usize, out: &mut [f64]) {
-        self.read_at_level(world, i, out, crate::simd::level());
+        let n = self.ox.len().min(out.len());
+        self.read_at_level(world, i..i + 1, &mut out[..n], n, crate::simd::level());
     }
 
     #[inline]
     fn read_f32(&self, world: &World, i: usize, out: &mut [f32], _scratch: &mut [f64]) {
         self.read_single(world, i, out);
     }
+
+    fn read_robots(&self, world: &World, robots: usize, out: &mut [f64], stride: usize) {
+        super::check_batch(self.len(), robots, out.len(), stride);
+        self.read_at_level(world, 0..robots, out, stride, crate::simd::level());
+    }
+
+    fn read_robots_f32(
+        &self,
+        world: &World,
+        robots: usize,
+        out: &mut [f32],
+        stride: usize,
+        _scratch: &mut [f64],
+    ) {
+        super::check_batch(self.len(), robots, out.len(), stride);
+        self.read_single_robots(world, 0..robots, out, stride, crate::simd::level());
+    }
 }
 
 impl SurfaceGrid {
-    /// `read` with the instruction set `level` (which must not exceed
+    /// The reads of `robots`, robot `robots.start + k`'s to
+    /// `out[k · stride..]` (at most `stride` readings, `out` long enough),
+    /// with the instruction set `level` (which must not exceed
     /// `simd::detected()`; every level gives the same bits).
     #[inline]
-    fn read_at_level(&self, world: &World, i: usize, out: &mut [f64], level: SimdLevel) {
+    fn read_at_level(
+        &self,
+        world: &World,
+        robots: Range<usize>,
+        out: &mut [f64],
+        stride: usize,
+        level: SimdLevel,
+    ) {
         let st = &*world.statics;
-        let n = self.ox.len().min(out.len());
-        let out = &mut out[..n];
-        if n == 0 {
+        if self.ox.is_empty() || stride == 0 {
             return;
         }
+        let scalar = |out: &mut [f64]| {
+            for (k, i) in robots.clone().enumerate() {
+                let n = self.ox.len().min(stride);
+                Query::at(world, i).scalar(&self.ox, &self.oy, &mut out[k * stride..][..n]);
+            }
+        };
         if !st.lanes {
-            return Query::at(world, i).scalar(&self.ox, &self.oy, out);
+            return scalar(out);
         }
         debug_assert!(level <= crate::simd::detected());
         match level {
             #[cfg(target_arch = "x86_64")]
             // SAFETY: callers pass a level up to `detected()`, which saw AVX-512F on
             // this CPU; `lanes` holds, so ids.len() is in PAD + 1 ..= u32::MAX.
-            SimdLevel::Avx512 => unsafe { lanes::avx512(self, world, i, out) },
+            SimdLevel::Avx512 => unsafe { lanes::avx512(self, world, robots, out, stride) },
             #[cfg(target_arch = "x86_64")]
             // SAFETY: as above, with AVX2.
-            SimdLevel::Avx2 => unsafe { lanes::avx2(self, world, i, out) },
-            _ => Query::at(world, i).scalar(&self.ox, &self.oy, out),
+            SimdLevel::Avx2 => unsafe { lanes::avx2(self, world, robots, out, stride) },
+            _ => scalar(out),
         }
     }
 }
@@ -530,7 +610,7 @@ mod tests {
         reference(g, world, 0, &mut want);
         for l in levels() {
             let mut got = vec![7.0; g.len() + 3];
-            g.read_at_level(world, 0, &mut got, l);
+            g.read_at_level(world, 0..1, &mut got, g.len(), l);
             assert!(
                 same_bits(&got, &want),
                 "{l:?} differs at {pos:?} heading {heading}: {got:?} vs {want:?}"
@@ -568,6 +648,53 @@ mod tests {
             let heading = quarter as f64 * std::f64::consts::FRAC_PI_2;
             check(&mut worlds[w], &g, DVec2::new(x as f64, y as f64), heading);
         }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(200))]
+
+        /// Every robot read in one call gets its own read's bits, at every
+        /// level and through the trait, and the values between robots stay.
+        #[test]
+        fn batched_reads_give_each_robot_its_own_bits(
+            poses in prop::collection::vec((-150.0f64..950.0, -150.0f64..750.0, -4.0f64..4.0), 8),
+            rings in 1usize..12, angles in 1usize..40, gap in 0usize..5,
+        ) {
+            let mut worlds = worlds();
+            let world = &mut worlds[0];
+            let n = world.robots().len();
+            prop_assert!(n >= 2);
+            for (i, &(x, y, heading)) in poses.iter().take(n).enumerate() {
+                world.set_pose(i, DVec2::new(x, y), heading);
+            }
+            let g = SurfaceSensors { rings, angles, ..Default::default() }.grid();
+            let stride = g.len() + gap;
+            let mut want = vec![7.0; n * stride];
+            for i in 0..n {
+                reference(&g, world, i, &mut want[i * stride..][..g.len()]);
+            }
+            for l in levels() {
+                let mut got = vec![7.0; n * stride];
+                g.read_at_level(world, 0..n, &mut got, stride, l);
+                prop_assert!(same_bits(&got, &want), "{:?}", l);
+            }
+            let mut got = vec![7.0; n * stride];
+            g.read_robots(world, n, &mut got, stride);
+            prop_assert!(same_bits(&got, &want));
+            // The shortest buffer that holds them: the last robot's gap is not needed.
+            got.truncate(n * stride - gap);
+            g.read_robots(world, n, &mut got, stride);
+            prop_assert!(same_bits(&got, &want[..n * stride - gap]));
+        }
+    }
+
+    #[test]
+    #[should_panic(expected = "needs a longer buffer")]
+    fn a_batched_read_into_too_short_a_buffer_panics() {
+        let worlds = worlds();
+        let g = SurfaceSensors::default().grid();
+        let mut out = vec![0.0; 2 * g.len() - 1];
+        g.read_robots(&worlds[0], 2, &mut out, g.len());
     }
 
     #[test]

@@ -9,6 +9,8 @@
 //! rounding (about 6e-5 cells at 1,000 cells from the origin) of a cell
 //! border may land in the neighbouring cell.
 
+use std::ops::Range;
+
 use super::surface::{Query, SurfaceGrid};
 use crate::simd::SimdLevel;
 use crate::world::World;
@@ -86,6 +88,7 @@ impl<'w> Query32<'w> {
 #[cfg(target_arch = "x86_64")]
 mod lanes {
     use std::arch::x86_64::*;
+    use std::ops::Range;
 
     use super::Query32;
     use crate::World;
@@ -98,6 +101,28 @@ mod lanes {
         (q.ids.len() - crate::raster::PAD) as u32 - 1
     }
 
+    /// [`avx2_robot`] of each of `robots`, robot `robots.start + k`'s
+    /// readings to `all[k · stride..]` (at most `stride` of them): one call
+    /// for every robot, so the CPU overlaps one robot's look-ups with the next's.
+    ///
+    /// # Safety
+    /// As for [`avx2_robot`].
+    #[target_feature(enable = "avx2")]
+    pub(super) unsafe fn avx2(
+        g: &SurfaceGrid,
+        world: &World,
+        robots: Range<usize>,
+        all: &mut [f32],
+        stride: usize,
+    ) {
+        for (k, i) in robots.enumerate() {
+            let out = &mut all[k * stride..];
+            let n = out.len().min(stride);
+            // SAFETY: the caller's guarantees are this function's.
+            unsafe { avx2_robot(g, world, i, &mut out[..n]) };
+        }
+    }
+
     /// AVX2: eight sensors' cells per iteration, the last batch partial;
     /// the look-ups one sensor at a time.
     ///
@@ -108,7 +133,8 @@ mod lanes {
     /// # Safety
     /// The CPU must support AVX2; `q.ids.len()` must be in `PAD + 1 ..= u32::MAX`.
     #[target_feature(enable = "avx2")]
-    pub(super) unsafe fn avx2(g: &SurfaceGrid, world: &World, i: usize, out: &mut [f32]) {
+    #[inline]
+    unsafe fn avx2_robot(g: &SurfaceGrid, world: &World, i: usize, out: &mut [f32]) {
         let (q, ox, oy) = (&Query32::at(world, i), &g.ox32[..], &g.oy32[..]);
         let n = out.len().min(ox.len()).min(oy.len());
         let (bx, by) = (_mm256_set1_ps(q.bx), _mm256_set1_ps(q.by));
@@ -180,6 +206,28 @@ mod lanes {
         }
     }
 
+    /// [`avx512_robot`] of each of `robots`, robot `robots.start + k`'s
+    /// readings to `all[k · stride..]` (at most `stride` of them): one call
+    /// for every robot, so the CPU overlaps one robot's look-ups with the next's.
+    ///
+    /// # Safety
+    /// As for [`avx512_robot`].
+    #[target_feature(enable = "avx512f")]
+    pub(super) unsafe fn avx512(
+        g: &SurfaceGrid,
+        world: &World,
+        robots: Range<usize>,
+        all: &mut [f32],
+        stride: usize,
+    ) {
+        for (k, i) in robots.enumerate() {
+            let out = &mut all[k * stride..];
+            let n = out.len().min(stride);
+            // SAFETY: the caller's guarantees are this function's.
+            unsafe { avx512_robot(g, world, i, &mut out[..n]) };
+        }
+    }
+
     /// AVX-512F: sixteen sensors per iteration, the last batch masked.
     ///
     /// # Safety
@@ -187,7 +235,8 @@ mod lanes {
     // avx512f implies FMA in LLVM, but Rust never fuses a separate mul and add
     // (no contraction), so the bits stay those of `one`.
     #[target_feature(enable = "avx512f")]
-    pub(super) unsafe fn avx512(g: &SurfaceGrid, world: &World, i: usize, out: &mut [f32]) {
+    #[inline]
+    unsafe fn avx512_robot(g: &SurfaceGrid, world: &World, i: usize, out: &mut [f32]) {
         let (q, ox, oy) = (&Query32::at(world, i), &g.ox32[..], &g.oy32[..]);
         let n = out.len().min(ox.len()).min(oy.len());
         let (bx, by) = (_mm512_set1_ps(q.bx), _mm512_set1_ps(q.by));
@@ -268,32 +317,46 @@ impl SurfaceGrid {
     /// surface sensors; the module doc says how it differs from `read`).
     #[inline]
     pub fn read_single(&self, world: &World, i: usize, out: &mut [f32]) {
-        self.read_single_at_level(world, i, out, crate::simd::level());
+        let n = self.ox32.len().min(out.len());
+        self.read_single_robots(world, i..i + 1, &mut out[..n], n, crate::simd::level());
     }
 
-    /// `read_single` with the instruction set `level` (which must not exceed
+    /// `read_single` of `robots`, robot `robots.start + k`'s to
+    /// `out[k · stride..]` (at most `stride` readings, `out` long enough),
+    /// with the instruction set `level` (which must not exceed
     /// `simd::detected()`; every level gives the same bits).
     #[inline]
-    fn read_single_at_level(&self, world: &World, i: usize, out: &mut [f32], level: SimdLevel) {
+    pub(super) fn read_single_robots(
+        &self,
+        world: &World,
+        robots: Range<usize>,
+        out: &mut [f32],
+        stride: usize,
+        level: SimdLevel,
+    ) {
         let st = &*world.statics;
-        let n = self.ox32.len().min(out.len());
-        let out = &mut out[..n];
-        if n == 0 {
+        if self.ox32.is_empty() || stride == 0 {
             return;
         }
+        let scalar = |out: &mut [f32]| {
+            for (k, i) in robots.clone().enumerate() {
+                let n = self.ox32.len().min(stride);
+                Query32::at(world, i).scalar(&self.ox32, &self.oy32, &mut out[k * stride..][..n]);
+            }
+        };
         if !st.lanes {
-            return Query32::at(world, i).scalar(&self.ox32, &self.oy32, out);
+            return scalar(out);
         }
         debug_assert!(level <= crate::simd::detected());
         match level {
             #[cfg(target_arch = "x86_64")]
             // SAFETY: callers pass a level up to `detected()`, which saw AVX-512F on
             // this CPU; `lanes` holds, so ids.len() is in PAD + 1 ..= u32::MAX.
-            SimdLevel::Avx512 => unsafe { lanes::avx512(self, world, i, out) },
+            SimdLevel::Avx512 => unsafe { lanes::avx512(self, world, robots, out, stride) },
             #[cfg(target_arch = "x86_64")]
             // SAFETY: as above, with AVX2.
-            SimdLevel::Avx2 => unsafe { lanes::avx2(self, world, i, out) },
-            _ => Query32::at(world, i).scalar(&self.ox32, &self.oy32, out),
+            SimdLevel::Avx2 => unsafe { lanes::avx2(self, world, robots, out, stride) },
+            _ => scalar(out),
         }
     }
 }
@@ -339,7 +402,7 @@ mod tests {
         reference(g, world, 0, &mut want);
         for l in levels() {
             let mut got = vec![7.0; g.len() + 3];
-            g.read_single_at_level(world, 0, &mut got, l);
+            g.read_single_robots(world, 0..1, &mut got, g.len(), l);
             assert!(
                 same_bits(&got, &want),
                 "{l:?} differs at {pos:?} heading {heading}: {got:?} vs {want:?}"
@@ -400,6 +463,40 @@ mod tests {
                     prop_assert_eq!(*w as f32, *s, "at {:?}", c);
                 }
             }
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(200))]
+
+        /// Every robot read in one call gets its own f32 read's bits, at every
+        /// level and through the trait, and the values between robots stay.
+        #[test]
+        fn batched_single_precision_reads_give_each_robot_its_own_bits(
+            poses in prop::collection::vec((-150.0f64..950.0, -150.0f64..750.0, -4.0f64..4.0), 8),
+            rings in 1usize..12, angles in 1usize..40, gap in 0usize..5,
+        ) {
+            let mut worlds = worlds();
+            let world = &mut worlds[0];
+            let n = world.robots().len();
+            prop_assert!(n >= 2);
+            for (i, &(x, y, heading)) in poses.iter().take(n).enumerate() {
+                world.set_pose(i, DVec2::new(x, y), heading);
+            }
+            let g = SurfaceSensors { rings, angles, ..Default::default() }.grid();
+            let stride = g.len() + gap;
+            let mut want = vec![7.0; n * stride];
+            for i in 0..n {
+                reference(&g, world, i, &mut want[i * stride..][..g.len()]);
+            }
+            for l in levels() {
+                let mut got = vec![7.0; n * stride];
+                g.read_single_robots(world, 0..n, &mut got, stride, l);
+                prop_assert!(same_bits(&got, &want), "{:?}", l);
+            }
+            let mut got = vec![7.0; n * stride];
+            g.read_robots_f32(world, n, &mut got, stride, &mut []);
+            prop_assert!(same_bits(&got, &want));
         }
     }
 

@@ -7,7 +7,7 @@ use vivae_neat::Precision;
 use vivae_neat::hyperneat::{BatchState, SubstrateController};
 use vivae_sim::World;
 
-use crate::controller::sensors::{SensorSheet, read_sheets, read_sheets_single};
+use crate::controller::sensors::{SensorSheet, read_sheets_all, read_sheets_single_all};
 use crate::controller::substrate::WheelNeurons;
 
 /// A controller that drives every robot of an episode with one set of
@@ -167,9 +167,14 @@ impl Rollout {
         let (ni, nn) = (controller.num_inputs(), controller.num_outputs());
         if controller.single_inputs() && self.single.len() == self.inputs.len() {
             if ni > 0 {
-                for (i, inputs) in self.single.chunks_exact_mut(ni).enumerate() {
-                    read_sheets_single(&self.sensors, world, i, inputs, &mut self.inputs);
-                }
+                let robots = self.controls.len();
+                read_sheets_single_all(
+                    &self.sensors,
+                    world,
+                    robots,
+                    &mut self.single,
+                    &mut self.inputs,
+                );
             }
             controller.step_robots_single(
                 &mut self.states,
@@ -179,9 +184,8 @@ impl Rollout {
             );
         } else {
             if ni > 0 {
-                for (i, inputs) in self.inputs.chunks_exact_mut(ni).enumerate() {
-                    read_sheets(&self.sensors, world, i, inputs);
-                }
+                let robots = self.controls.len();
+                read_sheets_all(&self.sensors, world, robots, &mut self.inputs);
             }
             controller.step_robots(&mut self.states, &self.inputs, &mut self.outputs);
         }
