@@ -124,7 +124,9 @@ unsafe fn apply_all_avx2(_: crate::simd::x86::Avx2, acts: &[Activation], xs: &mu
 
 /// [`exp`] of four values as one AVX2 vector: the same operations in the
 /// same order (no fused multiply-add), so the same bits. Written out
-/// because the compiler keeps the scalar chain otherwise.
+/// because the compiler keeps the scalar chain otherwise: the portable
+/// [`crate::math::exp_block`] of a pass, compiled with AVX2, measured
+/// 10–20 % slower on the recurrent-network, sine and prey benches.
 ///
 /// # Safety
 /// The CPU must support AVX2.

@@ -47,26 +47,10 @@ pub mod exp_constants {
 /// cheaper than a libm call. Saturates to 0 below −708 and to `e^709` above 709.
 #[inline(always)]
 pub fn exp(x: f64) -> f64 {
-    use exp_constants::{LN2_HI, LN2_LO, LOG2E, SHIFT, TAYLOR, TAYLOR_FIRST};
-    let x = if x.is_nan() {
-        x
-    } else {
-        x.clamp(-708.0, 709.0)
-    };
-    let kf = x * LOG2E + SHIFT;
-    let k = kf - SHIFT;
-    let r = x - k * LN2_HI - k * LN2_LO;
-    // Taylor series to r^12 on |r| ≤ ln2/2: truncation error < 2e-16 relative.
-    let mut p = TAYLOR_FIRST;
-    for c in TAYLOR {
-        p = p * r + c;
-    }
-    // 2^k from the integer k in kf's low bits: the shift keeps only the low
-    // 12 bits of k + 1023 (in [1, 2046] after the clamp), so adding the
-    // bias to the raw bits gives the same exponent as extracting k first, in
-    // 64-bit integer operations every vector level has.
-    let scale = f64::from_bits(kf.to_bits().wrapping_add(1023) << 52);
-    p * scale
+    // One definition: a block of one value is the same code as the scalar chain.
+    let mut x = [x];
+    exp_block(&mut x);
+    x[0]
 }
 
 /// [`exp`] of each of `N` values in place: the same bits as `exp` on each.
@@ -89,12 +73,17 @@ pub fn exp_block<const N: usize>(x: &mut [f64; N]) {
         let k = kf[i] - SHIFT;
         x[i] - k * LN2_HI - k * LN2_LO
     });
+    // Taylor series to r^12 on |r| ≤ ln2/2: truncation error < 2e-16 relative.
     let mut p = [TAYLOR_FIRST; N];
     for c in TAYLOR {
         for (p, r) in p.iter_mut().zip(&r) {
             *p = *p * r + c;
         }
     }
+    // 2^k from the integer k in kf's low bits: the shift keeps only the low
+    // 12 bits of k + 1023 (in [1, 2046] after the clamp), so adding the
+    // bias to the raw bits gives the same exponent as extracting k first, in
+    // 64-bit integer operations every vector level has.
     for ((v, p), kf) in x.iter_mut().zip(&p).zip(&kf) {
         *v = p * f64::from_bits(kf.to_bits().wrapping_add(1023) << 52);
     }
@@ -465,6 +454,35 @@ mod tests {
         assert!(exp(-708.0) > 0.0 && exp(-708.0) < 1e-307);
         assert!(exp(1e6).is_finite());
         assert!(exp(f64::NAN).is_nan());
+    }
+
+    /// The bits of `exp` recorded before it became a block of one value
+    /// (FNV-1a over a sweep of the whole clamped range and the specials):
+    /// the one definition still gives every bit it gave.
+    #[test]
+    fn exp_gives_the_bits_it_always_gave() {
+        let mut h = 0xcbf2_9ce4_8422_2325_u64;
+        let mut x = -720.0;
+        let specials = [
+            0.0,
+            -0.0,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            1e-300,
+        ];
+        for v in (0..=400_000)
+            .map(|_| {
+                x += 0.003_6;
+                x
+            })
+            .chain(specials)
+        {
+            for b in exp(v).to_bits().to_le_bytes() {
+                h = (h ^ u64::from(b)).wrapping_mul(0x100_0000_01b3);
+            }
+        }
+        assert_eq!(h, 0x9401_98dc_df46_dc1c, "exp's bits changed: {h:#018x}");
     }
 
     /// `exp` as it was written before its scale came from the raw bits.

@@ -113,19 +113,10 @@ pub mod exp_f32_constants {
 /// 4 million arguments.
 #[inline(always)]
 pub fn exp_f32(x: f32) -> f32 {
-    use exp_f32_constants::{HIGH, LN2_HI, LN2_LO, LOG2E, LOW, P, SHIFT, SHIFT_BITS};
-    let x = if x.is_nan() { x } else { x.clamp(LOW, HIGH) };
-    let kf = x * LOG2E + SHIFT;
-    let k = kf - SHIFT;
-    let r = x - k * LN2_HI - k * LN2_LO;
-    let mut p = P[0];
-    for c in &P[1..] {
-        p = p * r + c;
-    }
-    let y = p * (r * r) + r + 1.0;
-    // 2^k: k + 127 into the exponent field (k ∈ [−126, 127] after the clamp).
-    let scale = f32::from_bits(kf.to_bits().wrapping_sub(SHIFT_BITS) << 23);
-    y * scale
+    // One definition: a block of one value is the same code as the scalar chain.
+    let mut x = [x];
+    exp_f32_block(&mut x);
+    x[0]
 }
 
 /// `x·y + z` rounded once to f32 (IEEE 754 fusedMultiplyAdd, to nearest,
@@ -250,6 +241,7 @@ pub fn exp_f32_block<const N: usize>(x: &mut [f32; N]) {
             *p = *p * r + c;
         }
     }
+    // 2^k: k + 127 into the exponent field (k ∈ [−126, 127] after the clamp).
     for (((v, p), r), kf) in x.iter_mut().zip(&p).zip(&r).zip(&kf) {
         let y = p * (r * r) + r + 1.0;
         *v = y * f32::from_bits(kf.to_bits().wrapping_sub(SHIFT_BITS) << 23);
@@ -546,6 +538,27 @@ mod tests {
             );
         }
         xs
+    }
+
+    /// The bits of `exp_f32` recorded before it became a block of one value
+    /// (FNV-1a over a sweep of the whole clamped range and the specials):
+    /// the one definition still gives every bit it gave.
+    #[test]
+    fn exp_f32_gives_the_bits_it_always_gave() {
+        let mut h = 0xcbf2_9ce4_8422_2325_u64;
+        let specials = [0.0, -0.0, f32::INFINITY, f32::NEG_INFINITY, f32::NAN, 1e-30];
+        for v in arguments(-90.0, 90.0, 400_000, 20_000)
+            .into_iter()
+            .chain(specials)
+        {
+            for b in exp_f32(v).to_bits().to_le_bytes() {
+                h = (h ^ u64::from(b)).wrapping_mul(0x100_0000_01b3);
+            }
+        }
+        assert_eq!(
+            h, 0xdae4_247f_e3af_243f,
+            "exp_f32's bits changed: {h:#018x}"
+        );
     }
 
     #[test]
