@@ -75,10 +75,11 @@ fn driven_worlds() -> Vec<World> {
     worlds
 }
 
-/// Surface sensors alone (no step): each of 5 robots reads `rings × angles`
-/// sensors with `read` into a buffer of `T` (f64 for `SurfaceGrid::read`,
-/// f32 for `read_single`, the fast precision's), at poses taken from 16
-/// moments of a driven run so that the look-ups are not all the same cells.
+/// Surface sensors alone (no step): the 5 robots' `rings × angles` sensors
+/// read by `read(grid, world, robots, buffer)` into a buffer of `T` (f64
+/// for `SurfaceGrid::read`, f32 for `read_single`, the fast precision's)
+/// holding every robot's readings, at poses taken from 16 moments of a
+/// driven run so that the look-ups are not all the same cells.
 fn surface_reads_with<T: Copy + Default>(
     bencher: Bencher,
     rings: usize,
@@ -93,56 +94,35 @@ fn surface_reads_with<T: Copy + Default>(
     .grid();
     let worlds = driven_worlds();
     let n = worlds[0].robots().len();
-    let mut buf = vec![T::default(); grid.len()];
-    let mut k = 0;
-    bencher.counter(ItemsCount::new(n)).bench_local(|| {
-        let w = &worlds[k % worlds.len()];
-        k += 1;
-        for i in 0..n {
-            read(&grid, black_box(w), i, &mut buf);
-            black_box(&mut buf);
-        }
-    });
-}
-
-/// `SurfaceGrid::read` (f64) of `rings × angles` sensors for each of 5 robots.
-fn surface_reads(bencher: Bencher, rings: usize, angles: usize) {
-    surface_reads_with(bencher, rings, angles, |g, w, i, out: &mut [f64]| {
-        g.read(w, i, out)
-    });
-}
-
-/// [`surface_reads`] with every robot read in one call
-/// (`Sensor::read_robots`, as a rollout reads them), into one buffer of `T`.
-fn surface_reads_batched<T: Copy + Default>(
-    bencher: Bencher,
-    rings: usize,
-    angles: usize,
-    read: impl Fn(&SurfaceGrid, &World, usize, &mut [T], usize),
-) {
-    let grid = SurfaceSensors {
-        rings,
-        angles,
-        ..Default::default()
-    }
-    .grid();
-    let worlds = driven_worlds();
-    let n = worlds[0].robots().len();
     let mut buf = vec![T::default(); n * grid.len()];
     let mut k = 0;
     bencher.counter(ItemsCount::new(n)).bench_local(|| {
         let w = &worlds[k % worlds.len()];
         k += 1;
-        read(&grid, black_box(w), n, &mut buf, grid.len());
+        read(&grid, black_box(w), n, &mut buf);
         black_box(&mut buf);
+    });
+}
+
+/// `SurfaceGrid::read` (f64) of `rings × angles` sensors for each of 5
+/// robots, one call per robot.
+fn surface_reads(bencher: Bencher, rings: usize, angles: usize) {
+    surface_reads_with(bencher, rings, angles, |g, w, n, out: &mut [f64]| {
+        for (i, out) in out.chunks_exact_mut(g.len()).take(n).enumerate() {
+            g.read(w, i, out);
+            black_box(out);
+        }
     });
 }
 
 /// [`surface_reads`] in single precision (`SurfaceGrid::read_single`, the
 /// fast precision's read): twice the lanes per vector.
 fn surface_reads_single(bencher: Bencher, rings: usize, angles: usize) {
-    surface_reads_with(bencher, rings, angles, |g, w, i, out: &mut [f32]| {
-        g.read_single(w, i, out)
+    surface_reads_with(bencher, rings, angles, |g, w, n, out: &mut [f32]| {
+        for (i, out) in out.chunks_exact_mut(g.len()).take(n).enumerate() {
+            g.read_single(w, i, out);
+            black_box(out);
+        }
     });
 }
 
@@ -154,16 +134,16 @@ fn read_5_robots_3x5_surface_sensors(bencher: Bencher) {
 /// The 5 robots' 3×5 surface sensors read in one call (f64), as a rollout reads them.
 #[divan::bench]
 fn read_5_robots_3x5_surface_sensors_batched(bencher: Bencher) {
-    surface_reads_batched(bencher, 3, 5, |g, w, n, out: &mut [f64], stride| {
-        g.read_robots(w, n, out, stride)
+    surface_reads_with(bencher, 3, 5, |g, w, n, out: &mut [f64]| {
+        g.read_robots(w, n, out, g.len())
     });
 }
 
 /// As `read_5_robots_3x5_surface_sensors_batched`, in single precision.
 #[divan::bench]
 fn read_5_robots_3x5_surface_sensors_batched_f32(bencher: Bencher) {
-    surface_reads_batched(bencher, 3, 5, |g, w, n, out: &mut [f32], stride| {
-        g.read_robots_f32(w, n, out, stride, &mut [])
+    surface_reads_with(bencher, 3, 5, |g, w, n, out: &mut [f32]| {
+        g.read_robots_f32(w, n, out, g.len(), &mut [])
     });
 }
 

@@ -213,6 +213,36 @@ impl<'w> Query<'w> {
     }
 }
 
+/// Defines `$name`, the lane read `$robot` of one robot at a time done for
+/// a range of robots in one call compiled with `$feature` (so that the CPU
+/// overlaps one robot's look-ups with the next's): robot `robots.start + k`'s
+/// readings go to `all[k · stride..]`, at most `stride` of them. One
+/// definition for the f64 and f32 reads at every level.
+macro_rules! each_robot {
+    ($name:ident, $robot:ident, $feature:literal, $t:ty) => {
+        #[doc = concat!("[`", stringify!($robot), "`] of each of `robots`, robot `robots.start + k`'s readings to `all[k · stride..]`.")]
+        ///
+        /// # Safety
+        #[doc = concat!("As for [`", stringify!($robot), "`].")]
+        #[target_feature(enable = $feature)]
+        pub(super) unsafe fn $name(
+            g: &SurfaceGrid,
+            world: &World,
+            robots: std::ops::Range<usize>,
+            all: &mut [$t],
+            stride: usize,
+        ) {
+            for (k, i) in robots.enumerate() {
+                let out = &mut all[k * stride..];
+                let n = out.len().min(stride);
+                // SAFETY: the caller's guarantees are this function's.
+                unsafe { $robot(g, world, i, &mut out[..n]) };
+            }
+        }
+    };
+}
+pub(super) use each_robot;
+
 /// Lane-wise reads: the same per-sensor arithmetic as [`Query::one`] (IEEE mul
 /// and add in the same order, no FMA, truncation to i32), one sensor per lane,
 /// then the two look-ups: as gathers with AVX-512, one sensor at a time with
@@ -221,7 +251,6 @@ impl<'w> Query<'w> {
 #[cfg(target_arch = "x86_64")]
 mod lanes {
     use std::arch::x86_64::*;
-    use std::ops::Range;
 
     use super::Query;
     use crate::World;
@@ -234,27 +263,7 @@ mod lanes {
         (q.ids.len() - crate::raster::PAD) as u32 - 1
     }
 
-    /// [`avx2_robot`] of each of `robots`, robot `robots.start + k`'s
-    /// readings to `all[k · stride..]` (at most `stride` of them): one call
-    /// for every robot, so the CPU overlaps one robot's look-ups with the next's.
-    ///
-    /// # Safety
-    /// As for [`avx2_robot`].
-    #[target_feature(enable = "avx2")]
-    pub(super) unsafe fn avx2(
-        g: &SurfaceGrid,
-        world: &World,
-        robots: Range<usize>,
-        all: &mut [f64],
-        stride: usize,
-    ) {
-        for (k, i) in robots.enumerate() {
-            let out = &mut all[k * stride..];
-            let n = out.len().min(stride);
-            // SAFETY: the caller's guarantees are this function's.
-            unsafe { avx2_robot(g, world, i, &mut out[..n]) };
-        }
-    }
+    each_robot!(avx2, avx2_robot, "avx2", f64);
 
     /// AVX2: four sensors' cells per iteration, the last batch partial; the
     /// look-ups one sensor at a time.
@@ -337,27 +346,7 @@ mod lanes {
         }
     }
 
-    /// [`avx512_robot`] of each of `robots`, robot `robots.start + k`'s
-    /// readings to `all[k · stride..]` (at most `stride` of them): one call
-    /// for every robot, so the CPU overlaps one robot's look-ups with the next's.
-    ///
-    /// # Safety
-    /// As for [`avx512_robot`].
-    #[target_feature(enable = "avx512f")]
-    pub(super) unsafe fn avx512(
-        g: &SurfaceGrid,
-        world: &World,
-        robots: Range<usize>,
-        all: &mut [f64],
-        stride: usize,
-    ) {
-        for (k, i) in robots.enumerate() {
-            let out = &mut all[k * stride..];
-            let n = out.len().min(stride);
-            // SAFETY: the caller's guarantees are this function's.
-            unsafe { avx512_robot(g, world, i, &mut out[..n]) };
-        }
-    }
+    each_robot!(avx512, avx512_robot, "avx512f", f64);
 
     /// AVX-512F: eight sensors per iteration, the last batch masked.
     ///

@@ -88,11 +88,11 @@ impl<'w> Query32<'w> {
 #[cfg(target_arch = "x86_64")]
 mod lanes {
     use std::arch::x86_64::*;
-    use std::ops::Range;
 
     use super::Query32;
     use crate::World;
     use crate::sensors::surface::SurfaceGrid;
+    use crate::sensors::surface::each_robot;
 
     /// Largest index whose 4-byte gather stays inside `ids` (the raster pads
     /// `ids` with `raster::PAD` zero bytes so that this is the last cell).
@@ -101,27 +101,7 @@ mod lanes {
         (q.ids.len() - crate::raster::PAD) as u32 - 1
     }
 
-    /// [`avx2_robot`] of each of `robots`, robot `robots.start + k`'s
-    /// readings to `all[k · stride..]` (at most `stride` of them): one call
-    /// for every robot, so the CPU overlaps one robot's look-ups with the next's.
-    ///
-    /// # Safety
-    /// As for [`avx2_robot`].
-    #[target_feature(enable = "avx2")]
-    pub(super) unsafe fn avx2(
-        g: &SurfaceGrid,
-        world: &World,
-        robots: Range<usize>,
-        all: &mut [f32],
-        stride: usize,
-    ) {
-        for (k, i) in robots.enumerate() {
-            let out = &mut all[k * stride..];
-            let n = out.len().min(stride);
-            // SAFETY: the caller's guarantees are this function's.
-            unsafe { avx2_robot(g, world, i, &mut out[..n]) };
-        }
-    }
+    each_robot!(avx2, avx2_robot, "avx2", f32);
 
     /// AVX2: eight sensors' cells per iteration, the last batch partial;
     /// the look-ups one sensor at a time.
@@ -206,27 +186,7 @@ mod lanes {
         }
     }
 
-    /// [`avx512_robot`] of each of `robots`, robot `robots.start + k`'s
-    /// readings to `all[k · stride..]` (at most `stride` of them): one call
-    /// for every robot, so the CPU overlaps one robot's look-ups with the next's.
-    ///
-    /// # Safety
-    /// As for [`avx512_robot`].
-    #[target_feature(enable = "avx512f")]
-    pub(super) unsafe fn avx512(
-        g: &SurfaceGrid,
-        world: &World,
-        robots: Range<usize>,
-        all: &mut [f32],
-        stride: usize,
-    ) {
-        for (k, i) in robots.enumerate() {
-            let out = &mut all[k * stride..];
-            let n = out.len().min(stride);
-            // SAFETY: the caller's guarantees are this function's.
-            unsafe { avx512_robot(g, world, i, &mut out[..n]) };
-        }
-    }
+    each_robot!(avx512, avx512_robot, "avx512f", f32);
 
     /// AVX-512F: sixteen sensors per iteration, the last batch masked.
     ///
