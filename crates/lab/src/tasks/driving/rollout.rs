@@ -165,9 +165,9 @@ impl Rollout {
         manual: Option<(usize, [f64; 2])>,
     ) {
         let (ni, nn) = (controller.num_inputs(), controller.num_outputs());
+        let robots = self.controls.len();
         if controller.single_inputs() && self.single.len() == self.inputs.len() {
             if ni > 0 {
-                let robots = self.controls.len();
                 read_sheets_single_all(
                     &self.sensors,
                     world,
@@ -184,7 +184,6 @@ impl Rollout {
             );
         } else {
             if ni > 0 {
-                let robots = self.controls.len();
                 read_sheets_all(&self.sensors, world, robots, &mut self.inputs);
             }
             controller.step_robots(&mut self.states, &self.inputs, &mut self.outputs);
