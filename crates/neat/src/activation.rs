@@ -54,6 +54,8 @@ impl Activation {
 /// The bipolar sigmoid `2/(1+e^(−4.9x)) − 1` used by CPPN outputs and controllers.
 #[inline(always)]
 pub fn bipolar_sigmoid(x: f64) -> f64 {
+    // Not `bipolar_sigmoid_block` of one value, as `exp` is `exp_block` of
+    // one: that measured 25–35 % slower in the `cppn_activate` bench.
     2.0 / (1.0 + exp(-4.9 * x)) - 1.0
 }
 

@@ -218,6 +218,7 @@ fn fma_f32_rare(x: f32, y: f32, z: f32) -> f32 {
 /// `bipolar_sigmoid_f32_is_within_its_stated_error` on 4 million arguments.
 #[inline(always)]
 pub fn bipolar_sigmoid_f32(x: f32) -> f32 {
+    // Not the block function of one value: see `activation::bipolar_sigmoid`.
     2.0 / (1.0 + exp_f32(-4.9 * x)) - 1.0
 }
 
