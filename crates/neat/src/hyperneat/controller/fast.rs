@@ -50,7 +50,7 @@ impl Fast {
             n,
             stride,
             bias: b,
-            weights: vec![0.0f32; (ni + n) * stride],
+            weights: super::pages::zeroed((ni + n) * stride),
             own: FastStates::new(1, ni, stride),
         }
     }

@@ -6,6 +6,7 @@
 //! [`fast`] the f32 copy the fast [`Precision`] steps with.
 
 mod fast;
+mod pages;
 mod step;
 
 use serde::{Deserialize, Serialize};
@@ -179,7 +180,7 @@ impl SubstrateController {
             n,
             stride,
             bias: padded_bias,
-            weights: vec![0.0; (num_inputs + n) * stride],
+            weights: pages::zeroed((num_inputs + n) * stride),
             state: vec![0.0; stride],
             acc: vec![0.0; stride],
             expressed,
