@@ -81,6 +81,15 @@ mod tests {
             );
             return;
         }
+        // A container may turn them off for its processes (PR_SET_THP_DISABLE).
+        let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
+        if status
+            .lines()
+            .any(|l| l.replace(char::is_whitespace, "") == "THP_enabled:0")
+        {
+            eprintln!("SKIPPED: transparent huge pages are off for this process");
+            return;
+        }
         let mut v = zeroed::<f64>(16 << 20 >> 3);
         v.iter_mut().for_each(|x| *x = 1.0);
         let (start, end) = (v.as_ptr() as usize, v.as_ptr() as usize + (16 << 20));
