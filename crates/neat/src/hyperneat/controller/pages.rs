@@ -18,8 +18,9 @@ const HUGE_PAGE: usize = 2 << 20;
 
 /// `len` zeros, in huge pages where the system gives them to regions that ask.
 pub(super) fn zeroed<T: Copy + Default>(len: usize) -> Vec<T> {
-    // `vec![0.0; len]` allocates zeroed memory (fresh pages for a large buffer
-    // are not touched), so the hint comes before any page is faulted in.
+    // A vector of float zeros is allocated zeroed (calloc: a large buffer's
+    // fresh pages are not touched), so the hint comes before any page is
+    // faulted in; the huge-page test below fails if that ever changes.
     let v = vec![T::default(); len];
     let bytes = len * size_of::<T>();
     if bytes >= HINT_FROM_BYTES {
