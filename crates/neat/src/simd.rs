@@ -67,6 +67,14 @@ pub(crate) trait Simd<E = f64>: Copy {
     fn accumulate(self, acc: Self::V, w: Self::V, v: Self::V) -> Self::V {
         self.add(acc, self.mul(w, v))
     }
+    /// [`Simd::accumulate`] with `v` = all lanes `*x`.
+    #[inline(always)]
+    fn accumulate_from(self, acc: Self::V, w: Self::V, x: &E) -> Self::V
+    where
+        E: Copy,
+    {
+        self.accumulate(acc, w, self.splat(*x))
+    }
 }
 
 /// The baseline level: SSE2 on x86_64 (part of the architecture), plain
@@ -362,6 +370,33 @@ pub(crate) mod x86 {
             // SAFETY: see the impl: AVX-512F is supported.
             unsafe { _mm512_mul_pd(a, b) }
         }
+        /// The multiply reads `x` itself, broadcast, whatever the compiler
+        /// would do with a shared broadcast register (the same IEEE product).
+        #[inline(always)]
+        fn accumulate_from(self, acc: __m512d, w: __m512d, x: &f64) -> __m512d {
+            // SAFETY: see the impl: AVX-512F is supported; `x` is a live f64.
+            unsafe { _mm512_add_pd(acc, mul_broadcast(w, x)) }
+        }
+    }
+
+    /// `w · (all lanes *x)` with the broadcast folded into the multiply
+    /// (`vmulpd zmm, zmm, m64{1to8}`). Written in assembly because LLVM
+    /// keeps one broadcast register for a value used by several multiplies.
+    #[target_feature(enable = "avx512f")]
+    #[inline]
+    unsafe fn mul_broadcast(w: __m512d, x: &f64) -> __m512d {
+        let t: __m512d;
+        // SAFETY: AVX-512F is enabled here; `x` is a live f64.
+        unsafe {
+            std::arch::asm!(
+                "vmulpd {t}, {w}, qword ptr [{p}]{{1to8}}",
+                t = out(zmm_reg) t,
+                w = in(zmm_reg) w,
+                p = in(reg) x as *const f64,
+                options(pure, readonly, nostack, preserves_flags)
+            );
+        }
+        t
     }
 
     x86_f32!(
