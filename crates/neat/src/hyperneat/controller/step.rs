@@ -310,9 +310,9 @@ fn tile<E: Element, S: Simd<E>, const RT: usize, const NB: usize>(
     let ys: [&[E]; RT] = std::array::from_fn(|r| &y[(r0 + r) * k.stride..][..k.n]);
     let (w_in, w_rec) = panel.weights.split_at(k.ni * panel.width);
     // Each product takes its input from memory (`accumulate_from`): with
-    // AVX-512 the broadcast folds into the multiply, where a broadcast into
-    // a register shared by the NB products took a shuffle slot of the
-    // vector pipes that the sums need (exact step 232 → 205 ns on Zen 4).
+    // AVX-512 the broadcast folds into the multiply instead of being an
+    // instruction of its own whose register the NB products share (exact
+    // step 232 → 205 ns on Zen 4).
     for (j, column) in w_in.chunks_exact(panel.width).enumerate() {
         let w = load(column, sub);
         for r in 0..RT {
