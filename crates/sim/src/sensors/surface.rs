@@ -562,13 +562,25 @@ pub(super) mod fixtures {
             .map(|sc| World::new(sc, &PhysicsParams::default()).unwrap())
             .collect()
     }
+
+    /// roads.svg with its robots at `poses` (x, y, heading; one per robot,
+    /// extra poses ignored), and its robot count (at least 2).
+    pub(in crate::sensors) fn posed_roads(poses: &[(f64, f64, f64)]) -> (World, usize) {
+        let mut world = worlds().swap_remove(0);
+        let n = world.robots().len();
+        assert!(n >= 2 && poses.len() >= n);
+        for (i, &(x, y, heading)) in poses.iter().take(n).enumerate() {
+            world.set_pose(i, glam::DVec2::new(x, y), heading);
+        }
+        (world, n)
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use proptest::prelude::*;
 
-    use super::fixtures::{levels, worlds};
+    use super::fixtures::{levels, posed_roads, worlds};
     use super::*;
 
     /// The read as it was before the vector paths: the reference every level must match.
@@ -649,13 +661,8 @@ mod tests {
             poses in prop::collection::vec((-150.0f64..950.0, -150.0f64..750.0, -4.0f64..4.0), 8),
             rings in 1usize..12, angles in 1usize..40, gap in 0usize..5,
         ) {
-            let mut worlds = worlds();
-            let world = &mut worlds[0];
-            let n = world.robots().len();
-            prop_assert!(n >= 2);
-            for (i, &(x, y, heading)) in poses.iter().take(n).enumerate() {
-                world.set_pose(i, DVec2::new(x, y), heading);
-            }
+            let (world, n) = posed_roads(&poses);
+            let world = &world;
             let g = SurfaceSensors { rings, angles, ..Default::default() }.grid();
             let stride = g.len() + gap;
             let mut want = vec![7.0; n * stride];

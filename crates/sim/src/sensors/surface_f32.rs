@@ -328,7 +328,7 @@ mod tests {
 
     use super::*;
     use crate::sensors::frame;
-    use crate::sensors::surface::fixtures::{levels, worlds};
+    use crate::sensors::surface::fixtures::{levels, posed_roads, worlds};
     use crate::{Sensor, SurfaceSensors};
 
     /// The f32 formula written out plainly: the reference every level must match.
@@ -436,13 +436,8 @@ mod tests {
             poses in prop::collection::vec((-150.0f64..950.0, -150.0f64..750.0, -4.0f64..4.0), 8),
             rings in 1usize..12, angles in 1usize..40, gap in 0usize..5,
         ) {
-            let mut worlds = worlds();
-            let world = &mut worlds[0];
-            let n = world.robots().len();
-            prop_assert!(n >= 2);
-            for (i, &(x, y, heading)) in poses.iter().take(n).enumerate() {
-                world.set_pose(i, DVec2::new(x, y), heading);
-            }
+            let (world, n) = posed_roads(&poses);
+            let world = &world;
             let g = SurfaceSensors { rings, angles, ..Default::default() }.grid();
             let stride = g.len() + gap;
             let mut want = vec![7.0; n * stride];
