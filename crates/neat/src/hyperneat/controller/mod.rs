@@ -169,23 +169,8 @@ impl SubstrateController {
     /// A controller from dense, unpadded parts: `bias` (one per neuron) and
     /// source-major `weights` (`(inputs + neurons) × neurons`).
     fn new(sheet_sizes: Vec<usize>, n: usize, bias: &[f64], weights: &[f64]) -> Self {
-        let num_inputs: usize = sheet_sizes.iter().sum();
-        let stride = n.next_multiple_of(PAD);
-        let mut padded_bias = vec![0.0; stride];
-        padded_bias[..n].copy_from_slice(bias);
-        let expressed = weights.iter().filter(|w| **w != 0.0).count();
-        let mut c = SubstrateController {
-            sheet_sizes,
-            num_inputs,
-            n,
-            stride,
-            bias: padded_bias,
-            weights: pages::zeroed((num_inputs + n) * stride),
-            state: vec![0.0; stride],
-            acc: vec![0.0; stride],
-            expressed,
-            fast: None,
-        };
+        let mut c = SubstrateController::shell(sheet_sizes, n, bias, Precision::Exact);
+        c.expressed = weights.iter().filter(|w| **w != 0.0).count();
         for (j, column) in weights.chunks_exact(n).enumerate() {
             for (i, &w) in column.iter().enumerate() {
                 let at = c.at(j, i);
@@ -193,6 +178,31 @@ impl SubstrateController {
             }
         }
         c
+    }
+
+    /// A controller with `bias` and zero weights, exact ones only for
+    /// `Precision::Exact` (fast precision's are its caller's to add), no
+    /// links counted.
+    fn shell(sheet_sizes: Vec<usize>, n: usize, bias: &[f64], precision: Precision) -> Self {
+        let num_inputs: usize = sheet_sizes.iter().sum();
+        let stride = n.next_multiple_of(PAD);
+        let mut padded_bias = vec![0.0; stride];
+        padded_bias[..n].copy_from_slice(bias);
+        SubstrateController {
+            sheet_sizes,
+            num_inputs,
+            n,
+            stride,
+            bias: padded_bias,
+            weights: match precision {
+                Precision::Exact => pages::zeroed((num_inputs + n) * stride),
+                Precision::Fast => Vec::new(),
+            },
+            state: vec![0.0; stride],
+            acc: vec![0.0; stride],
+            expressed: 0,
+            fast: None,
+        }
     }
 
     /// Index in `weights` of the weight from source `j` to neuron `i`.
@@ -593,18 +603,11 @@ impl SubstrateController {
         mut column: impl FnMut(usize, &mut [f64]),
     ) -> Self {
         let n = bias.len();
-        let mut c = SubstrateController::new(
-            layout.inputs.iter().map(|s| s.coords.len()).collect(),
-            n,
-            bias,
-            &[],
-        );
+        let sheets = layout.inputs.iter().map(|s| s.coords.len()).collect();
+        let mut c = SubstrateController::shell(sheets, n, bias, precision);
         let m = c.num_inputs + n;
         // Fast precision keeps f32 weights only, converted while the column is in cache.
-        let mut fast = (precision == Precision::Fast).then(|| {
-            c.weights = Vec::new();
-            Fast::zeroed(c.num_inputs, n, bias)
-        });
+        let mut fast = (precision == Precision::Fast).then(|| Fast::zeroed(c.num_inputs, n, bias));
         let mut values = vec![0.0; n];
         let mut expressed = 0;
         for j in 0..m {
