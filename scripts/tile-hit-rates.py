@@ -13,11 +13,13 @@ import random
 
 
 def places(rings, angles, d_min=10.0, d_max=50.0, fov=180.0):
+    """`SurfaceSensors::places` and `sensors::spread`: one ring sits midway,
+    one angle looks straight ahead."""
     out = []
     for r in range(rings):
-        d = d_min if rings == 1 else d_min + (d_max - d_min) * r / (rings - 1)
+        d = (d_min + d_max) / 2 if rings == 1 else d_min + (d_max - d_min) * r / (rings - 1)
         for a in range(angles):
-            ang = math.radians(fov) * (a / (angles - 1) - 0.5)
+            ang = 0.0 if angles == 1 else math.radians(fov) * (a / (angles - 1) - 0.5)
             out.append((d * math.cos(ang), d * math.sin(ang)))
     return out
 
