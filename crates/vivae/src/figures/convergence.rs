@@ -4,6 +4,7 @@
 
 use plotters::prelude::*;
 use vivae_neat::stats;
+use vivae_sim::draw::MAX_PIXELS;
 
 use super::{
     FAMILY, Figure, FigureError, PNG_SCALE, axis_font, base64, draw_err, draw_series_legend,
@@ -315,8 +316,12 @@ fn draw_curves(area: &Area<'_>, data: &Sorted) -> Result<(), FigureError> {
 /// in the top row (a generation with fewer finite fitnesses leaves its
 /// lowest cells transparent).
 fn heat_pixmap(data: &Sorted) -> Result<tiny_skia::Pixmap, FigureError> {
+    let too_large = || FigureError::Invalid("heat map too large".to_string());
+    if (data.columns.len() * data.ranks) as f64 > MAX_PIXELS {
+        return Err(too_large());
+    }
     let mut image = tiny_skia::Pixmap::new(data.columns.len() as u32, data.ranks as u32)
-        .ok_or_else(|| FigureError::Invalid("heat map too large".to_string()))?;
+        .ok_or_else(too_large)?;
     let width = data.columns.len();
     let pixels = image.pixels_mut();
     for (gi, column) in data.columns.iter().enumerate() {
@@ -344,8 +349,12 @@ fn render_png(
 ) -> Result<Vec<u8>, FigureError> {
     let scale = PNG_SCALE;
     let (w, h) = (opts.width as f32 * scale, opts.height as f32 * scale);
-    let mut base = tiny_skia::Pixmap::new(w.ceil() as u32, h.ceil() as u32)
-        .ok_or_else(|| FigureError::Png(format!("figure of {w}x{h} pixels is too large")))?;
+    let too_large = || FigureError::Invalid(format!("a figure of {w}x{h} pixels is too large"));
+    if f64::from(w) * f64::from(h) > MAX_PIXELS {
+        return Err(too_large());
+    }
+    let mut base =
+        tiny_skia::Pixmap::new(w.ceil() as u32, h.ceil() as u32).ok_or_else(too_large)?;
     base.fill(tiny_skia::Color::WHITE);
     let (xs, ys) = heat_px;
     let to_cells = tiny_skia::Transform::from_row(
@@ -559,6 +568,16 @@ mod tests {
         ));
         // A single individual in a single generation is still a figure.
         assert!(render_svg(&[vec![1.0]], &opts).is_ok());
+        // A PNG past the pixel cap is refused, not allocated.
+        let huge = ConvergenceOptions {
+            width: 20_000,
+            height: 20_000,
+            ..ConvergenceOptions::default()
+        };
+        assert!(matches!(
+            render(&[vec![1.0]], &huge),
+            Err(FigureError::Invalid(_))
+        ));
     }
 
     /// Writes the figure for eyeballing: `VIVAE_FIGURE_DIR=/tmp cargo test ... -- --ignored`.
