@@ -213,10 +213,21 @@ impl Rollout {
             }
             controller.step_robots(&mut self.states, &self.inputs, &mut self.outputs);
         }
-        let wheels = self.wheels;
-        for (r, c) in self.controls.iter_mut().enumerate() {
-            let out = self.states.outputs(&self.outputs, self.per_robot, r);
-            *c = [out[wheels.left], out[wheels.right]];
+        let (left, right) = (self.wheels.left, self.wheels.right);
+        // One match a step, not one a robot.
+        match &self.states {
+            RobotStates::Polar(states) => {
+                for (r, c) in self.controls.iter_mut().enumerate() {
+                    let out = states.state(r);
+                    *c = [out[left], out[right]];
+                }
+            }
+            RobotStates::Es { .. } => {
+                let outputs = self.outputs.chunks_exact(self.per_robot);
+                for (c, out) in self.controls.iter_mut().zip(outputs) {
+                    *c = [out[left], out[right]];
+                }
+            }
         }
         if let Some((robot, wheels)) = manual
             && let Some(c) = self.controls.get_mut(robot)

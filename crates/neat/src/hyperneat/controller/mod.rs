@@ -572,6 +572,7 @@ impl BatchState {
     }
 
     /// Current neuron states `y(t)` of robot `robot`.
+    #[inline]
     pub fn state(&self, robot: usize) -> &[f64] {
         &self.state[robot * self.stride..][..self.n]
     }
