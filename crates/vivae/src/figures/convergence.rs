@@ -370,29 +370,23 @@ fn render_png(
         ..tiny_skia::PixmapPaint::default()
     };
     base.draw_pixmap(0, 0, heat.as_ref(), &nearest, to_cells, None);
-    let (open, background) = background_element(svg)?;
+    let background = background_element(svg)?;
     draw_svg_over(
-        &[&svg[..open.end], &svg[background.end..]].concat(),
+        &[&svg[..background.start], &svg[background.end..]].concat(),
         &mut base,
         scale,
     )?;
     encode_png_fast(&base)
 }
 
-/// The byte ranges of `svg`'s opening tag and of the element after it,
-/// plotters' white background (the heat map goes right after it, under
-/// the axes).
-fn background_element(
-    svg: &str,
-) -> Result<(std::ops::Range<usize>, std::ops::Range<usize>), FigureError> {
-    let open = svg.find(">\n").map(|i| 0..i + 2);
-    let background = open
-        .as_ref()
-        .and_then(|o| svg[o.end..].find("/>\n").map(|i| o.end..o.end + i + 3));
-    match (open, background) {
-        (Some(open), Some(background)) if svg[background.clone()].starts_with("<rect") => {
-            Ok((open, background))
-        }
+/// The byte range of the element after `svg`'s opening tag: plotters'
+/// white background (the heat map goes right after it, under the axes).
+fn background_element(svg: &str) -> Result<std::ops::Range<usize>, FigureError> {
+    let open_end = svg.find(">\n").map(|i| i + 2);
+    let background =
+        open_end.and_then(|start| svg[start..].find("/>\n").map(|i| start..start + i + 3));
+    match background {
+        Some(background) if svg[background.clone()].starts_with("<rect") => Ok(background),
         _ => Err(FigureError::Draw(
             "unexpected SVG from plotters".to_string(),
         )),
@@ -418,7 +412,7 @@ fn embed_heat_image(
         base64(&png)
     );
     // After the white background (the first element), before the axes.
-    let (_, background) = background_element(svg)?;
+    let background = background_element(svg)?;
     svg.insert_str(background.end, &element);
     Ok(())
 }

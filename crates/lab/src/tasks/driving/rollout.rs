@@ -141,8 +141,6 @@ pub struct Rollout {
     /// The outputs of a controller whose states do not hold them (see
     /// [`RobotStates::outputs`]); empty for the dense sheet's.
     outputs: Vec<f64>,
-    /// Outputs per robot.
-    per_robot: usize,
     controls: Vec<[f64; 2]>,
     steps: u64,
 }
@@ -159,15 +157,13 @@ impl Rollout {
     ) -> Rollout {
         let n = robots;
         let states = controller.robot_states(n);
-        let per_robot = controller.num_outputs();
         Rollout {
             sensors,
             wheels: controller.wheel_outputs().unwrap_or(wheels),
             outputs: match states {
                 RobotStates::Polar(_) => Vec::new(),
-                RobotStates::Es { .. } => vec![0.0; n * per_robot],
+                RobotStates::Es { .. } => vec![0.0; n * controller.num_outputs()],
             },
-            per_robot,
             states,
             inputs: vec![0.0; n * controller.num_inputs()],
             single: if controller.single_inputs() {
@@ -223,7 +219,7 @@ impl Rollout {
                 }
             }
             RobotStates::Es { .. } => {
-                let outputs = self.outputs.chunks_exact(self.per_robot);
+                let outputs = self.outputs.chunks_exact(self.per_robot());
                 for (c, out) in self.controls.iter_mut().zip(outputs) {
                     *c = [out[left], out[right]];
                 }
@@ -248,7 +244,12 @@ impl Rollout {
 
     /// Robot `robot`'s neuron activations after the last step.
     pub fn outputs(&self, robot: usize) -> &[f64] {
-        self.states.outputs(&self.outputs, self.per_robot, robot)
+        self.states.outputs(&self.outputs, self.per_robot(), robot)
+    }
+
+    /// Outputs per robot in `outputs` (0 for the dense sheet, whose states hold them).
+    fn per_robot(&self) -> usize {
+        self.outputs.len() / self.controls.len().max(1)
     }
 
     /// Robot `robot`'s every node value after the last step (inputs, the two
