@@ -50,6 +50,13 @@ pub(crate) trait Simd<E = f64>: Copy {
     const LANES: usize;
     /// Robots per tile of the batched controller step (sums kept in registers).
     const MAX_TILE: usize;
+    /// Vectors of half this level's width where one costs half a whole one
+    /// (AVX2's under AVX-512, whose 512-bit operations take both 256-bit
+    /// pipes on Zen 4), else this level itself: a column's last vector, when
+    /// at most half of it is neurons, is summed at this width.
+    type Half: Simd<E>;
+    /// The token of [`Simd::Half`].
+    fn half(self) -> Self::Half;
     /// All lanes `x`.
     fn splat(self, x: E) -> Self::V;
     /// The first `LANES` values of `s` (panics when `s` is shorter).
@@ -87,6 +94,11 @@ impl Simd for Baseline {
     type V = std::arch::x86_64::__m128d;
     const LANES: usize = 2;
     const MAX_TILE: usize = 6;
+    type Half = Baseline;
+    #[inline(always)]
+    fn half(self) -> Baseline {
+        self
+    }
     #[inline(always)]
     fn splat(self, x: f64) -> Self::V {
         // SAFETY: SSE2 is part of the x86_64 baseline.
@@ -121,6 +133,11 @@ impl Simd for Baseline {
     type V = [f64; 2];
     const LANES: usize = 2;
     const MAX_TILE: usize = 6;
+    type Half = Baseline;
+    #[inline(always)]
+    fn half(self) -> Baseline {
+        self
+    }
     #[inline(always)]
     fn splat(self, x: f64) -> Self::V {
         [x; 2]
@@ -147,7 +164,7 @@ impl Simd for Baseline {
 /// type (the f32 lanes of the fast precision), one definition per level.
 #[cfg(target_arch = "x86_64")]
 macro_rules! x86_f32 {
-    ($token:ty, $v:ty, $lanes:literal, $tile:literal, $feature:literal,
+    ($token:ty, $v:ty, $lanes:literal, $tile:literal, $half:ty, $to_half:path, $feature:literal,
      $set1:ident, $loadu:ident, $storeu:ident, $add:ident, $mul:ident, $fused:path) => {
         // SAFETY (every `unsafe` block of this impl): the token exists only
         // when the CPU supports `$feature` (the baseline's SSE2 always);
@@ -156,6 +173,11 @@ macro_rules! x86_f32 {
             type V = $v;
             const LANES: usize = $lanes;
             const MAX_TILE: usize = $tile;
+            type Half = $half;
+            #[inline(always)]
+            fn half(self) -> $half {
+                $to_half(self)
+            }
             #[inline(always)]
             fn splat(self, x: f32) -> $v {
                 // SAFETY: see the impl: the level's instructions are supported.
@@ -226,6 +248,8 @@ x86_f32!(
     std::arch::x86_64::__m128,
     4,
     6,
+    Baseline,
+    std::convert::identity,
     "sse2",
     _mm_set1_ps,
     _mm_loadu_ps,
@@ -240,6 +264,11 @@ impl Simd<f32> for Baseline {
     type V = [f32; 4];
     const LANES: usize = 4;
     const MAX_TILE: usize = 6;
+    type Half = Baseline;
+    #[inline(always)]
+    fn half(self) -> Baseline {
+        self
+    }
     #[inline(always)]
     fn splat(self, x: f32) -> Self::V {
         [x; 4]
@@ -294,6 +323,11 @@ pub(crate) mod x86 {
         type V = __m256d;
         const LANES: usize = 4;
         const MAX_TILE: usize = 6;
+        type Half = Avx2;
+        #[inline(always)]
+        fn half(self) -> Avx2 {
+            self
+        }
         #[inline(always)]
         fn splat(self, x: f64) -> __m256d {
             // SAFETY: see the impl: AVX is supported.
@@ -328,10 +362,20 @@ pub(crate) mod x86 {
     pub(crate) struct Avx512(());
 
     impl Avx512 {
-        /// The token, if this CPU supports AVX-512F.
+        /// The token, if this CPU supports AVX-512F (and AVX2 and FMA, as
+        /// every AVX-512 CPU does: its half-width vectors are AVX2's).
         #[inline]
         pub(crate) fn new() -> Option<Avx512> {
-            is_x86_feature_detected!("avx512f").then_some(Avx512(()))
+            (is_x86_feature_detected!("avx512f")
+                && is_x86_feature_detected!("avx2")
+                && is_x86_feature_detected!("fma"))
+            .then_some(Avx512(()))
+        }
+
+        /// The AVX2 token, which an AVX-512 one implies (see [`Avx512::new`]).
+        #[inline(always)]
+        pub(crate) fn avx2(self) -> Avx2 {
+            Avx2(())
         }
     }
 
@@ -343,6 +387,11 @@ pub(crate) mod x86 {
         type V = __m512d;
         const LANES: usize = 8;
         const MAX_TILE: usize = 8;
+        type Half = Avx2;
+        #[inline(always)]
+        fn half(self) -> Avx2 {
+            self.avx2()
+        }
         #[inline(always)]
         fn splat(self, x: f64) -> __m512d {
             // SAFETY: see the impl: AVX-512F is supported.
@@ -404,6 +453,8 @@ pub(crate) mod x86 {
         __m256,
         8,
         6,
+        Avx2,
+        std::convert::identity,
         "avx2",
         _mm256_set1_ps,
         _mm256_loadu_ps,
@@ -417,6 +468,8 @@ pub(crate) mod x86 {
         __m512,
         16,
         8,
+        Avx2,
+        Avx512::avx2,
         "avx512f",
         _mm512_set1_ps,
         _mm512_loadu_ps,

@@ -855,6 +855,8 @@ mod tests {
             (&[2][..], 8),
             (&[40][..], 17),
             (&[5, 6][..], 24),
+            // 4 neurons past a multiple of 8: AVX-512's half-width last vector, full.
+            (&[7][..], 12),
             (&[300][..], 81),
         ]
         .iter()
@@ -957,6 +959,8 @@ mod tests {
             (&[15][..], 9),
             (&[3][..], 7),
             (&[40][..], 17),
+            // 8 neurons past a multiple of 16: AVX-512's half-width last vector, full.
+            (&[20][..], 40),
             (&[300][..], 81),
         ]
         .iter()
