@@ -156,7 +156,8 @@ step_at_level!(step_avx512, "avx512f", Avx512);
 step_at_level!(step_avx2, "avx2,fma", Avx2);
 
 /// One step of all robots: neuron groups of two vectors (one for the last
-/// vector of a column), robots in tiles of up to `S::MAX_TILE`.
+/// vector of a column, summed at half width when at most half of it is
+/// neurons), robots in tiles of up to `S::MAX_TILE`.
 ///
 /// Every neuron's sum is `bias`, then `+= w·x` for each input in order, then
 /// for each neuron in order — the update equation's order, whatever the
