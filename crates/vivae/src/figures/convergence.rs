@@ -8,7 +8,7 @@ use vivae_sim::draw::MAX_PIXELS;
 
 use super::{
     FAMILY, Figure, FigureError, PNG_SCALE, axis_font, base64, draw_err, draw_series_legend,
-    draw_svg_over, encode_png_fast, label_font, register_font, viridis,
+    draw_svg_over, encode_png_fast, label_font, register_font, viridis, white_canvas,
 };
 
 /// Number of colour levels of the heat map.
@@ -348,14 +348,7 @@ fn render_png(
     opts: &ConvergenceOptions,
 ) -> Result<Vec<u8>, FigureError> {
     let scale = PNG_SCALE;
-    let (w, h) = (opts.width as f32 * scale, opts.height as f32 * scale);
-    let too_large = || FigureError::Invalid(format!("a figure of {w}x{h} pixels is too large"));
-    if f64::from(w) * f64::from(h) > MAX_PIXELS {
-        return Err(too_large());
-    }
-    let mut base =
-        tiny_skia::Pixmap::new(w.ceil() as u32, h.ceil() as u32).ok_or_else(too_large)?;
-    base.fill(tiny_skia::Color::WHITE);
+    let mut base = white_canvas(f64::from(opts.width), f64::from(opts.height))?;
     let (xs, ys) = heat_px;
     let to_cells = tiny_skia::Transform::from_row(
         (xs.end - xs.start) as f32 * scale / heat.width() as f32,

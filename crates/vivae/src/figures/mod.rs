@@ -120,6 +120,20 @@ fn fontdb() -> std::sync::Arc<usvg::fontdb::Database> {
     .clone()
 }
 
+/// A white canvas for a figure of `w` × `h` SVG units drawn at
+/// [`PNG_SCALE`]; one past the simulator's pixel cap (or empty) is refused, not allocated.
+pub(crate) fn white_canvas(w: f64, h: f64) -> Result<tiny_skia::Pixmap, FigureError> {
+    let scale = f64::from(PNG_SCALE);
+    let (pw, ph) = ((w * scale).ceil(), (h * scale).ceil());
+    let too_large = || FigureError::Invalid(format!("a figure of {w}x{h} units is too large"));
+    if pw * ph > vivae_sim::draw::MAX_PIXELS {
+        return Err(too_large());
+    }
+    let mut base = tiny_skia::Pixmap::new(pw as u32, ph as u32).ok_or_else(too_large)?;
+    base.fill(tiny_skia::Color::WHITE);
+    Ok(base)
+}
+
 /// Draws an SVG document over `base` at `scale` pixels per SVG unit (as
 /// [`svg_to_png`] draws it over white).
 pub(crate) fn draw_svg_over(
@@ -228,6 +242,21 @@ pub(crate) mod test_util {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn white_canvas_is_scaled_and_refused_past_the_pixel_cap() {
+        let c = white_canvas(10.5, 3.0).unwrap();
+        assert_eq!((c.width(), c.height()), (21, 6));
+        assert!(
+            c.pixels()
+                .iter()
+                .all(|p| p.red() == 255 && p.alpha() == 255)
+        );
+        // 10⁵ × 10⁵ units would be 4·10¹⁰ pixels (160 GB): an error, not an allocation.
+        let e = white_canvas(1e5, 1e5).unwrap_err();
+        assert!(e.to_string().contains("too large"), "{e}");
+        assert!(white_canvas(0.0, 5.0).is_err());
+    }
 
     #[test]
     fn viridis_ends_and_middle() {

@@ -36,7 +36,7 @@ use vivae_neat::hyperneat::SubstrateController;
 use super::controller::{Checked, FigureSheet, NetworkOptions, blend, check};
 use super::{
     Figure, FigureError, NEGATIVE, PNG_SCALE, POSITIVE, base64, draw_svg_over, encode_png_fast,
-    register_font,
+    register_font, white_canvas,
 };
 use vivae_lab::controller::substrate::SubstrateSpec;
 
@@ -66,11 +66,7 @@ pub(crate) fn render(
         heats,
         size: (w, h),
     } = draw(spec, sheets, controller, opts)?;
-    let scale = f64::from(PNG_SCALE);
-    let too_big = || FigureError::Png(format!("figure of {w}x{h} units is too large"));
-    let mut base =
-        Pixmap::new((w * scale).ceil() as u32, (h * scale).ceil() as u32).ok_or_else(too_big)?;
-    base.fill(tiny_skia::Color::WHITE);
+    let mut base = white_canvas(w, h)?;
     for heat in &heats {
         base.draw_pixmap(
             heat.x,
