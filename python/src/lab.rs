@@ -14,7 +14,6 @@ use rayon::prelude::*;
 use vivae_lab::config::Config;
 use vivae_lab::controller::es::RobotController;
 use vivae_lab::controller::substrate::WheelNeurons;
-use vivae_lab::run::prepare::prepare;
 use vivae_lab::run::{Outcome, Run};
 use vivae_lab::rundir::{self, GenerationRecord};
 use vivae_lab::tasks::driving::episode::Episode;
@@ -397,10 +396,8 @@ pub fn evolve<'py>(
     on_generation: Option<Py<PyAny>>,
     overrides: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    // Without a config file a named task starts from its own defaults,
-    // which it may fit to its scenario (e.g. a grid archive fitted to its arena).
-    let task_defaults = config.is_none();
-    let config = settings::build(config.as_deref(), overrides)?;
+    let resolved = settings::resolved(config.as_deref(), overrides)?;
+    let config = resolved.config.clone();
     let dir = out.clone().unwrap_or_else(vivae_lab::io::default_run_dir);
     if let Some(driver) = vivae_lab::tasks::entry_of(&config)
         .ok()
@@ -410,7 +407,9 @@ pub fn evolve<'py>(
             (driver.evolve)(&dir, config, force, session)
         });
     }
-    let prepared = prepare(config, task_defaults).map_err(errors::lab)?;
+    // Without a config file a task starts from its own defaults, which it
+    // may fit to its scenario (e.g. a grid archive fitted to its arena).
+    let prepared = resolved.prepare().map_err(errors::lab)?;
     for m in &prepared.maps {
         errors::warn_scenario(py, &m.loaded.scenario)?;
     }

@@ -7,7 +7,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString};
 use vivae_lab::config::Config;
 use vivae_lab::controller::substrate::PolarGrid;
-use vivae_lab::run::prepare::{Overrides, base_config};
+use vivae_lab::run::prepare::{Overrides, Resolved, Spelling, resolve};
 
 use crate::errors;
 
@@ -15,16 +15,30 @@ use crate::errors;
 /// [`Overrides`] keys, which are the CLI's flags too.
 pub const OVERRIDES: [&str; 24] = Overrides::KEYS;
 
-/// `config` (a TOML file) or the named task's defaults (the paper's when
-/// none is named), with `overrides` applied and checked: the library's one
-/// preparation, as `vivae evolve` does it.
-pub fn build(config: Option<&Path>, overrides: Option<&Bound<'_, PyDict>>) -> PyResult<Config> {
+/// How Python's keyword arguments are named in the library's refusals.
+const SPELLING: Spelling = Spelling {
+    origin: "arguments",
+    key: |k| format!("{k}="),
+};
+
+/// `config` (a TOML file) or the defaults of the task the keywords name (or
+/// their shipped scenario is drawn for; the paper's when none), with
+/// `overrides` applied and checked: the library's one resolution, as
+/// `vivae evolve` does it.
+pub fn resolved(
+    config: Option<&Path>,
+    overrides: Option<&Bound<'_, PyDict>>,
+) -> PyResult<Resolved> {
     let o = match overrides {
         Some(d) => extract(d)?,
         None => Overrides::default(),
     };
-    let c = base_config(config, o.task.as_ref(), "task=").map_err(errors::lab)?;
-    applied(c, &o)
+    resolve(config, &o, &SPELLING).map_err(errors::lab)
+}
+
+/// [`resolved`]'s config.
+pub fn build(config: Option<&Path>, overrides: Option<&Bound<'_, PyDict>>) -> PyResult<Config> {
+    Ok(resolved(config, overrides)?.config)
 }
 
 /// `c` with `overrides` applied and checked.

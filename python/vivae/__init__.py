@@ -18,6 +18,8 @@ import gymnasium
 
 from vivae._vivae import (
     OVERRIDES,
+    STRATEGIES,
+    TASKS,
     Controller,
     DriveTask,
     Genome,
@@ -46,6 +48,8 @@ if TYPE_CHECKING:
 
 __all__ = [
     "OVERRIDES",
+    "STRATEGIES",
+    "TASKS",
     "Controller",
     "DriveEnv",
     "DriveParallelEnv",

@@ -15,6 +15,8 @@ __all__ = [
     "Genome",
     "Network",
     "OVERRIDES",
+    "STRATEGIES",
+    "TASKS",
     "MapElites",
     "NoveltySearch",
     "Nsga2",
@@ -38,6 +40,8 @@ __all__ = [
 ]
 
 OVERRIDES: list[str]
+TASKS: list[str]
+STRATEGIES: list[str]
 
 @final
 class DriveCore:

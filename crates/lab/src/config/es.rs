@@ -39,7 +39,7 @@ impl std::str::FromStr for SubstrateKind {
 
 /// The CPPN output that expresses ES links with `substrate.es.leo` (on the
 /// dense sheet it paints neuron → neuron weights; ES does not read it otherwise).
-pub const ES_LEO_OUTPUT: usize = crate::controller::polar::RECURRENT_OUTPUT;
+pub const ES_LEO_OUTPUT: usize = crate::polar::RECURRENT_OUTPUT;
 
 /// ES-HyperNEAT parameters of a run (`[substrate.es]`); the weight
 /// expression (threshold, amplitude) is `[hyperneat]`'s.

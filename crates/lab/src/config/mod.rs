@@ -27,7 +27,7 @@ use vivae_neat::{NeatParams, Precision};
 use vivae_sim::{DistanceSensors, PhysicsParams, SurfaceSensors};
 
 use crate::config::es::{EsConfig, SubstrateKind};
-use crate::controller::polar::{CoordMode, PolarGrid};
+use crate::polar::{CoordMode, PolarGrid};
 use crate::search::StrategyConfig;
 
 /// Most simulation steps per evaluation (`experiment.steps`, `replay --steps`).

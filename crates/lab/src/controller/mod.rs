@@ -4,6 +4,7 @@
 
 pub mod es;
 pub mod normalize;
-pub mod polar;
+// The sheets' geometry is below the config, which names grids in its keys.
+pub use crate::polar;
 pub mod sensors;
 pub mod substrate;

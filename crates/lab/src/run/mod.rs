@@ -191,7 +191,7 @@ impl Run {
         if let Some(n) = generations {
             if n < cp.progress.done {
                 return Err(bad_input(format!(
-                    "--generations {n}: the run already has {} generations",
+                    "experiment.generations = {n}: the run already has {} generations",
                     cp.progress.done
                 )));
             }

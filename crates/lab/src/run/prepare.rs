@@ -226,19 +226,52 @@ fn grids(text: &str) -> std::result::Result<Vec<PolarGrid>, String> {
     text.split(',').map(parse).collect()
 }
 
+/// How a front end names its settings in messages: the library's refusals
+/// of a setting say where it came from and spell its key as the user wrote it.
+#[derive(Debug, Clone, Copy)]
+pub struct Spelling {
+    /// Where the settings came from (`command line`, `arguments`).
+    pub origin: &'static str,
+    /// A setting's name as the front end writes it, from its [`Overrides`]
+    /// key (`--train-neurons`, `train_neurons=`).
+    pub key: fn(&str) -> String,
+}
+
+impl Spelling {
+    /// The library's own spelling: settings named by their [`Overrides`] key.
+    pub const KEYS: Spelling = Spelling {
+        origin: "settings",
+        key: |k| format!("{k} = "),
+    };
+
+    /// `message` (a refusal of [`Overrides`] that opens with `key = `) with
+    /// its key spelled as the front end writes it.
+    pub fn spell(&self, message: &str) -> String {
+        for key in Overrides::KEYS {
+            if let Some(rest) = message.strip_prefix(&format!("{key} = ")) {
+                return format!("{}{rest}", (self.key)(key));
+            }
+        }
+        message.to_string()
+    }
+}
+
 /// The config a new run starts from before its overrides: `file` (its task
 /// named there), or the defaults of `task` (the paper's driving experiment
 /// when none is named). A task named beside a file that names another is
-/// refused, the message starting with `option` (how the caller's user named
-/// the task: `--task`, `task=`): the file says which task it is.
-pub fn base_config(file: Option<&Path>, task: Option<&TaskName>, option: &str) -> Result<Config> {
+/// refused, the setting spelled by `spelling`: the file says which task it is.
+pub fn base_config(
+    file: Option<&Path>,
+    task: Option<&TaskName>,
+    spelling: &Spelling,
+) -> Result<Config> {
     match file {
         Some(p) => {
             let c = tasks::read_config(p)?;
             match c.task_mismatch(task) {
                 Some(why) => {
                     let t = task.map_or("", TaskName::name);
-                    Err(bad_input(format!("{option}{t}: {why}")))
+                    Err(bad_input(format!("{}{t}: {why}", (spelling.key)("task"))))
                 }
                 None => Ok(c),
             }
@@ -257,15 +290,54 @@ pub fn task_named(file: Option<&Path>, overrides: &Overrides) -> Option<TaskName
     overrides.task.clone().or(drawn_for)
 }
 
-/// [`base_config`] with `overrides` applied, checked by every rule of its
-/// task; a refusal says `what` gave the overrides (`command line`, `arguments`).
-pub fn config(file: Option<&Path>, overrides: &Overrides, what: &str) -> Result<Config> {
+/// A new run's settings resolved: the config it runs and whether it was
+/// built from its task's defaults (no config file), so that the task may
+/// fit the settings it fits to itself ([`RunTask::fit_defaults`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Resolved {
+    /// The checked config.
+    pub config: Config,
+    /// No config file: the task's own defaults, which [`prepare`] fits.
+    pub task_defaults: bool,
+}
+
+/// The one resolution of a new run's settings, for the command line and
+/// Python alike: `file` (or the defaults of the task the overrides name or
+/// their shipped scenario is drawn for) with `overrides` applied, checked by
+/// every rule of its task; refusals are spelled by `spelling`.
+pub fn resolve(
+    file: Option<&Path>,
+    overrides: &Overrides,
+    spelling: &Spelling,
+) -> Result<Resolved> {
     let task = task_named(file, overrides);
-    let mut config = base_config(file, task.as_ref(), "task ")?;
-    let refused = |e: String| bad_input(format!("{what}: {e}"));
-    overrides.apply(&mut config).map_err(refused)?;
+    let mut config = base_config(file, task.as_ref(), spelling)?;
+    let refused = |e: String| bad_input(format!("{}: {e}", spelling.origin));
+    (overrides.apply(&mut config))
+        .map_err(|e| refused(spelling.spell(&e)))?;
     tasks::check(&config).map_err(|e| refused(e.to_string()))?;
-    Ok(config)
+    Ok(Resolved {
+        config,
+        task_defaults: file.is_none(),
+    })
+}
+
+impl Resolved {
+    /// Loads what the config names ([`prepare`]), fitting the task's
+    /// defaults when there was no config file.
+    pub fn prepare(self) -> Result<Prepared> {
+        prepare(self.config, self.task_defaults)
+    }
+}
+
+/// [`resolve`]'s config alone, refusals spelled by [`Spelling::KEYS`] with
+/// `what` as their origin.
+pub fn config(file: Option<&Path>, overrides: &Overrides, what: &'static str) -> Result<Config> {
+    let spelling = Spelling {
+        origin: what,
+        ..Spelling::KEYS
+    };
+    Ok(resolve(file, overrides, &spelling)?.config)
 }
 
 /// A new run, prepared: its config, maps, task and starting population.
@@ -378,6 +450,30 @@ mod tests {
         assert!(e.contains("expected exact or fast"), "{e}");
         let e = o.set("task", "chess").unwrap_err();
         assert!(e.contains("chess") && e.contains("driving"), "{e}");
+    }
+
+    #[test]
+    fn refusals_of_a_setting_are_spelled_as_the_front_end_writes_it() {
+        let o = Overrides {
+            robot: Some("vivae".into()),
+            ..Overrides::default()
+        };
+        let cli = Spelling {
+            origin: "command line",
+            key: |k| format!("--{} ", k.replace('_', "-")),
+        };
+        let e = resolve(None, &o, &cli).unwrap_err().to_string();
+        assert!(e.starts_with("command line: --robot vivae: a driving run"), "{e}");
+        let e = resolve(None, &o, &Spelling::KEYS).unwrap_err().to_string();
+        assert!(e.starts_with("settings: robot = vivae: a driving run"), "{e}");
+        // A shipped scenario drawn for a task names that task: its defaults.
+        let maze = Overrides {
+            scenario: vec!["hard-maze".into()],
+            ..Overrides::default()
+        };
+        let r = resolve(None, &maze, &cli).unwrap();
+        assert_eq!(r.config.experiment.task.name(), "maze");
+        assert!(r.task_defaults);
     }
 
     #[test]

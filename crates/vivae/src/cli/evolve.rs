@@ -8,13 +8,13 @@ use std::sync::atomic::AtomicBool;
 
 use anyhow::Context as _;
 use clap::Args;
-use vivae_lab::run::prepare::{base_config, prepare, task_named};
+use vivae_lab::run::prepare::resolve;
 use vivae_neat::driver::Task;
 
 use super::args::{NewRun, Quiet};
 use super::drive::drive;
 use super::mpi_job::join_mpi_job;
-use super::overrides::{Overrides, apply_overrides};
+use super::overrides::{Overrides, SPELLING};
 use super::terminal::warn_repeated_maps;
 
 /// Options of `vivae evolve`.
@@ -33,10 +33,8 @@ pub struct EvolveArgs {
 
 /// Runs `vivae evolve`.
 pub fn run(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode> {
-    let named = task_named(args.config.as_deref(), &args.overrides.to_lab());
-    let task = named.as_ref();
-    let mut config = base_config(args.config.as_deref(), task, "--task ")?;
-    apply_overrides(&mut config, &args.overrides)?;
+    let resolved = resolve(args.config.as_deref(), &args.overrides.to_lab(), &SPELLING)?;
+    let config = resolved.config.clone();
     if let Some(driver) = vivae_lab::tasks::entry_of(&config)
         .ok()
         .and_then(|e| e.own_driver)
@@ -50,10 +48,9 @@ pub fn run(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<Ex
             None => run(),
         };
     }
-    // Without a config file a named task starts from its own defaults,
-    // which it may fit to its scenario (e.g. a grid archive fitted to its arena).
-    let task_defaults = task.is_some() && args.config.is_none();
-    let setup = || prepare(config.clone(), task_defaults);
+    // Without a config file a task starts from its own defaults, which it
+    // may fit to its scenario (e.g. a grid archive fitted to its arena).
+    let setup = || resolved.clone().prepare();
     // Problems with what a config file names are reported against that file too.
     let prepared = match &args.config {
         Some(path) => setup().with_context(|| path.display().to_string()),

@@ -131,6 +131,13 @@ impl Overrides {
     }
 }
 
+/// How the command line's settings are named in the library's refusals:
+/// `--flag-name`, from the command line.
+pub const SPELLING: vivae_lab::run::prepare::Spelling = vivae_lab::run::prepare::Spelling {
+    origin: "command line",
+    key: |k| format!("--{} ", k.replace('_', "-")),
+};
+
 /// Sets each config key `o` gives, then checks the result by every rule of
 /// the config's task.
 pub fn apply_overrides(config: &mut Config, o: &Overrides) -> anyhow::Result<()> {

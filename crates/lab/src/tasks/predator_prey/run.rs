@@ -300,7 +300,7 @@ fn resume(dir: &Path, generations: Option<u32>, session: &Session<'_>) -> Result
     if let Some(n) = generations {
         if n < done {
             return Err(bad_input(format!(
-                "--generations {n}: the run already has {done} generations"
+                "experiment.generations = {n}: the run already has {done} generations"
             )));
         }
         cp.config.experiment.generations = n;
