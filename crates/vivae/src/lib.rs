@@ -19,7 +19,10 @@
 //! ```
 
 // The program needs the viewer (its `view` command); the Python module builds without it.
+// The options' doc comments are the program's `--help` text, plain text rather than
+// Markdown (`[physics]`, `runs/<timestamp>`), so rustdoc's Markdown lints do not apply.
 #[cfg(feature = "viewer")]
+#[allow(rustdoc::broken_intra_doc_links, rustdoc::invalid_html_tags)]
 pub mod cli;
 pub mod figures;
 #[cfg(feature = "mpi")]
