@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The champions of the paper's experiment (seeds 1-5 by default) re-sampled to
 # 9x9 neurons and to 3x6 sensors under each weight-normalisation rule
-# (docs/guide.md, "How a re-sampled sheet keeps its drive"): what each rule
+# (docs/explanation/normalisation.md, "How a re-sampled sheet keeps its drive"): what each rule
 # keeps of the champion's fitness at its own resolution under the same rule.
 #
 #   scripts/normalization-rules.sh [SEED ...]

@@ -1,6 +1,7 @@
 //! The `vivae` program's own parts: figures, the run report, the live viewer
 //! and distributed (MPI) evaluation, on top of the [`vivae_lab`] experiment
-//! library. The command line itself is `main.rs`.
+//! library. The command line is [`cli`] (one file per command), which the
+//! program's `main.rs` runs.
 //!
 //! Everything a researcher builds on (the experiment, configs, run
 //! directories) is in `vivae_lab`, which has none of this crate's
@@ -17,6 +18,12 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+// The program needs the viewer (its `view` command); the Python module builds without it.
+// The options' doc comments are the program's `--help` text, plain text rather than
+// Markdown (`[physics]`, `runs/<timestamp>`), so rustdoc's Markdown lints do not apply.
+#[cfg(feature = "viewer")]
+#[allow(rustdoc::broken_intra_doc_links, rustdoc::invalid_html_tags)]
+pub mod cli;
 pub mod figures;
 #[cfg(feature = "mpi")]
 pub mod mpi;

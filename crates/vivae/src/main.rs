@@ -1,66 +1,20 @@
-//! The `vivae` command-line program: parses the command line and hands each
-//! command to its file under `cli/`.
+//! The `vivae` command-line program: parses the command line ([`Cli`], in the
+//! library's `cli` module) and hands each command to its file under `cli/`.
 //!
 //! Exit codes: 0 ok, 1 internal error, 2 bad input or usage, 130 interrupted.
 
-use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 
-use clap::{Parser, Subcommand};
+use clap::Parser;
+use vivae::cli::{
+    Cli, Command, compare, config, drive_image, evolve, export, replay, report, reproduce, resume,
+    retrain, scenario, tournament, view,
+};
 use vivae_lab::io::one_line;
 
-mod cli;
 mod portable_libm;
-
-use cli::{
-    compare, config, drive_image, evolve, export, replay, report, reproduce, resume, retrain,
-    scenario, tournament, view,
-};
-
-/// HyperNEAT-controlled robots that learn to drive on roads (ViVAE).
-#[derive(Parser, Debug)]
-#[command(name = "vivae", version, about, long_about = None)]
-struct Cli {
-    #[command(subcommand)]
-    command: Command,
-}
-
-#[derive(Subcommand, Debug)]
-enum Command {
-    /// Evolve a driving controller (with no options: the paper's experiment).
-    Evolve(evolve::EvolveArgs),
-    /// Continue an interrupted run, or extend a finished one.
-    Resume(resume::ResumeArgs),
-    /// Run a genome (a run's champion) and draw its trajectories.
-    Replay(replay::ReplayArgs),
-    /// Continue a run's final population on a re-sampled substrate.
-    Retrain(retrain::RetrainArgs),
-    /// Write a run's controller as ONNX, C or JSON, to run outside vivae.
-    Export(export::ExportArgs),
-    /// Drive a run's controller from images: camera frames, or a map and poses.
-    DriveImage(drive_image::DriveImageArgs),
-    /// Rebuild a run's self-contained report.html.
-    Report {
-        /// The run directory.
-        run_dir: PathBuf,
-    },
-    /// Watch robots drive in the browser (a local web server).
-    View(view::ViewArgs),
-    /// Compare runs: fitness per generation and per wall-clock second, figure and table.
-    Compare(compare::CompareArgs),
-    /// Play one predator-prey run's champions against another's: catch rates and hunter fitness.
-    Tournament(tournament::TournamentArgs),
-    /// Run a published experiment with the paper's settings: ours beside the paper's numbers.
-    Reproduce(reproduce::ReproduceArgs),
-    /// Inspect and draw scenarios.
-    #[command(subcommand)]
-    Scenario(scenario::ScenarioCommand),
-    /// Print configuration files and references.
-    #[command(subcommand)]
-    Config(config::ConfigCommand),
-}
 
 fn main() -> ExitCode {
     let cli = Cli::parse();

@@ -1,11 +1,11 @@
 //! `vivae compare`: several runs side by side, as a figure and a table (see
-//! `vivae::figures::compare`).
+//! `crate::figures::compare`).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+use crate::figures::compare::{CompareOptions, LabelRule};
 use clap::Args;
-use vivae::figures::compare::{CompareOptions, LabelRule};
 
 /// Options of `vivae compare`.
 #[derive(Args, Debug)]
@@ -35,7 +35,7 @@ pub fn run(args: CompareArgs) -> anyhow::Result<ExitCode> {
         title: args.title,
         ..CompareOptions::default()
     };
-    let table = vivae::figures::compare::run(
+    let table = crate::figures::compare::run(
         &args.runs,
         &args.label,
         &args.out,

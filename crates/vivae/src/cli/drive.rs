@@ -8,8 +8,8 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
+use crate::report;
 use anyhow::Context as _;
-use vivae::report;
 use vivae_lab::io::bad_input;
 use vivae_lab::run::{Outcome, Run};
 use vivae_lab::rundir::GenerationRecord;

@@ -1,5 +1,5 @@
 //! The evolving commands' side of an MPI job (the feature `mpi`; see
-//! `vivae::mpi` and docs/distributed.md): whether this process is one of its
+//! `crate::mpi` and docs/distributed.md): whether this process is one of its
 //! ranks, the start-up handshake, and spreading generations (or the batches
 //! of a run on its task's own driver) over the ranks.
 //! Without the feature each is a no-op, so the commands call them always.
@@ -20,13 +20,13 @@ pub type Players = Box<dyn std::any::Any + Sync>;
 /// Whether an MPI launcher started this process (never without the `mpi` feature).
 pub fn launched_by_mpi() -> bool {
     #[cfg(feature = "mpi")]
-    return vivae::mpi::launched_by_mpi();
+    return crate::mpi::launched_by_mpi();
     #[cfg(not(feature = "mpi"))]
     false
 }
 
 /// Under an MPI launcher, the start-up handshake of every rank (see
-/// `vivae::mpi`), for every command that evolves one population: each rank
+/// `crate::mpi`), for every command that evolves one population: each rank
 /// brings the run it prepared (config, training maps, experiment) or why it
 /// could not, and the evaluation threads it will use. `Some(code)` on a
 /// worker rank whose work is done, `None` where the run goes on (always,
@@ -41,7 +41,7 @@ pub fn join_mpi_job(
         match prepared {
             Ok((config, maps, task)) => {
                 let fingerprint = vivae_lab::tasks::maps::fingerprint_text(maps);
-                let work = vivae::mpi::Genomes(task);
+                let work = crate::mpi::Genomes(task);
                 join(Ok((config, fingerprint.as_str(), &work)), threads, quiet)
             }
             Err(e) => join(Err(e), threads, quiet),
@@ -79,7 +79,7 @@ pub fn join_mpi_own_driver(
             OwnRun::New(config) => vivae_lab::tasks::entry_of(config).ok(),
             OwnRun::Existing(dir) => vivae_lab::tasks::entry_of_run(dir),
         };
-        let Some(mpi) = entry.and_then(|e| vivae::tasks::of_task(e.name)?.mpi) else {
+        let Some(mpi) = entry.and_then(|e| crate::tasks::of_task(e.name)?.mpi) else {
             let why = "this run's task has no MPI work: run it without mpirun";
             return Err(vivae_lab::io::bad_input(why).into());
         };
@@ -109,11 +109,11 @@ pub fn join_mpi_own_driver(
 /// it does as a worker).
 #[cfg(feature = "mpi")]
 fn join(
-    prepared: Result<(&Config, &str, &dyn vivae::mpi::Work), &anyhow::Error>,
+    prepared: Result<(&Config, &str, &dyn crate::mpi::Work), &anyhow::Error>,
     threads: usize,
     quiet: bool,
 ) -> anyhow::Result<Option<ExitCode>> {
-    use vivae::mpi::{MpiError, Setup, Started, start};
+    use crate::mpi::{MpiError, Setup, Started, start};
     use vivae_lab::io::{bad_input, one_line};
     let setup = prepared
         .map(|(config, scenario_text, work)| Setup {
@@ -137,7 +137,7 @@ fn join(
 /// `None` (this process's threads) otherwise.
 pub fn own_driver_players(task: Option<&str>, threads: usize) -> anyhow::Result<Option<Players>> {
     #[cfg(feature = "mpi")]
-    if let Some(mpi) = task.and_then(vivae::tasks::of_task).and_then(|t| t.mpi) {
+    if let Some(mpi) = task.and_then(crate::tasks::of_task).and_then(|t| t.mpi) {
         return Ok((mpi.player)(threads)?);
     }
     let _ = (task, threads);
@@ -152,7 +152,7 @@ pub fn run_generations(
 ) -> vivae_lab::Result<Outcome> {
     #[cfg(feature = "mpi")]
     if let Some(evaluator) =
-        vivae::mpi::MpiEvaluator::for_leader(run.task().clone_box(), run.pool())
+        crate::mpi::MpiEvaluator::for_leader(run.task().clone_box(), run.pool())
     {
         return run.run_on(evaluator, interrupted, on_generation);
     }

@@ -66,7 +66,7 @@ pub fn resume(
 /// task's program-side tools draw them (`vivae report` rebuilds them); says
 /// where unless `quiet`.
 fn report(dir: &Path, quiet: bool) -> anyhow::Result<ExitCode> {
-    if let Some(tools) = vivae::tasks::of_run(dir) {
+    if let Some(tools) = crate::tasks::of_run(dir) {
         let path = (tools.report)(dir)?;
         if !quiet {
             eprintln!("report: {}{}", path.display(), tools.report_note);

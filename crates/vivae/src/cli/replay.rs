@@ -5,8 +5,8 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+use crate::report;
 use clap::Args;
-use vivae::report;
 use vivae_lab::config::Config;
 use vivae_lab::io::{bad_input, load_scenario};
 use vivae_lab::rundir;

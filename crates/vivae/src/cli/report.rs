@@ -12,12 +12,12 @@ use vivae_lab::tasks::{entry_of_run, read_config};
 
 /// Runs `vivae report` on the run directory `run_dir`.
 pub fn run(run_dir: &Path) -> anyhow::Result<ExitCode> {
-    let path = if let Some(tools) = vivae::tasks::of_run(run_dir) {
+    let path = if let Some(tools) = crate::tasks::of_run(run_dir) {
         // A task's own report (two co-evolved populations: the CIAO figure, both sides' curves).
         (tools.report)(run_dir)?
     } else {
         refuse_other_task(run_dir, "report")?;
-        vivae::report_html::write(run_dir)?
+        crate::report_html::write(run_dir)?
     };
     eprintln!("report: {}", path.display());
     Ok(ExitCode::SUCCESS)
@@ -28,7 +28,7 @@ pub fn run(run_dir: &Path) -> anyhow::Result<ExitCode> {
 pub fn refuse_own_driver(path: &Path, command: &str) -> anyhow::Result<()> {
     let own = path.is_dir().then(|| entry_of_run(path)).flatten();
     if let Some(task) = own.filter(|e| e.own_driver.is_some()) {
-        let records = vivae::tasks::of_task(task.name).map_or("its own", |t| t.records);
+        let records = crate::tasks::of_task(task.name).map_or("its own", |t| t.records);
         return Err(bad_input(format!(
             "{}: a run of two co-evolved populations: `vivae {command}` shows one-population runs only; its records are {records}",
             path.display()

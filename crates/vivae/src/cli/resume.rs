@@ -5,9 +5,9 @@ use std::process::ExitCode;
 use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 
+use crate::report;
 use anyhow::Context as _;
 use clap::Args;
-use vivae::report;
 use vivae_lab::run::Run;
 use vivae_lab::rundir::{self, files};
 use vivae_neat::driver::Task;

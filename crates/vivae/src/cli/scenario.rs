@@ -3,8 +3,8 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+use crate::report;
 use clap::Subcommand;
-use vivae::report;
 use vivae_lab::controller::substrate::PolarGrid;
 use vivae_lab::io::{load_scenario, write_atomic};
 

@@ -2,7 +2,7 @@
 //! before a run, the progress bar or lines during it, the closing summary
 //! after it, and warnings about the run's maps.
 
-use vivae::report::{self, RunSummary};
+use crate::report::{self, RunSummary};
 use vivae_lab::config::Config;
 use vivae_lab::run::Run;
 use vivae_lab::rundir::{GenerationRecord, files};

@@ -1,6 +1,6 @@
 //! `vivae tournament`: one predator–prey run's champions against another's
 //! (the tournament of RUN_A's task, from its program-side tools:
-//! `vivae::tasks`).
+//! `crate::tasks`).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -27,7 +27,7 @@ pub struct TournamentArgs {
 
 /// Runs `vivae tournament`: the table on stdout (and the CSV written).
 pub fn run(args: TournamentArgs) -> anyhow::Result<ExitCode> {
-    let Some(tournament) = vivae::tasks::tournament_for(&args.a) else {
+    let Some(tournament) = crate::tasks::tournament_for(&args.a) else {
         return Err(vivae_lab::io::bad_input("no task plays tournaments").into());
     };
     let tables = tournament(&args.a, &args.b, args.threads.threads.unwrap_or(0))?;

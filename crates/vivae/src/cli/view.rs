@@ -1,13 +1,13 @@
 //! `vivae view`: serves a run, a genome or a scenario to the browser (see
-//! `vivae::view`).
+//! `crate::view`).
 
 use std::net::{IpAddr, Ipv4Addr, SocketAddr};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Duration;
 
+use crate::view::{IDLE_TIMEOUT, ViewOptions};
 use clap::Args;
-use vivae::view::{IDLE_TIMEOUT, ViewOptions};
 use vivae_lab::io::bad_input;
 
 use super::args::MemberChoice;
@@ -56,7 +56,7 @@ pub struct ViewArgs {
 pub fn run(args: ViewArgs) -> anyhow::Result<ExitCode> {
     // A run whose task has a page of its own (its program-side tools) is served that page.
     let own_page = (args.source.as_deref())
-        .and_then(vivae::tasks::of_run)
+        .and_then(crate::tasks::of_run)
         .and_then(|t| t.view);
     if let Some(source) = &args.source
         && own_page.is_none()
@@ -77,7 +77,7 @@ pub fn run(args: ViewArgs) -> anyhow::Result<ExitCode> {
         max_viewers: args.max_viewers,
         idle_timeout: Duration::from_secs_f64(args.idle_timeout),
     };
-    Ok(vivae::view::run(
+    Ok(crate::view::run(
         args.source.as_deref(),
         own_page,
         &options,

@@ -1,4 +1,4 @@
-//! `vivae export --format c` runs as vivae does: the guide's C example,
+//! `vivae export --format c` runs as vivae does: the how-to's C example,
 //! compiled with the exported file, replays recorded episodes with vivae's
 //! wheel commands to the last bit — a dense run, a 360° run re-sampled, an
 //! ES-HyperNEAT run; and `vivae drive-image` on frames drawn from the
@@ -14,14 +14,16 @@ use vivae_lab::export::frames::{Recording, record};
 
 use crate::common::*;
 
-/// The guide's C example (between its `c-example` markers).
+/// The C example of docs/howto/export-to-a-robot.md (between its `c-example` markers).
 fn guide_example() -> String {
-    let guide =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/guide.md"))
-            .unwrap();
+    let guide = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../docs/howto/export-to-a-robot.md"
+    ))
+    .unwrap();
     let start = guide
         .find("<!-- c-example -->\n```c\n")
-        .expect("the guide's C example")
+        .expect("the how-to's C example")
         + 24;
     let end = start + guide[start..].find("```\n<!-- /c-example -->").unwrap();
     guide[start..end].to_string()

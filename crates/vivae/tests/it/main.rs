@@ -69,6 +69,7 @@ mod shipped_scenarios_run_by_name;
 mod short_run_matches_pinned_hash;
 mod sigterm_checkpoints_and_exits_130;
 mod special_run_files_are_refused_not_waited_on;
+mod user_docs_are_current_and_linked;
 mod viewer_and_report_in_a_real_browser;
 mod viewer_draws_the_es_network_where_its_neurons_are;
 mod viewer_drives_any_elite_or_front_member;

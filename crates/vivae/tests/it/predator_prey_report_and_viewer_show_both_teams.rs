@@ -319,7 +319,7 @@ fn predator_prey_report_animates_the_champions_from_file_with_networking_off() {
 /// champions a hundred steps in) into `VIVAE_SHOTS` (not a check: run it by
 /// name with `--ignored`).
 #[test]
-#[ignore = "screenshot for docs/guide.md; run with --ignored"]
+#[ignore = "screenshot for docs/howto/predator-prey.md; run with --ignored"]
 fn screenshot_a_predator_prey_run_for_the_guide() {
     let (Some(run), Some(dir)) = (
         std::env::var_os("VIVAE_RUN"),

@@ -129,7 +129,7 @@ fn report_html_animates_from_file_with_networking_off() {
 /// sensors (a measurement, not a check: run it by name with `--ignored`).
 /// `VIVAE_SHOTS=DIR` also saves the screenshots the guide shows.
 #[test]
-#[ignore = "measurement for docs/guide.md; run with --ignored --nocapture"]
+#[ignore = "measurement for docs/howto/watch-runs.md; run with --ignored --nocapture"]
 fn measure_viewer_frame_rate() {
     let Some(b) = Browser::start(&[]) else { return };
     // A run named by VIVAE_RUN is the user's and stays; only our own is removed.
