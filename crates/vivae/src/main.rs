@@ -8,20 +8,27 @@ use std::process::ExitCode;
 use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, Parser, Subcommand};
 use vivae_lab::io::one_line;
 
 mod cli;
 mod portable_libm;
 
 use cli::{
-    compare, config, drive_image, evolve, export, replay, report, reproduce, resume, retrain,
-    scenario, tournament, view,
+    compare, config, drive_image, evolve, export, help_reference, replay, report, reproduce,
+    resume, retrain, scenario, tournament, view,
 };
 
 /// HyperNEAT-controlled robots that learn to drive on roads (ViVAE).
 #[derive(Parser, Debug)]
-#[command(name = "vivae", version, about, long_about = None)]
+#[command(
+    name = "vivae",
+    version,
+    about,
+    long_about = None,
+    after_help = "Exit codes: 0 success, 1 internal error, 2 bad input or usage (one line on \
+                  standard error naming the file or argument), 130 interrupted after a checkpoint."
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -60,6 +67,9 @@ enum Command {
     /// Print configuration files and references.
     #[command(subcommand)]
     Config(config::ConfigCommand),
+    /// Print the command-line reference (docs/reference/cli.md) as Markdown.
+    #[command(hide = true)]
+    HelpReference,
 }
 
 fn main() -> ExitCode {
@@ -109,5 +119,9 @@ fn dispatch(cli: Cli, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode>
         Command::Reproduce(args) => reproduce::run(args),
         Command::Scenario(c) => scenario::run(c),
         Command::Config(c) => config::run(c),
+        Command::HelpReference => {
+            print!("{}", help_reference::markdown(Cli::command()));
+            Ok(ExitCode::SUCCESS)
+        }
     }
 }

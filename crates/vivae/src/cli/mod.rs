@@ -15,6 +15,7 @@ pub mod drive;
 pub mod drive_image;
 pub mod evolve;
 pub mod export;
+pub mod help_reference;
 pub mod mpi_job;
 pub mod overrides;
 pub mod own_driver;
