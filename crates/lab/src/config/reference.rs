@@ -1,5 +1,5 @@
 //! The config reference, read from the doc comments of the fields the keys set:
-//! `vivae config default`, `vivae config reference` and the guide's table.
+//! `vivae config default`, `vivae config reference` and docs/reference/config.md.
 
 use super::*;
 
@@ -175,7 +175,7 @@ pub struct SectionDoc {
 
 /// Every section and key of the config, documented from the doc comments of
 /// the fields they set: the one source of `vivae config default`, `vivae
-/// config reference` and the guide's table.
+/// config reference` and docs/reference/config.md.
 pub fn reference() -> Vec<SectionDoc> {
     let schema = schemars::schema_for!(Config);
     let root = schema.as_value();
