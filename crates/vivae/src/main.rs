@@ -7,10 +7,10 @@ use std::process::ExitCode;
 use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 
-use clap::Parser;
+use clap::{CommandFactory, Parser};
 use vivae::cli::{
-    Cli, Command, compare, config, drive_image, evolve, export, replay, report, reproduce, resume,
-    retrain, scenario, tournament, view,
+    Cli, Command, compare, config, drive_image, evolve, export, help_reference, replay, report,
+    reproduce, resume, retrain, scenario, tournament, view,
 };
 use vivae_lab::io::one_line;
 
@@ -63,5 +63,9 @@ fn dispatch(cli: Cli, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode>
         Command::Reproduce(args) => reproduce::run(args),
         Command::Scenario(c) => scenario::run(c),
         Command::Config(c) => config::run(c),
+        Command::HelpReference => {
+            print!("{}", help_reference::markdown(Cli::command()));
+            Ok(ExitCode::SUCCESS)
+        }
     }
 }

@@ -1,5 +1,5 @@
 //! The config reference, read from the doc comments of the fields the keys set:
-//! `vivae config default`, `vivae config reference` and the guide's table.
+//! `vivae config default`, `vivae config reference` and docs/reference/config.md.
 
 use super::*;
 
@@ -33,26 +33,82 @@ impl Config {
 
     /// A Markdown table of every key: name, default, unit, paper's value, meaning.
     pub fn markdown_reference() -> String {
+        markdown_table(reference().iter().flat_map(|s| &s.keys))
+    }
+
+    /// The config reference as a whole Markdown page (docs/reference/config.md):
+    /// what the file is, then one section per TOML table with its keys' table.
+    pub fn markdown_reference_page() -> String {
+        let sections = reference();
         let mut out = String::from(
-            "| key | default | unit | paper | meaning |\n| --- | --- | --- | --- | --- |\n",
+            "# Config reference\n\n\
+             Every key of a run's config file (TOML), generated from the doc comments of \
+             the parameter structs, the one place each key is documented: \
+             `vivae config reference` prints this page, `scripts/update-reference.sh` \
+             rewrites it, and a test fails while the two differ. \
+             `vivae config default` prints the default config with a comment on every key; \
+             `vivae config check FILE` prints a file fully resolved.\n\n\
+             Keys left out take their defaults, and command-line flags override the file \
+             (see [the command-line reference](cli.md)). \
+             In the tables, *default* is the value as TOML (*unset*: the key is absent \
+             unless set), *unit* its unit when it has one, and *paper* the value of the \
+             published experiment where it gives one.\n\n",
         );
-        for key in reference().iter().flat_map(|s| &s.keys) {
-            let default = match &key.default {
-                Some(value) => format!("`{value}`"),
-                None => "unset".to_string(),
-            };
+        out.push_str("| section | what it holds |\n| --- | --- |\n");
+        for section in &sections {
             let _ = writeln!(
                 out,
-                "| `{}` | {} | {} | {} | {} |",
-                key.key,
-                markdown_cell(&default),
-                markdown_cell(&key.unit),
-                markdown_cell(&key.paper),
-                markdown_cell(&key.what)
+                "| [`[{}]`](#{}) | {} |",
+                section.path,
+                heading_anchor(&section.path),
+                markdown_cell(&section.what)
             );
+        }
+        for section in &sections {
+            let _ = write!(out, "\n## `[{}]`\n\n", section.path);
+            if !section.what.is_empty() {
+                let _ = write!(out, "{}\n\n", section.what);
+            }
+            if section.keys.is_empty() {
+                out.push_str("No keys of its own: its sub-sections follow.\n");
+            } else {
+                out.push_str(&markdown_table(&section.keys));
+            }
         }
         out
     }
+}
+
+/// The Markdown table of `keys`: name, default, unit, paper's value, meaning.
+fn markdown_table<'a>(keys: impl IntoIterator<Item = &'a KeyDoc>) -> String {
+    let mut out = String::from(
+        "| key | default | unit | paper | meaning |\n| --- | --- | --- | --- | --- |\n",
+    );
+    for key in keys {
+        let default = match &key.default {
+            Some(value) => format!("`{value}`"),
+            None => "unset".to_string(),
+        };
+        let _ = writeln!(
+            out,
+            "| `{}` | {} | {} | {} | {} |",
+            key.key,
+            markdown_cell(&default),
+            markdown_cell(&key.unit),
+            markdown_cell(&key.paper),
+            markdown_cell(&key.what)
+        );
+    }
+    out
+}
+
+/// The anchor GitHub and mdBook give the heading `` `[path]` ``: its letters,
+/// digits, `-` and `_`, lower case (the dots and brackets dropped).
+fn heading_anchor(path: &str) -> String {
+    path.chars()
+        .filter(|c| c.is_alphanumeric() || *c == '-' || *c == '_')
+        .map(|c| c.to_ascii_lowercase())
+        .collect()
 }
 
 /// A table cell's text: a `|` would end the cell, so it is escaped.
@@ -119,7 +175,7 @@ pub struct SectionDoc {
 
 /// Every section and key of the config, documented from the doc comments of
 /// the fields they set: the one source of `vivae config default`, `vivae
-/// config reference` and the guide's table.
+/// config reference` and docs/reference/config.md.
 pub fn reference() -> Vec<SectionDoc> {
     let schema = schemars::schema_for!(Config);
     let root = schema.as_value();

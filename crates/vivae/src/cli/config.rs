@@ -13,8 +13,12 @@ use vivae_lab::tasks::read_config;
 pub enum ConfigCommand {
     /// The full default config, a comment on every key.
     Default,
-    /// A Markdown table of every key (the guide's reference).
-    Reference,
+    /// The reference of every key as a Markdown page (docs/reference/config.md).
+    Reference {
+        /// Only the table of every key, for a page that embeds it.
+        #[arg(long)]
+        table: bool,
+    },
     /// Check a config file and print it fully resolved.
     Check {
         /// The config file.
@@ -26,7 +30,10 @@ pub enum ConfigCommand {
 pub fn run(command: ConfigCommand) -> anyhow::Result<ExitCode> {
     match command {
         ConfigCommand::Default => print!("{}", Config::default_commented()),
-        ConfigCommand::Reference => print!("{}", Config::markdown_reference()),
+        ConfigCommand::Reference { table: false } => {
+            print!("{}", Config::markdown_reference_page())
+        }
+        ConfigCommand::Reference { table: true } => print!("{}", Config::markdown_reference()),
         ConfigCommand::Check { file } => print!("{}", read_config(&file)?.to_toml()),
     }
     Ok(ExitCode::SUCCESS)

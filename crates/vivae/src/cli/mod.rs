@@ -15,6 +15,7 @@ pub mod drive;
 pub mod drive_image;
 pub mod evolve;
 pub mod export;
+pub mod help_reference;
 pub mod mpi_job;
 pub mod overrides;
 pub mod own_driver;
@@ -35,7 +36,14 @@ use clap::{Parser, Subcommand};
 // Public so that tests parse the commands of the docs with it (user_docs_are_current_and_linked).
 /// HyperNEAT-controlled robots that learn to drive on roads (ViVAE).
 #[derive(Parser, Debug)]
-#[command(name = "vivae", version, about, long_about = None)]
+#[command(
+    name = "vivae",
+    version,
+    about,
+    long_about = None,
+    after_help = "Exit codes: 0 success, 1 internal error, 2 bad input or usage (one line on \
+                  standard error naming the file or argument), 130 interrupted after a checkpoint."
+)]
 pub struct Cli {
     // (no doc comment: clap would print it in the help)
     #[command(subcommand)]
@@ -76,4 +84,7 @@ pub enum Command {
     /// Print configuration files and references.
     #[command(subcommand)]
     Config(config::ConfigCommand),
+    /// Print the command-line reference (docs/reference/cli.md) as Markdown.
+    #[command(hide = true)]
+    HelpReference,
 }

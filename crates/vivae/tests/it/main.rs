@@ -46,6 +46,7 @@ mod output_path_mistakes_exit_2_with_one_line;
 mod predator_prey_report_and_viewer_show_both_teams;
 mod predator_prey_runs_from_the_cli_and_resumes_identically;
 mod random_placements_are_seeded_and_replayable;
+mod reference_docs_are_generated_from_the_code;
 mod repeated_genomes_are_run_once;
 mod replay_from_champion_file_matches_run_dir;
 mod replay_of_an_elite_or_front_member;
