@@ -10,7 +10,7 @@
 //! node; a feed-forward ES network is one update per topological level
 //! (each level's new values are placed into the value vector by a 0/1
 //! matrix, which adds exact zeros only). The sums are `MatMul`s, so their
-//! order is the runtime's, not vivae's: equal to rounding (docs/guide.md).
+//! order is the runtime's, not vivae's: equal to rounding (docs/howto/export-to-a-robot.md).
 //! The sensor geometry and the wheel semantics are in the model's
 //! `metadata_props` (`vivae_geometry`: JSON; `wheels`; `description`).
 

@@ -2,8 +2,8 @@
 //! the road the robots keep to, measured over a recorded episode.
 //!
 //! The paper judged its controllers by eye (Figs. 5–6); these measures make
-//! the same judgements reproducible. Definitions (docs/guide.md, "Behaviour
-//! measures"):
+//! the same judgements reproducible. Definitions
+//! (docs/explanation/behaviour-measures.md):
 //!
 //! * **collisions** — contacts that begin, per 1,000 robot-steps: a robot
 //!   touching another robot (a learner or a scripted one) or an obstacle

@@ -1,5 +1,5 @@
 //! A maze run for a person: its header, its closing summary and a replay's
-//! line. A maze run draws no figures (docs/guide.md, "The maze from the
+//! line. A maze run draws no figures (docs/howto/maze.md, "The maze from the
 //! command line"): the summary says whether and when it was solved.
 
 use vivae_neat::Genome;
