@@ -121,8 +121,8 @@ pub struct ExperimentConfig {
     ///
     /// Unit: path.
     pub init_population: String,
-    /// What genomes are evaluated on: a registered task (docs/guide.md lists
-    /// them); unset = driving (HyperNEAT substrates driving on roads, the paper's).
+    /// What genomes are evaluated on: a registered task (docs/howto/ has a page
+    /// per task); unset = driving (HyperNEAT substrates driving on roads, the paper's).
     ///
     /// Example: "driving".
     #[serde(default, skip_serializing_if = "TaskName::is_driving")]
@@ -243,7 +243,7 @@ pub struct SubstrateConfig {
     pub normalize: bool,
     /// With `normalize`: `count` (the paper's: every node of a sheet weighs
     /// reference/count) or `area` (each node weighs reference × its share of
-    /// the sheet's polar area, ∝ its ring radius; see docs/guide.md). Unset = count.
+    /// the sheet's polar area, ∝ its ring radius; see docs/explanation/normalisation.md). Unset = count.
     ///
     /// Example: "area".
     #[serde(default, skip_serializing_if = "NormalizeBy::is_count")]
@@ -287,7 +287,7 @@ pub struct SubstrateConfig {
     /// Which substrate the CPPN is decoded into: `polar` (the dense neuron
     /// sheet, the paper's) or `es-hyperneat` (hidden neurons placed by the
     /// CPPN between the sensors and the two wheel neurons; keys in
-    /// `[substrate.es]`; docs/guide.md, "Substrates: when to use which").
+    /// `[substrate.es]`; docs/howto/substrates.md).
     ///
     /// Example: "es-hyperneat".
     #[serde(default, skip_serializing_if = "SubstrateKind::is_polar")]

@@ -56,8 +56,8 @@ pub struct Overrides {
     /// Behaviour descriptor of the strategies that search on one (strategy.behaviour).
     #[arg(long, value_name = "end-position|end-positions|side-speed|trajectory")]
     pub behaviour: Option<vivae_lab::tasks::driving::descriptors::BehaviourKind>,
-    /// Task (experiment.task; default driving, the paper's); docs/guide.md
-    /// says what each one evaluates and which scenario it starts from.
+    /// Task (experiment.task; default driving, the paper's); docs/howto/ has a page
+    /// per task: what it evaluates and which scenario it starts from.
     #[arg(long, value_name = "NAME", value_parser = task_names())]
     pub task: Option<TaskName>,
     /// Distance rays of the second input sheet (distance_sensors.rays; 0 = none).

@@ -20,23 +20,6 @@ use std::path::{Path, PathBuf};
 use clap::{CommandFactory, Parser};
 use vivae::cli::Cli;
 
-/// TEMPORARY (remove at merge): files being rewritten on other branches at the
-/// same time, whose dates, times and issue numbers those branches move to
-/// `docs/notebook/` (the four reports), or whose owner edits it (the Python
-/// page). They are still link targets; only the forbidden-pattern check and
-/// the check of their own links skip them.
-const TEMPORARILY_UNCHECKED: &[&str] = &[
-    "docs/results.md",
-    "docs/benchmarks.md",
-    "docs/neat-benchmarks.md",
-    "docs/hyperneat-benchmarks.md",
-    "docs/python.md",
-];
-
-/// TEMPORARY (remove at merge): generated on another branch, which adds them;
-/// links to them count as resolving (their anchors are not checked) until then.
-const TEMPORARILY_ABSENT: &[&str] = &["docs/reference/config.md", "docs/reference/cli.md"];
-
 /// One Markdown file: its path relative to the repository root, and its text.
 struct Doc {
     rel: String,
@@ -78,15 +61,9 @@ fn user_docs() -> Vec<Doc> {
         .collect()
 }
 
-fn checked(docs: Vec<Doc>) -> Vec<Doc> {
-    docs.into_iter()
-        .filter(|d| !TEMPORARILY_UNCHECKED.contains(&d.rel.as_str()))
-        .collect()
-}
-
 #[test]
 fn user_docs_have_no_dates_times_commit_ids_issue_numbers_or_machine_paths() {
-    let docs = checked(user_docs());
+    let docs = user_docs();
     assert!(docs.len() >= 10, "found only {} user docs", docs.len());
     let offences = forbidden_patterns(&docs);
     assert!(
@@ -99,7 +76,7 @@ fn user_docs_have_no_dates_times_commit_ids_issue_numbers_or_machine_paths() {
 #[test]
 fn user_docs_links_and_anchors_resolve() {
     let all = user_docs();
-    let broken = broken_links(&all, &checked(user_docs()), &repo_root());
+    let broken = broken_links(&all, &user_docs(), &repo_root());
     assert!(
         broken.is_empty(),
         "broken links in the user docs:\n{}",
@@ -401,9 +378,7 @@ fn broken_links(all: &[Doc], checked: &[Doc], root: &Path) -> Vec<String> {
                 normalise(&dir.join(path))
             };
             let exists = by_rel.contains_key(rel.as_str()) || root.join(&rel).exists();
-            let why = if !exists && TEMPORARILY_ABSENT.contains(&rel.as_str()) {
-                None
-            } else if !exists {
+            let why = if !exists {
                 Some("no such file")
             } else if let Some(anchor) = anchor.filter(|_| rel.ends_with(".md")) {
                 let anchors = anchors_of.entry(rel.clone()).or_insert_with(|| {

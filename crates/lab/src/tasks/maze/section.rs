@@ -5,7 +5,7 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
-/// A maze run's robot model and its details (`[maze]`; docs/guide.md, "The maze").
+/// A maze run's robot model and its details (`[maze]`; docs/howto/maze.md).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct MazeConfig {
