@@ -25,6 +25,8 @@ pub static STRATEGY: StrategyEntry = StrategyEntry {
     build,
     header_line: behaviour_line,
     report: crate::search::named_report,
+    files: &[],
+    settings: None,
 };
 
 /// Novelty search's settings in a run: the library's, with ρ_min and its
