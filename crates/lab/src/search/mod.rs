@@ -39,7 +39,7 @@ pub use registry::{
     Bounds, Needs, ReportOf, Settings, Start, StrategyEntry, StrategySettings, check, entries,
     entry, entry_of, register, state_of,
 };
-pub(crate) use registry::{behaviour_line, named_report, takers};
+pub(crate) use registry::{behaviour_line, takers};
 pub use run_strategy::{
     FrontFigure, GridFigure, GridReport, RunStrategy, StrategyFigure, StrategyReport,
 };

@@ -12,7 +12,7 @@ use crate::config::Config;
 use crate::config::strategy::BehaviourKind;
 use crate::error::Result;
 use crate::io::bad_input;
-use crate::search::{DynStrategy, STRATEGIES, Search, StrategyReport};
+use crate::search::{DynStrategy, STRATEGIES, Search, StrategyReport, sections};
 
 /// The box (lower, upper) the behaviour descriptors lie in.
 pub type Bounds = (Vec<f64>, Vec<f64>);
@@ -164,14 +164,6 @@ where
 /// How a strategy's part of a run's report is read from the run directory.
 pub type ReportOf = fn(&Path, &Config, usize) -> Result<Option<StrategyReport>>;
 
-/// A strategy's report with nothing of its own but its name (novelty search).
-pub(crate) fn named_report(_: &Path, config: &Config, _: usize) -> Result<Option<StrategyReport>> {
-    Ok(Some(StrategyReport {
-        kind: entry_of(config)?.kind,
-        ..StrategyReport::default()
-    }))
-}
-
 impl std::fmt::Debug for StrategyEntry {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("StrategyEntry")
@@ -201,6 +193,15 @@ pub fn register(entry: &'static StrategyEntry) -> std::result::Result<(), String
         return Err(format!(
             "a strategy called '{}' ({}) is registered already",
             entry.kind, entry.variant
+        ));
+    }
+    let section = entry.settings.map(|s| s.section);
+    let holds = |e: &&StrategyEntry| e.settings.is_some_and(|s| Some(s.section) == section);
+    if let Some(name) = section
+        && (sections::FIELDS.contains(&name) || STRATEGIES.iter().chain(added.iter()).any(holds))
+    {
+        return Err(format!(
+            "a strategy's settings section called '{name}' ([strategy.{name}]) is registered already"
         ));
     }
     added.push(entry);

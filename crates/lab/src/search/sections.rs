@@ -16,7 +16,7 @@ use serde::{Deserialize, Serialize};
 use crate::search::{Settings, StrategyConfig, StrategySettings, entries, registry};
 
 /// The `[strategy]` keys that are the built-in fields, not sections.
-const FIELDS: [&str; 5] = ["kind", "behaviour", "novelty", "map_elites", "nsga2"];
+pub(crate) const FIELDS: [&str; 5] = ["kind", "behaviour", "novelty", "map_elites", "nsga2"];
 
 /// The registered settings sections a config sets, by name, each as
 /// written (keys left out take their defaults). Two are equal when every
