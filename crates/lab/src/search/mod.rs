@@ -70,6 +70,7 @@ built_in! {
     novelty,
     map_elites,
     nsga2,
+    one_plus_lambda,
 }
 
 /// The search strategy and its settings.
