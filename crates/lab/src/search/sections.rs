@@ -161,3 +161,97 @@ impl Serialize for StrategyConfig {
         out.end()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::Config;
+
+    /// A registered strategy with a settings section (the first there is).
+    fn with_section() -> (&'static str, Settings) {
+        let e = (entries().into_iter())
+            .find(|e| e.settings.is_some())
+            .expect("a strategy registers a settings section");
+        (e.kind, e.settings.unwrap())
+    }
+
+    #[test]
+    fn only_a_strategy_that_reads_a_section_writes_it_whole() {
+        let (kind, s) = with_section();
+        // Another strategy's config is written as it always was: the five fields.
+        let mut c = Config::default();
+        c.strategy.kind = "novelty".into();
+        let text = c.to_toml();
+        assert!(
+            !text.contains(&format!("[strategy.{}]", s.section)),
+            "{text}"
+        );
+        assert_eq!(Config::from_toml(&text).unwrap(), c);
+        // Its own strategy's: the section with every key, at its defaults.
+        c.strategy.kind = kind.into();
+        let text = c.to_toml();
+        let defaults = toml::to_string(&Sections::default().full(&s).unwrap()).unwrap();
+        let section = format!("[strategy.{}]\n{defaults}", s.section);
+        assert!(text.contains(&section), "{text}");
+        let back = Config::from_toml(&text).unwrap();
+        assert_eq!(back, c);
+        assert!(back.strategy.sections.0.contains_key(s.section));
+        assert!(!back.strategy.is_default());
+        // A section at its defaults for a config of NEAT is no setting.
+        let mut neat = back;
+        neat.strategy.kind = "neat".into();
+        assert!(neat.strategy.is_default());
+    }
+
+    #[test]
+    fn unknown_keys_of_the_strategy_section_are_refused_by_name() {
+        let (_, s) = with_section();
+        let e = Config::from_toml("[strategy]\nknd = \"neat\"\n").unwrap_err();
+        assert!(e.message.contains("unknown field `knd`"), "{}", e.message);
+        assert!(
+            e.message.contains(&format!("`{}`", s.section)),
+            "{}",
+            e.message
+        );
+        let text = format!("[strategy.{}]\nno_such_key = 1\n", s.section);
+        let e = Config::from_toml(&text).unwrap_err();
+        assert!(e.message.contains("no_such_key"), "{}", e.message);
+        let text = format!("[strategy]\n{} = 3\n", s.section);
+        let e = Config::from_toml(&text).unwrap_err();
+        assert!(e.message.contains("expected a table"), "{}", e.message);
+    }
+
+    #[test]
+    fn a_section_name_is_registered_once() {
+        let (_, s) = with_section();
+        let holder = (entries().into_iter())
+            .find(|e| e.settings.is_some())
+            .unwrap();
+        static TWIN: std::sync::OnceLock<crate::search::StrategyEntry> = std::sync::OnceLock::new();
+        let twin = TWIN.get_or_init(|| crate::search::StrategyEntry {
+            kind: "twin-of-a-sectioned-strategy",
+            variant: "TwinOfASectionedStrategy",
+            settings: Some(s),
+            ..clone_entry(holder)
+        });
+        let e = crate::search::register(twin).unwrap_err();
+        assert!(e.contains(&format!("[strategy.{}]", s.section)), "{e}");
+    }
+
+    /// A copy of `e`'s fields.
+    fn clone_entry(e: &crate::search::StrategyEntry) -> crate::search::StrategyEntry {
+        crate::search::StrategyEntry {
+            kind: e.kind,
+            needs: e.needs,
+            takes_population: e.takes_population,
+            variant: e.variant,
+            from_state: e.from_state,
+            extra_columns: e.extra_columns,
+            build: e.build,
+            header_line: e.header_line,
+            report: e.report,
+            files: e.files,
+            settings: e.settings,
+        }
+    }
+}
