@@ -170,7 +170,8 @@ def test_evolve_writes_the_same_run_directory_as_the_cli(tmp_path, cli):
     assert str(measured["left_turns"]) == fields["left_turns"]
 
 
-@pytest.mark.parametrize("strategy, own", [("novelty", None), ("map-elites", "archive.jsonl"), ("nsga2", "front.jsonl")])
+@pytest.mark.parametrize("strategy, own", [("novelty", None), ("map-elites", "archive.jsonl"), ("nsga2", "front.jsonl"),
+                                           ("one-plus-lambda", "parent.json")])
 def test_evolve_with_a_strategy_writes_what_the_cli_writes(tmp_path, cli, strategy, own):
     ours = tmp_path / "py"
     vivae.evolve(out=ours, progress=False, strategy=strategy, behaviour="side-speed", **SETTINGS)

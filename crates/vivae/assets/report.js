@@ -23,15 +23,17 @@
   $("species").innerHTML = VivaePlots.stacked(data.species, 1);
   $("table").innerHTML = VivaePlots.table(data.generations);
 
-  // A strategy beyond NEAT: its archive as a heat map, or its Pareto front,
-  // a table of the members to drive (vivae view RUN --elite / --front) and
-  // its own columns of generations.csv.
+  // A strategy beyond NEAT, by the shape of what it keeps (not by name): an
+  // archive over behaviours as a heat map, or a Pareto front over
+  // objectives, with a table of the members to drive (vivae view RUN
+  // --elite / --front); else its heading and note; then its own columns of
+  // generations.csv.
   function strategySection(st) {
     var P = VivaePlots, rows = "", head;
     $("strategysection").style.display = "";
-    if (st.kind === "map-elites") {
+    if (st.behaviour_names.length) {
       var cells = st.grid ? st.grid.bins[0] * st.grid.bins[1] : null;
-      $("strategyheading").textContent = "MAP-Elites archive: " + st.elites.length + " elites" +
+      $("strategyheading").textContent = (st.heading || "MAP-Elites archive") + ": " + st.elites.length + " elites" +
         (cells ? " in " + cells + " cells" : "");
       $("strategynote").textContent = (st.grid_note ? st.grid_note + ". " : "Fitness in colour; hover a cell for its elite. ") +
         "Drive any elite: vivae view " + data.title + " --elite CELL (or vivae replay … --elite CELL).";
@@ -42,8 +44,8 @@
         rows += "<tr><td>" + e[0] + "</td>" + e[3].map(function (v) { return "<td>" + v.toFixed(3) + "</td>"; }).join("") +
           "<td>" + e[1].toFixed(4) + "</td><td>" + e[2] + "</td></tr>";
       });
-    } else if (st.kind === "nsga2") {
-      $("strategyheading").textContent = "NSGA-II Pareto front: " + st.front.length + " members";
+    } else if (st.objectives.length) {
+      $("strategyheading").textContent = (st.heading || "NSGA-II Pareto front") + ": " + st.front.length + " members";
       $("strategynote").textContent = "The last generation's first front, numbered as front.csv (0 = the fittest)" +
         (st.objectives.length > 2 ? "; the first 2 of " + st.objectives.length + " objectives are drawn" : "") +
         ". figures/front.png adds the whole population. Drive any member: vivae view " + data.title + " --front N.";
@@ -54,8 +56,8 @@
           f[2].map(function (v) { return "<td>" + P.esc(v.toFixed(3)) + "</td>"; }).join("") + "</tr>";
       });
     } else {
-      $("strategyheading").textContent = "Novelty search";
-      $("strategynote").textContent = "The archive of novel behaviours and its admission threshold, per generation.";
+      $("strategyheading").textContent = st.heading || st.kind;
+      $("strategynote").textContent = st.note;
     }
     if (head) {
       $("strategytable").innerHTML = "<table><thead><tr>" + head.map(function (h) { return "<th>" + P.esc(h) + "</th>"; }).join("") +

@@ -219,6 +219,11 @@ pub(super) fn documented_defaults() -> toml::Value {
         if let Some(novelty) = strategy.get_mut("novelty").and_then(|s| s.as_table_mut()) {
             novelty.insert("metric".into(), toml::Value::String("euclidean".into()));
         }
+        // And the sections strategies register with their entries.
+        if let Some(t) = strategy.as_table_mut() {
+            let sections = crate::search::Sections::documented().into_iter();
+            t.extend(sections.map(|(name, s)| (name.to_string(), toml::Value::Table(s))));
+        }
         table.insert("strategy".into(), strategy);
         // Likewise the tasks' own sections, written only when a run changes them.
         for task in crate::tasks::TASKS {

@@ -63,14 +63,6 @@ pub mod files {
     pub const BEST_GENOMES: &str = "best-genomes.jsonl";
     /// The self-contained HTML report of the run.
     pub const REPORT: &str = "report.html";
-    /// MAP-Elites runs: every elite's cell, behaviour, fitness and generation.
-    pub const ARCHIVE: &str = "archive.csv";
-    /// MAP-Elites runs: every elite with its genome, one JSON line each.
-    pub const ARCHIVE_GENOMES: &str = "archive.jsonl";
-    /// NSGA-II runs: the Pareto front's objectives and fitness.
-    pub const FRONT: &str = "front.csv";
-    /// NSGA-II runs: the Pareto front with its genomes, one JSON line each.
-    pub const FRONT_GENOMES: &str = "front.jsonl";
     /// In `figures/`: how many generations the figures and `report.html`
     /// show, written last once they are all drawn ([`super::mark_drawn`]).
     pub const DRAWN: &str = "drawn-generations.txt";

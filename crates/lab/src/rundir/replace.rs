@@ -17,8 +17,9 @@ use crate::error::{Error, Result};
 use crate::io::bad_input;
 use crate::rundir::{MANIFEST, MAPS_DIR, RunLock, files};
 
-/// Top-level files a run directory may hold.
-const RUN_FILES: [&str; 13] = [
+/// Top-level files every run directory may hold; beside them, the files
+/// its strategy writes ([`is_run_file`]).
+const RUN_FILES: [&str; 9] = [
     files::CONFIG,
     files::SCENARIO,
     files::GENERATIONS,
@@ -28,11 +29,14 @@ const RUN_FILES: [&str; 13] = [
     files::INIT_POPULATION,
     files::BEST_GENOMES,
     files::REPORT,
-    files::ARCHIVE,
-    files::ARCHIVE_GENOMES,
-    files::FRONT,
-    files::FRONT_GENOMES,
 ];
+
+/// Whether a run directory may hold a top-level file called `name`: one of
+/// [`RUN_FILES`] or a file some registered strategy writes with each
+/// checkpoint (its entry's `files`).
+fn is_run_file(name: &str) -> bool {
+    RUN_FILES.contains(&name) || (crate::search::entries().iter()).any(|e| e.files.contains(&name))
+}
 
 /// The folder `vivae replay RUN` writes its outputs to by default.
 pub const REPLAY_DIR: &str = "replay";
@@ -144,7 +148,7 @@ fn list(dir: &Path) -> Result<Vec<(String, bool)>> {
 fn foreign(dir: &Path, entries: &[(String, bool)]) -> Result<Option<PathBuf>> {
     for (name, is_dir) in entries {
         let known = match is_dir {
-            false => RUN_FILES.contains(&name.as_str()) || is_temporary(name),
+            false => is_run_file(name) || is_temporary(name),
             true => subfolder_accepts(name).is_some(),
         };
         if !known {
@@ -228,7 +232,7 @@ fn remove_run_files(dir: &Path) {
     for (name, is_dir) in entries {
         let path = dir.join(&name);
         match (is_dir, subfolder_accepts(&name)) {
-            (false, _) if RUN_FILES.contains(&name.as_str()) || is_temporary(&name) => {
+            (false, _) if is_run_file(&name) || is_temporary(&name) => {
                 let _ = fs::remove_file(&path);
             }
             (true, Some(accepts)) => {

@@ -13,8 +13,16 @@ use vivae_neat::Genome;
 
 use crate::config::Config;
 use crate::error::{Error, Result};
-use crate::rundir::files;
 use crate::search::Search;
+
+/// MAP-Elites runs: every elite's cell, behaviour, fitness and generation.
+pub const ARCHIVE: &str = "archive.csv";
+/// MAP-Elites runs: every elite with its genome, one JSON line each.
+pub const ARCHIVE_GENOMES: &str = "archive.jsonl";
+/// NSGA-II runs: the Pareto front's objectives and fitness.
+pub const FRONT: &str = "front.csv";
+/// NSGA-II runs: the Pareto front with its genomes, one JSON line each.
+pub const FRONT_GENOMES: &str = "front.jsonl";
 
 /// The values of the strategy's extra columns of `generations.csv` for the
 /// generation just told, with their leading commas.
@@ -83,16 +91,14 @@ pub(crate) fn jsonl<T: Serialize>(lines: &[T]) -> Result<String> {
 /// (`archive.jsonl`, cell order), genomes checked; `None` when the run has
 /// no archive (not a map-elites run, or before its first checkpoint).
 pub fn read_archive(dir: &Path) -> Result<Option<Vec<ArchiveLine>>> {
-    read_lines(&dir.join(files::ARCHIVE_GENOMES), |l: &ArchiveLine| {
-        &l.genome
-    })
+    read_lines(&dir.join(ARCHIVE_GENOMES), |l: &ArchiveLine| &l.genome)
 }
 
 /// Every member of the NSGA-II Pareto front of the run in `dir`
 /// (`front.jsonl`, fittest first), genomes checked; `None` when the run
 /// has no front.
 pub fn read_front(dir: &Path) -> Result<Option<Vec<FrontLine>>> {
-    read_lines(&dir.join(files::FRONT_GENOMES), |l: &FrontLine| &l.genome)
+    read_lines(&dir.join(FRONT_GENOMES), |l: &FrontLine| &l.genome)
 }
 
 /// The JSON lines of `path`, each genome (`genome_of`) checked; `None` if there is no such file.
@@ -130,8 +136,8 @@ pub enum Member {
 /// The genome, fitness and (1-based) generation of `member` of the run in `dir`.
 pub fn read_member(dir: &Path, member: Member) -> Result<(Genome, f64, u32)> {
     let (name, wanted) = match member {
-        Member::Elite(c) => (files::ARCHIVE_GENOMES, c),
-        Member::Front(m) => (files::FRONT_GENOMES, m),
+        Member::Elite(c) => (ARCHIVE_GENOMES, c),
+        Member::Front(m) => (FRONT_GENOMES, m),
     };
     let path = dir.join(name);
     let text = crate::io::read_regular_text(&path, crate::rundir::MAX_RUN_FILE_BYTES).map_err(

@@ -15,7 +15,7 @@ use vivae_neat::{Genome, NeatError};
 use crate::config::Config;
 use crate::error::Result;
 use crate::io::{bad_input, write_atomic};
-use crate::rundir::files;
+use crate::search::files;
 use crate::search::files::{ArchiveLine, jsonl};
 use crate::search::{
     Bounds, GridFigure, GridReport, Needs, RunStrategy, Search, Start, StrategyEntry,
@@ -36,6 +36,8 @@ pub static STRATEGY: StrategyEntry = StrategyEntry {
     build,
     header_line: behaviour_line,
     report,
+    files: &[files::ARCHIVE, files::ARCHIVE_GENOMES],
+    settings: None,
 };
 
 /// How MAP-Elites cuts the behaviour space into cells.

@@ -5,29 +5,30 @@
 //!
 //! Each strategy is one file here: its [`StrategyEntry`] (registered in
 //! [`STRATEGIES`]: the columns it adds to `generations.csv`, how it is built
-//! from the config, its header line), its [`RunStrategy`] (its fields of
-//! each row and of the summary line, the files it writes with each
-//! checkpoint, its figure) and, with settings of its own, its section of
-//! [`StrategyConfig`] (type, defaults, validation, how it fits a task's
-//! defaults). [`Search`] holds any of them as a trait object and stores it in
-//! a checkpoint as `{"Name": state}`, read back by the entry whose `variant`
-//! is `Name`. This file is where strategies are registered: a new strategy is
-//! its file, its line in [`STRATEGIES`] and, with settings, its field of
-//! [`StrategyConfig`] (with its lines in `validate` and `fit_to`).
+//! from the config, its header line, its part of the report, the files it
+//! writes with each checkpoint, its settings section), its [`RunStrategy`]
+//! (its fields of each row and of the summary line, how it writes its
+//! files, its figure as one of the shapes the program draws). [`Search`]
+//! holds any of them as a trait object and stores it in a checkpoint as
+//! `{"Name": state}`, read back by the entry whose `variant` is `Name`.
+//! This file is where strategies are registered: a new strategy is its file
+//! and its line in `built_in!` below. Its settings are a
+//! [`StrategySettings`] type registered with its entry ([`Settings::of`]),
+//! kept in [`StrategyConfig::sections`]; the first four strategies' settings
+//! are fields of [`StrategyConfig`] (with their lines in `validate` and
+//! `fit_to`), so that their configs keep their bytes.
 //!
 //! The seam itself is in `registry.rs` (entries, registration and the
 //! config's check), `run_strategy.rs` (what a run and the program need of a
-//! strategy), `dynamic.rs` (the trait object a run holds) and `start.rs`
-//! (generation 0).
+//! strategy), `dynamic.rs` (the trait object a run holds), `sections.rs`
+//! (the registered settings sections and the `[strategy]` section's serde
+//! form) and `start.rs` (generation 0).
 
 mod dynamic;
 pub mod files;
-mod map_elites;
-mod neat;
-mod novelty;
-mod nsga2;
 mod registry;
 mod run_strategy;
+mod sections;
 mod start;
 
 pub use dynamic::{DynStrategy, Search};
@@ -35,36 +36,52 @@ pub use map_elites::{CellsKind, MapElitesConfig};
 pub use novelty::novelty_defaults;
 pub use nsga2::{Nsga2Config, front_objective_names, objective, objective_among};
 pub use registry::{
-    Bounds, Needs, ReportOf, Start, StrategyEntry, check, entries, entry, entry_of, register,
-    state_of,
+    Bounds, Needs, ReportOf, Settings, Start, StrategyEntry, StrategySettings, check, entries,
+    entry, entry_of, register, state_of,
 };
-pub(crate) use registry::{behaviour_line, named_report, takers};
+pub(crate) use registry::{behaviour_line, takers};
 pub use run_strategy::{
     FrontFigure, GridFigure, GridReport, RunStrategy, StrategyFigure, StrategyReport,
 };
+pub use sections::Sections;
 pub use start::{initial_population, leo_seeded};
 pub(crate) use start::{refuse_init, starting_population};
 
 use schemars::JsonSchema;
-use serde::{Deserialize, Serialize};
+use serde::Deserialize;
 use vivae_neat::strategies::NoveltyParams;
 
 use crate::config::strategy::{BehaviourKind, StrategyName};
 
-/// The strategies built in; `strategy.kind` names one of them or one
-/// [`register`]ed by a program.
-pub static STRATEGIES: [&StrategyEntry; 4] = [
-    &neat::STRATEGY,
-    &novelty::STRATEGY,
-    &map_elites::STRATEGY,
-    &nsga2::STRATEGY,
-];
+/// Declares each built-in strategy's file (a module of this folder) and
+/// lists its entry in [`STRATEGIES`]: one line per strategy.
+macro_rules! built_in {
+    ($($file:ident),* $(,)?) => {
+        $(mod $file;)*
+
+        /// The strategies built in; `strategy.kind` names one of them or
+        /// one [`register`]ed by a program.
+        pub static STRATEGIES: &[&StrategyEntry] = &[$(&$file::STRATEGY),*];
+    };
+}
+
+built_in! {
+    neat,
+    novelty,
+    map_elites,
+    nsga2,
+    one_plus_lambda,
+}
 
 /// The search strategy and its settings.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields, default)]
+///
+/// Serialised by hand (`sections.rs`): the fields in order, then the
+/// registered sections a config sets or its strategy reads.
+#[derive(Debug, Clone, PartialEq, Deserialize, JsonSchema)]
+#[serde(default)]
 pub struct StrategyConfig {
-    /// Search algorithm: neat, novelty, map-elites or nsga2.
+    /// Search algorithm: neat, novelty, map-elites, nsga2 or any other
+    /// registered strategy.
     ///
     /// Paper: neat.
     pub kind: StrategyName,
@@ -80,6 +97,10 @@ pub struct StrategyConfig {
     pub map_elites: MapElitesConfig,
     /// NSGA-II.
     pub nsga2: Nsga2Config,
+    /// The sections of the strategies that register their settings with
+    /// their entry ([`Settings`]), by name; any other key is refused.
+    #[serde(flatten)]
+    pub sections: Sections,
 }
 
 impl Default for StrategyConfig {
@@ -90,6 +111,7 @@ impl Default for StrategyConfig {
             novelty: novelty_defaults(),
             map_elites: MapElitesConfig::default(),
             nsga2: Nsga2Config::default(),
+            sections: Sections::default(),
         }
     }
 }
@@ -108,7 +130,14 @@ impl StrategyConfig {
     pub fn validate(&self, metrics: &[&str]) -> Result<(), String> {
         novelty::validate(&self.novelty)?;
         map_elites::validate(&self.map_elites)?;
-        nsga2::validate(&self.nsga2, metrics)
+        nsga2::validate(&self.nsga2, metrics)?;
+        self.sections.validate(metrics)
+    }
+
+    /// The settings `T` of a registered section (`[strategy.NAME]`), its
+    /// keys left out at their defaults; the error names the section.
+    pub fn settings<T: StrategySettings>(&self) -> std::result::Result<T, String> {
+        self.sections.settings()
     }
 
     /// Fits every strategy's settings to what a task says of itself, for the

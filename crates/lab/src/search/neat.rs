@@ -23,6 +23,8 @@ pub static STRATEGY: StrategyEntry = StrategyEntry {
     build,
     header_line: |_| String::new(),
     report: |_, _, _| Ok(None),
+    files: &[],
+    settings: None,
 };
 
 fn build(start: Start<'_>) -> Result<Search> {

@@ -7,7 +7,7 @@ use vivae_neat::{Genome, NeatError, Population};
 use crate::error::Result;
 use crate::io::bad_input;
 use crate::search::{
-    Needs, RunStrategy, Search, Start, StrategyEntry, TaskFacts, bad_setting, behaviour_line,
+    Needs, RunStrategy, Search, Start, StrategyEntry, StrategyReport, TaskFacts, bad_setting, behaviour_line,
     starting_population, state_of,
 };
 
@@ -24,7 +24,17 @@ pub static STRATEGY: StrategyEntry = StrategyEntry {
     extra_columns: ",archive_size,novelty_threshold",
     build,
     header_line: behaviour_line,
-    report: crate::search::named_report,
+    report: |_, _, _| {
+        Ok(Some(StrategyReport {
+            kind: STRATEGY.kind,
+            heading: "Novelty search".into(),
+            note: "The archive of novel behaviours and its admission threshold, per generation."
+                .into(),
+            ..StrategyReport::default()
+        }))
+    },
+    files: &[],
+    settings: None,
 };
 
 /// Novelty search's settings in a run: the library's, with ρ_min and its

@@ -15,7 +15,7 @@ use crate::config::Config;
 use crate::config::strategy::METRICS;
 use crate::error::Result;
 use crate::io::{bad_input, write_atomic};
-use crate::rundir::files;
+use crate::search::files;
 use crate::search::files::{FrontLine, jsonl};
 use crate::search::{
     FrontFigure, Needs, RunStrategy, Search, Start, StrategyEntry, StrategyFigure, StrategyReport,
@@ -115,6 +115,8 @@ pub static STRATEGY: StrategyEntry = StrategyEntry {
         )
     },
     report,
+    files: &[files::FRONT, files::FRONT_GENOMES],
+    settings: None,
 };
 
 /// The Pareto front as saved with the last checkpoint, and its objectives.

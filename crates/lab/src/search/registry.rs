@@ -4,13 +4,15 @@
 
 use std::path::Path;
 
+use schemars::JsonSchema;
+use serde::{Serialize, de::DeserializeOwned};
 use vivae_neat::{GenomeSpec, Population};
 
 use crate::config::Config;
 use crate::config::strategy::BehaviourKind;
 use crate::error::Result;
 use crate::io::bad_input;
-use crate::search::{DynStrategy, STRATEGIES, Search, StrategyReport};
+use crate::search::{DynStrategy, STRATEGIES, Search, StrategyReport, sections};
 
 /// The box (lower, upper) the behaviour descriptors lie in.
 pub type Bounds = (Vec<f64>, Vec<f64>);
@@ -38,6 +40,94 @@ pub struct StrategyEntry {
     /// What the report of the run in a directory shows of it, read from the
     /// files it wrote (`None`: nothing, as for NEAT); the task's robots given.
     pub report: ReportOf,
+    /// The files it writes into the run directory with each checkpoint
+    /// ([`RunStrategy::write_outputs`](crate::search::RunStrategy::write_outputs)):
+    /// `--force` replaces a run folder holding them, the viewer watches them.
+    pub files: &'static [&'static str],
+    /// Its own settings section `[strategy.NAME]`, if it has one registered
+    /// here ([`Settings::of`]); the built-in ones' sections are fields of
+    /// [`StrategyConfig`](crate::search::StrategyConfig).
+    pub settings: Option<Settings>,
+}
+
+/// A strategy's own settings, `[strategy.NAME]`: its type says the keys,
+/// their defaults ([`Default`]), their documentation (doc comments, through
+/// [`JsonSchema`], for the config reference) and their checks
+/// ([`StrategySettings::validate`]). Register it with [`Settings::of`] in
+/// the strategy's entry; the strategy reads it with
+/// [`StrategyConfig::settings`](crate::search::StrategyConfig::settings).
+pub trait StrategySettings: Default + Serialize + DeserializeOwned + JsonSchema {
+    /// The section's name under `[strategy]` (a TOML key: `one_plus_lambda`).
+    const SECTION: &'static str;
+
+    /// Checks the settings for a task whose evaluations carry `metrics`;
+    /// the error is `key = value: why`, the key within the section.
+    fn validate(&self, _metrics: &[&str]) -> std::result::Result<(), String> {
+        Ok(())
+    }
+}
+
+/// A settings section as an entry registers it: [`Settings::of`] a
+/// [`StrategySettings`] type.
+#[derive(Clone, Copy)]
+pub struct Settings {
+    /// The section's name under `[strategy]`.
+    pub section: &'static str,
+    /// The section as written (keys left out take their defaults) with
+    /// every key; the error names the section and says what is wrong.
+    pub read: fn(&toml::Table) -> std::result::Result<toml::Table, String>,
+    /// Checks the section as written for a task measuring these metrics;
+    /// the error names the key (`strategy.NAME.key = value: why`).
+    pub validate: fn(&toml::Table, &[&str]) -> std::result::Result<(), String>,
+    /// The section's JSON schema (its doc comments, for the config reference).
+    pub schema: fn(&mut schemars::SchemaGenerator) -> schemars::Schema,
+}
+
+impl Settings {
+    /// The registration of settings type `T`.
+    pub const fn of<T: StrategySettings>() -> Settings {
+        Settings {
+            section: T::SECTION,
+            read: read_section::<T>,
+            validate: validate_section::<T>,
+            schema: T::json_schema,
+        }
+    }
+}
+
+/// The settings `T` of a section as written (keys left out take their defaults).
+pub(crate) fn parse_section<T: StrategySettings>(
+    table: &toml::Table,
+) -> std::result::Result<T, String> {
+    toml::Value::Table(table.clone())
+        .try_into()
+        .map_err(|e| format!("strategy.{}: {}", T::SECTION, one_line(&e.to_string())))
+}
+
+/// [`Settings::read`] of `T`.
+fn read_section<T: StrategySettings>(
+    table: &toml::Table,
+) -> std::result::Result<toml::Table, String> {
+    let settings = parse_section::<T>(table)?;
+    match toml::Value::try_from(settings) {
+        Ok(toml::Value::Table(t)) => Ok(t),
+        Ok(_) => Err(format!("strategy.{}: not a table", T::SECTION)),
+        Err(e) => Err(format!("strategy.{}: {e}", T::SECTION)),
+    }
+}
+
+/// [`Settings::validate`] of `T`.
+fn validate_section<T: StrategySettings>(
+    table: &toml::Table,
+    metrics: &[&str],
+) -> std::result::Result<(), String> {
+    (parse_section::<T>(table)?.validate(metrics))
+        .map_err(|why| format!("strategy.{}.{why}", T::SECTION))
+}
+
+/// `text` on one line.
+fn one_line(text: &str) -> String {
+    text.split_whitespace().collect::<Vec<_>>().join(" ")
 }
 
 /// What a strategy's generation 0 is built from.
@@ -74,14 +164,6 @@ where
 /// How a strategy's part of a run's report is read from the run directory.
 pub type ReportOf = fn(&Path, &Config, usize) -> Result<Option<StrategyReport>>;
 
-/// A strategy's report with nothing of its own but its name (novelty search).
-pub(crate) fn named_report(_: &Path, config: &Config, _: usize) -> Result<Option<StrategyReport>> {
-    Ok(Some(StrategyReport {
-        kind: entry_of(config)?.kind,
-        ..StrategyReport::default()
-    }))
-}
-
 impl std::fmt::Debug for StrategyEntry {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("StrategyEntry")
@@ -111,6 +193,15 @@ pub fn register(entry: &'static StrategyEntry) -> std::result::Result<(), String
         return Err(format!(
             "a strategy called '{}' ({}) is registered already",
             entry.kind, entry.variant
+        ));
+    }
+    let section = entry.settings.map(|s| s.section);
+    let holds = |e: &&StrategyEntry| e.settings.is_some_and(|s| Some(s.section) == section);
+    if let Some(name) = section
+        && (sections::FIELDS.contains(&name) || STRATEGIES.iter().chain(added.iter()).any(holds))
+    {
+        return Err(format!(
+            "a strategy's settings section called '{name}' ([strategy.{name}]) is registered already"
         ));
     }
     added.push(entry);

@@ -17,6 +17,11 @@ use crate::search::StrategyEntry;
 pub struct StrategyReport {
     /// The strategy's name (its `strategy.kind`).
     pub kind: &'static str,
+    /// The heading of its section of the report, when it has neither an
+    /// archive nor a front (those are headed by what they hold).
+    pub heading: String,
+    /// What its section shows, under the heading.
+    pub note: String,
     /// A map-elites archive on a 2-D grid, drawn as a heat map.
     pub grid: Option<GridReport>,
     /// Why a map-elites archive is not drawn as a heat map, if it is not.

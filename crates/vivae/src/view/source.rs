@@ -256,20 +256,18 @@ impl Source {
         let Some(dir) = self.run_dir() else {
             return Vec::new();
         };
-        [
-            files::GENERATIONS,
-            files::BEST_GENOMES,
-            files::CHAMPION,
-            files::ARCHIVE_GENOMES,
-            files::FRONT_GENOMES,
-        ]
-        .iter()
-        .map(|n| {
-            std::fs::metadata(dir.join(n))
-                .map(|m| (m.len(), m.modified().ok()))
-                .unwrap_or((0, None))
-        })
-        .collect()
+        // The strategies' own files (an archive, a front) from their entries.
+        let strategies = vivae_lab::search::entries();
+        let own = strategies.iter().flat_map(|e| e.files.iter().copied());
+        [files::GENERATIONS, files::BEST_GENOMES, files::CHAMPION]
+            .into_iter()
+            .chain(own)
+            .map(|n| {
+                std::fs::metadata(dir.join(n))
+                    .map(|m| (m.len(), m.modified().ok()))
+                    .unwrap_or((0, None))
+            })
+            .collect()
     }
 }
 

@@ -22,6 +22,7 @@ mod evaluation_is_thread_count_independent;
 mod every_strategy_resumes_bit_identical;
 mod export_runs_as_vivae_does;
 mod fast_precision_is_pinned_and_portable;
+mod fifth_strategy_is_the_documented_file;
 mod finished_run_and_retrain_neurons_only;
 mod first_hour_output_says_what_to_do_next;
 mod fixed_prey_baseline_and_tournaments_between_runs;

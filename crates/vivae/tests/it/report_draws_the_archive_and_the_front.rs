@@ -30,7 +30,7 @@ fn a_strategy_runs_report_carries_its_archive_or_front_and_rebuilds_the_same() {
         (
             &elites,
             vec![
-                r#""strategy":{"kind":"map-elites","grid":{"lower":[0.0,0.0],"upper":[1.0,1.0],"bins":[10,10]}"#,
+                r#""strategy":{"kind":"map-elites","heading":"","note":"","grid":{"lower":[0.0,0.0],"upper":[1.0,1.0],"bins":[10,10]}"#,
                 r#""columns":["filled_cells","coverage","qd_score","archive_best"]"#,
             ],
             "archive.png",
