@@ -26,7 +26,7 @@ use crate::error::Result;
 use crate::io::bad_input;
 use crate::run::prepare::prepare;
 
-pub use journal::Journal;
+pub use journal::{HEADER as JOURNAL_HEADER, Journal};
 pub use pack::{Options, Pack, RunPack, Table};
 
 /// The packs of no task: the benchmarks of `vivae_neat::benchmarks` and the road.

@@ -23,6 +23,13 @@ use crate::tasks::predator_prey::{Arena, NAME, Outcome, Side};
 /// The header of the tournament's CSV.
 pub const CSV_HEADER: &str = "hunters_run,prey_run,hunters,prey,games,catches,catch_rate,mean_hunter_fitness,mean_catch_step\n";
 
+/// The CSV file `vivae tournament --csv` writes: an existing file is an
+/// earlier one when it opens with [`CSV_HEADER`] (`crate::output_path`).
+pub const CSV_KIND: crate::output_path::OutputKind = crate::output_path::OutputKind {
+    what: "vivae tournament CSV",
+    earlier: |b| b.starts_with(CSV_HEADER.as_bytes()),
+};
+
 /// One line of the tournament: a set of one run's hunters against a set of
 /// another's prey, every hunter against every prey once.
 #[derive(Debug, Clone, PartialEq)]
