@@ -175,6 +175,13 @@ pub fn run(args: DriveImageArgs) -> anyhow::Result<ExitCode> {
     if !Camera::usable(args.scale, args.radius) {
         return Err(bad_input("--scale and --radius must be positive numbers").into());
     }
+    if !args.heading.is_finite() {
+        return Err(bad_input(format!(
+            "--heading {}: expected a finite number of degrees",
+            args.heading
+        ))
+        .into());
+    }
     let outputs: Vec<Output> = [
         args.out.as_ref().map(|p| Output::new(p, "-o", WHEELS_CSV)),
         args.draw_map

@@ -28,7 +28,7 @@ pub struct ReproduceArgs {
     #[arg(long, value_name = "N")]
     pub evaluations: Option<u64>,
     /// Worker threads per run (0 = one per core); results do not depend on it.
-    #[arg(long, value_name = "N", default_value_t = 0)]
+    #[arg(long, value_name = "N", default_value_t = 0, value_parser = super::args::threads)]
     pub threads: usize,
     /// Only these methods (maze packs: novelty, neat, map-elites); repeat or comma-separate.
     #[arg(long, value_name = "KIND", value_delimiter = ',')]
@@ -89,6 +89,13 @@ pub fn run(args: ReproduceArgs) -> anyhow::Result<ExitCode> {
         methods: args.method,
         journal,
     };
+    // Ctrl-C or SIGTERM: the run under way is dropped with its scratch
+    // directory; the journal keeps the finished ones.
+    let _ = ctrlc::set_handler(|| {
+        vivae_lab::reproduce::remove_scratch_dirs();
+        eprintln!("\ninterrupted: the journal keeps the finished runs; the same command continues");
+        std::process::exit(130);
+    });
     let quiet = args.quiet;
     let table = run_pack(&name, &options, &mut |line| {
         if !quiet {
