@@ -314,8 +314,9 @@ mod tests {
             let m = refusal(&json(&p), true);
             assert!(m.contains("inside the run directory"), "{m}");
         }
+        // The run directory itself is a folder, not a file.
         let m = refusal(&json(&run), true);
-        assert!(m.contains("inside the run directory"), "{m}");
+        assert!(m.contains("is a folder"), "{m}");
         fs::remove_dir_all(&dir).unwrap();
     }
 

@@ -261,3 +261,40 @@ fn sizes_counts_and_seeds_past_their_bounds_are_refused_before_any_work() {
     // Nothing was left behind.
     assert!(!dir.join("reproduce-xor.md").exists());
 }
+
+#[test]
+fn a_reproduce_stopped_by_sigterm_leaves_no_scratch_run() {
+    let dir = scratch("hostile-reproduce-term");
+    let child = vivae()
+        .current_dir(&dir)
+        .args([
+            "reproduce",
+            "maze-hard",
+            "--runs",
+            "1",
+            "--threads",
+            "1",
+            "-q",
+        ])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let pid = child.id();
+    let tmp = std::env::temp_dir();
+    let scratch_run = tmp.join(format!("vivae-reproduce-{pid}-0"));
+    wait_for_file(&scratch_run.join("config.toml"), 300);
+    let status = std::process::Command::new("kill")
+        .args(["-TERM", &pid.to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(130), "{err}");
+    assert!(err.contains("the same command continues"), "{err}");
+    let building = tmp.join(format!(".vivae-reproduce-{pid}-0.tmp-{pid}"));
+    for left in [&scratch_run, &building] {
+        assert!(!left.exists(), "{} left behind", left.display());
+    }
+}

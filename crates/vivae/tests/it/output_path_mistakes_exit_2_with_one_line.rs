@@ -167,7 +167,7 @@ fn every_output_flag_refuses_what_vivae_did_not_write_and_replaces_nothing() {
         "--force",
         Some(b"{\"mine\": true}"),
     );
-    ok(&mut vivae()
+    ok(vivae()
         .arg("export")
         .arg(&*run)
         .args(["--format", "json", "--force", "-o"])
@@ -175,7 +175,7 @@ fn every_output_flag_refuses_what_vivae_did_not_write_and_replaces_nothing() {
     assert_ne!(std::fs::read(&notes).unwrap(), b"{\"mine\": true}");
     let model = dir.join("c.onnx");
     for _ in 0..2 {
-        ok(&mut vivae()
+        ok(vivae()
             .arg("export")
             .arg(&*run)
             .args(["--format", "onnx", "-o"])
@@ -183,7 +183,7 @@ fn every_output_flag_refuses_what_vivae_did_not_write_and_replaces_nothing() {
     }
     let c = dir.join("ctl.c");
     for _ in 0..2 {
-        ok(&mut vivae()
+        ok(vivae()
             .arg("export")
             .arg(&*run)
             .args(["--format", "c", "-o"])
@@ -259,7 +259,7 @@ fn every_output_flag_refuses_what_vivae_did_not_write_and_replaces_nothing() {
     }
     let map = dir.join("map.png");
     for _ in 0..2 {
-        ok(&mut vivae()
+        ok(vivae()
             .arg("drive-image")
             .arg(&*run)
             .arg("--draw-map")
