@@ -9,7 +9,7 @@ cd "$(dirname "$0")/.."
 seconds="${1:-1800}"
 shift || true
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(scenario_loader config_parser genome_reader checkpoint_reader rundir_reader view_messages python_json)
+[ ${#targets[@]} -gt 0 ] || targets=(scenario_loader config_parser genome_reader checkpoint_reader rundir_reader view_messages python_json image_reader)
 shared=../shared/vivae-scenarios
 
 # Seed corpora, rebuilt from the project's files (never committed).
@@ -45,6 +45,10 @@ done
 printf 'generation,rank,fitness\n1,1,0.5\n1,2,0.25\n2,1,0.75\n' > fuzz/corpus/rundir_reader/rows-population.csv
 printf 'generation,seconds,robot_steps_per_second\n1,0.5,1000\n2,0.25,2000\n' > fuzz/corpus/rundir_reader/rows-timing.csv
 printf '3\n' > fuzz/corpus/rundir_reader/rows-drawn.txt
+# PNG frames and maps: the test corpus's pictures, when there are any.
+mkdir -p fuzz/corpus/image_reader
+find crates/vivae/tests/data docs -name '*.png' -size -256k 2>/dev/null | head -n 20 |
+    while read -r f; do cp "$f" "fuzz/corpus/image_reader/seed-$(basename "$f")"; done
 # Viewer messages: one message a line, every kind the page sends.
 mkdir -p fuzz/corpus/view_messages
 printf '%s\n' '{"type":"play"}' '{"type":"step","n":30}' '{"type":"select","robot":1}' \

@@ -14,6 +14,7 @@ use vivae_lab::controller::substrate::PolarGrid;
 use vivae_lab::export::choose::{Chosen, Pick, choose};
 use vivae_lab::export::image::{Camera, Image, ImageSensors, drive_frames};
 use vivae_lab::export::{Exported, Format, write};
+use vivae_lab::output_path::{check_outputs, export_outputs};
 use vivae_lab::search::files::Member;
 use vivae_neat::Precision;
 use vivae_sim::DVec2;
@@ -60,9 +61,12 @@ fn chosen(
 
 /// Writes a run's controller (as `vivae export`): `format` is "onnx", "c" or
 /// "json", `precision` "exact" or "fast" (default: the run's); returns the
-/// files written (C: the .c file and its .h header).
+/// files written (C: the .c file and its .h header). `out` follows the CLI's
+/// `-o` rules (`vivae_lab::output_path`): its folder must exist and not be a
+/// run directory, and an existing file is replaced only when it is an
+/// earlier export of the format, or with `force=True`.
 #[pyfunction]
-#[pyo3(signature = (source, format, out, *, generation=None, elite=None, front=None, sensors=None, neurons=None, precision=None))]
+#[pyo3(signature = (source, format, out, *, generation=None, elite=None, front=None, sensors=None, neurons=None, precision=None, force=false))]
 #[allow(clippy::too_many_arguments)]
 pub fn export(
     source: PathBuf,
@@ -74,8 +78,11 @@ pub fn export(
     sensors: Option<&str>,
     neurons: Option<&str>,
     precision: Option<&str>,
+    force: bool,
 ) -> PyResult<Vec<String>> {
     let format: Format = format.parse().map_err(PyValueError::new_err)?;
+    let outputs = export_outputs(format, &out, "out=").map_err(errors::lab)?;
+    check_outputs(&outputs, force).map_err(errors::lab)?;
     let c = chosen(
         &source,
         (generation, elite, front),

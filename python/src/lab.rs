@@ -425,17 +425,20 @@ pub fn evolve<'py>(
 fn own_driver_run<'py>(
     py: Python<'py>,
     dir: &Path,
-    run: impl FnOnce(&vivae_lab::tasks::Session<'_>) -> vivae_lab::Result<String> + Send,
+    run: impl FnOnce(&vivae_lab::tasks::Session<'_>) -> vivae_lab::Result<vivae_lab::tasks::Stopped>
+    + Send,
 ) -> PyResult<Bound<'py, PyDict>> {
     let stop = AtomicBool::new(false);
     let quiet = |_: &str| {};
     let line = py
         .detach(|| {
-            let line = run(&vivae_lab::tasks::Session {
+            let stopped = run(&vivae_lab::tasks::Session {
                 interrupted: &stop,
                 say: &quiet,
                 players: None,
             })?;
+            // Nothing sets `stop`: a run here stops only at its end.
+            let line = stopped.line().unwrap_or_default().to_string();
             // Its figures and report.html, as the CLI draws them when a run stops.
             if let Some(tools) = vivae::tasks::of_run(dir) {
                 (tools.report)(dir)?;

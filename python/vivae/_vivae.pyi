@@ -337,6 +337,7 @@ def export(
     sensors: str | None = None,
     neurons: str | None = None,
     precision: str | None = None,
+    force: bool = False,
 ) -> list[str]: ...
 def record_episode(
     source: _Path,

@@ -34,6 +34,7 @@ pub mod controller;
 pub mod error;
 pub mod export;
 pub mod io;
+pub mod output_path;
 pub mod polar;
 pub mod reproduce;
 pub mod run;

@@ -32,6 +32,10 @@ pub struct Image {
     pub rgba: Vec<u8>,
 }
 
+/// Most pixels an image read may have (by its header, checked before
+/// decoding): as many as vivae draws at most (`vivae_sim::draw::MAX_PIXELS`).
+pub const MAX_IMAGE_PIXELS: u64 = vivae_sim::draw::MAX_PIXELS as u64;
+
 impl Image {
     /// Decodes a PNG (any colour type and depth); `what` names it in errors.
     pub fn from_png(bytes: &[u8], what: &str) -> Result<Image> {
@@ -39,6 +43,14 @@ impl Image {
         let mut decoder = png::Decoder::new(std::io::Cursor::new(bytes));
         decoder.set_transformations(png::Transformations::EXPAND | png::Transformations::STRIP_16);
         let mut reader = decoder.read_info().map_err(bad)?;
+        // Checked from the header before anything is allocated: a few bytes
+        // may claim 100000 × 100000 pixels.
+        let (width, height) = (reader.info().width, reader.info().height);
+        if u64::from(width) * u64::from(height) > MAX_IMAGE_PIXELS {
+            return Err(bad_input(format!(
+                "{what}: its header says {width} x {height} pixels, more than the {MAX_IMAGE_PIXELS} an image may have"
+            )));
+        }
         let size = (reader.output_buffer_size())
             .ok_or_else(|| bad_input(format!("{what}: image too large")))?;
         let mut buf = vec![0; size];

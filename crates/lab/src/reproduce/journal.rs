@@ -16,7 +16,7 @@ use crate::error::{Error, Result};
 use crate::io::{fnv1a, io_reason, read_regular_text, write_atomic};
 
 /// First line of a journal file.
-const HEADER: &str = "# vivae reproduce journal: config checksum, run, outcome";
+pub const HEADER: &str = "# vivae reproduce journal: config checksum, run, outcome";
 /// Largest journal read (a million runs' lines).
 const MAX_BYTES: u64 = 128 << 20;
 

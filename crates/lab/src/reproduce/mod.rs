@@ -26,7 +26,7 @@ use crate::error::Result;
 use crate::io::bad_input;
 use crate::run::prepare::prepare;
 
-pub use journal::Journal;
+pub use journal::{HEADER as JOURNAL_HEADER, Journal};
 pub use pack::{Options, Pack, RunPack, Table};
 
 /// The packs of no task: the benchmarks of `vivae_neat::benchmarks` and the road.
@@ -57,6 +57,12 @@ pub fn find(name: &str) -> Result<&'static Pack> {
     })
 }
 
+/// Most runs a method of a pack runs (`--runs`).
+pub const MAX_RUNS: usize = 10_000;
+
+/// Largest first seed: run `k < MAX_RUNS` has seed `seed + k`, which never wraps.
+pub const MAX_SEED: u64 = u64::MAX - MAX_RUNS as u64;
+
 /// Runs pack `name` with `options`; `progress` gets a line per finished run.
 pub fn run(name: &str, options: &Options, progress: &mut dyn FnMut(&str)) -> Result<Table> {
     let pack = find(name)?;
@@ -64,6 +70,17 @@ pub fn run(name: &str, options: &Options, progress: &mut dyn FnMut(&str)) -> Res
         return Err(bad_input(
             "reproduce: --runs and --evaluations must be at least 1",
         ));
+    }
+    if let Some(runs) = options.runs.filter(|&n| n > MAX_RUNS) {
+        return Err(bad_input(format!(
+            "reproduce: --runs {runs}: at most {MAX_RUNS} runs a method"
+        )));
+    }
+    if options.seed > MAX_SEED {
+        return Err(bad_input(format!(
+            "reproduce: --seed {}: at most {MAX_SEED} (run k has seed SEED + k, which may not pass 2^64 - 1)",
+            options.seed
+        )));
     }
     if let Some(m) = (options.methods.iter()).find(|m| !pack.methods.contains(&m.as_str())) {
         return Err(bad_input(if pack.methods.is_empty() {
@@ -101,23 +118,60 @@ pub(crate) fn solved_at_journaled(
 
 /// What one run gave: the evaluations up to its first solver, if it solved.
 fn solved_at(config: Config) -> Result<Option<u64>> {
-    let dir = scratch_dir();
-    let result = (|| {
-        let mut run = prepare(config, true)?.create(&dir, true)?;
-        run.run(&AtomicBool::new(false), |_| {})?;
-        Ok(run.target_progress().and_then(|p| p.solved_at))
-    })();
-    // The scratch run directory is ours: written by `create` above.
-    let _ = std::fs::remove_dir_all(&dir);
-    result
+    let dir = ScratchDir::new();
+    let mut run = prepare(config, true)?.create(&dir.0, true)?;
+    run.run(&AtomicBool::new(false), |_| {})?;
+    Ok(run.target_progress().and_then(|p| p.solved_at))
 }
 
-/// A fresh scratch run directory for one run of a pack.
-pub(crate) fn scratch_dir() -> PathBuf {
-    use std::sync::atomic::{AtomicU64, Ordering};
-    static NEXT: AtomicU64 = AtomicU64::new(0);
-    let k = NEXT.fetch_add(1, Ordering::SeqCst);
-    std::env::temp_dir().join(format!("vivae-reproduce-{}-{k}", std::process::id()))
+/// A scratch run directory for one run of a pack, removed when dropped
+/// (also on an error or a panic) or by [`remove_scratch_dirs`] (a signal).
+pub(crate) struct ScratchDir(pub(crate) PathBuf);
+
+/// The scratch directories of the runs under way.
+static LIVE: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
+
+impl ScratchDir {
+    /// A fresh name in the temporary folder (the run creates it).
+    pub(crate) fn new() -> ScratchDir {
+        use std::sync::atomic::{AtomicU64, Ordering};
+        static NEXT: AtomicU64 = AtomicU64::new(0);
+        let k = NEXT.fetch_add(1, Ordering::SeqCst);
+        let dir = std::env::temp_dir().join(format!("vivae-reproduce-{}-{k}", std::process::id()));
+        LIVE.lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .push(dir.clone());
+        ScratchDir(dir)
+    }
+}
+
+impl Drop for ScratchDir {
+    fn drop(&mut self) {
+        remove_scratch(&self.0);
+        let mut live = LIVE.lock().unwrap_or_else(|e| e.into_inner());
+        live.retain(|d| *d != self.0);
+    }
+}
+
+/// Removes a scratch run directory and the folder it is built in before
+/// its first checkpoint (`.NAME.tmp-PID`): both are ours, written by
+/// [`crate::run::prepare::Prepared::create`].
+fn remove_scratch(dir: &std::path::Path) {
+    let _ = std::fs::remove_dir_all(dir);
+    if let (Some(parent), Some(name)) = (dir.parent(), dir.file_name()) {
+        let building = format!(".{}.tmp-{}", name.to_string_lossy(), std::process::id());
+        let _ = std::fs::remove_dir_all(parent.join(building));
+    }
+}
+
+/// Removes the scratch directories of the runs under way: what the program
+/// does when Ctrl-C or SIGTERM stops `vivae reproduce` (the journal keeps
+/// the finished runs; running the same command again continues).
+pub fn remove_scratch_dirs() {
+    let live = LIVE.lock().unwrap_or_else(|e| e.into_inner());
+    for dir in live.iter() {
+        remove_scratch(dir);
+    }
 }
 
 /// Mean, sample standard deviation and median of `xs` (none when empty).

@@ -10,7 +10,7 @@ use std::sync::atomic::AtomicBool;
 use crate::config::Config;
 use crate::controller::polar::PolarGrid;
 use crate::error::{Error, Result};
-use crate::reproduce::{Options, Pack, Table, scratch_dir};
+use crate::reproduce::{Options, Pack, ScratchDir, Table};
 use crate::run::prepare::prepare;
 use crate::tasks::driving::episode::Episode;
 use vivae_neat::Genome;
@@ -64,18 +64,13 @@ fn one_seed(seed: u64, generations: u32, threads: usize) -> Result<Seed> {
     config.run.threads = threads;
     // The scenario as given (the run's copy is relative to its directory).
     let maps = crate::tasks::maps::load(&config)?;
-    let dir = scratch_dir();
-    let result = (|| {
-        let mut run = prepare(config, true)?.create(&dir, true)?;
-        run.run(&AtomicBool::new(false), |_| {})?;
-        let champion = run
-            .champion()
-            .ok_or_else(|| Error::Invalid("road: the run has no champion".into()))?;
-        resampled(run.config(), &maps[0].loaded.scenario, &champion.genome)
-    })();
-    // The scratch run directory is ours: written by `create` above.
-    let _ = std::fs::remove_dir_all(&dir);
-    result
+    let dir = ScratchDir::new();
+    let mut run = prepare(config, true)?.create(&dir.0, true)?;
+    run.run(&AtomicBool::new(false), |_| {})?;
+    let champion = run
+        .champion()
+        .ok_or_else(|| Error::Invalid("road: the run has no champion".into()))?;
+    resampled(run.config(), &maps[0].loaded.scenario, &champion.genome)
 }
 
 /// The champion's episode recorded at the run's resolution, and its fitness

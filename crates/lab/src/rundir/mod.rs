@@ -68,6 +68,15 @@ pub mod files {
     pub const DRAWN: &str = "drawn-generations.txt";
 }
 
+/// Whether `dir` is a run directory: it holds `config.toml` and a
+/// checkpoint (`checkpoints/`, or `checkpoint.json` for a task on a driver
+/// of its own). Outputs the user names are refused inside one
+/// ([`crate::output_path`]): its files are the run's.
+pub fn is_run_dir(dir: &Path) -> bool {
+    dir.join(files::CONFIG).is_file()
+        && (dir.join(files::CHECKPOINTS).is_dir() || dir.join("checkpoint.json").is_file())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -73,16 +73,45 @@ pub struct Session<'a> {
     pub players: Option<&'a (dyn Any + Sync)>,
 }
 
+/// How a task's own driver stopped: its run's machine-readable summary
+/// line, or where it was interrupted (its checkpoint written), or that the
+/// run it was asked to resume had nothing left to do.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Stopped {
+    /// The run reached its last generation: the summary line.
+    Finished(String),
+    /// [`Session::interrupted`] stopped it after this many generations, each
+    /// checkpointed: `vivae resume` continues it.
+    Interrupted(u32),
+    /// A resumed run that was already finished.
+    AlreadyFinished {
+        /// What to say: that it is finished, and how to extend it.
+        note: String,
+        /// Its summary line, as when it finished.
+        line: String,
+    },
+}
+
+impl Stopped {
+    /// The summary line of a finished run (none for an interrupted one).
+    pub fn line(&self) -> Option<&str> {
+        match self {
+            Stopped::Finished(line) | Stopped::AlreadyFinished { line, .. } => Some(line),
+            Stopped::Interrupted(_) => None,
+        }
+    }
+}
+
 /// The driver of a task that runs on its own: it creates, resumes and runs
-/// its run directories and returns the run's machine-readable summary line.
+/// its run directories and says how it stopped.
 #[derive(Debug, Clone, Copy)]
 pub struct OwnDriver {
     /// Creates a run of `config` in `dir` (replacing a run there with
     /// `force`) and runs it to its end or an interruption.
     pub evolve:
-        fn(dir: &Path, config: Config, force: bool, session: &Session<'_>) -> Result<String>,
+        fn(dir: &Path, config: Config, force: bool, session: &Session<'_>) -> Result<Stopped>,
     /// Resumes the run in `dir`, to `generations` generations in all when given.
-    pub resume: fn(dir: &Path, generations: Option<u32>, session: &Session<'_>) -> Result<String>,
+    pub resume: fn(dir: &Path, generations: Option<u32>, session: &Session<'_>) -> Result<Stopped>,
 }
 
 /// The driver of the run in `dir`, when its task (in its `config.toml`) runs on its own.

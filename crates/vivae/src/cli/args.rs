@@ -43,9 +43,22 @@ pub struct Wiring {
 /// The evaluation thread pool.
 #[derive(Args, Debug, Default, Clone, Copy)]
 pub struct Threads {
-    /// Evaluation threads (0 = one per core); results do not depend on it.
-    #[arg(long, value_name = "N")]
+    /// Evaluation threads (0 = one per core, at most 1024); results do not depend on it.
+    #[arg(long, value_name = "N", value_parser = threads)]
     pub threads: Option<usize>,
+}
+
+/// Most worker threads a command starts (as a config's `run.threads`).
+pub const MAX_THREADS: usize = 1024;
+
+/// A `--threads` value: a whole number up to [`MAX_THREADS`], refused
+/// before any thread is started.
+pub fn threads(text: &str) -> Result<usize, String> {
+    let n: usize = (text.parse()).map_err(|_| "expected a whole number".to_string())?;
+    if n > MAX_THREADS {
+        return Err(format!("at most {MAX_THREADS}"));
+    }
+    Ok(n)
 }
 
 /// An episode's length and robots (`evolve`'s wording; `replay` rewords them).

@@ -55,7 +55,7 @@ pub fn drive(
 }
 
 /// Sets `flag` on Ctrl-C; a second Ctrl-C while the generation finishes aborts at once.
-fn install_ctrlc(flag: &Arc<AtomicBool>) {
+pub(crate) fn install_ctrlc(flag: &Arc<AtomicBool>) {
     let flag = flag.clone();
     let _ = ctrlc::set_handler(move || {
         if flag.swap(true, Ordering::SeqCst) {

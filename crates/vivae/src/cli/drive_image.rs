@@ -12,6 +12,7 @@ use vivae_lab::export::choose::choose;
 use vivae_lab::export::image::{Camera, Image, ImageSensors, drive_frames};
 use vivae_lab::export::{Exported, StepNet};
 use vivae_lab::io::bad_input;
+use vivae_lab::output_path::{Output, OutputKind, check_outputs};
 use vivae_sim::DVec2;
 
 use super::args::{GenomeChoice, Resolution};
@@ -53,13 +54,73 @@ pub struct DriveImageArgs {
     pub genome: GenomeChoice,
     #[command(flatten)]
     pub resolution: Resolution,
-    /// Write the CSV here instead of printing it.
+    /// Write the CSV here instead of printing it (its folder must exist and
+    /// not be a run directory).
     #[arg(short, long, value_name = "FILE")]
     pub out: Option<PathBuf>,
+    /// Replace an existing -o or --draw-map file that is not an earlier one
+    /// of drive-image's.
+    #[arg(long)]
+    pub force: bool,
     /// Arithmetic of the controller's step (default: the run's): exact (f64)
     /// or fast (f32), as `vivae export --precision` writes it.
     #[arg(long, value_name = "exact|fast")]
     pub precision: Option<vivae_neat::Precision>,
+}
+
+/// The CSV `drive-image -o` writes: an earlier one opens with its header.
+const WHEELS_CSV: OutputKind = OutputKind {
+    what: "vivae drive-image CSV",
+    earlier: |b| b.starts_with(CSV_HEADER.as_bytes()),
+};
+
+/// The first line of the wheel commands' CSV.
+const CSV_HEADER: &str = "frame,left,right\n";
+
+/// The text chunk that marks a map `--draw-map` wrote (after the PNG's
+/// signature and its IHDR chunk, 33 bytes in).
+const MAP_MARK: &[u8] = b"Software\0vivae drive-image --draw-map";
+
+/// The PNG `--draw-map` writes, recognised by [`MAP_MARK`].
+const MAP_PNG: OutputKind = OutputKind {
+    what: "vivae drive-image --draw-map PNG",
+    earlier: |b| {
+        b.get(37..)
+            .is_some_and(|c| c.starts_with(b"tEXt") && c[4..].starts_with(MAP_MARK))
+    },
+};
+
+/// `png` with a `tEXt` chunk holding [`MAP_MARK`] after its IHDR chunk.
+fn marked(png: Vec<u8>) -> Vec<u8> {
+    const AFTER_IHDR: usize = 8 + 25;
+    if png.len() < AFTER_IHDR {
+        return png;
+    }
+    let mut chunk = Vec::with_capacity(MAP_MARK.len() + 12);
+    chunk.extend_from_slice(&(MAP_MARK.len() as u32).to_be_bytes());
+    chunk.extend_from_slice(b"tEXt");
+    chunk.extend_from_slice(MAP_MARK);
+    chunk.extend_from_slice(&crc32(&chunk[4..]).to_be_bytes());
+    let mut out = png[..AFTER_IHDR].to_vec();
+    out.extend_from_slice(&chunk);
+    out.extend_from_slice(&png[AFTER_IHDR..]);
+    out
+}
+
+/// The CRC-32 (ISO 3309, as PNG's chunks use) of `bytes`.
+fn crc32(bytes: &[u8]) -> u32 {
+    let mut crc = !0u32;
+    for &b in bytes {
+        crc ^= u32::from(b);
+        for _ in 0..8 {
+            crc = if crc & 1 == 1 {
+                (crc >> 1) ^ 0xEDB8_8320
+            } else {
+                crc >> 1
+            };
+        }
+    }
+    !crc
 }
 
 /// Reads a PNG file.
@@ -114,6 +175,23 @@ pub fn run(args: DriveImageArgs) -> anyhow::Result<ExitCode> {
     if !Camera::usable(args.scale, args.radius) {
         return Err(bad_input("--scale and --radius must be positive numbers").into());
     }
+    if !args.heading.is_finite() {
+        return Err(bad_input(format!(
+            "--heading {}: expected a finite number of degrees",
+            args.heading
+        ))
+        .into());
+    }
+    let outputs: Vec<Output> = [
+        args.out.as_ref().map(|p| Output::new(p, "-o", WHEELS_CSV)),
+        args.draw_map
+            .as_ref()
+            .map(|p| Output::new(p, "--draw-map", MAP_PNG)),
+    ]
+    .into_iter()
+    .flatten()
+    .collect();
+    check_outputs(&outputs, args.force)?;
     let pick = args.genome.pick();
     let chosen = choose(
         &args.source,
@@ -126,7 +204,7 @@ pub fn run(args: DriveImageArgs) -> anyhow::Result<ExitCode> {
         let svg = vivae_lab::export::frames::ground_svg(chosen.episode.world(), true)?;
         let png = vivae_sim::draw::svg_to_png(&svg, args.scale)
             .map_err(|e| bad_input(format!("{}: {e}", path.display())))?;
-        vivae_lab::io::write_atomic(path, &png)?;
+        vivae_lab::io::write_atomic(path, &marked(png))?;
         eprintln!("wrote {}", path.display());
         return Ok(ExitCode::SUCCESS);
     }
@@ -169,7 +247,7 @@ pub fn run(args: DriveImageArgs) -> anyhow::Result<ExitCode> {
             drive_frames(&net, &sensors, cameras)?
         }
     };
-    let mut csv = String::from("frame,left,right\n");
+    let mut csv = String::from(CSV_HEADER);
     for (i, [l, r]) in wheels.iter().enumerate() {
         let _ = writeln!(csv, "{i},{l},{r}");
     }

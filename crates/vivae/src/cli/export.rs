@@ -8,6 +8,7 @@ use std::process::ExitCode;
 use clap::Args;
 use vivae_lab::export::choose::choose;
 use vivae_lab::export::{Exported, Format, write};
+use vivae_lab::output_path::{check_outputs, export_outputs};
 
 use super::args::{GenomeChoice, Resolution};
 
@@ -23,9 +24,15 @@ pub struct ExportArgs {
     /// The artifact: onnx (opset 17; f64, f32 in fast precision), c (a .c file and its .h) or json.
     #[arg(long, value_name = "onnx|c|json")]
     pub format: Format,
-    /// The file to write (c: the header goes beside it, ending in .h).
+    /// The file to write (c: the header goes beside it, ending in .h). Its
+    /// folder must exist and not be a run directory; an existing file is
+    /// replaced only when it is an earlier vivae export (or with --force).
     #[arg(short, long, value_name = "FILE")]
     pub out: PathBuf,
+    /// Replace an existing file at --out (or its header) that is not an
+    /// earlier vivae export of this format.
+    #[arg(long)]
+    pub force: bool,
     /// Arithmetic of the exported step (default: the run's): exact (f64) or
     /// fast (f32, vivae's --precision fast step: the CPPN decoded in f32, C
     /// in float for a processor with a single-precision FPU). Dense polar
@@ -36,6 +43,8 @@ pub struct ExportArgs {
 
 /// Runs `vivae export`.
 pub fn run(args: ExportArgs) -> anyhow::Result<ExitCode> {
+    let outputs = export_outputs(args.format, &args.out, "-o")?;
+    check_outputs(&outputs, args.force)?;
     let chosen = choose(
         &args.source,
         args.genome.pick(),
@@ -44,9 +53,6 @@ pub fn run(args: ExportArgs) -> anyhow::Result<ExitCode> {
         args.precision,
     )?;
     let exported = Exported::new(&chosen.episode, &chosen.controller, &chosen.description);
-    if let Some(dir) = args.out.parent().filter(|d| !d.as_os_str().is_empty()) {
-        vivae_lab::io::create_dirs_for(dir, &args.out)?;
-    }
     let written = write(&exported, args.format, &args.out)?;
     let net = &exported.net;
     println!(

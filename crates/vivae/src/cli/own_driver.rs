@@ -11,7 +11,7 @@ use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 
 use vivae_lab::config::Config;
-use vivae_lab::tasks::{OwnDriver, Session, entry_of_run};
+use vivae_lab::tasks::{OwnDriver, Session, Stopped, entry_of_run};
 
 use super::mpi_job::{OwnRun, join_mpi_own_driver, launched_by_mpi, own_driver_players};
 
@@ -32,10 +32,10 @@ pub fn evolve(
         }
     }
     let task = config.experiment.task.name().to_string();
-    in_session(Some(&task), quiet, threads, interrupted, |session| {
+    let stopped = in_session(Some(&task), quiet, threads, interrupted, |session| {
         (driver.evolve)(dir, config, force, session)
     })?;
-    report(dir, quiet)
+    conclude(dir, stopped, quiet)
 }
 
 /// Resumes the run in `dir` on `driver`.
@@ -56,10 +56,37 @@ pub fn resume(
         }
     }
     let task = entry_of_run(dir).map(|e| e.name);
-    in_session(task, quiet, threads, interrupted, |session| {
+    let stopped = in_session(task, quiet, threads, interrupted, |session| {
         (driver.resume)(dir, generations, session)
     })?;
-    report(dir, quiet)
+    conclude(dir, stopped, quiet)
+}
+
+/// The end of a run on its own driver, as [`super::drive`] ends one: a
+/// finished run's report; an interrupted one's figures so far, the line
+/// that says how to resume it and exit code 130; a finished run asked to
+/// resume says so (its report drawn if missing).
+fn conclude(dir: &Path, stopped: Stopped, quiet: bool) -> anyhow::Result<ExitCode> {
+    match stopped {
+        Stopped::Finished(_) => report(dir, quiet),
+        Stopped::Interrupted(done) => {
+            if done > 0 {
+                report(dir, true)?;
+            }
+            eprintln!(
+                "interrupted after generation {done}; checkpoint written. Resume with: vivae resume {}",
+                dir.display()
+            );
+            Ok(ExitCode::from(130))
+        }
+        Stopped::AlreadyFinished { note, .. } => {
+            eprintln!("{note}");
+            if !dir.join(vivae_lab::rundir::files::REPORT).is_file() {
+                report(dir, quiet)?;
+            }
+            Ok(ExitCode::SUCCESS)
+        }
+    }
 }
 
 /// Draws the figures and `report.html` of a run that has stopped, when its
@@ -76,7 +103,8 @@ fn report(dir: &Path, quiet: bool) -> anyhow::Result<ExitCode> {
 }
 
 /// Runs `work` in a session that says its progress on stderr unless
-/// `quiet`, then prints its summary line. On rank 0 of an MPI job the
+/// `quiet`, with Ctrl-C and SIGTERM asking it to stop after the generation;
+/// prints a finished run's summary line. On rank 0 of an MPI job the
 /// session's batches are played across the job's ranks by the players of
 /// `task` (rank 0 on `threads` threads).
 fn in_session(
@@ -84,8 +112,9 @@ fn in_session(
     quiet: bool,
     threads: usize,
     interrupted: &Arc<AtomicBool>,
-    work: impl FnOnce(&Session<'_>) -> vivae_lab::Result<String>,
-) -> anyhow::Result<ExitCode> {
+    work: impl FnOnce(&Session<'_>) -> vivae_lab::Result<Stopped>,
+) -> anyhow::Result<Stopped> {
+    super::drive::install_ctrlc(interrupted);
     let say = move |line: &str| {
         if !quiet {
             eprintln!("{line}");
@@ -97,9 +126,12 @@ fn in_session(
         say: &say,
         players: players.as_deref(),
     };
-    let line = work(&session);
+    let stopped = work(&session);
     // The job's traffic line (unless quiet) before the summary line.
     drop(players);
-    println!("{}", line?);
-    Ok(ExitCode::SUCCESS)
+    let stopped = stopped?;
+    if let Stopped::Finished(line) = &stopped {
+        println!("{line}");
+    }
+    Ok(stopped)
 }

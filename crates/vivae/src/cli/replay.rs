@@ -113,6 +113,13 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<ExitCode> {
     }
     let scenario = load_scenario(path.as_deref())?;
     let experiment = Episode::new(&config, &scenario.scenario).map_err(vivae_lab::Error::from)?;
+    if let Some(seed) = args.placement_seed.filter(|_| !experiment.varies()) {
+        return Err(bad_input(format!(
+            "--placement-seed {seed}: {} places no obstacles or traffic at random, so no seed changes the replay",
+            scenario.scenario.source
+        ))
+        .into());
+    }
     if experiment.varies() {
         eprintln!(
             "{}: obstacles and traffic at placement {}",
@@ -157,6 +164,13 @@ fn replay_without_figures(
     champion: &rundir::Champion,
     mut config: Config,
 ) -> anyhow::Result<ExitCode> {
+    if let Some(seed) = args.placement_seed {
+        return Err(bad_input(format!(
+            "--placement-seed {seed}: a {} run places nothing at random, so no seed changes the replay",
+            config.experiment.task.name()
+        ))
+        .into());
+    }
     apply_overrides(&mut config, &args.overrides(args.episode.robots))?;
     let maps = vivae_lab::tasks::maps::load(&config)?;
     let task = vivae_lab::tasks::build(&config, &maps)?;

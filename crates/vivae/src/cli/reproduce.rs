@@ -6,6 +6,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::Args;
+use vivae_lab::output_path::{Output, REPRODUCE_JOURNAL, REPRODUCE_TABLE, check_outputs};
 use vivae_lab::reproduce::{Options, packs, run as run_pack};
 
 /// Options of `vivae reproduce`.
@@ -27,7 +28,7 @@ pub struct ReproduceArgs {
     #[arg(long, value_name = "N")]
     pub evaluations: Option<u64>,
     /// Worker threads per run (0 = one per core); results do not depend on it.
-    #[arg(long, value_name = "N", default_value_t = 0)]
+    #[arg(long, value_name = "N", default_value_t = 0, value_parser = super::args::threads)]
     pub threads: usize,
     /// Only these methods (maze packs: novelty, neat, map-elites); repeat or comma-separate.
     #[arg(long, value_name = "KIND", value_delimiter = ',')]
@@ -38,6 +39,10 @@ pub struct ReproduceArgs {
     /// The journal of finished runs, which a run again skips (default: the table's name with .runs.tsv).
     #[arg(long, value_name = "FILE", conflicts_with = "no_journal")]
     pub journal: Option<PathBuf>,
+    /// Replace an existing -o or --journal file that is not an earlier
+    /// table or journal of vivae reproduce.
+    #[arg(long)]
+    pub force: bool,
     /// Keep no journal: every run is run.
     #[arg(long)]
     pub no_journal: bool,
@@ -58,12 +63,23 @@ pub fn run(args: ReproduceArgs) -> anyhow::Result<ExitCode> {
         return Ok(ExitCode::SUCCESS);
     }
     let name = args.name.unwrap_or_default();
-    let out = (args.out).unwrap_or_else(|| PathBuf::from(format!("reproduce-{name}.md")));
-    let journal = match (args.no_journal, args.journal) {
-        (true, _) => None,
-        (false, Some(j)) => Some(j),
-        (false, None) => Some(out.with_extension("runs.tsv")),
+    let out_flag = if args.out.is_some() {
+        "-o"
+    } else {
+        "the table"
     };
+    let out = (args.out).unwrap_or_else(|| PathBuf::from(format!("reproduce-{name}.md")));
+    let (journal, journal_flag) = match (args.no_journal, args.journal) {
+        (true, _) => (None, ""),
+        (false, Some(j)) => (Some(j), "--journal"),
+        (false, None) => (Some(out.with_extension("runs.tsv")), "the journal"),
+    };
+    vivae_lab::reproduce::find(&name)?;
+    let mut outputs = vec![Output::new(&out, out_flag, REPRODUCE_TABLE)];
+    if let Some(j) = &journal {
+        outputs.push(Output::new(j, journal_flag, REPRODUCE_JOURNAL));
+    }
+    check_outputs(&outputs, args.force)?;
     let options = Options {
         runs: args.runs,
         seed: args.seed,
@@ -73,6 +89,13 @@ pub fn run(args: ReproduceArgs) -> anyhow::Result<ExitCode> {
         methods: args.method,
         journal,
     };
+    // Ctrl-C or SIGTERM: the run under way is dropped with its scratch
+    // directory; the journal keeps the finished ones.
+    let _ = ctrlc::set_handler(|| {
+        vivae_lab::reproduce::remove_scratch_dirs();
+        eprintln!("\ninterrupted: the journal keeps the finished runs; the same command continues");
+        std::process::exit(130);
+    });
     let quiet = args.quiet;
     let table = run_pack(&name, &options, &mut |line| {
         if !quiet {

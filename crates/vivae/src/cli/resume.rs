@@ -38,6 +38,13 @@ pub struct ResumeArgs {
 pub fn run(args: ResumeArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode> {
     let quiet = args.quiet.quiet;
     if let Some(driver) = vivae_lab::tasks::own_driver_of_run(&args.run_dir) {
+        if let Some(p) = args.precision {
+            let task = vivae_lab::tasks::entry_of_run(&args.run_dir).map_or("", |e| e.name);
+            return Err(vivae_lab::io::bad_input(format!(
+                "--precision {p}: a {task} run resumes as it was run (it has no choice of precision); leave --precision out"
+            ))
+            .into());
+        }
         let generations = args.generations.generations;
         return super::own_driver::resume(driver, &args.run_dir, generations, quiet, interrupted);
     }

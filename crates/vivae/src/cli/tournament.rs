@@ -7,6 +7,8 @@ use std::process::ExitCode;
 
 use clap::Args;
 
+use vivae_lab::output_path::Output;
+
 use super::args::Threads;
 
 /// Options of `vivae tournament`.
@@ -18,9 +20,13 @@ pub struct TournamentArgs {
     /// Another (e.g. a held-out seed's, or a fixed-prey baseline; may be RUN_A itself).
     #[arg(value_name = "RUN_B")]
     pub b: PathBuf,
-    /// Also write the table as CSV to this file.
+    /// Also write the table as CSV to this file (its folder must exist and
+    /// not be a run directory).
     #[arg(long, value_name = "FILE")]
     pub csv: Option<PathBuf>,
+    /// Replace an existing --csv file that is not an earlier tournament CSV.
+    #[arg(long)]
+    pub force: bool,
     #[command(flatten)]
     pub threads: Threads,
 }
@@ -30,7 +36,11 @@ pub fn run(args: TournamentArgs) -> anyhow::Result<ExitCode> {
     let Some(tournament) = crate::tasks::tournament_for(&args.a) else {
         return Err(vivae_lab::io::bad_input("no task plays tournaments").into());
     };
-    let tables = tournament(&args.a, &args.b, args.threads.threads.unwrap_or(0))?;
+    if let Some(path) = &args.csv {
+        let csv = Output::new(path, "--csv", tournament.csv);
+        vivae_lab::output_path::check_output(&csv, args.force)?;
+    }
+    let tables = (tournament.play)(&args.a, &args.b, args.threads.threads.unwrap_or(0))?;
     if let Some(path) = &args.csv {
         vivae_lab::io::write_atomic(path, tables.csv.as_bytes())?;
     }

@@ -25,8 +25,15 @@ pub struct TournamentTables {
     pub csv: String,
 }
 
-/// How a task's tournament plays one run's champions against another's, on this many threads.
-pub type Tournament = fn(&Path, &Path, usize) -> vivae_lab::Result<TournamentTables>;
+/// A task's tournament: how it plays one run's champions against another's,
+/// and the CSV file it writes.
+#[derive(Debug, Clone, Copy)]
+pub struct Tournament {
+    /// Plays run `a`'s champions against run `b`'s on this many threads.
+    pub play: fn(&Path, &Path, usize) -> vivae_lab::Result<TournamentTables>,
+    /// What `--csv` writes, to recognise an earlier one (`vivae_lab::output_path`).
+    pub csv: vivae_lab::output_path::OutputKind,
+}
 
 /// A task's program-side parts, registered in [`TOOLS`].
 pub struct TaskTools {

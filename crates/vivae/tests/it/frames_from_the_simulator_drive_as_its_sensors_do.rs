@@ -171,7 +171,12 @@ fn drive_image_prints_the_librarys_wheel_commands() {
         .arg("--draw-map")
         .arg(dir.join("map.png")));
     let drawn = std::fs::read(dir.join("map.png")).unwrap();
-    assert_eq!(drawn, vivae_sim::draw::svg_to_png(&ground, 1.0).unwrap());
+    // The simulator's PNG, with a text chunk after its header that marks it
+    // as drive-image's (so that a later --draw-map may replace it).
+    let mark = u32::from_be_bytes(drawn[33..37].try_into().unwrap()) as usize;
+    assert_eq!(&drawn[37..41], b"tEXt");
+    let unmarked = [&drawn[..33], &drawn[33 + 12 + mark..]].concat();
+    assert_eq!(unmarked, vivae_sim::draw::svg_to_png(&ground, 1.0).unwrap());
     let csv = ok(vivae()
         .arg("drive-image")
         .arg(&run)

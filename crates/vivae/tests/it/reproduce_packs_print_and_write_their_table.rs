@@ -152,13 +152,28 @@ fn a_stopped_pack_continues_from_its_journal_and_picks_methods() {
         err.contains("no method \"cma-es\"") && err.contains("novelty, neat, map-elites"),
         "{err}"
     );
+    // A file that is no journal is not vivae's to replace; a journal with a
+    // broken line is refused naming the line.
     std::fs::write(dir.join("t.runs.tsv"), "garbage\n").unwrap();
     let broken = pack(&[]);
     let err = String::from_utf8_lossy(&broken.stderr);
     assert_eq!(broken.status.code(), Some(2), "{err}");
     assert!(
-        err.contains("t.runs.tsv") && err.contains("line 1"),
+        err.contains("t.runs.tsv") && err.contains("not an earlier vivae reproduce journal"),
         "{err}"
+    );
+    let header = journal.lines().next().unwrap();
+    std::fs::write(dir.join("t.runs.tsv"), format!("{header}\ngarbage\n")).unwrap();
+    let broken = pack(&[]);
+    let err = String::from_utf8_lossy(&broken.stderr);
+    assert_eq!(broken.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("t.runs.tsv") && err.contains("line 2"),
+        "{err}"
+    );
+    assert_eq!(
+        std::fs::read_to_string(dir.join("t.runs.tsv")).unwrap(),
+        format!("{header}\ngarbage\n")
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }

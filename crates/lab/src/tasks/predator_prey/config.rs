@@ -104,11 +104,22 @@ pub(super) fn validate(c: &Config) -> Result<(), String> {
     }
 }
 
+/// Most opponents a genome meets a generation (`coevolution.sample`).
+pub const MAX_SAMPLE: usize = 1000;
+
 /// The `[coevolution]` and `[hyperneat]` keys: the key and why it is refused.
 fn validate_coevolution(c: &Config) -> Result<(), (String, String)> {
     let refuse = |key: &str, why: &str| Err((key.to_string(), why.to_string()));
     if c.coevolution.sample == 0 {
         return refuse("coevolution.sample = 0", "draw at least one opponent");
+    }
+    if c.coevolution.sample > MAX_SAMPLE {
+        return refuse(
+            &format!("coevolution.sample = {}", c.coevolution.sample),
+            &format!(
+                "at most {MAX_SAMPLE} opponents: every genome meets each of them every generation"
+            ),
+        );
     }
     let fixed = c.coevolution.opponents == Opponents::Fixed;
     if fixed && c.coevolution.fixed_prey.is_empty() {

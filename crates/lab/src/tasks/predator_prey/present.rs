@@ -63,16 +63,9 @@ pub(super) fn generation_line(r: &GenerationRecord, total: u32) -> String {
 }
 
 /// The closing lines and the summary line.
-pub(super) fn summary(c: &Champions, dir: &Path, interrupted: bool) -> (String, String) {
+pub(super) fn summary(c: &Champions, dir: &Path) -> (String, String) {
     let dir = dir.display();
-    let how = if interrupted {
-        format!(
-            "interrupted after {} generations; continue with: vivae resume {dir}",
-            c.generations
-        )
-    } else {
-        format!("done: {} generations", c.generations)
-    };
+    let how = format!("done: {} generations", c.generations);
     let person = format!(
         "{how}\n\
          hunter champion: generation {} (master tournament fitness {:.3} against every prey champion)\n\

@@ -29,7 +29,7 @@ use crate::tasks::predator_prey::coevo::{
 use crate::tasks::predator_prey::meetings::{self, OnThreads};
 use crate::tasks::predator_prey::section::SideController;
 use crate::tasks::predator_prey::{Arena, NAME, Side, present};
-use crate::tasks::{OwnDriver, RunTask, Session, TaskEntry};
+use crate::tasks::{OwnDriver, RunTask, Session, Stopped, TaskEntry};
 
 /// The predator–prey task's registration.
 pub static TASK: TaskEntry = TaskEntry {
@@ -210,7 +210,7 @@ fn clear_dir(dir: &Path, force: bool) -> Result<()> {
 }
 
 /// Creates a run of `config` in `dir` and runs it.
-fn evolve(dir: &Path, mut config: Config, force: bool, session: &Session<'_>) -> Result<String> {
+fn evolve(dir: &Path, mut config: Config, force: bool, session: &Session<'_>) -> Result<Stopped> {
     crate::tasks::check(&config).map_err(|e| bad_input(format!("config: {e}")))?;
     let scenario = PathBuf::from(&config.experiment.scenario);
     let (arena, text) = arena_of(&config, &scenario)?;
@@ -288,15 +288,13 @@ fn read_checkpoint(dir: &Path) -> Result<Checkpoint> {
     })
 }
 
-/// Resumes the run in `dir`.
-fn resume(dir: &Path, generations: Option<u32>, session: &Session<'_>) -> Result<String> {
-    let path = dir.join(files::CHECKPOINT);
-    let bad = |reason: String| Error::Checkpoint {
-        path: path.clone(),
-        reason,
-    };
+/// Resumes the run in `dir`. Everything is checked before any file
+/// changes ([`check_resumable`]): a refused resume leaves the run as it was.
+fn resume(dir: &Path, generations: Option<u32>, session: &Session<'_>) -> Result<Stopped> {
     let mut cp = read_checkpoint(dir)?;
+    check_resumable(dir, &cp)?;
     let done = cp.state.done();
+    let recorded = cp.config.experiment.generations;
     if let Some(n) = generations {
         if n < done {
             return Err(bad_input(format!(
@@ -304,10 +302,14 @@ fn resume(dir: &Path, generations: Option<u32>, session: &Session<'_>) -> Result
             )));
         }
         cp.config.experiment.generations = n;
+    }
+    let (arena, _) = arena_of(&cp.config, &dir.join(crate::rundir::files::SCENARIO))?;
+    let total = cp.config.experiment.generations;
+    // Checked; from here on the run's files change.
+    if total != recorded || generations.is_some() {
         let config = dir.join(crate::rundir::files::CONFIG);
         write_atomic(&config, cp.config.to_toml().as_bytes())?;
     }
-    let (arena, _) = arena_of(&cp.config, &dir.join(crate::rundir::files::SCENARIO))?;
     let l = cp.lengths;
     for (name, len) in [
         (files::HUNTERS, l.hunters),
@@ -320,12 +322,6 @@ fn resume(dir: &Path, generations: Option<u32>, session: &Session<'_>) -> Result
             .write(true)
             .open(&p)
             .map_err(Error::io("open", &p))?;
-        let have = file.metadata().map_err(Error::io("read", &p))?.len();
-        if have < len {
-            return Err(bad(format!(
-                "{name} is shorter ({have} bytes) than it recorded ({len})"
-            )));
-        }
         file.set_len(len).map_err(Error::io("truncate", &p))?;
     }
     let mut run = PpRun {
@@ -335,6 +331,21 @@ fn resume(dir: &Path, generations: Option<u32>, session: &Session<'_>) -> Result
         state: cp.state,
         lengths: cp.lengths,
     };
+    if done >= total {
+        // Killed between its last checkpoint and its champions, or ended
+        // at another total: its champions are written now.
+        let champions = if total != recorded || !dir.join(files::CHAMPIONS).is_file() {
+            run.write_champions()?
+        } else {
+            run.champions()?
+        };
+        let (_, line) = present::summary(&champions, dir);
+        let dir = dir.display();
+        let note = format!(
+            "{dir} is already finished ({total} of {total} generations); to extend it: vivae resume {dir} --generations N (N > {total})"
+        );
+        return Ok(Stopped::AlreadyFinished { note, line });
+    }
     let from = format!(" (resuming after generation {done})");
     let header = present::header(
         &run.config,
@@ -346,9 +357,154 @@ fn resume(dir: &Path, generations: Option<u32>, session: &Session<'_>) -> Result
     run.run(session)
 }
 
+/// Why the run in `dir` cannot resume from its checkpoint `cp`, checked
+/// without changing anything: its config must be the run's `config.toml`
+/// (but for the total of generations, which `--generations` changes), its
+/// genomes of the shapes its sides evolve, and its files at least as long
+/// as it recorded, the hall of fame holding its generations' best (so
+/// another run's `checkpoint.json` copied in is refused).
+fn check_resumable(dir: &Path, cp: &Checkpoint) -> Result<()> {
+    let path = dir.join(files::CHECKPOINT);
+    let bad = |reason: String| Error::Checkpoint {
+        path: path.clone(),
+        reason,
+    };
+    let config_path = dir.join(crate::rundir::files::CONFIG);
+    let text = read_text(&config_path)?;
+    let mut on_disk = crate::tasks::config_from_toml(&text).map_err(|error| Error::Config {
+        path: config_path.clone(),
+        error,
+    })?;
+    on_disk.experiment.generations = cp.config.experiment.generations;
+    if on_disk.to_toml() != cp.config.to_toml() {
+        return Err(bad(format!(
+            "its config is not the run's {} (is it another run's checkpoint?)",
+            crate::rundir::files::CONFIG
+        )));
+    }
+    crate::tasks::check(&cp.config).map_err(|e| bad(format!("its config: {e}")))?;
+    let st = &cp.state;
+    let done = st.done() as usize;
+    if st.hall_prey.len() != done {
+        return Err(bad(format!(
+            "its halls of fame differ in length ({} hunters, {} prey)",
+            done,
+            st.hall_prey.len()
+        )));
+    }
+    let c = &cp.config.coevolution;
+    for (side, kind, population, hall) in [
+        (Side::Hunter, c.hunter, &st.hunters, &st.hall_hunters),
+        (Side::Prey, c.prey, &st.prey, &st.hall_prey),
+    ] {
+        let spec = Arena::spec_of(kind);
+        let fits = |g: &Genome| {
+            g.check().is_ok() && (g.num_inputs(), g.num_outputs()) == (spec.inputs, spec.outputs)
+        };
+        let what = side.name();
+        if (population.spec().inputs, population.spec().outputs) != (spec.inputs, spec.outputs)
+            || !population.genomes().iter().all(fits)
+        {
+            return Err(bad(format!(
+                "its {what} population is not of genomes of {} inputs and {} outputs, as coevolution.{what} = \"{}\" evolves",
+                spec.inputs,
+                spec.outputs,
+                kind.name()
+            )));
+        }
+        if let Some(k) = hall.iter().position(|g| !fits(g)) {
+            return Err(bad(format!(
+                "its {what} hall of fame's generation {k} is not a genome of {} inputs and {} outputs",
+                spec.inputs, spec.outputs
+            )));
+        }
+    }
+    if let Some(g) = &st.fixed_prey {
+        let spec = Arena::spec_of(c.prey);
+        if g.check().is_err() || (g.num_inputs(), g.num_outputs()) != (spec.inputs, spec.outputs) {
+            return Err(bad(format!(
+                "its fixed prey is not a genome of {} inputs and {} outputs",
+                spec.inputs, spec.outputs
+            )));
+        }
+    }
+    let l = cp.lengths;
+    for (name, len) in [
+        (files::HUNTERS, l.hunters),
+        (files::PREY, l.prey),
+        (files::CIAO, l.ciao),
+        (files::HALL, l.hall),
+    ] {
+        let p = dir.join(name);
+        let (_, meta) = crate::io::open_regular(&p)
+            .map_err(|e| bad_input(format!("{}: {}", p.display(), crate::io::io_reason(&e))))?;
+        if meta.len() < len {
+            return Err(bad(format!(
+                "{name} is shorter ({} bytes) than it recorded ({len})",
+                meta.len()
+            )));
+        }
+    }
+    check_hall(dir, cp).map_err(bad)
+}
+
+/// Whether `hall-of-fame.jsonl`, up to the length `cp` recorded, holds two
+/// lines a generation and ends with the last generation's best of `cp`.
+fn check_hall(dir: &Path, cp: &Checkpoint) -> std::result::Result<(), String> {
+    let p = dir.join(files::HALL);
+    let len = cp.lengths.hall;
+    let bytes = crate::io::read_regular(&p, crate::rundir::MAX_RUN_FILE_BYTES)
+        .map_err(|e| format!("{}: {}", files::HALL, crate::io::io_reason(&e)))?;
+    let prefix = bytes.get(..len as usize).unwrap_or(&bytes);
+    let done = cp.state.done() as usize;
+    let lines: Vec<&[u8]> = prefix
+        .split(|&b| b == b'\n')
+        .filter(|l| !l.is_empty())
+        .collect();
+    let whole = prefix.is_empty() || prefix.ends_with(b"\n");
+    if !whole || lines.len() != 2 * done {
+        return Err(format!(
+            "it records {done} generations, but {} holds {} lines of them (is it another run's checkpoint?)",
+            files::HALL,
+            lines.len()
+        ));
+    }
+    for (line, side, genome) in [
+        (
+            lines.len().checked_sub(2),
+            Side::Hunter,
+            cp.state.hall_hunters.last(),
+        ),
+        (
+            lines.len().checked_sub(1),
+            Side::Prey,
+            cp.state.hall_prey.last(),
+        ),
+    ] {
+        let (Some(k), Some(genome)) = (line, genome) else {
+            continue;
+        };
+        let entry: Option<HallEntry> = serde_json::from_slice(lines[k]).ok();
+        let same = entry.is_some_and(|e| {
+            e.side == side.name() && e.generation as usize == done - 1 && e.genome == *genome
+        });
+        if !same {
+            return Err(format!(
+                "its last {} is not the one on line {} of {} (is it another run's checkpoint?)",
+                side.name(),
+                k + 1,
+                files::HALL
+            ));
+        }
+    }
+    Ok(())
+}
+
 impl PpRun {
-    /// Runs generations until the total or an interruption; writes the champions; the summary line.
-    fn run(&mut self, session: &Session<'_>) -> Result<String> {
+    /// Runs generations until the total or an interruption (each one
+    /// checkpointed); writes the champions (once a generation is done); says
+    /// how it stopped.
+    fn run(&mut self, session: &Session<'_>) -> Result<Stopped> {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(self.config.run.threads)
             .build()
@@ -374,15 +530,29 @@ impl PpRun {
             self.checkpoint()?;
             (session.say)(&present::generation_line(&record, total));
         }
+        if interrupted {
+            // The champions so far (none before a first generation): the
+            // resumed run writes them again at its end.
+            if self.state.done() > 0 {
+                self.write_champions()?;
+            }
+            return Ok(Stopped::Interrupted(self.state.done()));
+        }
+        let champions = self.write_champions()?;
+        let (person, line) = present::summary(&champions, &self.dir);
+        (session.say)(&person);
+        Ok(Stopped::Finished(line))
+    }
+
+    /// Writes `champions.json`: the master tournament's winners so far.
+    fn write_champions(&self) -> Result<Champions> {
         let champions = self.champions()?;
         let text = serde_json::to_string_pretty(&champions).map_err(|e| Error::Serialize {
             what: "champions",
             reason: e.to_string(),
         })?;
         write_atomic(&self.dir.join(files::CHAMPIONS), text.as_bytes())?;
-        let (person, line) = present::summary(&champions, &self.dir, interrupted);
-        (session.say)(&person);
-        Ok(line)
+        Ok(champions)
     }
 
     /// Appends generation `r`'s rows to the run's files.

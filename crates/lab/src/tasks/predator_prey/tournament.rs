@@ -23,6 +23,13 @@ use crate::tasks::predator_prey::{Arena, NAME, Outcome, Side};
 /// The header of the tournament's CSV.
 pub const CSV_HEADER: &str = "hunters_run,prey_run,hunters,prey,games,catches,catch_rate,mean_hunter_fitness,mean_catch_step\n";
 
+/// The CSV file `vivae tournament --csv` writes: an existing file is an
+/// earlier one when it opens with [`CSV_HEADER`] (`crate::output_path`).
+pub const CSV_KIND: crate::output_path::OutputKind = crate::output_path::OutputKind {
+    what: "vivae tournament CSV",
+    earlier: |b| b.starts_with(CSV_HEADER.as_bytes()),
+};
+
 /// One line of the tournament: a set of one run's hunters against a set of
 /// another's prey, every hunter against every prey once.
 #[derive(Debug, Clone, PartialEq)]
@@ -80,22 +87,74 @@ fn entrant(dir: &Path) -> Result<Entrant> {
     let champions = read_champions(dir)?;
     let path = dir.join(files::HALL);
     let text = read_text(&path)?;
+    let controllers = [config.coevolution.hunter, config.coevolution.prey];
+    // Genomes of another shape (another kind of controller, another run's)
+    // are refused here, by file and line: a meeting would not be able to
+    // build their networks.
+    let misfit = |side: Side, genome: &Genome| {
+        let spec = Arena::spec_of(controllers[Entrant::side(side)]);
+        let fits = genome.check().is_ok()
+            && (genome.num_inputs(), genome.num_outputs()) == (spec.inputs, spec.outputs);
+        (!fits).then(|| {
+            format!(
+                "its {} is not a genome of {} inputs and {} outputs, as the run's config (coevolution.{} = \"{}\") has",
+                side.name(),
+                spec.inputs,
+                spec.outputs,
+                side.name(),
+                controllers[Entrant::side(side)].name()
+            )
+        })
+    };
     let mut hall = [Vec::new(), Vec::new()];
     for (i, line) in text.lines().enumerate() {
-        let e: HallEntry = serde_json::from_str(line).map_err(|e| Error::RunFile {
+        let bad = |reason: String| Error::RunFile {
             path: path.clone(),
-            reason: format!("line {}: {e}", i + 1),
-        })?;
-        let side = if e.side == Side::Hunter.name() {
-            Side::Hunter
-        } else {
-            Side::Prey
+            reason: format!("line {}: {reason}", i + 1),
         };
+        let e: HallEntry = serde_json::from_str(line).map_err(|e| bad(e.to_string()))?;
+        let side = [Side::Hunter, Side::Prey]
+            .into_iter()
+            .find(|s| e.side == s.name())
+            .ok_or_else(|| {
+                bad(format!(
+                    "side {:?}: expected \"{}\" or \"{}\"",
+                    e.side,
+                    Side::Hunter.name(),
+                    Side::Prey.name()
+                ))
+            })?;
+        if let Some(why) = misfit(side, &e.genome) {
+            return Err(bad(why));
+        }
         hall[Entrant::side(side)].push(e.genome);
+    }
+    if let Some(side) = [Side::Hunter, Side::Prey]
+        .into_iter()
+        .find(|&s| hall[Entrant::side(s)].is_empty())
+    {
+        return Err(Error::RunFile {
+            path,
+            reason: format!(
+                "holds no {}: a tournament needs a finished run",
+                side.name()
+            ),
+        });
+    }
+    for (side, genome) in [
+        (Side::Hunter, &champions.hunter.genome),
+        (Side::Prey, &champions.prey.genome),
+    ] {
+        if let Some(why) = misfit(side, genome) {
+            return Err(Error::RunFile {
+                path: dir.join(files::CHAMPIONS),
+                reason: why.replacen("its ", "its champion ", 1),
+            });
+        }
     }
     Ok(Entrant {
         name: dir.display().to_string(),
-        controllers: [config.coevolution.hunter, config.coevolution.prey],
+        controllers,
         hyper: config.hyperneat,
         champion: [champions.hunter.genome, champions.prey.genome],
         hall,

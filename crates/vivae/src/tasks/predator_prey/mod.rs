@@ -23,7 +23,10 @@ pub static TOOLS: TaskTools = TaskTools {
     report: report::write,
     report_note: " (and ciao.png, coevolution.png)",
     records: "hunters.csv, prey.csv, ciao.csv and champions.json",
-    tournament: Some(tournament_tables),
+    tournament: Some(super::Tournament {
+        play: tournament_tables,
+        csv: tournament::CSV_KIND,
+    }),
     #[cfg(feature = "viewer")]
     view: Some(view::PAGE),
     #[cfg(feature = "mpi")]

@@ -1,0 +1,300 @@
+//! A hostile round on the newest commands (tournament, drive-image,
+//! reproduce, resume across tasks): genomes of the wrong shape, another
+//! run's checkpoint, sizes and counts past their bounds. Each is refused
+//! with exit code 2 and one line naming what is wrong, before anything
+//! changes: no panic, abort, runaway allocation or destroyed run.
+
+use std::path::Path;
+
+use crate::common::*;
+use crate::every_task_keeps_the_interrupt_promise::snapshot;
+
+/// A small finished predator–prey run of `generations` with `seed` in `out`.
+fn pp_run(out: &Path, generations: u32, seed: u32) {
+    ok(vivae()
+        .args(["evolve", "-q", "--task", "predator-prey", "--threads", "1"])
+        .args(["--population", "8", "--steps", "60"])
+        .args(["--seed", &seed.to_string()])
+        .args(["--generations", &generations.to_string()])
+        .arg("--out")
+        .arg(out));
+}
+
+/// Exit code 2 and one line holding every one of `needles`.
+fn refused(cmd: &mut std::process::Command, needles: &[&str]) -> String {
+    let out = run(cmd);
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert_eq!(out.status.code(), Some(2), "{needles:?}: {err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    for n in needles {
+        assert!(err.contains(n), "{n}: {err}");
+    }
+    err
+}
+
+/// A valid genome of one input and two outputs: no predator–prey side's shape.
+const MISFIT: &str = r#"{"nodes":[{"id":0,"kind":"input","activation":"linear"},{"id":1,"kind":"output","activation":"linear"},{"id":2,"kind":"output","activation":"linear"}],"links":[{"innovation":0,"from":0,"to":1,"weight":0.5,"enabled":true}]}"#;
+
+/// `text` with line `k` (0-based) of JSON changed by `edit`.
+fn edit_line(text: &str, k: usize, edit: impl Fn(&mut serde_json::Value)) -> String {
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    let mut v: serde_json::Value = serde_json::from_str(&lines[k]).unwrap();
+    edit(&mut v);
+    lines[k] = v.to_string();
+    lines.join("\n") + "\n"
+}
+
+#[test]
+fn tournaments_refuse_genomes_of_the_wrong_shape_and_damaged_halls() {
+    let dir = scratch("hostile-tournament");
+    let a = dir.join("a");
+    pp_run(&a, 2, 1);
+    let hall = String::from_utf8(read(&a, "hall-of-fame.jsonl")).unwrap();
+    let misfit: serde_json::Value = serde_json::from_str(MISFIT).unwrap();
+    let copy = |name: &str, file: &str, text: &str| {
+        let b = dir.join(name);
+        let status = std::process::Command::new("cp")
+            .arg("-a")
+            .arg(&a)
+            .arg(&b)
+            .status();
+        assert!(status.unwrap().success());
+        std::fs::write(b.join(file), text).unwrap();
+        b
+    };
+    let tournament = |b: &Path| {
+        let mut cmd = vivae();
+        cmd.args(["tournament", "--threads", "1"]).arg(&a).arg(b);
+        cmd
+    };
+    let b = copy(
+        "misfit",
+        "hall-of-fame.jsonl",
+        &edit_line(&hall, 1, |v| v["genome"] = misfit.clone()),
+    );
+    refused(
+        &mut tournament(&b),
+        &[
+            "hall-of-fame.jsonl",
+            "line 2",
+            "its prey is not a genome of",
+        ],
+    );
+    let b = copy(
+        "alien",
+        "hall-of-fame.jsonl",
+        &edit_line(&hall, 0, |v| v["side"] = "alien".into()),
+    );
+    refused(
+        &mut tournament(&b),
+        &["hall-of-fame.jsonl", "line 1", "\"alien\""],
+    );
+    let b = copy("empty", "hall-of-fame.jsonl", "");
+    refused(
+        &mut tournament(&b),
+        &["hall-of-fame.jsonl", "holds no hunter"],
+    );
+    let champions = String::from_utf8(read(&a, "champions.json")).unwrap();
+    let mut c: serde_json::Value = serde_json::from_str(&champions).unwrap();
+    c["prey"]["genome"] = misfit.clone();
+    let b = copy("champion", "champions.json", &c.to_string());
+    refused(&mut tournament(&b), &["champions.json", "champion prey"]);
+    // Thread counts past the bound are refused before any thread starts
+    // (a usage error, in clap's words: its first line says what is wrong).
+    let out = run(vivae()
+        .args(["tournament", "--threads", "100000"])
+        .arg(&a)
+        .arg(&a));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    let first = err.lines().next().unwrap();
+    assert!(
+        first.contains("'100000'") && first.contains("--threads") && first.contains("at most 1024"),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_refused_resume_leaves_the_run_exactly_as_it_was() {
+    let dir = scratch("hostile-resume");
+    let a = dir.join("a");
+    let other = dir.join("other");
+    pp_run(&a, 3, 1);
+    pp_run(&other, 2, 2);
+    let own = read(&a, "checkpoint.json");
+    // Another run's checkpoint copied in: refused, nothing cut or rewritten.
+    std::fs::copy(other.join("checkpoint.json"), a.join("checkpoint.json")).unwrap();
+    let before = snapshot(&a);
+    refused(
+        vivae().args(["resume", "-q", "--generations", "5"]).arg(&a),
+        &["checkpoint.json", "another run's checkpoint"],
+    );
+    assert!(snapshot(&a) == before, "a refused resume changed the run");
+    // Genomes of the wrong shape in the checkpoint: refused by name, no panic.
+    // (Spliced into the text: the checkpoint's own key order is kept.)
+    let text = String::from_utf8(own.clone()).unwrap();
+    let start = text.find("\"hall_hunters\":[").unwrap() + "\"hall_hunters\":[".len();
+    let mut first =
+        serde_json::Deserializer::from_str(&text[start..]).into_iter::<serde_json::Value>();
+    first.next().unwrap().unwrap();
+    let end = start + first.byte_offset();
+    let forged = format!("{}{MISFIT}{}", &text[..start], &text[end..]);
+    std::fs::write(a.join("checkpoint.json"), forged).unwrap();
+    let before = snapshot(&a);
+    refused(
+        vivae().args(["resume", "-q", "--generations", "5"]).arg(&a),
+        &["checkpoint.json", "hunter hall of fame", "generation 0"],
+    );
+    assert!(snapshot(&a) == before, "a refused resume changed the run");
+    // A precision the run has no choice of is refused, not ignored.
+    std::fs::write(a.join("checkpoint.json"), &own).unwrap();
+    refused(
+        vivae().args(["resume", "--precision", "fast"]).arg(&a),
+        &["--precision fast", "predator-prey"],
+    );
+    // With its own checkpoint back, the run resumes.
+    let line = ok(vivae().args(["resume", "-q", "--generations", "4"]).arg(&a));
+    assert!(line.contains("generations=4"), "{line}");
+}
+
+/// A PNG of just a header claiming `width` × `height` RGB pixels (and an end).
+fn png_header(width: u32, height: u32) -> Vec<u8> {
+    fn crc32(bytes: &[u8]) -> u32 {
+        let mut crc = !0u32;
+        for &b in bytes {
+            crc ^= u32::from(b);
+            for _ in 0..8 {
+                crc = if crc & 1 == 1 {
+                    (crc >> 1) ^ 0xEDB8_8320
+                } else {
+                    crc >> 1
+                };
+            }
+        }
+        !crc
+    }
+    let chunk = |kind: &[u8], data: &[u8]| {
+        let mut c = (data.len() as u32).to_be_bytes().to_vec();
+        let body = [kind, data].concat();
+        c.extend_from_slice(&body);
+        c.extend_from_slice(&crc32(&body).to_be_bytes());
+        c
+    };
+    let ihdr = [
+        &width.to_be_bytes()[..],
+        &height.to_be_bytes(),
+        &[8, 2, 0, 0, 0],
+    ]
+    .concat();
+    [
+        &b"\x89PNG\r\n\x1a\n"[..],
+        &chunk(b"IHDR", &ihdr),
+        &chunk(b"IDAT", &[0x78, 0x9c, 0x03, 0x00, 0x00, 0x00, 0x00, 0x01]),
+        &chunk(b"IEND", &[]),
+    ]
+    .concat()
+}
+
+#[test]
+fn sizes_counts_and_seeds_past_their_bounds_are_refused_before_any_work() {
+    let run_dir = small_run("hostile-bounds", 1);
+    let dir = run_dir.parent().unwrap().to_path_buf();
+    let huge = dir.join("huge.png");
+    std::fs::write(&huge, png_header(100_000, 100_000)).unwrap();
+    refused(
+        vivae().arg("drive-image").arg(&*run_dir).arg(&huge),
+        &["huge.png", "100000 x 100000 pixels", "100000000"],
+    );
+    refused(
+        vivae()
+            .arg("drive-image")
+            .arg(&*run_dir)
+            .arg(&huge)
+            .args(["--heading", "inf"]),
+        &["--heading inf"],
+    );
+    // Roads place nothing at random: a placement seed is refused by name.
+    refused(
+        vivae()
+            .arg("replay")
+            .arg(&*run_dir)
+            .args(["--placement-seed", "5"]),
+        &[
+            "--placement-seed 5",
+            "places no obstacles or traffic at random",
+        ],
+    );
+    refused(
+        vivae().current_dir(&dir).args([
+            "reproduce",
+            "xor",
+            "--no-journal",
+            "--runs",
+            "1000000000",
+        ]),
+        &["--runs 1000000000", "at most 10000"],
+    );
+    refused(
+        vivae().current_dir(&dir).args([
+            "reproduce",
+            "xor",
+            "--no-journal",
+            "--seed",
+            "18446744073709551615",
+        ]),
+        &["--seed 18446744073709551615", "2^64 - 1"],
+    );
+    let config = dir.join("sample.toml");
+    std::fs::write(
+        &config,
+        "[experiment]\ntask = \"predator-prey\"\n[coevolution]\nsample = 1000000000\n",
+    )
+    .unwrap();
+    refused(
+        vivae().args(["config", "check"]).arg(&config),
+        &[
+            "sample.toml",
+            "coevolution.sample = 1000000000",
+            "at most 1000",
+        ],
+    );
+    // Nothing was left behind.
+    assert!(!dir.join("reproduce-xor.md").exists());
+}
+
+#[test]
+fn a_reproduce_stopped_by_sigterm_leaves_no_scratch_run() {
+    let dir = scratch("hostile-reproduce-term");
+    let child = vivae()
+        .current_dir(&dir)
+        .args([
+            "reproduce",
+            "maze-hard",
+            "--runs",
+            "1",
+            "--threads",
+            "1",
+            "-q",
+        ])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let pid = child.id();
+    let tmp = std::env::temp_dir();
+    let scratch_run = tmp.join(format!("vivae-reproduce-{pid}-0"));
+    wait_for_file(&scratch_run.join("config.toml"), 300);
+    let status = std::process::Command::new("kill")
+        .args(["-TERM", &pid.to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(130), "{err}");
+    assert!(err.contains("the same command continues"), "{err}");
+    let building = tmp.join(format!(".vivae-reproduce-{pid}-0.tmp-{pid}"));
+    for left in [&scratch_run, &building] {
+        assert!(!left.exists(), "{} left behind", left.display());
+    }
+}
