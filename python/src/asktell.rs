@@ -29,9 +29,9 @@ macro_rules! ask_tell {
             #[pyo3(signature = (fitnesses, behaviours=None, metrics=None))]
             fn tell(
                 &mut self,
-                fitnesses: Vec<f64>,
-                behaviours: Option<Vec<Vec<f64>>>,
-                metrics: Option<Vec<Vec<f64>>>,
+                #[pyo3(from_py_with = $crate::args::fitnesses)] fitnesses: Vec<f64>,
+                #[pyo3(from_py_with = $crate::args::behaviours)] behaviours: Option<Vec<Vec<f64>>>,
+                #[pyo3(from_py_with = $crate::args::metrics)] metrics: Option<Vec<Vec<f64>>>,
             ) -> PyResult<()> {
                 if vivae_neat::driver::Strategy::champion(&self.inner).is_some() {
                     // A second tell would replace the fitnesses but not `best_ever`.

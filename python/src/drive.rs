@@ -3,10 +3,7 @@
 //! sensors written to numpy arrays, the worlds stepped in Rust threads.
 
 use numpy::ndarray::Array3;
-use numpy::{
-    IntoPyArray, PyArray1, PyArray2, PyArray3, PyArrayMethods, PyReadwriteArray3,
-    PyUntypedArrayMethods,
-};
+use numpy::{IntoPyArray, PyArray3, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -15,8 +12,8 @@ use vivae_lab::controller::sensors::read_sheets;
 use vivae_lab::tasks::driving::episode::Episode;
 use vivae_sim::World;
 
-use crate::errors;
 use crate::settings;
+use crate::{args, errors};
 
 /// `world` drawn with `opts` as an RGB image (height × width × 3, uint8),
 /// the GIL released while it is drawn.
@@ -43,7 +40,7 @@ pub fn render_rgb<'py>(
 }
 
 /// Most worlds one `DriveCore` steps (a bound on what a typo can allocate).
-const MAX_WORLDS: usize = 1 << 16;
+pub const MAX_WORLDS: usize = 1 << 16;
 
 /// One world and its robots' buffers.
 #[derive(Clone)]
@@ -181,6 +178,28 @@ impl<T: numpy::Element> Raw<T> {
     }
 }
 
+/// `v` as a numpy array of `T` with `D`'s dimensions (`dtype` names `T`):
+/// a `TypeError` naming `what`, the array expected and the value given otherwise.
+fn typed<'py, T: numpy::Element, D: numpy::ndarray::Dimension>(
+    v: &Bound<'py, PyAny>,
+    what: &str,
+    dtype: &str,
+) -> PyResult<Bound<'py, numpy::PyArray<T, D>>> {
+    if let Ok(a) = v.cast::<numpy::PyArray<T, D>>() {
+        return Ok(a.clone());
+    }
+    let dims = D::NDIM.map_or_else(|| "any number of".to_string(), |n| n.to_string());
+    let given = match (v.getattr("dtype"), v.getattr("ndim")) {
+        (Ok(dtype), Ok(ndim)) => {
+            format!("an array of dtype {} with {ndim} dimensions", dtype.str()?)
+        }
+        _ => format!("a {}", v.get_type().name()?),
+    };
+    Err(pyo3::exceptions::PyTypeError::new_err(format!(
+        "{what}: expected a numpy array of dtype {dtype} with {dims} dimensions, got {given}"
+    )))
+}
+
 /// An error when two of the byte `ranges` overlap.
 fn disjoint(ranges: &[(usize, usize)]) -> PyResult<()> {
     for (i, a) in ranges.iter().enumerate() {
@@ -263,9 +282,9 @@ impl DriveCore {
     #[pyo3(signature = (num_worlds, config=None, threads=0, **overrides))]
     fn new(
         py: Python<'_>,
-        num_worlds: usize,
+        #[pyo3(from_py_with = args::num_worlds)] num_worlds: usize,
         config: Option<std::path::PathBuf>,
-        threads: usize,
+        #[pyo3(from_py_with = args::threads)] threads: usize,
         overrides: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<DriveCore> {
         if num_worlds == 0 || num_worlds > MAX_WORLDS {
@@ -337,11 +356,11 @@ impl DriveCore {
     /// Puts the worlds where `mask` is true (all when `None`) back at the
     /// start and writes every world's readings to `obs` (num_worlds × robots × obs_size).
     #[pyo3(signature = (obs, mask=None))]
-    fn reset(
-        &mut self,
-        mut obs: PyReadwriteArray3<'_, f32>,
-        mask: Option<Vec<bool>>,
-    ) -> PyResult<()> {
+    fn reset(&mut self, obs: &Bound<'_, PyAny>, mask: Option<Vec<bool>>) -> PyResult<()> {
+        let obs = typed::<f32, numpy::Ix3>(obs, "obs", "float32")?;
+        let mut obs = obs
+            .try_readwrite()
+            .map_err(|e| PyValueError::new_err(format!("obs: {e}")))?;
         let (n, s) = (self.n(), self.shape);
         self.check("obs", obs.shape(), &[n, s.robots, s.obs])?;
         if let Some(m) = &mask
@@ -377,17 +396,21 @@ impl DriveCore {
     fn step(
         &mut self,
         py: Python<'_>,
-        actions: &Bound<'_, PyArray3<f32>>,
-        obs: &Bound<'_, PyArray3<f32>>,
-        rewards: &Bound<'_, PyArray2<f64>>,
-        truncated: &Bound<'_, PyArray1<bool>>,
+        actions: &Bound<'_, PyAny>,
+        obs: &Bound<'_, PyAny>,
+        rewards: &Bound<'_, PyAny>,
+        truncated: &Bound<'_, PyAny>,
         autoreset: bool,
     ) -> PyResult<()> {
+        let actions = typed::<f32, numpy::Ix3>(actions, "actions", "float32")?;
+        let obs = typed::<f32, numpy::Ix3>(obs, "obs", "float32")?;
+        let rewards = typed::<f64, numpy::Ix2>(rewards, "rewards", "float64")?;
+        let truncated = typed::<bool, numpy::Ix1>(truncated, "truncated", "bool")?;
         let (n, s) = (self.n(), self.shape);
-        let a = Raw::of(actions, "actions", &[n, s.robots, 2], false)?;
-        let o = Raw::of(obs, "obs", &[n, s.robots, s.obs], true)?;
-        let r = Raw::of(rewards, "rewards", &[n, s.robots], true)?;
-        let t = Raw::of(truncated, "truncated", &[n], true)?;
+        let a = Raw::of(&actions, "actions", &[n, s.robots, 2], false)?;
+        let o = Raw::of(&obs, "obs", &[n, s.robots, s.obs], true)?;
+        let r = Raw::of(&rewards, "rewards", &[n, s.robots], true)?;
+        let t = Raw::of(&truncated, "truncated", &[n], true)?;
         disjoint(&[a.bytes(), o.bytes(), r.bytes(), t.bytes()])?;
         // SAFETY: each array is C-contiguous with exactly these elements (and
         // writeable where written), and no two share a byte, so these are the
@@ -414,7 +437,7 @@ impl DriveCore {
     }
 
     /// Steps since world `index` was last reset.
-    fn elapsed(&self, index: usize) -> PyResult<u32> {
+    fn elapsed(&self, #[pyo3(from_py_with = args::index)] index: usize) -> PyResult<u32> {
         self.slots
             .get(index)
             .map(|s| s.steps)
@@ -422,7 +445,7 @@ impl DriveCore {
     }
 
     /// Each robot's distance driven since world `index` was reset, px.
-    fn odometers(&self, index: usize) -> PyResult<Vec<f64>> {
+    fn odometers(&self, #[pyo3(from_py_with = args::index)] index: usize) -> PyResult<Vec<f64>> {
         self.slots
             .get(index)
             .map(|s| s.odometers.clone())
@@ -435,7 +458,7 @@ impl DriveCore {
     fn render<'py>(
         &self,
         py: Python<'py>,
-        index: usize,
+        #[pyo3(from_py_with = args::index)] index: usize,
         scale: f64,
     ) -> PyResult<Bound<'py, PyArray3<u8>>> {
         let slot = self
@@ -457,7 +480,12 @@ impl DriveCore {
     /// drawn in Rust (seeded): the native baseline the benchmarks compare
     /// the Python vector env with. Returns robot-steps done.
     #[pyo3(signature = (steps, seed=0))]
-    fn run_random(&mut self, py: Python<'_>, steps: u32, seed: u64) -> PyResult<u64> {
+    fn run_random(
+        &mut self,
+        py: Python<'_>,
+        #[pyo3(from_py_with = args::steps)] steps: u32,
+        #[pyo3(from_py_with = args::seed)] seed: u64,
+    ) -> PyResult<u64> {
         use rand::{RngExt, SeedableRng};
         let (n, s) = (self.n(), self.shape);
         let mut rng = rand_pcg::Pcg64::seed_from_u64(seed);

@@ -5,7 +5,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use vivae_neat::{FeedForwardNetwork, GenomeSpec, NeatParams, RecurrentNetwork};
 
-use crate::errors;
+use crate::{args, errors};
 
 /// A genome: a NEAT network's genes (for HyperNEAT, a CPPN).
 #[pyclass(module = "vivae._vivae", frozen)]
@@ -217,9 +217,7 @@ pub fn merged<T: serde::Serialize + serde::de::DeserializeOwned>(
     let Some(given) = given else {
         return Ok(base);
     };
-    let json = given.py().import("json")?;
-    let text: String = json.call_method1("dumps", (given,))?.extract()?;
-    let given: serde_json::Value = serde_json::from_str(&text).map_err(errors::value)?;
+    let given = json_dict(given, what)?;
     let base = serde_json::to_value(&base).map_err(errors::value)?;
     let with = |keys: &mut dyn Iterator<Item = (&String, &serde_json::Value)>| {
         let mut value = base.clone();
@@ -230,9 +228,7 @@ pub fn merged<T: serde::Serialize + serde::de::DeserializeOwned>(
         }
         serde_json::from_value::<T>(value)
     };
-    let Some(g) = given.as_object() else {
-        return Err(errors::value(format!("{what}: expected a dict")));
-    };
+    let g = &given;
     with(&mut g.iter()).map_err(|e| {
         // serde names no field for a value of the wrong type: find the key.
         let bad = g.iter().find_map(|(k, x)| {
@@ -244,6 +240,45 @@ pub fn merged<T: serde::Serialize + serde::de::DeserializeOwned>(
     })
 }
 
+/// The Python dict `given` as JSON, key by key, so that a value JSON cannot
+/// hold (NaN, an infinity, a set, an object) is an error naming its key
+/// (`what[key]`) and what was expected.
+fn json_dict(
+    given: &Bound<'_, PyDict>,
+    what: &str,
+) -> PyResult<serde_json::Map<String, serde_json::Value>> {
+    let json = given.py().import("json")?;
+    let strict = PyDict::new(given.py());
+    strict.set_item("allow_nan", false)?;
+    let mut out = serde_json::Map::new();
+    for (k, x) in given.iter() {
+        let Ok(key) = k.extract::<String>() else {
+            let ty = k.get_type().name()?;
+            return Err(pyo3::exceptions::PyTypeError::new_err(format!(
+                "{what}: keys are parameter names (str), got a key of type {ty}"
+            )));
+        };
+        let shown = x.repr()?;
+        let text: String = match json.call_method("dumps", (&x,), Some(&strict)) {
+            Ok(t) => t.extract()?,
+            Err(e) if e.is_instance_of::<PyValueError>(given.py()) => {
+                return Err(errors::value(format!(
+                    "{what}[{key:?}] = {shown}: expected a finite number"
+                )));
+            }
+            Err(_) => {
+                let ty = x.get_type().name()?;
+                return Err(pyo3::exceptions::PyTypeError::new_err(format!(
+                    "{what}[{key:?}] = {shown}: expected a number, bool, string, list or dict, got {ty}"
+                )));
+            }
+        };
+        let value: serde_json::Value = serde_json::from_str(&text).map_err(errors::value)?;
+        out.insert(key, value);
+    }
+    Ok(out)
+}
+
 ask_tell!(Population, "Population", "population", &["spec"], {
     /// A generation-0 population of minimal genomes with `inputs` (include
     /// a constant bias input if you want one) and `outputs`. `preset`:
@@ -253,10 +288,10 @@ ask_tell!(Population, "Population", "population", &["spec"], {
     #[new]
     #[pyo3(signature = (inputs, outputs, *, seed=1, size=None, preset="plain", recurrent=false, params=None))]
     fn new(
-        inputs: usize,
-        outputs: usize,
-        seed: u64,
-        size: Option<usize>,
+        #[pyo3(from_py_with = args::inputs)] inputs: usize,
+        #[pyo3(from_py_with = args::outputs)] outputs: usize,
+        #[pyo3(from_py_with = args::seed)] seed: u64,
+        #[pyo3(from_py_with = args::size)] size: Option<usize>,
         preset: &str,
         recurrent: bool,
         params: Option<&Bound<'_, PyDict>>,

@@ -21,9 +21,9 @@ use vivae_lab::tasks::driving::training::Training;
 use vivae_neat::hyperneat::{BatchState, SubstrateController};
 use vivae_neat::{EvalContext, Network as _};
 
-use crate::errors;
 use crate::evo::{Genome, Population, merge_params};
 use crate::settings;
+use crate::{args, errors};
 
 /// The training maps and task of `config`, as `vivae evolve` sets them up.
 fn training(
@@ -61,7 +61,23 @@ impl DriveTask {
         self.training.primary()
     }
 
+    /// Refuses a genome whose links form a cycle where this task's CPPNs are
+    /// feed-forward: decoded, the links closing the cycle would be dropped
+    /// without a word (the genome is recurrent, the CPPN is not).
+    fn check_acyclic(&self, genome: &Genome) -> PyResult<()> {
+        if self.training.task().cppn_spec().allow_recurrent || !crate::evo::has_cycle(&genome.inner)
+        {
+            return Ok(());
+        }
+        Err(PyValueError::new_err(
+            "genome: its links form a cycle (a recurrent network), but this task's CPPNs are \
+             feed-forward and decoding would drop the links that close it; \
+             give a genome of a population made with recurrent=False",
+        ))
+    }
+
     fn controller_of(&self, genome: &Genome) -> PyResult<SubstrateController> {
+        self.check_acyclic(genome)?;
         self.setup()
             .controller(&genome.inner)
             .map_err(|e| errors::value(format!("the genome's {e}")))
@@ -69,6 +85,7 @@ impl DriveTask {
 
     /// The controller of either substrate kind (dense sheet or ES-HyperNEAT).
     fn robot_controller_of(&self, genome: &Genome) -> PyResult<RobotController> {
+        self.check_acyclic(genome)?;
         self.setup()
             .robot_controller(&genome.inner)
             .map_err(|e| errors::value(format!("the genome's {e}")))
@@ -134,8 +151,8 @@ impl DriveTask {
     #[pyo3(signature = (seed=None, size=None, params=None))]
     fn population(
         &self,
-        seed: Option<u64>,
-        size: Option<usize>,
+        #[pyo3(from_py_with = args::opt_seed)] seed: Option<u64>,
+        #[pyo3(from_py_with = args::size)] size: Option<usize>,
         params: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Population> {
         let mut params = merge_params(self.config.neat.clone(), params)?;
@@ -164,6 +181,7 @@ impl DriveTask {
                     want.outputs
                 )));
             }
+            self.check_acyclic(g)?;
         }
         let genomes: Vec<&vivae_neat::Genome> = genomes.iter().map(|g| &g.inner).collect();
         let task = self.training.task();
@@ -215,7 +233,11 @@ impl DriveTask {
 
     /// A controller for `robots` robots driven by `genome`'s substrate.
     #[pyo3(signature = (genome, robots=1))]
-    fn controller(&self, genome: &Genome, robots: usize) -> PyResult<Controller> {
+    fn controller(
+        &self,
+        genome: &Genome,
+        #[pyo3(from_py_with = args::robots)] robots: usize,
+    ) -> PyResult<Controller> {
         let c = self.controller_of(genome)?;
         Ok(Controller {
             state: c.batch_state(robots),
@@ -236,7 +258,7 @@ impl DriveTask {
         genome: &Genome,
         path: PathBuf,
         fitness: f64,
-        generation: u32,
+        #[pyo3(from_py_with = args::generation)] generation: u32,
     ) -> PyResult<()> {
         self.robot_controller_of(genome)?;
         let mut config = rundir::Champion::recorded_config(&self.config);
@@ -475,8 +497,8 @@ fn own_driver_run<'py>(
 pub fn resume<'py>(
     py: Python<'py>,
     out: PathBuf,
-    generations: Option<u32>,
-    threads: Option<usize>,
+    #[pyo3(from_py_with = args::generations)] generations: Option<u32>,
+    #[pyo3(from_py_with = args::opt_threads)] threads: Option<usize>,
     on_generation: Option<Py<PyAny>>,
     precision: Option<String>,
 ) -> PyResult<Bound<'py, PyDict>> {
@@ -625,7 +647,7 @@ pub fn replay<'py>(
     let placement_seed: u64 = match extra.get_item("placement_seed")? {
         Some(v) => {
             extra.del_item("placement_seed")?;
-            v.extract()?
+            args::int("placement_seed", &v)?
         }
         None => 0,
     };

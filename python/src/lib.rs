@@ -8,6 +8,7 @@
 
 use pyo3::prelude::*;
 
+mod args;
 #[macro_use]
 mod asktell;
 mod drive;

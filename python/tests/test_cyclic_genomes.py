@@ -78,3 +78,35 @@ def test_a_maze_champion_is_recurrent_exactly_when_it_has_a_cycle(tmp_path):
             plain = vivae.Genome.from_json(g.to_json())
             assert plain.recurrent == has_cycle(g)
         pop.tell([float(g.num_links) for g in genomes])
+
+
+def cppn(links):
+    """A CPPN of the driving task's shape (5 inputs, 3 outputs) with `links`."""
+    nodes = [{"id": i, "kind": "input", "activation": "linear"} for i in range(5)]
+    nodes += [{"id": 5 + o, "kind": "output", "activation": "bipolar_sigmoid"} for o in range(3)]
+    text = json.dumps({"nodes": nodes, "links": [
+        {"innovation": i, "from": a, "to": b, "weight": w, "enabled": True}
+        for i, (a, b, w) in enumerate(links)]})
+    return vivae.Genome.from_json(text)
+
+
+def test_the_driving_task_refuses_a_cyclic_cppn_on_every_path(tmp_path):
+    task = vivae.DriveTask(scenario="oval", steps=5, population=4)
+    acyclic = [(i, 5 + o, 0.5) for i in range(5) for o in range(3)]
+    fine = cppn(acyclic)
+    cyclic = cppn(acyclic + [(5, 6, 1.0), (6, 5, 1.0)])
+    assert cyclic.recurrent and not fine.recurrent
+    paths = [
+        lambda g: task.evaluate([g]),
+        lambda g: task.controller(g),
+        lambda g: task.decode(g),
+        lambda g: task.episode(g),
+        lambda g: task.save_champion(g, tmp_path / "c.json", 1.0),
+    ]
+    for path in paths:
+        path(fine)
+        with pytest.raises(ValueError, match="genome: its links form a cycle"):
+            path(cyclic)
+    # A recurrent population's genome without a cycle is still a CPPN.
+    plain = vivae.Genome.from_json(fine.to_json(), recurrent=True)
+    task.evaluate([plain])

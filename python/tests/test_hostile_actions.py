@@ -68,3 +68,27 @@ def test_a_controller_takes_the_environments_float32_observations():
     assert controller.act(obs[None]).shape == (1, 2)
     with pytest.raises(TypeError, match="obs"):
         controller.act(np.array([["a"] * obs.size]))
+
+
+def test_the_core_names_the_buffer_and_the_dtype_it_expected():
+    from vivae._vivae import DriveCore
+
+    core = DriveCore(2, scenario="oval", steps=5, robots=1)
+    n = core.obs_size
+    good = dict(actions=np.zeros((2, 1, 2), np.float32), obs=np.zeros((2, 1, n), np.float32),
+                rewards=np.zeros((2, 1), np.float64), truncated=np.zeros(2, bool))
+    core.reset(good["obs"])
+    core.step(**good)
+    for name, wrong in [("actions", np.zeros((2, 1, 2), np.float64)),
+                        ("obs", np.zeros((2, 1, n), np.float64)),
+                        ("rewards", np.zeros((2, 1), np.float32)),
+                        ("truncated", np.zeros(2, np.int8))]:
+        dtype = {"actions": "float32", "obs": "float32", "rewards": "float64", "truncated": "bool"}[name]
+        with pytest.raises(TypeError, match=rf"{name}: expected a numpy array of dtype {dtype} .*got an array of dtype {wrong.dtype}"):
+            core.step(**{**good, name: wrong})
+    with pytest.raises(TypeError, match=r"actions: expected a numpy array of dtype float32 with 3 dimensions, got a list"):
+        core.step(**{**good, "actions": [[[0.0, 0.0]]] * 2})
+    with pytest.raises(TypeError, match=r"actions: expected .* 3 dimensions, got an array of dtype float32 with 2 dimensions"):
+        core.step(**{**good, "actions": np.zeros((2, 2), np.float32)})
+    with pytest.raises(TypeError, match=r"obs: expected a numpy array of dtype float32 .*got an array of dtype float64"):
+        core.reset(np.zeros((2, 1, n), np.float64))

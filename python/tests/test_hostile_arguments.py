@@ -151,3 +151,79 @@ def test_a_second_tell_of_the_same_batch_is_refused():
     pop.ask()
     pop.tell([2.0] * 10)
     assert pop.best_ever[1] == 2.0
+
+
+# Every params/options error names the key and what it expected.
+@pytest.mark.parametrize("make, what", [
+    (lambda p: vivae.Population(3, 1, params=p), "params"),
+    (lambda p: vivae.NoveltySearch(3, 1, params=p), "params"),
+    (lambda p: vivae.DriveTask(scenario="oval", steps=5, population=4).population(params=p), "params"),
+    (lambda p: vivae.PredatorPreyTask(steps=5).population("prey", params=p), "params"),
+    (lambda p: vivae.NoveltySearch(3, 1, novelty={"k": p["weight_amplitude"]}), "novelty"),
+    (lambda p: vivae.MapElites(3, 1, lower=[0], upper=[1], bins=[4],
+                               map={"crossover_probability": p["weight_amplitude"]}), "map"),
+])
+def test_a_parameter_json_cannot_hold_names_its_key(make, what):
+    import re
+
+    for value in (float("nan"), float("inf"), -float("inf")):
+        with pytest.raises(ValueError, match=rf'{what}\["\w+"\] = {re.escape(repr(value))}: expected a finite number'):
+            make({"weight_amplitude": value})
+    for value in ({1, 2}, object(), b"3"):
+        with pytest.raises(TypeError, match=rf'{what}\["\w+"\] = .*expected a number, bool, string, list or dict, got'):
+            make({"weight_amplitude": value})
+
+
+def test_a_parameter_of_the_wrong_type_names_the_key_and_the_type_expected():
+    with pytest.raises(ValueError, match=r'params\["population_size"\] = "many": invalid type: string "many", expected usize'):
+        vivae.Population(3, 1, params={"population_size": "many"})
+    with pytest.raises(ValueError, match=r'params\["population_size"\] = -3: invalid value: integer `-3`, expected usize'):
+        vivae.Population(3, 1, params={"population_size": -3})
+    with pytest.raises(TypeError, match="params: keys are parameter names"):
+        vivae.Population(3, 1, params={1: 2})
+
+
+@pytest.mark.parametrize("mask, error, message", [
+    (5, TypeError, r"options\['reset_mask'\]: expected 2 bools \(one per environment\), got int"),
+    ("ab", TypeError, r"options\['reset_mask'\]: expected 2 bools"),
+    ([True], ValueError, r"options\['reset_mask'\]: 1 entries for 2 environments"),
+    (["a", "b"], TypeError, r"options\['reset_mask'\]\[0\]: expected a bool, got str"),
+    ([1, 0], TypeError, r"options\['reset_mask'\]\[0\]: expected a bool, got int"),
+])
+def test_a_reset_mask_names_the_option_and_what_it_expected(mask, error, message):
+    env = vivae.DriveVectorEnv(2, scenario="oval", steps=5)
+    with pytest.raises(error, match=message):
+        env.reset(options={"reset_mask": mask})
+    env.reset(options={"reset_mask": np.array([True, False])})
+    env.reset(options={"reset_mask": [False, True]})
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda s, n: s.tell(["a"] * n), r"fitnesses\[0\]: expected a real number, got str"),
+    (lambda s, n: s.tell("abc"), r"fitnesses: expected a list of real numbers, got str"),
+    (lambda s, n: s.tell(5), r"fitnesses: expected a list of real numbers, got int"),
+    (lambda s, n: s.tell([None] * n), r"fitnesses\[0\]: expected a real number, got NoneType"),
+    (lambda s, n: s.tell([1.0] * n, behaviours=[["x"]] * n), r"behaviours\[0\]\[0\]: expected a real number, got str"),
+    (lambda s, n: s.tell([1.0] * n, behaviours=[0.5] * n), r"behaviours\[0\]: expected a list of real numbers, got float"),
+    (lambda s, n: s.tell([1.0] * n, metrics=[[True]] * n), r"metrics\[0\]\[0\]: expected a real number, got bool"),
+])
+@pytest.mark.parametrize("make", [
+    lambda: vivae.Population(3, 1, size=6),
+    lambda: vivae.NoveltySearch(3, 1, size=6),
+    lambda: vivae.Nsga2(3, 1, objectives=[("fitness", "max")], size=6),
+    lambda: vivae.MapElites(3, 1, lower=[0], upper=[1], bins=[4]),
+])
+def test_tell_names_the_argument_and_what_it_expected(make, call, message):
+    strategy = make()
+    n = len(strategy.ask())
+    with pytest.raises(TypeError, match=message):
+        call(strategy, n)
+    # Numbers of any width are numbers.
+    strategy.tell(list(np.arange(n, dtype=np.float32)), behaviours=[[np.float64(0.5)]] * n)
+
+
+def test_cell_of_names_the_behaviour():
+    archive = vivae.MapElites(3, 1, lower=[0], upper=[1], bins=[4])
+    with pytest.raises(TypeError, match=r"behaviour\[0\]: expected a real number, got str"):
+        archive.cell_of(["a"])
+    assert archive.cell_of([0.9]) == 3

@@ -25,6 +25,16 @@ def _core(num_worlds: int, robots: int, scenario, sensors, config, threads, over
         settings["scenario"] = scenario
     if sensors is not None:
         settings["sensors"] = sensors
+    if robots == 1 and settings.get("robots") is not None:
+        # A world of these environments has one robot: another count would be dropped silently.
+        given = settings["robots"]
+        if isinstance(given, (bool, np.bool_)) or not isinstance(given, (int, np.integer)):
+            raise TypeError(f"robots: expected an integer, got {type(given).__name__}")
+        if given != 1:
+            raise ValueError(
+                f"robots={given}: expected 1 (one robot per world); "
+                "vivae.DriveParallelEnv drives several robots in one world"
+            )
     settings["robots"] = robots
     return DriveCore(num_worlds, config=config, threads=threads, **settings)
 
@@ -75,6 +85,24 @@ def _options(options: Any) -> dict:
     if not isinstance(options, dict):
         raise TypeError(f"options: expected a dict or None, got {type(options).__name__}")
     return options
+
+
+def _reset_mask(mask: Any, num_envs: int) -> list[bool] | None:
+    """`options['reset_mask']`: None, or one bool per environment (a list,
+    tuple or numpy array of bools); anything else is an error naming the key."""
+    if mask is None:
+        return None
+    key = "options['reset_mask']"
+    expected = f"{num_envs} bools (one per environment)"
+    if isinstance(mask, (str, bytes, dict)) or not hasattr(mask, "__len__") or not hasattr(mask, "__iter__"):
+        raise TypeError(f"{key}: expected {expected}, got {type(mask).__name__}")
+    if len(mask) != num_envs:
+        raise ValueError(f"{key}: {len(mask)} entries for {num_envs} environments")
+    items = list(mask)
+    for i, m in enumerate(items):
+        if not isinstance(m, (bool, np.bool_)):
+            raise TypeError(f"{key}[{i}]: expected a bool, got {type(m).__name__}")
+    return [bool(m) for m in items]
 
 
 def _render_mode(render_mode: Any) -> None:
@@ -244,10 +272,8 @@ class DriveVectorEnv(_PicklesBySettings, gymnasium.vector.VectorEnv):
         if first is not None:
             self._np_random, self._np_random_seed = gymnasium.utils.seeding.np_random(first)
             self.action_space.seed(first)
-        mask = _options(options).get("reset_mask")
-        if mask is not None and len(mask) != self.num_envs:
-            raise ValueError(f"options['reset_mask']: {len(mask)} entries for {self.num_envs} environments")
-        self._core.reset(self._obs, None if mask is None else [bool(m) for m in mask])
+        mask = _reset_mask(_options(options).get("reset_mask"), self.num_envs)
+        self._core.reset(self._obs, mask)
         obs = self._obs[:, 0]
         return (obs.copy() if self.copy else obs), {}
 

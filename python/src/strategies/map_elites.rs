@@ -6,8 +6,8 @@ use pyo3::types::PyDict;
 use vivae_neat::strategies::{self as st, Cells};
 
 use crate::asktell::to_python;
-use crate::errors;
 use crate::evo::{Genome, merged, neat_setup};
+use crate::{args, errors};
 
 /// MAP-Elites over NEAT genomes (Mouret & Clune 2015), on a grid or a CVT.
 #[pyclass(module = "vivae._vivae")]
@@ -26,15 +26,15 @@ ask_tell!(MapElites, "MapElites", "MAP-Elites", &["spec"], {
     #[pyo3(signature = (inputs, outputs, *, lower, upper, bins=None, cvt_cells=None, cvt_samples=100_000, cvt_iterations=10, seed=1, preset="plain", recurrent=false, params=None, map=None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
-        inputs: usize,
-        outputs: usize,
-        lower: Vec<f64>,
-        upper: Vec<f64>,
-        bins: Option<Vec<usize>>,
-        cvt_cells: Option<usize>,
-        cvt_samples: usize,
-        cvt_iterations: usize,
-        seed: u64,
+        #[pyo3(from_py_with = args::inputs)] inputs: usize,
+        #[pyo3(from_py_with = args::outputs)] outputs: usize,
+        #[pyo3(from_py_with = args::lower)] lower: Vec<f64>,
+        #[pyo3(from_py_with = args::upper)] upper: Vec<f64>,
+        #[pyo3(from_py_with = args::bins)] bins: Option<Vec<usize>>,
+        #[pyo3(from_py_with = args::cvt_cells)] cvt_cells: Option<usize>,
+        #[pyo3(from_py_with = args::cvt_samples)] cvt_samples: usize,
+        #[pyo3(from_py_with = args::cvt_iterations)] cvt_iterations: usize,
+        #[pyo3(from_py_with = args::seed)] seed: u64,
         preset: &str,
         recurrent: bool,
         params: Option<&Bound<'_, PyDict>>,
@@ -59,7 +59,10 @@ ask_tell!(MapElites, "MapElites", "MAP-Elites", &["spec"], {
     }
 
     /// The cell a behaviour falls in.
-    fn cell_of(&self, behaviour: Vec<f64>) -> PyResult<usize> {
+    fn cell_of(
+        &self,
+        #[pyo3(from_py_with = args::behaviour)] behaviour: Vec<f64>,
+    ) -> PyResult<usize> {
         let dims = self.inner.cells().dims();
         if behaviour.len() != dims {
             let given = behaviour.len();

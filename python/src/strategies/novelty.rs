@@ -4,8 +4,8 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use vivae_neat::strategies as st;
 
-use crate::errors;
 use crate::evo::{Genome, merged, neat_setup};
+use crate::{args, errors};
 
 /// Novelty search over a NEAT population (Lehman & Stanley 2011).
 #[pyclass(module = "vivae._vivae")]
@@ -28,10 +28,10 @@ ask_tell!(
         #[pyo3(signature = (inputs, outputs, *, seed=1, size=None, preset="plain", recurrent=false, params=None, novelty=None))]
         #[allow(clippy::too_many_arguments)]
         fn new(
-            inputs: usize,
-            outputs: usize,
-            seed: u64,
-            size: Option<usize>,
+            #[pyo3(from_py_with = args::inputs)] inputs: usize,
+            #[pyo3(from_py_with = args::outputs)] outputs: usize,
+            #[pyo3(from_py_with = args::seed)] seed: u64,
+            #[pyo3(from_py_with = args::size)] size: Option<usize>,
             preset: &str,
             recurrent: bool,
             params: Option<&Bound<'_, PyDict>>,

@@ -5,8 +5,8 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use vivae_neat::strategies::{self as st, Measure, Objective};
 
-use crate::errors;
 use crate::evo::{Genome, neat_setup};
+use crate::{args, errors};
 
 /// NSGA-II (Deb et al. 2002) over NEAT genomes, on fitness and metrics.
 #[pyclass(module = "vivae._vivae")]
@@ -46,12 +46,12 @@ ask_tell!(Nsga2, "Nsga2", "NSGA-II", &["spec"], {
     #[pyo3(signature = (inputs, outputs, *, objectives, size=100, crossover_probability=0.5, seed=1, preset="plain", recurrent=false, params=None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
-        inputs: usize,
-        outputs: usize,
+        #[pyo3(from_py_with = args::inputs)] inputs: usize,
+        #[pyo3(from_py_with = args::outputs)] outputs: usize,
         objectives: Vec<(Bound<'_, PyAny>, String)>,
-        size: usize,
+        #[pyo3(from_py_with = args::size_given)] size: usize,
         crossover_probability: f64,
-        seed: u64,
+        #[pyo3(from_py_with = args::seed)] seed: u64,
         preset: &str,
         recurrent: bool,
         params: Option<&Bound<'_, PyDict>>,

@@ -4,8 +4,10 @@
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
-use vivae_neat::hyperneat::es::EsParams;
+use vivae_neat::hyperneat::es::{EsParams, Flow};
 use vivae_neat::hyperneat::{HyperError, HyperParams};
+
+use crate::controller::polar::CoordMode;
 
 /// Which substrate a run's CPPNs are decoded into.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
@@ -41,6 +43,24 @@ impl std::str::FromStr for SubstrateKind {
 /// dense sheet it paints neuron → neuron weights; ES does not read it otherwise).
 pub const ES_LEO_OUTPUT: usize = crate::polar::RECURRENT_OUTPUT;
 
+/// Refuses a feed-forward ES net (`recurrent` false) in polar coordinates,
+/// saying what to change. In the `(ρ, φ/π)` plane the left wheel neuron
+/// (y = −3/4) lies below every sensor of a field of view under 270° and the
+/// right one (y = 3/4) above them: no one direction of links along y reaches
+/// both. In the cartesian plane both lie behind (below) the sensors.
+pub fn check_feed_forward(recurrent: bool, mode: CoordMode) -> Result<(), String> {
+    if recurrent || mode == CoordMode::Cartesian {
+        return Ok(());
+    }
+    Err(
+        "substrate.es.recurrent = false needs substrate.coordinates = \"cartesian\": \
+         in polar coordinates the wheel neurons lie on both sides of the sensors along y, \
+         so no feed-forward link direction reaches both; \
+         set substrate.coordinates = \"cartesian\" or remove substrate.es.recurrent"
+            .into(),
+    )
+}
+
 /// ES-HyperNEAT parameters of a run (`[substrate.es]`); the weight
 /// expression (threshold, amplitude) is `[hyperneat]`'s.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
@@ -74,8 +94,10 @@ pub struct EsConfig {
     /// Paper: 1.
     pub iteration_level: u32,
     /// Whether links may run in any direction (a recurrent controller, like the
-    /// dense sheet, the default); `false` keeps only links going forward
-    /// (source y < target y), a feed-forward net as in the paper's tasks.
+    /// dense sheet, the default); `false` keeps only links going from ahead to
+    /// behind (source y > target y, from the sensors towards the wheel
+    /// neurons behind them), a feed-forward net as in the paper's tasks.
+    /// Needs `substrate.coordinates = "cartesian"`.
     ///
     /// Example: false.
     pub recurrent: bool,
@@ -137,6 +159,9 @@ impl EsConfig {
             band_threshold: self.band_threshold,
             iteration_level: self.iteration_level,
             recurrent: self.recurrent,
+            // The wheel neurons sit behind the sensors (y < 0 in the
+            // cartesian plane), so a feed-forward net's links run downward.
+            flow: Flow::Downward,
             expression,
         }
     }

@@ -91,6 +91,10 @@ impl Config {
             })?;
         }
         self.substrate.es.validate().map_err(ConfigError::new)?;
+        if !self.substrate.kind.is_polar() {
+            super::es::check_feed_forward(self.substrate.es.recurrent, self.substrate.coordinates)
+                .map_err(ConfigError::new)?;
+        }
         self.validate_leo()
     }
 

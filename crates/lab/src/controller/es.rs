@@ -9,7 +9,12 @@
 //! output). They sit on the same wheel ring (`ρ = 2/3`) at `φ = ∓135°`,
 //! behind-left and behind-right, where no sensor of a field of view up to
 //! 270° looks. Hidden neurons are discovered anywhere in `[−1, 1]²`, with
-//! recurrent links by default (the paper's controller is recurrent).
+//! recurrent links by default (the paper's controller is recurrent). A
+//! feed-forward net (`substrate.es.recurrent = false`) keeps only links
+//! going from ahead to behind ([`Flow::Downward`](vivae_neat::hyperneat::es::Flow)),
+//! the way from the sensors (y ≥ 0 within 180°) to the wheel neurons (y =
+//! −0.47): the paper's upward rule would leave no path at all. That needs the
+//! cartesian plane; in polar coordinates it is refused.
 //!
 //! The CPPN keeps the polar substrate's outputs: output 0 (surface sensors →
 //! neurons) paints every ES link, output 1 the biases; output 2 is unused, so
@@ -94,6 +99,7 @@ impl EsSetup {
                  and a 360° sheet has two nodes at ±180°): narrow surface_sensors.fov"
             )
         })?;
+        crate::config::es::check_feed_forward(params.recurrent, mode)?;
         params
             .validate()
             .map_err(|e| format!("substrate.es: {e}"))?;

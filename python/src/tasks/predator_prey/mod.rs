@@ -351,8 +351,8 @@ impl PredatorPreyTask {
     fn population(
         &self,
         side: &str,
-        seed: Option<u64>,
-        size: Option<usize>,
+        #[pyo3(from_py_with = crate::args::opt_seed)] seed: Option<u64>,
+        #[pyo3(from_py_with = crate::args::size)] size: Option<usize>,
         params: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Population> {
         let side = side_of(side)?;

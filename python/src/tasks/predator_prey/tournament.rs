@@ -23,7 +23,7 @@ pub fn tournament<'py>(
     py: Python<'py>,
     a: PathBuf,
     b: PathBuf,
-    threads: Option<usize>,
+    #[pyo3(from_py_with = crate::args::opt_threads)] threads: Option<usize>,
     csv: Option<PathBuf>,
 ) -> PyResult<Vec<Bound<'py, PyDict>>> {
     let rows = py

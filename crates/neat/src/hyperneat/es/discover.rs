@@ -96,7 +96,7 @@ impl Substrate<'_> {
         let allowed = if self.params.recurrent {
             source != target
         } else {
-            source.0[1] < target.0[1]
+            self.params.flow.allows(source.0, target.0)
         };
         if !allowed || self.links.contains_key(&(source, target)) {
             return false;

@@ -12,7 +12,8 @@
 //! from the hidden neurons just found, and finally inward to the outputs
 //! (from known nodes only); hidden neurons not on a path from an input to an
 //! output are dropped with their links. Without [`EsParams::recurrent`]
-//! every link goes upward (source y < target y), so the network is
+//! every link goes one way along y ([`EsParams::flow`]: upward, source y <
+//! target y, unless the outputs sit below the inputs), so the network is
 //! feed-forward.
 //!
 //! Weights use the plain HyperNEAT expression rule ([`EsParams::expression`]),
@@ -32,7 +33,7 @@ mod reference;
 
 use serde::{Deserialize, Serialize};
 
-pub use params::{EsParams, MAX_DEPTH, MAX_ITERATION_LEVEL};
+pub use params::{EsParams, Flow, MAX_DEPTH, MAX_ITERATION_LEVEL};
 
 use super::batch::BatchCppn;
 use super::error::HyperError;

@@ -34,9 +34,14 @@ pub struct EsParams {
     /// Rounds of exploring outward from newly found hidden nodes. Default 1.
     pub iteration_level: u32,
     /// Whether links may go in any direction (a recurrent network); when
-    /// false, every link goes strictly upward (source y < target y), which
-    /// makes the network acyclic. Default false.
+    /// false, every link goes strictly one way along y ([`EsParams::flow`]),
+    /// which makes the network acyclic. Default false.
     pub recurrent: bool,
+    /// Which way a feed-forward network's links go along y: upward (the
+    /// paper's, inputs at the bottom), or downward for a layout whose
+    /// outputs sit below its inputs. Not read when `recurrent`. Default upward.
+    #[serde(skip_serializing_if = "Flow::is_upward")]
+    pub flow: Flow,
     /// Weight expression: threshold and amplitude as in plain HyperNEAT.
     pub expression: HyperParams,
 }
@@ -51,7 +56,36 @@ impl Default for EsParams {
             band_threshold: 0.3,
             iteration_level: 1,
             recurrent: false,
+            flow: Flow::Upward,
             expression: HyperParams::default(),
+        }
+    }
+}
+
+/// The direction of a feed-forward ES network's links along the plane's y.
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema,
+)]
+#[serde(rename_all = "lowercase")]
+pub enum Flow {
+    /// Source y < target y: the outputs sit above the inputs (the paper's layout).
+    #[default]
+    Upward,
+    /// Source y > target y: the outputs sit below the inputs.
+    Downward,
+}
+
+impl Flow {
+    /// Whether this is the default, [`Flow::Upward`].
+    pub fn is_upward(&self) -> bool {
+        *self == Flow::Upward
+    }
+
+    /// Whether a feed-forward link may go from `source` to `target`.
+    pub fn allows(self, source: [f64; 2], target: [f64; 2]) -> bool {
+        match self {
+            Flow::Upward => source[1] < target[1],
+            Flow::Downward => source[1] > target[1],
         }
     }
 }
@@ -145,5 +179,10 @@ mod tests {
         assert_eq!(p.max_depth, 5);
         assert_eq!(p.band_threshold, 0.3);
         assert!(serde_json::from_str::<EsParams>(r#"{"maxdepth": 5}"#).is_err());
+        // The default flow is not written, so earlier files keep their bytes.
+        let text = serde_json::to_string(&EsParams::default()).unwrap();
+        assert!(!text.contains("flow"), "{text}");
+        let p: EsParams = serde_json::from_str(r#"{"flow": "downward"}"#).unwrap();
+        assert_eq!(p.flow, Flow::Downward);
     }
 }

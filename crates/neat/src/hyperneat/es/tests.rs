@@ -63,7 +63,53 @@ fn variants() -> Vec<(EsLayout, EsParams)> {
             },
             deep,
         ),
+        (
+            upside_down(layout(4, 2)),
+            EsParams {
+                flow: Flow::Downward,
+                ..deep
+            },
+        ),
     ]
+}
+
+/// `l` mirrored along y: the inputs on top, the outputs at the bottom.
+fn upside_down(l: EsLayout) -> EsLayout {
+    let flip = |v: Vec<[f64; 2]>| v.into_iter().map(|[x, y]| [x, -y]).collect();
+    EsLayout {
+        inputs: flip(l.inputs),
+        outputs: flip(l.outputs),
+        ..l
+    }
+}
+
+#[test]
+fn outputs_below_the_inputs_are_reached_by_a_downward_feed_forward_net_only() {
+    let l = upside_down(layout(5, 2));
+    let deep = EsParams {
+        initial_depth: 2,
+        max_depth: 5,
+        division_threshold: 0.01,
+        ..EsParams::default()
+    };
+    let down = EsParams {
+        flow: Flow::Downward,
+        ..deep
+    };
+    let (mut upward_links, mut downward_links, mut downward_hidden) = (0, 0, 0);
+    for g in random_genomes(24, 13) {
+        // Upward, no link can leave an input at y = 1 for an output at y = −1.
+        upward_links += decode_es_genome(&g, &l, &deep).unwrap().links().len();
+        let net = decode_es_genome(&g, &l, &down).unwrap();
+        check_invariants(&g, &l, &down, &net);
+        downward_links += net.links().len();
+        downward_hidden += net.num_hidden();
+    }
+    assert_eq!(upward_links, 0);
+    assert!(
+        downward_links > 50 && downward_hidden > 20,
+        "links {downward_links}, hidden {downward_hidden}"
+    );
 }
 
 #[test]
@@ -191,7 +237,11 @@ fn check_invariants(g: &Genome, l: &EsLayout, p: &EsParams, net: &SparseNetwork)
         assert!(forward[k.source] && backward[k.target]);
         let ([x1, y1], [x2, y2]) = (pos(k.target), pos(k.source));
         if !p.recurrent {
-            assert!(y2 < y1, "a feed-forward link goes upward");
+            assert!(
+                p.flow.allows([x2, y2], [x1, y1]),
+                "a feed-forward link goes {:?}",
+                p.flow
+            );
         }
         cppn.activate(&[x1, y1, x2, y2, 1.0], &mut out);
         let leo = l.leo_output.map(|o| out[o]);
@@ -231,7 +281,7 @@ proptest! {
     #[test]
     fn decoded_networks_keep_the_invariants(
         seed in 0u64..1000,
-        which in 0usize..5,
+        which in 0usize..6,
         depth in 2u32..6,
         band in 0.05f64..0.5,
     ) {

@@ -221,3 +221,72 @@ fn leo_seed_starts_every_strategy_that_takes_a_population_from_seeded_genomes_dr
         assert_eq!(search(&other).batch(), a, "{}", e.kind);
     }
 }
+
+#[test]
+fn a_feed_forward_es_net_links_the_sensors_ahead_to_the_wheels_behind() {
+    use vivae_neat::hyperneat::es::{EsParams, Flow};
+    let mut config = es_config();
+    config.substrate.es.recurrent = false;
+    let exp = experiment(&config);
+    let setup = exp.es_setup().unwrap();
+    assert_eq!(setup.params.flow, Flow::Downward);
+    // Why the paper's upward rule cannot work here: every sensor lies above
+    // both wheel neurons, so no input → output path goes upward.
+    let lowest_sensor = setup
+        .layout
+        .inputs
+        .iter()
+        .map(|p| p[1])
+        .fold(f64::MAX, f64::min);
+    assert!(setup.layout.outputs.iter().all(|w| w[1] < lowest_sensor));
+    let upward = EsParams {
+        flow: Flow::Upward,
+        ..setup.params
+    };
+    let pop = Population::new(config.neat.clone(), exp.cppn_spec(), 3).unwrap();
+    let (mut links, mut hidden, mut upward_links) = (0, 0, 0);
+    for g in pop.genomes().iter().take(40) {
+        upward_links += decode_es_genome(g, &setup.layout, &upward)
+            .unwrap()
+            .links()
+            .len();
+        let controller = exp.robot_controller(g).unwrap();
+        let net = controller.as_es().unwrap().network();
+        assert!(!net.is_recurrent());
+        let ni = setup.layout.inputs.len();
+        let y = |i: usize| match i {
+            i if i < ni => setup.layout.inputs[i][1],
+            i if i < ni + 2 => setup.layout.outputs[i - ni][1],
+            i => net.hidden()[i - ni - 2][1],
+        };
+        for l in net.links() {
+            assert!(y(l.source) > y(l.target), "link {l:?} does not go backward");
+        }
+        links += net.links().len();
+        hidden += net.num_hidden();
+    }
+    assert_eq!(upward_links, 0);
+    assert!(links > 40 && hidden > 0, "links {links}, hidden {hidden}");
+}
+
+#[test]
+fn a_feed_forward_es_net_in_polar_coordinates_is_refused_saying_what_to_change() {
+    let mut config = es_config();
+    config.substrate.es.recurrent = false;
+    config.substrate.coordinates = crate::controller::polar::CoordMode::Polar;
+    // By the config's own check (`vivae config check`) and by the episode.
+    let checked = config.validate().unwrap_err().to_string();
+    let built = Episode::new(&config, &load_scenario(None).unwrap().scenario)
+        .unwrap_err()
+        .to_string();
+    for e in [checked, built] {
+        assert!(
+            e.contains("substrate.es.recurrent = false") && e.contains("substrate.coordinates"),
+            "{e}"
+        );
+        assert_eq!(e.lines().count(), 1, "{e}");
+    }
+    // Recurrent, polar coordinates are fine.
+    config.substrate.es.recurrent = true;
+    assert!(config.validate().is_ok());
+}
