@@ -6,8 +6,8 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::Args;
-use vivae_lab::export::choose::choose;
-use vivae_lab::export::{Exported, Format, write};
+use vivae_lab::export::choose::exported;
+use vivae_lab::export::{Format, write};
 
 use super::args::{GenomeChoice, Resolution};
 
@@ -36,14 +36,13 @@ pub struct ExportArgs {
 
 /// Runs `vivae export`.
 pub fn run(args: ExportArgs) -> anyhow::Result<ExitCode> {
-    let chosen = choose(
+    let exported = exported(
         &args.source,
         args.genome.pick(),
         args.resolution.sensors,
         args.resolution.neurons,
         args.precision,
     )?;
-    let exported = Exported::new(&chosen.episode, &chosen.controller, &chosen.description);
     if let Some(dir) = args.out.parent().filter(|d| !d.as_os_str().is_empty()) {
         vivae_lab::io::create_dirs_for(dir, &args.out)?;
     }
@@ -51,7 +50,7 @@ pub fn run(args: ExportArgs) -> anyhow::Result<ExitCode> {
     let net = &exported.net;
     println!(
         "{}: {} inputs, {} nodes, {} links ({})",
-        chosen.description,
+        exported.description,
         net.inputs,
         net.nodes,
         net.links(),
