@@ -446,3 +446,91 @@ impl<T: Plain> RunTask for PlainRun<T> {
         Box::new(self.clone())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::export::StepNet;
+    use crate::tasks::cartpole::CartPole;
+    use vivae_neat::Population;
+
+    /// Genomes of `spec` grown by 30 generations of a made-up fitness
+    /// (hidden nodes, disabled links, recurrent links when allowed).
+    fn grown(spec: GenomeSpec) -> Vec<Genome> {
+        let params = NeatParams {
+            add_node_probability: 0.3,
+            add_link_probability: 0.5,
+            population_size: 30,
+            ..NeatParams::plain_neat()
+        };
+        let mut pop = Population::new(params, spec, 3).unwrap();
+        for _ in 0..30 {
+            pop.evaluate(|g, ctx| g.links().len() as f64 + (ctx.seed % 7) as f64);
+            pop.next_generation();
+        }
+        pop.genomes().to_vec()
+    }
+
+    #[test]
+    fn the_exported_step_is_the_network_bit_for_bit() {
+        for recurrent in [false, true] {
+            let spec = GenomeSpec {
+                allow_recurrent: recurrent,
+                ..spec::<CartPole>()
+            };
+            let genomes = grown(spec);
+            assert!(
+                genomes.iter().any(|g| g.nodes().len() > 7),
+                "hidden nodes grew"
+            );
+            for g in &genomes {
+                let step = StepNet::from_genome(g, recurrent).unwrap();
+                let mut net: Box<dyn Network> = if recurrent {
+                    Box::new(RecurrentNetwork::from_genome(g))
+                } else {
+                    Box::new(FeedForwardNetwork::from_genome(g))
+                };
+                let mut state = vec![0.0; step.nodes];
+                let mut scratch = vec![0.0; step.nodes];
+                for t in 0..5 {
+                    let inputs = [0.3 * f64::from(t), -0.7, 1.9, -0.05 * f64::from(t), 1.0];
+                    let mut out = [0.0; 2];
+                    net.activate(&inputs, &mut out);
+                    let got = step.step(&inputs, &mut state, &mut scratch);
+                    assert_eq!(got.map(f64::to_bits), out.map(f64::to_bits), "{g:?}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_setting_the_task_does_not_read_is_refused_by_its_key() {
+        let ok = default_config::<CartPole>();
+        crate::tasks::check(&ok).unwrap();
+        let refused = |edit: &dyn Fn(&mut Config), key: &str| {
+            let mut c = default_config::<CartPole>();
+            edit(&mut c);
+            let e = crate::tasks::check(&c).unwrap_err().message;
+            assert!(e.starts_with(key) && e.contains("cartpole"), "{key}: {e}");
+        };
+        refused(
+            &|c| c.surface_sensors.rings = 5,
+            "surface_sensors.rings = 5",
+        );
+        refused(&|c| c.experiment.robots = 2, "experiment.robots = 2");
+        refused(
+            &|c| c.experiment.scenario = "oval".into(),
+            "experiment.scenario",
+        );
+        refused(&|c| c.physics.v_max = 3.0, "physics.v_max");
+        refused(
+            &|c| c.strategy.behaviour = crate::config::strategy::BehaviourKind::SideSpeed,
+            "strategy.behaviour",
+        );
+        let mut read = default_config::<CartPole>();
+        read.neat.population_size = 20;
+        read.experiment.seed = 9;
+        read.strategy.kind = "nsga2".into();
+        crate::tasks::check(&read).unwrap();
+    }
+}
