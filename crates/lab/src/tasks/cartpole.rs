@@ -54,6 +54,8 @@ pub fn step([x, x_dot, theta, theta_dot]: [f64; 4], push_right: bool) -> [f64; 4
 }
 
 /// Whether the pole fell or the cart left the track.
+// Gymnasium's four comparisons (a NaN state is not terminated there either).
+#[allow(clippy::manual_range_contains)]
 pub fn terminated([x, _, theta, _]: [f64; 4]) -> bool {
     x < -X_THRESHOLD || x > X_THRESHOLD || theta < -THETA_THRESHOLD || theta > THETA_THRESHOLD
 }

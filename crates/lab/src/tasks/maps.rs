@@ -53,7 +53,9 @@ pub fn is_multi_map(config: &Config) -> bool {
 
 /// Whether `config`'s task trains on maps (its entry's [`crate::tasks::TaskEntry::maps`]).
 pub fn uses_maps(config: &Config) -> bool {
-    crate::tasks::entry(config.experiment.task.name()).map_or(true, |e| e.maps)
+    crate::tasks::entry(config.experiment.task.name())
+        .ok()
+        .is_none_or(|e| e.maps)
 }
 
 /// Loads the training maps `config` names: `experiment.scenarios`, else the

@@ -199,6 +199,7 @@ fn unread_change(c: &Config, defaults: &Config) -> Option<(String, String, Strin
     found
 }
 
+/// Walks `a` (a config) and `b` (its defaults) for the first unread key that differs.
 fn walk(
     key: &str,
     a: Option<&toml::Value>,

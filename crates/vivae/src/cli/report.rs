@@ -50,7 +50,7 @@ pub fn refuse_other_task(path: &Path, command: &str) -> anyhow::Result<()> {
     };
     match config {
         Some(c) if !c.experiment.task.is_driving() => Err(bad_input(format!(
-            "{}: task {}: `vivae {command}` shows driving runs only (it needs robots on a map); its curves: `vivae report {}`",
+            "{}: a {} run: `vivae {command}` shows driving runs only (it needs robots on a map); its curves: `vivae report {}`",
             path.display(),
             c.experiment.task,
             path.display()

@@ -108,7 +108,7 @@ fn cartpole_reaches_gymnasiums_threshold_and_reports_replays_and_exports() {
     );
     refused(
         vivae().arg("view").arg(&out),
-        &["task cartpole", "vivae report"],
+        &["a cartpole run", "vivae report"],
     );
 }
 
