@@ -210,7 +210,7 @@ fn walk(
         READ.iter()
             .any(|r| k == *r || k.starts_with(&format!("{r}.")))
     };
-    if found.is_some() || (read(key) && !key.starts_with("strategy.behaviour")) {
+    if found.is_some() || (read(key) && !"strategy.behaviour".starts_with(key)) {
         return;
     }
     match (a, b) {
