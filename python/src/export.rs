@@ -83,13 +83,12 @@ pub fn export(
     let format: Format = format.parse().map_err(PyValueError::new_err)?;
     let outputs = export_outputs(format, &out, "out=").map_err(errors::lab)?;
     check_outputs(&outputs, force).map_err(errors::lab)?;
-    let c = chosen(
-        &source,
-        (generation, elite, front),
-        (sensors, neurons),
-        precision,
-    )?;
-    let exported = Exported::new(&c.episode, &c.controller, &c.description);
+    let pick = pick(generation, elite, front)?;
+    let (s, n) = (grid("sensors", sensors)?, grid("neurons", neurons)?);
+    let precision = (precision.map(str::parse::<Precision>).transpose())
+        .map_err(|e| PyValueError::new_err(format!("precision: {e}")))?;
+    let exported =
+        vivae_lab::export::choose::exported(&source, pick, s, n, precision).map_err(errors::lab)?;
     let written = write(&exported, format, &out).map_err(errors::lab)?;
     Ok(written.iter().map(|p| p.display().to_string()).collect())
 }

@@ -530,6 +530,10 @@ pub fn report(py: Python<'_>, out: PathBuf) -> PyResult<PathBuf> {
         // Opened as `vivae resume` opens it (locked; truncated to its newest
         // checkpoint, which a finished run's files already end at).
         let run = Run::resume(&out, None, None)?;
+        if run.task().report_curves() {
+            // A task without figures of its own: its curves alone.
+            return vivae::report_html::write(run.dir());
+        }
         if run.episode().is_none() {
             let task = &run.config().experiment.task;
             return Err(vivae_lab::io::bad_input(format!(

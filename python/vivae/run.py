@@ -170,7 +170,8 @@ def report(out: str | os.PathLike) -> Path:
     What the ``vivae`` program draws at the end of ``vivae evolve`` (and
     ``vivae resume`` draws when they are missing or stale), by the same code
     built into this package: no separate program is needed. Changes no
-    result file. A run of a task that draws no figures (the maze) is refused.
+    result file. A plain task's run (``task="cartpole"``) gets its curves
+    alone; a run of another task that draws no figures (the maze) is refused.
 
     Returns:
         The path of ``report.html``.

@@ -8,7 +8,13 @@
   $("config").textContent = data.config;
   $("convergence").innerHTML = data.convergence_svg;
   $("network").innerHTML = data.network_svg;
-  $("scenario").innerHTML = data.scenes[0].svg;
+  if (data.scenes.length) {
+    $("scenario").innerHTML = data.scenes[0].svg;
+  } else {
+    // A task without maps or figures (a plain task): its curves and tables only.
+    ["drive", "scenarioheading", "scenario"].forEach(function (id) { $(id).style.display = "none"; });
+    $("network").parentNode.style.display = "none";
+  }
   if (data.maps.length) {
     $("scenarioheading").textContent = "Scenario (training map 1, " + data.maps[0] + ")";
     $("fitnessnote").textContent = "(a genome's fitness: the mean over the " + data.maps.length + " training maps)";
@@ -19,7 +25,7 @@
   $("curves").innerHTML = VivaePlots.lines(gens, [
     { name: "best", color: data.curve_colours[0], values: data.generations.map(function (r) { return r.best; }) },
     { name: "mean", color: data.curve_colours[1], values: data.generations.map(function (r) { return r.mean; }) }
-  ], "generation", "fitness (px/step)");
+  ], "generation", data.task ? "fitness" : "fitness (px/step)");
   $("species").innerHTML = VivaePlots.stacked(data.species, 1);
   $("table").innerHTML = VivaePlots.table(data.generations);
 
@@ -183,6 +189,7 @@
   if (data.maps.length) { mapPanels(); }
 
   shownScene = 0;
+  if (!data.scenes.length) { return; }
   scene.setScene(data.scenes[0], function () {
     if (data.episodes.length) { choose(0); }
     // "#t=STEP" opens the animation at that step.

@@ -64,6 +64,9 @@ struct ReportData {
     curve_colours: [String; 2],
     /// What a strategy beyond NEAT adds (none for NEAT).
     strategy: Option<StrategyData>,
+    /// The task of a report of curves alone (no scenario, episodes or network figure).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    task: Option<String>,
 }
 
 /// What a strategy other than NEAT adds to the report: its part
@@ -325,9 +328,65 @@ fn all_episodes(
     Ok((episodes, scenes, maps))
 }
 
+/// The report of a run of a task other than driving: its config, curves,
+/// species, convergence and table, read from the files every run writes.
+fn build_curves(dir: &Path, config: &vivae_lab::config::Config) -> vivae_lab::Result<String> {
+    let best = rundir::read_best_genomes(&dir.join(files::BEST_GENOMES))?;
+    let generations_csv = dir.join(files::GENERATIONS);
+    let generations = rundir::read_generations(&generations_csv)?;
+    if generations.is_empty() {
+        return Err(vivae_lab::Error::RunFile {
+            path: generations_csv,
+            reason: "no generation recorded".into(),
+        });
+    }
+    let fitness = rundir::read_population_csv(&dir.join(files::POPULATION))?;
+    let data = ReportData {
+        title: title_of(dir),
+        config: read_text(&dir.join(files::CONFIG))?,
+        scenes: Vec::new(),
+        maps: Vec::new(),
+        episodes: Vec::new(),
+        generations,
+        species: best.into_iter().map(|b| b.species).collect(),
+        convergence_svg: convergence::render_svg(&fitness, &ConvergenceOptions::default())
+            .map_err(vivae_lab::Error::from)?,
+        network_svg: String::new(),
+        curve_colours: [convergence::best_colour(), convergence::MEAN_COLOUR].map(convergence::hex),
+        strategy: None,
+        task: Some(config.experiment.task.name().to_string()),
+    };
+    page_of(&data)
+}
+
+/// The run's name for the page's title: its directory's.
+fn title_of(dir: &Path) -> String {
+    dir.canonicalize()
+        .unwrap_or_else(|_| dir.to_path_buf())
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "run".into())
+}
+
+/// The page of `data`.
+fn page_of(data: &ReportData) -> vivae_lab::Result<String> {
+    let json =
+        script_safe(
+            &serde_json::to_string(data).map_err(|e| vivae_lab::Error::Serialize {
+                what: "the report's data",
+                reason: e.to_string(),
+            })?,
+        );
+    let js = [SCENE_JS, PLOTS_JS, REPORT_JS].join("\n");
+    Ok(report_page(TEMPLATE, &js, &json))
+}
+
 /// [`build`], reusing what the end of a run computed already.
 pub fn build_reusing(dir: &Path, reuse: &Reuse<'_>) -> vivae_lab::Result<String> {
     let config = read_config(&dir.join(files::CONFIG))?;
+    if !config.experiment.task.is_driving() {
+        return build_curves(dir, &config);
+    }
     let config_text = read_text(&dir.join(files::CONFIG))?;
     let scenario = load_scenario(Some(&dir.join(files::SCENARIO)))?;
     let experiment = Episode::new(&config, &scenario.scenario)
@@ -361,14 +420,8 @@ pub fn build_reusing(dir: &Path, reuse: &Reuse<'_>) -> vivae_lab::Result<String>
         )
         .map_err(vivae_lab::Error::from)?,
     };
-    let title = dir
-        .canonicalize()
-        .unwrap_or_else(|_| dir.to_path_buf())
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "run".into());
     let data = ReportData {
-        title,
+        title: title_of(dir),
         config: config_text,
         scenes: if scenes.is_empty() {
             vec![SceneData::new(&scenario.scenario, experiment.world())]
@@ -383,16 +436,9 @@ pub fn build_reusing(dir: &Path, reuse: &Reuse<'_>) -> vivae_lab::Result<String>
         network_svg,
         curve_colours: [convergence::best_colour(), convergence::MEAN_COLOUR].map(convergence::hex),
         strategy: strategy_data(dir, &config, &experiment)?,
+        task: None,
     };
-    let json =
-        script_safe(
-            &serde_json::to_string(&data).map_err(|e| vivae_lab::Error::Serialize {
-                what: "the report's data",
-                reason: e.to_string(),
-            })?,
-        );
-    let js = [SCENE_JS, PLOTS_JS, REPORT_JS].join("\n");
-    Ok(report_page(TEMPLATE, &js, &json))
+    page_of(&data)
 }
 
 /// The end every report page shares (its last line of text, the data and the

@@ -55,7 +55,7 @@ pub fn choose(
     let (champion, mut config, _) = rundir::load_genome_source(source)?;
     if !config.experiment.task.is_driving() {
         return Err(bad_input(format!(
-            "{}: only a driving run's controller can be exported",
+            "{}: only a driving run's substrate is decoded here (a plain task's network: `exported`)",
             source.display()
         )));
     }
@@ -107,6 +107,53 @@ pub fn choose(
         controller,
         description,
     })
+}
+
+/// The controller `pick` of the run (or champion file) `source`, ready to
+/// write: a driving run's decoded substrate ([`choose`], with `sensors`,
+/// `neurons`, `precision`), or the network of a task whose genome is its
+/// controller (a plain task: [`crate::tasks::RunTask::network_outputs`]);
+/// a task that declares neither is refused by name.
+pub fn exported(
+    source: &Path,
+    pick: Pick,
+    sensors: Option<PolarGrid>,
+    neurons: Option<PolarGrid>,
+    precision: Option<Precision>,
+) -> Result<super::Exported> {
+    let (champion, config, _) = rundir::load_genome_source(source)?;
+    if config.experiment.task.is_driving() {
+        let c = choose(source, pick, sensors, neurons, precision)?;
+        return Ok(super::Exported::new(
+            &c.episode,
+            &c.controller,
+            &c.description,
+        ));
+    }
+    let name = config.experiment.task.name();
+    let refused = |why: String| bad_input(format!("{}: {why}", source.display()));
+    if sensors.is_some() || neurons.is_some() || precision.is_some() {
+        return Err(refused(format!(
+            "a {name} run has no substrate to re-sample: drop the sensors, neurons and precision"
+        )));
+    }
+    let task = crate::tasks::build(&config, &crate::tasks::maps::load(&config)?)?;
+    let outputs = task.network_outputs().ok_or_else(|| {
+        refused(format!(
+            "task {name} does not export a controller: export needs a driving run's substrate or a task whose genome is its network (a plain task)"
+        ))
+    })?;
+    let (genome, what) = genome_of(source, pick, champion)?;
+    task.check_genome(&genome).map_err(|reason| Error::Genome {
+        path: source.to_path_buf(),
+        reason,
+    })?;
+    let description = format!(
+        "{what} of {}; a plain NEAT network of task {name}",
+        source.display()
+    );
+    let recurrent = task.genome_spec().allow_recurrent;
+    super::Exported::plain(&genome, recurrent, outputs, &description).map_err(refused)
 }
 
 /// The genome `pick` names, and how to call it.

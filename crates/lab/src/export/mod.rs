@@ -121,6 +121,58 @@ impl StepNet {
         net
     }
 
+    /// A plain NEAT network (a [`crate::tasks::plain`] task's genome): its
+    /// non-input nodes by id are the nodes (the two outputs first), each
+    /// summing its links in the genome's order as vivae's networks do;
+    /// synchronous when `recurrent`, else in topological order. The writers
+    /// compute the bipolar sigmoid and two outputs only: another shape is
+    /// refused, saying so.
+    pub fn from_genome(genome: &vivae_neat::Genome, recurrent: bool) -> Result<StepNet, String> {
+        use vivae_neat::{Activation, NodeKind};
+        let nodes = genome.nodes();
+        let ni = genome.num_inputs();
+        if genome.num_outputs() != 2 {
+            return Err(format!(
+                "the network has {} outputs: the exported step has two",
+                genome.num_outputs()
+            ));
+        }
+        let computed: Vec<_> = nodes.iter().filter(|n| n.kind != NodeKind::Input).collect();
+        if let Some(n) = computed
+            .iter()
+            .find(|n| n.activation != Activation::BipolarSigmoid)
+        {
+            return Err(format!(
+                "node {} computes {:?}: the exported step computes the bipolar sigmoid only",
+                n.id, n.activation
+            ));
+        }
+        let index = |id: u32| -> Option<usize> {
+            match nodes.binary_search_by_key(&id, |n| n.id).ok()? {
+                i if nodes[i].kind == NodeKind::Input => Some(i),
+                _ => Some(ni + computed.iter().position(|n| n.id == id)?),
+            }
+        };
+        let n = computed.len();
+        let mut net = StepNet::empty(ni, n, vec![0.0; n], recurrent, [0, 1]);
+        for target in &computed {
+            for l in genome
+                .links()
+                .iter()
+                .filter(|l| l.enabled && l.to == target.id)
+            {
+                let source = index(l.from).ok_or("a link from a node the genome lacks")?;
+                net.sources.push(source);
+                net.weights.push(l.weight);
+            }
+            net.starts.push(net.sources.len());
+        }
+        if !recurrent {
+            net.order = net.topological_order();
+        }
+        Ok(net)
+    }
+
     fn empty(
         ni: usize,
         n: usize,
@@ -284,6 +336,42 @@ impl Exported {
             units: "distances in scenario px; one step = one simulation step".into(),
             net,
         }
+    }
+}
+
+impl Exported {
+    /// A plain NEAT network ([`StepNet::from_genome`]) whose inputs are one
+    /// sheet, `observation`, and whose outputs mean `outputs`.
+    pub fn plain(
+        genome: &vivae_neat::Genome,
+        recurrent: bool,
+        outputs: &str,
+        description: &str,
+    ) -> Result<Exported, String> {
+        let net = StepNet::from_genome(genome, recurrent)?;
+        let places = (0..net.inputs)
+            .map(|i| Place {
+                ring: 0,
+                angle_index: i,
+                angle_deg: 0.0,
+                distance: 0.0,
+            })
+            .collect();
+        Ok(Exported {
+            description: description.to_string(),
+            substrate: "neat".into(),
+            sheets: vec![SheetGeometry {
+                sensor: "observation".into(),
+                first_input: 0,
+                rings: 1,
+                fov_deg: 0.0,
+                reading: "the task's observation, one value an input (no place)".into(),
+                places,
+            }],
+            wheels: outputs.to_string(),
+            units: "the task's own".into(),
+            net,
+        })
     }
 }
 

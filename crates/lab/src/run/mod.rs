@@ -97,15 +97,16 @@ impl Run {
     ) -> Result<Run> {
         let maps = if is_multi_map(&config) { maps } else { &[] };
         let task: Box<dyn RunTask> = Box::new(training);
-        Run::create_task(dir, config, task, scenario_text, maps, init, force)
+        Run::create_task(dir, config, task, Some(scenario_text), maps, init, force)
     }
 
-    /// [`Run::create_on_maps`] for any task (only driving starts from `init`).
+    /// [`Run::create_on_maps`] for any task (only driving starts from `init`);
+    /// `scenario_text` is `None` for a task without maps (no `scenario.svg`).
     pub fn create_task(
         dir: &Path,
         mut config: Config,
         task: Box<dyn RunTask>,
-        scenario_text: &str,
+        scenario_text: Option<&str>,
         maps: &[TrainingMap],
         init: Option<Population>,
         force: bool,
@@ -131,7 +132,7 @@ impl Run {
         let old = crate::rundir::replace::check_target(dir, force)?;
         let (tmp, lock) = temporary_sibling(dir)?;
         let progress = Progress {
-            scenario_fnv: Some(fnv1a(scenario_text.as_bytes())),
+            scenario_fnv: scenario_text.map(|t| fnv1a(t.as_bytes())),
             maps_fnv: (!maps.is_empty()).then(|| {
                 maps.iter()
                     .map(|m| fnv1a(m.loaded.text.as_bytes()))
@@ -198,12 +199,15 @@ impl Run {
             cp.config.experiment.generations = n;
         }
         let maps = load_run(dir, &cp.config, cp.progress.maps_fnv.as_deref())?;
-        let scenario = crate::io::load_scenario(Some(&dir.join(files::SCENARIO)))?;
+        // A task without maps has no scenario.svg.
+        let scenario = (crate::tasks::maps::uses_maps(&cp.config))
+            .then(|| crate::io::load_scenario(Some(&dir.join(files::SCENARIO))))
+            .transpose()?;
         let task = crate::tasks::build(&cp.config, &maps)?;
         // Everything is validated before anything in the directory changes.
         let search = validate_progress(&path, &cp, task.as_ref())?;
         if let Some(h) = cp.progress.scenario_fnv
-            && h != fnv1a(scenario.text.as_bytes())
+            && scenario.is_none_or(|s| h != fnv1a(s.text.as_bytes()))
         {
             return Err(Error::Checkpoint {
                 path: dir.join(files::SCENARIO),

@@ -383,16 +383,17 @@ impl Prepared {
             task,
             init,
         } = self;
-        let first = maps
-            .first()
-            .map(|m| m.loaded.text.clone())
-            .ok_or_else(|| bad_input("no scenario"))?;
+        // A task without maps has no first map: its run has no scenario.svg.
+        let first = maps.first().map(|m| m.loaded.text.clone());
+        if first.is_none() && maps::uses_maps(&config) {
+            return Err(bad_input("no scenario"));
+        }
         let maps = if maps::is_multi_map(&config) {
             maps
         } else {
             Vec::new()
         };
-        crate::run::Run::create_task(dir, config, task, &first, &maps, init, force)
+        crate::run::Run::create_task(dir, config, task, first.as_deref(), &maps, init, force)
     }
 }
 

@@ -112,13 +112,15 @@ pub(crate) fn remove_abandoned_builds(parent: &Path, name: &str) {
 pub(crate) fn fill_new_run(
     dir: &Path,
     config: &mut Config,
-    scenario_text: &str,
+    scenario_text: Option<&str>,
     search: &Search,
     progress: &Progress,
 ) -> Result<()> {
     let checkpoints = dir.join(files::CHECKPOINTS);
     fs::create_dir_all(&checkpoints).map_err(Error::io("create", checkpoints))?;
-    write_atomic(&dir.join(files::SCENARIO), scenario_text.as_bytes())?;
+    if let Some(text) = scenario_text {
+        write_atomic(&dir.join(files::SCENARIO), text.as_bytes())?;
+    }
     if !config.experiment.init_population.is_empty() {
         // Keep the starting population beside the config that names it.
         let init_cp = Checkpoint::new(config, progress, search);
@@ -128,7 +130,7 @@ pub(crate) fn fill_new_run(
         )?;
         config.experiment.init_population = files::INIT_POPULATION.into();
     }
-    if !crate::tasks::maps::is_multi_map(config) {
+    if scenario_text.is_some() && !crate::tasks::maps::is_multi_map(config) {
         config.experiment.scenario = files::SCENARIO.into();
     }
     write_atomic(&dir.join(files::CONFIG), config.to_toml().as_bytes())?;

@@ -56,9 +56,13 @@ pub fn manifest(names: &[String], maps: &[TrainingMap]) -> String {
 }
 
 /// Loads the training maps of the run in `dir` (its config `config`): the
-/// copies under `scenarios/` for a multi-map run, else `scenario.svg`.
+/// copies under `scenarios/` for a multi-map run, else `scenario.svg` (none
+/// for a task without maps).
 /// With `hashes` (from the checkpoint), a copy whose text changed is refused.
 pub fn load_run(dir: &Path, config: &Config, hashes: Option<&[u64]>) -> Result<Vec<TrainingMap>> {
+    if !crate::tasks::maps::uses_maps(config) {
+        return Ok(Vec::new());
+    }
     if !is_multi_map(config) {
         let path = dir.join(files::SCENARIO);
         return Ok(vec![TrainingMap {

@@ -51,9 +51,20 @@ pub fn is_multi_map(config: &Config) -> bool {
     !config.experiment.scenarios.is_empty()
 }
 
+/// Whether `config`'s task trains on maps (its entry's [`crate::tasks::TaskEntry::maps`]).
+pub fn uses_maps(config: &Config) -> bool {
+    crate::tasks::entry(config.experiment.task.name())
+        .ok()
+        .is_none_or(|e| e.maps)
+}
+
 /// Loads the training maps `config` names: `experiment.scenarios`, else the
-/// single `experiment.scenario` (empty = the embedded default).
+/// single `experiment.scenario` (empty = the embedded default); none for a
+/// task without maps.
 pub fn load(config: &Config) -> Result<Vec<TrainingMap>> {
+    if !uses_maps(config) {
+        return Ok(Vec::new());
+    }
     if !is_multi_map(config) {
         let path = (!config.experiment.scenario.is_empty())
             .then(|| PathBuf::from(&config.experiment.scenario));

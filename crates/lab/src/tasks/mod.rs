@@ -4,14 +4,17 @@
 //! its name (`experiment.task`), its default config and the rules it adds to
 //! the shared ones, the metrics it measures, the columns it adds to
 //! `generations.csv`, and how to build it as a [`RunTask`] (the driving
-//! experiment: [`driving`]; Lehman & Stanley's maze: [`maze`]). Everything a
+//! experiment: [`driving`]; Lehman & Stanley's maze: [`maze`]); a task of
+//! plain NEAT networks is its [`plain::Plain`] shape and scoring ([`cartpole`]). Everything a
 //! run, its recorder, the program or the Python package needs to know about a
 //! task, it asks the [`RunTask`] or its entry; nothing outside a task's folder
 //! matches on which task it is.
 
+pub mod cartpole;
 pub mod driving;
 pub mod maps;
 pub mod maze;
+pub mod plain;
 pub mod predator_prey;
 pub mod robot;
 mod seam;
@@ -29,4 +32,9 @@ pub use predator_prey::section::CoevolutionConfig;
 
 /// Every task a run can evolve for; `experiment.task` names one. A new task
 /// is a folder here and one line in this list.
-pub static TASKS: [&TaskEntry; 3] = [&driving::TASK, &maze::TASK, &predator_prey::TASK];
+pub static TASKS: [&TaskEntry; 4] = [
+    &driving::TASK,
+    &maze::TASK,
+    &predator_prey::TASK,
+    &cartpole::TASK,
+];

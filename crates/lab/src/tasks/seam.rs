@@ -56,6 +56,10 @@ pub struct TaskEntry {
     pub scenarios: &'static [Shipped],
     /// Its replication packs (`vivae reproduce NAME`; [`crate::reproduce::packs`]).
     pub packs: &'static [Pack],
+    /// Whether its runs train on scenario maps (`experiment.scenario(s)`,
+    /// copied into the run); a task without (a [`super::plain`] task)
+    /// loads none and its run directory has no `scenario.svg`.
+    pub maps: bool,
 }
 
 /// What a running task's own driver tells the program: lines for a person
@@ -363,6 +367,24 @@ pub trait RunTask: Task + fmt::Debug + Send + Sync {
     /// end (for stdout) and a note (for stderr); `None` for driving.
     fn replay_text(&self, _genome: &Genome) -> Option<(String, String)> {
         None
+    }
+
+    /// A replay's episode of `genome`, step by step, as CSV (written as
+    /// `episode.csv`), for a task that records its episodes.
+    fn episode_csv(&self, _genome: &Genome) -> Option<String> {
+        None
+    }
+
+    /// For a task whose genome is its controller (a plain NEAT network, as
+    /// `vivae export` writes it), what the network's outputs mean; `None` otherwise.
+    fn network_outputs(&self) -> Option<&'static str> {
+        None
+    }
+
+    /// Whether the end of a run writes `report.html` with the run's curves
+    /// alone (a task that draws no figures of its own).
+    fn report_curves(&self) -> bool {
+        false
     }
 
     /// The driving experiment, when the task is one: figures, replays and the

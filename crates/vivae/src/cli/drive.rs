@@ -140,8 +140,16 @@ fn conclude_without_figures(
     };
     let (person, line) = (run.task().summary(&finished))
         .ok_or_else(|| bad_input("the run's task has no summary"))?;
+    // A task without figures of its own: report.html with its curves.
+    let report = (run.task().report_curves())
+        .then(|| vivae::report_html::write(run.dir()))
+        .transpose()
+        .context("writing report.html")?;
     if !quiet {
         eprintln!("{person}");
+        if let Some(path) = report {
+            eprintln!("report: {}", path.display());
+        }
     }
     println!("{line}");
     Ok(ExitCode::SUCCESS)

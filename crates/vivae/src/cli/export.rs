@@ -6,8 +6,8 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::Args;
-use vivae_lab::export::choose::choose;
-use vivae_lab::export::{Exported, Format, write};
+use vivae_lab::export::choose::exported;
+use vivae_lab::export::{Format, write};
 use vivae_lab::output_path::{check_outputs, export_outputs};
 
 use super::args::{GenomeChoice, Resolution};
@@ -45,19 +45,18 @@ pub struct ExportArgs {
 pub fn run(args: ExportArgs) -> anyhow::Result<ExitCode> {
     let outputs = export_outputs(args.format, &args.out, "-o")?;
     check_outputs(&outputs, args.force)?;
-    let chosen = choose(
+    let exported = exported(
         &args.source,
         args.genome.pick(),
         args.resolution.sensors,
         args.resolution.neurons,
         args.precision,
     )?;
-    let exported = Exported::new(&chosen.episode, &chosen.controller, &chosen.description);
     let written = write(&exported, args.format, &args.out)?;
     let net = &exported.net;
     println!(
         "{}: {} inputs, {} nodes, {} links ({})",
-        chosen.description,
+        exported.description,
         net.inputs,
         net.nodes,
         net.links(),

@@ -179,8 +179,25 @@ fn replay_without_figures(
             path: args.source.clone(),
             reason,
         })?;
-    let (line, note) = (task.replay_text(&champion.genome))
-        .ok_or_else(|| bad_input("the run's task has no replay"))?;
+    let name = config.experiment.task.name();
+    let (line, note) = (task.replay_text(&champion.genome)).ok_or_else(|| {
+        bad_input(format!(
+            "{}: task {name} does not record episodes: replay needs a task that scores a genome again with a trace (a plain task's Plain::TRACES) or draws its own",
+            args.source.display()
+        ))
+    })?;
+    if let Some(csv) = task.episode_csv(&champion.genome) {
+        let base = if args.source.is_dir() {
+            args.source.clone()
+        } else {
+            args.source.parent().map(PathBuf::from).unwrap_or_default()
+        };
+        let out = (args.out.clone()).unwrap_or_else(|| base.join(rundir::replace::REPLAY_DIR));
+        vivae_lab::io::create_dirs(&out)?;
+        let path = out.join("episode.csv");
+        vivae_lab::io::write_atomic(&path, csv.as_bytes())?;
+        eprintln!("episode: {}", path.display());
+    }
     println!("{line}");
     eprintln!("{note}");
     Ok(ExitCode::SUCCESS)

@@ -1,7 +1,7 @@
-//! `vivae report`: rebuilds a run's report.html (a driving run's, or that of
+//! `vivae report`: rebuilds a run's report.html (a driving run's; that of
 //! a run whose task's program-side tools draw its own, e.g. a predator–prey
-//! run's with its CIAO figure); and the refusal, shared with `vivae view`,
-//! of a command that shows driving runs only.
+//! run's with its CIAO figure; for any other task its curves alone); and the
+//! refusal, shared with `vivae view`, of a command that shows driving runs only.
 
 use std::path::Path;
 use std::process::ExitCode;
@@ -16,7 +16,7 @@ pub fn run(run_dir: &Path) -> anyhow::Result<ExitCode> {
         // A task's own report (two co-evolved populations: the CIAO figure, both sides' curves).
         (tools.report)(run_dir)?
     } else {
-        refuse_other_task(run_dir, "report")?;
+        refuse_own_driver(run_dir, "report")?;
         crate::report_html::write(run_dir)?
     };
     eprintln!("report: {}", path.display());
@@ -50,9 +50,10 @@ pub fn refuse_other_task(path: &Path, command: &str) -> anyhow::Result<()> {
     };
     match config {
         Some(c) if !c.experiment.task.is_driving() => Err(bad_input(format!(
-            "{}: a {} run: `vivae {command}` shows driving runs only; its curves are in generations.csv and `vivae replay` prints its champion's end",
+            "{}: a {} run: `vivae {command}` shows driving runs only (it needs robots on a map); its curves: `vivae report {}`",
             path.display(),
-            c.experiment.task
+            c.experiment.task,
+            path.display()
         ))
         .into()),
         _ => Ok(()),

@@ -272,10 +272,12 @@ fn bad_maze_combinations_and_driving_only_commands_exit_2_with_one_line() {
         "--task maze: the config file's experiment.task is driving",
     );
     assert!(!out.exists(), "a refused run leaves no directory");
-    // A maze run: the commands that draw driving runs refuse it.
+    // A maze run: its report shows its curves; the commands that draw
+    // driving runs refuse it.
     let maze_run = dir.join("maze");
     maze(&maze_run, &["--generations", "1", "--population", "20"]);
-    refused(vivae().arg("report").arg(&maze_run), "a maze run");
+    ok(vivae().arg("report").arg(&maze_run));
+    assert!(maze_run.join("report.html").is_file());
     refused(vivae().arg("view").arg(&maze_run), "a maze run");
     refused(
         vivae().arg("view").arg(maze_run.join("champion.json")),

@@ -26,6 +26,7 @@ pub static TASK: TaskEntry = TaskEntry {
     sections: Vec::new,
     scenarios: &crate::tasks::driving::scenarios::SCENARIOS,
     packs: &[],
+    maps: true,
 };
 
 /// With another task than driving: refuses `experiment.placements` (and its

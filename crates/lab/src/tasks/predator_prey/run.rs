@@ -45,6 +45,7 @@ pub static TASK: TaskEntry = TaskEntry {
     sections: Vec::new,
     scenarios: &SCENARIOS,
     packs: &[],
+    maps: true,
 };
 
 /// The predator–prey arenas as shipped scenarios (`--scenario predator-prey`).

@@ -1,0 +1,116 @@
+//! CartPole-v1 with Gymnasium's dynamics (`gymnasium/envs/classic_control/
+//! cartpole.py`): float64 state, explicit Euler, its constants, termination
+//! at |x| > 2.4 or |θ| > 12°, truncation after 500 steps, reward 1 a step.
+//! Its sin and cos are vivae's portable ones. An evaluation is [`EPISODES`]
+//! episodes, each starting uniformly within ±0.05 (from the evaluation's
+//! seed); fitness is their mean return, solved at Gymnasium's
+//! `reward_threshold` of 475. The network reads the observation (float32, as
+//! Gymnasium returns it) and a bias; action = argmax of its two outputs.
+
+use vivae_neat::Network;
+use vivae_neat::driver::Evaluation;
+use vivae_neat::eval::splitmix64;
+use vivae_neat::math::{cos, sin};
+
+use super::TaskEntry;
+use super::plain::{Plain, Trace, entry};
+
+/// The task's registration (`--task cartpole`).
+pub static TASK: TaskEntry = entry::<CartPole>();
+
+/// Episodes per evaluation.
+pub const EPISODES: u32 = 5;
+/// Steps after which an episode is truncated (CartPole-v1's `max_episode_steps`).
+pub const MAX_STEPS: u32 = 500;
+const GRAVITY: f64 = 9.8;
+const MASSCART: f64 = 1.0;
+const MASSPOLE: f64 = 0.1;
+const TOTAL_MASS: f64 = MASSPOLE + MASSCART;
+const LENGTH: f64 = 0.5;
+const POLEMASS_LENGTH: f64 = MASSPOLE * LENGTH;
+const FORCE_MAG: f64 = 10.0;
+const TAU: f64 = 0.02;
+const THETA_THRESHOLD: f64 = 12.0 * 2.0 * std::f64::consts::PI / 360.0;
+const X_THRESHOLD: f64 = 2.4;
+
+/// CartPole-v1 as a plain task.
+#[derive(Debug, Clone, Copy)]
+pub struct CartPole;
+
+/// One step of Gymnasium's Euler integration, in its order of operations.
+pub fn step([x, x_dot, theta, theta_dot]: [f64; 4], push_right: bool) -> [f64; 4] {
+    let force = if push_right { FORCE_MAG } else { -FORCE_MAG };
+    let (costheta, sintheta) = (cos(theta), sin(theta));
+    let temp = (force + POLEMASS_LENGTH * (theta_dot * theta_dot) * sintheta) / TOTAL_MASS;
+    let thetaacc = (GRAVITY * sintheta - costheta * temp)
+        / (LENGTH * (4.0 / 3.0 - MASSPOLE * (costheta * costheta) / TOTAL_MASS));
+    let xacc = temp - POLEMASS_LENGTH * thetaacc * costheta / TOTAL_MASS;
+    [
+        x + TAU * x_dot,
+        x_dot + TAU * xacc,
+        theta + TAU * theta_dot,
+        theta_dot + TAU * thetaacc,
+    ]
+}
+
+/// Whether the pole fell or the cart left the track.
+// Gymnasium's four comparisons (a NaN state is not terminated there either).
+#[allow(clippy::manual_range_contains)]
+pub fn terminated([x, _, theta, _]: [f64; 4]) -> bool {
+    x < -X_THRESHOLD || x > X_THRESHOLD || theta < -THETA_THRESHOLD || theta > THETA_THRESHOLD
+}
+
+/// The start of episode `k` of the evaluation of `seed`: each coordinate uniform in [−0.05, 0.05).
+pub fn start(seed: u64, k: u32) -> [f64; 4] {
+    let mut z = splitmix64(seed ^ u64::from(k));
+    [0; 4].map(|_| {
+        z = splitmix64(z);
+        -0.05 + 0.1 * ((z >> 11) as f64 / (1u64 << 53) as f64)
+    })
+}
+
+impl Plain for CartPole {
+    const NAME: &'static str = "cartpole";
+    const ABOUT: &'static str = "CartPole-v1 (Gymnasium's dynamics)";
+    const SCORING: &'static str = "fitness = the mean return of 5 episodes (1 a step, at most 500)";
+    const INPUTS: usize = 5;
+    const OUTPUTS: usize = 2;
+    const OUTPUT_MEANING: &'static str = "CartPole-v1's action = argmax: out[0] >= out[1] pushes left (0), else right (1); inputs x, x_dot, theta, theta_dot, 1";
+    const METRICS: &'static [&'static str] = &["worst", "steps"];
+    const BEHAVIOUR: &'static [&'static str] = &["x", "theta"];
+    const STEPS: u64 = (EPISODES * MAX_STEPS) as u64;
+    const TARGET: Option<f64> = Some(475.0);
+    const TRACES: bool = true;
+
+    fn evaluate(net: &mut dyn Network, seed: u64, mut trace: Option<&mut Trace>) -> Evaluation {
+        let (mut total, mut worst, mut place) = (0.0, f64::INFINITY, [0.0; 2]);
+        let mut out = [0.0; 2];
+        for k in 0..EPISODES {
+            let mut s = start(seed, k);
+            net.reset();
+            let mut steps = 0.0;
+            for _ in 0..MAX_STEPS {
+                let o = s.map(|v| f64::from(v as f32));
+                let inputs = [o[0], o[1], o[2], o[3], 1.0];
+                net.activate(&inputs, &mut out);
+                s = step(s, out[1] > out[0]);
+                steps += 1.0;
+                place[0] += ((o[0] / X_THRESHOLD + 1.0) / 2.0).clamp(0.0, 1.0);
+                place[1] += ((o[2] / THETA_THRESHOLD + 1.0) / 2.0).clamp(0.0, 1.0);
+                if let Some(t) = trace.as_deref_mut() {
+                    t.step(k, &inputs, &out, 1.0);
+                }
+                if terminated(s) {
+                    break;
+                }
+            }
+            total += steps;
+            worst = f64::min(worst, steps);
+        }
+        Evaluation {
+            fitness: total / f64::from(EPISODES),
+            metrics: vec![worst, total],
+            behaviour: place.map(|p| p / total).to_vec(),
+        }
+    }
+}

@@ -1,0 +1,537 @@
+//! A plain task: a genome shape and a scoring function made a full run
+//! task. A task that evolves plain NEAT networks (no substrate, no robot, no
+//! map) implements [`Plain`] (its shape and its `evaluate`) and registers
+//! `entry::<Its>()` in [`super::TASKS`]; this adapter gives it everything
+//! else a run asks of a task: its default config (plain NEAT, the strategies
+//! fitted to its metrics), the refusal by name of every setting it does not
+//! read, no maps, the run directory every task writes, a header, a summary,
+//! `generations.csv`'s target columns, the replay of an episode (when it
+//! keeps a trace) and its network for `vivae export`.
+
+use std::any::Any;
+use std::fmt::Write as _;
+use std::marker::PhantomData;
+
+use vivae_neat::driver::{Evaluation, Task};
+use vivae_neat::{
+    Activation, EvalContext, FeedForwardNetwork, Genome, GenomeSpec, NeatParams, Network,
+    RecurrentNetwork,
+};
+
+use crate::config::{Config, TaskName};
+use crate::error::Result;
+use crate::io::bad_input;
+use crate::search::TaskFacts;
+use crate::tasks::maps::TrainingMap;
+use crate::tasks::{Finished, HeaderContext, RunTask, TargetProgress, TaskEntry};
+
+/// A task of plain NEAT networks: its shape and how a network is scored.
+pub trait Plain: Send + Sync + 'static {
+    /// Its name in `experiment.task` and `--task`.
+    const NAME: &'static str;
+    /// What it is, for the run's header.
+    const ABOUT: &'static str;
+    /// How an evaluation is scored, for the run's header.
+    const SCORING: &'static str;
+    /// Inputs of its networks (a bias input included, if it wants one).
+    const INPUTS: usize;
+    /// Outputs of its networks.
+    const OUTPUTS: usize;
+    /// What the outputs mean (exported with the network).
+    const OUTPUT_MEANING: &'static str;
+    /// Whether its networks may grow recurrent links.
+    const RECURRENT: bool = false;
+    /// Names of the metrics its evaluations carry; one named `steps`
+    /// counts the steps an evaluation took.
+    const METRICS: &'static [&'static str] = &[];
+    /// Names of its behaviour descriptor's coordinates, each in [0, 1];
+    /// none: novelty search and MAP-Elites are refused.
+    const BEHAVIOUR: &'static [&'static str] = &[];
+    /// Steps one evaluation simulates at most.
+    const STEPS: u64;
+    /// The fitness at which it counts as solved: the run stops there.
+    const TARGET: Option<f64> = None;
+    /// Whether [`Plain::evaluate`] fills a trace when given one (replay).
+    const TRACES: bool = false;
+    /// Its settings over the adapter's defaults (population, generations…).
+    fn defaults(_config: &mut Config) {}
+    /// Scores `net` on the evaluation of seed `seed`; with `trace`, records
+    /// every step in it.
+    fn evaluate(net: &mut dyn Network, seed: u64, trace: Option<&mut Trace>) -> Evaluation;
+}
+
+/// An episode as a plain task's evaluation records it, for a replay.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Trace {
+    /// One row a step: episode, the network's inputs, its outputs, the reward.
+    pub rows: Vec<(u32, Vec<f64>, Vec<f64>, f64)>,
+}
+
+impl Trace {
+    /// Records one step of episode `episode`.
+    pub fn step(&mut self, episode: u32, inputs: &[f64], outputs: &[f64], reward: f64) {
+        (self.rows).push((episode, inputs.to_vec(), outputs.to_vec(), reward));
+    }
+
+    /// The trace as CSV: `episode,step,in0…,out0…,reward`.
+    pub fn csv(&self) -> String {
+        let (ni, no) = self.rows.first().map_or((0, 0), |r| (r.1.len(), r.2.len()));
+        let mut out = String::from("episode,step");
+        (0..ni).for_each(|i| write!(out, ",in{i}").expect("a String"));
+        (0..no).for_each(|o| write!(out, ",out{o}").expect("a String"));
+        out.push_str(",reward\n");
+        let mut step = 0;
+        for (k, (episode, inputs, outputs, reward)) in self.rows.iter().enumerate() {
+            step = if k > 0 && self.rows[k - 1].0 == *episode {
+                step + 1
+            } else {
+                0
+            };
+            write!(out, "{episode},{step}").expect("a String");
+            for v in inputs.iter().chain(outputs) {
+                write!(out, ",{v}").expect("a String");
+            }
+            writeln!(out, ",{reward}").expect("a String");
+        }
+        out
+    }
+}
+
+/// The seed a replay evaluates on (training draws hashed seeds, so it is
+/// one never trained on).
+pub const REPLAY_SEED: u64 = 0;
+
+/// The columns a plain task with a target adds to `generations.csv`.
+pub const TARGET_COLUMNS: &str = ",solvers,evaluations";
+
+/// The keys of a config a plain task reads; every other key must stay at
+/// its default (`strategy.behaviour` is the driving task's).
+const READ: [&str; 6] = [
+    "experiment.task",
+    "experiment.seed",
+    "experiment.generations",
+    "neat",
+    "run",
+    "strategy",
+];
+
+/// The registration of plain task `T`.
+pub const fn entry<T: Plain>() -> TaskEntry {
+    TaskEntry {
+        name: T::NAME,
+        default_config: default_config::<T>,
+        validate: validate::<T>,
+        metric_names: T::METRICS,
+        generation_columns: if T::TARGET.is_some() {
+            TARGET_COLUMNS
+        } else {
+            ""
+        },
+        build: build::<T>,
+        own_driver: None,
+        refuse_when_other: nothing_to_refuse,
+        set_robot: None,
+        sections: Vec::new,
+        scenarios: &[],
+        packs: &[],
+        maps: false,
+    }
+}
+
+/// A plain task has no section of its own to refuse when another task runs.
+fn nothing_to_refuse(_: &Config) -> std::result::Result<(), String> {
+    Ok(())
+}
+
+/// The genomes of `T`: bipolar sigmoids everywhere (the step `vivae export` writes).
+pub fn spec<T: Plain>() -> GenomeSpec {
+    GenomeSpec {
+        inputs: T::INPUTS,
+        outputs: T::OUTPUTS,
+        output_activation: Activation::BipolarSigmoid,
+        hidden_activations: vec![Activation::BipolarSigmoid],
+        allow_recurrent: T::RECURRENT,
+    }
+}
+
+/// The config of a run of `T` without a config file: plain NEAT, 100
+/// generations, then `T`'s own settings; the strategies fitted to its metrics.
+fn default_config<T: Plain>() -> Config {
+    let mut c = Config::default();
+    c.experiment.task = TaskName(T::NAME.into());
+    c.experiment.generations = 100;
+    c.neat = NeatParams::plain_neat();
+    T::defaults(&mut c);
+    c.strategy.fit_to(&TaskFacts {
+        metrics: Some(T::METRICS),
+        ..TaskFacts::default()
+    });
+    c
+}
+
+/// Refuses a strategy that needs a behaviour `T` does not give, and any key
+/// `T` does not read off its default; the message names the key.
+fn validate<T: Plain>(c: &Config) -> std::result::Result<(), String> {
+    let kind = c.strategy.kind.name();
+    if T::BEHAVIOUR.is_empty() && crate::search::entry(kind).is_ok_and(|e| e.needs.behaviour) {
+        return Err(format!(
+            "strategy.kind = {kind}: a {} run gives no behaviour descriptor, which {kind} searches on: use a strategy that selects on fitness",
+            T::NAME
+        ));
+    }
+    let defaults = default_config::<T>();
+    match unread_change(c, &defaults) {
+        Some((key, value, default)) => Err(format!(
+            "{key} = {value}: a {} run does not read it (it reads {}): leave it at {default}",
+            T::NAME,
+            "experiment.seed and generations, [neat], [run] and [strategy]"
+        )),
+        None => Ok(()),
+    }
+}
+
+/// The first key of `c` that a plain task does not read and that differs
+/// from `defaults`: (key, its value, the default), `unset` for a missing one.
+fn unread_change(c: &Config, defaults: &Config) -> Option<(String, String, String)> {
+    let value = |c: &Config| toml::Value::try_from(c).expect("a config is TOML");
+    let mut found = None;
+    walk("", Some(&value(c)), Some(&value(defaults)), &mut found);
+    found
+}
+
+/// Walks `a` (a config) and `b` (its defaults) for the first unread key that differs.
+fn walk(
+    key: &str,
+    a: Option<&toml::Value>,
+    b: Option<&toml::Value>,
+    found: &mut Option<(String, String, String)>,
+) {
+    let read = |k: &str| {
+        READ.iter()
+            .any(|r| k == *r || k.starts_with(&format!("{r}.")))
+    };
+    if found.is_some() || (read(key) && !"strategy.behaviour".starts_with(key)) {
+        return;
+    }
+    match (a, b) {
+        (Some(toml::Value::Table(x)), Some(toml::Value::Table(y))) => {
+            let mut keys: Vec<&String> = x.keys().chain(y.keys()).collect();
+            keys.sort();
+            keys.dedup();
+            for k in keys {
+                let sub = if key.is_empty() {
+                    k.clone()
+                } else {
+                    format!("{key}.{k}")
+                };
+                walk(&sub, x.get(k), y.get(k), found);
+            }
+        }
+        (a, b) if a != b => {
+            let show = |v: Option<&toml::Value>| v.map_or("unset".into(), ToString::to_string);
+            *found = Some((key.to_string(), show(a), show(b)));
+        }
+        _ => {}
+    }
+}
+
+/// The run task of plain task `T`.
+fn build<T: Plain>(config: &Config, _maps: &[TrainingMap]) -> Result<Box<dyn RunTask>> {
+    let entry = crate::tasks::entry_of(config).map_err(|e| bad_input(e.to_string()))?;
+    Ok(Box::new(PlainRun::<T> {
+        entry,
+        task: PhantomData,
+    }))
+}
+
+/// Plain task `T` as a run evaluates, records and reports it.
+pub struct PlainRun<T> {
+    entry: &'static TaskEntry,
+    task: PhantomData<fn() -> T>,
+}
+
+impl<T> Clone for PlainRun<T> {
+    fn clone(&self) -> Self {
+        PlainRun {
+            entry: self.entry,
+            task: PhantomData,
+        }
+    }
+}
+
+impl<T> std::fmt::Debug for PlainRun<T> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("PlainRun")
+            .field("task", &self.entry.name)
+            .finish()
+    }
+}
+
+impl<T: Plain> PlainRun<T> {
+    /// `genome`'s network scored on the evaluation of `seed`, recording into `trace`.
+    fn score(genome: &Genome, seed: u64, trace: Option<&mut Trace>) -> Evaluation {
+        if T::RECURRENT {
+            T::evaluate(&mut RecurrentNetwork::from_genome(genome), seed, trace)
+        } else {
+            T::evaluate(&mut FeedForwardNetwork::from_genome(genome), seed, trace)
+        }
+    }
+
+    /// `key=value` of each metric, with leading spaces.
+    fn metric_fields(e: &Evaluation) -> String {
+        let pairs = T::METRICS.iter().zip(&e.metrics);
+        pairs.map(|(k, v)| format!(" {k}={v}")).collect()
+    }
+}
+
+impl<T: Plain> Task for PlainRun<T> {
+    fn evaluate(&self, genome: &Genome, ctx: &EvalContext) -> Evaluation {
+        Self::score(genome, ctx.seed, None)
+    }
+
+    fn metric_names(&self) -> &[&str] {
+        T::METRICS
+    }
+}
+
+impl<T: Plain> RunTask for PlainRun<T> {
+    fn entry(&self) -> &'static TaskEntry {
+        self.entry
+    }
+
+    fn genome_spec(&self) -> GenomeSpec {
+        spec::<T>()
+    }
+
+    fn behaviour_bounds(&self, _config: &Config) -> (Vec<f64>, Vec<f64>) {
+        let n = T::BEHAVIOUR.len();
+        (vec![0.0; n], vec![1.0; n])
+    }
+
+    fn robot_steps(&self) -> u64 {
+        T::STEPS
+    }
+
+    fn robot_steps_of(&self, evaluations: &[Evaluation]) -> f64 {
+        match T::METRICS.iter().position(|m| *m == "steps") {
+            Some(k) => evaluations.iter().filter_map(|e| e.metrics.get(k)).sum(),
+            None => evaluations.len() as f64 * T::STEPS as f64,
+        }
+    }
+
+    fn check_genome(&self, genome: &Genome) -> std::result::Result<(), String> {
+        let (inputs, outputs) = (genome.num_inputs(), genome.num_outputs());
+        if (inputs, outputs) == (T::INPUTS, T::OUTPUTS) {
+            Ok(())
+        } else {
+            Err(format!(
+                "network has {inputs} inputs and {outputs} outputs, {} needs {} and {}",
+                T::NAME,
+                T::INPUTS,
+                T::OUTPUTS
+            ))
+        }
+    }
+
+    /// The network is the genome: its enabled links of all its link genes.
+    fn links(&self, genome: &Genome) -> Result<(usize, usize)> {
+        Ok((genome.num_enabled_links(), genome.links().len()))
+    }
+
+    fn describe(&self, _maps: &[TrainingMap]) -> String {
+        T::ABOUT.into()
+    }
+
+    fn has_target(&self) -> bool {
+        T::TARGET.is_some()
+    }
+
+    fn reached_target(&self, evaluation: &Evaluation) -> bool {
+        T::TARGET.is_some_and(|t| evaluation.fitness >= t)
+    }
+
+    fn generation_fields(&self, progress: &TargetProgress, evaluations: &[Evaluation]) -> String {
+        let solvers = evaluations.iter().filter(|e| self.reached_target(e));
+        format!(",{},{}", solvers.count(), progress.evaluations)
+    }
+
+    fn header(&self, c: &Config, ctx: &HeaderContext<'_>) -> String {
+        let stop = T::TARGET.map_or(String::new(), |t| {
+            format!("; the run stops when an evaluation reaches {t}")
+        });
+        format!(
+            "vivae {}: {} (task {})\n\
+             \x20 a plain NEAT network ({} inputs, {} outputs, {}), population {}, at most {} generations{}, seed {}{}\n\
+             \x20 output: {}\n\
+             \x20 {}{stop}",
+            ctx.command,
+            T::ABOUT,
+            T::NAME,
+            T::INPUTS,
+            T::OUTPUTS,
+            if T::RECURRENT {
+                "recurrent"
+            } else {
+                "feed-forward"
+            },
+            c.neat.population_size,
+            c.experiment.generations,
+            ctx.start,
+            c.experiment.seed,
+            ctx.strategy,
+            ctx.output,
+            T::SCORING,
+        )
+    }
+
+    fn summary(&self, f: &Finished<'_>) -> Option<(String, String)> {
+        let (p, dir, wall, rate) = (f.progress, f.dir, f.wall, f.rate);
+        let verdict = match (T::TARGET, p.solved_at, p.solved_generation) {
+            (None, ..) => String::new(),
+            (Some(_), Some(n), Some(g)) => {
+                format!("; solved after {n} evaluations (generation {g})")
+            }
+            (Some(_), ..) => format!("; not solved in {} evaluations", p.evaluations),
+        };
+        let person = format!(
+            "done: {} generations in {wall:.1} s{verdict}\n\
+             champion: fitness {:.3} (generation {})\n\
+             run directory: {dir}/ (config.toml, champion.json, generations.csv, report.html, checkpoints/)\n\
+             its network: vivae export {dir} --format onnx|c|json --out FILE",
+            f.generations, f.fitness, f.generation,
+        );
+        let target = if T::TARGET.is_some() {
+            format!("{} evaluations={}", p.summary_fields(), p.evaluations)
+        } else {
+            String::new()
+        };
+        let line = format!(
+            "evolve: generations={} best={} champion_generation={}{target}{} evaluations_reused={} wall_s={wall:.1} robot_steps_per_s={rate:.0} out={dir}",
+            f.generations, f.fitness, f.generation, f.strategy_fields, f.reused,
+        );
+        Some((person, line))
+    }
+
+    fn replay_text(&self, genome: &Genome) -> Option<(String, String)> {
+        if !T::TRACES {
+            return None;
+        }
+        let e = Self::score(genome, REPLAY_SEED, None);
+        let line = format!("fitness={}{}", e.fitness, Self::metric_fields(&e));
+        let note = format!(
+            "{}: the evaluation of seed {REPLAY_SEED} (training used others); its steps in episode.csv",
+            T::NAME
+        );
+        Some((line, note))
+    }
+
+    fn episode_csv(&self, genome: &Genome) -> Option<String> {
+        let mut trace = Trace::default();
+        Self::score(genome, REPLAY_SEED, T::TRACES.then_some(&mut trace));
+        T::TRACES.then(|| trace.csv())
+    }
+
+    fn network_outputs(&self) -> Option<&'static str> {
+        Some(T::OUTPUT_MEANING)
+    }
+
+    fn report_curves(&self) -> bool {
+        true
+    }
+
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+
+    fn clone_box(&self) -> Box<dyn RunTask> {
+        Box::new(self.clone())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::export::StepNet;
+    use crate::tasks::cartpole::CartPole;
+    use vivae_neat::Population;
+
+    /// Genomes of `spec` grown by 30 generations of a made-up fitness
+    /// (hidden nodes, disabled links, recurrent links when allowed).
+    fn grown(spec: GenomeSpec) -> Vec<Genome> {
+        let params = NeatParams {
+            add_node_probability: 0.3,
+            add_link_probability: 0.5,
+            population_size: 30,
+            ..NeatParams::plain_neat()
+        };
+        let mut pop = Population::new(params, spec, 3).unwrap();
+        for _ in 0..30 {
+            pop.evaluate(|g, ctx| g.links().len() as f64 + (ctx.seed % 7) as f64);
+            pop.next_generation();
+        }
+        pop.genomes().to_vec()
+    }
+
+    #[test]
+    fn the_exported_step_is_the_network_bit_for_bit() {
+        for recurrent in [false, true] {
+            let spec = GenomeSpec {
+                allow_recurrent: recurrent,
+                ..spec::<CartPole>()
+            };
+            let genomes = grown(spec);
+            assert!(
+                genomes.iter().any(|g| g.nodes().len() > 7),
+                "hidden nodes grew"
+            );
+            for g in &genomes {
+                let step = StepNet::from_genome(g, recurrent).unwrap();
+                let mut net: Box<dyn Network> = if recurrent {
+                    Box::new(RecurrentNetwork::from_genome(g))
+                } else {
+                    Box::new(FeedForwardNetwork::from_genome(g))
+                };
+                let mut state = vec![0.0; step.nodes];
+                let mut scratch = vec![0.0; step.nodes];
+                for t in 0..5 {
+                    let inputs = [0.3 * f64::from(t), -0.7, 1.9, -0.05 * f64::from(t), 1.0];
+                    let mut out = [0.0; 2];
+                    net.activate(&inputs, &mut out);
+                    let got = step.step(&inputs, &mut state, &mut scratch);
+                    assert_eq!(got.map(f64::to_bits), out.map(f64::to_bits), "{g:?}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_setting_the_task_does_not_read_is_refused_by_its_key() {
+        let ok = default_config::<CartPole>();
+        crate::tasks::check(&ok).unwrap();
+        let refused = |edit: &dyn Fn(&mut Config), key: &str| {
+            let mut c = default_config::<CartPole>();
+            edit(&mut c);
+            let e = crate::tasks::check(&c).unwrap_err().message;
+            assert!(e.starts_with(key) && e.contains("cartpole"), "{key}: {e}");
+        };
+        refused(
+            &|c| c.surface_sensors.rings = 5,
+            "surface_sensors.rings = 5",
+        );
+        refused(&|c| c.experiment.robots = 2, "experiment.robots = 2");
+        refused(
+            &|c| c.experiment.scenario = "oval".into(),
+            "experiment.scenario",
+        );
+        refused(&|c| c.physics.v_max = 3.0, "physics.v_max");
+        refused(
+            &|c| c.strategy.behaviour = crate::config::strategy::BehaviourKind::SideSpeed,
+            "strategy.behaviour",
+        );
+        let mut read = default_config::<CartPole>();
+        read.neat.population_size = 20;
+        read.experiment.seed = 9;
+        read.strategy.kind = "nsga2".into();
+        crate::tasks::check(&read).unwrap();
+    }
+}

@@ -1,0 +1,61 @@
+"""A plain task (CartPole-v1, on the task seam's plain adapter) from Python:
+evolve to Gymnasium's threshold, resume bit-identically, the CLI's run,
+report.html, its network exported; driving's settings refused by name."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+
+import pytest
+
+import vivae
+
+# Gymnasium's CartPole-v1 reward_threshold.
+THRESHOLD = 475.0
+RESULTS = ["generations.csv", "population.csv", "champion.json", "best-genomes.jsonl", "config.toml"]
+
+
+def test_cartpole_reaches_the_threshold_reports_and_exports(tmp_path):
+    out = tmp_path / "run"
+    r = vivae.evolve(out=out, task="cartpole", seed=1, generations=30, progress=False)
+    assert r["solved"] and r["best"] >= THRESHOLD, r
+    assert r["generations"] < 30, "a solved run stops"
+    assert not (out / "scenario.svg").exists(), "a plain task loads no map"
+    page = vivae.report(out)
+    assert '"task":"cartpole"' in page.read_text()
+    written = vivae.export(out, "json", tmp_path / "net.json")
+    doc = json.loads((tmp_path / "net.json").read_text())
+    assert written == [str(tmp_path / "net.json")]
+    assert doc["substrate"] == "neat" and doc["net"]["inputs"] == 5
+
+
+def test_cartpole_resumes_bit_identically(tmp_path):
+    common = dict(task="cartpole", seed=5, population=30, strategy="nsga2", progress=False)
+    vivae.evolve(out=tmp_path / "whole", generations=4, **common)
+    vivae.evolve(out=tmp_path / "part", generations=2, **common)
+    vivae.resume(tmp_path / "part", generations=4, progress=False)
+    for name in RESULTS:
+        assert (tmp_path / "whole" / name).read_bytes() == (tmp_path / "part" / name).read_bytes(), name
+
+
+def test_the_cli_writes_the_same_cartpole_run(tmp_path, cli):
+    vivae.evolve(out=tmp_path / "py", task="cartpole", seed=2, population=30, generations=3, progress=False)
+    subprocess.run(
+        [cli, "evolve", "-q", "--task", "cartpole", "--seed", "2", "--population", "30",
+         "--generations", "3", "--out", str(tmp_path / "cli")],
+        check=True, capture_output=True,
+    )
+    for name in RESULTS:
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
+
+
+@pytest.mark.parametrize(
+    ("setting", "key"),
+    [({"sensors": "5x7"}, "surface_sensors"), ({"robots": 2}, "experiment.robots"),
+     ({"scenario": "oval"}, "experiment.scenario")],
+)
+def test_driving_settings_are_refused_by_name(tmp_path, setting, key):
+    with pytest.raises(ValueError, match=f"{key}.*cartpole"):
+        vivae.evolve(out=tmp_path / "run", task="cartpole", generations=2, progress=False, **setting)
+    assert not (tmp_path / "run").exists()
