@@ -21,6 +21,7 @@ mod es_network_figure_draws_hidden_neurons_where_they_are;
 mod evaluation_is_thread_count_independent;
 mod every_strategy_resumes_bit_identical;
 mod export_runs_as_vivae_does;
+mod exported_c_keeps_its_bits_under_any_flags;
 mod fast_precision_is_pinned_and_portable;
 mod finished_run_and_retrain_neurons_only;
 mod first_hour_output_says_what_to_do_next;
