@@ -237,6 +237,7 @@ fn check(
         cases.push(("hostile".into(), input, vivae_steps(chosen, readings)));
     }
     let mut results = Vec::new();
+    without_the_pragma_gcc_contracts(&dir, fast, &cases);
     for (cc, flags) in compilers() {
         let exe = dir.join(format!("drive-{cc}{}", flags.join("")));
         let status = Command::new(cc)
@@ -265,6 +266,61 @@ fn check(
         }
     }
     results
+}
+
+/// The file with GCC's pragma taken out, at `gcc -O3 -march=native`: where
+/// the CPU has FMA, GCC contracts multiply-adds and some steps lose vivae's
+/// bits (so the comparison above would see it if the pragma stopped working).
+fn without_the_pragma_gcc_contracts(
+    dir: &Path,
+    fast: bool,
+    cases: &[(String, PathBuf, Vec<[f64; 2]>)],
+) {
+    let source = std::fs::read_to_string(dir.join("controller.c")).unwrap();
+    let pragma = "#pragma GCC optimize(\"fp-contract=off\")";
+    assert!(source.contains(pragma));
+    std::fs::write(dir.join("bare.c"), source.replace(pragma, "")).unwrap();
+    let flags = ["-O3", "-march=native"];
+    let asm = Command::new("gcc")
+        .args(flags)
+        .args(["-S", "-o", "-"])
+        .arg(dir.join("bare.c"))
+        .output()
+        .expect("gcc runs");
+    let fused = String::from_utf8_lossy(&asm.stdout)
+        .matches("vfmadd")
+        .count();
+    if fused == 0 {
+        println!(
+            "gcc -O3 -march=native fuses nothing on this CPU: the pragma is not put to the test"
+        );
+        return;
+    }
+    let exe = dir.join("bare");
+    let status = Command::new("gcc")
+        .args(flags)
+        .arg("-o")
+        .arg(&exe)
+        .arg(dir.join("harness.c"))
+        .arg(dir.join("bare.c"))
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let (mut equal, mut steps) = (0, 0);
+    for (_, input, want) in cases {
+        equal += equal_steps(&harness_wheels(&exe, input, fast), want);
+        steps += want.len();
+    }
+    println!(
+        "without the pragma, gcc -O3 -march=native: {fused} fused multiply-adds, \
+         {equal} of {steps} steps bit-equal to vivae"
+    );
+    // The exact step's f64 sums and exp certainly change when fused; the
+    // fast one's might by chance not (its sums are fused already).
+    assert!(
+        fast || equal < steps,
+        "the contracted build should lose vivae's bits somewhere"
+    );
 }
 
 /// `robots` recorded episodes of `chosen`, `steps` long: (readings, wheels).
