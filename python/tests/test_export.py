@@ -86,10 +86,12 @@ def onnx_steps(model: Path, sensors: np.ndarray) -> np.ndarray:
 # tests below (recorded episodes of every robot, and 3 x 1500 steps of
 # hostile readings, the state carried) and given a margin; docs/howto/
 # export-bits.md quotes them. A test fails when the difference grows past them.
+# Measured: exact 2.4e-15 recorded (2.3e-13 for the 360-degree 4x24 sheet),
+# 1.3e-14 hostile; fast 1.2e-6 recorded, 4.4e-6 hostile.
 ONNX_BOUNDS = {
-    ("exact", "recorded"): 1e-13,
-    ("exact", "hostile"): 1e-13,
-    ("fast", "recorded"): 1e-5,
+    ("exact", "recorded"): 1e-12,
+    ("exact", "hostile"): 5e-14,
+    ("fast", "recorded"): 5e-6,
     ("fast", "hostile"): 1e-5,
 }
 
