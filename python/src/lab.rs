@@ -345,7 +345,8 @@ pub struct Controller {
 #[pymethods]
 impl Controller {
     /// One update from `obs` (robots × readings, any real dtype: the
-    /// environments' float32 included): the wheel commands (robots × 2).
+    /// environments' float32 included; each reading clamped to [0, 1], NaN
+    /// read as 0): the wheel commands (robots × 2).
     fn act<'py>(
         &mut self,
         py: Python<'py>,
@@ -368,8 +369,9 @@ impl Controller {
                 self.robots
             )));
         }
+        // Read as every exported controller reads them: clamped to [0, 1], NaN as 0.
         for (dst, src) in self.inputs.iter_mut().zip(obs.as_array().iter()) {
-            *dst = *src;
+            *dst = vivae_lab::export::reading(*src);
         }
         self.controller
             .activate_batch(&mut self.state, &self.inputs, &mut self.outputs);

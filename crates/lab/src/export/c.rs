@@ -5,11 +5,14 @@
 //!
 //! The file computes vivae's step in the same operations in the same
 //! order, with vivae's portable `exp` written out (the f32 one, and the
-//! neuron sums' fused multiply-add, for a fast controller): compiled without
-//! contracting `a*b + c` into FMA (`-ffp-contract=off`; GCC and Clang do not
-//! contract on plain x86-64 anyway) on an IEEE machine evaluating each type
-//! in itself (`FLT_EVAL_METHOD == 0`: x86-64, AArch64, Cortex-M with an
-//! FPU), it gives vivae's bits.
+//! neuron sums' fused multiply-add, for a fast controller). It switches off
+//! the contraction of `a*b + c` into one fused multiply-add itself (GCC's
+//! `optimize("fp-contract=off")` pragma, which GCC honours where it ignores
+//! the standard `FP_CONTRACT` pragma that Clang honours), so any
+//! optimisation level and `-march` gives vivae's bits on an IEEE machine
+//! evaluating each type in itself (`FLT_EVAL_METHOD == 0`: x86-64, AArch64,
+//! Cortex-M with an FPU); `-ffast-math` and its parts, and wider
+//! evaluation (x87), are compile errors that say why.
 
 use std::fmt::Write;
 
@@ -81,8 +84,9 @@ pub fn header(e: &Exported) -> String {
          and distance from the robot's centre in px (distance rays: length). */\n\
          struct vivae_place { int sheet; int ring; int angle_index; double angle_deg; double distance; };\n\
          extern const struct vivae_place vivae_places[VIVAE_INPUTS];\n\n\
-         /* One step: in[VIVAE_INPUTS] sensor readings, state[VIVAE_STATE]\n   \
-         (all zero at the start; updated in place), out[2] the wheel commands. */\n\
+         /* One step: in[VIVAE_INPUTS] sensor readings (each clamped to [0, 1],\n   \
+         NaN read as 0), state[VIVAE_STATE] (all zero at the start; updated in\n   \
+         place), out[2] the wheel commands. */\n\
          void vivae_step(const vivae_real *in, vivae_real *state, vivae_real *out);\n",
     );
     if !is_fast(e) {
@@ -100,6 +104,35 @@ fn clean(s: &str) -> String {
     s.replace("*/", "* /")
 }
 
+/// What makes the file give vivae's bits under any compiler and flags, or
+/// refuse to compile: the flags that change IEEE arithmetic are errors that
+/// say why, and contraction into fused multiply-adds is switched off for
+/// GCC (which ignores `STDC FP_CONTRACT` and contracts at `-O2` and above
+/// when the CPU has FMA, e.g. `-march=native`) and Clang alike.
+pub const IEEE_GUARDS: &str = "\
+/* vivae's bits need IEEE 754 arithmetic, every operation rounded on its own. */
+#if defined(__FAST_MATH__)
+#error \"vivae controller: -ffast-math (or -Ofast) reorders and fuses the sums, flushes tiny values to zero and assumes no NaN: the step would not give vivae's bits; compile without it\"
+#endif
+#if defined(__FINITE_MATH_ONLY__) && __FINITE_MATH_ONLY__
+#error \"vivae controller: -ffinite-math-only assumes no NaN, but the step reads a NaN sensor reading as 0: the step would not give vivae's bits; compile without it\"
+#endif
+#if defined(__ASSOCIATIVE_MATH__) || defined(__RECIPROCAL_MATH__)
+#error \"vivae controller: -fassociative-math or -freciprocal-math reorders the sums or replaces divisions: the step would not give vivae's bits; compile without it\"
+#endif
+#if defined(FLT_EVAL_METHOD) && FLT_EVAL_METHOD > 0
+#error \"vivae controller: float and double are evaluated in wider precision here (FLT_EVAL_METHOD > 0, x87): the step would not give vivae's bits; compile for SSE2 (-msse2 -mfpmath=sse) or a 64-bit target\"
+#endif
+/* No a*b + c contracted into one fused multiply-add where vivae rounds the
+   product on its own: Clang honours the standard pragma, GCC only its own. */
+#if defined(__clang__)
+#pragma STDC FP_CONTRACT OFF
+#elif defined(__GNUC__)
+#pragma GCC optimize(\"fp-contract=off\")
+#endif
+
+";
+
 /// The C file, including the header named `header_name`.
 pub fn source(e: &Exported, header_name: &str) -> String {
     let net = &e.net;
@@ -111,16 +144,12 @@ pub fn source(e: &Exported, header_name: &str) -> String {
     );
     let _ = writeln!(
         c,
-        "/* Compile as C99 without FMA contraction (-ffp-contract=off) for vivae's bits. */"
-    );
-    let _ = writeln!(
-        c,
-        "#include \"{header_name}\"\n#include <stdint.h>\n#include <string.h>\n"
+        "#include \"{header_name}\"\n#include <float.h>\n#include <stdint.h>\n#include <string.h>\n"
     );
     if is_fast(e) {
         c.push_str("#ifdef VIVAE_USE_FMAF\n#include <math.h>\n#endif\n");
     }
-    c.push_str("#if defined(__clang__)\n#pragma STDC FP_CONTRACT OFF\n#endif\n\n");
+    c.push_str(IEEE_GUARDS);
     places(&mut c, e);
     int_table(
         &mut c,
@@ -360,14 +389,19 @@ fn step_function(synchronous: bool, wheels: [usize; 2], fast: bool) -> String {
         "s += weights[l] * x;"
     };
     let mut c = format!(
-        "void vivae_step(const vivae_real *in, vivae_real *state, vivae_real *out) {{\n\
+        "/* A sensor reading as the step reads it (as vivae does): clamped to\n   \
+         [0, 1], the sensors' range, and NaN read as 0. */\n\
+         static vivae_real vivae_reading(vivae_real v) {{\n    \
+         if (v > (vivae_real)1) return (vivae_real)1;\n    \
+         return v >= (vivae_real)0 ? v : (vivae_real)0;\n}}\n\n\
+         void vivae_step(const vivae_real *in, vivae_real *state, vivae_real *out) {{\n\
          {scratch}    \
          for (int o = 0; o < VIVAE_STATE; o++) {{\n        \
          int32_t k = order[o];\n        \
          vivae_real s = bias[k];\n        \
          for (int32_t l = starts[k]; l < starts[k + 1]; l++) {{\n            \
          int32_t j = sources[l];\n            \
-         vivae_real x = j < VIVAE_INPUTS ? in[j] : state[j - VIVAE_INPUTS];\n            \
+         vivae_real x = j < VIVAE_INPUTS ? vivae_reading(in[j]) : state[j - VIVAE_INPUTS];\n            \
          {sum}\n        }}\n        \
          {write}\n    }}\n\
          {finish}    \

@@ -12,9 +12,16 @@
 //! fast one ([`Precision::Fast`]: the dense sheet of a `--precision fast`
 //! run, or any dense controller exported with `--precision fast`) in f32,
 //! each `+= w·x` one fused multiply-add and σ with the f32 `exp`, as
-//! vivae's fast step. Links of weight 0 are left out: adding `0·x` (x
-//! finite) changes at most the sign of a zero sum, and σ(±0) is +0 in
-//! either precision, so the result keeps its bits.
+//! vivae's fast step.
+//!
+//! Readings: every format reads a sensor reading `x` as [`reading`]`(x)`,
+//! clamped to the sensors' range [0, 1] with NaN read as 0 (±∞ as 1 and
+//! 0), as vivae does where readings come from outside the simulator (the
+//! simulator's own are in [0, 1] already, so this changes none of its
+//! bits). A step's values therefore stay finite (states in [−1, 1]), and
+//! links of weight 0 can be left out: adding `0·x` (x finite) changes at
+//! most the sign of a zero sum, and σ(±0) is +0 in either precision, so the
+//! result keeps its bits.
 
 pub mod c;
 pub mod choose;
@@ -68,6 +75,21 @@ pub struct StepNet {
     /// The arithmetic of the step: exact (f64) or fast (f32; every weight
     /// and bias then an f32 value).
     pub precision: Precision,
+}
+
+/// A sensor reading as a controller reads it: clamped to [0, 1] (the
+/// sensors' range), NaN read as 0 — one meaning in vivae and every export
+/// format, so that a broken sensor cannot make the state NaN for good.
+/// The identity on the simulator's readings.
+#[inline]
+pub fn reading(x: f64) -> f64 {
+    if x > 1.0 {
+        1.0
+    } else if x >= 0.0 {
+        x
+    } else {
+        0.0
+    }
 }
 
 /// `2/(1 + exp(−4.9·s)) − 1`: vivae's bipolar sigmoid with its portable `exp`.
@@ -230,6 +252,7 @@ impl StepNet {
 
     /// One step: `state` (`nodes` long, zero at the start) becomes the next
     /// state, and the wheel commands are returned. `scratch` is `nodes` long.
+    /// Each input is read as [`reading`] of it.
     /// In fast precision inputs and states are rounded to f32 (exact for the
     /// f32 values a fast controller reads and makes) and the new states are
     /// f32 values.
@@ -239,7 +262,13 @@ impl StepNet {
         let fast = self.precision == Precision::Fast;
         for &k in &self.order {
             let links = self.starts[k]..self.starts[k + 1];
-            let source = |j: usize| if j < ni { inputs[j] } else { state[j - ni] };
+            let source = |j: usize| {
+                if j < ni {
+                    reading(inputs[j])
+                } else {
+                    state[j - ni]
+                }
+            };
             let y = if fast {
                 let mut s = self.bias[k] as f32;
                 for l in links {

@@ -4,13 +4,15 @@
 //! no dependency, and the file is a few `MatMul`, `Add`, `Exp` and
 //! element-wise nodes any runtime has.
 //!
-//! Inputs `sensors` `[N, inputs]` and `state` `[N, nodes]` (zeros at the
+//! Inputs `sensors` `[N, inputs]` (each read as vivae reads it: NaN as 0,
+//! then clamped to [0, 1]) and `state` `[N, nodes]` (zeros at the
 //! start); outputs `wheels` `[N, 2]` (left, right) and `next_state`
 //! `[N, nodes]`. A recurrent network is one synchronous update of every
 //! node; a feed-forward ES network is one update per topological level
 //! (each level's new values are placed into the value vector by a 0/1
 //! matrix, which adds exact zeros only). The sums are `MatMul`s, so their
-//! order is the runtime's, not vivae's: equal to rounding (docs/howto/export-to-a-robot.md).
+//! order is the runtime's, not vivae's: equal to rounding (the measured
+//! bounds are in docs/howto/export-bits.md).
 //! The sensor geometry and the wheel semantics are in the model's
 //! `metadata_props` (`vivae_geometry`: JSON; `wheels`; `description`).
 
@@ -183,7 +185,13 @@ pub fn to_onnx(exported: &Exported) -> Vec<u8> {
         counter: 0,
         real,
     };
-    let mut v = g.node("Concat", &["sensors", "state"], None, &[("axis", 1)]);
+    // Readings as vivae reads them (`super::reading`): NaN as 0, then clamped to [0, 1].
+    let zero = g.reals("zero", &[], &[0.0]);
+    let one = g.reals("one", &[], &[1.0]);
+    let nan = g.node("IsNaN", &["sensors"], None, &[]);
+    let read = g.node("Where", &[&nan, &zero, "sensors"], None, &[]);
+    let read = g.node("Clip", &[&read, &zero, &one], None, &[]);
+    let mut v = g.node("Concat", &[&read, "state"], None, &[("axis", 1)]);
     let next = if net.synchronous {
         update(
             &mut g,

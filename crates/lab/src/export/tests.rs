@@ -106,14 +106,99 @@ fn the_fast_step_differs_from_the_exact_one_of_the_same_genome() {
     assert!(differing > 100, "{differing} of 600 steps differ");
 }
 
+/// A C99 hexadecimal float (`[-]0x<d>[.<hex>]p<exp>`) read back exactly,
+/// as a C compiler or Python's `float.fromhex` would.
+fn read_hex(s: &str) -> f64 {
+    let (sign, s) = s.strip_prefix('-').map_or((1.0, s), |s| (-1.0, s));
+    let (mantissa, exp) = s.strip_prefix("0x").unwrap().split_once('p').unwrap();
+    let (lead, frac) = mantissa.split_once('.').unwrap_or((mantissa, ""));
+    let digits = format!("{lead}{frac}");
+    let m = u64::from_str_radix(&digits, 16).unwrap();
+    let e: i32 = exp.parse::<i32>().unwrap() - 4 * frac.len() as i32;
+    // m < 2^53 and the scaling by powers of two is exact down to the subnormals.
+    let scale = |e: i32| 2f64.powi(e);
+    sign * m as f64 * scale(e / 2) * scale(e - e / 2)
+}
+
 #[test]
-fn the_json_step_text_names_the_f32_exp_constants() {
-    use vivae_neat::precision::exp_f32_constants::{HIGH, LN2_HI, LN2_LO, LOW, P};
-    let numbers: Vec<f32> = (super::json::STEP.split(|c: char| ", []()*=^".contains(c)))
-        .filter_map(|t| t.trim_end_matches('.').parse().ok())
+fn hex_floats_read_back_to_the_same_bits() {
+    let mut state = 0x2545_f491_4f6c_dd1d_u64;
+    let mut next = || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        state
+    };
+    let mut values: Vec<u64> = (0..20_000).map(|_| next()).collect();
+    values.extend([0, 1, 0x000f_ffff_ffff_ffff, 0x0010_0000_0000_0000, 1 << 63]);
+    for bits in values {
+        let v = f64::from_bits(bits);
+        if v.is_finite() {
+            let back = read_hex(&super::json::hex64(v));
+            assert_eq!(back.to_bits(), bits, "{v:e} as {}", super::json::hex64(v));
+            let f = f32::from_bits(bits as u32);
+            if f.is_finite() {
+                let back = read_hex(&super::json::hex32(f)) as f32;
+                assert_eq!(back.to_bits(), f.to_bits(), "{f:e}");
+            }
+        }
+    }
+    assert_eq!(super::json::hex64(1.5), "0x1.8p+0");
+    assert_eq!(super::json::hex32(-4.9), "-0x1.39999ap+2");
+}
+
+#[test]
+fn the_json_arithmetic_gives_vivaes_constants_to_the_bit() {
+    use vivae_neat::math::exp_constants as e64;
+    use vivae_neat::precision::exp_f32_constants as e32;
+    let exp = episode(&Config::default());
+    let pop = Population::new(Config::default().neat, exp.cppn_spec(), 3).unwrap();
+    let c = exp.robot_controller(&pop.genomes()[0]).unwrap();
+    let doc: serde_json::Value =
+        serde_json::from_str(&super::json::to_json(&Exported::new(&exp, &c, "t"))).unwrap();
+    assert_eq!(doc["version"], 2);
+    let a = &doc["arithmetic"];
+    let read = |v: &serde_json::Value| read_hex(v.as_str().unwrap());
+    let exact = &a["exact"]["exp"]["constants"];
+    let fast = &a["fast"]["exp"]["constants"];
+    assert_eq!(read(&exact["ln2_hi"]).to_bits(), e64::LN2_HI.to_bits());
+    assert_eq!(read(&exact["ln2_lo"]).to_bits(), e64::LN2_LO.to_bits());
+    assert_eq!(read(&exact["log2e"]).to_bits(), e64::LOG2E.to_bits());
+    assert_eq!(read(&exact["shift"]), e64::SHIFT);
+    let taylor: Vec<f64> = (exact["taylor"].as_array().unwrap().iter())
+        .map(read)
         .collect();
-    for c in [LOW, HIGH, LN2_HI, LN2_LO].iter().chain(&P) {
-        assert!(numbers.contains(c), "{c:e} is not in the step text");
+    assert_eq!(taylor[0], e64::TAYLOR_FIRST);
+    assert_eq!(taylor[1..], e64::TAYLOR);
+    for (key, want) in [
+        ("ln2_hi", e32::LN2_HI),
+        ("ln2_lo", e32::LN2_LO),
+        ("log2e", e32::LOG2E),
+        ("low", e32::LOW),
+        ("high", e32::HIGH),
+    ] {
+        assert_eq!((read(&fast[key]) as f32).to_bits(), want.to_bits(), "{key}");
+    }
+    let p: Vec<f32> = (fast["p"].as_array().unwrap().iter())
+        .map(|v| read(v) as f32)
+        .collect();
+    assert_eq!(p, e32::P);
+    assert_eq!(read(&a["exact"]["sigmoid"]["constants"]["slope"]), -4.9);
+    assert_eq!(
+        read(&a["fast"]["sigmoid"]["constants"]["slope"]) as f32,
+        -4.9f32
+    );
+}
+
+#[test]
+fn a_reading_is_clamped_to_the_sensors_range_nan_as_zero() {
+    assert_eq!(reading(f64::NAN), 0.0);
+    assert_eq!(reading(f64::INFINITY), 1.0);
+    assert_eq!(reading(f64::NEG_INFINITY), 0.0);
+    assert_eq!(reading(-1e-300), 0.0);
+    assert_eq!(reading(1.0 + f64::EPSILON), 1.0);
+    for v in [0.0, 1e-310, 0.25, 0.999_999, 1.0] {
+        assert_eq!(reading(v).to_bits(), v.to_bits());
     }
 }
 
@@ -196,8 +281,14 @@ fn a_layered_or_recurrent_sparse_net_steps_as_vivae_does() {
         let (mut state, mut scratch) = (vec![0.0; 4], vec![0.0; 4]);
         let mut want = [0.0; 2];
         for t in 0..20 {
-            let x = [(t as f64 * 0.37).sin(), 0.5, -(t as f64) / 7.0];
-            net.activate(&x, &mut want);
+            // In range, out of range and NaN: the step reads each as `reading` of it.
+            let x = [(t as f64 * 0.37).sin(), 0.5, 1.5 - (t as f64) / 7.0];
+            let x = if t % 7 == 3 {
+                [f64::NAN, x[1], x[2]]
+            } else {
+                x
+            };
+            net.activate(&x.map(reading), &mut want);
             let got = step.step(&x, &mut state, &mut scratch);
             assert_eq!(
                 got.map(f64::to_bits),

@@ -23,6 +23,7 @@ mod evaluation_is_thread_count_independent;
 mod every_strategy_resumes_bit_identical;
 mod every_task_keeps_the_interrupt_promise;
 mod export_runs_as_vivae_does;
+mod exported_c_keeps_its_bits_under_any_flags;
 mod fast_precision_is_pinned_and_portable;
 mod fifth_strategy_is_the_documented_file;
 mod finished_run_and_retrain_neurons_only;
