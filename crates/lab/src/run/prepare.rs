@@ -313,8 +313,7 @@ pub fn resolve(
     let task = task_named(file, overrides);
     let mut config = base_config(file, task.as_ref(), spelling)?;
     let refused = |e: String| bad_input(format!("{}: {e}", spelling.origin));
-    (overrides.apply(&mut config))
-        .map_err(|e| refused(spelling.spell(&e)))?;
+    (overrides.apply(&mut config)).map_err(|e| refused(spelling.spell(&e)))?;
     tasks::check(&config).map_err(|e| refused(e.to_string()))?;
     Ok(Resolved {
         config,
@@ -464,9 +463,15 @@ mod tests {
             key: |k| format!("--{} ", k.replace('_', "-")),
         };
         let e = resolve(None, &o, &cli).unwrap_err().to_string();
-        assert!(e.starts_with("command line: --robot vivae: a driving run"), "{e}");
+        assert!(
+            e.starts_with("command line: --robot vivae: a driving run"),
+            "{e}"
+        );
         let e = resolve(None, &o, &Spelling::KEYS).unwrap_err().to_string();
-        assert!(e.starts_with("settings: robot = vivae: a driving run"), "{e}");
+        assert!(
+            e.starts_with("settings: robot = vivae: a driving run"),
+            "{e}"
+        );
         // A shipped scenario drawn for a task names that task: its defaults.
         let maze = Overrides {
             scenario: vec!["hard-maze".into()],
