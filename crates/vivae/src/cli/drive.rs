@@ -142,7 +142,7 @@ fn conclude_without_figures(
         .ok_or_else(|| bad_input("the run's task has no summary"))?;
     // A task without figures of its own: report.html with its curves.
     let report = (run.task().report_curves())
-        .then(|| vivae::report_html::write(run.dir()))
+        .then(|| crate::report_html::write(run.dir()))
         .transpose()
         .context("writing report.html")?;
     if !quiet {
