@@ -15,9 +15,12 @@ use crate::settings::Bounded;
 /// Most worker threads an argument may ask for (as `run.threads` in a config).
 pub const MAX_THREADS: u128 = 1024;
 
+/// Most worlds one `DriveCore` steps (a bound on what a typo can allocate).
+pub const MAX_WORLDS: usize = 1 << 16;
+
 /// Most robots a controller may drive at once (as many as the worlds a
 /// `DriveCore` may hold).
-pub const MAX_ROBOTS: u128 = crate::drive::MAX_WORLDS as u128;
+pub const MAX_ROBOTS: u128 = MAX_WORLDS as u128;
 
 /// The integer argument `key=v` within `lo..=hi`: a `TypeError` naming `key`
 /// for anything but an integer (Python's or numpy's; a bool is refused), a

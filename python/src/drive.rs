@@ -39,8 +39,8 @@ pub fn render_rgb<'py>(
         .into_pyarray(py))
 }
 
-/// Most worlds one `DriveCore` steps (a bound on what a typo can allocate).
-pub const MAX_WORLDS: usize = 1 << 16;
+/// Most worlds one `DriveCore` steps.
+pub use crate::args::MAX_WORLDS;
 
 /// One world and its robots' buffers.
 #[derive(Clone)]

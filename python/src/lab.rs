@@ -16,14 +16,12 @@ use vivae_lab::controller::es::RobotController;
 use vivae_lab::controller::substrate::WheelNeurons;
 use vivae_lab::run::{Outcome, Run};
 use vivae_lab::rundir::{self, GenerationRecord};
-use vivae_lab::tasks::driving::episode::Episode;
-use vivae_lab::tasks::driving::training::Training;
+use vivae_lab::tasks::driving::{episode::Episode, training::Training};
 use vivae_neat::hyperneat::{BatchState, SubstrateController};
 use vivae_neat::{EvalContext, Network as _};
 
 use crate::evo::{Genome, Population, merge_params};
-use crate::settings;
-use crate::{args, errors};
+use crate::{args, errors, settings};
 
 /// The training maps and task of `config`, as `vivae evolve` sets them up.
 fn training(

@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 use vivae_neat::hyperneat::es::{EsParams, Flow};
 use vivae_neat::hyperneat::{HyperError, HyperParams};
 
-use crate::controller::polar::CoordMode;
+use crate::polar::CoordMode;
 
 /// Which substrate a run's CPPNs are decoded into.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]

@@ -95,20 +95,11 @@ impl Settings {
     }
 }
 
-/// The settings `T` of a section as written (keys left out take their defaults).
-pub(crate) fn parse_section<T: StrategySettings>(
-    table: &toml::Table,
-) -> std::result::Result<T, String> {
-    toml::Value::Table(table.clone())
-        .try_into()
-        .map_err(|e| format!("strategy.{}: {}", T::SECTION, one_line(&e.to_string())))
-}
-
 /// [`Settings::read`] of `T`.
 fn read_section<T: StrategySettings>(
     table: &toml::Table,
 ) -> std::result::Result<toml::Table, String> {
-    let settings = parse_section::<T>(table)?;
+    let settings = sections::parse_section::<T>(table)?;
     match toml::Value::try_from(settings) {
         Ok(toml::Value::Table(t)) => Ok(t),
         Ok(_) => Err(format!("strategy.{}: not a table", T::SECTION)),
@@ -121,7 +112,7 @@ fn validate_section<T: StrategySettings>(
     table: &toml::Table,
     metrics: &[&str],
 ) -> std::result::Result<(), String> {
-    (parse_section::<T>(table)?.validate(metrics))
+    (sections::parse_section::<T>(table)?.validate(metrics))
         .map_err(|why| format!("strategy.{}.{why}", T::SECTION))
 }
 

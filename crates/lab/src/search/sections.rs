@@ -13,7 +13,8 @@ use schemars::JsonSchema;
 use serde::ser::SerializeStruct;
 use serde::{Deserialize, Serialize};
 
-use crate::search::{Settings, StrategyConfig, StrategySettings, entries, registry};
+use crate::error::one_line;
+use crate::search::{Settings, StrategyConfig, StrategySettings, entries};
 
 /// The `[strategy]` keys that are the built-in fields, not sections.
 pub(crate) const FIELDS: [&str; 5] = ["kind", "behaviour", "novelty", "map_elites", "nsga2"];
@@ -42,7 +43,7 @@ impl Sections {
 
     /// The settings `T`, its keys left out at their defaults.
     pub(crate) fn settings<T: StrategySettings>(&self) -> std::result::Result<T, String> {
-        registry::parse_section(self.0.get(T::SECTION).unwrap_or(&toml::Table::new()))
+        parse_section(self.0.get(T::SECTION).unwrap_or(&toml::Table::new()))
     }
 
     /// Sets the section of `T` to `settings` (every key).
@@ -160,6 +161,15 @@ impl Serialize for StrategyConfig {
         }
         out.end()
     }
+}
+
+/// The settings `T` of a section as written (keys left out take their defaults).
+pub(crate) fn parse_section<T: StrategySettings>(
+    table: &toml::Table,
+) -> std::result::Result<T, String> {
+    toml::Value::Table(table.clone())
+        .try_into()
+        .map_err(|e| format!("strategy.{}: {}", T::SECTION, one_line(&e.to_string())))
 }
 
 #[cfg(test)]

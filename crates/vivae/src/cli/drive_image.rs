@@ -170,8 +170,9 @@ fn read_poses(path: &Path) -> anyhow::Result<Vec<(DVec2, f64)>> {
     Ok(poses)
 }
 
-/// Runs `vivae drive-image`.
-pub fn run(args: DriveImageArgs) -> anyhow::Result<ExitCode> {
+/// Refuses a camera that cannot be: a scale or radius that is not a
+/// positive number, a heading that is not finite.
+fn check_camera(args: &DriveImageArgs) -> anyhow::Result<()> {
     if !Camera::usable(args.scale, args.radius) {
         return Err(bad_input("--scale and --radius must be positive numbers").into());
     }
@@ -182,6 +183,12 @@ pub fn run(args: DriveImageArgs) -> anyhow::Result<ExitCode> {
         ))
         .into());
     }
+    Ok(())
+}
+
+/// Runs `vivae drive-image`.
+pub fn run(args: DriveImageArgs) -> anyhow::Result<ExitCode> {
+    check_camera(&args)?;
     let outputs: Vec<Output> = [
         args.out.as_ref().map(|p| Output::new(p, "-o", WHEELS_CSV)),
         args.draw_map

@@ -72,6 +72,20 @@ impl ReplayArgs {
     }
 }
 
+/// A multi-map run replays on its first training map unless told otherwise.
+fn first_map_unless_told(args: &ReplayArgs, config: &mut vivae_lab::config::Config) {
+    if args.scenario.is_none() && vivae_lab::tasks::maps::is_multi_map(config) {
+        let maps = std::mem::take(&mut config.experiment.scenarios);
+        eprintln!(
+            "replaying on the first training map, {} (of {}: {}); choose another with --scenario",
+            maps[0],
+            maps.len(),
+            maps.join(", ")
+        );
+        config.experiment.scenario = maps[0].clone();
+    }
+}
+
 /// Runs `vivae replay`.
 pub fn run(args: ReplayArgs) -> anyhow::Result<ExitCode> {
     super::report::refuse_own_driver(&args.source, "replay")?;
@@ -85,17 +99,7 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<ExitCode> {
     if !config.experiment.task.is_driving() {
         return replay_without_figures(&args, &champion, config);
     }
-    // A multi-map run replays on its first training map unless told otherwise.
-    if args.scenario.is_none() && vivae_lab::tasks::maps::is_multi_map(&config) {
-        let maps = std::mem::take(&mut config.experiment.scenarios);
-        eprintln!(
-            "replaying on the first training map, {} (of {}: {}); choose another with --scenario",
-            maps[0],
-            maps.len(),
-            maps.join(", ")
-        );
-        config.experiment.scenario = maps[0].clone();
-    }
+    first_map_unless_told(&args, &mut config);
     // Another scenario has its own robot starts: all of them, unless told.
     let robots = args.episode.robots.or(args.scenario.as_ref().map(|_| 0));
     apply_overrides(&mut config, &args.overrides(robots))?;

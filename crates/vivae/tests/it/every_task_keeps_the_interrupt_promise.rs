@@ -34,14 +34,7 @@ pub fn snapshot(dir: &Path) -> Vec<(String, Vec<u8>)> {
 fn evolve_then_terminate(task: &str, run_dir: &Path) -> (Option<i32>, String) {
     let mut child = vivae()
         .args(["evolve", "--task", task, "--threads", "1", "--seed", "3"])
-        .args([
-            "--population",
-            "12",
-            "--steps",
-            "60",
-            "--generations",
-            "100000",
-        ])
+        .args(["--population", "12", "--generations", "100000"])
         .arg("--out")
         .arg(run_dir)
         .stdout(Stdio::null())

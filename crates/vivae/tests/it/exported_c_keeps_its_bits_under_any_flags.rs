@@ -212,7 +212,7 @@ fn check(
     dir: &Path,
     name: &str,
     chosen: &Chosen,
-    recorded: &[(Vec<Vec<f64>>, Vec<[f64; 2]>)],
+    recorded: &[Recording],
 ) -> Vec<(String, usize, usize)> {
     let dir = dir.join(name);
     std::fs::create_dir_all(&dir).unwrap();
@@ -328,8 +328,11 @@ fn without_the_pragma_gcc_contracts(
     );
 }
 
+/// One robot's recorded episode: its readings and its wheel commands, a step each.
+type Recording = (Vec<Vec<f64>>, Vec<[f64; 2]>);
+
 /// `robots` recorded episodes of `chosen`, `steps` long: (readings, wheels).
-fn recordings(chosen: &Chosen, steps: u32) -> Vec<(Vec<Vec<f64>>, Vec<[f64; 2]>)> {
+fn recordings(chosen: &Chosen, steps: u32) -> Vec<Recording> {
     (0..chosen.episode.robots())
         .map(|robot| {
             let rec = record(&chosen.episode, &chosen.controller, robot, steps).unwrap();

@@ -1,6 +1,7 @@
 //! A scenario whose obstacles and traffic are placed per evaluation: runs
 //! stay independent of the thread count, and `replay --placement-seed N`
-//! replays a champion on placement N (the same N, the same episode).
+//! replays a champion on placement N (the same N, the same episode); a
+//! scenario that places nothing refuses the seed.
 
 use crate::common::*;
 
@@ -50,10 +51,23 @@ fn random_obstacles_and_traffic_are_seeded_and_replayable() {
             "{seven}"
         );
     }
-    // A scenario that places nothing ignores the seed.
+    // A scenario that places nothing refuses a seed by name: none would change the replay.
     let plain = dir.join("roads");
     evolve(&config, &plain, &[]);
     let r = dir.join("r");
-    assert_eq!(replay(&plain, None, &r), replay(&plain, Some("7"), &r));
+    let refused = vivae()
+        .arg("replay")
+        .arg(&plain)
+        .arg("--out")
+        .arg(&r)
+        .args(["--placement-seed", "7"])
+        .output()
+        .unwrap();
+    assert_eq!(refused.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&refused.stderr);
+    assert!(
+        err.contains("--placement-seed 7") && err.contains("places no obstacles"),
+        "{err}"
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -429,6 +429,12 @@ fn check_resumable(dir: &Path, cp: &Checkpoint) -> Result<()> {
             )));
         }
     }
+    check_lengths(dir, cp, &bad)?;
+    check_hall(dir, cp).map_err(bad)
+}
+
+/// Whether the run's files in `dir` are at least as long as `cp` recorded.
+fn check_lengths(dir: &Path, cp: &Checkpoint, bad: &dyn Fn(String) -> Error) -> Result<()> {
     let l = cp.lengths;
     for (name, len) in [
         (files::HUNTERS, l.hunters),
@@ -446,7 +452,7 @@ fn check_resumable(dir: &Path, cp: &Checkpoint) -> Result<()> {
             )));
         }
     }
-    check_hall(dir, cp).map_err(bad)
+    Ok(())
 }
 
 /// Whether `hall-of-fame.jsonl`, up to the length `cp` recorded, holds two
