@@ -116,11 +116,6 @@ fn validate_section<T: StrategySettings>(
         .map_err(|why| format!("strategy.{}.{why}", T::SECTION))
 }
 
-/// `text` on one line.
-fn one_line(text: &str) -> String {
-    text.split_whitespace().collect::<Vec<_>>().join(" ")
-}
-
 /// What a strategy's generation 0 is built from.
 pub struct Start<'a> {
     /// The run's config.
