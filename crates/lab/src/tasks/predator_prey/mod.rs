@@ -32,6 +32,7 @@
 pub mod brain;
 pub mod coevo;
 pub mod config;
+pub mod files;
 pub mod meeting;
 pub mod meetings;
 mod present;
