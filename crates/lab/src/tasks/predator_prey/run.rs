@@ -89,6 +89,18 @@ struct Lengths {
     hall: u64,
 }
 
+impl Lengths {
+    /// Each appended file with the length recorded for it.
+    fn of_files(self) -> [(&'static str, u64); 4] {
+        [
+            (files::HUNTERS, self.hunters),
+            (files::PREY, self.prey),
+            (files::CIAO, self.ciao),
+            (files::HALL, self.hall),
+        ]
+    }
+}
+
 /// What `checkpoint.json` holds.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -296,13 +308,7 @@ fn resume(dir: &Path, generations: Option<u32>, session: &Session<'_>) -> Result
         let config = dir.join(crate::rundir::files::CONFIG);
         write_atomic(&config, cp.config.to_toml().as_bytes())?;
     }
-    let l = cp.lengths;
-    for (name, len) in [
-        (files::HUNTERS, l.hunters),
-        (files::PREY, l.prey),
-        (files::CIAO, l.ciao),
-        (files::HALL, l.hall),
-    ] {
+    for (name, len) in cp.lengths.of_files() {
         let p = dir.join(name);
         let file = fs::OpenOptions::new()
             .write(true)
@@ -420,13 +426,7 @@ fn check_resumable(dir: &Path, cp: &Checkpoint) -> Result<()> {
 
 /// Whether the run's files in `dir` are at least as long as `cp` recorded.
 fn check_lengths(dir: &Path, cp: &Checkpoint, bad: &dyn Fn(String) -> Error) -> Result<()> {
-    let l = cp.lengths;
-    for (name, len) in [
-        (files::HUNTERS, l.hunters),
-        (files::PREY, l.prey),
-        (files::CIAO, l.ciao),
-        (files::HALL, l.hall),
-    ] {
+    for (name, len) in cp.lengths.of_files() {
         let p = dir.join(name);
         let (_, meta) = crate::io::open_regular(&p)
             .map_err(|e| bad_input(format!("{}: {}", p.display(), crate::io::io_reason(&e))))?;
