@@ -59,3 +59,17 @@ def test_driving_settings_are_refused_by_name(tmp_path, setting, key):
     with pytest.raises(ValueError, match=f"{key}.*cartpole"):
         vivae.evolve(out=tmp_path / "run", task="cartpole", generations=2, progress=False, **setting)
     assert not (tmp_path / "run").exists()
+
+
+# Gymnasium's reward_threshold of each other classic-control task (Pendulum
+# has none; vivae's bar is -200).
+THRESHOLDS = {"acrobot": -100.0, "mountain-car": -110.0, "mountain-car-continuous": 90.0, "pendulum": -200.0}
+
+
+@pytest.mark.parametrize("task", list(THRESHOLDS))
+def test_each_classic_control_task_evolves_to_its_threshold_from_python(tmp_path, task):
+    out = tmp_path / "run"
+    r = vivae.evolve(out=out, task=task, seed=1, generations=30, progress=False)
+    assert r["solved"] and r["best"] >= THRESHOLDS[task], r
+    assert r["generations"] < 30, "a solved run stops"
+    assert f'"task":"{task}"' in vivae.report(out).read_text()

@@ -368,3 +368,11 @@ def drive_image(
     precision: str | None = None,
 ) -> list[tuple[float, float]]: ...
 def math_is_portable() -> bool: ...
+def classic_episode(task: str, state: Sequence[float], actions: Sequence[float]) -> list[dict[str, Any]]:
+    """The episode of classic-control task `task` from `state` (as Gymnasium's
+    `env.unwrapped.state` holds it) under `actions`, until it terminates, is
+    truncated or the actions run out: one dict a step (`state`, `observation`,
+    `reward`, `terminated`, `truncated`)."""
+def portable_math(function: str, x: float) -> float:
+    """vivae's portable `sin` or `cos` of `x` (the bits its tasks compute)."""
+

@@ -119,6 +119,12 @@ pub fn atan2(y: f64, x: f64) -> f64 {
     libm::atan2(y, x)
 }
 
+/// The remainder of `x / y` with `x`'s sign (C's `fmod`), the same bits on every machine.
+#[inline]
+pub fn fmod(x: f64, y: f64) -> f64 {
+    libm::fmod(x, y)
+}
+
 /// `tanh x`, the same bits on every machine.
 #[inline]
 pub fn tanh(x: f64) -> f64 {

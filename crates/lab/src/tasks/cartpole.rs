@@ -9,10 +9,10 @@
 
 use vivae_neat::Network;
 use vivae_neat::driver::Evaluation;
-use vivae_neat::eval::splitmix64;
 use vivae_neat::math::{cos, sin};
 
 use super::TaskEntry;
+use super::classic::{self, Classic, Draws, argmax};
 use super::plain::{Plain, Trace, entry};
 
 /// The task's registration (`--task cartpole`).
@@ -60,15 +60,6 @@ pub fn terminated([x, _, theta, _]: [f64; 4]) -> bool {
     x < -X_THRESHOLD || x > X_THRESHOLD || theta < -THETA_THRESHOLD || theta > THETA_THRESHOLD
 }
 
-/// The start of episode `k` of the evaluation of `seed`: each coordinate uniform in [−0.05, 0.05).
-pub fn start(seed: u64, k: u32) -> [f64; 4] {
-    let mut z = splitmix64(seed ^ u64::from(k));
-    [0; 4].map(|_| {
-        z = splitmix64(z);
-        -0.05 + 0.1 * ((z >> 11) as f64 / (1u64 << 53) as f64)
-    })
-}
-
 impl Plain for CartPole {
     const NAME: &'static str = "cartpole";
     const ABOUT: &'static str = "CartPole-v1 (Gymnasium's dynamics)";
@@ -82,35 +73,51 @@ impl Plain for CartPole {
     const TARGET: Option<f64> = Some(475.0);
     const TRACES: bool = true;
 
-    fn evaluate(net: &mut dyn Network, seed: u64, mut trace: Option<&mut Trace>) -> Evaluation {
-        let (mut total, mut worst, mut place) = (0.0, f64::INFINITY, [0.0; 2]);
-        let mut out = [0.0; 2];
-        for k in 0..EPISODES {
-            let mut s = start(seed, k);
-            net.reset();
-            let mut steps = 0.0;
-            for _ in 0..MAX_STEPS {
-                let o = s.map(|v| f64::from(v as f32));
-                let inputs = [o[0], o[1], o[2], o[3], 1.0];
-                net.activate(&inputs, &mut out);
-                s = step(s, out[1] > out[0]);
-                steps += 1.0;
-                place[0] += ((o[0] / X_THRESHOLD + 1.0) / 2.0).clamp(0.0, 1.0);
-                place[1] += ((o[2] / THETA_THRESHOLD + 1.0) / 2.0).clamp(0.0, 1.0);
-                if let Some(t) = trace.as_deref_mut() {
-                    t.step(k, &inputs, &out, 1.0);
-                }
-                if terminated(s) {
-                    break;
-                }
-            }
-            total += steps;
-            worst = f64::min(worst, steps);
-        }
-        Evaluation {
-            fitness: total / f64::from(EPISODES),
-            metrics: vec![worst, total],
-            behaviour: place.map(|p| p / total).to_vec(),
-        }
+    fn evaluate(net: &mut dyn Network, seed: u64, trace: Option<&mut Trace>) -> Evaluation {
+        classic::evaluate::<Self>(net, seed, trace)
+    }
+}
+
+impl Classic for CartPole {
+    type State = [f64; 4];
+    type Action = bool;
+    const EPISODES: u32 = EPISODES;
+    const MAX_STEPS: u32 = MAX_STEPS;
+
+    /// Each coordinate uniform in [−0.05, 0.05).
+    fn start(draws: &mut Draws) -> [f64; 4] {
+        [0; 4].map(|_| draws.uniform(-0.05, 0.05))
+    }
+
+    fn observe(s: &[f64; 4], obs: &mut [f64]) {
+        obs.copy_from_slice(s);
+    }
+
+    fn act(outputs: &[f64]) -> bool {
+        argmax(outputs) == 1
+    }
+
+    fn step(s: [f64; 4], push_right: bool) -> ([f64; 4], f64, bool) {
+        let next = step(s, push_right);
+        (next, 1.0, terminated(next))
+    }
+
+    fn place(o: &[f64]) -> [f64; 2] {
+        [
+            ((o[0] / X_THRESHOLD + 1.0) / 2.0).clamp(0.0, 1.0),
+            ((o[2] / THETA_THRESHOLD + 1.0) / 2.0).clamp(0.0, 1.0),
+        ]
+    }
+
+    fn state_of(values: &[f64]) -> Option<[f64; 4]> {
+        values.try_into().ok()
+    }
+
+    fn values(s: &[f64; 4]) -> Vec<f64> {
+        s.to_vec()
+    }
+
+    fn action_of(value: f64) -> Option<bool> {
+        [0.0, 1.0].contains(&value).then_some(value == 1.0)
     }
 }

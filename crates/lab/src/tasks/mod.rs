@@ -5,15 +5,22 @@
 //! the shared ones, the metrics it measures, the columns it adds to
 //! `generations.csv`, and how to build it as a [`RunTask`] (the driving
 //! experiment: [`driving`]; Lehman & Stanley's maze: [`maze`]); a task of
-//! plain NEAT networks is its [`plain::Plain`] shape and scoring ([`cartpole`]). Everything a
+//! plain NEAT networks is its [`plain::Plain`] shape and scoring ([`cartpole`]; the
+//! classic-control family shares [`classic`]). Everything a
 //! run, its recorder, the program or the Python package needs to know about a
 //! task, it asks the [`RunTask`] or its entry; nothing outside a task's folder
 //! matches on which task it is.
 
+pub mod acrobot;
 pub mod cartpole;
+pub mod classic;
 pub mod driving;
+pub mod gymnasium;
 pub mod maps;
 pub mod maze;
+pub mod mountain_car;
+pub mod mountain_car_continuous;
+pub mod pendulum;
 pub mod plain;
 pub mod predator_prey;
 pub mod robot;
@@ -32,9 +39,13 @@ pub use predator_prey::section::CoevolutionConfig;
 
 /// Every task a run can evolve for; `experiment.task` names one. A new task
 /// is a folder here and one line in this list.
-pub static TASKS: [&TaskEntry; 4] = [
+pub static TASKS: [&TaskEntry; 8] = [
     &driving::TASK,
     &maze::TASK,
     &predator_prey::TASK,
     &cartpole::TASK,
+    &acrobot::TASK,
+    &mountain_car::TASK,
+    &mountain_car_continuous::TASK,
+    &pendulum::TASK,
 ];

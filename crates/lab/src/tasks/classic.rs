@@ -1,0 +1,205 @@
+//! What the classic-control tasks (Gymnasium's CartPole, Acrobot, the two
+//! MountainCars and Pendulum) share: the start's uniform draws from the
+//! evaluation's seed, the episode loop a network plays (observations rounded
+//! to float32 as Gymnasium returns them, a bias input, fitness = the mean
+//! return), and an episode stepped from a given state under given actions,
+//! which the Python package exposes (through [`super::gymnasium`]) so a test
+//! can compare every step with Gymnasium's.
+
+use vivae_neat::Network;
+use vivae_neat::driver::Evaluation;
+use vivae_neat::eval::splitmix64;
+
+use super::plain::{Plain, Trace};
+
+/// The most inputs or outputs a classic-control network has.
+const MOST: usize = 8;
+
+/// A Gymnasium classic-control environment as a plain task plays it.
+pub trait Classic: Plain {
+    /// What the environment holds between steps.
+    type State: Copy;
+    /// What a step takes.
+    type Action: Copy;
+    /// Episodes per evaluation.
+    const EPISODES: u32 = 5;
+    /// Steps after which an episode is truncated (its `max_episode_steps`).
+    const MAX_STEPS: u32;
+    /// Episode `k`'s start, drawn as Gymnasium's `reset` draws it (its uniform ranges).
+    fn start(draws: &mut Draws) -> Self::State;
+    /// The observation in float64, before Gymnasium's float32 rounding
+    /// (`Plain::INPUTS − 1` values).
+    fn observe(s: &Self::State, obs: &mut [f64]);
+    /// The action the network's outputs choose.
+    fn act(outputs: &[f64]) -> Self::Action;
+    /// One step: the next state, the reward, whether it terminated.
+    fn step(s: Self::State, a: Self::Action) -> (Self::State, f64, bool);
+    /// A step's share of the behaviour descriptor, each coordinate in [0, 1],
+    /// from the (float32) observation; the descriptor is its mean over steps.
+    fn place(obs: &[f64]) -> [f64; 2];
+    /// The state Gymnasium's `env.unwrapped.state` holds as these values (`None`: not a state).
+    fn state_of(values: &[f64]) -> Option<Self::State>;
+    /// The state's values, as `env.unwrapped.state` holds them.
+    fn values(s: &Self::State) -> Vec<f64>;
+    /// The action Gymnasium's `env.step` is given as this number (`None`: not an action).
+    fn action_of(value: f64) -> Option<Self::Action>;
+}
+
+/// Uniform draws from the evaluation's seed and the episode's number.
+#[derive(Debug, Clone)]
+pub struct Draws(u64);
+
+impl Draws {
+    /// The draws of episode `k` of the evaluation of `seed`.
+    pub fn new(seed: u64, k: u32) -> Draws {
+        Draws(splitmix64(seed ^ u64::from(k)))
+    }
+
+    /// The next draw, uniform in [`low`, `high`).
+    pub fn uniform(&mut self, low: f64, high: f64) -> f64 {
+        self.0 = splitmix64(self.0);
+        low + (high - low) * ((self.0 >> 11) as f64 / (1u64 << 53) as f64)
+    }
+}
+
+/// The index of the largest output, the first on a tie: a discrete action.
+pub fn argmax(outputs: &[f64]) -> usize {
+    let mut best = 0;
+    for (i, v) in outputs.iter().enumerate() {
+        if *v > outputs[best] {
+            best = i;
+        }
+    }
+    best
+}
+
+/// `x` clipped to [`low`, `high`] as NumPy's `clip` does (NaN stays NaN).
+pub fn clip(x: f64, low: f64, high: f64) -> f64 {
+    if x < low {
+        low
+    } else if x > high {
+        high
+    } else {
+        x
+    }
+}
+
+/// Rounded to float32 as Gymnasium's observations are, read back as float64.
+fn single(x: f64) -> f64 {
+    f64::from(x as f32)
+}
+
+/// Scores `net` on [`Classic::EPISODES`] episodes of `T` started from
+/// `seed`: fitness = the mean return; metrics the worst return and the steps
+/// taken; behaviour the mean of [`Classic::place`] over every step.
+pub fn evaluate<T: Classic>(
+    net: &mut dyn Network,
+    seed: u64,
+    mut trace: Option<&mut Trace>,
+) -> Evaluation {
+    let (mut total, mut worst, mut steps, mut place) = (0.0, f64::INFINITY, 0.0, [0.0; 2]);
+    let (mut inputs, mut outputs) = ([0.0; MOST], [0.0; MOST]);
+    let (inputs, outputs) = (&mut inputs[..T::INPUTS], &mut outputs[..T::OUTPUTS]);
+    for k in 0..T::EPISODES {
+        let mut s = T::start(&mut Draws::new(seed, k));
+        net.reset();
+        let mut ret = 0.0;
+        for _ in 0..T::MAX_STEPS {
+            let obs = &mut inputs[..T::INPUTS - 1];
+            T::observe(&s, obs);
+            obs.iter_mut().for_each(|v| *v = single(*v));
+            let [a, b] = T::place(obs);
+            inputs[T::INPUTS - 1] = 1.0;
+            net.activate(inputs, outputs);
+            let (next, reward, terminated) = T::step(s, T::act(outputs));
+            s = next;
+            ret += reward;
+            steps += 1.0;
+            place[0] += a;
+            place[1] += b;
+            if let Some(t) = trace.as_deref_mut() {
+                t.step(k, inputs, outputs, reward);
+            }
+            if terminated {
+                break;
+            }
+        }
+        total += ret;
+        worst = f64::min(worst, ret);
+    }
+    Evaluation {
+        fitness: total / f64::from(T::EPISODES),
+        metrics: vec![worst, steps],
+        behaviour: place.map(|p| p / steps).to_vec(),
+    }
+}
+
+/// One step of an episode as Gymnasium's `env.step` returns it, with the
+/// state it leaves in `env.unwrapped.state`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Step {
+    /// `env.unwrapped.state` after the step.
+    pub state: Vec<f64>,
+    /// The observation (float32 values).
+    pub observation: Vec<f64>,
+    /// The reward.
+    pub reward: f64,
+    /// Whether the episode terminated.
+    pub terminated: bool,
+    /// Whether it was truncated (its `max_episode_steps` reached).
+    pub truncated: bool,
+}
+
+/// `T`'s episode from state `state` under `actions`, until it terminates, is
+/// truncated or the actions run out; the error says what is wrong with the input.
+pub fn episode<T: Classic>(state: &[f64], actions: &[f64]) -> Result<Vec<Step>, String> {
+    let mut s = T::state_of(state).ok_or_else(|| {
+        format!(
+            "state {state:?} is not a {} state (as env.unwrapped.state holds it)",
+            T::NAME
+        )
+    })?;
+    let mut obs = vec![0.0; T::INPUTS - 1];
+    let mut out = Vec::new();
+    for (n, &a) in actions.iter().enumerate() {
+        let action = T::action_of(a)
+            .ok_or_else(|| format!("action {a} (step {n}) is not a {} action", T::NAME))?;
+        let (next, reward, terminated) = T::step(s, action);
+        s = next;
+        T::observe(&s, &mut obs);
+        let truncated = n + 1 >= T::MAX_STEPS as usize;
+        out.push(Step {
+            state: T::values(&s),
+            observation: obs.iter().map(|v| single(*v)).collect(),
+            reward,
+            terminated,
+            truncated,
+        });
+        if terminated || truncated {
+            break;
+        }
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn argmax_takes_the_first_largest() {
+        assert_eq!(argmax(&[0.1, 0.3, 0.3]), 1);
+        assert_eq!(argmax(&[0.5, 0.5]), 0);
+        assert_eq!(argmax(&[-1.0, -2.0, 0.0]), 2);
+    }
+
+    #[test]
+    fn draws_stay_in_their_range_and_follow_the_seed() {
+        let mut d = Draws::new(7, 2);
+        let xs: Vec<f64> = (0..1000).map(|_| d.uniform(-0.6, -0.4)).collect();
+        assert!(xs.iter().all(|x| (-0.6..-0.4).contains(x)));
+        let mut again = Draws::new(7, 2);
+        assert_eq!(again.uniform(-0.6, -0.4), xs[0]);
+        assert_ne!(Draws::new(7, 3).uniform(-0.6, -0.4), xs[0]);
+    }
+}

@@ -1,0 +1,177 @@
+//! MountainCarContinuous-v0 with Gymnasium's dynamics (`gymnasium/envs/
+//! classic_control/continuous_mountain_car.py`): the car of MountainCar
+//! pushed with a force in [−1, 1] (power 0.0015); reward 100 on reaching
+//! position ≥ 0.45, minus 0.1·a² every step; truncated after 999 steps. Its
+//! cos is vivae's portable one. Gymnasium keeps the state in float32 after
+//! the first step and mixes float32 with Python floats (NumPy 2's rules: a
+//! float32 with a Python float computes in float32); the step follows those
+//! types operation by operation. An evaluation is 5 episodes, each starting
+//! as Gymnasium's `reset` draws it (position uniform in [−0.6, −0.4),
+//! speed 0) but from the evaluation's seed; fitness is their mean return,
+//! solved at Gymnasium's `reward_threshold` of 90. The network reads the
+//! observation (position, velocity, float32) and a bias; its one output (a
+//! bipolar sigmoid, in [−1, 1]) rounded to float32 is the action, which
+//! Gymnasium's clip to [−1, 1] leaves as it is. The behaviour descriptor is
+//! MountainCar's: mean position and speed, scaled into [0, 1].
+
+use vivae_neat::Network;
+use vivae_neat::driver::Evaluation;
+use vivae_neat::math::cos;
+
+use super::TaskEntry;
+use super::classic::{self, Classic, Draws, clip};
+use super::mountain_car::place;
+use super::plain::{Plain, Trace, entry};
+
+/// The task's registration (`--task mountain-car-continuous`).
+pub static TASK: TaskEntry = entry::<MountainCarContinuous>();
+
+/// Steps after which an episode is truncated (its `max_episode_steps`).
+pub const MAX_STEPS: u32 = 999;
+const MIN_POSITION: f64 = -1.2;
+const MAX_POSITION: f64 = 0.6;
+const MAX_SPEED: f64 = 0.07;
+const GOAL_POSITION: f64 = 0.45;
+const POWER: f64 = 0.0015;
+
+/// MountainCarContinuous-v0 as a plain task.
+#[derive(Debug, Clone, Copy)]
+pub struct MountainCarContinuous;
+
+/// The (position, velocity) Gymnasium's env holds: float64 as `reset` sets
+/// it, float32 after any step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum State {
+    /// As `reset` leaves it (`np.array([uniform, 0])`).
+    Reset([f64; 2]),
+    /// As a step leaves it (`np.array([...], dtype=np.float32)`).
+    Stepped([f32; 2]),
+}
+
+/// A Python float cast to float32, as NumPy casts it in an operation with a float32.
+fn weak(x: f64) -> f32 {
+    x as f32
+}
+
+/// One step of Gymnasium's MountainCarContinuous-v0 under force `action`
+/// (as the float32 its action space holds), in its order of operations and
+/// types: the next state, the reward, whether it terminated.
+pub fn step(s: State, action: f32) -> (State, f64, bool) {
+    // `min(max(action[0], -1.0), 1.0)`: a float32 inside, a Python float when clipped.
+    let clipped = if -1.0 > action {
+        Some(-1.0)
+    } else if 1.0 < action {
+        Some(1.0)
+    } else {
+        None
+    };
+    // `force * power - 0.0025 * math.cos(3 * position)`, then `velocity += …`.
+    let (position, velocity, terminated) = match s {
+        State::Reset([position, velocity]) => {
+            let gravity = 0.0025 * cos(3.0 * position);
+            let change = match clipped {
+                Some(force) => force * POWER - gravity,
+                None => f64::from(action * weak(POWER) - weak(gravity)),
+            };
+            let velocity = clip(velocity + change, -MAX_SPEED, MAX_SPEED);
+            let position = clip(position + velocity, MIN_POSITION, MAX_POSITION);
+            let velocity = if position == MIN_POSITION && velocity < 0.0 {
+                0.0
+            } else {
+                velocity
+            };
+            let done = position >= GOAL_POSITION && velocity >= 0.0;
+            (position as f32, velocity as f32, done)
+        }
+        State::Stepped([position, velocity]) => {
+            let gravity = 0.0025 * cos(f64::from(3.0 * position));
+            let change = match clipped {
+                Some(force) => weak(force * POWER - gravity),
+                None => action * weak(POWER) - weak(gravity),
+            };
+            // Clipped values are Python floats; cast back to float32 by
+            // every later operation with a float32, they act as these.
+            let velocity = clip32(velocity + change, -weak(MAX_SPEED), weak(MAX_SPEED));
+            let position = clip32(position + velocity, weak(MIN_POSITION), weak(MAX_POSITION));
+            let velocity = if position == weak(MIN_POSITION) && velocity < 0.0 {
+                0.0
+            } else {
+                velocity
+            };
+            let done = position >= weak(GOAL_POSITION) && velocity >= 0.0;
+            (position, velocity, done)
+        }
+    };
+    let mut reward = if terminated { 100.0 } else { 0.0 };
+    let a = f64::from(action);
+    reward -= a * a * 0.1;
+    (State::Stepped([position, velocity]), reward, terminated)
+}
+
+/// `x` clipped to [`low`, `high`] in float32 (Gymnasium's `if x > high: x = high`, then the low bound).
+fn clip32(x: f32, low: f32, high: f32) -> f32 {
+    let x = if x > high { high } else { x };
+    if x < low { low } else { x }
+}
+
+impl Plain for MountainCarContinuous {
+    const NAME: &'static str = "mountain-car-continuous";
+    const ABOUT: &'static str = "MountainCarContinuous-v0 (Gymnasium's dynamics)";
+    const SCORING: &'static str = "fitness = the mean return of 5 episodes (100 at the goal, -0.1*a^2 a step, at most 999 steps)";
+    const INPUTS: usize = 3;
+    const OUTPUTS: usize = 1;
+    const OUTPUT_MEANING: &'static str = "MountainCarContinuous-v0's action = out[0] as float32 (a bipolar sigmoid, in [-1, 1]); inputs position, velocity, 1";
+    const METRICS: &'static [&'static str] = &["worst", "steps"];
+    const BEHAVIOUR: &'static [&'static str] = &["position", "speed"];
+    const STEPS: u64 = (5 * MAX_STEPS) as u64;
+    const TARGET: Option<f64> = Some(90.0);
+    const TRACES: bool = true;
+
+    fn evaluate(net: &mut dyn Network, seed: u64, trace: Option<&mut Trace>) -> Evaluation {
+        classic::evaluate::<Self>(net, seed, trace)
+    }
+}
+
+impl Classic for MountainCarContinuous {
+    type State = State;
+    type Action = f32;
+    const MAX_STEPS: u32 = MAX_STEPS;
+
+    /// Position uniform in [−0.6, −0.4), velocity 0, in float64.
+    fn start(draws: &mut Draws) -> State {
+        State::Reset([draws.uniform(-0.6, -0.4), 0.0])
+    }
+
+    fn observe(s: &State, obs: &mut [f64]) {
+        obs.copy_from_slice(&Self::values(s));
+    }
+
+    fn act(outputs: &[f64]) -> f32 {
+        outputs[0] as f32
+    }
+
+    fn step(s: State, a: f32) -> (State, f64, bool) {
+        step(s, a)
+    }
+
+    fn place(o: &[f64]) -> [f64; 2] {
+        place(o)
+    }
+
+    /// A float64 state, as `reset` leaves it.
+    fn state_of(values: &[f64]) -> Option<State> {
+        values.try_into().ok().map(State::Reset)
+    }
+
+    fn values(s: &State) -> Vec<f64> {
+        match s {
+            State::Reset(v) => v.to_vec(),
+            State::Stepped(v) => v.map(f64::from).to_vec(),
+        }
+    }
+
+    /// Any number, as float32 (Gymnasium's action space holds float32).
+    fn action_of(value: f64) -> Option<f32> {
+        Some(value as f32)
+    }
+}

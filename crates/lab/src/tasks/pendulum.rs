@@ -1,0 +1,142 @@
+//! Pendulum-v1 with Gymnasium's dynamics (`gymnasium/envs/classic_control/
+//! pendulum.py`): a pendulum swung up by a torque in [−2, 2], float64 state,
+//! one explicit step of 0.05 s, speed clipped at ±8; reward −(θ² + 0.1·θ'² +
+//! 0.001·u²) with θ normalised into [−π, π); never terminated, truncated
+//! after 200 steps. Its sin, cos and remainder are vivae's portable ones; the
+//! torque is float32 (its action space's type) and, by NumPy 2's rules,
+//! `3.0·u` and `0.001·u²` are computed in float32 as Gymnasium computes them.
+//! An evaluation is 5 episodes, each starting as Gymnasium's `reset` draws
+//! it (θ uniform in [−π, π), θ' in [−1, 1)) but from the evaluation's seed;
+//! fitness is their mean return. Gymnasium gives Pendulum no
+//! `reward_threshold`; the bar here is a mean return of −200. Hanging still
+//! costs π² ≈ 9.9 a step (−1974 an episode) and standing still upright 0,
+//! so −200 asks that the pendulum be swung up within the first few dozen
+//! steps and held there, from every start, with little torque spent. The
+//! network reads the observation (cos θ, sin θ, θ', float32) and a bias; the
+//! torque is 2·out[0] (its one output, a bipolar sigmoid in [−1, 1])
+//! rounded to float32.
+
+use std::f64::consts::PI;
+
+use vivae_neat::Network;
+use vivae_neat::driver::Evaluation;
+use vivae_neat::math::{cos, fmod, sin};
+
+use super::TaskEntry;
+use super::classic::{self, Classic, Draws, clip};
+use super::plain::{Plain, Trace, entry};
+
+/// The task's registration (`--task pendulum`).
+pub static TASK: TaskEntry = entry::<Pendulum>();
+
+/// Steps after which an episode is truncated (Pendulum-v1's `max_episode_steps`).
+pub const MAX_STEPS: u32 = 200;
+const MAX_SPEED: f64 = 8.0;
+const MAX_TORQUE: f64 = 2.0;
+const DT: f64 = 0.05;
+const G: f64 = 10.0;
+const M: f64 = 1.0;
+const L: f64 = 1.0;
+
+/// Pendulum-v1 as a plain task.
+#[derive(Debug, Clone, Copy)]
+pub struct Pendulum;
+
+/// NumPy's float64 `%` (Python's: the result takes the divisor's sign).
+fn remainder(a: f64, b: f64) -> f64 {
+    let m = fmod(a, b);
+    if m == 0.0 {
+        0.0f64.copysign(b)
+    } else if (b < 0.0) != (m < 0.0) {
+        m + b
+    } else {
+        m
+    }
+}
+
+/// θ into [−π, π) as Gymnasium's `angle_normalize` does.
+fn angle_normalize(x: f64) -> f64 {
+    remainder(x + PI, 2.0 * PI) - PI
+}
+
+/// One step of Gymnasium's Pendulum-v1 under torque `u` (the float32 its
+/// action space holds), in its order of operations and types: the next
+/// (θ, θ') and the reward.
+pub fn step([th, thdot]: [f64; 2], u: f32) -> ([f64; 2], f64) {
+    // `np.clip` of a float32 array by Python floats: float32, NaN kept.
+    let (low, high) = (-MAX_TORQUE as f32, MAX_TORQUE as f32);
+    let u = if u < low {
+        low
+    } else if u > high {
+        high
+    } else {
+        u
+    };
+    let an = angle_normalize(th);
+    let costs = an * an + 0.1 * (thdot * thdot) + f64::from((0.001f64 as f32) * (u * u));
+    let torque = f64::from((3.0 / (M * (L * L))) as f32 * u);
+    let newthdot = thdot + (3.0 * G / (2.0 * L) * sin(th) + torque) * DT;
+    let newthdot = clip(newthdot, -MAX_SPEED, MAX_SPEED);
+    let newth = th + newthdot * DT;
+    ([newth, newthdot], -costs)
+}
+
+impl Plain for Pendulum {
+    const NAME: &'static str = "pendulum";
+    const ABOUT: &'static str = "Pendulum-v1 (Gymnasium's dynamics)";
+    const SCORING: &'static str = "fitness = the mean return of 5 episodes of 200 steps (minus the angle^2, 0.1 speed^2, 0.001 torque^2 a step); no Gymnasium threshold: -200 here";
+    const INPUTS: usize = 4;
+    const OUTPUTS: usize = 1;
+    const OUTPUT_MEANING: &'static str = "Pendulum-v1's torque = 2*out[0] as float32 (out[0] a bipolar sigmoid, in [-1, 1]); inputs cos theta, sin theta, theta', 1";
+    const METRICS: &'static [&'static str] = &["worst", "steps"];
+    const BEHAVIOUR: &'static [&'static str] = &["height", "speed"];
+    const STEPS: u64 = (5 * MAX_STEPS) as u64;
+    const TARGET: Option<f64> = Some(-200.0);
+    const TRACES: bool = true;
+
+    fn evaluate(net: &mut dyn Network, seed: u64, trace: Option<&mut Trace>) -> Evaluation {
+        classic::evaluate::<Self>(net, seed, trace)
+    }
+}
+
+impl Classic for Pendulum {
+    type State = [f64; 2];
+    type Action = f32;
+    const MAX_STEPS: u32 = MAX_STEPS;
+
+    /// θ uniform in [−π, π), θ' in [−1, 1).
+    fn start(draws: &mut Draws) -> [f64; 2] {
+        [draws.uniform(-PI, PI), draws.uniform(-1.0, 1.0)]
+    }
+
+    fn observe([th, thdot]: &[f64; 2], obs: &mut [f64]) {
+        obs.copy_from_slice(&[cos(*th), sin(*th), *thdot]);
+    }
+
+    fn act(outputs: &[f64]) -> f32 {
+        (MAX_TORQUE * outputs[0]) as f32
+    }
+
+    fn step(s: [f64; 2], u: f32) -> ([f64; 2], f64, bool) {
+        let (next, reward) = step(s, u);
+        (next, reward, false)
+    }
+
+    /// How high the pendulum is and how fast it turns, each in [0, 1].
+    fn place(o: &[f64]) -> [f64; 2] {
+        [(o[0] + 1.0) / 2.0, (o[2].abs() / MAX_SPEED).clamp(0.0, 1.0)]
+    }
+
+    fn state_of(values: &[f64]) -> Option<[f64; 2]> {
+        values.try_into().ok()
+    }
+
+    fn values(s: &[f64; 2]) -> Vec<f64> {
+        s.to_vec()
+    }
+
+    /// Any number, as float32 (Gymnasium's action space holds float32).
+    fn action_of(value: f64) -> Option<f32> {
+        Some(value as f32)
+    }
+}
