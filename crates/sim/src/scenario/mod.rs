@@ -301,3 +301,38 @@ impl Scenario {
         )
     }
 }
+
+/// The surface of points no surface shape covers: the root's `data-background`, grass by default.
+fn background_of(root: roxmltree::Node, source: &str) -> Result<SurfaceKind, ScenarioError> {
+    match root.attribute("data-background") {
+        None => Ok(SurfaceKind::Grass),
+        Some(v) => labels::surface_kind(v.trim()).ok_or_else(|| ScenarioError::Attribute {
+            source_name: source.to_string(),
+            id: root.attribute("id").unwrap_or("svg").to_string(),
+            attribute: "data-background".into(),
+            value: v.into(),
+        }),
+    }
+}
+
+/// A scenario with its arena and nothing in it yet.
+fn empty_scenario(source: &str, width: f64, height: f64, background: SurfaceKind) -> Scenario {
+    Scenario {
+        source: source.to_string(),
+        width,
+        height,
+        background,
+        surfaces: Vec::new(),
+        materials: vec![(background, None)],
+        fixed_obstacles: Vec::new(),
+        movable_obstacles: Vec::new(),
+        pucks: Vec::new(),
+        marks: Vec::new(),
+        robots: Vec::new(),
+        routes: Vec::new(),
+        obstacle_regions: Vec::new(),
+        traffic: Vec::new(),
+        warnings: Vec::new(),
+        raster: Arc::new(SurfaceRaster::empty()),
+    }
+}
