@@ -25,7 +25,10 @@ pub use episodic::{MAX_REGION_COUNT, ObstacleRegion, TrafficStart};
 pub use error::ScenarioError;
 pub use limits::LoadOptions;
 pub use route::{Route, RoutePlace};
-pub use summary::{ArenaSummary, RobotSummary, ScenarioSummary, heading_degrees};
+pub use summary::{
+    ArenaSummary, RegionSummary, RobotSummary, RouteSummary, ScenarioSummary, TrafficSummary,
+    heading_degrees,
+};
 
 /// Kind of ground surface (ViVAE's friction classes).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
