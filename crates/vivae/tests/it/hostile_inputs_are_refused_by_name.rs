@@ -213,6 +213,22 @@ fn sizes_counts_and_seeds_past_their_bounds_are_refused_before_any_work() {
             .args(["--heading", "inf"]),
         &["--heading inf"],
     );
+    // A map too large to draw is refused with the scales that can be drawn.
+    let map = dir.join("map.png");
+    refused(
+        vivae()
+            .arg("drive-image")
+            .arg(&*run_dir)
+            .arg("--draw-map")
+            .arg(&map)
+            .args(["--scale", "1000"]),
+        &[
+            "--scale 1000",
+            "100000000 pixels",
+            "use a scale from 0 to 14.43",
+        ],
+    );
+    assert!(!map.exists());
     // Roads place nothing at random: a placement seed is refused by name.
     refused(
         vivae()
