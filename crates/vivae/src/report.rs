@@ -417,6 +417,16 @@ pub fn scenario_text(s: &ScenarioSummary, marks: &[String]) -> String {
             r.id, r.x, r.y, r.heading_deg
         );
     }
+    for r in &s.routes {
+        let shape = if r.closed { "loop" } else { "open" };
+        let _ = writeln!(out, "route {}: {:.1} px, {shape}", r.id, r.length);
+    }
+    for r in &s.obstacle_regions {
+        let _ = writeln!(out, "obstacle region {}: {} per episode", r.id, r.count);
+    }
+    for t in &s.traffic {
+        let _ = writeln!(out, "scripted robot {}: follows {}", t.id, t.route);
+    }
     for w in &s.warnings {
         let _ = writeln!(out, "warning: {w}");
     }

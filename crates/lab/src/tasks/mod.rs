@@ -26,6 +26,7 @@ pub mod predator_prey;
 pub mod robot;
 mod seam;
 mod target;
+mod unread;
 
 pub use seam::{
     BuildTask, Finished, HeaderContext, OwnDriver, RunTask, Session, SetRobot, Stopped, TaskEntry,

@@ -23,6 +23,7 @@ use crate::error::Result;
 use crate::io::bad_input;
 use crate::search::TaskFacts;
 use crate::tasks::maps::TrainingMap;
+use crate::tasks::unread::first_change;
 use crate::tasks::{Finished, HeaderContext, RunTask, TargetProgress, TaskEntry};
 
 /// A task of plain NEAT networks: its shape and how a network is scored.
@@ -194,45 +195,13 @@ fn validate<T: Plain>(c: &Config) -> std::result::Result<(), String> {
 /// from `defaults`: (key, its value, the default), `unset` for a missing one.
 fn unread_change(c: &Config, defaults: &Config) -> Option<(String, String, String)> {
     let value = |c: &Config| toml::Value::try_from(c).expect("a config is TOML");
-    let mut found = None;
-    walk("", Some(&value(c)), Some(&value(defaults)), &mut found);
-    found
-}
-
-/// Walks `a` (a config) and `b` (its defaults) for the first unread key that differs.
-fn walk(
-    key: &str,
-    a: Option<&toml::Value>,
-    b: Option<&toml::Value>,
-    found: &mut Option<(String, String, String)>,
-) {
+    // `strategy.behaviour` is the driving task's, under a section the task reads.
     let read = |k: &str| {
         READ.iter()
             .any(|r| k == *r || k.starts_with(&format!("{r}.")))
+            && !"strategy.behaviour".starts_with(k)
     };
-    if found.is_some() || (read(key) && !"strategy.behaviour".starts_with(key)) {
-        return;
-    }
-    match (a, b) {
-        (Some(toml::Value::Table(x)), Some(toml::Value::Table(y))) => {
-            let mut keys: Vec<&String> = x.keys().chain(y.keys()).collect();
-            keys.sort();
-            keys.dedup();
-            for k in keys {
-                let sub = if key.is_empty() {
-                    k.clone()
-                } else {
-                    format!("{key}.{k}")
-                };
-                walk(&sub, x.get(k), y.get(k), found);
-            }
-        }
-        (a, b) if a != b => {
-            let show = |v: Option<&toml::Value>| v.map_or("unset".into(), ToString::to_string);
-            *found = Some((key.to_string(), show(a), show(b)));
-        }
-        _ => {}
-    }
+    first_change("", Some(&value(c)), Some(&value(defaults)), &read)
 }
 
 /// The run task of plain task `T`.

@@ -82,13 +82,39 @@ pub(super) fn bad(source: &str, id: &str, attribute: &str, value: &str) -> Scena
     }
 }
 
-/// The region of an `ObstacleRegion` element from its attributes.
+/// The error of an obstacle region `id` that has no area.
+pub(super) fn region_without_area(source: &str, id: &str) -> ScenarioError {
+    ScenarioError::Region {
+        source_name: source.to_string(),
+        id: id.to_string(),
+        problem: "has no area (zero width or height): obstacles are placed inside it".into(),
+    }
+}
+
+/// The region of an `ObstacleRegion` element from its attributes, in an
+/// arena of `arena` (width, height) px: refused when no obstacle could
+/// fall in it (no area, or wholly outside the arena).
 pub(super) fn region<'v>(
     source: &str,
     id: String,
     shape: Shape,
+    arena: (f64, f64),
     attr: impl Fn(&str) -> Option<&'v str>,
 ) -> Result<ObstacleRegion, ScenarioError> {
+    if shape.is_empty() || shape.area() <= 0.0 {
+        return Err(region_without_area(source, &id));
+    }
+    let b = shape.bbox;
+    if !(b.min.x < arena.0 && b.max.x > 0.0 && b.min.y < arena.1 && b.max.y > 0.0) {
+        return Err(ScenarioError::Region {
+            source_name: source.to_string(),
+            problem: format!(
+                "at ({:.1}, {:.1})..({:.1}, {:.1}) lies outside the {} x {} arena: no obstacle could be placed in it",
+                b.min.x, b.min.y, b.max.x, b.max.y, arena.0, arena.1
+            ),
+            id,
+        });
+    }
     let count = attr("data-count").unwrap_or("");
     let count = match count.trim().parse::<u32>() {
         Ok(c) if c <= MAX_REGION_COUNT => c,

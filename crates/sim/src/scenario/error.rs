@@ -131,6 +131,26 @@ pub enum ScenarioError {
         /// Largest y reached.
         max_y: f64,
     },
+    /// An obstacle region in which no obstacle could be placed.
+    #[error("{source_name}: obstacle region '{id}' {problem}")]
+    Region {
+        /// File name.
+        source_name: String,
+        /// Element id.
+        id: String,
+        /// What is wrong.
+        problem: String,
+    },
+    /// A route's id is also another element's: a robot could not name it.
+    #[error(
+        "{source_name}: route {id}: its id is used by another element too: give each route an id of its own (robots name their route by it)"
+    )]
+    RepeatedRouteId {
+        /// File name.
+        source_name: String,
+        /// The route as the user wrote it (its id and where it is).
+        id: String,
+    },
     /// The load options are invalid.
     #[error("invalid load option {field} = {value}")]
     Options {

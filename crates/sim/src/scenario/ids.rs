@@ -19,6 +19,8 @@ pub(super) struct UniqueIds {
     pub text: String,
     /// Name to show for each invented id.
     pub display: BTreeMap<String, String>,
+    /// The invented ids that replace a repeated one (not a missing one).
+    pub repeated: BTreeSet<String>,
 }
 
 /// Whether an element is one of the SVG shapes the loader reads.
@@ -51,6 +53,7 @@ pub(super) fn unique_ids(
     // (byte range to replace, replacement), in document order.
     let mut edits: Vec<(std::ops::Range<usize>, String)> = Vec::new();
     let mut display = BTreeMap::new();
+    let mut repeated = BTreeSet::new();
     let mut counter = 0usize;
     let mut fresh = || loop {
         counter += 1;
@@ -74,6 +77,7 @@ pub(super) fn unique_ids(
                     id.clone(),
                     format!("{} (<{tag}> on line {line})", a.value()),
                 );
+                repeated.insert(id.clone());
                 edits.push((range, id));
             }
             None => {
@@ -90,6 +94,7 @@ pub(super) fn unique_ids(
     Ok(Some(UniqueIds {
         text: apply_edits(text, edits),
         display,
+        repeated,
     }))
 }
 

@@ -4,7 +4,7 @@
 //! attributes); usvg resolves shapes, arcs, CSS, units, the `viewBox` and every
 //! ancestor transform into absolute paths. The two are joined by element `id`.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::sync::Arc;
 
 use glam::DVec2;
@@ -14,11 +14,10 @@ use crate::raster::SurfaceRaster;
 
 use super::episodic::{self, TrafficStart};
 use super::ids::{is_shape, unique_ids};
-use super::labels::{Class, classify, surface_kind};
+use super::labels::{Class, classify};
 use super::limits::*;
-use super::{
-    Mark, Obstacle, Puck, PuckKind, RobotStart, Scenario, ScenarioError, Surface, SurfaceKind,
-};
+use super::{Mark, Obstacle, Puck, PuckKind, RobotStart, Scenario, ScenarioError, Surface};
+use super::{background_of, empty_scenario};
 
 /// Flattening tolerance for curves, in px.
 const FLATTEN_TOLERANCE: f64 = 0.1;
@@ -33,6 +32,8 @@ pub(super) struct Loader<'a> {
     source: &'a str,
     /// The user's name for each id the loader invented (see `ids.rs`).
     display: BTreeMap<String, String>,
+    /// The ids the loader invented for a repeated one (see `ids.rs`).
+    repeated: BTreeSet<String>,
     ids: BTreeMap<String, Resolved<'a>>,
     /// Geometry reaching beyond this box is refused.
     limit: Aabb,
@@ -185,28 +186,6 @@ fn usvg_tree(doc: &roxmltree::Document, source: &str) -> Result<usvg::Tree, Scen
     })
 }
 
-/// A scenario with its arena and nothing in it yet.
-fn empty_scenario(source: &str, width: f64, height: f64, background: SurfaceKind) -> Scenario {
-    Scenario {
-        source: source.to_string(),
-        width,
-        height,
-        background,
-        surfaces: Vec::new(),
-        materials: vec![(background, None)],
-        fixed_obstacles: Vec::new(),
-        movable_obstacles: Vec::new(),
-        pucks: Vec::new(),
-        marks: Vec::new(),
-        robots: Vec::new(),
-        routes: Vec::new(),
-        obstacle_regions: Vec::new(),
-        traffic: Vec::new(),
-        warnings: Vec::new(),
-        raster: Arc::new(SurfaceRaster::empty()),
-    }
-}
-
 impl<'a> Loader<'a> {
     pub(super) fn load(
         text: &str,
@@ -233,9 +212,9 @@ impl<'a> Loader<'a> {
         let doc = parse(text)?;
         // The join with usvg is by id: give every element its own first.
         let rewritten = unique_ids(&doc, text, source)?;
-        let (doc, display) = match &rewritten {
-            Some(u) => (parse(&u.text)?, u.display.clone()),
-            None => (doc, BTreeMap::new()),
+        let (doc, display, repeated) = match &rewritten {
+            Some(u) => (parse(&u.text)?, u.display.clone(), u.repeated.clone()),
+            None => (doc, BTreeMap::new(), BTreeSet::new()),
         };
         let root = doc.root_element();
         if root.tag_name().name() != "svg" {
@@ -250,21 +229,14 @@ impl<'a> Loader<'a> {
         let tree = usvg_tree(&doc, source)?;
         let (width, height) = (tree.size().width() as f64, tree.size().height() as f64);
         check_arena_size(width, height, opts, source)?;
-        let background = match root.attribute("data-background") {
-            None => SurfaceKind::Grass,
-            Some(v) => surface_kind(v.trim()).ok_or_else(|| ScenarioError::Attribute {
-                source_name: err_src(),
-                id: root.attribute("id").unwrap_or("svg").to_string(),
-                attribute: "data-background".into(),
-                value: v.into(),
-            })?,
-        };
+        let background = background_of(root, source)?;
         let mut ids = BTreeMap::new();
         collect_ids(tree.root(), &mut ids);
         let reach = MAX_OUTSIDE_ARENAS * width.max(height);
         let mut loader = Loader {
             source,
             display,
+            repeated,
             ids,
             limit: Aabb {
                 min: DVec2::splat(-reach),
@@ -424,11 +396,7 @@ impl<'a> Loader<'a> {
             .unwrap_or("")
             .to_string();
         if shapes.is_empty() || (bbox.is_empty() && !matches!(class, Class::Robot | Class::Mark)) {
-            self.warn(format!(
-                "{}: element '{id}' (label '{label}') has no usable geometry, ignored",
-                self.source
-            ));
-            return Ok(());
+            return self.without_geometry(class, &id, &label);
         }
         match class {
             Class::Surface(kind) => {
@@ -475,11 +443,36 @@ impl<'a> Loader<'a> {
             Class::Region => {
                 let (_, shape) = shapes.into_iter().next().expect("checked non-empty");
                 let attr = |k: &str| n.attribute(k).or_else(|| owner.attribute(k));
-                let region = episodic::region(self.source, id, shape, attr)?;
-                self.sc.obstacle_regions.push(region);
+                let arena = (self.sc.width, self.sc.height);
+                (self.sc.obstacle_regions).push(episodic::region(
+                    self.source,
+                    id,
+                    shape,
+                    arena,
+                    attr,
+                )?);
             }
-            Class::Route => self.add_route(id, &shapes),
+            Class::Route => self.add_route(n, id, &shapes)?,
         }
+        Ok(())
+    }
+
+    /// An object `id` of `class` (labelled `label`) without usable geometry:
+    /// ignored with a warning, but an obstacle region is refused (ignoring it
+    /// would place no obstacles without a word).
+    fn without_geometry(
+        &mut self,
+        class: Class,
+        id: &str,
+        label: &str,
+    ) -> Result<(), ScenarioError> {
+        if matches!(class, Class::Region) {
+            return Err(episodic::region_without_area(self.source, id));
+        }
+        self.warn(format!(
+            "{}: element '{id}' (label '{label}') has no usable geometry, ignored",
+            self.source
+        ));
         Ok(())
     }
 
@@ -511,8 +504,23 @@ impl<'a> Loader<'a> {
         Ok(())
     }
 
-    /// Adds a route along the first shape's centre line (not its stroke).
-    fn add_route(&mut self, id: String, shapes: &[(&'a usvg::Path, Shape)]) {
+    /// Adds a route along the first shape's centre line (not its stroke);
+    /// refused when its id is another element's too (a robot's `data-route`
+    /// could not name it).
+    fn add_route(
+        &mut self,
+        n: roxmltree::Node<'a, 'a>,
+        id: String,
+        shapes: &[(&'a usvg::Path, Shape)],
+    ) -> Result<(), ScenarioError> {
+        if n.attribute("id")
+            .is_some_and(|raw| self.repeated.contains(raw))
+        {
+            return Err(ScenarioError::RepeatedRouteId {
+                source_name: self.source.to_string(),
+                id,
+            });
+        }
         let p = shapes[0].0;
         let closed = p
             .data()
@@ -529,6 +537,7 @@ impl<'a> Loader<'a> {
                 self.source
             )),
         }
+        Ok(())
     }
 
     /// Adds `surface`, or warns (labelled `label`) when it has no area.

@@ -25,7 +25,10 @@ pub use episodic::{MAX_REGION_COUNT, ObstacleRegion, TrafficStart};
 pub use error::ScenarioError;
 pub use limits::LoadOptions;
 pub use route::{Route, RoutePlace};
-pub use summary::{ArenaSummary, RobotSummary, ScenarioSummary, heading_degrees};
+pub use summary::{
+    ArenaSummary, RegionSummary, RobotSummary, RouteSummary, ScenarioSummary, TrafficSummary,
+    heading_degrees,
+};
 
 /// Kind of ground surface (ViVAE's friction classes).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
@@ -299,5 +302,40 @@ impl Scenario {
                 .map(|s| (s.kind, s.friction))
                 .unwrap_or((self.background, None)),
         )
+    }
+}
+
+/// The surface of points no surface shape covers: the root's `data-background`, grass by default.
+fn background_of(root: roxmltree::Node, source: &str) -> Result<SurfaceKind, ScenarioError> {
+    match root.attribute("data-background") {
+        None => Ok(SurfaceKind::Grass),
+        Some(v) => labels::surface_kind(v.trim()).ok_or_else(|| ScenarioError::Attribute {
+            source_name: source.to_string(),
+            id: root.attribute("id").unwrap_or("svg").to_string(),
+            attribute: "data-background".into(),
+            value: v.into(),
+        }),
+    }
+}
+
+/// A scenario with its arena and nothing in it yet.
+fn empty_scenario(source: &str, width: f64, height: f64, background: SurfaceKind) -> Scenario {
+    Scenario {
+        source: source.to_string(),
+        width,
+        height,
+        background,
+        surfaces: Vec::new(),
+        materials: vec![(background, None)],
+        fixed_obstacles: Vec::new(),
+        movable_obstacles: Vec::new(),
+        pucks: Vec::new(),
+        marks: Vec::new(),
+        robots: Vec::new(),
+        routes: Vec::new(),
+        obstacle_regions: Vec::new(),
+        traffic: Vec::new(),
+        warnings: Vec::new(),
+        raster: Arc::new(SurfaceRaster::empty()),
     }
 }

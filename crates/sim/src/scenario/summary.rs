@@ -29,6 +29,52 @@ pub struct RobotSummary {
     /// Its team (`data-team`); absent for a robot of no team.
     #[serde(default, skip_serializing_if = "String::is_empty")]
     pub team: String,
+    /// The id of its route (`data-route`); absent for none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub route: Option<String>,
+}
+
+/// A route in a summary.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RouteSummary {
+    /// Element id.
+    pub id: String,
+    /// Length of its centre line in px.
+    pub length: f64,
+    /// Whether it is a loop.
+    pub closed: bool,
+}
+
+/// An obstacle region in a summary.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RegionSummary {
+    /// Element id.
+    pub id: String,
+    /// Obstacles placed per episode.
+    pub count: u32,
+    /// Each obstacle's width and height in px.
+    pub size: [f64; 2],
+    /// Least distance from an obstacle's centre to any robot's start, px.
+    pub clearance: f64,
+}
+
+/// A scripted robot (traffic) in a summary.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct TrafficSummary {
+    /// Element id.
+    pub id: String,
+    /// Start position x in px.
+    pub x: f64,
+    /// Start position y in px.
+    pub y: f64,
+    /// Start heading in degrees in [0, 360), 0 = up, clockwise.
+    pub heading_deg: f64,
+    /// The id of the route it follows.
+    pub route: String,
+    /// Its throttle range (equal ends: a fixed throttle).
+    pub throttle: [f64; 2],
+    /// Up to this many px further along its route per episode.
+    pub spread: f64,
 }
 
 /// What `vivae scenario info` prints: a serialisable overview of a scenario.
@@ -48,12 +94,22 @@ pub struct ScenarioSummary {
     pub pucks: usize,
     /// Number of position marks.
     pub marks: usize,
+    /// Routes, in document order.
+    #[serde(default)]
+    pub routes: Vec<RouteSummary>,
+    /// Regions where obstacles are placed at random each episode.
+    #[serde(default)]
+    pub obstacle_regions: Vec<RegionSummary>,
+    /// Scripted robots (traffic), not learners.
+    #[serde(default)]
+    pub traffic: Vec<TrafficSummary>,
     /// Loader warnings.
     pub warnings: Vec<String>,
 }
 
 impl Scenario {
-    /// Serialisable overview (arena, robots, counts, warnings).
+    /// Serialisable overview (arena, robots, counts, routes, obstacle
+    /// regions, scripted robots, warnings).
     pub fn summary(&self) -> ScenarioSummary {
         ScenarioSummary {
             arena: ArenaSummary {
@@ -69,6 +125,7 @@ impl Scenario {
                     y: r.pos.y,
                     heading_deg: heading_degrees(r.heading),
                     team: r.team.clone(),
+                    route: (r.route.and_then(|i| self.routes.get(i))).map(|r| r.id.clone()),
                 })
                 .collect(),
             surfaces: SurfaceKind::ALL
@@ -79,6 +136,32 @@ impl Scenario {
             movable_obstacles: self.movable_obstacles.len(),
             pucks: self.pucks.len(),
             marks: self.marks.len(),
+            routes: (self.routes.iter())
+                .map(|r| RouteSummary {
+                    id: r.id.clone(),
+                    length: r.length(),
+                    closed: r.closed,
+                })
+                .collect(),
+            obstacle_regions: (self.obstacle_regions.iter())
+                .map(|r| RegionSummary {
+                    id: r.id.clone(),
+                    count: r.count,
+                    size: [r.size.x, r.size.y],
+                    clearance: r.clearance,
+                })
+                .collect(),
+            traffic: (self.traffic.iter())
+                .map(|t| TrafficSummary {
+                    id: t.id.clone(),
+                    x: t.pos.x,
+                    y: t.pos.y,
+                    heading_deg: heading_degrees(t.heading),
+                    route: (self.routes.get(t.route)).map_or_else(String::new, |r| r.id.clone()),
+                    throttle: [t.throttle.0, t.throttle.1],
+                    spread: t.spread,
+                })
+                .collect(),
             warnings: self.warnings.clone(),
         }
     }

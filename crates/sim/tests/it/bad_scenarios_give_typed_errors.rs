@@ -130,3 +130,80 @@ fn bad_load_options_are_rejected() {
         "{e:?}"
     );
 }
+
+#[test]
+fn obstacle_regions_where_nothing_could_be_placed_are_refused_by_name() {
+    let region = |shape: &str| {
+        err(&svg(
+            100.0,
+            100.0,
+            &format!(r#"<rect id="zone" inkscape:label="ObstacleRegion" data-count="3" {shape}/>"#),
+        ))
+    };
+    for (shape, says) in [
+        (r#"x="10" y="10" width="0" height="50""#, "has no area"),
+        (r#"x="10" y="10" width="50" height="0""#, "has no area"),
+        (
+            r#"x="150" y="10" width="50" height="50""#,
+            "outside the 100 x 100 arena",
+        ),
+        (
+            r#"x="10" y="-90" width="50" height="50""#,
+            "outside the 100 x 100 arena",
+        ),
+    ] {
+        let e = region(shape);
+        assert!(
+            matches!(&e, ScenarioError::Region { id, .. } if id == "zone"),
+            "{shape}: {e:?}"
+        );
+        assert!(
+            e.to_string().starts_with("bad.svg: obstacle region 'zone'"),
+            "{e}"
+        );
+        assert!(e.to_string().contains(says), "{shape}: {e}");
+    }
+    // One reaching into the arena is kept.
+    let sc = Scenario::from_svg(
+        &svg(
+            100.0,
+            100.0,
+            r#"<rect id="zone" inkscape:label="ObstacleRegion" data-count="3" x="-20" y="10" width="50" height="50"/>"#,
+        ),
+        "ok.svg",
+        &LoadOptions::default(),
+    )
+    .unwrap();
+    assert_eq!(sc.obstacle_regions.len(), 1);
+}
+
+#[test]
+fn a_route_id_used_twice_is_refused_by_name() {
+    let route = |id: &str, y: u32| {
+        format!(
+            r#"<path id="{id}" inkscape:label="Route" d="M 10,{y} L 90,{y}" style="fill:none;stroke:#fff"/>"#
+        )
+    };
+    let e = err(&svg(
+        100.0,
+        100.0,
+        &format!("{}\n{}", route("lane", 20), route("lane", 60)),
+    ));
+    assert!(
+        matches!(&e, ScenarioError::RepeatedRouteId { id, .. } if id.starts_with("lane (<path> on line")),
+        "{e:?}"
+    );
+    assert!(e.to_string().contains("used by another element too"), "{e}");
+    // Ids of their own load both.
+    let sc = Scenario::from_svg(
+        &svg(
+            100.0,
+            100.0,
+            &format!("{}\n{}", route("a", 20), route("b", 60)),
+        ),
+        "ok.svg",
+        &LoadOptions::default(),
+    )
+    .unwrap();
+    assert_eq!(sc.routes.len(), 2);
+}

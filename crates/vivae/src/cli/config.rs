@@ -19,7 +19,7 @@ pub enum ConfigCommand {
         #[arg(long)]
         table: bool,
     },
-    /// Check a config file and print it fully resolved.
+    /// Check a config file and the maps it names, and print it fully resolved.
     Check {
         /// The config file.
         file: PathBuf,
@@ -34,7 +34,12 @@ pub fn run(command: ConfigCommand) -> anyhow::Result<ExitCode> {
             print!("{}", Config::markdown_reference_page())
         }
         ConfigCommand::Reference { table: true } => print!("{}", Config::markdown_reference()),
-        ConfigCommand::Check { file } => print!("{}", read_config(&file)?.to_toml()),
+        ConfigCommand::Check { file } => {
+            let config = read_config(&file)?;
+            // The maps too: a scenario the run would refuse is refused here.
+            vivae_lab::tasks::maps::load(&config)?;
+            print!("{}", config.to_toml());
+        }
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -36,7 +36,8 @@ pub struct DriveImageArgs {
     /// The robot's centre in each frame, pixels, as X,Y (default: the frame's middle).
     #[arg(long, value_name = "X,Y", conflicts_with = "poses")]
     pub centre: Option<String>,
-    /// Image pixels per scenario px.
+    /// Image pixels per scenario px (with --draw-map: at most what keeps the
+    /// map within 100,000,000 pixels).
     #[arg(long, value_name = "S", default_value_t = 1.0)]
     pub scale: f64,
     /// The robot's heading in each frame, degrees clockwise from the image's up.
@@ -186,6 +187,22 @@ fn check_camera(args: &DriveImageArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// Refuses a `--draw-map` scale at which `scenario`'s map would exceed the
+/// drawing's pixel cap (it would be drawn smaller without a word).
+fn check_map_scale(scenario: &vivae_sim::Scenario, scale: f64) -> anyhow::Result<()> {
+    let (w, h) = (scenario.width(), scenario.height());
+    let most = (vivae_sim::draw::MAX_PIXELS / (w * h)).sqrt();
+    if scale <= most {
+        return Ok(());
+    }
+    Err(bad_input(format!(
+        "--scale {scale}: the {w} x {h} px map can be drawn with at most {} pixels: use a scale from 0 to {:.2}",
+        vivae_sim::draw::MAX_PIXELS,
+        (most * 100.0).floor() / 100.0
+    ))
+    .into())
+}
+
 /// Runs `vivae drive-image`.
 pub fn run(args: DriveImageArgs) -> anyhow::Result<ExitCode> {
     check_camera(&args)?;
@@ -208,6 +225,7 @@ pub fn run(args: DriveImageArgs) -> anyhow::Result<ExitCode> {
         args.precision,
     )?;
     if let Some(path) = &args.draw_map {
+        check_map_scale(chosen.episode.world().scenario(), args.scale)?;
         let svg = vivae_lab::export::frames::ground_svg(chosen.episode.world(), true)?;
         let png = vivae_sim::draw::svg_to_png(&svg, args.scale)
             .map_err(|e| bad_input(format!("{}: {e}", path.display())))?;

@@ -24,6 +24,40 @@ fn scenario_info_json_describes_the_default_scenario() {
 }
 
 #[test]
+fn scenario_info_json_lists_routes_obstacle_regions_and_scripted_robots() {
+    let info = |name: &str| {
+        let out = ok(vivae().args(["scenario", "info", "--json", name]));
+        serde_json::from_str::<serde_json::Value>(out.trim()).expect("one JSON object")
+    };
+    let v = info("oncoming");
+    let routes: Vec<&str> = (v["routes"].as_array().unwrap().iter())
+        .map(|r| r["id"].as_str().unwrap())
+        .collect();
+    assert_eq!(routes, ["lane-cw", "lane-acw"]);
+    assert!(v["routes"][0]["length"].as_f64().unwrap() > 1000.0, "{v}");
+    assert_eq!(v["routes"][0]["closed"], true);
+    assert_eq!(v["robots"][0]["route"], "lane-cw");
+    let traffic = v["traffic"].as_array().unwrap();
+    assert_eq!(traffic.len(), 4);
+    assert_eq!(traffic[0]["id"], "car1");
+    assert_eq!(traffic[0]["route"], "lane-acw");
+    assert_eq!(traffic[0]["throttle"], serde_json::json!([0.5, 0.7]));
+    assert_eq!(traffic[0]["spread"], 150.0);
+    let v = info("obstacles-random");
+    assert_eq!(
+        v["obstacle_regions"],
+        serde_json::json!([{"id": "blocks", "count": 8, "size": [16.0, 16.0], "clearance": 40.0}])
+    );
+    assert_eq!(v["traffic"], serde_json::json!([]));
+    let text = ok(vivae().args(["scenario", "info", "oncoming"]));
+    assert!(
+        text.contains("scripted robot car1: follows lane-acw"),
+        "{text}"
+    );
+    assert!(text.contains("route lane-acw: "), "{text}");
+}
+
+#[test]
 fn scenario_render_writes_png_and_svg() {
     let dir = scratch("render");
     let png = dir.join("s.png");

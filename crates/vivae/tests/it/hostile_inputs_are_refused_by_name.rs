@@ -213,6 +213,22 @@ fn sizes_counts_and_seeds_past_their_bounds_are_refused_before_any_work() {
             .args(["--heading", "inf"]),
         &["--heading inf"],
     );
+    // A map too large to draw is refused with the scales that can be drawn.
+    let map = dir.join("map.png");
+    refused(
+        vivae()
+            .arg("drive-image")
+            .arg(&*run_dir)
+            .arg("--draw-map")
+            .arg(&map)
+            .args(["--scale", "1000"]),
+        &[
+            "--scale 1000",
+            "100000000 pixels",
+            "use a scale from 0 to 14.43",
+        ],
+    );
+    assert!(!map.exists());
     // Roads place nothing at random: a placement seed is refused by name.
     refused(
         vivae()
@@ -260,6 +276,128 @@ fn sizes_counts_and_seeds_past_their_bounds_are_refused_before_any_work() {
     );
     // Nothing was left behind.
     assert!(!dir.join("reproduce-xor.md").exists());
+}
+
+#[test]
+fn settings_a_task_does_not_read_are_refused_by_name() {
+    let dir = scratch("hostile-unread");
+    let pp = "[experiment]\ntask = \"predator-prey\"\n";
+    let zone = |rect: &str| {
+        let svg = include_str!("../../../../scenarios/predator-prey.svg");
+        svg.replace(
+            "</svg>",
+            &format!(
+                r#"<rect id="zone" inkscape:label="ObstacleRegion" data-count="2" {rect}/></svg>"#
+            ),
+        )
+    };
+    let lane = r#"<path id="lane" inkscape:label="Route" d="M 20,20 L 200,20" style="fill:none;stroke:#fff"/>"#;
+    let svg_files = [
+        (
+            "outside.svg",
+            zone(r#"x="900" y="10" width="40" height="40""#),
+        ),
+        ("flat.svg", zone(r#"x="10" y="10" width="0" height="40""#)),
+        (
+            "inside.svg",
+            zone(r#"x="100" y="100" width="40" height="40""#),
+        ),
+        (
+            "lanes.svg",
+            include_str!("../../../../scenarios/predator-prey.svg")
+                .replace("</svg>", &format!("{lane}{lane}</svg>")),
+        ),
+    ];
+    for (name, text) in &svg_files {
+        std::fs::write(dir.join(name), text).unwrap();
+    }
+    let cases: [(&str, String, &[&str]); 7] = [
+        (
+            "driving.toml",
+            "[coevolution]\nopponents = \"hall-of-fame\"\n".into(),
+            &[
+                "coevolution.opponents",
+                "only a predator-prey run reads [coevolution]",
+            ],
+        ),
+        (
+            "maze.toml",
+            "[experiment]\ntask = \"maze\"\n[coevolution]\nsample = 3\n".into(),
+            &["coevolution.sample = 3", "(experiment.task = \"maze\")"],
+        ),
+        (
+            "cost.toml",
+            format!("{pp}[fitness]\ncontact_cost = -1e308\n"),
+            &[
+                "fitness.contact_cost = -1e308",
+                "only a driving run reads [fitness]",
+            ],
+        ),
+        (
+            "progress.toml",
+            format!("{pp}[fitness]\nkind = \"progress\"\n"),
+            &["fitness.kind = \"progress\"", "only a driving run"],
+        ),
+        (
+            "outside.toml",
+            format!("{pp}scenario = \"outside.svg\"\n"),
+            &[
+                "outside.svg",
+                "obstacle region 'zone'",
+                "outside the 300 x 300 arena",
+            ],
+        ),
+        (
+            "flat.toml",
+            format!("{pp}scenario = \"flat.svg\"\n"),
+            &["flat.svg", "obstacle region 'zone' has no area"],
+        ),
+        (
+            "lanes.toml",
+            format!("{pp}scenario = \"lanes.svg\"\n"),
+            &[
+                "lanes.svg",
+                "route lane (<path> on line",
+                "used by another element too",
+            ],
+        ),
+    ];
+    for (name, text, needles) in cases {
+        let path = dir.join(name);
+        std::fs::write(&path, text).unwrap();
+        refused(vivae().args(["config", "check"]).arg(&path), needles);
+        refused(
+            vivae()
+                .args(["evolve", "-q", "--generations", "1", "--config"])
+                .arg(&path)
+                .arg("--out")
+                .arg(dir.join("never")),
+            needles,
+        );
+    }
+    // The scenario files themselves are refused wherever they are read.
+    refused(
+        vivae()
+            .args(["scenario", "info"])
+            .arg(dir.join("lanes.svg")),
+        &["lanes.svg", "route lane"],
+    );
+    // An obstacle region inside a predator-prey arena: no obstacle is placed at random there.
+    let path = dir.join("inside.toml");
+    std::fs::write(&path, format!("{pp}scenario = \"inside.svg\"\n")).unwrap();
+    refused(
+        vivae()
+            .args(["evolve", "-q", "--generations", "1", "--config"])
+            .arg(&path)
+            .arg("--out")
+            .arg(dir.join("never")),
+        &[
+            "inside.svg",
+            "obstacle region 'zone'",
+            "places no obstacles at random",
+        ],
+    );
+    assert!(!dir.join("never").exists());
 }
 
 #[test]

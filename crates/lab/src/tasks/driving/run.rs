@@ -21,7 +21,7 @@ pub static TASK: TaskEntry = TaskEntry {
     generation_columns: "",
     build,
     own_driver: None,
-    refuse_when_other: refuse_placements,
+    refuse_when_other: refuse_for_other_tasks,
     set_robot: None,
     sections: Vec::new,
     scenarios: &crate::tasks::driving::scenarios::SCENARIOS,
@@ -31,10 +31,13 @@ pub static TASK: TaskEntry = TaskEntry {
 
 /// With another task than driving: refuses `experiment.placements` (and its
 /// aggregate) off their defaults: only a driving episode places obstacles
-/// and traffic per evaluation; and `experiment.precision = "fast"`: only the
-/// driving task's dense controller has a fast step.
-fn refuse_placements(c: &Config) -> std::result::Result<(), String> {
+/// and traffic per evaluation; `experiment.precision = "fast"`: only the
+/// driving task's dense controller has a fast step; and a `[fitness]` key
+/// off its default: only a driving episode is scored by it.
+fn refuse_for_other_tasks(c: &Config) -> std::result::Result<(), String> {
     let e = &c.experiment;
+    let fitness = crate::config::fitness::FitnessConfig::default();
+    crate::tasks::unread::refuse_section(c, "fitness", &c.fitness, &fitness, TaskName::DRIVING)?;
     if !e.precision.is_exact() {
         return Err(format!(
             "experiment.precision = \"{}\": only a driving run has a fast controller step \

@@ -87,6 +87,16 @@ pub enum ArenaError {
         /// Robots in the scenario.
         robots: usize,
     },
+    /// An obstacle region: a predator–prey episode places nothing at random.
+    #[error(
+        "{source_name}: obstacle region '{id}': a predator-prey arena places no obstacles at random (draw them as fixed or movable obstacles)"
+    )]
+    Region {
+        /// The scenario file.
+        source_name: String,
+        /// The region's id.
+        id: String,
+    },
     /// A sensor or physics setting out of range.
     #[error(transparent)]
     Param(#[from] ParamError),
@@ -195,6 +205,12 @@ impl Arena {
                 robots: scenario.robots.len(),
             });
         };
+        if let Some(region) = scenario.obstacle_regions.first() {
+            return Err(ArenaError::Region {
+                source_name: scenario.source.clone(),
+                id: region.id.clone(),
+            });
+        }
         let diagonal = scenario.width().hypot(scenario.height());
         let rim = RANGE - physics.robot_radius;
         let radar = OpponentRadar::new(RADAR_SLICES, diagonal)?;
@@ -415,6 +431,19 @@ mod tests {
         assert!(i[1] + i[2] > 0.3, "{i:?}");
         assert_eq!(i[INPUTS - 1], 1.0);
         assert!(i.iter().all(|v| (0.0..=1.0).contains(v)));
+    }
+
+    #[test]
+    fn an_arena_with_an_obstacle_region_is_refused_by_name() {
+        let svg = crate::shipped::find("predator-prey").unwrap().svg.replace(
+            "</svg>",
+            r#"<rect id="zone" inkscape:label="ObstacleRegion" data-count="2" x="100" y="100" width="50" height="50"/></svg>"#,
+        );
+        let sc = Scenario::from_svg(&svg, "pp.svg", &LoadOptions::default()).unwrap();
+        let err = Arena::new(&sc, &robot::physics(), 10)
+            .unwrap_err()
+            .to_string();
+        assert!(err.starts_with("pp.svg: obstacle region 'zone'"), "{err}");
     }
 
     #[test]

@@ -40,7 +40,7 @@ pub static TASK: TaskEntry = TaskEntry {
     generation_columns: "",
     build,
     own_driver: Some(OwnDriver { evolve, resume }),
-    refuse_when_other: |_| Ok(()),
+    refuse_when_other: crate::tasks::predator_prey::config::refuse_for_other_tasks,
     set_robot: None,
     sections: Vec::new,
     scenarios: &SCENARIOS,
