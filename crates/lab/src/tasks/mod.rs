@@ -1,6 +1,7 @@
 //! What a run evolves genomes for: the task seam.
 //!
-//! A task is one folder here with one [`TaskEntry`] registered in [`TASKS`]:
+//! A task is one folder here with one [`TaskEntry`] registered in [`TASKS`]
+//! (or, from a crate of its own, added with [`register`]):
 //! its name (`experiment.task`), its default config and the rules it adds to
 //! the shared ones, the metrics it measures, the columns it adds to
 //! `generations.csv`, and how to build it as a [`RunTask`] (the driving
@@ -16,10 +17,12 @@ pub mod maps;
 pub mod maze;
 pub mod plain;
 pub mod predator_prey;
+mod registry;
 pub mod robot;
 mod seam;
 mod target;
 
+pub use registry::{entries, names, register};
 pub use seam::{
     BuildTask, Finished, HeaderContext, OwnDriver, RunTask, Session, SetRobot, Stopped, TaskEntry,
     build, check, config_from_toml, default_config, entry, entry_of, entry_of_run, metric_names,
@@ -30,8 +33,9 @@ pub use target::{StoredTarget, TargetProgress};
 /// The config's `[coevolution]` section, the predator–prey task's own.
 pub use predator_prey::section::CoevolutionConfig;
 
-/// Every task a run can evolve for; `experiment.task` names one. A new task
-/// is a folder here and one line in this list.
+/// The built-in tasks; `experiment.task` names one of these or a
+/// [`register`]ed one ([`entries`] lists both). A new task is a folder here
+/// and one line in this list.
 pub static TASKS: [&TaskEntry; 4] = [
     &driving::TASK,
     &maze::TASK,
