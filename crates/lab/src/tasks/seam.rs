@@ -59,6 +59,11 @@ pub struct TaskEntry {
     /// copied into the run); a task without (a [`super::plain`] task)
     /// loads none and its run directory has no `scenario.svg`.
     pub maps: bool,
+    /// Whether its controller is a robot's substrate network decoded from a
+    /// CPPN (the driving experiment's): what `vivae view`, `retrain`,
+    /// `drive-image`, the report's episodes and the export of a substrate
+    /// need; `vivae compare` groups its runs by substrate.
+    pub substrate: bool,
 }
 
 /// What a running task's own driver tells the program: lines for a person
@@ -144,6 +149,20 @@ pub fn entry(name: &str) -> std::result::Result<&'static TaskEntry, String> {
         let names: Vec<_> = all.iter().map(|t| t.name).collect();
         format!("'{name}': expected {}", names.join(" or "))
     })
+}
+
+/// The names of the registered tasks that have `capability` (e.g.
+/// [`TaskEntry::substrate`]), for a message saying which tasks a command
+/// works on.
+pub fn names_with(capability: fn(&TaskEntry) -> bool) -> String {
+    let all = super::entries().into_iter().filter(|t| capability(t));
+    all.map(|t| t.name).collect::<Vec<_>>().join(", ")
+}
+
+/// Whether `config`'s task controls a robot by a substrate network
+/// ([`TaskEntry::substrate`]); false for a task not registered.
+pub fn has_substrate(config: &Config) -> bool {
+    entry_of(config).is_ok_and(|t| t.substrate)
 }
 
 /// The entry of `config`'s task (checked by [`check`]).
