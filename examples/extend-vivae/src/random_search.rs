@@ -9,10 +9,11 @@ use rand_pcg::Pcg64;
 use serde::{Deserialize, Serialize};
 use vivae_lab::Result;
 use vivae_lab::io::bad_input;
-use vivae_lab::search::{Needs, RunStrategy, Search, Start, StrategyEntry, state_of};
+use vivae_lab::search::{Needs, RunStrategy, Search, Start, StrategyEntry};
 use vivae_neat::NeatParams;
 use vivae_neat::driver::{Batch, Evaluation, Strategy};
 use vivae_neat::mutation::mutate;
+use vivae_neat::stats::argmax;
 use vivae_neat::{BestEver, GenerationStats, Genome, GenomeSpec, InnovationTracker, NeatError};
 
 /// The strategy's registration (`--strategy random-search`).
@@ -24,7 +25,7 @@ pub static STRATEGY: StrategyEntry = StrategyEntry {
     },
     takes_population: false,
     variant: "RandomSearch",
-    from_state: state_of::<RandomSearch>,
+    from_state,
     extra_columns: "",
     build,
     header_line: |c| {
@@ -77,6 +78,21 @@ fn build(Start { config, spec, .. }: Start<'_>) -> Result<Search> {
     Ok(Search::of(search))
 }
 
+/// A checkpoint's state, checked: settings and genomes valid, the told
+/// fitness one per genome of the batch.
+fn from_state(text: &str) -> serde_json::Result<Search> {
+    let s: RandomSearch = serde_json::from_str(text)?;
+    let mut genomes = s.batch.iter().chain(s.best.as_ref().map(|b| &b.genome));
+    let told = s.fitness.is_empty() || s.fitness.len() == s.batch.len();
+    let valid = s.params.validate().is_ok() && s.spec.validate().is_ok();
+    if told && valid && genomes.all(|g| g.check().is_ok()) {
+        Ok(Search::of(s))
+    } else {
+        let why = "random-search state: settings, genomes or fitness amiss";
+        Err(serde::de::Error::custom(why))
+    }
+}
+
 impl RandomSearch {
     /// Draws a new batch.
     fn draw(&mut self) {
@@ -109,16 +125,7 @@ impl Strategy for RandomSearch {
             return Err(NeatError::FitnessCount { given, genomes });
         }
         self.fitness = evaluations.iter().map(Evaluation::finite_fitness).collect();
-        if let Some((genome, fitness)) = self.champion()
-            && self.best.as_ref().is_none_or(|b| fitness > b.fitness)
-        {
-            let (genome, generation) = (genome.clone(), self.generation);
-            self.best = Some(BestEver {
-                genome,
-                fitness,
-                generation,
-            });
-        }
+        BestEver::offer(&mut self.best, &self.batch, &self.fitness, self.generation);
         Ok(())
     }
 
@@ -135,16 +142,9 @@ impl Strategy for RandomSearch {
         self.generation
     }
 
+    /// The batch's first fittest genome.
     fn champion(&self) -> Option<(&Genome, f64)> {
-        let better = |b: usize, i: usize| {
-            if self.fitness[i] > self.fitness[b] {
-                i
-            } else {
-                b
-            }
-        };
-        let best = (0..self.fitness.len()).reduce(better)?;
-        Some((&self.batch[best], self.fitness[best]))
+        argmax(&self.fitness).map(|i| (&self.batch[i], self.fitness[i]))
     }
 
     fn best_ever(&self) -> Option<&BestEver> {

@@ -1,6 +1,6 @@
 //! A crate of its own (`examples/extend-vivae`) registers a task and a
 //! strategy and runs the `vivae` command line with them (`vivae::run_cli`),
-//! without a line of vivae edited: its runs evolve, replay and export as a
+//! without a line of vivae edited: its runs evolve, resume, replay and export as a
 //! built-in task's do, and vivae's own program refuses the task by name.
 
 use std::path::Path;
@@ -26,18 +26,15 @@ fn a_task_and_a_strategy_of_its_own_run_through_the_program() {
     let dir = scratch("extend-vivae");
     let run_dir = dir.join("run");
     let out = run_dir.to_str().unwrap();
-    let line = extended(&[
+    let evolve = [
         "evolve",
         "--task",
         "seek",
         "--strategy",
         "random-search",
         "-q",
-        "--generations",
-        "3",
-        "--out",
-        out,
-    ]);
+    ];
+    let line = extended(&[&evolve[..], &["--generations", "3", "--out", out]].concat());
     assert!(line.starts_with("evolve: generations=3 "), "{line}");
     assert!(line.contains(" strategy=random-search "), "{line}");
     let config = String::from_utf8(read(&run_dir, "config.toml")).unwrap();
@@ -86,6 +83,12 @@ fn a_task_and_a_strategy_of_its_own_run_through_the_program() {
     assert_eq!(rewards.len(), 4 * 30, "{episode}");
     let mean_reward = rewards.iter().sum::<f64>() / rewards.len() as f64;
     assert!((fitness - (1.0 + mean_reward)).abs() < 1e-12, "{replay}");
+    // Its checkpoints resume: two generations and one more are three at once.
+    let part = dir.join("part");
+    let part_out = part.to_str().unwrap();
+    extended(&[&evolve[..], &["--generations", "2", "--out", part_out]].concat());
+    extended(&["resume", "-q", "--generations", "3", part_out]);
+    assert_same_results(&run_dir, &part);
     extended(&[
         "export",
         out,
