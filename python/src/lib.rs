@@ -50,7 +50,7 @@ fn _vivae(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(math_is_portable, m)?)?;
     m.add("OVERRIDES", settings::OVERRIDES.to_vec())?;
     // The registered tasks and strategies: `task=` and `strategy=` take these names.
-    let tasks: Vec<&str> = vivae_lab::tasks::TASKS.iter().map(|t| t.name).collect();
+    let tasks: Vec<&str> = vivae_lab::tasks::names().to_vec();
     m.add("TASKS", tasks)?;
     let strategies: Vec<&str> = (vivae_lab::search::entries().into_iter())
         .map(|e| e.kind)

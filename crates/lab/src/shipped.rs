@@ -19,7 +19,9 @@ pub struct Shipped {
 /// each registered task's ([`crate::tasks::TaskEntry::scenarios`]) in turn,
 /// `roads` (the default) first.
 pub fn all() -> impl Iterator<Item = &'static Shipped> {
-    crate::tasks::TASKS.iter().flat_map(|t| t.scenarios.iter())
+    crate::tasks::entries()
+        .into_iter()
+        .flat_map(|t| t.scenarios.iter())
 }
 
 /// The shipped scenario called `name` (with or without `.svg`), if any.

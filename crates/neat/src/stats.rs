@@ -6,7 +6,7 @@
 
 /// Index of the first maximum; `None` for no values (a NaN is never a
 /// maximum after the first value).
-pub(crate) fn argmax(xs: &[f64]) -> Option<usize> {
+pub fn argmax(xs: &[f64]) -> Option<usize> {
     (0..xs.len()).reduce(|a, b| if xs[b] > xs[a] { b } else { a })
 }
 

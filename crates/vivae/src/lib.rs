@@ -1,7 +1,8 @@
 //! The `vivae` program's own parts: figures, the run report, the live viewer
 //! and distributed (MPI) evaluation, on top of the [`vivae_lab`] experiment
 //! library. The command line is [`cli`] (one file per command), which the
-//! program's `main.rs` runs.
+//! program's `main.rs` runs with [`run_cli`]; a crate of one's own that
+//! registers its own tasks or strategies first runs it the same way.
 //!
 //! Everything a researcher builds on (the experiment, configs, run
 //! directories) is in `vivae_lab`, which has none of this crate's
@@ -27,11 +28,17 @@ pub mod cli;
 pub mod figures;
 #[cfg(feature = "mpi")]
 pub mod mpi;
+// With the program's command line: the Python module (no viewer) has its own copy.
+#[cfg(feature = "viewer")]
+pub mod portable_libm;
 pub mod report;
 pub mod report_html;
 pub mod tasks;
 #[cfg(feature = "viewer")]
 pub mod view;
+
+#[cfg(feature = "viewer")]
+pub use cli::program::{run_cli, run_cli_from};
 
 /// A figure that cannot be drawn is an output the program could not make.
 impl From<figures::FigureError> for vivae_lab::Error {

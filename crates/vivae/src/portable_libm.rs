@@ -1,5 +1,6 @@
 //! The C math symbols, routed to the portable `libm` crate: the `vivae`
-//! program's, and the Python module's (python/src/lib.rs includes this file).
+//! program's (and any program's that runs [`crate::run_cli`]), and the Python
+//! module's (python/src/lib.rs includes this file).
 //!
 //! Our own code calls portable functions (`vivae_neat::math`, `libm`)
 //! directly, but the SVG stack we load scenarios with (usvg, tiny-skia,
@@ -74,6 +75,22 @@ pub unsafe extern "C" fn sincosf(x: f32, s: *mut f32, c: *mut f32) {
         s.write(sin);
         c.write(cos);
     }
+}
+
+/// Puts every definition here into the program that calls it: an executable
+/// takes an object of a library crate only when something refers to it, and
+/// the SVG stack's calls alone would reach the platform's libm instead.
+// The Python module includes this file in its own crate (every object linked).
+#[allow(dead_code)]
+pub fn link() {
+    macro_rules! refer {
+        ($($name:ident),* $(,)?) => {$(std::hint::black_box($name as *const ());)*};
+    }
+    refer!(
+        sin, cos, tan, asin, acos, atan, exp, exp2, log, log2, log10, cbrt, sinh, cosh, tanh, sinf,
+        cosf, tanf, asinf, acosf, atanf, expf, exp2f, logf, log2f, log10f, cbrtf, atan2, pow,
+        hypot, atan2f, powf, hypotf, sincos, sincosf,
+    );
 }
 
 /// Whether std's math (what the SVG stack calls) gives the portable `libm`

@@ -328,9 +328,10 @@ fn all_episodes(
     Ok((episodes, scenes, maps))
 }
 
-/// The report of a run of a task other than driving: its config, curves,
-/// species, convergence and table, read from the files every run writes.
-fn build_curves(dir: &Path, config: &vivae_lab::config::Config) -> vivae_lab::Result<String> {
+/// What every run's report shows, read from the files every run writes: its
+/// config, curves, species, convergence and table (no scenes, episodes,
+/// network or strategy); and the best genome of each generation.
+fn curves_data(dir: &Path) -> vivae_lab::Result<(ReportData, Vec<rundir::GenerationBest>)> {
     let best = rundir::read_best_genomes(&dir.join(files::BEST_GENOMES))?;
     let generations_csv = dir.join(files::GENERATIONS);
     let generations = rundir::read_generations(&generations_csv)?;
@@ -348,15 +349,25 @@ fn build_curves(dir: &Path, config: &vivae_lab::config::Config) -> vivae_lab::Re
         maps: Vec::new(),
         episodes: Vec::new(),
         generations,
-        species: best.into_iter().map(|b| b.species).collect(),
+        species: best.iter().map(|b| b.species.clone()).collect(),
         convergence_svg: convergence::render_svg(&fitness, &ConvergenceOptions::default())
             .map_err(vivae_lab::Error::from)?,
         network_svg: String::new(),
         curve_colours: [convergence::best_colour(), convergence::MEAN_COLOUR].map(convergence::hex),
         strategy: None,
-        task: Some(config.experiment.task.name().to_string()),
+        task: None,
     };
-    page_of(&data)
+    Ok((data, best))
+}
+
+/// The report of a run of a task without a substrate network: its curves
+/// alone ([`curves_data`]), headed by its task.
+fn build_curves(dir: &Path, config: &vivae_lab::config::Config) -> vivae_lab::Result<String> {
+    let (data, _) = curves_data(dir)?;
+    page_of(&ReportData {
+        task: Some(config.experiment.task.name().to_string()),
+        ..data
+    })
 }
 
 /// The run's name for the page's title: its directory's.
@@ -384,29 +395,16 @@ fn page_of(data: &ReportData) -> vivae_lab::Result<String> {
 /// [`build`], reusing what the end of a run computed already.
 pub fn build_reusing(dir: &Path, reuse: &Reuse<'_>) -> vivae_lab::Result<String> {
     let config = read_config(&dir.join(files::CONFIG))?;
-    if !config.experiment.task.is_driving() {
+    if !vivae_lab::tasks::has_substrate(&config) {
         return build_curves(dir, &config);
     }
-    let config_text = read_text(&dir.join(files::CONFIG))?;
     let scenario = load_scenario(Some(&dir.join(files::SCENARIO)))?;
     let experiment = Episode::new(&config, &scenario.scenario)
         .map_err(|e| bad_input(format!("{}: {e}", dir.display())))?;
     let champion = read_champion(&dir.join(files::CHAMPION))?;
-    let best = rundir::read_best_genomes(&dir.join(files::BEST_GENOMES))?;
-    let generations_csv = dir.join(files::GENERATIONS);
-    let generations = rundir::read_generations(&generations_csv)?;
-    if generations.is_empty() {
-        return Err(vivae_lab::Error::RunFile {
-            path: generations_csv,
-            reason: "no generation recorded".into(),
-        });
-    }
-    let fitness = rundir::read_population_csv(&dir.join(files::POPULATION))?;
-
+    let (curves, best) = curves_data(dir)?;
     let (episodes, scenes, maps) =
         all_episodes(dir, &config, &experiment, &champion, &best, reuse)?;
-    let convergence_svg = convergence::render_svg(&fitness, &ConvergenceOptions::default())
-        .map_err(vivae_lab::Error::from)?;
     let network_svg = match &reuse.network_svg {
         Some(svg) => svg.clone(),
         None => network::figure_svg_robot(
@@ -421,8 +419,6 @@ pub fn build_reusing(dir: &Path, reuse: &Reuse<'_>) -> vivae_lab::Result<String>
         .map_err(vivae_lab::Error::from)?,
     };
     let data = ReportData {
-        title: title_of(dir),
-        config: config_text,
         scenes: if scenes.is_empty() {
             vec![SceneData::new(&scenario.scenario, experiment.world())]
         } else {
@@ -430,13 +426,9 @@ pub fn build_reusing(dir: &Path, reuse: &Reuse<'_>) -> vivae_lab::Result<String>
         },
         maps,
         episodes,
-        generations,
-        species: best.into_iter().map(|b| b.species).collect(),
-        convergence_svg,
         network_svg,
-        curve_colours: [convergence::best_colour(), convergence::MEAN_COLOUR].map(convergence::hex),
         strategy: strategy_data(dir, &config, &experiment)?,
-        task: None,
+        ..curves
     };
     page_of(&data)
 }

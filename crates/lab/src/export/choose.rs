@@ -53,10 +53,12 @@ pub fn choose(
     precision: Option<Precision>,
 ) -> Result<Chosen> {
     let (champion, mut config, _) = rundir::load_genome_source(source)?;
-    if !config.experiment.task.is_driving() {
+    if !crate::tasks::has_substrate(&config) {
         return Err(bad_input(format!(
-            "{}: only a driving run's substrate is decoded here (a plain task's network: `exported`)",
-            source.display()
+            "{}: a {} run has no substrate network to decode: runs of {} have one",
+            source.display(),
+            config.experiment.task,
+            crate::tasks::names_with(|t| t.substrate)
         )));
     }
     let (genome, what) = genome_of(source, pick, champion)?;
@@ -122,7 +124,7 @@ pub fn exported(
     precision: Option<Precision>,
 ) -> Result<super::Exported> {
     let (champion, config, _) = rundir::load_genome_source(source)?;
-    if config.experiment.task.is_driving() {
+    if crate::tasks::has_substrate(&config) {
         let c = choose(source, pick, sensors, neurons, precision)?;
         return Ok(super::Exported::new(
             &c.episode,
@@ -140,7 +142,8 @@ pub fn exported(
     let task = crate::tasks::build(&config, &crate::tasks::maps::load(&config)?)?;
     let outputs = task.network_outputs().ok_or_else(|| {
         refused(format!(
-            "task {name} does not export a controller: export needs a driving run's substrate or a task whose genome is its network (a plain task)"
+            "task {name} does not export a controller: export needs a substrate network (runs of {}) or a task whose genome is its network (a plain task)",
+            crate::tasks::names_with(|t| t.substrate)
         ))
     })?;
     let (genome, what) = genome_of(source, pick, champion)?;

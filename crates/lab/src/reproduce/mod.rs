@@ -42,7 +42,9 @@ const PACKS: [Pack; 6] = [
 /// Every pack: the registered tasks' ([`crate::tasks::TaskEntry::packs`]),
 /// then the others.
 pub fn packs() -> impl Iterator<Item = &'static Pack> {
-    let tasks = crate::tasks::TASKS.iter().flat_map(|t| t.packs.iter());
+    let tasks = crate::tasks::entries()
+        .into_iter()
+        .flat_map(|t| t.packs.iter());
     tasks.chain(PACKS.iter())
 }
 

@@ -1,6 +1,7 @@
 //! What a run evolves genomes for: the task seam.
 //!
-//! A task is one folder here with one [`TaskEntry`] registered in [`TASKS`]:
+//! A task is one folder here with one [`TaskEntry`] registered in [`TASKS`]
+//! (or, from a crate of its own, added with [`register`]):
 //! its name (`experiment.task`), its default config and the rules it adds to
 //! the shared ones, the metrics it measures, the columns it adds to
 //! `generations.csv`, and how to build it as a [`RunTask`] (the driving
@@ -23,23 +24,26 @@ pub mod mountain_car_continuous;
 pub mod pendulum;
 pub mod plain;
 pub mod predator_prey;
+mod registry;
 pub mod robot;
 mod seam;
 mod target;
 mod unread;
 
+pub use registry::{entries, names, register};
 pub use seam::{
     BuildTask, Finished, HeaderContext, OwnDriver, RunTask, Session, SetRobot, Stopped, TaskEntry,
-    build, check, config_from_toml, default_config, entry, entry_of, entry_of_run, metric_names,
-    own_driver_of_run, read_config, set_robot,
+    build, check, config_from_toml, default_config, entry, entry_of, entry_of_run, has_substrate,
+    metric_names, names_with, own_driver_of_run, read_config, set_robot,
 };
 pub use target::{StoredTarget, TargetProgress};
 
 /// The config's `[coevolution]` section, the predator–prey task's own.
 pub use predator_prey::section::CoevolutionConfig;
 
-/// Every task a run can evolve for; `experiment.task` names one. A new task
-/// is a folder here and one line in this list.
+/// The built-in tasks; `experiment.task` names one of these or a
+/// [`register`]ed one ([`entries`] lists both). A new task is a folder here
+/// and one line in this list.
 pub static TASKS: [&TaskEntry; 8] = [
     &driving::TASK,
     &maze::TASK,

@@ -136,6 +136,7 @@ pub const fn entry<T: Plain>() -> TaskEntry {
         scenarios: &[],
         packs: &[],
         maps: false,
+        substrate: false,
     }
 }
 

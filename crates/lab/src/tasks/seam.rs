@@ -1,7 +1,7 @@
 //! The task seam: what a run asks of its task ([`RunTask`]) and what it
 //! knows of a task before building it ([`TaskEntry`]), and reading and
 //! checking a config by its task's defaults and rules. The tasks themselves
-//! are registered in [`super::TASKS`].
+//! are listed in [`super::TASKS`] or [`super::register`]ed.
 
 use std::any::Any;
 use std::fmt;
@@ -11,7 +11,6 @@ use std::sync::atomic::AtomicBool;
 use vivae_neat::driver::{Evaluation, Task};
 use vivae_neat::{Genome, GenomeSpec};
 
-use super::TASKS;
 use super::maps::TrainingMap;
 use super::{TargetProgress, driving};
 use crate::config::{Config, ConfigError, TaskName};
@@ -60,6 +59,11 @@ pub struct TaskEntry {
     /// copied into the run); a task without (a [`super::plain`] task)
     /// loads none and its run directory has no `scenario.svg`.
     pub maps: bool,
+    /// Whether its controller is a robot's substrate network decoded from a
+    /// CPPN (the driving experiment's): what `vivae view`, `retrain`,
+    /// `drive-image`, the report's episodes and the export of a substrate
+    /// need; `vivae compare` groups its runs by substrate.
+    pub substrate: bool,
 }
 
 /// What a running task's own driver tells the program: lines for a person
@@ -140,14 +144,25 @@ impl fmt::Debug for TaskEntry {
 
 /// The registered task called `name`; the error lists the ones there are.
 pub fn entry(name: &str) -> std::result::Result<&'static TaskEntry, String> {
-    TASKS
-        .iter()
-        .copied()
-        .find(|t| t.name == name)
-        .ok_or_else(|| {
-            let names: Vec<_> = TASKS.iter().map(|t| t.name).collect();
-            format!("'{name}': expected {}", names.join(" or "))
-        })
+    let all = super::entries();
+    all.iter().copied().find(|t| t.name == name).ok_or_else(|| {
+        let names: Vec<_> = all.iter().map(|t| t.name).collect();
+        format!("'{name}': expected {}", names.join(" or "))
+    })
+}
+
+/// The names of the registered tasks that have `capability` (e.g.
+/// [`TaskEntry::substrate`]), for a message saying which tasks a command
+/// works on.
+pub fn names_with(capability: fn(&TaskEntry) -> bool) -> String {
+    let all = super::entries().into_iter().filter(|t| capability(t));
+    all.map(|t| t.name).collect::<Vec<_>>().join(", ")
+}
+
+/// Whether `config`'s task controls a robot by a substrate network
+/// ([`TaskEntry::substrate`]); false for a task not registered.
+pub fn has_substrate(config: &Config) -> bool {
+    entry_of(config).is_ok_and(|t| t.substrate)
 }
 
 /// The entry of `config`'s task (checked by [`check`]).
@@ -170,7 +185,7 @@ pub fn default_config(task: Option<&TaskName>) -> std::result::Result<Config, St
 pub fn set_robot(config: &mut Config, robot: &str) -> std::result::Result<(), String> {
     let task = entry(config.experiment.task.name())?;
     let Some(set) = task.set_robot else {
-        let with: Vec<&str> = (TASKS.iter())
+        let with: Vec<&str> = (super::entries().into_iter())
             .filter(|t| t.set_robot.is_some())
             .map(|t| t.name)
             .collect();
@@ -189,7 +204,7 @@ pub fn check(config: &Config) -> std::result::Result<(), ConfigError> {
     let task = entry_of(config)?;
     config.validate()?;
     crate::search::check(config, task.metric_names).map_err(ConfigError::new)?;
-    for other in TASKS.iter().filter(|t| t.name != task.name) {
+    for other in super::entries().iter().filter(|t| t.name != task.name) {
         (other.refuse_when_other)(config).map_err(ConfigError::new)?;
     }
     (task.validate)(config).map_err(ConfigError::new)

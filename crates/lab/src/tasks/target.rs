@@ -2,14 +2,13 @@
 //! evaluation reaches it (a goal reached): kept in the checkpoints.
 
 use std::fmt;
-use std::sync::LazyLock;
 
 use serde::de::{self, MapAccess, Visitor};
 use serde::ser::SerializeMap;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use vivae_neat::driver::{Evaluation, Task};
 
-use crate::tasks::{RunTask, TASKS};
+use crate::tasks::{RunTask, names};
 
 /// Evaluations done so far, and when the target was first reached.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -82,13 +81,6 @@ impl StoredTarget {
     }
 }
 
-/// The registered tasks' names: the keys a [`StoredTarget`] may have.
-fn task_names() -> &'static [&'static str] {
-    static NAMES: LazyLock<Vec<&'static str>> =
-        LazyLock::new(|| TASKS.iter().map(|t| t.name).collect());
-    NAMES.as_slice()
-}
-
 impl Serialize for StoredTarget {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         let mut map = serializer.serialize_map(Some(usize::from(self.0.is_some())))?;
@@ -110,8 +102,8 @@ impl<'de> Deserialize<'de> for StoredTarget {
             fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<StoredTarget, A::Error> {
                 let mut stored = None;
                 while let Some(key) = map.next_key::<String>()? {
-                    let Some(&name) = task_names().iter().find(|n| **n == key) else {
-                        return Err(de::Error::unknown_field(&key, task_names()));
+                    let Some(&name) = names().iter().find(|n| **n == key) else {
+                        return Err(de::Error::unknown_field(&key, names()));
                     };
                     if stored.is_some() {
                         return Err(de::Error::custom("target progress of two tasks"));
@@ -123,7 +115,7 @@ impl<'de> Deserialize<'de> for StoredTarget {
         }
         // As a struct whose fields are the task names: flattened into the
         // checkpoint's progress, it takes only those keys from it.
-        deserializer.deserialize_struct("StoredTarget", task_names(), Keys)
+        deserializer.deserialize_struct("StoredTarget", names(), Keys)
     }
 }
 

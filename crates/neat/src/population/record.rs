@@ -19,7 +19,8 @@ pub struct BestEver {
 impl BestEver {
     /// Replaces `best` with the batch's first fittest genome (generation
     /// `generation`) when it beats it; `fitness` has one value per genome.
-    pub(crate) fn offer(
+    /// (How every strategy keeps its best ever, one of another crate too.)
+    pub fn offer(
         best: &mut Option<BestEver>,
         genomes: &[Genome],
         fitness: &[f64],

@@ -15,7 +15,8 @@ pub struct CompareArgs {
     pub runs: Vec<PathBuf>,
     /// Group the runs whose path or folder name matches GLOB (`*`, `?`) as NAME,
     /// e.g. --label 'camera=runs/cam16-s*'; repeatable, the first match wins.
-    /// Other runs are grouped by their substrate (e.g. 3x5→3x3).
+    /// Other runs are grouped by their substrate (e.g. 3x5→3x3), or by task
+    /// and strategy for a task without one (e.g. cartpole (neat)).
     #[arg(long, value_name = "NAME=GLOB")]
     pub label: Vec<LabelRule>,
     /// The figure: a .png or .svg file.

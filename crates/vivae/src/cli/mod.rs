@@ -1,5 +1,5 @@
 //! The command line: one file per command, each with its options (`…Args`)
-//! and its `run`, which `main.rs` calls.
+//! and its `run`, which [`program`] calls.
 //!
 //! Options that several commands take are declared once, in [`args`], and
 //! flattened into each command's options; [`overrides`] maps the options that
@@ -19,6 +19,7 @@ pub mod help_reference;
 pub mod mpi_job;
 pub mod overrides;
 pub mod own_driver;
+pub mod program;
 pub mod replay;
 pub mod report;
 pub mod reproduce;

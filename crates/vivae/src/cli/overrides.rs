@@ -85,7 +85,7 @@ pub struct Overrides {
 /// `--task NAME`: one of the registered tasks (listed by `--help`).
 fn task_names() -> impl clap::builder::TypedValueParser<Value = TaskName> {
     use clap::builder::TypedValueParser as _;
-    let names = vivae_lab::tasks::TASKS.iter().map(|t| t.name);
+    let names = vivae_lab::tasks::names().iter().copied();
     clap::builder::PossibleValuesParser::new(names).map(TaskName)
 }
 

@@ -96,7 +96,7 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<ExitCode> {
         (champion.genome, champion.fitness, champion.generation) =
             read_member(&args.source, member)?;
     }
-    if !config.experiment.task.is_driving() {
+    if !vivae_lab::tasks::has_substrate(&config) {
         return replay_without_figures(&args, &champion, config);
     }
     first_map_unless_told(&args, &mut config);

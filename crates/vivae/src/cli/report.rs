@@ -1,14 +1,15 @@
 //! `vivae report`: rebuilds a run's report.html (a driving run's; that of
 //! a run whose task's program-side tools draw its own, e.g. a predator–prey
 //! run's with its CIAO figure; for any other task its curves alone); and the
-//! refusal, shared with `vivae view`, of a command that shows driving runs only.
+//! refusal, shared with `vivae view`, of a command that shows robots driven
+//! by a substrate network.
 
 use std::path::Path;
 use std::process::ExitCode;
 
 use vivae_lab::io::bad_input;
 use vivae_lab::rundir::{self, files};
-use vivae_lab::tasks::{entry_of_run, read_config};
+use vivae_lab::tasks::{entry_of_run, has_substrate, names_with, read_config};
 
 /// Runs `vivae report` on the run directory `run_dir`.
 pub fn run(run_dir: &Path) -> anyhow::Result<ExitCode> {
@@ -38,9 +39,10 @@ pub fn refuse_own_driver(path: &Path, command: &str) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Refuses, in one line, `command` on a run of a task other than driving (a
-/// run directory or a genome file recording its config): the command draws
-/// driving runs only.
+/// Refuses, in one line, `command` on a run (a run directory or a genome
+/// file recording its config) of a task without a robot's substrate
+/// controller ([`TaskEntry::substrate`](vivae_lab::tasks::TaskEntry::substrate)),
+/// naming the tasks that have one: the command shows robots driven by one.
 pub fn refuse_other_task(path: &Path, command: &str) -> anyhow::Result<()> {
     refuse_own_driver(path, command)?;
     let config = if path.is_dir() {
@@ -49,10 +51,12 @@ pub fn refuse_other_task(path: &Path, command: &str) -> anyhow::Result<()> {
         rundir::read_champion(path).ok().and_then(|c| c.config)
     };
     match config {
-        Some(c) if !c.experiment.task.is_driving() => Err(bad_input(format!(
-            "{}: a {} run: `vivae {command}` shows driving runs only (it needs robots on a map); its curves: `vivae report {}`",
+        Some(c) if !has_substrate(&c) => Err(bad_input(format!(
+            "{}: a {} run: `vivae {command}` shows robots driven by a substrate network, \
+             which runs of {} have; its curves: `vivae report {}`",
             path.display(),
             c.experiment.task,
+            names_with(|t| t.substrate),
             path.display()
         ))
         .into()),

@@ -11,6 +11,7 @@ use vivae_lab::config::Config;
 use vivae_lab::io::bad_input;
 use vivae_lab::run::Run;
 use vivae_lab::rundir::{self, files};
+use vivae_lab::tasks::maps::is_multi_map;
 use vivae_neat::driver::Task;
 
 use super::args::{Generations, NewRun, Quiet, Resolution, Threads};
@@ -53,7 +54,7 @@ pub fn run(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<E
     apply_overrides(&mut config, &overrides)?;
     let prepared = (|| -> anyhow::Result<_> {
         let maps = vivae_lab::tasks::maps::load(&config)?;
-        let experiment = vivae_lab::tasks::driving::training::Training::new(&config, &maps)?;
+        let experiment = vivae_lab::tasks::build(&config, &maps)?;
         Ok((maps, experiment))
     })();
     let quiet = args.quiet.quiet;
@@ -66,12 +67,18 @@ pub fn run(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<E
     let dir = args.new_run.dir();
     let source = experiment.describe(&maps);
     let threads = config.run.threads;
-    let run = Run::create_on_maps(
+    // A run on one map copies it as scenario.svg alone; on several, each one too.
+    let copied = if is_multi_map(&config) {
+        &maps[..]
+    } else {
+        &[]
+    };
+    let run = Run::create_task(
         &dir,
         config,
         experiment,
-        &maps[0].loaded.text,
-        &maps,
+        Some(&maps[0].loaded.text),
+        copied,
         Some(population),
         args.new_run.force,
     )?;
@@ -81,15 +88,16 @@ pub fn run(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<E
 /// Points the config of the run in `run_dir` at that run's copies of its
 /// maps; refuses a run of another task, which has no substrate to re-sample.
 fn retrain_on_the_runs_maps(config: &mut Config, run_dir: &std::path::Path) -> anyhow::Result<()> {
-    if !config.experiment.task.is_driving() {
+    if !vivae_lab::tasks::has_substrate(config) {
         return Err(bad_input(format!(
-            "{}: a {} run evolves plain networks, which have no substrate to re-sample: retrain is for driving runs",
+            "{}: a {} run has no substrate network to re-sample: retrain works on runs of {}",
             run_dir.display(),
-            config.experiment.task
+            config.experiment.task,
+            vivae_lab::tasks::names_with(|t| t.substrate)
         ))
         .into());
     }
-    if vivae_lab::tasks::maps::is_multi_map(config) {
+    if is_multi_map(config) {
         // A multi-map run retrains on the copies of its maps.
         for s in &mut config.experiment.scenarios {
             *s = run_dir.join(&*s).to_string_lossy().into_owned();

@@ -134,10 +134,37 @@ fn cartpole_reaches_gymnasiums_threshold_and_reports_replays_and_exports() {
             .arg(&out),
         &["cartpole", "no substrate"],
     );
+    // The commands that need a substrate network say which tasks have one.
     refused(
         vivae().arg("view").arg(&out),
-        &["a cartpole run", "vivae report"],
+        &["a cartpole run", "runs of driving", "vivae report"],
     );
+    refused(
+        (vivae().args([
+            "retrain",
+            "-q",
+            "--neurons",
+            "5x5",
+            "--generations",
+            "1",
+            "--out",
+        ]))
+        .arg(dir.join("retrained"))
+        .arg(&out),
+        &["a cartpole run", "retrain works on runs of driving"],
+    );
+    refused(
+        (vivae().args(["drive-image", "--draw-map"]))
+            .arg(dir.join("map.png"))
+            .arg(&out),
+        &["a cartpole run", "runs of driving have one"],
+    );
+    // Compared, it is grouped by task and strategy (it has no substrate).
+    let table = ok(vivae()
+        .args(["compare", "--out"])
+        .arg(dir.join("compare.svg"))
+        .arg(&out));
+    assert!(table.contains("cartpole (neat)"), "{table}");
 }
 
 #[test]

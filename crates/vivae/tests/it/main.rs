@@ -7,6 +7,7 @@
 //! Run one file's tests with a filter: `cargo test --release -p vivae --test it
 //! short_run_matches_pinned_hash`.
 
+mod a_crate_of_its_own_extends_the_program;
 mod a_plain_task_runs_reports_exports_and_resumes;
 mod a_training_map_given_twice_is_warned_about;
 mod a_viewer_step_message_is_bounded_by_its_cost;

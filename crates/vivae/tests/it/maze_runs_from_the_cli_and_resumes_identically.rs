@@ -272,8 +272,8 @@ fn bad_maze_combinations_and_driving_only_commands_exit_2_with_one_line() {
         "--task maze: the config file's experiment.task is driving",
     );
     assert!(!out.exists(), "a refused run leaves no directory");
-    // A maze run: its report shows its curves; the commands that draw
-    // driving runs refuse it.
+    // A maze run: its report shows its curves; the commands that need a
+    // substrate network refuse it, naming the tasks that have one.
     let maze_run = dir.join("maze");
     maze(&maze_run, &["--generations", "1", "--population", "20"]);
     ok(vivae().arg("report").arg(&maze_run));
@@ -287,7 +287,7 @@ fn bad_maze_combinations_and_driving_only_commands_exit_2_with_one_line() {
         vivae()
             .args(["retrain", "--neurons", "5x5", "--generations", "1"])
             .arg(&maze_run),
-        "retrain is for driving runs",
+        "retrain works on runs of driving",
     );
     refused(
         vivae()

@@ -27,6 +27,7 @@ pub static TASK: TaskEntry = TaskEntry {
     scenarios: &crate::tasks::driving::scenarios::SCENARIOS,
     packs: &[],
     maps: true,
+    substrate: true,
 };
 
 /// With another task than driving: refuses `experiment.placements` (and its

@@ -46,6 +46,7 @@ pub static TASK: TaskEntry = TaskEntry {
     scenarios: &super::SCENARIOS,
     packs: &[super::pack::MEDIUM, super::pack::HARD],
     maps: true,
+    substrate: false,
 };
 
 /// The maze task of a maze run's `config` on `scenario`; bad input (naming

@@ -46,6 +46,7 @@ pub static TASK: TaskEntry = TaskEntry {
     scenarios: &SCENARIOS,
     packs: &[],
     maps: true,
+    substrate: false,
 };
 
 /// The predator–prey arenas as shipped scenarios (`--scenario predator-prey`).

@@ -2,7 +2,8 @@
 //!
 //! Reads each run directory's `generations.csv` (best fitness per generation)
 //! and `timing.csv` (wall seconds per generation), groups the runs (by
-//! `--label`, else by their substrate from `config.toml`, e.g. `3x5→3x3`),
+//! `--label`, else by their substrate from `config.toml`, e.g. `3x5→3x3`, or
+//! for a task without one by task and strategy, e.g. `cartpole (neat)`),
 //! and draws one figure with two panels — best fitness per generation and
 //! best-so-far fitness per cumulative wall-clock second — with a thin line per
 //! run and a thick median line per group. The same comparison as numbers is
@@ -24,7 +25,7 @@ use vivae_lab::io::{bad_input, write_atomic};
 use plot::draw;
 pub use plot::{CompareOptions, render};
 pub use runs::{
-    Group, LabelRule, RunData, assign_labels, glob_match, group, load_groups, read_run,
+    Group, LabelRule, RunData, assign_labels, glob_match, group, load_groups, read_run, run_label,
     substrate_label,
 };
 pub use table::{

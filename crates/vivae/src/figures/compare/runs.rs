@@ -172,8 +172,19 @@ pub fn read_run(dir: &Path) -> Result<RunData> {
     Ok(run)
 }
 
-/// The group name of a run without a label: its substrate, e.g. `3x5→3x3`,
-/// with distance rays and training resolutions when it has them.
+/// The group name of a run without a label: the substrate of a task with one
+/// ([`substrate_label`]), else its task and strategy, e.g. `cartpole (nsga2)`.
+pub fn run_label(config: &Config) -> String {
+    if vivae_lab::tasks::has_substrate(config) {
+        substrate_label(config)
+    } else {
+        let (task, strategy) = (&config.experiment.task, config.strategy.kind.name());
+        format!("{task} ({strategy})")
+    }
+}
+
+/// The substrate of a run, e.g. `3x5→3x3`, with distance rays and training
+/// resolutions when it has them.
 pub fn substrate_label(config: &Config) -> String {
     let s = &config.surface_sensors;
     let mut label = format!("{}x{}", s.rings, s.angles);
@@ -265,7 +276,7 @@ pub fn load_groups(dirs: &[PathBuf], rules: &[LabelRule]) -> Result<Vec<Group>> 
         runs.push(read_run(dir)?);
         names.push(match label {
             Some(l) => l,
-            None => substrate_label(&read_config(&dir.join(files::CONFIG))?),
+            None => run_label(&read_config(&dir.join(files::CONFIG))?),
         });
     }
     Ok(group(runs, &names))
