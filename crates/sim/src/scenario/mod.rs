@@ -2,7 +2,8 @@
 //!
 //! One concern per file: `labels` (what a label means), `load` (SVG →
 //! scenario), `error`, `summary`, `route` (routes), `episodic` (what may
-//! change per episode: obstacle regions, scripted traffic).
+//! change per episode: obstacle regions, scripted traffic), `rows` (regions
+//! placing blocks in rows across a road).
 
 mod episodic;
 mod error;
@@ -11,6 +12,7 @@ mod labels;
 mod limits;
 mod load;
 mod route;
+mod rows;
 mod summary;
 
 use std::sync::Arc;
@@ -25,6 +27,7 @@ pub use episodic::{MAX_REGION_COUNT, ObstacleRegion, TrafficStart};
 pub use error::ScenarioError;
 pub use limits::LoadOptions;
 pub use route::{Route, RoutePlace};
+pub use rows::{DEFAULT_GAP, MAX_LANES, Rows, lanes};
 pub use summary::{ArenaSummary, RobotSummary, ScenarioSummary, heading_degrees};
 
 /// Kind of ground surface (ViVAE's friction classes).
