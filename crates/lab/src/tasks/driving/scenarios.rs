@@ -56,7 +56,7 @@ pub const SCENARIOS: [Shipped; 11] = [
     },
     Shipped {
         name: "corridor",
-        what: "a long, gently curved road whose 16 blocks lie at random across its whole width, edges included, every episode (5 robots)",
+        what: "a long, gently curved road between kerbs whose 16 blocks lie at random across its whole width, edges included, every episode (5 robots)",
         svg: include_str!("../../../../../scenarios/corridor.svg"),
         task: TaskName::DRIVING,
     },
