@@ -201,6 +201,7 @@ fn empty_scenario(source: &str, width: f64, height: f64, background: SurfaceKind
         robots: Vec::new(),
         routes: Vec::new(),
         obstacle_regions: Vec::new(),
+        placed_obstacles: 0,
         traffic: Vec::new(),
         warnings: Vec::new(),
         raster: Arc::new(SurfaceRaster::empty()),

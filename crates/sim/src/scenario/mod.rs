@@ -191,6 +191,9 @@ pub struct Scenario {
     pub routes: Vec<Route>,
     /// Regions where obstacles are placed at random each episode.
     pub obstacle_regions: Vec<ObstacleRegion>,
+    /// How many of the last `fixed_obstacles` were placed for an episode from
+    /// its regions (0 as loaded), so that contacts with them can be told apart.
+    pub placed_obstacles: usize,
     /// Scripted robots (traffic), in document order; not learners.
     pub traffic: Vec<TrafficStart>,
     /// Non-fatal problems (unknown labels, elements without geometry).

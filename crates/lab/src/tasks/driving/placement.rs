@@ -89,6 +89,7 @@ pub fn placed(scenario: &Scenario, seed: u64) -> Scenario {
             });
         }
     }
+    sc.placed_obstacles = sc.fixed_obstacles.len() - scenario.fixed_obstacles.len();
     sc
 }
 
@@ -187,6 +188,7 @@ mod tests {
                 added + starts * sc.obstacle_regions.len() >= asked as usize,
                 "{name}: {added}"
             );
+            assert_eq!(a.placed_obstacles, added, "{name}");
             assert_eq!(a.fixed_obstacles, b.fixed_obstacles);
             assert_ne!(a.fixed_obstacles, c.fixed_obstacles);
         }
