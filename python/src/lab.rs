@@ -324,6 +324,7 @@ fn episode_dict<'py>(
         d.set_item("contacts_traffic", b.contacts.traffic)?;
         d.set_item("contacts_obstacle", b.contacts.obstacle)?;
         d.set_item("contacts_wall", b.contacts.wall)?;
+        d.set_item("contacts_placed", b.contacts.placed)?;
     }
     Ok(d)
 }

@@ -201,6 +201,7 @@ def replay(source: str | os.PathLike, **overrides: Any) -> dict:
         ``right_turns``, ``loops``, ``side`` (None off roads), and contacts
         by kind per 1,000 robot-steps: ``contacts_robot``,
         ``contacts_traffic`` (scripted robots), ``contacts_obstacle``,
-        ``contacts_wall``.
+        ``contacts_wall``, ``contacts_placed`` (the obstacles placed for the
+        episode, also in ``contacts_obstacle``).
     """
     return _vivae.replay(source, **overrides)

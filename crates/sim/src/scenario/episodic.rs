@@ -8,13 +8,15 @@ use glam::DVec2;
 use crate::geometry::Shape;
 
 use super::ScenarioError;
+use super::rows::{self, Rows};
 
 /// Most obstacles one region may ask for.
 pub const MAX_REGION_COUNT: u32 = 256;
 
 /// A region in which obstacles are placed at random each episode: an
 /// element labelled `ObstacleRegion` with `data-count` (and optionally
-/// `data-size`, `data-clearance`).
+/// `data-size`, `data-clearance`; `data-along` and its attributes for rows
+/// across a road).
 #[derive(Clone, Debug, PartialEq)]
 pub struct ObstacleRegion {
     /// Element id.
@@ -23,11 +25,16 @@ pub struct ObstacleRegion {
     pub shape: Shape,
     /// Obstacles placed per episode.
     pub count: u32,
-    /// Each obstacle's width and height, px (`data-size="16"` or `"16x22"`; default 16).
+    /// Each obstacle's width and height, px (`data-size="16"` or `"16x22"`;
+    /// default 16); for rows (`along`), its length along the route and its
+    /// width across it.
     pub size: DVec2,
     /// Least distance from an obstacle's centre to any robot's start, px
     /// (`data-clearance`, default 40).
     pub clearance: f64,
+    /// Rows across a road along a route instead of places anywhere in the
+    /// region (`data-along="ROUTE_ID"`).
+    pub along: Option<Rows>,
 }
 
 /// A scripted robot: drives its route at a throttle, counts as traffic (not
@@ -138,12 +145,14 @@ pub(super) fn region<'v>(
             attr("data-clearance").unwrap_or(""),
         )
     })?;
+    let along = rows::rows(source, &id, &attr)?;
     Ok(ObstacleRegion {
         id,
         shape,
         count,
         size,
         clearance,
+        along,
     })
 }
 
@@ -165,8 +174,9 @@ pub(super) fn traffic_settings<'v>(
     Ok((throttle, spread))
 }
 
-/// Joins every robot's `data-route` and every scripted robot's
-/// `data-traffic` to its route; a name that is no route is an error.
+/// Joins every robot's `data-route`, every scripted robot's `data-traffic`
+/// and every region's `data-along` to its route; a name that is no route is
+/// an error, and so are rows that could close the road.
 pub(super) fn resolve_routes(
     sc: &mut super::Scenario,
     robot_routes: &[Option<String>],
@@ -186,6 +196,18 @@ pub(super) fn resolve_routes(
     for (t, name) in sc.traffic.iter_mut().zip(traffic_routes) {
         t.route =
             find(&sc.routes, name).ok_or_else(|| bad(&source, &t.id, "data-traffic", name))?;
+    }
+    for region in &mut sc.obstacle_regions {
+        let Some(along) = &mut region.along else {
+            continue;
+        };
+        along.route = find(&sc.routes, &along.route_id)
+            .ok_or_else(|| bad(&source, &region.id, "data-along", &along.route_id))?;
+    }
+    for region in &sc.obstacle_regions {
+        if let Some(along) = &region.along {
+            rows::check(&source, region, along, &sc.routes[along.route])?;
+        }
     }
     Ok(())
 }

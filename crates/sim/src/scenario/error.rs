@@ -63,6 +63,18 @@ pub enum ScenarioError {
         /// The offending value.
         value: String,
     },
+    /// A route-bound obstacle region's attribute cannot work as written.
+    #[error("{source_name}: element '{id}': {attribute}: {problem}")]
+    Region {
+        /// File name.
+        source_name: String,
+        /// Element id.
+        id: String,
+        /// Attribute name.
+        attribute: String,
+        /// What is wrong.
+        problem: String,
+    },
     /// A robot's start position is outside the arena.
     #[error(
         "{source_name}: robot '{id}' at ({x:.1}, {y:.1}) is outside the {width} x {height} arena"

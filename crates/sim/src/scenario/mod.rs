@@ -2,7 +2,8 @@
 //!
 //! One concern per file: `labels` (what a label means), `load` (SVG →
 //! scenario), `error`, `summary`, `route` (routes), `episodic` (what may
-//! change per episode: obstacle regions, scripted traffic).
+//! change per episode: obstacle regions, scripted traffic), `rows` (regions
+//! placing blocks in rows across a road).
 
 mod episodic;
 mod error;
@@ -11,6 +12,7 @@ mod labels;
 mod limits;
 mod load;
 mod route;
+mod rows;
 mod summary;
 
 use std::sync::Arc;
@@ -25,6 +27,7 @@ pub use episodic::{MAX_REGION_COUNT, ObstacleRegion, TrafficStart};
 pub use error::ScenarioError;
 pub use limits::LoadOptions;
 pub use route::{Route, RoutePlace};
+pub use rows::{DEFAULT_GAP, MAX_LANES, Rows, lanes};
 pub use summary::{
     ArenaSummary, RegionSummary, RobotSummary, RouteSummary, ScenarioSummary, TrafficSummary,
     heading_degrees,
@@ -191,6 +194,9 @@ pub struct Scenario {
     pub routes: Vec<Route>,
     /// Regions where obstacles are placed at random each episode.
     pub obstacle_regions: Vec<ObstacleRegion>,
+    /// How many of the last `fixed_obstacles` were placed for an episode from
+    /// its regions (0 as loaded), so that contacts with them can be told apart.
+    pub placed_obstacles: usize,
     /// Scripted robots (traffic), in document order; not learners.
     pub traffic: Vec<TrafficStart>,
     /// Non-fatal problems (unknown labels, elements without geometry).
@@ -334,6 +340,7 @@ fn empty_scenario(source: &str, width: f64, height: f64, background: SurfaceKind
         robots: Vec::new(),
         routes: Vec::new(),
         obstacle_regions: Vec::new(),
+        placed_obstacles: 0,
         traffic: Vec::new(),
         warnings: Vec::new(),
         raster: Arc::new(SurfaceRaster::empty()),

@@ -19,6 +19,7 @@ mod common;
 mod compare_refuses_an_impossible_wall_time;
 mod compare_summarises_runs_by_group;
 mod corrupt_checkpoint_is_refused;
+mod courses_where_no_line_is_safe_run_by_name;
 mod es_hyperneat_runs_resume_identically_and_refuse_bad_keys;
 mod es_network_figure_draws_hidden_neurons_where_they_are;
 mod evaluation_is_thread_count_independent;

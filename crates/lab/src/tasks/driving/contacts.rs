@@ -20,6 +20,9 @@ pub struct ContactCounts {
     pub obstacle: u64,
     /// Learner–arena wall.
     pub wall: u64,
+    /// Learner–obstacle placed for the episode by an obstacle region (also
+    /// counted in `obstacle`): the blocks, apart from kerbs and other fixed obstacles.
+    pub placed: u64,
 }
 
 impl ContactCounts {
@@ -40,6 +43,8 @@ pub struct ContactRates {
     pub obstacle: f64,
     /// Learner–wall.
     pub wall: f64,
+    /// Learner–obstacle placed for the episode (also in `obstacle`).
+    pub placed: f64,
 }
 
 impl ContactRates {
@@ -57,14 +62,15 @@ impl ContactRates {
             traffic: per(counts.traffic),
             obstacle: per(counts.obstacle),
             wall: per(counts.wall),
+            placed: per(counts.placed),
         }
     }
 
     /// `key=value` pairs, as `replay` prints them.
     pub fn fields(&self) -> String {
         format!(
-            "contacts_robot={:.3} contacts_traffic={:.3} contacts_obstacle={:.3} contacts_wall={:.3}",
-            self.robot, self.traffic, self.obstacle, self.wall
+            "contacts_robot={:.3} contacts_traffic={:.3} contacts_obstacle={:.3} contacts_wall={:.3} contacts_placed={:.3}",
+            self.robot, self.traffic, self.obstacle, self.wall, self.placed
         )
     }
 }
@@ -95,6 +101,8 @@ impl ContactCounter {
         let (robots, traffic) = (world.robots(), world.traffic());
         let sc = world.scenario();
         let (n, m, f) = (robots.len(), traffic.len(), sc.fixed_obstacles.len());
+        // The placed obstacles are the last fixed ones.
+        let first_placed = n + m + f - sc.placed_obstacles.min(f);
         let r = world.params().robot_radius;
         let (w, h) = (sc.width(), sc.height());
         for (i, robot) in robots.iter().enumerate() {
@@ -126,7 +134,10 @@ impl ContactCounter {
                 match k {
                     k if k < n => self.counts.robot += u64::from(i < k),
                     k if k < n + m => self.counts.traffic += 1,
-                    k if k + 1 < self.others => self.counts.obstacle += 1,
+                    k if k + 1 < self.others => {
+                        self.counts.obstacle += 1;
+                        self.counts.placed += u64::from((first_placed..n + m + f).contains(&k));
+                    }
                     _ => self.counts.wall += 1,
                 }
             }
@@ -153,4 +164,31 @@ fn others(world: &World) -> usize {
 pub fn touches_shape(shape: &Shape, p: vivae_sim::DVec2, r: f64) -> bool {
     shape.bbox.contains_with_margin(p, r + TOUCH)
         && (shape.contains(p) || shape.closest_boundary_point(p).1 <= r + TOUCH)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use vivae_sim::{DVec2, LoadOptions, PhysicsParams, Scenario};
+
+    #[test]
+    fn contacts_with_placed_blocks_are_told_from_kerbs() {
+        let s = crate::shipped::find("kerbed-loop").unwrap();
+        let sc = Scenario::from_svg(s.svg, "kerbed-loop", &LoadOptions::default()).unwrap();
+        let mut p = crate::tasks::driving::placement::placed(&sc, 5);
+        assert!(p.placed_obstacles > 0);
+        p.robots[0].pos = p.fixed_obstacles.last().unwrap().shape.bbox.center();
+        p.robots[1].pos = DVec2::new(400.0, 67.0); // on the outer kerb
+        let world = World::new(&p, &PhysicsParams::default()).unwrap();
+        let mut counter = ContactCounter::new(&world);
+        counter.observe(&world);
+        let c = counter.counts();
+        assert_eq!(c.placed, 1, "{c:?}");
+        assert!(
+            c.obstacle >= 2,
+            "the kerb is an obstacle but no placed one: {c:?}"
+        );
+        counter.observe(&world);
+        assert_eq!(counter.counts(), c, "a contact is counted when it begins");
+    }
 }

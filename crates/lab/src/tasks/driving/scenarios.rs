@@ -5,7 +5,7 @@ use crate::config::TaskName;
 use crate::shipped::Shipped;
 
 /// The driving task's shipped scenarios, `roads` first.
-pub const SCENARIOS: [Shipped; 8] = [
+pub const SCENARIOS: [Shipped; 11] = [
     Shipped {
         name: "roads",
         what: "the default: a road loop with a crossroad, a spur and an S-curve (5 robots)",
@@ -52,6 +52,24 @@ pub const SCENARIOS: [Shipped; 8] = [
         name: "oncoming",
         what: "a two-lane loop with 4 scripted robots driving the other lane the other way, a block in each long side's own lane (5 robots)",
         svg: include_str!("../../../../../scenarios/oncoming.svg"),
+        task: TaskName::DRIVING,
+    },
+    Shipped {
+        name: "corridor",
+        what: "a long, gently curved road between kerbs whose 16 blocks lie at random across its whole width, edges included, every episode (5 robots)",
+        svg: include_str!("../../../../../scenarios/corridor.svg"),
+        task: TaskName::DRIVING,
+    },
+    Shipped {
+        name: "kerbed-loop",
+        what: "a road loop between kerbs whose 16 blocks lie at random across its whole width, edges included, every episode (5 robots)",
+        svg: include_str!("../../../../../scenarios/kerbed-loop.svg"),
+        task: TaskName::DRIVING,
+    },
+    Shipped {
+        name: "oncoming-edges",
+        what: "oncoming without its fixed blocks: every episode 8 blocks across the learners' whole lane and 8 on the road's outer edge (5 robots)",
+        svg: include_str!("../../../../../scenarios/oncoming-edges.svg"),
         task: TaskName::DRIVING,
     },
 ];
