@@ -65,7 +65,7 @@ pub enum ScenarioError {
     },
     /// A route-bound obstacle region's attribute cannot work as written.
     #[error("{source_name}: element '{id}': {attribute}: {problem}")]
-    Region {
+    RegionAttribute {
         /// File name.
         source_name: String,
         /// Element id.

@@ -39,7 +39,7 @@ pub struct Rows {
 
 /// A problem with a route-bound region's attributes, naming the attribute.
 fn problem(source: &str, id: &str, attribute: &str, problem: String) -> ScenarioError {
-    ScenarioError::Region {
+    ScenarioError::RegionAttribute {
         source_name: source.to_string(),
         id: id.to_string(),
         attribute: attribute.to_string(),
