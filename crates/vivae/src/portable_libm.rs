@@ -1,5 +1,5 @@
 //! The C math symbols, routed to the portable `libm` crate: the `vivae`
-//! program's (and any program's that runs [`crate::run_cli`]), and the Python
+//! program's (and any program's that runs `vivae::run_cli`), and the Python
 //! module's (python/src/lib.rs includes this file).
 //!
 //! Our own code calls portable functions (`vivae_neat::math`, `libm`)
