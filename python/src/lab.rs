@@ -320,11 +320,9 @@ fn episode_dict<'py>(
         d.set_item("right_turns", b.right_turns)?;
         d.set_item("loops", b.loops)?;
         d.set_item("side", b.side)?;
-        d.set_item("contacts_robot", b.contacts.robot)?;
-        d.set_item("contacts_traffic", b.contacts.traffic)?;
-        d.set_item("contacts_obstacle", b.contacts.obstacle)?;
-        d.set_item("contacts_wall", b.contacts.wall)?;
-        d.set_item("contacts_placed", b.contacts.placed)?;
+        for (key, rate) in b.contacts.named() {
+            d.set_item(key, rate)?;
+        }
     }
     Ok(d)
 }

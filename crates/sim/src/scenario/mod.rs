@@ -1,10 +1,11 @@
 //! A loaded scenario: the arena and everything in it ([`Scenario`]).
 //!
 //! One concern per file: `labels` (what a label means), `load` (SVG →
-//! scenario), `error`, `summary`, `route` (routes), `episodic` (what may
-//! change per episode: obstacle regions, scripted traffic), `rows` (regions
-//! placing blocks in rows across a road).
+//! scenario), `attrs` (reading `data-*` values), `error`, `summary`, `route`
+//! (routes), `episodic` (what may change per episode: obstacle regions,
+//! scripted traffic), `rows` (regions placing blocks in rows across a road).
 
+mod attrs;
 mod episodic;
 mod error;
 mod ids;

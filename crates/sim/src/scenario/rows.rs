@@ -10,7 +10,7 @@ use glam::DVec2;
 
 use crate::geometry::{FillRule, Shape};
 
-use super::episodic::{bad, number};
+use super::attrs::{bad, number};
 use super::{ObstacleRegion, Route, ScenarioError};
 
 /// Least free gap beside a block and between consecutive blocks, px, when

@@ -66,12 +66,21 @@ impl ContactRates {
         }
     }
 
+    /// The rates under the keys `replay` prints them with.
+    pub fn named(&self) -> [(&'static str, f64); 5] {
+        [
+            ("contacts_robot", self.robot),
+            ("contacts_traffic", self.traffic),
+            ("contacts_obstacle", self.obstacle),
+            ("contacts_wall", self.wall),
+            ("contacts_placed", self.placed),
+        ]
+    }
+
     /// `key=value` pairs, as `replay` prints them.
     pub fn fields(&self) -> String {
-        format!(
-            "contacts_robot={:.3} contacts_traffic={:.3} contacts_obstacle={:.3} contacts_wall={:.3} contacts_placed={:.3}",
-            self.robot, self.traffic, self.obstacle, self.wall, self.placed
-        )
+        let pairs = self.named().map(|(key, rate)| format!("{key}={rate:.3}"));
+        pairs.join(" ")
     }
 }
 
