@@ -199,7 +199,7 @@ def ulps(a: float, b: float) -> int:
 
 
 @pytest.mark.parametrize("task", list(TASKS))
-def test_gymnasiums_own_sin_and_cos_differ_by_at_most_an_ulp(task, portable_trig):
+def test_gymnasiums_own_sin_and_cos_differ_by_a_few_ulps_at_most(task, portable_trig):
     for seed in SEEDS[:3]:
         gymnasium_episode(task, seed)
     arguments = portable_trig[task].arguments
@@ -209,7 +209,10 @@ def test_gymnasiums_own_sin_and_cos_differ_by_at_most_an_ulp(task, portable_trig
     worst = 0
     for x in arguments:
         worst = max(worst, ulps(own_sin(x), portable_math("sin", x)), ulps(own_cos(x), portable_math("cos", x)))
-    assert worst <= 1, f"{task}: {worst} ulps"
+    # Measured here: at most 1 ulp (glibc's sin and cos). The bound is 4
+    # because NumPy may take a SIMD path (SVML on AVX-512) on another CPU,
+    # whose sin and cos are documented to within 4 ulps.
+    assert worst <= 4, f"{task}: {worst} ulps"
 
 
 def close(ours, theirs, rel: float) -> bool:
