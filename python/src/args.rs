@@ -138,6 +138,11 @@ named! {
     evaluations: Option<u64> = "evaluations", |k, v| opt(k, v, int);
     generation: u32 = "generation", int;
     generations: Option<u32> = "generations", |k, v| opt(k, v, int);
+    opt_generation: Option<u32> = "generation", |k, v| opt(k, v, int);
+    elite: Option<usize> = "elite", |k, v| opt(k, v, int);
+    front: Option<usize> = "front", |k, v| opt(k, v, int);
+    robot: usize = "robot", int;
+    opt_steps: Option<u32> = "steps", |k, v| opt(k, v, int);
     threads: usize = "threads", |k, v| int_in(k, v, 0, MAX_THREADS);
     opt_threads: Option<usize> = "threads", |k, v| opt(k, v, |k, v| int_in(k, v, 0, MAX_THREADS));
     num_worlds: usize = "num_worlds", int;

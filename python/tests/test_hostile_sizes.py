@@ -110,6 +110,15 @@ SIZES = [
     ("seed", lambda v: vivae.reproduce("no-such-pack", seed=v)),
     ("evaluations", lambda v: vivae.reproduce("no-such-pack", evaluations=v)),
     ("threads", lambda v: vivae.reproduce("no-such-pack", threads=v)),
+    ("generation", lambda v: vivae.export("no-such-run", "json", "x.json", generation=v)),
+    ("elite", lambda v: vivae.export("no-such-run", "json", "x.json", elite=v)),
+    ("front", lambda v: vivae.export("no-such-run", "json", "x.json", front=v)),
+    ("robot", lambda v: vivae.record_episode("no-such-run", robot=v)),
+    ("steps", lambda v: vivae.record_episode("no-such-run", steps=v)),
+    ("generation", lambda v: vivae.record_episode("no-such-run", generation=v)),
+    ("elite", lambda v: vivae.drive_image("no-such-run", [], elite=v)),
+    ("front", lambda v: vivae.drive_image("no-such-run", [], front=v)),
+    ("generation", lambda v: vivae.drive_image("no-such-run", [], generation=v)),
 ]
 
 

@@ -285,6 +285,16 @@ pub fn scenario_name(path: Option<&Path>) -> String {
         .unwrap_or_else(|| "roads".to_string())
 }
 
+/// `field` as one CSV field (RFC 4180): quoted, its quotes doubled, when it
+/// holds a comma, a quote or a line break; as it is otherwise.
+pub fn csv_field(field: &str) -> std::borrow::Cow<'_, str> {
+    if field.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", field.replace('"', "\"\"")).into()
+    } else {
+        field.into()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

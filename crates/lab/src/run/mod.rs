@@ -189,6 +189,16 @@ impl Run {
             )));
         }
         check_config_unchanged(dir, &path, &cp.config)?;
+        // Against the checkpoint's own total, before a new one replaces it.
+        if cp.progress.done > cp.config.experiment.generations {
+            return Err(Error::Checkpoint {
+                path,
+                reason: format!(
+                    "{} generations done, more than the run's {}",
+                    cp.progress.done, cp.config.experiment.generations
+                ),
+            });
+        }
         if let Some(n) = generations {
             if n < cp.progress.done {
                 return Err(bad_input(format!(
@@ -640,12 +650,6 @@ fn validate_progress(path: &Path, cp: &Checkpoint, task: &dyn RunTask) -> Result
         reason,
     };
     let p = &cp.progress;
-    if p.done > cp.config.experiment.generations {
-        return Err(bad(format!(
-            "{} generations done, more than the run's {}",
-            p.done, cp.config.experiment.generations
-        )));
-    }
     let search = cp.search().map_err(|why| bad(why.into()))?;
     if search.kind() != cp.config.strategy.kind.name() {
         return Err(bad(format!(
@@ -676,12 +680,14 @@ fn validate_progress(path: &Path, cp: &Checkpoint, task: &dyn RunTask) -> Result
     if batch.is_empty() {
         return Err(bad("the population has no genomes".into()));
     }
-    let genomes = batch
-        .iter()
-        .chain(p.figure_genomes.iter().map(|(_, _, g)| g));
-    for g in genomes {
+    let named = |what: String| move |e: String| bad(format!("{what} does not fit the run: {e}"));
+    for (i, g) in batch.iter().enumerate() {
         task.check_genome(g)
-            .map_err(|e| bad(format!("a genome does not fit the run: {e}")))?;
+            .map_err(named(format!("genome {i} of the population")))?;
+    }
+    for (generation, _, g) in &p.figure_genomes {
+        (task.check_genome(g))
+            .map_err(named(format!("the best genome of generation {generation}")))?;
     }
     Ok(search)
 }

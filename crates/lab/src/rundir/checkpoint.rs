@@ -221,8 +221,15 @@ pub(crate) fn decode_checkpoint_text(text: &str, path: &Path) -> Result<Checkpoi
     if hash(body.as_bytes()) != expected {
         return Err(bad("corrupt or truncated checkpoint (checksum mismatch)"));
     }
-    let cp: Checkpoint =
-        serde_json::from_str(body).map_err(|e| bad(&format!("unreadable checkpoint: {e}")))?;
+    let cp: Checkpoint = serde_json::from_str(body).map_err(|e| {
+        // serde counts the body's lines: the file's are one more (the header).
+        let text = e.to_string();
+        let what = text
+            .rsplit_once(" at line ")
+            .map_or(text.as_str(), |(w, _)| w);
+        let at = format!("line {} column {}", e.line() + 1, e.column());
+        bad(&format!("unreadable checkpoint ({at}): {what}"))
+    })?;
     // The population validated itself while being deserialised.
     crate::tasks::check(&cp.config).map_err(|e| bad(&format!("checkpoint config: {e}")))?;
     Ok(cp)

@@ -108,8 +108,9 @@ fn marked(png: Vec<u8>) -> Vec<u8> {
     out
 }
 
-/// The CRC-32 (ISO 3309, as PNG's chunks use) of `bytes`.
-fn crc32(bytes: &[u8]) -> u32 {
+/// The CRC-32 (ISO 3309, as PNG's chunks use) of `bytes` (public for the
+/// tests that build PNG files).
+pub fn crc32(bytes: &[u8]) -> u32 {
     let mut crc = !0u32;
     for &b in bytes {
         crc ^= u32::from(b);

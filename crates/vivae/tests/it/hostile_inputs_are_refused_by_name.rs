@@ -8,6 +8,7 @@ use std::path::Path;
 
 use crate::common::*;
 use crate::every_task_keeps_the_interrupt_promise::snapshot;
+use vivae::cli::drive_image::crc32;
 
 /// A small finished predator–prey run of `generations` with `seed` in `out`.
 fn pp_run(out: &Path, generations: u32, seed: u32) {
@@ -159,20 +160,6 @@ fn a_refused_resume_leaves_the_run_exactly_as_it_was() {
 
 /// A PNG of just a header claiming `width` × `height` RGB pixels (and an end).
 fn png_header(width: u32, height: u32) -> Vec<u8> {
-    fn crc32(bytes: &[u8]) -> u32 {
-        let mut crc = !0u32;
-        for &b in bytes {
-            crc ^= u32::from(b);
-            for _ in 0..8 {
-                crc = if crc & 1 == 1 {
-                    (crc >> 1) ^ 0xEDB8_8320
-                } else {
-                    crc >> 1
-                };
-            }
-        }
-        !crc
-    }
     let chunk = |kind: &[u8], data: &[u8]| {
         let mut c = (data.len() as u32).to_be_bytes().to_vec();
         let body = [kind, data].concat();

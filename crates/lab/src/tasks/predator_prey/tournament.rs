@@ -16,7 +16,7 @@ use vivae_neat::hyperneat::HyperParams;
 use crate::tasks::predator_prey::section::SideController;
 
 use crate::error::{Error, Result};
-use crate::io::{bad_input, read_text};
+use crate::io::{bad_input, csv_field, read_text};
 use crate::tasks::predator_prey::run::{HallEntry, arena_of, files, read_champions};
 use crate::tasks::predator_prey::{Arena, NAME, Outcome, Side};
 
@@ -254,15 +254,15 @@ fn row(
     }
 }
 
-/// The rows as CSV (with [`CSV_HEADER`]).
+/// The rows as CSV (with [`CSV_HEADER`]); run names quoted as RFC 4180 asks.
 pub fn csv(rows: &[TournamentRow]) -> String {
     let mut out = CSV_HEADER.to_string();
     for r in rows {
         let _ = writeln!(
             out,
             "{},{},{},{},{},{},{},{},{}",
-            r.hunters_run,
-            r.prey_run,
+            csv_field(&r.hunters_run),
+            csv_field(&r.prey_run),
             r.hunters,
             r.prey,
             r.games,
@@ -296,4 +296,36 @@ pub fn table(rows: &[TournamentRow]) -> String {
         );
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn run_names_with_commas_quotes_or_line_breaks_are_quoted_as_rfc_4180_asks() {
+        let row = |hunters_run: &str, prey_run: &str| TournamentRow {
+            hunters_run: hunters_run.into(),
+            prey_run: prey_run.into(),
+            hunters: "champion",
+            prey: "hall",
+            games: 4,
+            catches: 2,
+            catch_rate: 0.5,
+            mean_hunter_fitness: 1.25,
+            mean_catch_step: None,
+        };
+        let text = csv(&[
+            row("runs/a,b", "say \"hi\""),
+            row("two\nlines", "plain"),
+            row("cr\rhere", "plain"),
+        ]);
+        let rows = text.strip_prefix(CSV_HEADER).unwrap();
+        assert_eq!(
+            rows,
+            "\"runs/a,b\",\"say \"\"hi\"\"\",champion,hall,4,2,0.5,1.25,\n\
+             \"two\nlines\",plain,champion,hall,4,2,0.5,1.25,\n\
+             \"cr\rhere\",plain,champion,hall,4,2,0.5,1.25,\n"
+        );
+    }
 }

@@ -184,13 +184,7 @@ pub fn csv(summaries: &[Summary]) -> String {
     }
     head.push("final_best".into());
     let mut out = head.join(",") + "\n";
-    let quote = |s: &str| {
-        if s.contains([',', '"', '\n']) {
-            format!("\"{}\"", s.replace('"', "\"\""))
-        } else {
-            s.to_string()
-        }
-    };
+    let quote = |s: &str| vivae_lab::io::csv_field(s).into_owned();
     let num = |v: Option<f64>| v.map(|v| v.to_string()).unwrap_or_default();
     for s in summaries {
         let mut row = vec![
