@@ -23,7 +23,7 @@ mod target;
 pub use seam::{
     BuildTask, Finished, HeaderContext, OwnDriver, RunTask, Session, SetRobot, Stopped, TaskEntry,
     build, check, config_from_toml, default_config, entry, entry_of, entry_of_run, metric_names,
-    own_driver_of_run, read_config, set_robot,
+    own_driver_of_run, read_config, sections, set_robot,
 };
 pub use target::{StoredTarget, TargetProgress};
 

@@ -131,7 +131,7 @@ pub const fn entry<T: Plain>() -> TaskEntry {
         own_driver: None,
         refuse_when_other: nothing_to_refuse,
         set_robot: None,
-        sections: Vec::new,
+        sections: &[],
         scenarios: &[],
         packs: &[],
         maps: false,

@@ -49,7 +49,6 @@ const UPWARD_IMPORTS_NOT_YET_REMOVED: &[(&str, &[(&str, &str)])] = &[(
     "lab",
     &[
         ("config", "search"),
-        ("config", "tasks"),
         ("controller", "tasks"),
         ("shipped", "tasks"),
         ("rundir", "search"),

@@ -23,7 +23,7 @@ pub static TASK: TaskEntry = TaskEntry {
     own_driver: None,
     refuse_when_other: refuse_placements,
     set_robot: None,
-    sections: Vec::new,
+    sections: &[],
     scenarios: &crate::tasks::driving::scenarios::SCENARIOS,
     packs: &[],
     maps: true,

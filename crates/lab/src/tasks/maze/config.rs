@@ -90,7 +90,7 @@ pub fn lehman_neat() -> NeatParams {
 /// With another task than the maze: refuses a `[maze]` section that is not
 /// at its defaults (it would be ignored).
 pub fn refuse_for_other_tasks(c: &crate::config::Config) -> Result<(), String> {
-    if c.maze.is_default() {
+    if MazeConfig::of(c).is_default() {
         Ok(())
     } else {
         Err(format!(
@@ -148,6 +148,12 @@ pub(super) fn validate(c: &Config) -> Result<(), String> {
             "a maze's behaviour is the robot's end position in px: leave it at end-position",
         );
     }
+    if !c.fitness.is_default() {
+        return refuse(
+            "[fitness]",
+            "a maze run scores how near the robot ends to the goal: leave [fitness] at its defaults",
+        );
+    }
     validate_robot(c)?;
     let unused = [
         ("substrate", *s == SubstrateConfig::default()),
@@ -176,7 +182,7 @@ pub(super) fn validate(c: &Config) -> Result<(), String> {
 /// The `[maze]` keys and `[physics]` as the chosen robot reads them: Lehman's
 /// robot has its own constants, ours has none of Lehman's options.
 fn validate_robot(c: &Config) -> Result<(), String> {
-    let m = &c.maze;
+    let m = &MazeConfig::of(c);
     match m.robot {
         MazeRobot::Lehman if c.physics != super::MazeTask::physics() => Err(
             "[physics]: Lehman's maze robot has its own constants (docs/howto/maze.md): leave [physics] at the maze's defaults or use maze.robot = \"vivae\" (--robot vivae)".into(),

@@ -13,7 +13,7 @@ use std::path::Path;
 use vivae_neat::Genome;
 use vivae_neat::hyperneat::HyperParams;
 
-use crate::tasks::predator_prey::section::SideController;
+use crate::tasks::predator_prey::section::{CoevolutionConfig, SideController};
 
 use crate::error::{Error, Result};
 use crate::io::{bad_input, read_text};
@@ -87,7 +87,8 @@ fn entrant(dir: &Path) -> Result<Entrant> {
     let champions = read_champions(dir)?;
     let path = dir.join(files::HALL);
     let text = read_text(&path)?;
-    let controllers = [config.coevolution.hunter, config.coevolution.prey];
+    let sides = CoevolutionConfig::of(&config);
+    let controllers = [sides.hunter, sides.prey];
     // Genomes of another shape (another kind of controller, another run's)
     // are refused here, by file and line: a meeting would not be able to
     // build their networks.
