@@ -12,7 +12,7 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use super::Config;
 
 /// The shared sections' names, in the order a config is written.
-pub(crate) const FIELDS: [&str; 11] = [
+pub(crate) const FIELDS: [&str; 10] = [
     "experiment",
     "substrate",
     "hyperneat",
@@ -22,9 +22,13 @@ pub(crate) const FIELDS: [&str; 11] = [
     "physics",
     "neat",
     "run",
-    "strategy",
     "fitness",
 ];
+
+/// The search strategies' section: theirs (each strategy's settings in
+/// it), held with the tasks' own sections but written after `[run]`, where
+/// it always was.
+pub(crate) const STRATEGY: &str = "strategy";
 
 impl Serialize for Config {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
@@ -40,13 +44,13 @@ impl Serialize for Config {
         out.serialize_entry("physics", &self.physics)?;
         out.serialize_entry("neat", &self.neat)?;
         out.serialize_entry("run", &self.run)?;
-        if !self.strategy.is_default() {
-            out.serialize_entry("strategy", &self.strategy)?;
+        if let Some(strategy) = self.owned.raw(STRATEGY) {
+            out.serialize_entry(STRATEGY, strategy)?;
         }
         if !self.fitness.is_default() {
             out.serialize_entry("fitness", &self.fitness)?;
         }
-        for (name, table) in self.owned.iter() {
+        for (name, table) in self.owned.iter().filter(|(n, _)| *n != STRATEGY) {
             out.serialize_entry(name, table)?;
         }
         out.end()
@@ -82,7 +86,6 @@ impl<'de> Visitor<'de> for Sections {
                 "physics" => c.physics = map.next_value()?,
                 "neat" => c.neat = map.next_value()?,
                 "run" => c.run = map.next_value()?,
-                "strategy" => c.strategy = map.next_value()?,
                 "fitness" => c.fitness = map.next_value()?,
                 _ => match map.next_value::<toml::Value>()? {
                     table @ toml::Value::Table(_) => c.owned.insert(key, table),

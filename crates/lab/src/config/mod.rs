@@ -31,7 +31,6 @@ use vivae_sim::{DistanceSensors, PhysicsParams, SurfaceSensors};
 
 use crate::config::es::{EsConfig, SubstrateKind};
 use crate::polar::{CoordMode, PolarGrid};
-use crate::search::StrategyConfig;
 
 /// Most simulation steps per evaluation (`experiment.steps`, `replay --steps`).
 pub const MAX_STEPS: u32 = 1_000_000;
@@ -68,14 +67,12 @@ pub struct Config {
     pub neat: NeatParams,
     /// Threads and checkpoints: how a run is executed, not what it computes.
     pub run: RunConfig,
-    /// The search strategy (NEAT by default) and its settings.
-    #[serde(default, skip_serializing_if = "StrategyConfig::is_default")]
-    pub strategy: StrategyConfig,
     /// What a driving episode scores (unset = average speed, no contact cost).
     #[serde(default, skip_serializing_if = "fitness::FitnessConfig::is_default")]
     pub fitness: fitness::FitnessConfig,
-    /// The sections tasks own (each registers its own with its entry), by
-    /// name; written after the shared ones.
+    /// The sections the search strategies (`[strategy]`) and the tasks
+    /// own, each registered with its entry, by name; written after the
+    /// shared ones (`[strategy]` after `[run]`).
     #[schemars(skip)]
     pub owned: OwnedSections,
 }
@@ -592,9 +589,10 @@ impl Config {
         base: Option<&Config>,
         sections: Option<&[Section]>,
     ) -> Result<Config, ConfigError> {
-        // The strict parse says where the text is wrong; the overlay gives
-        // unset keys the defaults of the config, which for a section that is
-        // the library's params type (`[strategy.novelty]`) are not its own.
+        // The strict parses (the shared sections, then each registered
+        // one) say where the text is wrong; the overlay gives unset keys the
+        // defaults of the config, which for a sub-table of an owned section
+        // (`[strategy.novelty]`, the library's params type) are its section's.
         toml::from_str::<Config>(text).map_err(|e| describe_toml_error(text, &e))?;
         for s in sections.unwrap_or_default() {
             (s.check_text)(text)?;
@@ -703,7 +701,7 @@ mod tests {
             }
         }
         let c = super::Config::from_toml("[strategy.novelty]\nk = 9\n").unwrap();
-        let n = &c.strategy.novelty;
+        let n = &crate::search::StrategyConfig::of(&c).novelty;
         assert_eq!((n.k, n.threshold, n.threshold_floor), (9, 0.05, 0.005));
     }
 

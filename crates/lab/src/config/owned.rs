@@ -14,7 +14,7 @@ use serde::de::{DeserializeOwned, IgnoredAny, MapAccess, Visitor};
 use serde::{Deserialize, Serialize};
 
 use super::ConfigError;
-use super::toml_error::{describe_toml_error, one_line};
+use super::toml_error::{describe_toml_error, merge, one_line};
 
 /// The type of a section a task owns: plain data with its defaults.
 pub trait OwnedSection:
@@ -31,14 +31,21 @@ pub trait OwnedSection:
 pub struct OwnedSections(toml::Table);
 
 impl OwnedSections {
-    /// Section `T` as set (keys left out at their defaults; all of them when
-    /// the section is); the error names the section.
+    /// Section `T` as set (keys left out at the defaults of `T`, also in
+    /// its sub-tables; all of them when the section is); the error names the
+    /// section.
     pub fn get<T: OwnedSection>(&self) -> Result<T, String> {
-        match self.0.get(T::NAME) {
-            None => Ok(T::default()),
-            Some(table) => (table.clone().try_into())
-                .map_err(|e: toml::de::Error| format!("[{}]: {}", T::NAME, one_line(e.message()))),
-        }
+        let Some(table) = self.0.get(T::NAME) else {
+            return Ok(T::default());
+        };
+        let bad =
+            |e: &dyn std::fmt::Display| format!("[{}]: {}", T::NAME, one_line(&e.to_string()));
+        // Over the defaults of `T`, whose sub-tables may be types of their
+        // own with other defaults (`[strategy.novelty]`).
+        let mut full = toml::Value::try_from(T::default()).map_err(|e| bad(&e))?;
+        merge(&mut full, table.clone());
+        full.try_into()
+            .map_err(|e: toml::de::Error| bad(&e.message()))
     }
 
     /// Section `T` as set, its defaults when it cannot be read: for a config
@@ -77,6 +84,11 @@ impl OwnedSections {
     /// Each section set, by name, in order.
     pub(super) fn iter(&self) -> impl Iterator<Item = (&String, &toml::Value)> {
         self.0.iter()
+    }
+
+    /// Section `name` as held, if set.
+    pub(super) fn raw(&self, name: &str) -> Option<&toml::Value> {
+        self.0.get(name)
     }
 
     /// Keeps `value` as section `name`, as written.

@@ -203,9 +203,10 @@ pub fn reference(sections: &[Section]) -> Vec<SectionDoc> {
 }
 
 /// The default config as the reference documents it: keys a default config
-/// does not write (`substrate.kind`, `[substrate.es]`, `[strategy]`, `[fitness]`: written only when
+/// does not write (`substrate.kind`, `[substrate.es]`, `[fitness]`: written only when
 /// set, so that existing runs' files stay the same) with their defaults all the
-/// same, then the sections tasks own (`sections`).
+/// same, and the sections the strategies and tasks own (`sections`, each
+/// documented by its registration; `[strategy]` after `[run]`, where it is written).
 pub(super) fn documented_defaults(sections: &[Section]) -> toml::Value {
     let mut defaults =
         toml::Value::try_from(Config::default()).expect("the default config is TOML");
@@ -225,19 +226,14 @@ pub(super) fn documented_defaults(sections: &[Section]) -> toml::Value {
     if let Some(neat) = defaults.get_mut("neat").and_then(|s| s.as_table_mut()) {
         neat.insert("start_hidden".into(), toml::Value::Integer(0));
     }
-    // A default config is written without its `[strategy]` section (so that
-    // NEAT runs' files stay as they were); it is documented all the same.
+    // The owned sections are written only when set; documented all the same.
+    let (strategy, owned): (Vec<&Section>, Vec<&Section>) = sections
+        .iter()
+        .partition(|s| s.name == super::form::STRATEGY);
     if let Some(table) = defaults.as_table_mut() {
-        let mut strategy = toml::Value::try_from(StrategyConfig::default()).expect("TOML");
-        if let Some(novelty) = strategy.get_mut("novelty").and_then(|s| s.as_table_mut()) {
-            novelty.insert("metric".into(), toml::Value::String("euclidean".into()));
+        for s in strategy {
+            table.insert(s.name.into(), toml::Value::Table((s.defaults)()));
         }
-        // And the sections strategies register with their entries.
-        if let Some(t) = strategy.as_table_mut() {
-            let sections = crate::search::Sections::documented().into_iter();
-            t.extend(sections.map(|(name, s)| (name.to_string(), toml::Value::Table(s))));
-        }
-        table.insert("strategy".into(), strategy);
         let fitness = super::fitness::FitnessConfig::default();
         table.insert(
             "fitness".into(),
@@ -245,8 +241,7 @@ pub(super) fn documented_defaults(sections: &[Section]) -> toml::Value {
         );
         let opponent = toml::Value::try_from(OpponentConfig::default()).expect("TOML");
         table.insert("opponent_sensors".into(), opponent);
-        // Likewise the tasks' own sections, written only when a run changes them.
-        for s in sections {
+        for s in owned {
             table.insert(s.name.into(), toml::Value::Table((s.defaults)()));
         }
     }

@@ -17,6 +17,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 use crate::search::Search;
+use crate::search::StrategyConfig;
 use crate::search::files::{extra_fields, write_outputs};
 use vivae_neat::driver::{
     CheckpointState, Checkpointer, DriverError, Evaluator, Evolution, GenerationReport, HookError,
@@ -647,11 +648,12 @@ fn validate_progress(path: &Path, cp: &Checkpoint, task: &dyn RunTask) -> Result
         )));
     }
     let search = cp.search().map_err(|why| bad(why.into()))?;
-    if search.kind() != cp.config.strategy.kind.name() {
+    let kind = StrategyConfig::of(&cp.config).kind;
+    if search.kind() != kind.name() {
         return Err(bad(format!(
             "holds a {} search, its config says strategy.kind = {}",
             search.kind(),
-            cp.config.strategy.kind.name()
+            kind.name()
         )));
     }
     if !p.target.fits(task) {

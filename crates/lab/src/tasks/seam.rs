@@ -251,12 +251,12 @@ fn task_of_text(text: &str) -> Option<TaskName> {
     Some(TaskName(task.to_string()))
 }
 
-/// Every task's own config sections, in the order of [`TASKS`]: what a
-/// config may hold beside the shared sections.
+/// The config sections beside the shared ones: the search strategies'
+/// `[strategy]`, then every task's own in the order of [`TASKS`].
 pub fn sections() -> Vec<Section> {
-    TASKS
-        .iter()
-        .flat_map(|t| t.sections.iter().copied())
+    let tasks = TASKS.iter().flat_map(|t| t.sections.iter().copied());
+    std::iter::once(crate::search::SECTION)
+        .chain(tasks)
         .collect()
 }
 

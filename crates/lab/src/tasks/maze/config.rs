@@ -5,6 +5,7 @@ use vivae_neat::NeatParams;
 
 pub use super::section::{Collision, MazeConfig, MazeRobot, MazeWalls};
 use crate::config::{Config, DistanceConfig, SubstrateConfig, TaskName};
+use crate::search::StrategyConfig;
 use crate::search::TaskFacts;
 
 impl Config {
@@ -23,18 +24,21 @@ impl Config {
         c.experiment.generations = 200;
         c.physics = crate::tasks::maze::MazeTask::physics();
         c.neat = lehman_neat();
-        c.strategy.fit_to(&TaskFacts {
-            metrics: Some(&super::METRICS),
-            // The behaviour is in px: behaviours 6 px apart are distinct
-            // (Lehman's maze code, via goNEAT_NS), adapting down to 0.05 px
-            // (the library's floor).
-            distinct: Some(6.0),
-            distinct_floor: Some(0.05),
-            // Cells of 10 px over the hard maze (205 × 205); `vivae evolve
-            // --task maze` fits them to its maze.
-            cell: Some(super::CELL),
-            extent: &[205.0],
-        });
+        StrategyConfig::fit(
+            &mut c,
+            &TaskFacts {
+                metrics: Some(&super::METRICS),
+                // The behaviour is in px: behaviours 6 px apart are distinct
+                // (Lehman's maze code, via goNEAT_NS), adapting down to 0.05 px
+                // (the library's floor).
+                distinct: Some(6.0),
+                distinct_floor: Some(0.05),
+                // Cells of 10 px over the hard maze (205 × 205); `vivae evolve
+                // --task maze` fits them to its maze.
+                cell: Some(super::CELL),
+                extent: &[205.0],
+            },
+        );
         c
     }
 }
@@ -142,9 +146,10 @@ pub(super) fn validate(c: &Config) -> Result<(), String> {
             "a maze network is evolved directly, not decoded into an ES-HyperNEAT substrate",
         );
     }
-    if c.strategy.behaviour != crate::config::strategy::BehaviourKind::EndPosition {
+    let behaviour = StrategyConfig::of(c).behaviour;
+    if behaviour != crate::config::strategy::BehaviourKind::EndPosition {
         return refuse(
-            &format!("strategy.behaviour = {}", c.strategy.behaviour.name()),
+            &format!("strategy.behaviour = {}", behaviour.name()),
             "a maze's behaviour is the robot's end position in px: leave it at end-position",
         );
     }
@@ -204,7 +209,7 @@ mod tests {
 
     #[test]
     fn the_maze_fits_the_strategies_to_its_px_and_metrics() {
-        let s = Config::maze().strategy;
+        let s = crate::search::StrategyConfig::of(&Config::maze());
         let library = vivae_neat::strategies::NoveltyParams::default();
         assert_eq!(
             (s.novelty.threshold, s.novelty.threshold_floor),

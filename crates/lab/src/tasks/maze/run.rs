@@ -17,6 +17,7 @@ use vivae_sim::Scenario;
 use crate::config::Config;
 use crate::error::Result;
 use crate::io::bad_input;
+use crate::search::StrategyConfig;
 use crate::search::TaskFacts;
 use crate::tasks::maps::TrainingMap;
 use crate::tasks::maze::config::{MazeConfig, MazeRobot};
@@ -156,11 +157,14 @@ impl<M: MazeModel> RunTask for M {
     fn fit_defaults(&self, config: &mut Config) {
         // The box starts at 0 px: its upper corner is its extent.
         let (_, upper) = self.bounds();
-        config.strategy.fit_to(&TaskFacts {
-            cell: Some(CELL),
-            extent: &upper,
-            ..TaskFacts::default()
-        });
+        StrategyConfig::fit(
+            config,
+            &TaskFacts {
+                cell: Some(CELL),
+                extent: &upper,
+                ..TaskFacts::default()
+            },
+        );
     }
 
     fn has_target(&self) -> bool {
@@ -279,15 +283,19 @@ mod tests {
         );
         refused(&|c| c.distance_sensors.rays = 5, "[distance_sensors]");
         refused(
-            &|c| c.strategy.behaviour = BehaviourKind::SideSpeed,
+            &|c| StrategyConfig::update(c, |s| s.behaviour = BehaviourKind::SideSpeed),
             "strategy.behaviour",
         );
         let mut c = Config::maze();
-        c.strategy.kind = "nsga2".into();
-        c.strategy.nsga2.objectives = vec!["-contacts".into()];
+        StrategyConfig::update(&mut c, |s| {
+            s.kind = "nsga2".into();
+            s.nsga2.objectives = vec!["-contacts".into()];
+        });
         let e = crate::tasks::check(&c).unwrap_err().message;
         assert!(e.contains("fitness or solved or distance or steps"), "{e}");
-        c.strategy.nsga2.objectives = vec!["fitness".into(), "-steps".into()];
+        StrategyConfig::update(&mut c, |s| {
+            s.nsga2.objectives = vec!["fitness".into(), "-steps".into()];
+        });
         crate::tasks::check(&c).unwrap();
         // A file that only says `task = "maze"` is the maze's defaults.
         let file =
@@ -317,7 +325,7 @@ mod tests {
             let task = MazeTask::shipped(maze).unwrap();
             let mut c = Config::maze();
             task.fit_defaults(&mut c);
-            assert_eq!(c.strategy.map_elites.bins, bins);
+            assert_eq!(StrategyConfig::of(&c).map_elites.bins, bins);
         }
     }
 }

@@ -25,10 +25,13 @@ impl Config {
             ..NeatParams::plain_neat()
         };
         // The defaults select on a metric this task has not: it has none.
-        c.strategy.fit_to(&TaskFacts {
-            metrics: Some(&[]),
-            ..TaskFacts::default()
-        });
+        StrategyConfig::fit(
+            &mut c,
+            &TaskFacts {
+                metrics: Some(&[]),
+                ..TaskFacts::default()
+            },
+        );
         c
     }
 }
@@ -96,7 +99,7 @@ pub(super) fn validate(c: &Config) -> Result<(), String> {
         ),
         (
             "strategy",
-            c.strategy.kind == StrategyConfig::default().kind,
+            StrategyConfig::of(c).kind == StrategyConfig::default().kind,
         ),
     ];
     match unused.iter().find(|(_, default)| !default) {

@@ -217,7 +217,7 @@ fn leo_seed_starts_every_strategy_that_takes_a_population_from_seeded_genomes_dr
         .filter(|e| e.takes_population);
     for e in takers {
         let mut other = config.clone();
-        other.strategy.kind = e.kind.into();
+        crate::search::StrategyConfig::update(&mut other, |s| s.kind = e.kind.into());
         assert_eq!(search(&other).batch(), a, "{}", e.kind);
     }
 }
