@@ -126,7 +126,8 @@ impl Run {
             )));
         }
         let bounds = task.behaviour_bounds(&config);
-        let search = Search::new(&config, task.genome_spec(), bounds, init.as_ref())?;
+        let metrics = task.entry().metric_names;
+        let search = Search::new(&config, task.genome_spec(), bounds, init.as_ref(), metrics)?;
         // The run is built in a temporary sibling and renamed into place once its
         // first checkpoint exists: a kill or an error before that leaves no
         // directory that could neither be resumed nor re-run without --force.

@@ -133,13 +133,20 @@ fn report(dir: &Path, config: &Config, _robots: usize) -> Result<Option<Strategy
     }))
 }
 
-fn build(Start { config, spec, .. }: Start<'_>) -> Result<Search> {
+fn build(
+    Start {
+        config,
+        spec,
+        metrics,
+        ..
+    }: Start<'_>,
+) -> Result<Search> {
     let neat = config.neat.clone();
     let s = &StrategyConfig::of(config).nsga2;
     let nsga = Nsga2Params {
         population_size: neat.population_size,
         objectives: (s.objectives.iter())
-            .filter_map(|o| objective_among(o, crate::tasks::metric_names(config)))
+            .filter_map(|o| objective_among(o, metrics))
             .collect(),
         crossover_probability: s.crossover_probability,
     };

@@ -128,6 +128,9 @@ pub struct Start<'a> {
     /// The genomes to start from, if given (only to an entry that
     /// [`StrategyEntry::takes_population`]).
     pub init: Option<&'a Population>,
+    /// Names of the metrics the task's evaluations carry (objectives a
+    /// strategy may select on beside fitness).
+    pub metrics: &'a [&'a str],
 }
 
 /// What a strategy selects on beside fitness: the task measures it only then.
