@@ -53,9 +53,6 @@ const UPWARD_IMPORTS_NOT_YET_REMOVED: &[(&str, &[(&str, &str)])] = &[(
         ("rundir", "search"),
         ("rundir", "tasks"),
         ("tasks", "reproduce"),
-        // The tournament's CSV kind (predator–prey) for the output-path rule,
-        // which sits above export and reproduce, whose kinds it also knows.
-        ("tasks", "output_path"),
     ],
 )];
 

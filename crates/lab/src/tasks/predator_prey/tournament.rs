@@ -25,7 +25,7 @@ pub const CSV_HEADER: &str = "hunters_run,prey_run,hunters,prey,games,catches,ca
 
 /// The CSV file `vivae tournament --csv` writes: an existing file is an
 /// earlier one when it opens with [`CSV_HEADER`] (`crate::output_path`).
-pub const CSV_KIND: crate::output_path::OutputKind = crate::output_path::OutputKind {
+pub const CSV_KIND: crate::io::OutputKind = crate::io::OutputKind {
     what: "vivae tournament CSV",
     earlier: |b| b.starts_with(CSV_HEADER.as_bytes()),
 };
