@@ -8,9 +8,8 @@ use serde::{Deserialize, Serialize};
 use crate::config::{Config, OwnedSection, Section};
 
 /// The maze task's robot model (`experiment.task = "maze"` only).
-///
-/// A maze run's robot model and its details (`[maze]`; docs/howto/maze.md):
-/// the maze task's own section, registered with its entry ([`SECTION`]).
+// Its details in docs/howto/maze.md; the maze task's own section (the doc
+// line above is the config reference's), registered with its entry (`SECTION`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct MazeConfig {

@@ -63,8 +63,8 @@ impl SideController {
 
 /// Co-evolution of two populations (the predator-prey task): whom each is
 /// evaluated against.
-///
-/// The predator–prey task's own section, registered with its entry ([`SECTION`]).
+// The predator–prey task's own section (the doc above is the config
+// reference's), registered with its entry (`SECTION`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct CoevolutionConfig {
