@@ -695,5 +695,5 @@ pub fn scenarios() -> Vec<(String, String)> {
 /// The default config, commented (`vivae config default`).
 #[pyfunction]
 pub fn default_config() -> String {
-    Config::default_commented()
+    Config::default_commented(&vivae_lab::tasks::sections())
 }

@@ -295,6 +295,17 @@ pub fn csv_field(field: &str) -> std::borrow::Cow<'_, str> {
     }
 }
 
+/// What an output file is, so that an existing file can be recognised as an
+/// earlier one of the same kind (which is replaced without `--force`).
+#[derive(Debug, Clone, Copy)]
+pub struct OutputKind {
+    /// What it is, for messages (`vivae export's C file`).
+    pub what: &'static str,
+    /// Whether an existing file's first bytes (at most [`crate::output_path::SNIFF_BYTES`]) are an
+    /// earlier output of this kind.
+    pub earlier: fn(&[u8]) -> bool,
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -20,16 +20,9 @@ use crate::io::{bad_input, open_regular};
 /// How many leading bytes of an existing file [`OutputKind::earlier`] sees.
 pub const SNIFF_BYTES: usize = 4096;
 
-/// What an output file is, so that an existing file can be recognised as an
-/// earlier one of the same kind (which is replaced without `--force`).
-#[derive(Debug, Clone, Copy)]
-pub struct OutputKind {
-    /// What it is, for messages (`vivae export's C file`).
-    pub what: &'static str,
-    /// Whether an existing file's first bytes (at most [`SNIFF_BYTES`]) are an
-    /// earlier output of this kind.
-    pub earlier: fn(&[u8]) -> bool,
-}
+/// What an output file is (declared in `io`, below the tasks that declare
+/// kinds of their own).
+pub use crate::io::OutputKind;
 
 /// One output of a command: the file, the flag that named it, its kind.
 #[derive(Debug, Clone)]

@@ -7,6 +7,8 @@
 //! reference` and the guide's table, so there is no second copy to drift. A
 //! test fails when a key lacks a doc comment or the guide's table is stale.
 
+mod form;
+pub mod owned;
 mod reference;
 mod toml_error;
 mod validate;
@@ -15,6 +17,7 @@ pub mod es;
 pub mod fitness;
 pub mod strategy;
 
+pub use owned::{OwnedSection, OwnedSections, Section};
 pub use reference::{KeyDoc, SectionDoc, key_doc, reference};
 use toml_error::{describe_toml_error, line_of_key, over_defaults};
 
@@ -28,7 +31,6 @@ use vivae_sim::{DistanceSensors, PhysicsParams, SurfaceSensors};
 
 use crate::config::es::{EsConfig, SubstrateKind};
 use crate::polar::{CoordMode, PolarGrid};
-use crate::search::StrategyConfig;
 
 /// Most simulation steps per evaluation (`experiment.steps`, `replay --steps`).
 pub const MAX_STEPS: u32 = 1_000_000;
@@ -41,8 +43,8 @@ pub const MAX_RAYS: usize = 1_024;
 /// Largest substrate weight matrix (possible links × 8 bytes) one thread may hold.
 pub const MAX_SUBSTRATE_BYTES: u64 = 256 << 20;
 
-/// Every parameter of a run.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default, JsonSchema)]
+/// Every parameter of a run (its serde form by hand, in `form.rs`).
+#[derive(Debug, Clone, PartialEq, Default, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct Config {
     /// What is run: scenario, seed, generations, steps, robots.
@@ -65,25 +67,14 @@ pub struct Config {
     pub neat: NeatParams,
     /// Threads and checkpoints: how a run is executed, not what it computes.
     pub run: RunConfig,
-    /// The search strategy (NEAT by default) and its settings.
-    #[serde(default, skip_serializing_if = "StrategyConfig::is_default")]
-    pub strategy: StrategyConfig,
-    /// The maze task's robot model (`experiment.task = "maze"` only).
-    #[serde(
-        default,
-        skip_serializing_if = "crate::tasks::maze::section::MazeConfig::is_default"
-    )]
-    pub maze: crate::tasks::maze::section::MazeConfig,
     /// What a driving episode scores (unset = average speed, no contact cost).
     #[serde(default, skip_serializing_if = "fitness::FitnessConfig::is_default")]
     pub fitness: fitness::FitnessConfig,
-    /// Co-evolution of two populations (the predator-prey task): whom each is
-    /// evaluated against.
-    #[serde(
-        default,
-        skip_serializing_if = "crate::tasks::CoevolutionConfig::is_default"
-    )]
-    pub coevolution: crate::tasks::CoevolutionConfig,
+    /// The sections the search strategies (`[strategy]`) and the tasks
+    /// own, each registered with its entry, by name; written after the
+    /// shared ones (`[strategy]` after `[run]`).
+    #[schemars(skip)]
+    pub owned: OwnedSections,
 }
 
 /// What is run.
@@ -579,11 +570,38 @@ impl Config {
     /// [`Config::from_toml`] with the keys `text` leaves unset taken from
     /// `base` (a task's defaults) instead of [`Config::default`].
     pub fn from_toml_over(text: &str, base: Option<&Config>) -> Result<Config, ConfigError> {
-        // The strict parse says where the text is wrong; the overlay gives
-        // unset keys the defaults of the config, which for a section that is
-        // the library's params type (`[strategy.novelty]`) are not its own.
+        Config::parse(text, base, None)
+    }
+
+    /// [`Config::from_toml_over`] with the sections tasks own read by their
+    /// registrations `sections` (each with every key, or left out at its
+    /// defaults) and any other table refused.
+    pub fn from_toml_with(
+        text: &str,
+        base: Option<&Config>,
+        sections: &[Section],
+    ) -> Result<Config, ConfigError> {
+        Config::parse(text, base, Some(sections))
+    }
+
+    fn parse(
+        text: &str,
+        base: Option<&Config>,
+        sections: Option<&[Section]>,
+    ) -> Result<Config, ConfigError> {
+        // The strict parses (the shared sections, then each registered
+        // one) say where the text is wrong; the overlay gives unset keys the
+        // defaults of the config, which for a sub-table of an owned section
+        // (`[strategy.novelty]`, the library's params type) are its section's.
         toml::from_str::<Config>(text).map_err(|e| describe_toml_error(text, &e))?;
-        let config = over_defaults(text, base.unwrap_or(&Config::default()))?;
+        for s in sections.unwrap_or_default() {
+            (s.check_text)(text)?;
+        }
+        let mut config = over_defaults(text, base.unwrap_or(&Config::default()))?;
+        if let Some(sections) = sections {
+            owned::settle(&mut config.owned, sections)
+                .map_err(|e| owned::at_line_of_table(ConfigError::new(e), text))?;
+        }
         config.validate().map_err(|e| e.at_line_of_key(text))?;
         Ok(config)
     }
@@ -683,7 +701,7 @@ mod tests {
             }
         }
         let c = super::Config::from_toml("[strategy.novelty]\nk = 9\n").unwrap();
-        let n = &c.strategy.novelty;
+        let n = &crate::search::StrategyConfig::of(&c).novelty;
         assert_eq!((n.k, n.threshold, n.threshold_floor), (9, 0.05, 0.005));
     }
 
@@ -700,8 +718,10 @@ mod tests {
 
     #[test]
     fn commented_default_parses_back_to_default() {
-        let text = Config::default_commented();
-        assert_eq!(Config::from_toml(&text).unwrap(), Config::default());
+        let sections = crate::tasks::sections();
+        let text = Config::default_commented(&sections);
+        let back = Config::from_toml_with(&text, None, &sections).unwrap();
+        assert_eq!(back, Config::default());
     }
 
     /// Every leaf key of a TOML value as (dotted key, value as TOML text).
@@ -728,8 +748,9 @@ mod tests {
 
     #[test]
     fn every_key_and_section_is_documented_and_every_doc_is_a_key() {
-        let defaults = flatten(&documented_defaults());
-        let sections = reference();
+        let owned = crate::tasks::sections();
+        let defaults = flatten(&documented_defaults(&owned));
+        let sections = reference(&owned);
         let docs: Vec<&KeyDoc> = sections.iter().flat_map(|s| &s.keys).collect();
         for s in &sections {
             assert!(
@@ -757,7 +778,7 @@ mod tests {
                 assert!(!d.what.is_empty(), "{} has no doc comment", d.key);
                 let (section, key) = d.key.rsplit_once('.').unwrap();
                 let text = format!("[{section}]\n{key} = {}\n", d.example);
-                Config::from_toml(&text).unwrap_or_else(|e| {
+                Config::from_toml_with(&text, None, &owned).unwrap_or_else(|e| {
                     panic!("unset key {}: its Example: note is rejected: {e}", d.key)
                 });
             } else {
@@ -768,19 +789,19 @@ mod tests {
 
     #[test]
     fn doc_comments_are_the_reference() {
-        let doc = key_doc("neat.population_size").unwrap();
+        let doc = key_doc("neat.population_size", &[]).unwrap();
         assert_eq!(doc.what, "genomes per generation");
         assert_eq!(doc.paper, "100");
         assert_eq!(doc.default.as_deref(), Some("100"));
-        let doc = key_doc("physics.v_max").unwrap();
+        let doc = key_doc("physics.v_max", &[]).unwrap();
         assert_eq!(
             (doc.what.as_str(), doc.unit.as_str()),
             ("top forward speed", "px/step")
         );
         assert_eq!(doc.comment(), "top forward speed [px/step]; default: 5.0");
-        let doc = key_doc("neat.target_species").unwrap();
+        let doc = key_doc("neat.target_species", &[]).unwrap();
         assert_eq!((doc.default.as_deref(), doc.example.as_str()), (None, "10"));
-        assert!(key_doc("neat.no_such_key").is_none());
+        assert!(key_doc("neat.no_such_key", &[]).is_none());
     }
 
     #[test]
@@ -807,7 +828,7 @@ mod tests {
 
     #[test]
     fn markdown_reference_escapes_table_pipes() {
-        let table = Config::markdown_reference();
+        let table = Config::markdown_reference(&crate::tasks::sections());
         let columns = |line: &str| line.replace("\\|", "").matches('|').count();
         for line in table.lines() {
             assert_eq!(columns(line), 6, "{line}");
@@ -817,7 +838,7 @@ mod tests {
 
     #[test]
     fn commented_default_shows_unset_keys_and_section_docs() {
-        let text = Config::default_commented();
+        let text = Config::default_commented(&crate::tasks::sections());
         assert!(text.contains("\n# target_species = 10\n"), "{text}");
         assert!(text.contains("[physics.friction]\n"), "{text}");
         let before_neat = text.split("\n[neat]\n").next().unwrap();

@@ -4,14 +4,15 @@
 use super::*;
 
 impl Config {
-    /// The default config as TOML with a comment on every section and key.
-    pub fn default_commented() -> String {
+    /// The default config as TOML with a comment on every section and key,
+    /// the sections tasks own (`sections`) last.
+    pub fn default_commented(sections: &[Section]) -> String {
         let mut out = String::from(
             "# vivae configuration: every parameter of a run.\n\
              # Keys left out take their defaults; command-line flags override the file.\n\
              # Each comment gives: what the key is [unit]; its default; the paper's value where it has one.\n",
         );
-        for section in reference() {
+        for section in reference(sections) {
             let _ = writeln!(out, "\n# {}", section.what);
             let _ = writeln!(out, "[{}]", section.path);
             for key in &section.keys {
@@ -31,15 +32,17 @@ impl Config {
         out
     }
 
-    /// A Markdown table of every key: name, default, unit, paper's value, meaning.
-    pub fn markdown_reference() -> String {
-        markdown_table(reference().iter().flat_map(|s| &s.keys))
+    /// A Markdown table of every key (the sections tasks own, `sections`,
+    /// last): name, default, unit, paper's value, meaning.
+    pub fn markdown_reference(sections: &[Section]) -> String {
+        markdown_table(reference(sections).iter().flat_map(|s| &s.keys))
     }
 
     /// The config reference as a whole Markdown page (docs/reference/config.md):
-    /// what the file is, then one section per TOML table with its keys' table.
-    pub fn markdown_reference_page() -> String {
-        let sections = reference();
+    /// what the file is, then one section per TOML table with its keys'
+    /// table (the sections tasks own, `owned`, last).
+    pub fn markdown_reference_page(owned: &[Section]) -> String {
+        let sections = reference(owned);
         let mut out = String::from(
             "# Config reference\n\n\
              Every key of a run's config file (TOML), generated from the doc comments of \
@@ -174,26 +177,37 @@ pub struct SectionDoc {
 }
 
 /// Every section and key of the config, documented from the doc comments of
-/// the fields they set: the one source of `vivae config default`, `vivae
+/// the fields they set, the sections tasks own (`sections`, which the lab's
+/// registries give) last: the one source of `vivae config default`, `vivae
 /// config reference` and docs/reference/config.md.
-pub fn reference() -> Vec<SectionDoc> {
+pub fn reference(sections: &[Section]) -> Vec<SectionDoc> {
     let schema = schemars::schema_for!(Config);
     let root = schema.as_value();
-    let defaults = documented_defaults();
+    let defaults = documented_defaults(sections);
     let defaults = defaults.as_table().expect("the config is a table");
     let mut out = Vec::new();
     for (name, value) in defaults {
-        let property = property(root, root, name);
         let table = value.as_table().expect("every top-level key is a section");
-        document_section(root, property, name, table, &mut out);
+        match sections.iter().find(|s| s.name == name) {
+            Some(s) => {
+                let mut own = (s.schema)();
+                // The root schema's title is the type's name; the doc is the description.
+                (own.as_object_mut()).map(|o| o.remove("title"));
+                let own = own.as_value();
+                document_section(own, own, name, table, &mut out);
+            }
+            None => document_section(root, property(root, root, name), name, table, &mut out),
+        }
     }
     out
 }
 
 /// The default config as the reference documents it: keys a default config
-/// does not write (`substrate.kind`, `[substrate.es]`, `[strategy]`, `[fitness]`: written only when
-/// set, so that existing runs' files stay the same) with their defaults all the same.
-pub(super) fn documented_defaults() -> toml::Value {
+/// does not write (`substrate.kind`, `[substrate.es]`, `[fitness]`: written only when
+/// set, so that existing runs' files stay the same) with their defaults all the
+/// same, and the sections the strategies and tasks own (`sections`, each
+/// documented by its registration; `[strategy]` after `[run]`, where it is written).
+pub(super) fn documented_defaults(sections: &[Section]) -> toml::Value {
     let mut defaults =
         toml::Value::try_from(Config::default()).expect("the default config is TOML");
     if let Some(sub) = defaults.get_mut("substrate").and_then(|s| s.as_table_mut()) {
@@ -212,22 +226,13 @@ pub(super) fn documented_defaults() -> toml::Value {
     if let Some(neat) = defaults.get_mut("neat").and_then(|s| s.as_table_mut()) {
         neat.insert("start_hidden".into(), toml::Value::Integer(0));
     }
-    // A default config is written without its `[strategy]` section (so that
-    // NEAT runs' files stay as they were); it is documented all the same.
+    // The owned sections are written only when set; documented all the same.
+    let (strategy, owned): (Vec<&Section>, Vec<&Section>) = sections
+        .iter()
+        .partition(|s| s.name == super::form::STRATEGY);
     if let Some(table) = defaults.as_table_mut() {
-        let mut strategy = toml::Value::try_from(StrategyConfig::default()).expect("TOML");
-        if let Some(novelty) = strategy.get_mut("novelty").and_then(|s| s.as_table_mut()) {
-            novelty.insert("metric".into(), toml::Value::String("euclidean".into()));
-        }
-        // And the sections strategies register with their entries.
-        if let Some(t) = strategy.as_table_mut() {
-            let sections = crate::search::Sections::documented().into_iter();
-            t.extend(sections.map(|(name, s)| (name.to_string(), toml::Value::Table(s))));
-        }
-        table.insert("strategy".into(), strategy);
-        // Likewise the tasks' own sections, written only when a run changes them.
-        for task in crate::tasks::TASKS {
-            table.extend((task.sections)());
+        for s in strategy {
+            table.insert(s.name.into(), toml::Value::Table((s.defaults)()));
         }
         let fitness = super::fitness::FitnessConfig::default();
         table.insert(
@@ -236,16 +241,17 @@ pub(super) fn documented_defaults() -> toml::Value {
         );
         let opponent = toml::Value::try_from(OpponentConfig::default()).expect("TOML");
         table.insert("opponent_sensors".into(), opponent);
-        let coevolution =
-            toml::Value::try_from(super::Config::default().coevolution).expect("TOML");
-        table.insert("coevolution".into(), coevolution);
+        for s in owned {
+            table.insert(s.name.into(), toml::Value::Table((s.defaults)()));
+        }
     }
     defaults
 }
 
-/// Documentation of the key `key` (dotted), if there is such a key.
-pub fn key_doc(key: &str) -> Option<KeyDoc> {
-    reference()
+/// Documentation of the key `key` (dotted), if there is such a key among
+/// the shared sections and `sections`.
+pub fn key_doc(key: &str, sections: &[Section]) -> Option<KeyDoc> {
+    reference(sections)
         .into_iter()
         .flat_map(|s| s.keys)
         .find(|k| k.key == key)

@@ -73,31 +73,29 @@ pub(super) fn key_at(text: &str, pos: usize) -> Option<String> {
     (!section.is_empty()).then_some(section)
 }
 
-/// The config of TOML `text` (which parses) with its unset keys taken from `base`.
-pub(super) fn over_defaults(text: &str, base: &Config) -> Result<Config, ConfigError> {
-    fn merge(base: &mut toml::Value, over: toml::Value) {
-        match (base, over) {
-            (toml::Value::Table(b), toml::Value::Table(o)) => {
-                for (k, v) in o {
-                    match b.get_mut(&k) {
-                        Some(slot) => merge(slot, v),
-                        None => {
-                            b.insert(k, v);
-                        }
+/// `over` laid over `base`: its keys replace the base's, table by table.
+pub(super) fn merge(base: &mut toml::Value, over: toml::Value) {
+    match (base, over) {
+        (toml::Value::Table(b), toml::Value::Table(o)) => {
+            for (k, v) in o {
+                match b.get_mut(&k) {
+                    Some(slot) => merge(slot, v),
+                    None => {
+                        b.insert(k, v);
                     }
                 }
             }
-            (slot, v) => *slot = v,
         }
+        (slot, v) => *slot = v,
     }
+}
+
+/// The config of TOML `text` (which parses) with its unset keys taken from `base`.
+pub(super) fn over_defaults(text: &str, base: &Config) -> Result<Config, ConfigError> {
     let bad = |e: &dyn std::fmt::Display| ConfigError::new(one_line(&e.to_string()));
-    let strategy = toml::Value::try_from(&base.strategy).map_err(|e| bad(&e))?;
+    // A section a task owns that `base` leaves out is at its defaults,
+    // which its type fills in when it is read.
     let mut base = toml::Value::try_from(base).map_err(|e| bad(&e))?;
-    // A default `[strategy]` is not written, but its keys are still the
-    // base's (its novelty thresholds are not the library's defaults).
-    if let toml::Value::Table(t) = &mut base {
-        t.entry("strategy").or_insert(strategy);
-    }
     let over: toml::Value = toml::from_str(text).map_err(|e| bad(&e))?;
     merge(&mut base, over);
     base.try_into().map_err(|e: toml::de::Error| bad(&e))

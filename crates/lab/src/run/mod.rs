@@ -17,6 +17,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 use crate::search::Search;
+use crate::search::StrategyConfig;
 use crate::search::files::{extra_fields, write_outputs};
 use vivae_neat::driver::{
     CheckpointState, Checkpointer, DriverError, Evaluator, Evolution, GenerationReport, HookError,
@@ -125,7 +126,8 @@ impl Run {
             )));
         }
         let bounds = task.behaviour_bounds(&config);
-        let search = Search::new(&config, task.genome_spec(), bounds, init.as_ref())?;
+        let metrics = task.entry().metric_names;
+        let search = Search::new(&config, task.genome_spec(), bounds, init.as_ref(), metrics)?;
         // The run is built in a temporary sibling and renamed into place once its
         // first checkpoint exists: a kill or an error before that leaves no
         // directory that could neither be resumed nor re-run without --force.
@@ -651,11 +653,12 @@ fn validate_progress(path: &Path, cp: &Checkpoint, task: &dyn RunTask) -> Result
     };
     let p = &cp.progress;
     let search = cp.search().map_err(|why| bad(why.into()))?;
-    if search.kind() != cp.config.strategy.kind.name() {
+    let kind = StrategyConfig::of(&cp.config).kind;
+    if search.kind() != kind.name() {
         return Err(bad(format!(
             "holds a {} search, its config says strategy.kind = {}",
             search.kind(),
-            cp.config.strategy.kind.name()
+            kind.name()
         )));
     }
     if !p.target.fits(task) {

@@ -15,6 +15,7 @@ use crate::controller::polar::PolarGrid;
 use crate::error::Result;
 use crate::io::bad_input;
 use crate::rundir::population_from_checkpoint;
+use crate::search::StrategyConfig;
 use crate::tasks::maps::{self, TrainingMap};
 use crate::tasks::{self, RunTask};
 
@@ -187,8 +188,10 @@ impl Overrides {
         set(&mut s.normalize_by, self.normalize_by);
         set(&mut s.normalize_self_loops, self.normalize_self_loops);
         set(&mut s.recurrence, self.recurrence);
-        set(&mut c.strategy.kind, self.strategy.clone());
-        set(&mut c.strategy.behaviour, self.behaviour);
+        StrategyConfig::update(c, |s| {
+            set(&mut s.kind, self.strategy.clone());
+            set(&mut s.behaviour, self.behaviour);
+        });
         match &self.robot {
             Some(robot) => tasks::set_robot(c, robot),
             None => Ok(()),

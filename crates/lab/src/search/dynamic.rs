@@ -22,12 +22,14 @@ impl Search {
     /// Generation 0 of the strategy of `config` over genomes of shape `spec`
     /// whose behaviour descriptors lie in the box `bounds` (lower, upper),
     /// seeded with `experiment.seed`; NEAT and novelty search may start from
-    /// `init`'s genomes instead.
+    /// `init`'s genomes instead; the task's evaluations carry the metrics
+    /// `metrics`.
     pub fn new(
         config: &Config,
         spec: GenomeSpec,
         bounds: Bounds,
         init: Option<&Population>,
+        metrics: &[&str],
     ) -> Result<Search> {
         let entry = entry_of(config)?;
         if !entry.takes_population {
@@ -39,6 +41,7 @@ impl Search {
             spec,
             bounds,
             init,
+            metrics,
         })
     }
 

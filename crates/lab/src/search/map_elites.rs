@@ -12,6 +12,7 @@ use vivae_neat::driver::Strategy;
 use vivae_neat::strategies::{Cells, MapElites, MapElitesParams};
 use vivae_neat::{Genome, NeatError};
 
+use crate::search::StrategyConfig;
 use crate::config::Config;
 use crate::error::Result;
 use crate::io::{bad_input, write_atomic};
@@ -146,7 +147,7 @@ pub(super) fn fit_to(m: &mut MapElitesConfig, task: &TaskFacts<'_>) {
 /// The archive as saved with the last checkpoint: its elites and, on a
 /// 2-D grid, the grid the report draws as a heat map.
 fn report(dir: &Path, config: &Config, robots: usize) -> Result<Option<StrategyReport>> {
-    let s = &config.strategy;
+    let s = &StrategyConfig::of(config);
     let elites = crate::search::files::read_archive(dir)?.unwrap_or_default();
     let dims = s.behaviour.dims(robots);
     let (lower, upper) = s.behaviour.bounds(robots);
@@ -191,7 +192,7 @@ fn build(
     }: Start<'_>,
 ) -> Result<Search> {
     let neat = config.neat.clone();
-    let m = &config.strategy.map_elites;
+    let m = &StrategyConfig::of(config).map_elites;
     let map = MapElitesParams {
         batch_size: neat.population_size,
         crossover_probability: m.crossover_probability,
@@ -207,7 +208,7 @@ fn build(
 
 /// The MAP-Elites cells of `config` over the descriptor box `(lower, upper)`.
 fn cells(config: &Config, (lower, upper): Bounds) -> Result<Cells> {
-    let s = &config.strategy;
+    let s = &StrategyConfig::of(config);
     let m = &s.map_elites;
     let dims = lower.len();
     let bins = m.bins_for(dims);
@@ -262,7 +263,7 @@ impl RunStrategy for MapElites {
         let ([l0, l1], [u0, u1], [b0, b1]) = (&lower[..], &upper[..], &bins[..]) else {
             return None;
         };
-        let behaviour = config.strategy.behaviour;
+        let behaviour = StrategyConfig::of(config).behaviour;
         let names = behaviour.coordinate_names(2);
         let s = self.archive_stats();
         Some(StrategyFigure::Grid(GridFigure {
@@ -294,7 +295,7 @@ impl RunStrategy for MapElites {
             })
             .collect();
         let dims = self.cells().dims();
-        let names = config.strategy.behaviour.coordinate_names(dims);
+        let names = StrategyConfig::of(config).behaviour.coordinate_names(dims);
         let mut csv = format!("cell,{},fitness,generation\n", names.join(","));
         for l in &lines {
             let b: Vec<String> = l.behaviour.iter().map(f64::to_string).collect();

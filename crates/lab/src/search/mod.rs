@@ -52,6 +52,7 @@ use serde::Deserialize;
 use vivae_neat::strategies::NoveltyParams;
 
 use crate::config::strategy::{BehaviourKind, StrategyName};
+use crate::config::{Config, OwnedSection, Section};
 
 /// Declares each built-in strategy's file (a module of this folder) and
 /// lists its entry in [`STRATEGIES`]: one line per strategy.
@@ -73,10 +74,10 @@ built_in! {
     one_plus_lambda,
 }
 
-/// The search strategy and its settings.
-///
-/// Serialised by hand (`sections.rs`): the fields in order, then the
-/// registered sections a config sets or its strategy reads.
+/// The search strategy (NEAT by default) and its settings.
+// Serialised by hand (`sections.rs`): the fields in order, then the
+// registered sections a config sets or its strategy reads. The config
+// holds it as the search layer's own section ([`SECTION`]).
 #[derive(Debug, Clone, PartialEq, Deserialize, JsonSchema)]
 #[serde(default)]
 pub struct StrategyConfig {
@@ -116,7 +117,50 @@ impl Default for StrategyConfig {
     }
 }
 
+impl OwnedSection for StrategyConfig {
+    const NAME: &'static str = "strategy";
+}
+
+/// The `[strategy]` section's registration: the config holds it beside the
+/// tasks' own sections ([`crate::tasks::sections`]).
+pub const SECTION: Section = Section {
+    defaults: documented_defaults,
+    ..Section::of::<StrategyConfig>()
+};
+
+/// `[strategy]` as the config reference documents it: every key at its
+/// default (`novelty.metric` too, written only when set) and every
+/// registered strategy's settings section.
+fn documented_defaults() -> toml::Table {
+    let mut strategy = match toml::Value::try_from(StrategyConfig::default()) {
+        Ok(toml::Value::Table(t)) => t,
+        _ => unreachable!("[strategy] is a table"),
+    };
+    if let Some(novelty) = strategy.get_mut("novelty").and_then(|s| s.as_table_mut()) {
+        novelty.insert("metric".into(), toml::Value::String("euclidean".into()));
+    }
+    let sections = Sections::documented().into_iter();
+    strategy.extend(sections.map(|(name, s)| (name.to_string(), toml::Value::Table(s))));
+    strategy
+}
+
 impl StrategyConfig {
+    /// The section as `config` sets it.
+    pub fn of(config: &Config) -> StrategyConfig {
+        config.owned.of()
+    }
+
+    /// Fits `config`'s strategy settings to what a task says of itself
+    /// ([`StrategyConfig::fit_to`]).
+    pub fn fit(config: &mut Config, task: &TaskFacts<'_>) {
+        config.owned.update(|s: &mut StrategyConfig| s.fit_to(task));
+    }
+
+    /// Changes `config`'s strategy settings by `change`.
+    pub fn update(config: &mut Config, change: impl FnOnce(&mut StrategyConfig)) {
+        config.owned.update(change);
+    }
+
     /// Whether this is the default (NEAT, every setting at its default): a
     /// config that is written without its `[strategy]` section.
     pub fn is_default(&self) -> bool {

@@ -4,6 +4,7 @@
 use vivae_neat::strategies::{NoveltyParams, NoveltySearch};
 use vivae_neat::{Genome, NeatError, Population};
 
+use crate::search::StrategyConfig;
 use crate::error::Result;
 use crate::io::bad_input;
 use crate::search::{
@@ -75,7 +76,7 @@ fn build(start: Start<'_>) -> Result<Search> {
     let config = start.config;
     let population = starting_population(start)?;
     let refused = |e: NeatError| bad_input(format!("strategy.novelty: {e}"));
-    let params = config.strategy.novelty.clone();
+    let params = StrategyConfig::of(config).novelty;
     Ok(Search::of(
         NoveltySearch::new(population, params).map_err(refused)?,
     ))

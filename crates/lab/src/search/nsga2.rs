@@ -11,6 +11,7 @@ use vivae_neat::driver::Strategy;
 use vivae_neat::strategies::{Measure, Nsga2, Nsga2Params, Objective};
 use vivae_neat::{Genome, NeatError};
 
+use crate::search::StrategyConfig;
 use crate::config::Config;
 use crate::config::strategy::METRICS;
 use crate::error::Result;
@@ -111,7 +112,7 @@ pub static STRATEGY: StrategyEntry = StrategyEntry {
     header_line: |c| {
         format!(
             "\n  strategy: nsga2, objectives {}",
-            c.strategy.nsga2.objectives.join(", ")
+            StrategyConfig::of(c).nsga2.objectives.join(", ")
         )
     },
     report,
@@ -124,7 +125,7 @@ fn report(dir: &Path, config: &Config, _robots: usize) -> Result<Option<Strategy
     let front = crate::search::files::read_front(dir)?.unwrap_or_default();
     Ok(Some(StrategyReport {
         kind: STRATEGY.kind,
-        objectives: config.strategy.nsga2.objectives.clone(),
+        objectives: StrategyConfig::of(config).nsga2.objectives,
         front: (front.into_iter())
             .map(|f| (f.member, f.fitness, f.objectives))
             .collect(),
@@ -132,13 +133,20 @@ fn report(dir: &Path, config: &Config, _robots: usize) -> Result<Option<Strategy
     }))
 }
 
-fn build(Start { config, spec, .. }: Start<'_>) -> Result<Search> {
+fn build(
+    Start {
+        config,
+        spec,
+        metrics,
+        ..
+    }: Start<'_>,
+) -> Result<Search> {
     let neat = config.neat.clone();
-    let s = &config.strategy.nsga2;
+    let s = &StrategyConfig::of(config).nsga2;
     let nsga = Nsga2Params {
         population_size: neat.population_size,
         objectives: (s.objectives.iter())
-            .filter_map(|o| objective_among(o, crate::tasks::metric_names(config)))
+            .filter_map(|o| objective_among(o, metrics))
             .collect(),
         crossover_probability: s.crossover_probability,
     };
@@ -169,7 +177,8 @@ impl RunStrategy for Nsga2 {
     /// Over two objectives: the last generation's objectives and its front
     /// (with more, no 2-D picture shows the front: `front.csv` has them all).
     fn figure(&self, config: &Config, generation: u32) -> Option<StrategyFigure> {
-        let [a, b] = &config.strategy.nsga2.objectives[..] else {
+        let objectives = StrategyConfig::of(config).nsga2.objectives;
+        let [a, b] = &objectives[..] else {
             return None;
         };
         let two = |o: &[f64]| [o[0], o[1]];
@@ -200,7 +209,8 @@ impl RunStrategy for Nsga2 {
                 genome: g.clone(),
             })
             .collect();
-        let names = (config.strategy.nsga2.objectives.iter()).map(|o| match o.strip_prefix('-') {
+        let objectives = StrategyConfig::of(config).nsga2.objectives;
+        let names = (objectives.iter()).map(|o| match o.strip_prefix('-') {
             Some(min) => format!("min_{min}"),
             None => format!("max_{o}"),
         });
@@ -217,7 +227,7 @@ impl RunStrategy for Nsga2 {
 /// Names of the objectives a run's Pareto front is over (a minimised one
 /// without its `-`), for labelling its members.
 pub fn front_objective_names(config: &Config) -> Vec<String> {
-    (config.strategy.nsga2.objectives.iter())
+    (StrategyConfig::of(config).nsga2.objectives.iter())
         .map(|o| o.trim_start_matches('-').to_string())
         .collect()
 }

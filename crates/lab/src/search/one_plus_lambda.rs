@@ -18,7 +18,7 @@ use vivae_neat::{NeatError, NeatParams};
 use crate::config::Config;
 use crate::error::{Error, Result};
 use crate::io::{bad_input, write_atomic};
-use crate::search::{Needs, RunStrategy, Search, Settings, Start, StrategyEntry};
+use crate::search::{Needs, RunStrategy, Search, Settings, Start, StrategyConfig, StrategyEntry};
 use crate::search::{StrategyReport, StrategySettings};
 
 /// The (1+λ)-ES's registration.
@@ -33,7 +33,7 @@ pub static STRATEGY: StrategyEntry = StrategyEntry {
     from_state,
     extra_columns: ",parent_fitness",
     build,
-    header_line: |c| match c.strategy.settings::<OnePlusLambdaConfig>() {
+    header_line: |c| match StrategyConfig::of(c).settings::<OnePlusLambdaConfig>() {
         Ok(s) => format!("\n  strategy: (1+{}) evolution strategy", s.lambda),
         Err(_) => String::new(),
     },
@@ -104,7 +104,7 @@ pub struct OnePlusLambda {
 
 /// Generation 0: λ minimal genomes drawn from the run seed.
 fn build(Start { config, spec, .. }: Start<'_>) -> Result<Search> {
-    let s: OnePlusLambdaConfig = config.strategy.settings().map_err(bad_input)?;
+    let s: OnePlusLambdaConfig = StrategyConfig::of(config).settings().map_err(bad_input)?;
     let bad = |e: String| bad_input(format!("strategy.one_plus_lambda.{e}"));
     s.validate(&[]).map_err(bad)?;
     let (params, seed) = (config.neat.clone(), config.experiment.seed);

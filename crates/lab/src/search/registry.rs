@@ -12,6 +12,7 @@ use crate::config::Config;
 use crate::config::strategy::BehaviourKind;
 use crate::error::Result;
 use crate::io::bad_input;
+use crate::search::StrategyConfig;
 use crate::search::{DynStrategy, STRATEGIES, Search, StrategyReport, sections};
 
 /// The box (lower, upper) the behaviour descriptors lie in.
@@ -127,6 +128,9 @@ pub struct Start<'a> {
     /// The genomes to start from, if given (only to an entry that
     /// [`StrategyEntry::takes_population`]).
     pub init: Option<&'a Population>,
+    /// Names of the metrics the task's evaluations carry (objectives a
+    /// strategy may select on beside fitness).
+    pub metrics: &'a [&'a str],
 }
 
 /// What a strategy selects on beside fitness: the task measures it only then.
@@ -211,14 +215,15 @@ pub fn entry(kind: &str) -> std::result::Result<&'static StrategyEntry, String> 
 
 /// The strategy `config` names (checked by [`check`]).
 pub fn entry_of(config: &Config) -> Result<&'static StrategyEntry> {
-    entry(config.strategy.kind.name()).map_err(|why| bad_input(format!("strategy.kind = {why}")))
+    entry(StrategyConfig::of(config).kind.name())
+        .map_err(|why| bad_input(format!("strategy.kind = {why}")))
 }
 
 /// Checks `config`'s `[strategy]` section for a task measuring `metrics`:
 /// the strategy is registered, what it needs fits the run, its settings are
 /// valid; the error names the key.
 pub fn check(config: &Config, metrics: &[&str]) -> std::result::Result<(), String> {
-    let s = &config.strategy;
+    let s = &StrategyConfig::of(config);
     let e = entry(s.kind.name()).map_err(|why| format!("strategy.kind = {why}"))?;
     let multi_map = !config.experiment.scenarios.is_empty();
     if e.needs.behaviour && s.behaviour == BehaviourKind::EndPositions && multi_map {
@@ -248,7 +253,7 @@ pub(crate) fn takers() -> Vec<&'static str> {
 
 /// The header line of the strategies that search on a behaviour descriptor.
 pub(crate) fn behaviour_line(c: &Config) -> String {
-    let s = &c.strategy;
+    let s = &StrategyConfig::of(c);
     format!(
         "\n  strategy: {}, behaviour {}",
         s.kind.name(),

@@ -8,6 +8,7 @@ use crate::config::Config;
 use crate::config::es::ES_LEO_OUTPUT;
 use crate::error::Result;
 use crate::io::bad_input;
+use crate::search::StrategyConfig;
 use crate::search::{Start, takers};
 
 /// The generator stream of LEO's seeded generation 0, apart from the
@@ -72,7 +73,7 @@ pub(crate) fn refuse_init(config: &Config, init: Option<&Population>) -> Result<
         None => Ok(()),
         Some(_) => Err(bad_input(format!(
             "experiment.init_population: a {} run starts from minimal genomes (only {} runs start from a population)",
-            config.strategy.kind.name(),
+            StrategyConfig::of(config).kind.name(),
             takers().join(" and ")
         ))),
     }

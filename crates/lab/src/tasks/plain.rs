@@ -21,6 +21,7 @@ use vivae_neat::{
 use crate::config::{Config, TaskName};
 use crate::error::Result;
 use crate::io::bad_input;
+use crate::search::StrategyConfig;
 use crate::search::TaskFacts;
 use crate::tasks::maps::TrainingMap;
 use crate::tasks::unread::first_change;
@@ -132,7 +133,7 @@ pub const fn entry<T: Plain>() -> TaskEntry {
         own_driver: None,
         refuse_when_other: nothing_to_refuse,
         set_robot: None,
-        sections: Vec::new,
+        sections: &[],
         scenarios: &[],
         packs: &[],
         maps: false,
@@ -164,17 +165,21 @@ fn default_config<T: Plain>() -> Config {
     c.experiment.generations = 100;
     c.neat = NeatParams::plain_neat();
     T::defaults(&mut c);
-    c.strategy.fit_to(&TaskFacts {
-        metrics: Some(T::METRICS),
-        ..TaskFacts::default()
-    });
+    StrategyConfig::fit(
+        &mut c,
+        &TaskFacts {
+            metrics: Some(T::METRICS),
+            ..TaskFacts::default()
+        },
+    );
     c
 }
 
 /// Refuses a strategy that needs a behaviour `T` does not give, and any key
 /// `T` does not read off its default; the message names the key.
 fn validate<T: Plain>(c: &Config) -> std::result::Result<(), String> {
-    let kind = c.strategy.kind.name();
+    let kind = StrategyConfig::of(c).kind;
+    let kind = kind.name();
     if T::BEHAVIOUR.is_empty() && crate::search::entry(kind).is_ok_and(|e| e.needs.behaviour) {
         return Err(format!(
             "strategy.kind = {kind}: a {} run gives no behaviour descriptor, which {kind} searches on: use a strategy that selects on fitness",
@@ -497,13 +502,17 @@ mod tests {
         );
         refused(&|c| c.physics.v_max = 3.0, "physics.v_max");
         refused(
-            &|c| c.strategy.behaviour = crate::config::strategy::BehaviourKind::SideSpeed,
+            &|c| {
+                StrategyConfig::update(c, |s| {
+                    s.behaviour = crate::config::strategy::BehaviourKind::SideSpeed
+                })
+            },
             "strategy.behaviour",
         );
         let mut read = default_config::<CartPole>();
         read.neat.population_size = 20;
         read.experiment.seed = 9;
-        read.strategy.kind = "nsga2".into();
+        StrategyConfig::update(&mut read, |s| s.kind = "nsga2".into());
         crate::tasks::check(&read).unwrap();
     }
 }

@@ -13,7 +13,7 @@ use vivae_neat::{Genome, GenomeSpec};
 
 use super::maps::TrainingMap;
 use super::{TargetProgress, driving};
-use crate::config::{Config, ConfigError, TaskName};
+use crate::config::{Config, ConfigError, Section, TaskName};
 use crate::error::{Error, Result};
 use crate::io::{read_text, resolve_map};
 use crate::reproduce::Pack;
@@ -48,9 +48,9 @@ pub struct TaskEntry {
     pub refuse_when_other: fn(&Config) -> std::result::Result<(), String>,
     /// Sets its robot model by name (`--robot`), for a task with a choice of them.
     pub set_robot: Option<SetRobot>,
-    /// Its own config sections at their defaults, for the config reference
-    /// (a run's config writes them only when they differ).
-    pub sections: fn() -> Vec<(String, toml::Value)>,
+    /// Its own config sections (each a table beside the shared ones, left
+    /// out of a run's config while at its defaults).
+    pub sections: &'static [Section],
     /// The scenarios shipped for it (`--scenario NAME`; [`crate::shipped::all`]).
     pub scenarios: &'static [Shipped],
     /// Its replication packs (`vivae reproduce NAME`; [`crate::reproduce::packs`]).
@@ -203,6 +203,9 @@ pub fn set_robot(config: &mut Config, robot: &str) -> std::result::Result<(), St
 pub fn check(config: &Config) -> std::result::Result<(), ConfigError> {
     let task = entry_of(config)?;
     config.validate()?;
+    // Every table beside the shared sections is a registered section that reads.
+    crate::config::owned::settle(&mut config.owned.clone(), &sections())
+        .map_err(ConfigError::new)?;
     crate::search::check(config, task.metric_names).map_err(ConfigError::new)?;
     for other in super::entries().iter().filter(|t| t.name != task.name) {
         (other.refuse_when_other)(config).map_err(ConfigError::new)?;
@@ -213,7 +216,8 @@ pub fn check(config: &Config) -> std::result::Result<(), ConfigError> {
 /// Parses a config's TOML text: unset keys take the defaults of the task it
 /// names, and it is [`check`]ed; errors are one line naming the line and key.
 pub fn config_from_toml(text: &str) -> std::result::Result<Config, ConfigError> {
-    let named = Config::from_toml(text);
+    let sections = sections();
+    let named = Config::from_toml_with(text, None, &sections);
     // The shared rules may refuse a value that the task's defaults would set
     // differently: the task comes from the text whatever they say.
     let task: TaskName = match &named {
@@ -226,7 +230,7 @@ pub fn config_from_toml(text: &str) -> std::result::Result<Config, ConfigError> 
     let config = if defaults == Config::default() {
         named?
     } else {
-        Config::from_toml_over(text, Some(&defaults))?
+        Config::from_toml_with(text, Some(&defaults), &sections)?
     };
     check(&config).map_err(|e| e.at_line_of_key(text))?;
     Ok(config)
@@ -260,6 +264,15 @@ fn task_of_text(text: &str) -> Option<TaskName> {
     let value: toml::Value = toml::from_str(text).ok()?;
     let task = value.get("experiment")?.get("task")?.as_str()?;
     Some(TaskName(task.to_string()))
+}
+
+/// The config sections beside the shared ones: the search strategies'
+/// `[strategy]`, then every task's own in the order of [`TASKS`].
+pub fn sections() -> Vec<Section> {
+    let tasks = TASKS.iter().flat_map(|t| t.sections.iter().copied());
+    std::iter::once(crate::search::SECTION)
+        .chain(tasks)
+        .collect()
 }
 
 /// Metric names of `config`'s task (none for a task that is not registered).

@@ -28,12 +28,15 @@ pub enum ConfigCommand {
 
 /// Runs `vivae config …`.
 pub fn run(command: ConfigCommand) -> anyhow::Result<ExitCode> {
+    let sections = vivae_lab::tasks::sections();
     match command {
-        ConfigCommand::Default => print!("{}", Config::default_commented()),
+        ConfigCommand::Default => print!("{}", Config::default_commented(&sections)),
         ConfigCommand::Reference { table: false } => {
-            print!("{}", Config::markdown_reference_page())
+            print!("{}", Config::markdown_reference_page(&sections))
         }
-        ConfigCommand::Reference { table: true } => print!("{}", Config::markdown_reference()),
+        ConfigCommand::Reference { table: true } => {
+            print!("{}", Config::markdown_reference(&sections))
+        }
         ConfigCommand::Check { file } => {
             let config = read_config(&file)?;
             // The maps too: a scenario the run would refuse is refused here.

@@ -17,6 +17,7 @@ use crate::controller::sensors::{SensorSheet, read_sheets, sensor_sheets};
 use crate::controller::substrate::{
     PolarGrid, SubstrateSpec, WheelNeurons, cppn_outputs, layout_of,
 };
+use crate::search::StrategyConfig;
 use crate::tasks::driving::behaviour::{Behaviour, BehaviourMeter};
 use crate::tasks::driving::combined::DrivingTask;
 use crate::tasks::driving::descriptors::{EpisodeSetup, METRICS, Measures, measured_episode};
@@ -180,7 +181,7 @@ impl Episode {
             steps: config.experiment.steps,
             cppn_outputs,
             fitness: crate::tasks::driving::fitness_contacts::of_config(&config.fitness),
-            measures: Measures::of(&config.strategy),
+            measures: Measures::of(&StrategyConfig::of(config)),
             placements: config.experiment.placements.max(1),
             placements_aggregate: config.experiment.placements_aggregate,
             precision: config.experiment.precision,
@@ -568,7 +569,8 @@ mod tests {
         let metrics = crate::search::entries()
             .into_iter()
             .find(|e| e.needs.metrics);
-        config.strategy.kind = metrics.expect("a strategy selects on metrics").kind.into();
+        let kind = metrics.expect("a strategy selects on metrics").kind;
+        StrategyConfig::update(&mut config, |s| s.kind = kind.into());
         let exp = paper_experiment(&config);
         let pop = Population::new(config.neat.clone(), exp.cppn_spec(), 5).unwrap();
         let ctx = EvalContext {

@@ -7,6 +7,7 @@ use vivae_neat::{Genome, GenomeSpec};
 
 use crate::config::{Config, TaskName};
 use crate::error::Result;
+use crate::search::StrategyConfig;
 use crate::tasks::driving::combined::DrivingTask;
 use crate::tasks::driving::training::Training;
 use crate::tasks::maps::TrainingMap;
@@ -23,7 +24,7 @@ pub static TASK: TaskEntry = TaskEntry {
     own_driver: None,
     refuse_when_other: refuse_for_other_tasks,
     set_robot: None,
-    sections: Vec::new,
+    sections: &[],
     scenarios: &crate::tasks::driving::scenarios::SCENARIOS,
     packs: &[],
     maps: true,
@@ -71,7 +72,9 @@ impl RunTask for Training {
     }
 
     fn behaviour_bounds(&self, config: &Config) -> (Vec<f64>, Vec<f64>) {
-        config.strategy.behaviour.bounds(self.primary().robots())
+        StrategyConfig::of(config)
+            .behaviour
+            .bounds(self.primary().robots())
     }
 
     fn robot_steps(&self) -> u64 {

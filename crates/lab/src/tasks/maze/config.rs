@@ -5,6 +5,7 @@ use vivae_neat::NeatParams;
 
 pub use super::section::{Collision, MazeConfig, MazeRobot, MazeWalls};
 use crate::config::{Config, DistanceConfig, SubstrateConfig, TaskName};
+use crate::search::StrategyConfig;
 use crate::search::TaskFacts;
 
 impl Config {
@@ -23,18 +24,21 @@ impl Config {
         c.experiment.generations = 200;
         c.physics = crate::tasks::maze::MazeTask::physics();
         c.neat = lehman_neat();
-        c.strategy.fit_to(&TaskFacts {
-            metrics: Some(&super::METRICS),
-            // The behaviour is in px: behaviours 6 px apart are distinct
-            // (Lehman's maze code, via goNEAT_NS), adapting down to 0.05 px
-            // (the library's floor).
-            distinct: Some(6.0),
-            distinct_floor: Some(0.05),
-            // Cells of 10 px over the hard maze (205 × 205); `vivae evolve
-            // --task maze` fits them to its maze.
-            cell: Some(super::CELL),
-            extent: &[205.0],
-        });
+        StrategyConfig::fit(
+            &mut c,
+            &TaskFacts {
+                metrics: Some(&super::METRICS),
+                // The behaviour is in px: behaviours 6 px apart are distinct
+                // (Lehman's maze code, via goNEAT_NS), adapting down to 0.05 px
+                // (the library's floor).
+                distinct: Some(6.0),
+                distinct_floor: Some(0.05),
+                // Cells of 10 px over the hard maze (205 × 205); `vivae evolve
+                // --task maze` fits them to its maze.
+                cell: Some(super::CELL),
+                extent: &[205.0],
+            },
+        );
         c
     }
 }
@@ -90,7 +94,7 @@ pub fn lehman_neat() -> NeatParams {
 /// With another task than the maze: refuses a `[maze]` section that is not
 /// at its defaults (it would be ignored).
 pub fn refuse_for_other_tasks(c: &crate::config::Config) -> Result<(), String> {
-    if c.maze.is_default() {
+    if MazeConfig::of(c).is_default() {
         Ok(())
     } else {
         Err(format!(
@@ -142,10 +146,17 @@ pub(super) fn validate(c: &Config) -> Result<(), String> {
             "a maze network is evolved directly, not decoded into an ES-HyperNEAT substrate",
         );
     }
-    if c.strategy.behaviour != crate::config::strategy::BehaviourKind::EndPosition {
+    let behaviour = StrategyConfig::of(c).behaviour;
+    if behaviour != crate::config::strategy::BehaviourKind::EndPosition {
         return refuse(
-            &format!("strategy.behaviour = {}", c.strategy.behaviour.name()),
+            &format!("strategy.behaviour = {}", behaviour.name()),
             "a maze's behaviour is the robot's end position in px: leave it at end-position",
+        );
+    }
+    if !c.fitness.is_default() {
+        return refuse(
+            "[fitness]",
+            "a maze run scores how near the robot ends to the goal: leave [fitness] at its defaults",
         );
     }
     validate_robot(c)?;
@@ -176,7 +187,7 @@ pub(super) fn validate(c: &Config) -> Result<(), String> {
 /// The `[maze]` keys and `[physics]` as the chosen robot reads them: Lehman's
 /// robot has its own constants, ours has none of Lehman's options.
 fn validate_robot(c: &Config) -> Result<(), String> {
-    let m = &c.maze;
+    let m = &MazeConfig::of(c);
     match m.robot {
         MazeRobot::Lehman if c.physics != super::MazeTask::physics() => Err(
             "[physics]: Lehman's maze robot has its own constants (docs/howto/maze.md): leave [physics] at the maze's defaults or use maze.robot = \"vivae\" (--robot vivae)".into(),
@@ -198,7 +209,7 @@ mod tests {
 
     #[test]
     fn the_maze_fits_the_strategies_to_its_px_and_metrics() {
-        let s = Config::maze().strategy;
+        let s = crate::search::StrategyConfig::of(&Config::maze());
         let library = vivae_neat::strategies::NoveltyParams::default();
         assert_eq!(
             (s.novelty.threshold, s.novelty.threshold_floor),

@@ -6,6 +6,7 @@
 use crate::config::Config;
 use crate::error::Result;
 use crate::reproduce::{Journal, Options, Pack, Table, solved_at_journaled, stats, thousands};
+use crate::search::StrategyConfig;
 
 /// The paper's runs per method.
 const PAPER_RUNS: usize = 40;
@@ -97,7 +98,7 @@ pub fn config(maze: &str, kind: &str, seed: u64, evaluations: u64, threads: usiz
     c.experiment.seed = seed;
     let population = c.neat.population_size as u64;
     c.experiment.generations = evaluations.div_ceil(population) as u32;
-    c.strategy.kind = kind.into();
+    StrategyConfig::update(&mut c, |s| s.kind = kind.into());
     c.run.threads = threads;
     c
 }
@@ -210,7 +211,10 @@ mod tests {
     fn a_pack_run_is_the_cli_runs_config_and_its_table_counts_solvers() {
         let c = config("hard-maze", "novelty", 7, 250_000, 1);
         assert_eq!(c.experiment.generations, 1000);
-        assert_eq!((c.experiment.seed, c.strategy.kind.name()), (7, "novelty"));
+        assert_eq!(
+            (c.experiment.seed, StrategyConfig::of(&c).kind.name()),
+            (7, "novelty")
+        );
         crate::tasks::check(&c).unwrap();
         let r = row(&HARD_PAPER[0], &[10_000, 30_000], 3);
         assert_eq!(r[1..4], ["2/3", "20,000 (14,142)", "20,000"]);

@@ -6,7 +6,7 @@ use vivae_neat::Genome;
 
 use crate::config::Config;
 use crate::tasks::maze::MazeModel;
-use crate::tasks::maze::config::MazeRobot;
+use crate::tasks::maze::config::{MazeConfig, MazeRobot};
 use crate::tasks::{Finished, HeaderContext};
 
 /// The header of a maze run.
@@ -33,7 +33,7 @@ pub(super) fn header(config: &Config, ctx: &HeaderContext<'_>) -> String {
 
 /// The robot of a maze run, for its header.
 fn robot(config: &Config) -> String {
-    let m = &config.maze;
+    let m = &MazeConfig::of(config);
     match m.robot {
         MazeRobot::Vivae => "our robot of [physics] (--robot vivae)".into(),
         MazeRobot::Lehman => format!(

@@ -17,9 +17,10 @@ use vivae_sim::Scenario;
 use crate::config::Config;
 use crate::error::Result;
 use crate::io::bad_input;
+use crate::search::StrategyConfig;
 use crate::search::TaskFacts;
 use crate::tasks::maps::TrainingMap;
-use crate::tasks::maze::config::MazeRobot;
+use crate::tasks::maze::config::{MazeConfig, MazeRobot};
 use crate::tasks::maze::lehman::LehmanTask;
 use crate::tasks::maze::walls::LehmanMaze;
 use crate::tasks::maze::{CELL, METRICS, MazeModel, MazeTask, NAME};
@@ -36,13 +37,11 @@ pub static TASK: TaskEntry = TaskEntry {
     own_driver: None,
     refuse_when_other: crate::tasks::maze::config::refuse_for_other_tasks,
     set_robot: Some(|c, r| {
-        c.maze.robot = r.parse()?;
+        let robot = r.parse()?;
+        c.owned.update(|m: &mut MazeConfig| m.robot = robot);
         Ok(())
     }),
-    sections: || {
-        let maze = crate::tasks::maze::section::MazeConfig::default();
-        vec![(NAME.into(), toml::Value::try_from(maze).expect("TOML"))]
-    },
+    sections: &[super::section::SECTION],
     scenarios: &super::SCENARIOS,
     packs: &[super::pack::MEDIUM, super::pack::HARD],
     maps: true,
@@ -60,16 +59,20 @@ pub fn task(config: &Config, scenario: &Scenario) -> Result<MazeTask> {
 /// shipped maze unless `maze.walls = "scenario"`).
 pub fn lehman_task(config: &Config, map: &TrainingMap) -> Result<LehmanTask> {
     let (scenario, svg) = (&map.loaded.scenario, &map.loaded.text);
-    let maze = LehmanMaze::of_map(scenario, svg, config.maze.walls)
+    let maze = LehmanMaze::of_map(scenario, svg, MazeConfig::of(config).walls)
         .map_err(|e| bad_input(e.to_string()))?;
-    Ok(LehmanTask::new(maze, &config.maze, config.experiment.steps))
+    Ok(LehmanTask::new(
+        maze,
+        &MazeConfig::of(config),
+        config.experiment.steps,
+    ))
 }
 
 /// The maze run of `config` on the first of `maps` (a maze run has one),
 /// with the robot of `maze.robot`.
 fn build(config: &Config, maps: &[TrainingMap]) -> Result<Box<dyn RunTask>> {
     let map = maps.first().ok_or_else(|| bad_input("no maze"))?;
-    Ok(match config.maze.robot {
+    Ok(match MazeConfig::of(config).robot {
         MazeRobot::Lehman => Box::new(lehman_task(config, map)?),
         MazeRobot::Vivae => Box::new(task(config, &map.loaded.scenario)?),
     })
@@ -155,11 +158,14 @@ impl<M: MazeModel> RunTask for M {
     fn fit_defaults(&self, config: &mut Config) {
         // The box starts at 0 px: its upper corner is its extent.
         let (_, upper) = self.bounds();
-        config.strategy.fit_to(&TaskFacts {
-            cell: Some(CELL),
-            extent: &upper,
-            ..TaskFacts::default()
-        });
+        StrategyConfig::fit(
+            config,
+            &TaskFacts {
+                cell: Some(CELL),
+                extent: &upper,
+                ..TaskFacts::default()
+            },
+        );
     }
 
     fn has_target(&self) -> bool {
@@ -217,10 +223,10 @@ mod tests {
         let mut o = crate::run::prepare::Overrides::default();
         o.set("task", NAME).unwrap();
         let mut c = Config::maze();
-        assert_eq!(c.maze.robot, MazeRobot::Lehman);
+        assert_eq!(MazeConfig::of(&c).robot, MazeRobot::Lehman);
         o.set("robot", "vivae").unwrap();
         o.apply(&mut c).unwrap();
-        assert_eq!(c.maze.robot, MazeRobot::Vivae);
+        assert_eq!(MazeConfig::of(&c).robot, MazeRobot::Vivae);
         o.set("robot", "khepera").unwrap();
         let e = o.apply(&mut c).unwrap_err();
         assert!(
@@ -278,15 +284,19 @@ mod tests {
         );
         refused(&|c| c.distance_sensors.rays = 5, "[distance_sensors]");
         refused(
-            &|c| c.strategy.behaviour = BehaviourKind::SideSpeed,
+            &|c| StrategyConfig::update(c, |s| s.behaviour = BehaviourKind::SideSpeed),
             "strategy.behaviour",
         );
         let mut c = Config::maze();
-        c.strategy.kind = "nsga2".into();
-        c.strategy.nsga2.objectives = vec!["-contacts".into()];
+        StrategyConfig::update(&mut c, |s| {
+            s.kind = "nsga2".into();
+            s.nsga2.objectives = vec!["-contacts".into()];
+        });
         let e = crate::tasks::check(&c).unwrap_err().message;
         assert!(e.contains("fitness or solved or distance or steps"), "{e}");
-        c.strategy.nsga2.objectives = vec!["fitness".into(), "-steps".into()];
+        StrategyConfig::update(&mut c, |s| {
+            s.nsga2.objectives = vec!["fitness".into(), "-steps".into()];
+        });
         crate::tasks::check(&c).unwrap();
         // A file that only says `task = "maze"` is the maze's defaults.
         let file =
@@ -316,7 +326,7 @@ mod tests {
             let task = MazeTask::shipped(maze).unwrap();
             let mut c = Config::maze();
             task.fit_defaults(&mut c);
-            assert_eq!(c.strategy.map_elites.bins, bins);
+            assert_eq!(StrategyConfig::of(&c).map_elites.bins, bins);
         }
     }
 }

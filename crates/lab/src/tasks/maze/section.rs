@@ -5,7 +5,11 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
-/// A maze run's robot model and its details (`[maze]`; docs/howto/maze.md).
+use crate::config::{Config, OwnedSection, Section};
+
+/// The maze task's robot model (`experiment.task = "maze"` only).
+// Its details in docs/howto/maze.md; the maze task's own section (the doc
+// line above is the config reference's), registered with its entry (`SECTION`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct MazeConfig {
@@ -57,7 +61,19 @@ impl MazeConfig {
     pub fn is_default(&self) -> bool {
         *self == MazeConfig::default()
     }
+
+    /// The section as `config` sets it.
+    pub fn of(config: &Config) -> MazeConfig {
+        config.owned.of()
+    }
 }
+
+impl OwnedSection for MazeConfig {
+    const NAME: &'static str = "maze";
+}
+
+/// The `[maze]` section's registration.
+pub const SECTION: Section = Section::of::<MazeConfig>();
 
 /// Names a kebab-case choice type: `name()`, `FromStr` naming every choice.
 macro_rules! choice {

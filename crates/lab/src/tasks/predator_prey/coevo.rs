@@ -18,7 +18,7 @@ use vivae_neat::{GenerationStats, Genome, NeatError, Population, eval_seed};
 use crate::config::Config;
 use crate::error::{Error, Result};
 use crate::tasks::predator_prey::meetings::{Meetings, Pair};
-use crate::tasks::predator_prey::section::Opponents;
+use crate::tasks::predator_prey::section::{CoevolutionConfig, Opponents};
 use crate::tasks::predator_prey::{Arena, Outcome, Side};
 
 /// One cell of the CIAO matrix: the best hunter of one generation against
@@ -86,7 +86,7 @@ impl Coevolution {
     /// the run's seed, the prey from a seed derived from it.
     pub fn new(config: &Config) -> Result<Coevolution, NeatError> {
         let seed = config.experiment.seed;
-        let c = &config.coevolution;
+        let c = &CoevolutionConfig::of(config);
         let (hunters, prey) = (Arena::spec_of(c.hunter), Arena::spec_of(c.prey));
         Ok(Coevolution {
             hunters: Population::new(config.neat.clone(), hunters, seed)?,
@@ -147,8 +147,8 @@ impl Coevolution {
             return self.generation_fixed(arena, &prey, meetings);
         }
         let g = self.done();
-        let how = config.coevolution.opponents;
-        let sample = config.coevolution.sample;
+        let how = CoevolutionConfig::of(config).opponents;
+        let sample = CoevolutionConfig::of(config).sample;
         self.hunters.prepare();
         self.prey.prepare();
         let picks = [Side::Hunter, Side::Prey].map(|s| self.opponents(s, g, how, sample));
@@ -373,8 +373,10 @@ mod tests {
         let mut config = Config::predator_prey();
         config.neat.population_size = 12;
         config.experiment.steps = 60;
-        config.coevolution.opponents = how;
-        config.coevolution.sample = 4;
+        config.owned.update(|c: &mut CoevolutionConfig| {
+            c.opponents = how;
+            c.sample = 4;
+        });
         let svg = crate::shipped::find("predator-prey").unwrap().svg;
         let sc = Scenario::from_svg(svg, "pp.svg", &LoadOptions::default()).unwrap();
         let arena = Arena::new(&sc, &config.physics, config.experiment.steps).unwrap();

@@ -4,7 +4,7 @@ use vivae_neat::NeatParams;
 
 use crate::config::{Config, DistanceConfig, OpponentConfig, SubstrateConfig, TaskName};
 use crate::search::{StrategyConfig, TaskFacts};
-use crate::tasks::predator_prey::section::{Opponents, SideController};
+use crate::tasks::predator_prey::section::{CoevolutionConfig, Opponents, SideController};
 use crate::tasks::predator_prey::{NAME, STEPS};
 use crate::tasks::robot;
 
@@ -25,10 +25,13 @@ impl Config {
             ..NeatParams::plain_neat()
         };
         // The defaults select on a metric this task has not: it has none.
-        c.strategy.fit_to(&TaskFacts {
-            metrics: Some(&[]),
-            ..TaskFacts::default()
-        });
+        StrategyConfig::fit(
+            &mut c,
+            &TaskFacts {
+                metrics: Some(&[]),
+                ..TaskFacts::default()
+            },
+        );
         c
     }
 }
@@ -71,7 +74,11 @@ pub(super) fn validate(c: &Config) -> Result<(), String> {
     }
     validate_coevolution(c)
         .map_err(|(key, why)| format!("{key}: {why} (experiment.task = \"predator-prey\")"))?;
-    let hyper = [c.coevolution.hunter, c.coevolution.prey].contains(&SideController::Hyperneat);
+    let hyper = [
+        CoevolutionConfig::of(c).hunter,
+        CoevolutionConfig::of(c).prey,
+    ]
+    .contains(&SideController::Hyperneat);
     let unused = [
         ("substrate", c.substrate == SubstrateConfig::default()),
         (
@@ -92,7 +99,7 @@ pub(super) fn validate(c: &Config) -> Result<(), String> {
         ),
         (
             "strategy",
-            c.strategy.kind == StrategyConfig::default().kind,
+            StrategyConfig::of(c).kind == StrategyConfig::default().kind,
         ),
     ];
     match unused.iter().find(|(_, default)| !default) {
@@ -117,25 +124,25 @@ pub const MAX_SAMPLE: usize = 1000;
 /// The `[coevolution]` and `[hyperneat]` keys: the key and why it is refused.
 fn validate_coevolution(c: &Config) -> Result<(), (String, String)> {
     let refuse = |key: &str, why: &str| Err((key.to_string(), why.to_string()));
-    if c.coevolution.sample == 0 {
+    if CoevolutionConfig::of(c).sample == 0 {
         return refuse("coevolution.sample = 0", "draw at least one opponent");
     }
-    if c.coevolution.sample > MAX_SAMPLE {
+    if CoevolutionConfig::of(c).sample > MAX_SAMPLE {
         return refuse(
-            &format!("coevolution.sample = {}", c.coevolution.sample),
+            &format!("coevolution.sample = {}", CoevolutionConfig::of(c).sample),
             &format!(
                 "at most {MAX_SAMPLE} opponents: every genome meets each of them every generation"
             ),
         );
     }
-    let fixed = c.coevolution.opponents == Opponents::Fixed;
-    if fixed && c.coevolution.fixed_prey.is_empty() {
+    let fixed = CoevolutionConfig::of(c).opponents == Opponents::Fixed;
+    if fixed && CoevolutionConfig::of(c).fixed_prey.is_empty() {
         return refuse(
             "coevolution.opponents = \"fixed\"",
             "name the prey with coevolution.fixed_prey (a predator-prey run directory or its champions.json)",
         );
     }
-    if !fixed && !c.coevolution.fixed_prey.is_empty() {
+    if !fixed && !CoevolutionConfig::of(c).fixed_prey.is_empty() {
         return refuse(
             "coevolution.fixed_prey",
             "only with coevolution.opponents = \"fixed\"",

@@ -49,7 +49,7 @@ use vivae_sim::{
 };
 
 use crate::tasks::predator_prey::brain::{Brain, Substrate};
-use crate::tasks::predator_prey::section::SideController;
+use crate::tasks::predator_prey::section::{CoevolutionConfig, SideController};
 use crate::tasks::robot::{self, RANGE};
 
 /// The task's name in `experiment.task` and `--task`.
@@ -249,7 +249,7 @@ impl Arena {
         scenario: &Scenario,
         config: &crate::config::Config,
     ) -> Result<Arena, ArenaError> {
-        let c = &config.coevolution;
+        let c = &CoevolutionConfig::of(config);
         let arena = Arena::new(scenario, &config.physics, config.experiment.steps)?;
         Ok(arena.with_controllers(c.hunter, c.prey, config.hyperneat))
     }

@@ -5,23 +5,26 @@ use std::path::Path;
 
 use crate::config::Config;
 use crate::tasks::predator_prey::coevo::{Champions, GenerationRecord};
-use crate::tasks::predator_prey::section::{Opponents, SideController};
+use crate::tasks::predator_prey::section::{CoevolutionConfig, Opponents, SideController};
 
 /// The header of a predator–prey run.
 pub(super) fn header(config: &Config, command: &str, scenario: &str, dir: &Path) -> String {
     let c = config;
-    let opponents = match c.coevolution.opponents {
+    let opponents = match CoevolutionConfig::of(c).opponents {
         Opponents::Best => "the other population's best of the previous generation".to_string(),
         Opponents::HallOfFame => format!(
             "{} of the other population's earlier champions (hall of fame)",
-            c.coevolution.sample
+            CoevolutionConfig::of(c).sample
         ),
         Opponents::Fixed => format!(
             "a fixed prey ({}; only the hunters evolve)",
-            c.coevolution.fixed_prey
+            CoevolutionConfig::of(c).fixed_prey
         ),
     };
-    let kinds = match (c.coevolution.hunter, c.coevolution.prey) {
+    let kinds = match (
+        CoevolutionConfig::of(c).hunter,
+        CoevolutionConfig::of(c).prey,
+    ) {
         (SideController::Neat, SideController::Neat) => {
             "plain NEAT networks (11 inputs, 2 outputs)".to_string()
         }

@@ -27,7 +27,7 @@ use crate::tasks::predator_prey::coevo::{
     CiaoCell, Coevolution, GenerationRecord, SideRecord, master_tournament,
 };
 use crate::tasks::predator_prey::meetings::{self, OnThreads};
-use crate::tasks::predator_prey::section::SideController;
+use crate::tasks::predator_prey::section::{CoevolutionConfig, SideController};
 use crate::tasks::predator_prey::{Arena, NAME, Side, present};
 use crate::tasks::{OwnDriver, RunTask, Session, Stopped, TaskEntry};
 
@@ -42,7 +42,7 @@ pub static TASK: TaskEntry = TaskEntry {
     own_driver: Some(OwnDriver { evolve, resume }),
     refuse_when_other: crate::tasks::predator_prey::config::refuse_for_other_tasks,
     set_robot: None,
-    sections: Vec::new,
+    sections: &[super::section::SECTION],
     scenarios: &SCENARIOS,
     packs: &[],
     maps: true,
@@ -214,14 +214,17 @@ fn evolve(dir: &Path, mut config: Config, force: bool, session: &Session<'_>) ->
     let scenario = PathBuf::from(&config.experiment.scenario);
     let (arena, text) = arena_of(&config, &scenario)?;
     let mut state = Coevolution::new(&config).map_err(|e| Error::Evolution(e.to_string()))?;
-    let fixed = match config.coevolution.fixed_prey.as_str() {
+    let fixed = match CoevolutionConfig::of(&config).fixed_prey.as_str() {
         "" => None,
-        from => Some(fixed_prey(Path::new(from), config.coevolution.prey)?),
+        from => Some(fixed_prey(
+            Path::new(from),
+            CoevolutionConfig::of(&config).prey,
+        )?),
     };
     clear_dir(dir, force)?;
     if let Some(prey) = fixed {
         write_atomic(&dir.join(files::FIXED_PREY), prey.1.as_bytes())?;
-        config.coevolution.fixed_prey = files::FIXED_PREY.into();
+        (config.owned).update(|c: &mut CoevolutionConfig| c.fixed_prey = files::FIXED_PREY.into());
         state.fixed_prey = Some(prey.0);
     }
     config.experiment.scenario = crate::rundir::files::SCENARIO.into();
@@ -385,7 +388,7 @@ fn check_resumable(dir: &Path, cp: &Checkpoint) -> Result<()> {
             st.hall_prey.len()
         )));
     }
-    let c = &cp.config.coevolution;
+    let c = &CoevolutionConfig::of(&cp.config);
     for (side, kind, population, hall) in [
         (Side::Hunter, c.hunter, &st.hunters, &st.hall_hunters),
         (Side::Prey, c.prey, &st.prey, &st.hall_prey),

@@ -4,6 +4,8 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+use crate::config::{Config, OwnedSection, Section};
+
 /// Whom each population's genomes meet in a generation.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "kebab-case")]
@@ -59,7 +61,10 @@ impl SideController {
     }
 }
 
-/// Co-evolution of two populations.
+/// Co-evolution of two populations (the predator-prey task): whom each is
+/// evaluated against.
+// The predator–prey task's own section (the doc above is the config
+// reference's), registered with its entry (`SECTION`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct CoevolutionConfig {
@@ -107,9 +112,21 @@ impl Default for CoevolutionConfig {
     }
 }
 
+impl OwnedSection for CoevolutionConfig {
+    const NAME: &'static str = "coevolution";
+}
+
+/// The `[coevolution]` section's registration.
+pub const SECTION: Section = Section::of::<CoevolutionConfig>();
+
 impl CoevolutionConfig {
     /// Whether this is the default: a config written without the section.
     pub fn is_default(&self) -> bool {
         *self == CoevolutionConfig::default()
+    }
+
+    /// The section as `config` sets it.
+    pub fn of(config: &Config) -> CoevolutionConfig {
+        config.owned.of()
     }
 }

@@ -13,7 +13,7 @@ use std::path::Path;
 use vivae_neat::Genome;
 use vivae_neat::hyperneat::HyperParams;
 
-use crate::tasks::predator_prey::section::SideController;
+use crate::tasks::predator_prey::section::{CoevolutionConfig, SideController};
 
 use crate::error::{Error, Result};
 use crate::io::{bad_input, csv_field, read_text};
@@ -25,7 +25,7 @@ pub const CSV_HEADER: &str = "hunters_run,prey_run,hunters,prey,games,catches,ca
 
 /// The CSV file `vivae tournament --csv` writes: an existing file is an
 /// earlier one when it opens with [`CSV_HEADER`] (`crate::output_path`).
-pub const CSV_KIND: crate::output_path::OutputKind = crate::output_path::OutputKind {
+pub const CSV_KIND: crate::io::OutputKind = crate::io::OutputKind {
     what: "vivae tournament CSV",
     earlier: |b| b.starts_with(CSV_HEADER.as_bytes()),
 };
@@ -87,7 +87,8 @@ fn entrant(dir: &Path) -> Result<Entrant> {
     let champions = read_champions(dir)?;
     let path = dir.join(files::HALL);
     let text = read_text(&path)?;
-    let controllers = [config.coevolution.hunter, config.coevolution.prey];
+    let sides = CoevolutionConfig::of(&config);
+    let controllers = [sides.hunter, sides.prey];
     // Genomes of another shape (another kind of controller, another run's)
     // are refused here, by file and line: a meeting would not be able to
     // build their networks.

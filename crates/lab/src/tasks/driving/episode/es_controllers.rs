@@ -179,7 +179,10 @@ fn leo_seed_starts_every_strategy_that_takes_a_population_from_seeded_genomes_dr
     let config = leo_config();
     let exp = experiment(&config);
     let bounds = (vec![0.0], vec![1.0]);
-    let search = |c: &Config| Search::new(c, exp.cppn_spec(), bounds.clone(), None).unwrap();
+    let search = |c: &Config| {
+        let metrics = crate::tasks::metric_names(c);
+        Search::new(c, exp.cppn_spec(), bounds.clone(), None, metrics).unwrap()
+    };
     let a = search(&config).batch();
     assert_eq!(a, search(&config).batch(), "the seed is not deterministic");
     assert_eq!(a.len(), config.neat.population_size);
@@ -217,7 +220,7 @@ fn leo_seed_starts_every_strategy_that_takes_a_population_from_seeded_genomes_dr
         .filter(|e| e.takes_population);
     for e in takers {
         let mut other = config.clone();
-        other.strategy.kind = e.kind.into();
+        crate::search::StrategyConfig::update(&mut other, |s| s.kind = e.kind.into());
         assert_eq!(search(&other).batch(), a, "{}", e.kind);
     }
 }

@@ -23,8 +23,10 @@ fn needing(behaviour: bool) -> &'static str {
 fn experiment(kind: &str, behaviour: BehaviourKind) -> (Config, Episode) {
     let mut config = Config::default();
     config.experiment.steps = 150;
-    config.strategy.kind = kind.into();
-    config.strategy.behaviour = behaviour;
+    crate::search::StrategyConfig::update(&mut config, |s| {
+        s.kind = kind.into();
+        s.behaviour = behaviour;
+    });
     let e = Episode::new(&config, &load_scenario(None).unwrap().scenario).unwrap();
     (config, e)
 }
@@ -76,7 +78,7 @@ fn metrics_agree_with_the_recorded_episode() {
             e.setup(),
             e.rollout(&c),
             &c,
-            Measures::of(&config.strategy).unwrap(),
+            Measures::of(&crate::search::StrategyConfig::of(&config)).unwrap(),
         );
         let recorded = e.run(&c, true);
         assert_eq!(m.metrics[0], recorded.behaviour.unwrap().collisions);
