@@ -267,9 +267,11 @@ fn task_of_text(text: &str) -> Option<TaskName> {
 }
 
 /// The config sections beside the shared ones: the search strategies'
-/// `[strategy]`, then every task's own in the order of [`TASKS`].
+/// `[strategy]`, then every task's own in the order of [`super::entries`].
 pub fn sections() -> Vec<Section> {
-    let tasks = TASKS.iter().flat_map(|t| t.sections.iter().copied());
+    let tasks = super::entries()
+        .into_iter()
+        .flat_map(|t| t.sections.iter().copied());
     std::iter::once(crate::search::SECTION)
         .chain(tasks)
         .collect()

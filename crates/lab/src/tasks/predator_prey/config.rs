@@ -115,7 +115,8 @@ pub(super) fn validate(c: &Config) -> Result<(), String> {
 /// its default (only two populations pick opponents); the message names the key.
 pub(super) fn refuse_for_other_tasks(c: &Config) -> Result<(), String> {
     let default = crate::tasks::CoevolutionConfig::default();
-    crate::tasks::unread::refuse_section(c, "coevolution", &c.coevolution, &default, NAME)
+    let set = crate::tasks::CoevolutionConfig::of(c);
+    crate::tasks::unread::refuse_section(c, "coevolution", &set, &default, NAME)
 }
 
 /// Most opponents a genome meets a generation (`coevolution.sample`).
