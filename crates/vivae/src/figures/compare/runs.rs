@@ -178,7 +178,8 @@ pub fn run_label(config: &Config) -> String {
     if vivae_lab::tasks::has_substrate(config) {
         substrate_label(config)
     } else {
-        let (task, strategy) = (&config.experiment.task, config.strategy.kind.name());
+        let strategy = vivae_lab::search::StrategyConfig::of(config).kind;
+        let (task, strategy) = (&config.experiment.task, strategy.name());
         format!("{task} ({strategy})")
     }
 }
