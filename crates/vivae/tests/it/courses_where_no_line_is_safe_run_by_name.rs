@@ -7,18 +7,7 @@ use crate::common::*;
 
 /// The replay's printed measures and its figure (SVG) on `placement`.
 fn replay(run: &std::path::Path, placement: &str, out: &std::path::Path) -> String {
-    let printed = ok(vivae()
-        .arg("replay")
-        .arg(run)
-        .arg("--out")
-        .arg(out)
-        .args(["--placement-seed", placement]));
-    let svg = std::fs::read_dir(out)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .find(|p| p.extension().is_some_and(|e| e == "svg"))
-        .unwrap();
-    printed + &std::fs::read_to_string(svg).unwrap()
+    crate::random_placements_are_seeded_and_replayable::replay(run, Some(placement), out)
 }
 
 #[test]

@@ -268,6 +268,15 @@ fn sizes_counts_and_seeds_past_their_bounds_are_refused_before_any_work() {
 #[test]
 fn settings_a_task_does_not_read_are_refused_by_name() {
     let dir = scratch("hostile-unread");
+    // A one-generation run of the config at `path`, which must be refused.
+    let evolve = |path: &Path| {
+        let mut c = vivae();
+        (c.args(["evolve", "-q", "--generations", "1", "--config"])
+            .arg(path))
+        .arg("--out")
+        .arg(dir.join("never"));
+        c
+    };
     let pp = "[experiment]\ntask = \"predator-prey\"\n";
     let zone = |rect: &str| {
         let svg = include_str!("../../../../scenarios/predator-prey.svg");
@@ -353,14 +362,7 @@ fn settings_a_task_does_not_read_are_refused_by_name() {
         let path = dir.join(name);
         std::fs::write(&path, text).unwrap();
         refused(vivae().args(["config", "check"]).arg(&path), needles);
-        refused(
-            vivae()
-                .args(["evolve", "-q", "--generations", "1", "--config"])
-                .arg(&path)
-                .arg("--out")
-                .arg(dir.join("never")),
-            needles,
-        );
+        refused(&mut evolve(&path), needles);
     }
     // The scenario files themselves are refused wherever they are read.
     refused(
@@ -373,11 +375,7 @@ fn settings_a_task_does_not_read_are_refused_by_name() {
     let path = dir.join("inside.toml");
     std::fs::write(&path, format!("{pp}scenario = \"inside.svg\"\n")).unwrap();
     refused(
-        vivae()
-            .args(["evolve", "-q", "--generations", "1", "--config"])
-            .arg(&path)
-            .arg("--out")
-            .arg(dir.join("never")),
+        &mut evolve(&path),
         &[
             "inside.svg",
             "obstacle region 'zone'",

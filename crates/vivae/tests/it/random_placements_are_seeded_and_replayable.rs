@@ -6,7 +6,11 @@
 use crate::common::*;
 
 /// The replay's printed measures and its figure (SVG) on `placement` (none: the default).
-fn replay(run: &std::path::Path, placement: Option<&str>, out: &std::path::Path) -> String {
+pub(crate) fn replay(
+    run: &std::path::Path,
+    placement: Option<&str>,
+    out: &std::path::Path,
+) -> String {
     let mut cmd = vivae();
     cmd.arg("replay").arg(run).arg("--out").arg(out);
     if let Some(p) = placement {
