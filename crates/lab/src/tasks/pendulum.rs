@@ -13,7 +13,7 @@
 //! so −200 asks that the pendulum be swung up within the first few dozen
 //! steps and held there, from every start, with little torque spent. The
 //! network reads the observation (cos θ, sin θ, θ', float32) and a bias; the
-//! torque is 2·out[0] (its one output, a bipolar sigmoid in [−1, 1])
+//! torque is 2·`out[0]` (its one output, a bipolar sigmoid in [−1, 1])
 //! rounded to float32.
 
 use std::f64::consts::PI;
