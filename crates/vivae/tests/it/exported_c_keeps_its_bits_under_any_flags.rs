@@ -189,7 +189,8 @@ fn equal_steps(got: &[[f64; 2]], want: &[[f64; 2]]) -> usize {
         .count()
 }
 
-/// The compilers and flags to check: gcc always, clang where it is installed.
+/// The compilers and flags to check: gcc always, clang where it is installed
+/// (required with `VIVAE_REQUIRE_CLANG=1`, as `.ci/run` sets after installing it).
 fn compilers() -> Vec<(&'static str, Vec<&'static str>)> {
     let mut out = vec![
         ("gcc", vec!["-O0"]),
@@ -199,6 +200,8 @@ fn compilers() -> Vec<(&'static str, Vec<&'static str>)> {
     let clang = Command::new("clang").arg("--version").output();
     if clang.is_ok_and(|o| o.status.success()) {
         out.push(("clang", vec!["-O3", "-march=native"]));
+    } else if std::env::var_os("VIVAE_REQUIRE_CLANG").is_some_and(|v| v == "1") {
+        panic!("VIVAE_REQUIRE_CLANG=1 but clang is not on PATH");
     } else {
         println!("clang is not on PATH: the exported C is checked with gcc only");
     }
