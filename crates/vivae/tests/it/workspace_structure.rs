@@ -51,7 +51,6 @@ const UPWARD_IMPORTS_NOT_YET_REMOVED: &[(&str, &[(&str, &str)])] = &[(
         ("shipped", "tasks"),
         ("rundir", "search"),
         ("rundir", "tasks"),
-        ("tasks", "reproduce"),
     ],
 )];
 
