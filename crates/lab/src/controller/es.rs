@@ -31,11 +31,11 @@ use vivae_neat::{Genome, Network};
 
 use crate::config::Config;
 pub use crate::config::es::{ES_LEO_OUTPUT, EsConfig, SubstrateKind};
+use crate::controller::drive::{Drive, RobotStates};
 use crate::controller::polar::{
     BIAS_OUTPUT, CoordMode, PolarNode, SURFACE_OUTPUT, WHEEL_RADIUS, WheelNeurons,
 };
 use crate::controller::sensors::SensorSheet;
-use crate::tasks::driving::rollout::{Drive, RobotStates};
 
 /// Where the wheel neurons sit in the ES plane: on the wheel ring at ∓135°.
 pub const ES_WHEEL_ANGLE_DEG: f64 = 135.0;

@@ -2,6 +2,7 @@
 //! substrate decoded from a CPPN (fixed sheets or ES-HyperNEAT) and the
 //! weight normalisation applied to it.
 
+pub mod drive;
 pub mod es;
 pub mod normalize;
 // The sheets' geometry is below the config, which names grids in its keys.

@@ -3,8 +3,8 @@
 //! numbers with their source (`vivae reproduce NAME`, Python's
 //! `vivae.reproduce(name)`).
 //!
-//! A pack is a file here and a line in `PACKS`, or a file in its task's
-//! folder and a line in the task's entry (`TaskEntry::packs`). Each run of
+//! A pack is a file here and a line in `PACKS` (the tasks sit below the
+//! packs, which run them through `run`, so a task's packs live here too). Each run of
 //! a pack is the very run `vivae evolve` makes with the same settings (it is
 //! prepared and run by the same code, in a scratch run directory removed
 //! afterwards), so a row of the table can be checked run by run from the
@@ -12,6 +12,7 @@
 
 mod boxes;
 mod journal;
+mod maze;
 mod pack;
 mod pole;
 mod retina;
@@ -29,8 +30,11 @@ use crate::run::prepare::prepare;
 pub use journal::{HEADER as JOURNAL_HEADER, Journal};
 pub use pack::{Options, Pack, RunPack, Table};
 
-/// The packs of no task: the benchmarks of `vivae_neat::benchmarks` and the road.
-const PACKS: [Pack; 6] = [
+/// Every pack, in the order `vivae reproduce` lists them: the maze's, then
+/// the benchmarks of `vivae_neat::benchmarks` and the road.
+const PACKS: [Pack; 8] = [
+    maze::MEDIUM,
+    maze::HARD,
     xor::XOR,
     pole::MARKOV,
     pole::NONMARKOV,
@@ -39,13 +43,9 @@ const PACKS: [Pack; 6] = [
     road::ROAD,
 ];
 
-/// Every pack: the registered tasks' ([`crate::tasks::TaskEntry::packs`]),
-/// then the others.
+/// Every pack ([`PACKS`]).
 pub fn packs() -> impl Iterator<Item = &'static Pack> {
-    let tasks = crate::tasks::entries()
-        .into_iter()
-        .flat_map(|t| t.packs.iter());
-    tasks.chain(PACKS.iter())
+    PACKS.iter()
 }
 
 /// The pack called `name`; bad input naming the packs otherwise.

@@ -135,7 +135,6 @@ pub const fn entry<T: Plain>() -> TaskEntry {
         set_robot: None,
         sections: &[],
         scenarios: &[],
-        packs: &[],
         maps: false,
         substrate: false,
     }

@@ -16,7 +16,6 @@ use super::{TargetProgress, driving};
 use crate::config::{Config, ConfigError, Section, TaskName};
 use crate::error::{Error, Result};
 use crate::io::{read_text, resolve_map};
-use crate::reproduce::Pack;
 use crate::shipped::Shipped;
 
 /// How a task with a choice of robot models sets one by name.
@@ -53,8 +52,6 @@ pub struct TaskEntry {
     pub sections: &'static [Section],
     /// The scenarios shipped for it (`--scenario NAME`; [`crate::shipped::all`]).
     pub scenarios: &'static [Shipped],
-    /// Its replication packs (`vivae reproduce NAME`; [`crate::reproduce::packs`]).
-    pub packs: &'static [Pack],
     /// Whether its runs train on scenario maps (`experiment.scenario(s)`,
     /// copied into the run); a task without (a [`super::plain`] task)
     /// loads none and its run directory has no `scenario.svg`.

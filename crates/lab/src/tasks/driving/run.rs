@@ -26,7 +26,6 @@ pub static TASK: TaskEntry = TaskEntry {
     set_robot: None,
     sections: &[],
     scenarios: &crate::tasks::driving::scenarios::SCENARIOS,
-    packs: &[],
     maps: true,
     substrate: true,
 };

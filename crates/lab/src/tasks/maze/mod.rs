@@ -18,7 +18,6 @@
 
 pub mod config;
 pub mod lehman;
-pub mod pack;
 mod present;
 pub mod run;
 pub mod section;

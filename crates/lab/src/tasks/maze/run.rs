@@ -43,7 +43,6 @@ pub static TASK: TaskEntry = TaskEntry {
     }),
     sections: &[super::section::SECTION],
     scenarios: &super::SCENARIOS,
-    packs: &[super::pack::MEDIUM, super::pack::HARD],
     maps: true,
     substrate: false,
 };

@@ -44,7 +44,6 @@ pub static TASK: TaskEntry = TaskEntry {
     set_robot: None,
     sections: &[super::section::SECTION],
     scenarios: &SCENARIOS,
-    packs: &[],
     maps: true,
     substrate: false,
 };

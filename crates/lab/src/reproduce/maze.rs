@@ -3,9 +3,9 @@
 //! MAP-Elites, which the paper does not have), with Lehman's robot and
 //! walls (docs/results.md, "The maze").
 
+use super::{Journal, Options, Pack, Table, solved_at_journaled, stats, thousands};
 use crate::config::Config;
 use crate::error::Result;
-use crate::reproduce::{Journal, Options, Pack, Table, solved_at_journaled, stats, thousands};
 use crate::search::StrategyConfig;
 
 /// The paper's runs per method.
