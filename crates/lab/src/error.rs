@@ -39,6 +39,8 @@ pub enum Part {
     Key(&'static str),
     /// A switch turned on (`force`): `--force` on the command line, `force=True` in Python.
     On(&'static str),
+    /// A setting given a value (`runs`, `5000`): `--runs 5000`, `runs=5000`.
+    Set(&'static str, String),
 }
 
 /// A message that names settings as data, so that the command line and
@@ -70,13 +72,21 @@ impl Refusal {
         self
     }
 
-    /// The message with each setting written by `key` and each switch by `on`.
+    /// Goes on with the setting `key` given `value`.
+    pub fn set(mut self, key: &'static str, value: impl std::fmt::Display) -> Self {
+        self.0.push(Part::Set(key, value.to_string()));
+        self
+    }
+
+    /// The message with each setting written by `key` (as the prefix of its
+    /// value: `--runs `, `runs=`) and each switch by `on`.
     pub fn spelled(&self, key: impl Fn(&str) -> String, on: impl Fn(&str) -> String) -> String {
         (self.0.iter())
             .map(|p| match p {
                 Part::Text(t) => t.clone(),
-                Part::Key(k) => key(k),
+                Part::Key(k) => key(k).trim_end().to_string(),
                 Part::On(k) => on(k),
+                Part::Set(k, v) => format!("{}{v}", key(k)),
             })
             .collect()
     }
@@ -85,7 +95,13 @@ impl Refusal {
 /// The library's spelling: settings by their keys (`out`, `force = true`).
 impl std::fmt::Display for Refusal {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(&self.spelled(|k| format!("`{k}`"), |k| format!("`{k} = true`")))
+        let own = (self.0.iter()).map(|p| match p {
+            Part::Text(t) => t.clone(),
+            Part::Key(k) => format!("`{k}`"),
+            Part::On(k) => format!("`{k} = true`"),
+            Part::Set(k, v) => format!("`{k} = {v}`"),
+        });
+        f.write_str(&own.collect::<String>())
     }
 }
 
@@ -335,5 +351,20 @@ mod tests {
             offenders.is_empty(),
             "library modules use {needle}: {offenders:?}"
         );
+    }
+
+    #[test]
+    fn a_refusal_names_keys_and_each_front_end_spells_them() {
+        let r = Refusal::text("pick ")
+            .key("out")
+            .then(", ")
+            .on("force")
+            .then(" or ")
+            .set("runs", 3);
+        assert_eq!(r.to_string(), "pick `out`, `force = true` or `runs = 3`");
+        let flags = r.spelled(|k| format!("--{k} "), |k| format!("--{k}"));
+        assert_eq!(flags, "pick --out, --force or --runs 3");
+        let keywords = r.spelled(|k| format!("{k}="), |k| format!("{k}=True"));
+        assert_eq!(keywords, "pick out=, force=True or runs=3");
     }
 }

@@ -254,9 +254,7 @@ impl Spelling {
     /// as the front end writes them (`--out`, `out=`); any other error as it is.
     pub fn error(&self, e: &crate::Error) -> String {
         match e {
-            crate::Error::Refused(r) => {
-                r.spelled(|k| (self.key)(k).trim_end().to_string(), self.on)
-            }
+            crate::Error::Refused(r) => r.spelled(self.key, self.on),
             e => e.to_string(),
         }
     }
