@@ -2,12 +2,21 @@
 
 use pyo3::PyErr;
 use pyo3::exceptions::{PyOSError, PyRuntimeError, PyValueError};
+use vivae_lab::run::prepare::Spelling;
+
+/// How Python's keyword arguments are named in the library's refusals.
+pub const SPELLING: Spelling = Spelling {
+    origin: "arguments",
+    key: |k| format!("{k}="),
+    on: |k| format!("{k}=True"),
+};
 
 /// `vivae_lab::Error` as a Python exception: a file that cannot be read or
 /// written is an `OSError` (one that is not UTF-8 text a `ValueError`), any other bad input a `ValueError`, the rest a
-/// `RuntimeError`; the message is the CLI's, on one line.
+/// `RuntimeError`; the message is the CLI's, on one line, with settings
+/// spelled as keywords (`out=`, `force=True`).
 pub fn lab(e: vivae_lab::Error) -> PyErr {
-    let message = vivae_lab::io::one_line(&e.to_string());
+    let message = vivae_lab::io::one_line(&SPELLING.error(&e));
     match e {
         // Read, but not text: the content is wrong, not the file system.
         vivae_lab::Error::Read { reason, .. } if reason.contains("not UTF-8") => {

@@ -7,19 +7,14 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString};
 use vivae_lab::config::Config;
 use vivae_lab::controller::substrate::PolarGrid;
-use vivae_lab::run::prepare::{Overrides, Resolved, Spelling, resolve};
+use vivae_lab::run::prepare::{Overrides, Resolved, resolve};
 
-use crate::errors;
+use crate::errors::{self, SPELLING};
 
 /// The keyword overrides every entry point accepts: the library's
 /// [`Overrides`] keys, which are the CLI's flags too.
 pub const OVERRIDES: [&str; 24] = Overrides::KEYS;
 
-/// How Python's keyword arguments are named in the library's refusals.
-const SPELLING: Spelling = Spelling {
-    origin: "arguments",
-    key: |k| format!("{k}="),
-};
 
 /// `config` (a TOML file) or the defaults of the task the keywords name (or
 /// their shipped scenario is drawn for; the paper's when none), with

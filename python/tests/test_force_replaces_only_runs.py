@@ -18,8 +18,10 @@ def test_a_run_is_replaced(tmp_path):
     run = tmp_path / "run"
     vivae.evolve(out=run, seed=1, **SETTINGS)
     first = (run / "generations.csv").read_bytes()
-    with pytest.raises(ValueError, match="--force"):
+    # Said in Python's words, not the command line's flags.
+    with pytest.raises(ValueError, match=r"choose another out=, or pass force=True") as e:
         vivae.evolve(out=run, seed=2, **SETTINGS)
+    assert "--" not in str(e.value)
     vivae.evolve(out=run, seed=2, force=True, **SETTINGS)
     assert (run / "generations.csv").read_bytes() != first
     assert sorted(p.name for p in tmp_path.iterdir()) == ["run"]
@@ -41,8 +43,11 @@ def test_a_folder_of_the_users_files_is_refused(tmp_path):
     mine = tmp_path / "mine"
     (mine / "sub").mkdir(parents=True)
     (mine / "sub" / "data.csv").write_text("1,2\n")
-    with pytest.raises(ValueError, match="is not a vivae run"):
+    with pytest.raises(ValueError, match="is not a vivae run") as e:
         vivae.evolve(out=mine, force=True, **SETTINGS)
+    said = str(e.value)
+    assert "force=True replaces only a vivae run directory (choose another out=)" in said
+    assert "--force" not in said and "--out" not in said
     assert (mine / "sub" / "data.csv").read_text() == "1,2\n"
 
 

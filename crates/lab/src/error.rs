@@ -30,6 +30,81 @@ pub fn one_line(message: &str) -> String {
     message.split_whitespace().collect::<Vec<_>>().join(" ")
 }
 
+/// One piece of a [`Refusal`]'s message.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Part {
+    /// Words, said as they are.
+    Text(String),
+    /// A setting by its key (`out`): `--out` on the command line, `out=` in Python.
+    Key(&'static str),
+    /// A switch turned on (`force`): `--force` on the command line, `force=True` in Python.
+    On(&'static str),
+    /// A setting given a value (`runs`, `5000`): `--runs 5000`, `runs=5000`.
+    Set(&'static str, String),
+}
+
+/// A message that names settings as data, so that the command line and
+/// Python each say them in their own spelling and the library in its keys.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct Refusal(pub Vec<Part>);
+
+impl Refusal {
+    /// Starts a message with `text`.
+    pub fn text(text: impl Into<String>) -> Self {
+        Refusal(vec![Part::Text(text.into())])
+    }
+
+    /// Goes on with `text`.
+    pub fn then(mut self, text: impl Into<String>) -> Self {
+        self.0.push(Part::Text(text.into()));
+        self
+    }
+
+    /// Goes on with the setting `key`.
+    pub fn key(mut self, key: &'static str) -> Self {
+        self.0.push(Part::Key(key));
+        self
+    }
+
+    /// Goes on with the switch `key` turned on.
+    pub fn on(mut self, key: &'static str) -> Self {
+        self.0.push(Part::On(key));
+        self
+    }
+
+    /// Goes on with the setting `key` given `value`.
+    pub fn set(mut self, key: &'static str, value: impl std::fmt::Display) -> Self {
+        self.0.push(Part::Set(key, value.to_string()));
+        self
+    }
+
+    /// The message with each setting written by `key` (as the prefix of its
+    /// value: `--runs `, `runs=`) and each switch by `on`.
+    pub fn spelled(&self, key: impl Fn(&str) -> String, on: impl Fn(&str) -> String) -> String {
+        (self.0.iter())
+            .map(|p| match p {
+                Part::Text(t) => t.clone(),
+                Part::Key(k) => key(k).trim_end().to_string(),
+                Part::On(k) => on(k),
+                Part::Set(k, v) => format!("{}{v}", key(k)),
+            })
+            .collect()
+    }
+}
+
+/// The library's spelling: settings by their keys (`out`, `force = true`).
+impl std::fmt::Display for Refusal {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let own = (self.0.iter()).map(|p| match p {
+            Part::Text(t) => t.clone(),
+            Part::Key(k) => format!("`{k}`"),
+            Part::On(k) => format!("`{k} = true`"),
+            Part::Set(k, v) => format!("`{k} = {v}`"),
+        });
+        f.write_str(&own.collect::<String>())
+    }
+}
+
 /// The result type of the vivae library.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
 
@@ -80,6 +155,10 @@ pub enum Error {
     /// Any other invalid request: a command-line value, an existing output directory.
     #[error("{0}")]
     Invalid(String),
+    /// An invalid request whose message names the settings that would change
+    /// it, as data: each front end spells them its own way ([`Refusal::spelled`]).
+    #[error("{0}")]
+    Refused(Refusal),
     /// A file or directory the program writes could not be written, created or removed.
     #[error("cannot {action} {}: {error}", path.display())]
     Io {
@@ -144,6 +223,7 @@ impl Error {
                 | Error::Genome { .. }
                 | Error::RunFile { .. }
                 | Error::Invalid(_)
+                | Error::Refused(_)
                 | Error::Simd(_)
         ) || self.is_path_mistake()
     }
@@ -271,5 +351,20 @@ mod tests {
             offenders.is_empty(),
             "library modules use {needle}: {offenders:?}"
         );
+    }
+
+    #[test]
+    fn a_refusal_names_keys_and_each_front_end_spells_them() {
+        let r = Refusal::text("pick ")
+            .key("out")
+            .then(", ")
+            .on("force")
+            .then(" or ")
+            .set("runs", 3);
+        assert_eq!(r.to_string(), "pick `out`, `force = true` or `runs = 3`");
+        let flags = r.spelled(|k| format!("--{k} "), |k| format!("--{k}"));
+        assert_eq!(flags, "pick --out, --force or --runs 3");
+        let keywords = r.spelled(|k| format!("{k}="), |k| format!("{k}=True"));
+        assert_eq!(keywords, "pick out=, force=True or runs=3");
     }
 }

@@ -13,7 +13,7 @@
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use crate::error::Result;
+use crate::error::{Error, Refusal, Result};
 use crate::export::Format;
 use crate::io::{bad_input, open_regular};
 
@@ -230,9 +230,14 @@ fn check_one(out: &Output, force: bool) -> Result<PathBuf> {
         return refuse(why.into());
     }
     if !force && !is_earlier(path, out.kind) {
-        return refuse(format!(
-            "exists and is not an earlier {} (choose another file, or pass --force to replace it)",
-            out.kind.what
+        return Err(Error::Refused(
+            Refusal::text(format!(
+                "{}: exists and is not an earlier {} (choose another file, or pass ",
+                out.named(),
+                out.kind.what
+            ))
+            .on("force")
+            .then(" to replace it)"),
         ));
     }
     Ok(folder.join(name))
@@ -288,7 +293,10 @@ mod tests {
         assert!(m.contains("device"), "{m}");
         fs::write(dir.join("mine.json"), "{\"mine\": 1}").unwrap();
         let m = refusal(&json(&dir.join("mine.json")), false);
-        assert!(m.contains("mine.json") && m.contains("--force"), "{m}");
+        assert!(
+            m.contains("mine.json") && m.contains("`force = true`"),
+            "{m}"
+        );
         assert!(check_output(&json(&dir.join("mine.json")), true).is_ok());
         fs::write(
             dir.join("earlier.json"),

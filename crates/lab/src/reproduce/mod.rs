@@ -23,7 +23,7 @@ use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
 
 use crate::config::Config;
-use crate::error::Result;
+use crate::error::{Error, Refusal, Result};
 use crate::io::bad_input;
 use crate::run::prepare::prepare;
 
@@ -69,20 +69,29 @@ pub const MAX_SEED: u64 = u64::MAX - MAX_RUNS as u64;
 pub fn run(name: &str, options: &Options, progress: &mut dyn FnMut(&str)) -> Result<Table> {
     let pack = find(name)?;
     if options.runs == Some(0) || options.evaluations == Some(0) {
-        return Err(bad_input(
-            "reproduce: --runs and --evaluations must be at least 1",
+        return Err(Error::Refused(
+            Refusal::text("reproduce: ")
+                .key("runs")
+                .then(" and ")
+                .key("evaluations")
+                .then(" must be at least 1"),
         ));
     }
     if let Some(runs) = options.runs.filter(|&n| n > MAX_RUNS) {
-        return Err(bad_input(format!(
-            "reproduce: --runs {runs}: at most {MAX_RUNS} runs a method"
-        )));
+        return Err(Error::Refused(
+            Refusal::text("reproduce: ")
+                .set("runs", runs)
+                .then(format!(": at most {MAX_RUNS} runs a method")),
+        ));
     }
     if options.seed > MAX_SEED {
-        return Err(bad_input(format!(
-            "reproduce: --seed {}: at most {MAX_SEED} (run k has seed SEED + k, which may not pass 2^64 - 1)",
-            options.seed
-        )));
+        return Err(Error::Refused(
+            Refusal::text("reproduce: ")
+                .set("seed", options.seed)
+                .then(format!(
+                    ": at most {MAX_SEED} (run k has seed SEED + k, which may not pass 2^64 - 1)"
+                )),
+        ));
     }
     if let Some(m) = (options.methods.iter()).find(|m| !pack.methods.contains(&m.as_str())) {
         return Err(bad_input(if pack.methods.is_empty() {

@@ -238,6 +238,8 @@ pub struct Spelling {
     /// A setting's name as the front end writes it, from its [`Overrides`]
     /// key (`--train-neurons`, `train_neurons=`).
     pub key: fn(&str) -> String,
+    /// A switch turned on as the front end writes it (`--force`, `force=True`).
+    pub on: fn(&str) -> String,
 }
 
 impl Spelling {
@@ -245,7 +247,17 @@ impl Spelling {
     pub const KEYS: Spelling = Spelling {
         origin: "settings",
         key: |k| format!("{k} = "),
+        on: |k| format!("{k} = true"),
     };
+
+    /// `e`'s message, the settings a [`crate::Error::Refused`] names spelled
+    /// as the front end writes them (`--out`, `out=`); any other error as it is.
+    pub fn error(&self, e: &crate::Error) -> String {
+        match e {
+            crate::Error::Refused(r) => r.spelled(self.key, self.on),
+            e => e.to_string(),
+        }
+    }
 
     /// `message` (a refusal of [`Overrides`] that opens with `key = `) with
     /// its key spelled as the front end writes it.
@@ -464,6 +476,7 @@ mod tests {
         let cli = Spelling {
             origin: "command line",
             key: |k| format!("--{} ", k.replace('_', "-")),
+            on: |k| format!("--{}", k.replace('_', "-")),
         };
         let e = resolve(None, &o, &cli).unwrap_err().to_string();
         assert!(

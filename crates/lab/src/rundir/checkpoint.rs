@@ -68,7 +68,7 @@ pub(crate) fn check_config_unchanged(
     Err(Error::Checkpoint {
         path,
         reason: format!(
-            "differs from the run's newest checkpoint {} (line {line}: `{differs}`); a run resumes with the config it started with: undo the edit (extend a run with `resume --generations N`), or start a new run with `evolve --config`",
+            "differs from the run's newest checkpoint {} (line {line}: `{differs}`); a run resumes with the config it started with: undo the edit (a resume to more generations extends the run), or start a new run from the edited config",
             checkpoint.display()
         ),
     })

@@ -13,8 +13,7 @@
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use crate::error::{Error, Result};
-use crate::io::bad_input;
+use crate::error::{Error, Refusal, Result};
 use crate::rundir::{MANIFEST, MAPS_DIR, RunLock, files};
 
 /// Top-level files every run directory may hold; beside them, the files
@@ -57,16 +56,25 @@ pub(crate) fn check_target(dir: &Path, force: bool) -> Result<Option<OldRun>> {
         Err(e) => return Err(Error::io("inspect", dir)(e)),
     };
     if !force {
-        return Err(bad_input(format!(
-            "{}: already exists (choose another --out, or pass --force to replace the run there)",
-            dir.display()
-        )));
+        return Err(Error::Refused(
+            Refusal::text(format!(
+                "{}: already exists (choose another ",
+                dir.display()
+            ))
+            .key("out")
+            .then(", or pass ")
+            .on("force")
+            .then(" to replace the run there)"),
+        ));
     }
     let refuse = |why: String| {
-        Err(bad_input(format!(
-            "{}: {why}; --force replaces only a vivae run directory (choose another --out)",
-            dir.display()
-        )))
+        Err(Error::Refused(
+            Refusal::text(format!("{}: {why}; ", dir.display()))
+                .on("force")
+                .then(" replaces only a vivae run directory (choose another ")
+                .key("out")
+                .then(")"),
+        ))
     };
     if let Some(why) = protected(dir) {
         return refuse(why);
@@ -270,7 +278,22 @@ mod tests {
         fake_run(&run);
         assert!(check_target(&run, true).unwrap().is_some());
         let e = check_target(&run, false).err().unwrap();
-        assert!(e.to_string().contains("--force"), "{e}");
+        // The library names the settings by key; a front end spells them.
+        let own = e.to_string();
+        assert!(
+            own.contains("`force = true`") && own.contains("`out`"),
+            "{own}"
+        );
+        let flags = crate::run::prepare::Spelling {
+            origin: "command line",
+            key: |k| format!("--{k} "),
+            on: |k| format!("--{k}"),
+        };
+        let said = flags.error(&e);
+        assert!(
+            said.ends_with("(choose another --out, or pass --force to replace the run there)"),
+            "{said}"
+        );
         assert!(check_target(&root.join("none"), false).unwrap().is_none());
         fs::create_dir(root.join("empty")).unwrap();
         assert!(check_target(&root.join("empty"), true).unwrap().is_some());

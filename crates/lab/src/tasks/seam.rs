@@ -90,8 +90,8 @@ pub enum Stopped {
     Interrupted(u32),
     /// A resumed run that was already finished.
     AlreadyFinished {
-        /// What to say: that it is finished, and how to extend it.
-        note: String,
+        /// Its number of generations, all done (a resume to more extends it).
+        generations: u32,
         /// Its summary line, as when it finished.
         line: String,
     },

@@ -136,6 +136,7 @@ impl Overrides {
 pub const SPELLING: vivae_lab::run::prepare::Spelling = vivae_lab::run::prepare::Spelling {
     origin: "command line",
     key: |k| format!("--{} ", k.replace('_', "-")),
+    on: |k| format!("--{}", k.replace('_', "-")),
 };
 
 /// Sets each config key `o` gives, then checks the result by every rule of

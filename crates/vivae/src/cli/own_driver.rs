@@ -79,8 +79,8 @@ fn conclude(dir: &Path, stopped: Stopped, quiet: bool) -> anyhow::Result<ExitCod
             );
             Ok(ExitCode::from(130))
         }
-        Stopped::AlreadyFinished { note, .. } => {
-            eprintln!("{note}");
+        Stopped::AlreadyFinished { generations, .. } => {
+            eprintln!("{}", finished_note(dir, generations));
             if !dir.join(vivae_lab::rundir::files::REPORT).is_file() {
                 report(dir, quiet)?;
             }
@@ -134,4 +134,13 @@ fn in_session(
         println!("{line}");
     }
     Ok(stopped)
+}
+
+/// What `vivae resume` says of a run whose `total` generations are all done:
+/// that it is finished, and how to extend it.
+pub fn finished_note(dir: &std::path::Path, total: u32) -> String {
+    let dir = dir.display();
+    format!(
+        "{dir} is already finished ({total} of {total} generations); to extend it: vivae resume {dir} --generations N (N > {total})"
+    )
 }

@@ -50,7 +50,7 @@ where
     match dispatch(cli, &interrupted) {
         Ok(code) => code,
         Err(err) => {
-            eprintln!("error: {}", one_line(&format!("{err:#}")));
+            eprintln!("error: {}", one_line(&spelled(&err)));
             let users_fault = err
                 .chain()
                 .filter_map(|c| c.downcast_ref::<vivae_lab::Error>())
@@ -62,6 +62,18 @@ where
             }
         }
     }
+}
+
+/// `err` as `{err:#}` prints it (each cause after a colon), the settings
+/// the library's refusals name spelled as flags (`--out`, `--force`).
+fn spelled(err: &anyhow::Error) -> String {
+    let said: Vec<String> = (err.chain())
+        .map(|c| match c.downcast_ref::<vivae_lab::Error>() {
+            Some(e) => super::overrides::SPELLING.error(e),
+            None => c.to_string(),
+        })
+        .collect();
+    said.join(": ")
 }
 
 /// Runs the command the line names; `interrupted` is set by Ctrl-C.

@@ -105,10 +105,7 @@ fn already_finished(run: &Run) -> anyhow::Result<bool> {
     if run.done() < total {
         return Ok(false);
     }
-    let dir = run.dir().display();
-    eprintln!(
-        "{dir} is already finished ({total} of {total} generations); to extend it: vivae resume {dir} --generations N (N > {total})"
-    );
+    eprintln!("{}", super::own_driver::finished_note(run.dir(), total));
     // A run that stopped before its figures and report showed every
     // generation (killed while drawing them) gets them now.
     if run.episode().is_some() && rundir::drawn_generations(run.dir()) != Some(run.done()) {

@@ -190,7 +190,7 @@ fn validate_robot(c: &Config) -> Result<(), String> {
     let m = &MazeConfig::of(c);
     match m.robot {
         MazeRobot::Lehman if c.physics != super::MazeTask::physics() => Err(
-            "[physics]: Lehman's maze robot has its own constants (docs/howto/maze.md): leave [physics] at the maze's defaults or use maze.robot = \"vivae\" (--robot vivae)".into(),
+            "[physics]: Lehman's maze robot has its own constants (docs/howto/maze.md): leave [physics] at the maze's defaults or use maze.robot = \"vivae\"".into(),
         ),
         MazeRobot::Vivae
             if (m.quirks, m.walls, m.collision)

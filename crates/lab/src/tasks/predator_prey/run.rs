@@ -18,7 +18,7 @@ use serde::{Deserialize, Serialize};
 use vivae_neat::Genome;
 
 use crate::config::Config;
-use crate::error::{Error, Result};
+use crate::error::{Error, Refusal, Result};
 use crate::io::{bad_input, create_dirs, load_scenario, read_text, write_atomic};
 use crate::shipped::Shipped;
 use crate::tasks::maps::TrainingMap;
@@ -192,15 +192,12 @@ fn clear_dir(dir: &Path, force: bool) -> Result<()> {
     if occupied {
         let is_run = dir.join(crate::rundir::files::CONFIG).is_file();
         if !force || !is_run {
-            return Err(bad_input(format!(
-                "{}: exists and is not empty{}",
-                dir.display(),
-                if is_run {
-                    "; --force replaces the run in it"
-                } else {
-                    " and holds no run: choose another --out"
-                }
-            )));
+            let said = Refusal::text(format!("{}: exists and is not empty", dir.display()));
+            return Err(Error::Refused(if is_run {
+                said.then("; ").on("force").then(" replaces the run in it")
+            } else {
+                said.then(" and holds no run: choose another ").key("out")
+            }));
         }
         fs::remove_dir_all(dir).map_err(Error::io("remove", dir))?;
     }
@@ -335,11 +332,10 @@ fn resume(dir: &Path, generations: Option<u32>, session: &Session<'_>) -> Result
             run.champions()?
         };
         let (_, line) = present::summary(&champions, dir);
-        let dir = dir.display();
-        let note = format!(
-            "{dir} is already finished ({total} of {total} generations); to extend it: vivae resume {dir} --generations N (N > {total})"
-        );
-        return Ok(Stopped::AlreadyFinished { note, line });
+        return Ok(Stopped::AlreadyFinished {
+            generations: total,
+            line,
+        });
     }
     let from = format!(" (resuming after generation {done})");
     let header = present::header(
