@@ -15,7 +15,6 @@ use crate::errors::{self, SPELLING};
 /// [`Overrides`] keys, which are the CLI's flags too.
 pub const OVERRIDES: [&str; 24] = Overrides::KEYS;
 
-
 /// `config` (a TOML file) or the defaults of the task the keywords name (or
 /// their shipped scenario is drawn for; the paper's when none), with
 /// `overrides` applied and checked: the library's one resolution, as
