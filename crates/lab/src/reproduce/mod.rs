@@ -43,7 +43,7 @@ const PACKS: [Pack; 8] = [
     road::ROAD,
 ];
 
-/// Every pack ([`PACKS`]).
+/// Every pack, the maze's first.
 pub fn packs() -> impl Iterator<Item = &'static Pack> {
     PACKS.iter()
 }
