@@ -654,6 +654,15 @@ pub fn replay<'py>(
         }
         None => 0,
     };
+    // Not a config key either: the distance rays blinded (`vivae replay --blind-rays`).
+    let blind_rays = match extra.get_item("blind_rays")? {
+        Some(v) => {
+            extra.del_item("blind_rays")?;
+            v.extract::<bool>()
+                .map_err(|_| errors::value("blind_rays= takes True or False"))?
+        }
+        None => false,
+    };
     let config = settings::build_from(config, Some(&extra))?;
     let path = settings::scenario_path(&config);
     if let Some(p) = path.as_deref().filter(|p| !other_scenario && !p.exists()) {
@@ -667,6 +676,12 @@ pub fn replay<'py>(
     let experiment = Episode::new(&config, &scenario.scenario)
         .map_err(|e| errors::lab(vivae_lab::Error::from(e)))?
         .with_placement_seed(placement_seed);
+    let experiment = match blind_rays {
+        true => experiment.with_blind_rays().map_err(|e| {
+            errors::lab(vivae_lab::io::bad_input(format!("blind_rays=True: {e}")))
+        })?,
+        false => experiment,
+    };
     let controller = experiment.robot_controller(&champion.genome).map_err(|e| {
         errors::lab(vivae_lab::Error::Genome {
             path: source.clone(),

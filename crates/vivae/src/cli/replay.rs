@@ -48,6 +48,11 @@ pub struct ReplayArgs {
     /// (default: the run's).
     #[arg(long, value_name = "N")]
     pub distance_rays: Option<usize>,
+    /// Blind the distance rays: every ray reads "nothing in range" whatever
+    /// is in front of it, the rest of the robot as it was (to compare with
+    /// the replay that sees).
+    #[arg(long)]
+    pub blind_rays: bool,
     /// Arithmetic of the controller (exact|fast; default: the run's): a
     /// champion evolved in one precision re-scored in the other.
     #[arg(long, value_name = "exact|fast")]
@@ -131,7 +136,11 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<ExitCode> {
             args.placement_seed.unwrap_or(0)
         );
     }
-    let experiment = experiment.with_placement_seed(args.placement_seed.unwrap_or(0));
+    let mut experiment = experiment.with_placement_seed(args.placement_seed.unwrap_or(0));
+    if args.blind_rays {
+        experiment = (experiment.with_blind_rays())
+            .map_err(|e| bad_input(format!("--blind-rays: {e}")))?;
+    }
     // Checked before anything is written: a genome that does not fit is bad input.
     experiment
         .robot_controller(&champion.genome)
