@@ -53,6 +53,11 @@ pub struct ReplayArgs {
     /// the replay that sees).
     #[arg(long)]
     pub blind_rays: bool,
+    /// Also draw the swerve: zoomed in on the block or scripted robot whose
+    /// meeting blinding the rays changes most, the robot's path seeing and
+    /// blinded (swerve-pN.png beside the trajectories).
+    #[arg(long)]
+    pub swerve: bool,
     /// Arithmetic of the controller (exact|fast; default: the run's): a
     /// champion evolved in one precision re-scored in the other.
     #[arg(long, value_name = "exact|fast")]
@@ -138,8 +143,8 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<ExitCode> {
     }
     let mut experiment = experiment.with_placement_seed(args.placement_seed.unwrap_or(0));
     if args.blind_rays {
-        experiment = (experiment.with_blind_rays())
-            .map_err(|e| bad_input(format!("--blind-rays: {e}")))?;
+        experiment =
+            (experiment.with_blind_rays()).map_err(|e| bad_input(format!("--blind-rays: {e}")))?;
     }
     // Checked before anything is written: a genome that does not fit is bad input.
     experiment
@@ -167,7 +172,48 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<ExitCode> {
         replay.behaviour.fields()
     );
     eprintln!("figure: {}", replay.figure.display());
+    if args.swerve {
+        // A shipped scenario by its name (a run's copy is called scenario.svg).
+        let course = match config.experiment.scenario.as_str() {
+            "" => name.as_str(),
+            named => named,
+        };
+        swerve_figure(&args, &experiment, &champion, course, &out)?;
+    }
     Ok(ExitCode::SUCCESS)
+}
+
+/// `--swerve`: the zoomed figure of the meeting blinding changes most, and its line.
+fn swerve_figure(
+    args: &ReplayArgs,
+    experiment: &Episode,
+    champion: &rundir::Champion,
+    scenario: &str,
+    out: &std::path::Path,
+) -> anyhow::Result<()> {
+    let placement = args.placement_seed.unwrap_or(0);
+    let blind = if args.blind_rays { "-blind-rays" } else { "" };
+    let title = format!("{scenario}, placement {placement}");
+    match crate::figures::swerve::swerve(experiment, &champion.genome, &title)? {
+        None => eprintln!("swerve: {scenario} has no placed block nor scripted robot to meet"),
+        Some((figure, m)) => {
+            let path = out.join(format!("swerve-p{placement}{blind}"));
+            vivae_lab::io::write_atomic(&path.with_extension("svg"), figure.svg.as_bytes())?;
+            vivae_lab::io::write_atomic(&path.with_extension("png"), &figure.png)?;
+            let blinded = m.blinded.map_or(String::new(), |(gap, step)| {
+                format!(" blinded_clearance={gap:.2} blinded_step={step}")
+            });
+            println!(
+                "swerve robot={} met=\"{}\" clearance={:.2} step={}{blinded}",
+                m.robot + 1,
+                m.what,
+                m.seeing.0,
+                m.seeing.1
+            );
+            eprintln!("swerve figure: {}", path.with_extension("png").display());
+        }
+    }
+    Ok(())
 }
 
 /// `vivae replay` of a genome of a task that draws no figures: its
