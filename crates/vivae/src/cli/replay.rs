@@ -126,7 +126,13 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<ExitCode> {
         .into());
     }
     let scenario = load_scenario(path.as_deref())?;
-    let experiment = Episode::new(&config, &scenario.scenario).map_err(vivae_lab::Error::from)?;
+    let mut experiment =
+        Episode::new(&config, &scenario.scenario).map_err(vivae_lab::Error::from)?;
+    // Refused before anything is said about the replay: an error stays one line.
+    if args.blind_rays {
+        experiment =
+            (experiment.with_blind_rays()).map_err(|e| bad_input(format!("--blind-rays: {e}")))?;
+    }
     if let Some(seed) = args.placement_seed.filter(|_| !experiment.varies()) {
         return Err(bad_input(format!(
             "--placement-seed {seed}: {} places no obstacles or traffic at random, so no seed changes the replay",
@@ -141,11 +147,7 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<ExitCode> {
             args.placement_seed.unwrap_or(0)
         );
     }
-    let mut experiment = experiment.with_placement_seed(args.placement_seed.unwrap_or(0));
-    if args.blind_rays {
-        experiment =
-            (experiment.with_blind_rays()).map_err(|e| bad_input(format!("--blind-rays: {e}")))?;
-    }
+    let experiment = experiment.with_placement_seed(args.placement_seed.unwrap_or(0));
     // Checked before anything is written: a genome that does not fit is bad input.
     experiment
         .robot_controller(&champion.genome)
