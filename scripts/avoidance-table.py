@@ -84,7 +84,10 @@ if status:
     print(f"Runs finished and judged: {len(states['finished'])} of {total}.")
     for state, what in [("running", "Still evolving or stopped (generations done)"),
                         ("missing", "Not started")]:
-        if states[state]:
+        # A long list of runs not started says no more than its length.
+        if len(states[state]) > 12:
+            print(f"{what}: {len(states[state])} runs (listed in status.tsv).")
+        elif states[state]:
             print(f"{what}: {', '.join(states[state])}.")
     print()
 print(f"Held-out placements per champion: {', '.join(map(str, placements))}; "
