@@ -55,7 +55,8 @@ pub struct ReplayArgs {
     pub blind_rays: bool,
     /// Also draw the swerve: zoomed in on the block or scripted robot whose
     /// meeting blinding the rays changes most, the robot's path seeing and
-    /// blinded (swerve-pN.png beside the trajectories).
+    /// blinded (swerve-pN.png beside the trajectories); prints the least
+    /// clearance of each in px, 0 where they touch.
     #[arg(long)]
     pub swerve: bool,
     /// Arithmetic of the controller (exact|fast; default: the run's): a
@@ -175,12 +176,7 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<ExitCode> {
     );
     eprintln!("figure: {}", replay.figure.display());
     if args.swerve {
-        // A shipped scenario by its name (a run's copy is called scenario.svg).
-        let course = match config.experiment.scenario.as_str() {
-            "" => name.as_str(),
-            named => named,
-        };
-        swerve_figure(&args, &experiment, &champion, course, &out)?;
+        swerve_figure(&args, &experiment, &champion, &out)?;
     }
     Ok(ExitCode::SUCCESS)
 }
@@ -190,26 +186,33 @@ fn swerve_figure(
     args: &ReplayArgs,
     experiment: &Episode,
     champion: &rundir::Champion,
-    scenario: &str,
     out: &std::path::Path,
 ) -> anyhow::Result<()> {
     let placement = args.placement_seed.unwrap_or(0);
     let blind = if args.blind_rays { "-blind-rays" } else { "" };
-    let title = format!("{scenario}, placement {placement}");
+    // Named for its run (a run's scenario is its copy, scenario.svg).
+    let run = match args.source.is_dir() {
+        true => args.source.as_path(),
+        false => args.source.parent().unwrap_or(&args.source),
+    };
+    let run = run
+        .file_name()
+        .map_or(String::new(), |n| n.to_string_lossy().into_owned());
+    let title = format!("{run}, placement {placement}");
     match crate::figures::swerve::swerve(experiment, &champion.genome, &title)? {
-        None => eprintln!("swerve: {scenario} has no placed block nor scripted robot to meet"),
+        None => eprintln!("swerve: the scenario has no placed block nor scripted robot to meet"),
         Some((figure, m)) => {
             let path = out.join(format!("swerve-p{placement}{blind}"));
             vivae_lab::io::write_atomic(&path.with_extension("svg"), figure.svg.as_bytes())?;
             vivae_lab::io::write_atomic(&path.with_extension("png"), &figure.png)?;
             let blinded = m.blinded.map_or(String::new(), |(gap, step)| {
-                format!(" blinded_clearance={gap:.2} blinded_step={step}")
+                format!(" blinded_clearance={:.2} blinded_step={step}", gap.max(0.0))
             });
             println!(
                 "swerve robot={} met=\"{}\" clearance={:.2} step={}{blinded}",
                 m.robot + 1,
                 m.what,
-                m.seeing.0,
+                m.seeing.0.max(0.0),
                 m.seeing.1
             );
             eprintln!("swerve figure: {}", path.with_extension("png").display());
