@@ -98,6 +98,10 @@ tsv=$out/replays.tsv
 status=$out/status.tsv
 columns='scenario\tsetup\tsheets\tseed\trays\tview\tplacement\tmember\tfitness\tspeed\ton_road\tcollisions\trobot\ttraffic\tobstacle\twall\tplaced'
 [ -f "$tsv" ] || printf "$columns\n" > "$tsv"
+if [ "$(head -n 1 "$tsv")" != "$(printf "$columns")" ]; then
+  echo "$tsv: written by an older avoidance.sh (other columns); move it away to replay again" >&2
+  exit 2
+fi
 printf 'run\tstate\tgenerations\n' > "$status.tmp"
 for scenario in $scenarios; do
   for seed in "${seeds[@]}"; do
