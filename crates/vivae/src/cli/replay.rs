@@ -127,13 +127,7 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<ExitCode> {
         .into());
     }
     let scenario = load_scenario(path.as_deref())?;
-    let mut experiment =
-        Episode::new(&config, &scenario.scenario).map_err(vivae_lab::Error::from)?;
-    // Refused before anything is said about the replay: an error stays one line.
-    if args.blind_rays {
-        experiment =
-            (experiment.with_blind_rays()).map_err(|e| bad_input(format!("--blind-rays: {e}")))?;
-    }
+    let experiment = blinded(&args, Episode::new(&config, &scenario.scenario))?;
     if let Some(seed) = args.placement_seed.filter(|_| !experiment.varies()) {
         return Err(bad_input(format!(
             "--placement-seed {seed}: {} places no obstacles or traffic at random, so no seed changes the replay",
@@ -179,6 +173,22 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<ExitCode> {
         swerve_figure(&args, &experiment, &champion, &out)?;
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// The replay's episode, its rays blinded with `--blind-rays`: refused
+/// before anything is said about the replay, so that an error stays one line.
+fn blinded(
+    args: &ReplayArgs,
+    experiment: Result<Episode, vivae_lab::error::EpisodeError>,
+) -> anyhow::Result<Episode> {
+    let experiment = experiment.map_err(vivae_lab::Error::from)?;
+    match args.blind_rays {
+        true => {
+            Ok((experiment.with_blind_rays())
+                .map_err(|e| bad_input(format!("--blind-rays: {e}")))?)
+        }
+        false => Ok(experiment),
+    }
 }
 
 /// `--swerve`: the zoomed figure of the meeting blinding changes most, and its line.

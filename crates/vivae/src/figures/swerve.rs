@@ -192,29 +192,7 @@ fn draw_svg(
     let x0 = (centre.x - half).clamp(0.0, (w - WINDOW).max(0.0));
     let y0 = (centre.y - half).clamp(0.0, (h - WINDOW).max(0.0));
     let side = WINDOW * ZOOM;
-    let clearance = |(gap, step): (f64, usize)| match gap <= TOUCH {
-        true => format!("touches at step {step}"),
-        false => format!("passes {gap:.1} px clear at step {step}"),
-    };
-    let mut lines = vec![
-        title.to_string(),
-        format!(
-            "robot {} and {}: seeing, it {}",
-            m.robot + 1,
-            m.what,
-            clearance(m.seeing)
-        ),
-    ];
-    if let Some(b) = m.blinded {
-        lines.push(format!("rays blinded, it {}", clearance(b)));
-    }
-    let legend = match blinded {
-        Some(_) => {
-            "solid: seeing; dashed: rays blinded; dots: closest approach; magenta ring: what is met"
-        }
-        None => "solid: the path; dot: closest approach; magenta ring: what is met",
-    };
-    lines.push(legend.to_string());
+    let lines = caption(m, blinded.is_some(), title);
     let band = 22.0 * lines.len() as f64 + 8.0;
     let mut s = String::new();
     let _ = writeln!(
@@ -253,6 +231,49 @@ fn draw_svg(
         r##"<svg x="0" y="{band}" width="{side}" height="{side}" viewBox="{x0:.1} {y0:.1} {WINDOW} {WINDOW}">"##
     );
     s += inner;
+    overlay(&mut s, world, seeing, blinded, m, thing);
+    s += "</svg>\n</svg>\n";
+    s
+}
+
+/// The figure's caption: title, the meeting seeing and blinded, the legend.
+fn caption(m: &Meeting, blinded: bool, title: &str) -> Vec<String> {
+    let clearance = |(gap, step): (f64, usize)| match gap <= TOUCH {
+        true => format!("touches at step {step}"),
+        false => format!("passes {gap:.1} px clear at step {step}"),
+    };
+    let mut lines = vec![
+        title.to_string(),
+        format!(
+            "robot {} and {}: seeing, it {}",
+            m.robot + 1,
+            m.what,
+            clearance(m.seeing)
+        ),
+    ];
+    if let Some(b) = m.blinded {
+        lines.push(format!("rays blinded, it {}", clearance(b)));
+    }
+    let legend = match blinded {
+        true => {
+            "solid: seeing; dashed: rays blinded; dots: closest approach; magenta ring: what is met"
+        }
+        false => "solid: the path; dot: closest approach; magenta ring: what is met",
+    };
+    lines.push(legend.to_string());
+    lines
+}
+
+/// The paths drawn over the course: the scripted robot met (if one), the
+/// ring round what is met, the robot's path blinded and seeing.
+fn overlay(
+    s: &mut String,
+    world: &World,
+    seeing: &Paths,
+    blinded: Option<&Paths>,
+    m: &Meeting,
+    thing: &Thing,
+) {
     let r = world.params().robot_radius;
     let color = robot_color(m.robot);
     // A scripted robot's path near the meeting, where it was then.
@@ -302,8 +323,6 @@ fn draw_svg(
         r##"<circle cx="{:.1}" cy="{:.1}" r="{r:.1}" fill="{color}" fill-opacity="0.5" stroke="#000000" stroke-width="0.6"/>"##,
         q.x, q.y
     );
-    s += "</svg>\n</svg>\n";
-    s
 }
 
 fn xml_escape(text: &str) -> String {
