@@ -17,6 +17,7 @@ mod evo;
 mod export;
 mod lab;
 mod pool;
+mod replay;
 mod reproduce;
 // The program's portable C math symbols, shared rather than copied.
 #[path = "../../crates/vivae/src/portable_libm.rs"]
@@ -36,7 +37,7 @@ fn _vivae(m: &Bound<'_, PyModule>) -> PyResult<()> {
     tasks::register(m)?;
     m.add_class::<lab::Controller>()?;
     m.add_function(wrap_pyfunction!(lab::evolve, m)?)?;
-    m.add_function(wrap_pyfunction!(lab::replay, m)?)?;
+    m.add_function(wrap_pyfunction!(replay::replay, m)?)?;
     m.add_function(wrap_pyfunction!(lab::resume, m)?)?;
     m.add_function(wrap_pyfunction!(lab::report, m)?)?;
     m.add_function(wrap_pyfunction!(lab::load_genome, m)?)?;

@@ -330,6 +330,21 @@ def test_replay_on_a_placement_of_random_obstacles_and_traffic(tmp_path):
     assert seven["collisions"] == pytest.approx(robot + traffic + obstacle)
 
 
+def test_replay_with_the_rays_blinded_as_the_cli_does(tmp_path, cli):
+    out = tmp_path / "rays"
+    vivae.evolve(out=out, progress=False, scenario="corridor", distance_rays=5, **SETTINGS)
+    seeing, blind = vivae.replay(out, placement_seed=3), vivae.replay(out, placement_seed=3, blind_rays=True)
+    assert blind == vivae.replay(out, placement_seed=3, blind_rays=True)
+    assert blind != seeing
+    printed = subprocess.run([cli, "replay", str(out), "--placement-seed", "3", "--blind-rays",
+                              "--out", str(tmp_path / "r")], check=True, capture_output=True, text=True).stdout
+    assert float(dict(kv.split("=") for kv in printed.split())["fitness"]) == blind["fitness"]
+    surface = tmp_path / "surface"
+    vivae.evolve(out=surface, progress=False, scenario="corridor", **SETTINGS)
+    with pytest.raises(ValueError, match="blind_rays=True: the robots carry no distance rays"):
+        vivae.replay(surface, blind_rays=True)
+
+
 def test_a_maze_run_takes_its_robot_model_and_other_tasks_refuse_one(tmp_path):
     vivae.evolve(out=tmp_path / "m", task="maze", robot="vivae", generations=1, population=20,
                  threads=1, progress=False)

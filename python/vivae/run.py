@@ -192,7 +192,9 @@ def replay(source: str | os.PathLike, **overrides: Any) -> dict:
             ``neurons``, … as :func:`evolve` (another scenario drives all of
             its robots unless ``robots`` says otherwise); and
             ``placement_seed`` (as ``vivae replay --placement-seed``): the
-            placement of a scenario's random obstacles and traffic (default 0).
+            placement of a scenario's random obstacles and traffic (default 0);
+            ``blind_rays=True`` (as ``vivae replay --blind-rays``): every
+            distance ray reads "nothing in range" whatever is in front of it.
 
     Returns:
         The episode's measures: ``fitness`` (px/step), ``on_road`` (fraction),

@@ -311,8 +311,13 @@ pub fn replay(
         Some(Member::Elite(cell)) => (format!("Elite of cell {cell}"), format!("-elite{cell}")),
         Some(Member::Front(i)) => (format!("Front member {i}"), format!("-front{i}")),
     };
+    // A blinded replay is drawn beside the seeing one, not over it.
+    let (blind_tag, blind_title) = match experiment.blind_rays() {
+        true => ("-blind-rays", ", rays blinded"),
+        false => ("", ""),
+    };
     let name = format!(
-        "replay-{safe}-s{}x{}-n{}x{}{}{tag}",
+        "replay-{safe}-s{}x{}-n{}x{}{}{tag}{blind_tag}",
         s.rings,
         s.angles,
         n.rings,
@@ -326,7 +331,7 @@ pub fn replay(
         _ => format!(" (gen {})", champion.generation),
     };
     let title = format!(
-        "{who}{generation} on {scenario}, s{}x{} n{}x{}",
+        "{who}{generation} on {scenario}, s{}x{} n{}x{}{blind_title}",
         s.rings, s.angles, n.rings, n.angles
     );
     let episode = trajectory_figure(experiment, &champion.genome, &title, out, &name)?;

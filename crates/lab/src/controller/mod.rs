@@ -2,6 +2,7 @@
 //! substrate decoded from a CPPN (fixed sheets or ES-HyperNEAT) and the
 //! weight normalisation applied to it.
 
+pub mod blind;
 pub mod drive;
 pub mod es;
 pub mod normalize;

@@ -48,6 +48,17 @@ pub struct ReplayArgs {
     /// (default: the run's).
     #[arg(long, value_name = "N")]
     pub distance_rays: Option<usize>,
+    /// Blind the distance rays: every ray reads "nothing in range" whatever
+    /// is in front of it, the rest of the robot as it was (to compare with
+    /// the replay that sees).
+    #[arg(long)]
+    pub blind_rays: bool,
+    /// Also draw the swerve: zoomed in on the block or scripted robot whose
+    /// meeting blinding the rays changes most, the robot's path seeing and
+    /// blinded (swerve-pN.png beside the trajectories); prints the least
+    /// clearance of each in px, 0 where they touch.
+    #[arg(long)]
+    pub swerve: bool,
     /// Arithmetic of the controller (exact|fast; default: the run's): a
     /// champion evolved in one precision re-scored in the other.
     #[arg(long, value_name = "exact|fast")]
@@ -116,7 +127,7 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<ExitCode> {
         .into());
     }
     let scenario = load_scenario(path.as_deref())?;
-    let experiment = Episode::new(&config, &scenario.scenario).map_err(vivae_lab::Error::from)?;
+    let experiment = blinded(&args, Episode::new(&config, &scenario.scenario))?;
     if let Some(seed) = args.placement_seed.filter(|_| !experiment.varies()) {
         return Err(bad_input(format!(
             "--placement-seed {seed}: {} places no obstacles or traffic at random, so no seed changes the replay",
@@ -158,7 +169,66 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<ExitCode> {
         replay.behaviour.fields()
     );
     eprintln!("figure: {}", replay.figure.display());
+    if args.swerve {
+        swerve_figure(&args, &experiment, &champion, &out)?;
+    }
     Ok(ExitCode::SUCCESS)
+}
+
+/// The replay's episode, its rays blinded with `--blind-rays`: refused
+/// before anything is said about the replay, so that an error stays one line.
+fn blinded(
+    args: &ReplayArgs,
+    experiment: Result<Episode, vivae_lab::error::EpisodeError>,
+) -> anyhow::Result<Episode> {
+    let experiment = experiment.map_err(vivae_lab::Error::from)?;
+    match args.blind_rays {
+        true => {
+            Ok((experiment.with_blind_rays())
+                .map_err(|e| bad_input(format!("--blind-rays: {e}")))?)
+        }
+        false => Ok(experiment),
+    }
+}
+
+/// `--swerve`: the zoomed figure of the meeting blinding changes most, and its line.
+fn swerve_figure(
+    args: &ReplayArgs,
+    experiment: &Episode,
+    champion: &rundir::Champion,
+    out: &std::path::Path,
+) -> anyhow::Result<()> {
+    let placement = args.placement_seed.unwrap_or(0);
+    let blind = if args.blind_rays { "-blind-rays" } else { "" };
+    // Named for its run (a run's scenario is its copy, scenario.svg).
+    let run = match args.source.is_dir() {
+        true => args.source.as_path(),
+        false => args.source.parent().unwrap_or(&args.source),
+    };
+    let run = run
+        .file_name()
+        .map_or(String::new(), |n| n.to_string_lossy().into_owned());
+    let title = format!("{run}, placement {placement}");
+    match crate::figures::swerve::swerve(experiment, &champion.genome, &title)? {
+        None => eprintln!("swerve: the scenario has no placed block nor scripted robot to meet"),
+        Some((figure, m)) => {
+            let path = out.join(format!("swerve-p{placement}{blind}"));
+            vivae_lab::io::write_atomic(&path.with_extension("svg"), figure.svg.as_bytes())?;
+            vivae_lab::io::write_atomic(&path.with_extension("png"), &figure.png)?;
+            let blinded = m.blinded.map_or(String::new(), |(gap, step)| {
+                format!(" blinded_clearance={:.2} blinded_step={step}", gap.max(0.0))
+            });
+            println!(
+                "swerve robot={} met=\"{}\" clearance={:.2} step={}{blinded}",
+                m.robot + 1,
+                m.what,
+                m.seeing.0.max(0.0),
+                m.seeing.1
+            );
+            eprintln!("swerve figure: {}", path.with_extension("png").display());
+        }
+    }
+    Ok(())
 }
 
 /// `vivae replay` of a genome of a task that draws no figures: its

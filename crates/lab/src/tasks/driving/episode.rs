@@ -11,6 +11,7 @@ use vivae_neat::{EvalContext, Genome, GenomeSpec};
 use vivae_sim::{DVec2, Scenario, SurfaceGrid, World};
 
 use crate::config::{Aggregate, Config};
+use crate::controller::blind::NOTHING_SEEN;
 use crate::controller::es::{EsSetup, RobotController, SubstrateKind};
 use crate::controller::normalize::SourceScale;
 use crate::controller::sensors::{SensorSheet, read_sheets, sensor_sheets};
@@ -38,6 +39,8 @@ pub struct Episode {
     /// The placement this experiment was fixed to ([`Episode::with_placement_seed`]
     /// of a varying scenario).
     placement: Option<u64>,
+    /// Whether the distance rays read nothing seen ([`Episode::with_blind_rays`]).
+    blind_rays: bool,
     /// The robots' sensors, in controller-input order.
     sensors: Vec<SensorSheet>,
     /// The first sheet's surface sensors, typed, for pictures of what robots see.
@@ -170,6 +173,7 @@ impl Episode {
             world,
             varying,
             placement: None,
+            blind_rays: false,
             sensors,
             surface: surface_grid,
             spec,
@@ -204,6 +208,28 @@ impl Episode {
             self.placement = Some(seed);
         }
         self
+    }
+
+    /// This experiment with its distance rays blinded: every ray reads
+    /// [`NOTHING_SEEN`] whatever is in front of it, the rest as it was; an
+    /// error when the robots carry no distance rays.
+    pub fn with_blind_rays(mut self) -> Result<Episode, EpisodeError> {
+        let rays = (self.sensors.iter_mut())
+            .find(|s| s.name() == "distance")
+            .ok_or_else(|| {
+                EpisodeError::Config(
+                    "the robots carry no distance rays to blind (distance_sensors.rays is 0)"
+                        .into(),
+                )
+            })?;
+        *rays = rays.blinded(NOTHING_SEEN);
+        self.blind_rays = true;
+        Ok(self)
+    }
+
+    /// Whether the distance rays are blinded ([`Episode::with_blind_rays`]).
+    pub fn blind_rays(&self) -> bool {
+        self.blind_rays
     }
 
     /// The placement this experiment is fixed to: `Some` once
@@ -717,6 +743,42 @@ mod tests {
         let sc = crate::shipped::find("obstacles-random").unwrap();
         let scenario = Scenario::from_svg(sc.svg, "obstacles-random", &Default::default()).unwrap();
         assert!(!Episode::new(&config, &scenario).unwrap().context_free());
+    }
+
+    #[test]
+    fn blind_rays_read_nothing_seen_and_change_what_a_rays_controller_does() {
+        let mut config = Config::default();
+        config.experiment.steps = 200;
+        config.distance_sensors.rays = 5;
+        let sc = crate::shipped::find("corridor").unwrap();
+        let scenario = Scenario::from_svg(sc.svg, "corridor", &Default::default()).unwrap();
+        let seeing = Episode::new(&config, &scenario)
+            .unwrap()
+            .with_placement_seed(3);
+        let blind = seeing.clone().with_blind_rays().unwrap();
+        assert!(blind.blind_rays() && !seeing.blind_rays());
+        let n = seeing.sensors().iter().map(|s| s.len()).sum::<usize>();
+        let rays = seeing.sensors()[0].len()..n;
+        assert_eq!(rays.len(), 5);
+        let (mut a, mut b) = (vec![0.0; n], vec![0.0; n]);
+        seeing.read_inputs(seeing.world(), 0, &mut a);
+        blind.read_inputs(blind.world(), 0, &mut b);
+        // The corridor's kerbs are in reach: the seeing rays read them.
+        assert_eq!(a[..rays.start], b[..rays.start]);
+        assert!(a[rays.clone()].iter().any(|&v| v > 0.0), "{a:?}");
+        assert!(b[rays].iter().all(|&v| v == NOTHING_SEEN), "{b:?}");
+        let pop = Population::new(config.neat.clone(), seeing.cppn_spec(), 4).unwrap();
+        let differ = (pop.genomes().iter().take(8))
+            .filter(|g| {
+                let c = seeing.controller(g).unwrap();
+                seeing.run(&c, true).trajectories != blind.run(&c, true).trajectories
+            })
+            .count();
+        assert!(differ > 0, "no controller drove otherwise blind");
+        // Robots without rays have none to blind.
+        config.distance_sensors.rays = 0;
+        let e = Episode::new(&config, &scenario).unwrap().with_blind_rays();
+        assert!(e.unwrap_err().to_string().contains("no distance rays"));
     }
 
     #[test]
