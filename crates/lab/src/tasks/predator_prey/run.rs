@@ -46,6 +46,7 @@ pub static TASK: TaskEntry = TaskEntry {
     scenarios: &SCENARIOS,
     maps: true,
     substrate: false,
+    stepped: None,
 };
 
 /// The predator–prey arenas as shipped scenarios (`--scenario predator-prey`).
