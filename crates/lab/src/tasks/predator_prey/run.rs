@@ -53,7 +53,7 @@ pub static TASK: TaskEntry = TaskEntry {
 pub const SCENARIOS: [Shipped; 2] = [
     Shipped {
         name: "predator-prey",
-        what: "an open 300 x 300 arena, for --task predator-prey (a hunter and a prey)",
+        what: "an open 300 x 300 arena, for the predator-prey task (a hunter and a prey)",
         svg: include_str!("../../../../../scenarios/predator-prey.svg"),
         task: NAME,
     },
