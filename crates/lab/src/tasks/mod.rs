@@ -39,9 +39,6 @@ pub use seam::{
 };
 pub use target::{StoredTarget, TargetProgress};
 
-/// The config's `[coevolution]` section, the predator–prey task's own.
-pub use predator_prey::section::CoevolutionConfig;
-
 /// The built-in tasks; `experiment.task` names one of these or a
 /// [`register`]ed one ([`entries`] lists both). A new task is a folder here
 /// and one line in this list.

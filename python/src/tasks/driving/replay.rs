@@ -1,0 +1,67 @@
+//! A driving champion replayed from Python, as `vivae replay` does.
+
+use std::path::PathBuf;
+
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use vivae_lab::rundir;
+use vivae_lab::tasks::driving::episode::Episode;
+
+use super::task::episode_dict;
+use crate::{args, errors, settings};
+
+/// Replays a champion (a run directory or a `champion.json`) as `vivae
+/// replay` does, without the figure: its fitness, time on road and behaviour measures.
+#[pyfunction]
+#[pyo3(signature = (source, **overrides))]
+pub fn replay<'py>(
+    py: Python<'py>,
+    source: PathBuf,
+    overrides: Option<&Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let (champion, mut config, _) = rundir::load_genome_source(&source).map_err(errors::lab)?;
+    let other_scenario = overrides.is_some_and(|o| o.contains("scenario").unwrap_or(false));
+    // A multi-map run replays on its first training map unless told otherwise.
+    if !other_scenario && vivae_lab::tasks::maps::is_multi_map(&config) {
+        let maps = std::mem::take(&mut config.experiment.scenarios);
+        config.experiment.scenario = maps[0].clone();
+    }
+    let extra = PyDict::new(py);
+    // Another scenario has its own robot starts: all of them, unless told.
+    if other_scenario {
+        extra.set_item("robots", 0)?;
+    }
+    if let Some(o) = overrides {
+        extra.update(o.as_mapping())?;
+    }
+    // Not a config key: which placement of random obstacles and traffic to replay on.
+    let placement_seed: u64 = match extra.get_item("placement_seed")? {
+        Some(v) => {
+            extra.del_item("placement_seed")?;
+            args::int("placement_seed", &v)?
+        }
+        None => 0,
+    };
+    let config = settings::build_from(config, Some(&extra))?;
+    let path = settings::scenario_path(&config);
+    if let Some(p) = path.as_deref().filter(|p| !other_scenario && !p.exists()) {
+        return Err(errors::lab(vivae_lab::io::bad_input(format!(
+            "{}: the champion's scenario {} is not there; name one with scenario=",
+            source.display(),
+            p.display()
+        ))));
+    }
+    let scenario = vivae_lab::io::load_scenario(path.as_deref()).map_err(errors::lab)?;
+    let experiment = Episode::new(&config, &scenario.scenario)
+        .map_err(|e| errors::lab(vivae_lab::Error::from(e)))?
+        .with_placement_seed(placement_seed);
+    let controller = experiment.robot_controller(&champion.genome).map_err(|e| {
+        errors::lab(vivae_lab::Error::Genome {
+            path: source.clone(),
+            reason: format!("the genome's {e}"),
+        })
+    })?;
+    let episode = py.detach(|| experiment.run(&controller, true));
+    episode_dict(py, &episode)
+}
+
