@@ -11,13 +11,12 @@ use pyo3::prelude::*;
 mod args;
 #[macro_use]
 mod asktell;
-mod drive;
 mod errors;
 mod evo;
 mod export;
 mod lab;
 mod pool;
-mod replay;
+mod render;
 mod reproduce;
 // The program's portable C math symbols, shared rather than copied.
 #[path = "../../crates/vivae/src/portable_libm.rs"]
@@ -28,16 +27,12 @@ mod tasks;
 
 #[pymodule]
 fn _vivae(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add_class::<drive::DriveCore>()?;
     m.add_class::<evo::Genome>()?;
     m.add_class::<evo::Network>()?;
     m.add_class::<evo::Population>()?;
     strategies::register(m)?;
-    m.add_class::<lab::DriveTask>()?;
     tasks::register(m)?;
-    m.add_class::<lab::Controller>()?;
     m.add_function(wrap_pyfunction!(lab::evolve, m)?)?;
-    m.add_function(wrap_pyfunction!(replay::replay, m)?)?;
     m.add_function(wrap_pyfunction!(lab::resume, m)?)?;
     m.add_function(wrap_pyfunction!(lab::report, m)?)?;
     m.add_function(wrap_pyfunction!(lab::load_genome, m)?)?;

@@ -7,10 +7,12 @@
 use pyo3::prelude::*;
 
 mod classic;
+mod driving;
 mod predator_prey;
 
 /// Adds every task's own classes and functions to the module `m`.
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     classic::register(m)?;
+    driving::register(m)?;
     predator_prey::register(m)
 }

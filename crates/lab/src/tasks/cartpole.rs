@@ -11,9 +11,9 @@ use vivae_neat::Network;
 use vivae_neat::driver::Evaluation;
 use vivae_neat::math::{cos, sin};
 
-use super::TaskEntry;
 use super::classic::{self, Classic, Draws, argmax};
 use super::plain::{Plain, Trace, entry};
+use super::{Stepped, TaskEntry};
 
 /// The task's registration (`--task cartpole`).
 pub static TASK: TaskEntry = entry::<CartPole>();
@@ -72,6 +72,7 @@ impl Plain for CartPole {
     const STEPS: u64 = (EPISODES * MAX_STEPS) as u64;
     const TARGET: Option<f64> = Some(475.0);
     const TRACES: bool = true;
+    const STEPPED: Option<Stepped> = Some(classic::episode::<Self>);
 
     fn evaluate(net: &mut dyn Network, seed: u64, trace: Option<&mut Trace>) -> Evaluation {
         classic::evaluate::<Self>(net, seed, trace)

@@ -3,13 +3,15 @@
 //! evaluation's seed, the episode loop a network plays (observations rounded
 //! to float32 as Gymnasium returns them, a bias input, fitness = the mean
 //! return), and an episode stepped from a given state under given actions,
-//! which the Python package exposes (through [`super::gymnasium`]) so a test
-//! can compare every step with Gymnasium's.
+//! which each of them declares as its [`super::TaskEntry::stepped`] (the
+//! Python package exposes it through [`super::gymnasium`]) so a test can
+//! compare every step with Gymnasium's.
 
 use vivae_neat::Network;
 use vivae_neat::driver::Evaluation;
 use vivae_neat::eval::splitmix64;
 
+use super::Step;
 use super::plain::{Plain, Trace};
 
 /// The most inputs or outputs a classic-control network has.
@@ -132,22 +134,6 @@ pub fn evaluate<T: Classic>(
         metrics: vec![worst, steps],
         behaviour: place.map(|p| p / steps).to_vec(),
     }
-}
-
-/// One step of an episode as Gymnasium's `env.step` returns it, with the
-/// state it leaves in `env.unwrapped.state`.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Step {
-    /// `env.unwrapped.state` after the step.
-    pub state: Vec<f64>,
-    /// The observation (float32 values).
-    pub observation: Vec<f64>,
-    /// The reward.
-    pub reward: f64,
-    /// Whether the episode terminated.
-    pub terminated: bool,
-    /// Whether it was truncated (its `max_episode_steps` reached).
-    pub truncated: bool,
 }
 
 /// `T`'s episode from state `state` under `actions`, until it terminates, is

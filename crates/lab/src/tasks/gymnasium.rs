@@ -1,32 +1,21 @@
-//! The classic-control tasks by their names, each with its episode stepped
-//! from a given state under given actions ([`episode`]): what the
-//! Python package exposes to compare every step with Gymnasium's own.
+//! The tasks whose episodes step from a given state under given actions
+//! (the classic-control tasks, by their [`super::TaskEntry::stepped`]), by
+//! name: what the Python package exposes to compare every step with
+//! Gymnasium's own.
 
-use super::classic::{Step, episode};
-use super::{acrobot, cartpole, mountain_car, mountain_car_continuous, pendulum};
+use super::{Step, entries, names_with};
 
-/// An episode of one task, as [`episode`] steps it.
-pub type EpisodeFn = fn(&[f64], &[f64]) -> Result<Vec<Step>, String>;
-
-/// The classic-control tasks by name, each with its episode.
-pub static EPISODES: [(&str, EpisodeFn); 5] = [
-    ("cartpole", episode::<cartpole::CartPole>),
-    ("acrobot", episode::<acrobot::Acrobot>),
-    ("mountain-car", episode::<mountain_car::MountainCar>),
-    (
-        "mountain-car-continuous",
-        episode::<mountain_car_continuous::MountainCarContinuous>,
-    ),
-    ("pendulum", episode::<pendulum::Pendulum>),
-];
-
-/// The episode of the classic-control task named `task` (see [`episode`]).
+/// The episode of the task named `task` from `state` under `actions` (see
+/// [`super::Stepped`]); refused for a task that has none.
 pub fn episode_of(task: &str, state: &[f64], actions: &[f64]) -> Result<Vec<Step>, String> {
-    let names = || EPISODES.map(|(n, _)| n).join(", ");
-    let (_, run) = (EPISODES.iter().find(|(n, _)| *n == task)).ok_or_else(|| {
+    let stepped = entries()
+        .into_iter()
+        .find(|t| t.name == task)
+        .and_then(|t| t.stepped);
+    let run = stepped.ok_or_else(|| {
         format!(
             "task {task:?} is not a classic-control task (one of {})",
-            names()
+            names_with(|t| t.stepped.is_some())
         )
     })?;
     run(state, actions)

@@ -32,14 +32,12 @@ mod unread;
 
 pub use registry::{entries, names, register};
 pub use seam::{
-    BuildTask, Finished, HeaderContext, OwnDriver, RunTask, Session, SetRobot, Stopped, TaskEntry,
-    build, check, config_from_toml, default_config, entry, entry_of, entry_of_run, has_substrate,
-    metric_names, names_with, own_driver_of_run, read_config, sections, set_robot,
+    BuildTask, Finished, HeaderContext, OwnDriver, RunTask, Session, SetRobot, Step, Stepped,
+    Stopped, TaskEntry, build, check, config_from_toml, default_config, entry, entry_of,
+    entry_of_run, has_substrate, metric_names, names_with, own_driver_of_run, read_config,
+    sections, set_robot,
 };
 pub use target::{StoredTarget, TargetProgress};
-
-/// The config's `[coevolution]` section, the predator–prey task's own.
-pub use predator_prey::section::CoevolutionConfig;
 
 /// The built-in tasks; `experiment.task` names one of these or a
 /// [`register`]ed one ([`entries`] lists both). A new task is a folder here

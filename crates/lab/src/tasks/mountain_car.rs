@@ -17,9 +17,9 @@ use vivae_neat::Network;
 use vivae_neat::driver::Evaluation;
 use vivae_neat::math::cos;
 
-use super::TaskEntry;
 use super::classic::{self, Classic, Draws, argmax, clip};
 use super::plain::{Plain, Trace, entry};
+use super::{Stepped, TaskEntry};
 
 /// The task's registration (`--task mountain-car`).
 pub static TASK: TaskEntry = entry::<MountainCar>();
@@ -70,6 +70,7 @@ impl Plain for MountainCar {
     const STEPS: u64 = (5 * MAX_STEPS) as u64;
     const TARGET: Option<f64> = Some(-110.0);
     const TRACES: bool = true;
+    const STEPPED: Option<Stepped> = Some(classic::episode::<Self>);
 
     fn evaluate(net: &mut dyn Network, seed: u64, trace: Option<&mut Trace>) -> Evaluation {
         classic::evaluate::<Self>(net, seed, trace)
@@ -116,8 +117,8 @@ impl Classic for MountainCar {
     }
 }
 
-/// Where the car is and how fast it goes, each scaled into [0, 1] (both
-/// MountainCars' behaviour descriptor).
+/// Where the car is and how fast it goes, each scaled into [0, 1] (its
+/// behaviour descriptor).
 pub fn place(o: &[f64]) -> [f64; 2] {
     [
         ((o[0] - MIN_POSITION) / (MAX_POSITION - MIN_POSITION)).clamp(0.0, 1.0),

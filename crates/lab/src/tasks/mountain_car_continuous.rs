@@ -18,10 +18,9 @@ use vivae_neat::Network;
 use vivae_neat::driver::Evaluation;
 use vivae_neat::math::cos;
 
-use super::TaskEntry;
 use super::classic::{self, Classic, Draws, clip};
-use super::mountain_car::place;
 use super::plain::{Plain, Trace, entry};
+use super::{Stepped, TaskEntry};
 
 /// The task's registration (`--task mountain-car-continuous`).
 pub static TASK: TaskEntry = entry::<MountainCarContinuous>();
@@ -126,6 +125,7 @@ impl Plain for MountainCarContinuous {
     const STEPS: u64 = (5 * MAX_STEPS) as u64;
     const TARGET: Option<f64> = Some(90.0);
     const TRACES: bool = true;
+    const STEPPED: Option<Stepped> = Some(classic::episode::<Self>);
 
     fn evaluate(net: &mut dyn Network, seed: u64, trace: Option<&mut Trace>) -> Evaluation {
         classic::evaluate::<Self>(net, seed, trace)
@@ -174,4 +174,12 @@ impl Classic for MountainCarContinuous {
     fn action_of(value: f64) -> Option<f32> {
         Some(value as f32)
     }
+}
+/// Where the car is and how fast it goes, each scaled into [0, 1] (its
+/// behaviour descriptor, MountainCar's).
+fn place(o: &[f64]) -> [f64; 2] {
+    [
+        ((o[0] - MIN_POSITION) / (MAX_POSITION - MIN_POSITION)).clamp(0.0, 1.0),
+        (o[1].abs() / MAX_SPEED).clamp(0.0, 1.0),
+    ]
 }

@@ -22,9 +22,9 @@ use vivae_neat::Network;
 use vivae_neat::driver::Evaluation;
 use vivae_neat::math::{cos, fmod, sin};
 
-use super::TaskEntry;
 use super::classic::{self, Classic, Draws, clip};
 use super::plain::{Plain, Trace, entry};
+use super::{Stepped, TaskEntry};
 
 /// The task's registration (`--task pendulum`).
 pub static TASK: TaskEntry = entry::<Pendulum>();
@@ -93,6 +93,7 @@ impl Plain for Pendulum {
     const STEPS: u64 = (5 * MAX_STEPS) as u64;
     const TARGET: Option<f64> = Some(-200.0);
     const TRACES: bool = true;
+    const STEPPED: Option<Stepped> = Some(classic::episode::<Self>);
 
     fn evaluate(net: &mut dyn Network, seed: u64, trace: Option<&mut Trace>) -> Evaluation {
         classic::evaluate::<Self>(net, seed, trace)

@@ -25,7 +25,7 @@ use crate::search::StrategyConfig;
 use crate::search::TaskFacts;
 use crate::tasks::maps::TrainingMap;
 use crate::tasks::unread::first_change;
-use crate::tasks::{Finished, HeaderContext, RunTask, TargetProgress, TaskEntry};
+use crate::tasks::{Finished, HeaderContext, RunTask, Stepped, TargetProgress, TaskEntry};
 
 /// A task of plain NEAT networks: its shape and how a network is scored.
 pub trait Plain: Send + Sync + 'static {
@@ -55,6 +55,10 @@ pub trait Plain: Send + Sync + 'static {
     const TARGET: Option<f64> = None;
     /// Whether [`Plain::evaluate`] fills a trace when given one (replay).
     const TRACES: bool = false;
+    /// Its episode stepped from a given state under given actions (a
+    /// classic-control task's, [`super::classic::episode`]): its entry's
+    /// [`TaskEntry::stepped`]; none by default.
+    const STEPPED: Option<Stepped> = None;
     /// Its settings over the adapter's defaults (population, generations…).
     fn defaults(_config: &mut Config) {}
     /// Scores `net` on the evaluation of seed `seed`; with `trace`, records
@@ -137,6 +141,7 @@ pub const fn entry<T: Plain>() -> TaskEntry {
         scenarios: &[],
         maps: false,
         substrate: false,
+        stepped: T::STEPPED,
     }
 }
 

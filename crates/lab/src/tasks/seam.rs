@@ -24,6 +24,27 @@ pub type SetRobot = fn(&mut Config, &str) -> std::result::Result<(), String>;
 /// How a task is built from a config and its maps.
 pub type BuildTask = fn(&Config, &[TrainingMap]) -> Result<Box<dyn RunTask>>;
 
+/// A task's episode stepped from a given state under given actions, until
+/// it terminates, is truncated or the actions run out; the error says what is
+/// wrong with the input (see [`TaskEntry::stepped`]).
+pub type Stepped = fn(&[f64], &[f64]) -> std::result::Result<Vec<Step>, String>;
+
+/// One step of an episode as Gymnasium's `env.step` returns it, with the
+/// state it leaves in `env.unwrapped.state`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Step {
+    /// `env.unwrapped.state` after the step.
+    pub state: Vec<f64>,
+    /// The observation (float32 values).
+    pub observation: Vec<f64>,
+    /// The reward.
+    pub reward: f64,
+    /// Whether the episode terminated.
+    pub terminated: bool,
+    /// Whether it was truncated (its `max_episode_steps` reached).
+    pub truncated: bool,
+}
+
 /// A task's registration: what a run needs to know of it before it is built.
 pub struct TaskEntry {
     /// Its name in `experiment.task` and `--task`.
@@ -61,6 +82,10 @@ pub struct TaskEntry {
     /// `drive-image`, the report's episodes and the export of a substrate
     /// need; `vivae compare` groups its runs by substrate.
     pub substrate: bool,
+    /// For a task whose episode can be stepped from a given state (a
+    /// classic-control task, compared step by step with Gymnasium's by the
+    /// Python package): that episode; `None` otherwise.
+    pub stepped: Option<Stepped>,
 }
 
 /// What a running task's own driver tells the program: lines for a person

@@ -55,7 +55,7 @@ pub struct Overrides {
     pub strategy: Option<vivae_lab::config::strategy::StrategyName>,
     /// Behaviour descriptor of the strategies that search on one (strategy.behaviour).
     #[arg(long, value_name = "end-position|end-positions|side-speed|trajectory")]
-    pub behaviour: Option<vivae_lab::tasks::driving::descriptors::BehaviourKind>,
+    pub behaviour: Option<vivae_lab::config::strategy::BehaviourKind>,
     /// Task (experiment.task; default driving, the paper's); docs/howto/ has a page
     /// per task: what it evaluates and which scenario it starts from.
     #[arg(long, value_name = "NAME", value_parser = task_names())]

@@ -248,7 +248,7 @@ impl PredatorPreyCore {
             legend: false,
             title: None,
         };
-        crate::drive::render_rgb(py, self.meeting.world(), &opts)
+        crate::render::render_rgb(py, self.meeting.world(), &opts)
     }
 }
 

@@ -28,6 +28,7 @@ pub static TASK: TaskEntry = TaskEntry {
     scenarios: &crate::tasks::driving::scenarios::SCENARIOS,
     maps: true,
     substrate: true,
+    stepped: None,
 };
 
 /// With another task than driving: refuses `experiment.placements` (and its

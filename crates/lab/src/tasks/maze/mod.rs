@@ -46,13 +46,13 @@ pub const HARD_MAZE_SVG: &str = include_str!("../../../../../scenarios/hard-maze
 pub const SCENARIOS: [Shipped; 2] = [
     Shipped {
         name: "medium-maze",
-        what: "Lehman & Stanley's medium maze, for --task maze (1 robot, a goal)",
+        what: "Lehman & Stanley's medium maze, for the maze task (1 robot, a goal)",
         svg: MEDIUM_MAZE_SVG,
         task: NAME,
     },
     Shipped {
         name: "hard-maze",
-        what: "Lehman & Stanley's hard (deceptive) maze, for --task maze (1 robot, a goal)",
+        what: "Lehman & Stanley's hard (deceptive) maze, for the maze task (1 robot, a goal)",
         svg: HARD_MAZE_SVG,
         task: NAME,
     },

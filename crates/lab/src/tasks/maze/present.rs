@@ -35,7 +35,7 @@ pub(super) fn header(config: &Config, ctx: &HeaderContext<'_>) -> String {
 fn robot(config: &Config) -> String {
     let m = &MazeConfig::of(config);
     match m.robot {
-        MazeRobot::Vivae => "our robot of [physics] (--robot vivae)".into(),
+        MazeRobot::Vivae => "our robot of [physics] (maze.robot = vivae)".into(),
         MazeRobot::Lehman => format!(
             "Lehman's robot ({}, {} walls, collision {})",
             if m.quirks {

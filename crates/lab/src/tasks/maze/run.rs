@@ -45,6 +45,7 @@ pub static TASK: TaskEntry = TaskEntry {
     scenarios: &super::SCENARIOS,
     maps: true,
     substrate: false,
+    stepped: None,
 };
 
 /// The maze task of a maze run's `config` on `scenario`; bad input (naming

@@ -46,13 +46,14 @@ pub static TASK: TaskEntry = TaskEntry {
     scenarios: &SCENARIOS,
     maps: true,
     substrate: false,
+    stepped: None,
 };
 
 /// The predator–prey arenas as shipped scenarios (`--scenario predator-prey`).
 pub const SCENARIOS: [Shipped; 2] = [
     Shipped {
         name: "predator-prey",
-        what: "an open 300 x 300 arena, for --task predator-prey (a hunter and a prey)",
+        what: "an open 300 x 300 arena, for the predator-prey task (a hunter and a prey)",
         svg: include_str!("../../../../../scenarios/predator-prey.svg"),
         task: NAME,
     },

@@ -1,4 +1,4 @@
-//! `vivae.replay`: a champion replayed as `vivae replay` does, without the figure.
+//! A driving champion replayed from Python, as `vivae replay` does.
 
 use std::path::PathBuf;
 
@@ -7,7 +7,7 @@ use pyo3::types::PyDict;
 use vivae_lab::rundir;
 use vivae_lab::tasks::driving::episode::Episode;
 
-use crate::lab::episode_dict;
+use super::task::episode_dict;
 use crate::{args, errors, settings};
 
 /// Replays a champion (a run directory or a `champion.json`) as `vivae
