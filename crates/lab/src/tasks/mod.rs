@@ -33,8 +33,8 @@ mod unread;
 pub use registry::{entries, names, register};
 pub use seam::{
     BuildTask, Finished, HeaderContext, OwnDriver, RunTask, Session, SetRobot, Stopped, TaskEntry,
-    build, check, config_from_toml, default_config, entry, entry_of, entry_of_run, has_substrate,
-    metric_names, names_with, own_driver_of_run, read_config, sections, set_robot,
+    any_map, build, check, config_from_toml, default_config, entry, entry_of, entry_of_run,
+    has_substrate, metric_names, names_with, own_driver_of_run, read_config, sections, set_robot,
 };
 pub use target::{StoredTarget, TargetProgress};
 

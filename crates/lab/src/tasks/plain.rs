@@ -136,6 +136,7 @@ pub const fn entry<T: Plain>() -> TaskEntry {
         sections: &[],
         scenarios: &[],
         maps: false,
+        check_map: crate::tasks::any_map,
         substrate: false,
     }
 }

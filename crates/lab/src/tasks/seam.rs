@@ -56,11 +56,20 @@ pub struct TaskEntry {
     /// copied into the run); a task without (a [`super::plain`] task)
     /// loads none and its run directory has no `scenario.svg`.
     pub maps: bool,
+    /// Refuses a map its runs cannot use (the message names the file and
+    /// what is wrong): every map a config names is checked by it when
+    /// loaded ([`crate::tasks::maps::load`]), by `vivae config check` as by a run.
+    pub check_map: fn(&vivae_sim::Scenario) -> std::result::Result<(), String>,
     /// Whether its controller is a robot's substrate network decoded from a
     /// CPPN (the driving experiment's): what `vivae view`, `retrain`,
     /// `drive-image`, the report's episodes and the export of a substrate
     /// need; `vivae compare` groups its runs by substrate.
     pub substrate: bool,
+}
+
+/// [`TaskEntry::check_map`] of a task that can use any map that loads.
+pub fn any_map(_: &vivae_sim::Scenario) -> std::result::Result<(), String> {
+    Ok(())
 }
 
 /// What a running task's own driver tells the program: lines for a person

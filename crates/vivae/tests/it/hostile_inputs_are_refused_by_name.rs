@@ -446,6 +446,16 @@ fn settings_a_task_does_not_read_are_refused_by_name() {
             format!("{pp}scenario = \"flat.svg\"\n"),
             &["flat.svg", "obstacle region 'zone' has no area"],
         ),
+        // An obstacle region inside a predator-prey arena: no obstacle is placed at random there.
+        (
+            "inside.toml",
+            format!("{pp}scenario = \"inside.svg\"\n"),
+            &[
+                "inside.svg",
+                "obstacle region 'zone'",
+                "places no obstacles at random",
+            ],
+        ),
         (
             "lanes.toml",
             format!("{pp}scenario = \"lanes.svg\"\n"),
@@ -468,17 +478,6 @@ fn settings_a_task_does_not_read_are_refused_by_name() {
             .args(["scenario", "info"])
             .arg(dir.join("lanes.svg")),
         &["lanes.svg", "route lane"],
-    );
-    // An obstacle region inside a predator-prey arena: no obstacle is placed at random there.
-    let path = dir.join("inside.toml");
-    std::fs::write(&path, format!("{pp}scenario = \"inside.svg\"\n")).unwrap();
-    refused(
-        &mut evolve(&path),
-        &[
-            "inside.svg",
-            "obstacle region 'zone'",
-            "places no obstacles at random",
-        ],
     );
     assert!(!dir.join("never").exists());
 }
