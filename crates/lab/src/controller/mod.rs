@@ -5,6 +5,7 @@
 pub mod drive;
 pub mod es;
 pub mod normalize;
+pub mod readings;
 // The sheets' geometry is below the config, which names grids in its keys.
 pub use crate::polar;
 pub mod sensors;

@@ -417,6 +417,12 @@ pub trait RunTask: Task + fmt::Debug + Send + Sync {
         None
     }
 
+    /// The range the inputs of its exported network are read in (with
+    /// [`RunTask::network_outputs`]): by default the robot sensors' [0, 1].
+    fn network_readings(&self) -> crate::controller::readings::Readings {
+        crate::controller::readings::Readings::SENSORS
+    }
+
     /// Whether the end of a run writes `report.html` with the run's curves
     /// alone (a task that draws no figures of its own).
     fn report_curves(&self) -> bool {
