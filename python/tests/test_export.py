@@ -187,8 +187,11 @@ class JsonController:
         self.state = [0.0] * self.net["nodes"]
 
     def reading(self, v: float) -> float:
-        # The `readings` key: 1 if v > 1; v if v >= 0; 0 otherwise (then binary32 when fast).
-        v = 1.0 if v > 1 else (v if v >= 0 else 0.0)
+        # The `readings` key: 0 if NaN, then clamped to [net.readings.low,
+        # net.readings.high] (then binary32 when fast).
+        low, high = self.net["readings"]["low"], self.net["readings"]["high"]
+        v = 0.0 if math.isnan(v) else v
+        v = high if v > high else (low if v < low else v)
         return f32(v) if self.fast else v
 
     def step(self, sensors) -> list[float]:
@@ -287,7 +290,7 @@ def test_an_independent_json_reader_steps_to_vivaes_bits(tmp_path, precision):
     out = tmp_path / f"{precision}.json"
     vivae.export(run, "json", out, precision=precision)
     doc = json.loads(out.read_text())
-    assert doc["format"] == "vivae-controller" and doc["version"] == 2
+    assert doc["format"] == "vivae-controller" and doc["version"] == 3
     assert doc["sheets"][0]["sensor"] == "surface" and doc["net"]["precision"] == precision
     if precision == "fast":
         net = doc["net"]
@@ -361,3 +364,40 @@ def test_drive_image_reads_camera_frames_and_a_map_alike(tmp_path):
     assert vivae.drive_image(run, [rgba], poses=poses) == on_map
     with pytest.raises(ValueError, match="channels"):
         vivae.drive_image(run, [np.zeros((4, 4, 2), dtype=np.uint8)])
+
+
+def test_a_classic_control_network_exports_to_vivaes_bits_on_raw_observations(tmp_path, cli):
+    # CartPole's network reads raw observations (velocities leave [0, 1]):
+    # its task declares them unbounded, and the JSON reader gives vivae's
+    # own network's outputs to the bit on the recorded episode, ONNX within
+    # its exact bound.
+    import subprocess
+
+    run = tmp_path / "run"
+    vivae.evolve(task="cartpole", seed=1, generations=4, out=run, progress=False)
+    subprocess.run([cli, "replay", str(run)], check=True, capture_output=True)
+    lines = (run / "replay" / "episode.csv").read_text().splitlines()
+    header = lines[0].split(",")
+    ins = [i for i, h in enumerate(header) if h.startswith("in")]
+    outs = [i for i, h in enumerate(header) if h.startswith("out")]
+    rows = [[float(t) for t in line.split(",")] for line in lines[1:]]
+    x = np.array([[r[i] for i in ins] for r in rows])
+    want = [[r[i] for i in outs] for r in rows]
+    assert len(rows) >= 20 and len(outs) == 2
+    assert np.any(x < 0) or np.any(x > 1), "observations leave [0, 1]"
+    out = tmp_path / "cartpole.json"
+    vivae.export(run, "json", out)
+    doc = json.loads(out.read_text())
+    assert doc["net"]["readings"] == {"low": -1.7976931348623157e308, "high": 1.7976931348623157e308}
+    reader = JsonController(doc)
+    got = [reader.step(v) for v in x.tolist()]
+    equal = sum(g == w for g, w in zip(got, want))
+    print(f"JSON reader, cartpole: {equal} of {len(want)} steps bit-equal to vivae")
+    assert equal == len(want)
+    model = tmp_path / "cartpole.onnx"
+    vivae.export(run, "onnx", model)
+    onnx_got = onnx_steps(model, x)
+    worst = float(np.max(np.abs(onnx_got - np.array(want))))
+    same = int(np.sum(np.all(onnx_got == np.array(want), axis=1)))
+    print(f"onnxruntime vs vivae, cartpole: {same} of {len(want)} steps bit-equal, largest difference {worst:.3e}")
+    assert worst <= ONNX_BOUNDS[("exact", "recorded")]

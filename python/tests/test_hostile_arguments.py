@@ -227,3 +227,11 @@ def test_cell_of_names_the_behaviour():
     with pytest.raises(TypeError, match=r"behaviour\[0\]: expected a real number, got str"):
         archive.cell_of(["a"])
     assert archive.cell_of([0.9]) == 3
+
+
+@pytest.mark.parametrize("task", ["driving", "cartpole", "predator-prey"])
+def test_an_empty_run_directory_name_is_refused_by_name(task, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(ValueError, match=r'out="": the run directory\'s name is empty'):
+        vivae.evolve(out="", task=task, generations=1, progress=False)
+    assert list(tmp_path.iterdir()) == [], "nothing was written"

@@ -6,6 +6,7 @@ pub mod blind;
 pub mod drive;
 pub mod es;
 pub mod normalize;
+pub mod readings;
 // The sheets' geometry is below the config, which names grids in its keys.
 pub use crate::polar;
 pub mod sensors;

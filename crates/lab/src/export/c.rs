@@ -18,7 +18,7 @@ use std::fmt::Write;
 
 use vivae_neat::Precision;
 
-use super::{Exported, SIGMOID_SLOPE};
+use super::{Exported, Readings, SIGMOID_SLOPE};
 
 /// A C literal that reads back to exactly `v` (shortest round-trip decimal;
 /// C compilers round decimal literals correctly).
@@ -78,14 +78,19 @@ pub fn header(e: &Exported) -> String {
         let _ = writeln!(h, "#define VIVAE_{name}_RINGS {}", s.rings);
         let _ = writeln!(h, "#define VIVAE_{name}_FOV_DEG {}\n", lit(s.fov_deg));
     }
+    let r = net.readings;
+    let _ = writeln!(h, "/* The range every input is read in. */");
+    let _ = writeln!(h, "#define VIVAE_READING_LOW {}", lit(r.low));
+    let _ = writeln!(h, "#define VIVAE_READING_HIGH {}\n", lit(r.high));
     h.push_str(
         "/* Where input i is read: sheet index, ring (0 = nearest), angle index\n   \
          (0 = leftmost), angle from straight ahead in degrees (negative = left)\n   \
          and distance from the robot's centre in px (distance rays: length). */\n\
          struct vivae_place { int sheet; int ring; int angle_index; double angle_deg; double distance; };\n\
          extern const struct vivae_place vivae_places[VIVAE_INPUTS];\n\n\
-         /* One step: in[VIVAE_INPUTS] sensor readings (each clamped to [0, 1],\n   \
-         NaN read as 0), state[VIVAE_STATE] (all zero at the start; updated in\n   \
+         /* One step: in[VIVAE_INPUTS] readings (each read as vivae reads it:\n   \
+         clamped to [VIVAE_READING_LOW, VIVAE_READING_HIGH], NaN read as 0 then\n   \
+         clamped), state[VIVAE_STATE] (all zero at the start; updated in\n   \
          place), out[2] the wheel commands. */\n\
          void vivae_step(const vivae_real *in, vivae_real *state, vivae_real *out);\n",
     );
@@ -189,7 +194,12 @@ pub fn source(e: &Exported, header_name: &str) -> String {
             lit(-SIGMOID_SLOPE)
         );
     }
-    c.push_str(&step_function(net.synchronous, net.wheels, is_fast(e)));
+    c.push_str(&step_function(
+        net.synchronous,
+        net.wheels,
+        net.readings,
+        is_fast(e),
+    ));
     c
 }
 
@@ -369,7 +379,7 @@ pub fn fmaf_function() -> String {
 
 /// The step: the network's nodes in order, synchronously or in place, in
 /// f64 or (fast) in f32 with fused sums.
-fn step_function(synchronous: bool, wheels: [usize; 2], fast: bool) -> String {
+fn step_function(synchronous: bool, wheels: [usize; 2], r: Readings, fast: bool) -> String {
     let (write, finish) = if synchronous {
         (
             "next[k] = sigma(s);",
@@ -388,12 +398,20 @@ fn step_function(synchronous: bool, wheels: [usize; 2], fast: bool) -> String {
     } else {
         "s += weights[l] * x;"
     };
+    let (low, high, nan) = if fast {
+        let l = |v: f64| lit32(v as f32);
+        (l(r.low), l(r.high), l(r.read(f64::NAN)))
+    } else {
+        (lit(r.low), lit(r.high), lit(r.read(f64::NAN)))
+    };
     let mut c = format!(
-        "/* A sensor reading as the step reads it (as vivae does): clamped to\n   \
-         [0, 1], the sensors' range, and NaN read as 0. */\n\
+        "/* An input as the step reads it (as vivae does): clamped to the\n   \
+         range [VIVAE_READING_LOW, VIVAE_READING_HIGH], NaN read as 0 (then\n   \
+         clamped), so every reading is finite. */\n\
          static vivae_real vivae_reading(vivae_real v) {{\n    \
-         if (v > (vivae_real)1) return (vivae_real)1;\n    \
-         return v >= (vivae_real)0 ? v : (vivae_real)0;\n}}\n\n\
+         if (v != v) return {nan};\n    \
+         if (v > {high}) return {high};\n    \
+         return v < {low} ? {low} : v;\n}}\n\n\
          void vivae_step(const vivae_real *in, vivae_real *state, vivae_real *out) {{\n\
          {scratch}    \
          for (int o = 0; o < VIVAE_STATE; o++) {{\n        \

@@ -156,7 +156,8 @@ pub fn exported(
         source.display()
     );
     let recurrent = task.genome_spec().allow_recurrent;
-    super::Exported::plain(&genome, recurrent, outputs, &description).map_err(refused)
+    let readings = task.network_readings();
+    super::Exported::plain(&genome, recurrent, readings, outputs, &description).map_err(refused)
 }
 
 /// The genome `pick` names, and how to call it.

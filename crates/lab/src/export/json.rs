@@ -12,8 +12,9 @@ use super::{Exported, SIGMOID_SLOPE};
 
 /// The format's name and version, the file's first keys.
 pub const FORMAT: &str = "vivae-controller";
-/// Version of the JSON layout (2: the `readings` and `arithmetic` keys).
-pub const VERSION: u32 = 2;
+/// Version of the JSON layout (2: the `readings` and `arithmetic` keys;
+/// 3: the reading range `net.readings`).
+pub const VERSION: u32 = 3;
 
 /// The document: a header, how to run the network, then the controller.
 #[derive(Serialize)]
@@ -40,10 +41,13 @@ reading is the `readings` key. Every operation is IEEE 754 arithmetic as `arithm
 in binary64 when net.precision is \"exact\" (arithmetic.exact) and in binary32 when it is \
 \"fast\" (arithmetic.fast: vivae's --precision fast step, whose sums are fused multiply-adds).";
 
-/// What a sensor reading is read as (the `readings` key).
-pub const READINGS: &str = "reading(v) = 1 if v > 1; v if v >= 0; 0 otherwise: every sensor \
-reading is clamped to the sensors' range [0, 1], NaN read as 0 (+inf as 1, -inf as 0), in every \
-format and in vivae, so a step's values stay finite. The simulator's own readings are in [0, 1].";
+/// What an input is read as (the `readings` key).
+pub const READINGS: &str = "reading(v) = 0 if v is NaN, then net.readings.high if v > \
+net.readings.high; net.readings.low if v < net.readings.low; v otherwise: every input is \
+clamped to the range its task declares, NaN read as 0 (then clamped), +inf as high and -inf \
+as low, in every format and in vivae, so every reading is finite. A robot's sensors read \
+[0, 1], which holds the simulator's own readings; a plain task's observations read every \
+finite binary64 (low = -high = -1.7976931348623157e308), so a finite observation is read as it is.";
 
 /// The activation every node applies (the `activation` key).
 pub const ACTIVATION: &str = "bipolar sigmoid: 2 / (1 + exp(-4.9 * s)) - 1";

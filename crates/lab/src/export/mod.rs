@@ -14,14 +14,19 @@
 //! each `+= w·x` one fused multiply-add and σ with the f32 `exp`, as
 //! vivae's fast step.
 //!
-//! Readings: every format reads a sensor reading `x` as [`reading`]`(x)`,
-//! clamped to the sensors' range [0, 1] with NaN read as 0 (±∞ as 1 and
-//! 0), as vivae does where readings come from outside the simulator (the
-//! simulator's own are in [0, 1] already, so this changes none of its
-//! bits). A step's values therefore stay finite (states in [−1, 1]), and
-//! links of weight 0 can be left out: adding `0·x` (x finite) changes at
-//! most the sign of a zero sum, and σ(±0) is +0 in either precision, so the
-//! result keeps its bits.
+//! Readings: every format reads an input `x` as [`StepNet::readings`] reads
+//! it ([`Readings::read`]): clamped to the range the controller's task
+//! declares, NaN read as 0 (then clamped), ±∞ as the range's ends. A
+//! robot's substrate network reads the sensors' range [0, 1], as vivae does
+//! where readings come from outside the simulator (the simulator's own are
+//! in [0, 1] already, so this changes none of its bits); a plain task's
+//! network reads its observations unbounded ([`Readings::UNBOUNDED`]: every
+//! finite value as it is, the identity on what vivae feeds it). Every
+//! reading is therefore finite, and links of weight 0 can be left out:
+//! adding `0·x` (x finite) changes at most the sign of a zero sum, and
+//! σ(±0) is +0 in either precision, so the result keeps its bits. A state
+//! stays in [−1, 1] except where a sum overflows (readings of unbounded
+//! range near ±1.8e308): it is NaN where +∞ and −∞ meet, in every format.
 
 pub mod c;
 pub mod choose;
@@ -39,6 +44,7 @@ use vivae_neat::hyperneat::{SparseNetwork, SubstrateController};
 use vivae_neat::precision::{bipolar_sigmoid_f32, fma_f32};
 
 use crate::controller::es::RobotController;
+pub use crate::controller::readings::Readings;
 use crate::controller::sensors::SensorSheet;
 use crate::tasks::driving::episode::Episode;
 
@@ -75,21 +81,19 @@ pub struct StepNet {
     /// The arithmetic of the step: exact (f64) or fast (f32; every weight
     /// and bias then an f32 value).
     pub precision: Precision,
+    /// The range every input is read in: the sensors' [0, 1] for a robot's
+    /// substrate network, the task's declared range for a plain one (an
+    /// exact network: a fast one's range lies within binary32's).
+    pub readings: Readings,
 }
 
-/// A sensor reading as a controller reads it: clamped to [0, 1] (the
-/// sensors' range), NaN read as 0 — one meaning in vivae and every export
-/// format, so that a broken sensor cannot make the state NaN for good.
-/// The identity on the simulator's readings.
+/// A sensor reading as a robot's controller reads it: clamped to [0, 1]
+/// (the sensors' range, [`Readings::SENSORS`]), NaN read as 0 — one meaning
+/// in vivae and every export format, so that a broken sensor cannot make
+/// the state NaN for good. The identity on the simulator's readings.
 #[inline]
 pub fn reading(x: f64) -> f64 {
-    if x > 1.0 {
-        1.0
-    } else if x >= 0.0 {
-        x
-    } else {
-        0.0
-    }
+    Readings::SENSORS.read(x)
 }
 
 /// `2/(1 + exp(−4.9·s)) − 1`: vivae's bipolar sigmoid with its portable `exp`.
@@ -213,6 +217,7 @@ impl StepNet {
             synchronous,
             wheels,
             precision: Precision::Exact,
+            readings: Readings::SENSORS,
         }
     }
 
@@ -252,7 +257,7 @@ impl StepNet {
 
     /// One step: `state` (`nodes` long, zero at the start) becomes the next
     /// state, and the wheel commands are returned. `scratch` is `nodes` long.
-    /// Each input is read as [`reading`] of it.
+    /// Each input is read as [`StepNet::readings`] reads it.
     /// In fast precision inputs and states are rounded to f32 (exact for the
     /// f32 values a fast controller reads and makes) and the new states are
     /// f32 values.
@@ -264,7 +269,7 @@ impl StepNet {
             let links = self.starts[k]..self.starts[k + 1];
             let source = |j: usize| {
                 if j < ni {
-                    reading(inputs[j])
+                    self.readings.read(inputs[j])
                 } else {
                     state[j - ni]
                 }
@@ -370,14 +375,17 @@ impl Exported {
 
 impl Exported {
     /// A plain NEAT network ([`StepNet::from_genome`]) whose inputs are one
-    /// sheet, `observation`, and whose outputs mean `outputs`.
+    /// sheet, `observation`, read in `readings` (its task's range), and
+    /// whose outputs mean `outputs`.
     pub fn plain(
         genome: &vivae_neat::Genome,
         recurrent: bool,
+        readings: Readings,
         outputs: &str,
         description: &str,
     ) -> Result<Exported, String> {
-        let net = StepNet::from_genome(genome, recurrent)?;
+        let mut net = StepNet::from_genome(genome, recurrent)?;
+        net.readings = readings;
         let places = (0..net.inputs)
             .map(|i| Place {
                 ring: 0,

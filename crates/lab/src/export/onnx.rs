@@ -5,7 +5,7 @@
 //! element-wise nodes any runtime has.
 //!
 //! Inputs `sensors` `[N, inputs]` (each read as vivae reads it: NaN as 0,
-//! then clamped to [0, 1]) and `state` `[N, nodes]` (zeros at the
+//! then clamped to the net's reading range) and `state` `[N, nodes]` (zeros at the
 //! start); outputs `wheels` `[N, 2]` (left, right) and `next_state`
 //! `[N, nodes]`. A recurrent network is one synchronous update of every
 //! node; a feed-forward ES network is one update per topological level
@@ -185,12 +185,14 @@ pub fn to_onnx(exported: &Exported) -> Vec<u8> {
         counter: 0,
         real,
     };
-    // Readings as vivae reads them (`super::reading`): NaN as 0, then clamped to [0, 1].
+    // Readings as vivae reads them (`Readings::read`): NaN as 0, then
+    // clamped to the net's range.
     let zero = g.reals("zero", &[], &[0.0]);
-    let one = g.reals("one", &[], &[1.0]);
+    let low = g.reals("reading_low", &[], &[net.readings.low]);
+    let high = g.reals("reading_high", &[], &[net.readings.high]);
     let nan = g.node("IsNaN", &["sensors"], None, &[]);
     let read = g.node("Where", &[&nan, &zero, "sensors"], None, &[]);
-    let read = g.node("Clip", &[&read, &zero, &one], None, &[]);
+    let read = g.node("Clip", &[&read, &low, &high], None, &[]);
     let mut v = g.node("Concat", &[&read, "state"], None, &[("axis", 1)]);
     let next = if net.synchronous {
         update(

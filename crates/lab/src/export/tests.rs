@@ -156,7 +156,7 @@ fn the_json_arithmetic_gives_vivaes_constants_to_the_bit() {
     let c = exp.robot_controller(&pop.genomes()[0]).unwrap();
     let doc: serde_json::Value =
         serde_json::from_str(&super::json::to_json(&Exported::new(&exp, &c, "t"))).unwrap();
-    assert_eq!(doc["version"], 2);
+    assert_eq!(doc["version"], 3);
     let a = &doc["arithmetic"];
     let read = |v: &serde_json::Value| read_hex(v.as_str().unwrap());
     let exact = &a["exact"]["exp"]["constants"];

@@ -65,6 +65,17 @@ pub fn load(config: &Config) -> Result<Vec<TrainingMap>> {
     if !uses_maps(config) {
         return Ok(Vec::new());
     }
+    let maps = load_unchecked(config)?;
+    if let Ok(task) = crate::tasks::entry(config.experiment.task.name()) {
+        for map in &maps {
+            (task.check_map)(&map.loaded.scenario).map_err(bad_input)?;
+        }
+    }
+    Ok(maps)
+}
+
+/// The maps of [`load`], before their task's check.
+fn load_unchecked(config: &Config) -> Result<Vec<TrainingMap>> {
     if !is_multi_map(config) {
         let path = (!config.experiment.scenario.is_empty())
             .then(|| PathBuf::from(&config.experiment.scenario));

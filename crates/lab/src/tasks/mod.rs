@@ -33,7 +33,7 @@ mod unread;
 pub use registry::{entries, names, register};
 pub use seam::{
     BuildTask, Finished, HeaderContext, OwnDriver, RunTask, Session, SetRobot, Step, Stepped,
-    Stopped, TaskEntry, build, check, config_from_toml, default_config, entry, entry_of,
+    Stopped, TaskEntry, any_map, build, check, config_from_toml, default_config, entry, entry_of,
     entry_of_run, has_substrate, metric_names, names_with, own_driver_of_run, read_config,
     sections, set_robot,
 };

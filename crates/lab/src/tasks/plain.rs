@@ -19,6 +19,7 @@ use vivae_neat::{
 };
 
 use crate::config::{Config, TaskName};
+use crate::controller::readings::Readings;
 use crate::error::Result;
 use crate::io::bad_input;
 use crate::search::StrategyConfig;
@@ -41,6 +42,11 @@ pub trait Plain: Send + Sync + 'static {
     const OUTPUTS: usize;
     /// What the outputs mean (exported with the network).
     const OUTPUT_MEANING: &'static str;
+    /// The range its network's inputs are read in when exported: by default
+    /// every finite value as it is (an observation as [`Plain::evaluate`]
+    /// feeds it, so the export steps as vivae does), ±∞ as the largest
+    /// finite value of its sign and NaN as 0.
+    const READINGS: Readings = Readings::UNBOUNDED;
     /// Whether its networks may grow recurrent links.
     const RECURRENT: bool = false;
     /// Names of the metrics its evaluations carry; one named `steps`
@@ -140,6 +146,7 @@ pub const fn entry<T: Plain>() -> TaskEntry {
         sections: &[],
         scenarios: &[],
         maps: false,
+        check_map: crate::tasks::any_map,
         substrate: false,
         stepped: T::STEPPED,
     }
@@ -414,6 +421,10 @@ impl<T: Plain> RunTask for PlainRun<T> {
         Some(T::OUTPUT_MEANING)
     }
 
+    fn network_readings(&self) -> Readings {
+        T::READINGS
+    }
+
     fn report_curves(&self) -> bool {
         true
     }
@@ -464,7 +475,8 @@ mod tests {
                 "hidden nodes grew"
             );
             for g in &genomes {
-                let step = StepNet::from_genome(g, recurrent).unwrap();
+                let mut step = StepNet::from_genome(g, recurrent).unwrap();
+                step.readings = CartPole::READINGS;
                 let mut net: Box<dyn Network> = if recurrent {
                     Box::new(RecurrentNetwork::from_genome(g))
                 } else {
@@ -473,9 +485,9 @@ mod tests {
                 let mut state = vec![0.0; step.nodes];
                 let mut scratch = vec![0.0; step.nodes];
                 for t in 0..5 {
-                    // Inside the readings' range [0, 1], which every export format
-                    // clamps to (a plain task's own range is not exported yet).
-                    let inputs = [0.2 * f64::from(t), 0.7, 0.9, 0.05 * f64::from(t), 1.0];
+                    // Raw observations, far outside the sensors' [0, 1]: the
+                    // task's declared range reads them as they are.
+                    let inputs = [-2.4 * f64::from(t), 7.5, -0.9, 1e6 * f64::from(t), 1.0];
                     let mut out = [0.0; 2];
                     net.activate(&inputs, &mut out);
                     let got = step.step(&inputs, &mut state, &mut scratch);

@@ -77,6 +77,10 @@ pub struct TaskEntry {
     /// copied into the run); a task without (a [`super::plain`] task)
     /// loads none and its run directory has no `scenario.svg`.
     pub maps: bool,
+    /// Refuses a map its runs cannot use (the message names the file and
+    /// what is wrong): every map a config names is checked by it when
+    /// loaded ([`crate::tasks::maps::load`]), by `vivae config check` as by a run.
+    pub check_map: fn(&vivae_sim::Scenario) -> std::result::Result<(), String>,
     /// Whether its controller is a robot's substrate network decoded from a
     /// CPPN (the driving experiment's): what `vivae view`, `retrain`,
     /// `drive-image`, the report's episodes and the export of a substrate
@@ -86,6 +90,11 @@ pub struct TaskEntry {
     /// classic-control task, compared step by step with Gymnasium's by the
     /// Python package): that episode; `None` otherwise.
     pub stepped: Option<Stepped>,
+}
+
+/// [`TaskEntry::check_map`] of a task that can use any map that loads.
+pub fn any_map(_: &vivae_sim::Scenario) -> std::result::Result<(), String> {
+    Ok(())
 }
 
 /// What a running task's own driver tells the program: lines for a person
@@ -431,6 +440,12 @@ pub trait RunTask: Task + fmt::Debug + Send + Sync {
     /// `vivae export` writes it), what the network's outputs mean; `None` otherwise.
     fn network_outputs(&self) -> Option<&'static str> {
         None
+    }
+
+    /// The range the inputs of its exported network are read in (with
+    /// [`RunTask::network_outputs`]): by default the robot sensors' [0, 1].
+    fn network_readings(&self) -> crate::controller::readings::Readings {
+        crate::controller::readings::Readings::SENSORS
     }
 
     /// Whether the end of a run writes `report.html` with the run's curves

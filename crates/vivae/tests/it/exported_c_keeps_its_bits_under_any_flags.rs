@@ -413,3 +413,111 @@ fn fast_math_is_a_compile_error_that_says_why() {
         );
     }
 }
+
+/// A replay's `episode.csv` of a plain task: each step's inputs and the
+/// network's two outputs, as vivae's own network computed them.
+fn plain_episode(csv: &str) -> Recording {
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let ins: Vec<usize> = (0..header.len())
+        .filter(|&i| header[i].starts_with("in"))
+        .collect();
+    let outs: Vec<usize> = (0..header.len())
+        .filter(|&i| header[i].starts_with("out"))
+        .collect();
+    assert_eq!(outs.len(), 2, "{header:?}");
+    let (mut readings, mut wheels) = (Vec::new(), Vec::new());
+    for line in lines {
+        // Rust writes each f64 in the shortest text that reads back to its bits.
+        let v: Vec<f64> = line.split(',').map(|t| t.parse().unwrap()).collect();
+        readings.push(ins.iter().map(|&i| v[i]).collect());
+        wheels.push([v[outs[0]], v[outs[1]]]);
+    }
+    (readings, wheels)
+}
+
+/// A classic-control network reads raw observations (CartPole's position
+/// and velocities leave [0, 1]): its task declares them unbounded, and the
+/// exported step, and the C file under every compiler and flag set above,
+/// give vivae's own network's outputs to the bit on the task's recorded
+/// episode (the replay's `episode.csv`).
+#[test]
+fn an_exported_cartpole_network_reads_its_observations_unclamped() {
+    let dir = scratch("export-cartpole");
+    let out = dir.join("run");
+    ok(vivae()
+        .args(["evolve", "-q", "--task", "cartpole", "--seed", "1"])
+        .args(["--generations", "4", "--out"])
+        .arg(&out));
+    ok(vivae().arg("replay").arg(&out));
+    let csv = std::fs::read_to_string(out.join("replay/episode.csv")).unwrap();
+    let (readings, want) = plain_episode(&csv);
+    assert!(want.len() >= 20, "{} steps recorded", want.len());
+    // The test can tell: observations leave the sensors' range.
+    assert!(readings.iter().flatten().any(|&v| v < 0.0));
+    assert!(readings.iter().flatten().any(|&v| reading(v) != v));
+    let exported = vivae_lab::export::choose::exported(&out, Pick::Champion, None, None, None)
+        .expect("a cartpole champion exports");
+    assert_eq!(
+        exported.net.readings,
+        vivae_lab::export::Readings::UNBOUNDED
+    );
+    let (mut state, mut scratch) = (vec![0.0; exported.net.nodes], vec![0.0; exported.net.nodes]);
+    let stepped: Vec<[f64; 2]> = (readings.iter())
+        .map(|x| exported.net.step(x, &mut state, &mut scratch))
+        .collect();
+    assert_eq!(
+        equal_steps(&stepped, &want),
+        want.len(),
+        "vivae's exported step"
+    );
+    let c = dir.join("controller.c");
+    ok(vivae()
+        .arg("export")
+        .arg(&out)
+        .args(["--format", "c", "-o"])
+        .arg(&c));
+    std::fs::write(dir.join("harness.c"), HARNESS).unwrap();
+    let input = dir.join("recorded.txt");
+    std::fs::write(&input, harness_input(&readings, false)).unwrap();
+    // Hostile readings (NaN, ±∞, ±1e300, any bits) against the exported step:
+    // a sum may overflow there, and a NaN state must then be NaN in C too.
+    let hostile = hostile_readings(exported.net.inputs, 1500, 5);
+    let hostile_input = dir.join("hostile.txt");
+    std::fs::write(&hostile_input, harness_input(&hostile, false)).unwrap();
+    state.fill(0.0);
+    let hostile_want: Vec<[f64; 2]> = (hostile.iter())
+        .map(|x| exported.net.step(x, &mut state, &mut scratch))
+        .collect();
+    let same = |a: &[[f64; 2]], b: &[[f64; 2]]| {
+        (a.iter().flatten().zip(b.iter().flatten()))
+            .all(|(x, y)| x.to_bits() == y.to_bits() || (x.is_nan() && y.is_nan()))
+    };
+    for (cc, flags) in compilers() {
+        let exe = dir.join(format!("cartpole-{cc}{}", flags.join("")));
+        let status = Command::new(cc)
+            .args(["-Wall", "-Wextra", "-Werror", "-o"])
+            .arg(&exe)
+            .args(&flags)
+            .arg(dir.join("harness.c"))
+            .arg(&c)
+            .status()
+            .expect("the C compiler runs");
+        assert!(
+            status.success(),
+            "{cc} {flags:?} compiles the cartpole network"
+        );
+        let equal = equal_steps(&harness_wheels(&exe, &input, false), &want);
+        println!(
+            "cartpole, {cc} {}: {equal} of {} steps bit-equal to vivae",
+            flags.join(" "),
+            want.len()
+        );
+        assert_eq!(equal, want.len(), "{cc} {flags:?}");
+        let got = harness_wheels(&exe, &hostile_input, false);
+        assert!(
+            same(&got, &hostile_want),
+            "{cc} {flags:?}: hostile readings"
+        );
+    }
+}

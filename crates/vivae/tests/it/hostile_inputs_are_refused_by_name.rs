@@ -5,6 +5,7 @@
 //! changes: no panic, abort, runaway allocation or destroyed run.
 
 use std::path::Path;
+use std::process::Command;
 
 use crate::common::*;
 use crate::every_task_keeps_the_interrupt_promise::snapshot;
@@ -158,8 +159,9 @@ fn a_refused_resume_leaves_the_run_exactly_as_it_was() {
     assert!(line.contains("generations=4"), "{line}");
 }
 
-/// A PNG of just a header claiming `width` × `height` RGB pixels (and an end).
-fn png_header(width: u32, height: u32) -> Vec<u8> {
+/// A PNG of a header saying `width` × `height` RGB pixels, one IDAT chunk
+/// holding `zlib` (the compressed rows), and an end.
+fn png_of(width: u32, height: u32, zlib: &[u8]) -> Vec<u8> {
     let chunk = |kind: &[u8], data: &[u8]| {
         let mut c = (data.len() as u32).to_be_bytes().to_vec();
         let body = [kind, data].concat();
@@ -176,10 +178,106 @@ fn png_header(width: u32, height: u32) -> Vec<u8> {
     [
         &b"\x89PNG\r\n\x1a\n"[..],
         &chunk(b"IHDR", &ihdr),
-        &chunk(b"IDAT", &[0x78, 0x9c, 0x03, 0x00, 0x00, 0x00, 0x00, 0x01]),
+        &chunk(b"IDAT", zlib),
         &chunk(b"IEND", &[]),
     ]
     .concat()
+}
+
+/// A PNG of just a header claiming `width` × `height` RGB pixels (and an end).
+fn png_header(width: u32, height: u32) -> Vec<u8> {
+    png_of(
+        width,
+        height,
+        &[0x78, 0x9c, 0x03, 0x00, 0x00, 0x00, 0x00, 0x01],
+    )
+}
+
+/// A zlib stream that inflates to `bytes` zero bytes (`bytes` − 1 a multiple
+/// of 258), about 160 times smaller: one fixed-Huffman block of a literal 0
+/// and then copies of 258 bytes at distance 1, each 13 bits.
+fn zeros_zlib(bytes: u64) -> Vec<u8> {
+    assert_eq!((bytes - 1) % 258, 0);
+    let mut out = vec![0x78, 0x01];
+    let (mut acc, mut held) = (0u64, 0u32);
+    // Deflate packs bits from each byte's lowest; Huffman codes go in
+    // from their highest bit, other fields from their lowest.
+    let mut put = |value: u64, len: u32, huffman: bool, out: &mut Vec<u8>| {
+        for i in 0..len {
+            let bit = if huffman { len - 1 - i } else { i };
+            acc |= ((value >> bit) & 1) << held;
+            held += 1;
+            if held == 8 {
+                out.push(acc as u8);
+                (acc, held) = (0, 0);
+            }
+        }
+    };
+    put(1, 1, false, &mut out); // the last block
+    put(1, 2, false, &mut out); // fixed Huffman codes
+    put(0x30, 8, true, &mut out); // literal 0
+    for _ in 0..(bytes - 1) / 258 {
+        put(0b1100_0101, 8, true, &mut out); // length 258 (code 285)
+        put(0, 5, true, &mut out); // distance 1 (code 0)
+    }
+    put(0, 7, true, &mut out); // end of block (code 256)
+    put(0, 7, false, &mut out); // to the byte's end
+    out.extend_from_slice(&((bytes % 65521) << 16 | 1).to_be_bytes()[4..]); // Adler-32
+    out
+}
+
+/// Most data memory (`ulimit -d`, KiB) `drive-image` may use while it
+/// reads the decompression bomb: far less than the bomb inflates to.
+const BOMB_DATA_KIB: u64 = 256 * 1024;
+
+#[test]
+fn a_decompression_bomb_is_read_by_its_header_within_a_memory_bound() {
+    let run_dir = small_run("hostile-bomb", 1);
+    let dir = run_dir.parent().unwrap().to_path_buf();
+    // 100 × 100 RGB pixels by the header (30,100 bytes of rows), behind
+    // 1 GB of zeros in 6 MB: a reader that inflated the whole stream
+    // would need more than three times the bound.
+    let inflated = 1 + 258 * 4_000_000;
+    let bomb = dir.join("bomb.png");
+    std::fs::write(&bomb, png_of(100, 100, &zeros_zlib(inflated))).unwrap();
+    assert!(std::fs::metadata(&bomb).unwrap().len() < inflated / 100);
+    assert!(inflated > 3 * 1024 * BOMB_DATA_KIB);
+    // Every image vivae reads goes through the one PNG reader: as a frame
+    // and as the map of --poses.
+    let poses = dir.join("poses.csv");
+    std::fs::write(&poses, "x,y,heading\n50,50,0\n").unwrap();
+    for extra in [
+        vec![bomb.clone()],
+        vec![bomb.clone(), "--poses".into(), poses],
+    ] {
+        let out = run(Command::new("sh")
+            .arg("-c")
+            .arg(format!("ulimit -d {BOMB_DATA_KIB} && exec \"$0\" \"$@\""))
+            .arg(env!("CARGO_BIN_EXE_vivae"))
+            .arg("drive-image")
+            .arg(&*run_dir)
+            .args(&extra));
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{extra:?}: {:?} {err}", out.status);
+        // A black frame: one CSV line of wheel commands after the header.
+        let csv = String::from_utf8_lossy(&out.stdout);
+        assert_eq!(csv.lines().count(), 2, "{csv}");
+        assert!(csv.starts_with("frame,left,right\n0,"), "{csv}");
+    }
+    // The header's cap, from the same reader: a few bytes claiming
+    // 100000 × 100000 pixels are refused by name before any allocation.
+    let huge = dir.join("huge.png");
+    std::fs::write(&huge, png_header(100_000, 100_000)).unwrap();
+    refused(
+        Command::new("sh")
+            .arg("-c")
+            .arg(format!("ulimit -d {BOMB_DATA_KIB} && exec \"$0\" \"$@\""))
+            .arg(env!("CARGO_BIN_EXE_vivae"))
+            .arg("drive-image")
+            .arg(&*run_dir)
+            .arg(&huge),
+        &["huge.png", "100000 x 100000 pixels", "100000000"],
+    );
 }
 
 #[test]
@@ -307,7 +405,7 @@ fn settings_a_task_does_not_read_are_refused_by_name() {
     for (name, text) in &svg_files {
         std::fs::write(dir.join(name), text).unwrap();
     }
-    let cases: [(&str, String, &[&str]); 7] = [
+    let cases: [(&str, String, &[&str]); 8] = [
         (
             "driving.toml",
             "[coevolution]\nopponents = \"hall-of-fame\"\n".into(),
@@ -348,6 +446,16 @@ fn settings_a_task_does_not_read_are_refused_by_name() {
             format!("{pp}scenario = \"flat.svg\"\n"),
             &["flat.svg", "obstacle region 'zone' has no area"],
         ),
+        // An obstacle region inside a predator-prey arena: no obstacle is placed at random there.
+        (
+            "inside.toml",
+            format!("{pp}scenario = \"inside.svg\"\n"),
+            &[
+                "inside.svg",
+                "obstacle region 'zone'",
+                "places no obstacles at random",
+            ],
+        ),
         (
             "lanes.toml",
             format!("{pp}scenario = \"lanes.svg\"\n"),
@@ -370,17 +478,6 @@ fn settings_a_task_does_not_read_are_refused_by_name() {
             .args(["scenario", "info"])
             .arg(dir.join("lanes.svg")),
         &["lanes.svg", "route lane"],
-    );
-    // An obstacle region inside a predator-prey arena: no obstacle is placed at random there.
-    let path = dir.join("inside.toml");
-    std::fs::write(&path, format!("{pp}scenario = \"inside.svg\"\n")).unwrap();
-    refused(
-        &mut evolve(&path),
-        &[
-            "inside.svg",
-            "obstacle region 'zone'",
-            "places no obstacles at random",
-        ],
     );
     assert!(!dir.join("never").exists());
 }

@@ -27,6 +27,7 @@ pub static TASK: TaskEntry = TaskEntry {
     sections: &[],
     scenarios: &crate::tasks::driving::scenarios::SCENARIOS,
     maps: true,
+    check_map: crate::tasks::any_map,
     substrate: true,
     stepped: None,
 };

@@ -44,6 +44,7 @@ pub static TASK: TaskEntry = TaskEntry {
     sections: &[super::section::SECTION],
     scenarios: &super::SCENARIOS,
     maps: true,
+    check_map: crate::tasks::any_map,
     substrate: false,
     stepped: None,
 };

@@ -182,12 +182,10 @@ pub struct Arena {
 }
 
 impl Arena {
-    /// The arena of `scenario` with the robot of `physics`, episodes of `steps` steps.
-    pub fn new(
-        scenario: &Scenario,
-        physics: &PhysicsParams,
-        steps: u32,
-    ) -> Result<Arena, ArenaError> {
+    /// The hunter's and the prey's robot indices in `scenario`, or why it is
+    /// not a predator–prey arena: the one check of a map for this task, by
+    /// [`Arena::new`] and by the task's entry when a config's maps are loaded.
+    pub fn teams(scenario: &Scenario) -> Result<(usize, usize), ArenaError> {
         let of = |team: &str| -> Vec<usize> {
             (scenario.robots.iter().enumerate())
                 .filter(|(_, r)| r.team == team)
@@ -211,6 +209,16 @@ impl Arena {
                 id: region.id.clone(),
             });
         }
+        Ok((hunter, prey_i))
+    }
+
+    /// The arena of `scenario` with the robot of `physics`, episodes of `steps` steps.
+    pub fn new(
+        scenario: &Scenario,
+        physics: &PhysicsParams,
+        steps: u32,
+    ) -> Result<Arena, ArenaError> {
+        let (hunter, prey_i) = Arena::teams(scenario)?;
         let diagonal = scenario.width().hypot(scenario.height());
         let rim = RANGE - physics.robot_radius;
         let radar = OpponentRadar::new(RADAR_SLICES, diagonal)?;

@@ -45,6 +45,7 @@ pub static TASK: TaskEntry = TaskEntry {
     sections: &[super::section::SECTION],
     scenarios: &SCENARIOS,
     maps: true,
+    check_map: |s| Arena::teams(s).map(|_| ()).map_err(|e| e.to_string()),
     substrate: false,
     stepped: None,
 };
