@@ -270,7 +270,7 @@ impl DriveTask {
         };
         let scenario = &mut config.experiment.scenario;
         if let Some(shipped) =
-            vivae_lab::shipped::find(scenario).filter(|_| !Path::new(scenario.as_str()).exists())
+            vivae_lab::tasks::scenarios::find(scenario).filter(|_| !Path::new(scenario.as_str()).exists())
         {
             // A shipped scenario's name would be read as a file beside the
             // champion: its copy goes there instead.
@@ -631,7 +631,7 @@ pub fn replay<'py>(
     source: PathBuf,
     overrides: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let (champion, mut config, _) = rundir::load_genome_source(&source).map_err(errors::lab)?;
+    let (champion, mut config, _) = vivae_lab::tasks::load_genome_source(&source).map_err(errors::lab)?;
     let other_scenario = overrides.is_some_and(|o| o.contains("scenario").unwrap_or(false));
     // A multi-map run replays on its first training map unless told otherwise.
     if !other_scenario && vivae_lab::tasks::maps::is_multi_map(&config) {
@@ -663,7 +663,7 @@ pub fn replay<'py>(
             p.display()
         ))));
     }
-    let scenario = vivae_lab::io::load_scenario(path.as_deref()).map_err(errors::lab)?;
+    let scenario = vivae_lab::tasks::scenarios::load_scenario(path.as_deref()).map_err(errors::lab)?;
     let experiment = Episode::new(&config, &scenario.scenario)
         .map_err(|e| errors::lab(vivae_lab::Error::from(e)))?
         .with_placement_seed(placement_seed);
@@ -680,14 +680,14 @@ pub fn replay<'py>(
 /// A champion file's (or run directory's) genome.
 #[pyfunction]
 pub fn load_genome(source: PathBuf) -> PyResult<(Genome, f64, u32)> {
-    let (c, _, _) = rundir::load_genome_source(&source).map_err(errors::lab)?;
+    let (c, _, _) = vivae_lab::tasks::load_genome_source(&source).map_err(errors::lab)?;
     Ok((Genome::new(c.genome, false), c.fitness, c.generation))
 }
 
 /// The shipped scenarios: (name, description).
 #[pyfunction]
 pub fn scenarios() -> Vec<(String, String)> {
-    vivae_lab::shipped::all()
+    vivae_lab::tasks::scenarios::all()
         .map(|s| (s.name.to_string(), s.what.to_string()))
         .collect()
 }

@@ -530,7 +530,7 @@ mod rollouts;
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::io::load_scenario;
+    use crate::tasks::scenarios::load_scenario;
     use vivae_neat::Population;
 
     fn paper_experiment(config: &Config) -> Episode {
@@ -593,7 +593,7 @@ mod tests {
     fn several_placements_score_the_mean_or_the_worst_of_their_episodes() {
         let mut config = Config::default();
         config.experiment.steps = 60;
-        let sc = crate::shipped::find("obstacles-random").unwrap();
+        let sc = crate::tasks::scenarios::find("obstacles-random").unwrap();
         let scenario = Scenario::from_svg(sc.svg, "obstacles-random", &Default::default()).unwrap();
         let one = Episode::new(&config, &scenario).unwrap();
         config.experiment.placements = 3;
@@ -714,7 +714,7 @@ mod tests {
     #[test]
     fn an_episode_that_places_from_its_seed_is_not_context_free() {
         let config = Config::default();
-        let sc = crate::shipped::find("obstacles-random").unwrap();
+        let sc = crate::tasks::scenarios::find("obstacles-random").unwrap();
         let scenario = Scenario::from_svg(sc.svg, "obstacles-random", &Default::default()).unwrap();
         assert!(!Episode::new(&config, &scenario).unwrap().context_free());
     }

@@ -88,7 +88,7 @@ mod tests {
 
     #[test]
     fn each_contact_costs_its_price_and_nothing_else_changes() {
-        let s = crate::shipped::find("traffic").unwrap();
+        let s = crate::tasks::scenarios::find("traffic").unwrap();
         let sc = Scenario::from_svg(s.svg, "traffic", &LoadOptions::default()).unwrap();
         let start = World::new(&sc, &PhysicsParams::default()).unwrap();
         let costly = ContactCost::new(Arc::new(AverageSpeed), 0.5);
