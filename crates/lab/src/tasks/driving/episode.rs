@@ -24,6 +24,7 @@ use crate::tasks::driving::descriptors::{EpisodeSetup, METRICS, Measures, measur
 use crate::tasks::driving::fitness::Fitness;
 use crate::tasks::driving::placement::{placed, placement_seed};
 use crate::tasks::driving::rollout::{Drive, Rollout};
+use crate::tasks::driving::section::{FitnessConfig, FitnessKind};
 
 /// Everything needed to evaluate genomes on one scenario with one config.
 ///
@@ -103,9 +104,7 @@ fn fitted(config: &Config, scenario: &Scenario) -> Result<Scenario, EpisodeError
         }
         scenario.robots.truncate(wanted);
     }
-    if config.fitness.kind == crate::config::fitness::FitnessKind::Progress
-        && scenario.routes.is_empty()
-    {
+    if FitnessConfig::of(config).kind == FitnessKind::Progress && scenario.routes.is_empty() {
         return Err(EpisodeError::Scenario(format!(
             "{}: fitness.kind = \"progress\" needs a route (a path labelled Route), and the scenario has none",
             scenario.source
@@ -180,7 +179,7 @@ impl Episode {
             scale,
             steps: config.experiment.steps,
             cppn_outputs,
-            fitness: crate::tasks::driving::fitness_contacts::of_config(&config.fitness),
+            fitness: crate::tasks::driving::fitness_contacts::of_config(&FitnessConfig::of(config)),
             measures: Measures::of(&StrategyConfig::of(config)),
             placements: config.experiment.placements.max(1),
             placements_aggregate: config.experiment.placements_aggregate,
