@@ -6,7 +6,7 @@ use libfuzzer_sys::fuzz_target;
 fuzz_target!(|data: &[u8]| {
     if let Ok(body) = std::str::from_utf8(data) {
         let text = vivae_lab::rundir::seal_checkpoint(body);
-        let _ = vivae_lab::rundir::population_from_checkpoint_text(
+        let _ = vivae_lab::run::population_from_checkpoint_text(
             &text,
             std::path::Path::new("fuzz.ckpt"),
         );

@@ -33,10 +33,10 @@ fuzz_target!(|data: &[u8]| {
     put(files::BEST_GENOMES);
     let _ = rundir::read_best_genomes(&dir.join(files::BEST_GENOMES));
     put(files::CHAMPION);
-    let _ = rundir::read_champion(&dir.join(files::CHAMPION));
+    let _ = vivae_lab::tasks::read_champion(&dir.join(files::CHAMPION));
     // `replay RUN_DIR` and `view RUN_DIR`: champion.json and config.toml.
     put(files::CONFIG);
-    let _ = rundir::load_genome_source(dir);
+    let _ = vivae_lab::tasks::load_genome_source(dir);
     // `resume` on a finished run: are the figures and report up to date?
     std::fs::write(dir.join(files::FIGURES).join(files::DRAWN), data).unwrap();
     let _ = rundir::drawn_generations(dir);

@@ -241,14 +241,14 @@ fn record_dict<'py>(py: Python<'py>, r: &GenerationRecord) -> PyResult<Bound<'py
 /// A champion file's (or run directory's) genome.
 #[pyfunction]
 pub fn load_genome(source: PathBuf) -> PyResult<(Genome, f64, u32)> {
-    let (c, _, _) = rundir::load_genome_source(&source).map_err(errors::lab)?;
+    let (c, _, _) = vivae_lab::tasks::load_genome_source(&source).map_err(errors::lab)?;
     Ok((Genome::new(c.genome, false), c.fitness, c.generation))
 }
 
 /// The shipped scenarios: (name, description).
 #[pyfunction]
 pub fn scenarios() -> Vec<(String, String)> {
-    vivae_lab::shipped::all()
+    vivae_lab::tasks::scenarios::all()
         .map(|s| (s.name.to_string(), s.what.to_string()))
         .collect()
 }

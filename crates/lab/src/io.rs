@@ -4,7 +4,7 @@ use std::fs;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use vivae_sim::{LoadOptions, Scenario};
+use vivae_sim::Scenario;
 
 use crate::error::{Error, Result};
 
@@ -152,22 +152,6 @@ fn check_kind(meta: &fs::Metadata) -> std::result::Result<(), String> {
     Err(what.into())
 }
 
-/// A training map named in a config file in folder `base`: a relative path is
-/// relative to `base`, but a bare shipped name (`oval`) with no such file
-/// there stays a shipped name.
-pub fn resolve_map(base: &Path, name: &str) -> String {
-    let path = Path::new(name);
-    if path.is_absolute() {
-        return name.to_string();
-    }
-    let joined = base.join(path);
-    let bare = path.parent() == Some(Path::new(""));
-    if bare && !joined.exists() && crate::shipped::find(name).is_some() {
-        return name.to_string();
-    }
-    joined.to_string_lossy().into_owned()
-}
-
 /// A short reason for an I/O error, without the OS error code noise.
 pub fn io_reason(e: &std::io::Error) -> String {
     match e.kind() {
@@ -185,33 +169,6 @@ pub struct LoadedScenario {
     pub scenario: Scenario,
     /// Its SVG text (copied into run directories).
     pub text: String,
-}
-
-/// Loads the scenario at `path`, or the embedded default when `path` is `None`;
-/// a bare name that is no file, such as `oval`, is a shipped scenario.
-pub fn load_scenario(path: Option<&Path>) -> Result<LoadedScenario> {
-    let shipped = path
-        .filter(|p| !p.exists() && p.parent() == Some(Path::new("")))
-        .and_then(|p| crate::shipped::find(&p.to_string_lossy()));
-    if let Some(p) = path.filter(|p| shipped.is_none() && !p.exists() && p.extension().is_none()) {
-        return Err(bad_input(format!(
-            "{}: no such file, nor a shipped scenario (see `vivae scenario list`)",
-            p.display()
-        )));
-    }
-    let (text, name) = match path {
-        _ if shipped.is_some() => {
-            let s = shipped.expect("checked");
-            (s.svg.to_string(), format!("{}.svg (shipped)", s.name))
-        }
-        Some(p) => (read_text(p)?, p.display().to_string()),
-        None => (
-            DEFAULT_SCENARIO.to_string(),
-            DEFAULT_SCENARIO_NAME.to_string(),
-        ),
-    };
-    let scenario = Scenario::from_svg(&text, &name, &LoadOptions::default())?;
-    Ok(LoadedScenario { scenario, text })
 }
 
 /// Creates `path` and its missing parents; a file in the way is the user's

@@ -7,8 +7,8 @@
 
 use divan::counter::ItemsCount;
 use vivae_lab::config::Config;
-use vivae_lab::io::load_scenario;
 use vivae_lab::tasks::driving::episode::Episode;
+use vivae_lab::tasks::scenarios::load_scenario;
 use vivae_neat::{Genome, NeatParams, Population, Precision};
 
 fn main() {
@@ -42,7 +42,7 @@ fn experiment(config: &Config) -> Episode {
 /// `sincos` that costs a run 8 %.
 fn paper_champion() -> Genome {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/benches/paper-champion.json");
-    vivae_lab::rundir::read_champion(std::path::Path::new(path))
+    vivae_lab::tasks::read_champion(std::path::Path::new(path))
         .unwrap()
         .genome
 }

@@ -10,8 +10,8 @@ use vivae::figures::convergence::{self, ConvergenceOptions};
 use vivae::figures::network::{self, NetworkOptions};
 use vivae_lab::config::Config;
 use vivae_lab::controller::substrate::PolarGrid;
-use vivae_lab::io::load_scenario;
 use vivae_lab::tasks::driving::episode::Episode;
+use vivae_lab::tasks::scenarios::load_scenario;
 use vivae_neat::hyperneat::SubstrateController;
 use vivae_sim::draw::{self, DrawOptions};
 
@@ -25,7 +25,7 @@ fn camera() -> (Episode, SubstrateController) {
         env!("CARGO_MANIFEST_DIR"),
         "/tests/data/paper-champion.json"
     );
-    let champion = vivae_lab::rundir::read_champion(std::path::Path::new(path)).unwrap();
+    let champion = vivae_lab::tasks::read_champion(std::path::Path::new(path)).unwrap();
     let mut config = Config::default();
     config.surface_sensors.rings = 32;
     config.surface_sensors.angles = 96;
@@ -59,7 +59,7 @@ fn decode_32x96_to_9x9(bencher: divan::Bencher) {
         env!("CARGO_MANIFEST_DIR"),
         "/tests/data/paper-champion.json"
     );
-    let champion = vivae_lab::rundir::read_champion(std::path::Path::new(path)).unwrap();
+    let champion = vivae_lab::tasks::read_champion(std::path::Path::new(path)).unwrap();
     let (experiment, _) = camera();
     bencher.bench(|| experiment.controller(&champion.genome).unwrap());
 }

@@ -490,7 +490,9 @@ mod tests {
 
     #[test]
     fn a_scenario_without_robots_is_said_up_front() {
-        let scenario = vivae_lab::io::load_scenario(None).unwrap().scenario;
+        let scenario = vivae_lab::tasks::scenarios::load_scenario(None)
+            .unwrap()
+            .scenario;
         let mut summary = scenario.summary();
         assert!(!scenario_text(&summary, &[]).contains("no robots"));
         summary.robots.clear();
@@ -503,7 +505,9 @@ mod tests {
 
     #[test]
     fn scenario_text_rounds_and_names_robots_and_marks() {
-        let scenario = vivae_lab::io::load_scenario(None).unwrap().scenario;
+        let scenario = vivae_lab::tasks::scenarios::load_scenario(None)
+            .unwrap()
+            .scenario;
         let mut summary = scenario.summary();
         summary.arena.width = 793.700_787_4;
         let text = scenario_text(&summary, &["start".to_string()]);

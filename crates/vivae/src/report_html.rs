@@ -14,12 +14,14 @@ use vivae_sim::{Scenario, World};
 
 use crate::figures::convergence::{self, ConvergenceOptions};
 use crate::figures::network::{self, NetworkOptions};
-use vivae_lab::io::{bad_input, load_scenario, read_text, write_atomic};
+use vivae_lab::io::{bad_input, read_text, write_atomic};
 use vivae_lab::rundir::GenerationRow;
-use vivae_lab::rundir::{self, files, read_champion};
+use vivae_lab::rundir::{self, files};
 use vivae_lab::search::StrategyReport;
 use vivae_lab::tasks::driving::episode::{Episode, EpisodeRecord};
+use vivae_lab::tasks::read_champion;
 use vivae_lab::tasks::read_config;
+use vivae_lab::tasks::scenarios::load_scenario;
 
 /// The page template; `/*VIVAE-DATA*/`, `/*VIVAE-CSS*/` and `/*VIVAE-JS*/` are filled in.
 const TEMPLATE: &str = include_str!("../assets/report.html");
@@ -184,7 +186,7 @@ fn map_episodes(
     if !vivae_lab::tasks::maps::is_multi_map(config) {
         return Ok(Default::default());
     }
-    let loaded = rundir::load_run(dir, config, None)?;
+    let loaded = vivae_lab::tasks::maps::load_run(dir, config, None)?;
     let training = vivae_lab::tasks::driving::training::Training::new(config, &loaded)?;
     let (mut episodes, mut scenes, mut maps) = (Vec::new(), Vec::new(), Vec::new());
     let count = loaded.len();

@@ -12,7 +12,7 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use super::Config;
 
 /// The shared sections' names, in the order a config is written.
-pub(crate) const FIELDS: [&str; 10] = [
+pub(crate) const FIELDS: [&str; 9] = [
     "experiment",
     "substrate",
     "hyperneat",
@@ -22,7 +22,6 @@ pub(crate) const FIELDS: [&str; 10] = [
     "physics",
     "neat",
     "run",
-    "fitness",
 ];
 
 /// The search strategies' section: theirs (each strategy's settings in
@@ -46,9 +45,6 @@ impl Serialize for Config {
         out.serialize_entry("run", &self.run)?;
         if let Some(strategy) = self.owned.raw(STRATEGY) {
             out.serialize_entry(STRATEGY, strategy)?;
-        }
-        if !self.fitness.is_default() {
-            out.serialize_entry("fitness", &self.fitness)?;
         }
         for (name, table) in self.owned.iter().filter(|(n, _)| *n != STRATEGY) {
             out.serialize_entry(name, table)?;
@@ -86,7 +82,6 @@ impl<'de> Visitor<'de> for Sections {
                 "physics" => c.physics = map.next_value()?,
                 "neat" => c.neat = map.next_value()?,
                 "run" => c.run = map.next_value()?,
-                "fitness" => c.fitness = map.next_value()?,
                 _ => match map.next_value::<toml::Value>()? {
                     table @ toml::Value::Table(_) => c.owned.insert(key, table),
                     _ => return Err(A::Error::unknown_field(&key, &FIELDS)),

@@ -14,7 +14,6 @@ mod toml_error;
 mod validate;
 
 pub mod es;
-pub mod fitness;
 pub mod strategy;
 
 pub use owned::{OwnedSection, OwnedSections, Section};
@@ -67,9 +66,6 @@ pub struct Config {
     pub neat: NeatParams,
     /// Threads and checkpoints: how a run is executed, not what it computes.
     pub run: RunConfig,
-    /// What a driving episode scores (unset = average speed, no contact cost).
-    #[serde(default, skip_serializing_if = "fitness::FitnessConfig::is_default")]
-    pub fitness: fitness::FitnessConfig,
     /// The sections the search strategies (`[strategy]`) and the tasks
     /// own, each registered with its entry, by name; written after the
     /// shared ones (`[strategy]` after `[run]`).

@@ -234,11 +234,6 @@ pub(super) fn documented_defaults(sections: &[Section]) -> toml::Value {
         for s in strategy {
             table.insert(s.name.into(), toml::Value::Table((s.defaults)()));
         }
-        let fitness = super::fitness::FitnessConfig::default();
-        table.insert(
-            "fitness".into(),
-            toml::Value::try_from(fitness).expect("TOML"),
-        );
         let opponent = toml::Value::try_from(OpponentConfig::default()).expect("TOML");
         table.insert("opponent_sensors".into(), opponent);
         for s in owned {

@@ -52,7 +52,7 @@ pub fn choose(
     neurons: Option<PolarGrid>,
     precision: Option<Precision>,
 ) -> Result<Chosen> {
-    let (champion, mut config, _) = rundir::load_genome_source(source)?;
+    let (champion, mut config, _) = crate::tasks::load_genome_source(source)?;
     if !crate::tasks::has_substrate(&config) {
         return Err(bad_input(format!(
             "{}: a {} run has no substrate network to decode: runs of {} have one",
@@ -80,7 +80,7 @@ pub fn choose(
         .then(|| PathBuf::from(&config.experiment.scenario))
         .filter(|p| p.exists());
     // The run's map only gives the robots' starts; the embedded map stands in when it is gone.
-    let scenario = crate::io::load_scenario(path.as_deref())?;
+    let scenario = crate::tasks::scenarios::load_scenario(path.as_deref())?;
     let episode = Episode::new(&config, &scenario.scenario).map_err(|e| refused(e.to_string()))?;
     let controller = episode
         .robot_controller(&genome)
@@ -123,7 +123,7 @@ pub fn exported(
     neurons: Option<PolarGrid>,
     precision: Option<Precision>,
 ) -> Result<super::Exported> {
-    let (champion, config, _) = rundir::load_genome_source(source)?;
+    let (champion, config, _) = crate::tasks::load_genome_source(source)?;
     if crate::tasks::has_substrate(&config) {
         let c = choose(source, pick, sensors, neurons, precision)?;
         return Ok(super::Exported::new(

@@ -5,7 +5,7 @@ use super::*;
 use crate::config::Config;
 use crate::controller::es::SubstrateKind;
 use crate::controller::substrate::PolarGrid;
-use crate::io::load_scenario;
+use crate::tasks::scenarios::load_scenario;
 use vivae_neat::{Population, Precision};
 
 fn episode(config: &Config) -> Episode {

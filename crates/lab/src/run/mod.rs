@@ -8,6 +8,8 @@
 //! uninterrupted run's. Wall-clock times live only in `timing.csv`, the one
 //! file that is allowed to differ between two runs of the same config.
 
+mod background;
+mod checkpoint;
 pub mod prepare;
 
 use std::fs;
@@ -30,16 +32,17 @@ use crate::config::Config;
 use crate::error::{Error, Result};
 use crate::io::{bad_input, fnv1a, write_atomic};
 use crate::rundir::{
-    BestLine, Champion, Checkpoint, CheckpointWriter, GenerationRecord, GenerationRow,
-    POPULATION_HEADER, Progress, RunLock, TIMING_HEADER, append, check_config_unchanged,
-    check_csv_prefixes, copy_maps, decode_checkpoint, files, fill_new_run, generations_header,
-    latest_checkpoint, load_run, population_rows, read_best_genomes, remove_abandoned_builds,
-    remove_stale_temporaries, truncate, truncate_lines, write_checkpoint,
+    BestLine, Champion, GenerationRecord, GenerationRow, POPULATION_HEADER, RunLock, TIMING_HEADER,
+    append, copy_maps, files, latest_checkpoint, population_rows, read_best_genomes,
+    remove_abandoned_builds, remove_stale_temporaries, truncate, truncate_lines,
 };
 use crate::tasks::driving::episode::Episode;
 use crate::tasks::driving::training::Training;
-use crate::tasks::maps::{TrainingMap, is_multi_map};
+use crate::tasks::maps::{TrainingMap, is_multi_map, load_run};
 use crate::tasks::{RunTask, StoredTarget, TargetProgress};
+use background::CheckpointWriter;
+use checkpoint::*;
+pub use checkpoint::{population_from_checkpoint, population_from_checkpoint_text};
 
 /// Generations whose best individual gets a trajectory figure (besides the champion).
 pub const FIGURE_GENERATIONS: [u32; 2] = [1, 10];
@@ -131,7 +134,7 @@ impl Run {
         // The run is built in a temporary sibling and renamed into place once its
         // first checkpoint exists: a kill or an error before that leaves no
         // directory that could neither be resumed nor re-run without --force.
-        let old = crate::rundir::replace::check_target(dir, force)?;
+        let old = crate::rundir::replace::check_target(dir, force, &strategy_files())?;
         let (tmp, lock) = temporary_sibling(dir)?;
         let progress = Progress {
             scenario_fnv: scenario_text.map(|t| fnv1a(t.as_bytes())),
@@ -213,7 +216,7 @@ impl Run {
         let maps = load_run(dir, &cp.config, cp.progress.maps_fnv.as_deref())?;
         // A task without maps has no scenario.svg.
         let scenario = (crate::tasks::maps::uses_maps(&cp.config))
-            .then(|| crate::io::load_scenario(Some(&dir.join(files::SCENARIO))))
+            .then(|| crate::tasks::scenarios::load_scenario(Some(&dir.join(files::SCENARIO))))
             .transpose()?;
         let task = crate::tasks::build(&cp.config, &maps)?;
         // Everything is validated before anything in the directory changes.

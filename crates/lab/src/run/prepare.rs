@@ -8,13 +8,13 @@ use std::str::FromStr;
 
 use vivae_neat::{Population, Precision};
 
+use super::population_from_checkpoint;
 use crate::config::es::SubstrateKind;
 use crate::config::strategy::{BehaviourKind, StrategyName};
 use crate::config::{Aggregate, Config, NormalizeBy, Recurrence, TaskName};
 use crate::controller::polar::PolarGrid;
 use crate::error::Result;
 use crate::io::bad_input;
-use crate::rundir::population_from_checkpoint;
 use crate::search::StrategyConfig;
 use crate::tasks::maps::{self, TrainingMap};
 use crate::tasks::{self, RunTask};
@@ -299,7 +299,7 @@ pub fn base_config(
 /// file) the task its shipped scenarios are drawn for (`hard-maze`: the maze).
 pub fn task_named(file: Option<&Path>, overrides: &Overrides) -> Option<TaskName> {
     let drawn_for = (file.is_none() && overrides.task.is_none())
-        .then(|| crate::shipped::task_of(&overrides.scenario))
+        .then(|| crate::tasks::scenarios::task_of(&overrides.scenario))
         .flatten()
         .map(|t| TaskName(t.to_string()));
     overrides.task.clone().or(drawn_for)

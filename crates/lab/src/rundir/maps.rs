@@ -1,6 +1,22 @@
-//! A multi-map run's copies of its training maps (`scenarios/` with a manifest) and loading them back.
+//! A multi-map run's copies of its training maps (`scenarios/` with a
+//! manifest); loading them back is the task's ([`crate::tasks::maps`]).
 
 use super::*;
+use crate::io::LoadedScenario;
+
+/// A training map as loaded: its label and its SVG.
+#[derive(Debug, Clone)]
+pub struct TrainingMap {
+    /// Short name (the file stem, e.g. `oval`).
+    pub label: String,
+    /// The parsed scenario and its text.
+    pub loaded: LoadedScenario,
+}
+
+/// Whether `config` trains on a list of maps (`experiment.scenarios`).
+pub fn is_multi_map(config: &Config) -> bool {
+    !config.experiment.scenarios.is_empty()
+}
 
 /// Copies the training maps of a multi-map run into `dir/scenarios/` with
 /// their manifest, and points `experiment.scenarios` at the copies.
@@ -53,62 +69,6 @@ pub fn manifest(names: &[String], maps: &[TrainingMap]) -> String {
         );
     }
     out
-}
-
-/// Loads the training maps of the run in `dir` (its config `config`): the
-/// copies under `scenarios/` for a multi-map run, else `scenario.svg` (none
-/// for a task without maps).
-/// With `hashes` (from the checkpoint), a copy whose text changed is refused.
-pub fn load_run(dir: &Path, config: &Config, hashes: Option<&[u64]>) -> Result<Vec<TrainingMap>> {
-    if !crate::tasks::maps::uses_maps(config) {
-        return Ok(Vec::new());
-    }
-    if !is_multi_map(config) {
-        let path = dir.join(files::SCENARIO);
-        return Ok(vec![TrainingMap {
-            label: crate::io::scenario_name(Some(&path)),
-            loaded: load_scenario(Some(&path))?,
-        }]);
-    }
-    let names = &config.experiment.scenarios;
-    if let Some(h) = hashes
-        && h.len() != names.len()
-    {
-        return Err(Error::Checkpoint {
-            path: dir.to_path_buf(),
-            reason: format!(
-                "the checkpoint records {} training maps, config.toml names {}",
-                h.len(),
-                names.len()
-            ),
-        });
-    }
-    let mut maps = Vec::with_capacity(names.len());
-    for (i, name) in names.iter().enumerate() {
-        // A run's maps are its own copies, `scenarios/FILE`. The config may
-        // name them as written (relative to the run) or as `read_config`
-        // resolved them (relative to the working directory, or absolute):
-        // the file name finds the copy either way, and nothing outside it.
-        let file = Path::new(name).file_name().unwrap_or_default();
-        let path = dir.join(MAPS_DIR).join(file);
-        let text = crate::io::read_text(&path)?;
-        if let Some(h) = hashes
-            && h[i] != fnv1a(text.as_bytes())
-        {
-            return Err(Error::Checkpoint {
-                path,
-                reason: format!(
-                    "training map {} was edited since the run started (its hash is not the one the checkpoint records); restore it, or start a new run",
-                    i + 1
-                ),
-            });
-        }
-        maps.push(TrainingMap {
-            label: crate::io::scenario_name(Some(&path)),
-            loaded: load_scenario(Some(&path))?,
-        });
-    }
-    Ok(maps)
 }
 
 #[cfg(test)]

@@ -15,16 +15,12 @@ use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
-use vivae_neat::{Genome, Population};
-
-use crate::search::Search;
+use vivae_neat::Genome;
 
 use crate::config::Config;
 use crate::error::{Error, Result};
-use crate::io::{bad_input, fnv1a, load_scenario, read_text, safe_file_stem, write_atomic};
-use crate::tasks::maps::{TrainingMap, is_multi_map};
+use crate::io::{bad_input, fnv1a, read_text, safe_file_stem, write_atomic};
 
-mod background;
 mod champion;
 mod checkpoint;
 mod lifecycle;
@@ -32,7 +28,6 @@ mod maps;
 pub mod replace;
 mod rows;
 
-pub(crate) use background::CheckpointWriter;
 pub use champion::*;
 pub use checkpoint::*;
 pub use lifecycle::*;

@@ -17,7 +17,7 @@ use crate::error::{Error, Refusal, Result};
 use crate::rundir::{MANIFEST, MAPS_DIR, RunLock, files};
 
 /// Top-level files every run directory may hold; beside them, the files
-/// its strategy writes ([`is_run_file`]).
+/// the search strategies write ([`is_run_file`]).
 const RUN_FILES: [&str; 9] = [
     files::CONFIG,
     files::SCENARIO,
@@ -31,10 +31,11 @@ const RUN_FILES: [&str; 9] = [
 ];
 
 /// Whether a run directory may hold a top-level file called `name`: one of
-/// [`RUN_FILES`] or a file some registered strategy writes with each
-/// checkpoint (its entry's `files`).
-fn is_run_file(name: &str) -> bool {
-    RUN_FILES.contains(&name) || (crate::search::entries().iter()).any(|e| e.files.contains(&name))
+/// [`RUN_FILES`] or one of `strategy_files`, those the registered search
+/// strategies write with each checkpoint (their entries' `files`, which the
+/// caller collects: this module sits below the strategies).
+fn is_run_file(name: &str, strategy_files: &[&str]) -> bool {
+    RUN_FILES.contains(&name) || strategy_files.contains(&name)
 }
 
 /// The folder `vivae replay RUN` writes its outputs to by default.
@@ -44,12 +45,19 @@ pub const REPLAY_DIR: &str = "replay";
 /// writes it meanwhile.
 pub(crate) struct OldRun {
     _lock: RunLock,
+    /// The files beside [`RUN_FILES`] that a run may hold (strategies').
+    strategy_files: Vec<&'static str>,
 }
 
 /// Checks that a new run may be written at `dir`: `None` when nothing is
 /// there; with `force`, the existing run (locked) that the new one replaces;
-/// anything else is refused in one line.
-pub(crate) fn check_target(dir: &Path, force: bool) -> Result<Option<OldRun>> {
+/// anything else is refused in one line. A run may hold `strategy_files`
+/// beside the files every run holds (see [`is_run_file`]).
+pub(crate) fn check_target(
+    dir: &Path,
+    force: bool,
+    strategy_files: &[&'static str],
+) -> Result<Option<OldRun>> {
     let meta = match fs::symlink_metadata(dir) {
         Ok(m) => m,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
@@ -85,11 +93,12 @@ pub(crate) fn check_target(dir: &Path, force: bool) -> Result<Option<OldRun>> {
     if !meta.is_dir() {
         return refuse("exists and is not a directory".into());
     }
-    if let Some(why) = not_a_run(dir)? {
+    if let Some(why) = not_a_run(dir, strategy_files)? {
         return refuse(why);
     }
     Ok(Some(OldRun {
         _lock: RunLock::acquire(dir)?,
+        strategy_files: strategy_files.to_vec(),
     }))
 }
 
@@ -119,7 +128,7 @@ fn protected(dir: &Path) -> Option<String> {
 
 /// Why the directory `dir` is not a run vivae may replace (`None`: it is one,
 /// or it is empty).
-fn not_a_run(dir: &Path) -> Result<Option<String>> {
+fn not_a_run(dir: &Path, strategy_files: &[&str]) -> Result<Option<String>> {
     let entries = list(dir)?;
     if entries.is_empty() {
         return Ok(None);
@@ -132,7 +141,7 @@ fn not_a_run(dir: &Path) -> Result<Option<String>> {
             files::CHECKPOINTS
         )));
     }
-    Ok(foreign(dir, &entries)?.map(|path| {
+    Ok(foreign(dir, &entries, strategy_files)?.map(|path| {
         format!(
             "holds {}, which vivae did not write",
             path.strip_prefix(dir).unwrap_or(&path).display()
@@ -153,10 +162,14 @@ fn list(dir: &Path) -> Result<Vec<(String, bool)>> {
 
 /// The first entry of the run directory `dir` (listed as `entries`) that
 /// vivae would not have written, if any.
-fn foreign(dir: &Path, entries: &[(String, bool)]) -> Result<Option<PathBuf>> {
+fn foreign(
+    dir: &Path,
+    entries: &[(String, bool)],
+    strategy_files: &[&str],
+) -> Result<Option<PathBuf>> {
     for (name, is_dir) in entries {
         let known = match is_dir {
-            false => is_run_file(name) || is_temporary(name),
+            false => is_run_file(name, strategy_files) || is_temporary(name),
             true => subfolder_accepts(name).is_some(),
         };
         if !known {
@@ -217,7 +230,7 @@ pub(crate) fn swap_in(new: &Path, dir: &Path, old: Option<OldRun>) -> Result<()>
         let _ = fs::rename(&aside, dir);
         return Err(Error::io("create", dir)(e));
     }
-    remove_run_files(&aside);
+    remove_run_files(&aside, &old.strategy_files);
     drop(old);
     Ok(())
 }
@@ -233,14 +246,14 @@ fn aside_path(dir: &Path) -> PathBuf {
 
 /// Removes the files of the old run at `dir` one by one, only those vivae
 /// writes (a file that appeared since it was checked stays, with its folder).
-fn remove_run_files(dir: &Path) {
+fn remove_run_files(dir: &Path, strategy_files: &[&str]) {
     let Ok(entries) = list(dir) else {
         return;
     };
     for (name, is_dir) in entries {
         let path = dir.join(&name);
         match (is_dir, subfolder_accepts(&name)) {
-            (false, _) if is_run_file(&name) || is_temporary(&name) => {
+            (false, _) if is_run_file(&name, strategy_files) || is_temporary(&name) => {
                 let _ = fs::remove_file(&path);
             }
             (true, Some(accepts)) => {
@@ -276,8 +289,8 @@ mod tests {
         let root = scratch("check");
         let run = root.join("run");
         fake_run(&run);
-        assert!(check_target(&run, true).unwrap().is_some());
-        let e = check_target(&run, false).err().unwrap();
+        assert!(check_target(&run, true, &[]).unwrap().is_some());
+        let e = check_target(&run, false, &[]).err().unwrap();
         // The library names the settings by key; a front end spells them.
         let own = e.to_string();
         assert!(
@@ -294,26 +307,36 @@ mod tests {
             said.ends_with("(choose another --out, or pass --force to replace the run there)"),
             "{said}"
         );
-        assert!(check_target(&root.join("none"), false).unwrap().is_none());
+        assert!(
+            check_target(&root.join("none"), false, &[])
+                .unwrap()
+                .is_none()
+        );
         fs::create_dir(root.join("empty")).unwrap();
-        assert!(check_target(&root.join("empty"), true).unwrap().is_some());
+        assert!(
+            check_target(&root.join("empty"), true, &[])
+                .unwrap()
+                .is_some()
+        );
 
         fs::write(run.join("notes.txt"), "mine").unwrap();
-        let e = check_target(&run, true).err().unwrap();
+        let e = check_target(&run, true, &[]).err().unwrap();
         assert!(e.is_bad_input());
         assert!(e.to_string().contains("holds notes.txt"), "{e}");
+        // A file a strategy writes is a run's when the caller names it.
+        assert!(check_target(&run, true, &["notes.txt"]).unwrap().is_some());
         fs::remove_file(run.join("notes.txt")).unwrap();
         fs::write(run.join("figures/mine.pdf"), "mine").unwrap();
-        let e = check_target(&run, true).err().unwrap();
+        let e = check_target(&run, true, &[]).err().unwrap();
         assert!(e.to_string().contains("figures/mine.pdf"), "{e}");
 
         let other = root.join("other");
         fs::create_dir(&other).unwrap();
         fs::write(other.join("thesis.tex"), "mine").unwrap();
-        let e = check_target(&other, true).err().unwrap();
+        let e = check_target(&other, true, &[]).err().unwrap();
         assert!(e.to_string().contains("is not a vivae run"), "{e}");
         for protected in [Path::new("."), Path::new(".."), Path::new("/")] {
-            let e = check_target(protected, true).err().unwrap();
+            let e = check_target(protected, true, &[]).err().unwrap();
             assert!(e.to_string().contains("working directory"), "{e}");
             assert_eq!(e.to_string().lines().count(), 1);
         }
@@ -328,13 +351,13 @@ mod tests {
         let new = root.join(".run.tmp-1");
         fake_run(&new);
         fs::write(new.join("config.toml"), "new").unwrap();
-        let old = check_target(&run, true).unwrap();
+        let old = check_target(&run, true, &[]).unwrap();
         swap_in(&new, &run, old).unwrap();
         assert_eq!(fs::read_to_string(run.join("config.toml")).unwrap(), "new");
         assert!(!aside_path(&run).exists());
 
         // A new run that is not there to rename: the old run stays.
-        let old = check_target(&run, true).unwrap();
+        let old = check_target(&run, true, &[]).unwrap();
         assert!(swap_in(&root.join("missing"), &run, old).is_err());
         assert_eq!(fs::read_to_string(run.join("config.toml")).unwrap(), "new");
 
@@ -342,7 +365,7 @@ mod tests {
         let stray = aside_path(&run).join("late.txt");
         fs::create_dir_all(aside_path(&run)).unwrap();
         fs::write(&stray, "mine").unwrap();
-        remove_run_files(&aside_path(&run));
+        remove_run_files(&aside_path(&run), &[]);
         assert!(stray.exists());
         fs::remove_dir_all(&root).unwrap();
     }

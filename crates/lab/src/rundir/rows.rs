@@ -4,18 +4,6 @@ use super::*;
 
 pub(crate) const GENERATIONS_HEADER: &str = "generation,best,mean,median,worst,species,mean_cppn_nodes,mean_cppn_links,best_substrate_links,possible_substrate_links\n";
 
-/// The header of `generations.csv` for a run of `config`: NEAT's columns,
-/// then the strategy's own, then the task's.
-pub(crate) fn generations_header(config: &Config) -> String {
-    let base = GENERATIONS_HEADER.trim_end_matches('\n');
-    let task =
-        crate::tasks::entry(config.experiment.task.name()).map_or("", |t| t.generation_columns);
-    format!(
-        "{base}{}{task}\n",
-        crate::search::entry_of(config).map_or("", |e| e.extra_columns)
-    )
-}
-
 pub(crate) const POPULATION_HEADER: &str = "generation,rank,fitness\n";
 
 pub(crate) const TIMING_HEADER: &str = "generation,seconds,robot_steps_per_second\n";
@@ -316,51 +304,6 @@ pub(super) fn read_rows<T>(
         out.push(row);
     }
     Ok(out)
-}
-
-/// Checks that the CSV files, cut at the lengths the checkpoint records, end
-/// exactly after its last generation: a checkpoint of another run, or one
-/// with forged lengths, would otherwise cut a row in half.
-pub(crate) fn check_csv_prefixes(dir: &Path, checkpoint: &Path, p: &Progress) -> Result<()> {
-    for (name, len, count_rows) in [
-        (files::GENERATIONS, p.generations_len, true),
-        // One row per individual: only its end is read.
-        (files::POPULATION, p.population_len, false),
-        (files::TIMING, p.timing_len, true),
-    ] {
-        let path = dir.join(name);
-        let mismatch = || Error::Checkpoint {
-            path: checkpoint.to_path_buf(),
-            reason: format!(
-                "does not belong to this run: {name} does not end after generation {} at byte {len}",
-                p.done
-            ),
-        };
-        let Some((prefix, from_start)) = csv_prefix(&path, len, !count_rows)? else {
-            // Shorter than recorded: `truncate` reports it with both lengths.
-            continue;
-        };
-        if !prefix.ends_with(b"\n") {
-            return Err(mismatch());
-        }
-        let body = &prefix[..prefix.len() - 1];
-        let last = body.rsplit(|&b| b == b'\n').next().unwrap_or(b"");
-        let last_generation = std::str::from_utf8(last)
-            .ok()
-            .and_then(|l| l.split(',').next())
-            .and_then(|g| g.parse::<u32>().ok());
-        let fits = match p.done {
-            // Only the header: no row starts with a generation number.
-            0 => last_generation.is_none() && (!from_start || !body.contains(&b'\n')),
-            d => last_generation == Some(d),
-        };
-        let rows_fit =
-            !count_rows || prefix.iter().filter(|&&b| b == b'\n').count() == p.done as usize + 1;
-        if !fits || !rows_fit {
-            return Err(mismatch());
-        }
-    }
-    Ok(())
 }
 
 /// The first `len` bytes of `path` (only their last 64 KiB when `tail_only`),

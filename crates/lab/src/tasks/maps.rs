@@ -20,8 +20,10 @@ use std::path::{Path, PathBuf};
 use vivae_sim::{LoadOptions, Scenario};
 
 use crate::config::Config;
-use crate::error::Result;
-use crate::io::{LoadedScenario, bad_input, load_scenario, read_text};
+use crate::error::{Error, Result};
+use crate::io::{bad_input, fnv1a, read_text};
+pub use crate::rundir::{TrainingMap, is_multi_map};
+use crate::tasks::scenarios::load_scenario;
 
 /// Most bytes the surface rasters of all training maps may take together
 /// (one byte per 1 px cell): ten arenas at the loader's per-map limit.
@@ -35,20 +37,6 @@ const SIZING_CELL: f64 = 64.0;
 /// that a test can repeat it bit for bit).
 pub fn mean(values: &[f64]) -> f64 {
     values.iter().sum::<f64>() / values.len().max(1) as f64
-}
-
-/// A training map as loaded: its label and its SVG.
-#[derive(Debug, Clone)]
-pub struct TrainingMap {
-    /// Short name (the file stem, e.g. `oval`).
-    pub label: String,
-    /// The parsed scenario and its text.
-    pub loaded: LoadedScenario,
-}
-
-/// Whether `config` trains on a list of maps (`experiment.scenarios`).
-pub fn is_multi_map(config: &Config) -> bool {
-    !config.experiment.scenarios.is_empty()
 }
 
 /// Whether `config`'s task trains on maps (its entry's [`crate::tasks::TaskEntry::maps`]).
@@ -98,6 +86,62 @@ fn load_unchecked(config: &Config) -> Result<Vec<TrainingMap>> {
             })
         })
         .collect()
+}
+
+/// Loads the training maps of the run in `dir` (its config `config`): the
+/// copies under `scenarios/` for a multi-map run, else `scenario.svg` (none
+/// for a task without maps).
+/// With `hashes` (from the checkpoint), a copy whose text changed is refused.
+pub fn load_run(dir: &Path, config: &Config, hashes: Option<&[u64]>) -> Result<Vec<TrainingMap>> {
+    if !uses_maps(config) {
+        return Ok(Vec::new());
+    }
+    if !is_multi_map(config) {
+        let path = dir.join(crate::rundir::files::SCENARIO);
+        return Ok(vec![TrainingMap {
+            label: crate::io::scenario_name(Some(&path)),
+            loaded: load_scenario(Some(&path))?,
+        }]);
+    }
+    let names = &config.experiment.scenarios;
+    if let Some(h) = hashes
+        && h.len() != names.len()
+    {
+        return Err(Error::Checkpoint {
+            path: dir.to_path_buf(),
+            reason: format!(
+                "the checkpoint records {} training maps, config.toml names {}",
+                h.len(),
+                names.len()
+            ),
+        });
+    }
+    let mut maps = Vec::with_capacity(names.len());
+    for (i, name) in names.iter().enumerate() {
+        // A run's maps are its own copies, `scenarios/FILE`. The config may
+        // name them as written (relative to the run) or as `read_config`
+        // resolved them (relative to the working directory, or absolute):
+        // the file name finds the copy either way, and nothing outside it.
+        let file = Path::new(name).file_name().unwrap_or_default();
+        let path = dir.join(crate::rundir::MAPS_DIR).join(file);
+        let text = crate::io::read_text(&path)?;
+        if let Some(h) = hashes
+            && h[i] != fnv1a(text.as_bytes())
+        {
+            return Err(Error::Checkpoint {
+                path,
+                reason: format!(
+                    "training map {} was edited since the run started (its hash is not the one the checkpoint records); restore it, or start a new run",
+                    i + 1
+                ),
+            });
+        }
+        maps.push(TrainingMap {
+            label: crate::io::scenario_name(Some(&path)),
+            loaded: load_scenario(Some(&path))?,
+        });
+    }
+    Ok(maps)
 }
 
 /// The surface raster a scenario's arena takes, in bytes (1 px cells, one byte each).

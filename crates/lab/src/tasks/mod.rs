@@ -14,6 +14,7 @@
 
 pub mod acrobot;
 pub mod cartpole;
+mod champion;
 pub mod classic;
 pub mod driving;
 pub mod gymnasium;
@@ -26,10 +27,12 @@ pub mod plain;
 pub mod predator_prey;
 mod registry;
 pub mod robot;
+pub mod scenarios;
 mod seam;
 mod target;
 mod unread;
 
+pub use champion::{load_genome_source, read_champion};
 pub use registry::{entries, names, register};
 pub use seam::{
     BuildTask, Finished, HeaderContext, OwnDriver, RunTask, Session, SetRobot, Step, Stepped,

@@ -15,8 +15,9 @@ use super::maps::TrainingMap;
 use super::{TargetProgress, driving};
 use crate::config::{Config, ConfigError, Section, TaskName};
 use crate::error::{Error, Result};
-use crate::io::{read_text, resolve_map};
+use crate::io::read_text;
 use crate::shipped::Shipped;
+use crate::tasks::scenarios::resolve_map;
 
 /// How a task with a choice of robot models sets one by name.
 pub type SetRobot = fn(&mut Config, &str) -> std::result::Result<(), String>;
@@ -71,7 +72,7 @@ pub struct TaskEntry {
     /// Its own config sections (each a table beside the shared ones, left
     /// out of a run's config while at its defaults).
     pub sections: &'static [Section],
-    /// The scenarios shipped for it (`--scenario NAME`; [`crate::shipped::all`]).
+    /// The scenarios shipped for it (`--scenario NAME`; [`crate::tasks::scenarios::all`]).
     pub scenarios: &'static [Shipped],
     /// Whether its runs train on scenario maps (`experiment.scenario(s)`,
     /// copied into the run); a task without (a [`super::plain`] task)

@@ -119,6 +119,7 @@ mod tests {
             .unwrap();
         config_from_toml("[fitness]\ncontact_cost = 0.5\n").unwrap();
         let c = Config::default();
-        assert!(super::refuse_section(&c, "fitness", &c.fitness, &c.fitness, "driving").is_ok());
+        let fitness = crate::tasks::driving::section::FitnessConfig::of(&c);
+        assert!(super::refuse_section(&c, "fitness", &fitness, &fitness, "driving").is_ok());
     }
 }

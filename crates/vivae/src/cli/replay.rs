@@ -8,9 +8,10 @@ use std::process::ExitCode;
 use crate::report;
 use clap::Args;
 use vivae_lab::config::Config;
-use vivae_lab::io::{bad_input, load_scenario};
+use vivae_lab::io::bad_input;
 use vivae_lab::rundir;
 use vivae_lab::tasks::driving::episode::Episode;
+use vivae_lab::tasks::scenarios::load_scenario;
 
 use super::args::{EpisodeArgs, MemberChoice, Resolution, Wiring};
 use super::overrides::{Overrides, apply_overrides, scenario_path};
@@ -100,7 +101,7 @@ fn first_map_unless_told(args: &ReplayArgs, config: &mut vivae_lab::config::Conf
 /// Runs `vivae replay`.
 pub fn run(args: ReplayArgs) -> anyhow::Result<ExitCode> {
     super::report::refuse_own_driver(&args.source, "replay")?;
-    let (mut champion, mut config, base) = rundir::load_genome_source(&args.source)?;
+    let (mut champion, mut config, base) = vivae_lab::tasks::load_genome_source(&args.source)?;
     let member = args.member.member();
     if let Some(member) = member {
         use vivae_lab::search::files::read_member;

@@ -8,7 +8,7 @@ use std::path::Path;
 use std::process::ExitCode;
 
 use vivae_lab::io::bad_input;
-use vivae_lab::rundir::{self, files};
+use vivae_lab::rundir::files;
 use vivae_lab::tasks::{entry_of_run, has_substrate, names_with, read_config};
 
 /// Runs `vivae report` on the run directory `run_dir`.
@@ -48,7 +48,9 @@ pub fn refuse_other_task(path: &Path, command: &str) -> anyhow::Result<()> {
     let config = if path.is_dir() {
         read_config(&path.join(files::CONFIG)).ok()
     } else {
-        rundir::read_champion(path).ok().and_then(|c| c.config)
+        vivae_lab::tasks::read_champion(path)
+            .ok()
+            .and_then(|c| c.config)
     };
     match config {
         Some(c) if !has_substrate(&c) => Err(bad_input(format!(

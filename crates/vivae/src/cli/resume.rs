@@ -52,8 +52,8 @@ pub fn run(args: ResumeArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<Ex
         // Every rank reads the run (rank 0 writes to it only after the handshake).
         let prepared = (|| -> anyhow::Result<_> {
             let checkpoint = rundir::latest_checkpoint(&args.run_dir)?;
-            let (config, _) = rundir::population_from_checkpoint(&checkpoint)?;
-            let maps = vivae_lab::rundir::load_run(&args.run_dir, &config, None)?;
+            let (config, _) = vivae_lab::run::population_from_checkpoint(&checkpoint)?;
+            let maps = vivae_lab::tasks::maps::load_run(&args.run_dir, &config, None)?;
             let experiment = vivae_lab::tasks::build(&config, &maps)?;
             Ok((config, maps, experiment))
         })();

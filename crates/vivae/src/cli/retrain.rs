@@ -42,7 +42,7 @@ pub struct RetrainArgs {
 /// Runs `vivae retrain`.
 pub fn run(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode> {
     let checkpoint = rundir::latest_checkpoint(&args.run_dir)?;
-    let (mut config, population) = rundir::population_from_checkpoint(&checkpoint)?;
+    let (mut config, population) = vivae_lab::run::population_from_checkpoint(&checkpoint)?;
     retrain_on_the_runs_maps(&mut config, &args.run_dir)?;
     config.experiment.init_population = checkpoint.to_string_lossy().into_owned();
     let overrides = Overrides {

@@ -6,7 +6,8 @@ use std::process::ExitCode;
 use crate::report;
 use clap::Subcommand;
 use vivae_lab::controller::substrate::PolarGrid;
-use vivae_lab::io::{load_scenario, write_atomic};
+use vivae_lab::io::write_atomic;
+use vivae_lab::tasks::scenarios::load_scenario;
 
 /// The subcommands of `vivae scenario`.
 #[derive(Subcommand, Debug)]
@@ -38,7 +39,7 @@ pub enum ScenarioCommand {
 pub fn run(command: ScenarioCommand) -> anyhow::Result<ExitCode> {
     match command {
         ScenarioCommand::List => {
-            for s in vivae_lab::shipped::all() {
+            for s in vivae_lab::tasks::scenarios::all() {
                 println!("{:<10} {}", s.name, s.what);
             }
         }

@@ -10,9 +10,10 @@ use serde::Serialize;
 use vivae_lab::config::Config;
 use vivae_lab::io::{DEFAULT_SCENARIO, DEFAULT_SCENARIO_NAME, bad_input, read_text};
 use vivae_lab::rundir::GenerationRow;
-use vivae_lab::rundir::{self, Champion, GenerationBest, files, read_champion};
+use vivae_lab::rundir::{self, Champion, GenerationBest, files};
 use vivae_lab::search::StrategyConfig;
 use vivae_lab::search::files::{self as strategy_files, ArchiveLine, FrontLine, Member};
+use vivae_lab::tasks::read_champion;
 use vivae_lab::tasks::read_config;
 
 /// Most extra scenarios offered from `--scenarios`.
@@ -129,7 +130,7 @@ impl Source {
             .and_then(|e| e.to_str())
             .map(str::to_ascii_lowercase);
         if ext.as_deref() == Some("svg") {
-            let loaded = vivae_lab::io::load_scenario(Some(p))?;
+            let loaded = vivae_lab::tasks::scenarios::load_scenario(Some(p))?;
             loaded
                 .scenario
                 .require_robots()
@@ -146,7 +147,7 @@ impl Source {
         } else {
             // The champion's own recorded config rebuilds its controller
             // (substrate, sensors, physics), as `vivae replay` does.
-            let (champion, config, _) = vivae_lab::rundir::load_genome_source(p)?;
+            let (champion, config, _) = vivae_lab::tasks::load_genome_source(p)?;
             Ok(Source {
                 kind: SourceKind::Genome(p.to_path_buf()),
                 config,

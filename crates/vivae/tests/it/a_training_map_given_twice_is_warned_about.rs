@@ -9,7 +9,11 @@ fn the_same_map_twice_gets_one_warning_line() {
     let dir = scratch("map-twice");
     let config = write_small_config(&dir, 1);
     let copy = dir.join("my-oval.svg");
-    std::fs::write(&copy, vivae_lab::shipped::find("oval").unwrap().svg).unwrap();
+    std::fs::write(
+        &copy,
+        vivae_lab::tasks::scenarios::find("oval").unwrap().svg,
+    )
+    .unwrap();
     let out = run(vivae()
         .args(["evolve", "-q", "--steps", "20"])
         .args(["--scenario", "oval", "--scenario", "roads", "--scenario"])

@@ -5,7 +5,8 @@
 use crate::common;
 
 use crate::common::{evolve, read, scratch, vivae, write_small_config};
-use vivae_lab::rundir::{read_best_genomes, read_champion};
+use vivae_lab::rundir::read_best_genomes;
+use vivae_lab::tasks::read_champion;
 
 #[test]
 fn every_generation_is_recorded_and_resume_writes_the_same_file() {

@@ -12,13 +12,13 @@ use std::path::Path;
 use vivae::figures::network::{self, NetworkOptions};
 use vivae_lab::config::Config;
 use vivae_lab::controller::es::SubstrateKind;
-use vivae_lab::io::load_scenario;
 use vivae_lab::tasks::driving::episode::Episode;
+use vivae_lab::tasks::scenarios::load_scenario;
 
 /// The champion as an ES controller on `sensors`: (hidden neurons, links, SVG).
 fn figure(sensors: (usize, usize)) -> (usize, usize, String) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/paper-champion.json");
-    let champion = vivae_lab::rundir::read_champion(&path).unwrap();
+    let champion = vivae_lab::tasks::read_champion(&path).unwrap();
     let mut config = Config::default();
     config.substrate.kind = SubstrateKind::EsHyperneat;
     config.surface_sensors.rings = sensors.0;

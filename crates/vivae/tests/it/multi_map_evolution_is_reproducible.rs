@@ -28,7 +28,7 @@ fn multi_map_runs_are_reproducible_and_resume_identically() {
         vivae_sim::ROADS_SVG.as_bytes()
     );
     assert_eq!(read(&one, "scenario.svg"), vivae_sim::ROADS_SVG.as_bytes());
-    let oval = vivae_lab::shipped::find("oval").unwrap().svg;
+    let oval = vivae_lab::tasks::scenarios::find("oval").unwrap().svg;
     assert_eq!(read(&one, "scenarios/oval.svg"), oval.as_bytes());
     let manifest = String::from_utf8(read(&one, "scenarios/manifest.txt")).unwrap();
     let hash = format!("{:016x}", vivae_lab::io::fnv1a(oval.as_bytes()));

@@ -13,13 +13,13 @@ use std::path::Path;
 use vivae::figures::network::{self, NetworkOptions};
 use vivae_lab::config::Config;
 use vivae_lab::controller::substrate::PolarGrid;
-use vivae_lab::io::load_scenario;
 use vivae_lab::tasks::driving::episode::Episode;
+use vivae_lab::tasks::scenarios::load_scenario;
 
 /// The paper's champion decoded on `sensors` → `neurons`, and its figure.
 fn figure(sensors: (usize, usize), neurons: (usize, usize)) -> (usize, vivae::figures::Figure) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/paper-champion.json");
-    let champion = vivae_lab::rundir::read_champion(&path).unwrap();
+    let champion = vivae_lab::tasks::read_champion(&path).unwrap();
     let mut config = Config::default();
     config.surface_sensors.rings = sensors.0;
     config.surface_sensors.angles = sensors.1;

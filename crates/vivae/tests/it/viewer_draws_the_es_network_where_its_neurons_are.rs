@@ -11,8 +11,8 @@ use crate::common::browser::{Browser, Viewer, shots};
 use crate::common::scratch;
 use vivae_lab::config::Config;
 use vivae_lab::controller::es::SubstrateKind;
-use vivae_lab::io::load_scenario;
 use vivae_lab::tasks::driving::episode::Episode;
+use vivae_lab::tasks::scenarios::load_scenario;
 
 /// The paper's champion (tests/data) as a genome file that records an
 /// ES-HyperNEAT config, so that the viewer decodes it as ES.
@@ -36,7 +36,7 @@ fn es_config(sensors: (usize, usize)) -> Config {
 
 /// The champion's hidden neurons' places when decoded on `sensors`.
 fn hidden_neurons(champion: &Path, sensors: (usize, usize)) -> Vec<[f64; 2]> {
-    let champion = vivae_lab::rundir::read_champion(champion).unwrap();
+    let champion = vivae_lab::tasks::read_champion(champion).unwrap();
     let scenario = load_scenario(None).unwrap();
     let experiment = Episode::new(&es_config(sensors), &scenario.scenario).unwrap();
     let controller = experiment.robot_controller(&champion.genome).unwrap();

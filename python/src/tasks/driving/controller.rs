@@ -6,8 +6,8 @@ use numpy::{IntoPyArray, PyArray2, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use vivae_lab::controller::substrate::WheelNeurons;
-use vivae_neat::hyperneat::{BatchState, SubstrateController};
 use vivae_neat::Network as _;
+use vivae_neat::hyperneat::{BatchState, SubstrateController};
 
 /// A decoded substrate driving robots from their readings (the evolved
 /// controller, outside the simulator's own rollout).
@@ -86,4 +86,3 @@ fn real_array<'py>(
     }
     given.call_method1("astype", ("float64",))
 }
-

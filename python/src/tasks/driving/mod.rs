@@ -6,8 +6,8 @@
 use pyo3::prelude::*;
 
 mod controller;
-mod sim;
 mod replay;
+mod sim;
 mod task;
 
 /// Adds the driving experiment's classes and functions to the module `m`.

@@ -4,7 +4,6 @@ use std::path::PathBuf;
 
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use vivae_lab::rundir;
 use vivae_lab::tasks::driving::episode::Episode;
 
 use super::task::episode_dict;
@@ -19,7 +18,8 @@ pub fn replay<'py>(
     source: PathBuf,
     overrides: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let (champion, mut config, _) = rundir::load_genome_source(&source).map_err(errors::lab)?;
+    let (champion, mut config, _) =
+        vivae_lab::tasks::load_genome_source(&source).map_err(errors::lab)?;
     let other_scenario = overrides.is_some_and(|o| o.contains("scenario").unwrap_or(false));
     // A multi-map run replays on its first training map unless told otherwise.
     if !other_scenario && vivae_lab::tasks::maps::is_multi_map(&config) {
@@ -60,14 +60,15 @@ pub fn replay<'py>(
             p.display()
         ))));
     }
-    let scenario = vivae_lab::io::load_scenario(path.as_deref()).map_err(errors::lab)?;
+    let scenario =
+        vivae_lab::tasks::scenarios::load_scenario(path.as_deref()).map_err(errors::lab)?;
     let experiment = Episode::new(&config, &scenario.scenario)
         .map_err(|e| errors::lab(vivae_lab::Error::from(e)))?
         .with_placement_seed(placement_seed);
     let experiment = match blind_rays {
-        true => experiment.with_blind_rays().map_err(|e| {
-            errors::lab(vivae_lab::io::bad_input(format!("blind_rays=True: {e}")))
-        })?,
+        true => experiment
+            .with_blind_rays()
+            .map_err(|e| errors::lab(vivae_lab::io::bad_input(format!("blind_rays=True: {e}"))))?,
         false => experiment,
     };
     let controller = experiment.robot_controller(&champion.genome).map_err(|e| {

@@ -269,7 +269,8 @@ impl DriveCore {
         }
         let config = settings::build(config.as_deref(), overrides)?;
         let path = settings::scenario_path(&config);
-        let loaded = vivae_lab::io::load_scenario(path.as_deref()).map_err(errors::lab)?;
+        let loaded =
+            vivae_lab::tasks::scenarios::load_scenario(path.as_deref()).map_err(errors::lab)?;
         errors::warn_scenario(py, &loaded.scenario)?;
         let experiment = Episode::new(&config, &loaded.scenario)
             .map_err(|e| errors::lab(vivae_lab::Error::from(e)))?;

@@ -3,8 +3,8 @@
 
 use std::path::{Path, PathBuf};
 
-use numpy::ndarray::{Array1, Array2};
 use numpy::IntoPyArray;
+use numpy::ndarray::{Array1, Array2};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -16,8 +16,8 @@ use vivae_lab::tasks::driving::{episode::Episode, training::Training};
 use vivae_neat::hyperneat::SubstrateController;
 use vivae_neat::{EvalContext, Network as _};
 
-use crate::evo::{Genome, Population, merge_params};
 use super::controller::Controller;
+use crate::evo::{Genome, Population, merge_params};
 use crate::{args, errors, settings};
 
 /// The training maps and task of `config`, as `vivae evolve` sets them up.
@@ -266,8 +266,8 @@ impl DriveTask {
             }
         };
         let scenario = &mut config.experiment.scenario;
-        if let Some(shipped) =
-            vivae_lab::shipped::find(scenario).filter(|_| !Path::new(scenario.as_str()).exists())
+        if let Some(shipped) = vivae_lab::tasks::scenarios::find(scenario)
+            .filter(|_| !Path::new(scenario.as_str()).exists())
         {
             // A shipped scenario's name would be read as a file beside the
             // champion: its copy goes there instead.
@@ -324,4 +324,3 @@ pub(super) fn episode_dict<'py>(
     }
     Ok(d)
 }
-

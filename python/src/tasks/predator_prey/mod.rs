@@ -60,7 +60,8 @@ fn arena_of(
 /// warning for each of the scenario's), its physics, steps and controllers.
 fn config_arena(py: Python<'_>, config: &Config) -> PyResult<Arena> {
     let path = settings::scenario_path(config);
-    let loaded = vivae_lab::io::load_scenario(path.as_deref()).map_err(errors::lab)?;
+    let loaded =
+        vivae_lab::tasks::scenarios::load_scenario(path.as_deref()).map_err(errors::lab)?;
     errors::warn_scenario(py, &loaded.scenario)?;
     Arena::of_config(&loaded.scenario, config).map_err(errors::value)
 }

@@ -11,7 +11,7 @@
 //! use vivae_lab::tasks::driving::combined::{Combined, DrivingTask};
 //! use vivae_neat::{driver::Task, EvalContext, Population};
 //!
-//! let scenario = vivae_lab::io::load_scenario(None)?.scenario;
+//! let scenario = vivae_lab::tasks::scenarios::load_scenario(None)?.scenario;
 //! let mut short = Config::default();
 //! short.experiment.steps = 100;
 //! let mut long = short.clone();

@@ -182,7 +182,7 @@ mod tests {
 
     #[test]
     fn contacts_with_placed_blocks_are_told_from_kerbs() {
-        let s = crate::shipped::find("kerbed-loop").unwrap();
+        let s = crate::tasks::scenarios::find("kerbed-loop").unwrap();
         let sc = Scenario::from_svg(s.svg, "kerbed-loop", &LoadOptions::default()).unwrap();
         let mut p = crate::tasks::driving::placement::placed(&sc, 5);
         assert!(p.placed_obstacles > 0);

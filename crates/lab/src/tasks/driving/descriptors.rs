@@ -201,7 +201,9 @@ mod tests {
         // five after the only step of 1; with 3 steps, some steps take two.
         let due = |steps: u32| -> Vec<u32> {
             let mut path = Vec::new();
-            let world = crate::io::load_scenario(None).unwrap().scenario;
+            let world = crate::tasks::scenarios::load_scenario(None)
+                .unwrap()
+                .scenario;
             let world = World::new(&world, &vivae_sim::PhysicsParams::default()).unwrap();
             let mut at = Vec::new();
             for t in 1..=steps {

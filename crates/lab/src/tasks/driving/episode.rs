@@ -25,6 +25,7 @@ use crate::tasks::driving::descriptors::{EpisodeSetup, METRICS, Measures, measur
 use crate::tasks::driving::fitness::Fitness;
 use crate::tasks::driving::placement::{placed, placement_seed};
 use crate::tasks::driving::rollout::{Drive, Rollout};
+use crate::tasks::driving::section::{FitnessConfig, FitnessKind};
 
 /// Everything needed to evaluate genomes on one scenario with one config.
 ///
@@ -106,9 +107,7 @@ fn fitted(config: &Config, scenario: &Scenario) -> Result<Scenario, EpisodeError
         }
         scenario.robots.truncate(wanted);
     }
-    if config.fitness.kind == crate::config::fitness::FitnessKind::Progress
-        && scenario.routes.is_empty()
-    {
+    if FitnessConfig::of(config).kind == FitnessKind::Progress && scenario.routes.is_empty() {
         return Err(EpisodeError::Scenario(format!(
             "{}: fitness.kind = \"progress\" needs a route (a path labelled Route), and the scenario has none",
             scenario.source
@@ -184,7 +183,7 @@ impl Episode {
             scale,
             steps: config.experiment.steps,
             cppn_outputs,
-            fitness: crate::tasks::driving::fitness_contacts::of_config(&config.fitness),
+            fitness: crate::tasks::driving::fitness_contacts::of_config(&FitnessConfig::of(config)),
             measures: Measures::of(&StrategyConfig::of(config)),
             placements: config.experiment.placements.max(1),
             placements_aggregate: config.experiment.placements_aggregate,
@@ -556,7 +555,7 @@ mod rollouts;
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::io::load_scenario;
+    use crate::tasks::scenarios::load_scenario;
     use vivae_neat::Population;
 
     fn paper_experiment(config: &Config) -> Episode {
@@ -619,7 +618,7 @@ mod tests {
     fn several_placements_score_the_mean_or_the_worst_of_their_episodes() {
         let mut config = Config::default();
         config.experiment.steps = 60;
-        let sc = crate::shipped::find("obstacles-random").unwrap();
+        let sc = crate::tasks::scenarios::find("obstacles-random").unwrap();
         let scenario = Scenario::from_svg(sc.svg, "obstacles-random", &Default::default()).unwrap();
         let one = Episode::new(&config, &scenario).unwrap();
         config.experiment.placements = 3;
@@ -740,7 +739,7 @@ mod tests {
     #[test]
     fn an_episode_that_places_from_its_seed_is_not_context_free() {
         let config = Config::default();
-        let sc = crate::shipped::find("obstacles-random").unwrap();
+        let sc = crate::tasks::scenarios::find("obstacles-random").unwrap();
         let scenario = Scenario::from_svg(sc.svg, "obstacles-random", &Default::default()).unwrap();
         assert!(!Episode::new(&config, &scenario).unwrap().context_free());
     }

@@ -33,7 +33,7 @@
 //! }
 //!
 //! let config = vivae_lab::config::Config::default();
-//! let scenario = vivae_lab::io::load_scenario(None)?.scenario;
+//! let scenario = vivae_lab::tasks::scenarios::load_scenario(None)?.scenario;
 //! let plain = vivae_lab::tasks::driving::episode::Episode::new(&config, &scenario)?;
 //! let strict = plain.clone().with_fitness(Arc::new(StayOnRoad));
 //! let population = vivae_neat::Population::new(config.neat.clone(), plain.cppn_spec(), 1)?;

@@ -65,10 +65,10 @@ impl Fitness for ContactCost {
 }
 
 /// The fitness `config` names: the registry of the driving task's fitnesses.
-pub fn of_config(config: &crate::config::fitness::FitnessConfig) -> Arc<dyn Fitness> {
-    use crate::config::fitness::FitnessKind;
+pub fn of_config(config: &crate::tasks::driving::section::FitnessConfig) -> Arc<dyn Fitness> {
     use crate::tasks::driving::fitness::AverageSpeed;
     use crate::tasks::driving::fitness_progress::Progress;
+    use crate::tasks::driving::section::FitnessKind;
     let base: Arc<dyn Fitness> = match config.kind {
         FitnessKind::AverageSpeed => Arc::new(AverageSpeed),
         FitnessKind::Progress => Arc::new(Progress),
@@ -88,7 +88,7 @@ mod tests {
 
     #[test]
     fn each_contact_costs_its_price_and_nothing_else_changes() {
-        let s = crate::shipped::find("traffic").unwrap();
+        let s = crate::tasks::scenarios::find("traffic").unwrap();
         let sc = Scenario::from_svg(s.svg, "traffic", &LoadOptions::default()).unwrap();
         let start = World::new(&sc, &PhysicsParams::default()).unwrap();
         let costly = ContactCost::new(Arc::new(AverageSpeed), 0.5);

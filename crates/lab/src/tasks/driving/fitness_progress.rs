@@ -77,7 +77,7 @@ mod tests {
     }
 
     fn oncoming() -> World {
-        let s = crate::shipped::find("oncoming").unwrap();
+        let s = crate::tasks::scenarios::find("oncoming").unwrap();
         let sc = Scenario::from_svg(s.svg, "oncoming", &LoadOptions::default()).unwrap();
         World::new(&sc, &PhysicsParams::default()).unwrap()
     }

@@ -16,6 +16,7 @@ pub mod resolutions;
 pub mod rollout;
 pub mod run;
 pub mod scenarios;
+pub mod section;
 pub mod training;
 
 pub use run::TASK;

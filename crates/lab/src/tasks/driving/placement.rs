@@ -134,7 +134,7 @@ mod tests {
     use vivae_sim::LoadOptions;
 
     fn shipped(name: &str) -> Scenario {
-        let s = crate::shipped::find(name).expect("shipped");
+        let s = crate::tasks::scenarios::find(name).expect("shipped");
         Scenario::from_svg(s.svg, name, &LoadOptions::default()).unwrap()
     }
 

@@ -46,7 +46,7 @@ mod tests {
     use super::*;
     use crate::config::Aggregate;
     use crate::controller::substrate::PolarGrid;
-    use crate::io::load_scenario;
+    use crate::tasks::scenarios::load_scenario;
     use vivae_neat::driver::Task;
     use vivae_neat::{EvalContext, Population};
 

@@ -9,6 +9,7 @@ use crate::config::{Config, TaskName};
 use crate::error::Result;
 use crate::search::StrategyConfig;
 use crate::tasks::driving::combined::DrivingTask;
+use crate::tasks::driving::section::FitnessConfig;
 use crate::tasks::driving::training::Training;
 use crate::tasks::maps::TrainingMap;
 use crate::tasks::{HeaderContext, RunTask, TaskEntry};
@@ -17,14 +18,14 @@ use crate::tasks::{HeaderContext, RunTask, TaskEntry};
 pub static TASK: TaskEntry = TaskEntry {
     name: TaskName::DRIVING,
     default_config: Config::default,
-    validate: |c| c.fitness.check(),
+    validate: |c| FitnessConfig::of(c).check(),
     metric_names: &crate::config::strategy::METRICS,
     generation_columns: "",
     build,
     own_driver: None,
     refuse_when_other: refuse_for_other_tasks,
     set_robot: None,
-    sections: &[],
+    sections: &[super::section::SECTION],
     scenarios: &crate::tasks::driving::scenarios::SCENARIOS,
     maps: true,
     check_map: crate::tasks::any_map,
@@ -39,8 +40,8 @@ pub static TASK: TaskEntry = TaskEntry {
 /// off its default: only a driving episode is scored by it.
 fn refuse_for_other_tasks(c: &Config) -> std::result::Result<(), String> {
     let e = &c.experiment;
-    let fitness = crate::config::fitness::FitnessConfig::default();
-    crate::tasks::unread::refuse_section(c, "fitness", &c.fitness, &fitness, TaskName::DRIVING)?;
+    let (fitness, default) = (FitnessConfig::of(c), FitnessConfig::default());
+    crate::tasks::unread::refuse_section(c, "fitness", &fitness, &default, TaskName::DRIVING)?;
     if !e.precision.is_exact() {
         return Err(format!(
             "experiment.precision = \"{}\": only a driving run has a fast controller step \

@@ -35,7 +35,7 @@ pub struct Training {
 
 impl Training {
     /// The training of `config` on `maps` (loaded by [`crate::tasks::maps::load`]
-    /// or [`crate::rundir::load_run`]).
+    /// or [`crate::tasks::maps::load_run`]).
     pub fn new(config: &Config, maps: &[TrainingMap]) -> Result<Training> {
         let first = maps
             .first()

@@ -153,12 +153,6 @@ pub(super) fn validate(c: &Config) -> Result<(), String> {
             "a maze's behaviour is the robot's end position in px: leave it at end-position",
         );
     }
-    if !c.fitness.is_default() {
-        return refuse(
-            "[fitness]",
-            "a maze run scores how near the robot ends to the goal: leave [fitness] at its defaults",
-        );
-    }
     validate_robot(c)?;
     let unused = [
         ("substrate", *s == SubstrateConfig::default()),

@@ -377,7 +377,7 @@ mod tests {
             c.opponents = how;
             c.sample = 4;
         });
-        let svg = crate::shipped::find("predator-prey").unwrap().svg;
+        let svg = crate::tasks::scenarios::find("predator-prey").unwrap().svg;
         let sc = Scenario::from_svg(svg, "pp.svg", &LoadOptions::default()).unwrap();
         let arena = Arena::new(&sc, &config.physics, config.experiment.steps).unwrap();
         (arena, config)

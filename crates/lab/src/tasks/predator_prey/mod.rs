@@ -373,7 +373,7 @@ impl Arena {
 /// The shipped arena `name` with the task's robots and steps (for tests).
 #[cfg(test)]
 pub(crate) fn shipped_arena(name: &str) -> Arena {
-    let svg = crate::shipped::find(name).unwrap().svg;
+    let svg = crate::tasks::scenarios::find(name).unwrap().svg;
     let options = vivae_sim::LoadOptions::default();
     let sc = Scenario::from_svg(svg, name, &options).unwrap();
     Arena::new(&sc, &robot::physics(), STEPS).unwrap()
@@ -443,7 +443,7 @@ mod tests {
 
     #[test]
     fn an_arena_with_an_obstacle_region_is_refused_by_name() {
-        let svg = crate::shipped::find("predator-prey").unwrap().svg.replace(
+        let svg = crate::tasks::scenarios::find("predator-prey").unwrap().svg.replace(
             "</svg>",
             r#"<rect id="zone" inkscape:label="ObstacleRegion" data-count="2" x="100" y="100" width="50" height="50"/></svg>"#,
         );

@@ -19,7 +19,7 @@ use vivae_neat::Genome;
 
 use crate::config::Config;
 use crate::error::{Error, Refusal, Result};
-use crate::io::{bad_input, create_dirs, load_scenario, read_text, write_atomic};
+use crate::io::{bad_input, create_dirs, read_text, write_atomic};
 use crate::shipped::Shipped;
 use crate::tasks::maps::TrainingMap;
 pub use crate::tasks::predator_prey::coevo::{ChampionEntry, Champions};
@@ -29,6 +29,7 @@ use crate::tasks::predator_prey::coevo::{
 use crate::tasks::predator_prey::meetings::{self, OnThreads};
 use crate::tasks::predator_prey::section::{CoevolutionConfig, SideController};
 use crate::tasks::predator_prey::{Arena, NAME, Side, present};
+use crate::tasks::scenarios::load_scenario;
 use crate::tasks::{OwnDriver, RunTask, Session, Stopped, TaskEntry};
 
 /// The predator–prey task's registration.

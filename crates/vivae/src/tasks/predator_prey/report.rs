@@ -9,12 +9,13 @@ use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 use vivae_lab::error::{Error, Result};
-use vivae_lab::io::{load_scenario, read_text, write_atomic};
+use vivae_lab::io::{read_text, write_atomic};
 use vivae_lab::rundir::files as run_files;
 use vivae_lab::tasks::predator_prey::coevo::{Champions, master_tournament};
 use vivae_lab::tasks::predator_prey::run::{files, read_champions, read_ciao};
 use vivae_lab::tasks::predator_prey::{Arena, Side};
 use vivae_lab::tasks::read_config;
+use vivae_lab::tasks::scenarios::load_scenario;
 use vivae_neat::Genome;
 use vivae_sim::World;
 

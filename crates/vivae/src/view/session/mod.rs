@@ -728,7 +728,9 @@ mod tests {
     fn source_with_members() -> (Source, RunSnapshot) {
         use vivae_lab::search::files::{ArchiveLine, FrontLine};
         let source = Source::load(None, None).unwrap();
-        let scenario = vivae_lab::io::load_scenario(None).unwrap().scenario;
+        let scenario = vivae_lab::tasks::scenarios::load_scenario(None)
+            .unwrap()
+            .scenario;
         let spec = Episode::new(&source.config, &scenario).unwrap().cppn_spec();
         let population = vivae_neat::Population::new(source.config.neat.clone(), spec, 3).unwrap();
         let g = |i: usize| population.genomes()[i].clone();

@@ -9,7 +9,7 @@ use crate::config::Config;
 use crate::controller::es::tests::{es_config, leo_config};
 use crate::controller::es::{ES_LEO_OUTPUT, es_wheel_nodes};
 use crate::controller::polar::{SURFACE_OUTPUT, WHEEL_RADIUS};
-use crate::io::load_scenario;
+use crate::tasks::scenarios::load_scenario;
 
 fn experiment(config: &Config) -> Episode {
     Episode::new(config, &load_scenario(None).unwrap().scenario).unwrap()

@@ -7,8 +7,8 @@ use vivae_neat::driver::Task;
 
 use super::Episode;
 use crate::config::Config;
-use crate::io::load_scenario;
 use crate::tasks::driving::descriptors::*;
+use crate::tasks::scenarios::load_scenario;
 
 /// A registered strategy that selects on a behaviour (`behaviour`) or
 /// on the task's metrics (`!behaviour`).

@@ -9,7 +9,7 @@ use super::Episode;
 use crate::config::{Config, NormalizeBy, Recurrence, SubstrateConfig};
 use crate::controller::normalize::SourceScale;
 use crate::controller::substrate::PolarGrid;
-use crate::io::load_scenario;
+use crate::tasks::scenarios::load_scenario;
 
 fn experiment(neurons: usize, by: NormalizeBy, self_loops: bool) -> Episode {
     let mut c = Config::default();

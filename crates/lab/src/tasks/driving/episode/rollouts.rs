@@ -7,8 +7,8 @@ use vivae_neat::{Population, Precision};
 use super::Episode;
 use crate::config::Config;
 use crate::controller::sensors::{read_sheets, read_sheets_single};
-use crate::io::load_scenario;
 use crate::tasks::driving::rollout::Drive;
+use crate::tasks::scenarios::load_scenario;
 
 /// A fast controller's rollout reads the sensors in f32 and steps on them
 /// as they are; an exact one reads and steps in f64. (Where the two reads

@@ -17,13 +17,14 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 use serde_json::{Value, json};
-use vivae_lab::io::{load_scenario, one_line, read_text};
+use vivae_lab::io::{one_line, read_text};
 use vivae_lab::rundir::files as run_files;
 use vivae_lab::tasks::predator_prey::brain::Brain;
 use vivae_lab::tasks::predator_prey::run::{HallEntry, files, read_champions};
 use vivae_lab::tasks::predator_prey::{Arena, INPUTS, OUTPUTS, Side};
 use vivae_lab::tasks::read_config;
 use vivae_lab::tasks::robot::wheels;
+use vivae_lab::tasks::scenarios::load_scenario;
 use vivae_neat::Genome;
 use vivae_sim::World;
 

@@ -62,13 +62,15 @@ mod tests {
     use std::path::Path;
 
     use super::*;
-    use crate::rundir::checkpoint::tests::sample;
-    use crate::rundir::tests::scratch;
-    use crate::rundir::{checkpoint_names, decode_checkpoint, files};
+    use crate::run::checkpoint::decode_checkpoint;
+    use crate::run::checkpoint::tests::sample;
+    use crate::rundir::{checkpoint_names, files};
 
     /// A fresh run folder named for the test.
     fn run_dir(name: &str, with_checkpoints: bool) -> PathBuf {
-        let dir = scratch(name);
+        let dir = std::env::temp_dir().join(format!("vivae-run-{name}-{}", std::process::id()));
+        let _ = fs::remove_dir_all(&dir);
+        fs::create_dir_all(&dir).unwrap();
         if with_checkpoints {
             fs::create_dir(dir.join(files::CHECKPOINTS)).unwrap();
         }

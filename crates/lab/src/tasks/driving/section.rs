@@ -1,7 +1,11 @@
-//! The `[fitness]` section: what an episode of the driving task scores.
+//! The driving task's `[fitness]` section: what an episode scores. The
+//! task registers it with its entry ([`SECTION`]); the config holds it as
+//! its table, read typed by [`FitnessConfig::of`].
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
+
+use crate::config::{Config, OwnedSection, Section};
 
 /// What an episode of the driving task scores (unset = the paper's average speed).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default, JsonSchema)]
@@ -33,10 +37,22 @@ pub enum FitnessKind {
     Progress,
 }
 
+impl OwnedSection for FitnessConfig {
+    const NAME: &'static str = "fitness";
+}
+
+/// The `[fitness]` section as the driving task registers it.
+pub const SECTION: Section = Section::of::<FitnessConfig>();
+
 impl FitnessConfig {
     /// Whether this is the default (so configs without the section write none).
     pub fn is_default(&self) -> bool {
         *self == FitnessConfig::default()
+    }
+
+    /// `config`'s `[fitness]` section (its defaults when unset).
+    pub fn of(config: &Config) -> FitnessConfig {
+        config.owned.of()
     }
 
     /// An error naming the key when a value is out of range.
