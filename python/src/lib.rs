@@ -15,6 +15,7 @@ mod drive;
 mod errors;
 mod evo;
 mod export;
+mod gym;
 mod lab;
 mod pool;
 mod reproduce;
@@ -34,6 +35,7 @@ fn _vivae(m: &Bound<'_, PyModule>) -> PyResult<()> {
     strategies::register(m)?;
     m.add_class::<lab::DriveTask>()?;
     tasks::register(m)?;
+    gym::register(m)?;
     m.add_class::<lab::Controller>()?;
     m.add_function(wrap_pyfunction!(lab::evolve, m)?)?;
     m.add_function(wrap_pyfunction!(lab::replay, m)?)?;

@@ -16,6 +16,7 @@ pub mod acrobot;
 pub mod cartpole;
 pub mod classic;
 pub mod driving;
+pub mod gym;
 pub mod gymnasium;
 pub mod maps;
 pub mod maze;
@@ -44,7 +45,7 @@ pub use predator_prey::section::CoevolutionConfig;
 /// The built-in tasks; `experiment.task` names one of these or a
 /// [`register`]ed one ([`entries`] lists both). A new task is a folder here
 /// and one line in this list.
-pub static TASKS: [&TaskEntry; 8] = [
+pub static TASKS: [&TaskEntry; 9] = [
     &driving::TASK,
     &maze::TASK,
     &predator_prey::TASK,
@@ -53,4 +54,5 @@ pub static TASKS: [&TaskEntry; 8] = [
     &mountain_car::TASK,
     &mountain_car_continuous::TASK,
     &pendulum::TASK,
+    &gym::TASK,
 ];
