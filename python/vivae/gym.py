@@ -171,9 +171,9 @@ class _Episodes:
         table: list[list[int | None]] = [[None] * k for _ in range(chunks)]
         for e, s in enumerate(seeds):
             table[e // k][e % k] = int(s)
-        t0 = time.perf_counter()
+        t0 = time.process_time()
         state, _ = self.vec.reset(options={"seeds": table})
-        env_s, vivae_s = time.perf_counter() - t0, 0.0
+        env_s, vivae_s = time.process_time() - t0, 0.0
         d = state.shape[-1] - 2
         flat = state.reshape(chunks * k, d + 2)
         owner = np.full(chunks * k, -1, dtype=np.int64)
@@ -183,15 +183,15 @@ class _Episodes:
         actions = np.zeros((chunks * k, self.vec.single_action_space.shape[-1]))
         live = np.flatnonzero(flat[:, -1] == 0.0)
         while live.size:
-            t0 = time.perf_counter()
+            t0 = time.process_time()
             out = controllers.act(np.ascontiguousarray(flat[live, :d]), owner[live])
             if self.discrete:
                 actions[live, 0] = np.argmax(out, axis=1)
             else:
                 actions[live] = self.low + (np.clip(out, -1.0, 1.0) + 1.0) * 0.5 * self.span
-            t1 = time.perf_counter()
+            t1 = time.process_time()
             state, *_ = self.vec.step(actions.reshape(chunks, k, -1))
-            t2 = time.perf_counter()
+            t2 = time.process_time()
             vivae_s += t1 - t0
             env_s += t2 - t1
             flat = state.reshape(chunks * k, d + 2)
@@ -282,8 +282,10 @@ def evolve(
 
     Returns:
         :func:`vivae.evolve`'s dict, with ``validation`` (see
-        :func:`validate`), ``env_steps``, ``env_seconds`` (stepping the
-        environments) and ``vivae_seconds`` (activating the networks).
+        :func:`validate`), ``env_steps`` (steps of training episodes),
+        ``env_seconds`` and ``vivae_seconds``: this process's CPU seconds
+        stepping the environments (with ``processes=1``, their own cost;
+        else sending and receiving) and activating the networks.
     """
     section = env_section(env_id, episodes)
     total = overrides.get("generations")
