@@ -210,6 +210,8 @@ class _Episodes:
 def _episodes(env_id: str, episodes: int) -> _Episodes:
     key = (env_id, episodes, _processes)
     if key not in _open:
+        # A batch of another size (a strategy whose batches vary): one open at a time.
+        _close()
         _open[key] = _Episodes(env_id, episodes, _processes)
     return _open[key]
 
