@@ -84,6 +84,13 @@ def env_section(env_id: str, episodes: int = 3) -> dict:
         env.close()
 
 
+def _shape(space: gymnasium.spaces.Space) -> tuple[int, ...]:
+    """The shape of a space that has one (a Box, a Discrete's empty one)."""
+    if space.shape is None:
+        raise ValueError(f"{space}: a space without a shape")
+    return space.shape
+
+
 class _Chunk(gymnasium.Env):
     """Some of a batch's episodes, one environment each, as one Gymnasium
     environment: its observation holds every episode's observation, then
@@ -95,12 +102,11 @@ class _Chunk(gymnasium.Env):
     def __init__(self, env_id: str, rows: int, index: int) -> None:
         self.envs = [gymnasium.make(env_id) for _ in range(rows)]
         self.index = index
-        space = self.envs[0].observation_space
-        self.obs_size = int(np.prod(space.shape))
+        self.obs_size = int(np.prod(_shape(self.envs[0].observation_space)))
         act = self.envs[0].action_space
         self.discrete = isinstance(act, gymnasium.spaces.Discrete)
-        width = 1 if self.discrete else int(np.prod(act.shape))
-        self.action_shape = () if self.discrete else act.shape
+        self.action_shape = () if self.discrete else _shape(act)
+        width = 1 if self.discrete else int(np.prod(self.action_shape))
         self.observation_space = gymnasium.spaces.Box(
             -np.inf, np.inf, shape=(rows, self.obs_size + 2), dtype=np.float64
         )
@@ -151,6 +157,7 @@ class _Episodes:
         self.rows = -(-episodes // processes)
         self.episodes = episodes
         makers = [functools.partial(_Chunk, env_id, self.rows, i) for i in range(processes)]
+        self.vec: gymnasium.vector.VectorEnv
         if processes == 1:
             self.vec = gymnasium.vector.SyncVectorEnv(makers)
         else:
@@ -159,7 +166,7 @@ class _Episodes:
         act = probe.action_space
         probe.close()
         self.discrete = isinstance(act, gymnasium.spaces.Discrete)
-        if not self.discrete:
+        if isinstance(act, gymnasium.spaces.Box):
             self.low = np.ravel(act.low).astype(np.float64)
             self.span = np.ravel(act.high).astype(np.float64) - self.low
 
@@ -180,7 +187,7 @@ class _Episodes:
         owner[:n] = rows
         returns = np.zeros(n)
         steps = np.zeros(n)
-        actions = np.zeros((chunks * k, self.vec.single_action_space.shape[-1]))
+        actions = np.zeros((chunks * k, _shape(self.vec.single_action_space)[-1]))
         live = np.flatnonzero(flat[:, -1] == 0.0)
         while live.size:
             t0 = time.process_time()
