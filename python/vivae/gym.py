@@ -8,8 +8,7 @@ step activates every live episode's network (:class:`vivae.Controllers`).
 The run directory is the one every vivae run writes (``config.toml`` with
 its ``[gymnasium]`` section, ``generations.csv``, ``champion.json``,
 ``checkpoints/``): :func:`resume` continues it, :func:`vivae.report` (or
-``vivae report RUN``) draws its curves, ``vivae export RUN`` writes its
-champion's network.
+``vivae report RUN``) draws its curves.
 
 >>> import vivae.gym
 >>> result = vivae.gym.evolve("LunarLander-v3", out="runs/lander", generations=50, seed=1)
