@@ -10,6 +10,7 @@ _Path = Union[str, os.PathLike]
 
 __all__ = [
     "Controller",
+    "Controllers",
     "DriveCore",
     "DriveTask",
     "Genome",
@@ -28,6 +29,10 @@ __all__ = [
     "drive_image",
     "evolve",
     "export",
+    "gym_episode_seeds",
+    "gym_evolve",
+    "gym_resume",
+    "gym_section",
     "load_genome",
     "math_is_portable",
     "portable_math",
