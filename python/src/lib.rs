@@ -14,6 +14,7 @@ mod asktell;
 mod errors;
 mod evo;
 mod export;
+mod gym;
 mod lab;
 mod pool;
 mod render;
@@ -32,6 +33,7 @@ fn _vivae(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<evo::Population>()?;
     strategies::register(m)?;
     tasks::register(m)?;
+    gym::register(m)?;
     m.add_function(wrap_pyfunction!(lab::evolve, m)?)?;
     m.add_function(wrap_pyfunction!(lab::resume, m)?)?;
     m.add_function(wrap_pyfunction!(lab::report, m)?)?;

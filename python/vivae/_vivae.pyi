@@ -10,6 +10,7 @@ _Path = Union[str, os.PathLike]
 
 __all__ = [
     "Controller",
+    "Controllers",
     "DriveCore",
     "DriveTask",
     "Genome",
@@ -28,6 +29,10 @@ __all__ = [
     "drive_image",
     "evolve",
     "export",
+    "gym_episode_seeds",
+    "gym_evolve",
+    "gym_resume",
+    "gym_section",
     "load_genome",
     "math_is_portable",
     "portable_math",
@@ -247,6 +252,21 @@ class Controller:
     def reset(self) -> None: ...
 
 @final
+class Controllers:
+    """The networks of many genomes, activated together (one row each)."""
+
+    def __new__(cls, genomes: Sequence[Genome]) -> Controllers: ...
+    def __len__(self) -> int: ...
+    @property
+    def obs_size(self) -> int: ...
+    @property
+    def outputs(self) -> int: ...
+    def act(
+        self, obs: npt.NDArray[np.float64], rows: Optional[npt.NDArray[np.int64]] = None
+    ) -> npt.NDArray[np.float64]: ...
+    def reset(self, rows: Optional[Sequence[int]] = None) -> None: ...
+
+@final
 class DriveTask:
     """The driving task of a config: CPPNs evaluated, decoded, turned into controllers."""
 
@@ -378,3 +398,18 @@ def classic_episode(task: str, state: Sequence[float], actions: Sequence[float])
 def portable_math(function: str, x: float) -> float:
     """vivae's portable `sin` or `cos` of `x` (the bits its tasks compute)."""
 
+def gym_evolve(
+    env: dict[str, Any],
+    out: Optional[_Path] = None,
+    config: Optional[_Path] = None,
+    force: bool = False,
+    on_generation: Optional[Callable[[dict[str, Any]], Any]] = None,
+    **overrides: Any,
+) -> dict[str, Any]: ...
+def gym_resume(
+    out: _Path,
+    generations: Optional[int] = None,
+    on_generation: Optional[Callable[[dict[str, Any]], Any]] = None,
+) -> dict[str, Any]: ...
+def gym_episode_seeds(seeds: Sequence[int], episodes: int) -> list[list[int]]: ...
+def gym_section(out: _Path) -> dict[str, Any]: ...

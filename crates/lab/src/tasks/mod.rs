@@ -17,6 +17,7 @@ pub mod cartpole;
 mod champion;
 pub mod classic;
 pub mod driving;
+pub mod gym;
 pub mod gymnasium;
 pub mod maps;
 pub mod maze;
@@ -45,7 +46,7 @@ pub use target::{StoredTarget, TargetProgress};
 /// The built-in tasks; `experiment.task` names one of these or a
 /// [`register`]ed one ([`entries`] lists both). A new task is a folder here
 /// and one line in this list.
-pub static TASKS: [&TaskEntry; 8] = [
+pub static TASKS: [&TaskEntry; 9] = [
     &driving::TASK,
     &maze::TASK,
     &predator_prey::TASK,
@@ -54,4 +55,5 @@ pub static TASKS: [&TaskEntry; 8] = [
     &mountain_car::TASK,
     &mountain_car_continuous::TASK,
     &pendulum::TASK,
+    &gym::TASK,
 ];

@@ -1,0 +1,159 @@
+"""Gymnasium's Box2D and MuJoCo environments evolved as vivae runs
+(vivae.gym), and the batched controllers they step with (vivae.Controllers)."""
+
+from __future__ import annotations
+
+import importlib.util
+import json
+import subprocess
+
+import numpy as np
+import pytest
+
+import vivae
+from conftest import vivae_binary
+
+
+def needs(module: str, extra: str):
+    """Skips (saying why) unless `module` is installed."""
+    if importlib.util.find_spec(module) is None:
+        reason = f"{module} is not installed (pip install 'gymnasium[{extra}]')"
+        print(f"skipped: {reason}")
+        return pytest.mark.skip(reason=reason)
+    return pytest.mark.skipif(False, reason=f"{module} is installed")
+
+
+box2d = needs("Box2D", "box2d")
+mujoco = needs("mujoco", "mujoco")
+
+
+def grown_genomes(recurrent: bool) -> list:
+    """Genomes of 9 inputs and 4 outputs grown for 25 generations (hidden
+    nodes, disabled links; recurrent links when allowed)."""
+    pop = vivae.Population(
+        9, 4, seed=4, size=30, recurrent=recurrent,
+        params={"add_node_probability": 0.3, "add_link_probability": 0.5},
+    )
+    for _ in range(25):
+        genomes = pop.ask()
+        pop.tell([float(g.num_links + (i % 5)) for i, g in enumerate(genomes)])
+    return pop.ask()
+
+
+@pytest.mark.parametrize("recurrent", [False, True])
+def test_controllers_give_each_networks_bits(recurrent):
+    genomes = grown_genomes(recurrent)
+    assert any(g.num_hidden > 0 for g in genomes)
+    rng = np.random.default_rng(1)
+    batch = vivae.Controllers(genomes)
+    nets = [g.network() for g in genomes]
+    assert len(batch) == len(genomes) and batch.obs_size == 8 and batch.outputs == 4
+    for _ in range(4):
+        obs = rng.normal(size=(len(genomes), 8))
+        got = batch.act(obs)
+        want = np.array([n.activate(list(o) + [1.0]) for n, o in zip(nets, obs)])
+        assert got.tobytes() == want.tobytes()
+    # Some rows only, in any order: each to its own network.
+    rows = np.array([5, 2, 17], dtype=np.int64)
+    obs = rng.normal(size=(3, 8))
+    got = batch.act(obs, rows)
+    want = np.array([nets[k].activate(list(o) + [1.0]) for k, o in zip(rows, obs)])
+    assert got.tobytes() == want.tobytes()
+
+
+def test_controllers_refuse_wrong_shapes_by_name():
+    genomes = grown_genomes(False)[:3]
+    batch = vivae.Controllers(genomes)
+    with pytest.raises(ValueError, match="obs has 7 values a row"):
+        batch.act(np.zeros((3, 7)))
+    with pytest.raises(ValueError, match="say which with rows="):
+        batch.act(np.zeros((2, 8)))
+    with pytest.raises(ValueError, match="rows: 3 is not a network"):
+        batch.act(np.zeros((1, 8)), np.array([3], dtype=np.int64))
+    with pytest.raises(ValueError, match="genomes\\[1\\] has 4 inputs"):
+        vivae.Controllers([genomes[0], vivae.Population(4, 1, seed=1, size=5).ask()[0]])
+    with pytest.raises(ValueError, match="at least one"):
+        vivae.Controllers([])
+
+
+def files(out) -> dict:
+    return {n: (out / n).read_bytes() for n in ("generations.csv", "population.csv", "best-genomes.jsonl", "champion.json")}
+
+
+@box2d
+def test_a_lunar_lander_run_is_an_ordinary_run_that_resumes_to_the_same_files(tmp_path):
+    import vivae.gym
+
+    settings = dict(generations=3, population=12, seed=5, episodes=2, validate=5, progress=False)
+    whole = vivae.gym.evolve("LunarLander-v3", tmp_path / "whole", **settings)
+    assert whole["finished"] and whole["generations"] == 3
+    assert whole["env_steps"] > 0 and whole["env_seconds"] > 0 and whole["vivae_seconds"] > 0
+    out = tmp_path / "whole"
+    for name in ("config.toml", "champion.json", "generations.csv", "checkpoints", "validation.json"):
+        assert (out / name).exists(), name
+    assert '[gymnasium]\nenv = "LunarLander-v3"' in (out / "config.toml").read_text()
+    assert len((out / "generations.csv").read_text().splitlines()) == 4
+    v = json.loads((out / "validation.json").read_text())
+    assert v == whole["validation"] and v["episodes"] == 5 and v["reward_threshold"] == 200.0
+    assert v["solved"] == (v["mean"] >= 200.0)
+    assert vivae.report(out).is_file()
+    # Stopped after generation 2, then resumed: the same files as the whole run.
+    part = dict(settings, generations=2)
+    vivae.gym.evolve("LunarLander-v3", tmp_path / "part", **part)
+    resumed = vivae.gym.resume(tmp_path / "part", generations=3, validate=0, progress=False)
+    assert resumed["generations"] == 3
+    assert files(tmp_path / "part") == files(out)
+    # Spread over two worker processes: the same results.
+    two = vivae.gym.evolve("LunarLander-v3", tmp_path / "two", processes=2, **dict(settings, validate=0))
+    assert files(tmp_path / "two") == files(out)
+
+
+@box2d
+def test_the_episodes_are_gymnasiums_own_under_the_evaluations_seeds(tmp_path):
+    import gymnasium
+    import vivae.gym
+
+    section = vivae.gym.env_section("LunarLander-v3", episodes=2)
+    assert (section["inputs"], section["outputs"], section["max_steps"]) == (9, 4, 1000)
+    genome = vivae.Population(9, 4, seed=3, size=5).ask()[1]
+    seeds = vivae._vivae.gym_episode_seeds([11, 12], 2)
+    (fitness, worst, steps), _ = vivae.gym._play(section, [genome, genome], seeds)
+    vivae.gym._close()
+    # The same episodes played one step at a time with the genome's own network.
+    returns, total = [], 0
+    for s in seeds[0]:
+        env, net = gymnasium.make("LunarLander-v3"), genome.network()
+        obs, _ = env.reset(seed=s)
+        ret, done = 0.0, False
+        while not done:
+            out = net.activate([float(x) for x in obs] + [1.0])
+            obs, r, term, trunc, _ = env.step(int(np.argmax(out)))
+            ret, done, total = ret + r, term or trunc, total + 1
+        returns.append(ret)
+    assert fitness == np.mean(returns) and worst == min(returns) and steps == total
+
+
+@box2d
+def test_the_program_reports_a_gymnasium_run_and_refuses_to_resume_it(tmp_path):
+    import vivae.gym
+
+    cli = vivae_binary()
+    if cli is None:
+        pytest.skip("no vivae binary (set VIVAE_BIN)")
+    out = tmp_path / "run"
+    vivae.gym.evolve("LunarLander-v3", out, generations=1, population=6, episodes=1, validate=0, progress=False)
+    done = subprocess.run([cli, "report", str(out)], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    refused = subprocess.run([cli, "resume", str(out), "--generations", "2"], capture_output=True, text=True)
+    assert refused.returncode == 2 and "vivae.gym.resume" in refused.stderr, refused.stderr
+
+
+@mujoco
+@pytest.mark.parametrize("env_id", ["InvertedPendulum-v5", "Hopper-v5"])
+def test_mujoco_environments_run_with_scaled_continuous_actions(tmp_path, env_id):
+    import vivae.gym
+
+    r = vivae.gym.evolve(env_id, tmp_path / "run", generations=2, population=6, seed=2, episodes=1,
+                         validate=3, progress=False)
+    assert r["finished"] and r["validation"]["episodes"] == 3
+    assert r["validation"]["reward_threshold"] is not None

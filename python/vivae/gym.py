@@ -1,0 +1,376 @@
+"""Gymnasium environments (Box2D, MuJoCo, any with a vector observation)
+evolved as ordinary vivae runs, a whole generation at a time.
+
+Each generation's genomes play all their episodes together: the
+environments step in a Gymnasium vector environment (in this process, or
+spread over worker processes with ``processes=N``), and one Rust call per
+step activates every live episode's network (:class:`vivae.Controllers`).
+The run directory is the one every vivae run writes (``config.toml`` with
+its ``[gymnasium]`` section, ``generations.csv``, ``champion.json``,
+``checkpoints/``): :func:`resume` continues it, :func:`vivae.report` (or
+``vivae report RUN``) draws its curves.
+
+>>> import vivae.gym
+>>> result = vivae.gym.evolve("LunarLander-v3", out="runs/lander", generations=50, seed=1)
+>>> result["validation"]["mean"], result["validation"]["solved"]
+"""
+
+from __future__ import annotations
+
+import functools
+import json
+import os
+from pathlib import Path
+import time
+from typing import Any, Callable, Sequence
+
+import gymnasium
+import numpy as np
+
+from vivae import _vivae
+from vivae.run import _with_bar
+
+#: Episodes of the champion's validation, each reset with a fresh seed.
+VALIDATION_EPISODES = 100
+
+#: Gymnasium seeds of the validation episodes: 0, 1, 2, … (training resets
+#: with 63-bit seeds hashed from each evaluation's seed, never these).
+VALIDATION_FIRST_SEED = 0
+
+# Worker processes of the run under way (set by `evolve` and `resume`).
+_processes = 1
+# Open vector environments, by (env id, episodes, processes); closed at a run's end.
+_open: dict[tuple[str, int, int], "_Episodes"] = {}
+# Seconds spent stepping environments and activating networks since `_reset_clock`.
+_clock = {"env": 0.0, "vivae": 0.0, "steps": 0}
+
+
+def _reset_clock() -> None:
+    _clock.update(env=0.0, vivae=0.0, steps=0)
+
+
+def env_section(env_id: str, episodes: int = 3) -> dict:
+    """The ``[gymnasium]`` section of a run of ``env_id``: its spaces give
+    the networks' shape (observation values and a bias in; one output per
+    discrete action or per continuous action dimension)."""
+    env = gymnasium.make(env_id)
+    try:
+        obs, act = env.observation_space, env.action_space
+        if not isinstance(obs, gymnasium.spaces.Box):
+            raise ValueError(f"{env_id}: its observations are {obs}, not a vector (a Box)")
+        if isinstance(act, gymnasium.spaces.Discrete):
+            outputs = int(act.n)
+        elif isinstance(act, gymnasium.spaces.Box):
+            outputs = int(np.prod(act.shape))
+            if not (np.all(np.isfinite(act.low)) and np.all(np.isfinite(act.high))):
+                raise ValueError(f"{env_id}: its actions {act} are unbounded")
+        else:
+            raise ValueError(f"{env_id}: its actions are {act}, neither Discrete nor Box")
+        spec = env.spec
+        max_steps = spec.max_episode_steps if spec is not None else None
+        if not max_steps:
+            raise ValueError(f"{env_id}: it has no max_episode_steps (an episode might never end)")
+        threshold = spec.reward_threshold if spec is not None else None
+        return {
+            "env": env_id,
+            "episodes": int(episodes),
+            "inputs": int(np.prod(obs.shape)) + 1,
+            "outputs": outputs,
+            "max_steps": int(max_steps),
+            "reward_threshold": None if threshold is None else float(threshold),
+        }
+    finally:
+        env.close()
+
+
+def _shape(space: gymnasium.spaces.Space) -> tuple[int, ...]:
+    """The shape of a space that has one (a Box, a Discrete's empty one)."""
+    if space.shape is None:
+        raise ValueError(f"{space}: a space without a shape")
+    return space.shape
+
+
+class _Chunk(gymnasium.Env):
+    """Some of a batch's episodes, one environment each, as one Gymnasium
+    environment: its observation holds every episode's observation, then
+    the reward of its last step and whether it has ended; its action, every
+    episode's. An ended episode stands still. Reset with
+    ``options={"seeds": S}``: row ``r`` plays the episode of seed
+    ``S[index][r]`` (none: the row stays ended)."""
+
+    def __init__(self, env_id: str, rows: int, index: int) -> None:
+        self.envs = [gymnasium.make(env_id) for _ in range(rows)]
+        self.index = index
+        self.obs_size = int(np.prod(_shape(self.envs[0].observation_space)))
+        act = self.envs[0].action_space
+        self.discrete = isinstance(act, gymnasium.spaces.Discrete)
+        self.action_shape = () if self.discrete else _shape(act)
+        width = 1 if self.discrete else int(np.prod(self.action_shape))
+        self.observation_space = gymnasium.spaces.Box(
+            -np.inf, np.inf, shape=(rows, self.obs_size + 2), dtype=np.float64
+        )
+        self.action_space = gymnasium.spaces.Box(-np.inf, np.inf, shape=(rows, width), dtype=np.float64)
+        self.state = np.zeros((rows, self.obs_size + 2))
+
+    def reset(self, *, seed: int | None = None, options: dict | None = None):
+        super().reset(seed=seed)
+        if not options or "seeds" not in options:
+            # A vector environment's own reset: nothing to play.
+            return self.state.copy(), {}
+        seeds = options["seeds"][self.index]
+        self.state[:] = 0.0
+        for r, env in enumerate(self.envs):
+            s = seeds[r] if r < len(seeds) else None
+            if s is None:
+                self.state[r, -1] = 1.0
+                continue
+            obs, _ = env.reset(seed=int(s))
+            self.state[r, : self.obs_size] = np.ravel(obs)
+        return self.state.copy(), {}
+
+    def step(self, action):
+        for r, env in enumerate(self.envs):
+            if self.state[r, -1]:
+                self.state[r, -2] = 0.0
+                continue
+            a = int(action[r, 0]) if self.discrete else action[r].reshape(self.action_shape)
+            obs, reward, terminated, truncated, _ = env.step(a)
+            self.state[r, : self.obs_size] = np.ravel(obs)
+            self.state[r, -2] = reward
+            self.state[r, -1] = float(terminated or truncated)
+        # The vector environment never resets a chunk itself: its rows end one by one.
+        return self.state.copy(), 0.0, False, False, {}
+
+    def close(self) -> None:
+        for env in self.envs:
+            env.close()
+
+
+class _Episodes:
+    """``episodes`` episodes of ``env_id`` played together: a Gymnasium vector
+    environment of ``processes`` chunks (``SyncVectorEnv`` for one, else
+    ``AsyncVectorEnv``, one worker process each)."""
+
+    def __init__(self, env_id: str, episodes: int, processes: int) -> None:
+        processes = max(1, min(processes, episodes))
+        self.rows = -(-episodes // processes)
+        self.episodes = episodes
+        makers = [functools.partial(_Chunk, env_id, self.rows, i) for i in range(processes)]
+        self.vec: gymnasium.vector.VectorEnv
+        if processes == 1:
+            self.vec = gymnasium.vector.SyncVectorEnv(makers)
+        else:
+            self.vec = gymnasium.vector.AsyncVectorEnv(makers, context="spawn" if os.name == "nt" else None)
+        probe = gymnasium.make(env_id)
+        act = probe.action_space
+        probe.close()
+        self.discrete = isinstance(act, gymnasium.spaces.Discrete)
+        if isinstance(act, gymnasium.spaces.Box):
+            self.low = np.ravel(act.low).astype(np.float64)
+            self.span = np.ravel(act.high).astype(np.float64) - self.low
+
+    def play(self, controllers, seeds: Sequence[int], rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Returns and steps of the episodes of ``seeds``, episode ``e``
+        driven by network ``rows[e]`` of ``controllers``."""
+        n, k = len(seeds), self.rows
+        chunks = self.vec.num_envs
+        table: list[list[int | None]] = [[None] * k for _ in range(chunks)]
+        for e, s in enumerate(seeds):
+            table[e // k][e % k] = int(s)
+        t0 = time.process_time()
+        state, _ = self.vec.reset(options={"seeds": table})
+        env_s, vivae_s = time.process_time() - t0, 0.0
+        d = state.shape[-1] - 2
+        flat = state.reshape(chunks * k, d + 2)
+        owner = np.full(chunks * k, -1, dtype=np.int64)
+        owner[:n] = rows
+        returns = np.zeros(n)
+        steps = np.zeros(n)
+        actions = np.zeros((chunks * k, _shape(self.vec.single_action_space)[-1]))
+        live = np.flatnonzero(flat[:, -1] == 0.0)
+        while live.size:
+            t0 = time.process_time()
+            out = controllers.act(np.ascontiguousarray(flat[live, :d]), owner[live])
+            if self.discrete:
+                actions[live, 0] = np.argmax(out, axis=1)
+            else:
+                actions[live] = self.low + (np.clip(out, -1.0, 1.0) + 1.0) * 0.5 * self.span
+            t1 = time.process_time()
+            state, *_ = self.vec.step(actions.reshape(chunks, k, -1))
+            t2 = time.process_time()
+            vivae_s += t1 - t0
+            env_s += t2 - t1
+            flat = state.reshape(chunks * k, d + 2)
+            returns[live] += flat[live, -2]
+            steps[live] += 1
+            _clock["steps"] += live.size
+            live = live[flat[live, -1] == 0.0]
+        _clock["env"] += env_s
+        _clock["vivae"] += vivae_s
+        return returns, steps
+
+    def close(self) -> None:
+        self.vec.close()
+
+
+def _episodes(env_id: str, episodes: int) -> _Episodes:
+    key = (env_id, episodes, _processes)
+    if key not in _open:
+        # A batch of another size (a strategy whose batches vary): one open at a time.
+        _close()
+        _open[key] = _Episodes(env_id, episodes, _processes)
+    return _open[key]
+
+
+def _close() -> None:
+    while _open:
+        _open.popitem()[1].close()
+
+
+def _play(section: dict, genomes: list, seeds: list[list[int]]) -> list[tuple[float, float, float]]:
+    """Evaluations of ``genomes``, genome ``i`` on the episodes of
+    ``seeds[i]``: (mean return, worst return, steps) each. The player the
+    Rust side calls once a generation."""
+    per = section["episodes"]
+    flat = [s for row in seeds for s in row]
+    controllers = _vivae.Controllers([g for g in genomes for _ in range(per)])
+    rows = np.arange(len(flat), dtype=np.int64)
+    returns, steps = _episodes(section["env"], len(flat)).play(controllers, flat, rows)
+    returns = returns.reshape(len(genomes), per)
+    steps = steps.reshape(len(genomes), per)
+    return [(float(r.mean()), float(r.min()), float(s.sum())) for r, s in zip(returns, steps)]
+
+
+def _run(call, progress: bool, total: int, on_generation, processes: int) -> dict:
+    global _processes
+    if not isinstance(processes, int) or isinstance(processes, bool) or processes < 1:
+        raise ValueError(f"processes={processes!r}: expected a positive integer")
+    _processes = processes
+    _reset_clock()
+    try:
+        result = _with_bar(progress, total, on_generation, call)
+    finally:
+        _close()
+    result["env_seconds"] = _clock["env"]
+    result["vivae_seconds"] = _clock["vivae"]
+    result["env_steps"] = _clock["steps"]
+    return result
+
+
+def evolve(
+    env_id: str = "LunarLander-v3",
+    out: str | os.PathLike | None = None,
+    *,
+    episodes: int = 3,
+    processes: int = 1,
+    validate: int = VALIDATION_EPISODES,
+    config: str | os.PathLike | None = None,
+    force: bool = False,
+    progress: bool = True,
+    on_generation: Callable[[dict], Any] | None = None,
+    **overrides: Any,
+) -> dict:
+    """Evolves NEAT networks for the Gymnasium environment ``env_id`` and
+    writes the run directory ``out`` (default ``runs/<timestamp>``).
+
+    Args:
+        env_id: a Gymnasium id with a vector observation and a Discrete or
+            bounded Box action ("LunarLander-v3", "BipedalWalker-v3",
+            "Hopper-v5", …).
+        episodes: episodes per evaluation, each reset with a seed drawn
+            from the evaluation's seed; fitness is their mean return.
+        processes: worker processes the environments are spread over (1:
+            all in this process). Results do not depend on it.
+        validate: episodes of the champion's validation at the end (0: none).
+        config: a config TOML file the settings start from.
+        force, progress, on_generation: as :func:`vivae.evolve`.
+        **overrides: ``generations``, ``population``, ``seed``,
+            ``strategy`` (``"neat"``, ``"nsga2"``, …), ``threads``, … as
+            :func:`vivae.evolve`.
+
+    Returns:
+        :func:`vivae.evolve`'s dict, with ``validation`` (see
+        :func:`validate`), ``env_steps`` (steps of training episodes),
+        ``env_seconds`` and ``vivae_seconds``: this process's CPU seconds
+        stepping the environments (with ``processes=1``, their own cost;
+        else sending and receiving) and activating the networks.
+    """
+    section = env_section(env_id, episodes)
+    total = overrides.get("generations")
+    result = _run(
+        lambda each: _vivae.gym_evolve(
+            section, out=out, config=config, force=force, on_generation=each, **overrides
+        ),
+        progress, total if isinstance(total, int) else 0, on_generation, processes,
+    )
+    if validate:
+        result["validation"] = globals()["validate"](result["out"], episodes=validate, processes=processes)
+    return result
+
+
+def resume(
+    out: str | os.PathLike,
+    *,
+    generations: int | None = None,
+    processes: int = 1,
+    validate: int = VALIDATION_EPISODES,
+    progress: bool = True,
+    on_generation: Callable[[dict], Any] | None = None,
+) -> dict:
+    """Continues the interrupted Gymnasium run in ``out`` (or extends a
+    finished one to ``generations``), as :func:`evolve` ran it: the finished
+    files are those of an uninterrupted run. Returns :func:`evolve`'s dict."""
+    result = _run(
+        lambda each: _vivae.gym_resume(out, generations=generations, on_generation=each),
+        progress, generations or 0, on_generation, processes,
+    )
+    if validate:
+        result["validation"] = globals()["validate"](out, episodes=validate, processes=processes)
+    return result
+
+
+def validate(
+    source: str | os.PathLike,
+    *,
+    episodes: int = VALIDATION_EPISODES,
+    processes: int = 1,
+) -> dict:
+    """The champion of the Gymnasium run ``source`` on ``episodes`` fresh
+    episodes (Gymnasium seeds 0, 1, …, never trained on), written to the
+    run's ``validation.json``.
+
+    Returns:
+        ``env``, ``episodes``, ``seeds`` (first and last), ``mean``, ``std``,
+        ``min``, ``max`` of the returns, ``reward_threshold`` and ``solved``
+        (the mean ≥ the threshold; None without one), ``generation`` and
+        ``fitness`` of the champion.
+    """
+    section = _vivae.gym_section(source)
+    genome, fitness, generation = _vivae.load_genome(source)
+    seeds = list(range(VALIDATION_FIRST_SEED, VALIDATION_FIRST_SEED + episodes))
+    player = _Episodes(section["env"], len(seeds), processes)
+    try:
+        controllers = _vivae.Controllers([genome] * len(seeds))
+        returns, _ = player.play(controllers, seeds, np.arange(len(seeds), dtype=np.int64))
+    finally:
+        player.close()
+    threshold = section["reward_threshold"]
+    mean = float(returns.mean())
+    result = {
+        "env": section["env"],
+        "episodes": len(seeds),
+        "seeds": [seeds[0], seeds[-1]],
+        "mean": mean,
+        "std": float(returns.std()),
+        "min": float(returns.min()),
+        "max": float(returns.max()),
+        "reward_threshold": threshold,
+        "solved": None if threshold is None else mean >= threshold,
+        "generation": generation,
+        "fitness": fitness,
+    }
+    path = Path(source) / "validation.json"
+    tmp = path.with_name(f".validation.json.tmp-{os.getpid()}")
+    tmp.write_text(json.dumps(result, indent=2) + "\n")
+    os.replace(tmp, path)
+    return result
