@@ -32,7 +32,7 @@ def test_an_unknown_pack_is_a_value_error_naming_the_packs():
 
 def test_every_pack_runs_at_tiny_settings_and_returns_its_table():
     names = [name for name, _ in vivae.reproduce_packs()]
-    assert {"xor", "pole-markov", "pole-nonmarkov", "boxes", "retina", "road"} <= set(names)
+    assert {"xor", "pole-markov", "pole-nonmarkov", "boxes", "retina", "road", "gym-classic"} <= set(names)
     for name in names:
         table = vivae.reproduce(name, runs=1, evaluations=200, threads=1)
         assert table["rows"], name
@@ -54,3 +54,20 @@ def test_a_journal_skips_finished_runs_and_methods_pick_rows(tmp_path):
     assert fresh["rows"] == again["rows"]
     with pytest.raises(ValueError, match="no method"):
         vivae.reproduce("maze-hard", methods=["cma-es"])
+
+
+def test_gym_classic_validates_each_champion_as_the_cli_does(tmp_path, cli):
+    table = vivae.reproduce("gym-classic", runs=2, seed=5, evaluations=300, threads=1, methods=["cartpole", "acrobot"])
+    assert [r[0] for r in table["rows"]] == ["cartpole", "acrobot"]
+    assert [r[1] for r in table["rows"]] == ["475", "-100"]
+    assert all(r[2].endswith("/2") and r[3].endswith("/2") for r in table["rows"])
+    assert "100 fresh episodes" in " ".join(table["notes"])
+    out = tmp_path / "g.md"
+    printed = subprocess.run(
+        [cli, "reproduce", "gym-classic", "--runs", "2", "--seed", "5", "--evaluations", "300", "--threads", "1",
+         "--method", "cartpole,acrobot", "-q", "--no-journal", "-o", str(out)],
+        check=True, capture_output=True, text=True,
+    ).stdout
+    # The same runs, so the same table but for the wall times (column 5).
+    strip = lambda md: [line.split(" | ")[:5] + line.split(" | ")[6:] for line in md.splitlines()]
+    assert strip(printed) == strip(table["markdown"])

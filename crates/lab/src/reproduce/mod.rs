@@ -11,6 +11,7 @@
 //! command line.
 
 mod boxes;
+mod gym;
 mod journal;
 mod maze;
 mod pack;
@@ -31,8 +32,9 @@ pub use journal::{HEADER as JOURNAL_HEADER, Journal};
 pub use pack::{Options, Pack, RunPack, Table};
 
 /// Every pack, in the order `vivae reproduce` lists them: the maze's, then
-/// the benchmarks of `vivae_neat::benchmarks` and the road.
-const PACKS: [Pack; 8] = [
+/// the benchmarks of `vivae_neat::benchmarks`, the road and Gymnasium's
+/// classic control.
+const PACKS: [Pack; 9] = [
     maze::MEDIUM,
     maze::HARD,
     xor::XOR,
@@ -41,6 +43,7 @@ const PACKS: [Pack; 8] = [
     boxes::BOXES,
     retina::RETINA,
     road::ROAD,
+    gym::GYM_CLASSIC,
 ];
 
 /// Every pack, the maze's first.

@@ -20,7 +20,7 @@ use vivae_neat::driver::Evaluation;
 use vivae_neat::math::{cos, sin};
 
 use super::classic::{self, Classic, Draws, argmax};
-use super::plain::{Plain, Trace, entry};
+use super::plain::{Plain, Trace, Validation, entry};
 use super::{Stepped, TaskEntry};
 
 /// The task's registration (`--task acrobot`).
@@ -133,6 +133,10 @@ impl Plain for Acrobot {
 
     fn evaluate(net: &mut dyn Network, seed: u64, trace: Option<&mut Trace>) -> Evaluation {
         classic::evaluate::<Self>(net, seed, trace)
+    }
+
+    fn validate(net: &mut dyn Network, run_seed: u64) -> Option<Validation> {
+        Some(classic::validate::<Self>(net, run_seed))
     }
 }
 

@@ -12,7 +12,7 @@ use vivae_neat::driver::Evaluation;
 use vivae_neat::eval::splitmix64;
 
 use super::Step;
-use super::plain::{Plain, Trace};
+use super::plain::{Plain, Trace, Validation};
 
 /// The most inputs or outputs a classic-control network has.
 const MOST: usize = 8;
@@ -91,18 +91,68 @@ fn single(x: f64) -> f64 {
     f64::from(x as f32)
 }
 
+/// Episodes a champion is validated on ([`validate`]).
+pub const VALIDATION_EPISODES: u32 = 100;
+
+/// The tag of the validation stream: "validate" in ASCII.
+pub const VALIDATION_TAG: u64 = 0x7661_6c69_6461_7465;
+
+/// The seed whose episodes 0…99 validate the champions of the run seeded
+/// `run_seed`. Training evaluations are seeded `eval_seed(run_seed,
+/// generation, index)`, three splitmix64 rounds deep; this is one round of
+/// the run seed with a tag, a different stream, so its starts are not the
+/// training's (bar a 64-bit hash collision).
+pub fn validation_seed(run_seed: u64) -> u64 {
+    splitmix64(run_seed ^ VALIDATION_TAG)
+}
+
 /// Scores `net` on [`Classic::EPISODES`] episodes of `T` started from
 /// `seed`: fitness = the mean return; metrics the worst return and the steps
 /// taken; behaviour the mean of [`Classic::place`] over every step.
 pub fn evaluate<T: Classic>(
     net: &mut dyn Network,
     seed: u64,
-    mut trace: Option<&mut Trace>,
+    trace: Option<&mut Trace>,
 ) -> Evaluation {
+    let p = play::<T>(net, seed, T::EPISODES, trace);
+    Evaluation {
+        fitness: p.total / f64::from(T::EPISODES),
+        metrics: vec![p.worst, p.steps],
+        behaviour: p.place.map(|x| x / p.steps).to_vec(),
+    }
+}
+
+/// `net` validated for the run seeded `run_seed`: its mean and worst return
+/// over the [`VALIDATION_EPISODES`] episodes of [`validation_seed`], each
+/// started as a training episode is.
+pub fn validate<T: Classic>(net: &mut dyn Network, run_seed: u64) -> Validation {
+    let p = play::<T>(net, validation_seed(run_seed), VALIDATION_EPISODES, None);
+    Validation {
+        mean: p.total / f64::from(VALIDATION_EPISODES),
+        worst: p.worst,
+        episodes: VALIDATION_EPISODES,
+    }
+}
+
+/// What episodes 0…`episodes` of the evaluation of `seed` gave.
+struct Played {
+    total: f64,
+    worst: f64,
+    steps: f64,
+    place: [f64; 2],
+}
+
+/// Plays episodes 0…`episodes` of `T` started from `seed`, recording into `trace`.
+fn play<T: Classic>(
+    net: &mut dyn Network,
+    seed: u64,
+    episodes: u32,
+    mut trace: Option<&mut Trace>,
+) -> Played {
     let (mut total, mut worst, mut steps, mut place) = (0.0, f64::INFINITY, 0.0, [0.0; 2]);
     let (mut inputs, mut outputs) = ([0.0; MOST], [0.0; MOST]);
     let (inputs, outputs) = (&mut inputs[..T::INPUTS], &mut outputs[..T::OUTPUTS]);
-    for k in 0..T::EPISODES {
+    for k in 0..episodes {
         let mut s = T::start(&mut Draws::new(seed, k));
         net.reset();
         let mut ret = 0.0;
@@ -129,10 +179,11 @@ pub fn evaluate<T: Classic>(
         total += ret;
         worst = f64::min(worst, ret);
     }
-    Evaluation {
-        fitness: total / f64::from(T::EPISODES),
-        metrics: vec![worst, steps],
-        behaviour: place.map(|p| p / steps).to_vec(),
+    Played {
+        total,
+        worst,
+        steps,
+        place,
     }
 }
 
@@ -177,6 +228,63 @@ mod tests {
         assert_eq!(argmax(&[0.1, 0.3, 0.3]), 1);
         assert_eq!(argmax(&[0.5, 0.5]), 0);
         assert_eq!(argmax(&[-1.0, -2.0, 0.0]), 2);
+    }
+
+    #[test]
+    fn validation_draws_from_its_own_stream_of_the_run_seed() {
+        use crate::tasks::cartpole::CartPole;
+        use vivae_neat::eval::eval_seed;
+        for run in [0, 1, 7, u64::MAX] {
+            let v = validation_seed(run);
+            assert_eq!(v, splitmix64(run ^ u64::from_be_bytes(*b"validate")));
+            // Not the seed of any evaluation of a default-sized run (and not the replay's).
+            assert!((0..=100).all(|g| (0..150).all(|i| eval_seed(run, g, i) != v)));
+            assert_ne!(v, super::super::plain::REPLAY_SEED);
+        }
+        assert_ne!(validation_seed(1), validation_seed(2));
+        // A network that always pushes right: every episode falls within a few
+        // dozen steps; its validation is the mean of its 100 episodes, each
+        // started as a training episode of the validation seed is.
+        let mut net = Always(1);
+        let v = validate::<CartPole>(&mut net, 3);
+        assert_eq!(v, validate::<CartPole>(&mut net, 3), "deterministic");
+        assert_eq!(v.episodes, VALIDATION_EPISODES);
+        let mut by_hand = Vec::new();
+        for k in 0..VALIDATION_EPISODES {
+            let p = play::<CartPole>(&mut net, validation_seed(3), k + 1, None);
+            by_hand.push(p.total - by_hand.iter().sum::<f64>());
+        }
+        let mean = by_hand.iter().sum::<f64>() / f64::from(VALIDATION_EPISODES);
+        let worst = by_hand.iter().copied().fold(f64::INFINITY, f64::min);
+        assert_eq!((v.mean, v.worst), (mean, worst));
+        assert!(v.worst < v.mean && v.mean < 60.0, "{v:?}");
+        assert_ne!(
+            v,
+            validate::<CartPole>(&mut net, 4),
+            "another run, other starts"
+        );
+    }
+
+    /// A network whose largest output is always `k`.
+    struct Always(usize);
+
+    impl Network for Always {
+        fn num_inputs(&self) -> usize {
+            5
+        }
+
+        fn num_outputs(&self) -> usize {
+            2
+        }
+
+        fn activate(&mut self, _inputs: &[f64], outputs: &mut [f64]) {
+            outputs
+                .iter_mut()
+                .enumerate()
+                .for_each(|(i, o)| *o = f64::from(u8::from(i == self.0)));
+        }
+
+        fn reset(&mut self) {}
     }
 
     #[test]

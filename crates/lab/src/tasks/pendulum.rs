@@ -23,7 +23,7 @@ use vivae_neat::driver::Evaluation;
 use vivae_neat::math::{cos, fmod, sin};
 
 use super::classic::{self, Classic, Draws, clip};
-use super::plain::{Plain, Trace, entry};
+use super::plain::{Plain, Trace, Validation, entry};
 use super::{Stepped, TaskEntry};
 
 /// The task's registration (`--task pendulum`).
@@ -97,6 +97,10 @@ impl Plain for Pendulum {
 
     fn evaluate(net: &mut dyn Network, seed: u64, trace: Option<&mut Trace>) -> Evaluation {
         classic::evaluate::<Self>(net, seed, trace)
+    }
+
+    fn validate(net: &mut dyn Network, run_seed: u64) -> Option<Validation> {
+        Some(classic::validate::<Self>(net, run_seed))
     }
 }
 

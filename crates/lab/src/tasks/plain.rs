@@ -70,6 +70,22 @@ pub trait Plain: Send + Sync + 'static {
     /// Scores `net` on the evaluation of seed `seed`; with `trace`, records
     /// every step in it.
     fn evaluate(net: &mut dyn Network, seed: u64, trace: Option<&mut Trace>) -> Evaluation;
+    /// `net` validated on fresh episodes of the run seeded `run_seed` (a task
+    /// whose runs are solved by a validation, not by training alone).
+    fn validate(_net: &mut dyn Network, _run_seed: u64) -> Option<Validation> {
+        None
+    }
+}
+
+/// A champion's validation: its returns on episodes it was not trained on.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Validation {
+    /// The mean return.
+    pub mean: f64,
+    /// The worst return.
+    pub worst: f64,
+    /// Episodes played.
+    pub episodes: u32,
 }
 
 /// An episode as a plain task's evaluation records it, for a replay.
@@ -226,6 +242,7 @@ fn build<T: Plain>(config: &Config, _maps: &[TrainingMap]) -> Result<Box<dyn Run
     let entry = crate::tasks::entry_of(config).map_err(|e| bad_input(e.to_string()))?;
     Ok(Box::new(PlainRun::<T> {
         entry,
+        run_seed: config.experiment.seed,
         task: PhantomData,
     }))
 }
@@ -233,6 +250,8 @@ fn build<T: Plain>(config: &Config, _maps: &[TrainingMap]) -> Result<Box<dyn Run
 /// Plain task `T` as a run evaluates, records and reports it.
 pub struct PlainRun<T> {
     entry: &'static TaskEntry,
+    /// The run's seed, which its validation episodes are drawn from.
+    run_seed: u64,
     task: PhantomData<fn() -> T>,
 }
 
@@ -240,6 +259,7 @@ impl<T> Clone for PlainRun<T> {
     fn clone(&self) -> Self {
         PlainRun {
             entry: self.entry,
+            run_seed: self.run_seed,
             task: PhantomData,
         }
     }
@@ -261,6 +281,38 @@ impl<T: Plain> PlainRun<T> {
         } else {
             T::evaluate(&mut FeedForwardNetwork::from_genome(genome), seed, trace)
         }
+    }
+
+    /// `genome` validated for this run, and whether that solves the task
+    /// (its mean reaches the target); none for a task without validation.
+    pub fn validation(&self, genome: &Genome) -> Option<(Validation, bool)> {
+        let v = if T::RECURRENT {
+            T::validate(&mut RecurrentNetwork::from_genome(genome), self.run_seed)
+        } else {
+            T::validate(&mut FeedForwardNetwork::from_genome(genome), self.run_seed)
+        }?;
+        Some((v, T::TARGET.is_some_and(|t| v.mean >= t)))
+    }
+
+    /// The validation's words for a person and its summary fields (empty without one).
+    fn validation_text(&self, genome: &Genome) -> (String, String) {
+        let Some((v, solved)) = self.validation(genome) else {
+            return (String::new(), String::new());
+        };
+        let verdict = if solved { "solved" } else { "not solved" };
+        let target = T::TARGET.map_or(String::new(), |t| format!(", threshold {t}"));
+        (
+            format!(
+                "\nvalidated on {} fresh episodes: mean return {:.2}, worst {:.2}{target}: {verdict}",
+                v.episodes, v.mean, v.worst
+            ),
+            format!(
+                " validated_mean={} validated_worst={} validated={}",
+                v.mean,
+                v.worst,
+                if solved { "yes" } else { "no" }
+            ),
+        )
     }
 
     /// `key=value` of each metric, with leading spaces.
@@ -374,14 +426,18 @@ impl<T: Plain> RunTask for PlainRun<T> {
         let (p, dir, wall, rate) = (f.progress, f.dir, f.wall, f.rate);
         let verdict = match (T::TARGET, p.solved_at, p.solved_generation) {
             (None, ..) => String::new(),
-            (Some(_), Some(n), Some(g)) => {
-                format!("; solved after {n} evaluations (generation {g})")
+            (Some(t), Some(n), Some(g)) => {
+                format!("; an evaluation reached {t} after {n} evaluations (generation {g})")
             }
-            (Some(_), ..) => format!("; not solved in {} evaluations", p.evaluations),
+            (Some(t), ..) => format!(
+                "; no evaluation reached {t} in {} evaluations",
+                p.evaluations
+            ),
         };
+        let (validated, fields) = self.validation_text(f.champion);
         let person = format!(
             "done: {} generations in {wall:.1} s{verdict}\n\
-             champion: fitness {:.3} (generation {})\n\
+             champion: fitness {:.3} (generation {}){validated}\n\
              run directory: {dir}/ (config.toml, champion.json, generations.csv, report.html, checkpoints/)\n\
              its network: vivae export {dir} --format onnx|c|json --out FILE",
             f.generations, f.fitness, f.generation,
@@ -392,7 +448,7 @@ impl<T: Plain> RunTask for PlainRun<T> {
             String::new()
         };
         let line = format!(
-            "evolve: generations={} best={} champion_generation={}{target}{} evaluations_reused={} wall_s={wall:.1} robot_steps_per_s={rate:.0} out={dir}",
+            "evolve: generations={} best={} champion_generation={}{target}{fields}{} evaluations_reused={} wall_s={wall:.1} robot_steps_per_s={rate:.0} out={dir}",
             f.generations, f.fitness, f.generation, f.strategy_fields, f.reused,
         );
         Some((person, line))
@@ -403,9 +459,10 @@ impl<T: Plain> RunTask for PlainRun<T> {
             return None;
         }
         let e = Self::score(genome, REPLAY_SEED, None);
-        let line = format!("fitness={}{}", e.fitness, Self::metric_fields(&e));
+        let (validated, fields) = self.validation_text(genome);
+        let line = format!("fitness={}{}{fields}", e.fitness, Self::metric_fields(&e));
         let note = format!(
-            "{}: the evaluation of seed {REPLAY_SEED} (training used others); its steps in episode.csv",
+            "{}: the evaluation of seed {REPLAY_SEED} (training used others); its steps in episode.csv{validated}",
             T::NAME
         );
         Some((line, note))

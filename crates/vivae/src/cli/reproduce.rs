@@ -12,7 +12,7 @@ use vivae_lab::reproduce::{Options, packs, run as run_pack};
 /// Options of `vivae reproduce`.
 #[derive(Args, Debug)]
 pub struct ReproduceArgs {
-    /// The pack: maze-medium, maze-hard, xor, pole-markov, pole-nonmarkov, boxes, retina or road (`vivae reproduce --list`).
+    /// The pack: maze-medium, maze-hard, xor, pole-markov, pole-nonmarkov, boxes, retina, road or gym-classic (`vivae reproduce --list`).
     #[arg(value_name = "NAME", required_unless_present = "list")]
     pub name: Option<String>,
     /// Runs per method (default: the paper's).

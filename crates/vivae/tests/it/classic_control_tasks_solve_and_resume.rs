@@ -51,6 +51,14 @@ fn every_classic_control_task_reaches_its_threshold_on_seed_1() {
             number(&line, "generations") < 30.0,
             "{task}: a solved run stops: {line}"
         );
+        // Its champion validated on 100 fresh episodes, solved by that alone.
+        let validated = number(&line, "validated_mean");
+        assert!(
+            number(&line, "validated_worst") <= validated,
+            "{task}: {line}"
+        );
+        let verdict = if validated >= target { "yes" } else { "no" };
+        assert_eq!(field(&line, "validated"), verdict, "{task}: {line}");
         let replayed = ok(vivae().arg("replay").arg(&out));
         assert!(replayed.contains("fitness="), "{task}: {replayed}");
         let episode = String::from_utf8(read(&out, "replay/episode.csv")).unwrap();

@@ -78,6 +78,7 @@ fn every_pack_runs_at_tiny_settings_and_prints_its_sourced_table() {
         "boxes",
         "retina",
         "road",
+        "gym-classic",
     ] {
         assert!(names.contains(&name), "{name} not in {names:?}");
         let table_file = dir.join(format!("{name}.md"));

@@ -1,0 +1,317 @@
+//! The `gym-classic` pack: Gymnasium's five classic-control environments
+//! under one protocol (docs/howto/classic-control.md, "The protocol"). Each
+//! run is the task's default `vivae evolve --task TASK --seed SEED` run,
+//! which stops at the first evaluation (5 episodes from the evaluation's
+//! seed) whose mean return reaches the environment's threshold; its champion
+//! is then validated on 100 fresh episodes drawn from the run seed
+//! ([`crate::tasks::classic::validation_seed`]), and the run is solved when
+//! the validated mean reaches the threshold.
+
+use std::sync::atomic::AtomicBool;
+use std::time::Instant;
+
+use super::{Journal, Options, Pack, ScratchDir, Table, thousands};
+use crate::config::Config;
+use crate::error::{Error, Result};
+use crate::run::prepare::prepare;
+use crate::tasks::acrobot::Acrobot;
+use crate::tasks::cartpole::CartPole;
+use crate::tasks::classic::VALIDATION_EPISODES;
+use crate::tasks::mountain_car::MountainCar;
+use crate::tasks::mountain_car_continuous::MountainCarContinuous;
+use crate::tasks::pendulum::Pendulum;
+use crate::tasks::plain::{Plain, PlainRun};
+
+/// Runs per task.
+const RUNS: usize = 10;
+/// `--quick`: runs per task and evaluations per run.
+const QUICK: (usize, u64) = (3, 3_000);
+
+/// The tasks, in the order the pack runs them (`--method`).
+const TASKS: [&str; 5] = [
+    CartPole::NAME,
+    Acrobot::NAME,
+    MountainCar::NAME,
+    MountainCarContinuous::NAME,
+    Pendulum::NAME,
+];
+
+/// `vivae reproduce gym-classic`.
+pub const GYM_CLASSIC: Pack = Pack {
+    name: "gym-classic",
+    what: "Gymnasium's classic control (CartPole-v1, Acrobot-v1, MountainCar-v0, MountainCarContinuous-v0, Pendulum-v1): solve rate, evaluations and wall time to solve, the champion's return validated on 100 fresh episodes",
+    methods: &TASKS,
+    run: run_pack,
+};
+
+/// What one run gave.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Outcome {
+    /// Evaluations up to the first that reached the threshold, or all the run's.
+    pub evaluations: u64,
+    /// Whether an evaluation reached the threshold in training (the run stopped).
+    pub stopped: bool,
+    /// The champion's validated mean return.
+    pub validated: f64,
+    /// Whether that reaches the threshold: the run solved the task.
+    pub solved: bool,
+    /// Wall-clock seconds of the run and its validation.
+    pub wall: f64,
+}
+
+impl Outcome {
+    /// As the journal keeps it.
+    fn text(&self) -> String {
+        format!(
+            "evaluations={} stopped={} validated={} solved={} wall_s={}",
+            self.evaluations, self.stopped, self.validated, self.solved, self.wall
+        )
+    }
+
+    /// From the journal's text.
+    fn parse(text: &str) -> Option<Outcome> {
+        let field = |k: &str| (text.split(' ')).find_map(|f| f.strip_prefix(k)?.strip_prefix('='));
+        Some(Outcome {
+            evaluations: field("evaluations")?.parse().ok()?,
+            stopped: field("stopped")?.parse().ok()?,
+            validated: field("validated")?.parse().ok()?,
+            solved: field("solved")?.parse().ok()?,
+            wall: field("wall_s")?.parse().ok()?,
+        })
+    }
+}
+
+/// The config of one run: `vivae evolve --task TASK --seed SEED
+/// --generations budget/population`, the task's defaults otherwise.
+pub fn config(task: &str, seed: u64, evaluations: Option<u64>, threads: usize) -> Result<Config> {
+    let name = crate::config::TaskName(task.into());
+    let mut c = crate::tasks::default_config(Some(&name)).map_err(Error::Invalid)?;
+    c.experiment.seed = seed;
+    if let Some(e) = evaluations {
+        let population = c.neat.population_size as u64;
+        c.experiment.generations = u32::try_from(e.div_ceil(population)).unwrap_or(u32::MAX);
+    }
+    c.run.threads = threads;
+    Ok(c)
+}
+
+/// One run of plain task `T` with `config`, its champion validated.
+pub(crate) fn one_run<T: Plain>(config: Config) -> Result<Outcome> {
+    let started = Instant::now();
+    let dir = ScratchDir::new();
+    let mut run = prepare(config, true)?.create(&dir.0, true)?;
+    run.run(&AtomicBool::new(false), |_| {})?;
+    let champion = run.champion().ok_or(Error::NoChampion)?;
+    let task = (run.task().as_any().downcast_ref::<PlainRun<T>>())
+        .ok_or_else(|| Error::Invalid(format!("gym-classic: the run is not a {} run", T::NAME)))?;
+    let (validation, solved) = task
+        .validation(&champion.genome)
+        .ok_or_else(|| Error::Invalid(format!("gym-classic: {} has no validation", T::NAME)))?;
+    let progress = run.target_progress().copied().unwrap_or_default();
+    Ok(Outcome {
+        evaluations: progress.solved_at.unwrap_or(progress.evaluations),
+        stopped: progress.solved_at.is_some(),
+        validated: validation.mean,
+        solved,
+        wall: started.elapsed().as_secs_f64(),
+    })
+}
+
+/// One run of `task` (one of [`TASKS`]), from `journal` when it finished before.
+fn journaled(task: &str, config: Config, journal: &mut Journal) -> Result<(Outcome, bool)> {
+    if let Some(o) = journal.get(&config).and_then(Outcome::parse) {
+        return Ok((o, true));
+    }
+    let outcome = match task {
+        CartPole::NAME => one_run::<CartPole>(config.clone()),
+        Acrobot::NAME => one_run::<Acrobot>(config.clone()),
+        MountainCar::NAME => one_run::<MountainCar>(config.clone()),
+        MountainCarContinuous::NAME => one_run::<MountainCarContinuous>(config.clone()),
+        Pendulum::NAME => one_run::<Pendulum>(config.clone()),
+        _ => Err(Error::Invalid(format!("gym-classic: no task {task}"))),
+    }?;
+    let what = format!("gym-classic {task} seed {}", config.experiment.seed);
+    journal.record(&config, &what, &outcome.text())?;
+    Ok((outcome, false))
+}
+
+fn run_pack(o: &Options, progress: &mut dyn FnMut(&str)) -> Result<Table> {
+    let runs = o.runs.unwrap_or(if o.quick { QUICK.0 } else { RUNS });
+    let budget = o.evaluations.or(o.quick.then_some(QUICK.1));
+    let mut journal = Journal::open(o.journal.as_deref())?;
+    let mut rows = Vec::new();
+    for task in TASKS {
+        if !o.methods.is_empty() && !o.methods.iter().any(|m| m == task) {
+            continue;
+        }
+        let mut outcomes = Vec::new();
+        for k in 0..runs {
+            let seed = o.seed + k as u64;
+            let (out, journaled) =
+                journaled(task, config(task, seed, budget, o.threads)?, &mut journal)?;
+            let from = if journaled { " (from the journal)" } else { "" };
+            progress(&format!(
+                "gym-classic {task} seed {seed}: {} after {} evaluations, validated mean {:.2}, {:.2} s{from}",
+                if out.solved { "solved" } else { "not solved" },
+                out.evaluations,
+                out.validated,
+                out.wall
+            ));
+            outcomes.push(out);
+        }
+        rows.push(row(task, &outcomes));
+    }
+    let last = o.seed + runs as u64 - 1;
+    let generations =
+        |t: &str| config(t, o.seed, budget, o.threads).map(|c| c.experiment.generations);
+    Ok(Table::new(
+        "Gymnasium's classic control, solved and validated",
+        &[
+            "task",
+            "threshold",
+            "ours: solved (validated)",
+            "ours: stopped in training",
+            "ours: evaluations to solve, median (range)",
+            "ours: wall time to solve, median (range), s",
+            "ours: validated return, mean (range)",
+            "source",
+        ],
+        rows,
+        vec![
+            format!(
+                "{runs} runs a task, seeds {}–{last}, each the task's default run (plain NEAT, population 150, at most {} generations), stopped at the first evaluation whose mean return over its 5 episodes reaches the threshold",
+                o.seed,
+                generations(CartPole::NAME)?,
+            ),
+            format!(
+                "validation: the run's champion on {VALIDATION_EPISODES} fresh episodes, started as training episodes are but from the seed splitmix64(run seed XOR \"validate\"), a stream no training evaluation draws from; solved = the validated mean reaches the threshold (Gymnasium's reward_threshold; Pendulum-v1 has none: -200 here)"
+            ),
+            "evaluations and wall time to solve: over the solved runs (wall time: the run and its validation, on this machine)".into(),
+            "each run: vivae evolve --task TASK --seed SEED; its summary line gives validated_mean= and validated=".into(),
+        ],
+    ))
+}
+
+/// The row of `task`'s `outcomes`.
+fn row(task: &str, outcomes: &[Outcome]) -> Vec<String> {
+    let solved: Vec<&Outcome> = outcomes.iter().filter(|o| o.solved).collect();
+    let threshold = threshold_of(task).map_or("—".into(), |t| format!("{t}"));
+    let spread = |xs: Vec<f64>, f: &dyn Fn(f64) -> String| -> String {
+        if xs.is_empty() {
+            return "—".into();
+        }
+        let mut xs = xs;
+        xs.sort_by(f64::total_cmp);
+        let mid = xs.len() / 2;
+        let median = if xs.len().is_multiple_of(2) {
+            (xs[mid - 1] + xs[mid]) / 2.0
+        } else {
+            xs[mid]
+        };
+        format!("{} ({}–{})", f(median), f(xs[0]), f(xs[xs.len() - 1]))
+    };
+    let validated: Vec<f64> = outcomes.iter().map(|o| o.validated).collect();
+    let mean = validated.iter().sum::<f64>() / validated.len().max(1) as f64;
+    let (lo, hi) = validated
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
+            (l.min(*v), h.max(*v))
+        });
+    vec![
+        task.into(),
+        threshold,
+        format!("{}/{}", solved.len(), outcomes.len()),
+        format!(
+            "{}/{}",
+            outcomes.iter().filter(|o| o.stopped).count(),
+            outcomes.len()
+        ),
+        spread(
+            solved.iter().map(|o| o.evaluations as f64).collect(),
+            &thousands,
+        ),
+        spread(solved.iter().map(|o| o.wall).collect(), &|s| {
+            format!("{s:.2}")
+        }),
+        if outcomes.is_empty() {
+            "—".into()
+        } else {
+            format!("{mean:.1} ({lo:.1} to {hi:.1})")
+        },
+        if task == Pendulum::NAME {
+            "Gymnasium gives none; vivae's bar (docs/howto/classic-control.md)".into()
+        } else {
+            "Gymnasium 1.x's reward_threshold (gymnasium/envs/__init__.py)".into()
+        },
+    ]
+}
+
+/// The threshold `task` is solved at.
+fn threshold_of(task: &str) -> Option<f64> {
+    match task {
+        CartPole::NAME => CartPole::TARGET,
+        Acrobot::NAME => Acrobot::TARGET,
+        MountainCar::NAME => MountainCar::TARGET,
+        MountainCarContinuous::NAME => MountainCarContinuous::TARGET,
+        Pendulum::NAME => Pendulum::TARGET,
+        _ => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_outcome_survives_the_journal() {
+        let o = Outcome {
+            evaluations: 1234,
+            stopped: true,
+            validated: -98.25,
+            solved: true,
+            wall: 0.125,
+        };
+        assert_eq!(Outcome::parse(&o.text()), Some(o));
+        assert_eq!(Outcome::parse("solved 12"), None);
+    }
+
+    #[test]
+    fn the_pack_is_its_runs_validated_and_counts_only_validated_solves() {
+        let options = Options {
+            runs: Some(2),
+            evaluations: Some(300),
+            threads: 1,
+            methods: vec!["cartpole".into()],
+            ..Options::default()
+        };
+        let mut lines = Vec::new();
+        let t = crate::reproduce::run("gym-classic", &options, &mut |l| lines.push(l.to_string()))
+            .unwrap();
+        assert_eq!((lines.len(), t.rows.len()), (2, 1), "{lines:?}");
+        assert!(t.rows.iter().all(|r| r.len() == t.columns.len()));
+        let runs: Vec<Outcome> = (1..=2)
+            .map(|seed| {
+                one_run::<CartPole>(config("cartpole", seed, Some(300), 1).unwrap()).unwrap()
+            })
+            .collect();
+        for o in &runs {
+            assert_eq!(o.solved, o.validated >= 475.0, "{o:?}");
+            assert!(o.evaluations <= 300 && o.evaluations > 0, "{o:?}");
+        }
+        let mut row_again = row("cartpole", &runs);
+        // Wall times differ run to run; everything else is the runs'.
+        let mut pack_row = t.rows[0].clone();
+        row_again[5].clear();
+        pack_row[5].clear();
+        assert_eq!(pack_row, row_again);
+        assert_eq!(t.rows[0][..2], ["cartpole".to_string(), "475".into()]);
+        let stopped_unsolved = Outcome {
+            stopped: true,
+            solved: false,
+            validated: 470.0,
+            ..runs[0]
+        };
+        let r = row("cartpole", &[stopped_unsolved]);
+        assert_eq!(r[2..5], ["0/1", "1/1", "—"]);
+    }
+}
