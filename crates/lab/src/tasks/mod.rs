@@ -27,6 +27,7 @@ pub mod predator_prey;
 mod registry;
 pub mod robot;
 mod seam;
+pub mod sketch;
 mod target;
 mod unread;
 

@@ -20,8 +20,9 @@ use vivae_neat::math::cos;
 
 use super::TaskEntry;
 use super::classic::{self, Classic, Draws, clip};
-use super::mountain_car::place;
+use super::mountain_car::{car, place, sketch};
 use super::plain::{Plain, Trace, entry};
+use super::sketch::Sketch;
 
 /// The task's registration (`--task mountain-car-continuous`).
 pub static TASK: TaskEntry = entry::<MountainCarContinuous>();
@@ -129,6 +130,14 @@ impl Plain for MountainCarContinuous {
 
     fn evaluate(net: &mut dyn Network, seed: u64, trace: Option<&mut Trace>) -> Evaluation {
         classic::evaluate::<Self>(net, seed, trace)
+    }
+
+    /// MountainCar's picture, its flag at this goal and the arrow as long as the force.
+    fn sketch() -> Option<Sketch> {
+        Some(sketch(GOAL_POSITION, |inputs, outputs, shapes| {
+            let force = f64::from(MountainCarContinuous::act(outputs)).clamp(-1.0, 1.0);
+            car(inputs[0], force, shapes);
+        }))
     }
 }
 

@@ -25,6 +25,7 @@ use vivae_neat::math::{cos, fmod, sin};
 use super::TaskEntry;
 use super::classic::{self, Classic, Draws, clip};
 use super::plain::{Plain, Trace, entry};
+use super::sketch::{Shape, Sketch};
 
 /// The task's registration (`--task pendulum`).
 pub static TASK: TaskEntry = entry::<Pendulum>();
@@ -97,6 +98,37 @@ impl Plain for Pendulum {
     fn evaluate(net: &mut dyn Network, seed: u64, trace: Option<&mut Trace>) -> Evaluation {
         classic::evaluate::<Self>(net, seed, trace)
     }
+
+    /// Gymnasium's picture: the rod from its pivot (θ = 0 upright, θ
+    /// anticlockwise) and the torque as a curved arrow as long as it is strong.
+    fn sketch() -> Option<Sketch> {
+        Some(Sketch {
+            view: [-1.4, -1.4, 1.4, 1.4],
+            backdrop: vec![Shape::segment([-0.25, 1.0], [0.25, 1.0], 0.01, "#9e9e9e")],
+            frame: picture,
+        })
+    }
+}
+
+/// The rod from the observation (cos θ, sin θ) and the torque chosen.
+fn picture(inputs: &[f64], outputs: &[f64], shapes: &mut Vec<Shape>) {
+    let (c, s) = (inputs[0], inputs[1]);
+    shapes.push(Shape::segment([0.0, 0.0], [-L * s, L * c], 0.2, "#cc4d4d"));
+    shapes.push(Shape::Circle {
+        centre: [0.0, 0.0],
+        radius: 0.05,
+        colour: "#000000",
+    });
+    let u = f64::from(Pendulum::act(outputs));
+    let down = -std::f64::consts::FRAC_PI_2;
+    shapes.extend(Shape::turn(
+        [0.0, 0.0],
+        0.35,
+        down,
+        0.5 * u / MAX_TORQUE,
+        0.04,
+        "#333333",
+    ));
 }
 
 impl Classic for Pendulum {

@@ -24,6 +24,7 @@ use crate::io::bad_input;
 use crate::search::StrategyConfig;
 use crate::search::TaskFacts;
 use crate::tasks::maps::TrainingMap;
+use crate::tasks::sketch::{Film, Sketch};
 use crate::tasks::unread::first_change;
 use crate::tasks::{Finished, HeaderContext, RunTask, TargetProgress, TaskEntry};
 
@@ -60,6 +61,11 @@ pub trait Plain: Send + Sync + 'static {
     /// Scores `net` on the evaluation of seed `seed`; with `trace`, records
     /// every step in it.
     fn evaluate(net: &mut dyn Network, seed: u64, trace: Option<&mut Trace>) -> Evaluation;
+    /// How a step of its episodes looks (report.html animates the
+    /// champion's replay from its trace); `None`: not drawn.
+    fn sketch() -> Option<Sketch> {
+        None
+    }
 }
 
 /// An episode as a plain task's evaluation records it, for a replay.
@@ -403,6 +409,13 @@ impl<T: Plain> RunTask for PlainRun<T> {
         let mut trace = Trace::default();
         Self::score(genome, REPLAY_SEED, T::TRACES.then_some(&mut trace));
         T::TRACES.then(|| trace.csv())
+    }
+
+    fn film(&self, genome: &Genome) -> Option<Film> {
+        let sketch = T::sketch().filter(|_| T::TRACES)?;
+        let mut trace = Trace::default();
+        Self::score(genome, REPLAY_SEED, Some(&mut trace));
+        Some(Film::of(&sketch, &trace))
     }
 
     fn network_outputs(&self) -> Option<&'static str> {
