@@ -18,9 +18,9 @@
 
 use std::f64::consts::PI;
 
-use vivae_neat::Network;
 use vivae_neat::driver::Evaluation;
 use vivae_neat::math::{cos, fmod, sin};
+use vivae_neat::{FeedForwardNetwork, Network};
 
 use super::TaskEntry;
 use super::classic::{self, Classic, Draws, clip};
@@ -97,6 +97,11 @@ impl Plain for Pendulum {
 
     fn evaluate(net: &mut dyn Network, seed: u64, trace: Option<&mut Trace>) -> Evaluation {
         classic::evaluate::<Self>(net, seed, trace)
+    }
+
+    /// Its episodes side by side: they all last their 200 steps, so no lane idles.
+    fn evaluate_feed_forward(net: &FeedForwardNetwork, seed: u64) -> Option<Evaluation> {
+        Some(classic::evaluate_lanes::<Self>(net, seed))
     }
 
     /// Gymnasium's picture: the rod from its pivot (θ = 0 upright, θ

@@ -2,13 +2,11 @@
 //! animate: shapes in the task's own coordinates (y up). A task declares
 //! its [`Sketch`] (`Plain::sketch`: the box to show, what stays still, and
 //! what one step shows, drawn from the network's inputs and outputs that the
-//! episode's [`Trace`] holds); [`Film::of`] draws every step of a trace, and
-//! the report draws any film the same way, whatever the task.
+//! episode's trace holds); [`Film::of`] draws every step of a trace's rows,
+//! and the report draws any film the same way, whatever the task.
 
 use serde::ser::{Serialize, SerializeTuple, Serializer};
 use vivae_neat::math::{cos, sin};
-
-use super::plain::Trace;
 
 /// A shape of a picture, in the task's coordinates (y up). It is written
 /// as `[kind, colour, size, [x0, y0, x1, y1, …]]` (kind `line`, `polygon`
@@ -234,15 +232,16 @@ pub struct Film {
 const PRECISION: f64 = 1e-4;
 
 impl Film {
-    /// The pictures of `trace`'s steps, as `sketch` draws them.
-    pub fn of(sketch: &Sketch, trace: &Trace) -> Film {
+    /// The pictures of a trace's steps (its rows: episode, the network's
+    /// inputs, its outputs, the reward), as `sketch` draws them.
+    pub fn of(sketch: &Sketch, rows: &[(u32, Vec<f64>, Vec<f64>, f64)]) -> Film {
         let finest = PRECISION * (sketch.view[2] - sketch.view[0]).abs();
         let mut scale = 1.0;
         while 1.0 / scale > finest && scale < 1e12 {
             scale *= 10.0;
         }
         let round = |shapes: Vec<Shape>| shapes.into_iter().map(|s| s.rounded(scale)).collect();
-        let frames = (trace.rows.iter())
+        let frames = (rows.iter())
             .map(|(episode, inputs, outputs, reward)| {
                 let mut shapes = Vec::new();
                 (sketch.frame)(inputs, outputs, &mut shapes);
@@ -284,10 +283,11 @@ mod tests {
             )],
             frame,
         };
-        let mut trace = Trace::default();
-        trace.step(0, &[0.123456, 1.0], &[0.5], 1.0);
-        trace.step(1, &[-0.5, 1.0], &[-0.25], -2.0);
-        let film = Film::of(&sketch, &trace);
+        let rows = [
+            (0, vec![0.123456, 1.0], vec![0.5], 1.0),
+            (1, vec![-0.5, 1.0], vec![-0.25], -2.0),
+        ];
+        let film = Film::of(&sketch, &rows);
         assert_eq!(film.frames.len(), 2);
         assert_eq!(film.frames[1].episode, 1);
         assert_eq!(film.frames[1].reward, -2.0);
