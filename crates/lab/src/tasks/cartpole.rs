@@ -7,9 +7,9 @@
 //! `reward_threshold` of 475. The network reads the observation (float32, as
 //! Gymnasium returns it) and a bias; action = argmax of its two outputs.
 
-use vivae_neat::Network;
 use vivae_neat::driver::Evaluation;
 use vivae_neat::math::{cos, sin};
+use vivae_neat::{FeedForwardNetwork, Network};
 
 use super::TaskEntry;
 use super::classic::{self, Classic, Draws, argmax};
@@ -76,6 +76,11 @@ impl Plain for CartPole {
 
     fn evaluate(net: &mut dyn Network, seed: u64, trace: Option<&mut Trace>) -> Evaluation {
         classic::evaluate::<Self>(net, seed, trace)
+    }
+
+    /// Its episodes side by side (measured faster, the same bits).
+    fn evaluate_feed_forward(net: &FeedForwardNetwork, seed: u64) -> Option<Evaluation> {
+        Some(classic::evaluate_lanes::<Self>(net, seed))
     }
 
     /// Gymnasium's picture: the track with its ends at ±2.4, the cart, the

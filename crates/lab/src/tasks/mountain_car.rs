@@ -13,9 +13,9 @@
 //! MAP-Elites) is the mean position and mean speed over the steps, each
 //! scaled into [0, 1].
 
-use vivae_neat::Network;
 use vivae_neat::driver::Evaluation;
 use vivae_neat::math::{atan2, cos, sin};
+use vivae_neat::{FeedForwardNetwork, Network};
 
 use super::TaskEntry;
 use super::classic::{self, Classic, Draws, argmax, clip};
@@ -74,6 +74,11 @@ impl Plain for MountainCar {
 
     fn evaluate(net: &mut dyn Network, seed: u64, trace: Option<&mut Trace>) -> Evaluation {
         classic::evaluate::<Self>(net, seed, trace)
+    }
+
+    /// Its episodes side by side (measured faster, the same bits).
+    fn evaluate_feed_forward(net: &FeedForwardNetwork, seed: u64) -> Option<Evaluation> {
+        Some(classic::evaluate_lanes::<Self>(net, seed))
     }
 
     fn sketch() -> Option<Sketch> {
