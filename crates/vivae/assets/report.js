@@ -82,6 +82,8 @@
     });
   }
   if (data.strategy) { strategySection(data.strategy); }
+  // A task that draws its steps: the champion's replay, animated.
+  if (data.film) { VivaeFilm.show(data.film, data.film.label); }
 
   var scene = new VivaeScene.Scene($("scene"));
   var state = { episode: 0, t: 0, playing: true, frames: 0 };

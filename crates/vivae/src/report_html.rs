@@ -19,9 +19,11 @@ use vivae_lab::rundir::GenerationRow;
 use vivae_lab::rundir::{self, files};
 use vivae_lab::search::StrategyReport;
 use vivae_lab::tasks::driving::episode::{Episode, EpisodeRecord};
+use vivae_lab::tasks::plain::REPLAY_SEED;
 use vivae_lab::tasks::read_champion;
 use vivae_lab::tasks::read_config;
 use vivae_lab::tasks::scenarios::load_scenario;
+use vivae_lab::tasks::sketch::Film;
 
 /// The page template; `/*VIVAE-DATA*/`, `/*VIVAE-CSS*/` and `/*VIVAE-JS*/` are filled in.
 const TEMPLATE: &str = include_str!("../assets/report.html");
@@ -33,6 +35,8 @@ pub(crate) const SCENE_JS: &str = include_str!("../assets/scene.js");
 pub(crate) const PLOTS_JS: &str = include_str!("../assets/plots.js");
 /// The report page's own script.
 const REPORT_JS: &str = include_str!("../assets/report.js");
+/// The animation of a task's film (its steps as shapes, any task's alike).
+const FILM_JS: &str = include_str!("../assets/film.js");
 
 /// One animated episode in the report.
 #[derive(Debug, Serialize)]
@@ -69,6 +73,18 @@ struct ReportData {
     /// The task of a report of curves alone (no scenario, episodes or network figure).
     #[serde(skip_serializing_if = "Option::is_none")]
     task: Option<String>,
+    /// The champion's replay as pictures, for a task that draws its steps.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    film: Option<FilmData>,
+}
+
+/// The champion's replay as a task draws it, and what it is.
+#[derive(Debug, Serialize)]
+struct FilmData {
+    /// Whose replay it is, and on which episodes.
+    label: String,
+    #[serde(flatten)]
+    film: Film,
 }
 
 /// What a strategy other than NEAT adds to the report: its part
@@ -358,18 +374,42 @@ fn curves_data(dir: &Path) -> vivae_lab::Result<(ReportData, Vec<rundir::Generat
         curve_colours: [convergence::best_colour(), convergence::MEAN_COLOUR].map(convergence::hex),
         strategy: None,
         task: None,
+        film: None,
     };
     Ok((data, best))
 }
 
 /// The report of a run of a task without a substrate network: its curves
-/// alone ([`curves_data`]), headed by its task.
+/// ([`curves_data`]), headed by its task, and its champion's replay
+/// animated when the task draws its steps.
 fn build_curves(dir: &Path, config: &vivae_lab::config::Config) -> vivae_lab::Result<String> {
     let (data, _) = curves_data(dir)?;
     page_of(&ReportData {
         task: Some(config.experiment.task.name().to_string()),
+        film: film_of(dir, config)?,
         ..data
     })
+}
+
+/// The champion's replay as its task draws it; none for a task that draws
+/// no steps, or before the run's first champion is written.
+fn film_of(dir: &Path, config: &vivae_lab::config::Config) -> vivae_lab::Result<Option<FilmData>> {
+    let path = dir.join(files::CHAMPION);
+    if !path.is_file() {
+        return Ok(None);
+    }
+    let champion = read_champion(&path)?;
+    let maps = rundir::load_run(dir, config, None)?;
+    let task = vivae_lab::tasks::build(config, &maps)?;
+    task.check_genome(&champion.genome)
+        .map_err(|reason| vivae_lab::Error::Genome { path, reason })?;
+    Ok(task.film(&champion.genome).map(|film| FilmData {
+        label: format!(
+            "Champion (generation {}, fitness {:.3}) on the episodes of seed {REPLAY_SEED} (training used others)",
+            champion.generation, champion.fitness
+        ),
+        film,
+    }))
 }
 
 /// The run's name for the page's title: its directory's.
@@ -390,7 +430,7 @@ fn page_of(data: &ReportData) -> vivae_lab::Result<String> {
                 reason: e.to_string(),
             })?,
         );
-    let js = [SCENE_JS, PLOTS_JS, REPORT_JS].join("\n");
+    let js = [SCENE_JS, PLOTS_JS, FILM_JS, REPORT_JS].join("\n");
     Ok(report_page(TEMPLATE, &js, &json))
 }
 
@@ -481,11 +521,11 @@ mod tests {
 
     #[test]
     fn scripts_never_close_their_block_and_load_nothing() {
-        for js in [SCENE_JS, PLOTS_JS, REPORT_JS] {
+        for js in [SCENE_JS, PLOTS_JS, FILM_JS, REPORT_JS] {
             assert!(!js.to_ascii_lowercase().contains("</script"));
         }
         for text in [
-            REPORT_END, TEMPLATE, STYLE_CSS, SCENE_JS, PLOTS_JS, REPORT_JS,
+            REPORT_END, TEMPLATE, STYLE_CSS, SCENE_JS, PLOTS_JS, FILM_JS, REPORT_JS,
         ] {
             // The SVG namespace is a name, not a request.
             let stripped = text.replace("http://www.w3.org/2000/svg", "");

@@ -17,10 +17,11 @@ use std::f64::consts::PI;
 
 use vivae_neat::Network;
 use vivae_neat::driver::Evaluation;
-use vivae_neat::math::{cos, sin};
+use vivae_neat::math::{atan2, cos, sin};
 
 use super::classic::{self, Classic, Draws, argmax};
 use super::plain::{Plain, Trace, Validation, entry};
+use super::sketch::{Shape, Sketch};
 use super::{Stepped, TaskEntry};
 
 /// The task's registration (`--task acrobot`).
@@ -30,6 +31,8 @@ pub static TASK: TaskEntry = entry::<Acrobot>();
 pub const MAX_STEPS: u32 = 500;
 const DT: f64 = 0.2;
 const LINK_LENGTH_1: f64 = 1.0;
+/// The second link's length (only drawn: the book dynamics do not use it).
+const LINK_LENGTH_2: f64 = 1.0;
 const LINK_MASS_1: f64 = 1.0;
 const LINK_MASS_2: f64 = 1.0;
 const LINK_COM_POS_1: f64 = 0.5;
@@ -138,6 +141,39 @@ impl Plain for Acrobot {
     fn validate(net: &mut dyn Network, run_seed: u64) -> Option<Validation> {
         Some(classic::validate::<Self>(net, run_seed))
     }
+
+    /// Gymnasium's picture: the bar the free end must rise above, the two
+    /// links hanging from the fixed joint, and the torque on the middle
+    /// joint as a curved arrow.
+    fn sketch() -> Option<Sketch> {
+        Some(Sketch {
+            view: [-2.2, -2.2, 2.2, 2.2],
+            backdrop: vec![Shape::segment([-2.2, 1.0], [2.2, 1.0], 0.02, "#000000")],
+            frame: picture,
+        })
+    }
+}
+
+/// The two links from the observation (cos and sin of θ1 and θ2; θ1 = 0
+/// hangs straight down, both angles anticlockwise) and the torque chosen.
+fn picture(inputs: &[f64], outputs: &[f64], shapes: &mut Vec<Shape>) {
+    let [c1, s1, c2, s2] = [inputs[0], inputs[1], inputs[2], inputs[3]];
+    let (c12, s12) = (c1 * c2 - s1 * s2, s1 * c2 + c1 * s2);
+    let p1 = [LINK_LENGTH_1 * s1, -LINK_LENGTH_1 * c1];
+    let p2 = [p1[0] + LINK_LENGTH_2 * s12, p1[1] - LINK_LENGTH_2 * c12];
+    for (a, b) in [([0.0, 0.0], p1), (p1, p2)] {
+        shapes.push(Shape::segment(a, b, 0.2, "#00cccc"));
+    }
+    for p in [[0.0, 0.0], p1] {
+        shapes.push(Shape::Circle {
+            centre: p,
+            radius: 0.1,
+            colour: "#cccc00",
+        });
+    }
+    let torque = AVAIL_TORQUE[Acrobot::act(outputs)];
+    let along = atan2(-c12, s12);
+    shapes.extend(Shape::turn(p1, 0.35, along, 0.6 * torque, 0.04, "#d32f2f"));
 }
 
 impl Classic for Acrobot {

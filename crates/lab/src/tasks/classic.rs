@@ -7,9 +7,9 @@
 //! Python package exposes it through [`super::gymnasium`]) so a test can
 //! compare every step with Gymnasium's.
 
-use vivae_neat::Network;
 use vivae_neat::driver::Evaluation;
 use vivae_neat::eval::splitmix64;
+use vivae_neat::{FeedForwardNetwork, Network};
 
 use super::Step;
 use super::plain::{Plain, Trace, Validation};
@@ -187,6 +187,84 @@ fn play<T: Classic>(
     }
 }
 
+/// Episodes [`evaluate_lanes`] steps side by side, at most.
+pub const LANES: usize = 8;
+
+/// [`evaluate`] of a feed-forward network, its episodes stepped side by
+/// side: each step activates the network once for every live episode
+/// ([`FeedForwardNetwork::activate_lanes`], the same bits as one activation
+/// each), and the sums are taken in [`evaluate`]'s order, so the
+/// evaluation is the same to the bit. More than [`LANES`] episodes are
+/// evaluated one by one.
+pub fn evaluate_lanes<T: Classic>(net: &FeedForwardNetwork, seed: u64) -> Evaluation {
+    let n = T::EPISODES as usize;
+    if n > LANES {
+        return evaluate::<T>(&mut net.clone(), seed, None);
+    }
+    let mut states: [Option<T::State>; LANES] = [None; LANES];
+    for (k, s) in states[..n].iter_mut().enumerate() {
+        *s = Some(T::start(&mut Draws::new(seed, k as u32)));
+    }
+    let mut returns = [0.0; LANES];
+    // Each episode's steps' shares of the behaviour, summed at the end in
+    // episode order as `evaluate` sums them.
+    let mut places: Vec<Vec<[f64; 2]>> = (0..n)
+        .map(|_| Vec::with_capacity(T::MAX_STEPS as usize))
+        .collect();
+    let (mut inputs, mut outputs) = ([[0.0; LANES]; MOST], [[0.0; LANES]; MOST]);
+    let (mut obs, mut out) = ([0.0; MOST], [0.0; MOST]);
+    let mut values = Vec::new();
+    // The observation's values, then the bias input.
+    let o = T::INPUTS - 1;
+    for _ in 0..T::MAX_STEPS {
+        let mut live = false;
+        for (l, s) in states[..n].iter().enumerate() {
+            let Some(s) = s else { continue };
+            live = true;
+            T::observe(s, &mut obs[..o]);
+            for (i, v) in obs[..o].iter_mut().enumerate() {
+                *v = single(*v);
+                inputs[i][l] = *v;
+            }
+            inputs[o][l] = 1.0;
+            places[l].push(T::place(&obs[..o]));
+        }
+        if !live {
+            break;
+        }
+        // Ended episodes' lanes are stepped too (on their last inputs) and ignored.
+        net.activate_lanes(
+            &inputs[..T::INPUTS],
+            &mut outputs[..T::OUTPUTS],
+            &mut values,
+        );
+        for (l, state) in states[..n].iter_mut().enumerate() {
+            let Some(s) = *state else { continue };
+            for (k, v) in out[..T::OUTPUTS].iter_mut().enumerate() {
+                *v = outputs[k][l];
+            }
+            let (next, reward, terminated) = T::step(s, T::act(&out[..T::OUTPUTS]));
+            returns[l] += reward;
+            *state = (!terminated).then_some(next);
+        }
+    }
+    let (mut total, mut worst, mut steps, mut place) = (0.0, f64::INFINITY, 0.0, [0.0; 2]);
+    for (ret, episode) in returns.iter().zip(&places) {
+        for [a, b] in episode {
+            steps += 1.0;
+            place[0] += a;
+            place[1] += b;
+        }
+        total += ret;
+        worst = f64::min(worst, *ret);
+    }
+    Evaluation {
+        fitness: total / f64::from(T::EPISODES),
+        metrics: vec![worst, steps],
+        behaviour: place.map(|p| p / steps).to_vec(),
+    }
+}
+
 /// `T`'s episode from state `state` under `actions`, until it terminates, is
 /// truncated or the actions run out; the error says what is wrong with the input.
 pub fn episode<T: Classic>(state: &[f64], actions: &[f64]) -> Result<Vec<Step>, String> {
@@ -228,6 +306,63 @@ mod tests {
         assert_eq!(argmax(&[0.1, 0.3, 0.3]), 1);
         assert_eq!(argmax(&[0.5, 0.5]), 0);
         assert_eq!(argmax(&[-1.0, -2.0, 0.0]), 2);
+    }
+
+    /// Genomes of `T`'s shape grown by 25 generations of its own fitness
+    /// (hidden nodes, disabled links).
+    fn grown<T: Classic>() -> Vec<vivae_neat::Genome> {
+        let params = vivae_neat::NeatParams {
+            add_node_probability: 0.2,
+            add_link_probability: 0.4,
+            population_size: 40,
+            ..vivae_neat::NeatParams::plain_neat()
+        };
+        let spec = super::super::plain::spec::<T>();
+        let mut pop = vivae_neat::Population::new(params, spec, 5).unwrap();
+        let mut all = Vec::new();
+        for _ in 0..25 {
+            pop.evaluate(|g, ctx| {
+                evaluate::<T>(&mut FeedForwardNetwork::from_genome(g), ctx.seed, None).fitness
+            });
+            all.extend(pop.genomes().iter().step_by(7).cloned());
+            pop.next_generation();
+        }
+        all
+    }
+
+    /// Every genome's evaluation in lanes is its evaluation one episode at a time, to the bit.
+    fn lanes_are_one_by_one<T: Classic>() {
+        let bits = |e: &Evaluation| {
+            let mut v = vec![e.fitness.to_bits()];
+            v.extend(e.metrics.iter().chain(&e.behaviour).map(|x| x.to_bits()));
+            v
+        };
+        let genomes = grown::<T>();
+        assert!(
+            genomes
+                .iter()
+                .any(|g| g.nodes().len() > T::INPUTS + T::OUTPUTS)
+        );
+        for (k, g) in genomes.iter().enumerate() {
+            let net = FeedForwardNetwork::from_genome(g);
+            let seed = splitmix64(k as u64);
+            let one = evaluate::<T>(&mut net.clone(), seed, None);
+            assert_eq!(
+                bits(&evaluate_lanes::<T>(&net, seed)),
+                bits(&one),
+                "{}",
+                T::NAME
+            );
+        }
+    }
+
+    #[test]
+    fn lanes_give_every_tasks_evaluations_to_the_bit() {
+        lanes_are_one_by_one::<super::super::cartpole::CartPole>();
+        lanes_are_one_by_one::<super::super::acrobot::Acrobot>();
+        lanes_are_one_by_one::<super::super::mountain_car::MountainCar>();
+        lanes_are_one_by_one::<super::super::mountain_car_continuous::MountainCarContinuous>();
+        lanes_are_one_by_one::<super::super::pendulum::Pendulum>();
     }
 
     #[test]

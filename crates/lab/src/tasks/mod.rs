@@ -19,6 +19,7 @@ pub mod classic;
 pub mod driving;
 pub mod gym;
 pub mod gymnasium;
+mod hill;
 pub mod maps;
 pub mod maze;
 pub mod mountain_car;
@@ -30,6 +31,7 @@ mod registry;
 pub mod robot;
 pub mod scenarios;
 mod seam;
+pub mod sketch;
 mod target;
 mod unread;
 

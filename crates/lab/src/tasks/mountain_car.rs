@@ -13,12 +13,14 @@
 //! MAP-Elites) is the mean position and mean speed over the steps, each
 //! scaled into [0, 1].
 
-use vivae_neat::Network;
 use vivae_neat::driver::Evaluation;
 use vivae_neat::math::cos;
+use vivae_neat::{FeedForwardNetwork, Network};
 
 use super::classic::{self, Classic, Draws, argmax, clip};
+use super::hill::{car, sketch};
 use super::plain::{Plain, Trace, Validation, entry};
+use super::sketch::Sketch;
 use super::{Stepped, TaskEntry};
 
 /// The task's registration (`--task mountain-car`).
@@ -78,6 +80,17 @@ impl Plain for MountainCar {
 
     fn validate(net: &mut dyn Network, run_seed: u64) -> Option<Validation> {
         Some(classic::validate::<Self>(net, run_seed))
+    }
+
+    /// Its episodes side by side (measured faster, the same bits).
+    fn evaluate_feed_forward(net: &FeedForwardNetwork, seed: u64) -> Option<Evaluation> {
+        Some(classic::evaluate_lanes::<Self>(net, seed))
+    }
+
+    fn sketch() -> Option<Sketch> {
+        Some(sketch(GOAL_POSITION, |inputs, outputs, shapes| {
+            car(inputs[0], MountainCar::act(outputs) as f64 - 1.0, shapes);
+        }))
     }
 }
 

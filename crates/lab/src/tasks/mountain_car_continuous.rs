@@ -14,12 +14,14 @@
 //! Gymnasium's clip to [−1, 1] leaves as it is. The behaviour descriptor is
 //! MountainCar's: mean position and speed, scaled into [0, 1].
 
-use vivae_neat::Network;
 use vivae_neat::driver::Evaluation;
 use vivae_neat::math::cos;
+use vivae_neat::{FeedForwardNetwork, Network};
 
 use super::classic::{self, Classic, Draws, clip};
+use super::hill::{car, sketch};
 use super::plain::{Plain, Trace, Validation, entry};
+use super::sketch::Sketch;
 use super::{Stepped, TaskEntry};
 
 /// The task's registration (`--task mountain-car-continuous`).
@@ -134,6 +136,19 @@ impl Plain for MountainCarContinuous {
     fn validate(net: &mut dyn Network, run_seed: u64) -> Option<Validation> {
         Some(classic::validate::<Self>(net, run_seed))
     }
+
+    /// Its episodes side by side: they end late if at all, so lanes seldom idle.
+    fn evaluate_feed_forward(net: &FeedForwardNetwork, seed: u64) -> Option<Evaluation> {
+        Some(classic::evaluate_lanes::<Self>(net, seed))
+    }
+
+    /// MountainCar's picture, its flag at this goal and the arrow as long as the force.
+    fn sketch() -> Option<Sketch> {
+        Some(sketch(GOAL_POSITION, |inputs, outputs, shapes| {
+            let force = f64::from(MountainCarContinuous::act(outputs)).clamp(-1.0, 1.0);
+            car(inputs[0], force, shapes);
+        }))
+    }
 }
 
 impl Classic for MountainCarContinuous {
@@ -147,7 +162,11 @@ impl Classic for MountainCarContinuous {
     }
 
     fn observe(s: &State, obs: &mut [f64]) {
-        obs.copy_from_slice(&Self::values(s));
+        // Not through `values`: a step allocates nothing.
+        match s {
+            State::Reset(v) => obs.copy_from_slice(v),
+            State::Stepped(v) => obs.copy_from_slice(&v.map(f64::from)),
+        }
     }
 
     fn act(outputs: &[f64]) -> f32 {

@@ -18,12 +18,13 @@
 
 use std::f64::consts::PI;
 
-use vivae_neat::Network;
 use vivae_neat::driver::Evaluation;
 use vivae_neat::math::{cos, fmod, sin};
+use vivae_neat::{FeedForwardNetwork, Network};
 
 use super::classic::{self, Classic, Draws, clip};
 use super::plain::{Plain, Trace, Validation, entry};
+use super::sketch::{Shape, Sketch};
 use super::{Stepped, TaskEntry};
 
 /// The task's registration (`--task pendulum`).
@@ -102,6 +103,42 @@ impl Plain for Pendulum {
     fn validate(net: &mut dyn Network, run_seed: u64) -> Option<Validation> {
         Some(classic::validate::<Self>(net, run_seed))
     }
+
+    /// Its episodes side by side: they all last their 200 steps, so no lane idles.
+    fn evaluate_feed_forward(net: &FeedForwardNetwork, seed: u64) -> Option<Evaluation> {
+        Some(classic::evaluate_lanes::<Self>(net, seed))
+    }
+
+    /// Gymnasium's picture: the rod from its pivot (θ = 0 upright, θ
+    /// anticlockwise) and the torque as a curved arrow as long as it is strong.
+    fn sketch() -> Option<Sketch> {
+        Some(Sketch {
+            view: [-1.4, -1.4, 1.4, 1.4],
+            backdrop: vec![Shape::segment([-0.25, 1.0], [0.25, 1.0], 0.01, "#9e9e9e")],
+            frame: picture,
+        })
+    }
+}
+
+/// The rod from the observation (cos θ, sin θ) and the torque chosen.
+fn picture(inputs: &[f64], outputs: &[f64], shapes: &mut Vec<Shape>) {
+    let (c, s) = (inputs[0], inputs[1]);
+    shapes.push(Shape::segment([0.0, 0.0], [-L * s, L * c], 0.2, "#cc4d4d"));
+    shapes.push(Shape::Circle {
+        centre: [0.0, 0.0],
+        radius: 0.05,
+        colour: "#000000",
+    });
+    let u = f64::from(Pendulum::act(outputs));
+    let down = -std::f64::consts::FRAC_PI_2;
+    shapes.extend(Shape::turn(
+        [0.0, 0.0],
+        0.35,
+        down,
+        0.5 * u / MAX_TORQUE,
+        0.04,
+        "#333333",
+    ));
 }
 
 impl Classic for Pendulum {

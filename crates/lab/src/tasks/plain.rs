@@ -25,6 +25,7 @@ use crate::io::bad_input;
 use crate::search::StrategyConfig;
 use crate::search::TaskFacts;
 use crate::tasks::maps::TrainingMap;
+use crate::tasks::sketch::{Film, Sketch};
 use crate::tasks::unread::first_change;
 use crate::tasks::{Finished, HeaderContext, RunTask, Stepped, TargetProgress, TaskEntry};
 
@@ -73,6 +74,17 @@ pub trait Plain: Send + Sync + 'static {
     /// `net` validated on fresh episodes of the run seeded `run_seed` (a task
     /// whose runs are solved by a validation, not by training alone).
     fn validate(_net: &mut dyn Network, _run_seed: u64) -> Option<Validation> {
+        None
+    }
+    /// Its evaluation of a feed-forward network, faster than
+    /// [`Plain::evaluate`] and the same to the bit (e.g. its episodes side
+    /// by side in lanes); `None`: it has none.
+    fn evaluate_feed_forward(_net: &FeedForwardNetwork, _seed: u64) -> Option<Evaluation> {
+        None
+    }
+    /// How a step of its episodes looks (report.html animates the
+    /// champion's replay from its trace); `None`: not drawn.
+    fn sketch() -> Option<Sketch> {
         None
     }
 }
@@ -277,9 +289,13 @@ impl<T: Plain> PlainRun<T> {
     /// `genome`'s network scored on the evaluation of `seed`, recording into `trace`.
     fn score(genome: &Genome, seed: u64, trace: Option<&mut Trace>) -> Evaluation {
         if T::RECURRENT {
-            T::evaluate(&mut RecurrentNetwork::from_genome(genome), seed, trace)
-        } else {
-            T::evaluate(&mut FeedForwardNetwork::from_genome(genome), seed, trace)
+            return T::evaluate(&mut RecurrentNetwork::from_genome(genome), seed, trace);
+        }
+        let mut net = FeedForwardNetwork::from_genome(genome);
+        match trace {
+            None => T::evaluate_feed_forward(&net, seed)
+                .unwrap_or_else(|| T::evaluate(&mut net, seed, None)),
+            Some(t) => T::evaluate(&mut net, seed, Some(t)),
         }
     }
 
@@ -472,6 +488,13 @@ impl<T: Plain> RunTask for PlainRun<T> {
         let mut trace = Trace::default();
         Self::score(genome, REPLAY_SEED, T::TRACES.then_some(&mut trace));
         T::TRACES.then(|| trace.csv())
+    }
+
+    fn film(&self, genome: &Genome) -> Option<Film> {
+        let sketch = T::sketch().filter(|_| T::TRACES)?;
+        let mut trace = Trace::default();
+        Self::score(genome, REPLAY_SEED, Some(&mut trace));
+        Some(Film::of(&sketch, &trace.rows))
     }
 
     fn network_outputs(&self) -> Option<&'static str> {

@@ -12,6 +12,7 @@ use vivae_neat::driver::{Evaluation, Task};
 use vivae_neat::{Genome, GenomeSpec};
 
 use super::maps::TrainingMap;
+use super::sketch::Film;
 use super::{TargetProgress, driving};
 use crate::config::{Config, ConfigError, Section, TaskName};
 use crate::error::{Error, Result};
@@ -434,6 +435,12 @@ pub trait RunTask: Task + fmt::Debug + Send + Sync {
     /// A replay's episode of `genome`, step by step, as CSV (written as
     /// `episode.csv`), for a task that records its episodes.
     fn episode_csv(&self, _genome: &Genome) -> Option<String> {
+        None
+    }
+
+    /// A replay's episodes of `genome` as pictures, step by step (report.html
+    /// animates them), for a task that draws its steps.
+    fn film(&self, _genome: &Genome) -> Option<Film> {
         None
     }
 

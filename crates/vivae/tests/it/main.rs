@@ -14,6 +14,7 @@ mod a_training_map_given_twice_is_warned_about;
 mod a_viewer_step_message_is_bounded_by_its_cost;
 mod bad_inputs_exit_2_with_one_line;
 mod best_genomes_are_recorded_every_generation_and_resume_identically;
+mod classic_control_report_animates_the_champion;
 mod classic_control_tasks_solve_and_resume;
 mod cli_end_to_end;
 mod common;
