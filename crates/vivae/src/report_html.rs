@@ -399,7 +399,7 @@ fn film_of(dir: &Path, config: &vivae_lab::config::Config) -> vivae_lab::Result<
         return Ok(None);
     }
     let champion = read_champion(&path)?;
-    let maps = rundir::load_run(dir, config, None)?;
+    let maps = vivae_lab::tasks::maps::load_run(dir, config, None)?;
     let task = vivae_lab::tasks::build(config, &maps)?;
     task.check_genome(&champion.genome)
         .map_err(|reason| vivae_lab::Error::Genome { path, reason })?;
