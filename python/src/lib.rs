@@ -14,7 +14,6 @@ mod asktell;
 mod errors;
 mod evo;
 mod export;
-mod gym;
 mod lab;
 mod pool;
 mod render;
@@ -33,7 +32,6 @@ fn _vivae(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<evo::Population>()?;
     strategies::register(m)?;
     tasks::register(m)?;
-    gym::register(m)?;
     m.add_function(wrap_pyfunction!(lab::evolve, m)?)?;
     m.add_function(wrap_pyfunction!(lab::resume, m)?)?;
     m.add_function(wrap_pyfunction!(lab::report, m)?)?;

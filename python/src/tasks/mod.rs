@@ -8,11 +8,13 @@ use pyo3::prelude::*;
 
 mod classic;
 mod driving;
+mod gym;
 mod predator_prey;
 
 /// Adds every task's own classes and functions to the module `m`.
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     classic::register(m)?;
     driving::register(m)?;
+    gym::register(m)?;
     predator_prey::register(m)
 }
