@@ -138,6 +138,10 @@ impl Plain for Acrobot {
     fn validate(net: &mut dyn Network, run_seed: u64) -> Option<Validation> {
         Some(classic::validate::<Self>(net, run_seed))
     }
+
+    fn check(net: &mut dyn Network, run_seed: u64) -> Option<(Validation, u64)> {
+        Some(classic::check::<Self>(net, run_seed))
+    }
 }
 
 impl Classic for Acrobot {

@@ -75,6 +75,14 @@ pub trait Plain: Send + Sync + 'static {
     fn validate(_net: &mut dyn Network, _run_seed: u64) -> Option<Validation> {
         None
     }
+    /// `net`, whose evaluation reached [`Plain::TARGET`], checked on episodes
+    /// of the run seeded `run_seed` that neither training nor the validation
+    /// plays, and the evaluations the check counts as; the run stops only if
+    /// its mean reaches the target too. None (the default): reaching the
+    /// target in training stops the run.
+    fn check(_net: &mut dyn Network, _run_seed: u64) -> Option<(Validation, u64)> {
+        None
+    }
 }
 
 /// A champion's validation: its returns on episodes it was not trained on.
@@ -294,6 +302,15 @@ impl<T: Plain> PlainRun<T> {
         Some((v, T::TARGET.is_some_and(|t| v.mean >= t)))
     }
 
+    /// `genome` checked for this run ([`Plain::check`]).
+    fn checked(&self, genome: &Genome) -> Option<(Validation, u64)> {
+        if T::RECURRENT {
+            T::check(&mut RecurrentNetwork::from_genome(genome), self.run_seed)
+        } else {
+            T::check(&mut FeedForwardNetwork::from_genome(genome), self.run_seed)
+        }
+    }
+
     /// The validation's words for a person and its summary fields (empty without one).
     fn validation_text(&self, genome: &Genome) -> (String, String) {
         let Some((v, solved)) = self.validation(genome) else {
@@ -386,6 +403,11 @@ impl<T: Plain> RunTask for PlainRun<T> {
 
     fn reached_target(&self, evaluation: &Evaluation) -> bool {
         T::TARGET.is_some_and(|t| evaluation.fitness >= t)
+    }
+
+    fn holds_target(&self, genome: &Genome) -> Option<(bool, u64)> {
+        let (v, cost) = self.checked(genome)?;
+        Some((T::TARGET.is_some_and(|t| v.mean >= t), cost))
     }
 
     fn generation_fields(&self, progress: &TargetProgress, evaluations: &[Evaluation]) -> String {

@@ -20,6 +20,15 @@ pub struct TargetProgress {
     pub solved_at: Option<u64>,
     /// The run's generation (1-based) in which it did.
     pub solved_generation: Option<u32>,
+    /// Of `evaluations`, those the checks of training solvers counted as
+    /// ([`RunTask::holds_target`]).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub checked: u64,
+}
+
+/// Whether `n` is 0 (a count a checkpoint leaves out then).
+fn is_zero(n: &u64) -> bool {
+    *n == 0
 }
 
 impl TargetProgress {
@@ -31,13 +40,44 @@ impl TargetProgress {
         generation: u32,
         evaluations: &[Evaluation],
     ) {
-        if self.solved_at.is_none()
-            && let Some(i) = evaluations.iter().position(|e| task.reached_target(e))
-        {
-            self.solved_at = Some(self.evaluations + i as u64 + 1);
-            self.solved_generation = Some(generation);
+        self.tell_checked(task, generation, evaluations, |_| None);
+    }
+
+    /// [`TargetProgress::tell`] for a task that checks its solvers: each
+    /// evaluation that reaches the target, in batch order, is checked by
+    /// `check` (given its index: whether it holds, and the evaluations the
+    /// check counts as; none: it holds, unchecked) until one holds. The
+    /// checks count in the evaluations, before the solver's own batch
+    /// position. Returns the index of the one that held.
+    pub fn tell_checked<T: RunTask + ?Sized>(
+        &mut self,
+        task: &T,
+        generation: u32,
+        evaluations: &[Evaluation],
+        mut check: impl FnMut(usize) -> Option<(bool, u64)>,
+    ) -> Option<usize> {
+        let mut checked = 0;
+        let mut solver = None;
+        if self.solved_at.is_none() {
+            for (i, _) in (evaluations.iter().enumerate()).filter(|(_, e)| task.reached_target(e)) {
+                let held = match check(i) {
+                    None => true,
+                    Some((held, cost)) => {
+                        checked += cost;
+                        held
+                    }
+                };
+                if held {
+                    self.solved_at = Some(self.evaluations + checked + i as u64 + 1);
+                    self.solved_generation = Some(generation);
+                    solver = Some(i);
+                    break;
+                }
+            }
         }
-        self.evaluations += evaluations.len() as u64;
+        self.checked += checked;
+        self.evaluations += evaluations.len() as u64 + checked;
+        solver
     }
 
     /// `solved=yes|no evals_to_solve=N|none` for the summary line, with a leading space.
