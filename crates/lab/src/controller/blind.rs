@@ -83,7 +83,7 @@ mod tests {
             (b.name(), b.rings(), b.places()),
             ("distance", 1, rays.places())
         );
-        let scenario = crate::io::load_scenario(Some(std::path::Path::new("corridor")))
+        let scenario = crate::tasks::scenarios::load_scenario(Some(std::path::Path::new("corridor")))
             .unwrap()
             .scenario;
         let world = World::new(&scenario, &Default::default()).unwrap();

@@ -448,6 +448,10 @@ impl<T: Plain> RunTask for PlainRun<T> {
         let (p, dir, wall, rate) = (f.progress, f.dir, f.wall, f.rate);
         let verdict = match (T::TARGET, p.solved_at, p.solved_generation) {
             (None, ..) => String::new(),
+            (Some(t), Some(n), Some(g)) if p.checked > 0 => format!(
+                "; a genome reached {t} in training and held it on its check after {n} evaluations (generation {g}; checks counted as {} of them)",
+                p.checked
+            ),
             (Some(t), Some(n), Some(g)) => {
                 format!("; an evaluation reached {t} after {n} evaluations (generation {g})")
             }

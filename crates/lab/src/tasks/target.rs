@@ -172,3 +172,49 @@ impl Task for Box<dyn RunTask> {
         (**self).context_free()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::TaskName;
+
+    fn eval(fitness: f64) -> Evaluation {
+        Evaluation {
+            fitness,
+            ..Evaluation::default()
+        }
+    }
+
+    #[test]
+    fn a_run_stops_only_on_a_solver_that_holds_its_check() {
+        let c = crate::tasks::default_config(Some(&TaskName("cartpole".into()))).unwrap();
+        let task = crate::tasks::build(&c, &[]).unwrap();
+        let mut p = TargetProgress::default();
+        // Two of the batch reach 475 in training; the first fails its check
+        // (20 evaluations spent), the second holds: it is the solver, after
+        // 3 evaluations of the batch and both checks.
+        let told = [eval(100.0), eval(500.0), eval(480.0), eval(500.0)];
+        let mut asked = Vec::new();
+        let held = p.tell_checked(task.as_ref(), 1, &told, |i| {
+            asked.push(i);
+            Some((i == 2, 20))
+        });
+        assert_eq!((held, asked), (Some(2), vec![1, 2]));
+        assert_eq!((p.solved_at, p.solved_generation), (Some(3 + 40), Some(1)));
+        assert_eq!((p.evaluations, p.checked), (4 + 40, 40));
+        // Solved: later generations check nothing.
+        let later = p.tell_checked(task.as_ref(), 2, &told, |_| panic!("checked"));
+        assert_eq!((later, p.evaluations, p.solved_at), (None, 48, Some(43)));
+        // Every check failing: not solved, the checks still counted.
+        let mut q = TargetProgress::default();
+        assert_eq!(
+            q.tell_checked(task.as_ref(), 1, &told, |_| Some((false, 20))),
+            None
+        );
+        assert_eq!((q.solved_at, q.evaluations, q.checked), (None, 64, 60));
+        // A task without a check: the first evaluation that reaches the target.
+        let mut r = TargetProgress::default();
+        r.tell(task.as_ref(), 1, &told);
+        assert_eq!((r.solved_at, r.evaluations, r.checked), (Some(2), 4, 0));
+    }
+}

@@ -749,7 +749,7 @@ mod tests {
         let mut config = Config::default();
         config.experiment.steps = 200;
         config.distance_sensors.rays = 5;
-        let sc = crate::shipped::find("corridor").unwrap();
+        let sc = crate::tasks::scenarios::find("corridor").unwrap();
         let scenario = Scenario::from_svg(sc.svg, "corridor", &Default::default()).unwrap();
         let seeing = Episode::new(&config, &scenario)
             .unwrap()
