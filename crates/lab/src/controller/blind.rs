@@ -83,9 +83,10 @@ mod tests {
             (b.name(), b.rings(), b.places()),
             ("distance", 1, rays.places())
         );
-        let scenario = crate::tasks::scenarios::load_scenario(Some(std::path::Path::new("corridor")))
-            .unwrap()
-            .scenario;
+        let scenario =
+            crate::tasks::scenarios::load_scenario(Some(std::path::Path::new("corridor")))
+                .unwrap()
+                .scenario;
         let world = World::new(&scenario, &Default::default()).unwrap();
         let mut seen = [9.0; 6];
         rays.read(&world, 0, &mut seen);
