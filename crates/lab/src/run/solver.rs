@@ -44,12 +44,12 @@ pub(super) fn tell_target(
     });
     // A task without a check keeps its champion: the best ever.
     if let Some(i) = held.filter(|_| checked) {
-        let genome = match (genomes, best) {
-            (Some(g), _) => g[i].clone(),
-            (None, Some((g, _))) => g.clone(),
+        let (genome, fitness) = match (genomes, best) {
+            (Some(g), _) => (g[i].clone(), evaluations[i].fitness),
+            (None, Some((g, f))) => (g.clone(), f),
             (None, None) => return,
         };
-        progress.solver = Some((generation, evaluations[i].fitness, genome));
+        progress.solver = Some((generation, fitness, genome));
     }
 }
 
