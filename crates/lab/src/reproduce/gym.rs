@@ -1,8 +1,10 @@
 //! The `gym-classic` pack: Gymnasium's five classic-control environments
 //! under one protocol (docs/howto/classic-control.md, "The protocol"). Each
 //! run is the task's default `vivae evolve --task TASK --seed SEED` run,
-//! which stops at the first evaluation (5 episodes from the evaluation's
-//! seed) whose mean return reaches the environment's threshold; its champion
+//! which stops at the first genome whose mean return on its evaluation (5
+//! episodes from the evaluation's seed) reaches the environment's threshold
+//! and holds it on 100 check episodes ([`crate::tasks::classic::check`]),
+//! that genome its champion; the champion
 //! is then validated on 100 fresh episodes drawn from the run seed
 //! ([`crate::tasks::classic::validation_seed`]), and the run is solved when
 //! the validated mean reaches the threshold.
@@ -16,7 +18,7 @@ use crate::error::{Error, Result};
 use crate::run::prepare::prepare;
 use crate::tasks::acrobot::Acrobot;
 use crate::tasks::cartpole::CartPole;
-use crate::tasks::classic::VALIDATION_EPISODES;
+use crate::tasks::classic::{CHECK_EPISODES, VALIDATION_EPISODES};
 use crate::tasks::mountain_car::MountainCar;
 use crate::tasks::mountain_car_continuous::MountainCarContinuous;
 use crate::tasks::pendulum::Pendulum;
@@ -49,7 +51,7 @@ pub const GYM_CLASSIC: Pack = Pack {
 pub(crate) struct Outcome {
     /// Evaluations up to the first that reached the threshold, or all the run's.
     pub evaluations: u64,
-    /// Whether an evaluation reached the threshold in training (the run stopped).
+    /// Whether a genome reached the threshold in training and held it on the check (the run stopped).
     pub stopped: bool,
     /// The champion's validated mean return.
     pub validated: f64,
@@ -170,7 +172,7 @@ fn run_pack(o: &Options, progress: &mut dyn FnMut(&str)) -> Result<Table> {
             "task",
             "threshold",
             "ours: solved (validated)",
-            "ours: stopped in training",
+            "ours: stopped (held on the check)",
             "ours: evaluations to solve, median (range)",
             "ours: wall time to solve, median (range), s",
             "ours: validated return, mean (range)",
@@ -179,14 +181,14 @@ fn run_pack(o: &Options, progress: &mut dyn FnMut(&str)) -> Result<Table> {
         rows,
         vec![
             format!(
-                "{runs} runs a task, seeds {}–{last}, each the task's default run (plain NEAT, population 150, at most {} generations), stopped at the first evaluation whose mean return over its 5 episodes reaches the threshold",
+                "{runs} runs a task, seeds {}–{last}, each the task's default run (plain NEAT, population 150, at most {} generations), stopped at the first genome whose mean return over its 5 training episodes reaches the threshold and whose mean over {CHECK_EPISODES} check episodes (from the seed splitmix64(run seed XOR \"checking\"), a stream apart from training and validation) does too; that genome is the champion",
                 o.seed,
                 generations(CartPole::NAME)?,
             ),
             format!(
                 "validation: the run's champion on {VALIDATION_EPISODES} fresh episodes, started as training episodes are but from the seed splitmix64(run seed XOR \"validate\"), a stream no training evaluation draws from; solved = the validated mean reaches the threshold (Gymnasium's reward_threshold; Pendulum-v1 has none: -200 here)"
             ),
-            "evaluations and wall time to solve: over the solved runs (wall time: the run and its validation, on this machine)".into(),
+            "evaluations to solve count each check as 20 evaluations (100 episodes, 5 an evaluation); evaluations and wall time to solve: over the solved runs (wall time: the run and its validation, on this machine)".into(),
             "each run: vivae evolve --task TASK --seed SEED; its summary line gives validated_mean= and validated=".into(),
         ],
     ))

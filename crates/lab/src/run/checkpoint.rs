@@ -46,6 +46,10 @@ pub(crate) struct Progress {
     /// only), stored under the task's name.
     #[serde(flatten)]
     pub(crate) target: StoredTarget,
+    /// The genome that held the target on its task's check, which stopped
+    /// the run and is its champion: (generation, training fitness, genome).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub(crate) solver: Option<(u32, f64, Genome)>,
 }
 
 /// Refuses a run whose `config.toml` was edited since its newest checkpoint:
@@ -228,6 +232,7 @@ impl Progress {
             scenario_fnv: None,
             maps_fnv: None,
             target: StoredTarget::default(),
+            solver: None,
         }
     }
 }

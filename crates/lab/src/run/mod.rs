@@ -11,6 +11,7 @@
 mod background;
 mod checkpoint;
 pub mod prepare;
+mod solver;
 
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -43,6 +44,7 @@ use crate::tasks::{RunTask, StoredTarget, TargetProgress};
 use background::CheckpointWriter;
 use checkpoint::*;
 pub use checkpoint::{population_from_checkpoint, population_from_checkpoint_text};
+use solver::champion;
 
 /// Generations whose best individual gets a trajectory figure (besides the champion).
 pub const FIGURE_GENERATIONS: [u32; 2] = [1, 10];
@@ -420,17 +422,6 @@ fn temporary_sibling(dir: &Path) -> Result<(PathBuf, RunLock)> {
     }
 }
 
-/// The champion (best ever) of `population` with its run-relative generation.
-fn champion(search: &Search, progress: &Progress, config: &Config) -> Option<Champion> {
-    search.best_ever().map(|best| Champion {
-        format: "vivae-champion".into(),
-        generation: best.generation - progress.start_generation + 1,
-        fitness: best.fitness,
-        config: Some(Champion::recorded_config(config)),
-        genome: best.genome.clone(),
-    })
-}
-
 /// The driver's error as ours; an error of our own observer comes back unchanged.
 fn driver_error(e: DriverError) -> Error {
     match e {
@@ -478,7 +469,7 @@ impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
             .expect("an evaluated population has a champion");
         let record = self.measure(report, &fitnesses, &sorted, (&best_genome, best), seconds)?;
         self.append_best_line(search, generation, best, best_genome)?;
-        let own = self.tell_task(generation, report.evaluations);
+        let own = self.tell_task(search, generation, report.evaluations);
         let p = &mut *self.progress;
         let row = record.generations_row();
         let row = format!(
@@ -556,11 +547,16 @@ impl<F: FnMut(&GenerationRecord)> Recorder<'_, F> {
     /// The task's own fields of `generations.csv` for `generation` (none
     /// for a task without a target); raises the halt flag once the target is
     /// reached or the user asked to stop.
-    fn tell_task(&mut self, generation: u32, evaluations: &[Evaluation]) -> String {
+    fn tell_task(
+        &mut self,
+        search: &Search,
+        generation: u32,
+        evaluations: &[Evaluation],
+    ) -> String {
+        solver::tell_target(self.progress, self.task, search, generation, evaluations);
         let Some(target) = self.progress.target.get_mut() else {
             return String::new();
         };
-        target.tell(self.task, generation, evaluations);
         let (stop, halt) = self.halt;
         if target.solved_at.is_some() || stop.load(Ordering::SeqCst) {
             halt.store(true, Ordering::SeqCst);

@@ -142,6 +142,10 @@ impl Plain for Acrobot {
         Some(classic::validate::<Self>(net, run_seed))
     }
 
+    fn check(net: &mut dyn Network, run_seed: u64) -> Option<(Validation, u64)> {
+        Some(classic::check::<Self>(net, run_seed))
+    }
+
     /// Gymnasium's picture: the bar the free end must rise above, the two
     /// links hanging from the fixed joint, and the torque on the middle
     /// joint as a curved arrow.

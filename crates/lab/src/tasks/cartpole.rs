@@ -83,6 +83,10 @@ impl Plain for CartPole {
         Some(classic::validate::<Self>(net, run_seed))
     }
 
+    fn check(net: &mut dyn Network, run_seed: u64) -> Option<(Validation, u64)> {
+        Some(classic::check::<Self>(net, run_seed))
+    }
+
     /// Its episodes side by side (measured faster, the same bits).
     fn evaluate_feed_forward(net: &FeedForwardNetwork, seed: u64) -> Option<Evaluation> {
         Some(classic::evaluate_lanes::<Self>(net, seed))

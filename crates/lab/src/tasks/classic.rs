@@ -106,6 +106,22 @@ pub fn validation_seed(run_seed: u64) -> u64 {
     splitmix64(run_seed ^ VALIDATION_TAG)
 }
 
+/// Episodes a genome that reaches the threshold in training is checked on
+/// before its run stops ([`check`]).
+pub const CHECK_EPISODES: u32 = 100;
+
+/// The tag of the check stream: "checking" in ASCII.
+pub const CHECK_TAG: u64 = 0x6368_6563_6b69_6e67;
+
+/// The seed whose episodes 0…99 check the training solvers of the run
+/// seeded `run_seed`: one splitmix64 round of the run seed with its own tag,
+/// a stream apart from the training's (three rounds deep) and from
+/// [`validation_seed`]'s (another tag), so the run never stops on episodes
+/// its champion is validated on.
+pub fn check_seed(run_seed: u64) -> u64 {
+    splitmix64(run_seed ^ CHECK_TAG)
+}
+
 /// Scores `net` on [`Classic::EPISODES`] episodes of `T` started from
 /// `seed`: fitness = the mean return; metrics the worst return and the steps
 /// taken; behaviour the mean of [`Classic::place`] over every step.
@@ -132,6 +148,20 @@ pub fn validate<T: Classic>(net: &mut dyn Network, run_seed: u64) -> Validation 
         worst: p.worst,
         episodes: VALIDATION_EPISODES,
     }
+}
+
+/// `net`, which reached the threshold in training, checked for the run
+/// seeded `run_seed`: its returns on the [`CHECK_EPISODES`] episodes of
+/// [`check_seed`], and the evaluations they count as (episodes over
+/// [`Classic::EPISODES`], rounded up).
+pub fn check<T: Classic>(net: &mut dyn Network, run_seed: u64) -> (Validation, u64) {
+    let p = play::<T>(net, check_seed(run_seed), CHECK_EPISODES, None);
+    let v = Validation {
+        mean: p.total / f64::from(CHECK_EPISODES),
+        worst: p.worst,
+        episodes: CHECK_EPISODES,
+    };
+    (v, u64::from(CHECK_EPISODES.div_ceil(T::EPISODES)))
 }
 
 /// What episodes 0…`episodes` of the evaluation of `seed` gave.
@@ -420,6 +450,29 @@ mod tests {
         }
 
         fn reset(&mut self) {}
+    }
+
+    #[test]
+    fn the_check_draws_from_a_third_stream() {
+        use crate::tasks::cartpole::CartPole;
+        use vivae_neat::eval::eval_seed;
+        for run in [0, 1, 7, u64::MAX] {
+            let c = check_seed(run);
+            assert_eq!(c, splitmix64(run ^ u64::from_be_bytes(*b"checking")));
+            assert_ne!(c, validation_seed(run));
+            assert!((0..=100).all(|g| (0..150).all(|i| eval_seed(run, g, i) != c)));
+            assert_ne!(c, super::super::plain::REPLAY_SEED);
+        }
+        assert_ne!(check_seed(1), check_seed(2));
+        // The check plays its own episodes: the same network validated and
+        // checked gets other starts, so other returns.
+        let mut net = Always(1);
+        let (c, cost) = check::<CartPole>(&mut net, 3);
+        assert_eq!(cost, 20, "100 episodes are 20 evaluations of 5");
+        assert_eq!(c.episodes, CHECK_EPISODES);
+        let p = play::<CartPole>(&mut net, check_seed(3), CHECK_EPISODES, None);
+        assert_eq!(c.mean, p.total / 100.0);
+        assert_ne!(c, validate::<CartPole>(&mut net, 3));
     }
 
     #[test]

@@ -137,6 +137,10 @@ impl Plain for MountainCarContinuous {
         Some(classic::validate::<Self>(net, run_seed))
     }
 
+    fn check(net: &mut dyn Network, run_seed: u64) -> Option<(Validation, u64)> {
+        Some(classic::check::<Self>(net, run_seed))
+    }
+
     /// Its episodes side by side: they end late if at all, so lanes seldom idle.
     fn evaluate_feed_forward(net: &FeedForwardNetwork, seed: u64) -> Option<Evaluation> {
         Some(classic::evaluate_lanes::<Self>(net, seed))

@@ -104,6 +104,10 @@ impl Plain for Pendulum {
         Some(classic::validate::<Self>(net, run_seed))
     }
 
+    fn check(net: &mut dyn Network, run_seed: u64) -> Option<(Validation, u64)> {
+        Some(classic::check::<Self>(net, run_seed))
+    }
+
     /// Its episodes side by side: they all last their 200 steps, so no lane idles.
     fn evaluate_feed_forward(net: &FeedForwardNetwork, seed: u64) -> Option<Evaluation> {
         Some(classic::evaluate_lanes::<Self>(net, seed))

@@ -76,6 +76,14 @@ pub trait Plain: Send + Sync + 'static {
     fn validate(_net: &mut dyn Network, _run_seed: u64) -> Option<Validation> {
         None
     }
+    /// `net`, whose evaluation reached [`Plain::TARGET`], checked on episodes
+    /// of the run seeded `run_seed` that neither training nor the validation
+    /// plays, and the evaluations the check counts as; the run stops only if
+    /// its mean reaches the target too. None (the default): reaching the
+    /// target in training stops the run.
+    fn check(_net: &mut dyn Network, _run_seed: u64) -> Option<(Validation, u64)> {
+        None
+    }
     /// Its evaluation of a feed-forward network, faster than
     /// [`Plain::evaluate`] and the same to the bit (e.g. its episodes side
     /// by side in lanes); `None`: it has none.
@@ -310,6 +318,15 @@ impl<T: Plain> PlainRun<T> {
         Some((v, T::TARGET.is_some_and(|t| v.mean >= t)))
     }
 
+    /// `genome` checked for this run ([`Plain::check`]).
+    fn checked(&self, genome: &Genome) -> Option<(Validation, u64)> {
+        if T::RECURRENT {
+            T::check(&mut RecurrentNetwork::from_genome(genome), self.run_seed)
+        } else {
+            T::check(&mut FeedForwardNetwork::from_genome(genome), self.run_seed)
+        }
+    }
+
     /// The validation's words for a person and its summary fields (empty without one).
     fn validation_text(&self, genome: &Genome) -> (String, String) {
         let Some((v, solved)) = self.validation(genome) else {
@@ -404,6 +421,11 @@ impl<T: Plain> RunTask for PlainRun<T> {
         T::TARGET.is_some_and(|t| evaluation.fitness >= t)
     }
 
+    fn holds_target(&self, genome: &Genome) -> Option<(bool, u64)> {
+        let (v, cost) = self.checked(genome)?;
+        Some((T::TARGET.is_some_and(|t| v.mean >= t), cost))
+    }
+
     fn generation_fields(&self, progress: &TargetProgress, evaluations: &[Evaluation]) -> String {
         let solvers = evaluations.iter().filter(|e| self.reached_target(e));
         format!(",{},{}", solvers.count(), progress.evaluations)
@@ -442,6 +464,10 @@ impl<T: Plain> RunTask for PlainRun<T> {
         let (p, dir, wall, rate) = (f.progress, f.dir, f.wall, f.rate);
         let verdict = match (T::TARGET, p.solved_at, p.solved_generation) {
             (None, ..) => String::new(),
+            (Some(t), Some(n), Some(g)) if p.checked > 0 => format!(
+                "; a genome reached {t} in training and held it on its check after {n} evaluations (generation {g}; checks counted as {} of them)",
+                p.checked
+            ),
             (Some(t), Some(n), Some(g)) => {
                 format!("; an evaluation reached {t} after {n} evaluations (generation {g})")
             }

@@ -409,6 +409,13 @@ pub trait RunTask: Task + fmt::Debug + Send + Sync {
         false
     }
 
+    /// Whether `genome`, whose evaluation reached the target, holds it on
+    /// the task's check episodes (the run stops only then), and the
+    /// evaluations the check counts as; none: reaching it is enough.
+    fn holds_target(&self, _genome: &Genome) -> Option<(bool, u64)> {
+        None
+    }
+
     /// The task's own fields of a `generations.csv` row (its
     /// [`TaskEntry::generation_columns`]), with their leading commas.
     fn generation_fields(&self, _progress: &TargetProgress, _evaluations: &[Evaluation]) -> String {

@@ -20,6 +20,15 @@ pub struct TargetProgress {
     pub solved_at: Option<u64>,
     /// The run's generation (1-based) in which it did.
     pub solved_generation: Option<u32>,
+    /// Of `evaluations`, those the checks of training solvers counted as
+    /// ([`RunTask::holds_target`]).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub checked: u64,
+}
+
+/// Whether `n` is 0 (a count a checkpoint leaves out then).
+fn is_zero(n: &u64) -> bool {
+    *n == 0
 }
 
 impl TargetProgress {
@@ -31,13 +40,44 @@ impl TargetProgress {
         generation: u32,
         evaluations: &[Evaluation],
     ) {
-        if self.solved_at.is_none()
-            && let Some(i) = evaluations.iter().position(|e| task.reached_target(e))
-        {
-            self.solved_at = Some(self.evaluations + i as u64 + 1);
-            self.solved_generation = Some(generation);
+        self.tell_checked(task, generation, evaluations, |_| None);
+    }
+
+    /// [`TargetProgress::tell`] for a task that checks its solvers: each
+    /// evaluation that reaches the target, in batch order, is checked by
+    /// `check` (given its index: whether it holds, and the evaluations the
+    /// check counts as; none: it holds, unchecked) until one holds. The
+    /// checks count in the evaluations, before the solver's own batch
+    /// position. Returns the index of the one that held.
+    pub fn tell_checked<T: RunTask + ?Sized>(
+        &mut self,
+        task: &T,
+        generation: u32,
+        evaluations: &[Evaluation],
+        mut check: impl FnMut(usize) -> Option<(bool, u64)>,
+    ) -> Option<usize> {
+        let mut checked = 0;
+        let mut solver = None;
+        if self.solved_at.is_none() {
+            for (i, _) in (evaluations.iter().enumerate()).filter(|(_, e)| task.reached_target(e)) {
+                let held = match check(i) {
+                    None => true,
+                    Some((held, cost)) => {
+                        checked += cost;
+                        held
+                    }
+                };
+                if held {
+                    self.solved_at = Some(self.evaluations + checked + i as u64 + 1);
+                    self.solved_generation = Some(generation);
+                    solver = Some(i);
+                    break;
+                }
+            }
         }
-        self.evaluations += evaluations.len() as u64;
+        self.checked += checked;
+        self.evaluations += evaluations.len() as u64 + checked;
+        solver
     }
 
     /// `solved=yes|no evals_to_solve=N|none` for the summary line, with a leading space.
@@ -130,5 +170,51 @@ impl Task for Box<dyn RunTask> {
 
     fn context_free(&self) -> bool {
         (**self).context_free()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::TaskName;
+
+    fn eval(fitness: f64) -> Evaluation {
+        Evaluation {
+            fitness,
+            ..Evaluation::default()
+        }
+    }
+
+    #[test]
+    fn a_run_stops_only_on_a_solver_that_holds_its_check() {
+        let c = crate::tasks::default_config(Some(&TaskName("cartpole".into()))).unwrap();
+        let task = crate::tasks::build(&c, &[]).unwrap();
+        let mut p = TargetProgress::default();
+        // Two of the batch reach 475 in training; the first fails its check
+        // (20 evaluations spent), the second holds: it is the solver, after
+        // 3 evaluations of the batch and both checks.
+        let told = [eval(100.0), eval(500.0), eval(480.0), eval(500.0)];
+        let mut asked = Vec::new();
+        let held = p.tell_checked(task.as_ref(), 1, &told, |i| {
+            asked.push(i);
+            Some((i == 2, 20))
+        });
+        assert_eq!((held, asked), (Some(2), vec![1, 2]));
+        assert_eq!((p.solved_at, p.solved_generation), (Some(3 + 40), Some(1)));
+        assert_eq!((p.evaluations, p.checked), (4 + 40, 40));
+        // Solved: later generations check nothing.
+        let later = p.tell_checked(task.as_ref(), 2, &told, |_| panic!("checked"));
+        assert_eq!((later, p.evaluations, p.solved_at), (None, 48, Some(43)));
+        // Every check failing: not solved, the checks still counted.
+        let mut q = TargetProgress::default();
+        assert_eq!(
+            q.tell_checked(task.as_ref(), 1, &told, |_| Some((false, 20))),
+            None
+        );
+        assert_eq!((q.solved_at, q.evaluations, q.checked), (None, 64, 60));
+        // A task without a check: the first evaluation that reaches the target.
+        let mut r = TargetProgress::default();
+        r.tell(task.as_ref(), 1, &told);
+        assert_eq!((r.solved_at, r.evaluations, r.checked), (Some(2), 4, 0));
     }
 }
