@@ -11,7 +11,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use vivae_lab::config::Config;
 use vivae_lab::run::{Outcome, Run};
-use vivae_lab::rundir::{self, GenerationRecord};
+use vivae_lab::rundir::GenerationRecord;
 
 use crate::evo::Genome;
 use crate::{args, errors, settings};
