@@ -400,7 +400,11 @@ fn film_of(dir: &Path, config: &vivae_lab::config::Config) -> vivae_lab::Result<
     }
     let champion = read_champion(&path)?;
     let maps = vivae_lab::tasks::maps::load_run(dir, config, None)?;
-    let task = vivae_lab::tasks::build(config, &maps)?;
+    // A task the program cannot run itself (one whose episodes a host
+    // plays, as Gymnasium's in Python) has no film here; its curves still show.
+    let Ok(task) = vivae_lab::tasks::build(config, &maps) else {
+        return Ok(None);
+    };
     task.check_genome(&champion.genome)
         .map_err(|reason| vivae_lab::Error::Genome { path, reason })?;
     Ok(task.film(&champion.genome).map(|film| FilmData {
