@@ -221,7 +221,11 @@ fn drive<'py>(
     Ok(d)
 }
 
-fn record_dict<'py>(py: Python<'py>, r: &GenerationRecord) -> PyResult<Bound<'py, PyDict>> {
+/// A generation's record as `vivae.evolve`'s `on_generation` gets it.
+pub(crate) fn record_dict<'py>(
+    py: Python<'py>,
+    r: &GenerationRecord,
+) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     let row = &r.row;
     d.set_item("generation", row.generation)?;

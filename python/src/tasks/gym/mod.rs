@@ -231,18 +231,11 @@ fn interrupted(py: Python<'_>, e: PyErr, run: &Run) -> PyErr {
     e
 }
 
+/// A generation's record as `vivae.evolve` reports it, its throughput
+/// named for what this task steps: environment steps.
 fn record_dict<'py>(py: Python<'py>, r: &GenerationRecord) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
-    let row = &r.row;
-    d.set_item("generation", row.generation)?;
-    d.set_item("total", r.total)?;
-    d.set_item("best", row.best)?;
-    d.set_item("mean", row.mean)?;
-    d.set_item("median", row.median)?;
-    d.set_item("worst", row.worst)?;
-    d.set_item("species", row.species)?;
-    d.set_item("best_ever", r.best_ever)?;
-    d.set_item("seconds", r.seconds)?;
+    let d = crate::lab::record_dict(py, r)?;
+    d.del_item("robot_steps_per_second")?;
     d.set_item("env_steps_per_second", r.robot_steps_per_second)?;
     Ok(d)
 }
