@@ -6,6 +6,8 @@
 //! error naming the argument and what it expected: a `TypeError` for a value
 //! of the wrong type, a `ValueError` with the range for one out of range.
 
+use std::path::PathBuf;
+
 use pyo3::exceptions::{PyOverflowError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyString};
@@ -159,4 +161,16 @@ named! {
     fitnesses: Vec<f64> = "fitnesses", reals;
     behaviours: Option<Vec<Vec<f64>>> = "behaviours", |k, v| opt(k, v, rows);
     metrics: Option<Vec<Vec<f64>>> = "metrics", |k, v| opt(k, v, rows);
+}
+
+/// The run directory `out=` names (the default run directory when not
+/// given): a `ValueError` for an empty name, which names no folder.
+pub fn run_dir(out: Option<PathBuf>) -> PyResult<PathBuf> {
+    match out {
+        Some(p) if p.as_os_str().is_empty() => Err(PyValueError::new_err(
+            "out=\"\": the run directory's name is empty (name a folder, or leave out for the default)",
+        )),
+        Some(p) => Ok(p),
+        None => Ok(vivae_lab::io::default_run_dir()),
+    }
 }

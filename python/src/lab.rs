@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use pyo3::exceptions::{PyKeyboardInterrupt, PyValueError};
+use pyo3::exceptions::PyKeyboardInterrupt;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use vivae_lab::config::Config;
@@ -28,14 +28,9 @@ pub fn evolve<'py>(
     on_generation: Option<Py<PyAny>>,
     overrides: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    if out.as_deref().is_some_and(|p| p.as_os_str().is_empty()) {
-        return Err(PyValueError::new_err(
-            "out=\"\": the run directory's name is empty (name a folder, or leave out for the default)",
-        ));
-    }
+    let dir = args::run_dir(out)?;
     let resolved = settings::resolved(config.as_deref(), overrides)?;
     let config = resolved.config.clone();
-    let dir = out.clone().unwrap_or_else(vivae_lab::io::default_run_dir);
     if let Some(driver) = vivae_lab::tasks::entry_of(&config)
         .ok()
         .and_then(|e| e.own_driver)

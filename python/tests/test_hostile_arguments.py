@@ -235,3 +235,13 @@ def test_an_empty_run_directory_name_is_refused_by_name(task, tmp_path, monkeypa
     with pytest.raises(ValueError, match=r'out="": the run directory\'s name is empty'):
         vivae.evolve(out="", task=task, generations=1, progress=False)
     assert list(tmp_path.iterdir()) == [], "nothing was written"
+
+
+def test_an_empty_run_directory_name_is_refused_by_vivae_gym_too(tmp_path, monkeypatch):
+    pytest.importorskip("gymnasium")
+    import vivae.gym
+
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(ValueError, match=r'out="": the run directory\'s name is empty'):
+        vivae.gym.evolve("CartPole-v1", out="", generations=1, progress=False, validate=0)
+    assert list(tmp_path.iterdir()) == [], "nothing was written"

@@ -129,6 +129,7 @@ fn gym_evolve<'py>(
     on_generation: Option<Py<PyAny>>,
     overrides: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let dir = args::run_dir(out)?;
     let settings = PyDict::new(py);
     settings.set_item("task", gym::NAME)?;
     if let Some(o) = overrides {
@@ -139,7 +140,6 @@ fn gym_evolve<'py>(
         crate::evo::merged(GymnasiumConfig::of(&resolved.config), Some(env), "env")?;
     resolved.config.owned.set(&section);
     vivae_lab::tasks::check(&resolved.config).map_err(|e| errors::value(format!("env: {e}")))?;
-    let dir = out.unwrap_or_else(vivae_lab::io::default_run_dir);
     let prepared = resolved.prepare().map_err(errors::lab)?;
     let run = py
         .detach(|| prepared.create(&dir, force))
