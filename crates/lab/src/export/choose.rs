@@ -57,7 +57,7 @@ pub fn choose(
     let entry = crate::tasks::entry_of(&config).map_err(|e| bad_input(e.to_string()))?;
     let Some(episode_of) = entry.substrate_episode else {
         return Err(bad_input(format!(
-            "{}: task {} has no substrate network to decode (tasks with one: {})",
+            "{}: a {} run has no substrate network to decode: runs of {} have one",
             source.display(),
             entry.name,
             crate::tasks::names_with(|t| t.substrate_episode.is_some())

@@ -140,7 +140,7 @@ pub fn substrate_episode(
     let entry = super::entry_of(config).map_err(|e| crate::io::bad_input(e.to_string()))?;
     let build = entry.substrate_episode.ok_or_else(|| {
         crate::io::bad_input(format!(
-            "task {} has no substrate network to decode (tasks with one: {})",
+            "a {} run has no substrate network to decode: runs of {} have one",
             entry.name,
             super::names_with(|t| t.substrate_episode.is_some())
         ))
