@@ -144,7 +144,7 @@ pub fn report(py: Python<'_>, out: PathBuf) -> PyResult<PathBuf> {
             // A task without figures of its own: its curves alone.
             return vivae::report_html::write(run.dir());
         }
-        if run.episode().is_none() {
+        if !run.task().entry().substrate {
             let task = &run.config().experiment.task;
             return Err(vivae_lab::io::bad_input(format!(
                 "{}: a {task} run draws no figures; its curves are in generations.csv",

@@ -17,6 +17,7 @@ use vivae_lab::run::Run;
 use vivae_lab::rundir::{self, Champion, files};
 use vivae_lab::search::files::Member;
 use vivae_lab::tasks::driving::episode::{Episode, EpisodeRecord};
+use vivae_lab::tasks::driving::training_of;
 
 /// What the end of a run reports.
 #[derive(Debug, Clone, PartialEq)]
@@ -90,7 +91,7 @@ pub fn finish_run(run: &Run) -> Result<RunSummary> {
     let dir = run.dir().join(files::FIGURES);
     vivae_lab::io::create_dirs(&dir)?;
     vivae_lab::rundir::unmark_drawn(run.dir())?;
-    let experiment = (run.episode()).ok_or_else(|| {
+    let experiment = (training_of(run.task()).map(|t| t.primary())).ok_or_else(|| {
         let task = &run.config().experiment.task;
         bad_input(format!("a {task} run has no trajectory figures"))
     })?;
@@ -248,7 +249,7 @@ fn per_map_figures(
     champion: &Genome,
     dir: &Path,
 ) -> Result<Vec<(String, EpisodeRecord)>> {
-    let Some(training) = run.training() else {
+    let Some(training) = training_of(run.task()) else {
         return Ok(Vec::new());
     };
     training

@@ -13,7 +13,7 @@ use crate::error::{Error, Result};
 use crate::io::bad_input;
 use crate::rundir::{self, files};
 use crate::search::files::{Member, read_member};
-use crate::tasks::driving::episode::Episode;
+use crate::tasks::substrate::SubstrateEpisode;
 
 /// Which genome of a run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -28,12 +28,13 @@ pub enum Pick {
 }
 
 /// A run's genome, decoded.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub struct Chosen {
     /// The config (the run's, with the resolution asked for).
     pub config: Config,
-    /// The episode setup of the run's (first) map at that resolution.
-    pub episode: Episode,
+    /// The episode setup of the run's (first) map at that resolution, as
+    /// its task declares it ([`crate::tasks::TaskEntry::substrate_episode`]).
+    pub episode: Box<dyn SubstrateEpisode>,
     /// The genome.
     pub genome: Genome,
     /// Its decoded controller.
@@ -53,14 +54,15 @@ pub fn choose(
     precision: Option<Precision>,
 ) -> Result<Chosen> {
     let (champion, mut config, _) = crate::tasks::load_genome_source(source)?;
-    if !crate::tasks::has_substrate(&config) {
+    let entry = crate::tasks::entry_of(&config).map_err(|e| bad_input(e.to_string()))?;
+    let Some(episode_of) = entry.substrate_episode else {
         return Err(bad_input(format!(
             "{}: a {} run has no substrate network to decode: runs of {} have one",
             source.display(),
-            config.experiment.task,
-            crate::tasks::names_with(|t| t.substrate)
+            entry.name,
+            crate::tasks::names_with(|t| t.substrate_episode.is_some())
         )));
-    }
+    };
     let (genome, what) = genome_of(source, pick, champion)?;
     // A multi-map run's controller reads its sensors the same on every map.
     if crate::tasks::maps::is_multi_map(&config) {
@@ -81,7 +83,7 @@ pub fn choose(
         .filter(|p| p.exists());
     // The run's map only gives the robots' starts; the embedded map stands in when it is gone.
     let scenario = crate::tasks::scenarios::load_scenario(path.as_deref())?;
-    let episode = Episode::new(&config, &scenario.scenario).map_err(|e| refused(e.to_string()))?;
+    let episode = episode_of(&config, &scenario.scenario).map_err(|e| refused(e.to_string()))?;
     let controller = episode
         .robot_controller(&genome)
         .map_err(|e| Error::Genome {
@@ -124,10 +126,10 @@ pub fn exported(
     precision: Option<Precision>,
 ) -> Result<super::Exported> {
     let (champion, config, _) = crate::tasks::load_genome_source(source)?;
-    if crate::tasks::has_substrate(&config) {
+    if crate::tasks::entry_of(&config).is_ok_and(|t| t.substrate_episode.is_some()) {
         let c = choose(source, pick, sensors, neurons, precision)?;
         return Ok(super::Exported::new(
-            &c.episode,
+            c.episode.as_ref(),
             &c.controller,
             &c.description,
         ));
@@ -143,7 +145,7 @@ pub fn exported(
     let outputs = task.network_outputs().ok_or_else(|| {
         refused(format!(
             "task {name} does not export a controller: export needs a substrate network (runs of {}) or a task whose genome is its network (a plain task)",
-            crate::tasks::names_with(|t| t.substrate)
+            crate::tasks::names_with(|t| t.substrate_episode.is_some())
         ))
     })?;
     let (genome, what) = genome_of(source, pick, champion)?;

@@ -8,8 +8,8 @@ use super::image::{Camera, Image};
 use crate::controller::es::RobotController;
 use crate::error::Result;
 use crate::io::bad_input;
-use crate::tasks::driving::episode::Episode;
-use crate::tasks::driving::rollout::Drive;
+pub use crate::tasks::substrate::Recording;
+use crate::tasks::substrate::SubstrateEpisode;
 
 /// The ground of `world`'s scenario as an SVG picture, one pixel per
 /// scenario px: surfaces, marks and obstacles, no robots, title or legend;
@@ -73,50 +73,14 @@ pub fn rasterize(svg: &str) -> Result<Image> {
     Image::from_png(&png, "a rendered frame")
 }
 
-/// One robot's episode as vivae ran it: what it read and did at every step.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Recording {
-    /// Inputs per step.
-    pub inputs: usize,
-    /// The controller's inputs, step after step (`steps × inputs`).
-    pub sensors: Vec<f64>,
-    /// The wheel commands of every step.
-    pub wheels: Vec<[f64; 2]>,
-    /// The robot's pose when it read its sensors: position and heading.
-    pub poses: Vec<(DVec2, f64)>,
-}
-
 /// Runs `steps` steps of `episode` driven by `controller` (every robot, as
 /// evolution does) and records robot `robot` (a fast controller's f32
 /// readings widened to f64, exactly).
 pub fn record(
-    episode: &Episode,
+    episode: &dyn SubstrateEpisode,
     controller: &RobotController,
     robot: usize,
     steps: u32,
 ) -> Result<Recording> {
-    if robot >= episode.robots() {
-        return Err(bad_input(format!(
-            "robot {robot}: the episode has {} robots",
-            episode.robots()
-        )));
-    }
-    let ni = controller.num_inputs();
-    let mut world = episode.world().clone();
-    let mut rollout = episode.rollout(controller);
-    let mut rec = Recording {
-        inputs: ni,
-        sensors: Vec::with_capacity(steps as usize * ni),
-        wheels: Vec::with_capacity(steps as usize),
-        poses: Vec::with_capacity(steps as usize),
-    };
-    for _ in 0..steps {
-        // The pose the rollout reads the sensors at, at the start of its step.
-        let r = &world.robots()[robot];
-        rec.poses.push((r.pos, r.heading));
-        rollout.step(&mut world, controller, None);
-        rollout.extend_inputs(robot, &mut rec.sensors);
-        rec.wheels.push(rollout.controls(robot));
-    }
-    Ok(rec)
+    episode.record(controller, robot, steps)
 }

@@ -19,7 +19,7 @@ use vivae_sim::{DVec2, World};
 
 use crate::error::Result;
 use crate::io::bad_input;
-use crate::tasks::driving::episode::Episode;
+use crate::tasks::substrate::SubstrateEpisode;
 
 /// An RGBA picture, 8 bits a channel, rows top to bottom.
 #[derive(Debug, Clone, PartialEq)]
@@ -180,7 +180,7 @@ impl ImageSensors {
     /// The surface sensors of `episode`, colours read by `palette` (default:
     /// the episode's map's); an error if its robots carry another sensor
     /// (distance rays cannot be seen in a picture of the ground).
-    pub fn new(episode: &Episode, palette: Option<Palette>) -> Result<ImageSensors> {
+    pub fn new(episode: &dyn SubstrateEpisode, palette: Option<Palette>) -> Result<ImageSensors> {
         if let Some(s) = episode.sensors().iter().find(|s| s.name() != "surface") {
             return Err(bad_input(format!(
                 "the controller also reads {} ({}): only surface sensors can be read from an image",
@@ -189,7 +189,7 @@ impl ImageSensors {
             )));
         }
         Ok(ImageSensors {
-            offsets: episode.surface_grid().offsets.clone(),
+            offsets: episode.surface_offsets().to_vec(),
             palette: palette.unwrap_or_else(|| Palette::of_world(episode.world())),
         })
     }

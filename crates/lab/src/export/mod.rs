@@ -46,7 +46,7 @@ use vivae_neat::precision::{bipolar_sigmoid_f32, fma_f32};
 use crate::controller::es::RobotController;
 pub use crate::controller::readings::Readings;
 use crate::controller::sensors::SensorSheet;
-use crate::tasks::driving::episode::Episode;
+use crate::tasks::substrate::SubstrateEpisode;
 
 /// The slope of the bipolar sigmoid every node applies (`vivae_neat::activation`).
 pub const SIGMOID_SLOPE: f64 = 4.9;
@@ -354,7 +354,11 @@ pub struct Exported {
 
 impl Exported {
     /// `controller` of `episode` (decoded from its genome), described by `description`.
-    pub fn new(episode: &Episode, controller: &RobotController, description: &str) -> Exported {
+    pub fn new(
+        episode: &dyn SubstrateEpisode,
+        controller: &RobotController,
+        description: &str,
+    ) -> Exported {
         let (substrate, net) = match controller {
             RobotController::Polar(c) => {
                 let w = episode.wheels();

@@ -12,7 +12,7 @@ use crate::controller::polar::PolarGrid;
 use crate::error::{Error, Result};
 use crate::reproduce::{Options, Pack, ScratchDir, Table};
 use crate::run::prepare::prepare;
-use crate::tasks::driving::episode::Episode;
+use crate::tasks::substrate::substrate_episode;
 use vivae_neat::Genome;
 use vivae_sim::Scenario;
 
@@ -74,12 +74,14 @@ fn one_seed(seed: u64, generations: u32, threads: usize) -> Result<Seed> {
 }
 
 /// The champion's episode recorded at the run's resolution, and its fitness
-/// re-sampled (what `vivae replay RUN --neurons 9x9 | --sensors 3x6` gives).
+/// re-sampled (what `vivae replay RUN --neurons 9x9 | --sensors 3x6` gives),
+/// on the episode the run's task declares
+/// ([`crate::tasks::TaskEntry::substrate_episode`]).
 fn resampled(config: &Config, scenario: &Scenario, genome: &Genome) -> Result<Seed> {
-    let fitness_at = |c: &Config| -> Result<f64> { Ok(Episode::new(c, scenario)?.fitness(genome)) };
-    let episode = Episode::new(config, scenario)?;
-    let record = episode.run(&episode.robot_controller(genome)?, true);
-    let behaviour = record.behaviour.as_ref();
+    let fitness_at =
+        |c: &Config| -> Result<f64> { Ok(substrate_episode(c, scenario)?.fitness(genome)) };
+    let episode = substrate_episode(config, scenario)?;
+    let replayed = episode.replay(&episode.robot_controller(genome)?);
     let mut neurons = config.clone();
     neurons.substrate.neurons = PolarGrid {
         rings: 9,
@@ -88,9 +90,9 @@ fn resampled(config: &Config, scenario: &Scenario, genome: &Genome) -> Result<Se
     let mut sensors = config.clone();
     sensors.surface_sensors.angles = 6;
     Ok(Seed {
-        fitness: record.fitness,
-        on_road: record.on_road.unwrap_or(0.0),
-        turns: behaviour.map_or((0, 0), |b| (b.left_turns, b.right_turns)),
+        fitness: replayed.fitness,
+        on_road: replayed.on_road.unwrap_or(0.0),
+        turns: replayed.turns.unwrap_or((0, 0)),
         neurons_9x9: fitness_at(&neurons)?,
         sensors_3x6: fitness_at(&sensors)?,
     })

@@ -37,9 +37,7 @@ use crate::rundir::{
     append, copy_maps, files, latest_checkpoint, population_rows, read_best_genomes,
     remove_abandoned_builds, remove_stale_temporaries, truncate, truncate_lines,
 };
-use crate::tasks::driving::episode::Episode;
-use crate::tasks::driving::training::Training;
-use crate::tasks::maps::{TrainingMap, is_multi_map, load_run};
+use crate::tasks::maps::{TrainingMap, load_run};
 use crate::tasks::{RunTask, StoredTarget, TargetProgress};
 use background::CheckpointWriter;
 use checkpoint::*;
@@ -71,43 +69,18 @@ pub struct Run {
 }
 
 impl Run {
-    /// Creates a new run directory and the initial checkpoint.
+    /// Creates a new run directory of `task` and the initial checkpoint.
     ///
-    /// `scenario_text` is copied to `scenario.svg`; `config.experiment.scenario`
-    /// is rewritten to point at that copy so `config.toml` alone re-runs it.
-    /// `init` is a population to start from (retrain) instead of a fresh one.
-    pub fn create(
-        dir: &Path,
-        config: Config,
-        training: Training,
-        scenario_text: &str,
-        init: Option<Population>,
-        force: bool,
-    ) -> Result<Run> {
-        Run::create_on_maps(dir, config, training, scenario_text, &[], init, force)
-    }
-
-    /// [`Run::create`] for a run on several training maps (`maps`, from
-    /// [`crate::tasks::maps::load`]; empty for a single-scenario run): `scenario_text`
-    /// (the first map's) goes to `scenario.svg` as ever, and every map is
-    /// copied to `scenarios/` with a manifest of their hashes;
-    /// `experiment.scenarios` is rewritten to name the copies.
-    pub fn create_on_maps(
-        dir: &Path,
-        config: Config,
-        training: Training,
-        scenario_text: &str,
-        maps: &[TrainingMap],
-        init: Option<Population>,
-        force: bool,
-    ) -> Result<Run> {
-        let maps = if is_multi_map(&config) { maps } else { &[] };
-        let task: Box<dyn RunTask> = Box::new(training);
-        Run::create_task(dir, config, task, Some(scenario_text), maps, init, force)
-    }
-
-    /// [`Run::create_on_maps`] for any task (only driving starts from `init`);
-    /// `scenario_text` is `None` for a task without maps (no `scenario.svg`).
+    /// `scenario_text` (the first map's) is copied to `scenario.svg` and
+    /// `config.experiment.scenario` rewritten to point at that copy, so that
+    /// `config.toml` alone re-runs it; `None` for a task without maps (no
+    /// `scenario.svg`). With several training maps (`maps`, from
+    /// [`crate::tasks::maps::load`]; empty for a single-scenario run) every
+    /// map is copied to `scenarios/` with a manifest of their hashes and
+    /// `experiment.scenarios` is rewritten to name the copies. `init` is a
+    /// population to start from (retrain) instead of a fresh one, for a
+    /// task whose controller is a substrate network re-sampled
+    /// ([`crate::tasks::TaskEntry::substrate`]).
     pub fn create_task(
         dir: &Path,
         mut config: Config,
@@ -118,8 +91,8 @@ impl Run {
         force: bool,
     ) -> Result<Run> {
         crate::tasks::check(&config).map_err(|e| bad_input(format!("config: {e}")))?;
-        let driving = task.driving().is_some();
-        if task.entry().name != config.experiment.task.name() || (!driving && init.is_some()) {
+        let retrains = task.entry().substrate;
+        if task.entry().name != config.experiment.task.name() || (!retrains && init.is_some()) {
             return Err(bad_input(format!(
                 "experiment.task = {}: the run was given another task{}",
                 config.experiment.task.name(),
@@ -266,18 +239,6 @@ impl Run {
     /// The resolved configuration.
     pub fn config(&self) -> &Config {
         &self.config
-    }
-
-    /// The episode reported, drawn and replayed (the first map at the
-    /// run's own resolution); none for a task that is not driving.
-    pub fn episode(&self) -> Option<&Episode> {
-        self.task.driving().map(Training::primary)
-    }
-
-    /// What a driving run's genomes are evaluated on: every training map and
-    /// resolution; none for a task that is not driving.
-    pub fn training(&self) -> Option<&Training> {
-        self.task.driving()
     }
 
     /// What the run's genomes are evaluated on, whichever the task.

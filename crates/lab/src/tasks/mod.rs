@@ -32,6 +32,7 @@ pub mod robot;
 pub mod scenarios;
 mod seam;
 pub mod sketch;
+pub mod substrate;
 mod target;
 mod unread;
 

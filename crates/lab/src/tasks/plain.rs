@@ -184,6 +184,7 @@ pub const fn entry<T: Plain>() -> TaskEntry {
         maps: false,
         check_map: crate::tasks::any_map,
         substrate: false,
+        substrate_episode: None,
         stepped: T::STEPPED,
     }
 }

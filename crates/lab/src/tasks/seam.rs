@@ -11,9 +11,10 @@ use std::sync::atomic::AtomicBool;
 use vivae_neat::driver::{Evaluation, Task};
 use vivae_neat::{Genome, GenomeSpec};
 
+use super::TargetProgress;
 use super::maps::TrainingMap;
 use super::sketch::Film;
-use super::{TargetProgress, driving};
+use super::substrate::SubstrateEpisodeOf;
 use crate::config::{Config, ConfigError, Section, TaskName};
 use crate::error::{Error, Result};
 use crate::io::read_text;
@@ -88,6 +89,11 @@ pub struct TaskEntry {
     /// `drive-image`, the report's episodes and the export of a substrate
     /// need; `vivae compare` groups its runs by substrate.
     pub substrate: bool,
+    /// For a task whose controller is a robot's substrate network
+    /// ([`TaskEntry::substrate`]): its episode on one map at a config's
+    /// resolution, what export, `drive-image` and a recorded episode read
+    /// ([`super::substrate::SubstrateEpisode`]); `None` otherwise.
+    pub substrate_episode: Option<SubstrateEpisodeOf>,
     /// For a task whose episode can be stepped from a given state (a
     /// classic-control task, compared step by step with Gymnasium's by the
     /// Python package): that episode; `None` otherwise.
@@ -467,12 +473,6 @@ pub trait RunTask: Task + fmt::Debug + Send + Sync {
     /// alone (a task that draws no figures of its own).
     fn report_curves(&self) -> bool {
         false
-    }
-
-    /// The driving experiment, when the task is one: figures, replays and the
-    /// viewer show its robots.
-    fn driving(&self) -> Option<&driving::training::Training> {
-        None
     }
 
     /// The task as [`Any`], for code that knows a task's concrete type.

@@ -78,7 +78,7 @@ fn conclude(
     (rate, reused): (f64, u64),
     quiet: bool,
 ) -> anyhow::Result<ExitCode> {
-    if run.task().driving().is_none() {
+    if !run.task().entry().substrate {
         let wall = start.elapsed().as_secs_f64();
         return conclude_without_figures(run, outcome, wall, (rate, reused), quiet);
     }

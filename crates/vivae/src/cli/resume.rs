@@ -108,7 +108,7 @@ fn already_finished(run: &Run) -> anyhow::Result<bool> {
     eprintln!("{}", super::own_driver::finished_note(run.dir(), total));
     // A run that stopped before its figures and report showed every
     // generation (killed while drawing them) gets them now.
-    if run.episode().is_some() && rundir::drawn_generations(run.dir()) != Some(run.done()) {
+    if run.task().entry().substrate && rundir::drawn_generations(run.dir()) != Some(run.done()) {
         report::finish_run(run).context("writing figures")?;
         eprintln!("figures: {}", run.dir().join(files::FIGURES).display());
         eprintln!("report: {}", run.dir().join(files::REPORT).display());

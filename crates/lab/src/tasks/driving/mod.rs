@@ -17,6 +17,7 @@ pub mod rollout;
 pub mod run;
 pub mod scenarios;
 pub mod section;
+pub mod substrate;
 pub mod training;
 
-pub use run::TASK;
+pub use run::{TASK, training_of};

@@ -30,6 +30,7 @@ pub static TASK: TaskEntry = TaskEntry {
     maps: true,
     check_map: crate::tasks::any_map,
     substrate: true,
+    substrate_episode: Some(super::substrate::episode),
     stepped: None,
 };
 
@@ -57,6 +58,12 @@ fn refuse_for_other_tasks(c: &Config) -> std::result::Result<(), String> {
         ));
     }
     Ok(())
+}
+
+/// The driving experiment `task` is, when it is one: what the program's
+/// figures, replays and viewer of a driving run read.
+pub fn training_of(task: &dyn RunTask) -> Option<&Training> {
+    task.as_any().downcast_ref::<Training>()
 }
 
 /// The training of `config` on `maps`.
@@ -98,10 +105,6 @@ impl RunTask for Training {
 
     fn header(&self, config: &Config, ctx: &HeaderContext<'_>) -> String {
         header(self, config, ctx)
-    }
-
-    fn driving(&self) -> Option<&Training> {
-        Some(self)
     }
 
     fn as_any(&self) -> &dyn Any {

@@ -57,6 +57,7 @@ pub static TASK: TaskEntry = TaskEntry {
     maps: false,
     check_map: crate::tasks::any_map,
     substrate: false,
+    substrate_episode: None,
     stepped: None,
 };
 

@@ -46,6 +46,7 @@ pub static TASK: TaskEntry = TaskEntry {
     maps: true,
     check_map: crate::tasks::any_map,
     substrate: false,
+    substrate_episode: None,
     stepped: None,
 };
 

@@ -48,6 +48,7 @@ pub static TASK: TaskEntry = TaskEntry {
     maps: true,
     check_map: |s| Arena::teams(s).map(|_| ()).map_err(|e| e.to_string()),
     substrate: false,
+    substrate_episode: None,
     stepped: None,
 };
 
