@@ -10,6 +10,7 @@ use serde::ser::SerializeMap;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use super::Config;
+use super::shared::{Reading, SharedSection};
 
 /// The shared sections' names, in the order a config is written.
 pub(crate) const FIELDS: [&str; 9] = [
@@ -31,22 +32,45 @@ pub(crate) const STRATEGY: &str = "strategy";
 
 impl Serialize for Config {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        let mut out = serializer.serialize_map(None)?;
-        out.serialize_entry("experiment", &self.experiment)?;
-        out.serialize_entry("substrate", &self.substrate)?;
-        out.serialize_entry("hyperneat", &self.hyperneat)?;
-        out.serialize_entry("surface_sensors", &self.surface_sensors)?;
-        out.serialize_entry("distance_sensors", &self.distance_sensors)?;
-        if !self.opponent_sensors.is_off_by_default() {
-            out.serialize_entry("opponent_sensors", &self.opponent_sensors)?;
+        Reading {
+            config: self,
+            reads: &SharedSection::ALL,
         }
-        out.serialize_entry("physics", &self.physics)?;
-        out.serialize_entry("neat", &self.neat)?;
-        out.serialize_entry("run", &self.run)?;
-        if let Some(strategy) = self.owned.raw(STRATEGY) {
+        .serialize(serializer)
+    }
+}
+
+impl Serialize for Reading<'_> {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let (c, reads) = (self.config, self.reads);
+        let mut out = serializer.serialize_map(None)?;
+        out.serialize_entry("experiment", &c.experiment)?;
+        if reads.contains(&SharedSection::Substrate) {
+            out.serialize_entry("substrate", &c.substrate)?;
+        }
+        if reads.contains(&SharedSection::Hyperneat) {
+            out.serialize_entry("hyperneat", &c.hyperneat)?;
+        }
+        if reads.contains(&SharedSection::SurfaceSensors) {
+            out.serialize_entry("surface_sensors", &c.surface_sensors)?;
+        }
+        if reads.contains(&SharedSection::DistanceSensors) {
+            out.serialize_entry("distance_sensors", &c.distance_sensors)?;
+        }
+        if reads.contains(&SharedSection::OpponentSensors)
+            && !c.opponent_sensors.is_off_by_default()
+        {
+            out.serialize_entry("opponent_sensors", &c.opponent_sensors)?;
+        }
+        if reads.contains(&SharedSection::Physics) {
+            out.serialize_entry("physics", &c.physics)?;
+        }
+        out.serialize_entry("neat", &c.neat)?;
+        out.serialize_entry("run", &c.run)?;
+        if let Some(strategy) = c.owned.raw(STRATEGY) {
             out.serialize_entry(STRATEGY, strategy)?;
         }
-        for (name, table) in self.owned.iter().filter(|(n, _)| *n != STRATEGY) {
+        for (name, table) in c.owned.iter().filter(|(n, _)| *n != STRATEGY) {
             out.serialize_entry(name, table)?;
         }
         out.end()

@@ -10,6 +10,7 @@
 mod form;
 pub mod owned;
 mod reference;
+mod shared;
 mod toml_error;
 mod validate;
 
@@ -18,6 +19,7 @@ pub mod strategy;
 
 pub use owned::{OwnedSection, OwnedSections, Section};
 pub use reference::{KeyDoc, SectionDoc, key_doc, reference};
+pub use shared::SharedSection;
 use toml_error::{describe_toml_error, line_of_key, over_defaults};
 
 use std::fmt::Write as _;

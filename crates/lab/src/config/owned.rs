@@ -87,7 +87,7 @@ impl OwnedSections {
     }
 
     /// Section `name` as held, if set.
-    pub(super) fn raw(&self, name: &str) -> Option<&toml::Value> {
+    pub fn raw(&self, name: &str) -> Option<&toml::Value> {
         self.0.get(name)
     }
 

@@ -7,29 +7,15 @@ impl Config {
     /// The default config as TOML with a comment on every section and key,
     /// the sections tasks own (`sections`) last.
     pub fn default_commented(sections: &[Section]) -> String {
-        let mut out = String::from(
-            "# vivae configuration: every parameter of a run.\n\
-             # Keys left out take their defaults; command-line flags override the file.\n\
-             # Each comment gives: what the key is [unit]; its default; the paper's value where it has one.\n",
-        );
-        for section in reference(sections) {
-            let _ = writeln!(out, "\n# {}", section.what);
-            let _ = writeln!(out, "[{}]", section.path);
-            for key in &section.keys {
-                let _ = writeln!(out, "# {}", key.comment());
-                let name = key.name();
-                match &key.default {
-                    Some(value) => {
-                        let _ = writeln!(out, "{name} = {value}");
-                    }
-                    // A key unset by default is shown commented out, with an example.
-                    None => {
-                        let _ = writeln!(out, "# {name} = {}", key.example);
-                    }
-                }
-            }
-        }
-        out
+        commented(reference(sections))
+    }
+
+    /// [`Config::default_commented`] of one task: the config `self` (its
+    /// defaults) with, of the shared sections a robot task reads, only
+    /// `reads`, and the owned sections `sections` (the strategies' and the
+    /// task's own).
+    pub fn default_commented_for(&self, reads: &[SharedSection], sections: &[Section]) -> String {
+        commented(reference_of(self, reads, sections))
     }
 
     /// A Markdown table of every key (the sections tasks own, `sections`,
@@ -40,8 +26,12 @@ impl Config {
 
     /// The config reference as a whole Markdown page (docs/reference/config.md):
     /// what the file is, then one section per TOML table with its keys'
-    /// table (the sections tasks own, `owned`, last).
-    pub fn markdown_reference_page(owned: &[Section]) -> String {
+    /// table (the sections tasks own, `owned`, last), each top-level section
+    /// saying which tasks read it (`read_by` of its name: the tasks' names).
+    pub fn markdown_reference_page(
+        owned: &[Section],
+        read_by: &dyn Fn(&str) -> Vec<&'static str>,
+    ) -> String {
         let sections = reference(owned);
         let mut out = String::from(
             "# Config reference\n\n\
@@ -57,20 +47,26 @@ impl Config {
              unless set), *unit* its unit when it has one, and *paper* the value of the \
              published experiment where it gives one.\n\n",
         );
-        out.push_str("| section | what it holds |\n| --- | --- |\n");
+        out.push_str("| section | what it holds | read by |\n| --- | --- | --- |\n");
+        // A sub-section is read by the tasks that read its section.
+        let readers = |path: &str| read_by(path.split('.').next().unwrap_or(path)).join(", ");
         for section in &sections {
             let _ = writeln!(
                 out,
-                "| [`[{}]`](#{}) | {} |",
+                "| [`[{}]`](#{}) | {} | {} |",
                 section.path,
                 heading_anchor(&section.path),
-                markdown_cell(&section.what)
+                markdown_cell(&section.what),
+                readers(&section.path)
             );
         }
         for section in &sections {
             let _ = write!(out, "\n## `[{}]`\n\n", section.path);
             if !section.what.is_empty() {
                 let _ = write!(out, "{}\n\n", section.what);
+            }
+            if !section.path.contains('.') {
+                let _ = write!(out, "Read by the tasks: {}.\n\n", readers(&section.path));
             }
             if section.keys.is_empty() {
                 out.push_str("No keys of its own: its sub-sections follow.\n");
@@ -80,6 +76,33 @@ impl Config {
         }
         out
     }
+}
+
+/// A config's sections `docs` as TOML with a comment on every section and key.
+fn commented(docs: Vec<SectionDoc>) -> String {
+    let mut out = String::from(
+        "# vivae configuration: every parameter of a run.\n\
+         # Keys left out take their defaults; command-line flags override the file.\n\
+         # Each comment gives: what the key is [unit]; its default; the paper's value where it has one.\n",
+    );
+    for section in docs {
+        let _ = writeln!(out, "\n# {}", section.what);
+        let _ = writeln!(out, "[{}]", section.path);
+        for key in &section.keys {
+            let _ = writeln!(out, "# {}", key.comment());
+            let name = key.name();
+            match &key.default {
+                Some(value) => {
+                    let _ = writeln!(out, "{name} = {value}");
+                }
+                // A key unset by default is shown commented out, with an example.
+                None => {
+                    let _ = writeln!(out, "# {name} = {}", key.example);
+                }
+            }
+        }
+    }
+    out
 }
 
 /// The Markdown table of `keys`: name, default, unit, paper's value, meaning.
@@ -181,9 +204,18 @@ pub struct SectionDoc {
 /// registries give) last: the one source of `vivae config default`, `vivae
 /// config reference` and docs/reference/config.md.
 pub fn reference(sections: &[Section]) -> Vec<SectionDoc> {
+    reference_of(&Config::default(), &SharedSection::ALL, sections)
+}
+
+/// [`reference`] at the defaults of `base` (a task's default config), with
+/// of the shared sections only `reads`.
+fn reference_of(base: &Config, reads: &[SharedSection], sections: &[Section]) -> Vec<SectionDoc> {
     let schema = schemars::schema_for!(Config);
     let root = schema.as_value();
-    let defaults = documented_defaults(sections);
+    let mut defaults = documented_defaults_of(base, sections);
+    if let Some(table) = defaults.as_table_mut() {
+        table.retain(|name, _| SharedSection::named(name).is_none_or(|s| reads.contains(&s)));
+    }
     let defaults = defaults.as_table().expect("the config is a table");
     let mut out = Vec::new();
     for (name, value) in defaults {
@@ -207,9 +239,15 @@ pub fn reference(sections: &[Section]) -> Vec<SectionDoc> {
 /// set, so that existing runs' files stay the same) with their defaults all the
 /// same, and the sections the strategies and tasks own (`sections`, each
 /// documented by its registration; `[strategy]` after `[run]`, where it is written).
+#[cfg(test)]
 pub(super) fn documented_defaults(sections: &[Section]) -> toml::Value {
-    let mut defaults =
-        toml::Value::try_from(Config::default()).expect("the default config is TOML");
+    documented_defaults_of(&Config::default(), sections)
+}
+
+/// [`documented_defaults`] of the config `base`: an owned section it sets
+/// as it sets it.
+fn documented_defaults_of(base: &Config, sections: &[Section]) -> toml::Value {
+    let mut defaults = toml::Value::try_from(base).expect("the config is TOML");
     if let Some(sub) = defaults.get_mut("substrate").and_then(|s| s.as_table_mut()) {
         let kind = toml::Value::try_from(SubstrateKind::default()).expect("a kind is TOML");
         let mut es = toml::Value::try_from(EsConfig::default()).expect("ES keys are TOML");
@@ -231,13 +269,16 @@ pub(super) fn documented_defaults(sections: &[Section]) -> toml::Value {
         .iter()
         .partition(|s| s.name == super::form::STRATEGY);
     if let Some(table) = defaults.as_table_mut() {
+        let set = |s: &Section| {
+            (base.owned.raw(s.name).cloned()).unwrap_or_else(|| toml::Value::Table((s.defaults)()))
+        };
         for s in strategy {
-            table.insert(s.name.into(), toml::Value::Table((s.defaults)()));
+            table.insert(s.name.into(), set(s));
         }
         let opponent = toml::Value::try_from(OpponentConfig::default()).expect("TOML");
         table.insert("opponent_sensors".into(), opponent);
         for s in owned {
-            table.insert(s.name.into(), toml::Value::Table((s.defaults)()));
+            table.insert(s.name.into(), set(s));
         }
     }
     defaults

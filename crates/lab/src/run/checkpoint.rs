@@ -67,7 +67,7 @@ pub(crate) fn check_config_unchanged(
     let Ok(text) = crate::io::read_text(&path) else {
         return Ok(());
     };
-    let expected = recorded.to_toml();
+    let expected = crate::tasks::config_text(recorded);
     if text == expected {
         return Ok(());
     }
@@ -319,7 +319,10 @@ pub(crate) fn fill_new_run(
     if scenario_text.is_some() && !is_multi_map(config) {
         config.experiment.scenario = files::SCENARIO.into();
     }
-    write_atomic(&dir.join(files::CONFIG), config.to_toml().as_bytes())?;
+    write_atomic(
+        &dir.join(files::CONFIG),
+        crate::tasks::config_text(config).as_bytes(),
+    )?;
     let generations = generations_header(config);
     for (name, header) in [
         (files::GENERATIONS, generations.as_str()),

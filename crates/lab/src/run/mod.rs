@@ -218,7 +218,10 @@ impl Run {
         }
         truncate_lines(&dir.join(files::BEST_GENOMES), cp.progress.done)?;
         // The resolved config records the (possibly extended) total.
-        write_atomic(&dir.join(files::CONFIG), cp.config.to_toml().as_bytes())?;
+        write_atomic(
+            &dir.join(files::CONFIG),
+            crate::tasks::config_text(&cp.config).as_bytes(),
+        )?;
         Ok(Run {
             dir: dir.to_path_buf(),
             _lock: lock,

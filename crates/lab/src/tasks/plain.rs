@@ -177,9 +177,10 @@ pub const fn entry<T: Plain>() -> TaskEntry {
         },
         build: build::<T>,
         own_driver: None,
-        refuse_when_other: nothing_to_refuse,
+        refuse_when_other: crate::tasks::nothing_to_refuse,
         set_robot: None,
         sections: &[],
+        reads: &[],
         scenarios: &[],
         maps: false,
         check_map: crate::tasks::any_map,
@@ -187,11 +188,6 @@ pub const fn entry<T: Plain>() -> TaskEntry {
         substrate_episode: None,
         stepped: T::STEPPED,
     }
-}
-
-/// A plain task has no section of its own to refuse when another task runs.
-fn nothing_to_refuse(_: &Config) -> std::result::Result<(), String> {
-    Ok(())
 }
 
 /// The genomes of `T`: bipolar sigmoids everywhere (the step `vivae export` writes).

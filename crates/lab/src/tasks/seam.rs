@@ -15,7 +15,7 @@ use super::TargetProgress;
 use super::maps::TrainingMap;
 use super::sketch::Film;
 use super::substrate::SubstrateEpisodeOf;
-use crate::config::{Config, ConfigError, Section, TaskName};
+use crate::config::{Config, ConfigError, Section, SharedSection, TaskName};
 use crate::error::{Error, Result};
 use crate::io::read_text;
 use crate::shipped::Shipped;
@@ -74,6 +74,10 @@ pub struct TaskEntry {
     /// Its own config sections (each a table beside the shared ones, left
     /// out of a run's config while at its defaults).
     pub sections: &'static [Section],
+    /// The shared sections of a robot and its world that it reads (all of
+    /// them for a robot task, none for a plain one): its runs' `config.toml`
+    /// holds only these of them, and a key set in another is refused.
+    pub reads: &'static [SharedSection],
     /// The scenarios shipped for it (`--scenario NAME`; [`crate::tasks::scenarios::all`]).
     pub scenarios: &'static [Shipped],
     /// Whether its runs train on scenario maps (`experiment.scenario(s)`,
@@ -166,6 +170,12 @@ pub fn own_driver_of_run(dir: &Path) -> Option<OwnDriver> {
     entry_of_run(dir)?.own_driver
 }
 
+/// [`TaskEntry::refuse_when_other`] of a task whose sections the registry
+/// refuses for it ([`check`] refuses every section a task does not read).
+pub fn nothing_to_refuse(_: &Config) -> std::result::Result<(), String> {
+    Ok(())
+}
+
 /// The entry of the task that the run in `dir` names in its `config.toml`
 /// (read only that far: the config may be refused whole).
 pub fn entry_of_run(dir: &Path) -> Option<&'static TaskEntry> {
@@ -243,8 +253,9 @@ pub fn check(config: &Config) -> std::result::Result<(), ConfigError> {
     let task = entry_of(config)?;
     config.validate()?;
     // Every table beside the shared sections is a registered section that reads.
-    crate::config::owned::settle(&mut config.owned.clone(), &sections())
-        .map_err(ConfigError::new)?;
+    let mut settled = config.clone();
+    crate::config::owned::settle(&mut settled.owned, &sections()).map_err(ConfigError::new)?;
+    super::unread::refuse_unread(&settled, task).map_err(ConfigError::new)?;
     crate::search::check(config, task.metric_names).map_err(ConfigError::new)?;
     for other in super::entries().iter().filter(|t| t.name != task.name) {
         (other.refuse_when_other)(config).map_err(ConfigError::new)?;
@@ -298,6 +309,14 @@ pub fn read_config(path: &Path) -> Result<Config> {
     Ok(config)
 }
 
+/// `config` as its run's `config.toml` holds it: of the shared sections only
+/// those its task reads ([`TaskEntry::reads`]; all of them for a task that
+/// is not registered).
+pub fn config_text(config: &Config) -> String {
+    let reads = entry_of(config).map_or(&SharedSection::ALL[..], |t| t.reads);
+    config.to_toml_reading(reads)
+}
+
 /// `experiment.task` as `text` sets it, if it parses that far.
 fn task_of_text(text: &str) -> Option<TaskName> {
     let value: toml::Value = toml::from_str(text).ok()?;
@@ -314,6 +333,35 @@ pub fn sections() -> Vec<Section> {
     std::iter::once(crate::search::SECTION)
         .chain(tasks)
         .collect()
+}
+
+/// The names of the tasks that read the config section `name` (a
+/// top-level table): a shared section of a robot by those listing it in
+/// [`TaskEntry::reads`], a task's own section by the tasks registering it,
+/// the others (`[experiment]`, `[neat]`, `[run]`, `[strategy]`) by every task.
+pub fn readers(name: &str) -> Vec<&'static str> {
+    let all = super::entries().into_iter();
+    let reads = |t: &TaskEntry| match SharedSection::named(name) {
+        Some(s) => t.reads.contains(&s),
+        None if sections()
+            .iter()
+            .any(|s| s.name == name && s.name != crate::search::SECTION.name) =>
+        {
+            t.sections.iter().any(|s| s.name == name)
+        }
+        None => true,
+    };
+    all.filter(|t| reads(t)).map(|t| t.name).collect()
+}
+
+/// The commented default config of task `name` (`vivae config default
+/// --task`): its defaults, only the sections it reads.
+pub fn default_commented(name: &str) -> std::result::Result<String, String> {
+    let task = entry(name)?;
+    let owned: Vec<Section> = std::iter::once(crate::search::SECTION)
+        .chain(task.sections.iter().copied())
+        .collect();
+    Ok((task.default_config)().default_commented_for(task.reads, &owned))
 }
 
 /// Metric names of `config`'s task (none for a task that is not registered).

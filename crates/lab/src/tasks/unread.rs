@@ -1,9 +1,8 @@
 //! Finding the keys of a config that its task does not read: the first one
 //! changed from its default, so a refusal can name it.
 
-use serde::Serialize;
-
-use crate::config::Config;
+use crate::config::{Config, SharedSection};
+use crate::tasks::TaskEntry;
 
 /// The first key under `key` where `a` (a config or part of one) differs
 /// from `b` (its defaults), skipping every key `skip` says is read:
@@ -50,34 +49,73 @@ fn show(v: Option<&toml::Value>) -> String {
     }
 }
 
-/// Refuses `config`'s section `[section]` (its value `value`) when a key of
-/// it differs from `default`: only an `owner` run reads it. The message
-/// names the key and its value.
-pub(crate) fn refuse_section<T: Serialize>(
+/// Refuses a key `config` (its owned sections settled) sets in a section
+/// its task `task` does not read: a shared section it does not list in
+/// [`TaskEntry::reads`] off the task's defaults, or another task's own
+/// section (left out of a settled config at its defaults). The one-line
+/// message names the key, its value and the tasks that read the section.
+pub(crate) fn refuse_unread(config: &Config, task: &TaskEntry) -> Result<(), String> {
+    let defaults = (task.default_config)();
+    for s in SharedSection::ALL
+        .iter()
+        .filter(|s| !task.reads.contains(s))
+    {
+        let readers = |t: &TaskEntry| t.reads.contains(s);
+        let (set, default) = (s.value(config), s.value(&defaults));
+        refuse_section(config, s.name(), set.as_ref(), default.as_ref(), &readers)?;
+    }
+    let sections = super::sections();
+    for name in config.owned.names().filter(|n| {
+        *n != crate::search::SECTION.name && !task.sections.iter().any(|s| s.name == *n)
+    }) {
+        let default = sections
+            .iter()
+            .find(|s| s.name == name)
+            .map(|s| toml::Value::Table((s.defaults)()));
+        let readers = |t: &TaskEntry| t.sections.iter().any(|s| s.name == name);
+        let set = config.owned.raw(name);
+        refuse_section(config, name, set, default.as_ref(), &readers)?;
+    }
+    Ok(())
+}
+
+/// Refuses `config`'s section `[section]` (`value`) when a key of it
+/// differs from `default`: only the tasks `reads` picks read it. The
+/// message names the key, its value and those tasks.
+fn refuse_section(
     config: &Config,
     section: &str,
-    value: &T,
-    default: &T,
-    owner: &str,
+    value: Option<&toml::Value>,
+    default: Option<&toml::Value>,
+    reads: &dyn Fn(&TaskEntry) -> bool,
 ) -> Result<(), String> {
-    let toml = |t: &T| toml::Value::try_from(t).ok();
-    match first_change(
-        section,
-        toml(value).as_ref(),
-        toml(default).as_ref(),
-        &|_| false,
-    ) {
-        Some((key, value, _)) => Err(format!(
-            "{key} = {value}: only a {owner} run reads [{section}] (experiment.task = \"{}\"): drop the section",
-            config.experiment.task
-        )),
-        None => Ok(()),
-    }
+    let Some((key, value, _)) = first_change(section, value, default, &|_| false) else {
+        return Ok(());
+    };
+    let readers: Vec<&str> = (super::entries().into_iter())
+        .filter(|t| reads(t))
+        .map(|t| t.name)
+        .collect();
+    let (who, fix) = match readers.as_slice() {
+        [] => (format!("no task reads [{section}]"), String::new()),
+        [one] => (
+            format!("only a {one} run reads [{section}]"),
+            format!("set `task = \"{one}\"` under [experiment] or "),
+        ),
+        [first @ .., last] => (
+            format!("only {} and {last} runs read [{section}]", first.join(", ")),
+            String::new(),
+        ),
+    };
+    Err(format!(
+        "{key} = {value}: {who} (experiment.task = \"{}\"): {fix}drop the section",
+        config.experiment.task
+    ))
 }
 
 #[cfg(test)]
 mod tests {
-    use crate::config::Config;
+    use crate::config::TaskName;
     use crate::tasks::config_from_toml;
 
     #[test]
@@ -118,8 +156,31 @@ mod tests {
         config_from_toml("[coevolution]\nsample = 7\n[experiment]\ntask = \"predator-prey\"\n")
             .unwrap();
         config_from_toml("[fitness]\ncontact_cost = 0.5\n").unwrap();
-        let c = Config::default();
-        let fitness = crate::tasks::driving::section::FitnessConfig::of(&c);
-        assert!(super::refuse_section(&c, "fitness", &fitness, &fitness, "driving").is_ok());
+    }
+
+    #[test]
+    fn a_shared_section_a_task_does_not_read_is_refused_naming_its_readers() {
+        let err = config_from_toml("[experiment]\ntask = \"cartpole\"\n[physics]\nv_max = 3.0\n")
+            .unwrap_err()
+            .to_string();
+        assert_eq!(
+            err,
+            "line 4: physics.v_max = 3.0: only driving, maze and predator-prey runs read [physics] \
+             (experiment.task = \"cartpole\"): drop the section"
+        );
+        // At its defaults (a run's config.toml of the whole form) it is read back.
+        let whole = crate::tasks::default_config(Some(&TaskName("cartpole".into())))
+            .unwrap()
+            .to_toml();
+        assert!(whole.contains("\n[physics]\n"), "{whole}");
+        config_from_toml(&whole).unwrap();
+        let err =
+            config_from_toml("[experiment]\ntask = \"cartpole\"\n[maze]\nrobot = \"vivae\"\n")
+                .unwrap_err()
+                .to_string();
+        assert!(
+            err.contains("maze.robot = \"vivae\": only a maze run reads [maze]"),
+            "{err}"
+        );
     }
 }

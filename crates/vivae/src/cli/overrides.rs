@@ -83,7 +83,7 @@ pub struct Overrides {
 }
 
 /// `--task NAME`: one of the registered tasks (listed by `--help`).
-fn task_names() -> impl clap::builder::TypedValueParser<Value = TaskName> {
+pub(super) fn task_names() -> impl clap::builder::TypedValueParser<Value = TaskName> {
     use clap::builder::TypedValueParser as _;
     let names = vivae_lab::tasks::names().iter().copied();
     clap::builder::PossibleValuesParser::new(names).map(TaskName)

@@ -199,6 +199,62 @@ fn settings_a_plain_task_does_not_read_are_refused_by_name() {
     assert!(!out.exists(), "nothing is written for a refused run");
 }
 
+#[test]
+fn a_plain_run_writes_only_the_sections_it_reads_and_resumes_the_whole_form() {
+    let dir = scratch("cartpole-sections");
+    let (whole, part) = (dir.join("whole"), dir.join("part"));
+    cartpole(
+        &whole,
+        &["--population", "30", "--seed", "2", "--generations", "3"],
+    );
+    cartpole(
+        &part,
+        &["--population", "30", "--seed", "2", "--generations", "2"],
+    );
+    let text = String::from_utf8(read(&whole, "config.toml")).unwrap();
+    let tables: Vec<&str> = text.lines().filter(|l| l.starts_with('[')).collect();
+    assert_eq!(
+        tables,
+        [
+            "[experiment]",
+            "[neat]",
+            "[run]",
+            "[strategy]",
+            "[strategy.novelty]",
+            "[strategy.map_elites]",
+            "[strategy.nsga2]"
+        ],
+        "{text}"
+    );
+    // `config default --task` holds the same sections, and checks.
+    let default = ok(vivae().args(["config", "default", "--task", "cartpole"]));
+    let headers = |t: &str| -> Vec<String> {
+        (t.lines().filter(|l| l.starts_with('[')))
+            .map(String::from)
+            .collect()
+    };
+    assert_eq!(headers(&default), tables, "{default}");
+    std::fs::write(dir.join("default.toml"), &default).unwrap();
+    let checked = ok(vivae()
+        .args(["config", "check"])
+        .arg(dir.join("default.toml")));
+    assert_eq!(headers(&checked), tables, "{checked}");
+    // A run written before (every shared section, at its defaults) resumes
+    // as if it had not been, its config.toml rewritten in the new form.
+    let config = vivae_lab::tasks::read_config(&part.join("config.toml")).unwrap();
+    let old = config.to_toml();
+    assert!(
+        old.contains("\n[physics]\n") && old.contains("\n[substrate]\n"),
+        "{old}"
+    );
+    std::fs::write(part.join("config.toml"), old).unwrap();
+    ok(vivae()
+        .args(["resume", "-q", "--generations", "3"])
+        .arg(&part));
+    assert_same_results(&whole, &part);
+    assert!(read(&whole, "config.toml") == read(&part, "config.toml"));
+}
+
 /// Gymnasium 1.4.0's CartPole-v1 from state (0.01, −0.02, 0.03, 0.04) under
 /// these actions, to the bit (`env.unwrapped.state = …; env.step(a)`, the
 /// state printed with `float.hex`).

@@ -26,6 +26,7 @@ pub static TASK: TaskEntry = TaskEntry {
     refuse_when_other: refuse_for_other_tasks,
     set_robot: None,
     sections: &[super::section::SECTION],
+    reads: &crate::config::SharedSection::ALL,
     scenarios: &crate::tasks::driving::scenarios::SCENARIOS,
     maps: true,
     check_map: crate::tasks::any_map,
@@ -36,13 +37,11 @@ pub static TASK: TaskEntry = TaskEntry {
 
 /// With another task than driving: refuses `experiment.placements` (and its
 /// aggregate) off their defaults: only a driving episode places obstacles
-/// and traffic per evaluation; `experiment.precision = "fast"`: only the
-/// driving task's dense controller has a fast step; and a `[fitness]` key
-/// off its default: only a driving episode is scored by it.
+/// and traffic per evaluation; and `experiment.precision = "fast"`: only the
+/// driving task's dense controller has a fast step (its `[fitness]` section
+/// the registry refuses, as every section a task does not read).
 fn refuse_for_other_tasks(c: &Config) -> std::result::Result<(), String> {
     let e = &c.experiment;
-    let (fitness, default) = (FitnessConfig::of(c), FitnessConfig::default());
-    crate::tasks::unread::refuse_section(c, "fitness", &fitness, &default, TaskName::DRIVING)?;
     if !e.precision.is_exact() {
         return Err(format!(
             "experiment.precision = \"{}\": only a driving run has a fast controller step \

@@ -16,7 +16,7 @@ use vivae_neat::driver::{Evaluation, Evaluator, EvaluatorError, Task};
 use vivae_neat::{Activation, EvalContext, Genome, GenomeSpec, NeatParams};
 
 use self::section::{GymnasiumConfig, SECTION};
-use crate::config::{Config, OwnedSection, TaskName};
+use crate::config::{Config, TaskName};
 use crate::error::Result;
 use crate::io::bad_input;
 use crate::search::{StrategyConfig, TaskFacts};
@@ -50,9 +50,10 @@ pub static TASK: TaskEntry = TaskEntry {
     generation_columns: "",
     build,
     own_driver: None,
-    refuse_when_other,
+    refuse_when_other: crate::tasks::nothing_to_refuse,
     set_robot: None,
     sections: &[SECTION],
+    reads: &[],
     scenarios: &[],
     maps: false,
     check_map: crate::tasks::any_map,
@@ -142,16 +143,6 @@ fn validate(c: &Config) -> std::result::Result<(), String> {
         )),
         None => Ok(()),
     }
-}
-
-/// Another task's run leaves `[gymnasium]` unset.
-fn refuse_when_other(c: &Config) -> std::result::Result<(), String> {
-    if c.owned.names().any(|n| n == GymnasiumConfig::NAME) {
-        return Err(format!(
-            "[gymnasium]: only a run of experiment.task = \"{NAME}\" reads it; remove the section"
-        ));
-    }
-    Ok(())
 }
 
 fn build(config: &Config, _maps: &[TrainingMap]) -> Result<Box<dyn RunTask>> {
@@ -361,7 +352,10 @@ mod tests {
             ..GymnasiumConfig::default()
         });
         let e = crate::tasks::check(&other).unwrap_err().message;
-        assert!(e.starts_with("[gymnasium]"), "{e}");
+        assert!(
+            e.starts_with("gymnasium.episodes = 5: only a gymnasium run reads [gymnasium]"),
+            "{e}"
+        );
     }
 
     #[test]

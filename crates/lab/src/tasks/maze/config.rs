@@ -91,19 +91,6 @@ pub fn lehman_neat() -> NeatParams {
     }
 }
 
-/// With another task than the maze: refuses a `[maze]` section that is not
-/// at its defaults (it would be ignored).
-pub fn refuse_for_other_tasks(c: &crate::config::Config) -> Result<(), String> {
-    if MazeConfig::of(c).is_default() {
-        Ok(())
-    } else {
-        Err(format!(
-            "[maze]: only a maze run reads it (experiment.task = \"{}\"): set `task = \"maze\"` under [experiment] or drop the section",
-            c.experiment.task
-        ))
-    }
-}
-
 /// With `experiment.task = "maze"`: refuses the keys a maze run cannot
 /// honour; the message names the key.
 pub(super) fn validate(c: &Config) -> Result<(), String> {

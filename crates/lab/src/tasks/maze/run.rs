@@ -35,13 +35,14 @@ pub static TASK: TaskEntry = TaskEntry {
     generation_columns: COLUMNS,
     build,
     own_driver: None,
-    refuse_when_other: crate::tasks::maze::config::refuse_for_other_tasks,
+    refuse_when_other: crate::tasks::nothing_to_refuse,
     set_robot: Some(|c, r| {
         let robot = r.parse()?;
         c.owned.update(|m: &mut MazeConfig| m.robot = robot);
         Ok(())
     }),
     sections: &[super::section::SECTION],
+    reads: &crate::config::SharedSection::ALL,
     scenarios: &super::SCENARIOS,
     maps: true,
     check_map: crate::tasks::any_map,

@@ -111,14 +111,6 @@ pub(super) fn validate(c: &Config) -> Result<(), String> {
     }
 }
 
-/// With another task than predator–prey: refuses a `[coevolution]` key off
-/// its default (only two populations pick opponents); the message names the key.
-pub(super) fn refuse_for_other_tasks(c: &Config) -> Result<(), String> {
-    let default = CoevolutionConfig::default();
-    let set = CoevolutionConfig::of(c);
-    crate::tasks::unread::refuse_section(c, "coevolution", &set, &default, NAME)
-}
-
 /// Most opponents a genome meets a generation (`coevolution.sample`).
 pub const MAX_SAMPLE: usize = 1000;
 
