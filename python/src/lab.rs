@@ -134,7 +134,8 @@ pub fn resume<'py>(
 #[pyfunction]
 pub fn report(py: Python<'_>, out: PathBuf) -> PyResult<PathBuf> {
     py.detach(|| {
-        if let Some(tools) = vivae::tasks::of_run(&out) {
+        // A task that draws its figures from the run directory alone.
+        if let Some(tools) = vivae::tasks::of_run(&out).filter(|t| t.finish.is_none()) {
             return (tools.report)(&out);
         }
         // Opened as `vivae resume` opens it (locked; truncated to its newest
@@ -151,7 +152,7 @@ pub fn report(py: Python<'_>, out: PathBuf) -> PyResult<PathBuf> {
                 out.display()
             )));
         }
-        vivae::report::finish_run(&run)?;
+        vivae::tasks::finish_run(&run)?;
         Ok(run.dir().join(vivae_lab::rundir::files::REPORT))
     })
     .map_err(errors::lab)

@@ -8,21 +8,18 @@
 use std::path::{Path, PathBuf};
 
 use serde::Serialize;
-use vivae_neat::Genome;
 use vivae_sim::draw::{self, DrawOptions};
 use vivae_sim::{Scenario, World};
 
 use crate::figures::convergence::{self, ConvergenceOptions};
-use crate::figures::network::{self, NetworkOptions};
-use vivae_lab::io::{bad_input, read_text, write_atomic};
+use crate::figures::network::NetworkOptions;
+use vivae_lab::io::{read_text, write_atomic};
 use vivae_lab::rundir::GenerationRow;
 use vivae_lab::rundir::{self, files};
 use vivae_lab::search::StrategyReport;
-use vivae_lab::tasks::driving::episode::{Episode, EpisodeRecord};
 use vivae_lab::tasks::plain::REPLAY_SEED;
 use vivae_lab::tasks::read_champion;
 use vivae_lab::tasks::read_config;
-use vivae_lab::tasks::scenarios::load_scenario;
 use vivae_lab::tasks::sketch::Film;
 
 /// The page template; `/*VIVAE-DATA*/`, `/*VIVAE-CSS*/` and `/*VIVAE-JS*/` are filled in.
@@ -40,36 +37,42 @@ const FILM_JS: &str = include_str!("../assets/film.js");
 
 /// One animated episode in the report.
 #[derive(Debug, Serialize)]
-struct EpisodeData {
-    label: String,
+pub(crate) struct EpisodeData {
+    /// What it is (whose, on which map).
+    pub label: String,
     /// Index of its map in [`ReportData::scenes`].
-    scene: usize,
-    fitness: f64,
-    on_road: f64,
+    pub scene: usize,
+    /// Its fitness.
+    pub fitness: f64,
+    /// Its fraction of robot-steps on road.
+    pub on_road: f64,
     /// Per robot, `[x0, y0, x1, y1, …]` rounded to 0.01 px.
-    paths: Vec<Vec<f64>>,
+    pub paths: Vec<Vec<f64>>,
 }
 
-/// Everything the report page shows.
+/// Everything the report page shows; a task with a world (its program-side
+/// tools) fills in the scenes, episodes, network and strategy.
 #[derive(Debug, Serialize)]
-struct ReportData {
+pub(crate) struct ReportData {
     title: String,
     config: String,
     /// The maps episodes run on: the run's scenario, or each training map.
-    scenes: Vec<SceneData>,
+    pub scenes: Vec<SceneData>,
     /// On several training maps, each map's name (else empty); the champion's
     /// episode on map `k` is `episodes[k]`.
-    maps: Vec<String>,
-    episodes: Vec<EpisodeData>,
+    pub maps: Vec<String>,
+    /// The episodes animated.
+    pub episodes: Vec<EpisodeData>,
     generations: Vec<GenerationRow>,
     /// Per generation, `[species id, members]`.
     species: Vec<Vec<(u32, usize)>>,
     convergence_svg: String,
-    network_svg: String,
+    /// The champion's network figure.
+    pub network_svg: String,
     /// Colours of the best and mean curves, as `convergence.png` draws them.
     curve_colours: [String; 2],
     /// What a strategy beyond NEAT adds (none for NEAT).
-    strategy: Option<StrategyData>,
+    pub strategy: Option<StrategyData>,
     /// The task of a report of curves alone (no scenario, episodes or network figure).
     #[serde(skip_serializing_if = "Option::is_none")]
     task: Option<String>,
@@ -90,7 +93,7 @@ struct FilmData {
 /// What a strategy other than NEAT adds to the report: its part
 /// (from its own file in `vivae_lab::search`) and its columns of `generations.csv`.
 #[derive(Debug, Serialize)]
-struct StrategyData {
+pub(crate) struct StrategyData {
     #[serde(flatten)]
     report: StrategyReport,
     /// The strategy's own columns of `generations.csv`.
@@ -140,105 +143,21 @@ impl SceneData {
 }
 
 /// Rounds to 0.01 so the page stays small.
-fn round2(v: f64) -> f64 {
+pub(crate) fn round2(v: f64) -> f64 {
     (v * 100.0).round() / 100.0
-}
-
-/// What the end of a run has computed already and the report can reuse
-/// (recorded episodes by genome, the network figure's SVG): the file is the
-/// same either way, only faster to build (at 32×96 → 9×9 the episodes and the
-/// network dominate the end of a run).
-#[derive(Debug, Default)]
-pub struct Reuse<'a> {
-    /// Episodes recorded with trajectories, and the genome each one ran.
-    pub episodes: Vec<(&'a Genome, &'a EpisodeRecord)>,
-    /// The champion's network figure, drawn with the report's own options.
-    pub network_svg: Option<String>,
-    /// On several training maps, the champion's episode on each, in map order.
-    pub map_episodes: Vec<&'a EpisodeRecord>,
-}
-
-/// The episode of `genome` on `experiment` (map `scene`), taken from
-/// `recorded` when it holds it with trajectories, else run now.
-fn episode(
-    experiment: &Episode,
-    genome: &Genome,
-    (label, scene): (String, usize),
-    recorded: Option<&EpisodeRecord>,
-) -> vivae_lab::Result<EpisodeData> {
-    let recorded = recorded.filter(|e| e.trajectories.is_some() && e.on_road.is_some());
-    let ran;
-    let run = match recorded {
-        Some(e) => e,
-        None => {
-            ran = experiment.run(&experiment.robot_controller(genome)?, true);
-            &ran
-        }
-    };
-    let paths = run
-        .trajectories
-        .as_deref()
-        .unwrap_or_default()
-        .iter()
-        .map(|t| t.iter().flat_map(|p| [round2(p.x), round2(p.y)]).collect())
-        .collect();
-    Ok(EpisodeData {
-        label,
-        scene,
-        fitness: run.fitness,
-        on_road: run.on_road.unwrap_or_default(),
-        paths,
-    })
-}
-
-/// On several training maps, the champion's episode on each (labelled with
-/// the map), each map's scene and the maps' names; nothing on one map.
-fn map_episodes(
-    dir: &Path,
-    config: &vivae_lab::config::Config,
-    champion: &rundir::Champion,
-    reuse: &Reuse<'_>,
-) -> vivae_lab::Result<(Vec<EpisodeData>, Vec<SceneData>, Vec<String>)> {
-    if !vivae_lab::tasks::maps::is_multi_map(config) {
-        return Ok(Default::default());
-    }
-    let loaded = vivae_lab::tasks::maps::load_run(dir, config, None)?;
-    let training = vivae_lab::tasks::driving::training::Training::new(config, &loaded)?;
-    let (mut episodes, mut scenes, mut maps) = (Vec::new(), Vec::new(), Vec::new());
-    let count = loaded.len();
-    for (k, ((label, experiment), map)) in training
-        .map_labels()
-        .zip(training.map_experiments())
-        .zip(&loaded)
-        .enumerate()
-    {
-        let name = format!(
-            "Champion (generation {}) on {label}, map {} of {count}",
-            champion.generation,
-            k + 1
-        );
-        episodes.push(episode(
-            experiment,
-            &champion.genome,
-            (name, k),
-            reuse.map_episodes.get(k).copied(),
-        )?);
-        scenes.push(SceneData::new(&map.loaded.scenario, experiment.world()));
-        maps.push(label.to_string());
-    }
-    Ok((episodes, scenes, maps))
 }
 
 /// The strategy's part of the report of the run in `dir` (none for NEAT):
 /// what its own file reads of the run directory, the objectives named as
-/// the figures name them, and its columns of `generations.csv`.
-fn strategy_data(
+/// the figures name them, and its columns of `generations.csv`; `robots`
+/// is how many robots its episodes drive.
+pub(crate) fn strategy_data(
     dir: &Path,
     config: &vivae_lab::config::Config,
-    experiment: &Episode,
+    robots: usize,
 ) -> vivae_lab::Result<Option<StrategyData>> {
     let entry = vivae_lab::search::entry_of(config)?;
-    let Some(mut report) = (entry.report)(dir, config, experiment.robots())? else {
+    let Some(mut report) = (entry.report)(dir, config, robots)? else {
         return Ok(None);
     };
     report.objectives = (report.objectives.iter())
@@ -287,9 +206,12 @@ fn script_safe(json: &str) -> String {
     json.replace("</", "<\\/")
 }
 
-/// Builds the report of the run in `dir` as one HTML document.
+/// Builds the report of the run in `dir` as one HTML document: its curves
+/// alone, headed by its task (a task whose program-side tools draw more has
+/// its own report, `crate::tasks`).
 pub fn build(dir: &Path) -> vivae_lab::Result<String> {
-    build_reusing(dir, &Reuse::default())
+    let config = read_config(&dir.join(files::CONFIG))?;
+    build_curves(dir, &config)
 }
 
 /// The champion's network figure options as the report and the end of a run draw it.
@@ -301,55 +223,12 @@ pub(crate) fn network_options(generation: u32, fitness: f64, amplitude: f64) -> 
     }
 }
 
-/// The report's episodes: the champion's (on each training map, for several),
-/// then the best of the figure generations on the first map; with the maps'
-/// scenes and names (none on one map).
-fn all_episodes(
-    dir: &Path,
-    config: &vivae_lab::config::Config,
-    experiment: &Episode,
-    champion: &rundir::Champion,
-    best: &[rundir::GenerationBest],
-    reuse: &Reuse<'_>,
-) -> vivae_lab::Result<(Vec<EpisodeData>, Vec<SceneData>, Vec<String>)> {
-    let recorded = |genome: &Genome| {
-        reuse
-            .episodes
-            .iter()
-            .find(|(g, _)| *g == genome)
-            .map(|(_, e)| *e)
-    };
-    let (mut episodes, scenes, maps) = map_episodes(dir, config, champion, reuse)?;
-    let on_first = if maps.is_empty() {
-        String::new()
-    } else {
-        format!(" on {}", maps[0])
-    };
-    if maps.is_empty() {
-        episodes.push(episode(
-            experiment,
-            &champion.genome,
-            (format!("Champion (generation {})", champion.generation), 0),
-            recorded(&champion.genome),
-        )?);
-    }
-    for g in vivae_lab::run::FIGURE_GENERATIONS {
-        if let Some(b) = best.iter().find(|b| b.generation == g) {
-            episodes.push(episode(
-                experiment,
-                &b.genome,
-                (format!("Best of generation {g}{on_first}"), 0),
-                recorded(&b.genome),
-            )?);
-        }
-    }
-    Ok((episodes, scenes, maps))
-}
-
 /// What every run's report shows, read from the files every run writes: its
 /// config, curves, species, convergence and table (no scenes, episodes,
 /// network or strategy); and the best genome of each generation.
-fn curves_data(dir: &Path) -> vivae_lab::Result<(ReportData, Vec<rundir::GenerationBest>)> {
+pub(crate) fn curves_data(
+    dir: &Path,
+) -> vivae_lab::Result<(ReportData, Vec<rundir::GenerationBest>)> {
     let best = rundir::read_best_genomes(&dir.join(files::BEST_GENOMES))?;
     let generations_csv = dir.join(files::GENERATIONS);
     let generations = rundir::read_generations(&generations_csv)?;
@@ -426,7 +305,7 @@ fn title_of(dir: &Path) -> String {
 }
 
 /// The page of `data`.
-fn page_of(data: &ReportData) -> vivae_lab::Result<String> {
+pub(crate) fn page_of(data: &ReportData) -> vivae_lab::Result<String> {
     let json =
         script_safe(
             &serde_json::to_string(data).map_err(|e| vivae_lab::Error::Serialize {
@@ -436,47 +315,6 @@ fn page_of(data: &ReportData) -> vivae_lab::Result<String> {
         );
     let js = [SCENE_JS, PLOTS_JS, FILM_JS, REPORT_JS].join("\n");
     Ok(report_page(TEMPLATE, &js, &json))
-}
-
-/// [`build`], reusing what the end of a run computed already.
-pub fn build_reusing(dir: &Path, reuse: &Reuse<'_>) -> vivae_lab::Result<String> {
-    let config = read_config(&dir.join(files::CONFIG))?;
-    if !vivae_lab::tasks::has_substrate(&config) {
-        return build_curves(dir, &config);
-    }
-    let scenario = load_scenario(Some(&dir.join(files::SCENARIO)))?;
-    let experiment = Episode::new(&config, &scenario.scenario)
-        .map_err(|e| bad_input(format!("{}: {e}", dir.display())))?;
-    let champion = read_champion(&dir.join(files::CHAMPION))?;
-    let (curves, best) = curves_data(dir)?;
-    let (episodes, scenes, maps) =
-        all_episodes(dir, &config, &experiment, &champion, &best, reuse)?;
-    let network_svg = match &reuse.network_svg {
-        Some(svg) => svg.clone(),
-        None => network::figure_svg_robot(
-            &experiment,
-            &experiment.robot_controller(&champion.genome)?,
-            &network_options(
-                champion.generation,
-                champion.fitness,
-                config.hyperneat.amplitude,
-            ),
-        )
-        .map_err(vivae_lab::Error::from)?,
-    };
-    let data = ReportData {
-        scenes: if scenes.is_empty() {
-            vec![SceneData::new(&scenario.scenario, experiment.world())]
-        } else {
-            scenes
-        },
-        maps,
-        episodes,
-        network_svg,
-        strategy: strategy_data(dir, &config, &experiment)?,
-        ..curves
-    };
-    page_of(&data)
 }
 
 /// The end every report page shares (its last line of text, the data and the
@@ -498,14 +336,13 @@ pub(crate) fn report_page(template: &str, js: &str, data: &str) -> String {
         .replacen("/*VIVAE-DATA*/", data, 1)
 }
 
-/// Writes `report.html` into the run directory `dir`; returns its path.
+/// Writes `report.html` of [`build`] into the run directory `dir`; returns its path.
 pub fn write(dir: &Path) -> vivae_lab::Result<PathBuf> {
-    write_reusing(dir, &Reuse::default())
+    write_page(dir, &build(dir)?)
 }
 
-/// [`write()`], reusing what the end of a run computed already.
-pub fn write_reusing(dir: &Path, reuse: &Reuse<'_>) -> vivae_lab::Result<PathBuf> {
-    let html = build_reusing(dir, reuse)?;
+/// Writes the page `html` as `report.html` into the run directory `dir`; returns its path.
+pub(crate) fn write_page(dir: &Path, html: &str) -> vivae_lab::Result<PathBuf> {
     let path = dir.join(files::REPORT);
     write_atomic(&path, html.as_bytes())?;
     Ok(path)

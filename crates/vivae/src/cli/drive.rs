@@ -8,7 +8,6 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
-use crate::report;
 use anyhow::Context as _;
 use vivae_lab::io::bad_input;
 use vivae_lab::run::{Outcome, Run};
@@ -78,19 +77,19 @@ fn conclude(
     (rate, reused): (f64, u64),
     quiet: bool,
 ) -> anyhow::Result<ExitCode> {
-    if !run.task().entry().substrate {
+    let Some(finish) = crate::tasks::finish_of(run) else {
         let wall = start.elapsed().as_secs_f64();
         return conclude_without_figures(run, outcome, wall, (rate, reused), quiet);
-    }
+    };
     if outcome == Outcome::Interrupted {
         // The figures show the run so far; a resumed run redraws them at its end.
         if run.done() > 0 {
-            report::finish_run(run).context("writing figures")?;
+            finish(run).context("writing figures")?;
         }
         eprintln!("{}", interrupted_line(run));
         return Ok(ExitCode::from(130));
     }
-    let summary = report::finish_run(run).context("writing figures")?;
+    let summary = finish(run).context("writing figures")?;
     let wall = start.elapsed().as_secs_f64();
     if !quiet {
         eprintln!("{}", closing(run, &summary, started_after, wall, rate));
@@ -111,8 +110,8 @@ fn conclude(
     Ok(ExitCode::SUCCESS)
 }
 
-/// [`conclude`] for a task that draws no figures (one whose `RunTask` is
-/// not the driving one): its own summary says how it went.
+/// [`conclude`] for a task that draws no figures at a run's end (no
+/// `finish` in its program-side tools): its own summary says how it went.
 fn conclude_without_figures(
     run: &Run,
     outcome: Outcome,

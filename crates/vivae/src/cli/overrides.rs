@@ -147,11 +147,6 @@ pub fn apply_overrides(config: &mut Config, o: &Overrides) -> anyhow::Result<()>
     vivae_lab::tasks::check(config).map_err(|e| refused(e.to_string()))
 }
 
-/// The config's single scenario file, if it names one (none: the embedded scenario or several maps).
-pub fn scenario_path(config: &Config) -> Option<PathBuf> {
-    (!config.experiment.scenario.is_empty()).then(|| PathBuf::from(&config.experiment.scenario))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,20 +1,19 @@
 //! `vivae replay`: runs a genome (a run's champion, an elite or a front
-//! member, or a genome file) and draws its trajectories; the genome of a task
-//! without figures prints its episode's end instead.
+//! member, or a genome file); a task that draws its replay (its
+//! program-side tools' `replay`, e.g. the driving trajectories) draws it,
+//! the genome of any other task prints its episode's end instead.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use crate::report;
+use crate::tasks::ReplayRequest;
 use clap::Args;
 use vivae_lab::config::Config;
 use vivae_lab::io::bad_input;
 use vivae_lab::rundir;
-use vivae_lab::tasks::driving::episode::Episode;
-use vivae_lab::tasks::scenarios::load_scenario;
 
 use super::args::{EpisodeArgs, MemberChoice, Resolution, Wiring};
-use super::overrides::{Overrides, apply_overrides, scenario_path};
+use super::overrides::{Overrides, apply_overrides};
 
 /// Options of `vivae replay`.
 #[derive(Args, Debug)]
@@ -108,128 +107,29 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<ExitCode> {
         (champion.genome, champion.fitness, champion.generation) =
             read_member(&args.source, member)?;
     }
-    if !vivae_lab::tasks::has_substrate(&config) {
+    // A task that draws its replay (its program-side tools) is given the
+    // genome and the config with the command's flags; any other prints its
+    // replay text.
+    let tools = crate::tasks::of_task(config.experiment.task.name());
+    let Some(draw) = tools.and_then(|t| t.replay) else {
         return replay_without_figures(&args, &champion, config);
-    }
+    };
     first_map_unless_told(&args, &mut config);
     // Another scenario has its own robot starts: all of them, unless told.
     let robots = args.episode.robots.or(args.scenario.as_ref().map(|_| 0));
     apply_overrides(&mut config, &args.overrides(robots))?;
-    let path = scenario_path(&config);
-    if let Some(p) = path
-        .as_deref()
-        .filter(|p| args.scenario.is_none() && !p.exists())
-    {
-        return Err(bad_input(format!(
-            "{}: the champion's scenario {} is not there; name one with --scenario FILE",
-            args.source.display(),
-            p.display()
-        ))
-        .into());
-    }
-    let scenario = load_scenario(path.as_deref())?;
-    let experiment = blinded(&args, Episode::new(&config, &scenario.scenario))?;
-    if let Some(seed) = args.placement_seed.filter(|_| !experiment.varies()) {
-        return Err(bad_input(format!(
-            "--placement-seed {seed}: {} places no obstacles or traffic at random, so no seed changes the replay",
-            scenario.scenario.source
-        ))
-        .into());
-    }
-    if experiment.varies() {
-        eprintln!(
-            "{}: obstacles and traffic at placement {}",
-            scenario.scenario.source,
-            args.placement_seed.unwrap_or(0)
-        );
-    }
-    let experiment = experiment.with_placement_seed(args.placement_seed.unwrap_or(0));
-    // Checked before anything is written: a genome that does not fit is bad input.
-    experiment
-        .robot_controller(&champion.genome)
-        .map_err(|e| vivae_lab::Error::Genome {
-            path: args.source.clone(),
-            reason: format!("the genome's {e}"),
-        })?;
-    // Said once the genome is known to fit, so that an error stays one line.
-    if champion.config.is_none() && !args.source.is_dir() {
-        eprintln!(
-            "warning: {} records no config (written by an older vivae): replaying with the default config and flags; replay its run directory instead if you have it",
-            args.source.display()
-        );
-    }
-    let out = args.out.clone().unwrap_or_else(|| base.join("replay"));
-    vivae_lab::io::create_dirs(&out)?;
-    let name = report::replay_scenario_name(path.as_deref(), &scenario.text);
-    let replay = report::replay(&experiment, &config, &champion, &name, &out, member)?;
-    println!(
-        "fitness={} on_road={:.4} speed={:.4} {}",
-        replay.fitness,
-        replay.on_road,
-        replay.speed,
-        replay.behaviour.fields()
-    );
-    eprintln!("figure: {}", replay.figure.display());
-    if args.swerve {
-        swerve_figure(&args, &experiment, &champion, &out)?;
-    }
+    draw(&ReplayRequest {
+        source: &args.source,
+        champion: &champion,
+        config: &config,
+        scenario_given: args.scenario.is_some(),
+        placement_seed: args.placement_seed,
+        blind_rays: args.blind_rays,
+        swerve: args.swerve,
+        member,
+        out: args.out.clone().unwrap_or_else(|| base.join("replay")),
+    })?;
     Ok(ExitCode::SUCCESS)
-}
-
-/// The replay's episode, its rays blinded with `--blind-rays`: refused
-/// before anything is said about the replay, so that an error stays one line.
-fn blinded(
-    args: &ReplayArgs,
-    experiment: Result<Episode, vivae_lab::error::EpisodeError>,
-) -> anyhow::Result<Episode> {
-    let experiment = experiment.map_err(vivae_lab::Error::from)?;
-    match args.blind_rays {
-        true => {
-            Ok((experiment.with_blind_rays())
-                .map_err(|e| bad_input(format!("--blind-rays: {e}")))?)
-        }
-        false => Ok(experiment),
-    }
-}
-
-/// `--swerve`: the zoomed figure of the meeting blinding changes most, and its line.
-fn swerve_figure(
-    args: &ReplayArgs,
-    experiment: &Episode,
-    champion: &rundir::Champion,
-    out: &std::path::Path,
-) -> anyhow::Result<()> {
-    let placement = args.placement_seed.unwrap_or(0);
-    let blind = if args.blind_rays { "-blind-rays" } else { "" };
-    // Named for its run (a run's scenario is its copy, scenario.svg).
-    let run = match args.source.is_dir() {
-        true => args.source.as_path(),
-        false => args.source.parent().unwrap_or(&args.source),
-    };
-    let run = run
-        .file_name()
-        .map_or(String::new(), |n| n.to_string_lossy().into_owned());
-    let title = format!("{run}, placement {placement}");
-    match crate::figures::swerve::swerve(experiment, &champion.genome, &title)? {
-        None => eprintln!("swerve: the scenario has no placed block nor scripted robot to meet"),
-        Some((figure, m)) => {
-            let path = out.join(format!("swerve-p{placement}{blind}"));
-            vivae_lab::io::write_atomic(&path.with_extension("svg"), figure.svg.as_bytes())?;
-            vivae_lab::io::write_atomic(&path.with_extension("png"), &figure.png)?;
-            let blinded = m.blinded.map_or(String::new(), |(gap, step)| {
-                format!(" blinded_clearance={:.2} blinded_step={step}", gap.max(0.0))
-            });
-            println!(
-                "swerve robot={} met=\"{}\" clearance={:.2} step={}{blinded}",
-                m.robot + 1,
-                m.what,
-                m.seeing.0.max(0.0),
-                m.seeing.1
-            );
-            eprintln!("swerve figure: {}", path.with_extension("png").display());
-        }
-    }
-    Ok(())
 }
 
 /// `vivae replay` of a genome of a task that draws no figures: its

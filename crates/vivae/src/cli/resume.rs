@@ -5,7 +5,6 @@ use std::process::ExitCode;
 use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 
-use crate::report;
 use anyhow::Context as _;
 use clap::Args;
 use vivae_lab::run::Run;
@@ -108,8 +107,10 @@ fn already_finished(run: &Run) -> anyhow::Result<bool> {
     eprintln!("{}", super::own_driver::finished_note(run.dir(), total));
     // A run that stopped before its figures and report showed every
     // generation (killed while drawing them) gets them now.
-    if run.task().entry().substrate && rundir::drawn_generations(run.dir()) != Some(run.done()) {
-        report::finish_run(run).context("writing figures")?;
+    if let Some(finish) = crate::tasks::finish_of(run)
+        && rundir::drawn_generations(run.dir()) != Some(run.done())
+    {
+        finish(run).context("writing figures")?;
         eprintln!("figures: {}", run.dir().join(files::FIGURES).display());
         eprintln!("report: {}", run.dir().join(files::REPORT).display());
     }

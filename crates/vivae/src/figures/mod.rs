@@ -19,8 +19,6 @@ mod fields;
 pub mod front;
 pub mod network;
 mod opacity;
-/// The swerve: a robot passing a block or a scripted robot, seeing and blinded.
-pub mod swerve;
 
 use std::sync::OnceLock;
 

@@ -1,20 +1,27 @@
 //! The program's side of the tasks: what it draws, serves and plays for a
 //! task beyond what the task's [`TaskEntry`] in `vivae_lab` says. A task
-//! with program-side parts (its report, figures, viewer page, MPI player) is
-//! one folder here with one [`TaskTools`] registered in [`TOOLS`], found by
-//! its entry's name (the run's `experiment.task`); a task without one (the
-//! driving experiment, the maze) needs none. Nothing outside a task's folder
-//! matches on which task it is.
+//! with program-side parts (its report, figures, replay, viewer page, MPI
+//! player) is one folder here with one [`TaskTools`] registered in
+//! [`TOOLS`], found by its entry's name (the run's `experiment.task`); a
+//! task without one (the maze, the classic-control tasks) needs none: the
+//! commands give it its curves, its replay text and say what it lacks.
+//! Nothing outside a task's folder matches on which task it is.
 
+pub mod driving;
 pub mod predator_prey;
 
 use std::path::{Path, PathBuf};
 
-use vivae_lab::rundir::files;
+use crate::report::RunSummary;
+use vivae_lab::config::Config;
+use vivae_lab::io::bad_input;
+use vivae_lab::run::Run;
+use vivae_lab::rundir::{Champion, files};
+use vivae_lab::search::files::Member;
 use vivae_lab::tasks::{TaskEntry, read_config};
 
 /// Every task with program-side parts. A new one is a folder here and one line in this list.
-pub static TOOLS: [&TaskTools; 1] = [&predator_prey::TOOLS];
+pub static TOOLS: [&TaskTools; 2] = [&driving::TOOLS, &predator_prey::TOOLS];
 
 /// A tournament's table for a person and its CSV.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -42,6 +49,11 @@ pub struct TaskTools {
     /// Writes the figures and `report.html` of the task's run in a directory
     /// (`vivae report`, and the end of a run); returns the page's path.
     pub report: fn(&Path) -> vivae_lab::Result<PathBuf>,
+    /// Draws the figures and `report.html` of a run on the program's driver
+    /// at its end (`vivae evolve`, `vivae resume`, Python's `vivae.report`),
+    /// for a task that draws figures of its own there (any other's end
+    /// writes its curves alone); says what the end of the run prints.
+    pub finish: Option<fn(&Run) -> vivae_lab::Result<RunSummary>>,
     /// What the end of a run says after the report's path (the figures beside it).
     pub report_note: &'static str,
     /// The record files of its runs, for a refusal by a command that reads
@@ -49,6 +61,9 @@ pub struct TaskTools {
     pub records: &'static str,
     /// `vivae tournament` between two of its runs, for a task that has one.
     pub tournament: Option<Tournament>,
+    /// `vivae replay` drawing the genome's episode, for a task that draws one
+    /// (any other prints its replay text).
+    pub replay: Option<fn(&ReplayRequest<'_>) -> anyhow::Result<()>>,
     /// `vivae view` of one of its runs: a page of its own.
     #[cfg(feature = "viewer")]
     pub view: Option<crate::view::OwnPage>,
@@ -63,6 +78,46 @@ impl std::fmt::Debug for TaskTools {
             .field("task", &self.entry.name)
             .finish()
     }
+}
+
+/// What `vivae replay` asks of a task that draws the replay: the genome,
+/// the config it replays with (the command's flags applied) and the
+/// command's options.
+#[derive(Debug)]
+pub struct ReplayRequest<'a> {
+    /// The run directory or genome file replayed (for messages and names).
+    pub source: &'a Path,
+    /// The genome replayed, with what its file records.
+    pub champion: &'a Champion,
+    /// The config replayed with.
+    pub config: &'a Config,
+    /// Whether the command named a scenario (else the run's is replayed).
+    pub scenario_given: bool,
+    /// `--placement-seed`: the evaluation placement to replay.
+    pub placement_seed: Option<u64>,
+    /// `--blind-rays`: the distance rays read nothing.
+    pub blind_rays: bool,
+    /// `--swerve`: also draw the meeting blinding changes most.
+    pub swerve: bool,
+    /// The archive or front member replayed (none: the champion).
+    pub member: Option<Member>,
+    /// The folder the figures go to.
+    pub out: std::path::PathBuf,
+}
+
+/// Draws the figures and `report.html` of `run` at its end, as its task's
+/// tools do ([`TaskTools::finish`]); refused for a task that draws none.
+pub fn finish_run(run: &Run) -> vivae_lab::Result<RunSummary> {
+    let task = &run.config().experiment.task;
+    match finish_of(run) {
+        Some(finish) => finish(run),
+        None => Err(bad_input(format!("a {task} run has no trajectory figures"))),
+    }
+}
+
+/// How the task of `run` draws its figures at the end of a run, if it does.
+pub fn finish_of(run: &Run) -> Option<fn(&Run) -> vivae_lab::Result<RunSummary>> {
+    of_task(run.config().experiment.task.name()).and_then(|t| t.finish)
 }
 
 /// The tools of the task called `name`, if it has any.

@@ -10,6 +10,7 @@
 use std::path::Path;
 
 use vivae::figures::network::{self, NetworkOptions};
+use vivae::tasks::driving::substrate;
 use vivae_lab::config::Config;
 use vivae_lab::controller::es::SubstrateKind;
 use vivae_lab::tasks::driving::episode::Episode;
@@ -34,7 +35,7 @@ fn figure(sensors: (usize, usize)) -> (usize, usize, String) {
         ),
         ..NetworkOptions::default()
     };
-    let fig = network::render_robot(&experiment, &controller, &options).unwrap();
+    let fig = network::render_robot(substrate(&experiment), &controller, &options).unwrap();
     assert_eq!(&fig.png[..8], b"\x89PNG\r\n\x1a\n");
     if let Ok(dir) = std::env::var("VIVAE_FIGURES") {
         let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");

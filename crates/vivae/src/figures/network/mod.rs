@@ -27,9 +27,9 @@ use vivae_neat::hyperneat::SubstrateController;
 use super::controller::px;
 pub use super::controller::{FigureSheet, NetworkOptions};
 use super::{Figure, FigureError, NEGATIVE, POSITIVE, draw_err, svg_to_png};
-use vivae_lab::controller::es::RobotController;
+use vivae_lab::controller::es::{EsSetup, RobotController};
+use vivae_lab::controller::sensors::SensorSheet;
 use vivae_lab::controller::substrate::SubstrateSpec;
-use vivae_lab::tasks::driving::episode::Episode;
 
 /// Renders the controller decoded on `spec` as SVG and PNG: a line per link
 /// up to `opts.max_links` expressed links, receptive fields above.
@@ -152,24 +152,34 @@ const WHEEL_RING: ShapeStyle = ShapeStyle {
     stroke_width: 4,
 };
 
-/// Renders `experiment`'s controller `controller`, dense or ES, as SVG and PNG.
+/// A robot's substrate as its network figure draws it: the dense
+/// substrate and the sensor sheets feeding it, and the ES-HyperNEAT setup
+/// of a robot decoded that way.
+#[derive(Debug, Clone, Copy)]
+pub struct RobotSubstrate<'a> {
+    /// The dense substrate's layout.
+    pub spec: &'a SubstrateSpec,
+    /// The sensor sheets, in controller-input order.
+    pub sensors: &'a [SensorSheet],
+    /// The ES-HyperNEAT setup (none: a dense substrate).
+    pub es: Option<&'a EsSetup>,
+}
+
+/// Renders the controller `controller` of a robot on `robot`, dense or ES, as SVG and PNG.
 pub fn render_robot(
-    experiment: &Episode,
+    robot: RobotSubstrate<'_>,
     controller: &RobotController,
     opts: &NetworkOptions,
 ) -> Result<Figure, FigureError> {
-    match (controller, experiment.es_setup()) {
+    match (controller, robot.es) {
         (RobotController::Es(c), Some(setup)) => {
             let svg = render_es_svg(setup, c, opts)?;
             let png = svg_to_png(&svg)?;
             Ok(Figure { svg, png })
         }
-        (RobotController::Polar(c), None) => render_sheets(
-            experiment.substrate_spec(),
-            &FigureSheet::all(experiment.sensors()),
-            c,
-            opts,
-        ),
+        (RobotController::Polar(c), None) => {
+            render_sheets(robot.spec, &FigureSheet::all(robot.sensors), c, opts)
+        }
         _ => Err(FigureError::Invalid(
             "the controller is not of the experiment's substrate kind".into(),
         )),
@@ -178,18 +188,15 @@ pub fn render_robot(
 
 /// The SVG of [`render_robot`]'s figure, without drawing the PNG.
 pub fn figure_svg_robot(
-    experiment: &Episode,
+    robot: RobotSubstrate<'_>,
     controller: &RobotController,
     opts: &NetworkOptions,
 ) -> Result<String, FigureError> {
-    match (controller, experiment.es_setup()) {
+    match (controller, robot.es) {
         (RobotController::Es(c), Some(setup)) => render_es_svg(setup, c, opts),
-        (RobotController::Polar(c), None) => figure_svg_sheets(
-            experiment.substrate_spec(),
-            &FigureSheet::all(experiment.sensors()),
-            c,
-            opts,
-        ),
+        (RobotController::Polar(c), None) => {
+            figure_svg_sheets(robot.spec, &FigureSheet::all(robot.sensors), c, opts)
+        }
         _ => Err(FigureError::Invalid(
             "the controller is not of the experiment's substrate kind".into(),
         )),

@@ -21,12 +21,14 @@ use super::{TaskTools, TournamentTables};
 pub static TOOLS: TaskTools = TaskTools {
     entry: &TASK,
     report: report::write,
+    finish: None,
     report_note: " (and ciao.png, coevolution.png)",
     records: "hunters.csv, prey.csv, ciao.csv and champions.json",
     tournament: Some(super::Tournament {
         play: tournament_tables,
         csv: tournament::CSV_KIND,
     }),
+    replay: None,
     #[cfg(feature = "viewer")]
     view: Some(view::PAGE),
     #[cfg(feature = "mpi")]

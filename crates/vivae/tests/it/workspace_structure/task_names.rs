@@ -20,11 +20,6 @@ const TASK_NAMINGS_NOT_YET_REMOVED: &[&str] = &[
     "lab: reproduce/gym.rs: mountain_car",
     "lab: reproduce/gym.rs: mountain_car_continuous",
     "lab: reproduce/gym.rs: pendulum",
-    "vivae: cli/replay.rs: driving",
-    "vivae: figures/network/mod.rs: driving",
-    "vivae: figures/swerve.rs: driving",
-    "vivae: report.rs: driving",
-    "vivae: report_html.rs: driving",
     "vivae: view/session/frames.rs: driving",
     "vivae: view/session/mod.rs: driving",
 ];

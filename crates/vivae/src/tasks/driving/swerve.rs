@@ -16,7 +16,7 @@ use vivae_sim::draw::{self, DrawOptions, robot_color};
 use vivae_sim::geometry::Shape;
 use vivae_sim::{DVec2, World};
 
-use super::{Figure, FigureError};
+use crate::figures::{Figure, FigureError};
 
 /// World px shown across the zoomed window.
 const WINDOW: f64 = 180.0;
