@@ -169,25 +169,7 @@ impl Run {
             )));
         }
         check_config_unchanged(dir, &path, &cp.config)?;
-        // Against the checkpoint's own total, before a new one replaces it.
-        if cp.progress.done > cp.config.experiment.generations {
-            return Err(Error::Checkpoint {
-                path,
-                reason: format!(
-                    "{} generations done, more than the run's {}",
-                    cp.progress.done, cp.config.experiment.generations
-                ),
-            });
-        }
-        if let Some(n) = generations {
-            if n < cp.progress.done {
-                return Err(bad_input(format!(
-                    "experiment.generations = {n}: the run already has {} generations",
-                    cp.progress.done
-                )));
-            }
-            cp.config.experiment.generations = n;
-        }
+        extend_generations(&mut cp, &path, generations)?;
         let maps = load_run(dir, &cp.config, cp.progress.maps_fnv.as_deref())?;
         // A task without maps has no scenario.svg.
         let scenario = (crate::tasks::maps::uses_maps(&cp.config))
@@ -656,4 +638,30 @@ fn validate_progress(path: &Path, cp: &Checkpoint, task: &dyn RunTask) -> Result
             .map_err(named(format!("the best genome of generation {generation}")))?;
     }
     Ok(search)
+}
+
+/// Sets the checkpoint's total to `generations` when given, refusing a
+/// checkpoint that has done more than its own total or a total below what
+/// is done.
+fn extend_generations(cp: &mut Checkpoint, path: &Path, generations: Option<u32>) -> Result<()> {
+    // Against the checkpoint's own total, before a new one replaces it.
+    if cp.progress.done > cp.config.experiment.generations {
+        return Err(Error::Checkpoint {
+            path: path.to_path_buf(),
+            reason: format!(
+                "{} generations done, more than the run's {}",
+                cp.progress.done, cp.config.experiment.generations
+            ),
+        });
+    }
+    if let Some(n) = generations {
+        if n < cp.progress.done {
+            return Err(bad_input(format!(
+                "experiment.generations = {n}: the run already has {} generations",
+                cp.progress.done
+            )));
+        }
+        cp.config.experiment.generations = n;
+    }
+    Ok(())
 }
