@@ -5,6 +5,8 @@ use super::*;
 use crate::config::Config;
 use crate::controller::es::SubstrateKind;
 use crate::controller::substrate::PolarGrid;
+// The driving episode is the fixture: the task whose controller is a substrate network.
+use crate::tasks::driving::episode::Episode;
 use crate::tasks::scenarios::load_scenario;
 use vivae_neat::{Population, Precision};
 

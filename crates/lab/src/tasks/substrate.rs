@@ -147,3 +147,44 @@ pub fn substrate_episode(
     })?;
     Ok(build(config, scenario)?)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::TaskName;
+    use crate::tasks::scenarios::load_scenario;
+
+    #[test]
+    fn a_task_declares_its_episode_exactly_when_its_controller_is_a_substrate() {
+        for t in crate::tasks::entries() {
+            assert_eq!(t.substrate, t.substrate_episode.is_some(), "{}", t.name);
+        }
+    }
+
+    #[test]
+    fn a_task_without_a_substrate_episode_is_refused_by_name() {
+        let scenario = load_scenario(None).unwrap().scenario;
+        let cartpole = crate::tasks::default_config(Some(&TaskName("cartpole".into()))).unwrap();
+        let e = substrate_episode(&cartpole, &scenario)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("a cartpole run") && e.contains("runs of driving have one"),
+            "{e}"
+        );
+        let driving = substrate_episode(&Config::default(), &scenario).unwrap();
+        assert_eq!(driving.robots(), Config::default().experiment.robots);
+        assert_eq!(driving.steps(), Config::default().experiment.steps);
+    }
+
+    #[test]
+    fn only_a_driving_task_is_a_driving_training() {
+        let driving = Config::default();
+        let maps = crate::tasks::maps::load(&driving).unwrap();
+        let task = crate::tasks::build(&driving, &maps).unwrap();
+        assert!(crate::tasks::driving::training_of(task.as_ref()).is_some());
+        let cartpole = crate::tasks::default_config(Some(&TaskName("cartpole".into()))).unwrap();
+        let task = crate::tasks::build(&cartpole, &[]).unwrap();
+        assert!(crate::tasks::driving::training_of(task.as_ref()).is_none());
+    }
+}
