@@ -27,8 +27,6 @@ const TASK_NAMINGS_NOT_YET_REMOVED: &[&str] = &[
     "lab: reproduce/road.rs: driving",
     "lab: run/mod.rs: driving",
     "lab: tasks/seam.rs: driving",
-    "vivae: view/session/frames.rs: driving",
-    "vivae: view/session/mod.rs: driving",
 ];
 
 #[test]
