@@ -1,7 +1,7 @@
 //! The driving task's live world in `vivae view`: its robots drive on a
 //! run's scenario (followed while the run goes on), a genome's or any
 //! scenario, steered by the chosen genome or the arrow keys. One
-//! simulation per open page ([`session`]), streamed over the viewer's
+//! simulation per open page (`session`), streamed over the viewer's
 //! WebSocket.
 
 #[doc(hidden)]
