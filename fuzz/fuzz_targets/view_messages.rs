@@ -9,7 +9,7 @@ use std::path::Path;
 use std::sync::OnceLock;
 
 use libfuzzer_sys::fuzz_target;
-use vivae::view::fuzzing::PageHarness;
+use vivae::tasks::driving::view::fuzzing::PageHarness;
 
 /// Most messages one input sends (each may cost up to about a second of work).
 const MAX_MESSAGES: usize = 8;

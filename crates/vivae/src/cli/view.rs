@@ -2,13 +2,15 @@
 //! `crate::view`).
 
 use std::net::{IpAddr, Ipv4Addr, SocketAddr};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Duration;
 
-use crate::view::{IDLE_TIMEOUT, ViewOptions};
+use crate::view::{IDLE_TIMEOUT, Shown, ViewOptions};
 use clap::Args;
 use vivae_lab::io::bad_input;
+use vivae_lab::rundir::files;
+use vivae_lab::tasks::{read_champion, read_config};
 
 use super::args::MemberChoice;
 use super::report::refuse_other_task;
@@ -54,15 +56,23 @@ pub struct ViewArgs {
 
 /// Runs `vivae view` until interrupted.
 pub fn run(args: ViewArgs) -> anyhow::Result<ExitCode> {
-    // A run whose task has a page of its own (its program-side tools) is served that page.
-    let own_page = (args.source.as_deref())
-        .and_then(crate::tasks::of_run)
-        .and_then(|t| t.view);
-    if let Some(source) = &args.source
-        && own_page.is_none()
-    {
-        refuse_other_task(source, "view")?;
-    }
+    // A run whose task has a page of its own (its program-side tools) is
+    // served that page; anything else its task's live world.
+    let source = args.source.as_deref();
+    let own_page = source.and_then(crate::tasks::of_run).and_then(|t| t.view);
+    let shown = match (source, own_page) {
+        (Some(dir), Some(page)) => Shown::Own(dir, page),
+        _ => {
+            if let Some(source) = source {
+                refuse_other_task(source, "view")?;
+            }
+            let task = task_of(source);
+            let world = (crate::tasks::of_task(&task).and_then(|t| t.world)).ok_or_else(|| {
+                bad_input(format!("vivae view: task {task} has no world to show"))
+            })?;
+            Shown::World(source, world)
+        }
+    };
     if args.max_viewers == 0 {
         return Err(bad_input("--max-viewers 0: must be at least 1").into());
     }
@@ -77,9 +87,22 @@ pub fn run(args: ViewArgs) -> anyhow::Result<ExitCode> {
         max_viewers: args.max_viewers,
         idle_timeout: Duration::from_secs_f64(args.idle_timeout),
     };
-    Ok(crate::view::run(
-        args.source.as_deref(),
-        own_page,
-        &options,
-    )?)
+    Ok(crate::view::run(shown, &options)?)
+}
+
+/// The task of what `vivae view` shows: a run's (by its config), a genome
+/// file's (by the config it records), else the default config's (a
+/// scenario, or none).
+fn task_of(source: Option<&Path>) -> String {
+    let config = match source {
+        Some(dir) if dir.is_dir() => read_config(&dir.join(files::CONFIG)).ok(),
+        Some(file) => read_champion(file).ok().and_then(|c| c.config),
+        None => None,
+    };
+    config
+        .unwrap_or_default()
+        .experiment
+        .task
+        .name()
+        .to_string()
 }

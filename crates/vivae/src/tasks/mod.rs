@@ -67,6 +67,10 @@ pub struct TaskTools {
     /// `vivae view` of one of its runs: a page of its own.
     #[cfg(feature = "viewer")]
     pub view: Option<crate::view::OwnPage>,
+    /// `vivae view` of its runs, genomes and scenarios: its robots' live
+    /// world (a task with neither this nor a page of its own has nothing to show).
+    #[cfg(feature = "viewer")]
+    pub world: Option<crate::view::WorldPage>,
     /// How an MPI job runs it, for a task on its own driver.
     #[cfg(feature = "mpi")]
     pub mpi: Option<crate::mpi::OwnDriverWork>,

@@ -1,20 +1,20 @@
-//! `vivae view`: a local web server where robots drive live in the browser.
+//! `vivae view`: a local web server where a task's robots move live in the
+//! browser.
 //!
-//! The robots are simulated here, by the real [`Episode`](vivae_lab::tasks::driving::episode::Episode) controller and
-//! `vivae-sim` world, one simulation per open page, and streamed to the page
-//! over a WebSocket (`session`). The page is plain HTML/CSS/JS embedded in
-//! the binary. The server answers only its own assets, a fixed list of the
-//! given run's files and the WebSocket; every other path is a 404. A run
-//! of a task with a page of its own ([`OwnPage`], in its program-side
-//! tools: `crate::tasks`) is served that page instead (e.g. a predator–prey
-//! run's two teams meet).
+//! What a page shows is its task's (its program-side tools in
+//! `crate::tasks`): a task's live world ([`WorldPage`], e.g. the driving
+//! robots on a run's scenario, a genome's or any scenario, following a
+//! running evolution) or a page of its own for a run ([`OwnPage`], e.g. a
+//! predator–prey run's two teams meet). The robots are simulated here, one
+//! simulation per open page, and streamed to the page over a WebSocket
+//! (`server`). The pages are plain HTML/CSS/JS embedded in the binary. The
+//! server answers only its own assets, a fixed list of the given run's
+//! files and the WebSocket; every other path is a 404.
 
-#[doc(hidden)]
-pub mod fuzzing;
 pub(crate) mod hosts;
+pub(crate) mod keys;
 pub(crate) mod server;
-pub(crate) mod session;
-mod source;
+pub(crate) mod source;
 
 pub use server::IDLE_TIMEOUT;
 
@@ -23,7 +23,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Duration;
 
-use source::Source;
+pub use source::Source;
 use vivae_lab::search::files::Member;
 
 use vivae_lab::io::bad_input;
@@ -59,6 +59,41 @@ pub struct OwnPage {
     pub serve: fn(&tokio::runtime::Runtime, Served) -> std::io::Result<()>,
 }
 
+/// A task's live world, what `vivae view` serves for a run, a genome or a
+/// scenario of a task without a page of its own (its program-side tools'
+/// `world`).
+#[derive(Debug, Clone, Copy)]
+pub struct WorldPage {
+    /// Serves the world page of what `served` shows on `runtime` until the process is stopped.
+    pub serve: fn(&tokio::runtime::Runtime, WorldServed) -> std::io::Result<()>,
+}
+
+/// What a world page is served on: the listener, what it shows, the limits.
+#[derive(Debug)]
+pub struct WorldServed {
+    /// Where it listens.
+    pub listener: tokio::net::TcpListener,
+    /// The run, genome or scenario shown (and the scenarios offered).
+    pub source: Source,
+    /// Most pages simulated at once.
+    pub max_viewers: usize,
+    /// The Host names it answers.
+    pub hosts: hosts::HostPolicy,
+    /// How long a page may stay silent.
+    pub idle: Duration,
+}
+
+/// What `vivae view` shows: a run on its task's page of its own, or a run, a
+/// genome, a scenario or nothing (the embedded road scenario) in a task's
+/// live world.
+#[derive(Debug, Clone, Copy)]
+pub enum Shown<'a> {
+    /// The run directory on its task's own page.
+    Own(&'a Path, OwnPage),
+    /// The source (none: the embedded scenario) in the task's world.
+    World(Option<&'a Path>, WorldPage),
+}
+
 /// What a page of its own is served on: the listener, the run, the limits.
 #[derive(Debug)]
 pub struct Served {
@@ -74,29 +109,24 @@ pub struct Served {
     pub idle: Duration,
 }
 
-/// Runs `vivae view` on `source` (a run directory, which it follows while it
-/// runs, a genome JSON, a scenario SVG, or none: the embedded road scenario)
-/// until interrupted; a run whose task has a page of its own is served
-/// `own_page` (from the task's program-side tools: `crate::tasks::of_run`).
-pub fn run(
-    source: Option<&Path>,
-    own_page: Option<OwnPage>,
-    options: &ViewOptions,
-) -> vivae_lab::Result<ExitCode> {
+/// Runs `vivae view` on what is `shown` (in a world: a run directory, which
+/// it follows while it runs, a genome JSON, a scenario SVG, or none: the
+/// embedded road scenario) until interrupted; the pages come from the
+/// task's program-side tools (`crate::tasks`).
+pub fn run(shown: Shown<'_>, options: &ViewOptions) -> vivae_lab::Result<ExitCode> {
     let host = options.addr.ip();
     let hosts = hosts::HostPolicy::new(host, &options.allow_host)?;
     // Refused now, in one line, rather than on every page.
-    let shown = match (source, own_page) {
-        (Some(dir), Some(page)) => Some((dir.to_path_buf(), page, (page.open)(dir, options)?)),
-        _ => None,
+    let ready = match shown {
+        Shown::Own(dir, page) => Ready::Own(dir.to_path_buf(), page, (page.open)(dir, options)?),
+        Shown::World(source, page) => {
+            let mut loaded = Source::load(source, options.scenarios.as_deref())?;
+            if let Some(member) = options.member {
+                loaded.start_with(member)?;
+            }
+            Ready::World(Box::new(loaded), page)
+        }
     };
-    let mut source = match &shown {
-        Some(_) => Source::load(None, None)?,
-        None => Source::load(source, options.scenarios.as_deref())?,
-    };
-    if let Some(member) = options.member {
-        source.start_with(member)?;
-    }
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .worker_threads(2)
         .enable_all()
@@ -126,19 +156,20 @@ pub fn run(
         local
     };
     println!("vivae view: http://{url}/");
-    if let Some((_, _, showing)) = &shown {
-        eprintln!("{showing}");
-    } else {
-        eprintln!("{} (Ctrl-C stops the server)", source.describe());
-        if let Some(note) = source.unusable_note() {
-            eprintln!("{note}");
+    match &ready {
+        Ready::Own(_, _, showing) => eprintln!("{showing}"),
+        Ready::World(source, _) => {
+            eprintln!("{} (Ctrl-C stops the server)", source.describe());
+            if let Some(note) = source.unusable_note() {
+                eprintln!("{note}");
+            }
         }
     }
     use std::io::Write as _;
     let _ = std::io::stdout().flush();
     let (max, idle) = (options.max_viewers, options.idle_timeout);
-    let served = match shown {
-        Some((dir, page, _)) => {
+    let served = match ready {
+        Ready::Own(dir, page, _) => {
             let served = Served {
                 listener,
                 dir,
@@ -148,10 +179,26 @@ pub fn run(
             };
             (page.serve)(&runtime, served)
         }
-        None => runtime.block_on(server::serve(listener, source, max, hosts, idle)),
+        Ready::World(source, page) => {
+            let served = WorldServed {
+                listener,
+                source: *source,
+                max_viewers: max,
+                hosts,
+                idle,
+            };
+            (page.serve)(&runtime, served)
+        }
     };
     served.map_err(io("serve on"))?;
     Ok(ExitCode::SUCCESS)
+}
+
+/// What is shown, loaded and checked: a run on its own page (with the line
+/// saying what is shown), or a source in a world.
+enum Ready {
+    Own(PathBuf, OwnPage, String),
+    World(Box<Source>, WorldPage),
 }
 
 /// Why `vivae view` cannot listen on `addr`, in one line.

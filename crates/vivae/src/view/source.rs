@@ -276,7 +276,7 @@ impl Source {
 }
 
 /// Why scenario `name` cannot be driven in the viewer, if it cannot.
-pub(super) fn unusable(name: &str, text: &str) -> Option<String> {
+pub(crate) fn unusable(name: &str, text: &str) -> Option<String> {
     let reason = |e: &dyn std::fmt::Display| vivae_lab::io::one_line(&e.to_string());
     match vivae_sim::Scenario::from_svg(text, name, &vivae_sim::LoadOptions::default()) {
         Ok(s) if s.robots.is_empty() => Some("no robots".into()),

@@ -6,6 +6,8 @@ pub mod replay;
 pub mod report;
 pub mod report_html;
 pub mod swerve;
+#[cfg(feature = "viewer")]
+pub mod view;
 
 use vivae_lab::tasks::driving::TASK;
 use vivae_lab::tasks::driving::episode::Episode;
@@ -24,6 +26,8 @@ pub static TOOLS: TaskTools = TaskTools {
     replay: Some(replay::replay),
     #[cfg(feature = "viewer")]
     view: None,
+    #[cfg(feature = "viewer")]
+    world: Some(view::WORLD),
     #[cfg(feature = "mpi")]
     mpi: None,
 };

@@ -31,6 +31,8 @@ pub static TOOLS: TaskTools = TaskTools {
     replay: None,
     #[cfg(feature = "viewer")]
     view: Some(view::PAGE),
+    #[cfg(feature = "viewer")]
+    world: None,
     #[cfg(feature = "mpi")]
     mpi: Some(mpi::MPI),
 };

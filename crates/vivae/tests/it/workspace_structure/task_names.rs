@@ -20,8 +20,6 @@ const TASK_NAMINGS_NOT_YET_REMOVED: &[&str] = &[
     "lab: reproduce/gym.rs: mountain_car",
     "lab: reproduce/gym.rs: mountain_car_continuous",
     "lab: reproduce/gym.rs: pendulum",
-    "vivae: view/session/frames.rs: driving",
-    "vivae: view/session/mod.rs: driving",
 ];
 
 #[test]

@@ -31,7 +31,7 @@ use vivae_sim::World;
 use super::figures::{HUNTER_COLOUR, PREY_COLOUR};
 use crate::figures::convergence::hex;
 use crate::report_html::SceneData;
-use crate::view::session::{Keys, REAL_TIME_STEPS};
+use crate::view::keys::{Keys, REAL_TIME_STEPS};
 use crate::view::{OwnPage, ViewOptions};
 
 /// The page of a predator–prey run.

@@ -17,7 +17,8 @@ use serde::Deserialize;
 use serde_json::Value;
 use vivae_sim::{DVec2, Scenario, Sensor, World};
 
-use super::source::{RunSnapshot, Source};
+use crate::view::keys::{Keys, REAL_TIME_STEPS};
+use crate::view::source::{RunSnapshot, Source};
 use choice::{Choice, chosen_genome, parse_choice};
 use vivae_lab::config::Config;
 use vivae_lab::controller::es::RobotController;
@@ -27,8 +28,6 @@ use vivae_lab::search::files::Member;
 use vivae_lab::tasks::driving::episode::Episode;
 use vivae_lab::tasks::driving::rollout::Rollout;
 
-/// Simulation steps per second at speed 1 ("real time").
-pub(crate) const REAL_TIME_STEPS: f64 = 30.0;
 /// Most simulation steps computed for one frame, whatever the speed.
 const MAX_STEPS_PER_FRAME: u32 = 400;
 /// Most surface sensors a page may ask for.
@@ -83,34 +82,6 @@ enum ClientMsg {
     Scenario {
         index: usize,
     },
-}
-
-/// Arrow keys held down (as a page's `keys` message says them; both
-/// viewers take it).
-#[derive(Debug, Clone, Copy, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub(crate) struct Keys {
-    pub up: bool,
-    pub down: bool,
-    pub left: bool,
-    pub right: bool,
-}
-
-impl Keys {
-    /// Wheel commands `[L, R]` for the keys held, as ViVAE's keyboard controller.
-    pub(crate) fn controls(self) -> [f64; 2] {
-        let forward = f64::from(i8::from(self.up) - i8::from(self.down));
-        let turn = f64::from(i8::from(self.right) - i8::from(self.left));
-        if forward == 0.0 {
-            [0.6 * turn, -0.6 * turn]
-        } else {
-            let f = forward;
-            [
-                (f + 0.7 * turn).clamp(-1.0, 1.0),
-                (f - 0.7 * turn).clamp(-1.0, 1.0),
-            ]
-        }
-    }
 }
 
 /// One page's simulation.
@@ -709,7 +680,7 @@ mod tests {
         source.unusable = source
             .scenarios
             .iter()
-            .map(|(n, t)| super::super::source::unusable(n, t))
+            .map(|(n, t)| crate::view::source::unusable(n, t))
             .collect();
         assert_eq!(source.unusable, [None, Some("no robots".to_string())]);
         assert!(source.unusable_note().unwrap().contains("bare.svg"));

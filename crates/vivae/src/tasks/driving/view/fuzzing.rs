@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use super::session::Sim;
-use super::source::{RunSnapshot, Source};
+use crate::view::source::{RunSnapshot, Source};
 
 /// Duration of one frame of playing between two messages (as at 60 frames/s).
 const FRAME_SECONDS: f64 = 1.0 / 60.0;
