@@ -5,7 +5,10 @@ from __future__ import annotations
 
 import importlib.util
 import json
+import os
+import signal
 import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -157,3 +160,45 @@ def test_mujoco_environments_run_with_scaled_continuous_actions(tmp_path, env_id
                          validate=3, progress=False)
     assert r["finished"] and r["validation"]["episodes"] == 3
     assert r["validation"]["reward_threshold"] is not None
+
+
+RESUMED_RUN = """
+import sys
+import vivae.gym
+
+def said(record):
+    print("generation", record["generation"], flush=True)
+
+vivae.gym.resume(sys.argv[1], generations=10_000, processes=int(sys.argv[2]), validate=0,
+                 progress=False, on_generation=said)
+"""
+
+
+@box2d
+@pytest.mark.skipif(not hasattr(os, "killpg"), reason="needs POSIX process groups (os.killpg)")
+@pytest.mark.parametrize("processes", [1, 2])
+def test_ctrl_c_stops_a_resumed_run_at_a_checkpoint_saying_how_to_resume(tmp_path, processes):
+    import vivae.gym
+
+    out = tmp_path / "run"
+    vivae.gym.evolve("LunarLander-v3", out, generations=1, population=12, seed=3, episodes=2,
+                     validate=0, progress=False)
+    # Ctrl-C in a terminal: SIGINT to the whole process group, worker processes included.
+    child = subprocess.Popen([sys.executable, "-c", RESUMED_RUN, str(out), str(processes)],
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                             start_new_session=True)
+    assert child.stdout is not None
+    first = child.stdout.readline()
+    assert first.startswith("generation "), first + child.stderr.read()
+    os.killpg(child.pid, signal.SIGINT)
+    # The timeout only turns a hang (the failure this test is about) into a failure.
+    rest, err = child.communicate(timeout=600)
+    done = int((first + rest).split()[-1])
+    assert child.returncode != 0 and done < 10_000
+    last = err.strip().splitlines()[-1]
+    assert last == f"KeyboardInterrupt: interrupted after generation {done}; resume with: vivae.gym.resume({str(out)!r})".replace("'", '"'), err
+    assert (out / "checkpoints" / f"gen-{done:06d}.ckpt").is_file()
+    assert "Worker" not in err, err
+    # And it resumes from there.
+    again = vivae.gym.resume(out, generations=done + 1, validate=0, progress=False)
+    assert again["generations"] == done + 1 and again["finished"]

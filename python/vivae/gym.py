@@ -19,7 +19,9 @@ from __future__ import annotations
 
 import functools
 import json
+import multiprocessing
 import os
+import signal
 from pathlib import Path
 import time
 from typing import Any, Callable, Sequence
@@ -99,6 +101,12 @@ class _Chunk(gymnasium.Env):
     ``S[index][r]`` (none: the row stays ended)."""
 
     def __init__(self, env_id: str, rows: int, index: int) -> None:
+        if multiprocessing.parent_process() is not None:
+            # A worker of an AsyncVectorEnv. Ctrl-C reaches the terminal's whole
+            # process group: a worker it interrupted mid-reply would leave the
+            # run's process reading half a message for ever. The run's process
+            # alone stops on it, at a checkpoint, and then stops the workers.
+            signal.signal(signal.SIGINT, signal.SIG_IGN)
         self.envs = [gymnasium.make(env_id) for _ in range(rows)]
         self.index = index
         self.obs_size = int(np.prod(_shape(self.envs[0].observation_space)))
@@ -209,8 +217,23 @@ class _Episodes:
         _clock["vivae"] += vivae_s
         return returns, steps
 
-    def close(self) -> None:
-        self.vec.close()
+    def close(self, abort: bool = False) -> None:
+        """Closes the environments; with ``abort`` (an exception is under way,
+        which may have cut a message to or from a worker in half), ends the
+        worker processes without talking to them."""
+        processes = getattr(self.vec, "processes", None)
+        if not abort or processes is None:
+            self.vec.close()
+            return
+        for process in processes:
+            if process.is_alive():
+                process.terminate()
+            process.join()
+        for pipe in getattr(self.vec, "parent_pipes", []):
+            if pipe is not None:
+                pipe.close()
+        # Nothing left for the vector environment's own close (or its finaliser) to do.
+        self.vec.closed = True
 
 
 def _episodes(env_id: str, episodes: int) -> _Episodes:
@@ -222,9 +245,9 @@ def _episodes(env_id: str, episodes: int) -> _Episodes:
     return _open[key]
 
 
-def _close() -> None:
+def _close(abort: bool = False) -> None:
     while _open:
-        _open.popitem()[1].close()
+        _open.popitem()[1].close(abort)
 
 
 def _play(section: dict, genomes: list, seeds: list[list[int]]) -> list[tuple[float, float, float]]:
@@ -249,8 +272,10 @@ def _run(call, progress: bool, total: int, on_generation, processes: int) -> dic
     _reset_clock()
     try:
         result = _with_bar(progress, total, on_generation, call)
-    finally:
-        _close()
+    except BaseException:
+        _close(abort=True)
+        raise
+    _close()
     result["env_seconds"] = _clock["env"]
     result["vivae_seconds"] = _clock["vivae"]
     result["env_steps"] = _clock["steps"]
@@ -352,8 +377,10 @@ def validate(
     try:
         controllers = _vivae.Controllers([genome] * len(seeds))
         returns, _ = player.play(controllers, seeds, np.arange(len(seeds), dtype=np.int64))
-    finally:
-        player.close()
+    except BaseException:
+        player.close(abort=True)
+        raise
+    player.close()
     threshold = section["reward_threshold"]
     mean = float(returns.mean())
     result = {
