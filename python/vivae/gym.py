@@ -24,6 +24,7 @@ import multiprocessing
 import os
 import signal
 import struct
+import sys
 import warnings
 import zlib
 from pathlib import Path
@@ -474,6 +475,11 @@ def film(
     controllers = _vivae.Controllers([genome])
     env = gymnasium.make(section["env"], render_mode="rgb_array")
     try:
+        mujoco = type(env.unwrapped).__module__.startswith("gymnasium.envs.mujoco")
+        if mujoco and sys.platform.startswith("linux") and not (os.environ.get("MUJOCO_GL") or os.environ.get("DISPLAY")):
+            # Its default OpenGL (GLFW) aborts the whole process without a display.
+            raise RuntimeError("MuJoCo renders through OpenGL and there is no display: "
+                               "set MUJOCO_GL=egl (or osmesa) before Python starts")
         act = env.action_space
         discrete = isinstance(act, gymnasium.spaces.Discrete)
         if isinstance(act, gymnasium.spaces.Box):
