@@ -5,7 +5,11 @@ from __future__ import annotations
 
 import importlib.util
 import json
+import os
+from pathlib import Path
+import signal
 import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -157,3 +161,149 @@ def test_mujoco_environments_run_with_scaled_continuous_actions(tmp_path, env_id
                          validate=3, progress=False)
     assert r["finished"] and r["validation"]["episodes"] == 3
     assert r["validation"]["reward_threshold"] is not None
+
+
+RESUMED_RUN = """
+import sys
+import vivae.gym
+
+def said(record):
+    print("generation", record["generation"], flush=True)
+
+vivae.gym.resume(sys.argv[1], generations=10_000, processes=int(sys.argv[2]), validate=0,
+                 progress=False, on_generation=said)
+"""
+
+
+@box2d
+@pytest.mark.skipif(not hasattr(os, "killpg"), reason="needs POSIX process groups (os.killpg)")
+@pytest.mark.parametrize("processes", [1, 2])
+def test_ctrl_c_stops_a_resumed_run_at_a_checkpoint_saying_how_to_resume(tmp_path, processes):
+    import vivae.gym
+
+    out = tmp_path / "run"
+    vivae.gym.evolve("LunarLander-v3", out, generations=1, population=12, seed=3, episodes=2,
+                     validate=0, progress=False)
+    # Ctrl-C in a terminal: SIGINT to the whole process group, worker processes included.
+    child = subprocess.Popen([sys.executable, "-c", RESUMED_RUN, str(out), str(processes)],
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                             start_new_session=True)
+    assert child.stdout is not None
+    first = child.stdout.readline()
+    assert first.startswith("generation "), first + child.stderr.read()
+    os.killpg(child.pid, signal.SIGINT)
+    # The timeout only turns a hang (the failure this test is about) into a failure.
+    rest, err = child.communicate(timeout=600)
+    done = int((first + rest).split()[-1])
+    assert child.returncode != 0 and done < 10_000
+    last = err.strip().splitlines()[-1]
+    assert last == f"KeyboardInterrupt: interrupted after generation {done}; resume with: vivae.gym.resume({str(out)!r})".replace("'", '"'), err
+    assert (out / "checkpoints" / f"gen-{done:06d}.ckpt").is_file()
+    assert "Worker" not in err, err
+    # And it resumes from there.
+    again = vivae.gym.resume(out, generations=done + 1, validate=0, progress=False)
+    assert again["generations"] == done + 1 and again["finished"]
+
+
+def png_size(data_url: str) -> tuple[int, int]:
+    """Width and height of a PNG data URL, from its IHDR (checking the signature)."""
+    import base64
+    import struct
+
+    prefix = "data:image/png;base64,"
+    assert data_url.startswith(prefix)
+    png = base64.b64decode(data_url[len(prefix):], validate=True)
+    assert png[:8] == b"\x89PNG\r\n\x1a\n" and png[12:16] == b"IHDR" and png[-8:-4] == b"IEND"
+    return struct.unpack(">II", png[16:24])
+
+
+@box2d
+def test_validation_films_the_champions_first_episode_for_the_report(tmp_path):
+    import vivae.gym
+
+    out = tmp_path / "run"
+    vivae.gym.evolve("LunarLander-v3", out, generations=1, population=6, seed=4, episodes=1,
+                     validate=2, progress=False)
+    film = json.loads((out / "film.json").read_text())
+    frames = film["frames"]
+    assert film["env"] == "LunarLander-v3" and film["seed"] == vivae.gym.VALIDATION_FIRST_SEED
+    assert 2 <= len(frames) <= vivae.gym.FILM_FRAMES and film["width"] <= vivae.gym.FILM_WIDTH
+    assert all(png_size(f["image"]) == (film["width"], film["height"]) for f in frames)
+    # LunarLander renders 600 x 400: shrunk by the smallest whole factor that fits.
+    k = -(-600 // vivae.gym.FILM_WIDTH)
+    assert (film["width"], film["height"]) == (600 // k, 400 // k)
+    steps = [f["step"] for f in frames]
+    assert steps[0] == 0 and steps[-1] == film["steps"] and steps == sorted(set(steps))
+    assert all(b - a <= film["every"] for a, b in zip(steps, steps[1:]))
+    # The episode filmed is validation's first: its return, its steps.
+    alone = vivae.gym.validate(out, episodes=1, film=False)
+    assert film["return"] == pytest.approx(alone["mean"], rel=1e-12, abs=1e-9)
+    assert sum(f["reward"] for f in frames) == pytest.approx(film["return"], rel=1e-12, abs=1e-9)
+    # Fewer frames than steps: evenly spaced, the last step always shown.
+    few = json.loads(vivae.gym.film(out, frames=5, width=30).read_text())
+    assert len(few["frames"]) <= 5 and few["frames"][-1]["step"] == film["steps"]
+    assert few["width"] <= 30 and few["return"] == pytest.approx(film["return"], rel=1e-12, abs=1e-9)
+    with pytest.raises(ValueError, match="frames=1"):
+        vivae.gym.film(out, frames=1)
+    # The report animates it.
+    page = vivae.report(out).read_text()
+    assert all(f["image"] in page for f in few["frames"])
+
+
+# A tiny LunarLander run with its film, stored for the program's browser test
+# (crates/vivae/tests/it: the program cannot play Gymnasium to make one).
+FIXTURE = Path(__file__).resolve().parents[2] / "crates/vivae/tests/data/gymnasium-run"
+FIXTURE_FILES = ("config.toml", "generations.csv", "population.csv", "best-genomes.jsonl",
+                 "champion.json", "validation.json", "film.json")
+
+
+@box2d
+def test_the_stored_gymnasium_run_is_what_vivae_gym_writes(tmp_path):
+    """Rewrite it with VIVAE_WRITE_FIXTURES=1 (Gymnasium's pictures may change between versions)."""
+    import vivae.gym
+
+    out = tmp_path / "run"
+    vivae.gym.evolve("LunarLander-v3", out, generations=3, population=8, seed=2, episodes=1,
+                     validate=3, progress=False)
+    vivae.gym.film(out, frames=12, width=100)
+    if os.environ.get("VIVAE_WRITE_FIXTURES") == "1":
+        FIXTURE.mkdir(parents=True, exist_ok=True)
+        for name in FIXTURE_FILES:
+            (FIXTURE / name).write_bytes((out / name).read_bytes())
+    for name in FIXTURE_FILES:
+        assert (FIXTURE / name).read_bytes() == (out / name).read_bytes(), \
+            f"{name} differs: rewrite the fixture with VIVAE_WRITE_FIXTURES=1"
+
+
+@mujoco
+def test_a_two_action_champion_exports_to_the_networks_bits(tmp_path):
+    # Swimmer-v5's two continuous actions fit the exported step's two
+    # outputs (in [-1, 1]; the caller scales them to the action's bounds).
+    import vivae.gym
+    from test_export import ONNX_BOUNDS, JsonController, onnx_steps
+
+    out = tmp_path / "run"
+    vivae.gym.evolve("Swimmer-v5", out, generations=2, population=6, seed=1, episodes=1,
+                     validate=0, progress=False)
+    genome, _, _ = vivae.load_genome(out)
+    assert (genome.num_inputs, genome.num_outputs) == (9, 2)
+    # Observations as Gymnasium gives them, well outside [0, 1].
+    obs = np.random.default_rng(5).normal(scale=3.0, size=(40, 8))
+    want = vivae.Controllers([genome]).act(obs[:, :], np.zeros(len(obs), dtype=np.int64))
+    inputs = np.hstack([obs, np.ones((len(obs), 1))])
+    vivae.export(out, "json", tmp_path / "swimmer.json")
+    doc = json.loads((tmp_path / "swimmer.json").read_text())
+    assert "continuous action dimension" in doc["wheels"]
+    reader = JsonController(doc)
+    got = np.array([reader.step(x) for x in inputs.tolist()])
+    assert got.tobytes() == want.tobytes()
+    vivae.export(out, "onnx", tmp_path / "swimmer.onnx")
+    assert float(np.max(np.abs(onnx_steps(tmp_path / "swimmer.onnx", inputs) - want))) <= ONNX_BOUNDS[("exact", "recorded")]
+    # The program exports it too (it cannot play the episodes, but needs not).
+    cli = vivae_binary()
+    if cli is None:
+        pytest.skip("no vivae binary (set VIVAE_BIN)")
+    done = subprocess.run([cli, "export", str(out), "--format", "c", "-o", str(tmp_path / "swimmer.c")],
+                          capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    assert "continuous action dimension" in (tmp_path / "swimmer.h").read_text()

@@ -17,9 +17,16 @@ its ``[gymnasium]`` section, ``generations.csv``, ``champion.json``,
 
 from __future__ import annotations
 
+import base64
 import functools
 import json
+import multiprocessing
 import os
+import signal
+import struct
+import sys
+import warnings
+import zlib
 from pathlib import Path
 import time
 from typing import Any, Callable, Sequence
@@ -36,6 +43,11 @@ VALIDATION_EPISODES = 100
 #: Gymnasium seeds of the validation episodes: 0, 1, 2, … (training resets
 #: with 63-bit seeds hashed from each evaluation's seed, never these).
 VALIDATION_FIRST_SEED = 0
+
+#: The film of the champion's first validation episode: at most this many
+#: frames, each at most this many pixels wide (report.html animates them).
+FILM_FRAMES = 150
+FILM_WIDTH = 240
 
 # Worker processes of the run under way (set by `evolve` and `resume`).
 _processes = 1
@@ -99,6 +111,12 @@ class _Chunk(gymnasium.Env):
     ``S[index][r]`` (none: the row stays ended)."""
 
     def __init__(self, env_id: str, rows: int, index: int) -> None:
+        if multiprocessing.parent_process() is not None:
+            # A worker of an AsyncVectorEnv. Ctrl-C reaches the terminal's whole
+            # process group: a worker it interrupted mid-reply would leave the
+            # run's process reading half a message for ever. The run's process
+            # alone stops on it, at a checkpoint, and then stops the workers.
+            signal.signal(signal.SIGINT, signal.SIG_IGN)
         self.envs = [gymnasium.make(env_id) for _ in range(rows)]
         self.index = index
         self.obs_size = int(np.prod(_shape(self.envs[0].observation_space)))
@@ -209,8 +227,23 @@ class _Episodes:
         _clock["vivae"] += vivae_s
         return returns, steps
 
-    def close(self) -> None:
-        self.vec.close()
+    def close(self, abort: bool = False) -> None:
+        """Closes the environments; with ``abort`` (an exception is under way,
+        which may have cut a message to or from a worker in half), ends the
+        worker processes without talking to them."""
+        processes = getattr(self.vec, "processes", None)
+        if not abort or processes is None:
+            self.vec.close()
+            return
+        for process in processes:
+            if process.is_alive():
+                process.terminate()
+            process.join()
+        for pipe in getattr(self.vec, "parent_pipes", []):
+            if pipe is not None:
+                pipe.close()
+        # Nothing left for the vector environment's own close (or its finaliser) to do.
+        self.vec.closed = True
 
 
 def _episodes(env_id: str, episodes: int) -> _Episodes:
@@ -222,9 +255,9 @@ def _episodes(env_id: str, episodes: int) -> _Episodes:
     return _open[key]
 
 
-def _close() -> None:
+def _close(abort: bool = False) -> None:
     while _open:
-        _open.popitem()[1].close()
+        _open.popitem()[1].close(abort)
 
 
 def _play(section: dict, genomes: list, seeds: list[list[int]]) -> list[tuple[float, float, float]]:
@@ -249,8 +282,10 @@ def _run(call, progress: bool, total: int, on_generation, processes: int) -> dic
     _reset_clock()
     try:
         result = _with_bar(progress, total, on_generation, call)
-    finally:
-        _close()
+    except BaseException:
+        _close(abort=True)
+        raise
+    _close()
     result["env_seconds"] = _clock["env"]
     result["vivae_seconds"] = _clock["vivae"]
     result["env_steps"] = _clock["steps"]
@@ -334,10 +369,12 @@ def validate(
     *,
     episodes: int = VALIDATION_EPISODES,
     processes: int = 1,
+    film: bool = True,
 ) -> dict:
     """The champion of the Gymnasium run ``source`` on ``episodes`` fresh
     episodes (Gymnasium seeds 0, 1, …, never trained on), written to the
-    run's ``validation.json``.
+    run's ``validation.json``; with ``film``, the first of them rendered
+    too (:func:`film`), for ``report.html`` to show.
 
     Returns:
         ``env``, ``episodes``, ``seeds`` (first and last), ``mean``, ``std``,
@@ -352,8 +389,10 @@ def validate(
     try:
         controllers = _vivae.Controllers([genome] * len(seeds))
         returns, _ = player.play(controllers, seeds, np.arange(len(seeds), dtype=np.int64))
-    finally:
-        player.close()
+    except BaseException:
+        player.close(abort=True)
+        raise
+    player.close()
     threshold = section["reward_threshold"]
     mean = float(returns.mean())
     result = {
@@ -373,4 +412,125 @@ def validate(
     tmp = path.with_name(f".validation.json.tmp-{os.getpid()}")
     tmp.write_text(json.dumps(result, indent=2) + "\n")
     os.replace(tmp, path)
+    if film:
+        try:
+            globals()["film"](source)
+        except Exception as e:  # noqa: BLE001 - the validation stands without its film
+            warnings.warn(f"{source}: no film of the champion's episode ({type(e).__name__}: {e}); "
+                          f"for MuJoCo without a display, set MUJOCO_GL=egl", stacklevel=2)
     return result
+
+
+def _png(rgb: np.ndarray) -> bytes:
+    """``rgb`` (height × width × 3, uint8) as a PNG file, each row filtered
+    by the one above (a rendered scene's flat areas then compress to little),
+    with no dependency beyond zlib."""
+    h, w, _ = rgb.shape
+    rows = rgb.reshape(h, w * 3).astype(np.int16)
+    up = np.empty_like(rows)
+    up[0] = rows[0]
+    up[1:] = rows[1:] - rows[:-1]
+    filters = np.full((h, 1), 2, dtype=np.uint8)
+    filters[0] = 0
+    raw = np.hstack([filters, (up % 256).astype(np.uint8)]).tobytes()
+
+    def chunk(kind: bytes, data: bytes) -> bytes:
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+
+    header = struct.pack(">IIBBBBB", w, h, 8, 2, 0, 0, 0)
+    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b"")
+
+
+def _shrink(frame: np.ndarray, width: int) -> np.ndarray:
+    """``frame`` made at most ``width`` pixels wide: the mean of each
+    k × k block (k the smallest whole factor that fits)."""
+    h, w, _ = frame.shape
+    k = max(1, -(-w // width))
+    h, w = h - h % k, w - w % k
+    blocks = frame[:h, :w, :3].reshape(h // k, k, w // k, k, 3).astype(np.float64)
+    return np.rint(blocks.mean(axis=(1, 3))).astype(np.uint8)
+
+
+def film(
+    source: str | os.PathLike,
+    *,
+    seed: int = VALIDATION_FIRST_SEED,
+    frames: int = FILM_FRAMES,
+    width: int = FILM_WIDTH,
+) -> Path:
+    """Renders the champion of the Gymnasium run ``source`` playing the
+    episode of Gymnasium seed ``seed`` (the first validation episode) with
+    ``render_mode="rgb_array"``, at most ``frames`` frames evenly spaced
+    over it and at most ``width`` pixels wide, into the run's ``film.json``
+    (PNG frames), which ``report.html`` animates beside the curves.
+
+    Returns:
+        The path of ``film.json``.
+    """
+    for name, value in (("frames", frames), ("width", width)):
+        if not isinstance(value, int) or isinstance(value, bool) or value < 2:
+            raise ValueError(f"{name}={value!r}: expected an integer of at least 2")
+    section = _vivae.gym_section(source)
+    genome, fitness, generation = _vivae.load_genome(source)
+    controllers = _vivae.Controllers([genome])
+    env = gymnasium.make(section["env"], render_mode="rgb_array")
+    try:
+        mujoco = type(env.unwrapped).__module__.startswith("gymnasium.envs.mujoco")
+        if mujoco and sys.platform.startswith("linux") and not (os.environ.get("MUJOCO_GL") or os.environ.get("DISPLAY")):
+            # Its default OpenGL (GLFW) aborts the whole process without a display.
+            raise RuntimeError("MuJoCo renders through OpenGL and there is no display: "
+                               "set MUJOCO_GL=egl (or osmesa) before Python starts")
+        act = env.action_space
+        discrete = isinstance(act, gymnasium.spaces.Discrete)
+        if isinstance(act, gymnasium.spaces.Box):
+            low = np.ravel(act.low).astype(np.float64)
+            span = np.ravel(act.high).astype(np.float64) - low
+            shape = _shape(act)
+
+        def episode(keep):
+            """Plays the episode, calling ``keep(step, reward, done)`` at its start and
+            after each step; returns its steps."""
+            obs, _ = env.reset(seed=int(seed))
+            keep(0, 0.0, False)
+            done, t = False, 0
+            while not done:
+                out = controllers.act(np.ascontiguousarray(np.ravel(obs), dtype=np.float64)[None, :])[0]
+                a = int(np.argmax(out)) if discrete else (low + (np.clip(out, -1.0, 1.0) + 1.0) * 0.5 * span).reshape(shape)
+                obs, reward, terminated, truncated, _ = env.step(a)
+                t += 1
+                done = terminated or truncated
+                keep(t, float(reward), done)
+            return t
+
+        # Played once to learn its length, then again (the same episode:
+        # the same seed and network) rendering the frames kept.
+        steps = episode(lambda *_: None)
+        every = max(1, -(-steps // (frames - 1)))
+        kept: list[dict] = []
+        owed = [0.0]
+
+        def keep(t: int, reward: float, done: bool) -> None:
+            owed[0] += reward
+            if t % every == 0 or done:
+                png = _png(_shrink(np.asarray(env.render()), width))
+                kept.append({"step": t, "reward": owed[0],
+                             "image": "data:image/png;base64," + base64.b64encode(png).decode("ascii")})
+                owed[0] = 0.0
+
+        again = episode(keep)
+        if again != steps:
+            raise RuntimeError(f"{section['env']}: the episode of seed {seed} took {steps} steps, then {again}")
+    finally:
+        env.close()
+    # The size is the first PNG's own (its header, after the 8-byte signature and IHDR's length and kind).
+    w, h = struct.unpack(">II", base64.b64decode(kept[0]["image"].split(",", 1)[1])[16:24])
+    record = {
+        "env": section["env"], "seed": int(seed), "generation": generation, "fitness": fitness,
+        "width": w, "height": h, "every": every, "steps": steps,
+        "return": float(sum(k["reward"] for k in kept)), "frames": kept,
+    }
+    path = Path(source) / "film.json"
+    tmp = path.with_name(f".film.json.tmp-{os.getpid()}")
+    tmp.write_text(json.dumps(record, separators=(",", ":")) + "\n")
+    os.replace(tmp, path)
+    return path

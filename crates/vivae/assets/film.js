@@ -38,7 +38,9 @@ var VivaeFilm = (function () {
   function show(film, label) {
     var $ = function (id) { return document.getElementById(id); };
     var canvas = $("filmcanvas"), g = canvas.getContext("2d");
-    var v = film.view, width = 720;
+    // Rendered pictures are shown at most twice their size; drawn films at 720 px.
+    var rendered = film.frames.length > 0 && !!film.frames[0].image;
+    var v = film.view, width = rendered ? Math.min(720, 2 * (v[2] - v[0])) : 720;
     canvas.width = width;
     canvas.height = Math.round(width * (v[3] - v[1]) / (v[2] - v[0]));
     // Each episode's first frame and its frame count, and its return.
@@ -52,7 +54,14 @@ var VivaeFilm = (function () {
       last.steps += 1;
       last.total += f.reward;
     });
-    var state = { episode: 0, t: 0, playing: true, frames: 0 };
+    // A host's rendered frames carry their picture (a PNG data URL), decoded once.
+    var images = film.frames.map(function (f) {
+      if (!f.image) { return null; }
+      var img = new Image();
+      img.src = f.image;
+      return img;
+    });
+    var state = { episode: 0, t: 0, playing: true, frames: 0, images: 0 };
     window.vivaeFilm = state;
     $("film").style.display = "";
 
@@ -62,12 +71,17 @@ var VivaeFilm = (function () {
       g.fillRect(0, 0, canvas.width, canvas.height);
       drawShapes(g, film, film.backdrop, canvas.width, canvas.height);
       drawShapes(g, film, f.shapes, canvas.width, canvas.height);
+      var img = images[ep.start + state.t];
+      if (img && img.complete && img.naturalWidth) {
+        g.drawImage(img, 0, 0, canvas.width, canvas.height);
+        state.images += 1;
+      }
       var sofar = 0;
       for (var k = 0; k <= state.t; k++) { sofar += film.frames[ep.start + k].reward; }
       $("filmslider").value = state.t;
       $("filmstep").textContent = (state.t + 1) + " / " + ep.steps;
       $("filminfo").textContent = label + ". Episode " + (state.episode + 1) + " of " + episodes.length +
-        " (return " + +ep.total.toFixed(3) + "): step " + (state.t + 1) + ", reward " + +f.reward.toFixed(3) +
+        " (return " + +ep.total.toFixed(3) + "): step " + (f.step === undefined ? state.t + 1 : f.step) + ", reward " + +f.reward.toFixed(3) +
         ", return so far " + +sofar.toFixed(3) + ".";
       state.frames += 1;
     }

@@ -15,7 +15,7 @@ use crate::figures::convergence::{self, ConvergenceOptions};
 use crate::figures::network::NetworkOptions;
 use vivae_lab::io::{read_text, write_atomic};
 use vivae_lab::rundir::GenerationRow;
-use vivae_lab::rundir::{self, files};
+use vivae_lab::rundir::{self, files, pictures};
 use vivae_lab::search::StrategyReport;
 use vivae_lab::tasks::plain::REPLAY_SEED;
 use vivae_lab::tasks::read_champion;
@@ -87,7 +87,17 @@ struct FilmData {
     /// Whose replay it is, and on which episodes.
     label: String,
     #[serde(flatten)]
-    film: Film,
+    film: Reel,
+}
+
+/// A film as the page plays it: drawn by the task, or pictures a host rendered.
+#[derive(Debug, Serialize)]
+#[serde(untagged)]
+enum Reel {
+    /// Shapes a task draws from its replay ([`Film`]).
+    Drawn(Film),
+    /// Frames a host rendered into the run directory ([`pictures::FILE`]).
+    Rendered(pictures::Reel),
 }
 
 /// What a strategy other than NEAT adds to the report: its part
@@ -280,18 +290,41 @@ fn film_of(dir: &Path, config: &vivae_lab::config::Config) -> vivae_lab::Result<
     let champion = read_champion(&path)?;
     let maps = vivae_lab::tasks::maps::load_run(dir, config, None)?;
     // A task the program cannot run itself (one whose episodes a host
-    // plays, as Gymnasium's in Python) has no film here; its curves still show.
+    // plays, as Gymnasium's in Python) draws no film here: the pictures its
+    // host rendered stand in, when there are some; its curves show anyway.
     let Ok(task) = vivae_lab::tasks::build(config, &maps) else {
-        return Ok(None);
+        return rendered_film(dir);
     };
     task.check_genome(&champion.genome)
         .map_err(|reason| vivae_lab::Error::Genome { path, reason })?;
-    Ok(task.film(&champion.genome).map(|film| FilmData {
+    let Some(film) = task.film(&champion.genome) else {
+        return rendered_film(dir);
+    };
+    Ok(Some(FilmData {
         label: format!(
             "Champion (generation {}, fitness {:.3}) on the episodes of seed {REPLAY_SEED} (training used others)",
             champion.generation, champion.fitness
         ),
-        film,
+        film: Reel::Drawn(film),
+    }))
+}
+
+/// The pictures of the champion's episode its host rendered into the run
+/// directory, as a film; none when it rendered none.
+fn rendered_film(dir: &Path) -> vivae_lab::Result<Option<FilmData>> {
+    Ok(pictures::read(dir)?.map(|p| FilmData {
+        label: format!(
+            "Champion (generation {}, fitness {:.3}) in {}, episode seed {} (a validation episode: training used others), \
+             return {:.3} in {} steps, a frame every {}",
+            p.generation,
+            p.fitness,
+            p.env,
+            p.seed,
+            p.total,
+            p.steps,
+            if p.every == 1 { "step".to_string() } else { format!("{} steps", p.every) },
+        ),
+        film: Reel::Rendered(p.reel()),
     }))
 }
 

@@ -141,7 +141,7 @@ pub fn exported(
             "a {name} run has no substrate to re-sample: drop the sensors, neurons and precision"
         )));
     }
-    let task = crate::tasks::build(&config, &crate::tasks::maps::load(&config)?)?;
+    let task = crate::tasks::describe::build(&config, &crate::tasks::maps::load(&config)?)?;
     let outputs = task.network_outputs().ok_or_else(|| {
         refused(format!(
             "task {name} does not export a controller: export needs a substrate network (runs of {}) or a task whose genome is its network (a plain task)",

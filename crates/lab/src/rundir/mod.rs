@@ -25,6 +25,7 @@ mod champion;
 mod checkpoint;
 mod lifecycle;
 mod maps;
+pub mod pictures;
 pub mod replace;
 mod rows;
 

@@ -16,6 +16,7 @@ pub mod acrobot;
 pub mod cartpole;
 mod champion;
 pub mod classic;
+pub mod describe;
 pub mod driving;
 pub mod gym;
 pub mod gymnasium;

@@ -37,6 +37,7 @@ mod fixed_prey_baseline_and_tournaments_between_runs;
 mod force_replaces_only_a_run;
 mod forged_checkpoint_is_refused_before_anything_changes;
 mod frames_from_the_simulator_drive_as_its_sensors_do;
+mod gymnasium_report_plays_the_rendered_episode;
 mod hostile_inputs_are_refused_by_name;
 mod hyperneat_hunters_or_prey_resume_bit_identical;
 mod idle_viewer_pages_free_their_slots;

@@ -147,7 +147,13 @@ fn validate(c: &Config) -> std::result::Result<(), String> {
 
 fn build(config: &Config, _maps: &[TrainingMap]) -> Result<Box<dyn RunTask>> {
     let env = GymnasiumConfig::of(config);
-    let Some(player) = PLAYER.get().copied() else {
+    let player = match PLAYER.get().copied() {
+        Some(player) => Some(player),
+        // Read, not played (exported): no player needed.
+        None if crate::tasks::describe::describing() => Some(&UNPLAYED as &'static dyn Episodes),
+        None => None,
+    };
+    let Some(player) = player else {
         return Err(bad_input(format!(
             "experiment.task = {NAME}: its episodes ({}) are played by Gymnasium in Python: \
              run and resume it with the Python package (vivae.gym.evolve, vivae.gym.resume); \
@@ -156,6 +162,25 @@ fn build(config: &Config, _maps: &[TrainingMap]) -> Result<Box<dyn RunTask>> {
         )));
     };
     Ok(Box::new(GymRun { env, player }))
+}
+
+/// The player of a task built only to be read, where no host plays episodes.
+struct Unplayed;
+
+static UNPLAYED: Unplayed = Unplayed;
+
+impl Episodes for Unplayed {
+    fn play(
+        &self,
+        env: &GymnasiumConfig,
+        _genomes: &[&Genome],
+        _contexts: &[EvalContext],
+    ) -> std::result::Result<Vec<Evaluation>, String> {
+        Err(format!(
+            "{}: its episodes are played by Gymnasium in Python (vivae.gym)",
+            env.env
+        ))
+    }
 }
 
 /// A `gymnasium` run's task: the environment's section and the player.
@@ -314,6 +339,11 @@ impl RunTask for GymRun {
         )
     }
 
+    /// Gymnasium's observations as they come (unbounded, as the network reads them).
+    fn network_readings(&self) -> crate::controller::readings::Readings {
+        crate::controller::readings::Readings::UNBOUNDED
+    }
+
     fn report_curves(&self) -> bool {
         true
     }
@@ -365,6 +395,24 @@ mod tests {
         }
         let e = build(&default_config(), &[]).unwrap_err().to_string();
         assert!(e.contains("vivae.gym.evolve"), "{e}");
+    }
+
+    #[test]
+    fn a_run_read_for_export_builds_without_a_player_and_plays_nothing() {
+        let task = crate::tasks::describe::build(&default_config(), &[]).unwrap();
+        assert!(task.network_outputs().is_some());
+        assert_eq!(
+            task.network_readings(),
+            crate::controller::readings::Readings::UNBOUNDED
+        );
+        if PLAYER.get().is_some() {
+            return;
+        }
+        let run = task.as_any().downcast_ref::<GymRun>().unwrap();
+        let e = run.player.play(&run.env, &[], &[]).unwrap_err();
+        assert!(e.contains("played by Gymnasium in Python"), "{e}");
+        // Built to run, it is still refused.
+        assert!(build(&default_config(), &[]).is_err());
     }
 
     #[test]
