@@ -60,6 +60,12 @@ pub struct ReplayArgs {
     /// clearance of each in px, 0 where they touch.
     #[arg(long)]
     pub swerve: bool,
+    /// Also write every robot's meetings with the blocks placed for the
+    /// episode (meetings-pN.csv beside the trajectories: the line it came
+    /// on, whether the block lay on it, touches, sideways shift, when a ray
+    /// first showed the block) and print their counts.
+    #[arg(long)]
+    pub meetings: bool,
     /// Arithmetic of the controller (exact|fast; default: the run's): a
     /// champion evolved in one precision re-scored in the other.
     #[arg(long, value_name = "exact|fast")]
@@ -129,6 +135,9 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<ExitCode> {
     }
     let scenario = load_scenario(path.as_deref())?;
     let experiment = blinded(&args, Episode::new(&config, &scenario.scenario))?;
+    if args.meetings {
+        super::replay_meetings::check(&experiment)?;
+    }
     if let Some(seed) = args.placement_seed.filter(|_| !experiment.varies()) {
         return Err(bad_input(format!(
             "--placement-seed {seed}: {} places no obstacles or traffic at random, so no seed changes the replay",
@@ -172,6 +181,10 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<ExitCode> {
     eprintln!("figure: {}", replay.figure.display());
     if args.swerve {
         swerve_figure(&args, &experiment, &champion, &out)?;
+    }
+    if args.meetings {
+        let placement = args.placement_seed.unwrap_or(0);
+        super::replay_meetings::write(&experiment, &config, &champion.genome, placement, &out)?;
     }
     Ok(ExitCode::SUCCESS)
 }
