@@ -21,7 +21,6 @@ pub mod overrides;
 pub mod own_driver;
 pub mod program;
 pub mod replay;
-pub mod replay_meetings;
 pub mod report;
 pub mod reproduce;
 pub mod resume;

@@ -135,9 +135,6 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<ExitCode> {
     }
     let scenario = load_scenario(path.as_deref())?;
     let experiment = blinded(&args, Episode::new(&config, &scenario.scenario))?;
-    if args.meetings {
-        super::replay_meetings::check(&experiment)?;
-    }
     if let Some(seed) = args.placement_seed.filter(|_| !experiment.varies()) {
         return Err(bad_input(format!(
             "--placement-seed {seed}: {} places no obstacles or traffic at random, so no seed changes the replay",
@@ -183,19 +180,27 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<ExitCode> {
         swerve_figure(&args, &experiment, &champion, &out)?;
     }
     if args.meetings {
-        let placement = args.placement_seed.unwrap_or(0);
-        super::replay_meetings::write(&experiment, &config, &champion.genome, placement, &out)?;
+        meetings_csv(&experiment, &config, &champion.genome, &args, &out)?;
     }
     Ok(ExitCode::SUCCESS)
 }
 
-/// The replay's episode, its rays blinded with `--blind-rays`: refused
-/// before anything is said about the replay, so that an error stays one line.
+/// The replay's episode, its rays blinded with `--blind-rays` (and, with
+/// `--meetings`, checked to have a route): refused before anything is said
+/// about the replay, so that an error stays one line.
 fn blinded(
     args: &ReplayArgs,
     experiment: Result<Episode, vivae_lab::error::EpisodeError>,
 ) -> anyhow::Result<Episode> {
     let experiment = experiment.map_err(vivae_lab::Error::from)?;
+    let sc = experiment.world().scenario();
+    if args.meetings && sc.routes.is_empty() {
+        return Err(bad_input(format!(
+            "--meetings: {}: meetings are measured along a route (a path labelled Route), and the scenario has none",
+            sc.source
+        ))
+        .into());
+    }
     match args.blind_rays {
         true => {
             Ok((experiment.with_blind_rays())
@@ -203,6 +208,36 @@ fn blinded(
         }
         false => Ok(experiment),
     }
+}
+
+/// `--meetings`: writes `meetings-pN[-blind-rays].csv` into `out` and prints
+/// the counts. The rays whose sight is recorded are the robots' own
+/// (re-sampled by `--distance-rays`), or for robots without rays the default
+/// sheet's (5 rays over 180°, 100 px): what rays would have shown the same paths.
+fn meetings_csv(
+    experiment: &Episode,
+    config: &Config,
+    genome: &vivae_neat::Genome,
+    args: &ReplayArgs,
+    out: &std::path::Path,
+) -> anyhow::Result<()> {
+    use vivae_lab::tasks::driving::meetings::{self, MeetingCounts};
+    let controller =
+        (experiment.robot_controller(genome)).map_err(|e| bad_input(format!("--meetings: {e}")))?;
+    let layout: vivae_sim::DistanceSensors = config.distance_sensors.layout().unwrap_or_default();
+    let all = meetings::meetings(experiment, &controller, Some(&layout.grid()))
+        .map_err(|e| bad_input(format!("--meetings: {e}")))?;
+    let blind = if experiment.blind_rays() {
+        "-blind-rays"
+    } else {
+        ""
+    };
+    let placement = args.placement_seed.unwrap_or(0);
+    let path = out.join(format!("meetings-p{placement}{blind}.csv"));
+    vivae_lab::io::write_atomic(&path, meetings::csv(&all).as_bytes())?;
+    println!("{}", MeetingCounts::of(&all).fields());
+    eprintln!("meetings: {}", path.display());
+    Ok(())
 }
 
 /// `--swerve`: the zoomed figure of the meeting blinding changes most, and its line.

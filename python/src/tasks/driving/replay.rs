@@ -43,23 +43,9 @@ pub fn replay<'py>(
         None => 0,
     };
     // Not a config key either: the distance rays blinded (`vivae replay --blind-rays`).
-    let blind_rays = match extra.get_item("blind_rays")? {
-        Some(v) => {
-            extra.del_item("blind_rays")?;
-            v.extract::<bool>()
-                .map_err(|_| errors::value("blind_rays= takes True or False"))?
-        }
-        None => false,
-    };
+    let blind_rays = take_flag(&extra, "blind_rays")?;
     // Nor this: the robots' meetings with the placed blocks (`vivae replay --meetings`).
-    let meetings = match extra.get_item("meetings")? {
-        Some(v) => {
-            extra.del_item("meetings")?;
-            v.extract::<bool>()
-                .map_err(|_| errors::value("meetings= takes True or False"))?
-        }
-        None => false,
-    };
+    let meetings = take_flag(&extra, "meetings")?;
     let config = settings::build_from(config, Some(&extra))?;
     let path = settings::scenario_path(&config);
     if let Some(p) = path.as_deref().filter(|p| !other_scenario && !p.exists()) {
@@ -98,6 +84,18 @@ pub fn replay<'py>(
         dict.set_item("meetings", meeting_dicts(py, &all)?)?;
     }
     Ok(dict)
+}
+
+/// Takes the flag `name` (True or False, default False) out of `extra`.
+fn take_flag(extra: &Bound<'_, PyDict>, name: &str) -> PyResult<bool> {
+    match extra.get_item(name)? {
+        Some(v) => {
+            extra.del_item(name)?;
+            v.extract::<bool>()
+                .map_err(|_| errors::value(format!("{name}= takes True or False")))
+        }
+        None => Ok(false),
+    }
 }
 
 /// Each meeting as a dict (robots and blocks 1-based, as the CSV of

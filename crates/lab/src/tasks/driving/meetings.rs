@@ -206,6 +206,111 @@ fn shown(world: &World, i: usize, rays: &DistanceGrid, seen: &[f64], block: &Blo
     best
 }
 
+/// The blocks placed for the episode of `world`, where they are on `route`.
+fn placed_blocks(world: &World, route: &Route) -> Vec<Block> {
+    let sc = world.scenario();
+    let fixed = &sc.fixed_obstacles;
+    (fixed[fixed.len() - sc.placed_obstacles.min(fixed.len())..].iter())
+        .map(|o| {
+            let (a, s, _) = across(route, o.shape.bbox.center(), None);
+            let size = o.shape.bbox.max - o.shape.bbox.min;
+            Block {
+                shape: o.shape.clone(),
+                s,
+                across: a,
+                half: 0.5 * size.x.min(size.y),
+            }
+        })
+        .collect()
+}
+
+/// Per (robot, block), robot-major: whether the block is in the robot's
+/// window at the start but behind it. Such a block is met only once the
+/// robot has left the window and come back (or touches it).
+fn behind_at_start(world: &World, route: &Route, blocks: &[Block]) -> Vec<bool> {
+    let robots = world.robots();
+    (0..robots.len() * blocks.len())
+        .map(|j| {
+            let (robot, block) = (&robots[j / blocks.len()], &blocks[j % blocks.len()]);
+            let s = route.locate(robot.pos, None).s;
+            let centre = block.shape.bbox.center();
+            route.advance(s, block.s).abs() <= APPROACH
+                && (centre - robot.pos).dot(robot.ahead()) <= 0.0
+        })
+        .collect()
+}
+
+/// Where robot `robot` is at step `step`: its centre, across the road, and
+/// along-route distance `ahead` to the block.
+struct Here {
+    robot: usize,
+    step: usize,
+    p: DVec2,
+    across: f64,
+    ahead: f64,
+}
+
+/// A new meeting of `here`'s robot with block `k`.
+fn open_meeting(here: &Here, k: usize, block: &Block, r: f64) -> Open {
+    Open {
+        meeting: Meeting {
+            robot: here.robot,
+            block: k,
+            entry_step: here.step,
+            exit_step: here.step,
+            block_across: block.across,
+            entry_across: here.across,
+            on_line: (here.across - block.across).abs() < r + block.half,
+            touches: 0,
+            clearance: f64::INFINITY,
+            pass_across: here.across,
+            shift: 0.0,
+            seen_at: None,
+            seen_steps: 0,
+            peak: 0.0,
+            exit: Exit::End,
+        },
+        side: if here.ahead >= 0.0 { 1.0 } else { -1.0 },
+        touching: false,
+        nearest: f64::INFINITY,
+    }
+}
+
+impl Open {
+    /// One step of the meeting: touches and clearance; before any touch,
+    /// the nearest approach along the route and `shown`, the reading a ray
+    /// gives of the block now (0: none shows it).
+    fn observe(&mut self, here: &Here, block: &Block, r: f64, shown: impl FnOnce() -> f64) {
+        let touches = touches_shape(&block.shape, here.p, r);
+        let m = &mut self.meeting;
+        if touches && !self.touching {
+            if m.touches == 0 {
+                m.pass_across = here.across;
+            }
+            m.touches += 1;
+        }
+        self.touching = touches;
+        let gap = match block.shape.contains(here.p) || touches {
+            true => 0.0,
+            false => (block.shape.closest_boundary_point(here.p).1 - r).max(0.0),
+        };
+        m.clearance = m.clearance.min(gap);
+        if m.touches > 0 {
+            return;
+        }
+        if here.ahead.abs() < self.nearest {
+            self.nearest = here.ahead.abs();
+            m.pass_across = here.across;
+        }
+        let v = shown();
+        if v > 0.0 {
+            m.seen_steps += 1;
+            m.peak = m.peak.max(v);
+            m.seen_at.get_or_insert(here.ahead.abs());
+        }
+    }
+}
+
 /// The meetings of one episode of `episode` driven by `controller`: every
 /// learner with every block placed for the episode, along the scenario's
 /// first route. `rays`: the distance rays whose sight is recorded (the
@@ -225,35 +330,13 @@ pub fn meetings(
             sc.source
         ))
     })?;
-    let fixed = &sc.fixed_obstacles;
-    let blocks: Vec<Block> = (fixed[fixed.len() - sc.placed_obstacles.min(fixed.len())..].iter())
-        .map(|o| {
-            let (a, s, _) = across(&route, o.shape.bbox.center(), None);
-            let size = o.shape.bbox.max - o.shape.bbox.min;
-            Block {
-                shape: o.shape.clone(),
-                s,
-                across: a,
-                half: 0.5 * size.x.min(size.y),
-            }
-        })
-        .collect();
-    let n = world.robots().len();
+    let blocks = placed_blocks(&world, &route);
+    let mut waiting = behind_at_start(&world, &route, &blocks);
+    let (n, nb) = (world.robots().len(), blocks.len());
     let r = world.params().robot_radius;
     let mut rollout = episode.rollout(controller);
     let mut segments: Vec<Option<usize>> = vec![None; n];
-    let mut open: Vec<Option<Open>> = (0..n * blocks.len()).map(|_| None).collect();
-    // A block in a robot's window at the start is met only when in front of
-    // it; one behind waits until the robot has left the window and come back.
-    let mut waiting: Vec<bool> = (0..n * blocks.len())
-        .map(|j| {
-            let (robot, block) = (&world.robots()[j / blocks.len()], &blocks[j % blocks.len()]);
-            let s = route.locate(robot.pos, None).s;
-            let centre = block.shape.bbox.center();
-            route.advance(s, block.s).abs() <= APPROACH
-                && (centre - robot.pos).dot(robot.ahead()) <= 0.0
-        })
-        .collect();
+    let mut open: Vec<Option<Open>> = (0..n * nb).map(|_| None).collect();
     let mut done = Vec::new();
     let mut seen = vec![0.0; rays.map_or(0, |g| g.dirs.len())];
     let steps = episode.steps() as usize;
@@ -266,81 +349,42 @@ pub fn meetings(
             let mut read = false;
             for (k, block) in blocks.iter().enumerate() {
                 let ahead = route.advance(s, block.s);
-                let slot = &mut open[i * blocks.len() + k];
+                let (slot, wait) = (&mut open[i * nb + k], &mut waiting[i * nb + k]);
                 if ahead.abs() > APPROACH {
-                    waiting[i * blocks.len() + k] = false;
+                    *wait = false;
                     if let Some(o) = slot.take() {
-                        let passed = ahead.signum() != o.side;
-                        done.push(close(
-                            o,
-                            step,
-                            if passed { Exit::Passed } else { Exit::Back },
-                        ));
+                        let exit = match ahead.signum() != o.side {
+                            true => Exit::Passed,
+                            false => Exit::Back,
+                        };
+                        done.push(close(o, step, exit));
                     }
                     continue;
                 }
-                let touches = touches_shape(&block.shape, p, r);
                 // Touching one ends the wait: every contact is in a meeting.
-                let wait = &mut waiting[i * blocks.len() + k];
-                *wait &= !touches;
+                *wait &= !touches_shape(&block.shape, p, r);
                 if *wait {
                     continue;
                 }
-                let o = slot.get_or_insert_with(|| Open {
-                    meeting: Meeting {
-                        robot: i,
-                        block: k,
-                        entry_step: step,
-                        exit_step: step,
-                        block_across: block.across,
-                        entry_across: a,
-                        on_line: (a - block.across).abs() < r + block.half,
-                        touches: 0,
-                        clearance: f64::INFINITY,
-                        pass_across: a,
-                        shift: 0.0,
-                        seen_at: None,
-                        seen_steps: 0,
-                        peak: 0.0,
-                        exit: Exit::End,
-                    },
-                    side: if ahead >= 0.0 { 1.0 } else { -1.0 },
-                    touching: false,
-                    nearest: f64::INFINITY,
-                });
-                let m = &mut o.meeting;
-                if touches && !o.touching {
-                    if m.touches == 0 {
-                        m.pass_across = a;
-                    }
-                    m.touches += 1;
-                }
-                o.touching = touches;
-                let gap = match block.shape.contains(p) {
-                    true => 0.0,
-                    false => (block.shape.closest_boundary_point(p).1 - r).max(0.0),
+                let here = Here {
+                    robot: i,
+                    step,
+                    p,
+                    across: a,
+                    ahead,
                 };
-                m.clearance = m.clearance.min(if touches { 0.0 } else { gap });
-                if m.touches > 0 {
-                    continue;
-                }
-                if ahead.abs() < o.nearest {
-                    o.nearest = ahead.abs();
-                    m.pass_across = a;
-                }
+                let o = slot.get_or_insert_with(|| open_meeting(&here, k, block, r));
                 // What the rays show now is what the controller reads next step.
-                if let Some(g) = rays {
-                    if !read {
-                        g.read(&world, i, &mut seen);
-                        read = true;
+                o.observe(&here, block, r, || match rays {
+                    None => 0.0,
+                    Some(g) => {
+                        if !read {
+                            g.read(&world, i, &mut seen);
+                            read = true;
+                        }
+                        shown(&world, i, g, &seen, block)
                     }
-                    let v = shown(&world, i, g, &seen, block);
-                    if v > 0.0 {
-                        m.seen_steps += 1;
-                        m.peak = m.peak.max(v);
-                        m.seen_at.get_or_insert(ahead.abs());
-                    }
-                }
+                });
             }
         }
     }
