@@ -180,3 +180,24 @@ for sc in scenarios:
                              f"{ok} of {len(rs)}")
             print(f"| {SETUP_NAME[setup]} | " + " | ".join(cells) + " |")
         print()
+        print(f"Per seed: progress, contacts per 1,000 robot-steps (share of the same seed's surface-only progress champion's, ✓ where the target holds):\n")
+        print("| fitness | seed | " + " | ".join(f"{r} rays" for r in resampled) + " |")
+        print("| --- " * (2 + len(resampled)) + "|")
+        for setup in SETUPS:
+            for seed in seeds:
+                if not get(sc, setup, "rays", seed, resampled[0]):
+                    continue
+                base = get(sc, "speed", "surface", seed, 0)
+                cells = []
+                for r in resampled:
+                    x = get(sc, setup, "rays", seed, r)
+                    if not x:
+                        cells.append("–")
+                        continue
+                    cell = f"{x['progress']:.3f}, {x['contacts']:.2f}"
+                    if base:
+                        p, c, ok = meets(x, base)
+                        cell += f" ({pct(p)}, {pct(c)}{' ✓' if ok else ''})"
+                    cells.append(cell)
+                print(f"| {SETUP_NAME[setup]} | {seed} | " + " | ".join(cells) + " |")
+        print()

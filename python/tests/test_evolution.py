@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import csv
 import json
 import re
 import subprocess
@@ -343,6 +344,32 @@ def test_replay_with_the_rays_blinded_as_the_cli_does(tmp_path, cli):
     vivae.evolve(out=surface, progress=False, scenario="corridor", **SETTINGS)
     with pytest.raises(ValueError, match="blind_rays=True: the robots carry no distance rays"):
         vivae.replay(surface, blind_rays=True)
+
+
+def test_replay_lists_the_meetings_with_the_placed_blocks_as_the_cli_does(tmp_path, cli):
+    out = tmp_path / "rays"
+    vivae.evolve(out=out, progress=False, scenario="corridor", distance_rays=5, **SETTINGS)
+    for blind in (False, True):
+        r = vivae.replay(out, placement_seed=3, blind_rays=blind, meetings=True)
+        args = [cli, "replay", str(out), "--placement-seed", "3", "--meetings", "--out", str(tmp_path / "r")]
+        printed = subprocess.run(args + (["--blind-rays"] if blind else []), check=True, capture_output=True,
+                                 text=True).stdout.splitlines()
+        assert float(dict(kv.split("=") for kv in printed[0].split())["fitness"]) == r["fitness"]
+        name = "meetings-p3-blind-rays.csv" if blind else "meetings-p3.csv"
+        with open(tmp_path / "r" / name) as f:
+            rows = list(csv.DictReader(f))
+        # The same meetings, each column as the CSV has it.
+        assert len(rows) == len(r["meetings"]) == int(dict(kv.split("=") for kv in printed[-1].split())["meetings"])
+        for row, m in zip(rows, r["meetings"]):
+            assert int(row["robot"]) == m["robot"] and int(row["block"]) == m["block"]
+            assert int(row["touches"]) == m["touches"] and row["exit"] == m["exit"]
+            assert abs(float(row["shift"]) - m["shift"]) <= 0.005
+            assert (row["seen_at"] == "") == (m["seen_at"] is None)
+    assert "meetings" not in vivae.replay(out, placement_seed=3)
+    with pytest.raises(ValueError, match="meetings= takes True or False"):
+        vivae.replay(out, meetings="yes")
+    with pytest.raises(ValueError, match="meetings=True: .*route"):
+        vivae.replay(out, scenario="roads", meetings=True)
 
 
 def test_a_maze_run_takes_its_robot_model_and_other_tasks_refuse_one(tmp_path):

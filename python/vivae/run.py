@@ -194,7 +194,10 @@ def replay(source: str | os.PathLike, **overrides: Any) -> dict:
             ``placement_seed`` (as ``vivae replay --placement-seed``): the
             placement of a scenario's random obstacles and traffic (default 0);
             ``blind_rays=True`` (as ``vivae replay --blind-rays``): every
-            distance ray reads "nothing in range" whatever is in front of it.
+            distance ray reads "nothing in range" whatever is in front of it;
+            ``meetings=True`` (as ``vivae replay --meetings``): the result also
+            holds ``meetings``, a dict per robot's meeting with a block placed
+            for the episode (the columns of ``meetings-pN.csv``).
 
     Returns:
         The episode's measures: ``fitness`` (px/step), ``on_road`` (fraction),

@@ -59,6 +59,12 @@ pub struct ReplayArgs {
     /// clearance of each in px, 0 where they touch.
     #[arg(long)]
     pub swerve: bool,
+    /// Also write every robot's meetings with the blocks placed for the
+    /// episode (meetings-pN.csv beside the trajectories: the line it came
+    /// on, whether the block lay on it, touches, sideways shift, when a ray
+    /// first showed the block) and print their counts.
+    #[arg(long)]
+    pub meetings: bool,
     /// Arithmetic of the controller (exact|fast; default: the run's): a
     /// champion evolved in one precision re-scored in the other.
     #[arg(long, value_name = "exact|fast")]
@@ -126,6 +132,7 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<ExitCode> {
         placement_seed: args.placement_seed,
         blind_rays: args.blind_rays,
         swerve: args.swerve,
+        meetings: args.meetings,
         member,
         out: args.out.clone().unwrap_or_else(|| base.join("replay")),
     })?;

@@ -103,6 +103,8 @@ pub struct ReplayRequest<'a> {
     pub blind_rays: bool,
     /// `--swerve`: also draw the meeting blinding changes most.
     pub swerve: bool,
+    /// `--meetings`: also write every robot's meetings with the placed blocks.
+    pub meetings: bool,
     /// The archive or front member replayed (none: the champion).
     pub member: Option<Member>,
     /// The folder the figures go to.

@@ -9,6 +9,7 @@
 
 mod a_crate_of_its_own_extends_the_program;
 mod a_plain_task_runs_reports_exports_and_resumes;
+mod a_replay_lists_the_meetings_with_the_placed_blocks;
 mod a_replay_with_the_rays_blinded_reads_nothing_seen;
 mod a_training_map_given_twice_is_warned_about;
 mod a_viewer_step_message_is_bounded_by_its_cost;

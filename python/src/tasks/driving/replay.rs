@@ -43,14 +43,9 @@ pub fn replay<'py>(
         None => 0,
     };
     // Not a config key either: the distance rays blinded (`vivae replay --blind-rays`).
-    let blind_rays = match extra.get_item("blind_rays")? {
-        Some(v) => {
-            extra.del_item("blind_rays")?;
-            v.extract::<bool>()
-                .map_err(|_| errors::value("blind_rays= takes True or False"))?
-        }
-        None => false,
-    };
+    let blind_rays = take_flag(&extra, "blind_rays")?;
+    // Nor this: the robots' meetings with the placed blocks (`vivae replay --meetings`).
+    let meetings = take_flag(&extra, "meetings")?;
     let config = settings::build_from(config, Some(&extra))?;
     let path = settings::scenario_path(&config);
     if let Some(p) = path.as_deref().filter(|p| !other_scenario && !p.exists()) {
@@ -78,5 +73,56 @@ pub fn replay<'py>(
         })
     })?;
     let episode = py.detach(|| experiment.run(&controller, true));
-    episode_dict(py, &episode)
+    let dict = episode_dict(py, &episode)?;
+    if meetings {
+        let rays = config.distance_sensors.layout().unwrap_or_default().grid();
+        let all = py
+            .detach(|| {
+                vivae_lab::tasks::driving::meetings::meetings(&experiment, &controller, Some(&rays))
+            })
+            .map_err(|e| errors::lab(vivae_lab::io::bad_input(format!("meetings=True: {e}"))))?;
+        dict.set_item("meetings", meeting_dicts(py, &all)?)?;
+    }
+    Ok(dict)
+}
+
+/// Takes the flag `name` (True or False, default False) out of `extra`.
+fn take_flag(extra: &Bound<'_, PyDict>, name: &str) -> PyResult<bool> {
+    match extra.get_item(name)? {
+        Some(v) => {
+            extra.del_item(name)?;
+            v.extract::<bool>()
+                .map_err(|_| errors::value(format!("{name}= takes True or False")))
+        }
+        None => Ok(false),
+    }
+}
+
+/// Each meeting as a dict (robots and blocks 1-based, as the CSV of
+/// `vivae replay --meetings` has them).
+fn meeting_dicts<'py>(
+    py: Python<'py>,
+    all: &[vivae_lab::tasks::driving::meetings::Meeting],
+) -> PyResult<Vec<Bound<'py, PyDict>>> {
+    all.iter()
+        .map(|m| {
+            let d = PyDict::new(py);
+            d.set_item("robot", m.robot + 1)?;
+            d.set_item("block", m.block + 1)?;
+            d.set_item("entry_step", m.entry_step)?;
+            d.set_item("exit_step", m.exit_step)?;
+            d.set_item("block_across", m.block_across)?;
+            d.set_item("entry_across", m.entry_across)?;
+            d.set_item("on_line", m.on_line)?;
+            d.set_item("touches", m.touches)?;
+            d.set_item("clearance", m.clearance)?;
+            d.set_item("pass_across", m.pass_across)?;
+            d.set_item("shift", m.shift)?;
+            d.set_item("seen_at", m.seen_at)?;
+            d.set_item("seen_steps", m.seen_steps)?;
+            d.set_item("peak", m.peak)?;
+            d.set_item("exit", m.exit.name())?;
+            Ok(d)
+        })
+        .collect()
 }

@@ -11,6 +11,7 @@ pub mod episode;
 pub mod fitness;
 pub mod fitness_contacts;
 pub mod fitness_progress;
+pub mod meetings;
 pub mod placement;
 pub mod resolutions;
 pub mod rollout;

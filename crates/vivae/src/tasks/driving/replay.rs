@@ -75,16 +75,28 @@ pub fn replay(r: &ReplayRequest<'_>) -> anyhow::Result<()> {
     if r.swerve {
         swerve_figure(r, &experiment)?;
     }
+    if r.meetings {
+        meetings_csv(r, &experiment)?;
+    }
     Ok(())
 }
 
-/// The replay's episode, its rays blinded with `--blind-rays`: refused
-/// before anything is said about the replay, so that an error stays one line.
+/// The replay's episode, its rays blinded with `--blind-rays` (and, with
+/// `--meetings`, checked to have a route): refused before anything is said
+/// about the replay, so that an error stays one line.
 fn blinded(
     r: &ReplayRequest<'_>,
     experiment: Result<Episode, vivae_lab::error::EpisodeError>,
 ) -> anyhow::Result<Episode> {
     let experiment = experiment.map_err(vivae_lab::Error::from)?;
+    let sc = experiment.world().scenario();
+    if r.meetings && sc.routes.is_empty() {
+        return Err(bad_input(format!(
+            "--meetings: {}: meetings are measured along a route (a path labelled Route), and the scenario has none",
+            sc.source
+        ))
+        .into());
+    }
     match r.blind_rays {
         true => {
             Ok((experiment.with_blind_rays())
@@ -92,6 +104,31 @@ fn blinded(
         }
         false => Ok(experiment),
     }
+}
+
+/// `--meetings`: writes `meetings-pN[-blind-rays].csv` into the replay's
+/// folder and prints the counts. The rays whose sight is recorded are the
+/// robots' own (re-sampled by `--distance-rays`), or for robots without rays
+/// the default sheet's (5 rays over 180°, 100 px): what rays would have
+/// shown the same paths.
+fn meetings_csv(r: &ReplayRequest<'_>, experiment: &Episode) -> anyhow::Result<()> {
+    use vivae_lab::tasks::driving::meetings::{self, MeetingCounts};
+    let controller = (experiment.robot_controller(&r.champion.genome))
+        .map_err(|e| bad_input(format!("--meetings: {e}")))?;
+    let layout: vivae_sim::DistanceSensors = r.config.distance_sensors.layout().unwrap_or_default();
+    let all = meetings::meetings(experiment, &controller, Some(&layout.grid()))
+        .map_err(|e| bad_input(format!("--meetings: {e}")))?;
+    let blind = if experiment.blind_rays() {
+        "-blind-rays"
+    } else {
+        ""
+    };
+    let placement = r.placement_seed.unwrap_or(0);
+    let path = r.out.join(format!("meetings-p{placement}{blind}.csv"));
+    vivae_lab::io::write_atomic(&path, meetings::csv(&all).as_bytes())?;
+    println!("{}", MeetingCounts::of(&all).fields());
+    eprintln!("meetings: {}", path.display());
+    Ok(())
 }
 
 /// `--swerve`: the zoomed figure of the meeting blinding changes most, and its line.
