@@ -11,14 +11,41 @@ use vivae_neat::driver::Evaluation;
 use vivae_neat::eval::splitmix64;
 use vivae_neat::{FeedForwardNetwork, Network};
 
-use super::Step;
 use super::plain::{Plain, Trace, Validation};
+use super::sketch::Sketch;
+use super::{Step, Stepped, Threshold};
 
 /// The most inputs or outputs a classic-control network has.
 const MOST: usize = 8;
 
-/// A Gymnasium classic-control environment as a plain task plays it.
-pub trait Classic: Plain {
+/// A Gymnasium classic-control environment: what it is and its dynamics.
+/// Every such environment is a [`Plain`] task by the one implementation
+/// below (its evaluation, lanes, validation and check are this module's), so
+/// a task's file states only these.
+pub trait Classic: Send + Sync + 'static {
+    /// Its name in `experiment.task` and `--task` ([`Plain::NAME`]).
+    const NAME: &'static str;
+    /// What it is, for the run's header ([`Plain::ABOUT`]).
+    const ABOUT: &'static str;
+    /// How an evaluation is scored, for the run's header ([`Plain::SCORING`]).
+    const SCORING: &'static str;
+    /// Inputs of its networks: the observation's values and a bias.
+    const INPUTS: usize;
+    /// Outputs of its networks.
+    const OUTPUTS: usize;
+    /// What the outputs mean (exported with the network).
+    const OUTPUT_MEANING: &'static str;
+    /// Names of its behaviour descriptor's two coordinates ([`Classic::place`]).
+    const BEHAVIOUR: &'static [&'static str];
+    /// The mean return that solves it: a training evaluation reaching it
+    /// stops the run (once the check holds it), a validation reaching it
+    /// solves the run.
+    const THRESHOLD: f64;
+    /// Where [`Classic::THRESHOLD`] comes from (a table's source column).
+    const THRESHOLD_SOURCE: &'static str = GYMNASIUM_THRESHOLD;
+    /// Whether its feed-forward evaluation steps its episodes side by side
+    /// ([`evaluate_lanes`]); false where that was measured no faster.
+    const LANES: bool = true;
     /// What the environment holds between steps.
     type State: Copy;
     /// What a step takes.
@@ -30,7 +57,7 @@ pub trait Classic: Plain {
     /// Episode `k`'s start, drawn as Gymnasium's `reset` draws it (its uniform ranges).
     fn start(draws: &mut Draws) -> Self::State;
     /// The observation in float64, before Gymnasium's float32 rounding
-    /// (`Plain::INPUTS − 1` values).
+    /// (`INPUTS − 1` values).
     fn observe(s: &Self::State, obs: &mut [f64]);
     /// The action the network's outputs choose.
     fn act(outputs: &[f64]) -> Self::Action;
@@ -45,6 +72,56 @@ pub trait Classic: Plain {
     fn values(s: &Self::State) -> Vec<f64>;
     /// The action Gymnasium's `env.step` is given as this number (`None`: not an action).
     fn action_of(value: f64) -> Option<Self::Action>;
+    /// How a step of its episodes looks (report.html animates the champion's
+    /// replay); `None`: not drawn.
+    fn sketch() -> Option<Sketch> {
+        None
+    }
+}
+
+/// [`Classic::THRESHOLD_SOURCE`] of an environment whose threshold is Gymnasium's.
+pub const GYMNASIUM_THRESHOLD: &str =
+    "Gymnasium 1.x's reward_threshold (gymnasium/envs/__init__.py)";
+
+/// A classic-control environment as a plain task: its episodes played by
+/// this module, its runs stopped by the check and solved by the validation.
+impl<T: Classic> Plain for T {
+    const NAME: &'static str = <T as Classic>::NAME;
+    const ABOUT: &'static str = <T as Classic>::ABOUT;
+    const SCORING: &'static str = <T as Classic>::SCORING;
+    const INPUTS: usize = <T as Classic>::INPUTS;
+    const OUTPUTS: usize = <T as Classic>::OUTPUTS;
+    const OUTPUT_MEANING: &'static str = <T as Classic>::OUTPUT_MEANING;
+    const METRICS: &'static [&'static str] = &["worst", "steps"];
+    const BEHAVIOUR: &'static [&'static str] = <T as Classic>::BEHAVIOUR;
+    const STEPS: u64 = T::EPISODES as u64 * T::MAX_STEPS as u64;
+    const TARGET: Option<f64> = Some(T::THRESHOLD);
+    const REWARD_THRESHOLD: Option<Threshold> = Some(Threshold {
+        value: T::THRESHOLD,
+        source: T::THRESHOLD_SOURCE,
+    });
+    const TRACES: bool = true;
+    const STEPPED: Option<Stepped> = Some(episode::<T>);
+
+    fn evaluate(net: &mut dyn Network, seed: u64, trace: Option<&mut Trace>) -> Evaluation {
+        evaluate::<T>(net, seed, trace)
+    }
+
+    fn validate(net: &mut dyn Network, run_seed: u64) -> Option<Validation> {
+        Some(validate::<T>(net, run_seed))
+    }
+
+    fn check(net: &mut dyn Network, run_seed: u64) -> Option<(Validation, u64)> {
+        Some(check::<T>(net, run_seed))
+    }
+
+    fn evaluate_feed_forward(net: &FeedForwardNetwork, seed: u64) -> Option<Evaluation> {
+        T::LANES.then(|| evaluate_lanes::<T>(net, seed))
+    }
+
+    fn sketch() -> Option<Sketch> {
+        <T as Classic>::sketch()
+    }
 }
 
 /// Uniform draws from the evaluation's seed and the episode's number.

@@ -27,7 +27,9 @@ use crate::search::TaskFacts;
 use crate::tasks::maps::TrainingMap;
 use crate::tasks::sketch::{Film, Sketch};
 use crate::tasks::unread::first_change;
-use crate::tasks::{Finished, HeaderContext, RunTask, Stepped, TargetProgress, TaskEntry};
+use crate::tasks::{
+    Finished, HeaderContext, RunTask, Stepped, TargetProgress, TaskEntry, Threshold,
+};
 
 /// A task of plain NEAT networks: its shape and how a network is scored.
 pub trait Plain: Send + Sync + 'static {
@@ -60,6 +62,9 @@ pub trait Plain: Send + Sync + 'static {
     const STEPS: u64;
     /// The fitness at which it counts as solved: the run stops there.
     const TARGET: Option<f64> = None;
+    /// The mean return at which its validated champion solves it (its
+    /// entry's [`TaskEntry::reward_threshold`]), for a task with [`Plain::validate`].
+    const REWARD_THRESHOLD: Option<Threshold> = None;
     /// Whether [`Plain::evaluate`] fills a trace when given one (replay).
     const TRACES: bool = false;
     /// Its episode stepped from a given state under given actions (a
@@ -185,6 +190,7 @@ pub const fn entry<T: Plain>() -> TaskEntry {
         check_map: crate::tasks::any_map,
         substrate: false,
         stepped: T::STEPPED,
+        reward_threshold: T::REWARD_THRESHOLD,
     }
 }
 
@@ -307,17 +313,6 @@ impl<T: Plain> PlainRun<T> {
         }
     }
 
-    /// `genome` validated for this run, and whether that solves the task
-    /// (its mean reaches the target); none for a task without validation.
-    pub fn validation(&self, genome: &Genome) -> Option<(Validation, bool)> {
-        let v = if T::RECURRENT {
-            T::validate(&mut RecurrentNetwork::from_genome(genome), self.run_seed)
-        } else {
-            T::validate(&mut FeedForwardNetwork::from_genome(genome), self.run_seed)
-        }?;
-        Some((v, T::TARGET.is_some_and(|t| v.mean >= t)))
-    }
-
     /// `genome` checked for this run ([`Plain::check`]).
     fn checked(&self, genome: &Genome) -> Option<(Validation, u64)> {
         if T::RECURRENT {
@@ -424,6 +419,16 @@ impl<T: Plain> RunTask for PlainRun<T> {
     fn holds_target(&self, genome: &Genome) -> Option<(bool, u64)> {
         let (v, cost) = self.checked(genome)?;
         Some((T::TARGET.is_some_and(|t| v.mean >= t), cost))
+    }
+
+    fn validation(&self, genome: &Genome) -> Option<(Validation, bool)> {
+        let v = if T::RECURRENT {
+            T::validate(&mut RecurrentNetwork::from_genome(genome), self.run_seed)
+        } else {
+            T::validate(&mut FeedForwardNetwork::from_genome(genome), self.run_seed)
+        }?;
+        let threshold = T::REWARD_THRESHOLD.map(|t| t.value).or(T::TARGET);
+        Some((v, threshold.is_some_and(|t| v.mean >= t)))
     }
 
     fn generation_fields(&self, progress: &TargetProgress, evaluations: &[Evaluation]) -> String {

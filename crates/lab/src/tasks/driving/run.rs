@@ -31,6 +31,7 @@ pub static TASK: TaskEntry = TaskEntry {
     check_map: crate::tasks::any_map,
     substrate: true,
     stepped: None,
+    reward_threshold: None,
 };
 
 /// With another task than driving: refuses `experiment.placements` (and its

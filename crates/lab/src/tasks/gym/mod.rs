@@ -58,6 +58,7 @@ pub static TASK: TaskEntry = TaskEntry {
     check_map: crate::tasks::any_map,
     substrate: false,
     stepped: None,
+    reward_threshold: None,
 };
 
 /// Plays a batch of evaluations of a Gymnasium environment: what the host

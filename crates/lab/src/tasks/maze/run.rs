@@ -47,6 +47,7 @@ pub static TASK: TaskEntry = TaskEntry {
     check_map: crate::tasks::any_map,
     substrate: false,
     stepped: None,
+    reward_threshold: None,
 };
 
 /// The maze task of a maze run's `config` on `scenario`; bad input (naming

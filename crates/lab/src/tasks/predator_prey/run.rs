@@ -49,6 +49,7 @@ pub static TASK: TaskEntry = TaskEntry {
     check_map: |s| Arena::teams(s).map(|_| ()).map_err(|e| e.to_string()),
     substrate: false,
     stepped: None,
+    reward_threshold: None,
 };
 
 /// The predator–prey arenas as shipped scenarios (`--scenario predator-prey`).
