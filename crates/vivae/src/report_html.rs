@@ -398,13 +398,14 @@ fn film_of(dir: &Path, config: &vivae_lab::config::Config) -> vivae_lab::Result<
     if !path.is_file() {
         return Ok(None);
     }
+    // A task whose episodes a host plays (Gymnasium's, in Python) cannot be
+    // built by the program: no film here; its curves still show.
+    if vivae_lab::tasks::entry_of(config).is_ok_and(|t| t.host.is_some()) {
+        return Ok(None);
+    }
     let champion = read_champion(&path)?;
     let maps = vivae_lab::tasks::maps::load_run(dir, config, None)?;
-    // A task the program cannot run itself (one whose episodes a host
-    // plays, as Gymnasium's in Python) has no film here; its curves still show.
-    let Ok(task) = vivae_lab::tasks::build(config, &maps) else {
-        return Ok(None);
-    };
+    let task = vivae_lab::tasks::build(config, &maps)?;
     task.check_genome(&champion.genome)
         .map_err(|reason| vivae_lab::Error::Genome { path, reason })?;
     Ok(task.film(&champion.genome).map(|film| FilmData {

@@ -191,6 +191,7 @@ pub const fn entry<T: Plain>() -> TaskEntry {
         substrate: false,
         stepped: T::STEPPED,
         reward_threshold: T::REWARD_THRESHOLD,
+        host: None,
     }
 }
 

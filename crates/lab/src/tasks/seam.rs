@@ -97,6 +97,11 @@ pub struct TaskEntry {
     /// episodes (a classic-control task): the mean return that solves it
     /// there; the `gym-classic` pack runs every task that declares one.
     pub reward_threshold: Option<Threshold>,
+    /// For a task whose episodes a host program plays (the `gymnasium`
+    /// task's, played by Gymnasium in Python): where its runs are run, which
+    /// the `vivae` program names instead of running it; `None`: any program
+    /// runs it.
+    pub host: Option<&'static str>,
 }
 
 /// The mean return at which a validated champion solves its task, and

@@ -32,6 +32,7 @@ pub static TASK: TaskEntry = TaskEntry {
     substrate: true,
     stepped: None,
     reward_threshold: None,
+    host: None,
 };
 
 /// With another task than driving: refuses `experiment.placements` (and its

@@ -48,6 +48,7 @@ pub static TASK: TaskEntry = TaskEntry {
     substrate: false,
     stepped: None,
     reward_threshold: None,
+    host: None,
 };
 
 /// The maze task of a maze run's `config` on `scenario`; bad input (naming

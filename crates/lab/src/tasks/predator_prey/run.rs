@@ -50,6 +50,7 @@ pub static TASK: TaskEntry = TaskEntry {
     substrate: false,
     stepped: None,
     reward_threshold: None,
+    host: None,
 };
 
 /// The predator–prey arenas as shipped scenarios (`--scenario predator-prey`).
