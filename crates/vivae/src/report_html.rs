@@ -76,6 +76,9 @@ struct ReportData {
     /// The champion's replay as pictures, for a task that draws its steps.
     #[serde(skip_serializing_if = "Option::is_none")]
     film: Option<FilmData>,
+    /// The champion's validation on fresh episodes (`validation.json`), in a sentence.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    validation: Option<String>,
 }
 
 /// The champion's replay as a task draws it, and what it is.
@@ -375,6 +378,7 @@ fn curves_data(dir: &Path) -> vivae_lab::Result<(ReportData, Vec<rundir::Generat
         strategy: None,
         task: None,
         film: None,
+        validation: None,
     };
     Ok((data, best))
 }
@@ -387,6 +391,13 @@ fn build_curves(dir: &Path, config: &vivae_lab::config::Config) -> vivae_lab::Re
     page_of(&ReportData {
         task: Some(config.experiment.task.name().to_string()),
         film: film_of(dir, config)?,
+        validation: vivae_lab::tasks::validation::read(dir)?.map(|v| {
+            let mut s = v.sentence();
+            if let Some(c) = s.get_mut(..1) {
+                c.make_ascii_uppercase();
+            }
+            s + " (validation.json)"
+        }),
         ..data
     })
 }

@@ -100,6 +100,7 @@ impl<T: Classic> Plain for T {
         value: T::THRESHOLD,
         source: T::THRESHOLD_SOURCE,
     });
+    const CHECK_EPISODES: u32 = CHECK_EPISODES;
     const TRACES: bool = true;
     const STEPPED: Option<Stepped> = Some(episode::<T>);
 
@@ -219,12 +220,8 @@ pub fn evaluate<T: Classic>(
 /// over the [`VALIDATION_EPISODES`] episodes of [`validation_seed`], each
 /// started as a training episode is.
 pub fn validate<T: Classic>(net: &mut dyn Network, run_seed: u64) -> Validation {
-    let p = play::<T>(net, validation_seed(run_seed), VALIDATION_EPISODES, None);
-    Validation {
-        mean: p.total / f64::from(VALIDATION_EPISODES),
-        worst: p.worst,
-        episodes: VALIDATION_EPISODES,
-    }
+    let seed = validation_seed(run_seed);
+    play::<T>(net, seed, VALIDATION_EPISODES, None).validation(seed, VALIDATION_EPISODES)
 }
 
 /// `net`, which reached the threshold in training, checked for the run
@@ -232,12 +229,8 @@ pub fn validate<T: Classic>(net: &mut dyn Network, run_seed: u64) -> Validation 
 /// [`check_seed`], and the evaluations they count as (episodes over
 /// [`Classic::EPISODES`], rounded up).
 pub fn check<T: Classic>(net: &mut dyn Network, run_seed: u64) -> (Validation, u64) {
-    let p = play::<T>(net, check_seed(run_seed), CHECK_EPISODES, None);
-    let v = Validation {
-        mean: p.total / f64::from(CHECK_EPISODES),
-        worst: p.worst,
-        episodes: CHECK_EPISODES,
-    };
+    let seed = check_seed(run_seed);
+    let v = play::<T>(net, seed, CHECK_EPISODES, None).validation(seed, CHECK_EPISODES);
     (v, u64::from(CHECK_EPISODES.div_ceil(T::EPISODES)))
 }
 
@@ -245,8 +238,27 @@ pub fn check<T: Classic>(net: &mut dyn Network, run_seed: u64) -> (Validation, u
 struct Played {
     total: f64,
     worst: f64,
+    best: f64,
+    /// The sum of the returns' squares.
+    squares: f64,
     steps: f64,
     place: [f64; 2],
+}
+
+impl Played {
+    /// Its `episodes` episodes, drawn from `seed`, as a validation.
+    fn validation(&self, seed: u64, episodes: u32) -> Validation {
+        let n = f64::from(episodes);
+        let mean = self.total / n;
+        Validation {
+            mean,
+            worst: self.worst,
+            episodes,
+            best: self.best,
+            std: (self.squares / n - mean * mean).max(0.0).sqrt(),
+            seed,
+        }
+    }
 }
 
 /// Plays episodes 0…`episodes` of `T` started from `seed`, recording into `trace`.
@@ -257,6 +269,7 @@ fn play<T: Classic>(
     mut trace: Option<&mut Trace>,
 ) -> Played {
     let (mut total, mut worst, mut steps, mut place) = (0.0, f64::INFINITY, 0.0, [0.0; 2]);
+    let (mut best, mut squares) = (f64::NEG_INFINITY, 0.0);
     let (mut inputs, mut outputs) = ([0.0; MOST], [0.0; MOST]);
     let (inputs, outputs) = (&mut inputs[..T::INPUTS], &mut outputs[..T::OUTPUTS]);
     for k in 0..episodes {
@@ -285,10 +298,14 @@ fn play<T: Classic>(
         }
         total += ret;
         worst = f64::min(worst, ret);
+        best = f64::max(best, ret);
+        squares += ret * ret;
     }
     Played {
         total,
         worst,
+        best,
+        squares,
         steps,
         place,
     }

@@ -34,6 +34,7 @@ mod seam;
 pub mod sketch;
 mod target;
 mod unread;
+pub mod validation;
 
 pub use champion::{load_genome_source, read_champion};
 pub use registry::{entries, names, register};

@@ -65,6 +65,8 @@ pub trait Plain: Send + Sync + 'static {
     /// The mean return at which its validated champion solves it (its
     /// entry's [`TaskEntry::reward_threshold`]), for a task with [`Plain::validate`].
     const REWARD_THRESHOLD: Option<Threshold> = None;
+    /// Episodes of its check ([`Plain::check`]), for the run's header; 0: none.
+    const CHECK_EPISODES: u32 = 0;
     /// Whether [`Plain::evaluate`] fills a trace when given one (replay).
     const TRACES: bool = false;
     /// Its episode stepped from a given state under given actions (a
@@ -111,6 +113,13 @@ pub struct Validation {
     pub worst: f64,
     /// Episodes played.
     pub episodes: u32,
+    /// The best return.
+    pub best: f64,
+    /// The returns' standard deviation (over the episodes, as NumPy's `std`).
+    pub std: f64,
+    /// The seed its episodes 0, 1, … are drawn from (as a training
+    /// evaluation's episodes are from the evaluation's seed).
+    pub seed: u64,
 }
 
 /// An episode as a plain task's evaluation records it, for a replay.
@@ -438,8 +447,11 @@ impl<T: Plain> RunTask for PlainRun<T> {
     }
 
     fn header(&self, c: &Config, ctx: &HeaderContext<'_>) -> String {
-        let stop = T::TARGET.map_or(String::new(), |t| {
-            format!("; the run stops when an evaluation reaches {t}")
+        let stop = T::TARGET.map_or(String::new(), |t| match T::CHECK_EPISODES {
+            0 => format!("; the run stops when an evaluation reaches {t}"),
+            n => format!(
+                "; the run stops when an evaluation reaches {t} and its genome's mean over {n} check episodes (never trained on) does too"
+            ),
         });
         format!(
             "vivae {}: {} (task {})\n\
@@ -483,10 +495,15 @@ impl<T: Plain> RunTask for PlainRun<T> {
             ),
         };
         let (validated, fields) = self.validation_text(f.champion);
+        let validation_file = if validated.is_empty() {
+            ""
+        } else {
+            ", validation.json"
+        };
         let person = format!(
             "done: {} generations in {wall:.1} s{verdict}\n\
              champion: fitness {:.3} (generation {}){validated}\n\
-             run directory: {dir}/ (config.toml, champion.json, generations.csv, report.html, checkpoints/)\n\
+             run directory: {dir}/ (config.toml, champion.json, generations.csv{validation_file}, report.html, checkpoints/)\n\
              its network: vivae export {dir} --format onnx|c|json --out FILE",
             f.generations, f.fitness, f.generation,
         );

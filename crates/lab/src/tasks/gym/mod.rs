@@ -63,7 +63,7 @@ pub static TASK: TaskEntry = TaskEntry {
 };
 
 /// Where a run of the task is run: its entry's [`TaskEntry::host`].
-pub const HOST: &str = "the Python package, which plays its episodes in Gymnasium (vivae.gym.evolve, vivae.gym.resume)";
+pub const HOST: &str = "the Python package (vivae.gym.evolve, vivae.gym.resume)";
 
 /// Plays a batch of evaluations of a Gymnasium environment: what the host
 /// program installs with [`set_player`].
