@@ -212,8 +212,44 @@ fn drive<'py>(
     if let Some(c) = run.champion() {
         d.set_item("best", c.fitness)?;
         d.set_item("champion_generation", c.generation)?;
+        if outcome == Outcome::Finished {
+            // A task whose champion is validated: validation.json, as the CLI writes it.
+            let written = py.detach(|| {
+                vivae_lab::tasks::validation::write(
+                    run.dir(),
+                    run.task(),
+                    &c.genome,
+                    c.generation,
+                    c.fitness,
+                )
+            });
+            if let Some(v) = written.map_err(errors::lab)? {
+                d.set_item("validation", validation_dict(py, &v)?)?;
+            }
+        }
         d.set_item("champion", Genome::new(c.genome, false))?;
     }
+    Ok(d)
+}
+
+/// `validation.json`'s record as a dict of the same keys (`vivae.gym.validate`'s).
+fn validation_dict<'py>(
+    py: Python<'py>,
+    v: &vivae_lab::tasks::validation::ValidationRecord,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("env", &v.env)?;
+    d.set_item("episodes", v.episodes)?;
+    d.set_item("seeds", v.seeds.to_vec())?;
+    d.set_item("validation_seed", v.validation_seed)?;
+    d.set_item("mean", v.mean)?;
+    d.set_item("std", v.std)?;
+    d.set_item("min", v.min)?;
+    d.set_item("max", v.max)?;
+    d.set_item("reward_threshold", v.reward_threshold)?;
+    d.set_item("solved", v.solved)?;
+    d.set_item("generation", v.generation)?;
+    d.set_item("fitness", v.fitness)?;
     Ok(d)
 }
 

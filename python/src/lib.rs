@@ -48,6 +48,12 @@ fn _vivae(m: &Bound<'_, PyModule>) -> PyResult<()> {
     // The registered tasks and strategies: `task=` and `strategy=` take these names.
     let tasks: Vec<&str> = vivae_lab::tasks::names().to_vec();
     m.add("TASKS", tasks)?;
+    // Those of them whose episodes a host plays (the program does not run them).
+    let hosted: Vec<&str> = (vivae_lab::tasks::entries().into_iter())
+        .filter(|t| t.host.is_some())
+        .map(|t| t.name)
+        .collect();
+    m.add("HOSTED_TASKS", hosted)?;
     let strategies: Vec<&str> = (vivae_lab::search::entries().into_iter())
         .map(|e| e.kind)
         .collect();

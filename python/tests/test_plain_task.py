@@ -78,3 +78,22 @@ def test_each_classic_control_task_evolves_to_its_threshold_from_python(tmp_path
     else:
         assert r["solved"] and r["generations"] < 30, r
     assert f'"task":"{task}"' in vivae.report(out).read_text()
+
+
+def test_a_classic_control_run_returns_and_writes_its_validation(tmp_path, cli):
+    # Its champion on 100 fresh episodes: validation.json (vivae.gym.validate's
+    # shape) and the result's "validation", the CLI's file byte for byte.
+    common = ["--seed", "3", "--population", "20", "--generations", "3"]
+    r = vivae.evolve(out=tmp_path / "py", task="cartpole", seed=3, population=20, generations=3, progress=False)
+    v = json.loads((tmp_path / "py" / "validation.json").read_text())
+    assert r["validation"] == v
+    assert v["env"] == "cartpole" and v["episodes"] == 100 and v["seeds"] == [0, 99]
+    assert v["reward_threshold"] == THRESHOLD and v["solved"] == (v["mean"] >= THRESHOLD)
+    assert v["min"] <= v["mean"] <= v["max"] and v["std"] >= 0
+    assert (v["generation"], v["fitness"]) == (r["champion_generation"], r["best"])
+    subprocess.run([cli, "evolve", "-q", "--task", "cartpole", *common, "--out", str(tmp_path / "cli")],
+                   check=True, capture_output=True)
+    assert (tmp_path / "cli" / "validation.json").read_bytes() == (tmp_path / "py" / "validation.json").read_bytes()
+    # A task without validation: none written, none returned.
+    m = vivae.evolve(out=tmp_path / "maze", task="maze", population=10, generations=1, progress=False)
+    assert "validation" not in m and not (tmp_path / "maze" / "validation.json").exists()

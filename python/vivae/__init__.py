@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING
 import gymnasium
 
 from vivae._vivae import (
+    HOSTED_TASKS,
     OVERRIDES,
     STRATEGIES,
     TASKS,
@@ -49,6 +50,7 @@ if TYPE_CHECKING:
     from vivae.parallel import DriveParallelEnv, PredatorPreyParallelEnv
 
 __all__ = [
+    "HOSTED_TASKS",
     "OVERRIDES",
     "STRATEGIES",
     "TASKS",

@@ -15,6 +15,7 @@ __all__ = [
     "DriveTask",
     "Genome",
     "Network",
+    "HOSTED_TASKS",
     "OVERRIDES",
     "STRATEGIES",
     "TASKS",
@@ -48,6 +49,8 @@ __all__ = [
 
 OVERRIDES: list[str]
 TASKS: list[str]
+# The tasks whose episodes a host plays (the `vivae` program does not run them).
+HOSTED_TASKS: list[str]
 STRATEGIES: list[str]
 
 @final

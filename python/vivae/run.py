@@ -99,7 +99,11 @@ def evolve(
         A dict: ``out``, ``generations``, ``finished``, ``best``,
         ``champion_generation``, ``champion`` (a Genome), ``wall_s``; a maze
         run adds ``solved``, ``evals_to_solve`` (None unsolved) and
-        ``evaluations``, the summary line's fields.
+        ``evaluations``, the summary line's fields; a finished run of a task
+        that validates its champion (a classic-control task) adds
+        ``validation``, what it wrote to ``validation.json`` (the champion
+        on 100 fresh episodes: ``mean``, ``std``, ``min``, ``max``,
+        ``reward_threshold``, ``solved``…, :func:`vivae.gym.validate`'s keys).
 
     Raises:
         ValueError: bad settings, config, scenario (the CLI's one-line message).

@@ -82,6 +82,11 @@
     });
   }
   if (data.strategy) { strategySection(data.strategy); }
+  // A task whose champion is validated on fresh episodes: the verdict.
+  if (data.validation) {
+    $("validation").textContent = data.validation;
+    $("validation").style.display = "";
+  }
   // A task that draws its steps: the champion's replay, animated.
   if (data.film) { VivaeFilm.show(data.film, data.film.label); }
 

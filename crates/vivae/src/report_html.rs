@@ -79,6 +79,9 @@ pub(crate) struct ReportData {
     /// The champion's replay as pictures, for a task that draws its steps.
     #[serde(skip_serializing_if = "Option::is_none")]
     film: Option<FilmData>,
+    /// The champion's validation on fresh episodes (`validation.json`), in a sentence.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    validation: Option<String>,
 }
 
 /// The champion's replay as a task draws it, and what it is.
@@ -264,6 +267,7 @@ pub(crate) fn curves_data(
         strategy: None,
         task: None,
         film: None,
+        validation: None,
     };
     Ok((data, best))
 }
@@ -276,6 +280,13 @@ fn build_curves(dir: &Path, config: &vivae_lab::config::Config) -> vivae_lab::Re
     page_of(&ReportData {
         task: Some(config.experiment.task.name().to_string()),
         film: film_of(dir, config)?,
+        validation: vivae_lab::tasks::validation::read(dir)?.map(|v| {
+            let mut s = v.sentence();
+            if let Some(c) = s.get_mut(..1) {
+                c.make_ascii_uppercase();
+            }
+            s + " (validation.json)"
+        }),
         ..data
     })
 }
@@ -287,14 +298,15 @@ fn film_of(dir: &Path, config: &vivae_lab::config::Config) -> vivae_lab::Result<
     if !path.is_file() {
         return Ok(None);
     }
+    // A task whose episodes a host plays (Gymnasium's, in Python) cannot be
+    // built by the program: the pictures its host rendered stand in, when
+    // there are some; its curves show anyway.
+    if vivae_lab::tasks::entry_of(config).is_ok_and(|t| t.host.is_some()) {
+        return rendered_film(dir);
+    }
     let champion = read_champion(&path)?;
     let maps = vivae_lab::tasks::maps::load_run(dir, config, None)?;
-    // A task the program cannot run itself (one whose episodes a host
-    // plays, as Gymnasium's in Python) draws no film here: the pictures its
-    // host rendered stand in, when there are some; its curves show anyway.
-    let Ok(task) = vivae_lab::tasks::build(config, &maps) else {
-        return rendered_film(dir);
-    };
+    let task = vivae_lab::tasks::build(config, &maps)?;
     task.check_genome(&champion.genome)
         .map_err(|reason| vivae_lab::Error::Genome { path, reason })?;
     let Some(film) = task.film(&champion.genome) else {

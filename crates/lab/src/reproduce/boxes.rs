@@ -13,7 +13,7 @@ use crate::reproduce::{Options, Pack, Table, stats, thousands};
 pub const BOXES: Pack = Pack {
     name: "boxes",
     what: "HyperNEAT's visual discrimination (Stanley, D'Ambrosio & Gauci 2009): evolved at 11x11, re-sampled at 33x33 and 55x55",
-    methods: &[],
+    methods: super::pack::no_methods,
     run: run_pack,
 };
 

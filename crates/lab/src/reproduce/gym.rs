@@ -16,33 +16,31 @@ use super::{Journal, Options, Pack, ScratchDir, Table, thousands};
 use crate::config::Config;
 use crate::error::{Error, Result};
 use crate::run::prepare::prepare;
-use crate::tasks::acrobot::Acrobot;
-use crate::tasks::cartpole::CartPole;
+use crate::tasks::TaskEntry;
 use crate::tasks::classic::{CHECK_EPISODES, VALIDATION_EPISODES};
-use crate::tasks::mountain_car::MountainCar;
-use crate::tasks::mountain_car_continuous::MountainCarContinuous;
-use crate::tasks::pendulum::Pendulum;
-use crate::tasks::plain::{Plain, PlainRun};
 
 /// Runs per task.
 const RUNS: usize = 10;
 /// `--quick`: runs per task and evaluations per run.
 const QUICK: (usize, u64) = (3, 3_000);
 
-/// The tasks, in the order the pack runs them (`--method`).
-const TASKS: [&str; 5] = [
-    CartPole::NAME,
-    Acrobot::NAME,
-    MountainCar::NAME,
-    MountainCarContinuous::NAME,
-    Pendulum::NAME,
-];
+/// The tasks, in the order the pack runs them (`--method`): every
+/// registered task whose runs are validated against a reward threshold.
+fn tasks() -> Vec<&'static TaskEntry> {
+    let all = crate::tasks::entries().into_iter();
+    all.filter(|t| t.reward_threshold.is_some()).collect()
+}
+
+/// The names of [`tasks`].
+fn task_names() -> Vec<&'static str> {
+    tasks().into_iter().map(|t| t.name).collect()
+}
 
 /// `vivae reproduce gym-classic`.
 pub const GYM_CLASSIC: Pack = Pack {
     name: "gym-classic",
     what: "Gymnasium's classic control (CartPole-v1, Acrobot-v1, MountainCar-v0, MountainCarContinuous-v0, Pendulum-v1): solve rate, evaluations and wall time to solve, the champion's return validated on 100 fresh episodes",
-    methods: &TASKS,
+    methods: task_names,
     run: run_pack,
 };
 
@@ -97,18 +95,16 @@ pub fn config(task: &str, seed: u64, evaluations: Option<u64>, threads: usize) -
     Ok(c)
 }
 
-/// One run of plain task `T` with `config`, its champion validated.
-pub(crate) fn one_run<T: Plain>(config: Config) -> Result<Outcome> {
+/// One run of `config`, its champion validated by its task.
+pub(crate) fn one_run(config: Config) -> Result<Outcome> {
     let started = Instant::now();
+    let task = config.experiment.task.name().to_string();
     let dir = ScratchDir::new();
     let mut run = prepare(config, true)?.create(&dir.0, true)?;
     run.run(&AtomicBool::new(false), |_| {})?;
     let champion = run.champion().ok_or(Error::NoChampion)?;
-    let task = (run.task().as_any().downcast_ref::<PlainRun<T>>())
-        .ok_or_else(|| Error::Invalid(format!("gym-classic: the run is not a {} run", T::NAME)))?;
-    let (validation, solved) = task
-        .validation(&champion.genome)
-        .ok_or_else(|| Error::Invalid(format!("gym-classic: {} has no validation", T::NAME)))?;
+    let (validation, solved) = (run.task().validation(&champion.genome))
+        .ok_or_else(|| Error::Invalid(format!("gym-classic: {task} has no validation")))?;
     let progress = run.target_progress().copied().unwrap_or_default();
     Ok(Outcome {
         evaluations: progress.solved_at.unwrap_or(progress.evaluations),
@@ -119,20 +115,17 @@ pub(crate) fn one_run<T: Plain>(config: Config) -> Result<Outcome> {
     })
 }
 
-/// One run of `task` (one of [`TASKS`]), from `journal` when it finished before.
-fn journaled(task: &str, config: Config, journal: &mut Journal) -> Result<(Outcome, bool)> {
+/// One run of `config`, from `journal` when it finished before.
+fn journaled(config: Config, journal: &mut Journal) -> Result<(Outcome, bool)> {
     if let Some(o) = journal.get(&config).and_then(Outcome::parse) {
         return Ok((o, true));
     }
-    let outcome = match task {
-        CartPole::NAME => one_run::<CartPole>(config.clone()),
-        Acrobot::NAME => one_run::<Acrobot>(config.clone()),
-        MountainCar::NAME => one_run::<MountainCar>(config.clone()),
-        MountainCarContinuous::NAME => one_run::<MountainCarContinuous>(config.clone()),
-        Pendulum::NAME => one_run::<Pendulum>(config.clone()),
-        _ => Err(Error::Invalid(format!("gym-classic: no task {task}"))),
-    }?;
-    let what = format!("gym-classic {task} seed {}", config.experiment.seed);
+    let what = format!(
+        "gym-classic {} seed {}",
+        config.experiment.task.name(),
+        config.experiment.seed
+    );
+    let outcome = one_run(config.clone())?;
     journal.record(&config, &what, &outcome.text())?;
     Ok((outcome, false))
 }
@@ -142,15 +135,16 @@ fn run_pack(o: &Options, progress: &mut dyn FnMut(&str)) -> Result<Table> {
     let budget = o.evaluations.or(o.quick.then_some(QUICK.1));
     let mut journal = Journal::open(o.journal.as_deref())?;
     let mut rows = Vec::new();
-    for task in TASKS {
+    let tasks = tasks();
+    for entry in &tasks {
+        let task = entry.name;
         if !o.methods.is_empty() && !o.methods.iter().any(|m| m == task) {
             continue;
         }
         let mut outcomes = Vec::new();
         for k in 0..runs {
             let seed = o.seed + k as u64;
-            let (out, journaled) =
-                journaled(task, config(task, seed, budget, o.threads)?, &mut journal)?;
+            let (out, journaled) = journaled(config(task, seed, budget, o.threads)?, &mut journal)?;
             let from = if journaled { " (from the journal)" } else { "" };
             progress(&format!(
                 "gym-classic {task} seed {seed}: {} after {} evaluations, validated mean {:.2}, {:.2} s{from}",
@@ -161,9 +155,10 @@ fn run_pack(o: &Options, progress: &mut dyn FnMut(&str)) -> Result<Table> {
             ));
             outcomes.push(out);
         }
-        rows.push(row(task, &outcomes));
+        rows.push(row(entry, &outcomes));
     }
     let last = o.seed + runs as u64 - 1;
+    let first = tasks.first().map_or("", |t| t.name);
     let generations =
         |t: &str| config(t, o.seed, budget, o.threads).map(|c| c.experiment.generations);
     Ok(Table::new(
@@ -183,7 +178,7 @@ fn run_pack(o: &Options, progress: &mut dyn FnMut(&str)) -> Result<Table> {
             format!(
                 "{runs} runs a task, seeds {}–{last}, each the task's default run (plain NEAT, population 150, at most {} generations), stopped at the first genome whose mean return over its 5 training episodes reaches the threshold and whose mean over {CHECK_EPISODES} check episodes (from the seed splitmix64(run seed XOR \"checking\"), a stream apart from training and validation) does too; that genome is the champion",
                 o.seed,
-                generations(CartPole::NAME)?,
+                generations(first)?,
             ),
             format!(
                 "validation: the run's champion on {VALIDATION_EPISODES} fresh episodes, started as training episodes are but from the seed splitmix64(run seed XOR \"validate\"), a stream no training evaluation draws from; solved = the validated mean reaches the threshold (Gymnasium's reward_threshold; Pendulum-v1 has none: -200 here)"
@@ -195,9 +190,11 @@ fn run_pack(o: &Options, progress: &mut dyn FnMut(&str)) -> Result<Table> {
 }
 
 /// The row of `task`'s `outcomes`.
-fn row(task: &str, outcomes: &[Outcome]) -> Vec<String> {
+fn row(task: &TaskEntry, outcomes: &[Outcome]) -> Vec<String> {
     let solved: Vec<&Outcome> = outcomes.iter().filter(|o| o.solved).collect();
-    let threshold = threshold_of(task).map_or("—".into(), |t| format!("{t}"));
+    let threshold = task.reward_threshold;
+    let source = threshold.map_or("", |t| t.source);
+    let threshold = threshold.map_or("—".into(), |t| format!("{}", t.value));
     let spread = |xs: Vec<f64>, f: &dyn Fn(f64) -> String| -> String {
         if xs.is_empty() {
             return "—".into();
@@ -220,7 +217,7 @@ fn row(task: &str, outcomes: &[Outcome]) -> Vec<String> {
             (l.min(*v), h.max(*v))
         });
     vec![
-        task.into(),
+        task.name.into(),
         threshold,
         format!("{}/{}", solved.len(), outcomes.len()),
         format!(
@@ -240,24 +237,8 @@ fn row(task: &str, outcomes: &[Outcome]) -> Vec<String> {
         } else {
             format!("{mean:.1} ({lo:.1} to {hi:.1})")
         },
-        if task == Pendulum::NAME {
-            "Gymnasium gives none; vivae's bar (docs/howto/classic-control.md)".into()
-        } else {
-            "Gymnasium 1.x's reward_threshold (gymnasium/envs/__init__.py)".into()
-        },
+        source.into(),
     ]
-}
-
-/// The threshold `task` is solved at.
-fn threshold_of(task: &str) -> Option<f64> {
-    match task {
-        CartPole::NAME => CartPole::TARGET,
-        Acrobot::NAME => Acrobot::TARGET,
-        MountainCar::NAME => MountainCar::TARGET,
-        MountainCarContinuous::NAME => MountainCarContinuous::TARGET,
-        Pendulum::NAME => Pendulum::TARGET,
-        _ => None,
-    }
 }
 
 #[cfg(test)]
@@ -292,15 +273,14 @@ mod tests {
         assert_eq!((lines.len(), t.rows.len()), (2, 1), "{lines:?}");
         assert!(t.rows.iter().all(|r| r.len() == t.columns.len()));
         let runs: Vec<Outcome> = (1..=2)
-            .map(|seed| {
-                one_run::<CartPole>(config("cartpole", seed, Some(300), 1).unwrap()).unwrap()
-            })
+            .map(|seed| one_run(config("cartpole", seed, Some(300), 1).unwrap()).unwrap())
             .collect();
         for o in &runs {
             assert_eq!(o.solved, o.validated >= 475.0, "{o:?}");
             assert!(o.evaluations <= 300 && o.evaluations > 0, "{o:?}");
         }
-        let mut row_again = row("cartpole", &runs);
+        let cartpole = crate::tasks::entry("cartpole").unwrap();
+        let mut row_again = row(cartpole, &runs);
         // Wall times differ run to run; everything else is the runs'.
         let mut pack_row = t.rows[0].clone();
         row_again[5].clear();
@@ -313,7 +293,7 @@ mod tests {
             validated: 470.0,
             ..runs[0]
         };
-        let r = row("cartpole", &[stopped_unsolved]);
+        let r = row(cartpole, &[stopped_unsolved]);
         assert_eq!(r[2..5], ["0/1", "1/1", "—"]);
     }
 }

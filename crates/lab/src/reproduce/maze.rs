@@ -20,11 +20,16 @@ const SOURCE: &str = "Lehman & Stanley 2011, Evol. Comput. 19(2):189–223, Sec.
 /// The methods, in the order a pack runs them (`--method`).
 const METHODS: [&str; 3] = ["novelty", "neat", "map-elites"];
 
+/// [`METHODS`] as a pack lists them.
+fn methods() -> Vec<&'static str> {
+    METHODS.to_vec()
+}
+
 /// `vivae reproduce maze-medium`.
 pub const MEDIUM: Pack = Pack {
     name: "maze-medium",
     what: "Lehman & Stanley 2011's medium maze: novelty search vs fitness-based NEAT vs MAP-Elites",
-    methods: &METHODS,
+    methods,
     run: |o, p| run("medium-maze", &MEDIUM_PAPER, o, p),
 };
 
@@ -32,7 +37,7 @@ pub const MEDIUM: Pack = Pack {
 pub const HARD: Pack = Pack {
     name: "maze-hard",
     what: "Lehman & Stanley 2011's hard (deceptive) maze: novelty search vs fitness-based NEAT vs MAP-Elites",
-    methods: &METHODS,
+    methods,
     run: |o, p| run("hard-maze", &HARD_PAPER, o, p),
 };
 

@@ -96,13 +96,14 @@ pub fn run(name: &str, options: &Options, progress: &mut dyn FnMut(&str)) -> Res
                 )),
         ));
     }
-    if let Some(m) = (options.methods.iter()).find(|m| !pack.methods.contains(&m.as_str())) {
-        return Err(bad_input(if pack.methods.is_empty() {
+    let methods = (pack.methods)();
+    if let Some(m) = (options.methods.iter()).find(|m| !methods.contains(&m.as_str())) {
+        return Err(bad_input(if methods.is_empty() {
             format!("reproduce: pack {name} has no choice of method (asked for {m:?})")
         } else {
             format!(
                 "reproduce: pack {name} has no method {m:?}; its methods are {}",
-                pack.methods.join(", ")
+                methods.join(", ")
             )
         }));
     }

@@ -89,6 +89,11 @@ impl Table {
 /// How a pack runs: with its options, telling `progress` a line per finished run.
 pub type RunPack = fn(&Options, &mut dyn FnMut(&str)) -> Result<Table>;
 
+/// [`Pack::methods`] of a pack with no choice of method.
+pub fn no_methods() -> Vec<&'static str> {
+    Vec::new()
+}
+
 /// A replication pack.
 #[derive(Debug, Clone, Copy)]
 pub struct Pack {
@@ -96,8 +101,10 @@ pub struct Pack {
     pub name: &'static str,
     /// One line on what it reproduces.
     pub what: &'static str,
-    /// The methods `--method` can pick (empty: the pack has no choice).
-    pub methods: &'static [&'static str],
+    /// The methods `--method` can pick (empty: the pack has no choice),
+    /// listed when asked: a pack may run each of the registered tasks that
+    /// fit it.
+    pub methods: fn() -> Vec<&'static str>,
     /// Runs it; `progress` gets a line per finished run.
     pub run: RunPack,
 }

@@ -17,7 +17,7 @@ const GOMEZ: &str = "Gomez, Schmidhuber & Miikkulainen 2008, JMLR 9:937–965";
 pub const MARKOV: Pack = Pack {
     name: "pole-markov",
     what: "NEAT on double pole balancing with velocities (Stanley & Miikkulainen 2002; Gomez et al. 2008)",
-    methods: &[],
+    methods: super::pack::no_methods,
     run: run_markov,
 };
 
@@ -25,7 +25,7 @@ pub const MARKOV: Pack = Pack {
 pub const NONMARKOV: Pack = Pack {
     name: "pole-nonmarkov",
     what: "NEAT on double pole balancing without velocities, on Stanley's 2002 and Gomez et al.'s 2008 terms",
-    methods: &[],
+    methods: super::pack::no_methods,
     run: run_nonmarkov,
 };
 

@@ -14,7 +14,7 @@ use crate::reproduce::{Options, Pack, Table, stats, thousands};
 pub const RETINA: Pack = Pack {
     name: "retina",
     what: "the left & right retina problem (Verbancsics & Stanley 2011): HyperNEAT vs HyperNEAT-LEO with the locality seed",
-    methods: &[],
+    methods: super::pack::no_methods,
     run: run_pack,
 };
 

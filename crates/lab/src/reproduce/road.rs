@@ -20,7 +20,7 @@ use vivae_sim::Scenario;
 pub const ROAD: Pack = Pack {
     name: "road",
     what: "the seed paper's road experiment (Drchal, Koutník & Šnorek 2009): the default vivae evolve run, its champion re-sampled to 9x9 neurons and 3x6 sensors",
-    methods: &[],
+    methods: super::pack::no_methods,
     run: run_pack,
 };
 

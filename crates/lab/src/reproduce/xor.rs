@@ -14,7 +14,7 @@ const MAX_GENERATIONS: u32 = 500;
 pub const XOR: Pack = Pack {
     name: "xor",
     what: "NEAT on XOR (Stanley & Miikkulainen 2002): 100 runs of population 150",
-    methods: &[],
+    methods: super::pack::no_methods,
     run,
 };
 

@@ -59,6 +59,9 @@ pub mod files {
     pub const BEST_GENOMES: &str = "best-genomes.jsonl";
     /// The self-contained HTML report of the run.
     pub const REPORT: &str = "report.html";
+    /// The champion's validation on fresh episodes (a task with a reward
+    /// threshold; [`crate::tasks::validation`]).
+    pub const VALIDATION: &str = "validation.json";
     /// In `figures/`: how many generations the figures and `report.html`
     /// show, written last once they are all drawn ([`super::mark_drawn`]).
     pub const DRAWN: &str = "drawn-generations.txt";

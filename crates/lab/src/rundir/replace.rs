@@ -18,7 +18,7 @@ use crate::rundir::{MANIFEST, MAPS_DIR, RunLock, files};
 
 /// Top-level files every run directory may hold; beside them, the files
 /// the search strategies write ([`is_run_file`]).
-const RUN_FILES: [&str; 9] = [
+const RUN_FILES: [&str; 10] = [
     files::CONFIG,
     files::SCENARIO,
     files::GENERATIONS,
@@ -28,6 +28,7 @@ const RUN_FILES: [&str; 9] = [
     files::INIT_POPULATION,
     files::BEST_GENOMES,
     files::REPORT,
+    files::VALIDATION,
 ];
 
 /// Whether a run directory may hold a top-level file called `name`: one of

@@ -7,14 +7,12 @@
 //! `reward_threshold` of 475. The network reads the observation (float32, as
 //! Gymnasium returns it) and a bias; action = argmax of its two outputs.
 
-use vivae_neat::driver::Evaluation;
 use vivae_neat::math::{cos, sin};
-use vivae_neat::{FeedForwardNetwork, Network};
 
-use super::classic::{self, Classic, Draws, argmax};
-use super::plain::{Plain, Trace, Validation, entry};
+use super::TaskEntry;
+use super::classic::{Classic, Draws, argmax};
+use super::plain::entry;
 use super::sketch::{Shape, Sketch};
-use super::{Stepped, TaskEntry};
 
 /// The task's registration (`--task cartpole`).
 pub static TASK: TaskEntry = entry::<CartPole>();
@@ -61,53 +59,6 @@ pub fn terminated([x, _, theta, _]: [f64; 4]) -> bool {
     x < -X_THRESHOLD || x > X_THRESHOLD || theta < -THETA_THRESHOLD || theta > THETA_THRESHOLD
 }
 
-impl Plain for CartPole {
-    const NAME: &'static str = "cartpole";
-    const ABOUT: &'static str = "CartPole-v1 (Gymnasium's dynamics)";
-    const SCORING: &'static str = "fitness = the mean return of 5 episodes (1 a step, at most 500)";
-    const INPUTS: usize = 5;
-    const OUTPUTS: usize = 2;
-    const OUTPUT_MEANING: &'static str = "CartPole-v1's action = argmax: out[0] >= out[1] pushes left (0), else right (1); inputs x, x_dot, theta, theta_dot, 1";
-    const METRICS: &'static [&'static str] = &["worst", "steps"];
-    const BEHAVIOUR: &'static [&'static str] = &["x", "theta"];
-    const STEPS: u64 = (EPISODES * MAX_STEPS) as u64;
-    const TARGET: Option<f64> = Some(475.0);
-    const TRACES: bool = true;
-    const STEPPED: Option<Stepped> = Some(classic::episode::<Self>);
-
-    fn evaluate(net: &mut dyn Network, seed: u64, trace: Option<&mut Trace>) -> Evaluation {
-        classic::evaluate::<Self>(net, seed, trace)
-    }
-
-    fn validate(net: &mut dyn Network, run_seed: u64) -> Option<Validation> {
-        Some(classic::validate::<Self>(net, run_seed))
-    }
-
-    fn check(net: &mut dyn Network, run_seed: u64) -> Option<(Validation, u64)> {
-        Some(classic::check::<Self>(net, run_seed))
-    }
-
-    /// Its episodes side by side (measured faster, the same bits).
-    fn evaluate_feed_forward(net: &FeedForwardNetwork, seed: u64) -> Option<Evaluation> {
-        Some(classic::evaluate_lanes::<Self>(net, seed))
-    }
-
-    /// Gymnasium's picture: the track with its ends at ±2.4, the cart, the
-    /// pole (its full length, 2 × 0.5 m) and the push as an arrow.
-    fn sketch() -> Option<Sketch> {
-        let end = |x: f64| Shape::segment([x, -0.3], [x, 0.3], 0.02, "#9e9e9e");
-        Some(Sketch {
-            view: [-2.8, -0.5, 2.8, 1.3],
-            backdrop: vec![
-                Shape::segment([-2.8, -0.12], [2.8, -0.12], 0.01, "#000000"),
-                end(-X_THRESHOLD),
-                end(X_THRESHOLD),
-            ],
-            frame: picture,
-        })
-    }
-}
-
 /// The cart at `x` with its pole at `theta` (from the observation), and
 /// the push its outputs choose, as an arrow into the cart's side.
 fn picture(inputs: &[f64], outputs: &[f64], shapes: &mut Vec<Shape>) {
@@ -142,6 +93,14 @@ fn picture(inputs: &[f64], outputs: &[f64], shapes: &mut Vec<Shape>) {
 }
 
 impl Classic for CartPole {
+    const NAME: &'static str = "cartpole";
+    const ABOUT: &'static str = "CartPole-v1 (Gymnasium's dynamics)";
+    const SCORING: &'static str = "fitness = the mean return of 5 episodes (1 a step, at most 500)";
+    const INPUTS: usize = 5;
+    const OUTPUTS: usize = 2;
+    const OUTPUT_MEANING: &'static str = "CartPole-v1's action = argmax: out[0] >= out[1] pushes left (0), else right (1); inputs x, x_dot, theta, theta_dot, 1";
+    const BEHAVIOUR: &'static [&'static str] = &["x", "theta"];
+    const THRESHOLD: f64 = 475.0;
     type State = [f64; 4];
     type Action = bool;
     const EPISODES: u32 = EPISODES;
@@ -182,5 +141,20 @@ impl Classic for CartPole {
 
     fn action_of(value: f64) -> Option<bool> {
         [0.0, 1.0].contains(&value).then_some(value == 1.0)
+    }
+
+    /// Gymnasium's picture: the track with its ends at ±2.4, the cart, the
+    /// pole (its full length, 2 × 0.5 m) and the push as an arrow.
+    fn sketch() -> Option<Sketch> {
+        let end = |x: f64| Shape::segment([x, -0.3], [x, 0.3], 0.02, "#9e9e9e");
+        Some(Sketch {
+            view: [-2.8, -0.5, 2.8, 1.3],
+            backdrop: vec![
+                Shape::segment([-2.8, -0.12], [2.8, -0.12], 0.01, "#000000"),
+                end(-X_THRESHOLD),
+                end(X_THRESHOLD),
+            ],
+            frame: picture,
+        })
     }
 }

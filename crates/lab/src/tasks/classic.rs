@@ -11,14 +11,41 @@ use vivae_neat::driver::Evaluation;
 use vivae_neat::eval::splitmix64;
 use vivae_neat::{FeedForwardNetwork, Network};
 
-use super::Step;
 use super::plain::{Plain, Trace, Validation};
+use super::sketch::Sketch;
+use super::{Step, Stepped, Threshold};
 
 /// The most inputs or outputs a classic-control network has.
 const MOST: usize = 8;
 
-/// A Gymnasium classic-control environment as a plain task plays it.
-pub trait Classic: Plain {
+/// A Gymnasium classic-control environment: what it is and its dynamics.
+/// Every such environment is a [`Plain`] task by the one implementation
+/// below (its evaluation, lanes, validation and check are this module's), so
+/// a task's file states only these.
+pub trait Classic: Send + Sync + 'static {
+    /// Its name in `experiment.task` and `--task` ([`Plain::NAME`]).
+    const NAME: &'static str;
+    /// What it is, for the run's header ([`Plain::ABOUT`]).
+    const ABOUT: &'static str;
+    /// How an evaluation is scored, for the run's header ([`Plain::SCORING`]).
+    const SCORING: &'static str;
+    /// Inputs of its networks: the observation's values and a bias.
+    const INPUTS: usize;
+    /// Outputs of its networks.
+    const OUTPUTS: usize;
+    /// What the outputs mean (exported with the network).
+    const OUTPUT_MEANING: &'static str;
+    /// Names of its behaviour descriptor's two coordinates ([`Classic::place`]).
+    const BEHAVIOUR: &'static [&'static str];
+    /// The mean return that solves it: a training evaluation reaching it
+    /// stops the run (once the check holds it), a validation reaching it
+    /// solves the run.
+    const THRESHOLD: f64;
+    /// Where [`Classic::THRESHOLD`] comes from (a table's source column).
+    const THRESHOLD_SOURCE: &'static str = GYMNASIUM_THRESHOLD;
+    /// Whether its feed-forward evaluation steps its episodes side by side
+    /// ([`evaluate_lanes`]); false where that was measured no faster.
+    const LANES: bool = true;
     /// What the environment holds between steps.
     type State: Copy;
     /// What a step takes.
@@ -30,7 +57,7 @@ pub trait Classic: Plain {
     /// Episode `k`'s start, drawn as Gymnasium's `reset` draws it (its uniform ranges).
     fn start(draws: &mut Draws) -> Self::State;
     /// The observation in float64, before Gymnasium's float32 rounding
-    /// (`Plain::INPUTS − 1` values).
+    /// (`INPUTS − 1` values).
     fn observe(s: &Self::State, obs: &mut [f64]);
     /// The action the network's outputs choose.
     fn act(outputs: &[f64]) -> Self::Action;
@@ -45,6 +72,57 @@ pub trait Classic: Plain {
     fn values(s: &Self::State) -> Vec<f64>;
     /// The action Gymnasium's `env.step` is given as this number (`None`: not an action).
     fn action_of(value: f64) -> Option<Self::Action>;
+    /// How a step of its episodes looks (report.html animates the champion's
+    /// replay); `None`: not drawn.
+    fn sketch() -> Option<Sketch> {
+        None
+    }
+}
+
+/// [`Classic::THRESHOLD_SOURCE`] of an environment whose threshold is Gymnasium's.
+pub const GYMNASIUM_THRESHOLD: &str =
+    "Gymnasium 1.x's reward_threshold (gymnasium/envs/__init__.py)";
+
+/// A classic-control environment as a plain task: its episodes played by
+/// this module, its runs stopped by the check and solved by the validation.
+impl<T: Classic> Plain for T {
+    const NAME: &'static str = <T as Classic>::NAME;
+    const ABOUT: &'static str = <T as Classic>::ABOUT;
+    const SCORING: &'static str = <T as Classic>::SCORING;
+    const INPUTS: usize = <T as Classic>::INPUTS;
+    const OUTPUTS: usize = <T as Classic>::OUTPUTS;
+    const OUTPUT_MEANING: &'static str = <T as Classic>::OUTPUT_MEANING;
+    const METRICS: &'static [&'static str] = &["worst", "steps"];
+    const BEHAVIOUR: &'static [&'static str] = <T as Classic>::BEHAVIOUR;
+    const STEPS: u64 = T::EPISODES as u64 * T::MAX_STEPS as u64;
+    const TARGET: Option<f64> = Some(T::THRESHOLD);
+    const REWARD_THRESHOLD: Option<Threshold> = Some(Threshold {
+        value: T::THRESHOLD,
+        source: T::THRESHOLD_SOURCE,
+    });
+    const CHECK_EPISODES: u32 = CHECK_EPISODES;
+    const TRACES: bool = true;
+    const STEPPED: Option<Stepped> = Some(episode::<T>);
+
+    fn evaluate(net: &mut dyn Network, seed: u64, trace: Option<&mut Trace>) -> Evaluation {
+        evaluate::<T>(net, seed, trace)
+    }
+
+    fn validate(net: &mut dyn Network, run_seed: u64) -> Option<Validation> {
+        Some(validate::<T>(net, run_seed))
+    }
+
+    fn check(net: &mut dyn Network, run_seed: u64) -> Option<(Validation, u64)> {
+        Some(check::<T>(net, run_seed))
+    }
+
+    fn evaluate_feed_forward(net: &FeedForwardNetwork, seed: u64) -> Option<Evaluation> {
+        T::LANES.then(|| evaluate_lanes::<T>(net, seed))
+    }
+
+    fn sketch() -> Option<Sketch> {
+        <T as Classic>::sketch()
+    }
 }
 
 /// Uniform draws from the evaluation's seed and the episode's number.
@@ -142,12 +220,8 @@ pub fn evaluate<T: Classic>(
 /// over the [`VALIDATION_EPISODES`] episodes of [`validation_seed`], each
 /// started as a training episode is.
 pub fn validate<T: Classic>(net: &mut dyn Network, run_seed: u64) -> Validation {
-    let p = play::<T>(net, validation_seed(run_seed), VALIDATION_EPISODES, None);
-    Validation {
-        mean: p.total / f64::from(VALIDATION_EPISODES),
-        worst: p.worst,
-        episodes: VALIDATION_EPISODES,
-    }
+    let seed = validation_seed(run_seed);
+    play::<T>(net, seed, VALIDATION_EPISODES, None).validation(seed, VALIDATION_EPISODES)
 }
 
 /// `net`, which reached the threshold in training, checked for the run
@@ -155,12 +229,8 @@ pub fn validate<T: Classic>(net: &mut dyn Network, run_seed: u64) -> Validation 
 /// [`check_seed`], and the evaluations they count as (episodes over
 /// [`Classic::EPISODES`], rounded up).
 pub fn check<T: Classic>(net: &mut dyn Network, run_seed: u64) -> (Validation, u64) {
-    let p = play::<T>(net, check_seed(run_seed), CHECK_EPISODES, None);
-    let v = Validation {
-        mean: p.total / f64::from(CHECK_EPISODES),
-        worst: p.worst,
-        episodes: CHECK_EPISODES,
-    };
+    let seed = check_seed(run_seed);
+    let v = play::<T>(net, seed, CHECK_EPISODES, None).validation(seed, CHECK_EPISODES);
     (v, u64::from(CHECK_EPISODES.div_ceil(T::EPISODES)))
 }
 
@@ -168,8 +238,27 @@ pub fn check<T: Classic>(net: &mut dyn Network, run_seed: u64) -> (Validation, u
 struct Played {
     total: f64,
     worst: f64,
+    best: f64,
+    /// The sum of the returns' squares.
+    squares: f64,
     steps: f64,
     place: [f64; 2],
+}
+
+impl Played {
+    /// Its `episodes` episodes, drawn from `seed`, as a validation.
+    fn validation(&self, seed: u64, episodes: u32) -> Validation {
+        let n = f64::from(episodes);
+        let mean = self.total / n;
+        Validation {
+            mean,
+            worst: self.worst,
+            episodes,
+            best: self.best,
+            std: (self.squares / n - mean * mean).max(0.0).sqrt(),
+            seed,
+        }
+    }
 }
 
 /// Plays episodes 0…`episodes` of `T` started from `seed`, recording into `trace`.
@@ -180,6 +269,7 @@ fn play<T: Classic>(
     mut trace: Option<&mut Trace>,
 ) -> Played {
     let (mut total, mut worst, mut steps, mut place) = (0.0, f64::INFINITY, 0.0, [0.0; 2]);
+    let (mut best, mut squares) = (f64::NEG_INFINITY, 0.0);
     let (mut inputs, mut outputs) = ([0.0; MOST], [0.0; MOST]);
     let (inputs, outputs) = (&mut inputs[..T::INPUTS], &mut outputs[..T::OUTPUTS]);
     for k in 0..episodes {
@@ -208,10 +298,14 @@ fn play<T: Classic>(
         }
         total += ret;
         worst = f64::min(worst, ret);
+        best = f64::max(best, ret);
+        squares += ret * ret;
     }
     Played {
         total,
         worst,
+        best,
+        squares,
         steps,
         place,
     }

@@ -13,15 +13,13 @@
 //! MAP-Elites) is the mean position and mean speed over the steps, each
 //! scaled into [0, 1].
 
-use vivae_neat::driver::Evaluation;
 use vivae_neat::math::cos;
-use vivae_neat::{FeedForwardNetwork, Network};
 
-use super::classic::{self, Classic, Draws, argmax, clip};
+use super::TaskEntry;
+use super::classic::{Classic, Draws, argmax, clip};
 use super::hill::{car, sketch};
-use super::plain::{Plain, Trace, Validation, entry};
+use super::plain::entry;
 use super::sketch::Sketch;
-use super::{Stepped, TaskEntry};
 
 /// The task's registration (`--task mountain-car`).
 pub static TASK: TaskEntry = entry::<MountainCar>();
@@ -59,7 +57,7 @@ pub fn step([position, velocity]: [f64; 2], action: usize) -> ([f64; 2], bool) {
     ([position, velocity], terminated)
 }
 
-impl Plain for MountainCar {
+impl Classic for MountainCar {
     const NAME: &'static str = "mountain-car";
     const ABOUT: &'static str = "MountainCar-v0 (Gymnasium's dynamics)";
     const SCORING: &'static str =
@@ -67,38 +65,8 @@ impl Plain for MountainCar {
     const INPUTS: usize = 3;
     const OUTPUTS: usize = 3;
     const OUTPUT_MEANING: &'static str = "MountainCar-v0's action = argmax of out[0..3] (push left, none, right; the first on a tie); inputs position, velocity, 1";
-    const METRICS: &'static [&'static str] = &["worst", "steps"];
     const BEHAVIOUR: &'static [&'static str] = &["position", "speed"];
-    const STEPS: u64 = (5 * MAX_STEPS) as u64;
-    const TARGET: Option<f64> = Some(-110.0);
-    const TRACES: bool = true;
-    const STEPPED: Option<Stepped> = Some(classic::episode::<Self>);
-
-    fn evaluate(net: &mut dyn Network, seed: u64, trace: Option<&mut Trace>) -> Evaluation {
-        classic::evaluate::<Self>(net, seed, trace)
-    }
-
-    fn validate(net: &mut dyn Network, run_seed: u64) -> Option<Validation> {
-        Some(classic::validate::<Self>(net, run_seed))
-    }
-
-    fn check(net: &mut dyn Network, run_seed: u64) -> Option<(Validation, u64)> {
-        Some(classic::check::<Self>(net, run_seed))
-    }
-
-    /// Its episodes side by side (measured faster, the same bits).
-    fn evaluate_feed_forward(net: &FeedForwardNetwork, seed: u64) -> Option<Evaluation> {
-        Some(classic::evaluate_lanes::<Self>(net, seed))
-    }
-
-    fn sketch() -> Option<Sketch> {
-        Some(sketch(GOAL_POSITION, |inputs, outputs, shapes| {
-            car(inputs[0], MountainCar::act(outputs) as f64 - 1.0, shapes);
-        }))
-    }
-}
-
-impl Classic for MountainCar {
+    const THRESHOLD: f64 = -110.0;
     type State = [f64; 2];
     type Action = usize;
     const MAX_STEPS: u32 = MAX_STEPS;
@@ -135,6 +103,12 @@ impl Classic for MountainCar {
 
     fn action_of(value: f64) -> Option<usize> {
         [0.0, 1.0, 2.0].contains(&value).then_some(value as usize)
+    }
+
+    fn sketch() -> Option<Sketch> {
+        Some(sketch(GOAL_POSITION, |inputs, outputs, shapes| {
+            car(inputs[0], MountainCar::act(outputs) as f64 - 1.0, shapes);
+        }))
     }
 }
 

@@ -14,15 +14,13 @@
 //! Gymnasium's clip to [−1, 1] leaves as it is. The behaviour descriptor is
 //! MountainCar's: mean position and speed, scaled into [0, 1].
 
-use vivae_neat::driver::Evaluation;
 use vivae_neat::math::cos;
-use vivae_neat::{FeedForwardNetwork, Network};
 
-use super::classic::{self, Classic, Draws, clip};
+use super::TaskEntry;
+use super::classic::{Classic, Draws, clip};
 use super::hill::{car, sketch};
-use super::plain::{Plain, Trace, Validation, entry};
+use super::plain::entry;
 use super::sketch::Sketch;
-use super::{Stepped, TaskEntry};
 
 /// The task's registration (`--task mountain-car-continuous`).
 pub static TASK: TaskEntry = entry::<MountainCarContinuous>();
@@ -115,47 +113,15 @@ fn clip32(x: f32, low: f32, high: f32) -> f32 {
     if x < low { low } else { x }
 }
 
-impl Plain for MountainCarContinuous {
+impl Classic for MountainCarContinuous {
     const NAME: &'static str = "mountain-car-continuous";
     const ABOUT: &'static str = "MountainCarContinuous-v0 (Gymnasium's dynamics)";
     const SCORING: &'static str = "fitness = the mean return of 5 episodes (100 at the goal, -0.1*a^2 a step, at most 999 steps)";
     const INPUTS: usize = 3;
     const OUTPUTS: usize = 1;
     const OUTPUT_MEANING: &'static str = "MountainCarContinuous-v0's action = out[0] as float32 (a bipolar sigmoid, in [-1, 1]); inputs position, velocity, 1";
-    const METRICS: &'static [&'static str] = &["worst", "steps"];
     const BEHAVIOUR: &'static [&'static str] = &["position", "speed"];
-    const STEPS: u64 = (5 * MAX_STEPS) as u64;
-    const TARGET: Option<f64> = Some(90.0);
-    const TRACES: bool = true;
-    const STEPPED: Option<Stepped> = Some(classic::episode::<Self>);
-
-    fn evaluate(net: &mut dyn Network, seed: u64, trace: Option<&mut Trace>) -> Evaluation {
-        classic::evaluate::<Self>(net, seed, trace)
-    }
-
-    fn validate(net: &mut dyn Network, run_seed: u64) -> Option<Validation> {
-        Some(classic::validate::<Self>(net, run_seed))
-    }
-
-    fn check(net: &mut dyn Network, run_seed: u64) -> Option<(Validation, u64)> {
-        Some(classic::check::<Self>(net, run_seed))
-    }
-
-    /// Its episodes side by side: they end late if at all, so lanes seldom idle.
-    fn evaluate_feed_forward(net: &FeedForwardNetwork, seed: u64) -> Option<Evaluation> {
-        Some(classic::evaluate_lanes::<Self>(net, seed))
-    }
-
-    /// MountainCar's picture, its flag at this goal and the arrow as long as the force.
-    fn sketch() -> Option<Sketch> {
-        Some(sketch(GOAL_POSITION, |inputs, outputs, shapes| {
-            let force = f64::from(MountainCarContinuous::act(outputs)).clamp(-1.0, 1.0);
-            car(inputs[0], force, shapes);
-        }))
-    }
-}
-
-impl Classic for MountainCarContinuous {
+    const THRESHOLD: f64 = 90.0;
     type State = State;
     type Action = f32;
     const MAX_STEPS: u32 = MAX_STEPS;
@@ -200,6 +166,14 @@ impl Classic for MountainCarContinuous {
     /// Any number, as float32 (Gymnasium's action space holds float32).
     fn action_of(value: f64) -> Option<f32> {
         Some(value as f32)
+    }
+
+    /// MountainCar's picture, its flag at this goal and the arrow as long as the force.
+    fn sketch() -> Option<Sketch> {
+        Some(sketch(GOAL_POSITION, |inputs, outputs, shapes| {
+            let force = f64::from(MountainCarContinuous::act(outputs)).clamp(-1.0, 1.0);
+            car(inputs[0], force, shapes);
+        }))
     }
 }
 /// Where the car is and how fast it goes, each scaled into [0, 1] (its

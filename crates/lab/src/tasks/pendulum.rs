@@ -18,14 +18,12 @@
 
 use std::f64::consts::PI;
 
-use vivae_neat::driver::Evaluation;
 use vivae_neat::math::{cos, fmod, sin};
-use vivae_neat::{FeedForwardNetwork, Network};
 
-use super::classic::{self, Classic, Draws, clip};
-use super::plain::{Plain, Trace, Validation, entry};
+use super::TaskEntry;
+use super::classic::{Classic, Draws, clip};
+use super::plain::entry;
 use super::sketch::{Shape, Sketch};
-use super::{Stepped, TaskEntry};
 
 /// The task's registration (`--task pendulum`).
 pub static TASK: TaskEntry = entry::<Pendulum>();
@@ -82,48 +80,6 @@ pub fn step([th, thdot]: [f64; 2], u: f32) -> ([f64; 2], f64) {
     ([newth, newthdot], -costs)
 }
 
-impl Plain for Pendulum {
-    const NAME: &'static str = "pendulum";
-    const ABOUT: &'static str = "Pendulum-v1 (Gymnasium's dynamics)";
-    const SCORING: &'static str = "fitness = the mean return of 5 episodes of 200 steps (minus the angle^2, 0.1 speed^2, 0.001 torque^2 a step); no Gymnasium threshold: -200 here";
-    const INPUTS: usize = 4;
-    const OUTPUTS: usize = 1;
-    const OUTPUT_MEANING: &'static str = "Pendulum-v1's torque = 2*out[0] as float32 (out[0] a bipolar sigmoid, in [-1, 1]); inputs cos theta, sin theta, theta', 1";
-    const METRICS: &'static [&'static str] = &["worst", "steps"];
-    const BEHAVIOUR: &'static [&'static str] = &["height", "speed"];
-    const STEPS: u64 = (5 * MAX_STEPS) as u64;
-    const TARGET: Option<f64> = Some(-200.0);
-    const TRACES: bool = true;
-    const STEPPED: Option<Stepped> = Some(classic::episode::<Self>);
-
-    fn evaluate(net: &mut dyn Network, seed: u64, trace: Option<&mut Trace>) -> Evaluation {
-        classic::evaluate::<Self>(net, seed, trace)
-    }
-
-    fn validate(net: &mut dyn Network, run_seed: u64) -> Option<Validation> {
-        Some(classic::validate::<Self>(net, run_seed))
-    }
-
-    fn check(net: &mut dyn Network, run_seed: u64) -> Option<(Validation, u64)> {
-        Some(classic::check::<Self>(net, run_seed))
-    }
-
-    /// Its episodes side by side: they all last their 200 steps, so no lane idles.
-    fn evaluate_feed_forward(net: &FeedForwardNetwork, seed: u64) -> Option<Evaluation> {
-        Some(classic::evaluate_lanes::<Self>(net, seed))
-    }
-
-    /// Gymnasium's picture: the rod from its pivot (θ = 0 upright, θ
-    /// anticlockwise) and the torque as a curved arrow as long as it is strong.
-    fn sketch() -> Option<Sketch> {
-        Some(Sketch {
-            view: [-1.4, -1.4, 1.4, 1.4],
-            backdrop: vec![Shape::segment([-0.25, 1.0], [0.25, 1.0], 0.01, "#9e9e9e")],
-            frame: picture,
-        })
-    }
-}
-
 /// The rod from the observation (cos θ, sin θ) and the torque chosen.
 fn picture(inputs: &[f64], outputs: &[f64], shapes: &mut Vec<Shape>) {
     let (c, s) = (inputs[0], inputs[1]);
@@ -146,6 +102,16 @@ fn picture(inputs: &[f64], outputs: &[f64], shapes: &mut Vec<Shape>) {
 }
 
 impl Classic for Pendulum {
+    const NAME: &'static str = "pendulum";
+    const ABOUT: &'static str = "Pendulum-v1 (Gymnasium's dynamics)";
+    const SCORING: &'static str = "fitness = the mean return of 5 episodes of 200 steps (minus the angle^2, 0.1 speed^2, 0.001 torque^2 a step); no Gymnasium threshold: -200 here";
+    const INPUTS: usize = 4;
+    const OUTPUTS: usize = 1;
+    const OUTPUT_MEANING: &'static str = "Pendulum-v1's torque = 2*out[0] as float32 (out[0] a bipolar sigmoid, in [-1, 1]); inputs cos theta, sin theta, theta', 1";
+    const BEHAVIOUR: &'static [&'static str] = &["height", "speed"];
+    const THRESHOLD: f64 = -200.0;
+    const THRESHOLD_SOURCE: &'static str =
+        "Gymnasium gives none; vivae's bar (docs/howto/classic-control.md)";
     type State = [f64; 2];
     type Action = f32;
     const MAX_STEPS: u32 = MAX_STEPS;
@@ -184,5 +150,15 @@ impl Classic for Pendulum {
     /// Any number, as float32 (Gymnasium's action space holds float32).
     fn action_of(value: f64) -> Option<f32> {
         Some(value as f32)
+    }
+
+    /// Gymnasium's picture: the rod from its pivot (θ = 0 upright, θ
+    /// anticlockwise) and the torque as a curved arrow as long as it is strong.
+    fn sketch() -> Option<Sketch> {
+        Some(Sketch {
+            view: [-1.4, -1.4, 1.4, 1.4],
+            backdrop: vec![Shape::segment([-0.25, 1.0], [0.25, 1.0], 0.01, "#9e9e9e")],
+            frame: picture,
+        })
     }
 }

@@ -27,7 +27,9 @@ use crate::search::TaskFacts;
 use crate::tasks::maps::TrainingMap;
 use crate::tasks::sketch::{Film, Sketch};
 use crate::tasks::unread::first_change;
-use crate::tasks::{Finished, HeaderContext, RunTask, Stepped, TargetProgress, TaskEntry};
+use crate::tasks::{
+    Finished, HeaderContext, RunTask, Stepped, TargetProgress, TaskEntry, Threshold,
+};
 
 /// A task of plain NEAT networks: its shape and how a network is scored.
 pub trait Plain: Send + Sync + 'static {
@@ -60,6 +62,11 @@ pub trait Plain: Send + Sync + 'static {
     const STEPS: u64;
     /// The fitness at which it counts as solved: the run stops there.
     const TARGET: Option<f64> = None;
+    /// The mean return at which its validated champion solves it (its
+    /// entry's [`TaskEntry::reward_threshold`]), for a task with [`Plain::validate`].
+    const REWARD_THRESHOLD: Option<Threshold> = None;
+    /// Episodes of its check ([`Plain::check`]), for the run's header; 0: none.
+    const CHECK_EPISODES: u32 = 0;
     /// Whether [`Plain::evaluate`] fills a trace when given one (replay).
     const TRACES: bool = false;
     /// Its episode stepped from a given state under given actions (a
@@ -106,6 +113,13 @@ pub struct Validation {
     pub worst: f64,
     /// Episodes played.
     pub episodes: u32,
+    /// The best return.
+    pub best: f64,
+    /// The returns' standard deviation (over the episodes, as NumPy's `std`).
+    pub std: f64,
+    /// The seed its episodes 0, 1, … are drawn from (as a training
+    /// evaluation's episodes are from the evaluation's seed).
+    pub seed: u64,
 }
 
 /// An episode as a plain task's evaluation records it, for a replay.
@@ -187,6 +201,8 @@ pub const fn entry<T: Plain>() -> TaskEntry {
         substrate: false,
         substrate_episode: None,
         stepped: T::STEPPED,
+        reward_threshold: T::REWARD_THRESHOLD,
+        host: None,
     }
 }
 
@@ -304,17 +320,6 @@ impl<T: Plain> PlainRun<T> {
         }
     }
 
-    /// `genome` validated for this run, and whether that solves the task
-    /// (its mean reaches the target); none for a task without validation.
-    pub fn validation(&self, genome: &Genome) -> Option<(Validation, bool)> {
-        let v = if T::RECURRENT {
-            T::validate(&mut RecurrentNetwork::from_genome(genome), self.run_seed)
-        } else {
-            T::validate(&mut FeedForwardNetwork::from_genome(genome), self.run_seed)
-        }?;
-        Some((v, T::TARGET.is_some_and(|t| v.mean >= t)))
-    }
-
     /// `genome` checked for this run ([`Plain::check`]).
     fn checked(&self, genome: &Genome) -> Option<(Validation, u64)> {
         if T::RECURRENT {
@@ -423,14 +428,27 @@ impl<T: Plain> RunTask for PlainRun<T> {
         Some((T::TARGET.is_some_and(|t| v.mean >= t), cost))
     }
 
+    fn validation(&self, genome: &Genome) -> Option<(Validation, bool)> {
+        let v = if T::RECURRENT {
+            T::validate(&mut RecurrentNetwork::from_genome(genome), self.run_seed)
+        } else {
+            T::validate(&mut FeedForwardNetwork::from_genome(genome), self.run_seed)
+        }?;
+        let threshold = T::REWARD_THRESHOLD.map(|t| t.value).or(T::TARGET);
+        Some((v, threshold.is_some_and(|t| v.mean >= t)))
+    }
+
     fn generation_fields(&self, progress: &TargetProgress, evaluations: &[Evaluation]) -> String {
         let solvers = evaluations.iter().filter(|e| self.reached_target(e));
         format!(",{},{}", solvers.count(), progress.evaluations)
     }
 
     fn header(&self, c: &Config, ctx: &HeaderContext<'_>) -> String {
-        let stop = T::TARGET.map_or(String::new(), |t| {
-            format!("; the run stops when an evaluation reaches {t}")
+        let stop = T::TARGET.map_or(String::new(), |t| match T::CHECK_EPISODES {
+            0 => format!("; the run stops when an evaluation reaches {t}"),
+            n => format!(
+                "; the run stops when an evaluation reaches {t} and its genome's mean over {n} check episodes (never trained on) does too"
+            ),
         });
         format!(
             "vivae {}: {} (task {})\n\
@@ -474,10 +492,15 @@ impl<T: Plain> RunTask for PlainRun<T> {
             ),
         };
         let (validated, fields) = self.validation_text(f.champion);
+        let validation_file = if validated.is_empty() {
+            ""
+        } else {
+            ", validation.json"
+        };
         let person = format!(
             "done: {} generations in {wall:.1} s{verdict}\n\
              champion: fitness {:.3} (generation {}){validated}\n\
-             run directory: {dir}/ (config.toml, champion.json, generations.csv, report.html, checkpoints/)\n\
+             run directory: {dir}/ (config.toml, champion.json, generations.csv{validation_file}, report.html, checkpoints/)\n\
              its network: vivae export {dir} --format onnx|c|json --out FILE",
             f.generations, f.fitness, f.generation,
         );

@@ -13,6 +13,7 @@ use vivae_neat::{Genome, GenomeSpec};
 
 use super::TargetProgress;
 use super::maps::TrainingMap;
+use super::plain::Validation;
 use super::sketch::Film;
 use super::substrate::SubstrateEpisodeOf;
 use crate::config::{Config, ConfigError, Section, SharedSection, TaskName};
@@ -102,6 +103,25 @@ pub struct TaskEntry {
     /// classic-control task, compared step by step with Gymnasium's by the
     /// Python package): that episode; `None` otherwise.
     pub stepped: Option<Stepped>,
+    /// For a task whose runs end in a validation of their champion on fresh
+    /// episodes (a classic-control task): the mean return that solves it
+    /// there; the `gym-classic` pack runs every task that declares one.
+    pub reward_threshold: Option<Threshold>,
+    /// For a task whose episodes a host program plays (the `gymnasium`
+    /// task's, played by Gymnasium in Python): where its runs are run, which
+    /// the `vivae` program names instead of running it; `None`: any program
+    /// runs it.
+    pub host: Option<&'static str>,
+}
+
+/// The mean return at which a validated champion solves its task, and
+/// where that bar comes from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Threshold {
+    /// The mean return.
+    pub value: f64,
+    /// Where it comes from (e.g. Gymnasium's `reward_threshold`), for a table's source column.
+    pub source: &'static str,
 }
 
 /// [`TaskEntry::check_map`] of a task that can use any map that loads.
@@ -467,6 +487,13 @@ pub trait RunTask: Task + fmt::Debug + Send + Sync {
     /// the task's check episodes (the run stops only then), and the
     /// evaluations the check counts as; none: reaching it is enough.
     fn holds_target(&self, _genome: &Genome) -> Option<(bool, u64)> {
+        None
+    }
+
+    /// `genome` validated on fresh episodes of the run (for a task with a
+    /// [`TaskEntry::reward_threshold`]), and whether its mean reaches that
+    /// threshold: the run solved the task; `None` for a task without validation.
+    fn validation(&self, _genome: &Genome) -> Option<(Validation, bool)> {
         None
     }
 

@@ -139,6 +139,15 @@ fn conclude_without_figures(
     };
     let (person, line) = (run.task().summary(&finished))
         .ok_or_else(|| bad_input("the run's task has no summary"))?;
+    // A task whose champion is validated: validation.json, before the report shows it.
+    vivae_lab::tasks::validation::write(
+        run.dir(),
+        run.task(),
+        &champion.genome,
+        champion.generation,
+        champion.fitness,
+    )
+    .context("writing validation.json")?;
     // A task without figures of its own: report.html with its curves.
     let report = (run.task().report_curves())
         .then(|| crate::report_html::write(run.dir()))

@@ -33,6 +33,8 @@ pub static TASK: TaskEntry = TaskEntry {
     substrate: true,
     substrate_episode: Some(super::substrate::episode),
     stepped: None,
+    reward_threshold: None,
+    host: None,
 };
 
 /// With another task than driving: refuses `experiment.placements` (and its

@@ -60,7 +60,12 @@ pub static TASK: TaskEntry = TaskEntry {
     substrate: false,
     substrate_episode: None,
     stepped: None,
+    reward_threshold: None,
+    host: Some(HOST),
 };
+
+/// Where a run of the task is run: its entry's [`TaskEntry::host`].
+pub const HOST: &str = "the Python package (vivae.gym.evolve, vivae.gym.resume)";
 
 /// Plays a batch of evaluations of a Gymnasium environment: what the host
 /// program installs with [`set_player`].
@@ -155,9 +160,7 @@ fn build(config: &Config, _maps: &[TrainingMap]) -> Result<Box<dyn RunTask>> {
     };
     let Some(player) = player else {
         return Err(bad_input(format!(
-            "experiment.task = {NAME}: its episodes ({}) are played by Gymnasium in Python: \
-             run and resume it with the Python package (vivae.gym.evolve, vivae.gym.resume); \
-             `vivae report` draws its curves",
+            "experiment.task = {NAME}: its episodes ({}) are played from Python: run and resume it with {HOST}; `vivae report` draws its curves",
             env.env
         )));
     };

@@ -49,6 +49,8 @@ pub static TASK: TaskEntry = TaskEntry {
     substrate: false,
     substrate_episode: None,
     stepped: None,
+    reward_threshold: None,
+    host: None,
 };
 
 /// The maze task of a maze run's `config` on `scenario`; bad input (naming

@@ -51,6 +51,8 @@ pub static TASK: TaskEntry = TaskEntry {
     substrate: false,
     substrate_episode: None,
     stepped: None,
+    reward_threshold: None,
+    host: None,
 };
 
 /// The predator–prey arenas as shipped scenarios (`--scenario predator-prey`).

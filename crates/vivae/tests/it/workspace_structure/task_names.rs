@@ -14,13 +14,7 @@ use super::{ModPath, SourceFile, Tok, Token, linear_path, parsed_modules, use_tr
 /// Files outside a task's folder that still name a task module in code, as
 /// `crate: file: task`, not moved yet: the test fails on any other, and on a
 /// listed one that no longer names it (so the list only shrinks).
-const TASK_NAMINGS_NOT_YET_REMOVED: &[&str] = &[
-    "lab: reproduce/gym.rs: acrobot",
-    "lab: reproduce/gym.rs: cartpole",
-    "lab: reproduce/gym.rs: mountain_car",
-    "lab: reproduce/gym.rs: mountain_car_continuous",
-    "lab: reproduce/gym.rs: pendulum",
-];
+const TASK_NAMINGS_NOT_YET_REMOVED: &[&str] = &[];
 
 #[test]
 fn no_file_outside_a_tasks_folder_names_the_task() {
