@@ -31,102 +31,38 @@ import time
 
 import gymnasium as gym
 import multineat
-import numpy as np
 
-MASK = (1 << 64) - 1
-# "validate" in ASCII: the validation stream's tag (vivae's tasks::classic::VALIDATION_TAG).
-VALIDATION_TAG = 0x7661_6C69_6461_7465
-EPISODES, VALIDATION_EPISODES = 5, 100
+from gym_classic_protocol import (
+    EPISODES,
+    TASKS,
+    VALIDATION_EPISODES,
+    eval_seed,
+    mean_return,
+    validation_seed,
+)
 
-
-def splitmix64(z):
-    z = (z + 0x9E3779B97F4A7C15) & MASK
-    z = ((z ^ (z >> 30)) * 0xBF58476D1CE4E5B9) & MASK
-    z = ((z ^ (z >> 27)) * 0x94D049BB133111EB) & MASK
-    return z ^ (z >> 31)
-
-
-class Draws:
-    """vivae's tasks::classic::Draws: episode k of the evaluation of `seed`."""
-
-    def __init__(self, seed, k):
-        self.s = splitmix64(seed ^ k)
-
-    def uniform(self, low, high):
-        self.s = splitmix64(self.s)
-        return low + (high - low) * ((self.s >> 11) / float(1 << 53))
-
-
-def eval_seed(run_seed, generation, index):
-    return splitmix64(splitmix64(splitmix64(run_seed) ^ generation) ^ index)
-
-
-def validation_seed(run_seed):
-    return splitmix64(run_seed ^ VALIDATION_TAG)
-
-
-def cartpole_start(d):
-    return np.array([d.uniform(-0.05, 0.05) for _ in range(4)])
-
-
-def acrobot_start(d):
-    return np.array([d.uniform(-0.1, 0.1) for _ in range(4)], dtype=np.float32)
-
-
-def car_start(d):
-    return np.array([d.uniform(-0.6, -0.4), 0.0])
-
-
-def pendulum_start(d):
-    return np.array([d.uniform(-math.pi, math.pi), d.uniform(-1.0, 1.0)])
-
-
-def argmax(out):
-    return int(np.argmax(out))
-
-
-# Per task: Gymnasium id, threshold, start draw, how outputs act, inputs,
-# outputs, fitness offset (the lowest return the task can give, so fitness ≥ 0).
-TASKS = {
-    "cartpole": ("CartPole-v1", 475.0, cartpole_start, argmax, 4, 2, 0.0),
-    "acrobot": ("Acrobot-v1", -100.0, acrobot_start, argmax, 6, 3, 500.0),
-    "mountain-car": ("MountainCar-v0", -110.0, car_start, argmax, 2, 3, 200.0),
-    # Unsigned-sigmoid outputs lie in [0, 1]: rescaled to the action's range.
-    "mountain-car-continuous": (
-        "MountainCarContinuous-v0", 90.0, car_start,
-        lambda out: np.array([2.0 * out[0] - 1.0], dtype=np.float32), 2, 1, 100.0),
-    "pendulum": (
-        "Pendulum-v1", -200.0, pendulum_start,
-        lambda out: np.array([4.0 * out[0] - 2.0], dtype=np.float32), 3, 1,
-        200.0 * (math.pi ** 2 + 0.1 * 64.0 + 0.001 * 4.0)),
+# The lowest return each task can give: MultiNEAT's fitness is the mean
+# return plus it, so that fitness is ≥ 0 as its selection wants.
+OFFSET = {
+    "cartpole": 0.0,
+    "acrobot": 500.0,
+    "mountain-car": 200.0,
+    "mountain-car-continuous": 100.0,
+    "pendulum": 200.0 * (math.pi ** 2 + 0.1 * 64.0 + 0.001 * 4.0),
 }
 
 
-def observation(env):
-    u = env.unwrapped
-    for name in ("_get_ob", "_get_obs"):
-        if hasattr(u, name):
-            return getattr(u, name)()
-    return np.array(u.state, dtype=np.float32)
+def policy(net):
+    """The network's outputs for an observation (plus the 1.0 bias input),
+    one `Input` + `Activate` per step, and how it is flushed at an episode's
+    start."""
 
-
-def episode_return(env, net, start, act):
-    env.reset(seed=0)
-    env.unwrapped.state = start
-    obs, total = observation(env), 0.0
-    net.Flush()
-    while True:
+    def outputs(obs):
         net.Input([float(x) for x in obs] + [1.0])
         net.Activate()
-        obs, reward, terminated, truncated, _ = env.step(act(list(net.Output())))
-        total += float(reward)
-        if terminated or truncated:
-            return total
+        return list(net.Output())
 
-
-def mean_return(env, net, seed, episodes, start, act):
-    returns = [episode_return(env, net, start(Draws(seed, k)), act) for k in range(episodes)]
-    return sum(returns) / episodes
+    return outputs, net.Flush
 
 
 def phenotype(genome):
@@ -136,7 +72,8 @@ def phenotype(genome):
 
 
 def main(task, run_seed, budget, cpu_limit):
-    env_id, threshold, start, act, inputs, outputs, offset = TASKS[task]
+    env_id, threshold, start, act, inputs, outputs = TASKS[task]
+    offset = OFFSET[task]
     env = gym.make(env_id)
     params = multineat.Parameters()
     sigmoid = multineat.ActivationFunction.UNSIGNED_SIGMOID
@@ -147,8 +84,9 @@ def main(task, run_seed, budget, cpu_limit):
     generation = 0
     while solver is None:
         for index, g in enumerate(multineat.GetGenomeList(population)):
-            mean = mean_return(env, phenotype(g), eval_seed(run_seed, generation, index),
-                               EPISODES, start, act)
+            outputs_of, flush = policy(phenotype(g))
+            mean = mean_return(env, outputs_of, eval_seed(run_seed, generation, index),
+                               EPISODES, start, act, flush)
             g.SetFitness(mean + offset)
             g.SetEvaluated()
             evaluations += 1
@@ -165,8 +103,9 @@ def main(task, run_seed, budget, cpu_limit):
         generation += 1
     cpu, wall = time.process_time() - cpu0, time.perf_counter() - wall0
     champion = solver if solver is not None else best[1]
-    validated = mean_return(env, phenotype(champion), validation_seed(run_seed),
-                            VALIDATION_EPISODES, start, act)
+    outputs_of, flush = policy(phenotype(champion))
+    validated = mean_return(env, outputs_of, validation_seed(run_seed),
+                            VALIDATION_EPISODES, start, act, flush)
     cpu_all, wall_all = time.process_time() - cpu0, time.perf_counter() - wall0
     print(
         f"task={task} seed={run_seed} stopped={'yes' if solver is not None else 'no'} "
