@@ -40,7 +40,7 @@ use crate::rundir::{
 use crate::tasks::driving::episode::Episode;
 use crate::tasks::driving::training::Training;
 use crate::tasks::maps::{TrainingMap, is_multi_map, load_run};
-use crate::tasks::{RunTask, StoredTarget, TargetProgress};
+use crate::tasks::{RunTask, StoredTarget, TargetProgress, config_text};
 use background::CheckpointWriter;
 use checkpoint::*;
 pub use checkpoint::{population_from_checkpoint, population_from_checkpoint_text};
@@ -245,10 +245,7 @@ impl Run {
         }
         truncate_lines(&dir.join(files::BEST_GENOMES), cp.progress.done)?;
         // The resolved config records the (possibly extended) total.
-        write_atomic(
-            &dir.join(files::CONFIG),
-            crate::tasks::config_text(&cp.config).as_bytes(),
-        )?;
+        write_atomic(&dir.join(files::CONFIG), config_text(&cp.config).as_bytes())?;
         Ok(Run {
             dir: dir.to_path_buf(),
             _lock: lock,
