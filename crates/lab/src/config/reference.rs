@@ -27,11 +27,8 @@ impl Config {
     /// The config reference as a whole Markdown page (docs/reference/config.md):
     /// what the file is, then one section per TOML table with its keys'
     /// table (the sections tasks own, `owned`, last), each top-level section
-    /// saying which tasks read it (`read_by` of its name: the tasks' names).
-    pub fn markdown_reference_page(
-        owned: &[Section],
-        read_by: &dyn Fn(&str) -> Vec<&'static str>,
-    ) -> String {
+    /// saying which tasks read it (`read_by` of its name, e.g. `every task`).
+    pub fn markdown_reference_page(owned: &[Section], read_by: &dyn Fn(&str) -> String) -> String {
         let sections = reference(owned);
         let mut out = String::from(
             "# Config reference\n\n\
@@ -49,7 +46,7 @@ impl Config {
         );
         out.push_str("| section | what it holds | read by |\n| --- | --- | --- |\n");
         // A sub-section is read by the tasks that read its section.
-        let readers = |path: &str| read_by(path.split('.').next().unwrap_or(path)).join(", ");
+        let readers = |path: &str| read_by(path.split('.').next().unwrap_or(path));
         for section in &sections {
             let _ = writeln!(
                 out,
@@ -66,7 +63,7 @@ impl Config {
                 let _ = write!(out, "{}\n\n", section.what);
             }
             if !section.path.contains('.') {
-                let _ = write!(out, "Read by the tasks: {}.\n\n", readers(&section.path));
+                let _ = write!(out, "Read by {}.\n\n", readers(&section.path));
             }
             if section.keys.is_empty() {
                 out.push_str("No keys of its own: its sub-sections follow.\n");

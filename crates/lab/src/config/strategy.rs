@@ -9,9 +9,6 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
-/// Names of the metrics an evaluation carries when measured, in order.
-pub const METRICS: [&str; 2] = ["contacts", "on_road"];
-
 /// Which behaviour descriptor an episode reports (see [`crate::tasks::driving::descriptors`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "kebab-case")]

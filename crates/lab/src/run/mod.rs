@@ -38,7 +38,7 @@ use crate::rundir::{
     remove_abandoned_builds, remove_stale_temporaries, truncate, truncate_lines,
 };
 use crate::tasks::maps::{TrainingMap, load_run};
-use crate::tasks::{RunTask, StoredTarget, TargetProgress};
+use crate::tasks::{RunTask, StoredTarget, TargetProgress, config_text};
 use background::CheckpointWriter;
 use checkpoint::*;
 pub use checkpoint::{population_from_checkpoint, population_from_checkpoint_text};
@@ -200,10 +200,7 @@ impl Run {
         }
         truncate_lines(&dir.join(files::BEST_GENOMES), cp.progress.done)?;
         // The resolved config records the (possibly extended) total.
-        write_atomic(
-            &dir.join(files::CONFIG),
-            crate::tasks::config_text(&cp.config).as_bytes(),
-        )?;
+        write_atomic(&dir.join(files::CONFIG), config_text(&cp.config).as_bytes())?;
         Ok(Run {
             dir: dir.to_path_buf(),
             _lock: lock,

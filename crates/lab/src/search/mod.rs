@@ -34,7 +34,7 @@ mod start;
 pub use dynamic::{DynStrategy, Search};
 pub use map_elites::{CellsKind, MapElitesConfig};
 pub use novelty::novelty_defaults;
-pub use nsga2::{Nsga2Config, front_objective_names, objective, objective_among};
+pub use nsga2::{Nsga2Config, front_objective_names, objective_among};
 pub use registry::{
     Bounds, Needs, ReportOf, Settings, Start, StrategyEntry, StrategySettings, check, entries,
     entry, entry_of, register, state_of,
@@ -223,7 +223,8 @@ pub(crate) fn bad_setting(key: &str, value: &dyn std::fmt::Debug, why: &str) -> 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::config::strategy::METRICS;
+    /// A task's metrics (the driving task's).
+    const METRICS: [&str; 2] = ["contacts", "on_road"];
 
     #[test]
     fn bad_settings_name_their_key() {

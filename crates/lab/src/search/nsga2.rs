@@ -13,7 +13,6 @@ use vivae_neat::{Genome, NeatError};
 
 use crate::search::StrategyConfig;
 use crate::config::Config;
-use crate::config::strategy::METRICS;
 use crate::error::Result;
 use crate::io::{bad_input, write_atomic};
 use crate::search::files;
@@ -41,11 +40,6 @@ impl Default for Nsga2Config {
             crossover_probability: 0.5,
         }
     }
-}
-
-/// The objective `name` (`fitness`, `contacts`, `on_road`, optionally with a leading `-`).
-pub fn objective(name: &str) -> Option<Objective> {
-    objective_among(name, &METRICS)
 }
 
 /// The objective `name`: `fitness` or one of a task's `metrics`, optionally
@@ -236,12 +230,15 @@ pub fn front_objective_names(config: &Config) -> Vec<String> {
 mod tests {
     use super::*;
 
+    /// A task's metrics (the driving task's).
+    const METRICS: [&str; 2] = ["contacts", "on_road"];
+
     #[test]
     fn objectives_parse_with_their_direction() {
-        let o = objective("-contacts").unwrap();
+        let o = objective_among("-contacts", &METRICS).unwrap();
         assert_eq!((o.measure, o.maximise), (Measure::Metric(0), false));
-        assert_eq!(objective("fitness").unwrap().measure, Measure::Fitness);
-        assert_eq!(objective("on_road").unwrap().measure, Measure::Metric(1));
-        assert!(objective("speed").is_none() && objective("--fitness").is_none());
+        assert_eq!(objective_among("fitness", &METRICS).unwrap().measure, Measure::Fitness);
+        assert_eq!(objective_among("on_road", &METRICS).unwrap().measure, Measure::Metric(1));
+        assert!(objective_among("speed", &METRICS).is_none() && objective_among("--fitness", &METRICS).is_none());
     }
 }

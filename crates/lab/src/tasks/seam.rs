@@ -374,6 +374,17 @@ pub fn readers(name: &str) -> Vec<&'static str> {
     all.filter(|t| reads(t)).map(|t| t.name).collect()
 }
 
+/// Who reads the config section `name` ([`readers`]), for a person:
+/// `every task` or the tasks' names.
+pub fn read_by(name: &str) -> String {
+    let readers = readers(name);
+    if readers.len() == super::entries().len() {
+        "every task".into()
+    } else {
+        readers.join(", ")
+    }
+}
+
 /// The commented default config of task `name` (`vivae config default
 /// --task`): its defaults, only the sections it reads.
 pub fn default_commented(name: &str) -> std::result::Result<String, String> {

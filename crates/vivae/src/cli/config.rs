@@ -43,7 +43,7 @@ pub fn run(command: ConfigCommand) -> anyhow::Result<ExitCode> {
             print!("{text}")
         }
         ConfigCommand::Reference { table: false } => {
-            let read_by = vivae_lab::tasks::readers;
+            let read_by = vivae_lab::tasks::read_by;
             print!("{}", Config::markdown_reference_page(&sections, &read_by))
         }
         ConfigCommand::Reference { table: true } => {

@@ -40,7 +40,10 @@ use crate::tasks::driving::behaviour::BehaviourMeter;
 use crate::tasks::driving::fitness::Fitness;
 use crate::tasks::driving::rollout::{Drive, Rollout};
 
-pub use crate::config::strategy::{BehaviourKind, METRICS, TRAJECTORY_SAMPLES};
+pub use crate::config::strategy::{BehaviourKind, TRAJECTORY_SAMPLES};
+
+/// Names of the metrics a driving evaluation carries when measured, in order.
+pub const METRICS: [&str; 2] = ["contacts", "on_road"];
 
 /// What an episode measures besides its fitness.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -19,7 +19,7 @@ pub static TASK: TaskEntry = TaskEntry {
     name: TaskName::DRIVING,
     default_config: Config::default,
     validate: |c| FitnessConfig::of(c).check(),
-    metric_names: &crate::config::strategy::METRICS,
+    metric_names: &crate::tasks::driving::descriptors::METRICS,
     generation_columns: "",
     build,
     own_driver: None,
