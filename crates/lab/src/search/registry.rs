@@ -9,7 +9,6 @@ use serde::{Serialize, de::DeserializeOwned};
 use vivae_neat::{GenomeSpec, Population};
 
 use crate::config::Config;
-use crate::config::strategy::BehaviourKind;
 use crate::error::Result;
 use crate::io::bad_input;
 use crate::search::StrategyConfig;
@@ -225,13 +224,6 @@ pub fn entry_of(config: &Config) -> Result<&'static StrategyEntry> {
 pub fn check(config: &Config, metrics: &[&str]) -> std::result::Result<(), String> {
     let s = &StrategyConfig::of(config);
     let e = entry(s.kind.name()).map_err(|why| format!("strategy.kind = {why}"))?;
-    let multi_map = !config.experiment.scenarios.is_empty();
-    if e.needs.behaviour && s.behaviour == BehaviourKind::EndPositions && multi_map {
-        return Err(format!(
-            "strategy.behaviour = {:?}: one map only (maps have their own robots): use end-position on several maps",
-            s.behaviour.name()
-        ));
-    }
     if config.substrate.es.leo_seed && !e.takes_population {
         return Err(format!(
             "substrate.es.leo_seed = true: a {} run starts from minimal genomes (only {} runs start from the seed)",

@@ -35,12 +35,28 @@
 use vivae_neat::driver::Evaluation;
 use vivae_sim::World;
 
+use crate::config::Config;
 use crate::search::StrategyConfig;
 use crate::tasks::driving::behaviour::BehaviourMeter;
 use crate::tasks::driving::fitness::Fitness;
 use crate::tasks::driving::rollout::{Drive, Rollout};
 
 pub use crate::config::strategy::{BehaviourKind, TRAJECTORY_SAMPLES};
+
+/// Refuses a behaviour descriptor the run's maps cannot give (the message
+/// names the key): `end-positions` on several maps, whose robots differ.
+pub fn check(c: &Config) -> std::result::Result<(), String> {
+    let s = StrategyConfig::of(c);
+    let searched = crate::search::entry(s.kind.name()).is_ok_and(|e| e.needs.behaviour);
+    let multi_map = !c.experiment.scenarios.is_empty();
+    if searched && s.behaviour == BehaviourKind::EndPositions && multi_map {
+        return Err(format!(
+            "strategy.behaviour = {:?}: one map only (maps have their own robots): use end-position on several maps",
+            s.behaviour.name()
+        ));
+    }
+    Ok(())
+}
 
 /// Names of the metrics a driving evaluation carries when measured, in order.
 pub const METRICS: [&str; 2] = ["contacts", "on_road"];
@@ -197,6 +213,30 @@ pub fn mean_of(parts: &[&[f64]]) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn end_positions_are_refused_on_several_maps_only() {
+        let config = |behaviour, maps: &[&str]| {
+            let mut c = Config::default();
+            StrategyConfig::update(&mut c, |s| {
+                s.kind = "novelty".into();
+                s.behaviour = behaviour;
+            });
+            c.experiment.scenarios = maps.iter().map(|m| m.to_string()).collect();
+            c
+        };
+        let two = ["oval", "roads"];
+        let why = check(&config(BehaviourKind::EndPositions, &two)).unwrap_err();
+        assert!(
+            why.starts_with("strategy.behaviour = \"end-positions\""),
+            "{why}"
+        );
+        assert_eq!(check(&config(BehaviourKind::EndPositions, &[])), Ok(()));
+        assert_eq!(check(&config(BehaviourKind::EndPosition, &two)), Ok(()));
+        // The task's validation refuses it, for the driving task only.
+        let why = crate::tasks::check(&config(BehaviourKind::EndPositions, &two)).unwrap_err();
+        assert!(why.to_string().contains("one map only"), "{why}");
+    }
 
     #[test]
     fn a_trajectory_takes_its_samples_at_evenly_spaced_steps() {

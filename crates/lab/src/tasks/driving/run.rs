@@ -18,7 +18,11 @@ use crate::tasks::{HeaderContext, RunTask, TaskEntry};
 pub static TASK: TaskEntry = TaskEntry {
     name: TaskName::DRIVING,
     default_config: Config::default,
-    validate: |c| FitnessConfig::of(c).check(),
+    validate: |c| {
+        FitnessConfig::of(c)
+            .check()
+            .and_then(|()| super::descriptors::check(c))
+    },
     metric_names: &crate::tasks::driving::descriptors::METRICS,
     generation_columns: "",
     build,
