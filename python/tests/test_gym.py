@@ -164,8 +164,13 @@ def test_mujoco_environments_run_with_scaled_continuous_actions(tmp_path, env_id
 
 
 RESUMED_RUN = """
+import signal
 import sys
 import vivae.gym
+
+# As started from a terminal: a process started in the background of a
+# non-interactive shell (as a CI step may be) inherits SIGINT ignored.
+signal.signal(signal.SIGINT, signal.default_int_handler)
 
 def said(record):
     print("generation", record["generation"], flush=True)
@@ -193,7 +198,12 @@ def test_ctrl_c_stops_a_resumed_run_at_a_checkpoint_saying_how_to_resume(tmp_pat
     assert first.startswith("generation "), first + child.stderr.read()
     os.killpg(child.pid, signal.SIGINT)
     # The timeout only turns a hang (the failure this test is about) into a failure.
-    rest, err = child.communicate(timeout=600)
+    try:
+        rest, err = child.communicate(timeout=600)
+    except subprocess.TimeoutExpired:
+        os.killpg(child.pid, signal.SIGKILL)
+        child.communicate()
+        raise
     done = int((first + rest).split()[-1])
     assert child.returncode != 0 and done < 10_000
     last = err.strip().splitlines()[-1]
