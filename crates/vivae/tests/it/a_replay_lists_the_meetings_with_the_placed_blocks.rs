@@ -8,14 +8,7 @@ use crate::common::*;
 #[test]
 fn meetings_hold_the_replays_block_contacts_and_say_what_the_rays_showed() {
     let dir = scratch("meetings");
-    let config = dir.join("rays.toml");
-    std::fs::write(
-        &config,
-        small_config(2) + "[distance_sensors]\nrays = 5\n[fitness]\nkind = \"progress\"\n",
-    )
-    .unwrap();
-    let run = dir.join("rays");
-    evolve(&config, &run, &["--scenario", "corridor"]);
+    let run = rays_corridor_run(&dir);
     let out = dir.join("r");
     for blind in [false, true] {
         let mut args = vec!["--placement-seed", "3", "--meetings", "--out"];

@@ -18,14 +18,7 @@ fn replay(run: &std::path::Path, out: &std::path::Path, extra: &[&str]) -> Strin
 #[test]
 fn blinded_rays_change_a_rays_champion_and_the_swerve_is_drawn() {
     let dir = scratch("blind-rays");
-    let config = dir.join("rays.toml");
-    std::fs::write(
-        &config,
-        small_config(2) + "[distance_sensors]\nrays = 5\n[fitness]\nkind = \"progress\"\n",
-    )
-    .unwrap();
-    let run = dir.join("rays");
-    evolve(&config, &run, &["--scenario", "corridor"]);
+    let run = rays_corridor_run(&dir);
     let out = dir.join("r");
     let seeing = replay(&run, &out, &[]);
     let blind = replay(&run, &out, &["--blind-rays"]);

@@ -119,6 +119,21 @@ pub fn evolve(config: &Path, out: &Path, extra: &[&str]) -> String {
         .arg(out))
 }
 
+/// A 2-generation run of 5-ray robots with progress fitness on the shipped
+/// `corridor` (blocks placed per episode) in `dir`: the distance-sheet
+/// champion the replay tests look inside. Returns the run directory.
+pub fn rays_corridor_run(dir: &Path) -> PathBuf {
+    let config = dir.join("rays.toml");
+    std::fs::write(
+        &config,
+        small_config(2) + "[distance_sensors]\nrays = 5\n[fitness]\nkind = \"progress\"\n",
+    )
+    .unwrap();
+    let run = dir.join("rays");
+    evolve(&config, &run, &["--scenario", "corridor"]);
+    run
+}
+
 /// A finished small run of `generations` (seed 7) in a fresh scratch
 /// directory `name`; returns the run directory (its parent is the scratch,
 /// removed with it).
