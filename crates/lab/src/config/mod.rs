@@ -505,6 +505,9 @@ impl OpponentConfig {
 }
 
 /// How a run is executed.
+/// Most evaluation threads a run may ask for (`run.threads`).
+pub const MAX_THREADS: usize = 1024;
+
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct RunConfig {

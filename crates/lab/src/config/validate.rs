@@ -152,10 +152,11 @@ impl Config {
                 "run.checkpoint_keep = 0: must be at least 1",
             ));
         }
-        if r.threads > 1024 {
+        if r.threads > super::MAX_THREADS {
             return Err(ConfigError::new(format!(
-                "run.threads = {}: must be at most 1024",
-                r.threads
+                "run.threads = {}: must be at most {}",
+                r.threads,
+                super::MAX_THREADS
             )));
         }
         Ok(())

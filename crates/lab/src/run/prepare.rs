@@ -19,6 +19,9 @@ use crate::search::StrategyConfig;
 use crate::tasks::maps::{self, TrainingMap};
 use crate::tasks::{self, RunTask};
 
+mod table;
+pub use table::{SETTINGS, Setting, ValueKind, setting};
+
 /// Settings given over a config: each is a config key under the name that
 /// the CLI's flag (`--train-neurons`) and Python's keyword (`train_neurons=`)
 /// both use. Unset ones leave the config as it is.
@@ -77,39 +80,31 @@ pub struct Overrides {
 }
 
 impl Overrides {
-    /// Every override's name, in the order of the fields.
-    pub const KEYS: [&'static str; 24] = [
-        "scenario",
-        "generations",
-        "population",
-        "seed",
-        "sensors",
-        "neurons",
-        "steps",
-        "robots",
-        "threads",
-        "distance_rays",
-        "train_neurons",
-        "train_sensors",
-        "train_aggregate",
-        "substrate",
-        "normalize_by",
-        "normalize_self_loops",
-        "recurrence",
-        "strategy",
-        "behaviour",
-        "task",
-        "robot",
-        "placements",
-        "placements_aggregate",
-        "precision",
-    ];
+    /// Every override's name, in the order of [`SETTINGS`].
+    pub const KEYS: [&'static str; SETTINGS.len()] = {
+        let mut keys = [""; SETTINGS.len()];
+        let mut i = 0;
+        while i < keys.len() {
+            keys[i] = SETTINGS[i].key;
+            i += 1;
+        }
+        keys
+    };
 
     /// Sets override `key` from its text as a command line writes it (lists
     /// comma-separated; `scenario` adds one map per call); the error names
     /// the key, the value and what it takes.
     pub fn set(&mut self, key: &str, text: &str) -> std::result::Result<(), String> {
         let what = |e: String| format!("{key} = {text:?}: {e}");
+        let Some(setting) = setting(key) else {
+            return Err(format!(
+                "unknown setting {key:?}; expected one of {}",
+                Self::KEYS.join(", ")
+            ));
+        };
+        if let ValueKind::Whole { max } = setting.kind {
+            whole(text, max).map_err(what)?;
+        }
         match key {
             "scenario" => self.scenario.push(text.to_string()),
             "generations" => self.generations = Some(number(text).map_err(what)?),
@@ -140,14 +135,22 @@ impl Overrides {
                 tasks::entry(text).map_err(|e| format!("{key} = {e}"))?;
                 self.task = Some(TaskName(text.to_string()));
             }
-            other => {
-                return Err(format!(
-                    "unknown setting {other:?}; expected one of {}",
-                    Self::KEYS.join(", ")
-                ));
-            }
+            // A row of SETTINGS without its arm here is a bug the tests catch.
+            other => return Err(format!("setting {other:?} is not read")),
         }
         Ok(())
+    }
+
+    /// Whether `text` is a value setting `key` takes: the error says what
+    /// it takes, without naming the setting (which a front end names its way).
+    pub fn check(key: &str, text: &str) -> std::result::Result<(), String> {
+        let e = match Overrides::default().set(key, text) {
+            Ok(()) => return Ok(()),
+            Err(e) => e,
+        };
+        let named = format!("{key} = {text:?}: ");
+        let rest = (e.strip_prefix(&named)).or_else(|| e.strip_prefix(&format!("{key} = ")));
+        Err(rest.unwrap_or(&e).to_string())
     }
 
     /// Writes the overrides that are set into `config` (unchecked: see [`config`]).
@@ -210,6 +213,15 @@ fn number<T: FromStr>(text: &str) -> std::result::Result<T, String> {
     text.trim()
         .parse()
         .map_err(|_| "expected a whole number of the key's range".to_string())
+}
+
+/// `text` is a whole number from 0 to `max`.
+fn whole(text: &str, max: u64) -> std::result::Result<(), String> {
+    match text.trim().parse::<u64>() {
+        Ok(n) if n <= max => Ok(()),
+        Ok(_) => Err(format!("at most {max}")),
+        _ => Err(format!("expected a whole number from 0 to {max}")),
+    }
 }
 
 fn boolean(text: &str) -> std::result::Result<bool, String> {
@@ -447,6 +459,10 @@ mod tests {
             o.set(key, text).unwrap_or_else(|e| panic!("{key}: {e}"));
         }
         assert_eq!(Overrides::KEYS.len(), 24);
+        let mut keys = Overrides::KEYS.to_vec();
+        keys.sort();
+        keys.dedup();
+        assert_eq!(keys.len(), SETTINGS.len(), "one row per key");
         // A robot model is the task's to read (the tasks with a choice test
         // theirs): refused by a task without a choice.
         let e = o.apply(&mut Config::default()).unwrap_err();
@@ -465,6 +481,38 @@ mod tests {
         assert!(e.contains("expected exact or fast"), "{e}");
         let e = o.set("task", "chess").unwrap_err();
         assert!(e.contains("chess") && e.contains("driving"), "{e}");
+    }
+
+    #[test]
+    fn a_whole_number_setting_takes_its_rows_range_and_no_more() {
+        for s in SETTINGS {
+            let ValueKind::Whole { max } = s.kind else {
+                continue;
+            };
+            Overrides::default()
+                .set(s.key, &max.to_string())
+                .unwrap_or_else(|e| panic!("{}: {e}", s.key));
+            let over = u128::from(max) + 1;
+            let e = Overrides::check(s.key, &over.to_string()).unwrap_err();
+            assert!(e.contains(&max.to_string()), "{}: {e}", s.key);
+        }
+        assert_eq!(
+            Overrides::check("threads", "2000").unwrap_err(),
+            "at most 1024"
+        );
+        let e = Overrides::check("steps", "-5").unwrap_err();
+        assert_eq!(e, "expected a whole number from 0 to 4294967295");
+        let e = Overrides::check("precision", "half").unwrap_err();
+        assert!(
+            !e.starts_with("precision") && e.contains("expected exact or fast"),
+            "{e}"
+        );
+        assert!(Overrides::check("train_neurons", "3x3,5x5").is_ok());
+        assert!(
+            Overrides::check("popsize", "3")
+                .unwrap_err()
+                .contains("unknown")
+        );
     }
 
     #[test]

@@ -33,7 +33,7 @@ pub struct EvolveArgs {
 
 /// Runs `vivae evolve`.
 pub fn run(args: EvolveArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<ExitCode> {
-    let resolved = resolve(args.config.as_deref(), &args.overrides.to_lab(), &SPELLING)?;
+    let resolved = resolve(args.config.as_deref(), &args.overrides.lab, &SPELLING)?;
     let config = resolved.config.clone();
     if let Some(driver) = vivae_lab::tasks::entry_of(&config)
         .ok()

@@ -1,134 +1,71 @@
-//! The options that stand for config keys ([`Overrides`]): the flags of the
-//! library's one [`vivae_lab::run::prepare::Overrides`], which Python's
-//! keyword arguments set too, under the same names.
+//! The options that stand for config keys ([`Overrides`]): one flag per row
+//! of the library's [`SETTINGS`], which Python's keyword arguments follow
+//! too, under the same names; each flag's text is the library's to parse.
 
-use std::path::PathBuf;
-
-use clap::Args;
+use clap::builder::{PossibleValuesParser, TypedValueParser as _};
+use clap::{Arg, ArgAction, ArgMatches, Command};
 use vivae_lab::config::{Config, TaskName};
-use vivae_lab::controller::substrate::PolarGrid;
 use vivae_lab::io::bad_input;
+use vivae_lab::run::prepare::{self, SETTINGS, Setting, ValueKind};
 
-use super::args::{EpisodeArgs, Generations, Resolution, Threads, Wiring};
-
-/// Options that override config keys.
-#[derive(Args, Debug, Default)]
+/// Options that override config keys: the library's overrides they give.
+#[derive(Debug, Default)]
 pub struct Overrides {
-    /// Scenario SVG file, or the name of a shipped one (`vivae scenario list`;
-    /// default: the embedded road scenario). Repeat it to train on several
-    /// maps at once (fitness = the mean over maps).
-    #[arg(long, value_name = "FILE|NAME")]
-    pub scenario: Vec<PathBuf>,
-    #[command(flatten)]
-    pub generations: Generations,
-    /// Population size.
-    #[arg(long, value_name = "N")]
-    pub population: Option<usize>,
-    /// Random seed.
-    #[arg(long, value_name = "N")]
-    pub seed: Option<u64>,
-    #[command(flatten)]
-    pub resolution: Resolution,
-    #[command(flatten)]
-    pub episode: EpisodeArgs,
-    #[command(flatten)]
-    pub threads: Threads,
-    /// Multi-resolution evolution: evaluate every genome at these neuron
-    /// sheets (e.g. 3x3,5x5,9x9) and aggregate; --neurons stays the one reported.
-    #[arg(long, value_name = "RxA,...", value_delimiter = ',')]
-    pub train_neurons: Option<Vec<PolarGrid>>,
-    /// Multi-resolution evolution: evaluate every genome at these sensor sheets
-    /// (e.g. 3x5,3x6), with each of --train-neurons.
-    #[arg(long, value_name = "RxA,...", value_delimiter = ',')]
-    pub train_sensors: Option<Vec<PolarGrid>>,
-    /// How the training resolutions' fitnesses combine: mean (default) or min.
-    #[arg(long, value_name = "mean|min")]
-    pub train_aggregate: Option<vivae_lab::config::Aggregate>,
-    /// Substrate kind: polar (the dense neuron sheet, the paper's) or
-    /// es-hyperneat (hidden neurons placed by the CPPN; keys in [substrate.es]).
-    #[arg(long, value_name = "polar|es-hyperneat")]
-    pub substrate: Option<vivae_lab::controller::es::SubstrateKind>,
-    #[command(flatten)]
-    pub wiring: Wiring,
-    /// Search strategy (strategy.kind; default neat, the paper's).
-    #[arg(long, value_name = "NAME", value_parser = strategy_names())]
-    pub strategy: Option<vivae_lab::config::strategy::StrategyName>,
-    /// Behaviour descriptor of the strategies that search on one (strategy.behaviour).
-    #[arg(long, value_name = "end-position|end-positions|side-speed|trajectory")]
-    pub behaviour: Option<vivae_lab::config::strategy::BehaviourKind>,
-    /// Task (experiment.task; default driving, the paper's); docs/howto/ has a page
-    /// per task: what it evaluates and which scenario it starts from.
-    #[arg(long, value_name = "NAME", value_parser = task_names())]
-    pub task: Option<TaskName>,
-    /// Distance rays of the second input sheet (distance_sensors.rays; 0 = none).
-    #[arg(long, value_name = "N")]
-    pub distance_rays: Option<usize>,
-    /// The task's robot model, where it has a choice (the maze: lehman, the
-    /// default, Lehman's navigator; or vivae, our robot of [physics]).
-    #[arg(long, value_name = "MODEL")]
-    pub robot: Option<String>,
-    /// Placements per evaluation on a scenario that places obstacles or
-    /// traffic per evaluation (experiment.placements; default 1): every
-    /// genome is scored on N placements drawn from its evaluation's seed.
-    #[arg(long, value_name = "N")]
-    pub placements: Option<u32>,
-    /// How the fitnesses on --placements placements combine: mean (default) or min.
-    #[arg(long, value_name = "mean|min")]
-    pub placements_aggregate: Option<vivae_lab::config::Aggregate>,
-    /// Arithmetic of the controller step (experiment.precision): exact (the
-    /// default, f64) or fast (f32 and a polynomial sigmoid: other bits, the
-    /// same on every CPU). A resumed run keeps its checkpoint's.
-    #[arg(long, value_name = "exact|fast")]
-    pub precision: Option<vivae_neat::Precision>,
+    /// The settings the flags gave.
+    pub lab: prepare::Overrides,
+}
+
+impl clap::Args for Overrides {
+    fn augment_args(cmd: Command) -> Command {
+        cmd.args(SETTINGS.iter().map(flag))
+    }
+
+    fn augment_args_for_update(cmd: Command) -> Command {
+        Self::augment_args(cmd)
+    }
+}
+
+impl clap::FromArgMatches for Overrides {
+    fn from_arg_matches(matches: &ArgMatches) -> Result<Self, clap::Error> {
+        let mut o = Overrides::default();
+        o.update_from_arg_matches(matches)?;
+        Ok(o)
+    }
+
+    fn update_from_arg_matches(&mut self, matches: &ArgMatches) -> Result<(), clap::Error> {
+        for s in SETTINGS {
+            for text in (matches.get_many::<String>(s.key)).into_iter().flatten() {
+                (self.lab.set(s.key, text))
+                    .map_err(|e| clap::Error::raw(clap::error::ErrorKind::ValueValidation, e))?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The flag of setting `s`: `--train-neurons RxA,...`, its text checked by
+/// the library (or one of its registry's names); a scenario repeats.
+fn flag(s: &'static Setting) -> Arg {
+    let arg = Arg::new(s.key)
+        .long(s.key.replace('_', "-"))
+        .value_name(s.value_name)
+        .help(s.help);
+    let arg = match s.choices {
+        Some(names) => arg.value_parser(PossibleValuesParser::new(names())),
+        None => arg.value_parser(move |text: &str| {
+            prepare::Overrides::check(s.key, text).map(|()| text.to_string())
+        }),
+    };
+    match s.kind {
+        ValueKind::Scenarios => arg.action(ArgAction::Append),
+        _ => arg.action(ArgAction::Set),
+    }
 }
 
 /// `--task NAME`: one of the registered tasks (listed by `--help`).
 pub(super) fn task_names() -> impl clap::builder::TypedValueParser<Value = TaskName> {
-    use clap::builder::TypedValueParser as _;
     let names = vivae_lab::tasks::names().iter().copied();
-    clap::builder::PossibleValuesParser::new(names).map(TaskName)
-}
-
-/// `--strategy NAME`: one of the registered strategies (listed by `--help`).
-fn strategy_names()
--> impl clap::builder::TypedValueParser<Value = vivae_lab::config::strategy::StrategyName> {
-    use clap::builder::TypedValueParser as _;
-    let names = vivae_lab::search::entries().into_iter().map(|e| e.kind);
-    clap::builder::PossibleValuesParser::new(names).map(vivae_lab::config::strategy::StrategyName)
-}
-
-impl Overrides {
-    /// The library's overrides these flags give.
-    pub fn to_lab(&self) -> vivae_lab::run::prepare::Overrides {
-        vivae_lab::run::prepare::Overrides {
-            scenario: (self.scenario.iter())
-                .map(|p| p.to_string_lossy().into_owned())
-                .collect(),
-            generations: self.generations.generations,
-            population: self.population,
-            seed: self.seed,
-            sensors: self.resolution.sensors,
-            neurons: self.resolution.neurons,
-            steps: self.episode.steps,
-            robots: self.episode.robots,
-            threads: self.threads.threads,
-            distance_rays: self.distance_rays,
-            train_neurons: self.train_neurons.clone(),
-            train_sensors: self.train_sensors.clone(),
-            train_aggregate: self.train_aggregate,
-            substrate: self.substrate,
-            normalize_by: self.wiring.normalize_by,
-            normalize_self_loops: self.wiring.normalize_self_loops,
-            recurrence: self.wiring.recurrence,
-            strategy: self.strategy.clone(),
-            behaviour: self.behaviour,
-            task: self.task.clone(),
-            robot: self.robot.clone(),
-            placements: self.placements,
-            placements_aggregate: self.placements_aggregate,
-            precision: self.precision,
-        }
-    }
+    PossibleValuesParser::new(names).map(TaskName)
 }
 
 /// How the command line's settings are named in the library's refusals:
@@ -141,28 +78,81 @@ pub const SPELLING: vivae_lab::run::prepare::Spelling = vivae_lab::run::prepare:
 
 /// Sets each config key `o` gives, then checks the result by every rule of
 /// the config's task.
-pub fn apply_overrides(config: &mut Config, o: &Overrides) -> anyhow::Result<()> {
+pub fn apply_overrides(config: &mut Config, o: &prepare::Overrides) -> anyhow::Result<()> {
     let refused = |e: String| anyhow::Error::from(bad_input(format!("command line: {e}")));
-    o.to_lab().apply(config).map_err(refused)?;
+    o.apply(config).map_err(refused)?;
     vivae_lab::tasks::check(config).map_err(|e| refused(e.to_string()))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use clap::Command;
+    use clap::{Args as _, FromArgMatches as _};
+
+    /// A value setting `s` takes, as a command line writes it.
+    fn sample(s: &Setting) -> String {
+        match (s.kind, s.choices) {
+            (_, Some(names)) => names()[0].to_string(),
+            (ValueKind::Whole { .. }, _) => "3".into(),
+            (ValueKind::Grid, _) => "3x5".into(),
+            (ValueKind::Grids, _) => "3x3,5x5".into(),
+            (ValueKind::Bool, _) => "false".into(),
+            (ValueKind::Scenarios, _) => "oval".into(),
+            // The first of the names its placeholder lists (`mean|min`).
+            (ValueKind::Name, _) if s.value_name.contains('|') => {
+                s.value_name.split('|').next().unwrap_or_default().into()
+            }
+            (ValueKind::Name, _) => "vivae".into(),
+        }
+    }
+
+    fn parse(args: &[String]) -> Result<prepare::Overrides, clap::Error> {
+        let cmd = Overrides::augment_args(Command::new("vivae"));
+        let matches =
+            cmd.try_get_matches_from(std::iter::once("vivae".into()).chain(args.iter().cloned()))?;
+        Ok(Overrides::from_arg_matches(&matches)?.lab)
+    }
 
     #[test]
     fn the_flags_are_the_library_overrides_that_python_takes_too() {
-        let cmd = Overrides::augment_args(Command::new("vivae"));
-        let mut flags: Vec<String> = (cmd.get_arguments())
-            .map(|a| a.get_id().as_str().replace('-', "_"))
-            .collect();
-        flags.sort();
-        let mut keys: Vec<String> = (vivae_lab::run::prepare::Overrides::KEYS.iter())
-            .map(|k| k.to_string())
-            .collect();
-        keys.sort();
-        assert_eq!(flags, keys);
+        // Every key's flag, spelled with dashes, sets what the library's
+        // `set` of the same text sets; a scenario repeats.
+        let mut args = Vec::new();
+        let mut expected = prepare::Overrides::default();
+        for s in SETTINGS {
+            let text = sample(s);
+            args.extend([format!("--{}", s.key.replace('_', "-")), text.clone()]);
+            expected.set(s.key, &text).unwrap();
+        }
+        args.extend(["--scenario".into(), "roads".into()]);
+        expected.set("scenario", "roads").unwrap();
+        assert_eq!(parse(&args).unwrap(), expected);
+        assert_eq!(expected.scenario, ["oval", "roads"]);
+        let keys = Overrides::augment_args(Command::new("vivae"));
+        let ids: Vec<&str> = keys.get_arguments().map(|a| a.get_id().as_str()).collect();
+        assert_eq!(ids, prepare::Overrides::KEYS);
+    }
+
+    #[test]
+    fn a_bad_value_is_refused_naming_its_flag_and_what_it_takes() {
+        for (flag, text, says) in [
+            (
+                "--steps",
+                "many",
+                "expected a whole number from 0 to 4294967295",
+            ),
+            ("--threads", "2000", "at most 1024"),
+            ("--train-neurons", "3x3,5", "5"),
+            ("--normalize-self-loops", "yes", "expected true or false"),
+            ("--precision", "half", "expected exact or fast"),
+            ("--task", "chess", "chess"),
+        ] {
+            let e = parse(&[flag.into(), text.into()]).unwrap_err();
+            assert_eq!(e.exit_code(), 2);
+            let line = e.to_string().lines().next().unwrap_or_default().to_string();
+            assert!(line.contains(flag) && line.contains(says), "{flag}: {line}");
+        }
+        let twice = ["--steps", "3", "--steps", "4"].map(String::from);
+        assert!(parse(&twice).is_err(), "one value per setting");
     }
 }

@@ -13,7 +13,8 @@ use vivae_lab::io::bad_input;
 use vivae_lab::rundir;
 
 use super::args::{EpisodeArgs, MemberChoice, Resolution, Wiring};
-use super::overrides::{Overrides, apply_overrides};
+use super::overrides::apply_overrides;
+use vivae_lab::run::prepare::Overrides;
 
 /// Options of `vivae replay`.
 #[derive(Args, Debug)]
@@ -75,13 +76,16 @@ impl ReplayArgs {
     /// The config keys these options override; `robots` is the number of robots asked for.
     fn overrides(&self, robots: Option<usize>) -> Overrides {
         Overrides {
-            scenario: self.scenario.iter().cloned().collect(),
-            resolution: self.resolution,
-            episode: EpisodeArgs {
-                steps: self.episode.steps,
-                robots,
-            },
-            wiring: self.wiring,
+            scenario: (self.scenario.iter())
+                .map(|p| p.to_string_lossy().into_owned())
+                .collect(),
+            sensors: self.resolution.sensors,
+            neurons: self.resolution.neurons,
+            steps: self.episode.steps,
+            robots,
+            normalize_by: self.wiring.normalize_by,
+            normalize_self_loops: self.wiring.normalize_self_loops,
+            recurrence: self.wiring.recurrence,
             distance_rays: self.distance_rays,
             precision: self.precision,
             ..Overrides::default()

@@ -17,8 +17,9 @@ use vivae_neat::driver::Task;
 use super::args::{Generations, NewRun, Quiet, Resolution, Threads};
 use super::drive::drive;
 use super::mpi_job::join_mpi_job;
-use super::overrides::{Overrides, apply_overrides};
+use super::overrides::apply_overrides;
 use super::terminal::warn_repeated_maps;
+use vivae_lab::run::prepare::Overrides;
 
 /// Options of `vivae retrain`.
 #[derive(Args, Debug)]
@@ -46,9 +47,10 @@ pub fn run(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<E
     retrain_on_the_runs_maps(&mut config, &args.run_dir)?;
     config.experiment.init_population = checkpoint.to_string_lossy().into_owned();
     let overrides = Overrides {
-        generations: args.generations,
-        resolution: args.resolution,
-        threads: args.threads,
+        generations: args.generations.generations,
+        sensors: args.resolution.sensors,
+        neurons: args.resolution.neurons,
+        threads: args.threads.threads,
         ..Overrides::default()
     };
     apply_overrides(&mut config, &overrides)?;
