@@ -41,7 +41,7 @@ fn is_fast(e: &Exported) -> bool {
     e.net.precision == Precision::Fast
 }
 
-/// The header: sizes, the sensor layout, the wheels and the step's prototype.
+/// The header: sizes, the sensor layout, what the outputs mean and the step's prototype.
 pub fn header(e: &Exported) -> String {
     let net = &e.net;
     let mut h = String::new();
@@ -54,7 +54,7 @@ pub fn header(e: &Exported) -> String {
     let _ = writeln!(h, "/* Substrate: {}. */", e.substrate);
     let _ = writeln!(h, "#define VIVAE_INPUTS {}", net.inputs);
     let _ = writeln!(h, "#define VIVAE_STATE {}", net.nodes);
-    h.push_str("#define VIVAE_OUTPUTS 2\n\n");
+    let _ = writeln!(h, "#define VIVAE_OUTPUTS {}\n", net.outputs.len());
     if is_fast(e) {
         h.push_str(
             "/* Precision: fast (vivae's --precision fast step): float readings, states\n   \
@@ -68,7 +68,7 @@ pub fn header(e: &Exported) -> String {
              #define VIVAE_FAST 0\ntypedef double vivae_real;\n\n",
         );
     }
-    let _ = writeln!(h, "/* Wheels: {}. */", e.wheels);
+    let _ = writeln!(h, "/* Outputs: {}. */", clean(&e.outputs));
     let _ = writeln!(h, "/* Units: {}. */\n", e.units);
     for s in &e.sheets {
         let name = s.sensor.to_uppercase();
@@ -91,12 +91,12 @@ pub fn header(e: &Exported) -> String {
          /* One step: in[VIVAE_INPUTS] readings (each read as vivae reads it:\n   \
          clamped to [VIVAE_READING_LOW, VIVAE_READING_HIGH], NaN read as 0 then\n   \
          clamped), state[VIVAE_STATE] (all zero at the start; updated in\n   \
-         place), out[2] the wheel commands. */\n\
+         place), out[VIVAE_OUTPUTS] the outputs, as \"Outputs\" above says. */\n\
          void vivae_step(const vivae_real *in, vivae_real *state, vivae_real *out);\n",
     );
     if !is_fast(e) {
         h.push_str(
-            "/* The same step for float readings and commands (the state stays double). */\n\
+            "/* The same step for float readings and outputs (the state stays double). */\n\
              void vivae_step_f32(const float *in, double *state, float *out);\n",
         );
     }
@@ -196,7 +196,7 @@ pub fn source(e: &Exported, header_name: &str) -> String {
     }
     c.push_str(&step_function(
         net.synchronous,
-        net.wheels,
+        &net.outputs,
         net.readings,
         is_fast(e),
     ));
@@ -379,7 +379,7 @@ pub fn fmaf_function() -> String {
 
 /// The step: the network's nodes in order, synchronously or in place, in
 /// f64 or (fast) in f32 with fused sums.
-fn step_function(synchronous: bool, wheels: [usize; 2], r: Readings, fast: bool) -> String {
+fn step_function(synchronous: bool, outputs: &[usize], r: Readings, fast: bool) -> String {
     let (write, finish) = if synchronous {
         (
             "next[k] = sigma(s);",
@@ -422,17 +422,19 @@ fn step_function(synchronous: bool, wheels: [usize; 2], r: Readings, fast: bool)
          vivae_real x = j < VIVAE_INPUTS ? vivae_reading(in[j]) : state[j - VIVAE_INPUTS];\n            \
          {sum}\n        }}\n        \
          {write}\n    }}\n\
-         {finish}    \
-         out[0] = state[{}];\n    out[1] = state[{}];\n}}\n",
-        wheels[0], wheels[1]
+         {finish}",
     );
+    for (o, k) in outputs.iter().enumerate() {
+        let _ = writeln!(c, "    out[{o}] = state[{k}];");
+    }
+    c.push_str("}\n");
     if !fast {
         c.push_str(
             "\nvoid vivae_step_f32(const float *in, double *state, float *out) {\n    \
-             double x[VIVAE_INPUTS], y[2];\n    \
+             double x[VIVAE_INPUTS], y[VIVAE_OUTPUTS];\n    \
              for (int i = 0; i < VIVAE_INPUTS; i++) x[i] = in[i];\n    \
              vivae_step(x, state, y);\n    \
-             out[0] = (float)y[0];\n    out[1] = (float)y[1];\n}\n",
+             for (int o = 0; o < VIVAE_OUTPUTS; o++) out[o] = (float)y[o];\n}\n",
         );
     }
     c

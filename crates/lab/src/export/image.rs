@@ -237,12 +237,20 @@ pub fn drive_frames<'a>(
         )));
     }
     let mut inputs = vec![0.0; net.inputs];
+    if net.outputs.len() != 2 {
+        return Err(bad_input(format!(
+            "the controller has {} outputs, a robot's two wheels need two",
+            net.outputs.len()
+        )));
+    }
     let (mut state, mut scratch) = (vec![0.0; net.nodes], vec![0.0; net.nodes]);
     Ok(frames
         .into_iter()
         .map(|(image, camera)| {
             sensors.read(image, &camera, &mut inputs);
-            net.step(&inputs, &mut state, &mut scratch)
+            let mut wheels = [0.0; 2];
+            net.step(&inputs, &mut state, &mut scratch, &mut wheels);
+            wheels
         })
         .collect())
 }

@@ -3,7 +3,7 @@
 //! and, in `arithmetic`, every operation of the step to the bit: the sums'
 //! order, the sigmoid's and vivae's portable `exp` (both precisions) with
 //! their constants as exact hexadecimal floats, so that a reader that
-//! follows it gets vivae's wheel commands bit for bit.
+//! follows it gets vivae's outputs (a robot's wheel commands) bit for bit.
 
 use serde::Serialize;
 use serde_json::{Value, json};
@@ -13,8 +13,9 @@ use super::{Exported, SIGMOID_SLOPE};
 /// The format's name and version, the file's first keys.
 pub const FORMAT: &str = "vivae-controller";
 /// Version of the JSON layout (2: the `readings` and `arithmetic` keys;
-/// 3: the reading range `net.readings`).
-pub const VERSION: u32 = 3;
+/// 3: the reading range `net.readings`; 4: any number of outputs,
+/// `net.outputs` and `outputs` where 3 had two, `net.wheels` and `wheels`).
+pub const VERSION: u32 = 4;
 
 /// The document: a header, how to run the network, then the controller.
 #[derive(Serialize)]
@@ -36,7 +37,8 @@ x = j < net.inputs ? reading(sensors[j]) : state[j - net.inputs]; s += net.weigh
 then the node's new value is sigmoid(s). \
 If net.synchronous, every node reads the previous state and all new values are written \
 after the loop; otherwise node k's new value replaces state[k] at once. \
-The wheel commands are the new values of nodes net.wheels[0] (left) and net.wheels[1] (right). \
+The step's outputs are the new values of nodes net.outputs[0], net.outputs[1], ... in that \
+order (a robot's two: its left wheel, then its right; the `outputs` key says what they mean). \
 reading is the `readings` key. Every operation is IEEE 754 arithmetic as `arithmetic` says, \
 in binary64 when net.precision is \"exact\" (arithmetic.exact) and in binary32 when it is \
 \"fast\" (arithmetic.fast: vivae's --precision fast step, whose sums are fused multiply-adds).";

@@ -51,7 +51,8 @@ use crate::tasks::substrate::SubstrateEpisode;
 /// The slope of the bipolar sigmoid every node applies (`vivae_neat::activation`).
 pub const SIGMOID_SLOPE: f64 = 4.9;
 
-/// A decoded controller as one step: `(sensors, state) → (wheels, next state)`.
+/// A decoded controller as one step: `(inputs, state) → (outputs, next state)`
+/// (a robot's outputs are its wheels, left then right).
 ///
 /// Node `k` is state entry `k`. A link's source `j` is sensor `j` when
 /// `j < inputs`, else node `j − inputs` (its value in the previous state when
@@ -76,8 +77,9 @@ pub struct StepNet {
     /// synchronously); otherwise nodes update in place in `order` (a
     /// feed-forward network in topological order).
     pub synchronous: bool,
-    /// The nodes whose new values drive the left and right wheel.
-    pub wheels: [usize; 2],
+    /// The nodes whose new values are the step's outputs, in the network's
+    /// output order (a robot's: the left wheel's, then the right's).
+    pub outputs: Vec<usize>,
     /// The arithmetic of the step: exact (f64) or fast (f32; every weight
     /// and bias then an f32 value).
     pub precision: Precision,
@@ -105,7 +107,7 @@ impl StepNet {
     /// The dense polar sheet: neurons are the nodes, updated synchronously.
     pub fn from_polar(c: &SubstrateController, wheels: [usize; 2]) -> StepNet {
         let (ni, n) = (vivae_neat::Network::num_inputs(c), c.num_neurons());
-        let mut net = StepNet::empty(ni, n, c.biases().to_vec(), true, wheels);
+        let mut net = StepNet::empty(ni, n, c.biases().to_vec(), true, wheels.to_vec());
         net.precision = c.precision();
         for target in 0..n {
             for j in 0..ni + n {
@@ -129,7 +131,7 @@ impl StepNet {
     pub fn from_sparse(s: &SparseNetwork) -> StepNet {
         let ni = vivae_neat::Network::num_inputs(s);
         let n = s.num_nodes() - ni;
-        let mut net = StepNet::empty(ni, n, s.biases().to_vec(), s.is_recurrent(), [0, 1]);
+        let mut net = StepNet::empty(ni, n, s.biases().to_vec(), s.is_recurrent(), vec![0, 1]);
         // Links come sorted by (target, source): the order vivae sums them in.
         let links = s.links();
         let mut at = 0;
@@ -148,20 +150,18 @@ impl StepNet {
     }
 
     /// A plain NEAT network (a [`crate::tasks::plain`] task's genome): its
-    /// non-input nodes by id are the nodes (the two outputs first), each
+    /// non-input nodes by id are the nodes (the outputs first), each
     /// summing its links in the genome's order as vivae's networks do;
-    /// synchronous when `recurrent`, else in topological order. The writers
-    /// compute the bipolar sigmoid and two outputs only: another shape is
-    /// refused, saying so.
+    /// synchronous when `recurrent`, else in topological order; any number
+    /// of outputs (at least one), in the genome's output order. The writers
+    /// compute the bipolar sigmoid only: another activation is refused,
+    /// saying so.
     pub fn from_genome(genome: &vivae_neat::Genome, recurrent: bool) -> Result<StepNet, String> {
         use vivae_neat::{Activation, NodeKind};
         let nodes = genome.nodes();
         let ni = genome.num_inputs();
-        if genome.num_outputs() != 2 {
-            return Err(format!(
-                "the network has {} outputs: the exported step has two",
-                genome.num_outputs()
-            ));
+        if genome.num_outputs() == 0 {
+            return Err("the network has no outputs: an exported step has at least one".into());
         }
         let computed: Vec<_> = nodes.iter().filter(|n| n.kind != NodeKind::Input).collect();
         if let Some(n) = computed
@@ -180,7 +180,12 @@ impl StepNet {
             }
         };
         let n = computed.len();
-        let mut net = StepNet::empty(ni, n, vec![0.0; n], recurrent, [0, 1]);
+        // The network's outputs in its order: its output nodes by id.
+        let outputs = (computed.iter().enumerate())
+            .filter(|(_, c)| c.kind == NodeKind::Output)
+            .map(|(k, _)| k)
+            .collect();
+        let mut net = StepNet::empty(ni, n, vec![0.0; n], recurrent, outputs);
         for target in &computed {
             for l in genome
                 .links()
@@ -204,7 +209,7 @@ impl StepNet {
         n: usize,
         bias: Vec<f64>,
         synchronous: bool,
-        wheels: [usize; 2],
+        outputs: Vec<usize>,
     ) -> StepNet {
         StepNet {
             inputs: ni,
@@ -215,7 +220,7 @@ impl StepNet {
             weights: Vec::new(),
             order: (0..n).collect(),
             synchronous,
-            wheels,
+            outputs,
             precision: Precision::Exact,
             readings: Readings::SENSORS,
         }
@@ -256,13 +261,15 @@ impl StepNet {
     }
 
     /// One step: `state` (`nodes` long, zero at the start) becomes the next
-    /// state, and the wheel commands are returned. `scratch` is `nodes` long.
+    /// state, and `out` (one value an output: [`StepNet::outputs`] long)
+    /// the outputs' new values. `scratch` is `nodes` long.
     /// Each input is read as [`StepNet::readings`] reads it.
     /// In fast precision inputs and states are rounded to f32 (exact for the
     /// f32 values a fast controller reads and makes) and the new states are
     /// f32 values.
-    pub fn step(&self, inputs: &[f64], state: &mut [f64], scratch: &mut [f64]) -> [f64; 2] {
+    pub fn step(&self, inputs: &[f64], state: &mut [f64], scratch: &mut [f64], out: &mut [f64]) {
         assert!(inputs.len() == self.inputs && state.len() == self.nodes);
+        assert_eq!(out.len(), self.outputs.len());
         let ni = self.inputs;
         let fast = self.precision == Precision::Fast;
         for &k in &self.order {
@@ -296,7 +303,9 @@ impl StepNet {
         if self.synchronous {
             state.copy_from_slice(&scratch[..self.nodes]);
         }
-        [state[self.wheels[0]], state[self.wheels[1]]]
+        for (o, &k) in out.iter_mut().zip(&self.outputs) {
+            *o = state[k];
+        }
     }
 }
 
@@ -330,7 +339,7 @@ pub struct Place {
     pub distance: f64,
 }
 
-/// What the two outputs mean to the robot.
+/// What a robot's two outputs mean.
 pub const WHEELS: &str = "out[0] = left wheel, out[1] = right wheel, each in [-1, 1]; \
 vivae's robot accelerates by a_max*(L+R)/2 and turns by omega_max*(L-R)/2*(1 - speed/v_max) per step \
 (clockwise when L > R)";
@@ -344,8 +353,9 @@ pub struct Exported {
     pub substrate: String,
     /// The sensor sheets, in input order.
     pub sheets: Vec<SheetGeometry>,
-    /// The wheel semantics ([`WHEELS`]).
-    pub wheels: String,
+    /// What the outputs mean: a robot's wheels ([`WHEELS`]), a plain
+    /// task's actions as its task describes them.
+    pub outputs: String,
     /// Simulator units: 1 px = one unit of the scenario; a step is one simulation step.
     pub units: String,
     /// The network.
@@ -370,7 +380,7 @@ impl Exported {
             description: description.to_string(),
             substrate: substrate.into(),
             sheets: sheet_geometry(episode.sensors()),
-            wheels: WHEELS.into(),
+            outputs: WHEELS.into(),
             units: "distances in scenario px; one step = one simulation step".into(),
             net,
         }
@@ -378,9 +388,16 @@ impl Exported {
 }
 
 impl Exported {
+    /// Whether the outputs are a robot's wheels ([`WHEELS`]: a robot's
+    /// substrate network), which the ONNX model also names `wheels`.
+    pub fn drives_wheels(&self) -> bool {
+        self.outputs == WHEELS
+    }
+
     /// A plain NEAT network ([`StepNet::from_genome`]) whose inputs are one
     /// sheet, `observation`, read in `readings` (its task's range), and
-    /// whose outputs mean `outputs`.
+    /// whose outputs mean `outputs` (the task's words, after the count and
+    /// order this adds).
     pub fn plain(
         genome: &vivae_neat::Genome,
         recurrent: bool,
@@ -409,11 +426,24 @@ impl Exported {
                 reading: "the task's observation, one value an input (no place)".into(),
                 places,
             }],
-            wheels: outputs.to_string(),
+            outputs: plain_outputs(net.outputs.len(), outputs),
             units: "the task's own".into(),
             net,
         })
     }
+}
+
+/// What the `count` outputs of a plain network mean: how many, in which
+/// order and range, then the task's `meaning`.
+fn plain_outputs(count: usize, meaning: &str) -> String {
+    let which = match count {
+        1 => "1 output, out[0], in [-1, 1]".to_string(),
+        n => format!(
+            "{n} outputs, out[0] .. out[{}] in the network's output order, each in [-1, 1]",
+            n - 1
+        ),
+    };
+    format!("{which}; {meaning}")
 }
 
 /// The geometry of `sheets`, in input order.

@@ -6,15 +6,18 @@
 //!
 //! Inputs `sensors` `[N, inputs]` (each read as vivae reads it: NaN as 0,
 //! then clamped to the net's reading range) and `state` `[N, nodes]` (zeros at the
-//! start); outputs `wheels` `[N, 2]` (left, right) and `next_state`
-//! `[N, nodes]`. A recurrent network is one synchronous update of every
+//! start); outputs `outputs` `[N, outputs]` (the network's outputs in
+//! its order) and `next_state` `[N, nodes]`, and for a robot's controller
+//! `wheels` `[N, 2]` (left, right: the same values as `outputs`, under the
+//! name earlier exports gave them). A recurrent network is one synchronous update of every
 //! node; a feed-forward ES network is one update per topological level
 //! (each level's new values are placed into the value vector by a 0/1
 //! matrix, which adds exact zeros only). The sums are `MatMul`s, so their
 //! order is the runtime's, not vivae's: equal to rounding (the measured
 //! bounds are in docs/howto/export-bits.md).
-//! The sensor geometry and the wheel semantics are in the model's
-//! `metadata_props` (`vivae_geometry`: JSON; `wheels`; `description`).
+//! The sensor geometry and what the outputs mean are in the model's
+//! `metadata_props` (`vivae_geometry`: JSON; `outputs`, and `wheels` for a
+//! robot's controller; `description`).
 
 use vivae_neat::Precision;
 
@@ -222,17 +225,29 @@ pub fn to_onnx(exported: &Exported) -> Vec<u8> {
         let idx = g.longs("state_index", &[n], &idx);
         g.node("Gather", &[&v, &idx], Some("next_state"), &[("axis", 1)])
     };
-    let wheels: Vec<i64> = net.wheels.iter().map(|&w| w as i64).collect();
-    let wheels = g.longs("wheel_index", &[2], &wheels);
-    g.node("Gather", &[&next, &wheels], Some("wheels"), &[("axis", 1)]);
+    let no = net.outputs.len();
+    let outputs: Vec<i64> = net.outputs.iter().map(|&k| k as i64).collect();
+    let outputs = g.longs("output_index", &[no], &outputs);
+    g.node(
+        "Gather",
+        &[&next, &outputs],
+        Some("outputs"),
+        &[("axis", 1)],
+    );
+    if exported.drives_wheels() {
+        g.node("Identity", &["outputs"], Some("wheels"), &[]);
+    }
     let mut graph = g.graph;
     graph
         .string(2, "vivae_controller_step")
         .string(10, &exported.description)
         .message(11, &value_info("sensors", ni, real))
         .message(11, &value_info("state", n, real))
-        .message(12, &value_info("wheels", 2, real))
+        .message(12, &value_info("outputs", no, real))
         .message(12, &value_info("next_state", n, real));
+    if exported.drives_wheels() {
+        graph.message(12, &value_info("wheels", no, real));
+    }
     model(exported, &graph)
 }
 
@@ -248,13 +263,19 @@ fn model(exported: &Exported, graph: &Message) -> Vec<u8> {
         .string(6, &exported.description)
         .message(7, graph)
         .message(8, &opset);
+    let wheels = exported
+        .drives_wheels()
+        .then_some(("wheels", exported.outputs.as_str()));
     for (key, value) in [
         ("vivae_geometry", geometry.as_str()),
-        ("wheels", exported.wheels.as_str()),
+        ("outputs", exported.outputs.as_str()),
         ("units", exported.units.as_str()),
         ("substrate", exported.substrate.as_str()),
         ("description", exported.description.as_str()),
-    ] {
+    ]
+    .into_iter()
+    .chain(wheels)
+    {
         let mut e = Message::new();
         e.string(1, key).string(2, value);
         m.message(14, &e);

@@ -33,7 +33,8 @@ fn replays_bit_identically(
         let rec = record(&exp, &c, 1, exp.steps()).unwrap();
         let (mut state, mut scratch) = (vec![0.0; e.net.nodes], vec![0.0; e.net.nodes]);
         for (x, w) in rec.sensors.chunks_exact(rec.inputs).zip(&rec.wheels) {
-            let out = e.net.step(x, &mut state, &mut scratch);
+            let mut out = [0.0; 2];
+            e.net.step(x, &mut state, &mut scratch, &mut out);
             assert_eq!(out.map(f64::to_bits), w.map(f64::to_bits));
         }
         checked += 1;
@@ -96,8 +97,9 @@ fn the_fast_step_differs_from_the_exact_one_of_the_same_genome() {
         let mut states = [vec![0.0; ne.nodes], vec![0.0; nf.nodes]];
         let mut scratch = vec![0.0; ne.nodes];
         for x in rec.sensors.chunks_exact(rec.inputs) {
-            let we = ne.step(x, &mut states[0], &mut scratch);
-            let wf = nf.step(x, &mut states[1], &mut scratch);
+            let (mut we, mut wf) = ([0.0; 2], [0.0; 2]);
+            ne.step(x, &mut states[0], &mut scratch, &mut we);
+            nf.step(x, &mut states[1], &mut scratch, &mut wf);
             differing += usize::from(we != wf);
             // Both steps compute the same function to about f32's precision.
             for (a, b) in we.iter().zip(&wf) {
@@ -158,7 +160,9 @@ fn the_json_arithmetic_gives_vivaes_constants_to_the_bit() {
     let c = exp.robot_controller(&pop.genomes()[0]).unwrap();
     let doc: serde_json::Value =
         serde_json::from_str(&super::json::to_json(&Exported::new(&exp, &c, "t"))).unwrap();
-    assert_eq!(doc["version"], 3);
+    assert_eq!(doc["version"], 4);
+    assert_eq!(doc["net"]["outputs"].as_array().map(Vec::len), Some(2));
+    assert_eq!(doc["outputs"], WHEELS);
     let a = &doc["arithmetic"];
     let read = |v: &serde_json::Value| read_hex(v.as_str().unwrap());
     let exact = &a["exact"]["exp"]["constants"];
@@ -291,7 +295,8 @@ fn a_layered_or_recurrent_sparse_net_steps_as_vivae_does() {
                 x
             };
             net.activate(&x.map(reading), &mut want);
-            let got = step.step(&x, &mut state, &mut scratch);
+            let mut got = [0.0; 2];
+            step.step(&x, &mut state, &mut scratch, &mut got);
             assert_eq!(
                 got.map(f64::to_bits),
                 want.map(f64::to_bits),
@@ -299,4 +304,42 @@ fn a_layered_or_recurrent_sparse_net_steps_as_vivae_does() {
             );
         }
     }
+}
+
+#[test]
+fn a_plain_network_exports_every_output_in_every_format() {
+    use crate::tasks::acrobot::Acrobot;
+    use crate::tasks::plain::{Plain, spec};
+    let pop = Population::new(Config::default().neat, spec::<Acrobot>(), 3).unwrap();
+    let genome = &pop.genomes()[0];
+    let e = Exported::plain(
+        genome,
+        false,
+        Readings::UNBOUNDED,
+        Acrobot::OUTPUT_MEANING,
+        "t",
+    )
+    .unwrap();
+    assert_eq!(e.net.outputs, [0, 1, 2]);
+    assert!(!e.drives_wheels());
+    assert!(
+        e.outputs.starts_with("3 outputs, out[0] .. out[2]"),
+        "{}",
+        e.outputs
+    );
+    assert!(e.outputs.contains("argmax"), "{}", e.outputs);
+    let header = super::c::header(&e);
+    assert!(header.contains("#define VIVAE_OUTPUTS 3\n"), "{header}");
+    assert!(header.contains("/* Outputs: 3 outputs"), "{header}");
+    let source = super::c::source(&e, "controller.h");
+    assert!(source.contains("    out[2] = state[2];\n"), "{source}");
+    assert!(!source.contains("out[3]"));
+    let doc: serde_json::Value = serde_json::from_str(&super::json::to_json(&e)).unwrap();
+    assert_eq!(doc["net"]["outputs"], serde_json::json!([0, 1, 2]));
+    assert_eq!(doc["outputs"], e.outputs.as_str());
+    assert!(doc.get("wheels").is_none() && doc["net"].get("wheels").is_none());
+    // The ONNX model's outputs: `outputs` alone for a plain network.
+    let onnx = super::onnx::to_onnx(&e);
+    let has = |name: &[u8]| onnx.windows(name.len()).any(|w| w == name);
+    assert!(has(b"output_index") && has(b"outputs") && !has(b"wheels"));
 }

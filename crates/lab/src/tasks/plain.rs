@@ -590,18 +590,22 @@ mod tests {
 
     #[test]
     fn the_exported_step_is_the_network_bit_for_bit() {
-        for recurrent in [false, true] {
+        // Any number of outputs (classic control's 1 to 3, Gymnasium's up to 6).
+        for (recurrent, outputs) in [(false, 2), (true, 2), (false, 1), (true, 3), (false, 6)] {
             let spec = GenomeSpec {
                 allow_recurrent: recurrent,
+                outputs,
                 ..spec::<CartPole>()
             };
             let genomes = grown(spec);
             assert!(
-                genomes.iter().any(|g| g.nodes().len() > 7),
+                genomes.iter().any(|g| g.nodes().len() > 5 + outputs),
                 "hidden nodes grew"
             );
+            let (mut out, mut got) = (vec![0.0; outputs], vec![0.0; outputs]);
             for g in &genomes {
                 let mut step = StepNet::from_genome(g, recurrent).unwrap();
+                assert_eq!(step.outputs.len(), outputs);
                 step.readings = CartPole::READINGS;
                 let mut net: Box<dyn Network> = if recurrent {
                     Box::new(RecurrentNetwork::from_genome(g))
@@ -614,10 +618,10 @@ mod tests {
                     // Raw observations, far outside the sensors' [0, 1]: the
                     // task's declared range reads them as they are.
                     let inputs = [-2.4 * f64::from(t), 7.5, -0.9, 1e6 * f64::from(t), 1.0];
-                    let mut out = [0.0; 2];
                     net.activate(&inputs, &mut out);
-                    let got = step.step(&inputs, &mut state, &mut scratch);
-                    assert_eq!(got.map(f64::to_bits), out.map(f64::to_bits), "{g:?}");
+                    step.step(&inputs, &mut state, &mut scratch, &mut got);
+                    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                    assert_eq!(bits(&got), bits(&out), "{g:?}");
                 }
             }
         }

@@ -55,9 +55,10 @@ pub fn run(args: ExportArgs) -> anyhow::Result<ExitCode> {
     let written = write(&exported, args.format, &args.out)?;
     let net = &exported.net;
     println!(
-        "{}: {} inputs, {} nodes, {} links ({})",
+        "{}: {} inputs, {} outputs, {} nodes, {} links ({})",
         exported.description,
         net.inputs,
+        net.outputs.len(),
         net.nodes,
         net.links(),
         if net.synchronous {

@@ -30,8 +30,8 @@ fn run(dir: &Path, name: &str, extra: &str) -> PathBuf {
 }
 
 /// A harness around the exported step: readings in as hex bit patterns
-/// (`double`s, or `float`s for a fast controller), a line a step; the
-/// wheel commands' bits out.
+/// (`double`s, or `float`s for a fast controller), a line a step; every
+/// output's bits out (a robot's two: its wheel commands).
 const HARNESS: &str = r#"#include <stdint.h>
 #include <stdio.h>
 #include <string.h>
@@ -48,7 +48,7 @@ static void put(vivae_real v) {
 }
 
 int main(void) {
-    vivae_real in[VIVAE_INPUTS], state[VIVAE_STATE], out[2];
+    vivae_real in[VIVAE_INPUTS], state[VIVAE_STATE], out[VIVAE_OUTPUTS];
     memset(state, 0, sizeof state);
     for (;;) {
         for (int i = 0; i < VIVAE_INPUTS; i++) {
@@ -63,8 +63,8 @@ int main(void) {
             memcpy(&in[i], &w, sizeof w);
         }
         vivae_step(in, state, out);
-        put(out[0]);
-        put(out[1]);
+        for (int o = 0; o < VIVAE_OUTPUTS; o++)
+            put(out[o]);
         printf("\n");
     }
 }
@@ -112,7 +112,7 @@ fn hostile_readings(ni: usize, steps: usize, seed: u64) -> Vec<Vec<f64>> {
 
 /// vivae's wheel commands for `readings`, each read as [`reading`] of it,
 /// the state carried: the controller stepped as the simulator steps it.
-fn vivae_steps(chosen: &Chosen, readings: &[Vec<f64>]) -> Vec<[f64; 2]> {
+fn vivae_steps(chosen: &Chosen, readings: &[Vec<f64>]) -> Vec<Vec<f64>> {
     let c: &RobotController = &chosen.controller;
     let no = c.num_outputs();
     let wheels = c.wheel_outputs().unwrap_or(chosen.episode.wheels());
@@ -129,7 +129,7 @@ fn vivae_steps(chosen: &Chosen, readings: &[Vec<f64>]) -> Vec<[f64; 2]> {
                 c.step_robots(&mut states, &x, &mut outputs);
             }
             let out = states.outputs(&outputs, no, 0);
-            [out[wheels.left], out[wheels.right]]
+            vec![out[wheels.left], out[wheels.right]]
         })
         .collect()
 }
@@ -154,8 +154,8 @@ fn harness_input(readings: &[Vec<f64>], fast: bool) -> String {
     s
 }
 
-/// The wheel commands `exe` gives for `input` (from [`harness_input`]), widened to f64.
-fn harness_wheels(exe: &Path, input: &Path, fast: bool) -> Vec<[f64; 2]> {
+/// The outputs `exe` gives for `input` (from [`harness_input`]), widened to f64.
+fn harness_outputs(exe: &Path, input: &Path, fast: bool) -> Vec<Vec<f64>> {
     let out = Command::new(exe)
         .stdin(std::fs::File::open(input).unwrap())
         .output()
@@ -174,18 +174,16 @@ fn harness_wheels(exe: &Path, input: &Path, fast: bool) -> Vec<[f64; 2]> {
         }
     };
     (String::from_utf8(out.stdout).unwrap().lines())
-        .map(|l| {
-            let v: Vec<f64> = l.split_whitespace().map(value).collect();
-            [v[0], v[1]]
-        })
+        .map(|l| l.split_whitespace().map(value).collect())
         .collect()
 }
 
-/// Steps whose wheel commands have vivae's bits (a NaN is never vivae's).
-fn equal_steps(got: &[[f64; 2]], want: &[[f64; 2]]) -> usize {
+/// Steps whose outputs all have vivae's bits (a NaN is never vivae's).
+fn equal_steps(got: &[Vec<f64>], want: &[Vec<f64>]) -> usize {
     assert_eq!(got.len(), want.len());
+    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
     (got.iter().zip(want))
-        .filter(|(g, w)| g.map(f64::to_bits) == w.map(f64::to_bits))
+        .filter(|(g, w)| bits(g) == bits(w))
         .count()
 }
 
@@ -226,7 +224,7 @@ fn check(
     let ni = exported.net.inputs;
     // Hostile readings: several sequences, each from a zero state.
     let hostile: Vec<Vec<Vec<f64>>> = (1..=3).map(|s| hostile_readings(ni, 1500, s)).collect();
-    let mut cases: Vec<(String, PathBuf, Vec<[f64; 2]>)> = Vec::new();
+    let mut cases: Vec<(String, PathBuf, Vec<Vec<f64>>)> = Vec::new();
     for (k, (readings, wheels)) in recorded.iter().enumerate() {
         let input = dir.join(format!("recorded{k}.txt"));
         std::fs::write(&input, harness_input(readings, fast)).unwrap();
@@ -260,7 +258,7 @@ fn check(
         for what in ["recorded", "hostile"] {
             let (mut equal, mut steps) = (0, 0);
             for (_, input, want) in cases.iter().filter(|c| c.0 == what) {
-                let got = harness_wheels(&exe, input, fast);
+                let got = harness_outputs(&exe, input, fast);
                 assert!(
                     got.iter().flatten().all(|v| v.is_finite()),
                     "a NaN or infinite reading made the wheels non-finite"
@@ -282,7 +280,7 @@ fn check(
 fn without_the_pragma_gcc_contracts(
     dir: &Path,
     fast: bool,
-    cases: &[(String, PathBuf, Vec<[f64; 2]>)],
+    cases: &[(String, PathBuf, Vec<Vec<f64>>)],
 ) {
     let source = std::fs::read_to_string(dir.join("controller.c")).unwrap();
     let pragma = "#pragma GCC optimize(\"fp-contract=off\")";
@@ -316,7 +314,7 @@ fn without_the_pragma_gcc_contracts(
     assert!(status.success());
     let (mut equal, mut steps) = (0, 0);
     for (_, input, want) in cases {
-        equal += equal_steps(&harness_wheels(&exe, input, fast), want);
+        equal += equal_steps(&harness_outputs(&exe, input, fast), want);
         steps += want.len();
     }
     println!(
@@ -331,8 +329,9 @@ fn without_the_pragma_gcc_contracts(
     );
 }
 
-/// One robot's recorded episode: its readings and its wheel commands, a step each.
-type Recording = (Vec<Vec<f64>>, Vec<[f64; 2]>);
+/// One recorded episode: its readings and its outputs (a robot's: its
+/// wheel commands), a step each.
+type Recording = (Vec<Vec<f64>>, Vec<Vec<f64>>);
 
 /// `robots` recorded episodes of `chosen`, `steps` long: (readings, wheels).
 fn recordings(chosen: &Chosen, steps: u32) -> Vec<Recording> {
@@ -340,7 +339,10 @@ fn recordings(chosen: &Chosen, steps: u32) -> Vec<Recording> {
         .map(|robot| {
             let rec = record(&chosen.episode, &chosen.controller, robot, steps).unwrap();
             let readings = rec.sensors.chunks_exact(rec.inputs).map(<[f64]>::to_vec);
-            (readings.collect(), rec.wheels)
+            (
+                readings.collect(),
+                rec.wheels.iter().map(|w| w.to_vec()).collect(),
+            )
         })
         .collect()
 }
@@ -415,8 +417,8 @@ fn fast_math_is_a_compile_error_that_says_why() {
 }
 
 /// A replay's `episode.csv` of a plain task: each step's inputs and the
-/// network's two outputs, as vivae's own network computed them.
-fn plain_episode(csv: &str) -> Recording {
+/// network's outputs (`outputs` of them), as vivae's own network computed them.
+fn plain_episode(csv: &str, outputs: usize) -> Recording {
     let mut lines = csv.lines();
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
     let ins: Vec<usize> = (0..header.len())
@@ -425,58 +427,71 @@ fn plain_episode(csv: &str) -> Recording {
     let outs: Vec<usize> = (0..header.len())
         .filter(|&i| header[i].starts_with("out"))
         .collect();
-    assert_eq!(outs.len(), 2, "{header:?}");
-    let (mut readings, mut wheels) = (Vec::new(), Vec::new());
+    assert_eq!(outs.len(), outputs, "{header:?}");
+    let (mut readings, mut want) = (Vec::new(), Vec::new());
     for line in lines {
         // Rust writes each f64 in the shortest text that reads back to its bits.
         let v: Vec<f64> = line.split(',').map(|t| t.parse().unwrap()).collect();
         readings.push(ins.iter().map(|&i| v[i]).collect());
-        wheels.push([v[outs[0]], v[outs[1]]]);
+        want.push(outs.iter().map(|&i| v[i]).collect());
     }
-    (readings, wheels)
+    (readings, want)
 }
 
-/// A classic-control network reads raw observations (CartPole's position
-/// and velocities leave [0, 1]): its task declares them unbounded, and the
+/// A classic-control network reads raw observations (a position or a
+/// velocity leaves [0, 1]): its task declares them unbounded, and the
 /// exported step, and the C file under every compiler and flag set above,
 /// give vivae's own network's outputs to the bit on the task's recorded
-/// episode (the replay's `episode.csv`).
+/// episode (the replay's `episode.csv`), whatever their number: CartPole's
+/// two, Acrobot's three, Pendulum's one.
 #[test]
-fn an_exported_cartpole_network_reads_its_observations_unclamped() {
-    let dir = scratch("export-cartpole");
+fn an_exported_classic_control_network_reads_its_observations_unclamped() {
+    for (task, generations, outputs) in [("cartpole", 4, 2), ("acrobot", 2, 3), ("pendulum", 2, 1)]
+    {
+        classic_network_keeps_its_bits(task, generations, outputs);
+    }
+}
+
+/// [`an_exported_classic_control_network_reads_its_observations_unclamped`] for `task`.
+fn classic_network_keeps_its_bits(task: &str, generations: u32, outputs: usize) {
+    let dir = scratch(&format!("export-{task}"));
     let out = dir.join("run");
     ok(vivae()
-        .args(["evolve", "-q", "--task", "cartpole", "--seed", "1"])
-        .args(["--generations", "4", "--out"])
+        .args(["evolve", "-q", "--task", task, "--seed", "1"])
+        .args(["--generations", &generations.to_string(), "--out"])
         .arg(&out));
     ok(vivae().arg("replay").arg(&out));
     let csv = std::fs::read_to_string(out.join("replay/episode.csv")).unwrap();
-    let (readings, want) = plain_episode(&csv);
-    assert!(want.len() >= 20, "{} steps recorded", want.len());
+    let (readings, want) = plain_episode(&csv, outputs);
+    assert!(want.len() >= 20, "{task}: {} steps recorded", want.len());
     // The test can tell: observations leave the sensors' range.
     assert!(readings.iter().flatten().any(|&v| v < 0.0));
     assert!(readings.iter().flatten().any(|&v| reading(v) != v));
     let exported = vivae_lab::export::choose::exported(&out, Pick::Champion, None, None, None)
-        .expect("a cartpole champion exports");
+        .expect("a classic-control champion exports");
     assert_eq!(
         exported.net.readings,
         vivae_lab::export::Readings::UNBOUNDED
     );
-    let (mut state, mut scratch) = (vec![0.0; exported.net.nodes], vec![0.0; exported.net.nodes]);
-    let stepped: Vec<[f64; 2]> = (readings.iter())
-        .map(|x| exported.net.step(x, &mut state, &mut scratch))
-        .collect();
-    assert_eq!(
-        equal_steps(&stepped, &want),
-        want.len(),
-        "vivae's exported step"
+    assert_eq!(exported.net.outputs.len(), outputs, "{task}");
+    let stepped = steps_of(&exported.net, &readings);
+    let equal = equal_steps(&stepped, &want);
+    println!(
+        "{task}, vivae's exported step: {equal} of {} steps bit-equal to vivae",
+        want.len()
     );
+    assert_eq!(equal, want.len(), "{task}: vivae's exported step");
     let c = dir.join("controller.c");
     ok(vivae()
         .arg("export")
         .arg(&out)
         .args(["--format", "c", "-o"])
         .arg(&c));
+    let header = std::fs::read_to_string(dir.join("controller.h")).unwrap();
+    assert!(
+        header.contains(&format!("#define VIVAE_OUTPUTS {outputs}\n")),
+        "{header}"
+    );
     std::fs::write(dir.join("harness.c"), HARNESS).unwrap();
     let input = dir.join("recorded.txt");
     std::fs::write(&input, harness_input(&readings, false)).unwrap();
@@ -485,16 +500,14 @@ fn an_exported_cartpole_network_reads_its_observations_unclamped() {
     let hostile = hostile_readings(exported.net.inputs, 1500, 5);
     let hostile_input = dir.join("hostile.txt");
     std::fs::write(&hostile_input, harness_input(&hostile, false)).unwrap();
-    state.fill(0.0);
-    let hostile_want: Vec<[f64; 2]> = (hostile.iter())
-        .map(|x| exported.net.step(x, &mut state, &mut scratch))
-        .collect();
-    let same = |a: &[[f64; 2]], b: &[[f64; 2]]| {
-        (a.iter().flatten().zip(b.iter().flatten()))
-            .all(|(x, y)| x.to_bits() == y.to_bits() || (x.is_nan() && y.is_nan()))
+    let hostile_want = steps_of(&exported.net, &hostile);
+    let same = |a: &[Vec<f64>], b: &[Vec<f64>]| {
+        a.len() == b.len()
+            && (a.iter().flatten().zip(b.iter().flatten()))
+                .all(|(x, y)| x.to_bits() == y.to_bits() || (x.is_nan() && y.is_nan()))
     };
     for (cc, flags) in compilers() {
-        let exe = dir.join(format!("cartpole-{cc}{}", flags.join("")));
+        let exe = dir.join(format!("{task}-{cc}{}", flags.join("")));
         let status = Command::new(cc)
             .args(["-Wall", "-Wextra", "-Werror", "-o"])
             .arg(&exe)
@@ -505,19 +518,33 @@ fn an_exported_cartpole_network_reads_its_observations_unclamped() {
             .expect("the C compiler runs");
         assert!(
             status.success(),
-            "{cc} {flags:?} compiles the cartpole network"
+            "{cc} {flags:?} compiles the {task} network"
         );
-        let equal = equal_steps(&harness_wheels(&exe, &input, false), &want);
+        let got = harness_outputs(&exe, &input, false);
+        assert!(got.iter().all(|o| o.len() == outputs));
+        let equal = equal_steps(&got, &want);
         println!(
-            "cartpole, {cc} {}: {equal} of {} steps bit-equal to vivae",
+            "{task}, {cc} {}: {equal} of {} steps bit-equal to vivae",
             flags.join(" "),
             want.len()
         );
-        assert_eq!(equal, want.len(), "{cc} {flags:?}");
-        let got = harness_wheels(&exe, &hostile_input, false);
+        assert_eq!(equal, want.len(), "{task}, {cc} {flags:?}");
+        let got = harness_outputs(&exe, &hostile_input, false);
         assert!(
             same(&got, &hostile_want),
-            "{cc} {flags:?}: hostile readings"
+            "{task}, {cc} {flags:?}: hostile readings"
         );
     }
+}
+
+/// The exported step's outputs for `readings`, from a zero state, the state carried.
+fn steps_of(net: &vivae_lab::export::StepNet, readings: &[Vec<f64>]) -> Vec<Vec<f64>> {
+    let (mut state, mut scratch) = (vec![0.0; net.nodes], vec![0.0; net.nodes]);
+    (readings.iter())
+        .map(|x| {
+            let mut o = vec![0.0; net.outputs.len()];
+            net.step(x, &mut state, &mut scratch, &mut o);
+            o
+        })
+        .collect()
 }

@@ -338,7 +338,9 @@ impl RunTask for GymRun {
 
     fn network_outputs(&self) -> Option<&'static str> {
         Some(
-            "one per discrete action (the largest is taken) or per continuous action dimension, in [-1, 1] scaled to its bounds",
+            "one per discrete action (the action is the index of the largest, the first on a tie) \
+             or one per continuous action dimension (action = low + (out + 1)/2*(high - low) \
+             for the dimension's bounds); inputs the observation, then 1",
         )
     }
 
