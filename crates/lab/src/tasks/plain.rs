@@ -8,7 +8,6 @@
 //! `generations.csv`'s target columns, the replay of an episode (when it
 //! keeps a trace) and its network for `vivae export`.
 
-use std::any::Any;
 use std::fmt::Write as _;
 use std::marker::PhantomData;
 
@@ -385,32 +384,6 @@ impl<T: Plain> RunTask for PlainRun<T> {
         T::STEPS
     }
 
-    fn robot_steps_of(&self, evaluations: &[Evaluation]) -> f64 {
-        match T::METRICS.iter().position(|m| *m == "steps") {
-            Some(k) => evaluations.iter().filter_map(|e| e.metrics.get(k)).sum(),
-            None => evaluations.len() as f64 * T::STEPS as f64,
-        }
-    }
-
-    fn check_genome(&self, genome: &Genome) -> std::result::Result<(), String> {
-        let (inputs, outputs) = (genome.num_inputs(), genome.num_outputs());
-        if (inputs, outputs) == (T::INPUTS, T::OUTPUTS) {
-            Ok(())
-        } else {
-            Err(format!(
-                "network has {inputs} inputs and {outputs} outputs, {} needs {} and {}",
-                T::NAME,
-                T::INPUTS,
-                T::OUTPUTS
-            ))
-        }
-    }
-
-    /// The network is the genome: its enabled links of all its link genes.
-    fn links(&self, genome: &Genome) -> Result<(usize, usize)> {
-        Ok((genome.num_enabled_links(), genome.links().len()))
-    }
-
     fn describe(&self, _maps: &[TrainingMap]) -> String {
         T::ABOUT.into()
     }
@@ -553,14 +526,6 @@ impl<T: Plain> RunTask for PlainRun<T> {
 
     fn report_curves(&self) -> bool {
         true
-    }
-
-    fn as_any(&self) -> &dyn Any {
-        self
-    }
-
-    fn clone_box(&self) -> Box<dyn RunTask> {
-        Box::new(self.clone())
     }
 }
 

@@ -9,7 +9,6 @@
 
 pub mod section;
 
-use std::any::Any;
 use std::sync::OnceLock;
 
 use vivae_neat::driver::{Evaluation, Evaluator, EvaluatorError, Task};
@@ -275,23 +274,8 @@ impl RunTask for GymRun {
         u64::from(self.env.episodes) * u64::from(self.env.max_steps)
     }
 
-    fn robot_steps_of(&self, evaluations: &[Evaluation]) -> f64 {
-        evaluations.iter().filter_map(|e| e.metrics.get(1)).sum()
-    }
-
     fn check_genome(&self, genome: &Genome) -> std::result::Result<(), String> {
-        let (inputs, outputs) = (genome.num_inputs(), genome.num_outputs());
-        if (inputs, outputs) == (self.env.inputs, self.env.outputs) {
-            return Ok(());
-        }
-        Err(format!(
-            "network has {inputs} inputs and {outputs} outputs, {} needs {} and {}",
-            self.env.env, self.env.inputs, self.env.outputs
-        ))
-    }
-
-    fn links(&self, genome: &Genome) -> Result<(usize, usize)> {
-        Ok((genome.num_enabled_links(), genome.links().len()))
+        crate::tasks::check_shape(genome, &self.genome_spec(), &self.env.env)
     }
 
     fn describe(&self, _maps: &[TrainingMap]) -> String {
@@ -349,14 +333,6 @@ impl RunTask for GymRun {
 
     fn report_curves(&self) -> bool {
         true
-    }
-
-    fn as_any(&self) -> &dyn Any {
-        self
-    }
-
-    fn clone_box(&self) -> Box<dyn RunTask> {
-        Box::new(self.clone())
     }
 }
 
