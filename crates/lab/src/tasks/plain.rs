@@ -19,7 +19,7 @@ use vivae_neat::{
 
 use crate::config::{Config, TaskName};
 use crate::controller::readings::Readings;
-use crate::error::Result;
+use crate::error::{Result, a};
 use crate::io::bad_input;
 use crate::search::StrategyConfig;
 use crate::search::TaskFacts;
@@ -241,15 +241,15 @@ fn validate<T: Plain>(c: &Config) -> std::result::Result<(), String> {
     let kind = kind.name();
     if T::BEHAVIOUR.is_empty() && crate::search::entry(kind).is_ok_and(|e| e.needs.behaviour) {
         return Err(format!(
-            "strategy.kind = {kind}: a {} run gives no behaviour descriptor, which {kind} searches on: use a strategy that selects on fitness",
-            T::NAME
+            "strategy.kind = {kind}: {} run gives no behaviour descriptor, which {kind} searches on: use a strategy that selects on fitness",
+            a(T::NAME)
         ));
     }
     let defaults = default_config::<T>();
     match unread_change(c, &defaults) {
         Some((key, value, default)) => Err(format!(
-            "{key} = {value}: a {} run does not read it (it reads {}): leave it at {default}",
-            T::NAME,
+            "{key} = {value}: {} run does not read it (it reads {}): leave it at {default}",
+            a(T::NAME),
             "experiment.seed and generations, [neat], [run] and [strategy]"
         )),
         None => Ok(()),

@@ -259,8 +259,8 @@ pub fn set_robot(config: &mut Config, robot: &str) -> std::result::Result<(), St
             .map(|t| t.name)
             .collect();
         return Err(format!(
-            "robot = {robot}: a {} run has one robot model (tasks with a choice: {})",
-            task.name,
+            "robot = {robot}: {} run has one robot model (tasks with a choice: {})",
+            crate::error::a(task.name),
             with.join(", ")
         ));
     };

@@ -132,7 +132,8 @@ fn validate(c: &Config) -> std::result::Result<(), String> {
     let kind = kind.name();
     if crate::search::entry(kind).is_ok_and(|e| e.needs.behaviour) {
         return Err(format!(
-            "strategy.kind = {kind}: a {NAME} run gives no behaviour descriptor, which {kind} searches on: use a strategy that selects on fitness"
+            "strategy.kind = {kind}: {} run gives no behaviour descriptor, which {kind} searches on: use a strategy that selects on fitness",
+            crate::error::a(NAME)
         ));
     }
     let value = |c: &Config| toml::Value::try_from(c).expect("a config is TOML");
@@ -143,7 +144,8 @@ fn validate(c: &Config) -> std::result::Result<(), String> {
     };
     match first_change("", Some(&value(c)), Some(&value(&default_config())), &read) {
         Some((key, value, default)) => Err(format!(
-            "{key} = {value}: a {NAME} run does not read it (it reads experiment.seed and generations, [neat], [run], [strategy] and [gymnasium]): leave it at {default}"
+            "{key} = {value}: {} run does not read it (it reads experiment.seed and generations, [neat], [run], [strategy] and [gymnasium]): leave it at {default}",
+            crate::error::a(NAME)
         )),
         None => Ok(()),
     }
