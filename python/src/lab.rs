@@ -148,8 +148,9 @@ pub fn report(py: Python<'_>, out: PathBuf) -> PyResult<PathBuf> {
         if !run.task().entry().substrate {
             let task = &run.config().experiment.task;
             return Err(vivae_lab::io::bad_input(format!(
-                "{}: a {task} run draws no figures; its curves are in generations.csv",
-                out.display()
+                "{}: {} run draws no figures; its curves are in generations.csv",
+                out.display(),
+                vivae_lab::error::a(task.name())
             )));
         }
         vivae::tasks::finish_run(&run)?;

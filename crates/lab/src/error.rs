@@ -30,6 +30,29 @@ pub fn one_line(message: &str) -> String {
     message.split_whitespace().collect::<Vec<_>>().join(" ")
 }
 
+/// `name` after the indefinite article its first sound takes (`an
+/// acrobot`, `a maze`, `an nsga2`, `a one-plus-lambda`), for a message that
+/// names a task, a strategy or a scenario.
+pub fn a(name: &str) -> String {
+    format!("{} {name}", article(name))
+}
+
+/// The indefinite article of `word`: `an` before a vowel sound, else `a`.
+pub fn article(word: &str) -> &'static str {
+    let word = word.to_ascii_lowercase();
+    // A vowel letter sounding a consonant, and an initialism or a silent h
+    // opening with a vowel sound.
+    const CONSONANT_SOUND: [&str; 6] = ["one", "once", "uni", "use", "usu", "eu"];
+    const VOWEL_SOUND: [&str; 5] = ["nsga", "mpi", "xor", "hour", "honest"];
+    let starts = |prefixes: &[&str]| prefixes.iter().any(|p| word.starts_with(p));
+    let vowel = word.starts_with(['a', 'e', 'i', 'o', 'u']);
+    if (vowel && !starts(&CONSONANT_SOUND)) || starts(&VOWEL_SOUND) {
+        "an"
+    } else {
+        "a"
+    }
+}
+
 /// One piece of a [`Refusal`]'s message.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Part {
@@ -282,6 +305,37 @@ impl From<SimdError> for Error {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_name_takes_the_article_of_its_first_sound() {
+        let tasks = [
+            ("acrobot", "an"),
+            ("cartpole", "a"),
+            ("driving", "a"),
+            ("gymnasium", "a"),
+            ("maze", "a"),
+            ("mountain-car", "a"),
+            ("mountain-car-continuous", "a"),
+            ("pendulum", "a"),
+            ("predator-prey", "a"),
+        ];
+        let strategies = [
+            ("neat", "a"),
+            ("novelty", "a"),
+            ("map-elites", "a"),
+            ("nsga2", "an"),
+            ("one-plus-lambda", "a"),
+            ("random-search", "a"),
+            ("es-hyperneat", "an"),
+        ];
+        for (name, article) in tasks.into_iter().chain(strategies) {
+            assert_eq!(a(name), format!("{article} {name}"));
+        }
+        assert_eq!(a("int"), "an int");
+        assert_eq!(a("Unit"), "a Unit");
+        assert_eq!(a("umbrella"), "an umbrella");
+        assert_eq!(a(""), "a ");
+    }
 
     #[test]
     fn user_mistakes_are_bad_input_and_machine_failures_are_not() {

@@ -402,7 +402,7 @@ pub(crate) mod tests {
             let e = crate::tasks::config_from_toml(&text)
                 .unwrap_err()
                 .to_string();
-            let needle = format!("a {kind} run starts from minimal genomes");
+            let needle = format!("{} run starts from minimal genomes", crate::error::a(kind));
             assert!(e.contains(&needle) && e.lines().count() == 1, "{text}: {e}");
         }
         let text = toml::to_string(&leo_config()).unwrap();

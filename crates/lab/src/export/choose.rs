@@ -57,9 +57,9 @@ pub fn choose(
     let entry = crate::tasks::entry_of(&config).map_err(|e| bad_input(e.to_string()))?;
     let Some(episode_of) = entry.substrate_episode else {
         return Err(bad_input(format!(
-            "{}: a {} run has no substrate network to decode: runs of {} have one",
+            "{}: {} run has no substrate network to decode: runs of {} have one",
             source.display(),
-            entry.name,
+            crate::error::a(entry.name),
             crate::tasks::names_with(|t| t.substrate_episode.is_some())
         )));
     };
@@ -138,7 +138,8 @@ pub fn exported(
     let refused = |why: String| bad_input(format!("{}: {why}", source.display()));
     if sensors.is_some() || neurons.is_some() || precision.is_some() {
         return Err(refused(format!(
-            "a {name} run has no substrate to re-sample: drop the sensors, neurons and precision"
+            "{} run has no substrate to re-sample: drop the sensors, neurons and precision",
+            crate::error::a(name)
         )));
     }
     let task = crate::tasks::describe::build(&config, &crate::tasks::maps::load(&config)?)?;

@@ -598,8 +598,8 @@ fn validate_progress(path: &Path, cp: &Checkpoint, task: &dyn RunTask) -> Result
     let kind = StrategyConfig::of(&cp.config).kind;
     if search.kind() != kind.name() {
         return Err(bad(format!(
-            "holds a {} search, its config says strategy.kind = {}",
-            search.kind(),
+            "holds {} search, its config says strategy.kind = {}",
+            crate::error::a(search.kind()),
             kind.name()
         )));
     }

@@ -226,8 +226,8 @@ pub fn check(config: &Config, metrics: &[&str]) -> std::result::Result<(), Strin
     let e = entry(s.kind.name()).map_err(|why| format!("strategy.kind = {why}"))?;
     if config.substrate.es.leo_seed && !e.takes_population {
         return Err(format!(
-            "substrate.es.leo_seed = true: a {} run starts from minimal genomes (only {} runs start from the seed)",
-            e.kind,
+            "substrate.es.leo_seed = true: {} run starts from minimal genomes (only {} runs start from the seed)",
+            crate::error::a(e.kind),
             takers().join(" and ")
         ));
     }

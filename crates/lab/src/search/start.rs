@@ -72,8 +72,8 @@ pub(crate) fn refuse_init(config: &Config, init: Option<&Population>) -> Result<
     match init {
         None => Ok(()),
         Some(_) => Err(bad_input(format!(
-            "experiment.init_population: a {} run starts from minimal genomes (only {} runs start from a population)",
-            StrategyConfig::of(config).kind.name(),
+            "experiment.init_population: {} run starts from minimal genomes (only {} runs start from a population)",
+            crate::error::a(StrategyConfig::of(config).kind.name()),
             takers().join(" and ")
         ))),
     }

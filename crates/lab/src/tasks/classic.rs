@@ -394,15 +394,19 @@ pub fn evaluate_lanes<T: Classic>(net: &FeedForwardNetwork, seed: u64) -> Evalua
 pub fn episode<T: Classic>(state: &[f64], actions: &[f64]) -> Result<Vec<Step>, String> {
     let mut s = T::state_of(state).ok_or_else(|| {
         format!(
-            "state {state:?} is not a {} state (as env.unwrapped.state holds it)",
-            T::NAME
+            "state {state:?} is not {} state (as env.unwrapped.state holds it)",
+            crate::error::a(T::NAME)
         )
     })?;
     let mut obs = vec![0.0; T::INPUTS - 1];
     let mut out = Vec::new();
     for (n, &a) in actions.iter().enumerate() {
-        let action = T::action_of(a)
-            .ok_or_else(|| format!("action {a} (step {n}) is not a {} action", T::NAME))?;
+        let action = T::action_of(a).ok_or_else(|| {
+            format!(
+                "action {a} (step {n}) is not {} action",
+                crate::error::a(T::NAME)
+            )
+        })?;
         let (next, reward, terminated) = T::step(s, action);
         s = next;
         T::observe(&s, &mut obs);

@@ -41,11 +41,11 @@ pub mod validation;
 pub use champion::{load_genome_source, read_champion};
 pub use registry::{entries, names, register};
 pub use seam::{
-    BuildTask, Finished, HeaderContext, OwnDriver, RunTask, Session, SetRobot, Step, Stepped,
-    Stopped, TaskEntry, Threshold, any_map, build, check, config_from_toml, config_text,
-    default_commented, default_config, entry, entry_of, entry_of_run, has_substrate, metric_names,
-    names_with, nothing_to_refuse, own_driver_of_run, read_by, read_config, readers, sections,
-    set_robot,
+    BuildTask, Finished, HeaderContext, OwnDriver, RunTask, RunTaskBase, Session, SetRobot, Step,
+    Stepped, Stopped, TaskEntry, Threshold, any_map, build, check, check_shape, config_from_toml,
+    config_text, default_commented, default_config, entry, entry_of, entry_of_run, has_substrate,
+    metric_names, names_with, nothing_to_refuse, own_driver_of_run, read_by, read_config, readers,
+    sections, set_robot,
 };
 pub use target::{StoredTarget, TargetProgress};
 

@@ -8,7 +8,6 @@
 //! `generations.csv`'s target columns, the replay of an episode (when it
 //! keeps a trace) and its network for `vivae export`.
 
-use std::any::Any;
 use std::fmt::Write as _;
 use std::marker::PhantomData;
 
@@ -20,7 +19,7 @@ use vivae_neat::{
 
 use crate::config::{Config, TaskName};
 use crate::controller::readings::Readings;
-use crate::error::Result;
+use crate::error::{Result, a};
 use crate::io::bad_input;
 use crate::search::StrategyConfig;
 use crate::search::TaskFacts;
@@ -242,15 +241,15 @@ fn validate<T: Plain>(c: &Config) -> std::result::Result<(), String> {
     let kind = kind.name();
     if T::BEHAVIOUR.is_empty() && crate::search::entry(kind).is_ok_and(|e| e.needs.behaviour) {
         return Err(format!(
-            "strategy.kind = {kind}: a {} run gives no behaviour descriptor, which {kind} searches on: use a strategy that selects on fitness",
-            T::NAME
+            "strategy.kind = {kind}: {} run gives no behaviour descriptor, which {kind} searches on: use a strategy that selects on fitness",
+            a(T::NAME)
         ));
     }
     let defaults = default_config::<T>();
     match unread_change(c, &defaults) {
         Some((key, value, default)) => Err(format!(
-            "{key} = {value}: a {} run does not read it (it reads {}): leave it at {default}",
-            T::NAME,
+            "{key} = {value}: {} run does not read it (it reads {}): leave it at {default}",
+            a(T::NAME),
             "experiment.seed and generations, [neat], [run] and [strategy]"
         )),
         None => Ok(()),
@@ -383,32 +382,6 @@ impl<T: Plain> RunTask for PlainRun<T> {
 
     fn robot_steps(&self) -> u64 {
         T::STEPS
-    }
-
-    fn robot_steps_of(&self, evaluations: &[Evaluation]) -> f64 {
-        match T::METRICS.iter().position(|m| *m == "steps") {
-            Some(k) => evaluations.iter().filter_map(|e| e.metrics.get(k)).sum(),
-            None => evaluations.len() as f64 * T::STEPS as f64,
-        }
-    }
-
-    fn check_genome(&self, genome: &Genome) -> std::result::Result<(), String> {
-        let (inputs, outputs) = (genome.num_inputs(), genome.num_outputs());
-        if (inputs, outputs) == (T::INPUTS, T::OUTPUTS) {
-            Ok(())
-        } else {
-            Err(format!(
-                "network has {inputs} inputs and {outputs} outputs, {} needs {} and {}",
-                T::NAME,
-                T::INPUTS,
-                T::OUTPUTS
-            ))
-        }
-    }
-
-    /// The network is the genome: its enabled links of all its link genes.
-    fn links(&self, genome: &Genome) -> Result<(usize, usize)> {
-        Ok((genome.num_enabled_links(), genome.links().len()))
     }
 
     fn describe(&self, _maps: &[TrainingMap]) -> String {
@@ -553,14 +526,6 @@ impl<T: Plain> RunTask for PlainRun<T> {
 
     fn report_curves(&self) -> bool {
         true
-    }
-
-    fn as_any(&self) -> &dyn Any {
-        self
-    }
-
-    fn clone_box(&self) -> Box<dyn RunTask> {
-        Box::new(self.clone())
     }
 }
 

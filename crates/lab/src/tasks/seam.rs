@@ -259,8 +259,8 @@ pub fn set_robot(config: &mut Config, robot: &str) -> std::result::Result<(), St
             .map(|t| t.name)
             .collect();
         return Err(format!(
-            "robot = {robot}: a {} run has one robot model (tasks with a choice: {})",
-            task.name,
+            "robot = {robot}: {} run has one robot model (tasks with a choice: {})",
+            crate::error::a(task.name),
             with.join(", ")
         ));
     };
@@ -448,8 +448,28 @@ pub struct Finished<'a> {
     pub strategy_fields: &'a str,
 }
 
+/// What every [`RunTask`] that is `Clone` has without writing it: its
+/// concrete type for a downcast and a boxed copy.
+pub trait RunTaskBase {
+    /// The task as [`Any`], for code that knows a task's concrete type.
+    fn as_any(&self) -> &dyn Any;
+
+    /// A boxed copy (each evaluator holds its own).
+    fn clone_box(&self) -> Box<dyn RunTask>;
+}
+
+impl<T: RunTask + Clone + 'static> RunTaskBase for T {
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+
+    fn clone_box(&self) -> Box<dyn RunTask> {
+        Box::new(self.clone())
+    }
+}
+
 /// A task as a run evaluates, records and reports it.
-pub trait RunTask: Task + fmt::Debug + Send + Sync {
+pub trait RunTask: RunTaskBase + Task + fmt::Debug + Send + Sync {
     /// Its registration.
     fn entry(&self) -> &'static TaskEntry;
 
@@ -463,18 +483,28 @@ pub trait RunTask: Task + fmt::Debug + Send + Sync {
     /// Robot-steps one evaluation simulates at most.
     fn robot_steps(&self) -> u64;
 
-    /// Robot-steps a generation's `evaluations` simulated (a task whose
-    /// episodes end early counts the steps they took).
+    /// Robot-steps a generation's `evaluations` simulated: by default the
+    /// sum of a metric named `steps` (a task whose episodes end early counts
+    /// the steps they took), else [`RunTask::robot_steps`] each.
     fn robot_steps_of(&self, evaluations: &[Evaluation]) -> f64 {
-        evaluations.len() as f64 * self.robot_steps() as f64
+        match self.metric_names().iter().position(|m| *m == "steps") {
+            Some(k) => evaluations.iter().filter_map(|e| e.metrics.get(k)).sum(),
+            None => evaluations.len() as f64 * self.robot_steps() as f64,
+        }
     }
 
-    /// Why `genome` does not fit the task, if it does not.
-    fn check_genome(&self, genome: &Genome) -> std::result::Result<(), String>;
+    /// Why `genome` does not fit the task, if it does not: by default,
+    /// unless it has [`RunTask::genome_spec`]'s inputs and outputs.
+    fn check_genome(&self, genome: &Genome) -> std::result::Result<(), String> {
+        check_shape(genome, &self.genome_spec(), self.entry().name)
+    }
 
     /// The links `genome`'s network expresses and could express
-    /// (`generations.csv`'s `best_substrate_links`, `possible_substrate_links`).
-    fn links(&self, genome: &Genome) -> Result<(usize, usize)>;
+    /// (`generations.csv`'s `best_substrate_links`, `possible_substrate_links`):
+    /// by default the network is the genome, its enabled links of all its link genes.
+    fn links(&self, genome: &Genome) -> Result<(usize, usize)> {
+        Ok((genome.num_enabled_links(), genome.links().len()))
+    }
 
     /// What the run trains on, for the run's header line.
     fn describe(&self, maps: &[TrainingMap]) -> String;
@@ -560,12 +590,23 @@ pub trait RunTask: Task + fmt::Debug + Send + Sync {
     fn report_curves(&self) -> bool {
         false
     }
+}
 
-    /// The task as [`Any`], for code that knows a task's concrete type.
-    fn as_any(&self) -> &dyn Any;
-
-    /// A boxed copy (each evaluator holds its own).
-    fn clone_box(&self) -> Box<dyn RunTask>;
+/// Why `genome` is not a network of `spec`'s inputs and outputs, which
+/// `who` (a task, an environment) needs, if it is not.
+pub fn check_shape(
+    genome: &Genome,
+    spec: &GenomeSpec,
+    who: &str,
+) -> std::result::Result<(), String> {
+    let (inputs, outputs) = (genome.num_inputs(), genome.num_outputs());
+    if (inputs, outputs) == (spec.inputs, spec.outputs) {
+        return Ok(());
+    }
+    Err(format!(
+        "network has {inputs} inputs and {outputs} outputs, {who} needs {} and {}",
+        spec.inputs, spec.outputs
+    ))
 }
 
 impl Clone for Box<dyn RunTask> {

@@ -140,8 +140,8 @@ pub fn substrate_episode(
     let entry = super::entry_of(config).map_err(|e| crate::io::bad_input(e.to_string()))?;
     let build = entry.substrate_episode.ok_or_else(|| {
         crate::io::bad_input(format!(
-            "a {} run has no substrate network to decode: runs of {} have one",
-            entry.name,
+            "{} run has no substrate network to decode: runs of {} have one",
+            crate::error::a(entry.name),
             super::names_with(|t| t.substrate_episode.is_some())
         ))
     })?;

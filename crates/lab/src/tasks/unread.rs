@@ -99,7 +99,7 @@ fn refuse_section(
     let (who, fix) = match readers.as_slice() {
         [] => (format!("no task reads [{section}]"), String::new()),
         [one] => (
-            format!("only a {one} run reads [{section}]"),
+            format!("only {} run reads [{section}]", crate::error::a(one)),
             format!("set `task = \"{one}\"` under [experiment] or "),
         ),
         [first @ .., last] => (

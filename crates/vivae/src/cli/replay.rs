@@ -152,8 +152,8 @@ fn replay_without_figures(
 ) -> anyhow::Result<ExitCode> {
     if let Some(seed) = args.placement_seed {
         return Err(bad_input(format!(
-            "--placement-seed {seed}: a {} run places nothing at random, so no seed changes the replay",
-            config.experiment.task.name()
+            "--placement-seed {seed}: {} run places nothing at random, so no seed changes the replay",
+            vivae_lab::error::a(config.experiment.task.name())
         ))
         .into());
     }

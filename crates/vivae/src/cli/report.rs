@@ -54,10 +54,10 @@ pub fn refuse_other_task(path: &Path, command: &str) -> anyhow::Result<()> {
     };
     match config {
         Some(c) if !has_substrate(&c) => Err(bad_input(format!(
-            "{}: a {} run: `vivae {command}` shows robots driven by a substrate network, \
+            "{}: {} run: `vivae {command}` shows robots driven by a substrate network, \
              which runs of {} have; its curves: `vivae report {}`",
             path.display(),
-            c.experiment.task,
+            vivae_lab::error::a(c.experiment.task.name()),
             names_with(|t| t.substrate),
             path.display()
         ))

@@ -40,7 +40,8 @@ pub fn run(args: ResumeArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<Ex
         if let Some(p) = args.precision {
             let task = vivae_lab::tasks::entry_of_run(&args.run_dir).map_or("", |e| e.name);
             return Err(vivae_lab::io::bad_input(format!(
-                "--precision {p}: a {task} run resumes as it was run (it has no choice of precision); leave --precision out"
+                "--precision {p}: {} run resumes as it was run (it has no choice of precision); leave --precision out",
+                vivae_lab::error::a(task)
             ))
             .into());
         }
@@ -96,8 +97,9 @@ fn already_finished(run: &Run) -> anyhow::Result<bool> {
     if let Some(at) = run.target_progress().and_then(|m| m.solved_at) {
         let task = run.config().experiment.task.name();
         eprintln!(
-            "{} is already finished: the {task} was solved after {at} evaluations (a {task} run stops when solved)",
-            run.dir().display()
+            "{} is already finished: the {task} was solved after {at} evaluations ({} run stops when solved)",
+            run.dir().display(),
+            vivae_lab::error::a(task)
         );
         return Ok(true);
     }

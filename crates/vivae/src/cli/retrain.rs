@@ -92,9 +92,9 @@ pub fn run(args: RetrainArgs, interrupted: &Arc<AtomicBool>) -> anyhow::Result<E
 fn retrain_on_the_runs_maps(config: &mut Config, run_dir: &std::path::Path) -> anyhow::Result<()> {
     if !vivae_lab::tasks::has_substrate(config) {
         return Err(bad_input(format!(
-            "{}: a {} run has no substrate network to re-sample: retrain works on runs of {}",
+            "{}: {} run has no substrate network to re-sample: retrain works on runs of {}",
             run_dir.display(),
-            config.experiment.task,
+            vivae_lab::error::a(config.experiment.task.name()),
             vivae_lab::tasks::names_with(|t| t.substrate)
         ))
         .into());

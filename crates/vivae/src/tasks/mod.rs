@@ -117,7 +117,10 @@ pub fn finish_run(run: &Run) -> vivae_lab::Result<RunSummary> {
     let task = &run.config().experiment.task;
     match finish_of(run) {
         Some(finish) => finish(run),
-        None => Err(bad_input(format!("a {task} run has no trajectory figures"))),
+        None => Err(bad_input(format!(
+            "{} run has no trajectory figures",
+            vivae_lab::error::a(task.name())
+        ))),
     }
 }
 

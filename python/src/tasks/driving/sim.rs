@@ -168,7 +168,7 @@ fn typed<'py, T: numpy::Element, D: numpy::ndarray::Dimension>(
         (Ok(dtype), Ok(ndim)) => {
             format!("an array of dtype {} with {ndim} dimensions", dtype.str()?)
         }
-        _ => format!("a {}", v.get_type().name()?),
+        _ => vivae_lab::error::a(&v.get_type().name()?.to_string()),
     };
     Err(pyo3::exceptions::PyTypeError::new_err(format!(
         "{what}: expected a numpy array of dtype {dtype} with {dims} dimensions, got {given}"

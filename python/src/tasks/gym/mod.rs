@@ -44,9 +44,9 @@ fn gym_section<'py>(py: Python<'py>, out: PathBuf) -> PyResult<Bound<'py, PyAny>
     let config = vivae_lab::tasks::read_config(&path).map_err(errors::lab)?;
     if config.experiment.task.name() != gym::NAME {
         return Err(errors::value(format!(
-            "{}: not a {} run (experiment.task = {})",
+            "{}: not {} run (experiment.task = {})",
             out.display(),
-            gym::NAME,
+            vivae_lab::error::a(gym::NAME),
             config.experiment.task
         )));
     }
@@ -173,9 +173,9 @@ fn drive<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let Some(task) = run.task().as_any().downcast_ref::<GymRun>().cloned() else {
         return Err(errors::value(format!(
-            "{}: not a {} run (experiment.task = {})",
+            "{}: not {} run (experiment.task = {})",
             run.dir().display(),
-            gym::NAME,
+            vivae_lab::error::a(gym::NAME),
             run.config().experiment.task
         )));
     };

@@ -1,8 +1,6 @@
 //! The driving experiment as a run's task (`experiment.task = "driving"`,
 //! the default): its registration and what a run asks of it.
 
-use std::any::Any;
-
 use vivae_neat::{Genome, GenomeSpec};
 
 use crate::config::{Config, TaskName};
@@ -110,14 +108,6 @@ impl RunTask for Training {
 
     fn header(&self, config: &Config, ctx: &HeaderContext<'_>) -> String {
         header(self, config, ctx)
-    }
-
-    fn as_any(&self) -> &dyn Any {
-        self
-    }
-
-    fn clone_box(&self) -> Box<dyn RunTask> {
-        Box::new(self.clone())
     }
 }
 

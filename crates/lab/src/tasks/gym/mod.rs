@@ -9,7 +9,6 @@
 
 pub mod section;
 
-use std::any::Any;
 use std::sync::OnceLock;
 
 use vivae_neat::driver::{Evaluation, Evaluator, EvaluatorError, Task};
@@ -133,7 +132,8 @@ fn validate(c: &Config) -> std::result::Result<(), String> {
     let kind = kind.name();
     if crate::search::entry(kind).is_ok_and(|e| e.needs.behaviour) {
         return Err(format!(
-            "strategy.kind = {kind}: a {NAME} run gives no behaviour descriptor, which {kind} searches on: use a strategy that selects on fitness"
+            "strategy.kind = {kind}: {} run gives no behaviour descriptor, which {kind} searches on: use a strategy that selects on fitness",
+            crate::error::a(NAME)
         ));
     }
     let value = |c: &Config| toml::Value::try_from(c).expect("a config is TOML");
@@ -144,7 +144,8 @@ fn validate(c: &Config) -> std::result::Result<(), String> {
     };
     match first_change("", Some(&value(c)), Some(&value(&default_config())), &read) {
         Some((key, value, default)) => Err(format!(
-            "{key} = {value}: a {NAME} run does not read it (it reads experiment.seed and generations, [neat], [run], [strategy] and [gymnasium]): leave it at {default}"
+            "{key} = {value}: {} run does not read it (it reads experiment.seed and generations, [neat], [run], [strategy] and [gymnasium]): leave it at {default}",
+            crate::error::a(NAME)
         )),
         None => Ok(()),
     }
@@ -275,23 +276,8 @@ impl RunTask for GymRun {
         u64::from(self.env.episodes) * u64::from(self.env.max_steps)
     }
 
-    fn robot_steps_of(&self, evaluations: &[Evaluation]) -> f64 {
-        evaluations.iter().filter_map(|e| e.metrics.get(1)).sum()
-    }
-
     fn check_genome(&self, genome: &Genome) -> std::result::Result<(), String> {
-        let (inputs, outputs) = (genome.num_inputs(), genome.num_outputs());
-        if (inputs, outputs) == (self.env.inputs, self.env.outputs) {
-            return Ok(());
-        }
-        Err(format!(
-            "network has {inputs} inputs and {outputs} outputs, {} needs {} and {}",
-            self.env.env, self.env.inputs, self.env.outputs
-        ))
-    }
-
-    fn links(&self, genome: &Genome) -> Result<(usize, usize)> {
-        Ok((genome.num_enabled_links(), genome.links().len()))
+        crate::tasks::check_shape(genome, &self.genome_spec(), &self.env.env)
     }
 
     fn describe(&self, _maps: &[TrainingMap]) -> String {
@@ -351,14 +337,6 @@ impl RunTask for GymRun {
 
     fn report_curves(&self) -> bool {
         true
-    }
-
-    fn as_any(&self) -> &dyn Any {
-        self
-    }
-
-    fn clone_box(&self) -> Box<dyn RunTask> {
-        Box::new(self.clone())
     }
 }
 

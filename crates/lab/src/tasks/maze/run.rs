@@ -8,8 +8,6 @@
 //! genome first reaches the goal, as the example does; `evals_to_solve`
 //! counts the evaluations up to and including that genome.
 
-use std::any::Any;
-
 use vivae_neat::driver::Evaluation;
 use vivae_neat::{Genome, GenomeSpec};
 use vivae_sim::Scenario;
@@ -128,29 +126,8 @@ impl<M: MazeModel> RunTask for M {
         u64::from(self.episode_steps())
     }
 
-    /// A maze episode ends early at the goal: the steps it took.
-    fn robot_steps_of(&self, evaluations: &[Evaluation]) -> f64 {
-        (evaluations.iter())
-            .map(|e| e.metrics.get(2).copied().unwrap_or_default())
-            .sum()
-    }
-
     fn check_genome(&self, genome: &Genome) -> std::result::Result<(), String> {
-        let want = MazeTask::spec();
-        let (inputs, outputs) = (genome.num_inputs(), genome.num_outputs());
-        if (inputs, outputs) == (want.inputs, want.outputs) {
-            Ok(())
-        } else {
-            Err(format!(
-                "network has {inputs} inputs and {outputs} outputs, the maze needs {} and {}",
-                want.inputs, want.outputs
-            ))
-        }
-    }
-
-    /// A maze network is the genome: its enabled links of all its link genes.
-    fn links(&self, genome: &Genome) -> Result<(usize, usize)> {
-        Ok((genome.num_enabled_links(), genome.links().len()))
+        crate::tasks::check_shape(genome, &MazeTask::spec(), "the maze")
     }
 
     fn describe(&self, maps: &[TrainingMap]) -> String {
@@ -199,14 +176,6 @@ impl<M: MazeModel> RunTask for M {
 
     fn replay_text(&self, genome: &Genome) -> Option<(String, String)> {
         Some(crate::tasks::maze::present::replay(self, genome))
-    }
-
-    fn as_any(&self) -> &dyn Any {
-        self
-    }
-
-    fn clone_box(&self) -> Box<dyn RunTask> {
-        Box::new(self.clone())
     }
 }
 

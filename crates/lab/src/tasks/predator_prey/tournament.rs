@@ -167,9 +167,9 @@ fn arena_and_terms(dir: &Path) -> Result<(Arena, String)> {
     let config = crate::tasks::read_config(&dir.join(crate::rundir::files::CONFIG))?;
     if config.experiment.task.0 != NAME {
         return Err(bad_input(format!(
-            "{}: a {} run, not a predator-prey run",
+            "{}: {} run, not a predator-prey run",
             dir.display(),
-            config.experiment.task.0
+            crate::error::a(&config.experiment.task.0)
         )));
     }
     let (arena, text) = arena_of(&config, &dir.join(crate::rundir::files::SCENARIO))?;

@@ -71,7 +71,10 @@ pub fn finish(run: &Run) -> Result<RunSummary> {
     vivae_lab::rundir::unmark_drawn(run.dir())?;
     let experiment = (training_of(run.task()).map(|t| t.primary())).ok_or_else(|| {
         let task = &run.config().experiment.task;
-        bad_input(format!("a {task} run has no trajectory figures"))
+        bad_input(format!(
+            "{} run has no trajectory figures",
+            vivae_lab::error::a(task.name())
+        ))
     })?;
     let champion = run.champion().ok_or(Error::NoChampion)?;
     // The episodes' figures on one core, the network's and the population's
