@@ -70,8 +70,8 @@ def main() -> int:
     if len(sys.argv) != 7:
         print(__doc__.strip().splitlines()[-1].strip(), file=sys.stderr)
         return 2
-    env, seed, out, generations, population, episodes = sys.argv[1:]
-    seed, generations, population, episodes = int(seed), int(generations), int(population), int(episodes)
+    env, out = sys.argv[1], sys.argv[3]
+    seed, generations, population, episodes = (int(a) for a in (sys.argv[2], *sys.argv[4:]))
     run = Path(out) / f"{env}-seed-{seed}"
     log = CpuLog(Path(out) / "cpu" / f"{run.name}.csv")
     each = lambda record: log.lap(str(record["generation"]))  # noqa: E731

@@ -3,7 +3,7 @@ runs under OUT: each run's ``config.toml`` (budget), ``generations.csv``
 (progress), ``validation.json`` (the champion on 100 fresh episodes) and
 the suite's ``cpu/<run>.csv`` (CPU seconds per generation).
 
-    python scripts/gym_suite_table.py OUT > table.md
+    python scripts/gym_suite_table.py OUT > table.md      (Python 3.11 or later: tomllib)
 
 One row per environment (seeds solved, validated means, the best), then one
 per run: the champion's generation, the evaluations and CPU seconds it took
