@@ -53,9 +53,11 @@ pub struct Overrides {
     /// Search strategy (strategy.kind; default neat, the paper's).
     #[arg(long, value_name = "NAME", value_parser = strategy_names())]
     pub strategy: Option<vivae_lab::config::strategy::StrategyName>,
-    /// Behaviour descriptor of the strategies that search on one (strategy.behaviour).
-    #[arg(long, value_name = "end-position|end-positions|side-speed|trajectory")]
-    pub behaviour: Option<vivae_lab::config::strategy::BehaviourKind>,
+    /// Behaviour descriptor of the strategies that search on one
+    /// (strategy.behaviour; default end-position): the task decides which of
+    /// these apply, and refuses another naming its own.
+    #[arg(long, value_name = "NAME", value_parser = behaviour_names())]
+    pub behaviour: Option<vivae_lab::config::strategy::BehaviourName>,
     /// Task (experiment.task; default driving, the paper's); docs/howto/ has a page
     /// per task: what it evaluates and which scenario it starts from.
     #[arg(long, value_name = "NAME", value_parser = task_names())]
@@ -87,6 +89,14 @@ pub(super) fn task_names() -> impl clap::builder::TypedValueParser<Value = TaskN
     use clap::builder::TypedValueParser as _;
     let names = vivae_lab::tasks::names().iter().copied();
     clap::builder::PossibleValuesParser::new(names).map(TaskName)
+}
+
+/// `--behaviour NAME`: one offered by a registered task (listed by `--help`).
+fn behaviour_names()
+-> impl clap::builder::TypedValueParser<Value = vivae_lab::config::strategy::BehaviourName> {
+    use clap::builder::TypedValueParser as _;
+    let names = vivae_lab::tasks::behaviours::names();
+    clap::builder::PossibleValuesParser::new(names).map(vivae_lab::config::strategy::BehaviourName)
 }
 
 /// `--strategy NAME`: one of the registered strategies (listed by `--help`).
@@ -121,7 +131,7 @@ impl Overrides {
             normalize_self_loops: self.wiring.normalize_self_loops,
             recurrence: self.wiring.recurrence,
             strategy: self.strategy.clone(),
-            behaviour: self.behaviour,
+            behaviour: self.behaviour.clone(),
             task: self.task.clone(),
             robot: self.robot.clone(),
             placements: self.placements,
