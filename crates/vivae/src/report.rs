@@ -51,7 +51,8 @@ pub(crate) fn population_figures(run: &Run, dir: &Path) -> Result<()> {
 fn strategy_figure(run: &Run, dir: &Path) -> Result<()> {
     use vivae_lab::search::StrategyFigure as F;
     let strategy = run.search().strategy();
-    match strategy.figure(run.config(), run.done()) {
+    let space = run.task().behaviour_space(run.config());
+    match strategy.figure(run.config(), &space, run.done()) {
         None => Ok(()),
         Some(F::Grid(grid)) => {
             let figure = figures::archive::render(&grid)?;

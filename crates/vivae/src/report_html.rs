@@ -162,15 +162,15 @@ pub(crate) fn round2(v: f64) -> f64 {
 
 /// The strategy's part of the report of the run in `dir` (none for NEAT):
 /// what its own file reads of the run directory, the objectives named as
-/// the figures name them, and its columns of `generations.csv`; `robots`
-/// is how many robots its episodes drive.
+/// the figures name them, and its columns of `generations.csv`; `space` is
+/// the task's behaviour descriptors'.
 pub(crate) fn strategy_data(
     dir: &Path,
     config: &vivae_lab::config::Config,
-    robots: usize,
+    space: &vivae_lab::search::BehaviourSpace,
 ) -> vivae_lab::Result<Option<StrategyData>> {
     let entry = vivae_lab::search::entry_of(config)?;
-    let Some(mut report) = (entry.report)(dir, config, robots)? else {
+    let Some(mut report) = (entry.report)(dir, config, space)? else {
         return Ok(None);
     };
     report.objectives = (report.objectives.iter())

@@ -1,6 +1,6 @@
 //! What the `[strategy]` section of a config says beside each strategy's
 //! settings: which strategy runs ([`StrategyName`]) and which behaviour
-//! descriptor it searches on ([`BehaviourKind`]). The section itself,
+//! descriptor it searches on ([`BehaviourName`], one its task offers). The section itself,
 //! [`crate::search::StrategyConfig`], is declared where the strategies are
 //! registered, each strategy's settings in its own file of `search/`. Every
 //! strategy breeds with NEAT's operators and `[neat]` parameters, and
@@ -9,86 +9,47 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
-/// Which behaviour descriptor an episode reports (see [`crate::tasks::driving::descriptors`]).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
-#[serde(rename_all = "kebab-case")]
-pub enum BehaviourKind {
-    /// The robots' mean end position over the arena's size.
-    #[default]
-    EndPosition,
-    /// Every robot's end position over the arena's size, concatenated.
-    EndPositions,
-    /// Mean signed side of the road and mean speed over `v_max`.
-    SideSpeed,
-    /// The robots' mean position over the arena's size at
-    /// [`TRAJECTORY_SAMPLES`] evenly spaced times, the last at the end.
-    Trajectory,
-}
+/// The behaviour descriptor a run's strategy searches on
+/// (`strategy.behaviour`): one of those its task offers, which checks it
+/// (each task declares its own with its registration).
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(transparent)]
+pub struct BehaviourName(pub String);
 
-/// Positions a `trajectory` behaviour samples: 5, so 10 coordinates (as
-/// Lehman & Stanley sampled their biped's path, a handful of points).
-pub const TRAJECTORY_SAMPLES: usize = 5;
+impl BehaviourName {
+    /// The default descriptor's name; a task with a descriptor of its own
+    /// and no choice of them leaves the key at it.
+    pub const DEFAULT: &'static str = "end-position";
 
-impl BehaviourKind {
-    /// Coordinates of the descriptor for `robots` robots.
-    pub fn dims(self, robots: usize) -> usize {
-        match self {
-            BehaviourKind::EndPositions => 2 * robots,
-            BehaviourKind::Trajectory => 2 * TRAJECTORY_SAMPLES,
-            BehaviourKind::EndPosition | BehaviourKind::SideSpeed => 2,
-        }
-    }
-
-    /// The box every descriptor lies in: (lower, upper) per coordinate.
-    pub fn bounds(self, robots: usize) -> (Vec<f64>, Vec<f64>) {
-        let n = self.dims(robots);
-        match self {
-            BehaviourKind::SideSpeed => (vec![-1.0, 0.0], vec![1.0, 1.0]),
-            _ => (vec![0.0; n], vec![1.0; n]),
-        }
-    }
-
-    /// Column names of the descriptor's `dims` coordinates.
-    pub fn coordinate_names(self, dims: usize) -> Vec<String> {
-        match self {
-            BehaviourKind::EndPosition => vec!["x".into(), "y".into()],
-            BehaviourKind::SideSpeed => vec!["side".into(), "speed".into()],
-            BehaviourKind::EndPositions => (0..dims)
-                .map(|i| format!("{}{}", ["x", "y"][i % 2], i / 2))
-                .collect(),
-            // The sample's number from 1 (the end is the last).
-            BehaviourKind::Trajectory => (0..dims)
-                .map(|i| format!("{}{}", ["x", "y"][i % 2], i / 2 + 1))
-                .collect(),
-        }
-    }
-
-    /// The name as configs write it.
-    pub fn name(self) -> &'static str {
-        match self {
-            BehaviourKind::EndPosition => "end-position",
-            BehaviourKind::EndPositions => "end-positions",
-            BehaviourKind::SideSpeed => "side-speed",
-            BehaviourKind::Trajectory => "trajectory",
-        }
+    /// The name as configs and the command line write it.
+    pub fn name(&self) -> &str {
+        &self.0
     }
 }
 
-impl std::str::FromStr for BehaviourKind {
+impl Default for BehaviourName {
+    fn default() -> Self {
+        BehaviourName(Self::DEFAULT.into())
+    }
+}
+
+impl From<&str> for BehaviourName {
+    fn from(name: &str) -> Self {
+        BehaviourName(name.into())
+    }
+}
+
+impl std::fmt::Display for BehaviourName {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::str::FromStr for BehaviourName {
     type Err = String;
 
     fn from_str(s: &str) -> Result<Self, String> {
-        [
-            BehaviourKind::EndPosition,
-            BehaviourKind::EndPositions,
-            BehaviourKind::SideSpeed,
-            BehaviourKind::Trajectory,
-        ]
-        .into_iter()
-        .find(|k| k.name() == s)
-        .ok_or_else(|| {
-            format!("'{s}': expected end-position, end-positions, side-speed or trajectory")
-        })
+        Ok(BehaviourName(s.to_string()))
     }
 }
 

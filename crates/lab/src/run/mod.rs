@@ -103,9 +103,9 @@ impl Run {
                 }
             )));
         }
-        let bounds = task.behaviour_bounds(&config);
+        let space = task.behaviour_space(&config);
         let metrics = task.entry().metric_names;
-        let search = Search::new(&config, task.genome_spec(), bounds, init.as_ref(), metrics)?;
+        let search = Search::new(&config, task.genome_spec(), &space, init.as_ref(), metrics)?;
         // The run is built in a temporary sibling and renamed into place once its
         // first checkpoint exists: a kill or an error before that leaves no
         // directory that could neither be resumed nor re-run without --force.
@@ -569,7 +569,8 @@ impl<F> Checkpointer<Search> for Recorder<'_, F> {
                 let keep = self.config.run.checkpoint_keep;
                 self.writer.start(self.dir.to_path_buf(), keep, cp)?;
             }
-            write_outputs(self.dir, self.config, state.strategy)?;
+            let space = self.task.behaviour_space(self.config);
+            write_outputs(self.dir, self.config, &space, state.strategy)?;
         }
         self.started = Instant::now();
         Ok(())

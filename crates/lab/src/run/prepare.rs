@@ -10,7 +10,7 @@ use vivae_neat::{Population, Precision};
 
 use super::population_from_checkpoint;
 use crate::config::es::SubstrateKind;
-use crate::config::strategy::{BehaviourKind, StrategyName};
+use crate::config::strategy::{BehaviourName, StrategyName};
 use crate::config::{Aggregate, Config, NormalizeBy, Recurrence, TaskName};
 use crate::controller::polar::PolarGrid;
 use crate::error::Result;
@@ -65,7 +65,7 @@ pub struct Overrides {
     /// `strategy.kind`.
     pub strategy: Option<StrategyName>,
     /// `strategy.behaviour`.
-    pub behaviour: Option<BehaviourKind>,
+    pub behaviour: Option<BehaviourName>,
     /// `experiment.task` (a registered task).
     pub task: Option<TaskName>,
     /// The task's robot model, where it has a choice (its entry's
@@ -193,7 +193,7 @@ impl Overrides {
         set(&mut s.recurrence, self.recurrence);
         StrategyConfig::update(c, |s| {
             set(&mut s.kind, self.strategy.clone());
-            set(&mut s.behaviour, self.behaviour);
+            set(&mut s.behaviour, self.behaviour.clone());
         });
         match &self.robot {
             Some(robot) => tasks::set_robot(c, robot),

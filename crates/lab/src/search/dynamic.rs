@@ -10,7 +10,7 @@ use vivae_neat::{BestEver, GenerationStats, Genome, GenomeSpec, NeatError, Popul
 
 use crate::config::Config;
 use crate::error::Result;
-use crate::search::{Bounds, RunStrategy, Start, entries, entry_of, refuse_init};
+use crate::search::{BehaviourSpace, RunStrategy, Start, entries, entry_of, refuse_init};
 
 /// A run's search strategy: the one of
 /// [`STRATEGIES`](crate::search::STRATEGIES) the config's `[strategy]`
@@ -20,14 +20,14 @@ pub struct Search(Box<dyn DynStrategy>);
 
 impl Search {
     /// Generation 0 of the strategy of `config` over genomes of shape `spec`
-    /// whose behaviour descriptors lie in the box `bounds` (lower, upper),
+    /// whose behaviour descriptors are those of `space` (the task's),
     /// seeded with `experiment.seed`; NEAT and novelty search may start from
     /// `init`'s genomes instead; the task's evaluations carry the metrics
     /// `metrics`.
     pub fn new(
         config: &Config,
         spec: GenomeSpec,
-        bounds: Bounds,
+        space: &BehaviourSpace,
         init: Option<&Population>,
         metrics: &[&str],
     ) -> Result<Search> {
@@ -39,7 +39,7 @@ impl Search {
         (entry.build)(Start {
             config,
             spec,
-            bounds,
+            space,
             init,
             metrics,
         })

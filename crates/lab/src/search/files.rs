@@ -13,7 +13,7 @@ use vivae_neat::Genome;
 
 use crate::config::Config;
 use crate::error::{Error, Result};
-use crate::search::Search;
+use crate::search::{BehaviourSpace, Search};
 
 /// MAP-Elites runs: every elite's cell, behaviour, fitness and generation.
 pub const ARCHIVE: &str = "archive.csv";
@@ -68,9 +68,15 @@ pub struct FrontLine {
     pub genome: Genome,
 }
 
-/// Writes the strategy's own files of `search` into the run directory `dir`.
-pub fn write_outputs(dir: &Path, config: &Config, search: &Search) -> Result<()> {
-    search.strategy().write_outputs(dir, config)
+/// Writes the strategy's own files of `search` into the run directory `dir`
+/// (`space`: the task's behaviour descriptors').
+pub fn write_outputs(
+    dir: &Path,
+    config: &Config,
+    space: &BehaviourSpace,
+    search: &Search,
+) -> Result<()> {
+    search.strategy().write_outputs(dir, config, space)
 }
 
 /// `lines` as JSON lines.

@@ -19,7 +19,7 @@ use crate::io::{bad_input, write_atomic};
 use crate::search::files;
 use crate::search::files::{ArchiveLine, jsonl};
 use crate::search::{
-    Bounds, GridFigure, GridReport, Needs, RunStrategy, Search, Start, StrategyEntry,
+    BehaviourSpace, GridFigure, GridReport, Needs, RunStrategy, Search, Start, StrategyEntry,
     StrategyFigure, StrategyReport, TaskFacts, bad_setting, behaviour_line, state_of,
 };
 
@@ -146,18 +146,17 @@ pub(super) fn fit_to(m: &mut MapElitesConfig, task: &TaskFacts<'_>) {
 
 /// The archive as saved with the last checkpoint: its elites and, on a
 /// 2-D grid, the grid the report draws as a heat map.
-fn report(dir: &Path, config: &Config, robots: usize) -> Result<Option<StrategyReport>> {
+fn report(dir: &Path, config: &Config, space: &BehaviourSpace) -> Result<Option<StrategyReport>> {
     let s = &StrategyConfig::of(config);
     let elites = crate::search::files::read_archive(dir)?.unwrap_or_default();
-    let dims = s.behaviour.dims(robots);
-    let (lower, upper) = s.behaviour.bounds(robots);
+    let dims = space.dims();
     let bins = s.map_elites.bins_for(dims);
     let mut data = StrategyReport {
         kind: STRATEGY.kind,
-        behaviour_names: s.behaviour.coordinate_names(dims),
+        behaviour_names: space.names.clone(),
         ..StrategyReport::default()
     };
-    match (s.map_elites.cells, &lower[..], &upper[..], &bins[..]) {
+    match (s.map_elites.cells, &space.lower[..], &space.upper[..], &bins[..]) {
         (CellsKind::Grid, &[l0, l1], &[u0, u1], &[b0, b1]) => {
             data.grid = Some(GridReport {
                 lower: [l0, l1],
@@ -187,7 +186,7 @@ fn build(
     Start {
         config,
         spec,
-        bounds,
+        space,
         ..
     }: Start<'_>,
 ) -> Result<Search> {
@@ -198,7 +197,7 @@ fn build(
         crossover_probability: m.crossover_probability,
         qd_offset: m.qd_offset,
     };
-    let cells = cells(config, bounds)?;
+    let cells = cells(config, space)?;
     let refused = |e: NeatError| bad_input(format!("strategy.map-elites: {e}"));
     let seed = config.experiment.seed;
     Ok(Search::of(
@@ -206,10 +205,11 @@ fn build(
     ))
 }
 
-/// The MAP-Elites cells of `config` over the descriptor box `(lower, upper)`.
-fn cells(config: &Config, (lower, upper): Bounds) -> Result<Cells> {
+/// The MAP-Elites cells of `config` over the box of the descriptors of `space`.
+fn cells(config: &Config, space: &BehaviourSpace) -> Result<Cells> {
     let s = &StrategyConfig::of(config);
     let m = &s.map_elites;
+    let (lower, upper) = (space.lower.clone(), space.upper.clone());
     let dims = lower.len();
     let bins = m.bins_for(dims);
     let refused = |e: NeatError| bad_input(format!("strategy.map_elites: {e}"));
@@ -256,7 +256,12 @@ impl RunStrategy for MapElites {
     }
 
     /// On a 2-D grid: the archive as a heat map.
-    fn figure(&self, config: &Config, _generation: u32) -> Option<StrategyFigure> {
+    fn figure(
+        &self,
+        config: &Config,
+        space: &BehaviourSpace,
+        _generation: u32,
+    ) -> Option<StrategyFigure> {
         let Cells::Grid { lower, upper, bins } = self.cells() else {
             return None;
         };
@@ -264,7 +269,9 @@ impl RunStrategy for MapElites {
             return None;
         };
         let behaviour = StrategyConfig::of(config).behaviour;
-        let names = behaviour.coordinate_names(2);
+        let [x, y] = &space.names[..] else {
+            return None;
+        };
         let s = self.archive_stats();
         Some(StrategyFigure::Grid(GridFigure {
             title: format!(
@@ -274,7 +281,7 @@ impl RunStrategy for MapElites {
                 b0 * b1,
                 s.qd_score
             ),
-            axes: [names[0].clone(), names[1].clone()],
+            axes: [x.clone(), y.clone()],
             lower: [*l0, *l1],
             upper: [*u0, *u1],
             bins: [*b0, *b1],
@@ -284,7 +291,7 @@ impl RunStrategy for MapElites {
 
     /// The archive: `archive.csv` (cells, behaviour, fitness, generation)
     /// and `archive.jsonl` (with genomes).
-    fn write_outputs(&self, dir: &Path, config: &Config) -> Result<()> {
+    fn write_outputs(&self, dir: &Path, _config: &Config, space: &BehaviourSpace) -> Result<()> {
         let lines: Vec<ArchiveLine> = (self.elites())
             .map(|(cell, e)| ArchiveLine {
                 cell,
@@ -294,9 +301,7 @@ impl RunStrategy for MapElites {
                 genome: e.genome.clone(),
             })
             .collect();
-        let dims = self.cells().dims();
-        let names = StrategyConfig::of(config).behaviour.coordinate_names(dims);
-        let mut csv = format!("cell,{},fitness,generation\n", names.join(","));
+        let mut csv = format!("cell,{},fitness,generation\n", space.names.join(","));
         for l in &lines {
             let b: Vec<String> = l.behaviour.iter().map(f64::to_string).collect();
             let _ = writeln!(

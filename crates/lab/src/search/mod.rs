@@ -36,8 +36,8 @@ pub use map_elites::{CellsKind, MapElitesConfig};
 pub use novelty::novelty_defaults;
 pub use nsga2::{Nsga2Config, front_objective_names, objective_among};
 pub use registry::{
-    Bounds, Needs, ReportOf, Settings, Start, StrategyEntry, StrategySettings, check, entries,
-    entry, entry_of, register, state_of,
+    BehaviourSpace, Needs, ReportOf, Settings, Start, StrategyEntry, StrategySettings, check,
+    entries, entry, entry_of, register, state_of,
 };
 pub(crate) use registry::{behaviour_line, takers};
 pub use run_strategy::{
@@ -51,7 +51,7 @@ use schemars::JsonSchema;
 use serde::Deserialize;
 use vivae_neat::strategies::NoveltyParams;
 
-use crate::config::strategy::{BehaviourKind, StrategyName};
+use crate::config::strategy::{BehaviourName, StrategyName};
 use crate::config::{Config, OwnedSection, Section};
 
 /// Declares each built-in strategy's file (a module of this folder) and
@@ -86,11 +86,11 @@ pub struct StrategyConfig {
     ///
     /// Paper: neat.
     pub kind: StrategyName,
-    /// Behaviour descriptor for novelty and map-elites: end-position (mean
-    /// end position over the arena's size), end-positions (each robot's,
-    /// concatenated), side-speed (mean side of the road, mean speed over
-    /// v_max) or trajectory (mean position at 5 evenly spaced times).
-    pub behaviour: BehaviourKind,
+    /// Behaviour descriptor for novelty and map-elites: one the task offers
+    /// (a run of another is refused with the names it offers; the
+    /// strategies guide describes each); a task with a descriptor of its own
+    /// and no choice of them leaves it at end-position.
+    pub behaviour: BehaviourName,
     /// Novelty search (unit of the thresholds: behaviour units, e.g. arena
     /// sizes for end positions).
     pub novelty: NoveltyParams,
@@ -108,7 +108,7 @@ impl Default for StrategyConfig {
     fn default() -> Self {
         StrategyConfig {
             kind: StrategyName::default(),
-            behaviour: BehaviourKind::default(),
+            behaviour: BehaviourName::default(),
             novelty: novelty_defaults(),
             map_elites: MapElitesConfig::default(),
             nsga2: Nsga2Config::default(),

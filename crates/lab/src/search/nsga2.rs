@@ -18,7 +18,7 @@ use crate::io::{bad_input, write_atomic};
 use crate::search::files;
 use crate::search::files::{FrontLine, jsonl};
 use crate::search::{
-    FrontFigure, Needs, RunStrategy, Search, Start, StrategyEntry, StrategyFigure, StrategyReport,
+    BehaviourSpace, FrontFigure, Needs, RunStrategy, Search, Start, StrategyEntry, StrategyFigure, StrategyReport,
     TaskFacts, bad_setting, state_of,
 };
 
@@ -115,7 +115,7 @@ pub static STRATEGY: StrategyEntry = StrategyEntry {
 };
 
 /// The Pareto front as saved with the last checkpoint, and its objectives.
-fn report(dir: &Path, config: &Config, _robots: usize) -> Result<Option<StrategyReport>> {
+fn report(dir: &Path, config: &Config, _space: &BehaviourSpace) -> Result<Option<StrategyReport>> {
     let front = crate::search::files::read_front(dir)?.unwrap_or_default();
     Ok(Some(StrategyReport {
         kind: STRATEGY.kind,
@@ -170,7 +170,12 @@ impl RunStrategy for Nsga2 {
 
     /// Over two objectives: the last generation's objectives and its front
     /// (with more, no 2-D picture shows the front: `front.csv` has them all).
-    fn figure(&self, config: &Config, generation: u32) -> Option<StrategyFigure> {
+    fn figure(
+        &self,
+        config: &Config,
+        _space: &BehaviourSpace,
+        generation: u32,
+    ) -> Option<StrategyFigure> {
         let objectives = StrategyConfig::of(config).nsga2.objectives;
         let [a, b] = &objectives[..] else {
             return None;
@@ -192,7 +197,7 @@ impl RunStrategy for Nsga2 {
 
     /// The Pareto front, fittest first: `front.csv` (objectives) and
     /// `front.jsonl` (with genomes).
-    fn write_outputs(&self, dir: &Path, config: &Config) -> Result<()> {
+    fn write_outputs(&self, dir: &Path, config: &Config, _space: &BehaviourSpace) -> Result<()> {
         let mut front = self.pareto_front();
         front.sort_by(|a, b| b.2.total_cmp(&a.2));
         let lines: Vec<FrontLine> = (front.into_iter().enumerate())

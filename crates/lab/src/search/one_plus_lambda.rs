@@ -19,7 +19,7 @@ use crate::config::Config;
 use crate::error::{Error, Result};
 use crate::io::{bad_input, write_atomic};
 use crate::search::{Needs, RunStrategy, Search, Settings, Start, StrategyConfig, StrategyEntry};
-use crate::search::{StrategyReport, StrategySettings};
+use crate::search::{BehaviourSpace, StrategyReport, StrategySettings};
 
 /// The (1+λ)-ES's registration.
 pub static STRATEGY: StrategyEntry = StrategyEntry {
@@ -247,7 +247,7 @@ impl RunStrategy for OnePlusLambda {
         format!(" parent_fitness={fitness:.3}")
     }
 
-    fn write_outputs(&self, dir: &Path, _config: &Config) -> Result<()> {
+    fn write_outputs(&self, dir: &Path, _config: &Config, _space: &BehaviourSpace) -> Result<()> {
         let Some((genome, fitness)) = &self.parent else {
             return Ok(());
         };

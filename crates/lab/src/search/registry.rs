@@ -14,8 +14,26 @@ use crate::io::bad_input;
 use crate::search::StrategyConfig;
 use crate::search::{DynStrategy, STRATEGIES, Search, StrategyReport, sections};
 
-/// The box (lower, upper) the behaviour descriptors lie in.
-pub type Bounds = (Vec<f64>, Vec<f64>);
+/// The behaviour descriptors a task gives for a run's `strategy.behaviour`:
+/// the box they lie in (a grid archive's cells cover it) and their
+/// coordinates' names (the archive's columns, its figure's axes). Empty for
+/// a task that gives none.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct BehaviourSpace {
+    /// Each coordinate's least value.
+    pub lower: Vec<f64>,
+    /// Each coordinate's greatest value.
+    pub upper: Vec<f64>,
+    /// Each coordinate's name.
+    pub names: Vec<String>,
+}
+
+impl BehaviourSpace {
+    /// How many coordinates a descriptor has.
+    pub fn dims(&self) -> usize {
+        self.lower.len()
+    }
+}
 
 /// A strategy's registration: what a run needs of it before it exists.
 pub struct StrategyEntry {
@@ -38,7 +56,8 @@ pub struct StrategyEntry {
     /// The line the run's header says of it (with its leading line break), or empty.
     pub header_line: fn(&Config) -> String,
     /// What the report of the run in a directory shows of it, read from the
-    /// files it wrote (`None`: nothing, as for NEAT); the task's robots given.
+    /// files it wrote (`None`: nothing, as for NEAT); the task's behaviour
+    /// descriptors given.
     pub report: ReportOf,
     /// The files it writes into the run directory with each checkpoint
     /// ([`RunStrategy::write_outputs`](crate::search::RunStrategy::write_outputs)):
@@ -122,8 +141,8 @@ pub struct Start<'a> {
     pub config: &'a Config,
     /// The shape of the genomes.
     pub spec: GenomeSpec,
-    /// The box the behaviour descriptors lie in.
-    pub bounds: Bounds,
+    /// The behaviour descriptors the task gives.
+    pub space: &'a BehaviourSpace,
     /// The genomes to start from, if given (only to an entry that
     /// [`StrategyEntry::takes_population`]).
     pub init: Option<&'a Population>,
@@ -151,7 +170,7 @@ where
 }
 
 /// How a strategy's part of a run's report is read from the run directory.
-pub type ReportOf = fn(&Path, &Config, usize) -> Result<Option<StrategyReport>>;
+pub type ReportOf = fn(&Path, &Config, &BehaviourSpace) -> Result<Option<StrategyReport>>;
 
 impl std::fmt::Debug for StrategyEntry {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -246,9 +265,5 @@ pub(crate) fn takers() -> Vec<&'static str> {
 /// The header line of the strategies that search on a behaviour descriptor.
 pub(crate) fn behaviour_line(c: &Config) -> String {
     let s = &StrategyConfig::of(c);
-    format!(
-        "\n  strategy: {}, behaviour {}",
-        s.kind.name(),
-        s.behaviour.name()
-    )
+    format!("\n  strategy: {}, behaviour {}", s.kind.name(), s.behaviour)
 }

@@ -9,7 +9,7 @@ use vivae_neat::{Genome, Population};
 
 use crate::config::Config;
 use crate::error::Result;
-use crate::search::StrategyEntry;
+use crate::search::{BehaviourSpace, StrategyEntry};
 
 /// A strategy's part of a run's report: its archive or front as saved with
 /// the last checkpoint (the program adds its columns of `generations.csv`).
@@ -77,14 +77,20 @@ pub trait RunStrategy {
         String::new()
     }
 
-    /// Writes its own files into the run directory `dir` (with each checkpoint).
-    fn write_outputs(&self, _dir: &Path, _config: &Config) -> Result<()> {
+    /// Writes its own files into the run directory `dir` (with each
+    /// checkpoint); `space` is the task's behaviour descriptors'.
+    fn write_outputs(&self, _dir: &Path, _config: &Config, _space: &BehaviourSpace) -> Result<()> {
         Ok(())
     }
 
     /// What its end-of-run figure shows after `generation`, if it has one
-    /// (the program draws it).
-    fn figure(&self, _config: &Config, _generation: u32) -> Option<StrategyFigure> {
+    /// (the program draws it); `space` is the task's behaviour descriptors'.
+    fn figure(
+        &self,
+        _config: &Config,
+        _space: &BehaviourSpace,
+        _generation: u32,
+    ) -> Option<StrategyFigure> {
         None
     }
 }

@@ -13,6 +13,7 @@
 //! matches on which task it is.
 
 pub mod acrobot;
+pub mod behaviours;
 pub mod cartpole;
 mod champion;
 pub mod classic;

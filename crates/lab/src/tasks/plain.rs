@@ -21,8 +21,8 @@ use crate::config::{Config, TaskName};
 use crate::controller::readings::Readings;
 use crate::error::{Result, a};
 use crate::io::bad_input;
-use crate::search::StrategyConfig;
 use crate::search::TaskFacts;
+use crate::search::{BehaviourSpace, StrategyConfig};
 use crate::tasks::maps::TrainingMap;
 use crate::tasks::sketch::{Film, Sketch};
 use crate::tasks::unread::first_change;
@@ -188,6 +188,8 @@ pub const fn entry<T: Plain>() -> TaskEntry {
         } else {
             ""
         },
+        // Its one descriptor, if any, is its own (`T::BEHAVIOUR`).
+        behaviours: &[],
         build: build::<T>,
         own_driver: None,
         refuse_when_other: crate::tasks::nothing_to_refuse,
@@ -375,9 +377,13 @@ impl<T: Plain> RunTask for PlainRun<T> {
         spec::<T>()
     }
 
-    fn behaviour_bounds(&self, _config: &Config) -> (Vec<f64>, Vec<f64>) {
+    fn behaviour_space(&self, _config: &Config) -> BehaviourSpace {
         let n = T::BEHAVIOUR.len();
-        (vec![0.0; n], vec![1.0; n])
+        BehaviourSpace {
+            lower: vec![0.0; n],
+            upper: vec![1.0; n],
+            names: T::BEHAVIOUR.iter().map(|&b| b.into()).collect(),
+        }
     }
 
     fn robot_steps(&self) -> u64 {
@@ -613,11 +619,7 @@ mod tests {
         );
         refused(&|c| c.physics.v_max = 3.0, "physics.v_max");
         refused(
-            &|c| {
-                StrategyConfig::update(c, |s| {
-                    s.behaviour = crate::config::strategy::BehaviourKind::SideSpeed
-                })
-            },
+            &|c| StrategyConfig::update(c, |s| s.behaviour = "side-speed".into()),
             "strategy.behaviour",
         );
         let mut read = default_config::<CartPole>();

@@ -12,6 +12,7 @@ use vivae_neat::driver::{Evaluation, Task};
 use vivae_neat::{Genome, GenomeSpec};
 
 use super::TargetProgress;
+use super::behaviours::BehaviourEntry;
 use super::maps::TrainingMap;
 use super::plain::Validation;
 use super::sketch::Film;
@@ -19,6 +20,7 @@ use super::substrate::SubstrateEpisodeOf;
 use crate::config::{Config, ConfigError, Section, SharedSection, TaskName};
 use crate::error::{Error, Result};
 use crate::io::read_text;
+use crate::search::BehaviourSpace;
 use crate::shipped::Shipped;
 use crate::tasks::scenarios::resolve_map;
 
@@ -62,6 +64,10 @@ pub struct TaskEntry {
     pub metric_names: &'static [&'static str],
     /// The columns it adds to `generations.csv`, each with its leading comma.
     pub generation_columns: &'static str,
+    /// The behaviour descriptors `strategy.behaviour` may name for its runs
+    /// (novelty search and MAP-Elites search on them); empty for a task
+    /// with one descriptor of its own (the key stays at its default) or none.
+    pub behaviours: &'static [BehaviourEntry],
     /// Builds the task of `config` on `maps` (from [`crate::tasks::maps::load`]).
     pub build: BuildTask,
     /// For a task that runs on a driver of its own (two populations) rather
@@ -277,6 +283,7 @@ pub fn check(config: &Config) -> std::result::Result<(), ConfigError> {
     crate::config::owned::settle(&mut settled.owned, &sections()).map_err(ConfigError::new)?;
     super::unread::refuse_unread(&settled, task).map_err(ConfigError::new)?;
     crate::search::check(config, task.metric_names).map_err(ConfigError::new)?;
+    super::behaviours::check(config, task).map_err(ConfigError::new)?;
     for other in super::entries().iter().filter(|t| t.name != task.name) {
         (other.refuse_when_other)(config).map_err(ConfigError::new)?;
     }
@@ -476,9 +483,10 @@ pub trait RunTask: RunTaskBase + Task + fmt::Debug + Send + Sync {
     /// The shape of the genomes the run evolves.
     fn genome_spec(&self) -> GenomeSpec;
 
-    /// The box the behaviour descriptors of `config`'s strategy lie in
-    /// (a grid archive's cells cover it).
-    fn behaviour_bounds(&self, config: &Config) -> (Vec<f64>, Vec<f64>);
+    /// The behaviour descriptors it gives for `config`'s `strategy.behaviour`
+    /// (checked to be one it offers): their box, which a grid archive's
+    /// cells cover, and their coordinates' names; empty if it gives none.
+    fn behaviour_space(&self, config: &Config) -> BehaviourSpace;
 
     /// Robot-steps one evaluation simulates at most.
     fn robot_steps(&self) -> u64;

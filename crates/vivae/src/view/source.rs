@@ -11,7 +11,6 @@ use vivae_lab::config::Config;
 use vivae_lab::io::{DEFAULT_SCENARIO, DEFAULT_SCENARIO_NAME, bad_input, read_text};
 use vivae_lab::rundir::GenerationRow;
 use vivae_lab::rundir::{self, Champion, GenerationBest, files};
-use vivae_lab::search::StrategyConfig;
 use vivae_lab::search::files::{self as strategy_files, ArchiveLine, FrontLine, Member};
 use vivae_lab::tasks::read_champion;
 use vivae_lab::tasks::read_config;
@@ -198,9 +197,7 @@ impl Source {
     /// Names of the behaviour coordinates of the archive's elites in `snap`.
     pub fn behaviour_names(&self, snap: &RunSnapshot) -> Vec<String> {
         let dims = snap.elites.first().map_or(0, |e| e.behaviour.len());
-        StrategyConfig::of(&self.config)
-            .behaviour
-            .coordinate_names(dims)
+        vivae_lab::tasks::behaviours::coordinate_names(&self.config, dims)
     }
 
     /// Names of the objectives of the run's Pareto front (a minimised one without its `-`).

@@ -207,9 +207,10 @@ pub const SETTINGS: &[Setting] = &[
         "behaviour",
         "strategy.behaviour",
         Name,
-        "end-position|end-positions|side-speed|trajectory",
-        "Behaviour descriptor of the strategies that search on one (strategy.behaviour)",
-    ),
+        "NAME",
+        "Behaviour descriptor of the strategies that search on one (strategy.behaviour; default end-position): the task decides which of these apply, and refuses another naming its own",
+    )
+    .choices(behaviour_names),
     Setting::new(
         "task",
         "experiment.task",
@@ -258,6 +259,11 @@ pub const SETTINGS: &[Setting] = &[
 /// The registered tasks' names.
 fn task_names() -> Vec<&'static str> {
     crate::tasks::names().to_vec()
+}
+
+/// The behaviour descriptors' names the registered tasks offer.
+fn behaviour_names() -> Vec<&'static str> {
+    crate::tasks::behaviours::names()
 }
 
 /// The registered strategies' names.

@@ -36,12 +36,132 @@ use vivae_neat::driver::Evaluation;
 use vivae_sim::World;
 
 use crate::config::Config;
-use crate::search::StrategyConfig;
+use crate::search::{BehaviourSpace, StrategyConfig};
+use crate::tasks::behaviours::{self, BehaviourEntry};
 use crate::tasks::driving::behaviour::BehaviourMeter;
 use crate::tasks::driving::fitness::Fitness;
 use crate::tasks::driving::rollout::{Drive, Rollout};
 
-pub use crate::config::strategy::{BehaviourKind, TRAJECTORY_SAMPLES};
+/// Which behaviour descriptor a driving episode reports (see the module's
+/// documentation): the driving task offers these ([`BEHAVIOURS`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BehaviourKind {
+    /// The robots' mean end position over the arena's size.
+    EndPosition,
+    /// Every robot's end position over the arena's size, concatenated.
+    EndPositions,
+    /// Mean signed side of the road and mean speed over `v_max`.
+    SideSpeed,
+    /// The robots' mean position over the arena's size at
+    /// [`TRAJECTORY_SAMPLES`] evenly spaced times, the last at the end.
+    Trajectory,
+}
+
+/// Positions a `trajectory` behaviour samples: 5, so 10 coordinates (as
+/// Lehman & Stanley sampled their biped's path, a handful of points).
+pub const TRAJECTORY_SAMPLES: usize = 5;
+
+/// The driving task's behaviour descriptors, by name (its entry's
+/// [`crate::tasks::TaskEntry::behaviours`]).
+pub static BEHAVIOURS: [BehaviourEntry; 4] = [
+    BehaviourEntry {
+        name: BehaviourKind::EndPosition.name(),
+        coordinates: behaviours::position,
+    },
+    BehaviourEntry {
+        name: BehaviourKind::EndPositions.name(),
+        coordinates: |dims| BehaviourKind::EndPositions.coordinate_names(dims),
+    },
+    BehaviourEntry {
+        name: BehaviourKind::SideSpeed.name(),
+        coordinates: |dims| BehaviourKind::SideSpeed.coordinate_names(dims),
+    },
+    BehaviourEntry {
+        name: BehaviourKind::Trajectory.name(),
+        coordinates: |dims| BehaviourKind::Trajectory.coordinate_names(dims),
+    },
+];
+
+impl BehaviourKind {
+    /// Every kind, in [`BEHAVIOURS`]' order.
+    const ALL: [BehaviourKind; 4] = [
+        BehaviourKind::EndPosition,
+        BehaviourKind::EndPositions,
+        BehaviourKind::SideSpeed,
+        BehaviourKind::Trajectory,
+    ];
+
+    /// The kind `config`'s `strategy.behaviour` names, if a driving one.
+    pub fn of(config: &Config) -> Option<BehaviourKind> {
+        let name = StrategyConfig::of(config).behaviour;
+        Self::named(name.name())
+    }
+
+    /// The kind called `name` (as configs write it), if any.
+    pub fn named(name: &str) -> Option<BehaviourKind> {
+        Self::ALL.into_iter().find(|k| k.name() == name)
+    }
+
+    /// Coordinates of the descriptor for `robots` robots.
+    pub fn dims(self, robots: usize) -> usize {
+        match self {
+            BehaviourKind::EndPositions => 2 * robots,
+            BehaviourKind::Trajectory => 2 * TRAJECTORY_SAMPLES,
+            BehaviourKind::EndPosition | BehaviourKind::SideSpeed => 2,
+        }
+    }
+
+    /// The box every descriptor lies in: (lower, upper) per coordinate.
+    pub fn bounds(self, robots: usize) -> (Vec<f64>, Vec<f64>) {
+        let n = self.dims(robots);
+        match self {
+            BehaviourKind::SideSpeed => (vec![-1.0, 0.0], vec![1.0, 1.0]),
+            _ => (vec![0.0; n], vec![1.0; n]),
+        }
+    }
+
+    /// Column names of the descriptor's `dims` coordinates.
+    pub fn coordinate_names(self, dims: usize) -> Vec<String> {
+        match self {
+            BehaviourKind::EndPosition => behaviours::position(dims),
+            BehaviourKind::SideSpeed => vec!["side".into(), "speed".into()],
+            BehaviourKind::EndPositions => (0..dims)
+                .map(|i| format!("{}{}", ["x", "y"][i % 2], i / 2))
+                .collect(),
+            // The sample's number from 1 (the end is the last).
+            BehaviourKind::Trajectory => (0..dims)
+                .map(|i| format!("{}{}", ["x", "y"][i % 2], i / 2 + 1))
+                .collect(),
+        }
+    }
+
+    /// The space of the descriptors of `robots` robots.
+    pub fn space(self, robots: usize) -> BehaviourSpace {
+        let (lower, upper) = self.bounds(robots);
+        let names = self.coordinate_names(lower.len());
+        BehaviourSpace {
+            lower,
+            upper,
+            names,
+        }
+    }
+
+    /// The name as configs write it.
+    pub const fn name(self) -> &'static str {
+        match self {
+            BehaviourKind::EndPosition => "end-position",
+            BehaviourKind::EndPositions => "end-positions",
+            BehaviourKind::SideSpeed => "side-speed",
+            BehaviourKind::Trajectory => "trajectory",
+        }
+    }
+}
+
+/// The space of `config`'s behaviour descriptors for `robots` robots
+/// (empty for a name the driving task does not offer, which its check refuses).
+pub fn space(config: &Config, robots: usize) -> BehaviourSpace {
+    BehaviourKind::of(config).map_or_else(BehaviourSpace::default, |k| k.space(robots))
+}
 
 /// Refuses a behaviour descriptor the run's maps cannot give (the message
 /// names the key): `end-positions` on several maps, whose robots differ.
@@ -49,7 +169,7 @@ pub fn check(c: &Config) -> std::result::Result<(), String> {
     let s = StrategyConfig::of(c);
     let searched = crate::search::entry(s.kind.name()).is_ok_and(|e| e.needs.behaviour);
     let multi_map = !c.experiment.scenarios.is_empty();
-    if searched && s.behaviour == BehaviourKind::EndPositions && multi_map {
+    if searched && BehaviourKind::of(c) == Some(BehaviourKind::EndPositions) && multi_map {
         return Err(format!(
             "strategy.behaviour = {:?}: one map only (maps have their own robots): use end-position on several maps",
             s.behaviour.name()
@@ -77,7 +197,10 @@ impl Measures {
     pub fn of(s: &StrategyConfig) -> Option<Measures> {
         let needs = crate::search::entry(s.kind.name()).ok()?.needs;
         let m = Measures {
-            behaviour: needs.behaviour.then_some(s.behaviour),
+            behaviour: needs
+                .behaviour
+                .then(|| BehaviourKind::named(s.behaviour.name()))
+                .flatten(),
             metrics: needs.metrics,
         };
         (m.behaviour.is_some() || m.metrics).then_some(m)
@@ -220,7 +343,7 @@ mod tests {
             let mut c = Config::default();
             StrategyConfig::update(&mut c, |s| {
                 s.kind = "novelty".into();
-                s.behaviour = behaviour;
+                s.behaviour = BehaviourKind::name(behaviour).into();
             });
             c.experiment.scenarios = maps.iter().map(|m| m.to_string()).collect();
             c

@@ -5,7 +5,7 @@ use vivae_neat::{Genome, GenomeSpec};
 
 use crate::config::{Config, TaskName};
 use crate::error::Result;
-use crate::search::StrategyConfig;
+use crate::search::BehaviourSpace;
 use crate::tasks::driving::combined::DrivingTask;
 use crate::tasks::driving::section::FitnessConfig;
 use crate::tasks::driving::training::Training;
@@ -23,6 +23,7 @@ pub static TASK: TaskEntry = TaskEntry {
     },
     metric_names: &crate::tasks::driving::descriptors::METRICS,
     generation_columns: "",
+    behaviours: &super::descriptors::BEHAVIOURS,
     build,
     own_driver: None,
     refuse_when_other: refuse_for_other_tasks,
@@ -83,10 +84,8 @@ impl RunTask for Training {
         self.primary().cppn_spec()
     }
 
-    fn behaviour_bounds(&self, config: &Config) -> (Vec<f64>, Vec<f64>) {
-        StrategyConfig::of(config)
-            .behaviour
-            .bounds(self.primary().robots())
+    fn behaviour_space(&self, config: &Config) -> BehaviourSpace {
+        super::descriptors::space(config, self.primary().robots())
     }
 
     fn robot_steps(&self) -> u64 {

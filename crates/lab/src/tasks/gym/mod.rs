@@ -18,7 +18,7 @@ use self::section::{GymnasiumConfig, SECTION};
 use crate::config::{Config, TaskName};
 use crate::error::Result;
 use crate::io::bad_input;
-use crate::search::{StrategyConfig, TaskFacts};
+use crate::search::{BehaviourSpace, StrategyConfig, TaskFacts};
 use crate::tasks::maps::TrainingMap;
 use crate::tasks::unread::first_change;
 use crate::tasks::{Finished, HeaderContext, RunTask, TaskEntry};
@@ -47,6 +47,7 @@ pub static TASK: TaskEntry = TaskEntry {
     validate,
     metric_names: METRICS,
     generation_columns: "",
+    behaviours: &[],
     build,
     own_driver: None,
     refuse_when_other: crate::tasks::nothing_to_refuse,
@@ -268,8 +269,8 @@ impl RunTask for GymRun {
         spec(&self.env)
     }
 
-    fn behaviour_bounds(&self, _config: &Config) -> (Vec<f64>, Vec<f64>) {
-        (Vec::new(), Vec::new())
+    fn behaviour_space(&self, _config: &Config) -> BehaviourSpace {
+        BehaviourSpace::default()
     }
 
     fn robot_steps(&self) -> u64 {

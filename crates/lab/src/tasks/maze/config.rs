@@ -133,13 +133,6 @@ pub(super) fn validate(c: &Config) -> Result<(), String> {
             "a maze network is evolved directly, not decoded into an ES-HyperNEAT substrate",
         );
     }
-    let behaviour = StrategyConfig::of(c).behaviour;
-    if behaviour != crate::config::strategy::BehaviourKind::EndPosition {
-        return refuse(
-            &format!("strategy.behaviour = {}", behaviour.name()),
-            "a maze's behaviour is the robot's end position in px: leave it at end-position",
-        );
-    }
     validate_robot(c)?;
     let unused = [
         ("substrate", *s == SubstrateConfig::default()),

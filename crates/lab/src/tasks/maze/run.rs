@@ -15,8 +15,8 @@ use vivae_sim::Scenario;
 use crate::config::Config;
 use crate::error::Result;
 use crate::io::bad_input;
-use crate::search::StrategyConfig;
 use crate::search::TaskFacts;
+use crate::search::{BehaviourSpace, StrategyConfig};
 use crate::tasks::maps::TrainingMap;
 use crate::tasks::maze::config::{MazeConfig, MazeRobot};
 use crate::tasks::maze::lehman::LehmanTask;
@@ -31,6 +31,11 @@ pub static TASK: TaskEntry = TaskEntry {
     validate: crate::tasks::maze::config::validate,
     metric_names: &METRICS,
     generation_columns: COLUMNS,
+    // The robot's end position in px (the maze's bounds).
+    behaviours: &[crate::tasks::behaviours::BehaviourEntry {
+        name: crate::config::strategy::BehaviourName::DEFAULT,
+        coordinates: crate::tasks::behaviours::position,
+    }],
     build,
     own_driver: None,
     refuse_when_other: crate::tasks::nothing_to_refuse,
@@ -118,8 +123,14 @@ impl<M: MazeModel> RunTask for M {
         MazeTask::spec()
     }
 
-    fn behaviour_bounds(&self, _config: &Config) -> (Vec<f64>, Vec<f64>) {
-        self.bounds()
+    fn behaviour_space(&self, _config: &Config) -> BehaviourSpace {
+        let (lower, upper) = self.bounds();
+        let names = crate::tasks::behaviours::position(lower.len());
+        BehaviourSpace {
+            lower,
+            upper,
+            names,
+        }
     }
 
     fn robot_steps(&self) -> u64 {
@@ -182,7 +193,6 @@ impl<M: MazeModel> RunTask for M {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::config::strategy::BehaviourKind;
 
     fn eval(solved: bool, distance: f64) -> Evaluation {
         Evaluation {
@@ -258,7 +268,7 @@ mod tests {
         );
         refused(&|c| c.distance_sensors.rays = 5, "[distance_sensors]");
         refused(
-            &|c| StrategyConfig::update(c, |s| s.behaviour = BehaviourKind::SideSpeed),
+            &|c| StrategyConfig::update(c, |s| s.behaviour = "side-speed".into()),
             "strategy.behaviour",
         );
         let mut c = Config::maze();

@@ -39,6 +39,7 @@ pub static TASK: TaskEntry = TaskEntry {
     validate: crate::tasks::predator_prey::config::validate,
     metric_names: &[],
     generation_columns: "",
+    behaviours: &[],
     build,
     own_driver: Some(OwnDriver { evolve, resume }),
     refuse_when_other: crate::tasks::nothing_to_refuse,

@@ -184,7 +184,8 @@ pub fn build_reusing(dir: &Path, reuse: &Reuse<'_>) -> vivae_lab::Result<String>
         scenes
     };
     (data.maps, data.episodes, data.network_svg) = (maps, episodes, network_svg);
-    data.strategy = strategy_data(dir, &config, experiment.robots())?;
+    let space = vivae_lab::tasks::driving::descriptors::space(&config, experiment.robots());
+    data.strategy = strategy_data(dir, &config, &space)?;
     page_of(&data)
 }
 

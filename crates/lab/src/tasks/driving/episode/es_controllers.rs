@@ -178,10 +178,14 @@ fn leo_seed_starts_every_strategy_that_takes_a_population_from_seeded_genomes_dr
     use vivae_neat::hyperneat::CPPN_INPUTS;
     let config = leo_config();
     let exp = experiment(&config);
-    let bounds = (vec![0.0], vec![1.0]);
+    let space = crate::search::BehaviourSpace {
+        lower: vec![0.0],
+        upper: vec![1.0],
+        names: vec!["x".into()],
+    };
     let search = |c: &Config| {
         let metrics = crate::tasks::metric_names(c);
-        Search::new(c, exp.cppn_spec(), bounds.clone(), None, metrics).unwrap()
+        Search::new(c, exp.cppn_spec(), &space, None, metrics).unwrap()
     };
     let a = search(&config).batch();
     assert_eq!(a, search(&config).batch(), "the seed is not deterministic");

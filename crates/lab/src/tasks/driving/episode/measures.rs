@@ -25,7 +25,7 @@ fn experiment(kind: &str, behaviour: BehaviourKind) -> (Config, Episode) {
     config.experiment.steps = 150;
     crate::search::StrategyConfig::update(&mut config, |s| {
         s.kind = kind.into();
-        s.behaviour = behaviour;
+        s.behaviour = behaviour.name().into();
     });
     let e = Episode::new(&config, &load_scenario(None).unwrap().scenario).unwrap();
     (config, e)

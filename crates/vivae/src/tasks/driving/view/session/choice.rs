@@ -6,7 +6,6 @@ use serde_json::Value;
 use crate::view::source::RunSnapshot;
 use vivae_lab::config::Config;
 use vivae_lab::io::one_line;
-use vivae_lab::search::StrategyConfig;
 
 /// Which genome drives the robots.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -73,9 +72,7 @@ pub(super) fn chosen_genome<'a>(
         Choice::Elite(cell) => {
             let e = (snap.elites.iter().find(|e| e.cell == cell))
                 .ok_or_else(|| missing("elite in cell", cell, snap.elites.len(), "elites"))?;
-            let names = StrategyConfig::of(config)
-                .behaviour
-                .coordinate_names(e.behaviour.len());
+            let names = vivae_lab::tasks::behaviours::coordinate_names(config, e.behaviour.len());
             let label = format!(
                 "elite of cell {cell} (generation {}, fitness {:.3}; {})",
                 e.generation,

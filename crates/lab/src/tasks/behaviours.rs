@@ -1,0 +1,79 @@
+//! The behaviour descriptors tasks offer: what `strategy.behaviour` may
+//! name. Each task declares its own with its registration
+//! ([`TaskEntry::behaviours`]) and gives a run the space of the one its
+//! config names ([`crate::tasks::RunTask::behaviour_space`]); the search
+//! layer knows none of their names.
+
+use crate::config::Config;
+use crate::config::strategy::BehaviourName;
+use crate::search::StrategyConfig;
+use crate::tasks::TaskEntry;
+
+/// A behaviour descriptor a task offers (`strategy.behaviour = "its name"`).
+#[derive(Debug, Clone, Copy)]
+pub struct BehaviourEntry {
+    /// Its name in `strategy.behaviour` and `--behaviour`.
+    pub name: &'static str,
+    /// Its coordinates' names, for a descriptor of `dims` coordinates (the
+    /// archive's columns; the viewer's and report's labels).
+    pub coordinates: fn(dims: usize) -> Vec<String>,
+}
+
+/// [`BehaviourEntry::coordinates`] of a descriptor of a position: `x`, `y`.
+pub fn position(_dims: usize) -> Vec<String> {
+    vec!["x".into(), "y".into()]
+}
+
+/// Refuses a `strategy.behaviour` that `task` does not offer, naming the
+/// key, the value and the names it offers; a task that offers none (it has
+/// one descriptor of its own, or none) leaves the key at its default.
+pub(crate) fn check(config: &Config, task: &TaskEntry) -> std::result::Result<(), String> {
+    let name = StrategyConfig::of(config).behaviour;
+    let name = name.name();
+    if task.behaviours.iter().any(|b| b.name == name) {
+        return Ok(());
+    }
+    if task.behaviours.is_empty() {
+        if name == BehaviourName::DEFAULT {
+            return Ok(());
+        }
+        return Err(format!(
+            "strategy.behaviour = {name:?}: a {} run offers no choice of behaviour descriptor: leave it at {}",
+            task.name,
+            BehaviourName::DEFAULT
+        ));
+    }
+    let names: Vec<&str> = task.behaviours.iter().map(|b| b.name).collect();
+    Err(format!(
+        "strategy.behaviour = {name:?}: a {} run offers {}",
+        task.name,
+        names.join(", ")
+    ))
+}
+
+/// The names of the coordinates of `config`'s behaviour descriptors of
+/// `dims` coordinates, as its task names them (numbered from 1 where the
+/// task offers no choice of descriptor, or its task is not registered).
+pub fn coordinate_names(config: &Config, dims: usize) -> Vec<String> {
+    let name = StrategyConfig::of(config).behaviour;
+    let offered = crate::tasks::entry_of(config)
+        .ok()
+        .and_then(|t| t.behaviours.iter().find(|b| b.name == name.name()));
+    match offered {
+        Some(b) => (b.coordinates)(dims),
+        None => (1..=dims).map(|i| format!("b{i}")).collect(),
+    }
+}
+
+/// Every registered task's behaviour descriptors' names, each once, in
+/// the registry's order (what `--behaviour` accepts; the task decides which
+/// apply).
+pub fn names() -> Vec<&'static str> {
+    let mut out: Vec<&'static str> = vec![BehaviourName::DEFAULT];
+    for b in crate::tasks::entries().iter().flat_map(|t| t.behaviours) {
+        if !out.contains(&b.name) {
+            out.push(b.name);
+        }
+    }
+    out
+}
