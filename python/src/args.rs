@@ -12,8 +12,6 @@ use pyo3::exceptions::{PyOverflowError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyString};
 
-use crate::settings::Bounded;
-
 /// Most worker threads an argument may ask for (as `run.threads` in a config).
 pub const MAX_THREADS: u128 = 1024;
 
@@ -64,6 +62,32 @@ fn wrong_type(key: &str, what: &str, v: &Bound<'_, PyAny>) -> PyErr {
 pub fn int<T: TryFrom<u128> + Bounded>(key: &str, v: &Bound<'_, PyAny>) -> PyResult<T> {
     let (lo, hi) = T::RANGE;
     int_in(key, v, lo, hi)
+}
+
+/// The range of an integer argument's type, for messages.
+pub trait Bounded {
+    /// The smallest and largest value.
+    const RANGE: (u128, u128);
+}
+
+macro_rules! bounded {
+    ($($t:ty),*) => {$(impl Bounded for $t {
+        const RANGE: (u128, u128) = (<$t>::MIN as u128, <$t>::MAX as u128);
+    })*};
+}
+bounded!(u32, u64, usize);
+
+/// The text argument `key=v`: a `str`, else a `TypeError` naming `key`.
+pub fn text(key: &str, v: &Bound<'_, PyAny>) -> PyResult<String> {
+    if !v.is_instance_of::<PyString>() {
+        return Err(wrong_type(key, "a string", v));
+    }
+    v.extract()
+}
+
+/// The bool argument `key=v` (Python's or numpy's), else a `TypeError` naming `key`.
+pub fn boolean(key: &str, v: &Bound<'_, PyAny>) -> PyResult<bool> {
+    v.extract().map_err(|_| wrong_type(key, "a bool", v))
 }
 
 /// `None` for Python's `None`, else `convert(key, v)`.

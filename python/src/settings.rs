@@ -6,14 +6,14 @@ use std::path::{Path, PathBuf};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString};
 use vivae_lab::config::Config;
-use vivae_lab::controller::substrate::PolarGrid;
-use vivae_lab::run::prepare::{Overrides, Resolved, resolve};
+use vivae_lab::run::prepare::{Overrides, Resolved, ValueKind, resolve, setting};
 
+use crate::args;
 use crate::errors::{self, SPELLING};
 
 /// The keyword overrides every entry point accepts: the library's
 /// [`Overrides`] keys, which are the CLI's flags too.
-pub const OVERRIDES: [&str; 24] = Overrides::KEYS;
+pub const OVERRIDES: &[&str] = &Overrides::KEYS;
 
 /// `config` (a TOML file) or the defaults of the task the keywords name (or
 /// their shipped scenario is drawn for; the paper's when none), with
@@ -51,23 +51,6 @@ fn applied(mut c: Config, o: &Overrides) -> PyResult<Config> {
     Ok(c)
 }
 
-fn grid(key: &str, v: &Bound<'_, PyAny>) -> PyResult<PolarGrid> {
-    let s: String = v.extract()?;
-    s.parse::<PolarGrid>()
-        .map_err(|e| errors::value(format!("{key}={s:?}: {e}")))
-}
-
-fn grids(key: &str, v: &Bound<'_, PyAny>) -> PyResult<Vec<PolarGrid>> {
-    let items: Vec<Bound<'_, PyAny>> = v.extract()?;
-    items.iter().map(|i| grid(key, i)).collect()
-}
-
-fn parsed<T: std::str::FromStr<Err = String>>(key: &str, v: &Bound<'_, PyAny>) -> PyResult<T> {
-    let s: String = v.extract()?;
-    s.parse::<T>()
-        .map_err(|e| errors::value(format!("{key}: {e}")))
-}
-
 /// A path given as `str` or `os.PathLike`.
 pub fn path_text(v: &Bound<'_, PyAny>) -> PyResult<String> {
     let p: PathBuf = v.extract()?;
@@ -88,73 +71,34 @@ fn extract(d: &Bound<'_, PyDict>) -> PyResult<Overrides> {
     Ok(o)
 }
 
-/// Sets override `key` of `o` to the Python value `v`.
+/// Sets override `key` of `o` to the Python value `v`: written as the text
+/// the library parses, as its setting's kind says.
 fn set(o: &mut Overrides, key: &str, v: &Bound<'_, PyAny>) -> PyResult<()> {
-    match key {
-        "scenario" => o.scenario = scenarios(v)?,
-        "generations" => o.generations = Some(int(key, v)?),
-        "population" => o.population = Some(int(key, v)?),
-        "seed" => o.seed = Some(int(key, v)?),
-        "sensors" => o.sensors = Some(grid(key, v)?),
-        "neurons" => o.neurons = Some(grid(key, v)?),
-        "steps" => o.steps = Some(int(key, v)?),
-        "robots" => o.robots = Some(int(key, v)?),
-        "threads" => o.threads = Some(int(key, v)?),
-        "distance_rays" => o.distance_rays = Some(int(key, v)?),
-        "recurrence" => o.recurrence = Some(parsed(key, v)?),
-        "normalize_by" => o.normalize_by = Some(parsed(key, v)?),
-        "normalize_self_loops" => o.normalize_self_loops = Some(v.extract()?),
-        "train_neurons" => o.train_neurons = Some(grids(key, v)?),
-        "train_sensors" => o.train_sensors = Some(grids(key, v)?),
-        "train_aggregate" => o.train_aggregate = Some(parsed(key, v)?),
-        "substrate" => o.substrate = Some(parsed(key, v)?),
-        "strategy" => o.strategy = Some(parsed(key, v)?),
-        "behaviour" => o.behaviour = Some(parsed(key, v)?),
-        "placements" => o.placements = Some(int(key, v)?),
-        "placements_aggregate" => o.placements_aggregate = Some(parsed(key, v)?),
-        "precision" => o.precision = Some(parsed(key, v)?),
-        "task" | "robot" => {
-            let t: String = v.extract()?;
-            o.set(key, &t).map_err(errors::value)?;
-        }
-        other => {
-            return Err(errors::value(format!(
-                "unknown setting {other:?}; expected one of {}",
-                OVERRIDES.join(", ")
-            )));
-        }
+    let Some(setting) = setting(key) else {
+        return Err(errors::value(format!(
+            "unknown setting {key:?}; expected one of {}",
+            OVERRIDES.join(", ")
+        )));
+    };
+    for text in texts(key, setting.kind, v)? {
+        (o.set(key, &text)).map_err(|e| errors::value(SPELLING.spell(&e)))?;
     }
     Ok(())
 }
 
-/// The integer `key=v`: a `TypeError` for anything but an int (a bool
-/// included), a `ValueError` naming the allowed range for one out of range.
-pub fn int<T: TryFrom<i128> + Bounded>(key: &str, v: &Bound<'_, PyAny>) -> PyResult<T> {
-    if v.is_instance_of::<pyo3::types::PyBool>() || !v.is_instance_of::<pyo3::types::PyInt>() {
-        let ty = v.get_type().name()?;
-        return Err(pyo3::exceptions::PyTypeError::new_err(format!(
-            "{key}: expected an integer, got {ty}"
-        )));
+/// The Python value `v` of setting `key` as the texts the library parses
+/// (one per call of [`Overrides::set`]); a value of the wrong type is a
+/// `TypeError` naming `key`, a number out of range a `ValueError`.
+fn texts(key: &str, kind: ValueKind, v: &Bound<'_, PyAny>) -> PyResult<Vec<String>> {
+    let one = |text: String| Ok(vec![text]);
+    match kind {
+        ValueKind::Whole { max } => one(args::int_in::<u64>(key, v, 0, max.into())?.to_string()),
+        ValueKind::Grid | ValueKind::Name => one(args::text(key, v)?),
+        ValueKind::Grids => one(args::items(key, "grids", v, args::text)?.join(",")),
+        ValueKind::Bool => one(args::boolean(key, v)?.to_string()),
+        ValueKind::Scenarios => scenarios(v),
     }
-    let n: Option<i128> = v.extract().ok();
-    n.and_then(|n| T::try_from(n).ok()).ok_or_else(|| {
-        let (lo, hi) = T::RANGE;
-        errors::value(format!("{key}={v}: expected an integer from {lo} to {hi}"))
-    })
 }
-
-/// The range of an integer setting's type, for messages.
-pub trait Bounded {
-    /// The smallest and largest value.
-    const RANGE: (u128, u128);
-}
-
-macro_rules! bounded {
-    ($($t:ty),*) => {$(impl Bounded for $t {
-        const RANGE: (u128, u128) = (<$t>::MIN as u128, <$t>::MAX as u128);
-    })*};
-}
-bounded!(u32, u64, usize);
 
 /// `scenario=`: one map (a path or a shipped name) or a list of maps, as
 /// one or several `--scenario` flags.
