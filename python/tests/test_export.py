@@ -67,8 +67,9 @@ def vivae_act(run: Path, readings: np.ndarray, precision: str | None = None) -> 
     return np.array([c.act(x[None, :])[0] for x in readings])
 
 
-def onnx_steps(model: Path, sensors: np.ndarray) -> np.ndarray:
-    """onnxruntime's wheel commands for `sensors`, the state carried."""
+def onnx_steps(model: Path, sensors: np.ndarray, output: str = "outputs") -> np.ndarray:
+    """onnxruntime's outputs (`output`: a robot's are also named "wheels")
+    for `sensors`, the state carried."""
     ort = pytest.importorskip("onnxruntime")
     session = ort.InferenceSession(str(model), providers=["CPUExecutionProvider"])
     dtype = np.float32 if session.get_inputs()[0].type == "tensor(float)" else np.float64
@@ -77,7 +78,7 @@ def onnx_steps(model: Path, sensors: np.ndarray) -> np.ndarray:
     with np.errstate(over="ignore"):
         sensors = sensors.astype(dtype)
     for x in sensors:
-        w, state = session.run(["wheels", "next_state"], {"sensors": x[None, :], "state": state})
+        w, state = session.run([output, "next_state"], {"sensors": x[None, :], "state": state})
         wheels.append(w[0])
     return np.array(wheels, dtype=np.float64)
 
@@ -130,6 +131,9 @@ def test_an_exported_champion_runs_in_onnxruntime_as_in_vivae(tmp_path, extra, g
     rec = vivae.record_episode(run, robot=1, steps=300, **grids)
     assert rec["sensors"].shape == (300, sum(len(s["places"]) for s in sheets))
     got = onnx_steps(model, rec["sensors"])
+    # A robot's outputs are also named "wheels", as earlier exports named them.
+    assert onnx_steps(model, rec["sensors"][:50], "wheels").tobytes() == got[:50].tobytes()
+    assert meta["wheels"] == meta["outputs"] and "left wheel" in meta["outputs"]
     worst = float(np.max(np.abs(got - rec["wheels"])))
     print(f"onnxruntime vs vivae, {extra!r} {grids}: largest difference {worst:.3e}")
     assert worst <= ONNX_BOUNDS[("exact", "recorded")]
@@ -175,10 +179,16 @@ class JsonController:
     Binary64: Python floats (IEEE binary64, one rounding per operation).
     Binary32: each +, -, *, / done in binary64 and rounded to binary32,
     which is the binary32 operation's result (53 >= 2 * 24 + 2 bits: the
-    double rounding is innocuous); fma exactly, in integers."""
+    double rounding is innocuous); fma exactly, in integers.
+
+    Layout 4 names the output nodes `net.outputs` (any number); layout 3
+    had two, `net.wheels`; any other version is refused."""
 
     def __init__(self, doc: dict):
+        if doc.get("format") != "vivae-controller" or doc.get("version") not in (3, 4):
+            raise ValueError(f"not a vivae-controller layout 3 or 4: format {doc.get('format')!r}, version {doc.get('version')!r}")
         self.net = doc["net"]
+        self.outputs = self.net["outputs"] if doc["version"] == 4 else self.net["wheels"]
         self.fast = self.net["precision"] == "fast"
         spec = doc["arithmetic"]["fast" if self.fast else "exact"]
         self.round = f32 if self.fast else (lambda v: v)
@@ -207,7 +217,7 @@ class JsonController:
                 s = fma32(w, x, s) if self.fast else s + w * x
             new[k] = self.sigmoid(s)
         self.state = new
-        return [new[net["wheels"][0]], new[net["wheels"][1]]]
+        return [new[k] for k in self.outputs]
 
 
 def f32(v: float) -> float:
@@ -290,7 +300,8 @@ def test_an_independent_json_reader_steps_to_vivaes_bits(tmp_path, precision):
     out = tmp_path / f"{precision}.json"
     vivae.export(run, "json", out, precision=precision)
     doc = json.loads(out.read_text())
-    assert doc["format"] == "vivae-controller" and doc["version"] == 3
+    assert doc["format"] == "vivae-controller" and doc["version"] == 4
+    assert len(doc["net"]["outputs"]) == 2 and "left wheel" in doc["outputs"]
     assert doc["sheets"][0]["sensor"] == "surface" and doc["net"]["precision"] == precision
     if precision == "fast":
         net = doc["net"]
@@ -315,6 +326,15 @@ def test_an_independent_json_reader_steps_to_vivaes_bits(tmp_path, precision):
     for what in equal:
         print(f"JSON reader, {precision}, {what}: {equal[what]} of {steps[what]} steps bit-equal to vivae")
     assert equal == steps and steps["recorded"] >= 2000
+    # A file of layout 3 (two outputs, `net.wheels`) reads the same; another version is refused.
+    old = json.loads(out.read_text())
+    old["version"], old["wheels"] = 3, old.pop("outputs")
+    old["net"]["wheels"] = old["net"].pop("outputs")
+    x = hostile_readings(ni, 200, 9).tolist()
+    new_reader, old_reader = JsonController(doc), JsonController(old)
+    assert [new_reader.step(v) for v in x] == [old_reader.step(v) for v in x]
+    with pytest.raises(ValueError, match="version 5"):
+        JsonController({**doc, "version": 5})
 
 
 def test_vivae_reads_a_reading_as_the_exports_do(tmp_path):
@@ -366,15 +386,17 @@ def test_drive_image_reads_camera_frames_and_a_map_alike(tmp_path):
         vivae.drive_image(run, [np.zeros((4, 4, 2), dtype=np.uint8)])
 
 
-def test_a_classic_control_network_exports_to_vivaes_bits_on_raw_observations(tmp_path, cli):
-    # CartPole's network reads raw observations (velocities leave [0, 1]):
-    # its task declares them unbounded, and the JSON reader gives vivae's
-    # own network's outputs to the bit on the recorded episode, ONNX within
-    # its exact bound.
+@pytest.mark.parametrize("task, generations, outputs", [("cartpole", 4, 2), ("acrobot", 2, 3), ("pendulum", 2, 1)])
+def test_a_classic_control_network_exports_to_vivaes_bits_on_raw_observations(tmp_path, cli, task, generations, outputs):
+    # A classic-control network reads raw observations (velocities leave
+    # [0, 1]): its task declares them unbounded, and the JSON reader gives
+    # vivae's own network's outputs, however many (CartPole's two,
+    # Acrobot's three, Pendulum's one), to the bit on the recorded episode,
+    # ONNX within its exact bound.
     import subprocess
 
     run = tmp_path / "run"
-    vivae.evolve(task="cartpole", seed=1, generations=4, out=run, progress=False)
+    vivae.evolve(task=task, seed=1, generations=generations, out=run, progress=False)
     subprocess.run([cli, "replay", str(run)], check=True, capture_output=True)
     lines = (run / "replay" / "episode.csv").read_text().splitlines()
     header = lines[0].split(",")
@@ -383,21 +405,28 @@ def test_a_classic_control_network_exports_to_vivaes_bits_on_raw_observations(tm
     rows = [[float(t) for t in line.split(",")] for line in lines[1:]]
     x = np.array([[r[i] for i in ins] for r in rows])
     want = [[r[i] for i in outs] for r in rows]
-    assert len(rows) >= 20 and len(outs) == 2
+    assert len(rows) >= 20 and len(outs) == outputs
     assert np.any(x < 0) or np.any(x > 1), "observations leave [0, 1]"
-    out = tmp_path / "cartpole.json"
-    vivae.export(run, "json", out)
+    out = tmp_path / f"{task}.json"
+    subprocess.run([cli, "export", str(run), "--format", "json", "-o", str(out)], check=True, capture_output=True)
     doc = json.loads(out.read_text())
     assert doc["net"]["readings"] == {"low": -1.7976931348623157e308, "high": 1.7976931348623157e308}
+    assert len(doc["net"]["outputs"]) == outputs
+    assert doc["outputs"].startswith(f"{outputs} output"), doc["outputs"]
     reader = JsonController(doc)
     got = [reader.step(v) for v in x.tolist()]
     equal = sum(g == w for g, w in zip(got, want))
-    print(f"JSON reader, cartpole: {equal} of {len(want)} steps bit-equal to vivae")
+    print(f"JSON reader, {task}: {equal} of {len(want)} steps bit-equal to vivae")
     assert equal == len(want)
-    model = tmp_path / "cartpole.onnx"
+    model = tmp_path / f"{task}.onnx"
     vivae.export(run, "onnx", model)
+    onnx = pytest.importorskip("onnx")
+    m = onnx.load(str(model))
+    onnx.checker.check_model(m, full_check=True)
+    assert [o.name for o in m.graph.output] == ["outputs", "next_state"]
     onnx_got = onnx_steps(model, x)
+    assert onnx_got.shape == (len(want), outputs)
     worst = float(np.max(np.abs(onnx_got - np.array(want))))
     same = int(np.sum(np.all(onnx_got == np.array(want), axis=1)))
-    print(f"onnxruntime vs vivae, cartpole: {same} of {len(want)} steps bit-equal, largest difference {worst:.3e}")
+    print(f"onnxruntime vs vivae, {task}: {same} of {len(want)} steps bit-equal, largest difference {worst:.3e}")
     assert worst <= ONNX_BOUNDS[("exact", "recorded")]

@@ -285,35 +285,47 @@ def test_the_stored_gymnasium_run_is_what_vivae_gym_writes(tmp_path):
             f"{name} differs: rewrite the fixture with VIVAE_WRITE_FIXTURES=1"
 
 
-@mujoco
-def test_a_two_action_champion_exports_to_the_networks_bits(tmp_path):
-    # Swimmer-v5's two continuous actions fit the exported step's two
-    # outputs (in [-1, 1]; the caller scales them to the action's bounds).
+@pytest.mark.parametrize("env, obs_size, actions, kind", [
+    pytest.param("Swimmer-v5", 8, 2, "continuous", marks=mujoco),
+    pytest.param("LunarLander-v3", 8, 4, "discrete", marks=box2d),
+    pytest.param("InvertedPendulum-v5", 4, 1, "continuous", marks=mujoco),
+])
+def test_a_champion_exports_to_the_networks_bits(tmp_path, env, obs_size, actions, kind):
+    # A champion of any number of actions exports with one output per
+    # action (discrete: the caller takes the largest; continuous: the caller
+    # scales [-1, 1] to the action's bounds), to the network's bits.
     import vivae.gym
     from test_export import ONNX_BOUNDS, JsonController, onnx_steps
 
     out = tmp_path / "run"
-    vivae.gym.evolve("Swimmer-v5", out, generations=2, population=6, seed=1, episodes=1,
+    vivae.gym.evolve(env, out, generations=2, population=6, seed=1, episodes=1,
                      validate=0, progress=False)
     genome, _, _ = vivae.load_genome(out)
-    assert (genome.num_inputs, genome.num_outputs) == (9, 2)
+    assert (genome.num_inputs, genome.num_outputs) == (obs_size + 1, actions)
     # Observations as Gymnasium gives them, well outside [0, 1].
-    obs = np.random.default_rng(5).normal(scale=3.0, size=(40, 8))
+    obs = np.random.default_rng(5).normal(scale=3.0, size=(40, obs_size))
     want = vivae.Controllers([genome]).act(obs[:, :], np.zeros(len(obs), dtype=np.int64))
+    assert want.shape == (len(obs), actions)
     inputs = np.hstack([obs, np.ones((len(obs), 1))])
-    vivae.export(out, "json", tmp_path / "swimmer.json")
-    doc = json.loads((tmp_path / "swimmer.json").read_text())
-    assert "continuous action dimension" in doc["wheels"]
+    name = env.split("-")[0].lower()
+    vivae.export(out, "json", tmp_path / f"{name}.json")
+    doc = json.loads((tmp_path / f"{name}.json").read_text())
+    assert doc["version"] == 4 and len(doc["net"]["outputs"]) == actions
+    assert doc["outputs"].startswith(f"{actions} output") and f"{kind} action" in doc["outputs"], doc["outputs"]
     reader = JsonController(doc)
     got = np.array([reader.step(x) for x in inputs.tolist()])
+    print(f"JSON reader, {env}: {int(np.sum(np.all(got == want, axis=1)))} of {len(want)} steps bit-equal to vivae")
     assert got.tobytes() == want.tobytes()
-    vivae.export(out, "onnx", tmp_path / "swimmer.onnx")
-    assert float(np.max(np.abs(onnx_steps(tmp_path / "swimmer.onnx", inputs) - want))) <= ONNX_BOUNDS[("exact", "recorded")]
+    vivae.export(out, "onnx", tmp_path / f"{name}.onnx")
+    worst = float(np.max(np.abs(onnx_steps(tmp_path / f"{name}.onnx", inputs) - want)))
+    print(f"onnxruntime vs vivae, {env}: largest difference {worst:.3e}")
+    assert worst <= ONNX_BOUNDS[("exact", "recorded")]
     # The program exports it too (it cannot play the episodes, but needs not).
     cli = vivae_binary()
     if cli is None:
         pytest.skip("no vivae binary (set VIVAE_BIN)")
-    done = subprocess.run([cli, "export", str(out), "--format", "c", "-o", str(tmp_path / "swimmer.c")],
+    done = subprocess.run([cli, "export", str(out), "--format", "c", "-o", str(tmp_path / f"{name}.c")],
                           capture_output=True, text=True)
     assert done.returncode == 0, done.stderr
-    assert "continuous action dimension" in (tmp_path / "swimmer.h").read_text()
+    header = (tmp_path / f"{name}.h").read_text()
+    assert f"#define VIVAE_OUTPUTS {actions}\n" in header and f"{kind} action" in header
