@@ -16,20 +16,8 @@
 # start genome is built as its XOR example builds it (the driver's docstring
 # says how). multineat 0.12 (a manylinux wheel, no compiler), Gymnasium and
 # NumPy are installed with pip into a venv under target/ (or VENV).
-set -euo pipefail
-cd "$(dirname "$0")/.."
-SEEDS="${SEEDS:-1 2 3}"
-TASKS="${TASKS:-cartpole acrobot mountain-car mountain-car-continuous pendulum}"
-EVALUATIONS="${EVALUATIONS:-15000}"
-CPU_SECONDS="${CPU_SECONDS:-120}"
-TARGET="${CARGO_TARGET_DIR:-target}"
-mkdir -p "$TARGET"
-VENV="${VENV:-$(cd "$TARGET" && pwd)/multineat-gym-venv}"
-if [ ! -x "$VENV/bin/python" ]; then
-    python3 -m venv "$VENV"
-fi
-"$VENV/bin/pip" install --quiet --disable-pip-version-check --only-binary :all: \
-    'multineat==0.12' 'gymnasium>=1,<2' numpy
+source "$(dirname "$0")/gym-classic-common.sh"
+venv multineat-gym-venv --only-binary :all: 'multineat==0.12'
 for task in $TASKS; do
     case "$task" in
         cartpole | acrobot | mountain-car | mountain-car-continuous | pendulum) ;;

@@ -17,19 +17,8 @@
 # environment and its fitness threshold off (the script stops a run itself).
 # neat-python, Gymnasium and NumPy are installed with pip into a venv under
 # target/ (or VENV).
-set -euo pipefail
-cd "$(dirname "$0")/.."
-SEEDS="${SEEDS:-1 2 3}"
-TASKS="${TASKS:-cartpole acrobot mountain-car mountain-car-continuous pendulum}"
-EVALUATIONS="${EVALUATIONS:-15000}"
-CPU_SECONDS="${CPU_SECONDS:-120}"
-TARGET="${CARGO_TARGET_DIR:-target}"
-mkdir -p "$TARGET"
-VENV="${VENV:-$(cd "$TARGET" && pwd)/neat-python-gym-venv}"
-if [ ! -x "$VENV/bin/python" ]; then
-    python3 -m venv "$VENV"
-fi
-"$VENV/bin/pip" install --quiet --disable-pip-version-check 'neat-python>=2,<3' 'gymnasium>=1,<2' numpy
+source "$(dirname "$0")/gym-classic-common.sh"
+venv neat-python-gym-venv 'neat-python>=2,<3'
 WORK="$(mktemp -d)"
 trap 'rm -rf "$WORK"' EXIT
 shape() {

@@ -6,7 +6,7 @@
 //! distance over the steps.
 
 use vivae_lab::tasks::TaskEntry;
-use vivae_lab::tasks::plain::{Plain, Trace, entry};
+use vivae_lab::tasks::plain::{Described, Plain, Trace, entry};
 use vivae_neat::Network;
 use vivae_neat::driver::Evaluation;
 use vivae_neat::eval::splitmix64;
@@ -22,7 +22,7 @@ const STEPS: u32 = 30;
 /// Seeking a target on a line, as a plain task.
 pub struct Seek;
 
-impl Plain for Seek {
+impl Described for Seek {
     const NAME: &'static str = "seek";
     const ABOUT: &'static str = "steering a point to a target on a line";
     const SCORING: &'static str = "fitness = 1 - the mean distance to the target (4 episodes)";
@@ -30,6 +30,9 @@ impl Plain for Seek {
     const OUTPUTS: usize = 2;
     const OUTPUT_MEANING: &'static str =
         "velocity = (out[0] - out[1]) / 20; inputs target - position, 1";
+}
+
+impl Plain for Seek {
     const STEPS: u64 = (EPISODES * STEPS) as u64;
     const TRACES: bool = true;
 

@@ -19,14 +19,12 @@ use vivae_neat::math::{atan2, cos, sin};
 
 use super::TaskEntry;
 use super::classic::{Classic, Draws, argmax};
-use super::plain::entry;
+use super::plain::{Described, entry};
 use super::sketch::{Shape, Sketch};
 
 /// The task's registration (`--task acrobot`).
 pub static TASK: TaskEntry = entry::<Acrobot>();
 
-/// Steps after which an episode is truncated (Acrobot-v1's `max_episode_steps`).
-pub const MAX_STEPS: u32 = 500;
 const DT: f64 = 0.2;
 const LINK_LENGTH_1: f64 = 1.0;
 /// The second link's length (only drawn: the book dynamics do not use it).
@@ -140,20 +138,23 @@ fn picture(inputs: &[f64], outputs: &[f64], shapes: &mut Vec<Shape>) {
     shapes.extend(Shape::turn(p1, 0.35, along, 0.6 * torque, 0.04, "#d32f2f"));
 }
 
-impl Classic for Acrobot {
+impl Described for Acrobot {
     const NAME: &'static str = "acrobot";
     const ABOUT: &'static str = "Acrobot-v1 (Gymnasium's dynamics)";
     const SCORING: &'static str = "fitness = the mean return of 5 episodes (-1 a step until the end is above the bar, at most 500 steps)";
     const INPUTS: usize = 7;
     const OUTPUTS: usize = 3;
     const OUTPUT_MEANING: &'static str = "Acrobot-v1's action = argmax of out[0..3] (torque -1, 0, +1; the first on a tie); inputs cos t1, sin t1, cos t2, sin t2, t1', t2', 1";
+}
+
+impl Classic for Acrobot {
     const BEHAVIOUR: &'static [&'static str] = &["cos_t1", "t1_velocity"];
     const THRESHOLD: f64 = -100.0;
     // Its episodes one by one: side by side in lanes was measured no faster.
     const LANES: bool = false;
     type State = [f64; 4];
     type Action = usize;
-    const MAX_STEPS: u32 = MAX_STEPS;
+    const MAX_STEPS: u32 = 500;
 
     /// θ1, θ2, θ1', θ2' uniform in [−0.1, 0.1), rounded to float32 as Gymnasium's `reset` does.
     fn start(draws: &mut Draws) -> [f64; 4] {
@@ -180,18 +181,6 @@ impl Classic for Acrobot {
             (1.0 - o[0]) / 2.0,
             ((o[4] / MAX_VEL_1 + 1.0) / 2.0).clamp(0.0, 1.0),
         ]
-    }
-
-    fn state_of(values: &[f64]) -> Option<[f64; 4]> {
-        values.try_into().ok()
-    }
-
-    fn values(s: &[f64; 4]) -> Vec<f64> {
-        s.to_vec()
-    }
-
-    fn action_of(value: f64) -> Option<usize> {
-        [0.0, 1.0, 2.0].contains(&value).then_some(value as usize)
     }
 
     /// Gymnasium's picture: the bar the free end must rise above, the two

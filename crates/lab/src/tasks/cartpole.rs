@@ -1,9 +1,9 @@
 //! CartPole-v1 with Gymnasium's dynamics (`gymnasium/envs/classic_control/
 //! cartpole.py`): float64 state, explicit Euler, its constants, termination
 //! at |x| > 2.4 or |θ| > 12°, truncation after 500 steps, reward 1 a step.
-//! Its sin and cos are vivae's portable ones. An evaluation is [`EPISODES`]
-//! episodes, each starting uniformly within ±0.05 (from the evaluation's
-//! seed); fitness is their mean return, solved at Gymnasium's
+//! Its sin and cos are vivae's portable ones. An evaluation is 5 episodes,
+//! each starting uniformly within ±0.05 (from the evaluation's seed);
+//! fitness is their mean return, solved at Gymnasium's
 //! `reward_threshold` of 475. The network reads the observation (float32, as
 //! Gymnasium returns it) and a bias; action = argmax of its two outputs.
 
@@ -11,16 +11,12 @@ use vivae_neat::math::{cos, sin};
 
 use super::TaskEntry;
 use super::classic::{Classic, Draws, argmax};
-use super::plain::entry;
+use super::plain::{Described, entry};
 use super::sketch::{Shape, Sketch};
 
 /// The task's registration (`--task cartpole`).
 pub static TASK: TaskEntry = entry::<CartPole>();
 
-/// Episodes per evaluation.
-pub const EPISODES: u32 = 5;
-/// Steps after which an episode is truncated (CartPole-v1's `max_episode_steps`).
-pub const MAX_STEPS: u32 = 500;
 const GRAVITY: f64 = 9.8;
 const MASSCART: f64 = 1.0;
 const MASSPOLE: f64 = 0.1;
@@ -92,27 +88,25 @@ fn picture(inputs: &[f64], outputs: &[f64], shapes: &mut Vec<Shape>) {
     shapes.extend(Shape::arrow([from, 0.0], [to, 0.0], 0.03, "#d32f2f"));
 }
 
-impl Classic for CartPole {
+impl Described for CartPole {
     const NAME: &'static str = "cartpole";
     const ABOUT: &'static str = "CartPole-v1 (Gymnasium's dynamics)";
     const SCORING: &'static str = "fitness = the mean return of 5 episodes (1 a step, at most 500)";
     const INPUTS: usize = 5;
     const OUTPUTS: usize = 2;
     const OUTPUT_MEANING: &'static str = "CartPole-v1's action = argmax: out[0] >= out[1] pushes left (0), else right (1); inputs x, x_dot, theta, theta_dot, 1";
+}
+
+impl Classic for CartPole {
     const BEHAVIOUR: &'static [&'static str] = &["x", "theta"];
     const THRESHOLD: f64 = 475.0;
     type State = [f64; 4];
     type Action = bool;
-    const EPISODES: u32 = EPISODES;
-    const MAX_STEPS: u32 = MAX_STEPS;
+    const MAX_STEPS: u32 = 500;
 
     /// Each coordinate uniform in [−0.05, 0.05).
     fn start(draws: &mut Draws) -> [f64; 4] {
         [0; 4].map(|_| draws.uniform(-0.05, 0.05))
-    }
-
-    fn observe(s: &[f64; 4], obs: &mut [f64]) {
-        obs.copy_from_slice(s);
     }
 
     fn act(outputs: &[f64]) -> bool {
@@ -129,18 +123,6 @@ impl Classic for CartPole {
             ((o[0] / X_THRESHOLD + 1.0) / 2.0).clamp(0.0, 1.0),
             ((o[2] / THETA_THRESHOLD + 1.0) / 2.0).clamp(0.0, 1.0),
         ]
-    }
-
-    fn state_of(values: &[f64]) -> Option<[f64; 4]> {
-        values.try_into().ok()
-    }
-
-    fn values(s: &[f64; 4]) -> Vec<f64> {
-        s.to_vec()
-    }
-
-    fn action_of(value: f64) -> Option<bool> {
-        [0.0, 1.0].contains(&value).then_some(value == 1.0)
     }
 
     /// Gymnasium's picture: the track with its ends at ±2.4, the cart, the

@@ -11,30 +11,19 @@ use vivae_neat::driver::Evaluation;
 use vivae_neat::eval::splitmix64;
 use vivae_neat::{FeedForwardNetwork, Network};
 
-use super::plain::{Plain, Trace, Validation};
+use super::plain::{Described, Plain, Trace, Validation};
 use super::sketch::Sketch;
 use super::{Step, Stepped, Threshold};
 
 /// The most inputs or outputs a classic-control network has.
 const MOST: usize = 8;
 
-/// A Gymnasium classic-control environment: what it is and its dynamics.
+/// A Gymnasium classic-control environment: its dynamics (what it is is
+/// [`Described`]; its inputs are the observation's values and a bias).
 /// Every such environment is a [`Plain`] task by the one implementation
 /// below (its evaluation, lanes, validation and check are this module's), so
 /// a task's file states only these.
-pub trait Classic: Send + Sync + 'static {
-    /// Its name in `experiment.task` and `--task` ([`Plain::NAME`]).
-    const NAME: &'static str;
-    /// What it is, for the run's header ([`Plain::ABOUT`]).
-    const ABOUT: &'static str;
-    /// How an evaluation is scored, for the run's header ([`Plain::SCORING`]).
-    const SCORING: &'static str;
-    /// Inputs of its networks: the observation's values and a bias.
-    const INPUTS: usize;
-    /// Outputs of its networks.
-    const OUTPUTS: usize;
-    /// What the outputs mean (exported with the network).
-    const OUTPUT_MEANING: &'static str;
+pub trait Classic: Described + Send + Sync + 'static {
     /// Names of its behaviour descriptor's two coordinates ([`Classic::place`]).
     const BEHAVIOUR: &'static [&'static str];
     /// The mean return that solves it: a training evaluation reaching it
@@ -47,9 +36,9 @@ pub trait Classic: Send + Sync + 'static {
     /// ([`evaluate_lanes`]); false where that was measured no faster.
     const LANES: bool = true;
     /// What the environment holds between steps.
-    type State: Copy;
+    type State: Values;
     /// What a step takes.
-    type Action: Copy;
+    type Action: ActionValue;
     /// Episodes per evaluation.
     const EPISODES: u32 = 5;
     /// Steps after which an episode is truncated (its `max_episode_steps`).
@@ -57,8 +46,10 @@ pub trait Classic: Send + Sync + 'static {
     /// Episode `k`'s start, drawn as Gymnasium's `reset` draws it (its uniform ranges).
     fn start(draws: &mut Draws) -> Self::State;
     /// The observation in float64, before Gymnasium's float32 rounding
-    /// (`INPUTS − 1` values).
-    fn observe(s: &Self::State, obs: &mut [f64]);
+    /// (`INPUTS − 1` values): by default the state's values as they are.
+    fn observe(s: &Self::State, obs: &mut [f64]) {
+        s.write(obs);
+    }
     /// The action the network's outputs choose.
     fn act(outputs: &[f64]) -> Self::Action;
     /// One step: the next state, the reward, whether it terminated.
@@ -66,16 +57,65 @@ pub trait Classic: Send + Sync + 'static {
     /// A step's share of the behaviour descriptor, each coordinate in [0, 1],
     /// from the (float32) observation; the descriptor is its mean over steps.
     fn place(obs: &[f64]) -> [f64; 2];
-    /// The state Gymnasium's `env.unwrapped.state` holds as these values (`None`: not a state).
-    fn state_of(values: &[f64]) -> Option<Self::State>;
-    /// The state's values, as `env.unwrapped.state` holds them.
-    fn values(s: &Self::State) -> Vec<f64>;
-    /// The action Gymnasium's `env.step` is given as this number (`None`: not an action).
-    fn action_of(value: f64) -> Option<Self::Action>;
     /// How a step of its episodes looks (report.html animates the champion's
     /// replay); `None`: not drawn.
     fn sketch() -> Option<Sketch> {
         None
+    }
+}
+
+/// A classic-control state as Gymnasium's `env.unwrapped.state` holds it:
+/// its values.
+pub trait Values: Copy {
+    /// The state these values are (`None`: not a state).
+    fn of(values: &[f64]) -> Option<Self>;
+    /// Its values.
+    fn values(&self) -> Vec<f64>;
+    /// Its values written into `out` (as many), allocating nothing.
+    fn write(&self, out: &mut [f64]);
+}
+
+impl<const N: usize> Values for [f64; N] {
+    fn of(values: &[f64]) -> Option<Self> {
+        values.try_into().ok()
+    }
+
+    fn values(&self) -> Vec<f64> {
+        self.to_vec()
+    }
+
+    fn write(&self, out: &mut [f64]) {
+        out.copy_from_slice(self);
+    }
+}
+
+/// A classic-control action as Gymnasium's `env.step` is given it: a number.
+pub trait ActionValue: Copy {
+    /// The action `value` is (`None`: not an action) when the network's
+    /// `outputs` choose among that many (a discrete action is its argmax).
+    fn of(value: f64, outputs: usize) -> Option<Self>;
+}
+
+/// A discrete action: its number.
+impl ActionValue for usize {
+    fn of(value: f64, outputs: usize) -> Option<usize> {
+        let whole = value >= 0.0 && value < outputs as f64 && value.fract() == 0.0;
+        whole.then_some(value as usize)
+    }
+}
+
+/// One of two actions: 1 is true.
+impl ActionValue for bool {
+    fn of(value: f64, _outputs: usize) -> Option<bool> {
+        usize::of(value, 2).map(|a| a == 1)
+    }
+}
+
+/// A continuous action: any number, as float32 (as Gymnasium's action
+/// spaces hold it).
+impl ActionValue for f32 {
+    fn of(value: f64, _outputs: usize) -> Option<f32> {
+        Some(value as f32)
     }
 }
 
@@ -86,12 +126,6 @@ pub const GYMNASIUM_THRESHOLD: &str =
 /// A classic-control environment as a plain task: its episodes played by
 /// this module, its runs stopped by the check and solved by the validation.
 impl<T: Classic> Plain for T {
-    const NAME: &'static str = <T as Classic>::NAME;
-    const ABOUT: &'static str = <T as Classic>::ABOUT;
-    const SCORING: &'static str = <T as Classic>::SCORING;
-    const INPUTS: usize = <T as Classic>::INPUTS;
-    const OUTPUTS: usize = <T as Classic>::OUTPUTS;
-    const OUTPUT_MEANING: &'static str = <T as Classic>::OUTPUT_MEANING;
     const METRICS: &'static [&'static str] = &["worst", "steps"];
     const BEHAVIOUR: &'static [&'static str] = <T as Classic>::BEHAVIOUR;
     const STEPS: u64 = T::EPISODES as u64 * T::MAX_STEPS as u64;
@@ -392,7 +426,7 @@ pub fn evaluate_lanes<T: Classic>(net: &FeedForwardNetwork, seed: u64) -> Evalua
 /// `T`'s episode from state `state` under `actions`, until it terminates, is
 /// truncated or the actions run out; the error says what is wrong with the input.
 pub fn episode<T: Classic>(state: &[f64], actions: &[f64]) -> Result<Vec<Step>, String> {
-    let mut s = T::state_of(state).ok_or_else(|| {
+    let mut s = T::State::of(state).ok_or_else(|| {
         format!(
             "state {state:?} is not {} state (as env.unwrapped.state holds it)",
             crate::error::a(T::NAME)
@@ -401,7 +435,7 @@ pub fn episode<T: Classic>(state: &[f64], actions: &[f64]) -> Result<Vec<Step>, 
     let mut obs = vec![0.0; T::INPUTS - 1];
     let mut out = Vec::new();
     for (n, &a) in actions.iter().enumerate() {
-        let action = T::action_of(a).ok_or_else(|| {
+        let action = T::Action::of(a, T::OUTPUTS).ok_or_else(|| {
             format!(
                 "action {a} (step {n}) is not {} action",
                 crate::error::a(T::NAME)
@@ -412,7 +446,7 @@ pub fn episode<T: Classic>(state: &[f64], actions: &[f64]) -> Result<Vec<Step>, 
         T::observe(&s, &mut obs);
         let truncated = n + 1 >= T::MAX_STEPS as usize;
         out.push(Step {
-            state: T::values(&s),
+            state: s.values(),
             observation: obs.iter().map(|v| single(*v)).collect(),
             reward,
             terminated,

@@ -18,14 +18,12 @@ use vivae_neat::math::cos;
 use super::TaskEntry;
 use super::classic::{Classic, Draws, argmax, clip};
 use super::hill::{car, sketch};
-use super::plain::entry;
+use super::plain::{Described, entry};
 use super::sketch::Sketch;
 
 /// The task's registration (`--task mountain-car`).
 pub static TASK: TaskEntry = entry::<MountainCar>();
 
-/// Steps after which an episode is truncated (MountainCar-v0's `max_episode_steps`).
-pub const MAX_STEPS: u32 = 200;
 const MIN_POSITION: f64 = -1.2;
 const MAX_POSITION: f64 = 0.6;
 const MAX_SPEED: f64 = 0.07;
@@ -57,7 +55,7 @@ pub fn step([position, velocity]: [f64; 2], action: usize) -> ([f64; 2], bool) {
     ([position, velocity], terminated)
 }
 
-impl Classic for MountainCar {
+impl Described for MountainCar {
     const NAME: &'static str = "mountain-car";
     const ABOUT: &'static str = "MountainCar-v0 (Gymnasium's dynamics)";
     const SCORING: &'static str =
@@ -65,19 +63,18 @@ impl Classic for MountainCar {
     const INPUTS: usize = 3;
     const OUTPUTS: usize = 3;
     const OUTPUT_MEANING: &'static str = "MountainCar-v0's action = argmax of out[0..3] (push left, none, right; the first on a tie); inputs position, velocity, 1";
+}
+
+impl Classic for MountainCar {
     const BEHAVIOUR: &'static [&'static str] = &["position", "speed"];
     const THRESHOLD: f64 = -110.0;
     type State = [f64; 2];
     type Action = usize;
-    const MAX_STEPS: u32 = MAX_STEPS;
+    const MAX_STEPS: u32 = 200;
 
     /// Position uniform in [−0.6, −0.4), velocity 0.
     fn start(draws: &mut Draws) -> [f64; 2] {
         [draws.uniform(-0.6, -0.4), 0.0]
-    }
-
-    fn observe(s: &[f64; 2], obs: &mut [f64]) {
-        obs.copy_from_slice(s);
     }
 
     fn act(outputs: &[f64]) -> usize {
@@ -91,18 +88,6 @@ impl Classic for MountainCar {
 
     fn place(o: &[f64]) -> [f64; 2] {
         place(o)
-    }
-
-    fn state_of(values: &[f64]) -> Option<[f64; 2]> {
-        values.try_into().ok()
-    }
-
-    fn values(s: &[f64; 2]) -> Vec<f64> {
-        s.to_vec()
-    }
-
-    fn action_of(value: f64) -> Option<usize> {
-        [0.0, 1.0, 2.0].contains(&value).then_some(value as usize)
     }
 
     fn sketch() -> Option<Sketch> {

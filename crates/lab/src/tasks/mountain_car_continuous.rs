@@ -17,16 +17,14 @@
 use vivae_neat::math::cos;
 
 use super::TaskEntry;
-use super::classic::{Classic, Draws, clip};
+use super::classic::{Classic, Draws, Values, clip};
 use super::hill::{car, sketch};
-use super::plain::entry;
+use super::plain::{Described, entry};
 use super::sketch::Sketch;
 
 /// The task's registration (`--task mountain-car-continuous`).
 pub static TASK: TaskEntry = entry::<MountainCarContinuous>();
 
-/// Steps after which an episode is truncated (its `max_episode_steps`).
-pub const MAX_STEPS: u32 = 999;
 const MIN_POSITION: f64 = -1.2;
 const MAX_POSITION: f64 = 0.6;
 const MAX_SPEED: f64 = 0.07;
@@ -45,6 +43,27 @@ pub enum State {
     Reset([f64; 2]),
     /// As a step leaves it (`np.array([...], dtype=np.float32)`).
     Stepped([f32; 2]),
+}
+
+impl Values for State {
+    /// A float64 state, as `reset` leaves it.
+    fn of(values: &[f64]) -> Option<State> {
+        values.try_into().ok().map(State::Reset)
+    }
+
+    fn values(&self) -> Vec<f64> {
+        match self {
+            State::Reset(v) => v.to_vec(),
+            State::Stepped(v) => v.map(f64::from).to_vec(),
+        }
+    }
+
+    fn write(&self, out: &mut [f64]) {
+        match self {
+            State::Reset(v) => out.copy_from_slice(v),
+            State::Stepped(v) => out.copy_from_slice(&v.map(f64::from)),
+        }
+    }
 }
 
 /// A Python float cast to float32, as NumPy casts it in an operation with a float32.
@@ -113,30 +132,25 @@ fn clip32(x: f32, low: f32, high: f32) -> f32 {
     if x < low { low } else { x }
 }
 
-impl Classic for MountainCarContinuous {
+impl Described for MountainCarContinuous {
     const NAME: &'static str = "mountain-car-continuous";
     const ABOUT: &'static str = "MountainCarContinuous-v0 (Gymnasium's dynamics)";
     const SCORING: &'static str = "fitness = the mean return of 5 episodes (100 at the goal, -0.1*a^2 a step, at most 999 steps)";
     const INPUTS: usize = 3;
     const OUTPUTS: usize = 1;
     const OUTPUT_MEANING: &'static str = "MountainCarContinuous-v0's action = out[0] as float32 (a bipolar sigmoid, in [-1, 1]); inputs position, velocity, 1";
+}
+
+impl Classic for MountainCarContinuous {
     const BEHAVIOUR: &'static [&'static str] = &["position", "speed"];
     const THRESHOLD: f64 = 90.0;
     type State = State;
     type Action = f32;
-    const MAX_STEPS: u32 = MAX_STEPS;
+    const MAX_STEPS: u32 = 999;
 
     /// Position uniform in [−0.6, −0.4), velocity 0, in float64.
     fn start(draws: &mut Draws) -> State {
         State::Reset([draws.uniform(-0.6, -0.4), 0.0])
-    }
-
-    fn observe(s: &State, obs: &mut [f64]) {
-        // Not through `values`: a step allocates nothing.
-        match s {
-            State::Reset(v) => obs.copy_from_slice(v),
-            State::Stepped(v) => obs.copy_from_slice(&v.map(f64::from)),
-        }
     }
 
     fn act(outputs: &[f64]) -> f32 {
@@ -149,23 +163,6 @@ impl Classic for MountainCarContinuous {
 
     fn place(o: &[f64]) -> [f64; 2] {
         place(o)
-    }
-
-    /// A float64 state, as `reset` leaves it.
-    fn state_of(values: &[f64]) -> Option<State> {
-        values.try_into().ok().map(State::Reset)
-    }
-
-    fn values(s: &State) -> Vec<f64> {
-        match s {
-            State::Reset(v) => v.to_vec(),
-            State::Stepped(v) => v.map(f64::from).to_vec(),
-        }
-    }
-
-    /// Any number, as float32 (Gymnasium's action space holds float32).
-    fn action_of(value: f64) -> Option<f32> {
-        Some(value as f32)
     }
 
     /// MountainCar's picture, its flag at this goal and the arrow as long as the force.

@@ -22,14 +22,12 @@ use vivae_neat::math::{cos, fmod, sin};
 
 use super::TaskEntry;
 use super::classic::{Classic, Draws, clip};
-use super::plain::entry;
+use super::plain::{Described, entry};
 use super::sketch::{Shape, Sketch};
 
 /// The task's registration (`--task pendulum`).
 pub static TASK: TaskEntry = entry::<Pendulum>();
 
-/// Steps after which an episode is truncated (Pendulum-v1's `max_episode_steps`).
-pub const MAX_STEPS: u32 = 200;
 const MAX_SPEED: f64 = 8.0;
 const MAX_TORQUE: f64 = 2.0;
 const DT: f64 = 0.05;
@@ -101,20 +99,23 @@ fn picture(inputs: &[f64], outputs: &[f64], shapes: &mut Vec<Shape>) {
     ));
 }
 
-impl Classic for Pendulum {
+impl Described for Pendulum {
     const NAME: &'static str = "pendulum";
     const ABOUT: &'static str = "Pendulum-v1 (Gymnasium's dynamics)";
     const SCORING: &'static str = "fitness = the mean return of 5 episodes of 200 steps (minus the angle^2, 0.1 speed^2, 0.001 torque^2 a step); no Gymnasium threshold: -200 here";
     const INPUTS: usize = 4;
     const OUTPUTS: usize = 1;
     const OUTPUT_MEANING: &'static str = "Pendulum-v1's torque = 2*out[0] as float32 (out[0] a bipolar sigmoid, in [-1, 1]); inputs cos theta, sin theta, theta', 1";
+}
+
+impl Classic for Pendulum {
     const BEHAVIOUR: &'static [&'static str] = &["height", "speed"];
     const THRESHOLD: f64 = -200.0;
     const THRESHOLD_SOURCE: &'static str =
         "Gymnasium gives none; vivae's bar (docs/howto/classic-control.md)";
     type State = [f64; 2];
     type Action = f32;
-    const MAX_STEPS: u32 = MAX_STEPS;
+    const MAX_STEPS: u32 = 200;
 
     /// θ uniform in [−π, π), θ' in [−1, 1).
     fn start(draws: &mut Draws) -> [f64; 2] {
@@ -137,19 +138,6 @@ impl Classic for Pendulum {
     /// How high the pendulum is and how fast it turns, each in [0, 1].
     fn place(o: &[f64]) -> [f64; 2] {
         [(o[0] + 1.0) / 2.0, (o[2].abs() / MAX_SPEED).clamp(0.0, 1.0)]
-    }
-
-    fn state_of(values: &[f64]) -> Option<[f64; 2]> {
-        values.try_into().ok()
-    }
-
-    fn values(s: &[f64; 2]) -> Vec<f64> {
-        s.to_vec()
-    }
-
-    /// Any number, as float32 (Gymnasium's action space holds float32).
-    fn action_of(value: f64) -> Option<f32> {
-        Some(value as f32)
     }
 
     /// Gymnasium's picture: the rod from its pivot (θ = 0 upright, θ

@@ -30,8 +30,10 @@ use crate::tasks::{
     Finished, HeaderContext, RunTask, Stepped, TargetProgress, TaskEntry, Threshold,
 };
 
-/// A task of plain NEAT networks: its shape and how a network is scored.
-pub trait Plain: Send + Sync + 'static {
+/// What a plain task is (its name, what it is, how it is scored) and
+/// what its networks read and give: the part of [`Plain`] that a
+/// [`super::classic::Classic`] environment states too.
+pub trait Described {
     /// Its name in `experiment.task` and `--task`.
     const NAME: &'static str;
     /// What it is, for the run's header.
@@ -44,6 +46,10 @@ pub trait Plain: Send + Sync + 'static {
     const OUTPUTS: usize;
     /// What the outputs mean (exported with the network).
     const OUTPUT_MEANING: &'static str;
+}
+
+/// A task of plain NEAT networks: its shape and how a network is scored.
+pub trait Plain: Described + Send + Sync + 'static {
     /// The range its network's inputs are read in when exported: by default
     /// every finite value as it is (an observation as [`Plain::evaluate`]
     /// feeds it, so the export steps as vivae does), ±∞ as the largest

@@ -66,18 +66,21 @@ mod tests {
     use vivae_neat::driver::Evaluation;
 
     use super::*;
-    use crate::tasks::plain::{Plain, Trace, entry};
+    use crate::tasks::plain::{Described, Plain, Trace, entry};
 
     /// A toy: the network's one output should be its input's opposite.
     struct Negate;
 
-    impl Plain for Negate {
+    impl Described for Negate {
         const NAME: &'static str = "negate-registered-in-a-test";
         const ABOUT: &'static str = "negation";
         const SCORING: &'static str = "fitness = 1 - |out + in| at in = 0.5";
         const INPUTS: usize = 2;
         const OUTPUTS: usize = 1;
         const OUTPUT_MEANING: &'static str = "the input's opposite";
+    }
+
+    impl Plain for Negate {
         const STEPS: u64 = 1;
 
         fn evaluate(net: &mut dyn Network, _seed: u64, _trace: Option<&mut Trace>) -> Evaluation {

@@ -97,6 +97,13 @@ pub struct ReplayRequest<'a> {
     pub config: &'a Config,
     /// Whether the command named a scenario (else the run's is replayed).
     pub scenario_given: bool,
+    // The four options below are the driving task's alone. They stay here
+    // rather than in its folder: clap's derive fixes `vivae replay`'s flags
+    // in `cli::replay::ReplayArgs` when the program is built, so a task's
+    // own flags there would mean that file naming the driving task's type
+    // (what no file outside a task's folder does) or clap's arguments
+    // registered at run time per task; a task that draws no replay refuses
+    // `--placement-seed` by name.
     /// `--placement-seed`: the evaluation placement to replay.
     pub placement_seed: Option<u64>,
     /// `--blind-rays`: the distance rays read nothing.

@@ -9,7 +9,7 @@ use vivae_lab::tasks::acrobot::Acrobot;
 use vivae_lab::tasks::mountain_car::MountainCar;
 use vivae_lab::tasks::mountain_car_continuous::MountainCarContinuous;
 use vivae_lab::tasks::pendulum::Pendulum;
-use vivae_lab::tasks::plain::Plain;
+use vivae_lab::tasks::plain::{Described, Plain};
 
 use crate::a_plain_task_runs_reports_exports_and_resumes::{
     every_strategy_runs_and_resumes_bit_identical, plain,

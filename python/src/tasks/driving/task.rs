@@ -106,14 +106,12 @@ impl DriveTask {
     /// how a pickled task is rebuilt in another process.
     #[staticmethod]
     fn from_config_toml(py: Python<'_>, text: &str) -> PyResult<DriveTask> {
-        let config = Config::from_toml(text).map_err(|e| errors::value(format!("config: {e}")))?;
-        DriveTask::from_config(py, config)
+        DriveTask::from_config(py, crate::tasks::config_of_toml(text)?)
     }
 
     /// Pickles by its resolved config (its scenario paths as resolved here).
     fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, (String,))> {
-        let text = slf.get().config.to_toml();
-        Ok((slf.get_type().getattr("from_config_toml")?, (text,)))
+        crate::tasks::reduce_to_config(slf, &slf.get().config)
     }
 
     /// The resolved config as TOML (what `config.toml` of a run holds).

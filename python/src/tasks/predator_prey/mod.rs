@@ -310,7 +310,7 @@ impl PredatorPreyTask {
     /// A task from its resolved config's TOML ([`PredatorPreyTask::config_toml`]).
     #[staticmethod]
     fn from_config_toml(py: Python<'_>, text: &str) -> PyResult<PredatorPreyTask> {
-        let config = Config::from_toml(text).map_err(|e| errors::value(format!("config: {e}")))?;
+        let config = crate::tasks::config_of_toml(text)?;
         let arena = config_arena(py, &config)?;
         let pool = crate::pool::ForkSafePool::new(config.run.threads)?;
         Ok(PredatorPreyTask {
@@ -322,8 +322,7 @@ impl PredatorPreyTask {
 
     /// Pickles by its resolved config.
     fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, (String,))> {
-        let text = slf.get().config.to_toml();
-        Ok((slf.get_type().getattr("from_config_toml")?, (text,)))
+        crate::tasks::reduce_to_config(slf, &slf.get().config)
     }
 
     /// The resolved config as TOML.
