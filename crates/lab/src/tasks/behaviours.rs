@@ -77,3 +77,60 @@ pub fn names() -> Vec<&'static str> {
     }
     out
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn with(task: &str, behaviour: &str) -> Config {
+        let task = crate::tasks::entry(task).unwrap();
+        let mut c = (task.default_config)();
+        StrategyConfig::update(&mut c, |s| {
+            s.kind = "novelty".into();
+            s.behaviour = behaviour.into();
+        });
+        c
+    }
+
+    #[test]
+    fn a_behaviour_the_task_does_not_offer_is_refused_with_the_names_it_does() {
+        for (task, offered) in [("driving", "trajectory"), ("maze", "end-position")] {
+            crate::tasks::check(&with(task, offered)).unwrap();
+        }
+        let why = crate::tasks::check(&with("driving", "speed")).unwrap_err();
+        assert_eq!(
+            why.to_string(),
+            "strategy.behaviour = \"speed\": a driving run offers end-position, end-positions, side-speed, trajectory"
+        );
+        let why = crate::tasks::check(&with("maze", "side-speed")).unwrap_err();
+        assert_eq!(
+            why.to_string(),
+            "strategy.behaviour = \"side-speed\": a maze run offers end-position"
+        );
+        // A task with no choice keeps the default, and refuses any other name.
+        let mut cartpole = with("cartpole", "trajectory");
+        StrategyConfig::update(&mut cartpole, |s| s.kind = "neat".into());
+        let why = crate::tasks::check(&cartpole).unwrap_err().to_string();
+        assert!(
+            why.starts_with("strategy.behaviour = \"trajectory\": a cartpole run offers no choice"),
+            "{why}"
+        );
+    }
+
+    #[test]
+    fn the_names_are_every_tasks_each_once_and_coordinates_are_the_tasks() {
+        assert_eq!(
+            names(),
+            ["end-position", "end-positions", "side-speed", "trajectory"]
+        );
+        let names_of = |task, behaviour, dims| coordinate_names(&with(task, behaviour), dims);
+        assert_eq!(names_of("driving", "side-speed", 2), ["side", "speed"]);
+        assert_eq!(
+            names_of("driving", "end-positions", 4),
+            ["x0", "y0", "x1", "y1"]
+        );
+        assert_eq!(names_of("maze", "end-position", 2), ["x", "y"]);
+        // A task with no choice names no coordinates of its own here.
+        assert_eq!(names_of("cartpole", "end-position", 2), ["b1", "b2"]);
+    }
+}
