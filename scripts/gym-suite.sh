@@ -18,7 +18,11 @@
 # seconds (OUT/cpu/) are its own cost.
 #
 # Order and budgets (ENVS; per environment KEY_SEEDS, KEY_GENERATIONS,
-# KEY_POPULATION, KEY_EPISODES, KEY being the upper-case short name):
+# KEY_POPULATION, KEY_EPISODES, KEY being the upper-case short name, and
+# KEY_CONFIG, a whole config TOML file new runs start from: a Gymnasium
+# run's config.toml with a line changed, e.g. `target_species = 10` added
+# under [neat] (a partial file starts from the driving task's settings);
+# use another OUT for runs of another config):
 #   ip       InvertedPendulum-v5        seeds 1-5   20 generations of 150, 3 episodes
 #   idp      InvertedDoublePendulum-v5  seeds 1-5   60 generations of 150, 3 episodes
 #   lander   LunarLander-v3             seeds 1-10 200 generations of 150, 3 episodes
@@ -73,9 +77,10 @@ for key in $ENVS; do
     generations="$(setting "$key" GENERATIONS "$generations")"
     population="$(setting "$key" POPULATION "$population")"
     episodes="$(setting "$key" EPISODES "$episodes")"
+    config="$(setting "$key" CONFIG "")"
     for seed in $seeds; do
         echo "== $env seed $seed: $generations generations of $population, $episodes episodes"
-        "$PYTHON" "$HERE/gym_suite_run.py" "$env" "$seed" "$OUT" "$generations" "$population" "$episodes"
+        "$PYTHON" "$HERE/gym_suite_run.py" "$env" "$seed" "$OUT" "$generations" "$population" "$episodes" "$config"
         "$PYTHON" "$HERE/gym_suite_table.py" "$OUT" > "$OUT/.table.md.tmp" && mv "$OUT/.table.md.tmp" "$OUT/table.md"
     done
 done

@@ -13,7 +13,11 @@ alike with ``processes=1``) go to ``cpu/<run>.csv`` beside the run, for the
 table's CPU time to the champion; a generation played again after a resume
 replaces its row, so the file holds the CPU of one uninterrupted run.
 
-    python scripts/gym_suite_run.py ENV SEED OUT GENERATIONS POPULATION EPISODES
+    python scripts/gym_suite_run.py ENV SEED OUT GENERATIONS POPULATION EPISODES [CONFIG]
+
+CONFIG (a whole config TOML file: a Gymnasium run's config.toml with a line
+changed, e.g. ``target_species = 10`` added under ``[neat]``) is what a new
+run's settings start from; a resumed run keeps its own.
 """
 
 import csv
@@ -67,11 +71,12 @@ class CpuLog:
 
 
 def main() -> int:
-    if len(sys.argv) != 7:
+    if len(sys.argv) not in (7, 8):
         print(__doc__.strip().splitlines()[-1].strip(), file=sys.stderr)
         return 2
     env, out = sys.argv[1], sys.argv[3]
-    seed, generations, population, episodes = (int(a) for a in (sys.argv[2], *sys.argv[4:]))
+    seed, generations, population, episodes = (int(a) for a in (sys.argv[2], *sys.argv[4:7]))
+    config = sys.argv[7] if len(sys.argv) == 8 and sys.argv[7] else None
     run = Path(out) / f"{env}-seed-{seed}"
     log = CpuLog(Path(out) / "cpu" / f"{run.name}.csv")
     each = lambda record: log.lap(str(record["generation"]))  # noqa: E731
@@ -94,7 +99,7 @@ def main() -> int:
     else:
         what = "started" if not run.exists() else "started again (killed before its first checkpoint)"
         vivae.gym.evolve(env, out=run, generations=generations, population=population, seed=seed,
-                         episodes=episodes, processes=1, validate=0, force=run.exists(),
+                         episodes=episodes, config=config, processes=1, validate=0, force=run.exists(),
                          progress=False, on_generation=each)
         vivae.gym.validate(run)
         log.lap("validation")

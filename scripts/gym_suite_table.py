@@ -3,7 +3,7 @@ runs under OUT: each run's ``config.toml`` (budget), ``generations.csv``
 (progress), ``validation.json`` (the champion on 100 fresh episodes) and
 the suite's ``cpu/<run>.csv`` (CPU seconds per generation).
 
-    python scripts/gym_suite_table.py OUT > table.md      (Python 3.11 or later: tomllib)
+    python scripts/gym_suite_table.py OUT > table.md      (Python 3.11 or later, with vivae)
 
 One row per environment (seeds solved, validated means, the best), then one
 per run: the champion's generation, the evaluations and CPU seconds it took
@@ -18,6 +18,8 @@ import sys
 import tomllib
 from pathlib import Path
 
+from vivae import _vivae
+
 ORDER = ["InvertedPendulum-v5", "InvertedDoublePendulum-v5", "LunarLander-v3", "Swimmer-v5",
          "HalfCheetah-v5", "Hopper-v5", "BipedalWalker-v3"]
 
@@ -31,6 +33,9 @@ def rows_of(path: Path) -> list[dict]:
 
 def run_record(run: Path, out: Path) -> dict:
     config = tomllib.loads((run / "config.toml").read_text())
+    # A run's config.toml leaves out settings at their defaults (a LunarLander-v3
+    # run of 3 episodes has no [gymnasium] section): vivae reads them back whole.
+    config["gymnasium"] = _vivae.gym_section(str(run))
     gens = rows_of(run / "generations.csv")
     cpu = {r["generation"]: float(r["cpu_seconds"]) for r in rows_of(out / "cpu" / f"{run.name}.csv")}
     validation = None
