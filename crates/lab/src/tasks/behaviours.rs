@@ -38,15 +38,15 @@ pub(crate) fn check(config: &Config, task: &TaskEntry) -> std::result::Result<()
             return Ok(());
         }
         return Err(format!(
-            "strategy.behaviour = {name:?}: a {} run offers no choice of behaviour descriptor: leave it at {}",
-            task.name,
+            "strategy.behaviour = {name:?}: {} run offers no choice of behaviour descriptor: leave it at {}",
+            crate::error::a(task.name),
             BehaviourName::DEFAULT
         ));
     }
     let names: Vec<&str> = task.behaviours.iter().map(|b| b.name).collect();
     Err(format!(
-        "strategy.behaviour = {name:?}: a {} run offers {}",
-        task.name,
+        "strategy.behaviour = {name:?}: {} run offers {}",
+        crate::error::a(task.name),
         names.join(", ")
     ))
 }
