@@ -309,7 +309,7 @@ fn a_layered_or_recurrent_sparse_net_steps_as_vivae_does() {
 #[test]
 fn a_plain_network_exports_every_output_in_every_format() {
     use crate::tasks::acrobot::Acrobot;
-    use crate::tasks::plain::{Plain, spec};
+    use crate::tasks::plain::{Described, spec};
     let pop = Population::new(Config::default().neat, spec::<Acrobot>(), 3).unwrap();
     let genome = &pop.genomes()[0];
     let e = Exported::plain(
