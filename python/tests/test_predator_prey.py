@@ -42,10 +42,11 @@ def test_predator_prey_runs_and_resumes_bit_identical(tmp_path: Path) -> None:
 
 def test_a_python_run_draws_its_ciao_figure_and_report(tmp_path: Path) -> None:
     vivae.evolve(out=tmp_path / "run", generations=3, **SETTINGS)
-    for name in ("ciao.png", "ciao.svg", "coevolution.png", "coevolution.svg", "report.html"):
+    for name in ("figures/ciao.png", "figures/ciao.svg", "figures/coevolution.png", "figures/coevolution.svg",
+                 "report.html"):
         assert (tmp_path / "run" / name).stat().st_size > 0, name
-    svg = (tmp_path / "run" / "ciao.svg").read_bytes()
-    (tmp_path / "run" / "ciao.svg").unlink()
+    svg = (tmp_path / "run" / "figures" / "ciao.svg").read_bytes()
+    (tmp_path / "run" / "figures" / "ciao.svg").unlink()
     page = vivae.report(tmp_path / "run")
     assert Path(page) == tmp_path / "run" / "report.html"
-    assert (tmp_path / "run" / "ciao.svg").read_bytes() == svg
+    assert (tmp_path / "run" / "figures" / "ciao.svg").read_bytes() == svg

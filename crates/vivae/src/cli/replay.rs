@@ -157,6 +157,20 @@ fn replay_without_figures(
         ))
         .into());
     }
+    // The drawing flags mean something only to a task that draws its
+    // replay; silently ignoring one would let a user think it took effect.
+    let drawing = [
+        ("--blind-rays", args.blind_rays),
+        ("--swerve", args.swerve),
+        ("--meetings", args.meetings),
+    ];
+    if let Some((flag, _)) = drawing.iter().find(|(_, on)| *on) {
+        return Err(bad_input(format!(
+            "{flag}: {} run draws no replay of its own, and the flag applies only to a task that does",
+            vivae_lab::error::a(config.experiment.task.name())
+        ))
+        .into());
+    }
     apply_overrides(&mut config, &args.overrides(args.episode.robots))?;
     let maps = vivae_lab::tasks::maps::load(&config)?;
     let task = vivae_lab::tasks::build(&config, &maps)?;

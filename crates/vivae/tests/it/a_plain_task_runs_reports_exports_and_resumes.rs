@@ -115,6 +115,17 @@ fn cartpole_reaches_gymnasiums_threshold_and_reports_replays_and_exports() {
     assert!(number(&replayed, "fitness") > 0.0, "{replayed}");
     let episode = String::from_utf8(read(&out, "replay/episode.csv")).unwrap();
     assert!(episode.starts_with("episode,step,in0,"), "{episode}");
+    // A replay flag that only a task drawing its own replay reads is refused, not ignored.
+    for flag in ["--blind-rays", "--swerve", "--meetings"] {
+        refused(
+            vivae().args(["replay", flag]).arg(&out),
+            &[flag, "a cartpole run draws no replay"],
+        );
+    }
+    refused(
+        vivae().args(["replay", "--placement-seed", "3"]).arg(&out),
+        &["--placement-seed 3", "a cartpole run places nothing"],
+    );
     for format in ["json", "c", "onnx"] {
         let file = dir.join(format!("cartpole.{format}"));
         let said = ok(vivae()

@@ -42,10 +42,11 @@ fn png_width(path: &Path) -> u32 {
 #[test]
 fn a_finished_run_and_vivae_report_draw_the_ciao_figure_and_the_curves() {
     let run = pp_run("pp-report", 4);
-    for name in ["ciao.png", "coevolution.png"] {
+    // In figures/, as every task's run keeps its figures.
+    for name in ["figures/ciao.png", "figures/coevolution.png"] {
         assert!(png_width(&run.join(name)) > 1000, "{name}");
     }
-    let svg = String::from_utf8(read(&run, "ciao.svg")).unwrap();
+    let svg = String::from_utf8(read(&run, "figures/ciao.svg")).unwrap();
     assert!(svg.contains("hunter generation") && svg.contains("prey generation"));
     let html = String::from_utf8(read(&run, "report.html")).unwrap();
     for needle in [
@@ -83,8 +84,8 @@ fn a_finished_run_and_vivae_report_draw_the_ciao_figure_and_the_curves() {
         );
     }
     // `vivae report` rebuilds the same figures.
-    let before = read(&run, "ciao.svg");
-    std::fs::remove_file(run.join("ciao.svg")).unwrap();
+    let before = read(&run, "figures/ciao.svg");
+    std::fs::remove_file(run.join("figures/ciao.svg")).unwrap();
     std::fs::remove_file(run.join("report.html")).unwrap();
     let out = run_report(&run);
     assert!(
@@ -92,7 +93,7 @@ fn a_finished_run_and_vivae_report_draw_the_ciao_figure_and_the_curves() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    assert_eq!(read(&run, "ciao.svg"), before);
+    assert_eq!(read(&run, "figures/ciao.svg"), before);
     assert!(run.join("report.html").is_file());
     // A viewer option that does not apply is refused in one line.
     let out = crate::common::run(vivae().arg("view").arg(&run).args(["--front", "0"]));

@@ -106,7 +106,10 @@ fn both_kinds_of_opponents_run_and_resume_bit_identical() {
             line.replace(&*whole.to_string_lossy(), &part.to_string_lossy())
         );
         // The figures the end of a run draws are the same too.
-        for file in FILES.iter().chain(&["ciao.svg", "coevolution.svg"]) {
+        for file in FILES
+            .iter()
+            .chain(&["figures/ciao.svg", "figures/coevolution.svg"])
+        {
             assert!(read(&whole, file) == read(&part, file), "{name}: {file}");
         }
         // The command that replays one-population runs refuses it in one line.

@@ -17,8 +17,8 @@ const FILES: [&str; 10] = [
     "hall-of-fame.jsonl",
     "checkpoint.json",
     "champions.json",
-    "ciao.svg",
-    "coevolution.svg",
+    "figures/ciao.svg",
+    "figures/coevolution.svg",
 ];
 
 /// The flags of the short runs compared (the same thread count everywhere:

@@ -22,7 +22,7 @@ pub static TOOLS: TaskTools = TaskTools {
     entry: &TASK,
     report: report::write,
     finish: None,
-    report_note: " (and ciao.png, coevolution.png)",
+    report_note: " (and figures/ciao.png, figures/coevolution.png)",
     records: "hunters.csv, prey.csv, ciao.csv and champions.json",
     tournament: Some(super::Tournament {
         play: tournament_tables,

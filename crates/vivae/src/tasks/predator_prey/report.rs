@@ -1,6 +1,6 @@
 //! The report of a predator–prey run (two co-evolved populations): the CIAO
-//! figure (`ciao.svg`, `ciao.png`), both sides' curves (`coevolution.svg`,
-//! `coevolution.png`) and `report.html`, which shows them with the master
+//! figure (`figures/ciao.svg`, `.png`), both sides' curves
+//! (`figures/coevolution.svg`, `.png`) and `report.html`, which shows them with the master
 //! tournament's champions and an animation of the two champions meeting.
 //! Everything is read from the run directory, so `vivae report RUN` rebuilds
 //! what the end of a run writes.
@@ -164,9 +164,12 @@ pub fn write(dir: &Path) -> Result<PathBuf> {
     let master = [Side::Hunter, Side::Prey].map(|s| master_tournament(&cells, n, s));
     let ciao = coevo::ciao(&cells, n)?;
     let curves = coevo::curves(&hunters, &prey, [&master[0], &master[1]])?;
+    // In `figures/`, where every task's run keeps its figures.
+    let figures = dir.join(run_files::FIGURES);
+    vivae_lab::io::create_dirs(&figures)?;
     for (name, figure) in [(CIAO_FIGURE, &ciao), (CURVES_FIGURE, &curves)] {
-        write_atomic(&dir.join(format!("{name}.svg")), figure.svg.as_bytes())?;
-        write_atomic(&dir.join(format!("{name}.png")), &figure.png)?;
+        write_atomic(&figures.join(format!("{name}.svg")), figure.svg.as_bytes())?;
+        write_atomic(&figures.join(format!("{name}.png")), &figure.png)?;
     }
     // champions.json is written when a run stops; a running one has none yet.
     let champions = dir

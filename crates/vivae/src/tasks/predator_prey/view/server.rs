@@ -20,13 +20,11 @@ const INDEX_HTML: &str = include_str!("../../../../assets/coevo.html");
 const COEVO_JS: &str = include_str!("../../../../assets/coevo.js");
 
 /// A predator–prey run's own files a page may fetch (as `/run/NAME`).
-const RUN_FILES: [(&str, &str); 6] = [
+const RUN_FILES: [(&str, &str); 4] = [
     (files::HUNTERS, "text/csv; charset=utf-8"),
     (files::PREY, "text/csv; charset=utf-8"),
     (files::CIAO, "text/csv; charset=utf-8"),
     (files::CHAMPIONS, "application/json"),
-    ("ciao.png", "image/png"),
-    ("coevolution.png", "image/png"),
 ];
 
 /// Serves the predator–prey run in `dir` until the process is stopped.
