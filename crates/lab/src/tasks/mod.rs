@@ -12,23 +12,14 @@
 //! task, it asks the [`RunTask`] or its entry; nothing outside a task's folder
 //! matches on which task it is.
 
-pub mod acrobot;
 pub mod behaviours;
-pub mod cartpole;
 mod champion;
 pub mod classic;
 pub mod describe;
-pub mod driving;
-pub mod gym;
 pub mod gymnasium;
 mod hill;
 pub mod maps;
-pub mod maze;
-pub mod mountain_car;
-pub mod mountain_car_continuous;
-pub mod pendulum;
 pub mod plain;
-pub mod predator_prey;
 mod registry;
 pub mod robot;
 pub mod scenarios;
@@ -50,17 +41,26 @@ pub use seam::{
 };
 pub use target::{StoredTarget, TargetProgress};
 
-/// The built-in tasks; `experiment.task` names one of these or a
-/// [`register`]ed one ([`entries`] lists both). A new task is a folder here
-/// and one line in this list.
-pub static TASKS: [&TaskEntry; 9] = [
-    &driving::TASK,
-    &maze::TASK,
-    &predator_prey::TASK,
-    &cartpole::TASK,
-    &acrobot::TASK,
-    &mountain_car::TASK,
-    &mountain_car_continuous::TASK,
-    &pendulum::TASK,
-    &gym::TASK,
-];
+/// Declares each built-in task's module (a folder or file here) and lists
+/// its entry (`its_module::TASK`) in [`TASKS`]: a new task is one name here.
+macro_rules! built_in {
+    ($($task:ident),* $(,)?) => {
+        $(pub mod $task;)*
+
+        /// The built-in tasks; `experiment.task` names one of these or a
+        /// [`register`]ed one ([`entries`] lists both).
+        pub static TASKS: &[&TaskEntry] = &[$(&$task::TASK),*];
+    };
+}
+
+built_in! {
+    driving,
+    maze,
+    predator_prey,
+    cartpole,
+    acrobot,
+    mountain_car,
+    mountain_car_continuous,
+    pendulum,
+    gym,
+}

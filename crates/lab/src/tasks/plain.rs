@@ -1,7 +1,8 @@
 //! A plain task: a genome shape and a scoring function made a full run
 //! task. A task that evolves plain NEAT networks (no substrate, no robot, no
-//! map) implements [`Plain`] (its shape and its `evaluate`) and registers
-//! `entry::<Its>()` in [`super::TASKS`]; this adapter gives it everything
+//! map) implements [`Plain`] (its shape and its `evaluate`), defines its
+//! `TASK` as `entry::<Its>()` and is named once in the registry's
+//! `built_in!` list ([`super::TASKS`]); this adapter gives it everything
 //! else a run asks of a task: its default config (plain NEAT, the strategies
 //! fitted to its metrics), the refusal by name of every setting it does not
 //! read, no maps, the run directory every task writes, a header, a summary,

@@ -50,14 +50,32 @@ fn no_file_outside_a_tasks_folder_names_the_task() {
     );
 }
 
-/// The module names of the tasks in a `TASKS` list (`&name::TASK` entries).
+/// The module names of the tasks a registry declares: the names in its
+/// `built_in! { … }` list, and any `&name::TASK` entries of a `TASKS` list.
 fn registered_tasks(registry: &str) -> Vec<String> {
     let t = super::tokenize(registry);
     let mut out = Vec::new();
-    for w in t.windows(3) {
+    let opens_list = |w: &[Token]| {
+        matches!((&w[0].tok, &w[1].tok, &w[2].tok),
+            (Tok::Ident(m), Tok::Punct('!'), Tok::Punct('{')) if m == "built_in")
+    };
+    if let Some(start) = t.windows(3).position(opens_list) {
+        let list = t[start + 3..]
+            .iter()
+            .take_while(|x| !matches!(x.tok, Tok::Punct('}')));
+        for tok in list {
+            if let Tok::Ident(name) = &tok.tok {
+                out.push(name.clone());
+            }
+        }
+    }
+    for (i, w) in t.windows(3).enumerate() {
+        // `$task::TASK` in the macro's body is its parameter, not a task.
+        let metavariable = i > 0 && matches!(t[i - 1].tok, Tok::Punct('$'));
         if let (Tok::Ident(name), Tok::PathSep, Tok::Ident(item)) =
             (&w[0].tok, &w[1].tok, &w[2].tok)
             && item == "TASK"
+            && !metavariable
         {
             out.push(name.clone());
         }
@@ -153,6 +171,11 @@ fn task_of(
 fn a_task_named_outside_its_folder_is_found() {
     let tasks = registered_tasks("pub static TASKS: [&TaskEntry; 2] = [&maze::TASK, &cart::TASK];");
     assert_eq!(tasks, ["maze", "cart"]);
+    let declared = registered_tasks(
+        "macro_rules! built_in { ($($t:ident),*) => { pub static TASKS: &[&E] = &[$(&$t::TASK),*]; }; }\n\
+         built_in! { maze, cart, }",
+    );
+    assert_eq!(declared, ["maze", "cart"]);
     let f = super::files(&[
         ("lib.rs", "pub mod run; pub mod tasks; mod view;"),
         (
