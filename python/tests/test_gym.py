@@ -215,6 +215,47 @@ def test_ctrl_c_stops_a_resumed_run_at_a_checkpoint_saying_how_to_resume(tmp_pat
     assert again["generations"] == done + 1 and again["finished"]
 
 
+class _SignalInDestructor:
+    """An object whose destructor receives Ctrl-C, as pybox2d's
+    ``b2BodyDef.__del__`` (run at every LunarLander reset) sometimes did: an
+    exception raised in a destructor is printed and dropped by Python."""
+
+    def __del__(self) -> None:
+        signal.raise_signal(signal.SIGINT)
+
+
+@pytest.mark.parametrize("where", ["episode", "generation end"])
+def test_ctrl_c_received_in_a_destructor_still_stops_the_run(tmp_path, where, monkeypatch):
+    import vivae.gym
+
+    if where == "episode":
+        # During the second generation's episodes, in a destructor run by an environment's step.
+        import gymnasium.envs.classic_control.cartpole as cartpole
+
+        step, calls = cartpole.CartPoleEnv.step, []
+
+        def step_then_signal(self, action):
+            calls.append(1)
+            if len(calls) == 300:
+                _SignalInDestructor()
+            return step(self, action)
+
+        monkeypatch.setattr(cartpole.CartPoleEnv, "step", step_then_signal)
+        on_generation = None
+    else:
+        def on_generation(record):
+            if record["generation"] == 1:
+                _SignalInDestructor()
+
+    with pytest.raises(KeyboardInterrupt) as stopped:
+        vivae.gym.evolve("CartPole-v1", tmp_path / "run", generations=50, population=8, seed=1,
+                         episodes=1, validate=0, progress=False, on_generation=on_generation)
+    done = int(str(stopped.value).split("after generation ")[1].split(";")[0])
+    assert 1 <= done < 50 and (tmp_path / "run" / "checkpoints" / f"gen-{done:06d}.ckpt").is_file()
+    # Python's own handler is back once the run has stopped.
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+
+
 def png_size(data_url: str) -> tuple[int, int]:
     """Width and height of a PNG data URL, from its IHDR (checking the signature)."""
     import base64

@@ -18,6 +18,7 @@ its ``[gymnasium]`` section, ``generations.csv``, ``champion.json``,
 from __future__ import annotations
 
 import base64
+import contextlib
 import functools
 import json
 import multiprocessing
@@ -25,6 +26,7 @@ import os
 import signal
 import struct
 import sys
+import threading
 import warnings
 import zlib
 from pathlib import Path
@@ -55,6 +57,52 @@ _processes = 1
 _open: dict[tuple[str, int, int], "_Episodes"] = {}
 # Seconds spent stepping environments and activating networks since `_reset_clock`.
 _clock = {"env": 0.0, "vivae": 0.0, "steps": 0}
+
+
+# Set by a Ctrl-C during a run or a validation (see `_ctrl_c_as_a_flag`).
+_ctrl_c = False
+
+
+def _on_ctrl_c(signum, frame) -> None:
+    global _ctrl_c
+    _ctrl_c = True
+    # A second Ctrl-C raises at once, as Python's own handler does.
+    signal.signal(signal.SIGINT, signal.default_int_handler)
+
+
+def _stop_if_ctrl_c() -> None:
+    """Raises KeyboardInterrupt if Ctrl-C was pressed since the last call."""
+    global _ctrl_c
+    if _ctrl_c:
+        _ctrl_c = False
+        raise KeyboardInterrupt
+
+
+@contextlib.contextmanager
+def _ctrl_c_as_a_flag():
+    """Within it, Ctrl-C sets a flag that the episode loop and each
+    generation's end turn into KeyboardInterrupt, instead of raising
+    wherever Python happens to be. Python raises a signal's exception at
+    the next bytecode, which may be a destructor's: pybox2d's
+    ``b2BodyDef.__del__`` runs at every LunarLander and BipedalWalker reset,
+    and an exception raised in a destructor is printed and dropped, so a
+    Ctrl-C landing there was lost and the run went on (2 in 300 in a
+    measurement). Only Python's own handler is replaced, and only in the
+    main thread; a caller's handler, or SIGINT ignored, is left alone."""
+    global _ctrl_c
+    ours = (threading.current_thread() is threading.main_thread()
+            and signal.getsignal(signal.SIGINT) is signal.default_int_handler)
+    if not ours:
+        yield
+        return
+    _ctrl_c = False
+    signal.signal(signal.SIGINT, _on_ctrl_c)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+    # A Ctrl-C after the last check still stops the caller, as it would have.
+    _stop_if_ctrl_c()
 
 
 def _reset_clock() -> None:
@@ -207,6 +255,7 @@ class _Episodes:
         actions = np.zeros((chunks * k, _shape(self.vec.single_action_space)[-1]))
         live = np.flatnonzero(flat[:, -1] == 0.0)
         while live.size:
+            _stop_if_ctrl_c()
             t0 = time.process_time()
             out = controllers.act(np.ascontiguousarray(flat[live, :d]), owner[live])
             if self.discrete:
@@ -280,8 +329,16 @@ def _run(call, progress: bool, total: int, on_generation, processes: int) -> dic
         raise ValueError(f"processes={processes!r}: expected a positive integer")
     _processes = processes
     _reset_clock()
+    def checked(each):
+        def at_generation_end(record: dict) -> None:
+            each(record)
+            _stop_if_ctrl_c()
+
+        return call(at_generation_end)
+
     try:
-        result = _with_bar(progress, total, on_generation, call)
+        with _ctrl_c_as_a_flag():
+            result = _with_bar(progress, total, on_generation, checked)
     except BaseException:
         _close(abort=True)
         raise
@@ -388,7 +445,8 @@ def validate(
     player = _Episodes(section["env"], len(seeds), processes)
     try:
         controllers = _vivae.Controllers([genome] * len(seeds))
-        returns, _ = player.play(controllers, seeds, np.arange(len(seeds), dtype=np.int64))
+        with _ctrl_c_as_a_flag():
+            returns, _ = player.play(controllers, seeds, np.arange(len(seeds), dtype=np.int64))
     except BaseException:
         player.close(abort=True)
         raise
