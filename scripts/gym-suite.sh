@@ -25,7 +25,8 @@
 # use another OUT for runs of another config):
 #   ip       InvertedPendulum-v5        seeds 1-5   20 generations of 150, 3 episodes
 #   idp      InvertedDoublePendulum-v5  seeds 1-5   60 generations of 150, 3 episodes
-#   lander   LunarLander-v3             seeds 1-10 200 generations of 150, 3 episodes
+#   lander   LunarLander-v3             seeds 1-10 200 generations of 150, 3 episodes,
+#                                       config scripts/gym-suite-lander.toml (10 species)
 #   swimmer  Swimmer-v5                 seeds 1-5   50 generations of 150, 3 episodes
 #   cheetah  HalfCheetah-v5             seeds 1-5   50 generations of 150, 3 episodes
 #   hopper   Hopper-v5                  seeds 1-5   50 generations of 150, 3 episodes
@@ -64,6 +65,13 @@ defaults() {
         *) echo "1 2 3 4 5|50|150|3" ;;
     esac
 }
+# Default config files: LunarLander's speciation (scripts/gym-suite-lander.toml).
+default_config() {
+    case "$1" in
+        lander) echo "$HERE/gym-suite-lander.toml" ;;
+        *) echo "" ;;
+    esac
+}
 setting() { # KEY NAME DEFAULT: $KEY_NAME if set, else DEFAULT
     local var
     var="$(echo "$1" | tr '[:lower:]' '[:upper:]')_$2"
@@ -77,7 +85,7 @@ for key in $ENVS; do
     generations="$(setting "$key" GENERATIONS "$generations")"
     population="$(setting "$key" POPULATION "$population")"
     episodes="$(setting "$key" EPISODES "$episodes")"
-    config="$(setting "$key" CONFIG "")"
+    config="$(setting "$key" CONFIG "$(default_config "$key")")"
     for seed in $seeds; do
         echo "== $env seed $seed: $generations generations of $population, $episodes episodes"
         "$PYTHON" "$HERE/gym_suite_run.py" "$env" "$seed" "$OUT" "$generations" "$population" "$episodes" "$config"
