@@ -27,7 +27,8 @@ pub trait Classic: Described + Send + Sync + 'static {
     /// Names of its behaviour descriptor's two coordinates ([`Classic::place`]).
     const BEHAVIOUR: &'static [&'static str];
     /// The mean return that solves it: a training evaluation reaching it
-    /// stops the run (once the check holds it), a validation reaching it
+    /// stops the run (once the check holds it, by three standard errors:
+    /// [`super::plain::Validation::lower_bound`]), a validation reaching it
     /// solves the run.
     const THRESHOLD: f64;
     /// Where [`Classic::THRESHOLD`] comes from (a table's source column).
