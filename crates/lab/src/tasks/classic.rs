@@ -14,6 +14,7 @@ use vivae_neat::{FeedForwardNetwork, Network};
 use super::plain::{Described, Plain, Trace, Validation};
 use super::sketch::Sketch;
 use super::{Step, Stepped, Threshold};
+use crate::config::Config;
 
 /// The most inputs or outputs a classic-control network has.
 const MOST: usize = 8;
@@ -42,6 +43,8 @@ pub trait Classic: Described + Send + Sync + 'static {
     type Action: ActionValue;
     /// Episodes per evaluation.
     const EPISODES: u32 = 5;
+    /// Generations of its default run (`experiment.generations`).
+    const GENERATIONS: u32 = 100;
     /// Steps after which an episode is truncated (its `max_episode_steps`).
     const MAX_STEPS: u32;
     /// Episode `k`'s start, drawn as Gymnasium's `reset` draws it (its uniform ranges).
@@ -138,6 +141,10 @@ impl<T: Classic> Plain for T {
     const CHECK_EPISODES: u32 = CHECK_EPISODES;
     const TRACES: bool = true;
     const STEPPED: Option<Stepped> = Some(episode::<T>);
+
+    fn defaults(config: &mut Config) {
+        config.experiment.generations = T::GENERATIONS;
+    }
 
     fn evaluate(net: &mut dyn Network, seed: u64, trace: Option<&mut Trace>) -> Evaluation {
         evaluate::<T>(net, seed, trace)
