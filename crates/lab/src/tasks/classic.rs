@@ -472,6 +472,21 @@ mod tests {
     use super::*;
 
     #[test]
+    fn a_task_s_default_run_has_its_own_generations() {
+        let generations = |t: &str| {
+            let name = crate::config::TaskName(t.into());
+            (crate::tasks::default_config(Some(&name))
+                .unwrap()
+                .experiment)
+                .generations
+        };
+        assert_eq!(generations("mountain-car"), 200);
+        for t in ["cartpole", "acrobot", "mountain-car-continuous", "pendulum"] {
+            assert_eq!(generations(t), 100, "{t}");
+        }
+    }
+
+    #[test]
     fn argmax_takes_the_first_largest() {
         assert_eq!(argmax(&[0.1, 0.3, 0.3]), 1);
         assert_eq!(argmax(&[0.5, 0.5]), 0);
