@@ -24,7 +24,8 @@
 # under [neat] (a partial file starts from the driving task's settings);
 # use another OUT for runs of another config):
 #   ip       InvertedPendulum-v5        seeds 1-5   20 generations of 150, 3 episodes
-#   idp      InvertedDoublePendulum-v5  seeds 1-5   60 generations of 150, 3 episodes
+#   idp      InvertedDoublePendulum-v5  seeds 1-5  100 generations of 150, 3 episodes,
+#                                       config scripts/gym-suite-idp.toml (small weights)
 #   lander   LunarLander-v3             seeds 1-10 200 generations of 150, 3 episodes,
 #                                       config scripts/gym-suite-lander.toml (10 species)
 #   swimmer  Swimmer-v5                 seeds 1-5   50 generations of 150, 3 episodes
@@ -60,14 +61,17 @@ env_id() {
 defaults() {
     case "$1" in
         ip) echo "1 2 3 4 5|20|150|3" ;;
-        idp) echo "1 2 3 4 5|60|150|3" ;;
+        idp) echo "1 2 3 4 5|100|150|3" ;;
         lander) echo "1 2 3 4 5 6 7 8 9 10|200|150|3" ;;
         *) echo "1 2 3 4 5|50|150|3" ;;
     esac
 }
-# Default config files: LunarLander's speciation (scripts/gym-suite-lander.toml).
+# Default config files: InvertedDoublePendulum's small weights
+# (scripts/gym-suite-idp.toml), LunarLander's speciation
+# (scripts/gym-suite-lander.toml).
 default_config() {
     case "$1" in
+        idp) echo "$HERE/gym-suite-idp.toml" ;;
         lander) echo "$HERE/gym-suite-lander.toml" ;;
         *) echo "" ;;
     esac
