@@ -19,10 +19,10 @@
 #
 # Order and budgets (ENVS; per environment KEY_SEEDS, KEY_GENERATIONS,
 # KEY_POPULATION, KEY_EPISODES, KEY being the upper-case short name, and
-# KEY_CONFIG, a whole config TOML file new runs start from: a Gymnasium
-# run's config.toml with a line changed, e.g. `target_species = 10` added
-# under [neat] (a partial file starts from the driving task's settings);
-# use another OUT for runs of another config):
+# KEY_CONFIG, a config TOML file new runs start from instead of the
+# environment's own (below): `task = "gymnasium"` under [experiment] and the
+# keys it changes, e.g. `target_species = 10` under [neat]; use another OUT
+# for runs of another config):
 #   ip       InvertedPendulum-v5        seeds 1-5   20 generations of 150, 3 episodes
 #   idp      InvertedDoublePendulum-v5  seeds 1-5  100 generations of 150, 3 episodes,
 #                                       config scripts/gym-suite-idp.toml (small weights)
