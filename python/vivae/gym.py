@@ -329,16 +329,15 @@ def _run(call, progress: bool, total: int, on_generation, processes: int) -> dic
         raise ValueError(f"processes={processes!r}: expected a positive integer")
     _processes = processes
     _reset_clock()
-    def checked(each):
-        def at_generation_end(record: dict) -> None:
-            each(record)
-            _stop_if_ctrl_c()
 
-        return call(at_generation_end)
+    def at_generation_end(record: dict) -> None:
+        if on_generation is not None:
+            on_generation(record)
+        _stop_if_ctrl_c()
 
     try:
         with _ctrl_c_as_a_flag():
-            result = _with_bar(progress, total, on_generation, checked)
+            result = _with_bar(progress, total, at_generation_end, call)
     except BaseException:
         _close(abort=True)
         raise

@@ -170,15 +170,15 @@ fn run_pack(o: &Options, progress: &mut dyn FnMut(&str)) -> Result<Table> {
                 .generations,
         ));
     }
-    let most = generations.first().map_or(0, |g| g.1);
+    let first = generations.first().map_or(0, |g| g.1);
     let others: Vec<String> = (generations.iter())
-        .filter(|(_, g)| *g != most)
+        .filter(|(_, g)| *g != first)
         .map(|(t, g)| format!("{t} {g}"))
         .collect();
     let generations = if others.is_empty() {
-        most.to_string()
+        first.to_string()
     } else {
-        format!("{most} ({})", others.join(", "))
+        format!("{first} ({})", others.join(", "))
     };
     Ok(Table::new(
         "Gymnasium's classic control, solved and validated",
